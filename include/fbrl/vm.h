@@ -1,0 +1,109 @@
+/* vm.h - the embeddable FBRL language engine (a Forth system).
+ *
+ * A VM lives entirely in memory the caller provides (dictionary, stacks, buffers);
+ * the engine never allocates, prints or touches the OS: output, input, files and
+ * time come through the callbacks in fbrl_vm_config. Several VMs may live in one
+ * process. Every error is returned, never an exit. */
+#ifndef FBRL_VM_H
+#define FBRL_VM_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef intptr_t fbrl_cell;    /* 64-bit on 64-bit hosts */
+typedef struct fbrl_vm fbrl_vm;
+
+/* Host services. Any callback may be NULL; the words that need a missing one
+ * throw a clear error (e.g. INCLUDED without file_open). */
+typedef struct fbrl_vm_host {
+    void *user;
+    /* Output: n bytes for the console (EMIT, TYPE, ., error messages). */
+    void (*write)(void *user, const char *s, size_t n);
+    /* Input for KEY/ACCEPT: next byte or -1 at end of input; key_ready for KEY?. */
+    int (*key)(void *user);
+    int (*key_ready)(void *user);
+    /* Source files for INCLUDED/REQUIRE: open by path (already resolved against the
+     * including file's directory by the engine), read one line at a time
+     * (without its end-of-line; *len set; FBRL_EEOF at end), close. */
+    fbrl_status (*file_open)(void *user, const char *path, void **handle);
+    fbrl_status (*file_read_line)(void *user, void *handle, char *buf, size_t cap, size_t *len);
+    void (*file_close)(void *user, void *handle);
+    /* Time: monotonic microseconds (MS, timers), sleeping, and local date/time
+     * for TIME&DATE as {sec, min, hour, day, month, year}. */
+    uint64_t (*now_us)(void *user);
+    void (*sleep_ms)(void *user, uint32_t ms);
+    void (*time_date)(void *user, int out[6]);
+} fbrl_vm_host;
+
+typedef struct fbrl_vm_config {
+    void *mem;                 /* all VM storage; aligned to 16 bytes */
+    size_t mem_size;           /* bytes; fbrl_vm_create() says FBRL_ENOSPC if too small */
+    size_t data_stack_cells;   /* 0 = default (256) */
+    size_t return_stack_cells; /* 0 = default (256) */
+    size_t float_stack_cells;  /* 0 = default (64) */
+    fbrl_vm_host host;
+} fbrl_vm_config;
+
+/* What went wrong in the last failed fbrl_vm_eval()/fbrl_vm_include(). */
+typedef struct fbrl_vm_error {
+    int throw_code;            /* Forth THROW code (e.g. -13 undefined word), 0 if none */
+    char message[128];         /* e.g. "undefined word" */
+    char word[64];             /* the word being interpreted when it failed */
+    char file[256];            /* source file, "" for evaluated text */
+    unsigned long line;        /* 1-based line in that source */
+} fbrl_vm_error;
+
+/* A C primitive: pops its arguments and pushes its results through the API below.
+ * Return FBRL_OK, or fbrl_vm_throw()'s result to raise a Forth exception. */
+typedef fbrl_status (*fbrl_vm_prim)(fbrl_vm *vm, void *arg);
+
+fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg);
+/* Smallest mem_size that fits the VM with these stack sizes and dict_bytes of dictionary. */
+size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes);
+
+/* Interpret text (any number of lines) as if typed. On error: stacks are reset,
+ * the interpreter is back in interpretation state, the dictionary is unharmed,
+ * and fbrl_vm_last_error() says what happened. */
+fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
+/* INCLUDED: interpret a file through the host's file callbacks. */
+fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
+const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
+/* True once BYE ran. */
+int fbrl_vm_bye(const fbrl_vm *vm);
+/* True while a colon definition (or other compilation) spans lines. */
+int fbrl_vm_compiling(const fbrl_vm *vm);
+
+/* Extending the language from C (robot words, data words). The stack effect and
+ * the one-line description are what HELP prints. */
+fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,
+                           const char *stack_effect, const char *help);
+fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);
+fbrl_status fbrl_vm_pop(fbrl_vm *vm, fbrl_cell *v);
+fbrl_status fbrl_vm_fpush(fbrl_vm *vm, double v);
+fbrl_status fbrl_vm_fpop(fbrl_vm *vm, double *v);
+size_t fbrl_vm_depth(const fbrl_vm *vm);
+size_t fbrl_vm_fdepth(const fbrl_vm *vm);
+/* Raise a Forth exception from a primitive (code < 0 standard, else user); msg may be NULL. */
+fbrl_status fbrl_vm_throw(fbrl_vm *vm, int code, const char *msg);
+/* Parse the next blank-delimited name from the input (for parsing words such as
+ * `CREATE-LOC P1`); *len = 0 at end of line. */
+fbrl_status fbrl_vm_parse_name(fbrl_vm *vm, const char **name, size_t *len);
+/* Translate a VM address (as pushed on the data stack) to a C pointer with n bytes
+ * in the VM's data space, or NULL if it does not lie wholly inside. */
+void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n);
+
+/* Introspection for the monitor: help text and word iteration (for TAB completion). */
+fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect,
+                         const char **help);
+/* Calls fn for every visible word name, newest first; stops early if fn returns non-zero. */
+void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, size_t len), void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,24 @@
+#!/bin/sh
+# The HAL boundary, checked on the compiled objects: no library module may allocate,
+# print, exit or abort; only the OS modules below may call the operating system.
+# Usage: check-hal.sh OBJ...   (prints each violation; exit 1 if any)
+set -u
+os_modules="uart_posix uart_serialport clock_posix fileio"
+never='^(malloc|calloc|realloc|free|printf|fprintf|vfprintf|puts|fputs|putchar|perror|exit|_exit|abort|__assert_fail|system)$'
+os_calls='^(open|open64|openat|close|read|write|poll|select|ioctl|fcntl|fcntl64|tcgetattr|tcsetattr|fopen|fopen64|fclose|fread|fwrite|fsync|rename|unlink|socket|connect|clock_gettime|nanosleep|usleep|sleep|pthread_[a-z_]*|signal|sigaction|getenv|time)$'
+bad=0
+for obj in "$@"; do
+    mod=$(basename "$obj"); mod=${mod%.o}; mod=${mod%.c}
+    syms=$(nm -u "$obj" | awk '{print $NF}' | sed 's/@.*//')
+    for s in $syms; do
+        if echo "$s" | grep -Eq "$never"; then
+            echo "hal: $mod calls $s (the library never allocates, prints, exits or aborts)"; bad=1
+        elif echo "$s" | grep -Eq "$os_calls"; then
+            case " $os_modules " in *" $mod "*) ;; *)
+                echo "hal: $mod calls $s (only $os_modules may touch the OS)"; bad=1 ;;
+            esac
+        fi
+    done
+done
+[ $bad -eq 0 ] && echo "hal: $# objects checked, boundary holds"
+exit $bad
