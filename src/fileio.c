@@ -3,6 +3,7 @@
  * byte, so the files move unchanged between hosts of any endianness. */
 #include "fbrl/fileio.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -453,6 +454,57 @@ static fbrl_status atomic_replace(const char *path, long keep_mode, const unsign
     if (fsync(dfd) != 0 && errno != EINVAL)
         st = FBRL_EIO;
     close(dfd);
+    return st;
+}
+
+/* name is ".BASE.DIGITS-DIGITS.tmp" for this base: a temporary of ours, not a user file. */
+static int is_temporary(const char *name, const char *base, size_t blen)
+{
+    if (name[0] != '.' || strncmp(name + 1, base, blen) != 0 || name[1 + blen] != '.')
+        return 0;
+    const char *p = name + 2 + blen;
+    for (int part = 0; part < 2; part++) {
+        const char *start = p;
+        while (*p >= '0' && *p <= '9')
+            p++;
+        if (p == start || *p != (part == 0 ? '-' : '.'))
+            return 0;
+        p++;
+    }
+    return strcmp(p, "tmp") == 0;
+}
+
+fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed)
+{
+    fbrl_status st = check_path(path);
+    if (removed)
+        *removed = 0;
+    if (st != FBRL_OK)
+        return st;
+    char dir[FBRL_FILE_PATH_MAX];
+    dir_of(path, dir);
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    size_t blen = strlen(base);
+    DIR *dp = opendir(dir);
+    if (!dp)
+        return from_errno(errno);
+    char victim[TMP_PATH_MAX];
+    size_t dlen = (size_t)(base - path);
+    struct dirent *e;
+    while ((e = readdir(dp)) != NULL) {
+        if (!is_temporary(e->d_name, base, blen) || dlen + strlen(e->d_name) >= sizeof victim)
+            continue;
+        memcpy(victim, path, dlen);
+        strcpy(victim + dlen, e->d_name);
+        if (unlink(victim) == 0) {
+            if (removed)
+                (*removed)++;
+        } else if (errno != ENOENT) {
+            st = FBRL_EIO;
+        }
+    }
+    closedir(dp);
     return st;
 }
 

@@ -132,6 +132,13 @@ fbrl_status fbrl_file_close(fbrl_file *f);
 /* Close the handle without writing its unsaved changes. */
 fbrl_status fbrl_file_discard(fbrl_file *f);
 
+/* Remove the temporaries a writer killed mid-commit left next to `path` (hidden files named
+ * .BASE.PID-N.tmp; see docs/files.md). They are never read and never block a later commit;
+ * this only reclaims their space. Call it when no other process is committing to `path`: a
+ * live writer's temporary would be removed and its commit would fail (without harm to the
+ * file). `removed` (may be NULL) receives the number removed. */
+fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed);
+
 /* Typed shorthands for fbrl_file_write/read with the built-in types. */
 fbrl_status fbrl_file_write_chr(fbrl_file *f, unsigned char v);
 fbrl_status fbrl_file_write_integer(fbrl_file *f, int16_t v);

@@ -753,8 +753,9 @@ static uint32_t gen_check(const char *path)
     return (uint32_t)g;
 }
 
-/* Rewrite path with generations g+1, g+2, ... until killed; any error exits. */
-static void writer_child(const char *path, uint32_t g)
+/* Rewrite path with generations g+1, g+2, ... until killed, telling `done` of each commit;
+ * any error exits. */
+static void writer_child(const char *path, uint32_t g, int done)
 {
     static unsigned char buf[8192];
     fbrl_file f;
@@ -762,7 +763,7 @@ static void writer_child(const char *path, uint32_t g)
         g++;
         if (fbrl_file_open(&f, path, buf, sizeof buf) != FBRL_OK ||
             fbrl_file_truncate(&f) != FBRL_OK || gen_write(&f, g) != FBRL_OK ||
-            fbrl_file_close(&f) != FBRL_OK)
+            fbrl_file_close(&f) != FBRL_OK || write(done, "c", 1) != 1)
             _exit(3);
     }
 }
@@ -788,15 +789,26 @@ static void killed_writers_leave_old_or_new_file(void **state)
         /* Delay 1 us .. 32 ms, spread evenly over the powers of two. */
         uint32_t base = 1u << (rng() % 15);
         uint32_t us = base + rng() % base;
+        int done[2];
+        assert_int_equal(pipe(done), 0);
         pid_t pid = fork();
         assert_true(pid >= 0);
-        if (pid == 0)
-            writer_child(p, g);
+        if (pid == 0) {
+            close(done[0]);
+            writer_child(p, g, done[1]);
+        }
+        close(done[1]);
+        /* Every tenth run first waits for one commit, so even a machine too loaded to commit
+         * within the random delay shows kills after commits too. */
+        char c;
+        if (run % 10 == 9)
+            assert_int_equal(read(done[0], &c, 1), 1);
         struct timespec ts = {us / 1000000u, (long)(us % 1000000u) * 1000L};
         nanosleep(&ts, NULL);
         assert_int_equal(kill(pid, SIGKILL), 0);
         int ws;
         assert_int_equal(waitpid(pid, &ws, 0), pid);
+        close(done[0]);
         if (!WIFSIGNALED(ws) || WTERMSIG(ws) != SIGKILL)
             fail_msg("run %d (seed %u): writer ended by itself, status %d", run, seed, ws);
         uint32_t now = gen_check(p); /* complete, one generation, never a mix */
@@ -820,6 +832,11 @@ static void killed_writers_leave_old_or_new_file(void **state)
     assert_int_equal(fbrl_file_truncate(&f), FBRL_OK);
     assert_int_equal(gen_write(&f, g + 1), FBRL_OK);
     assert_int_equal(fbrl_file_close(&f), FBRL_OK);
+    assert_int_equal(gen_check(p), g + 1);
+    unsigned removed;
+    assert_int_equal(fbrl_file_remove_temporaries(p, &removed), FBRL_OK);
+    assert_int_equal(removed, left);
+    assert_int_equal(count_temporaries(), 0);
     assert_int_equal(gen_check(p), g + 1);
 }
 
@@ -850,8 +867,30 @@ static void leftover_temporaries_do_not_block_writes(void **state)
         snprintf(name, sizeof name, ".left.fbd.%ld-%d.tmp", (long)getpid(), n);
         assert_int_equal(get_raw(in_dir(name), raw, sizeof raw), sizeof junk);
         assert_memory_equal(raw, junk, sizeof junk);
-        unlink(in_dir(name));
     }
+
+    /* Removing them takes exactly the temporaries of this file, nothing that only looks
+     * like one. */
+    static const char *const keep[] = {".left.fbd.12-3.tmpx", ".left.fbd.12.tmp",
+                                       ".left.fbd.-3.tmp", "left.fbd.12-3.tmp",
+                                       ".left.fbdx.12-3.tmp", ".other.fbd.12-3.tmp",
+                                       ".left.fbd.12-3x.tmp"};
+    for (size_t i = 0; i < sizeof keep / sizeof keep[0]; i++)
+        put_raw(in_dir(keep[i]), junk, sizeof junk);
+    unsigned removed;
+    assert_int_equal(fbrl_file_remove_temporaries(p, &removed), FBRL_OK);
+    assert_int_equal(removed, 5);
+    for (size_t i = 0; i < sizeof keep / sizeof keep[0]; i++) {
+        assert_int_equal(get_raw(in_dir(keep[i]), raw, sizeof raw), sizeof junk);
+        unlink(in_dir(keep[i]));
+    }
+    assert_int_equal(fbrl_file_remove_temporaries(p, &removed), FBRL_OK);
+    assert_int_equal(removed, 0);
+    assert_int_equal(fbrl_file_remove_temporaries(p, NULL), FBRL_OK);
+    assert_int_equal(fbrl_file_open(&f, p, buf, sizeof buf), FBRL_OK);
+    assert_int_equal(fbrl_file_close(&f), FBRL_OK);
+    assert_int_equal(fbrl_file_remove_temporaries(NULL, &removed), FBRL_EINVAL);
+    assert_int_equal(fbrl_file_remove_temporaries(in_dir("nodir/x"), &removed), FBRL_ENOENT);
 }
 
 /* A failed commit leaves the old file and an open handle; discard then closes it. */
