@@ -352,12 +352,8 @@ static fbrl_status check_path(const char *path)
 {
     if (!path || !path[0])
         return FBRL_EINVAL;
-    if (strlen(path) >= FBRL_FILE_PATH_MAX)
-        return FBRL_ENAME;
     size_t n = strlen(path);
-    if (path[n - 1] == '/')
-        return FBRL_ENAME;
-    return FBRL_OK;
+    return n >= FBRL_FILE_PATH_MAX || path[n - 1] == '/' ? FBRL_ENAME : FBRL_OK;
 }
 
 /* Decimal digits of v at out; returns the number written (at most 10). */
@@ -618,9 +614,10 @@ fbrl_status fbrl_file_open(fbrl_file *f, const char *path, void *buf, size_t cap
         return st;
     if (!buf || cap == 0)
         return FBRL_EINVAL;
+    /* O_NONBLOCK: a FIFO must not hang the open; it is refused as not a regular file. */
     int fd;
     do {
-        fd = open(path, O_RDONLY | O_CLOEXEC);
+        fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     } while (fd < 0 && errno == EINTR);
     if (fd < 0)
         return from_errno(errno);

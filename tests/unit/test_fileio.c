@@ -1036,6 +1036,10 @@ static void bad_input_is_refused(void **state)
     put_raw(in_dir("empty"), text, 0);
     assert_int_equal(fbrl_file_open(&f, in_dir("empty"), buf, sizeof buf), FBRL_ETRUNCATED);
     assert_int_equal(fbrl_file_open(&f, dir, buf, sizeof buf), FBRL_EFORMAT);
+    assert_int_equal(fbrl_file_open(&f, "/dev/zero", buf, sizeof buf), FBRL_EFORMAT);
+    assert_int_equal(mkfifo(in_dir("fifo"), 0600), 0);
+    assert_int_equal(fbrl_file_open(&f, in_dir("fifo"), buf, sizeof buf), FBRL_EFORMAT);
+    assert_int_equal(fbrl_file_open(&f, in_dir("trailing/"), buf, sizeof buf), FBRL_ENAME);
 
     /* Closed, never-opened and NULL handles. */
     assert_int_equal(fbrl_file_open(&f, p, buf, sizeof buf), FBRL_OK);
