@@ -53,7 +53,7 @@ typedef enum fbrl_ftype_code {
 typedef struct fbrl_ftype {
     fbrl_ftype_code code;
     uint16_t tag;   /* user types only; 0 for built-in types */
-    uint32_t size;  /* payload bytes: 1, 2, 4, 8, 48, or or any size >= 1 for USER */
+    uint32_t size;  /* payload bytes: 1, 2, 4, 8, 48, or any size >= 1 for USER */
 } fbrl_ftype;
 
 extern const fbrl_ftype fbrl_ftype_chr, fbrl_ftype_integer, fbrl_ftype_long,
