@@ -22,6 +22,11 @@ typedef enum fbrl_loc_axis {
     FBRL_LOC_X = 0, FBRL_LOC_Y, FBRL_LOC_Z, FBRL_LOC_O, FBRL_LOC_A, FBRL_LOC_T, FBRL_LOC_NAXES
 } fbrl_loc_axis;
 
+/* Location angles are degrees; matrices and calibration compute in radians. */
+#define FBRL_PI 3.14159265358979323846
+#define FBRL_DEG(rad) ((rad) * (180.0 / FBRL_PI))
+#define FBRL_RAD(deg) ((deg) * (FBRL_PI / 180.0))
+
 /* Buffer size that always holds fbrl_loc_format()'s text (terminating NUL included) when
  * every shown component is below 1e9 in magnitude; larger values may give FBRL_ENOSPC. */
 #define FBRL_LOC_TEXT_SIZE 128
