@@ -429,11 +429,12 @@ fbrl_status fbrl_calib_unmap_points(const fbrl_calib *c, const double *in, doubl
     return fbrl_calib_map_points(&inv, in, out, n);
 }
 
-fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, double r[9])
+fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, fbrl_rot *rot)
 {
-    double cy, sy, cp, sp, cr, sr;
-    if (!r)
+    double cy, sy, cp, sp, cr, sr, *r;
+    if (!rot)
         return FBRL_EINVAL;
+    r = &rot->m[0][0];
     if (!isfinite(yaw) || !isfinite(pitch) || !isfinite(roll))
         return FBRL_ENONFINITE;
     cy = cos(FBRL_RAD(yaw));   sy = sin(FBRL_RAD(yaw));
@@ -446,15 +447,17 @@ fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, d
     return FBRL_OK;
 }
 
-fbrl_status fbrl_calib_matrix_to_orient(const double r[9], double yaw_hint,
+fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint,
                                         double *yaw, double *pitch, double *roll)
 {
     double horiz, p, y, cy, sy, cp, sp, u0, q11, q21;
+    const double *r;
     int i;
-    if (!r || !yaw || !pitch || !roll)
+    if (!rot || !yaw || !pitch || !roll)
         return FBRL_EINVAL;
-    for (i = 0; i < 9; i++)
-        if (!isfinite(r[i]))
+    r = &rot->m[0][0];
+    for (i = 0; i < 3; i++)
+        if (!finite3(rot->m[i]))
             return FBRL_ENONFINITE;
     if (!isfinite(yaw_hint))
         return FBRL_ENONFINITE;
@@ -478,7 +481,8 @@ fbrl_status fbrl_calib_matrix_to_orient(const double r[9], double yaw_hint,
 
 fbrl_status fbrl_calib_map(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out)
 {
-    double p[3], tool[9], moved[9], hx, hy, hint;
+    double p[3], hx, hy, hint;
+    fbrl_rot tool, moved;
     fbrl_loc res;
     fbrl_status st;
     int i, j;
@@ -489,11 +493,11 @@ fbrl_status fbrl_calib_map(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *ou
     pos_of(in, p);
     if ((st = fbrl_calib_map_points(c, p, p, 1)) != FBRL_OK)
         return st;
-    fbrl_calib_orient_to_matrix(in->o, in->a, in->t, tool);
+    fbrl_calib_orient_to_matrix(in->o, in->a, in->t, &tool);
     for (i = 0; i < 3; i++)
         for (j = 0; j < 3; j++)
-            moved[3 * i + j] = c->r[i][0] * tool[j] + c->r[i][1] * tool[3 + j] +
-                               c->r[i][2] * tool[6 + j];
+            moved.m[i][j] = c->r[i][0] * tool.m[0][j] + c->r[i][1] * tool.m[1][j] +
+                            c->r[i][2] * tool.m[2][j];
     /* The heading (yaw direction) turned with the block, for a vertical tool. */
     hx = c->r[0][0] * cos(FBRL_RAD(in->o)) + c->r[0][1] * sin(FBRL_RAD(in->o));
     hy = c->r[1][0] * cos(FBRL_RAD(in->o)) + c->r[1][1] * sin(FBRL_RAD(in->o));
@@ -501,7 +505,7 @@ fbrl_status fbrl_calib_map(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *ou
     res.x = p[0];
     res.y = p[1];
     res.z = p[2];
-    if ((st = fbrl_calib_matrix_to_orient(moved, hint, &res.o, &res.a, &res.t)) != FBRL_OK)
+    if ((st = fbrl_calib_matrix_to_orient(&moved, hint, &res.o, &res.a, &res.t)) != FBRL_OK)
         return st;
     *out = res;
     return FBRL_OK;

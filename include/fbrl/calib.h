@@ -19,6 +19,11 @@ typedef struct fbrl_calib {
     double t[3];
 } fbrl_calib;
 
+/* A rotation matrix m[row][col] (a struct so that const works in C99). */
+typedef struct fbrl_rot {
+    double m[3][3];
+} fbrl_rot;
+
 /* The three taught points of a block (CREATE-CAL): slot 1 = P1 the origin, 2 = P2 on the
  * block's x axis, 3 = P3 anywhere in the block's xy plane off that axis. Only x, y, z count. */
 typedef struct fbrl_calpts {
@@ -81,10 +86,9 @@ fbrl_status fbrl_calib_invert(const fbrl_calib *c, fbrl_calib *inv);
  * (right-handed, angles in degrees), so the tool axis R*(1,0,0) = (cos yaw cos pitch,
  * sin yaw cos pitch, sin pitch): yaw is its heading, pitch its elevation above horizontal
  * (-90 = straight down) and roll the turn about it. */
-/* r is row-major: r[3*row + col]. */
-fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, double r[9]);
+fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, fbrl_rot *r);
 /* The inverse; yaw_hint (degrees) is the yaw reported when the tool axis is vertical. */
-fbrl_status fbrl_calib_matrix_to_orient(const double r[9], double yaw_hint,
+fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *r, double yaw_hint,
                                         double *yaw, double *pitch, double *roll);
 
 /* Save as FBRL_CALIB_BYTES bytes, little-endian:

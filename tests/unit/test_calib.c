@@ -109,32 +109,33 @@ static double dist3(const double a[3], const double b[3])
 
 static void orientation_convention(void **state)
 {
-    double r[9], m[3][3];
+    fbrl_rot rot;
+    double *r = &rot.m[0][0], m[3][3];
     double yaw, pitch, roll;
     (void)state;
     /* Tool straight down: axis (0, 0, -1). */
-    assert_int_equal(fbrl_calib_orient_to_matrix(0, -90, 0, r), FBRL_OK);
+    assert_int_equal(fbrl_calib_orient_to_matrix(0, -90, 0, &rot), FBRL_OK);
     assert_near(r[0], 0, 1e-15); assert_near(r[3], 0, 1e-15); assert_near(r[6], -1, 1e-15);
     /* Yaw 90, pitch 0: tool axis along +y. Pitch 30 at yaw 0: (cos 30, 0, sin 30). */
-    assert_int_equal(fbrl_calib_orient_to_matrix(90, 0, 0, r), FBRL_OK);
+    assert_int_equal(fbrl_calib_orient_to_matrix(90, 0, 0, &rot), FBRL_OK);
     assert_near(r[0], 0, 1e-15); assert_near(r[3], 1, 1e-15); assert_near(r[6], 0, 1e-15);
-    assert_int_equal(fbrl_calib_orient_to_matrix(0, 30, 0, r), FBRL_OK);
+    assert_int_equal(fbrl_calib_orient_to_matrix(0, 30, 0, &rot), FBRL_OK);
     assert_near(r[0], 0.86602540378443865, 1e-15); assert_near(r[6], 0.5, 1e-15);
     rng_state = 42;
     for (int i = 0; i < 2000; i++) {
         double y0 = uniform(-179.9, 180), p0 = uniform(-89.9, 89.9), t0 = uniform(-179.9, 180);
-        assert_int_equal(fbrl_calib_orient_to_matrix(y0, p0, t0, r), FBRL_OK);
+        assert_int_equal(fbrl_calib_orient_to_matrix(y0, p0, t0, &rot), FBRL_OK);
         tool_matrix(y0, p0, t0, m);
-        assert_true(matdiff((double (*)[3])r, m) < 1e-14);
-        assert_int_equal(fbrl_calib_matrix_to_orient(r, 0, &yaw, &pitch, &roll), FBRL_OK);
+        assert_true(matdiff(rot.m, m) < 1e-14);
+        assert_int_equal(fbrl_calib_matrix_to_orient(&rot, 0, &yaw, &pitch, &roll), FBRL_OK);
         assert_near(yaw, y0, 1e-9); assert_near(pitch, p0, 1e-9); assert_near(roll, t0, 1e-9);
     }
     /* Vertical tool: yaw comes from the hint and roll carries the turn. For pitch -90 the
      * matrix depends on roll - yaw only: (yaw 30, roll 50) = (yaw 100, roll 120). */
-    assert_int_equal(fbrl_calib_orient_to_matrix(30, -90, 50, r), FBRL_OK);
-    assert_int_equal(fbrl_calib_matrix_to_orient(r, 100, &yaw, &pitch, &roll), FBRL_OK);
+    assert_int_equal(fbrl_calib_orient_to_matrix(30, -90, 50, &rot), FBRL_OK);
+    assert_int_equal(fbrl_calib_matrix_to_orient(&rot, 100, &yaw, &pitch, &roll), FBRL_OK);
     assert_near(yaw, 100, 1e-9); assert_near(pitch, -90, 1e-9); assert_near(roll, 120, 1e-9);
-    assert_int_equal(fbrl_calib_matrix_to_orient(r, 30, &yaw, &pitch, &roll), FBRL_OK);
+    assert_int_equal(fbrl_calib_matrix_to_orient(&rot, 30, &yaw, &pitch, &roll), FBRL_OK);
     assert_near(yaw, 30, 1e-9); assert_near(roll, 50, 1e-9);
 }
 
@@ -536,7 +537,9 @@ static void bad_input(void **state)
     fbrl_calpts pts;
     fbrl_calib c, nan_c;
     fbrl_loc l = {1, 2, 3, 4, 5, 6}, out, bad = l, pts4[4];
-    double p[3] = {1, 2, 3}, r9[9], a, b, cc;
+    double p[3] = {1, 2, 3}, a, b, cc;
+    fbrl_rot r9;
+    unsigned char bytes[FBRL_CALIB_BYTES];
     size_t w;
     (void)state;
     memset(&pts, 0, sizeof pts);
@@ -601,16 +604,16 @@ static void bad_input(void **state)
     assert_int_equal(fbrl_calib_invert(&c, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_invert(&nan_c, &c), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_orient_to_matrix(0, 0, 0, NULL), FBRL_EINVAL);
-    assert_int_equal(fbrl_calib_orient_to_matrix(NAN, 0, 0, r9), FBRL_ENONFINITE);
-    assert_int_equal(fbrl_calib_orient_to_matrix(0, 0, 0, r9), FBRL_OK);
+    assert_int_equal(fbrl_calib_orient_to_matrix(NAN, 0, 0, &r9), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_calib_orient_to_matrix(0, 0, 0, &r9), FBRL_OK);
     assert_int_equal(fbrl_calib_matrix_to_orient(NULL, 0, &a, &b, &cc), FBRL_EINVAL);
-    assert_int_equal(fbrl_calib_matrix_to_orient(r9, 0, NULL, &b, &cc), FBRL_EINVAL);
-    assert_int_equal(fbrl_calib_matrix_to_orient(r9, INFINITY, &a, &b, &cc), FBRL_ENONFINITE);
-    r9[4] = NAN;
-    assert_int_equal(fbrl_calib_matrix_to_orient(r9, 0, &a, &b, &cc), FBRL_ENONFINITE);
-    assert_int_equal(fbrl_calib_save(NULL, (unsigned char *)r9, sizeof r9), FBRL_EINVAL);
-    assert_int_equal(fbrl_calib_save(&nan_c, (unsigned char *)r9, sizeof r9), FBRL_EINVAL);
-    assert_int_equal(fbrl_calib_load(NULL, (unsigned char *)r9, sizeof r9), FBRL_EINVAL);
+    assert_int_equal(fbrl_calib_matrix_to_orient(&r9, 0, NULL, &b, &cc), FBRL_EINVAL);
+    assert_int_equal(fbrl_calib_matrix_to_orient(&r9, INFINITY, &a, &b, &cc), FBRL_ENONFINITE);
+    r9.m[1][1] = NAN;
+    assert_int_equal(fbrl_calib_matrix_to_orient(&r9, 0, &a, &b, &cc), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_calib_save(NULL, bytes, sizeof bytes), FBRL_EINVAL);
+    assert_int_equal(fbrl_calib_save(&nan_c, bytes, sizeof bytes), FBRL_EINVAL);
+    assert_int_equal(fbrl_calib_load(NULL, bytes, sizeof bytes), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_load(&c, NULL, 200), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_ang_from_origin(0, 0, 1, 1, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_ang_from_origin(0, NAN, 1, 1, &a), FBRL_ENONFINITE);
