@@ -113,6 +113,12 @@ fbrl_status fbrl_loc_distance(const fbrl_loc *a, const fbrl_loc *b, double *inch
     return FBRL_OK;
 }
 
+/* A value that rounds to zero at the shown precision prints as +0, not -0. */
+static double tidy(double v, double half_step)
+{
+    return fabs(v) < half_step ? 0.0 : v;
+}
+
 fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t size)
 {
     fbrl_loc shown;
@@ -128,7 +134,8 @@ fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t s
         return st;
     }
     n = snprintf(buf, size, "X %+10.4f Y %+10.4f Z %+10.4f %s  O %+8.3f A %+8.3f T %+8.3f deg",
-                 shown.x, shown.y, shown.z, metric ? "cm" : "in", shown.o, shown.a, shown.t);
+                 tidy(shown.x, 5e-5), tidy(shown.y, 5e-5), tidy(shown.z, 5e-5), metric ? "cm" : "in",
+                 tidy(shown.o, 5e-4), tidy(shown.a, 5e-4), tidy(shown.t, 5e-4));
     if (n < 0) {
         buf[0] = '\0';
         return FBRL_EINVAL;

@@ -87,6 +87,11 @@ static void format_fixed_and_metric(void **state)
     char buf2[FBRL_LOC_TEXT_SIZE];
     assert_int_equal(fbrl_loc_format(&other, 0, buf2, sizeof buf2), FBRL_OK);
     assert_int_equal(strlen(buf), strlen(buf2));
+    /* Values that round to zero show as +0, never -0. */
+    fbrl_loc tiny = {-1e-9, -0.0, -0.00004, -1e-12, -0.0004, -0.0};
+    assert_int_equal(fbrl_loc_format(&tiny, 0, buf2, sizeof buf2), FBRL_OK);
+    assert_string_equal(buf2,
+        "X    +0.0000 Y    +0.0000 Z    +0.0000 in  O   +0.000 A   +0.000 T   +0.000 deg");
     /* Largest documented values fit. */
     fbrl_loc wide = {-999999999.0, -999999999.0, -999999999.0, -999999999.0, -999999999.0,
                      -999999999.0};
