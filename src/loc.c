@@ -38,7 +38,7 @@ fbrl_status fbrl_loc_get(const fbrl_loc *loc, fbrl_loc_axis axis, double *value)
         return FBRL_EINVAL;
     if (!valid_axis(axis))
         return FBRL_ERANGE;
-    *value = *comp((fbrl_loc *)loc, axis);
+    *value = *comp((fbrl_loc *)loc, (int)axis); /* read only */
     return FBRL_OK;
 }
 
@@ -50,7 +50,7 @@ fbrl_status fbrl_loc_set(fbrl_loc *loc, fbrl_loc_axis axis, double value)
         return FBRL_ERANGE;
     if (!isfinite(value))
         return FBRL_ENONFINITE;
-    *comp(loc, axis) = value;
+    *comp(loc, (int)axis) = value;
     return FBRL_OK;
 }
 
