@@ -30,8 +30,8 @@ typedef struct fbrl_calpts {
     fbrl_loc p[3];
 } fbrl_calpts;
 
-/* Points closer to coincident or collinear than this fraction of their spread (largest
- * pairwise distance) are refused with FBRL_EDEGENERATE: their frame would be noise. */
+/* Points closer to coincident or collinear than this fraction of their spread (their
+ * largest pairwise distance) are refused with FBRL_EDEGENERATE: their frame would be noise. */
 #define FBRL_CALIB_TOL 1e-3
 
 /* Size of a saved calibration (see fbrl_calib_save). */
