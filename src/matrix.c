@@ -1,6 +1,8 @@
 /* matrix.c - arrays over caller storage and location matrices (thesis 5.1, 5.4). */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
+#include "fbrl/units.h"
 #include "fbrl/matrix.h"
 
 fbrl_status fbrl_array_bytes(size_t cell_size, size_t rows, size_t cols, size_t *bytes)
@@ -159,4 +161,76 @@ fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, f
         return FBRL_EOVERFLOW;
     *out = r;
     return FBRL_OK;
+}
+
+/* ---- SHOW-AUTOMAT, SHOW-RADMAT ---- */
+
+/* "<name> base <loc text>  " into buf; the rest is appended by the caller. */
+static fbrl_status format_base(const char *name, const fbrl_loc *base, int metric, char *buf,
+                               size_t size, size_t *used)
+{
+    char loc[FBRL_LOC_TEXT_SIZE];
+    fbrl_status st = fbrl_loc_format(base, metric, loc, sizeof loc);
+    int n;
+    if (st != FBRL_OK)
+        return st;
+    n = snprintf(buf, size, "%s base %s  ", name, loc);
+    if (n < 0 || (size_t)n >= size)
+        return FBRL_ENOSPC;
+    *used = (size_t)n;
+    return FBRL_OK;
+}
+
+/* Lengths shown in the user's unit; a conversion overflow is reported, not printed. */
+static fbrl_status shown_lengths(int metric, const double *in, double *out, int count)
+{
+    fbrl_units u = FBRL_UNITS_INIT;
+    fbrl_status st;
+    int i;
+    if (metric)
+        fbrl_units_metric_on(&u);
+    for (i = 0; i < count; i++)
+        if ((st = fbrl_units_out(&u, in[i], &out[i])) != FBRL_OK)
+            return st;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, size_t size)
+{
+    double len[3], shown[3];
+    size_t used;
+    fbrl_status st;
+    int n;
+    if (!m || !buf || size == 0)
+        return FBRL_EINVAL;
+    buf[0] = '\0';
+    len[0] = m->dx; len[1] = m->dy; len[2] = m->dz;
+    if ((st = shown_lengths(metric, len, shown, 3)) != FBRL_OK ||
+        (st = format_base("RECTMAT", &m->base, metric, buf, size, &used)) != FBRL_OK)
+        return st;
+    n = snprintf(buf + used, size - used, "step X %+10.4f Y %+10.4f Z %+10.4f %s", shown[0],
+                 shown[1], shown[2], metric ? "cm" : "in");
+    return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
+}
+
+fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size_t size)
+{
+    double len[3], shown[3];
+    size_t used;
+    fbrl_status st;
+    int n;
+    if (!m || !buf || size == 0)
+        return FBRL_EINVAL;
+    buf[0] = '\0';
+    if (!isfinite(m->inc_angle) || !isfinite(m->a0))
+        return FBRL_ENONFINITE;
+    len[0] = m->ring_dist; len[1] = m->z_off; len[2] = m->r0;
+    if ((st = shown_lengths(metric, len, shown, 3)) != FBRL_OK ||
+        (st = format_base("RADMAT", &m->base, metric, buf, size, &used)) != FBRL_OK)
+        return st;
+    n = snprintf(buf + used, size - used,
+                 "inc %+.6f rad  ring %+10.4f Z %+10.4f %s  radius %+10.4f %s  angle %+.6f rad",
+                 m->inc_angle, shown[0], shown[1], metric ? "cm" : "in", shown[2],
+                 metric ? "cm" : "in", m->a0);
+    return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
 }

@@ -72,6 +72,16 @@ fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base,
                              double inc_angle, double ring_dist, double z_off);
 fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, fbrl_loc *out);
 
+/* SHOW-AUTOMAT and SHOW-RADMAT: one line describing the matrix, e.g.
+ *   "RECTMAT base X ... deg  step X    +0.7500 Y    -1.2500 Z    +0.5000 in"
+ *   "RADMAT base X ... deg  inc +0.200000 rad  ring    +0.5000 Z    +1.0000 in
+ *    radius   +10.0000 in  angle +0.000000 rad"   (one line)
+ * Lengths in cm when metric != 0. FBRL_MATRIX_TEXT_SIZE holds it for components below 1e9;
+ * FBRL_ENOSPC (truncated, terminated text) if buf is too small. */
+#define FBRL_MATRIX_TEXT_SIZE 320
+fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, size_t size);
+fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

@@ -233,6 +233,48 @@ static void matrix_bad_input(void **state)
     assert_memory_equal(&l, &base, sizeof l);
 }
 
+static void show_matrices(void **state)
+{
+    fbrl_loc base = {10, 0, 5, 0, -90, 0};
+    fbrl_rectmat rm;
+    fbrl_radmat dm;
+    char buf[FBRL_MATRIX_TEXT_SIZE], small[20];
+    (void)state;
+    fbrl_rectmat_init(&rm, &base, 0.75, -1.25, 0.5);
+    assert_int_equal(fbrl_rectmat_format(&rm, 0, buf, sizeof buf), FBRL_OK);
+    assert_string_equal(buf, "RECTMAT base X   +10.0000 Y    +0.0000 Z    +5.0000 in  "
+                             "O   +0.000 A  -90.000 T   +0.000 deg  "
+                             "step X    +0.7500 Y    -1.2500 Z    +0.5000 in");
+    assert_int_equal(fbrl_rectmat_format(&rm, 1, buf, sizeof buf), FBRL_OK);
+    assert_string_equal(buf, "RECTMAT base X   +25.4000 Y    +0.0000 Z   +12.7000 cm  "
+                             "O   +0.000 A  -90.000 T   +0.000 deg  "
+                             "step X    +1.9050 Y    -3.1750 Z    +1.2700 cm");
+    fbrl_radmat_init(&dm, &base, 0.2, 0.5, 1.0);
+    assert_int_equal(fbrl_radmat_format(&dm, 0, buf, sizeof buf), FBRL_OK);
+    assert_string_equal(buf, "RADMAT base X   +10.0000 Y    +0.0000 Z    +5.0000 in  "
+                             "O   +0.000 A  -90.000 T   +0.000 deg  "
+                             "inc +0.200000 rad  ring    +0.5000 Z    +1.0000 in  "
+                             "radius   +10.0000 in  angle +0.000000 rad");
+    /* The documented size holds the widest values (every shown number near -1e9). */
+    fbrl_loc wide = {-7e8, -7e8, -999999999, -999999999, -999999999, -999999999};
+    fbrl_radmat wm;
+    fbrl_rectmat wr;
+    assert_int_equal(fbrl_radmat_init(&wm, &wide, -999999999, -999999999, -999999999), FBRL_OK);
+    assert_int_equal(fbrl_radmat_format(&wm, 0, buf, sizeof buf), FBRL_OK);
+    assert_int_equal(fbrl_rectmat_init(&wr, &wide, -999999999, -999999999, -999999999), FBRL_OK);
+    assert_int_equal(fbrl_rectmat_format(&wr, 0, buf, sizeof buf), FBRL_OK);
+    assert_int_equal(fbrl_radmat_format(&dm, 0, small, sizeof small), FBRL_ENOSPC);
+    assert_int_equal(strlen(small), sizeof small - 1);
+    assert_int_equal(fbrl_rectmat_format(&rm, 0, small, sizeof small), FBRL_ENOSPC);
+    assert_int_equal(fbrl_rectmat_format(NULL, 0, buf, sizeof buf), FBRL_EINVAL);
+    assert_int_equal(fbrl_rectmat_format(&rm, 0, NULL, sizeof buf), FBRL_EINVAL);
+    assert_int_equal(fbrl_radmat_format(&dm, 0, buf, 0), FBRL_EINVAL);
+    rm.dx = 1e308;
+    assert_int_equal(fbrl_rectmat_format(&rm, 1, buf, sizeof buf), FBRL_EOVERFLOW);
+    dm.inc_angle = NAN;
+    assert_int_equal(fbrl_radmat_format(&dm, 0, buf, sizeof buf), FBRL_ENONFINITE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -243,6 +285,7 @@ int main(void)
         cmocka_unit_test(radmat_hand_values_quarter_turns),
         cmocka_unit_test(radmat_hand_values_thesis_example),
         cmocka_unit_test(matrix_bad_input),
+        cmocka_unit_test(show_matrices),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
