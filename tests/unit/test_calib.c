@@ -525,6 +525,19 @@ static void save_and_load(void **state)
     }
     assert_int_equal(fbrl_calib_load(&d, copy, sizeof copy), FBRL_EFORMAT);
     assert_memory_equal(&d, &id, sizeof d);
+    /* Random bodies under a valid header and a correct checksum: any bit pattern (NaN,
+     * infinities, subnormals) is read safely and refused unless it is a rotation. */
+    rng_state = 99;
+    for (int trial = 0; trial < 10000; trial++) {
+        memcpy(copy, buf, 8);
+        for (int i = 8; i < 104; i++)
+            copy[i] = (unsigned char)rng_next();
+        uint32_t k = test_crc32(copy, 104);
+        for (int i = 0; i < 4; i++)
+            copy[104 + i] = (unsigned char)(k >> (8 * i));
+        assert_int_equal(fbrl_calib_load(&d, copy, sizeof copy), FBRL_EFORMAT);
+    }
+    assert_memory_equal(&d, &id, sizeof d);
     /* Saving something that is no rigid motion is refused. */
     d.r[1][1] = -1; /* a reflection */
     assert_int_equal(fbrl_calib_save(&d, buf, sizeof buf), FBRL_EINVAL);
