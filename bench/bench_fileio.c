@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "fbrl/fileio.h"
+#include "fbrl/crc32.h"
 
 #define NLOCS 1000
 #define COMMITS 50
@@ -46,7 +47,7 @@ int main(int argc, char **argv)
     uint32_t crc = 0;
     int reps = 200;
     for (int i = 0; i < reps; i++)
-        crc = fbrl_file_crc32(crc, buf, sizeof buf);
+        crc = fbrl_crc32(crc, buf, sizeof buf);
     double t = now() - t0;
     printf("crc32:          %.1f MB/s (%08x)\n", reps * (double)sizeof buf / t / 1e6, (unsigned)crc);
 

@@ -2,6 +2,8 @@
  * The on-disk format is in docs/files.md; every field is little-endian and encoded byte by
  * byte, so the files move unchanged between hosts of any endianness. */
 #include "fbrl/fileio.h"
+#include "fbrl/crc32.h"
+#include "le.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -48,83 +50,6 @@ fbrl_ftype fbrl_ftype_of_size(size_t size)
     }
 }
 
-/* ---- CRC-32 (reflected polynomial 0xEDB88320), four bits at a time ---- */
-
-static const uint32_t crc_nibble[16] = {
-    0x00000000u, 0x1db71064u, 0x3b6e20c8u, 0x26d930acu, 0x76dc4190u, 0x6b6b51f4u,
-    0x4db26158u, 0x5005713cu, 0xedb88320u, 0xf00f9344u, 0xd6d6a3e8u, 0xcb61b38cu,
-    0x9b64c2b0u, 0x86d3d2d4u, 0xa00ae278u, 0xbdbdf21cu};
-
-uint32_t fbrl_file_crc32(uint32_t crc, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    if (!p)
-        return crc;
-    crc = ~crc;
-    while (n--) {
-        crc ^= *p++;
-        crc = (crc >> 4) ^ crc_nibble[crc & 15u];
-        crc = (crc >> 4) ^ crc_nibble[crc & 15u];
-    }
-    return ~crc;
-}
-
-/* ---- little-endian fields ---- */
-
-static void put16(unsigned char *p, uint16_t v)
-{
-    p[0] = (unsigned char)(v & 0xffu);
-    p[1] = (unsigned char)(v >> 8);
-}
-
-static void put32(unsigned char *p, uint32_t v)
-{
-    for (int i = 0; i < 4; i++)
-        p[i] = (unsigned char)((v >> (8 * i)) & 0xffu);
-}
-
-static void put64(unsigned char *p, uint64_t v)
-{
-    for (int i = 0; i < 8; i++)
-        p[i] = (unsigned char)((v >> (8 * i)) & 0xffu);
-}
-
-static uint16_t get16(const unsigned char *p)
-{
-    return (uint16_t)(p[0] | (p[1] << 8));
-}
-
-static uint32_t get32(const unsigned char *p)
-{
-    uint32_t v = 0;
-    for (int i = 3; i >= 0; i--)
-        v = (v << 8) | p[i];
-    return v;
-}
-
-static uint64_t get64(const unsigned char *p)
-{
-    uint64_t v = 0;
-    for (int i = 7; i >= 0; i--)
-        v = (v << 8) | p[i];
-    return v;
-}
-
-static void put_real(unsigned char *p, double d)
-{
-    uint64_t u;
-    memcpy(&u, &d, sizeof u);
-    put64(p, u);
-}
-
-static double get_real(const unsigned char *p)
-{
-    uint64_t u = get64(p);
-    double d;
-    memcpy(&d, &u, sizeof d);
-    return d;
-}
-
 /* ---- types and records ---- */
 
 static uint32_t builtin_size(unsigned code)
@@ -157,8 +82,8 @@ static fbrl_ftype record_type(const unsigned char *rec)
 {
     fbrl_ftype t;
     t.code = (fbrl_ftype_code)rec[0];
-    t.tag = get16(rec + 2);
-    t.size = get32(rec + 4);
+    t.tag = fbrl_le_get16(rec + 2);
+    t.size = fbrl_le_get32(rec + 4);
     return t;
 }
 
@@ -189,30 +114,30 @@ static void encode_value(fbrl_ftype t, const void *value, unsigned char *out)
     case FBRL_FT_INTEGER: {
         int16_t v;
         memcpy(&v, value, sizeof v);
-        put16(out, (uint16_t)v);
+        fbrl_le_put16(out, (uint16_t)v);
         break;
     }
     case FBRL_FT_LONG: {
         int32_t v;
         memcpy(&v, value, sizeof v);
-        put32(out, (uint32_t)v);
+        fbrl_le_put32(out, (uint32_t)v);
         break;
     }
     case FBRL_FT_REAL: {
         double v;
         memcpy(&v, value, sizeof v);
-        put_real(out, v);
+        fbrl_le_put_double(out, v);
         break;
     }
     case FBRL_FT_LOCATION: {
         fbrl_loc l;
         memcpy(&l, value, sizeof l);
-        put_real(out, l.x);
-        put_real(out + 8, l.y);
-        put_real(out + 16, l.z);
-        put_real(out + 24, l.o);
-        put_real(out + 32, l.a);
-        put_real(out + 40, l.t);
+        fbrl_le_put_double(out, l.x);
+        fbrl_le_put_double(out + 8, l.y);
+        fbrl_le_put_double(out + 16, l.z);
+        fbrl_le_put_double(out + 24, l.o);
+        fbrl_le_put_double(out + 32, l.a);
+        fbrl_le_put_double(out + 40, l.t);
         break;
     }
     case FBRL_FT_USER:
@@ -239,28 +164,28 @@ static void decode_value(fbrl_ftype t, const unsigned char *in, void *value)
         *(unsigned char *)value = in[0];
         break;
     case FBRL_FT_INTEGER: {
-        int16_t v = to_i16(get16(in));
+        int16_t v = to_i16(fbrl_le_get16(in));
         memcpy(value, &v, sizeof v);
         break;
     }
     case FBRL_FT_LONG: {
-        int32_t v = to_i32(get32(in));
+        int32_t v = to_i32(fbrl_le_get32(in));
         memcpy(value, &v, sizeof v);
         break;
     }
     case FBRL_FT_REAL: {
-        double v = get_real(in);
+        double v = fbrl_le_get_double(in);
         memcpy(value, &v, sizeof v);
         break;
     }
     case FBRL_FT_LOCATION: {
         fbrl_loc l;
-        l.x = get_real(in);
-        l.y = get_real(in + 8);
-        l.z = get_real(in + 16);
-        l.o = get_real(in + 24);
-        l.a = get_real(in + 32);
-        l.t = get_real(in + 40);
+        l.x = fbrl_le_get_double(in);
+        l.y = fbrl_le_get_double(in + 8);
+        l.z = fbrl_le_get_double(in + 16);
+        l.o = fbrl_le_get_double(in + 24);
+        l.a = fbrl_le_get_double(in + 32);
+        l.t = fbrl_le_get_double(in + 40);
         memcpy(value, &l, sizeof l);
         break;
     }
@@ -287,7 +212,7 @@ static fbrl_status check_records(const unsigned char *buf, size_t len, uint32_t 
         const unsigned char *p = rec + FBRL_FILE_RECORD_HEADER;
         if (t.code == FBRL_FT_REAL || t.code == FBRL_FT_LOCATION)
             for (uint32_t i = 0; i < t.size; i += 8)
-                if (!isfinite(get_real(p + i)))
+                if (!isfinite(fbrl_le_get_double(p + i)))
                     return FBRL_EFORMAT;
         pos += FBRL_FILE_RECORD_SIZE(t.size);
         if (++n == 0)
@@ -507,13 +432,13 @@ fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed)
 static void make_header(unsigned char *h, const unsigned char *data, size_t len, uint32_t count)
 {
     memcpy(h, magic, sizeof magic);
-    put16(h + 8, (uint16_t)FBRL_FILE_VERSION);
-    put16(h + 10, (uint16_t)FBRL_FILE_HEADER_SIZE);
-    put32(h + 12, (uint32_t)(FBRL_FILE_HEADER_SIZE + len));
-    put32(h + 16, count);
-    put32(h + 20, fbrl_file_crc32(0, data, len));
-    put32(h + 24, 0);
-    put32(h + 28, fbrl_file_crc32(0, h, 28));
+    fbrl_le_put16(h + 8, (uint16_t)FBRL_FILE_VERSION);
+    fbrl_le_put16(h + 10, (uint16_t)FBRL_FILE_HEADER_SIZE);
+    fbrl_le_put32(h + 12, (uint32_t)(FBRL_FILE_HEADER_SIZE + len));
+    fbrl_le_put32(h + 16, count);
+    fbrl_le_put32(h + 20, fbrl_crc32(0, data, len));
+    fbrl_le_put32(h + 24, 0);
+    fbrl_le_put32(h + 28, fbrl_crc32(0, h, 28));
 }
 
 /* Permission bits of an existing file, or -1 if there is none. */
@@ -544,14 +469,14 @@ static fbrl_status check_header(const unsigned char *h, size_t got, off_t file_s
         return FBRL_EFORMAT;
     if (got < 10)
         return FBRL_ETRUNCATED;
-    if (get16(h + 8) != FBRL_FILE_VERSION)
+    if (fbrl_le_get16(h + 8) != FBRL_FILE_VERSION)
         return FBRL_EVERSION;
     if (got < FBRL_FILE_HEADER_SIZE)
         return FBRL_ETRUNCATED;
-    if (get32(h + 28) != fbrl_file_crc32(0, h, 28))
+    if (fbrl_le_get32(h + 28) != fbrl_crc32(0, h, 28))
         return FBRL_ECHECKSUM;
-    uint32_t total = get32(h + 12);
-    if (get16(h + 10) != FBRL_FILE_HEADER_SIZE || get32(h + 24) != 0 ||
+    uint32_t total = fbrl_le_get32(h + 12);
+    if (fbrl_le_get16(h + 10) != FBRL_FILE_HEADER_SIZE || fbrl_le_get32(h + 24) != 0 ||
         total < FBRL_FILE_HEADER_SIZE)
         return FBRL_EFORMAT;
     if ((uint64_t)file_size < total)
@@ -559,7 +484,7 @@ static fbrl_status check_header(const unsigned char *h, size_t got, off_t file_s
     if ((uint64_t)file_size > total)
         return FBRL_EFORMAT; /* bytes after the end: not what was written */
     *len = total - FBRL_FILE_HEADER_SIZE;
-    *count = get32(h + 16);
+    *count = fbrl_le_get32(h + 16);
     return FBRL_OK;
 }
 
@@ -589,7 +514,7 @@ static fbrl_status load(fbrl_file *f, int fd, unsigned char *buf, size_t cap)
         return st;
     if (got != 0)
         return FBRL_EFORMAT;
-    if (fbrl_file_crc32(0, buf, len) != get32(h + 20))
+    if (fbrl_crc32(0, buf, len) != fbrl_le_get32(h + 20))
         return FBRL_ECHECKSUM;
     if ((st = check_records(buf, len, count)) != FBRL_OK)
         return st;
@@ -701,8 +626,8 @@ fbrl_status fbrl_file_write(fbrl_file *f, fbrl_ftype type, const void *value)
     f->len = f->len - old + rec;
     r[0] = (unsigned char)type.code;
     r[1] = 0;
-    put16(r + 2, type.tag);
-    put32(r + 4, type.size);
+    fbrl_le_put16(r + 2, type.tag);
+    fbrl_le_put32(r + 4, type.size);
     encode_value(type, value, r + FBRL_FILE_RECORD_HEADER);
     f->pos += rec;
     f->index++;

@@ -153,10 +153,6 @@ fbrl_status fbrl_file_read_real(fbrl_file *f, double *v);
 fbrl_status fbrl_file_read_loc(fbrl_file *f, fbrl_loc *v);
 fbrl_status fbrl_file_read_user(fbrl_file *f, uint16_t tag, void *data, size_t size);
 
-/* CRC-32 (IEEE 802.3, reflected, as zlib/PNG): start with crc = 0, feed pieces in order.
- * fbrl_file_crc32(0, "123456789", 9) == 0xCBF43926. */
-uint32_t fbrl_file_crc32(uint32_t crc, const void *data, size_t n);
-
 #ifdef __cplusplus
 }
 #endif
