@@ -205,6 +205,11 @@ size_t fbrl_uart_tx_pending(const fbrl_uart *u)
     return is_open(u) ? fbrl_ring_count(&u->tx) : 0;
 }
 
+size_t fbrl_uart_rx_room(const fbrl_uart *u)
+{
+    return is_open(u) ? fbrl_ring_space(&u->rx) : 0;
+}
+
 int fbrl_uart_peer_stopped(const fbrl_uart *u)
 {
     return is_open(u) && fbrl_load_acq(&u->peer_xoff) ? 1 : 0;

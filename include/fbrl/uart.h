@@ -141,6 +141,11 @@ fbrl_status fbrl_uart_drain(fbrl_uart *u, uint32_t timeout_ms);
 size_t fbrl_uart_rx_available(const fbrl_uart *u);
 size_t fbrl_uart_tx_pending(const fbrl_uart *u);
 
+/* Interrupt side: how many more bytes the receive ring can take now (0 for a bad
+ * handle). A backend that can leave bytes in a lower queue (the kernel's, a FIFO it
+ * can mask) reads no more than this, so nothing is lost while the reader is slow. */
+size_t fbrl_uart_rx_room(const fbrl_uart *u);
+
 /* 1 while the peer's XOFF holds our transmitter, 0 otherwise (or bad handle). */
 int fbrl_uart_peer_stopped(const fbrl_uart *u);
 
