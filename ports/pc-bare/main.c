@@ -10,7 +10,15 @@
  *                  isa-debug-exit (PASS: status 33, FAIL: 35)
  *   any other byte -> echoed, a-z upper-cased.
  * Verdict FAIL: a received byte was lost (overrun) or a line error was seen. With no
- * byte at all for 60 s the image gives up with FAIL, so it never hangs a test run. */
+ * byte at all for 60 s the image gives up with FAIL, so it never hangs a test run.
+ *
+ * Options on the Multiboot command line (qemu -append "..."):
+ *   baud=N      line rate (default 115200; must divide 115200)
+ *   fifo=N      16550 receive trigger 1, 4, 8 or 14 (default 14); fifo=0 runs the
+ *               chip as a plain 8250/16450 (one byte per interrupt)
+ *   stall=MS    after every 16 KiB received, stop reading for MS milliseconds (a
+ *               slow consumer: the receive ring fills, XOFF goes out, the handler
+ *               pauses reception) */
 #include <stdint.h>
 #include <stddef.h>
 #include "pc.h"
@@ -28,6 +36,27 @@ static fbrl_uart uart;
  * the XOFF/XON path and the handler's headroom rule both run. */
 static uint8_t rx_mem[256];
 static uint8_t tx_mem[1024];
+
+/* The value of "key=N" in the command line, or dflt. */
+static uint32_t option(const char *cmdline, const char *key, uint32_t dflt)
+{
+    const char *p = cmdline;
+    while (p && *p) {
+        const char *k = key, *q = p;
+        while (*k && *q == *k) {
+            k++;
+            q++;
+        }
+        if (*k == 0 && (p == cmdline || p[-1] == ' ') && *q >= '0' && *q <= '9') {
+            uint32_t v = 0;
+            while (*q >= '0' && *q <= '9')
+                v = v * 10u + (uint32_t)(*q++ - '0');
+            return v;
+        }
+        p++;
+    }
+    return dflt;
+}
 
 static void put_all(const void *buf, size_t len)
 {
@@ -102,13 +131,20 @@ void kmain(uint32_t magic, void *mbi)
     uint8_t in[64];
     uint32_t sum = 0;
     uint64_t last = 0;
-    (void)mbi;
+    uint32_t fifo, stall_ms, since_stall = 0;
+    const char *cmdline = NULL;
     if (magic != 0x2BADB002u)
         pc_exit(PC_EXIT_FAIL);
+    /* Multiboot info: flags bit 2 says the command line's address is at offset 16. */
+    if (((const uint32_t *)mbi)[0] & 4u)
+        cmdline = (const char *)((const uint32_t *)mbi)[4];
+    cfg.baud = option(cmdline, "baud=", 115200u);
+    fifo = option(cmdline, "fifo=", 14u);
+    stall_ms = option(cmdline, "stall=", 0u);
     pc_init(FBRL_UART_8250_COM1_IRQ, &com);
-    cfg.baud = 115200u;
     if (fbrl_uart_8250_init(&com, &pc_uart_io, FBRL_UART_8250_COM1_BASE, FBRL_UART_8250_COM1_IRQ,
-                            FBRL_UART_8250_16550, 14) != FBRL_OK ||
+                            fifo ? FBRL_UART_8250_16550 : FBRL_UART_8250_8250,
+                            (uint8_t)(fifo ? fifo : 1u)) != FBRL_OK ||
         fbrl_uart_init(&uart, &fbrl_uart_8250_ops, &com, rx_mem, sizeof rx_mem, tx_mem,
                        sizeof tx_mem, &cfg) != FBRL_OK ||
         fbrl_uart_8250_attach(&com, &uart) != FBRL_OK) {
@@ -131,6 +167,14 @@ void kmain(uint32_t magic, void *mbi)
             continue;
         }
         last = pc_now_us();
+        since_stall += (uint32_t)n;
+        if (stall_ms && since_stall >= 16384u) {
+            /* Interrupts stay on: the handler keeps filling the ring meanwhile. */
+            uint64_t until = pc_now_us() + (uint64_t)stall_ms * 1000u;
+            while (pc_now_us() < until)
+                __asm__ volatile("hlt");
+            since_stall = 0;
+        }
         /* Transform in place; answer ENQ and EOT where they stand in the stream. */
         for (i = 0, out = 0; i < n; i++) {
             uint8_t c = in[i];

@@ -4,9 +4,11 @@
  * the image's interrupt-driven echo and checks every byte that comes back.
  *
  * Usage: pcbare_echo QEMU IMAGE [BYTES [APPEND]]
+ * APPEND is the image's command line (see ports/pc-bare/main.c: baud=, fifo=, stall=).
  * Exit 0 only when every byte came back transformed (a-z upper-cased), the image's
  * STATS line says PASS with the same byte sum, and QEMU ended with status 33
- * (isa-debug-exit 0x10). Prints the figures on stdout.
+ * (isa-debug-exit 0x10); with stall= the image must also have sent XOFF and this
+ * host must have obeyed it. Prints the figures on stdout.
  *
  * In-flight bound: QEMU's 16550 does not pace at the baud rate, and the pty buffers
  * kilobytes, so XON/XOFF alone cannot stop a host that has queued far ahead (the
@@ -331,6 +333,13 @@ int main(int argc, char **argv)
     }
     if (c.overruns != 0)
         die("host side lost bytes");
+    /* A stalling image must have stopped this host with XOFF (and let it go again). */
+    if (argc == 5 && strstr(argv[4], "stall=")) {
+        if (c.xoff_received == 0)
+            die("the stalling image never sent XOFF");
+        if (!strstr(stats, "xoff_sent=") || strstr(stats, "xoff_sent=0 "))
+            die("the image counted no XOFF sent");
+    }
     printf("PASS\n");
     free(send);
     free(expect);
