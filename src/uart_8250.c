@@ -6,6 +6,7 @@
 #include "fbrl/uart_8250.h"
 
 #define REG(b, r) ((uint16_t)((b)->base + (r)))
+#define RX_BURST 64u /* most bytes taken from RBR per handler pass */
 
 static uint8_t rd(fbrl_uart_8250 *b, unsigned reg)
 {
@@ -59,6 +60,7 @@ fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, 
     b->base = base;
     b->irq = irq;
     b->depth = (uint8_t)chip;
+    b->headroom = FBRL_UART_8250_RX_HEADROOM;
     b->fcr = fcr;
     b->ier = 0;
     b->events = 0;
@@ -181,12 +183,12 @@ static void rx_drain(fbrl_uart_8250 *b)
 {
     unsigned n;
     /* Bounded: a 16550 holds 16 bytes, but a fast source can refill it meanwhile. */
-    for (n = 0; n < 4u * 16u; n++) {
+    for (n = 0; n < RX_BURST; n++) {
         uint8_t lsr = rd(b, FBRL_8250_LSR);
         line_status(b, lsr);
         if (!(lsr & FBRL_8250_LSR_DR))
             return;
-        if (rx_room(b) < FBRL_UART_8250_RX_HEADROOM) {
+        if (rx_room(b) < b->headroom) {
             set_ier(b, (uint8_t)(b->ier & ~FBRL_8250_IER_RDI));
             b->stats.throttles++;
             return;
@@ -264,7 +266,7 @@ static void op_tx_kick(void *ctx)
  * trigger level when RDI comes back on. */
 static void rx_unthrottle(fbrl_uart_8250 *b)
 {
-    if (!(b->ier & FBRL_8250_IER_RDI) && rx_room(b) >= 2u * FBRL_UART_8250_RX_HEADROOM) {
+    if (!(b->ier & FBRL_8250_IER_RDI) && rx_room(b) >= 2u * b->headroom) {
         set_ier(b, (uint8_t)(b->ier | FBRL_8250_IER_RDI));
         rx_drain(b);
     }
@@ -323,6 +325,12 @@ fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u)
         return FBRL_EINVAL;
     saved = b->io.irq_save(b->io.io_ctx);
     b->uart = u;
+    /* A ring smaller than 4 x the headroom scales it down, so reception never stalls. */
+    b->headroom = (uint16_t)(fbrl_ring_capacity(&u->rx) / 4u);
+    if (b->headroom > FBRL_UART_8250_RX_HEADROOM)
+        b->headroom = FBRL_UART_8250_RX_HEADROOM;
+    if (b->headroom == 0)
+        b->headroom = 1;
     set_ier(b, FBRL_8250_IER_RDI | FBRL_8250_IER_RLSI);
     b->io.outb(b->io.io_ctx, FBRL_8259_DATA,
                (uint8_t)(b->io.inb(b->io.io_ctx, FBRL_8259_DATA) & ~(1u << b->irq)));

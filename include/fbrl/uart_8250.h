@@ -92,9 +92,10 @@ extern "C" {
  * before the EOI, but a cause that never clears must not hang the CPU: after
  * FBRL_UART_8250_MAX_PASSES passes the handler stops and re-arms the line. */
 #define FBRL_UART_8250_MAX_PASSES 16u
-/* Stop reading RBR when the core's receive ring has fewer free bytes than this;
- * read again (unmask receive interrupts) once it has at least twice as many. The
- * bytes then wait in the UART (and under QEMU, in the host), not in a full ring. */
+/* Stop reading RBR when the core's receive ring has fewer free bytes than this (a
+ * quarter of the ring, if that is less); read again (unmask receive interrupts) once
+ * it has at least twice as many. The bytes then wait in the UART (and under QEMU, in
+ * the host), not in a full ring. */
 #define FBRL_UART_8250_RX_HEADROOM 16u
 
 typedef enum fbrl_uart_8250_chip {
@@ -135,6 +136,7 @@ typedef struct fbrl_uart_8250 {
     uint8_t irq;                /* 0..7, on the master 8259 */
     uint8_t depth;              /* transmit bytes per THRE: 16 or 1 */
     uint8_t fcr;                /* FIFO control value (0 on an 8250) */
+    uint16_t headroom;          /* receive pauses below this many free ring bytes */
     volatile uint8_t ier;       /* shadow of IER, written with the register */
     volatile uint32_t events;   /* bumped by the handler whenever it moved a byte */
     uint32_t seen;              /* events as of the last service() return */

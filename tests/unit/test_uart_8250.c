@@ -673,6 +673,28 @@ static void test_isr_rx_headroom(void **state)
     assert_true(M.ier & FBRL_8250_IER_RDI);
 }
 
+/* A ring smaller than the headroom still receives: the rule scales with the ring. */
+static void test_isr_rx_tiny_ring(void **state)
+{
+    char in[40];
+    uint8_t out[64];
+    size_t i, got = 0;
+    unsigned rounds = 0;
+    (void)state;
+    for (i = 0; i < sizeof in; i++)
+        in[i] = (char)('A' + i % 26);
+    open_port(FBRL_UART_8250_16550, 1, 8);
+    model_rx(&M, in, sizeof in);
+    while (got < sizeof in) {
+        fbrl_uart_8250_isr(&B);
+        got += read_all(out + got, sizeof out - got);
+        assert_int_equal(fbrl_uart_8250_ops.service(&B, 0), FBRL_OK);
+        assert_true(++rounds < 100);
+    }
+    assert_memory_equal(out, in, sizeof in);
+    assert_int_equal(counters().overruns, 0);
+}
+
 /* service() sleeps (idle hook) until the handler moved something, or the timeout. */
 static void irq_during_idle(model *m)
 {
@@ -758,6 +780,7 @@ int main(void)
         cmocka_unit_test(test_isr_pass_limit),
         cmocka_unit_test(test_isr_spurious),
         cmocka_unit_test(test_isr_rx_headroom),
+        cmocka_unit_test(test_isr_rx_tiny_ring),
         cmocka_unit_test(test_service_waits_for_interrupt),
         cmocka_unit_test(test_xon_xoff_through_isr),
     };
