@@ -56,6 +56,10 @@ typedef struct fbrl_uart_counters {
  *    fbrl_uart_isr_rx() when it must send XOFF, or restart output after the peer's
  *    XON, and now_us from the interrupt side to time XOFF holds. Both must be safe
  *    there (no blocking; on bare metal: no re-enabling interrupts).
+ *  - The main line also calls tx_kick after it took bytes from a receive ring that
+ *    was full: a backend that stopped receiving when fbrl_uart_rx_room() was 0
+ *    (masked the receive interrupt, left bytes in the kernel) resumes then. A kick
+ *    with nothing to send simply finds fbrl_uart_isr_tx() returning -1.
  *  - After tx_kick, the backend calls fbrl_uart_isr_tx() until it returns -1 (or its
  *    transmitter is full); it need not call it again until the next tx_kick.
  *  - The backend calls the fbrl_uart_isr_*() entry points from one context at a time
