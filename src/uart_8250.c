@@ -338,6 +338,30 @@ fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u)
     return FBRL_OK;
 }
 
+fbrl_status fbrl_uart_8250_probe(const fbrl_uart_8250_io *io, uint16_t base, fbrl_uart_8250_chip *chip)
+{
+    uint8_t lcr, iir;
+    if (!io || !io->inb || !io->outb || !chip)
+        return FBRL_EINVAL;
+    /* Presence: LCR is read/write on every 8250 family member; an empty port is not. */
+    lcr = io->inb(io->io_ctx, (uint16_t)(base + FBRL_8250_LCR));
+    io->outb(io->io_ctx, (uint16_t)(base + FBRL_8250_LCR), 0x1B);
+    if (io->inb(io->io_ctx, (uint16_t)(base + FBRL_8250_LCR)) != 0x1B)
+        return FBRL_ENOENT;
+    io->outb(io->io_ctx, (uint16_t)(base + FBRL_8250_LCR), 0x03);
+    if (io->inb(io->io_ctx, (uint16_t)(base + FBRL_8250_LCR)) != 0x03)
+        return FBRL_ENOENT;
+    /* FIFOs (with LCR at 0x03, so no later chip's extended registers get in the way):
+     * after FCR enable, IIR bits 7:6 read 11 on a 16550A, 10 on the early 16550
+     * (unusable FIFO), 00 on chips without one. */
+    io->outb(io->io_ctx, (uint16_t)(base + FBRL_8250_FCR), FBRL_8250_FCR_ENABLE);
+    iir = io->inb(io->io_ctx, (uint16_t)(base + FBRL_8250_IIR));
+    io->outb(io->io_ctx, (uint16_t)(base + FBRL_8250_FCR), 0);
+    io->outb(io->io_ctx, (uint16_t)(base + FBRL_8250_LCR), lcr);
+    *chip = (iir & 0xC0u) == 0xC0u ? FBRL_UART_8250_16550 : FBRL_UART_8250_8250;
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_uart_8250_get_stats(const fbrl_uart_8250 *b, fbrl_uart_8250_stats *out)
 {
     if (!b || !out)

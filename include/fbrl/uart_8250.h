@@ -164,6 +164,13 @@ fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u);
  * pending, then sends the 8259 its EOI. */
 void fbrl_uart_8250_isr(fbrl_uart_8250 *b);
 
+/* Find out what sits at base (before init; only inb/outb are used, and the chip is
+ * left with its FIFOs off and LCR as found): FBRL_UART_8250_16550 for a 16550A with
+ * working FIFOs, FBRL_UART_8250_8250 for an 8250/16450 - or for an early 16550, whose
+ * FIFO is broken. FBRL_ENOENT when no UART answers there (LCR does not read back what
+ * was written, as on an empty ISA port that reads 0xFF). EINVAL on NULL arguments. */
+fbrl_status fbrl_uart_8250_probe(const fbrl_uart_8250_io *io, uint16_t base, fbrl_uart_8250_chip *chip);
+
 /* Copy of the handler's counters. EINVAL on NULL. */
 fbrl_status fbrl_uart_8250_get_stats(const fbrl_uart_8250 *b, fbrl_uart_8250_stats *out);
 

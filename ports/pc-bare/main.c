@@ -15,7 +15,8 @@
  * Options on the Multiboot command line (qemu -append "..."):
  *   baud=N      line rate (default 115200; must divide 115200)
  *   fifo=N      16550 receive trigger 1, 4, 8 or 14 (default 14); fifo=0 runs the
- *               chip as a plain 8250/16450 (one byte per interrupt)
+ *               chip as a plain 8250/16450 (one byte per interrupt), as does a chip
+ *               that fbrl_uart_8250_probe() finds has no usable FIFO
  *   stall=MS    after every 16 KiB received, stop reading for MS milliseconds (a
  *               slow consumer: the receive ring fills, XOFF goes out, the handler
  *               pauses reception) */
@@ -133,6 +134,7 @@ void kmain(uint32_t magic, void *mbi)
     uint64_t last = 0;
     uint32_t fifo, stall_ms, since_stall = 0;
     const char *cmdline = NULL;
+    fbrl_uart_8250_chip chip;
     if (magic != 0x2BADB002u)
         pc_exit(PC_EXIT_FAIL);
     /* Multiboot info: flags bit 2 says the command line's address is at offset 16. */
@@ -142,9 +144,17 @@ void kmain(uint32_t magic, void *mbi)
     fifo = option(cmdline, "fifo=", 14u);
     stall_ms = option(cmdline, "stall=", 0u);
     pc_init(FBRL_UART_8250_COM1_IRQ, &com);
-    if (fbrl_uart_8250_init(&com, &pc_uart_io, FBRL_UART_8250_COM1_BASE, FBRL_UART_8250_COM1_IRQ,
-                            fifo ? FBRL_UART_8250_16550 : FBRL_UART_8250_8250,
-                            (uint8_t)(fifo ? fifo : 1u)) != FBRL_OK ||
+    if (fbrl_uart_8250_probe(&pc_uart_io, FBRL_UART_8250_COM1_BASE, &chip) != FBRL_OK) {
+        pc_debug("pc-bare: no UART at COM1\n");
+        pc_exit(PC_EXIT_FAIL);
+    }
+    pc_debug(chip == FBRL_UART_8250_16550 ? "pc-bare: COM1 is a 16550A\n" : "pc-bare: COM1 is an 8250\n");
+    if (chip == FBRL_UART_8250_8250 || fifo == 0) {
+        chip = FBRL_UART_8250_8250;
+        fifo = 1;
+    }
+    if (fbrl_uart_8250_init(&com, &pc_uart_io, FBRL_UART_8250_COM1_BASE, FBRL_UART_8250_COM1_IRQ, chip,
+                            (uint8_t)fifo) != FBRL_OK ||
         fbrl_uart_init(&uart, &fbrl_uart_8250_ops, &com, rx_mem, sizeof rx_mem, tx_mem,
                        sizeof tx_mem, &cfg) != FBRL_OK ||
         fbrl_uart_8250_attach(&com, &uart) != FBRL_OK) {

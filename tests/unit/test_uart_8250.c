@@ -27,6 +27,8 @@ typedef struct access {
 
 typedef struct model {
     unsigned depth;             /* 16 (16550) or 1 (8250) */
+    int absent;                 /* nothing at BASE: every read gives 0xFF */
+    int early_16550;            /* the first 16550: IIR bits 7:6 read 10 with FIFO on */
     /* chip */
     uint8_t ier, lcr, mcr, fcr, dll, dlm;
     uint8_t rx[256];
@@ -83,7 +85,7 @@ static void model_tx_done(model *m)
 
 static uint8_t model_iir(model *m)
 {
-    uint8_t fifo_bits = (m->fcr & 1u) ? 0xC0u : 0u;
+    uint8_t fifo_bits = (m->fcr & 1u) ? (m->early_16550 ? 0x80u : 0xC0u) : 0u;
     if ((m->ier & FBRL_8250_IER_RLSI) && m->lsr_err)
         return (uint8_t)(fifo_bits | FBRL_8250_IIR_RLS);
     if ((m->ier & FBRL_8250_IER_RDI) && m->rx_n)
@@ -102,6 +104,11 @@ static uint8_t io_inb(void *ctx, uint16_t port)
     model *m = ctx;
     uint8_t v = 0;
     int dlab = (m->lcr & FBRL_8250_LCR_DLAB) != 0;
+    if (m->absent && port >= BASE && port <= BASE + 7) {
+        assert_true(m->nlog < sizeof m->log / sizeof m->log[0]);
+        m->log[m->nlog++] = (access){'r', port, 0xFF};
+        return 0xFF;
+    }
     switch (port) {
     case BASE + 0:
         if (dlab) {
@@ -145,6 +152,8 @@ static void io_outb(void *ctx, uint16_t port, uint8_t v)
     int dlab = (m->lcr & FBRL_8250_LCR_DLAB) != 0;
     assert_true(m->nlog < sizeof m->log / sizeof m->log[0]);
     m->log[m->nlog++] = (access){'w', port, v};
+    if (m->absent && port >= BASE && port <= BASE + 7)
+        return;
     switch (port) {
     case BASE + 0:
         if (dlab) {
@@ -169,6 +178,8 @@ static void io_outb(void *ctx, uint16_t port, uint8_t v)
         }
         break;
     case BASE + 2:
+        if (m->depth == 1)
+            break; /* an 8250 has no FCR */
         m->fcr = v;
         if (v & FBRL_8250_FCR_CLEAR_RX)
             m->rx_n = 0;
@@ -404,6 +415,36 @@ static void test_configure_8250_no_fifo(void **state)
     for (i = 0; i < M.nlog; i++)
         assert_false(M.log[i].dir == 'w' && M.log[i].port == BASE + 2);
     assert_int_equal(M.fcr, 0);
+}
+
+/* probe: tells a 16550A from an 8250/16450 and from the early 16550 (broken FIFO),
+ * finds an empty port, and leaves LCR as it was and the FIFOs off. */
+static void test_probe(void **state)
+{
+    fbrl_uart_8250_chip chip = (fbrl_uart_8250_chip)0;
+    (void)state;
+    model_reset(16);
+    M.lcr = 0x1A;
+    assert_int_equal(fbrl_uart_8250_probe(&IO, BASE, &chip), FBRL_OK);
+    assert_int_equal(chip, FBRL_UART_8250_16550);
+    assert_int_equal(M.lcr, 0x1A);
+    assert_int_equal(M.fcr & 1, 0);
+
+    model_reset(1);
+    assert_int_equal(fbrl_uart_8250_probe(&IO, BASE, &chip), FBRL_OK);
+    assert_int_equal(chip, FBRL_UART_8250_8250);
+
+    model_reset(16);
+    M.early_16550 = 1;
+    assert_int_equal(fbrl_uart_8250_probe(&IO, BASE, &chip), FBRL_OK);
+    assert_int_equal(chip, FBRL_UART_8250_8250);
+
+    model_reset(16);
+    M.absent = 1;
+    assert_int_equal(fbrl_uart_8250_probe(&IO, BASE, &chip), FBRL_ENOENT);
+
+    assert_int_equal(fbrl_uart_8250_probe(NULL, BASE, &chip), FBRL_EINVAL);
+    assert_int_equal(fbrl_uart_8250_probe(&IO, BASE, NULL), FBRL_EINVAL);
 }
 
 static void test_init_arguments(void **state)
@@ -770,6 +811,7 @@ int main(void)
         cmocka_unit_test(test_configure_datasheet_values),
         cmocka_unit_test(test_configure_unsupported),
         cmocka_unit_test(test_configure_8250_no_fifo),
+        cmocka_unit_test(test_probe),
         cmocka_unit_test(test_init_arguments),
         cmocka_unit_test(test_attach_and_close),
         cmocka_unit_test(test_isr_receive),
