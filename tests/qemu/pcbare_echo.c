@@ -14,7 +14,11 @@
  * kilobytes, so XON/XOFF alone cannot stop a host that has queued far ahead (the
  * XOFF arrives after the bytes). The POSIX backend bounds its kernel output queue only
  * on real ttys, not on ptys, so this program bounds what it has in flight itself:
- * it never has more than WINDOW bytes written but not yet echoed. */
+ * it never has more than WINDOW bytes written but not yet echoed. WINDOW is also below
+ * this side's XOFF mark (3/4 of the 4 KiB receive ring), so the host never has to stop
+ * the image: without the bound, the stalling case deadlocks (measured: ~24 KB in
+ * flight, both sides stopped), because the host's XON then waits behind data bytes
+ * already queued toward an image that stopped reading. */
 #include <errno.h>
 #include <poll.h>
 #include <signal.h>
