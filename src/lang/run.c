@@ -70,7 +70,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     for (;;) {
         w = *ip++;
     dispatch:
-        switch (w) {
+        switch ((fbrl_ucell)w) {
         case OP_BAD: THROW(fbrl__throw_msg(vm, -9, "invalid instruction (corrupted code?)"));
         case OP_HALT: goto out;
         case OP_CATCHEND:

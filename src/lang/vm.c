@@ -66,14 +66,6 @@ void fbrl__write(fbrl_vm *vm, const char *s, size_t n)
 void fbrl__puts(fbrl_vm *vm, const char *s) { fbrl__write(vm, s, strlen(s)); }
 
 /* ---- memory checks ---- */
-int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
-{
-    fbrl_ucell lo = (fbrl_ucell)vm->data_lo;
-    fbrl_ucell size = (fbrl_ucell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->data_lo);
-    fbrl_ucell off = (fbrl_ucell)a - lo;
-    return (fbrl_ucell)n <= size && off <= size - (fbrl_ucell)n;
-}
-
 void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n)
 {
     if (!vm || !fbrl__addr_ok(vm, addr, (fbrl_cell)n)) return NULL;
@@ -117,6 +109,7 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
 
 static void rebuild_hash(fbrl_vm *vm)
 {
+    vm->data_hi = (unsigned char *)(vm->hdr_top - vm->nwords);
     memset(vm->hash, 0, sizeof vm->hash);
     for (uint32_t i = 0; i < vm->nwords; i++) {
         fbrl_hdr *h = HDR(vm, i);
@@ -156,6 +149,7 @@ static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsig
     h->next = vm->hash[b];
     vm->hash[b] = vm->nwords + 1;
     vm->nwords++;
+    vm->data_hi = (unsigned char *)h;
     *out = h;
     return 0;
 }
@@ -346,6 +340,11 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL))) return r;
         return fbrl__emit(vm, h->body);
+    case K_CREATE:
+        /* Without DOES> a created word is a literal. DOES> can only change the
+         * latest word, and a word compiled into a definition is no longer latest. */
+        if (h->does) return fbrl__emit(vm, xt);
+        /* fall through */
     case K_VAR:
         if ((r = fbrl__emit(vm, OP_LIT))) return r;
         return fbrl__emit(vm, h->body);
@@ -776,6 +775,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     guard[1] = OP_CATCHEND;
     vm->guard_addr = (fbrl_cell)guard;
     vm->hdr_top = (fbrl_hdr *)(void *)guard;
+    vm->data_hi = (unsigned char *)guard;
     *vm->base = 10;
     vm->precision = 6;
 

@@ -103,6 +103,7 @@ struct fbrl_vm {
     unsigned char *dict_lo;   /* first dictionary byte (MARKER cannot go below) */
     unsigned char *here;
     fbrl_hdr *hdr_top;        /* header i is hdr_top[-1 - i] */
+    unsigned char *data_hi;   /* end of the addressable region = lowest header */
     uint32_t nwords;
     uint32_t hash[FBRL_HASH];
     fbrl_cell *base, *state, *toin;  /* system variables in the data region */
@@ -140,10 +141,17 @@ struct fbrl_vm {
 
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
 
+/* True if [a, a+n) lies inside the VM's addressable data region. */
+static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
+{
+    fbrl_ucell size = (fbrl_ucell)(vm->data_hi - vm->data_lo);
+    fbrl_ucell off = (fbrl_ucell)a - (fbrl_ucell)vm->data_lo;
+    return (fbrl_ucell)n <= size && off <= size - (fbrl_ucell)n;
+}
+
 /* vm.c */
 int fbrl__run(fbrl_vm *vm, fbrl_cell xt);
 int fbrl__throw_msg(fbrl_vm *vm, int code, const char *msg);
-int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n);
 fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt);
 int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);
 void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
