@@ -95,3 +95,6 @@ T{ S3 HC ' LOAD-CAL CATCH NIP NIP -> -315 }T
 T{ 2E0 S3 1 CAL-STRU! S3 HC ' SAVE-CAL CATCH NIP NIP -> -325 }T   \ not a rigid motion
 T{ L1 HC ' SAVE-CAL CATCH NIP NIP -> -12 }T
 T{ HC CLOSE-FILE -> 0 }T
+T{ CREATE-FILE cal2.fbd OPEN-FILE HC cal2.fbd PAD 108 HC WRITE-FILE HC RESET-FILE -> }T
+T{ S2 HC ' LOAD-CAL CATCH NIP NIP -> -314 }T                \ 108 bytes, but not a calibration
+T{ PAD 108 HC READ-FILE HC CLOSE-FILE -> 0 }T

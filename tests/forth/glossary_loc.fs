@@ -36,7 +36,8 @@ T{ P1 JUNK ' SET-LOC CATCH NIP NIP -> -12 }T
 T{ P1 GETX -> 2.5E0 }T
 T{ +INF P1 ' SETX CATCH NIP FDROP -> -303 }T          \ infinity refused
 T{ P1 GETX -> 2.5E0 }T
-T{ ' GETX CATCH -> -4 }T                                    \ empty stack
+T{ ' GETX CATCH -> -4 }T
+T{ S" CREATE-LOC" ' EVALUATE CATCH NIP NIP -> -16 }T       \ name missing                                    \ empty stack
 T{ P1 ' SETX CATCH NIP -> -45 }T                            \ empty float stack
 T{ 1E308 1E308 1E308 0E0 0E0 0E0 P2 DEFINE-LOC P2 P2 ' SHIFTA CATCH NIP NIP -> -327 }T  \ overflow
 T{ P2 GETX -> 1E308 }T

@@ -441,6 +441,22 @@ static void file_table(void **state)
     assert_true(l.x == 1 && l.y == 2 && l.z == 3 && l.o == 4 && l.a == 5 && l.t == 6);
     assert_int_equal(fbrl_file_discard(&file), FBRL_OK);
     throws(f, "H8 RESET-FILE", -325, "RESET-FILE: file handle not open");
+    /* a file name too long for the file system layer */
+    char longname[400] = "CREATE-FILE ";
+    memset(longname + 12, 'a', 300);
+    throws(f, longname, -324, "CREATE-FILE");
+    /* a file fills its share of the storage: 8 KB holds 146 location records of 56 bytes */
+    ok(f, "CREATE-FILE full.fbd OPEN-FILE HF full.fbd : FILL-UP ( -- ) BEGIN P LOCATION HF WRITE-FILE AGAIN ;");
+    throws(f, "FILL-UP", -304, "WRITE-FILE: file full (8192 bytes of records per open file)");
+    ok(f, "HF CLOSE-FILE");
+    assert_int_equal(pop1(f), 0);
+    uint32_t count = 0;
+    assert_int_equal(fbrl_file_open(&file, "full.fbd", buf, sizeof buf), FBRL_ENOSPC); /* 4 KB: too small */
+    static unsigned char big[16384];
+    assert_int_equal(fbrl_file_open(&file, "full.fbd", big, sizeof big), FBRL_OK);
+    assert_int_equal(fbrl_file_tell(&file, NULL, &count), FBRL_OK);
+    assert_int_equal(count, 8192 / 56);
+    assert_int_equal(fbrl_file_discard(&file), FBRL_OK);
     /* no storage: a clear error */
     assert_int_equal(fbrl_glossary_set_file_storage(&f->g, NULL, 0), FBRL_OK);
     throws(f, "OPEN-FILE H9 d.fbd", -21, "no file storage");
