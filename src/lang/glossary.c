@@ -148,6 +148,16 @@ fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out)
     return FBRL_OK;
 }
 
+fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out)
+{
+    if (!vm || !out) return FBRL_EINVAL;
+    if (!fbrl_vm_addr(vm, addr, GL_PAYLOAD + sizeof(fbrl_calpts))) return FBRL_ERANGE;
+    fbrl_calpts *c = gl_struct(vm, addr, MAGIC_CAL, sizeof(fbrl_calpts));
+    if (!c) return FBRL_ETYPE;
+    *out = c;
+    return FBRL_OK;
+}
+
 const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g) { return g ? &g->units : NULL; }
 
 void fbrl_glossary_set_port_writer(fbrl_glossary *g, void (*write)(void *ctx, const char *s, size_t n),

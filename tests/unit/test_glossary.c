@@ -234,6 +234,15 @@ static void install_checks_arguments(void **state)
     assert_int_equal(fbrl_glossary_loc(f->vm, p, &loc), FBRL_OK);
     assert_int_equal(fbrl_glossary_loc(f->vm, p + 4, &loc), FBRL_ERANGE); /* misaligned */
     assert_int_equal(fbrl_glossary_loc(f->vm, p, NULL), FBRL_EINVAL);
+    /* CREATE-CAL slots from C: the same memory CAL-ADDR gives */
+    fbrl_calpts *c;
+    ok(f, "CREATE-CAL C C C 2 CAL-ADDR");
+    fbrl_cell slot2 = pop1(f), cal = pop1(f);
+    assert_int_equal(fbrl_glossary_calpts(f->vm, cal, &c), FBRL_OK);
+    assert_ptr_equal(&c->p[1], (void *)slot2);
+    assert_int_equal(fbrl_glossary_calpts(f->vm, p, &c), FBRL_ETYPE);
+    assert_int_equal(fbrl_glossary_calpts(f->vm, 0, &c), FBRL_ERANGE);
+    assert_int_equal(fbrl_glossary_calpts(NULL, cal, &c), FBRL_EINVAL);
     free_vm(f);
 }
 
