@@ -500,6 +500,32 @@ static void close_failure_keeps_file_open(void **state)
     free_vm(f);
 }
 
+/* ---- the example plan examples/heater_block.fbrl ---- */
+static void example_plan(void **state)
+{
+    (void)state;
+    fixture *f = new_vm();
+    fbrl_status st = fbrl_vm_include(f->vm, FBRL_TEST_SRCDIR "/examples/heater_block.fbrl");
+    if (st != FBRL_OK) print_error("%s\n%s\n", fbrl_vm_last_error(f->vm)->message, f->out.s);
+    assert_int_equal(st, FBRL_OK);
+    /* tube (2, 3) = corner (10, -2) + (1.5, 2.25); the block turned 90 degrees about z and
+     * its P1 moved from (10, -2) to (12, 1): (1.5, 2.25) -> (-2.25, 1.5) -> (9.75, 2.5) */
+    assert_string_equal(f->out.s,
+        "the rack as taught:\n"
+        "RECTMAT base X   +10.0000 Y    -2.0000 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg  "
+        "step X    +0.7500 Y    +0.7500 Z    +0.0000 in\n"
+        "tube 2 3, stored:\n"
+        "X   +11.5000 Y    +0.2500 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg\n"
+        "tube 2 3, where the arm goes now:\n"
+        "X    +9.7500 Y    +2.5000 Z    +1.0000 in  O  +90.000 A  -90.000 T   +0.000 deg\n"
+        "taught on the moved block, stored:\n"
+        "X   +11.5000 Y    +0.2500 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg\n"
+        "saved, code 0 \n"
+        "tube 2 3 through the loaded calibration, in cm:\n"
+        "X   +24.7650 Y    +6.3500 Z    +2.5400 cm  O  +90.000 A  -90.000 T   +0.000 deg\n");
+    free_vm(f);
+}
+
 /* ---- robustness: every word on hostile arguments ----
  * Each word runs many times on random mixes of arguments: addresses of real structures of
  * every kind, those addresses shifted by a few bytes, addresses outside the data space,
@@ -593,6 +619,7 @@ int main(void)
         cmocka_unit_test(file_table),
         cmocka_unit_test(close_failure_keeps_file_open),
         cmocka_unit_test(hostile_arguments),
+        cmocka_unit_test(example_plan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
