@@ -237,7 +237,8 @@ static fbrl_status w_set_loc(fbrl_vm *vm, void *arg)
     if ((st = gl_pop(vm, 2, a)) || (st = gl_loc(vm, a[0], 0, "SET-LOC", &dst)) ||
         (st = gl_loc(vm, a[1], 1, "SET-LOC", &src)))
         return st;
-    fbrl_loc_copy(dst, src);
+    fbrl_loc tmp = *src; /* the two may overlap in part */
+    fbrl_loc_copy(dst, &tmp);
     return FBRL_OK;
 }
 
@@ -334,24 +335,26 @@ static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **l
 static fbrl_status rect_run(fbrl_vm *vm, void *body)
 {
     long i[3];
-    fbrl_loc *loc;
+    fbrl_loc *loc, out;
     fbrl_status st;
     const fbrl_rectmat *m = gl_struct(vm, (fbrl_cell)body, MAGIC_RECT, sizeof(fbrl_rectmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RECTMAT: matrix structure overwritten");
     if ((st = index3(vm, "RECTMAT", i, &loc))) return st;
-    if ((st = fbrl_rectmat_loc(m, i[0], i[1], i[2], loc)) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
+    if ((st = fbrl_rectmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
+    *loc = out; /* through a copy: loc could lie over the matrix itself */
     return FBRL_OK;
 }
 
 static fbrl_status rad_run(fbrl_vm *vm, void *body)
 {
     long i[3];
-    fbrl_loc *loc;
+    fbrl_loc *loc, out;
     fbrl_status st;
     const fbrl_radmat *m = gl_struct(vm, (fbrl_cell)body, MAGIC_RAD, sizeof(fbrl_radmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RADMAT: matrix structure overwritten");
     if ((st = index3(vm, "RADMAT", i, &loc))) return st;
-    if ((st = fbrl_radmat_loc(m, i[0], i[1], i[2], loc)) != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
+    if ((st = fbrl_radmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
+    *loc = out;
     return FBRL_OK;
 }
 

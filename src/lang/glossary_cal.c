@@ -91,7 +91,14 @@ static fbrl_status set_get_cal(fbrl_vm *vm, int set)
     if ((st = gl_pop(vm, 3, a)) || (st = cal_at(vm, a[0], word, &c)) || (st = slot_index(vm, a[1], word)) ||
         (st = gl_loc(vm, a[2], set, word, &loc)))
         return st;
-    st = set ? fbrl_calpts_set(c, (int)a[1], loc) : fbrl_calpts_get(c, (int)a[1], loc);
+    /* through a copy: loc may overlap a slot in part */
+    fbrl_loc tmp;
+    if (set) {
+        tmp = *loc;
+        st = fbrl_calpts_set(c, (int)a[1], &tmp);
+    } else if ((st = fbrl_calpts_get(c, (int)a[1], &tmp)) == FBRL_OK) {
+        *loc = tmp;
+    }
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
 static fbrl_status w_set_cal(fbrl_vm *vm, void *arg) { (void)arg; return set_get_cal(vm, 1); }
