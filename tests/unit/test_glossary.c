@@ -500,6 +500,36 @@ static void close_failure_keeps_file_open(void **state)
     free_vm(f);
 }
 
+/* ---- a full dictionary: the defining words fail cleanly ---- */
+static void dictionary_full(void **state)
+{
+    (void)state;
+    fixture *f = new_vm();
+    ok(f, "CREATE-LOC P 1E0 2E0 3E0 0E0 0E0 0E0 P DEFINE-LOC CREATE-FILE d.fbd UNUSED 3000 - ALLOT");
+    const char *makers[] = { "P 1E0 1E0 1E0 RECTMAT", "P 0.1E0 1E0 1E0 RADMAT", "CREATE-LOC", "CREATE-CAL",
+                             "CREATE-CAL-STRU" };
+    char src[96];
+    int made = 0;
+    for (int m = 0; m < 5; m++) {
+        for (int n = 0;; n++) {
+            snprintf(src, sizeof src, "%s W%d-%d", makers[m], m, n);
+            if (ev(f, src) != FBRL_OK) {
+                assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -8); /* dictionary overflow */
+                snprintf(src, sizeof src, "[DEFINED] W%d-%d", m, n);
+                ok(f, src);
+                assert_int_equal(pop1(f), 0); /* no half-made word */
+                break;
+            }
+            made++;
+        }
+    }
+    assert_true(made > 5);
+    ok(f, "1 0 0 P W0-0 P GETX F>S 2 3 +"); /* the words made before still work, and the VM does */
+    assert_int_equal(pop1(f), 5);
+    assert_int_equal(pop1(f), 2);
+    free_vm(f);
+}
+
 /* ---- the example plan examples/heater_block.fbrl ---- */
 static void example_plan(void **state)
 {
@@ -620,6 +650,7 @@ int main(void)
         cmocka_unit_test(close_failure_keeps_file_open),
         cmocka_unit_test(hostile_arguments),
         cmocka_unit_test(example_plan),
+        cmocka_unit_test(dictionary_full),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
