@@ -451,6 +451,15 @@ static void file_table(void **state)
     assert_true(l.x == 1 && l.y == 2 && l.z == 3 && l.o == 4 && l.a == 5 && l.t == 6);
     assert_int_equal(fbrl_file_discard(&file), FBRL_OK);
     throws(f, "H8 RESET-FILE", -325, "RESET-FILE: file handle not open");
+    /* a wrong-type read says what is there, and reads nothing */
+    ok(f, "OPEN-FILE H8 d.fbd FVARIABLE R");
+    throws(f, "R REAL H8 READ-FILE", -314,
+           "READ-FILE: next record is LOCATION (48 bytes), not REAL (8 bytes); nothing read");
+    ok(f, "CREATE-LOC L L LOCATION H8 READ-FILE L GETT F>S H8 CLOSE-FILE");
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 6);
+    throws(f, "PAD 12 H8 READ-FILE", -325, "READ-FILE: file handle not open");
+    throws(f, "PAD 12 PAD READ-FILE", -12, "READ-FILE: unknown file handle (OPEN-FILE makes one)");
     /* a file name too long for the file system layer */
     char longname[400] = "CREATE-FILE ";
     memset(longname + 12, 'a', 300);
