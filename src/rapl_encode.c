@@ -12,27 +12,30 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_ALIGN]  = {"ALIGN", 1, "", 0, MOT},
     [FBRL_RAPL_APPRO]  = {"APPRO", 2, "LR", 0, MOT | STR},
     [FBRL_RAPL_ARM]    = {"ARM", 142, "W", "ON|OFF", 0},
-    [FBRL_RAPL_CLOSE]  = {"CLOSE", 38, "[R", 0, 0},
-    [FBRL_RAPL_CONFIG] = {"CONFIG", 110, "IIWIIWW", "N|E|O|ON|OFF", 0},
+    [FBRL_RAPL_CLOSE]  = {"CLOSE", 38, "[I", 0, 0},
+    [FBRL_RAPL_CONFIG] = {"CONFIG", 110, "IIWIIWI", "N|E|O;N|X", 0},
     [FBRL_RAPL_DEPART] = {"DEPART", 4, "R", 0, MOT | STR},
     [FBRL_RAPL_FINISH] = {"FINISH", 10, "", 0, 0},
     [FBRL_RAPL_FLASH]  = {"FLASH", 84, "[I", 0, 0},
-    [FBRL_RAPL_GAIN]   = {"GAIN", 150, "IR", 0, 0},
-    [FBRL_RAPL_GRIP]   = {"GRIP", 39, "R", 0, 0},
+    [FBRL_RAPL_GAIN]   = {"GAIN", 150, "I[R", 0, 0},
+    [FBRL_RAPL_GRIP]   = {"GRIP", 39, "R[I", 0, 0},
     [FBRL_RAPL_HALT]   = {"HALT", 154, "", 0, 0},
     [FBRL_RAPL_HERE]   = {"HERE", 24, "L", 0, 0},
     [FBRL_RAPL_HOME]   = {"HOME", 20, "", 0, MOT},
     [FBRL_RAPL_JOG]    = {"JOG", 5, "RRR", 0, MOT},
     [FBRL_RAPL_JOINT]  = {"JOINT", 6, "IR", 0, MOT},
-    [FBRL_RAPL_LIMP]   = {"LIMP", 7, "[I", 0, 0},
+    [FBRL_RAPL_LIMP]   = {"LIMP", 7, "[I*", 0, 0},
     [FBRL_RAPL_LOCK]   = {"LOCK", 9, "I*", 0, 0},
-    [FBRL_RAPL_MA]     = {"MA", 132, "RRRRR", 0, MOT},
+    [FBRL_RAPL_MA]     = {"MA", 132, "RRRRR", 0, MOT | STR},
     [FBRL_RAPL_MANUAL] = {"MANUAL", 45, "[W", "JOI|CYL", 0},
     [FBRL_RAPL_MI]     = {"MI", 131, "RRRRR", 0, MOT | STR},
     [FBRL_RAPL_MOTOR]  = {"MOTOR", 11, "II", 0, MOT},
     [FBRL_RAPL_MOVE]   = {"MOVE", 0, "L", 0, MOT | STR},
     [FBRL_RAPL_NOHELP] = {"NOHELP", 0, "", 0, 0},
     [FBRL_RAPL_NOLIMP] = {"NOLIMP", 0, "", 0, 0},
+    [FBRL_RAPL_NOFLASH] = {"NOFLASH", 0, "", 0, 0},
+    [FBRL_RAPL_NOMANUAL] = {"NOMANUAL", 0, "", 0, 0},
+    [FBRL_RAPL_NOTEACH] = {"NOTEACH", 0, "", 0, 0},
     [FBRL_RAPL_OPEN]   = {"OPEN", 40, "[I", 0, 0},
     [FBRL_RAPL_OUTPUT] = {"OUTPUT", 89, "I*", 0, 0},
     [FBRL_RAPL_POINT]  = {"POINT", 50, "L", 0, 0}, /* coordinates: see encode_point() */
@@ -44,17 +47,17 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_SPEED]  = {"SPEED", 16, "I", 0, 0},
     [FBRL_RAPL_STATUS] = {"STATUS", 25, "", 0, 0},
     [FBRL_RAPL_TEACH]  = {"TEACH", 44, "L", 0, 0},
-    [FBRL_RAPL_TOOL]   = {"TOOL", 54, "L", 0, 0},
+    [FBRL_RAPL_TOOL]   = {"TOOL", 54, "[L", 0, 0},
     [FBRL_RAPL_TYPEI]  = {"TYPEI", 59, "V", 0, 0},
     [FBRL_RAPL_TYPEV]  = {"TYPEV", 60, "V", 0, 0},
-    [FBRL_RAPL_UNLOCK] = {"UNLOCK", 17, "I*", 0, 0},
+    [FBRL_RAPL_UNLOCK] = {"UNLOCK", 17, "[I*", 0, 0},
     [FBRL_RAPL_W0]     = {"W0", 27, "", 0, 0},
     [FBRL_RAPL_W1]     = {"W1", 29, "", 0, STM},
     [FBRL_RAPL_W2]     = {"W2", 31, "", 0, 0},
     [FBRL_RAPL_W3]     = {"W3", 33, "", 0, STM},
     [FBRL_RAPL_W4]     = {"W4", 35, "", 0, 0},
     [FBRL_RAPL_W5]     = {"W5", 37, "", 0, STM},
-    [FBRL_RAPL_WAIT]   = {"WAIT", 94, "I", 0, 0},
+    [FBRL_RAPL_WAIT]   = {"WAIT", 94, "I*", 0, 0},
     [FBRL_RAPL_WE1]    = {"WE1", 28, "", 0, STM},
     [FBRL_RAPL_WE3]    = {"WE3", 32, "", 0, STM},
     [FBRL_RAPL_WE5]    = {"WE5", 36, "", 0, STM},
@@ -108,7 +111,7 @@ fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok)
         return FBRL_ENAME;
     size_t n = 0;
     for (; name[n]; n++)
-        if (n >= NAME_MAX_CHARS || !(is_alpha(name[n]) || is_digit(name[n])))
+        if (n >= NAME_MAX_CHARS || !(is_alpha(name[n]) || is_digit(name[n]) || name[n] == '_'))
             return FBRL_ENAME;
     return FBRL_OK;
 }
@@ -198,15 +201,16 @@ fbrl_status fbrl_rapl_format_real(char *buf, size_t cap, size_t *len, double v)
     return o.st;
 }
 
-/* Is word one of the '|'-separated entries of list (case-insensitive)? */
+/* Is word one of the '|'-separated entries of list (case-insensitive)? The list ends at
+ * NUL or ';' (the next W slot's list). */
 static int word_allowed(const char *list, const char *word)
 {
-    while (list && *list) {
+    while (list && *list && *list != ';') {
         const char *w = word;
-        while (*list && *list != '|' && *w && upper(*w) == *list) { list++; w++; }
-        if (!*w && (!*list || *list == '|'))
+        while (*list && *list != '|' && *list != ';' && *w && upper(*w) == *list) { list++; w++; }
+        if (!*w && (!*list || *list == '|' || *list == ';'))
             return 1;
-        while (*list && *list != '|')
+        while (*list && *list != '|' && *list != ';')
             list++;
         if (*list == '|')
             list++;
@@ -332,10 +336,17 @@ fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form 
     }
     if (nargs < d.min || nargs > d.max)
         return FBRL_EINVAL;
+    const char *words = ci->words; /* the list of the next 'W' slot */
     for (size_t k = 0; k < nargs; k++) {
-        fbrl_status st = check_arg(d.kind[k], &args[k], ci->words);
+        fbrl_status st = check_arg(d.kind[k], &args[k], words);
         if (st != FBRL_OK)
             return st;
+        if (d.kind[k] == 'W' && words) {
+            while (*words && *words != ';')
+                words++;
+            if (*words == ';')
+                words++;
+        }
     }
 
     out o = {buf, cap, 0, FBRL_OK};

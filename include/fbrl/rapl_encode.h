@@ -7,7 +7,7 @@
  * as keywords in both forms.
  *
  * Arguments are checked against the command's signature before a byte is written:
- * names (locations, variables, programs) are 1-8 letters/digits starting with a letter,
+ * names (locations, variables, programs) are 1-8 letters/digits/'_' starting with a letter,
  * a location name may carry a '#' prefix (precision point); reals are written with
  * exactly four decimals and never an exponent, independent of the C locale.
  * The module includes no OS header. */
@@ -28,7 +28,8 @@ typedef enum fbrl_rapl_cmd {
     FBRL_RAPL_CONFIG, FBRL_RAPL_DEPART, FBRL_RAPL_FINISH, FBRL_RAPL_FLASH, FBRL_RAPL_GAIN,
     FBRL_RAPL_GRIP, FBRL_RAPL_HALT, FBRL_RAPL_HERE, FBRL_RAPL_HOME, FBRL_RAPL_JOG,
     FBRL_RAPL_JOINT, FBRL_RAPL_LIMP, FBRL_RAPL_LOCK, FBRL_RAPL_MA, FBRL_RAPL_MANUAL,
-    FBRL_RAPL_MI, FBRL_RAPL_MOTOR, FBRL_RAPL_MOVE, FBRL_RAPL_NOHELP, FBRL_RAPL_NOLIMP,
+    FBRL_RAPL_MI, FBRL_RAPL_MOTOR, FBRL_RAPL_MOVE, FBRL_RAPL_NOFLASH, FBRL_RAPL_NOHELP,
+    FBRL_RAPL_NOLIMP, FBRL_RAPL_NOMANUAL, FBRL_RAPL_NOTEACH,
     FBRL_RAPL_OPEN, FBRL_RAPL_OUTPUT, FBRL_RAPL_POINT, FBRL_RAPL_READY, FBRL_RAPL_RUN,
     FBRL_RAPL_SERIAL, FBRL_RAPL_SET, FBRL_RAPL_SHIFTA, FBRL_RAPL_SPEED, FBRL_RAPL_STATUS,
     FBRL_RAPL_TEACH, FBRL_RAPL_TOOL, FBRL_RAPL_TYPEI, FBRL_RAPL_TYPEV, FBRL_RAPL_UNLOCK,
@@ -51,7 +52,8 @@ typedef enum fbrl_rapl_form {
 
 /* One table entry. The signature has one character per argument:
  *   L location name ('#' prefix allowed)   V variable name   N program name
- *   I integer   R real (an integer argument is accepted)   W one of `words`
+ *   I integer   R real (an integer argument is accepted)
+ *   W one of `words` ('|'-separated; ';' starts the list of the next W slot)
  *   [ the arguments after it are optional   * the previous kind repeats (1..8 in all)
  *   = the next argument follows '=' instead of ',' (assignment)
  * POINT is special: after a cartesian name come 6 reals (x y z yaw pitch roll), after a
@@ -104,7 +106,7 @@ fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form 
                              fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
                              int straight);
 
-/* Check a name: 1-8 characters, a letter then letters or digits (either case); a
+/* Check a name: 1-8 characters, a letter then letters, digits or '_' (either case); a
  * leading '#' (precision point) only when hash_ok. FBRL_ENAME otherwise. */
 fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok);
 

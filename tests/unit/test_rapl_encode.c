@@ -34,23 +34,27 @@ static golden goldens[] = {
     G(FBRL_RAPL_APPRO, 1, "APPRO P1,-1.0000,S", "/002 P1,-1.0000,S", S("P1"), R(-1.0)),
     G(FBRL_RAPL_ARM, 0, "ARM OFF", "/142 OFF", S("off")),
     G0(FBRL_RAPL_CLOSE, "CLOSE", "/038"),
-    G(FBRL_RAPL_CLOSE, 0, "CLOSE 3.0000", "/038 3.0000", R(3.0)),
-    G(FBRL_RAPL_CONFIG, 0, "CONFIG 0,9600,N,8,1,ON,ON", "/110 0,9600,N,8,1,ON,ON",
-      I(0), I(9600), S("N"), I(8), I(1), S("ON"), S("ON")),
+    G(FBRL_RAPL_CLOSE, 0, "CLOSE 30", "/038 30", I(30)),
+    G(FBRL_RAPL_CONFIG, 0, "CONFIG 0,9600,N,8,1,X,1", "/110 0,9600,N,8,1,X,1",
+      I(0), I(9600), S("n"), I(8), I(1), S("X"), I(1)),
     G(FBRL_RAPL_DEPART, 0, "DEPART 1.2500", "/004 1.2500", R(1.25)),
     G(FBRL_RAPL_DEPART, 1, "DEPART 1.2500,S", "/004 1.2500,S", R(1.25)),
     G0(FBRL_RAPL_FINISH, "FINISH", "/010"),
     G(FBRL_RAPL_FLASH, 0, "FLASH 5", "/084 5", I(5)),
     G(FBRL_RAPL_GAIN, 0, "GAIN 0,1.5000", "/150 0,1.5000", I(0), R(1.5)),
+    G(FBRL_RAPL_GAIN, 0, "GAIN 2", "/150 2", I(2)),
     G(FBRL_RAPL_GRIP, 0, "GRIP 0.7500", "/039 0.7500", R(0.75)),
+    G(FBRL_RAPL_GRIP, 0, "GRIP 1.0000,40", "/039 1.0000,40", R(1.0), I(40)),
     G0(FBRL_RAPL_HALT, "HALT", "/154"),
     G(FBRL_RAPL_HERE, 0, "HERE HOLD", "/024 HOLD", S("Hold")),
     G0(FBRL_RAPL_HOME, "HOME", "/020"),
     G(FBRL_RAPL_JOG, 0, "JOG 1.0000,-2.0000,0.0001", "/005 1.0000,-2.0000,0.0001", R(1), R(-2), R(0.0001)),
     G(FBRL_RAPL_JOINT, 0, "JOINT 3,-45.0000", "/006 3,-45.0000", I(3), R(-45.0)),
     G0(FBRL_RAPL_LIMP, "LIMP", "/007"),
-    G(FBRL_RAPL_LIMP, 0, "LIMP 2", "/007 2", I(2)),
+    G(FBRL_RAPL_LIMP, 0, "LIMP 2,3", "/007 2,3", I(2), I(3)),
     G(FBRL_RAPL_LOCK, 0, "LOCK 1,4", "/009 1,4", I(1), I(4)),
+    G(FBRL_RAPL_MA, 1, "MA 0.0000,0.0000,0.0000,0.0000,0.0000,S", "/132 0.0000,0.0000,0.0000,0.0000,0.0000,S",
+      R(0), R(0), R(0), R(0), R(0)),
     G(FBRL_RAPL_MA, 0, "MA 0.0000,1.5708,-1.5708,0.0000,0.1000", "/132 0.0000,1.5708,-1.5708,0.0000,0.1000",
       R(0), R(1.5707963), R(-1.5707963), R(0), R(0.1)),
     G0(FBRL_RAPL_MANUAL, "MANUAL", "/045"),
@@ -60,7 +64,10 @@ static golden goldens[] = {
     G(FBRL_RAPL_MOTOR, 0, "MOTOR 1,-200", "/011 1,-200", I(1), I(-200)),
     G(FBRL_RAPL_MOVE, 0, "MOVE P2", "MOVE P2", S("P2")),
     G(FBRL_RAPL_MOVE, 1, "MOVE #P2,S", "MOVE #P2,S", S("#P2")),
+    G0(FBRL_RAPL_NOFLASH, "NOFLASH", "NOFLASH"),
     G0(FBRL_RAPL_NOHELP, "NOHELP", "NOHELP"),
+    G0(FBRL_RAPL_NOMANUAL, "NOMANUAL", "NOMANUAL"),
+    G0(FBRL_RAPL_NOTEACH, "NOTEACH", "NOTEACH"),
     G0(FBRL_RAPL_NOLIMP, "NOLIMP", "NOLIMP"),
     G0(FBRL_RAPL_OPEN, "OPEN", "/040"),
     G(FBRL_RAPL_OPEN, 0, "OPEN 50", "/040 50", I(50)),
@@ -79,9 +86,11 @@ static golden goldens[] = {
     G0(FBRL_RAPL_STATUS, "STATUS", "/025"),
     G(FBRL_RAPL_TEACH, 0, "TEACH T1", "/044 T1", S("T1")),
     G(FBRL_RAPL_TOOL, 0, "TOOL TL", "/054 TL", S("TL")),
+    G0(FBRL_RAPL_TOOL, "TOOL", "/054"),
     G(FBRL_RAPL_TYPEI, 0, "TYPEI COUNT", "/059 COUNT", S("count")),
     G(FBRL_RAPL_TYPEV, 0, "TYPEV X", "/060 X", S("X")),
     G(FBRL_RAPL_UNLOCK, 0, "UNLOCK 1", "/017 1", I(1)),
+    G0(FBRL_RAPL_UNLOCK, "UNLOCK", "/017"),
     G0(FBRL_RAPL_W0, "W0", "/027"),
     G0(FBRL_RAPL_W1, "W1", "/029"),
     G0(FBRL_RAPL_W2, "W2", "/031"),
@@ -89,6 +98,7 @@ static golden goldens[] = {
     G0(FBRL_RAPL_W4, "W4", "/035"),
     G0(FBRL_RAPL_W5, "W5", "/037"),
     G(FBRL_RAPL_WAIT, 0, "WAIT -7", "/094 -7", I(-7)),
+    G(FBRL_RAPL_WAIT, 0, "WAIT 1,-2", "/094 1,-2", I(1), I(-2)),
     G0(FBRL_RAPL_WE1, "WE1", "/028"),
     G0(FBRL_RAPL_WE3, "WE3", "/032"),
     G0(FBRL_RAPL_WE5, "WE5", "/036"),
@@ -202,7 +212,8 @@ static void names_are_validated(void **state)
     assert_int_equal(fbrl_rapl_name_check("A,B", 0), FBRL_ENAME);
     assert_int_equal(fbrl_rapl_name_check("A\r", 0), FBRL_ENAME);
     assert_int_equal(fbrl_rapl_name_check("##A", 1), FBRL_ENAME);
-    assert_int_equal(fbrl_rapl_name_check("A_B", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("A_B", 0), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("_AB", 0), FBRL_ENAME);
     assert_int_equal(fbrl_rapl_name_check(NULL, 0), FBRL_EINVAL);
 
     char buf[FBRL_RAPL_LINE_MAX];
@@ -244,6 +255,10 @@ static void arguments_are_checked(void **state)
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("MAYBE")), 1, 0), FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("O")), 1, 0), FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("ONN")), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_CONFIG,
+                                      A(I(0), I(9600), S("X"), I(8), I(1), S("N"), I(1)), 7, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_CONFIG,
+                                      A(I(0), I(9600), S("E"), I(8), I(1), S("E"), I(1)), 7, 0), FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("on")), 1, 0), FBRL_OK);
     assert_string_equal(buf, "ARM ON");
     /* numbers */
