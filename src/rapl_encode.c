@@ -64,7 +64,7 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_XCAL]   = {"XCAL", 157, "I", 0, 0},
     [FBRL_RAPL_XHOME]  = {"XHOME", 158, "I", 0, 0},
     [FBRL_RAPL_XZERO]  = {"XZERO", 159, "I", 0, 0},
-    [FBRL_RAPL_ASSIGN] = {"", 70, "V=R", 0, 0},
+    [FBRL_RAPL_ASSIGN] = {"", 0, "V=R", 0, 0}, /* RAPL-II /070; fbrlsim: no token */
 };
 
 #define MAX_REPEAT 8 /* arguments a '*' list may hold in all */

@@ -105,8 +105,8 @@ static golden goldens[] = {
     G(FBRL_RAPL_XCAL, 0, "XCAL 6", "/157 6", I(6)),
     G(FBRL_RAPL_XHOME, 0, "XHOME 6", "/158 6", I(6)),
     G(FBRL_RAPL_XZERO, 0, "XZERO 6", "/159 6", I(6)),
-    G(FBRL_RAPL_ASSIGN, 0, "V1=2.5000", "/070 V1=2.5000", S("v1"), R(2.5)),
-    G(FBRL_RAPL_ASSIGN, 0, "N=7.0000", "/070 N=7.0000", S("N"), I(7)),
+    G(FBRL_RAPL_ASSIGN, 0, "V1=2.5000", "V1=2.5000", S("v1"), R(2.5)),
+    G(FBRL_RAPL_ASSIGN, 0, "N=7.0000", "N=7.0000", S("N"), I(7)),
 };
 
 static void every_command_encodes_in_both_forms(void **state)
