@@ -983,6 +983,26 @@ fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
 const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
 
+fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v)
+{
+    if (!l || !v)
+        return FBRL_EINVAL;
+    if (l->busy || l->result != FBRL_OK || l->kind != FBRL_LINK_REPLY_INT)
+        return FBRL_ESTATE;
+    *v = l->ival;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v)
+{
+    if (!l || !v)
+        return FBRL_EINVAL;
+    if (l->busy || l->result != FBRL_OK || l->kind != FBRL_LINK_REPLY_REAL)
+        return FBRL_ESTATE;
+    *v = l->rval;
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out)
 {
     if (!l || !out)

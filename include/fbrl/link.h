@@ -192,6 +192,9 @@ fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
 
 const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l);
+/* The value of the last FBRL_LINK_REPLY_INT / REAL command that succeeded. */
+fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v);
+fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v);
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
 fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out);
 
