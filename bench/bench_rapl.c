@@ -3,7 +3,10 @@
  * Usage: bench_rapl [FBRLSIM] (default: ./sim/fbrlsim from the build directory)
  *
  * Line-rate limit: a command of n characters needs n + 1 bytes (with the CR) from the
- * host, so at most (baud / 10) / (n + 1) commands per second fit on an 8N1 line. */
+ * host, so at most (baud / 10) / (n + 1) commands per second fit on an 8N1 line.
+ * Echo bound: the controller sends back n + 4 bytes per command (the echo, CR LF and the
+ * prompt ">>") at the same rate, so no client that reads the echo can exceed
+ * (baud / 10) / (n + 4), i.e. (n + 1) / (n + 4) of the line-rate limit. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -77,9 +80,10 @@ int main(int argc, char **argv)
             int count = bauds[b] == 9600 ? 20 : bauds[b] == 38400 ? 60 : 500;
             double cps = run(&r.link, lines[k], count);
             if (bauds[b]) {
-                double limit = (bauds[b] / 10.0) / (double)(n + 1);
-                printf("%5ld baud  %-56s %3zu+1 bytes: %7.1f cmd/s, line-rate limit %7.1f: %5.1f %%\n", bauds[b],
-                       lines[k], n, cps, limit, 100.0 * cps / limit);
+                double limit = (bauds[b] / 10.0) / (double)(n + 1), bound = (bauds[b] / 10.0) / (double)(n + 4);
+                printf("%5ld baud  %-56s %3zu+1 bytes: %6.1f cmd/s = %5.1f %% of the line-rate limit %6.1f"
+                       " (%5.1f %% of the echo bound %6.1f)\n",
+                       bauds[b], lines[k], n, cps, 100.0 * cps / limit, limit, 100.0 * cps / bound, bound);
             } else {
                 printf("unpaced     %-56s %3zu+1 bytes: %7.1f cmd/s (pty round trips)\n", lines[k], n, cps);
             }
