@@ -6,12 +6,13 @@
  * keeps track of how many characters sit on the controller's line (ctrl_len) and:
  *  - types a command as [CAN] + text; the echo must be exactly ctrl_len triples then
  *    the text, or the attempt is abandoned before any CR is sent;
- *  - after the CR, proof of execution is the controller's end of line: a CR/LF, the
- *    prompt, or two or more bytes (a CR damaged into another byte echoes exactly one);
- *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN m" whose echo
- *    "? (triples) ? BS SP BS m" proves the line now holds exactly "m". The marker m
- *    changes from probe to probe, so the echo of an older probe still on its way is
- *    never taken for the answer to the latest one.
+ *  - after the CR, proof of execution is the controller's CR LF, its prompt, or three
+ *    or more bytes (a line that did not end shows at most two stray bytes); without
+ *    proof, a probe decides, and a CR is never sent twice;
+ *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN mmm" whose
+ *    echo "? (triples) ? BS SP BS mmm" proves the line now holds exactly "mmm". The
+ *    markers change from probe to probe, so the echo of an older probe still on its
+ *    way is never taken for the answer to the latest one.
  * None of the bytes the link sends can turn into CR or LF by a single bit flip except
  * '-' (see docs/link.md): letters go out in lower case for that reason. */
 #include "fbrl/link.h"
