@@ -516,9 +516,11 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         }
         count_reply_byte(l, b);
         feed_reply(l, b);
-        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->stop_sent && l->stream_got >= l->stream_lines) {
+        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->prompt_seen &&
+            l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent) {
+            /* any byte ends the stream; if the stream goes on, the stop byte was lost */
             static const uint8_t cr = '\r';
-            l->stop_sent = 1;
+            l->stop_sent++;
             return send(l, &cr, 1);
         }
         if (l->prompt_seen && l->probe_out == PR_NONE) {
@@ -552,6 +554,16 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     }
 }
 
+/* How long an unanswered probe is given before the next: a controller busy with a long
+ * motion answers none, so the interval doubles (4, 8, 16 ... echo timeouts, at most 2 s). */
+static uint64_t probe_interval(const fbrl_link *l)
+{
+    uint64_t iv = ms(4 * l->cfg.echo_timeout_ms);
+    for (unsigned k = 1; k < l->probes_here && iv < 2000000u; k++)
+        iv *= 2;
+    return iv < 2000000u ? iv : 2000000u;
+}
+
 /* Nothing arrived for a while: decide what the silence means. */
 static fbrl_status on_silence(fbrl_link *l, uint64_t t)
 {
@@ -572,7 +584,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         }
         if (cr_took_effect(l)) {
             /* executed; the prompt is late (a waiting command) or was damaged: ask */
-            if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms) || l->probe_out == PR_NONE) {
+            if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
                 return send_probe(l);
@@ -599,7 +611,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
             l->stats.cr_unconfirmed++;
             return begin_erase(l);
         }
-        if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms))
+        if (t - l->t_probe >= probe_interval(l))
             return send_probe(l);
         l->t_last = t;
         return FBRL_OK;
@@ -630,6 +642,8 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             fbrl_status st = on_silence(l, t);
             if (!l->busy || st != FBRL_OK) {
                 *done = 1;
+                if (l->busy)
+                    l->ctrl_len = -1;
                 return l->busy ? finish(l, st) : l->result;
             }
             continue;
@@ -651,6 +665,7 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
         for (size_t k = 0; k < got && l->busy; k++) {
             fbrl_status s2 = on_byte(l, buf[k]);
             if (s2 != FBRL_OK && l->busy) {
+                l->ctrl_len = -1; /* a byte may not have gone out */
                 *done = 1;
                 return finish(l, s2);
             }
