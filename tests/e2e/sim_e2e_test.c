@@ -834,11 +834,28 @@ static void t_settings(void **st)
     stop(&p);
 }
 
+/* Starts a continuous readout, takes its first value, stops it with CR. */
+static long stream_value(simp *p, const char *command, const char *title)
+{
+    char *x;
+    long v = -1;
+    size_t n;
+    puts_(p, command);
+    puts_(p, "\r");
+    n = read_until(p, g_buf, sizeof g_buf, NULL, 0.35);
+    x = strstr(g_buf, title);
+    if (!x || sscanf(x + strlen(title), "\r\n%ld", &v) != 1)
+        fail_msg("%s: '%s'", command, g_buf);
+    puts_(p, "\r");
+    n = read_until(p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\r\n>>"));
+    return v;
+}
+
 static void t_streams_extra(void **st)
 {
     simp p;
     size_t n;
-    long v;
     (void)st;
     start(&p, FAST);
     ok(&p, "HOME");
@@ -854,25 +871,15 @@ static void t_streams_extra(void **st)
     err(&p, "XHOME 5", 65);
     ok(&p, "MOTOR 6,500");
     ok(&p, "FINISH");
-    puts_(&p, "WE1\r");
-    n = read_until(&p, g_buf, sizeof g_buf, "\r", TIMEOUT);
-    n = read_until(&p, g_buf, sizeof g_buf, "\r", TIMEOUT);
-    n = read_until(&p, g_buf, sizeof g_buf, "\r", TIMEOUT);
-    assert_int_equal(sscanf(g_buf, "%ld", &v), 1);
-    assert_int_equal(v, 500);
-    puts_(&p, "\r");
-    read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    assert_int_equal(stream_value(&p, "WE1", "EXTRA AXIS ACTUAL (MOTOR PULSES):"), 500);
     ok(&p, "XCAL 6");
     ok(&p, "XZERO 6");
+    assert_int_equal(stream_value(&p, "WE3", "EXTRA AXIS COMMAND (MOTOR PULSES):"), 0);
     ok(&p, "XHOME 6");
     ok(&p, "FINISH");
-    puts_(&p, "WE3\r");
-    read_until(&p, g_buf, sizeof g_buf, ":\r\n", TIMEOUT);
-    n = read_until(&p, g_buf, sizeof g_buf, "\r", TIMEOUT);
-    assert_int_equal(sscanf(g_buf, "%ld", &v), 1);
-    assert_int_equal(v, 500);
-    puts_(&p, "\r");
-    read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    assert_int_equal(stream_value(&p, "WE1", "EXTRA AXIS ACTUAL (MOTOR PULSES):"), 500);
+    assert_int_equal(stream_value(&p, "WE5", "EXTRA AXIS VELOCITY (PULSES/SEC):"), 0);
+    assert_int_equal(stream_value(&p, "W5", "VELOCITY (PULSES/SEC):"), 0);
     ok(&p, "SPEED 50");
     stop(&p);
 }
