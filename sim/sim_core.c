@@ -382,6 +382,8 @@ static void erase_one(fbrl_sim *s)
         s->len--;
         echo(s, "\b \b", 3);
     }
+    if (s->len == 0)
+        s->overlong = 0; /* an emptied line starts afresh */
 }
 
 static void line_byte(fbrl_sim *s, unsigned char b)
