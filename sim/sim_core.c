@@ -219,6 +219,8 @@ static void close_conn(fbrl_sim *s)
         close(s->conn);
     s->conn = -1;
     s->io = -1;
+    if (s->ps == PS_STREAM)
+        s->ps = PS_IDLE; /* nobody left to stop the readout */
     s->len = 0;
     s->overlong = 0;
     s->rxcount = 0;
