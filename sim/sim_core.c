@@ -334,7 +334,10 @@ static void finish(fbrl_sim *s, int err)
         emit_str(s, ">>");
     }
     if (s->dirty && s->state_path) {
-        sim_state_save(s);
+        if (sim_state_save(s) != 0 && !s->save_warned) {
+            fprintf(stderr, "fbrlsim: cannot write %s: %s\n", s->state_path, strerror(errno));
+            s->save_warned = 1;
+        }
         s->dirty = 0;
     }
 }
