@@ -98,6 +98,12 @@ static fbrl_status send(fbrl_link *l, const uint8_t *p, size_t n)
 static char lower(char c) { return (c >= 'A' && c <= 'Z') ? (char)(c - 'A' + 'a') : c; }
 static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A') : c; }
 
+/* Out of attempts: the echo never matched, or nothing at all came back. */
+static fbrl_status gave_up(const fbrl_link *l)
+{
+    return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT;
+}
+
 static fbrl_status finish(fbrl_link *l, fbrl_status st)
 {
     l->result = st;
@@ -176,7 +182,7 @@ static fbrl_status begin_type(fbrl_link *l)
 {
     if (l->attempts >= l->cfg.max_attempts) {
         l->ctrl_len = -1;
-        return finish(l, FBRL_EECHO);
+        return finish(l, gave_up(l));
     }
     l->attempts++;
     l->stats.attempts++;
@@ -471,6 +477,7 @@ static void count_reply_byte(fbrl_link *l, uint8_t b)
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
     l->t_last = now_us(l);
+    l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
         push_tail(l, b);
@@ -481,7 +488,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         if (marker_seen(l)) {
             /* the probe's echo ended damaged: no need to wait for silence */
             if (l->attempts >= l->cfg.max_attempts)
-                return finish(l, FBRL_EECHO);
+                return finish(l, gave_up(l));
             l->attempts++;
             return send_probe(l);
         }
@@ -570,7 +577,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
     switch (l->phase) {
     case PH_ERASE:
         if (l->attempts >= l->cfg.max_attempts)
-            return finish(l, FBRL_EECHO);
+            return finish(l, gave_up(l));
         l->attempts++;
         return send_probe(l);
     case PH_TYPE:
@@ -712,6 +719,7 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->stage = ST_MAIN;
     l->attempts = 0;
     l->have_prev = 0;
+    l->heard = 0;
     l->err_code = -1;
     l->err_text[0] = '\0';
     l->result = FBRL_OK;
