@@ -404,8 +404,9 @@ static fbrl_status executed(fbrl_link *l)
             st = FBRL_EPROTOCOL;
         } else if (l->kind >= FBRL_LINK_REPLY_POS && l->kind <= FBRL_LINK_REPLY_REAL && l->stage != ST_ERRQ &&
                    !confirmed(l)) {
-            /* (the error query needs no second read: its line is checked against the code) */
-            requery = 1; /* a first read: only a second identical one is believed */
+            /* not yet query_reads agreeing replies (the error query needs only one: its
+             * line is checked against the code's text) */
+            requery = 1;
         }
     }
     if (l->cfg.on_exec)
