@@ -59,7 +59,10 @@ typedef struct fbrl_vm_error {
 } fbrl_vm_error;
 
 /* A C primitive: pops its arguments and pushes its results through the API below.
- * Return FBRL_OK, or fbrl_vm_throw()'s result to raise a Forth exception. */
+ * Return FBRL_OK, or fbrl_vm_throw()'s result to raise a Forth exception. Any other
+ * fbrl_status st raises THROW code FBRL_VM_THROW_OF_STATUS(st) (catchable in Forth;
+ * its message is fbrl_status_str(st)); uncaught, fbrl_vm_eval() returns st itself. */
+#define FBRL_VM_THROW_OF_STATUS(st) (-300 + (int)(st))
 typedef fbrl_status (*fbrl_vm_prim)(fbrl_vm *vm, void *arg);
 
 fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg);
@@ -68,7 +71,10 @@ size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes);
 
 /* Interpret text (any number of lines) as if typed. On error: stacks are reset,
  * the interpreter is back in interpretation state, the dictionary is unharmed,
- * and fbrl_vm_last_error() says what happened. */
+ * and fbrl_vm_last_error() says what happened. Returns FBRL_OK (also after BYE,
+ * which stops the text), FBRL_ETHROW for a Forth error, the status a C word failed
+ * with (see FBRL_VM_THROW_OF_STATUS), FBRL_EINVAL, or FBRL_ESTATE when called from
+ * inside a running word. A definition may span several calls (fbrl_vm_compiling). */
 fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 /* INCLUDED: interpret a file through the host's file callbacks. */
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);

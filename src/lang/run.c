@@ -575,6 +575,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 if (++defers > 1000) THROW(fbrl__throw_msg(vm, -21, "deferred words loop"));
                 goto execute_xt;
             case K_CFUNC: {
+                if (!h->fn) THROW(-21);
                 SAVE();
                 vm->pending_throw = 0;
                 fbrl_status st = h->fn(vm, h->arg);
@@ -586,6 +587,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 continue;
             }
             case K_MARKER:
+                if (vm->defining) THROW(fbrl__throw_msg(vm, -29, "a MARKER cannot run inside a definition"));
                 fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)h->end, (size_t)h->does);
                 continue;
             default: THROW(-21);

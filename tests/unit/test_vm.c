@@ -561,7 +561,9 @@ static void hostile_programs_fail_cleanly(void **state)
         { "INCLUDE", -38 }, { "S\" \" INCLUDED", -38 }, { "KEY KEY", -57 }, { "1 RDROP", -14 },
         { "CATCH", -4 }, { "5 CATCH -13 <> THROW", 0 }, { "' DROP CATCH", 0 },
         { "MARKER M1 : X11 ; M1 X11", -13 },
-        { "' EXIT EXECUTE", -6 },
+        { "' EXIT EXECUTE", -6 }, { "MARKER MM : XM [ MM ] ;", -29 }, { "XM", -13 },
+        { "8 CREATE-Q QQ 0 QQ ! 1 QQ ENQ", -12 }, { "8 CREATE-Q QR 0 QR 2 CELLS + ! 1 QR ENQ", -9 },
+        { "4 CHR ARRAY AR 0 ' AR >BODY", -31 }, { "HERE 4 ALLOT 1 SWAP STRING-CNT", -12 },
     };
     fixture *f = new_vm(1 << 20);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -619,6 +621,65 @@ static void corrupted_code_is_contained(void **state)
     free_vm(f);
 }
 
+/* Random token streams built from the dictionary's own words: whatever they do,
+ * the VM must answer with OK or an error and stay usable. */
+typedef struct names { char list[700][40]; int n; } names;
+
+static int collect(void *ctx, const char *name, size_t len)
+{
+    names *nm = ctx;
+    /* words that could wait or loop for ever on random input (legitimately) */
+    static const char *const skip[] = { "BYE", "MS", "SPACES", ".R", "U.R", "D.R", "QUIT", "DUMP", "WORDS",
+                                        "KEY", "ACCEPT", "GET-STRING", ">IN", "SAVE-INPUT", "RESTORE-INPUT",
+                                        "BEGIN", "AGAIN", "UNTIL", "WHILE", "REPEAT", "DO", "?DO", "LOOP", "+LOOP" };
+    for (size_t i = 0; i < sizeof skip / sizeof skip[0]; i++)
+        if (strlen(skip[i]) == len && memcmp(skip[i], name, len) == 0) return 0;
+    if (nm->n < 700 && len < 39) {
+        memcpy(nm->list[nm->n], name, len);
+        nm->list[nm->n][len] = 0;
+        nm->n++;
+    }
+    return 0;
+}
+
+static void random_programs_are_contained(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    static names nm;
+    static const char *const extra[] = { "0", "1", "-1", "3", "100", "65535", "-9999999999", "PAD", "HERE",
+                                         "1E0", "0E0", "-2.5E3", "S\" x\"", ":", ";", "IF", "THEN", "ELSE",
+                                         "CASE", "OF", "ENDOF", "'", "[']", "X", "Y" };
+    nm.n = 0;
+    fbrl_vm_words(f->vm, collect, &nm);
+    assert_true(nm.n > 300);
+    uint32_t seed = 12345;
+    int errors = 0;
+    for (int line = 0; line < 3000; line++) {
+        char src[512];
+        size_t n = 0;
+        for (int t = 0; t < 10; t++) {
+            seed = seed * 1103515245u + 12345u;
+            uint32_t r = seed >> 8;
+            const char *w = (r & 1) ? nm.list[(r >> 1) % (uint32_t)nm.n]
+                                    : extra[(r >> 1) % (sizeof extra / sizeof extra[0])];
+            n += (size_t)snprintf(src + n, sizeof src - n, "%s ", w);
+        }
+        f->h.n = 0;
+        if (ev(f, src) != FBRL_OK) errors++;
+        if (line % 100 == 99) {
+            while (fbrl_vm_depth(f->vm)) pop1(f);
+            ev(f, "; DECIMAL");
+        }
+    }
+    assert_true(errors > 0);
+    assert_int_equal(ev(f, "; DECIMAL"), fbrl_vm_compiling(f->vm) ? FBRL_OK : FBRL_ETHROW);
+    while (fbrl_vm_depth(f->vm)) pop1(f);
+    assert_int_equal(ev(f, "DECIMAL 6 7 *"), FBRL_OK);
+    assert_int_equal(pop1(f), 42);
+    free_vm(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -643,6 +704,7 @@ int main(void)
         cmocka_unit_test(every_word_has_help),
         cmocka_unit_test(hostile_programs_fail_cleanly),
         cmocka_unit_test(corrupted_code_is_contained),
+        cmocka_unit_test(random_programs_are_contained),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
