@@ -79,6 +79,11 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 /* INCLUDED: interpret a file through the host's file callbacks. */
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
+/* Ask the running evaluation to stop: it throws -28 ("user interrupt") at its next
+ * call, loop iteration or backward branch. Safe from a signal handler or another
+ * thread (e.g. the monitor's Ctrl-C). A request is dropped when it is delivered and
+ * at the start of each fbrl_vm_eval()/fbrl_vm_include(). */
+void fbrl_vm_interrupt(fbrl_vm *vm);
 /* True once BYE ran. */
 int fbrl_vm_bye(const fbrl_vm *vm);
 /* True while a colon definition (or other compilation) spans lines. */

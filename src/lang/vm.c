@@ -1,6 +1,7 @@
 /* vm.c - the FBRL engine: memory layout, dictionary, text interpreter, C API.
  * The inner interpreter (the big switch) is in run.c. */
 #include <string.h>
+#include "atomic.h"
 #include "words.h"
 
 typedef struct opinfo { const char *name; uint8_t flags; const char *stack, *help; } opinfo;
@@ -826,8 +827,14 @@ static void reset_after_error(fbrl_vm *vm)
     vm->hld = vm->hold + FBRL_HOLDSIZE;
 }
 
+void fbrl_vm_interrupt(fbrl_vm *vm)
+{
+    if (vm) fbrl_store_rlx(&vm->interrupt, 1);
+}
+
 static void begin_top(fbrl_vm *vm)
 {
+    fbrl_store_rlx(&vm->interrupt, 0);
     vm->running = 1;
     vm->err_captured = 0;
     vm->pending_msg = NULL;

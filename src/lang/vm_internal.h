@@ -131,6 +131,7 @@ struct fbrl_vm {
     char cur_word[64];
     fbrl_vm_error err;
     int bye;
+    size_t interrupt;         /* set by fbrl_vm_interrupt (atomic access only) */
     int running;              /* inside fbrl_vm_eval/include */
     int precision;
     fbrl_cell catch_depth_limit;

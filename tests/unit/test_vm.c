@@ -1,5 +1,6 @@
 /* test_vm.c - the FBRL language engine: the Forth conformance suite in tests/forth
  * (each file must report zero failures) and the C embedding API. */
+/* ctest-labels: threads */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -7,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <pthread.h>
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
@@ -621,6 +623,52 @@ static void corrupted_code_is_contained(void **state)
     free_vm(f);
 }
 
+/* fbrl_vm_interrupt from another thread stops an endless loop with -28. The
+ * interrupter repeats its request until the evaluation has returned, so a slow
+ * start of the evaluation cannot make the test hang. */
+typedef struct stopper { fbrl_vm *vm; int done; } stopper;
+
+static void *interrupter(void *arg)
+{
+    stopper *s = arg;
+    while (!__atomic_load_n(&s->done, __ATOMIC_ACQUIRE)) {
+        h_sleep_ms(NULL, 5);
+        fbrl_vm_interrupt(s->vm);
+    }
+    return NULL;
+}
+
+static fbrl_status eval_interrupted(fixture *f, const char *src)
+{
+    stopper s = { f->vm, 0 };
+    pthread_t t;
+    assert_int_equal(pthread_create(&t, NULL, interrupter, &s), 0);
+    fbrl_status st = ev(f, src);
+    __atomic_store_n(&s.done, 1, __ATOMIC_RELEASE);
+    pthread_join(t, NULL);
+    return st;
+}
+
+static void interrupt_stops_endless_loops(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(eval_interrupted(f, ": SPIN BEGIN AGAIN ; SPIN"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_string_equal(fbrl_vm_last_error(f->vm)->message, "user interrupt");
+    assert_string_equal(fbrl_vm_last_error(f->vm)->word, "SPIN");
+    assert_int_equal(eval_interrupted(f, ": R RECURSE ; : LOOPS 0 BEGIN 1+ DUP 0< UNTIL ; LOOPS"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(eval_interrupted(f, ": DL -1 0 DO LOOP ; DL"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(eval_interrupted(f, "' SPIN CATCH"), FBRL_OK); /* catchable */
+    assert_int_equal(pop1(f), -28);
+    fbrl_vm_interrupt(f->vm); /* a request made before an evaluation is dropped */
+    assert_int_equal(ev(f, ": FIVE 0 5 0 DO 1+ LOOP ; FIVE"), FBRL_OK);
+    assert_int_equal(pop1(f), 5);
+    free_vm(f);
+}
+
 /* Random token streams built from the dictionary's own words: whatever they do,
  * the VM must answer with OK or an error and stay usable. */
 typedef struct names { char list[700][40]; int n; } names;
@@ -705,6 +753,7 @@ int main(void)
         cmocka_unit_test(hostile_programs_fail_cleanly),
         cmocka_unit_test(corrupted_code_is_contained),
         cmocka_unit_test(random_programs_are_contained),
+        cmocka_unit_test(interrupt_stops_endless_loops),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
