@@ -88,6 +88,9 @@ void fbrl_vm_interrupt(fbrl_vm *vm);
 int fbrl_vm_bye(const fbrl_vm *vm);
 /* True while a colon definition (or other compilation) spans lines. */
 int fbrl_vm_compiling(const fbrl_vm *vm);
+/* Back to a clean prompt, as after an error: an unfinished definition is dropped,
+ * the stacks are emptied, interpretation state. (Not from inside a running word.) */
+void fbrl_vm_reset(fbrl_vm *vm);
 
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */

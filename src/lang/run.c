@@ -367,7 +367,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CALLC(fbrl__w_define(vm, (int)w));
             continue;
         case OP_TO: case OP_IS: case OP_ACTIONOF: case OP_POSTPONE: case OP_BCOMPILE: case OP_BTICK:
-        case OP_BCHAR: case OP_TICK: case OP_CHAR: case OP_PAREN: case OP_BACKSLASH: case OP_DOTPAREN:
+        case OP_BCHAR: case OP_TICK: case OP_CHAR: case OP_PAREN: case OP_BACKSLASH: case OP_SHEBANG: case OP_DOTPAREN:
         case OP_DOTQUOTE: case OP_SQUOTE: case OP_SBQUOTE: case OP_CQUOTE: case OP_ABORTQ:
         case OP_PARSE: case OP_PARSENAME: case OP_WORD: case OP_FIND: case OP_LITERAL: case OP_TWOLITERAL:
         case OP_SLITERAL: case OP_FLITERAL: case OP_COMPILECOMMA: case OP_IMMEDIATE: case OP_TONUMBER:

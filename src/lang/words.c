@@ -747,7 +747,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (n == 0) return -16;
         return op == OP_CHAR ? push(vm, (unsigned char)p[0]) : fbrl__compile_lit(vm, (unsigned char)p[0]);
     case OP_PAREN: return paren_comment(vm);
-    case OP_BACKSLASH:
+    case OP_BACKSLASH: case OP_SHEBANG:
         if (vm->nsrc) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
         return 0;
     case OP_DOTPAREN:

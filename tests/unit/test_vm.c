@@ -435,6 +435,22 @@ static void multi_line_definitions_and_bye(void **state)
     f->h.n = 0;
     assert_int_equal(ev(f, "HELP SQ HELP DUP"), FBRL_OK);
     assert_string_equal(f->h.out, "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
+    /* a definition abandoned in interpretation state */
+    assert_int_equal(ev(f, ": HALF 1 ["), FBRL_OK);
+    assert_true(fbrl_vm_compiling(f->vm));
+    assert_int_equal(ev(f, ": WHOLE 2 ; WHOLE"), FBRL_OK);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(pop1(f), 2);
+    assert_int_equal(ev(f, "HALF"), FBRL_ETHROW);
+    /* fbrl_vm_reset drops an open definition and the stacks */
+    assert_int_equal(ev(f, "1 2 3 : OPEN 4"), FBRL_OK);
+    assert_true(fbrl_vm_compiling(f->vm));
+    fbrl_vm_reset(f->vm);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    assert_int_equal(ev(f, "OPEN"), FBRL_ETHROW);
+    assert_int_equal(ev(f, "#! /usr/bin/env fbrlmon\n5"), FBRL_OK);
+    assert_int_equal(pop1(f), 5);
     assert_int_equal(ev(f, "1 BYE 2"), FBRL_OK);
     assert_true(fbrl_vm_bye(f->vm));
     assert_int_equal(fbrl_vm_depth(f->vm), 1);
@@ -549,7 +565,7 @@ static void hostile_programs_fail_cleanly(void **state)
         { "1E30 F>S", -11 }, { "R>", -14 }, { ": X1 R> R> R> R> ; X1", -6 },
         { ": X2 12345 >R ; X2", -9 }, { ": X3 HERE >R ; X3", -9 }, { ": X4 -8 >R ; X4", -9 },
         { "THEN", -14 }, { ": X5 THEN ;", -22 }, { ": X6 IF ;", -22 }, { ": X7 BEGIN UNTIL UNTIL ;", -22 },
-        { ": X8 DO IF LOOP ;", -22 }, { ": X9 ELSE ;", -22 }, { ": XA 1 ; ;", -14 }, { ": XB [ : Y ;", -29 },
+        { ": X8 DO IF LOOP ;", -22 }, { ": X9 ELSE ;", -22 }, { ": XA 1 ; ;", -14 }, { ": XB [ : Y ;", 0 },
         { ": ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ;", -19 }, { "CREATE", -16 }, { "S\" abc", -39 },
         { "( abc", -39 }, { ".( abc", -39 }, { "12X3", -13 }, { "--5", -13 }, { "1.2.3", -13 },
         { "$", -13 }, { "'ab'", -13 }, { "1E", 0 }, { "' DUP 99999 + EXECUTE", -13 }, { "0 EXECUTE", -13 },
@@ -564,7 +580,7 @@ static void hostile_programs_fail_cleanly(void **state)
         { "CATCH", -4 }, { "5 CATCH -13 <> THROW", 0 }, { "' DROP CATCH", 0 },
         { "MARKER M1 : X11 ; M1 X11", -13 },
         { "' EXIT EXECUTE", -6 }, { "MARKER MM : XM [ MM ] ;", -29 }, { "XM", -13 },
-        { "8 CREATE-Q QQ 0 QQ ! 1 QQ ENQ", -12 }, { "8 CREATE-Q QR 0 QR 2 CELLS + ! 1 QR ENQ", -9 },
+        { "8 CREATE-Q QQ 0 QQ ! 1 QQ ENQ", -12 }, { "8 CREATE-Q QR QR CELL+ 3 CELLS 0 FILL 1 QR ENQ", -9 },
         { "4 CHR ARRAY AR 0 ' AR >BODY", -31 }, { "HERE 4 ALLOT 1 SWAP STRING-CNT", -12 },
     };
     fixture *f = new_vm(1 << 20);
@@ -594,15 +610,21 @@ static void hostile_programs_fail_cleanly(void **state)
 
 /* Overwrite freshly compiled code with pseudo-random cells and run it: every
  * corrupted instruction stream must end in a THROW or normally, never a crash. */
-static void corrupted_code_is_contained(void **state)
+static fixture *mixer_vm(void)
 {
-    (void)state;
     fixture *f = new_vm(1 << 20);
     assert_int_equal(ev(f, "VARIABLE SEED : RND SEED @ 1103515245 * 12345 + DUP SEED ! 16 RSHIFT ;"), FBRL_OK);
     assert_int_equal(ev(f, ": MIX ( a n -- ) 0 DO RND 3 AND CASE 0 OF RND 400 MOD ENDOF 1 OF RND ENDOF "
                            "2 OF RND 50 MOD 4096 + ENDOF DUP OF HERE RND 64 MOD CELLS - ENDOF ENDCASE "
                            "OVER I CELLS + ! LOOP DROP ;"),
                      FBRL_OK);
+    return f;
+}
+
+static void corrupted_code_is_contained(void **state)
+{
+    (void)state;
+    fixture *f = mixer_vm();
     int ok = 0, thrown = 0;
     for (int seed = 1; seed <= 300; seed++) {
         char src[256];
@@ -611,10 +633,13 @@ static void corrupted_code_is_contained(void **state)
         fbrl_status st = ev(f, src);
         if (st == FBRL_OK) ok++;
         else thrown++;
+        if (fbrl_vm_bye(f->vm)) { /* a random BYE opcode: that VM is finished */
+            free_vm(f);
+            f = mixer_vm();
+            continue;
+        }
         fbrl_vm_eval(f->vm, "GONE DECIMAL", 12);
-        while (fbrl_vm_depth(f->vm)) pop1(f);
-        double d;
-        while (fbrl_vm_fdepth(f->vm)) fbrl_vm_fpop(f->vm, &d);
+        fbrl_vm_reset(f->vm);
     }
     assert_true(thrown > 0);
     assert_int_equal(ok + thrown, 300);
