@@ -136,7 +136,6 @@ struct fbrl_vm {
     size_t interrupt;         /* set by fbrl_vm_interrupt (atomic access only) */
     int running;              /* inside fbrl_vm_eval/include */
     int precision;
-    fbrl_cell catch_depth_limit;
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
     fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */
