@@ -1050,13 +1050,13 @@ static int parse_float_text(const char *s, size_t n, int need_e, double *out)
 {
     char b[400];
     size_t i = 0, k = 0;
-    int nd = 0;
+    int nd = 0, nfrac = 0;
     if (n > 350) return 0;
     if (i < n && (s[i] == '+' || s[i] == '-')) b[k++] = s[i++];
     while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; }
     if (i < n && s[i] == '.') {
         b[k++] = s[i++];
-        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; }
+        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; nfrac++; }
     }
     if (nd == 0) return 0;
     if (i < n && (s[i] == 'E' || s[i] == 'e' || s[i] == 'D' || s[i] == 'd')) {
@@ -1066,7 +1066,9 @@ static int parse_float_text(const char *s, size_t n, int need_e, double *out)
         int ed = 0;
         while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; ed++; }
         if (!ed) b[k++] = '0';
-    } else if (need_e) {
+    } else if (need_e && nfrac == 0) {
+        /* FBRL (as the thesis writes `0.2 0.5 1.0 LOC RADMAT MAT`): digits after a
+         * decimal point make a float; a trailing point alone still makes a double. */
         return 0;
     } else if (i < n && (s[i] == '+' || s[i] == '-')) {
         b[k++] = 'e';

@@ -3,6 +3,9 @@ DECIMAL
 \ literals
 T{ 1E0 -> 1E0 }T T{ 1.5E1 -> 15E0 }T T{ -2.5E-1 -> -0.25E0 }T T{ 1E -> 1E0 }T T{ 1.E0 -> 1E0 }T
 T{ 1e3 -> 1000E0 }T T{ +3E0 -> 3E0 }T
+\ FBRL: digits after a point make a float; a trailing point still makes a double
+T{ 1.5 -> 1.5E0 }T T{ -2.54 -> -2.54E0 }T T{ .5 -> 0.5E0 }T T{ 0.2 0.5 F+ -> 0.7E0 }T
+T{ 10. -> 10 0 }T T{ -3. -> -3 -1 }T
 \ stack
 T{ 1E0 2E0 FSWAP -> 2E0 1E0 }T T{ 1E0 FDUP -> 1E0 1E0 }T T{ 1E0 2E0 FDROP -> 1E0 }T
 T{ 1E0 2E0 FOVER -> 1E0 2E0 1E0 }T T{ 1E0 2E0 3E0 FROT -> 2E0 3E0 1E0 }T
