@@ -859,7 +859,13 @@ static fbrl_status w_set_var(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = name_arg(r, w, &v[0], name, 10);
     if (st == FBRL_OK && w->arg) st = finite(r, w, &v[1], 1);
     if (st != FBRL_OK) return st;
-    fbrl_rapl_arg a[2] = { fbrl_rapl_str(name), w->arg ? fbrl_rapl_real(v[1].f) : fbrl_rapl_int((long)v[1].i) };
+    if (!w->arg) { /* the encoder writes every value as a real; an integer goes as typed */
+        char line[40];
+        if (fbrl_rapl_name_check(name, 0) != FBRL_OK) return rb_fail_st(r, w, FBRL_ENAME, name);
+        snprintf(line, sizeof line, "%s=%ld", name, (long)v[1].i);
+        return rb_raw(r, w, line, 0);
+    }
+    fbrl_rapl_arg a[2] = { fbrl_rapl_str(name), fbrl_rapl_real(v[1].f) };
     return rb_cmd(r, w, FBRL_RAPL_ASSIGN, a, 2, 0);
 }
 
