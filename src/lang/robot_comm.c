@@ -200,6 +200,24 @@ static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_link_result(r, w, fbrl_link_connect(r->link));
 }
 
+/* .COMM ( -- ): the port's settings as the uart has them now */
+static fbrl_status w_dot_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_uart *u;
+    fbrl_uart_config c;
+    char buf[96];
+    (void)w;
+    (void)v;
+    fbrl_status st = uart_of(r, &u);
+    if (st != FBRL_OK) return st;
+    fbrl_uart_get_config(u, &c);
+    snprintf(buf, sizeof buf, "%lu baud, %u data bits, parity %c, %u stop bit%s, %s\n", (unsigned long)c.baud,
+             (unsigned)c.data_bits, (char)c.parity, (unsigned)c.stop_bits, c.stop_bits > 1 ? "s" : "",
+             c.flow == FBRL_FLOW_XONXOFF ? "XON/XOFF" : "no flow control");
+    rb_puts(r, buf);
+    return FBRL_OK;
+}
+
 /* ASC ( "c" -- char ): F-PC's character literal, used by the thesis's examples
  * (ASC E SETPARITY); compiles a literal inside definitions. */
 static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
@@ -231,6 +249,7 @@ static const rb_word comm_words[] = {
     { ".-COM", w_dot_com, "I", 0, -1, 0, "( n -- )", "send a number as decimal text (raw)" },
     { "F.-COM", w_fdot_com, "R", 0, -1, 0, "( F: r -- )", "send a real as RAPL text, four decimals (raw)" },
     { "GET-COM", w_get_com, "", 0, -1, 0, "( -- char )", "next received byte; -1 if none came within a second" },
+    { ".COMM", w_dot_comm, "", 0, -1, 0, "( -- )", "show the port's settings in use" },
     { "RESET-COMM", w_reset_comm, "I", 0, -1, 0, "( port -- )", "discard received bytes and resynchronise the controller line" },
 };
 
