@@ -18,6 +18,7 @@
 #include "fbrl/loc.h"
 #include "fbrl/units.h"
 #include "fbrl/fileio.h"
+#include "fbrl/calib.h"
 #include "fbrl/vm.h"
 
 #ifdef __cplusplus
@@ -89,6 +90,12 @@ fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc);
  * address outside the data space or misaligned. Its contents are not checked: call
  * fbrl_loc_check() before using it as a position. */
 fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out);
+
+/* The three location slots of the CREATE-CAL structure at VM address addr (what the
+ * structure's name pushes), e.g. for GET-CAL-POINTS teaching them with the arm. FBRL_EINVAL
+ * for NULL, FBRL_ERANGE if addr is outside the data space, FBRL_ETYPE if no CREATE-CAL
+ * structure is there. Slot k (1..3) is (*out)->p[k - 1]. */
+fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out);
 
 /* The metric switch of this VM (for converting user input and output with the units
  * module); NULL for NULL g. */
