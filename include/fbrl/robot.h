@@ -76,7 +76,6 @@ typedef struct fbrl_robot {
     int last_error;
     /* scratch storage in the VM's data space (made at install) */
     fbrl_cell tib;                  /* FBRL_ROBOT_TIB bytes */
-    fbrl_cell tmploc;               /* one location (6 floats) */
     fbrl_robot_bind bind[FBRL_ROBOT_MAX_WORDS];
     size_t nbind;
 } fbrl_robot;

@@ -77,27 +77,30 @@ fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms)
 
 /* ---- the data glossary's side: locations, mapping, units ---- */
 
-/* The location template at a VM address (6 aligned floats inside the data space). */
+/* The location template at a VM address (48 aligned bytes inside the data space). */
 static fbrl_loc *gl_loc(fbrl_robot *r, fbrl_cell addr)
 {
-    if ((fbrl_ucell)addr % sizeof(double)) return NULL;
-    return fbrl_vm_addr(r->vm, addr, sizeof(fbrl_loc));
+    fbrl_loc *p = NULL;
+    return fbrl_glossary_loc(r->vm, addr, &p) == FBRL_OK ? p : NULL;
 }
 
-static int gl_metric(const fbrl_robot *r) { (void)r; return 0; }
+static int gl_metric(const fbrl_robot *r)
+{
+    int on = 0;
+    return r->g && fbrl_units_is_metric(fbrl_glossary_units(r->g), &on) == FBRL_OK && on;
+}
 
+/* MAP-ON mapping (identity without a glossary or with MAP-OFF). */
 static fbrl_status gl_map_out(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out)
 {
-    (void)r;
     *out = *in;
-    return FBRL_OK;
+    return r->g ? fbrl_glossary_map_out(r->g, out) : FBRL_OK;
 }
 
 static fbrl_status gl_map_in(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out)
 {
-    (void)r;
     *out = *in;
-    return FBRL_OK;
+    return r->g ? fbrl_glossary_map_in(r->g, out) : FBRL_OK;
 }
 
 double rb_len_in(const fbrl_robot *r, double v) { return gl_metric(r) ? v / 2.54 : v; }
@@ -959,11 +962,14 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_vm *vm = r->vm;
     fbrl_loc pts[3];
+    fbrl_calpts *cal;
     char msg[128];
-    int set_cal = fbrl__find(vm, "SET-CAL", 7);
-    fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
-    if (set_cal < 0) return rb_fail(r, -13, "GET-CAL-POINTS needs SET-CAL (the data glossary)");
+    fbrl_status st = fbrl_glossary_calpts(vm, v[0].i, &cal);
+    if (st != FBRL_OK) {
+        snprintf(msg, sizeof msg, "%s: not a calibration (use a CREATE-CAL name)", w->name);
+        return rb_fail(r, st == FBRL_ETYPE ? -12 : -9, msg);
+    }
+    if ((st = rb_online(r)) != FBRL_OK) return st;
     for (int slot = 1; slot <= 3; slot++) {
         snprintf(msg, sizeof msg, "Calibration point %d: move the arm there (robot words), then an empty line takes it.\n", slot);
         rb_puts(r, msg);
@@ -980,13 +986,10 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
         if ((st = arm_where(r, w, 1, &arm)) != FBRL_OK) return st;
         if ((st = from_arm(r, w, &arm, &pts[slot - 1], 0)) != FBRL_OK) return st;
     }
-    for (int slot = 1; slot <= 3; slot++) {
-        if ((st = loc_write(r, w, r->tmploc, &pts[slot - 1])) != FBRL_OK) return st;
-        if (fbrl_vm_push(vm, v[0].i) || fbrl_vm_push(vm, slot) || fbrl_vm_push(vm, r->tmploc))
-            return rb_fail(r, -3, NULL);
-        int e = fbrl__run(vm, FBRL_XT_BASE + set_cal);
-        if (e) return fbrl_vm_throw(vm, e, NULL);
-    }
+    /* the lines run above may have moved the dictionary: look the structure up again */
+    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK) return rb_fail(r, -9, "GET-CAL-POINTS: calibration gone");
+    for (int slot = 1; slot <= 3; slot++)
+        if ((st = fbrl_calpts_set(cal, slot, &pts[slot - 1])) != FBRL_OK) return rb_fail_st(r, w, st, NULL);
     return FBRL_OK;
 }
 
@@ -1237,13 +1240,12 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     fbrl_uart_config def = FBRL_UART_CONFIG_DEFAULT;
     r->comm = def;
     if (vm->defining) return FBRL_ESTATE;
-    /* scratch storage in the data space (Forth code reads GET-CAL-POINTS' line there) */
-    if (fbrl__new_word(vm, "(ROBOT-SCRATCH)", 15, K_VAR, "( -- a )", "robot words' scratch storage", &h) ||
-        fbrl__allot(vm, FBRL_ROBOT_TIB + 64))
+    /* GET-CAL-POINTS' line buffer lives in the data space: the words it runs parse it */
+    if (fbrl__new_word(vm, "(ROBOT-TIB)", 11, K_VAR, "( -- a )", "robot words' line buffer", &h) ||
+        fbrl__allot(vm, FBRL_ROBOT_TIB))
         return FBRL_ENOMEM;
-    r->tmploc = h->body;
-    r->tib = h->body + 64;
-    memset((void *)h->body, 0, FBRL_ROBOT_TIB + 64);
+    r->tib = h->body;
+    memset((void *)h->body, 0, FBRL_ROBOT_TIB);
     fbrl_status st = rb_define(r, robot_words, sizeof robot_words / sizeof robot_words[0]);
     if (st == FBRL_OK) st = rb_install_comm(r);
     if (st == FBRL_OK) st = rb_install_io(r);

@@ -263,6 +263,9 @@ int main(int argc, char **argv)
     args[na] = NULL;
     fbrl_link_config lc;
     fbrl_link_config_init(&lc);
+    /* One reading per query, so that the log shows every command the robot words sent
+     * exactly once (confirmed reads are the link's own business and tested there). */
+    lc.query_reads = 1;
     if (rig_start(&R, argv[1], args, 38400, FBRL_FLOW_XONXOFF, &lc) != 0) return 1;
     if (fbrl_link_connect(&R.link) != FBRL_OK) {
         fprintf(stderr, "connect failed\n");
@@ -289,14 +292,8 @@ int main(int argc, char **argv)
     cfg.host.now_us = h_now_us;
     cfg.host.sleep_ms = h_sleep_ms;
     cfg.host.time_date = h_time_date;
-#ifdef HAVE_GLOSSARY
-    fbrl_glossary *gp = &G;
     if (fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_glossary_install(vm, &G) != FBRL_OK ||
-        fbrl_robot_install(vm, &robot, &R.link, gp) != FBRL_OK) {
-#else
-    (void)G;
-    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_robot_install(vm, &robot, &R.link, NULL) != FBRL_OK) {
-#endif
+        fbrl_robot_install(vm, &robot, &R.link, &G) != FBRL_OK) {
         fprintf(stderr, "VM setup failed\n");
         rig_stop(&R);
         return 1;
@@ -310,12 +307,7 @@ int main(int argc, char **argv)
     fbrl_vm_define(vm, "WORLD@", t_world, NULL, "( F: -- x y z o a t )", "test: raw W2 WORLD");
     fbrl_vm_define(vm, "KEYS!", t_keys, NULL, "( a u -- )", "test: console input ('|' = newline)");
     const char *defs = ": LOG-COUNT\" [CHAR] \" PARSE (LOG-COUNT) ;\n"
-                       ": OUT\" [CHAR] \" PARSE (OUT-HAS) ;\n"
-#ifndef HAVE_GLOSSARY
-                       ": CREATE-LOC CREATE LOCATION ALLOT ;\n"
-                       ": DEFINE-LOC 5 FLOATS + 6 0 DO DUP F! 1 FLOATS - LOOP DROP ;\n"
-#endif
-                       ;
+                       ": OUT\" [CHAR] \" PARSE (OUT-HAS) ;\n";
     fbrl_status st = fbrl_vm_eval(vm, defs, strlen(defs));
     if (st == FBRL_OK) st = fbrl_vm_include(vm, FBRL_TEST_SRCDIR "/tests/forth/tester.fs");
     if (st == FBRL_OK) st = fbrl_vm_include(vm, argv[2]);
@@ -334,9 +326,7 @@ int main(int argc, char **argv)
                c_failures);
         if (errors || c_failures || tests < 1) rc = 1;
     }
-#ifdef HAVE_GLOSSARY
     fbrl_glossary_finish(&G);
-#endif
     fclose(logf_);
     rig_stop(&R);
     unlink(log_path);
