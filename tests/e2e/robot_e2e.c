@@ -12,7 +12,9 @@
  *   SIM: line     a control line for fbrlsim (IN n 0|1, POWER 0|1, OBJECT w, TEACH)
  *   OUT-CLEAR / OUT"  text"  ( -- flag ) console output since OUT-CLEAR contains text
  *   WORLD@ ( -- ) ( F: x y z o a t ) the arm's actual position from W2, raw
- * Usage: robot_e2e FBRLSIM FILE.fs [INPUTS-FILE] */
+ * Usage: robot_e2e FBRLSIM FILE.fs [INPUTS-FILE|-] [STATE-FILE]
+ * INPUTS-FILE: fbrlsim --inputs script; STATE-FILE: copied to fbrlsim's state file before
+ * it starts (e.g. programs for RAPL-RUN). */
 #include <fcntl.h>
 #include <fnmatch.h>
 #include <math.h>
@@ -256,9 +258,20 @@ int main(int argc, char **argv)
     snprintf(state, sizeof state, "%s/state", dir);
     const char *args[16] = { "--time-scale", "20", "--log", log_path, "--control", ctl_path, "--state", state };
     int na = 8;
-    if (argc > 3) {
+    if (argc > 3 && strcmp(argv[3], "-") != 0) {
         args[na++] = "--inputs";
         args[na++] = argv[3];
+    }
+    if (argc > 4) { /* the emulator's battery-backed memory to start from */
+        FILE *in = fopen(argv[4], "r"), *out = fopen(state, "w");
+        int c;
+        if (!in || !out) {
+            fprintf(stderr, "cannot copy %s to %s\n", argv[4], state);
+            return 1;
+        }
+        while ((c = fgetc(in)) != EOF) fputc(c, out);
+        fclose(in);
+        fclose(out);
     }
     args[na] = NULL;
     fbrl_link_config lc;

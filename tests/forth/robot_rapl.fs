@@ -1,6 +1,7 @@
 \ robot_rapl.fs - controller variables and locations (RAPL, SET-RAPL-*, TYPEINT,
 \ TYPEREAL, RAPL-HERE, RAPL-SET, RAPL-SHIFTA, RAPL-POINT, RAPL-RUN) and the I-8 words
-\ that build a command line piecewise (SEND-*), against fbrlsim (run by robot_e2e).
+\ that build a command line piecewise (SEND-*), against fbrlsim (run by robot_e2e with
+\ robot_rapl.state: a stored program SETV).
 
 : ~= ( F: a b -- ) ( -- flag ) F- FABS 2E-3 F< ;
 
@@ -43,7 +44,10 @@ T{ S" BADLOC" S" CL1" ' RAPL-SHIFTA CATCH NIP NIP NIP NIP RAPL-ERROR -> -321 11 
 T{ S" 123" ' RAPL-HERE CATCH NIP NIP -> -324 }T
 T{ S" TOOLONGNAME" ' RAPL-HERE CATCH NIP NIP -> -324 }T
 
-\ RAPL-RUN: a program stored in the controller (none here: 017)
+\ RAPL-RUN: a program stored in the controller (robot_rapl.state holds SETV)
+T{ RAPL-RUN SETV -> }T  LOG: RUN SETV
+T{ S" VR" RAPL-INT@ -> 42 }T  LOG: TYPEI VR
+T{ OUT-CLEAR ROBOT-STATUS OUT" SPEED (% OF FULL) :    +33" -> TRUE }T  LOG-SKIP
 T{ S" NOPROG" ' RAPL-RUN CATCH NIP NIP RAPL-ERROR -> -321 17 }T  LOG: RUN NOPROG
 
 \ I-8: a command line built piecewise, sent (echo-verified) by SEND-CR
