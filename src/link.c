@@ -6,12 +6,13 @@
  * keeps track of how many characters sit on the controller's line (ctrl_len) and:
  *  - types a command as [CAN] + text; the echo must be exactly ctrl_len triples then
  *    the text, or the attempt is abandoned before any CR is sent;
- *  - after the CR, proof of execution is the controller's end of line: a CR/LF, the
- *    prompt, or two or more bytes (a CR damaged into another byte echoes exactly one);
- *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN m" whose echo
- *    "? (triples) ? BS SP BS m" proves the line now holds exactly "m". The marker m
- *    changes from probe to probe, so the echo of an older probe still on its way is
- *    never taken for the answer to the latest one.
+ *  - after the CR, proof of execution is the controller's CR LF, its prompt, or three
+ *    or more bytes (a line that did not end shows at most two stray bytes); without
+ *    proof, a probe decides, and a CR is never sent twice;
+ *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN mmm" whose
+ *    echo "? (triples) ? BS SP BS mmm" proves the line now holds exactly "mmm". The
+ *    markers change from probe to probe, so the echo of an older probe still on its
+ *    way is never taken for the answer to the latest one.
  * None of the bytes the link sends can turn into CR or LF by a single bit flip except
  * '-' (see docs/link.md): letters go out in lower case for that reason. */
 #include "fbrl/link.h"
@@ -97,6 +98,12 @@ static fbrl_status send(fbrl_link *l, const uint8_t *p, size_t n)
 static char lower(char c) { return (c >= 'A' && c <= 'Z') ? (char)(c - 'A' + 'a') : c; }
 static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A') : c; }
 
+/* Out of attempts: the echo never matched, or nothing at all came back. */
+static fbrl_status gave_up(const fbrl_link *l)
+{
+    return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT;
+}
+
 static fbrl_status finish(fbrl_link *l, fbrl_status st)
 {
     l->result = st;
@@ -175,7 +182,7 @@ static fbrl_status begin_type(fbrl_link *l)
 {
     if (l->attempts >= l->cfg.max_attempts) {
         l->ctrl_len = -1;
-        return finish(l, FBRL_EECHO);
+        return finish(l, gave_up(l));
     }
     l->attempts++;
     l->stats.attempts++;
@@ -397,8 +404,9 @@ static fbrl_status executed(fbrl_link *l)
             st = FBRL_EPROTOCOL;
         } else if (l->kind >= FBRL_LINK_REPLY_POS && l->kind <= FBRL_LINK_REPLY_REAL && l->stage != ST_ERRQ &&
                    !confirmed(l)) {
-            /* (the error query needs no second read: its line is checked against the code) */
-            requery = 1; /* a first read: only a second identical one is believed */
+            /* not yet query_reads agreeing replies (the error query needs only one: its
+             * line is checked against the code's text) */
+            requery = 1;
         }
     }
     if (l->cfg.on_exec)
@@ -470,6 +478,7 @@ static void count_reply_byte(fbrl_link *l, uint8_t b)
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
     l->t_last = now_us(l);
+    l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
         push_tail(l, b);
@@ -480,7 +489,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         if (marker_seen(l)) {
             /* the probe's echo ended damaged: no need to wait for silence */
             if (l->attempts >= l->cfg.max_attempts)
-                return finish(l, FBRL_EECHO);
+                return finish(l, gave_up(l));
             l->attempts++;
             return send_probe(l);
         }
@@ -515,9 +524,11 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         }
         count_reply_byte(l, b);
         feed_reply(l, b);
-        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->stop_sent && l->stream_got >= l->stream_lines) {
+        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->prompt_seen &&
+            l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent) {
+            /* any byte ends the stream; if the stream goes on, the stop byte was lost */
             static const uint8_t cr = '\r';
-            l->stop_sent = 1;
+            l->stop_sent++;
             return send(l, &cr, 1);
         }
         if (l->prompt_seen && l->probe_out == PR_NONE) {
@@ -551,13 +562,23 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     }
 }
 
+/* How long an unanswered probe is given before the next: a controller busy with a long
+ * motion answers none, so the interval doubles (4, 8, 16 ... echo timeouts, at most 2 s). */
+static uint64_t probe_interval(const fbrl_link *l)
+{
+    uint64_t iv = ms(4 * l->cfg.echo_timeout_ms);
+    for (unsigned k = 1; k < l->probes_here && iv < 2000000u; k++)
+        iv *= 2;
+    return iv < 2000000u ? iv : 2000000u;
+}
+
 /* Nothing arrived for a while: decide what the silence means. */
 static fbrl_status on_silence(fbrl_link *l, uint64_t t)
 {
     switch (l->phase) {
     case PH_ERASE:
         if (l->attempts >= l->cfg.max_attempts)
-            return finish(l, FBRL_EECHO);
+            return finish(l, gave_up(l));
         l->attempts++;
         return send_probe(l);
     case PH_TYPE:
@@ -571,7 +592,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         }
         if (cr_took_effect(l)) {
             /* executed; the prompt is late (a waiting command) or was damaged: ask */
-            if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms) || l->probe_out == PR_NONE) {
+            if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
                 return send_probe(l);
@@ -598,7 +619,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
             l->stats.cr_unconfirmed++;
             return begin_erase(l);
         }
-        if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms))
+        if (t - l->t_probe >= probe_interval(l))
             return send_probe(l);
         l->t_last = t;
         return FBRL_OK;
@@ -629,6 +650,8 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             fbrl_status st = on_silence(l, t);
             if (!l->busy || st != FBRL_OK) {
                 *done = 1;
+                if (l->busy)
+                    l->ctrl_len = -1;
                 return l->busy ? finish(l, st) : l->result;
             }
             continue;
@@ -650,6 +673,7 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
         for (size_t k = 0; k < got && l->busy; k++) {
             fbrl_status s2 = on_byte(l, buf[k]);
             if (s2 != FBRL_OK && l->busy) {
+                l->ctrl_len = -1; /* a byte may not have gone out */
                 *done = 1;
                 return finish(l, s2);
             }
@@ -696,6 +720,7 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->stage = ST_MAIN;
     l->attempts = 0;
     l->have_prev = 0;
+    l->heard = 0;
     l->err_code = -1;
     l->err_text[0] = '\0';
     l->result = FBRL_OK;

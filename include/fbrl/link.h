@@ -47,7 +47,8 @@ typedef struct fbrl_link_config {
     uint32_t reply_timeout_ms; /* prompt after CR for ordinary commands (5000) */
     uint32_t wait_timeout_ms;  /* prompt after CR for commands that may wait: motion, FINISH,
                                 * WAIT, RUN and unknown raw lines (120000) */
-    unsigned max_attempts;     /* typing attempts / query repeats per command (12) */
+    unsigned max_attempts;     /* typing attempts / query repeats per command (12); then
+                                * FBRL_EECHO, or FBRL_ETIMEOUT if the controller sent nothing */
     unsigned query_reads;      /* identical consecutive replies a read-only query needs
                                 * (1..3, default 2; see docs/link.md for the odds) */
     unsigned naxes;            /* axes in W0/W2/W4 and STATUS rows (5) */
@@ -100,6 +101,7 @@ typedef struct fbrl_link {
     int ctrl_len;                            /* characters on the controller's line, -1 unknown */
     size_t match, expect, triples;
     unsigned attempts, probes_here;
+    int heard;                               /* any byte from the controller this command */
     uint64_t t_last, t_deadline, t_probe;
     /* reply analysis */
     fbrl_rapl_reader rd;

@@ -5,8 +5,8 @@
  * altered. Commands the link could not complete end with an error and are counted.
  *
  * One alteration no echo check can see is reported, not failed: the same bit of the
- * same byte flipped on the way in and again on the way back (rate (p/8)^2 per byte, a
- * few per 100,000 executed bytes here; docs/link.md). Such a line differs from the
+ * same byte flipped on the way in and again on the way back (about p * p/8 per typed byte,
+ * a few per 10,000 commands here; docs/link.md 3.6). Such a line differs from the
  * intended one in exactly one byte, by exactly one bit; any other difference fails.
  * Usage: link_e2e_faults FBRLSIM [N] [SEED] */
 #include <math.h>

@@ -333,6 +333,26 @@ static void t_editing(void **st)
     /* control characters are ignored */
     assert_string_equal(raw(&p, "SPE\x01\x02""ED 46"), "SPEED 46\r\n>>");
     assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +46");
+    /* XOFF from the host holds all output, XON releases it */
+    {
+        size_t n;
+        puts_(&p, "\x13SPEED 47\r");
+        n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.3);
+        assert_int_equal(n, 0);
+        puts_(&p, "\x11");
+        n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+        assert_string_equal(g_buf, "SPEED 47\r\n>>");
+    }
+    /* an over-long line emptied with Ctrl-X is a fresh line */
+    {
+        char l[100];
+        memset(l, 'B', 90);
+        l[90] = 0;
+        puts_(&p, l);
+        puts_(&p, "\x18");
+        read_until(&p, g_buf, sizeof g_buf, NULL, 0.3);
+        assert_string_equal(raw(&p, "SPEED 48"), "SPEED 48\r\n>>");
+    }
     stop(&p);
 }
 
@@ -350,6 +370,25 @@ static void t_errors(void **st)
     ok(&p, "/016 20");             /* token form */
     assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +20");
     err(&p, "/999", 12);
+    {
+        char a[4096];
+        snprintf(a, sizeof a, "%s", cmd(&p, "STATUS"));
+        assert_string_equal(cmd(&p, "/025"), a);
+        snprintf(a, sizeof a, "%s", cmd(&p, "W2"));
+        assert_string_equal(cmd(&p, "/031"), a);
+        snprintf(a, sizeof a, "%s", cmd(&p, "SERIAL"));
+        assert_string_equal(cmd(&p, "/111"), a);
+        ok(&p, "/089 5");     /* OUTPUT */
+        assert_string_equal(cmd(&p, "/059 OSIG(5)"), "1\r\n"); /* TYPEI */
+        ok(&p, "/020");       /* HOME */
+        ok(&p, "/015");       /* READY */
+        ok(&p, "/010");       /* FINISH */
+        ok(&p, "/050 TP,12,0,20,0,0,0"); /* POINT */
+        ok(&p, "/006 1,10");  /* JOINT */
+        ok(&p, "/002 TP,0");  /* APPRO */
+        ok(&p, "/010");
+        assert_non_null(strstr(cmd(&p, "W2"), "WORLD     +012.0000 +000.0000 +020.0000"));
+    }
     err(&p, "/16 20", 12);
     err(&p, "SPEED", 13);
     err(&p, "SPEED 1,2", 14);
@@ -455,6 +494,12 @@ static void t_moves(void **st)
     ok(&p, "HERE #H1");
     ok(&p, "HERE H2");
     ok(&p, "ACTUAL H3");
+    {
+        char a[256];
+        snprintf(a, sizeof a, "%s", cmd(&p, "LISTL H2"));
+        a[1] = '3';
+        assert_string_equal(cmd(&p, "LISTL H3"), a);
+    }
     assert_string_equal(cmd(&p, "LISTL #H1"), "#H1       +0000001000 +0000016000 -0000020000 +0000000444 -0000000222\r\n");
     ok(&p, "READY");
     ok(&p, "MOVE H2,S");
@@ -579,6 +624,11 @@ static void t_motion_timing(void **st)
         assert_true(d == 'N' || now_s() - t0 >= 1.5);
     }
     cmd(&p, "W2"); /* readouts do not wait */
+    if (now_s() - t0 < 1.2) {
+        /* W4: the end of the path, while W0 still shows the way there */
+        assert_non_null(strstr(cmd(&p, "W4"), "JOINTS   +090.0000 +090.0000"));
+        assert_null(strstr(cmd(&p, "W0"), "JOINTS   +090.0000 +090.0000"));
+    }
     ok(&p, "JOINT 1,-90"); /* waits for the first */
     assert_true(now_s() - t0 >= 1.4);
     ok(&p, "HALT");
@@ -880,6 +930,10 @@ static void t_streams_extra(void **st)
     assert_int_equal(stream_value(&p, "WE1", "EXTRA AXIS ACTUAL (MOTOR PULSES):"), 500);
     assert_int_equal(stream_value(&p, "WE5", "EXTRA AXIS VELOCITY (PULSES/SEC):"), 0);
     assert_int_equal(stream_value(&p, "W5", "VELOCITY (PULSES/SEC):"), 0);
+    ok(&p, "JOINT 1,-10");
+    ok(&p, "FINISH");
+    assert_int_equal(stream_value(&p, "W3", "COMMAND POSITION (MOTOR PULSES):"), -2000);
+    assert_int_equal(stream_value(&p, "W1", "ACTUAL POSITION (MOTOR PULSES):"), -2000);
     ok(&p, "SPEED 50");
     stop(&p);
 }

@@ -52,6 +52,7 @@ typedef struct session {
 static void ctl_rule(ctl *c, int dir, uint8_t match, int skip, int action, uint8_t with)
 {
     rule r = {dir, action, skip, match, with};
+    assert_true(c->nrules < 4);
     c->rules[c->nrules++] = r;
 }
 
@@ -368,8 +369,20 @@ static void silence_is_an_error(void **state)
     session *s = *state;
     s->c.dead = 1;
     uint64_t t0 = fbrl_clock_now_us();
-    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_EECHO);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_ETIMEOUT);
     assert_true(fbrl_clock_now_us() - t0 < 3000000u);
+    /* echoes everything wrong: the echo never matches */
+    s->c.dead = 0;
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    s->l.cfg.max_attempts = 3;
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_EECHO);
+    assert_int_equal(s->c.nlog, 0);
+    s->l.cfg.max_attempts = 6;
+    s->c.nrules = 0;
     /* echoes, then stops reading (a command that waits forever): the reply deadline */
     s->c.dead = 0;
     assert_int_equal(fbrl_link_start(&s->l, "WAIT 3", FBRL_LINK_REPLY_NONE), FBRL_OK);
