@@ -1,6 +1,7 @@
 /* vm.c - the FBRL engine: memory layout, dictionary, text interpreter, C API.
  * The inner interpreter (the big switch) is in run.c. */
 #include <string.h>
+#include "atomic.h"
 #include "words.h"
 
 typedef struct opinfo { const char *name; uint8_t flags; const char *stack, *help; } opinfo;
@@ -465,11 +466,16 @@ int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, f
 }
 
 /* ---- colon definitions ---- */
+static void discard_definition(fbrl_vm *vm);
+
 int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
 {
     fbrl_hdr *h;
     int r;
-    if (vm->defining || *vm->state) return -29;
+    if (*vm->state) return -29;
+    /* A definition left open in interpretation state (": A 1 [" and never closed)
+     * is abandoned: it was never finished, so it was never findable either. */
+    if (vm->defining) discard_definition(vm);
     vm->def_here = vm->here;
     vm->def_nwords = vm->nwords;
     if (noname) {
@@ -826,8 +832,14 @@ static void reset_after_error(fbrl_vm *vm)
     vm->hld = vm->hold + FBRL_HOLDSIZE;
 }
 
+void fbrl_vm_interrupt(fbrl_vm *vm)
+{
+    if (vm) fbrl_store_rlx(&vm->interrupt, 1);
+}
+
 static void begin_top(fbrl_vm *vm)
 {
+    fbrl_store_rlx(&vm->interrupt, 0);
     vm->running = 1;
     vm->err_captured = 0;
     vm->pending_msg = NULL;
@@ -895,7 +907,13 @@ fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path)
 
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm) { return vm ? &vm->err : NULL; }
 int fbrl_vm_bye(const fbrl_vm *vm) { return vm ? vm->bye : 0; }
-int fbrl_vm_compiling(const fbrl_vm *vm) { return vm ? *vm->state != 0 : 0; }
+int fbrl_vm_compiling(const fbrl_vm *vm) { return vm ? (*vm->state != 0 || vm->defining) : 0; }
+
+void fbrl_vm_reset(fbrl_vm *vm)
+{
+    if (!vm || vm->running) return;
+    reset_after_error(vm);
+}
 
 static int valid_name(const char *name, size_t n)
 {

@@ -89,7 +89,7 @@ typedef struct fbrl_cf { int tag; fbrl_cell a; } fbrl_cf;
 #define THROW_BYE (-100000)
 #define THROW_QUIT (-56)
 /* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
-#define FBRL_THROW_STATUS(st) (-300 + (int)(st))
+#define FBRL_THROW_STATUS(st) FBRL_VM_THROW_OF_STATUS(st)
 
 struct fbrl_vm {
     fbrl_vm_host host;
@@ -131,6 +131,7 @@ struct fbrl_vm {
     char cur_word[64];
     fbrl_vm_error err;
     int bye;
+    size_t interrupt;         /* set by fbrl_vm_interrupt (atomic access only) */
     int running;              /* inside fbrl_vm_eval/include */
     int precision;
     fbrl_cell catch_depth_limit;

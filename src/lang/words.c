@@ -543,7 +543,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
         case OP_CALL: put_name(vm, hdr_by_body(vm, a)); pc += CELL; break;
         case OP_BRANCH: case OP_ZBRANCH:
             fbrl__puts(vm, w == OP_BRANCH ? "BRANCH(" : "0BRANCH(");
-            put_num(vm, (a - pc - CELL) / CELL);
+            put_num(vm, (fbrl_cell)(U(a) - U(pc) - U(CELL)) / CELL);
             fbrl__puts(vm, ")");
             pc += CELL;
             break;
@@ -688,6 +688,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
                 return fbrl__throw_msg(vm, -32, "TO needs a VALUE, 2VALUE or FVALUE");
             if (*vm->state)
                 return back(vm, k == K_VALUE ? OP_PTOVAL : k == K_2VALUE ? OP_PTO2VAL : OP_PTOFVAL, h->body);
+            if (!fbrl__addr_ok(vm, h->body, 2 * CELL)) return -9;
             if (k == K_FVALUE) {
                 if ((r = fpop(vm, &f))) return r;
                 memcpy((void *)h->body, &f, sizeof f);
@@ -707,6 +708,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
             if ((r = fbrl__compile_lit(vm, xt))) return r;
             return fbrl__emit(vm, op == OP_IS ? OP_DEFERSTORE : OP_DEFERFETCH);
         }
+        if (!fbrl__addr_ok(vm, h->body, CELL)) return -9;
         if (op == OP_IS) {
             if ((r = pop(vm, &v))) return r;
             memcpy((void *)h->body, &v, sizeof v);
@@ -718,6 +720,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if ((r = pop(vm, &xt))) return r;
         h = fbrl__xt_hdr(vm, xt);
         if (!h || h->kind != K_DEFER) return fbrl__throw_msg(vm, -21, "not a DEFERred word");
+        if (!fbrl__addr_ok(vm, h->body, CELL)) return -9;
         if (op == OP_DEFERSTORE) {
             if ((r = pop(vm, &v))) return r;
             memcpy((void *)h->body, &v, sizeof v);
@@ -744,7 +747,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (n == 0) return -16;
         return op == OP_CHAR ? push(vm, (unsigned char)p[0]) : fbrl__compile_lit(vm, (unsigned char)p[0]);
     case OP_PAREN: return paren_comment(vm);
-    case OP_BACKSLASH:
+    case OP_BACKSLASH: case OP_SHEBANG:
         if (vm->nsrc) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
         return 0;
     case OP_DOTPAREN:
@@ -1239,7 +1242,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         if (u && !fbrl__addr_ok(vm, a, u)) return -9;
         if ((r = fpop(vm, &f))) return r;
         ok = represent(f, dg, u > 17 ? 17 : (int)u, &exp, &neg);
-        memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
+        if (u) memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
         if (u > 17) memset((char *)a + 17, '0', (size_t)(u - 17));
         vm->sp[-2] = exp;
         vm->sp[-1] = neg ? -1 : 0;
