@@ -68,18 +68,30 @@ fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_
 
 static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) & ~(fbrl_ucell)15); }
 
-fbrl_status gl_make(fbrl_vm *vm, int kind, fbrl_cell magic, size_t bytes, const char *stack,
-                    const char *help, fbrl_hdr **h, void **payload)
+fbrl_status gl_make(fbrl_vm *vm, fbrl_vm_prim run, fbrl_cell magic, size_t bytes, const char *stack,
+                    const char *help, void **payload)
 {
-    int r = fbrl__create(vm, kind, stack, help, h);
-    if (!r) r = fbrl__allot(vm, align16((fbrl_cell)vm->here) - (fbrl_cell)vm->here);
-    if (r) return fbrl_vm_throw(vm, r, NULL);
-    (*h)->body = (fbrl_cell)vm->here;
+    unsigned char *here0 = vm->here;
+    uint32_t nwords0 = vm->nwords;
     size_t total = (magic ? GL_PAYLOAD : 0) + bytes;
-    if ((r = fbrl__allot(vm, (fbrl_cell)total))) return fbrl_vm_throw(vm, r, NULL);
-    memset((void *)(*h)->body, 0, total);
-    if (magic) memcpy((void *)(*h)->body, &magic, sizeof magic);
-    *payload = (void *)((*h)->body + (magic ? GL_PAYLOAD : 0));
+    fbrl_hdr *h;
+    int r = fbrl__create(vm, run ? K_CFUNC : K_VAR, stack, help, &h);
+    if (!r) r = fbrl__allot(vm, align16((fbrl_cell)vm->here) - (fbrl_cell)vm->here);
+    if (!r) {
+        h->body = (fbrl_cell)vm->here;
+        r = fbrl__allot(vm, (fbrl_cell)total);
+    }
+    if (r) { /* no half-made word is left behind */
+        if (vm->nwords != nwords0) fbrl__forget(vm, here0, nwords0, vm->req_used);
+        return fbrl_vm_throw(vm, r, NULL);
+    }
+    memset((void *)h->body, 0, total);
+    if (magic) memcpy((void *)h->body, &magic, sizeof magic);
+    if (run) {
+        h->fn = run;
+        h->arg = (void *)h->body;
+    }
+    *payload = (void *)(h->body + (magic ? GL_PAYLOAD : 0));
     return FBRL_OK;
 }
 
@@ -187,10 +199,9 @@ fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc) { return
 /* ---- III-1 location templates ---- */
 static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
 {
-    fbrl_hdr *h;
     void *p;
     (void)arg;
-    return gl_make(vm, K_VAR, 0, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &h, &p);
+    return gl_make(vm, NULL, 0, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &p);
 }
 
 static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
@@ -376,17 +387,14 @@ static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
     fbrl_loc *base;
     double v[3];
     fbrl_rectmat m;
-    fbrl_hdr *h;
     void *p;
     fbrl_status st;
     if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v))) return st;
     if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
-    if ((st = gl_make(vm, K_CFUNC, MAGIC_RECT, sizeof m, "( i j k loc -- )",
-                      "store location (i, j, k) of this RECTMAT into loc", &h, &p)))
+    if ((st = gl_make(vm, rect_run, MAGIC_RECT, sizeof m, "( i j k loc -- )",
+                      "store location (i, j, k) of this RECTMAT into loc", &p)))
         return st;
     memcpy(p, &m, sizeof m);
-    h->fn = rect_run;
-    h->arg = (void *)h->body;
     return FBRL_OK;
 }
 
@@ -395,7 +403,6 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
     fbrl_loc *base;
     double v[3];
     fbrl_radmat m;
-    fbrl_hdr *h;
     void *p;
     fbrl_status st;
     if ((st = mat_args(vm, g, "RADMAT", 1, &base, v))) return st;
@@ -403,12 +410,10 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
     if (st == FBRL_ERANGE)
         return gl_throw(vm, FBRL_THROW_STATUS(st), "RADMAT: base location on the centre axis has no angle");
     if (st != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
-    if ((st = gl_make(vm, K_CFUNC, MAGIC_RAD, sizeof m, "( ring idx k loc -- )",
-                      "store location (ring, idx, k) of this RADMAT into loc", &h, &p)))
+    if ((st = gl_make(vm, rad_run, MAGIC_RAD, sizeof m, "( ring idx k loc -- )",
+                      "store location (ring, idx, k) of this RADMAT into loc", &p)))
         return st;
     memcpy(p, &m, sizeof m);
-    h->fn = rad_run;
-    h->arg = (void *)h->body;
     return FBRL_OK;
 }
 

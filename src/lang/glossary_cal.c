@@ -62,11 +62,10 @@ static fbrl_status w_with_cal(fbrl_vm *vm, void *arg)
 
 static fbrl_status w_create_cal(fbrl_vm *vm, void *arg)
 {
-    fbrl_hdr *h;
     void *p;
     (void)arg;
-    return gl_make(vm, K_VAR, MAGIC_CAL, sizeof(fbrl_calpts), "( -- cal )",
-                   "calibration: three location slots 1 2 3", &h, &p);
+    return gl_make(vm, NULL, MAGIC_CAL, sizeof(fbrl_calpts), "( -- cal )", "calibration: three location slots 1 2 3",
+                   &p);
 }
 
 static fbrl_status w_cal_addr(fbrl_vm *vm, void *arg)
@@ -106,12 +105,11 @@ static fbrl_status w_get_cal(fbrl_vm *vm, void *arg) { (void)arg; return set_get
 
 static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg)
 {
-    fbrl_hdr *h;
     void *p;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_make(vm, K_VAR, MAGIC_STRU, sizeof(fbrl_calib), "( -- cal-stru )",
-                      "calibration structure: the block's motion (identity until CALIBRATE)", &h, &p)))
+    if ((st = gl_make(vm, NULL, MAGIC_STRU, sizeof(fbrl_calib), "( -- cal-stru )",
+                      "calibration structure: the block's motion (identity until CALIBRATE)", &p)))
         return st;
     return fbrl_calib_identity(p);
 }

@@ -118,13 +118,16 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
     if ((st = fbrl_file_open(f, path, g->file_mem + (size_t)slot * share(g), share(g))) != FBRL_OK)
         return file_error(vm, st, "OPEN-FILE", path);
     if (!h) {
+        unsigned char *here0 = vm->here;
+        uint32_t nwords0 = vm->nwords;
         r = fbrl__new_word(vm, name, len, K_VAR, "( -- hndl )", "file handle (made by OPEN-FILE)", &h);
         if (!r) r = fbrl__allot(vm, (fbrl_cell)(((fbrl_ucell)vm->here + 15) & ~(fbrl_ucell)15) - (fbrl_cell)vm->here);
         if (!r) {
             h->body = (fbrl_cell)vm->here;
             r = fbrl__allot(vm, GL_PAYLOAD + CELL);
         }
-        if (r) {
+        if (r) { /* no half-made handle is left behind */
+            if (vm->nwords != nwords0) fbrl__forget(vm, here0, nwords0, vm->req_used);
             fbrl_file_discard(f);
             return fbrl_vm_throw(vm, r, NULL);
         }

@@ -57,11 +57,12 @@ fbrl_status gl_push_flag(fbrl_vm *vm, int yes);
  * whose components are not all finite ("not a location"). Throws, naming `word`. */
 fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_loc **loc);
 
-/* Parse a name and make a word of `kind` whose data field is a magic cell followed, at
- * GL_PAYLOAD, by `bytes` zeroed bytes; *payload = their address. magic 0 = a bare payload
- * (the data field itself, 16-aligned). Throws on error. */
-fbrl_status gl_make(fbrl_vm *vm, int kind, fbrl_cell magic, size_t bytes, const char *stack,
-                    const char *help, fbrl_hdr **h, void **payload);
+/* Parse a name and make a word whose data field is a magic cell followed, at GL_PAYLOAD,
+ * by `bytes` zeroed bytes (magic 0: the bare bytes, 16-aligned); *payload = their address.
+ * With run NULL the word pushes its data field address; otherwise it is a C word running
+ * run(vm, data field address). Throws on error, leaving no half-made word. */
+fbrl_status gl_make(fbrl_vm *vm, fbrl_vm_prim run, fbrl_cell magic, size_t bytes, const char *stack,
+                    const char *help, void **payload);
 
 /* The payload of a structure with this magic at a, or NULL. */
 void *gl_struct(fbrl_vm *vm, fbrl_cell a, fbrl_cell magic, size_t bytes);

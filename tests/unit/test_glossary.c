@@ -451,6 +451,15 @@ static void file_table(void **state)
     assert_true(l.x == 1 && l.y == 2 && l.z == 3 && l.o == 4 && l.a == 5 && l.t == 6);
     assert_int_equal(fbrl_file_discard(&file), FBRL_OK);
     throws(f, "H8 RESET-FILE", -325, "RESET-FILE: file handle not open");
+    /* a wrong-type read says what is there, and reads nothing */
+    ok(f, "OPEN-FILE H8 d.fbd FVARIABLE R");
+    throws(f, "R REAL H8 READ-FILE", -314,
+           "READ-FILE: next record is LOCATION (48 bytes), not REAL (8 bytes); nothing read");
+    ok(f, "CREATE-LOC L L LOCATION H8 READ-FILE L GETT F>S H8 CLOSE-FILE");
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 6);
+    throws(f, "PAD 12 H8 READ-FILE", -325, "READ-FILE: file handle not open");
+    throws(f, "PAD 12 PAD READ-FILE", -12, "READ-FILE: unknown file handle (OPEN-FILE makes one)");
     /* a file name too long for the file system layer */
     char longname[400] = "CREATE-FILE ";
     memset(longname + 12, 'a', 300);
@@ -497,6 +506,36 @@ static void close_failure_keeps_file_open(void **state)
     assert_int_equal(rmdir("sub"), 0);
     assert_int_not_equal(fbrl_glossary_finish(&f->g), FBRL_OK);
     throws(f, "H RESET-FILE", -325, "not open");
+    free_vm(f);
+}
+
+/* ---- a full dictionary: the defining words fail cleanly ---- */
+static void dictionary_full(void **state)
+{
+    (void)state;
+    fixture *f = new_vm();
+    ok(f, "CREATE-LOC P 1E0 2E0 3E0 0E0 0E0 0E0 P DEFINE-LOC CREATE-FILE d.fbd UNUSED 3000 - ALLOT");
+    const char *makers[] = { "P 1E0 1E0 1E0 RECTMAT", "P 0.1E0 1E0 1E0 RADMAT", "CREATE-LOC", "CREATE-CAL",
+                             "CREATE-CAL-STRU" };
+    char src[96];
+    int made = 0;
+    for (int m = 0; m < 5; m++) {
+        for (int n = 0;; n++) {
+            snprintf(src, sizeof src, "%s W%d-%d", makers[m], m, n);
+            if (ev(f, src) != FBRL_OK) {
+                assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -8); /* dictionary overflow */
+                snprintf(src, sizeof src, "[DEFINED] W%d-%d", m, n);
+                ok(f, src);
+                assert_int_equal(pop1(f), 0); /* no half-made word */
+                break;
+            }
+            made++;
+        }
+    }
+    assert_true(made > 5);
+    ok(f, "1 0 0 P W0-0 P GETX F>S 2 3 +"); /* the words made before still work, and the VM does */
+    assert_int_equal(pop1(f), 5);
+    assert_int_equal(pop1(f), 2);
     free_vm(f);
 }
 
@@ -620,6 +659,7 @@ int main(void)
         cmocka_unit_test(close_failure_keeps_file_open),
         cmocka_unit_test(hostile_arguments),
         cmocka_unit_test(example_plan),
+        cmocka_unit_test(dictionary_full),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
