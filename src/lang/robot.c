@@ -347,7 +347,8 @@ static const fbrl_hdr *data_word(fbrl_vm *vm, const char *s, size_t n)
     if (i < 0) return NULL;
     const fbrl_hdr *h = HDR(vm, i);
     switch (h->kind) {
-    case K_VAR: case K_CREATE: case K_CONST: case K_VALUE: case K_FCONST: case K_FVALUE: return h;
+    case K_CREATE: return h->does ? NULL : h; /* a DOES> part is code: never run for a parameter */
+    case K_VAR: case K_CONST: case K_VALUE: case K_FCONST: case K_FVALUE: return h;
     default: return NULL;
     }
 }

@@ -315,6 +315,10 @@ static void parameters_come_from_the_stacks_or_the_line(void **state)
     /* a location parameter must name a data word; code is never run to get one */
     throws(f, "MOV HOME", -24);
     throws(f, "MOV 12", -24);
+    assert_int_equal(ev(f, "VARIABLE RAN  0 RAN !  : MAKER CREATE 48 ALLOT DOES> 1 RAN +! ;  MAKER DL"), FBRL_OK);
+    throws(f, "MOV DL", -24);
+    assert_int_equal(ev(f, "RAN @"), FBRL_OK);
+    assert_int_equal(pop(f), 0); /* DL's DOES> code never ran */
     assert_int_equal(ev(f, "CREATE-LOC P2  1E0 2E0 3E0 0E0 -90E0 0E0 P2 DEFINE-LOC"), FBRL_OK);
     throws(f, "MOV P2", OFFLINE_CODE);
     throws(f, "P2 MOV", OFFLINE_CODE);
