@@ -68,8 +68,9 @@ typedef struct fbrl_robot {
     /* BASE-OFFSET: the user's world frame as seen from the arm's base */
     double base[4];                 /* dx dy dz (in), dO (deg) */
     /* timers */
-    uint64_t mark_us;
+    uint64_t mark_ms;               /* START-TIMER (host clock) */
     int mark_set;
+    int teaching;                   /* GET-CAL-POINTS is running */
     /* devices */
     fbrl_robot_device dev[FBRL_ROBOT_MAX_DEVICES];
     /* the controller's last error code seen by a robot word (-1 none) */

@@ -959,6 +959,8 @@ static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, size_t *
     return FBRL_OK;
 }
 
+static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3]);
+
 static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_vm *vm = r->vm;
@@ -971,6 +973,24 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
         return rb_fail(r, st == FBRL_ETYPE ? -12 : -9, msg);
     }
     if ((st = rb_online(r)) != FBRL_OK) return st;
+    if (r->teaching) return rb_fail(r, -24, "GET-CAL-POINTS: already teaching (not inside its own lines)");
+    r->teaching = 1;
+    st = teach3(r, w, pts);
+    r->teaching = 0;
+    if (st != FBRL_OK) return st;
+    /* the lines run while teaching may have changed the dictionary: look the structure up again */
+    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK) return rb_fail(r, -9, "GET-CAL-POINTS: calibration gone");
+    for (int slot = 1; slot <= 3; slot++)
+        if ((st = fbrl_calpts_set(cal, slot, &pts[slot - 1])) != FBRL_OK) return rb_fail_st(r, w, st, NULL);
+    return FBRL_OK;
+}
+
+/* The three positions, each after the lines that bring the arm there. */
+static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3])
+{
+    fbrl_vm *vm = r->vm;
+    fbrl_status st;
+    char msg[128];
     for (int slot = 1; slot <= 3; slot++) {
         snprintf(msg, sizeof msg, "Calibration point %d: move the arm there (robot words), then an empty line takes it.\n", slot);
         rb_puts(r, msg);
@@ -987,10 +1007,6 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
         if ((st = arm_where(r, w, 1, &arm)) != FBRL_OK) return st;
         if ((st = from_arm(r, w, &arm, &pts[slot - 1], 0)) != FBRL_OK) return st;
     }
-    /* the lines run above may have moved the dictionary: look the structure up again */
-    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK) return rb_fail(r, -9, "GET-CAL-POINTS: calibration gone");
-    for (int slot = 1; slot <= 3; slot++)
-        if ((st = fbrl_calpts_set(cal, slot, &pts[slot - 1])) != FBRL_OK) return rb_fail_st(r, w, st, NULL);
     return FBRL_OK;
 }
 

@@ -124,7 +124,8 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
     fbrl_uart *u;
     fbrl_status st = uart_of(r, &u);
     if (st != FBRL_OK) return st;
-    if (u->cfg.flow == FBRL_FLOW_XONXOFF)
+    fbrl_uart_config c;
+    if (fbrl_uart_get_config(u, &c) == FBRL_OK && c.flow == FBRL_FLOW_XONXOFF)
         for (size_t k = 0; k < n; k++)
             if (((const uint8_t *)p)[k] == FBRL_XON || ((const uint8_t *)p)[k] == FBRL_XOFF)
                 return rb_fail(r, -24, "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
@@ -190,8 +191,9 @@ static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = check_port(r, w, v[0].i);
     if (st == FBRL_OK) st = uart_of(r, &u);
     if (st != FBRL_OK) return st;
-    /* let the controller finish echoing what raw words sent, then discard it all */
-    for (int quiet = 0; quiet < 3;) {
+    /* let the controller finish echoing what raw words sent, then discard it all; at most
+     * 2 s (a stream started raw never goes quiet: the connect step's probe ends it) */
+    for (int quiet = 0, rounds = 0; quiet < 3 && rounds < 40; rounds++) {
         got = 0;
         st = fbrl_uart_read(u, buf, sizeof buf, &got, 50);
         if (st != FBRL_OK && st != FBRL_ETIMEOUT) return rb_fail_st(r, w, st, "port");

@@ -199,8 +199,7 @@ static fbrl_status w_start_timer(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     (void)w;
     (void)v;
-    fbrl_status st = rb_now_ms(r, &r->mark_us);
-    r->mark_us *= 1000u;
+    fbrl_status st = rb_now_ms(r, &r->mark_ms);
     r->mark_set = st == FBRL_OK;
     return st;
 }
@@ -215,7 +214,7 @@ static fbrl_status elapsed(fbrl_robot *r, const rb_word *w, uint64_t *ms)
     }
     fbrl_status st = rb_now_ms(r, &now);
     if (st != FBRL_OK) return st;
-    *ms = now - r->mark_us / 1000u;
+    *ms = now - r->mark_ms;
     return FBRL_OK;
 }
 

@@ -48,3 +48,8 @@ T{ OUT-CLEAR ROBOT-STATUS OUT" SPEED (% OF FULL) :    +20" -> TRUE }T  LOG: STAT
 T{ ASC E -> 69 }T
 : PAR-E ASC E ;
 T{ PAR-E -> 69 }T
+\ a stream started raw never goes quiet: RESET-COMM still returns and the link works
+T{ S" W1" SWAP TYPE-COM 13 EMIT-COM -> }T
+T{ 1 RESET-COMM -> }T  LOG: W1
+                       LOG: NOHELP
+T{ 30 SPEED -> }T  LOG: SPEED 30
