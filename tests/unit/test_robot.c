@@ -197,7 +197,8 @@ static void offline_words_throw_a_clear_error(void **state)
         "RAPL-RUN PROG", "RAPL-SET A B", "RAPL-SHIFTA A B", "RAPL-POINT L1 P1", "6 XHOME",
         "0 9600 ASC N 8 1 ASC X 1 CONFIG", "MANUAL", "5 FLASH", "CREATE-CAL K1 K1 GET-CAL-POINTS",
         "1 SETUPUART", "65 EMIT-COM", "GET-COM", "1 RESET-COMM", "16 SEND-COM 5 SEND-INT SEND-CR",
-        "5 OUTPUT-DEVICE V1 V1 ON", "100 V1 PULSE", "3 INPUT-DEVICE S1 S1 INPUT?",
+        "5 OUTPUT-DEVICE V1 V1 ON", "100 V1 PULSE", "3 INPUT-DEVICE S1 S1 INPUT?", ".COMM",
+        "CONFIG 1 9600 E 7 2 X 1", "S1 TRUE 100 WAIT-INPUT", "V1 OFF", "ALIGNTOOL", "NOTEACH",
     };
     for (size_t k = 0; k < sizeof lines / sizeof lines[0]; k++) {
         const char *msg = throws(f, lines[k], OFFLINE_CODE);
@@ -362,6 +363,11 @@ static void serial_settings_are_collected_offline(void **state)
     assert_int_equal(f->r.comm.parity, FBRL_PARITY_ODD);
     assert_int_equal(f->r.comm.stop_bits, 2);
     assert_int_equal(f->r.comm.data_bits, 8);
+    assert_int_equal(ev(f, "SETPARITY 'e'"), FBRL_OK);
+    assert_int_equal(f->r.comm.parity, FBRL_PARITY_EVEN);
+    assert_int_equal(ev(f, "SETPARITY 78"), FBRL_OK); /* a character code */
+    assert_int_equal(f->r.comm.parity, FBRL_PARITY_NONE);
+    throws(f, "SETPARITY EVEN", -24);
     throws(f, "4 SETWORDLENGTH", -24);
     throws(f, "0 SETSTOPBITS", -24);
     throws(f, "ASC X SETPARITY", -24);
