@@ -149,6 +149,18 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEED(2);
             if (S == T) { sp -= 2; ip++; } else { sp--; JUMP(*ip); }
             continue;
+        case OP_COMPSEM: { /* run a state-smart word as if compiling */
+            fbrl_cell saved = *vm->state;
+            NEED(1);
+            a = *--sp;
+            *vm->state = -1;
+            SAVE();
+            code = fbrl__run(vm, a);
+            LOAD();
+            if (*vm->state == -1) *vm->state = saved;
+            if (code) goto do_throw;
+            continue;
+        }
         case OP_PTOVAL: NEED(1); a = *ip++; CHK(a, CELL); st(a, *--sp); continue;
         case OP_PTO2VAL: NEED(2); a = *ip++; CHK(a, 2 * CELL); st(a, T); st(a + CELL, S); sp -= 2; continue;
         case OP_PTOFVAL: FNEED(1); a = *ip++; CHK(a, (fbrl_cell)sizeof(double)); stf(a, *--fp); continue;

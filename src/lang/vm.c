@@ -722,7 +722,7 @@ typedef struct layout {
 
 #define FBRL_SYSVARS 8
 #define FBRL_BUFS (FBRL_SYSVARS * sizeof(fbrl_cell) + FBRL_WORDBUF + FBRL_PADSIZE + FBRL_HOLDSIZE \
-                   + 2 * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
+                   + FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
 #define FBRL_EXTRA_WORDS 64     /* headers beyond the primitives (data words) */
 
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
@@ -788,7 +788,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     vm->pad = (char *)d; d += FBRL_PADSIZE;
     vm->hold = (char *)d; d += FBRL_HOLDSIZE;
     vm->hld = vm->hold + FBRL_HOLDSIZE;
-    vm->sbuf = (char *)d; d += 2 * FBRL_SBUF;
+    vm->sbuf = (char *)d; d += FBRL_NSBUF * FBRL_SBUF;
     for (int i = 0; i < FBRL_SRC_MAX; i++) { vm->src[i].linebuf = (char *)d; d += FBRL_LINE_MAX + 8; }
     vm->dict_lo = vm->here = vm->data_lo + align16(FBRL_BUFS);
 

@@ -36,7 +36,8 @@ typedef uintptr_t fbrl_ucell;
 #define FBRL_WORDBUF 260
 #define FBRL_PADSIZE 256
 #define FBRL_HOLDSIZE 260
-#define FBRL_SBUF 256         /* each of the two interpretation-state S" buffers */
+#define FBRL_SBUF 256         /* each interpretation-state S" buffer */
+#define FBRL_NSBUF 8          /* S" buffers in rotation (the standard asks for 2) */
 
 enum {
 #define OP(id, name, flags, stack, help) OP_##id,
@@ -52,6 +53,7 @@ enum { K_PRIM, K_COLON, K_VAR, K_CREATE, K_CONST, K_2CONST, K_FCONST, K_VALUE, K
 #define FI 1u   /* immediate */
 #define FC 2u   /* compile-only */
 #define FH 4u   /* hidden (being defined, or :NONAME) */
+#define FS 8u   /* state-smart immediate word (POSTPONE runs it compiling) */
 
 typedef struct fbrl_hdr {
     uint32_t next;            /* next header in the hash chain, as index+1 (0 = end) */
@@ -134,7 +136,6 @@ struct fbrl_vm {
     size_t interrupt;         /* set by fbrl_vm_interrupt (atomic access only) */
     int running;              /* inside fbrl_vm_eval/include */
     int precision;
-    fbrl_cell catch_depth_limit;
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
     fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */

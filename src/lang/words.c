@@ -261,7 +261,8 @@ int fbrl__w_control(fbrl_vm *vm, int op)
 {
     fbrl_cell o = 0, d = 0;
     int r = 0;
-    if (*vm->state == 0) return -14;
+    /* also valid between [ ] inside a definition (a POSTPONEd IF run there) */
+    if (*vm->state == 0 && !vm->defining) return -14;
     switch (op) {
     case OP_IF: return (r = forward(vm, OP_ZBRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
     case OP_AHEAD: return (r = forward(vm, OP_BRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
@@ -460,7 +461,7 @@ static int string_literal(fbrl_vm *vm, const char *s, size_t n)
     if (*vm->state) return fbrl__compile_str(vm, OP_SLIT, s, n);
     if (n > FBRL_SBUF) return -18;
     char *b = vm->sbuf + FBRL_SBUF * vm->sbuf_next;
-    vm->sbuf_next ^= 1;
+    vm->sbuf_next = (vm->sbuf_next + 1) % FBRL_NSBUF;
     memmove(b, s, n);
     int r = push(vm, (fbrl_cell)b);
     return r ? r : push(vm, (fbrl_cell)n);
@@ -553,6 +554,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
         case OP_PPLOOP: fbrl__puts(vm, "+LOOP"); pc += CELL; break;
         case OP_POF: fbrl__puts(vm, "OF"); pc += CELL; break;
         case OP_DOESSET: fbrl__puts(vm, "DOES>"); break;
+        case OP_COMPSEM: fbrl__puts(vm, "(COMPILING-EXECUTE)"); break;
         case OP_PTOVAL: case OP_PTO2VAL: case OP_PTOFVAL:
             fbrl__puts(vm, "TO ");
             put_name(vm, hdr_by_body(vm, a));
@@ -609,6 +611,9 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         { "FLOORED", 5 }, { "MAX-CHAR", 6 }, { "MAX-N", 7 }, { "MAX-U", 8 }, { "MAX-D", 9 },
         { "MAX-UD", 10 }, { "RETURN-STACK-CELLS", 11 }, { "STACK-CELLS", 12 },
         { "FLOATING-STACK", 13 }, { "MAX-FLOAT", 14 },
+        /* Forth-94 word-set queries (obsolescent, still asked by test suites) */
+        { "CORE", 15 }, { "CORE-EXT", 15 }, { "DOUBLE", 15 }, { "EXCEPTION", 15 }, { "EXCEPTION-EXT", 15 },
+        { "FACILITY", 15 }, { "FLOATING", 15 }, { "FLOATING-EXT", 15 }, { "STRING", 15 }, { "TOOLS", 15 },
     };
     const fbrl_ucell umax = ~(fbrl_ucell)0;
     for (size_t i = 0; i < sizeof q / sizeof q[0]; i++) {
@@ -632,6 +637,7 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         case 12: r = push(vm, vm->ds_end - vm->ds0); break;
         case 13: r = push(vm, vm->fs_end - vm->fs0); break;
         case 14: r = fpush(vm, 1.7976931348623157e308); break;
+        case 15: r = push(vm, -1); break;
         }
         return r ? r : push(vm, -1);
     }
@@ -730,6 +736,10 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return push(vm, v);
     case OP_POSTPONE:
         if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if (h->flags & FS) { /* its compilation semantics, even if run between [ ] */
+            if ((r = fbrl__compile_lit(vm, xt))) return r;
+            return fbrl__emit(vm, OP_COMPSEM);
+        }
         if (h->flags & FI) return fbrl__compile_xt(vm, xt);
         if ((r = fbrl__compile_lit(vm, xt))) return r;
         return fbrl__emit(vm, OP_COMPILECOMMA);

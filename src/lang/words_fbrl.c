@@ -470,6 +470,6 @@ fbrl_status fbrl__fbrl_words(fbrl_vm *vm)
                                         words[i].help);
         if (st != FBRL_OK) return st;
     }
-    HDR(vm, fbrl__find(vm, "STRING-LIT", 10))->flags |= FI;
+    HDR(vm, fbrl__find(vm, "STRING-LIT", 10))->flags |= FI | FS;
     return FBRL_OK;
 }
