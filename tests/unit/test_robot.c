@@ -441,6 +441,39 @@ static void two_vms_have_their_own_robots(void **state)
     free(b);
 }
 
+/* Random lines of robot words and odd tokens: every one ends with FBRL_OK or a clean
+ * exception, and the VM keeps working (run under ASan/UBSan in CI). */
+static void random_lines_never_break_the_vm(void **state)
+{
+    fixture *f = *state;
+    static const char *const tok[] = {
+        "MOV", "APPROACH", "JOG", "SPEED", "GRIP", "CONFIG", "RAPL", "SEND-COM", "SEND-LOC", "SEND-CR",
+        "SEND-TEXT", "GETREAL", "GETINT", "GETSTRING", "TYPEINT", "SET-RAPL-REAL", "RAPL-POINT", "ACTUAL",
+        "ON", "OFF", "PULSE", "DISPENSE", "WAIT-INPUT", "SETPARITY", "COMMSET", "TYPE-COM", "ASC",
+        "GET-CAL-POINTS", "BASE-OFFSET", "OUT2BYTE", "SHIFT-RIGHT", "ELAPSED", "P", "CAL", "VALVE", "SENSOR",
+        "1", "-7", "0", "65535", "2.5", "1E300", "-1E-300", "$FF", "'E'", "\"", "\"a b\"", "E", "X",
+        "HERE", "DUP", "S\" P\"", "12345678901234567890", "#", "-", ".", ",", "\\",
+    };
+    char line[256];
+    unsigned seed = 12345;
+    assert_int_equal(ev(f, "CREATE-LOC P CREATE-CAL CAL 5 OUTPUT-DEVICE VALVE 3 INPUT-DEVICE SENSOR"), FBRL_OK);
+    for (int k = 0; k < 3000; k++) {
+        size_t n = 0;
+        int words = 1 + (int)((seed = seed * 1103515245u + 12345u) >> 16) % 6;
+        for (int w = 0; w < words; w++) {
+            seed = seed * 1103515245u + 12345u;
+            const char *t = tok[(seed >> 16) % (sizeof tok / sizeof tok[0])];
+            if (n + strlen(t) + 2 >= sizeof line) break;
+            n += (size_t)snprintf(line + n, sizeof line - n, "%s ", t);
+        }
+        ev(f, line); /* any result but a crash */
+        assert_int_equal(ev(f, "1 2 +"), FBRL_OK);
+        assert_int_equal(pop(f), 3);
+        while (fbrl_vm_depth(f->vm)) pop(f);
+        while (fbrl_vm_fdepth(f->vm)) fpop(f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -456,6 +489,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(devices_timers_and_fpc_on_off, setup, teardown),
         cmocka_unit_test_setup_teardown(base_offset_and_last_error, setup, teardown),
         cmocka_unit_test_setup_teardown(two_vms_have_their_own_robots, setup, teardown),
+        cmocka_unit_test_setup_teardown(random_lines_never_break_the_vm, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
