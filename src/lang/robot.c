@@ -1107,7 +1107,7 @@ static fbrl_status w_send_text(fbrl_robot *r, const rb_word *w, rb_val *v)
         if (v[0].s[k] < 0x20 || v[0].s[k] > 0x7e || v[0].s[k] == '?')
             return rb_fail(r, -24, "SEND-TEXT: only printable characters (no '?')");
     (void)w;
-    if (w->arg) sep(r);
+    sep(r);
     return put(r, v[0].s, v[0].n);
 }
 

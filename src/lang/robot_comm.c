@@ -31,37 +31,40 @@ static fbrl_status check_port(fbrl_robot *r, const rb_word *w, fbrl_cell port)
     return rb_fail(r, -24, msg);
 }
 
+static fbrl_status bad_setting(fbrl_robot *r, const rb_word *w, const char *what)
+{
+    char msg[96];
+    snprintf(msg, sizeof msg, "%s: %s", w->name, what);
+    return rb_fail(r, -24, msg);
+}
+
 static fbrl_status set_word_length(fbrl_robot *r, const rb_word *w, fbrl_cell n)
 {
-    if (n < 5 || n > 8) return rb_fail(r, -24, "SETWORDLENGTH: 5..8 bits");
-    (void)w;
+    if (n < 5 || n > 8) return bad_setting(r, w, "word length 5..8 bits");
     r->comm.data_bits = (uint8_t)n;
     return FBRL_OK;
 }
 
 static fbrl_status set_stop_bits(fbrl_robot *r, const rb_word *w, fbrl_cell n)
 {
-    if (n < 1 || n > 2) return rb_fail(r, -24, "SETSTOPBITS: 1 or 2 stop bits");
-    (void)w;
+    if (n < 1 || n > 2) return bad_setting(r, w, "1 or 2 stop bits");
     r->comm.stop_bits = (uint8_t)n;
     return FBRL_OK;
 }
 
 static fbrl_status set_parity(fbrl_robot *r, const rb_word *w, fbrl_cell c)
 {
-    (void)w;
     switch (c) {
     case 'N': case 'n': r->comm.parity = FBRL_PARITY_NONE; return FBRL_OK;
     case 'E': case 'e': r->comm.parity = FBRL_PARITY_EVEN; return FBRL_OK;
     case 'O': case 'o': r->comm.parity = FBRL_PARITY_ODD; return FBRL_OK;
-    default: return rb_fail(r, -24, "SETPARITY: the character N, E or O (ASC E SETPARITY)");
+    default: return bad_setting(r, w, "parity is the character N, E or O (ASC E)");
     }
 }
 
 static fbrl_status set_baud(fbrl_robot *r, const rb_word *w, fbrl_cell b)
 {
-    (void)w;
-    if (b < 50 || b > 4000000) return rb_fail(r, -24, "SETBAUDRATE: 50..4000000 baud");
+    if (b < 50 || b > 4000000) return bad_setting(r, w, "baud rate 50..4000000");
     r->comm.baud = (uint32_t)b;
     return FBRL_OK;
 }
