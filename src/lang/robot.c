@@ -1275,6 +1275,7 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
     if (!r) return FBRL_EINVAL;
     r->link = link;
     if (link && link->u) fbrl_uart_get_config(link->u, &r->comm);
+    rb_port_writer(r);
     return FBRL_OK;
 }
 

@@ -184,25 +184,45 @@ static fbrl_status w_get_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     return fbrl_vm_push(r->vm, got ? (fbrl_cell)b : -1) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
 }
 
-/* RESET-COMM ( port -- ): drop what was received and not read, then bring the
- * controller's line to a known state (erase it, NOHELP) so the link is in step again. */
+/* Bring the link back in step after raw output: let the controller finish answering,
+ * discard it all (at most 2 s: a stream started raw never goes quiet, the connect step's
+ * probe ends it), then erase the controller's line and send NOHELP. */
+fbrl_status rb_resync(fbrl_robot *r)
+{
+    uint8_t buf[64];
+    for (int quiet = 0, rounds = 0; quiet < 3 && rounds < 40; rounds++) {
+        size_t got = 0;
+        fbrl_status st = fbrl_uart_read(r->link->u, buf, sizeof buf, &got, 50);
+        if (st != FBRL_OK && st != FBRL_ETIMEOUT) return st;
+        quiet = got ? 0 : quiet + 1;
+    }
+    return fbrl_link_connect(r->link);
+}
+
+/* RESET-COMM ( port -- ): drop what was received and not read, and resynchronise. */
 static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_uart *u;
-    uint8_t buf[64];
-    size_t got;
     fbrl_status st = check_port(r, w, v[0].i);
     if (st == FBRL_OK) st = uart_of(r, &u);
     if (st != FBRL_OK) return st;
-    /* let the controller finish echoing what raw words sent, then discard it all; at most
-     * 2 s (a stream started raw never goes quiet: the connect step's probe ends it) */
-    for (int quiet = 0, rounds = 0; quiet < 3 && rounds < 40; rounds++) {
-        got = 0;
-        st = fbrl_uart_read(u, buf, sizeof buf, &got, 50);
-        if (st != FBRL_OK && st != FBRL_ETIMEOUT) return rb_fail_st(r, w, st, "port");
-        quiet = got ? 0 : quiet + 1;
-    }
-    return rb_link_result(r, w, fbrl_link_connect(r->link));
+    return rb_link_result(r, w, rb_resync(r));
+}
+
+/* PRINT-LOC's destination (the glossary's port writer): the text goes out on the
+ * controller's line as it is, as the thesis's PRINT-LOC did. A controller takes the line
+ * for a command and rejects it; its answer is discarded and the link resynchronised. */
+static void print_to_port(void *ctx, const char *s, size_t n)
+{
+    fbrl_robot *r = ctx;
+    if (!r->link) return;
+    if (fbrl_uart_write(r->link->u, s, n, NULL, COMM_TIMEOUT_MS) == FBRL_OK && n && s[n - 1] == '\n')
+        rb_resync(r);
+}
+
+void rb_port_writer(fbrl_robot *r)
+{
+    if (r->g) fbrl_glossary_set_port_writer(r->g, r->link ? print_to_port : NULL, r);
 }
 
 /* .COMM ( -- ): the port's settings as the uart has them now */

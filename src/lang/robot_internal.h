@@ -67,6 +67,10 @@ fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms);
 /* I-6: parse one parameter of the given kind from the input after the word. */
 fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v);
 
+/* robot_comm.c: resynchronise the link after raw output; point PRINT-LOC at the port */
+fbrl_status rb_resync(fbrl_robot *r);
+void rb_port_writer(fbrl_robot *r);
+
 fbrl_status rb_install_comm(fbrl_robot *r);
 fbrl_status rb_install_io(fbrl_robot *r);
 

@@ -53,3 +53,9 @@ T{ S" W1" SWAP TYPE-COM 13 EMIT-COM -> }T
 T{ 1 RESET-COMM -> }T  LOG: W1
                        LOG: NOHELP
 T{ 30 SPEED -> }T  LOG: SPEED 30
+\ PRINT-LOC writes to the communication port: the controller's line (it rejects the
+\ text as a command); the robot discards the answer and resynchronises the link
+CREATE-LOC PL  1E0 2E0 3E0 0E0 -90E0 0E0 PL DEFINE-LOC
+T{ PL PRINT-LOC -> }T  LOG: X*+1.0000*Y*+2.0000*Z*+3.0000*-90.000*
+                       LOG: NOHELP
+T{ 40 SPEED -> }T  LOG: SPEED 40

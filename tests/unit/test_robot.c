@@ -206,6 +206,14 @@ static void offline_words_throw_a_clear_error(void **state)
     }
 }
 
+static void print_loc_needs_the_port(void **state)
+{
+    fixture *f = *state;
+    /* PRINT-LOC's port is the controller's line: none while offline */
+    throws(f, "CREATE-LOC PP PP PRINT-LOC", OFFLINE_CODE);
+    assert_non_null(strstr(fbrl_vm_last_error(f->vm)->message, "no communication port"));
+}
+
 static void arguments_are_checked_before_anything_is_sent(void **state)
 {
     fixture *f = *state;
@@ -481,6 +489,7 @@ int main(void)
         cmocka_unit_test(install_fails_cleanly_when_the_dictionary_is_full),
         cmocka_unit_test_setup_teardown(every_word_has_help, setup, teardown),
         cmocka_unit_test_setup_teardown(offline_words_throw_a_clear_error, setup, teardown),
+        cmocka_unit_test_setup_teardown(print_loc_needs_the_port, setup, teardown),
         cmocka_unit_test_setup_teardown(arguments_are_checked_before_anything_is_sent, setup, teardown),
         cmocka_unit_test_setup_teardown(getreal_getint_getstring, setup, teardown),
         cmocka_unit_test_setup_teardown(parameters_come_from_the_stacks_or_the_line, setup, teardown),
