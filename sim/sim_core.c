@@ -665,7 +665,9 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->master = s->slave = s->lfd = s->conn = s->io = s->ctl = -1;
     s->wake[0] = s->wake[1] = -1;
     s->urgent = -1;
-    s->rxcap = o->rx_buffer > 0 ? o->rx_buffer : 128;
+    /* Without a line model the buffer stands in for the kernel's: large, so that XON
+     * from the host is still read while the controller waits for output to drain. */
+    s->rxcap = o->baud > 0 ? (o->rx_buffer > 0 ? o->rx_buffer : 128) : 65536;
     s->rx = malloc((size_t)s->rxcap);
     s->state_path = dupstr(o->state_path);
     s->log_path = dupstr(o->log_path);

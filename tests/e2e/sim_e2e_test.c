@@ -1121,6 +1121,39 @@ static void t_faults(void **st)
     stop(&p);
 }
 
+/* Random keystrokes (no W: WAIT could wait for ever): the emulator survives
+ * and still answers afterwards. Runs under the sanitizers in CI. */
+static void t_garbage(void **st)
+{
+    static const char alphabet[] = "ABCDEFGHIJKLMNOPQSTUVXYZ0123456789 ,.-+*/()=#\"\r\r\r\b\x18\x7f\x01\x13\x11";
+    simp p;
+    unsigned long x = 99;
+    char chunk[256];
+    int i, k;
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "HOME");
+    for (i = 0; i < 200; i++) {
+        for (k = 0; k < (int)sizeof chunk; k++) {
+            x = x * 6364136223846793005UL + 1442695040888963407UL;
+            chunk[k] = alphabet[(x >> 33) % (sizeof alphabet - 1)];
+        }
+        put(&p, chunk, sizeof chunk);
+        read_until(&p, g_buf, sizeof g_buf, NULL, 0.005); /* keep the pty drained */
+    }
+    puts_(&p, "\x11\x18\r");
+    read_until(&p, g_buf, sizeof g_buf, NULL, 1.0);
+    puts_(&p, "\x11\x18");
+    read_until(&p, g_buf, sizeof g_buf, NULL, 0.3);
+    ok(&p, "NOHELP");
+    ok(&p, "FINISH");
+    ok(&p, "NOLIMP");
+    ok(&p, "ARM ON");
+    ok(&p, "READY");
+    at(&p, 12, 0, 20, 0, 0);
+    stop(&p);
+}
+
 /* ---- the command log ------------------------------------------------- */
 
 static void t_log(void **st)
@@ -1251,7 +1284,7 @@ int main(int argc, char **argv)
           cmocka_unit_test(t_run))
     GROUP("persist", cmocka_unit_test(t_persist))
     GROUP("baud", cmocka_unit_test(t_baud))
-    GROUP("faults", cmocka_unit_test(t_faults))
+    GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp))
     GROUP("embed", cmocka_unit_test(t_embed))
