@@ -784,6 +784,22 @@ static void t_inputs_script(void **st)
     ok(&p, "WAIT 2,-1"); /* 5 simulated seconds = 0.5 s */
     assert_string_equal(status_line(&p, "INPUTS"), "INPUTS  1-16: 0100000000000000");
     stop(&p);
+    /* a line fbrlsim does not understand stops it at start */
+    f = fopen(script, "w");
+    fprintf(f, "1 IN 17 1\n");
+    fclose(f);
+    {
+        int pid = fork(), stt;
+        if (pid == 0) {
+            int dn = open("/dev/null", O_WRONLY);
+            dup2(dn, 1);
+            dup2(dn, 2);
+            execl(FBRLSIM_PATH, FBRLSIM_PATH, "--inputs", script, (char *)NULL);
+            _exit(127);
+        }
+        waitpid(pid, &stt, 0);
+        assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+    }
 }
 
 static void t_gripper(void **st)
@@ -962,7 +978,21 @@ static void t_run(void **st)
     }
     assert_string_equal(cmd(&p, "RUN BAD"), "BEFORE\r\n011-LOCATION UNDEFINED.\r\n");
     err(&p, "RUN NONE", 17);
+    err(&p, "RUN COUNT,0", 18);
     stop(&p);
+    /* the programs are written back with the rest of the memory */
+    {
+        char text[4096];
+        size_t n;
+        f = fopen(state, "r");
+        assert_non_null(f);
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_non_null(strstr(text, "\nVAR N 5\n"));
+        assert_non_null(strstr(text, "\nPROGRAM COUNT\n  N=N+1\n  JOINT 1,1\nEND\n"));
+        assert_non_null(strstr(text, "\nPROGRAM BAD\n  TYPE BEFORE\n  MOVE NOWHERE\n  TYPE AFTER\nEND\n"));
+    }
 }
 
 /* ---- persistence ----------------------------------------------------- */
