@@ -1280,6 +1280,19 @@ static void t_embed(void **st)
     o.time_scale = 0;
     assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EINVAL);
     assert_null(s);
+    {
+        /* a --link that names an ordinary file is refused, and the file kept */
+        const char *plain = tmp("plain-file");
+        FILE *f = fopen(plain, "w");
+        fputs("keep\n", f);
+        fclose(f);
+        fbrl_sim_options_init(&o);
+        o.link_path = plain;
+        assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EIO);
+        assert_non_null(strstr(e, "not a symlink"));
+        assert_int_equal(stat(plain, &sb), 0);
+        assert_true(S_ISREG(sb.st_mode));
+    }
     fbrl_sim_options_init(&o);
     o.faults = "bogus=1";
     assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EIO);
