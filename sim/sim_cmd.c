@@ -576,6 +576,14 @@ static int move_line(fbrl_sim *s, const double pose[6], const double *qknown)
     fbrl_sim_arm_fk(qt, tool_len(s), s->pb);
     if (fbrl_sim_arm_check_line(from, s->pb, tool_len(s), s->q[0]) != 0)
         return 68;
+    {
+        /* the line must end in the target's own configuration (a precision point may
+         * hold the other reach) */
+        double qe[NAXES];
+        if (fbrl_sim_arm_ik(s->pb, tool_len(s), s->q[0], qe) != 0
+            || fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
+            return 68;
+    }
     memcpy(s->pa, from, sizeof from);
     d = sqrt((s->pb[0] - from[0]) * (s->pb[0] - from[0]) + (s->pb[1] - from[1]) * (s->pb[1] - from[1])
              + (s->pb[2] - from[2]) * (s->pb[2] - from[2]));
