@@ -1684,7 +1684,13 @@ static int h_status(fbrl_sim *s, args *a, int *b)
     for (i = 0; i < NAXES; i++)
         sim_out_printf(o, i ? " %c" : "%c", s->homed ? 'Y' : 'N');
     sim_out_printf(o, "\r\nREQUESTED ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
-    sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
+    {
+        /* backward when the tool point lies behind the base axis, seen along the waist */
+        double pose[6], w = q[0] * 3.14159265358979323846 / 180.0;
+        fbrl_sim_arm_fk(q, tool_len(s), pose);
+        sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH %s/ELBOW UP/WRIST FREE\r\n",
+                       pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
+    }
     sim_out_printf(o, "MANUAL MODE STATUS IS %s\r\n", s->manual ? "ON" : "OFF");
     sim_out_printf(o, "ARM POWER IS %s\r\n", s->power ? "ON" : "OFF");
     sim_out_printf(o, "PENDANT LAMP IS %s\r\n", s->flash ? "FLASHING" : "OFF");

@@ -592,6 +592,13 @@ static void t_motion_errors(void **st)
     ok(&p, "LOCK 5");
     ok(&p, "READY"); /* READY clears LOCK */
     assert_string_equal(status_line(&p, "LOCK "), "LOCK         N N N N N");
+    assert_string_equal(status_line(&p, "CURRENT ROBOT"), "CURRENT ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE");
+    /* a target whose forward reach passes the waist limit is reached backward, over the shoulder */
+    ok(&p, "POINT BACK,-2.5,-0.1,30.5,0,30,0");
+    ok(&p, "MOVE BACK");
+    at(&p, -2.5, -0.1, 30.5, 30, 0);
+    assert_string_equal(status_line(&p, "CURRENT ROBOT"), "CURRENT ROBOT CONFIG : UPRIGHT/REACH BACKWARD/ELBOW UP/WRIST FREE");
+    ok(&p, "READY");
     ok(&p, "ARM OFF");
     err(&p, "READY", 40);
     assert_string_equal(status_line(&p, "ARM POWER IS"), "ARM POWER IS OFF");
