@@ -1,0 +1,167 @@
+/* fbrlmon - the FBRL monitor: the language at a terminal, or running files.
+ *
+ *   fbrlmon [options] [FILE...]
+ *
+ * Evaluates -e texts and FILEs in command-line order; then, when standard input
+ * is a terminal, an interactive session (line editing, history, completion);
+ * otherwise standard input line by line. See docs/fbrlmon.md. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "mon.h"
+
+#ifndef FBRL_VERSION
+#define FBRL_VERSION "unknown"
+#endif
+
+#define DICT_BYTES_DEFAULT (8u * 1024u * 1024u)
+
+/* A FILE or -e TEXT, kept in command-line order. */
+typedef struct action {
+    int is_text;
+    const char *arg;
+} action;
+
+typedef struct options {
+    action *actions;
+    size_t n_actions;
+    size_t dict_bytes;
+    int offline;
+} options;
+
+static void usage(FILE *f)
+{
+    fputs("usage: fbrlmon [options] [FILE...]\n"
+          "Evaluate FBRL (Forth) source FILEs in order, then read commands from a\n"
+          "terminal (interactive session) or from piped standard input.\n"
+          "\n"
+          "options:\n"
+          "  -e TEXT          evaluate TEXT (in order with the FILEs)\n"
+          "  --offline        no controller: robot words report an error\n"
+          "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
+          "  -h, --help       show this help and exit\n"
+          "  -V, --version    show the version and exit\n"
+          "\n"
+          "exit status: 0 no error, 1 an error aborted a file, -e text or piped line,\n"
+          "             2 bad command line, 3 could not start\n",
+          f);
+}
+
+static int parse_size(const char *s, size_t *out)
+{
+    char *end;
+    unsigned long long v;
+    errno = 0;
+    v = strtoull(s, &end, 10);
+    if (errno != 0 || end == s)
+        return -1;
+    if (*end == 'K' || *end == 'k')
+        v *= 1024u, end++;
+    else if (*end == 'M' || *end == 'm')
+        v *= 1024u * 1024u, end++;
+    if (*end != '\0' || v == 0 || v > (1ull << 32))
+        return -1;
+    *out = (size_t)v;
+    return 0;
+}
+
+/* Returns -1 to exit with `*status`, 0 to go on. */
+static int parse_args(int argc, char **argv, options *o, int *status)
+{
+    int i, only_files = 0;
+    o->actions = calloc((size_t)argc, sizeof *o->actions);
+    o->dict_bytes = DICT_BYTES_DEFAULT;
+    if (o->actions == NULL) {
+        *status = MON_EXIT_CONNECT;
+        return -1;
+    }
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
+            o->actions[o->n_actions].is_text = 0;
+            o->actions[o->n_actions++].arg = a;
+        } else if (strcmp(a, "--") == 0) {
+            only_files = 1;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage(stdout);
+            *status = MON_EXIT_OK;
+            return -1;
+        } else if (strcmp(a, "-V") == 0 || strcmp(a, "--version") == 0) {
+            printf("fbrlmon (libfbrl) %s\n", FBRL_VERSION);
+            *status = MON_EXIT_OK;
+            return -1;
+        } else if (strcmp(a, "-e") == 0 || strcmp(a, "--dict") == 0) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "fbrlmon: %s needs an argument\n", a);
+                goto bad;
+            }
+            if (a[1] == 'e') {
+                o->actions[o->n_actions].is_text = 1;
+                o->actions[o->n_actions++].arg = argv[++i];
+            } else if (parse_size(argv[++i], &o->dict_bytes) != 0) {
+                fprintf(stderr, "fbrlmon: --dict: bad size '%s'\n", argv[i]);
+                goto bad;
+            }
+        } else if (strcmp(a, "--offline") == 0) {
+            o->offline = 1;
+        } else {
+            fprintf(stderr, "fbrlmon: unknown option '%s'\n", a);
+            goto bad;
+        }
+    }
+    return 0;
+bad:
+    fputs("Try 'fbrlmon --help'.\n", stderr);
+    *status = MON_EXIT_USAGE;
+    return -1;
+}
+
+int main(int argc, char **argv)
+{
+    options opt;
+    mon m;
+    int status = MON_EXIT_OK;
+    size_t i;
+
+    memset(&opt, 0, sizeof opt);
+    if (parse_args(argc, argv, &opt, &status) != 0) {
+        free(opt.actions);
+        return status;
+    }
+    if (mon_open(&m, opt.dict_bytes) != 0) {
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
+
+    for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
+        const action *a = &opt.actions[i];
+        if (a->is_text) {
+            if (mon_eval(&m, a->arg, strlen(a->arg), "-e", 1, 1) == 0)
+                mon_check_closed(&m, "-e", 0);
+        } else {
+            mon_include(&m, a->arg);
+        }
+    }
+
+    if (!fbrl_vm_bye(m.vm)) {
+        if (m.host.in_is_tty) {
+            mon_interactive(&m);
+        } else {
+            unsigned long ln = 0;
+            const char *line;
+            size_t len;
+            while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
+                mon_eval(&m, line, len, "stdin", ++ln, 1);
+            if (!fbrl_vm_bye(m.vm))
+                mon_check_closed(&m, "stdin", ln);
+        }
+    }
+
+    status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
+    mon_close(&m);
+    free(opt.actions);
+    return status;
+}

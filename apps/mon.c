@@ -1,0 +1,123 @@
+/* mon.c - the monitor's session: VM setup and one-line error reports. */
+#include "mon.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int mon_open(mon *m, size_t dict_bytes)
+{
+    fbrl_vm_config cfg;
+    size_t size;
+    fbrl_status st;
+
+    memset(m, 0, sizeof *m);
+    memset(&cfg, 0, sizeof cfg);
+    mon_host_init(&m->host, stdout, STDIN_FILENO, &cfg.host);
+    size = fbrl_vm_size_for(&cfg, dict_bytes);
+    /* calloc's alignment (max_align_t) is at least 16 bytes on the hosts we build for;
+     * aligned_alloc would need C11. */
+    m->vm_mem = calloc(1, size);
+    if (m->vm_mem == NULL) {
+        fprintf(stderr, "fbrlmon: cannot allocate %zu bytes for the VM\n", size);
+        return -1;
+    }
+    cfg.mem = m->vm_mem;
+    cfg.mem_size = size;
+    st = fbrl_vm_create(&m->vm, &cfg);
+    if (st != FBRL_OK) {
+        fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
+        free(m->vm_mem);
+        m->vm_mem = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+void mon_close(mon *m)
+{
+    fflush(m->host.out);
+    mon_host_free(&m->host);
+    free(m->vm_mem);
+    m->vm_mem = NULL;
+    m->vm = NULL;
+}
+
+/* Write s to stderr with control characters shown as '?', so a report is
+ * always exactly one line whatever bytes the input held. */
+static void put_clean(const char *s)
+{
+    for (; *s; s++)
+        fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, stderr);
+}
+
+/* One line: "error: MESSAGE [WORD] (FILE:LINE)". Errors inside an included file
+ * carry that file's name and line; otherwise `where` and the line we counted. */
+static void report(mon *m, fbrl_status st, const char *where, unsigned long line)
+{
+    const fbrl_vm_error *e = fbrl_vm_last_error(m->vm);
+    const char *msg = e != NULL && e->message[0] ? e->message : fbrl_status_str(st);
+
+    mon_host_newline(&m->host);
+    fputs("error: ", stderr);
+    put_clean(msg);
+    if (e != NULL && e->word[0] && strstr(msg, e->word) == NULL) {
+        fputs(e->throw_code == -13 ? " " : " in ", stderr);
+        put_clean(e->word);
+    }
+    if (e != NULL && e->file[0]) {
+        fputs(" (", stderr);
+        put_clean(e->file);
+        fprintf(stderr, ":%lu)", e->line);
+    } else if (where != NULL) {
+        fputs(" (", stderr);
+        put_clean(where);
+        fprintf(stderr, ":%lu)", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
+    }
+    fputc('\n', stderr);
+    fflush(stderr);
+}
+
+int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts)
+{
+    fbrl_status st = fbrl_vm_eval(m->vm, text, len);
+    if (st == FBRL_OK)
+        return 0;
+    report(m, st, where, line);
+    if (counts)
+        m->errors++;
+    return -1;
+}
+
+int mon_include(mon *m, const char *path)
+{
+    fbrl_status st = fbrl_vm_include(m->vm, path);
+    if (st == FBRL_OK)
+        return mon_check_closed(m, path, 0);
+    report(m, st, path, 0);
+    m->errors++;
+    return -1;
+}
+
+int mon_check_closed(mon *m, const char *where, unsigned long line)
+{
+    fbrl_cell c;
+    double f;
+    if (!fbrl_vm_compiling(m->vm))
+        return 0;
+    mon_host_newline(&m->host);
+    fputs("error: unterminated definition at end of input (", stderr);
+    put_clean(where);
+    fprintf(stderr, line ? ":%lu)\n" : ")\n", line);
+    fflush(stderr);
+    m->errors++;
+    /* Back to interpreting, as after any other error: `[` ends compilation and
+     * the open definition stays unfinished (never found); the stacks are emptied. */
+    fbrl_vm_eval(m->vm, "[", 1);
+    while (fbrl_vm_depth(m->vm) > 0 && fbrl_vm_pop(m->vm, &c) == FBRL_OK)
+        ;
+    while (fbrl_vm_fdepth(m->vm) > 0 && fbrl_vm_fpop(m->vm, &f) == FBRL_OK)
+        ;
+    return -1;
+}
