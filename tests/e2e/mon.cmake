@@ -1,0 +1,18 @@
+# End-to-end tests of fbrlmon (label e2e): scripts and piped input, the bad-input
+# cases (tests/e2e/mon_badinput.txt) and an interactive session on a real pty.
+if(TARGET fbrlmon)
+  set(_mon_dir ${CMAKE_CURRENT_SOURCE_DIR}/e2e)
+  set(_mon_tmp ${PROJECT_BINARY_DIR}/e2e-mon)
+  file(MAKE_DIRECTORY ${_mon_tmp})
+
+  foreach(t mon_cases mon_pty)
+    add_executable(${t} ${_mon_dir}/${t}.c)
+    target_compile_definitions(${t} PRIVATE _POSIX_C_SOURCE=200809L _DEFAULT_SOURCE)
+  endforeach()
+
+  add_test(NAME mon_script COMMAND sh ${_mon_dir}/mon_script.sh $<TARGET_FILE:fbrlmon> ${_mon_dir} ${_mon_tmp}/script)
+  add_test(NAME mon_badinput COMMAND mon_cases $<TARGET_FILE:fbrlmon> ${_mon_dir}/mon_badinput.txt ${_mon_tmp})
+  add_test(NAME mon_pty COMMAND mon_pty $<TARGET_FILE:fbrlmon> ${_mon_tmp}/pty)
+  set_tests_properties(mon_script mon_badinput mon_pty PROPERTIES LABELS e2e TIMEOUT 300
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${_mon_dir}/mon_lsan.supp")
+endif()

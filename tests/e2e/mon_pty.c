@@ -1,0 +1,291 @@
+/* mon_pty.c - fbrlmon's interactive session through a real pseudo-terminal:
+ * prompts ("ok>" / "compiling>"), echo and output, one error line, TAB
+ * completion of a word name, KEY in raw mode, and history kept between sessions.
+ *
+ *   mon_pty FBRLMON TMPDIR      exit 0 on success; the transcript is printed on failure */
+#define _XOPEN_SOURCE 600  /* posix_openpt, grantpt, unlockpt, ptsname */
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define TIMEOUT_MS 30000  /* generous: the machine may be loaded, or ASan slow */
+
+typedef struct session {
+    int master;
+    pid_t pid;
+    char buf[65536];  /* everything fbrlmon wrote */
+    size_t len;
+    size_t mark;      /* expect() searches from here */
+} session;
+
+static const char *g_mon, *g_dir;
+static int g_failed;
+
+static long now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+static void transcript(const session *s)
+{
+    size_t i;
+    fprintf(stderr, "---- transcript (%zu bytes) ----\n", s->len);
+    for (i = 0; i < s->len; i++) {
+        unsigned char c = (unsigned char)s->buf[i];
+        if (c == '\n' || (c >= 0x20 && c < 0x7f))
+            fputc(c, stderr);
+        else if (c != '\r')
+            fprintf(stderr, "<%02x>", c);
+    }
+    fprintf(stderr, "\n---- end ----\n");
+}
+
+/* Read what is available within ms milliseconds; 0 at EOF/error. */
+static int pump(session *s, int ms)
+{
+    struct pollfd p;
+    ssize_t n;
+    p.fd = s->master;
+    p.events = POLLIN;
+    if (poll(&p, 1, ms) <= 0)
+        return 1;
+    if (s->len + 1 >= sizeof s->buf)
+        return 0;
+    n = read(s->master, s->buf + s->len, sizeof s->buf - s->len - 1);
+    if (n <= 0)
+        return 0;  /* EIO once the child closed the terminal */
+    s->len += (size_t)n;
+    s->buf[s->len] = '\0';
+    return 1;
+}
+
+/* Wait until `text` appears after the mark; move the mark past it. */
+static int expect(session *s, const char *text, const char *what)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    for (;;) {
+        char *hit;
+        s->buf[s->len] = '\0';
+        hit = strstr(s->buf + s->mark, text);
+        if (hit != NULL) {
+            s->mark = (size_t)(hit - s->buf) + strlen(text);
+            return 1;
+        }
+        if (now_ms() > deadline || !pump(s, 200)) {
+            /* one last look after EOF */
+            hit = strstr(s->buf + s->mark, text);
+            if (hit != NULL) {
+                s->mark = (size_t)(hit - s->buf) + strlen(text);
+                return 1;
+            }
+            fprintf(stderr, "FAIL: %s: did not see \"%s\"\n", what, text);
+            transcript(s);
+            g_failed = 1;
+            return 0;
+        }
+    }
+}
+
+static void type(session *s, const char *text)
+{
+    size_t n = strlen(text), off = 0;
+    while (off < n) {
+        ssize_t w = write(s->master, text + off, n - off);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return;
+        off += (size_t)w;
+    }
+}
+
+static int start(session *s)
+{
+    char hist[1024], *slave;
+    struct winsize ws;
+    memset(s, 0, sizeof *s);
+    s->master = posix_openpt(O_RDWR | O_NOCTTY);
+    if (s->master < 0 || grantpt(s->master) != 0 || unlockpt(s->master) != 0 ||
+        (slave = ptsname(s->master)) == NULL) {
+        perror("mon_pty: posix_openpt");
+        return -1;
+    }
+    memset(&ws, 0, sizeof ws);
+    ws.ws_row = 24;
+    ws.ws_col = 80;
+    ioctl(s->master, TIOCSWINSZ, &ws);
+    snprintf(hist, sizeof hist, "%s/history", g_dir);
+    s->pid = fork();
+    if (s->pid < 0)
+        return -1;
+    if (s->pid == 0) {
+        int fd;
+        setsid();
+        fd = open(slave, O_RDWR);  /* becomes the controlling terminal */
+        if (fd < 0)
+            _exit(127);
+        dup2(fd, 0);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        if (fd > 2)
+            close(fd);
+        close(s->master);
+        setenv("HOME", g_dir, 1);  /* no ~/.editrc of the person running the tests */
+        setenv("FBRLMON_HISTORY", hist, 1);
+        setenv("TERM", "vt100", 1);
+        execl(g_mon, g_mon, "--offline", (char *)NULL);
+        _exit(127);
+    }
+    return 0;
+}
+
+/* Wait for the child to end; its exit status, or -1. */
+static int finish(session *s)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    int st;
+    for (;;) {
+        pid_t r = waitpid(s->pid, &st, WNOHANG);
+        if (r == s->pid)
+            break;
+        if (now_ms() > deadline) {
+            kill(s->pid, SIGKILL);
+            waitpid(s->pid, &st, 0);
+            fprintf(stderr, "FAIL: fbrlmon did not exit\n");
+            transcript(s);
+            g_failed = 1;
+            close(s->master);
+            return -1;
+        }
+        pump(s, 50);
+    }
+    while (pump(s, 0) && s->len < sizeof s->buf - 1) {
+        struct pollfd p;
+        p.fd = s->master;
+        p.events = POLLIN;
+        if (poll(&p, 1, 0) <= 0)
+            break;
+    }
+    close(s->master);
+    if (!WIFEXITED(st)) {
+        fprintf(stderr, "FAIL: fbrlmon died (signal %d)\n", WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+        transcript(s);
+        g_failed = 1;
+        return -1;
+    }
+    return WEXITSTATUS(st);
+}
+
+static int file_contains(const char *path, const char *text)
+{
+    char buf[65536];
+    size_t n;
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return 0;
+    n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    return strstr(buf, text) != NULL;
+}
+
+int main(int argc, char **argv)
+{
+    session s;
+    char hist[1024];
+    int st;
+
+    if (argc != 3) {
+        fprintf(stderr, "usage: mon_pty FBRLMON TMPDIR\n");
+        return 2;
+    }
+    g_mon = argv[1];
+    g_dir = argv[2];
+    mkdir(g_dir, 0700);
+    snprintf(hist, sizeof hist, "%s/history", g_dir);
+    unlink(hist);
+
+    /* Session 1. */
+    if (start(&s) != 0)
+        return 1;
+    if (expect(&s, "ok> ", "first prompt")) {
+        type(&s, "1 2 + .\r");
+        expect(&s, "1 2 + .", "echo of the typed line");
+        expect(&s, "3 ", "output of 1 2 + .");
+        expect(&s, "ok> ", "prompt after a line");
+        /* A definition spanning lines changes the prompt. */
+        type(&s, ": zebra-count\r");
+        expect(&s, "compiling> ", "prompt inside a definition");
+        type(&s, "42 ;\r");
+        expect(&s, "ok> ", "prompt after the definition");
+        /* One clear error line; the session goes on. */
+        type(&s, "nosuchword\r");
+        expect(&s, "error: ", "error line");
+        expect(&s, "nosuchword", "error names the word");
+        expect(&s, "ok> ", "prompt after an error");
+        /* TAB completes a unique prefix (without completion "zeb" is undefined). */
+        type(&s, "zeb\t");
+        expect(&s, "ra-count", "TAB completion echo");
+        type(&s, ".\r");
+        expect(&s, "42 ", "completed word runs");
+        expect(&s, "ok> ", "prompt after completed line");
+        /* KEY reads one key without waiting for Enter. */
+        type(&s, "key .\r");
+        expect(&s, "key .", "echo of key line");
+        type(&s, "A");
+        expect(&s, "65 ", "KEY got the key");
+        expect(&s, "ok> ", "prompt after KEY");
+        type(&s, "1000 7 + .\r");
+        expect(&s, "1007 ", "last line of session 1");
+        expect(&s, "ok> ", "prompt before end");
+        type(&s, "\004");  /* Ctrl-D: end of input */
+        st = finish(&s);
+        if (st != 0 && st != -1) {
+            fprintf(stderr, "FAIL: session 1 exit status %d (errors typed at the terminal must not count)\n", st);
+            transcript(&s);
+            g_failed = 1;
+        }
+    } else {
+        kill(s.pid, SIGKILL);
+        finish(&s);
+    }
+
+    if (!file_contains(hist, "zebra-count")) {
+        fprintf(stderr, "FAIL: history file %s lacks the typed lines\n", hist);
+        g_failed = 1;
+    }
+
+    /* Session 2: the previous session's last line is one Ctrl-P away. */
+    if (!g_failed && start(&s) == 0) {
+        if (expect(&s, "ok> ", "session 2 prompt")) {
+            type(&s, "\020\r");
+            expect(&s, "1007 ", "history recalled from session 1");
+            expect(&s, "ok> ", "session 2 prompt after recall");
+            type(&s, "bye\r");
+            st = finish(&s);
+            if (st != 0 && st != -1) {
+                fprintf(stderr, "FAIL: session 2 exit status %d\n", st);
+                transcript(&s);
+                g_failed = 1;
+            }
+        } else {
+            kill(s.pid, SIGKILL);
+            finish(&s);
+        }
+    }
+    if (!g_failed)
+        printf("mon_pty: all interactive checks passed\n");
+    return g_failed;
+}
