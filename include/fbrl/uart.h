@@ -48,7 +48,18 @@ typedef struct fbrl_uart_counters {
 #define FBRL_UART_LS_PARITY  0x2u
 #define FBRL_UART_LS_FRAMING 0x4u
 
-/* What a backend provides. ctx is the backend's own state. */
+/* What a backend provides. ctx is the backend's own state.
+ *
+ * Contract (the 8250, POSIX and libserialport backends all follow it):
+ *  - configure, service and close are called by the main line only.
+ *  - tx_kick and now_us may be called from both sides: the core calls tx_kick from
+ *    fbrl_uart_isr_rx() when it must send XOFF, or restart output after the peer's
+ *    XON, and now_us from the interrupt side to time XOFF holds. Both must be safe
+ *    there (no blocking; on bare metal: no re-enabling interrupts).
+ *  - After tx_kick, the backend calls fbrl_uart_isr_tx() until it returns -1 (or its
+ *    transmitter is full); it need not call it again until the next tx_kick.
+ *  - The backend calls the fbrl_uart_isr_*() entry points from one context at a time
+ *    (its interrupt handler, service thread, or service() itself), never from two. */
 typedef struct fbrl_uart_ops {
     /* Program the line (baud, bits, parity, stop bits). Unsupported settings: FBRL_EUNSUPPORTED. */
     fbrl_status (*configure)(void *ctx, const fbrl_uart_config *cfg);
@@ -64,8 +75,98 @@ typedef struct fbrl_uart_ops {
     fbrl_status (*close)(void *ctx);
 } fbrl_uart_ops;
 
-/* struct fbrl_uart (caller-owned, fields private), fbrl_uart_init(), read/write/drain,
- * counters and the fbrl_uart_isr_*() entry points are declared below by the uart module. */
+/* Counter slots kept by the interrupt side (private; see fbrl_uart_counters). */
+#define FBRL_UART_NCOUNTERS 8
+
+/* One serial port: caller-owned storage; every field is private. Sharing rules:
+ * the interrupt side (fbrl_uart_isr_*) writes the rx ring, the flow-control state
+ * and the raw counters; the main line writes the tx ring and the config. A reader
+ * thread and a writer thread may use fbrl_uart_read() and fbrl_uart_write() at the
+ * same time; every other main-line call belongs to one thread at a time. */
+typedef struct fbrl_uart {
+    fbrl_ring rx, tx;
+    const fbrl_uart_ops *ops;
+    void *ctx;
+    fbrl_uart_config cfg;
+    size_t open;                 /* 1 between init and close */
+    size_t flow;                 /* 1 = XON/XOFF (copy of cfg.flow for the interrupt side) */
+    size_t rx_high, rx_low;      /* send XOFF at >= rx_high stored bytes, XON at <= rx_low */
+    /* interrupt side */
+    size_t peer_xoff;            /* 1 while the peer's XOFF is in force */
+    size_t rx_stopped;           /* 1 from our XOFF until our XON */
+    size_t ctl_pending;          /* FBRL_XOFF waiting to jump the tx queue, or 0 */
+    size_t held_since;           /* now_us (low bits) when the peer's XOFF began */
+    size_t raw[FBRL_UART_NCOUNTERS];
+    /* main line: 64-bit totals extended from raw (wrap-safe on 32-bit targets) */
+    size_t seen[FBRL_UART_NCOUNTERS];
+    uint64_t total[FBRL_UART_NCOUNTERS];
+} fbrl_uart;
+
+/* Open a port over a backend. rx_storage/tx_storage become the rings (any size >= 2;
+ * the largest power of two that fits is used, see fbrl/ring.h); cfg is checked
+ * (baud > 0, data bits 5..8, parity N/E/O, stop bits 1..2, flow NONE/XONXOFF:
+ * otherwise FBRL_EINVAL) and passed to ops->configure. ops->configure, tx_kick,
+ * service and now_us must be non-NULL. */
+fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx,
+                           void *rx_storage, size_t rx_size,
+                           void *tx_storage, size_t tx_size,
+                           const fbrl_uart_config *cfg);
+
+/* Change the line settings (same checks as init). Pending bytes are not drained:
+ * call fbrl_uart_drain() first if they must leave at the old settings. */
+fbrl_status fbrl_uart_configure(fbrl_uart *u, const fbrl_uart_config *cfg);
+
+/* Current settings. */
+fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
+
+/* Queue len bytes for sending, waiting up to timeout_ms for room (0 = take what
+ * fits now). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
+ * first; *written (may be NULL) tells how many were queued either way. With XON/XOFF
+ * the bytes 0x11 and 0x13 cannot be sent as data (the peer would obey them). */
+fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
+                            uint32_t timeout_ms);
+
+/* Take up to len received bytes, waiting up to timeout_ms for the first one (0 = do
+ * not wait). Returns as soon as at least one byte is there: FBRL_OK with *got >= 1
+ * (len 0: FBRL_OK, *got 0), FBRL_ETIMEOUT with *got 0 when none came in time. Bytes
+ * already received are returned before a backend error such as FBRL_EDISCONNECTED. */
+fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
+                           uint32_t timeout_ms);
+
+/* Wait until every queued byte has been handed to the backend (the tx ring is empty),
+ * at most timeout_ms. A peer's XOFF can hold this up: FBRL_ETIMEOUT then. */
+fbrl_status fbrl_uart_drain(fbrl_uart *u, uint32_t timeout_ms);
+
+/* Bytes waiting to be read / waiting to be sent (0 for a bad handle). */
+size_t fbrl_uart_rx_available(const fbrl_uart *u);
+size_t fbrl_uart_tx_pending(const fbrl_uart *u);
+
+/* 1 while the peer's XOFF holds our transmitter, 0 otherwise (or bad handle). */
+int fbrl_uart_peer_stopped(const fbrl_uart *u);
+
+/* Snapshot of the counters since init. Call it from one main-line thread at a time;
+ * on 32-bit targets call it at least once per 2^32 counted events or microseconds
+ * held (71 minutes of continuous XOFF) so the 64-bit totals stay exact. */
+fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out);
+
+/* Release the port through ops->close (if any); the handle is unusable afterwards. */
+fbrl_status fbrl_uart_close(fbrl_uart *u);
+
+/* ---- interrupt side: called by backends only ----
+ * These never block and ignore a NULL or closed handle. */
+
+/* One byte arrived from the line. With XON/XOFF, XON and XOFF are obeyed and not
+ * stored; the rest go to the rx ring (a full ring counts an overrun and re-sends
+ * XOFF). Reaching the high-water mark queues XOFF and calls ops->tx_kick. */
+void fbrl_uart_isr_rx(fbrl_uart *u, uint8_t byte);
+
+/* The transmitter has room for one byte: returns it (0..255), or -1 when there is
+ * nothing to send now (queue empty, or held by the peer's XOFF). Flow-control bytes
+ * come first: XOFF when queued, XON once the rx ring has drained to rx_low. */
+int fbrl_uart_isr_tx(fbrl_uart *u);
+
+/* The line reported errors: FBRL_UART_LS_* flags, each counted once per call. */
+void fbrl_uart_isr_line_status(fbrl_uart *u, unsigned flags);
 
 #ifdef __cplusplus
 }

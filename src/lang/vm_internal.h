@@ -1,0 +1,164 @@
+/* vm_internal.h - the FBRL engine's private structures (not installed).
+ *
+ * Memory layout of one VM, all inside the caller's block:
+ *
+ *   [struct fbrl_vm][data stack][return stack][float stack]
+ *   [data region: system variables, buffers, dictionary --> HERE ... <-- word headers][guard]
+ *
+ * The data region is the only memory Forth code can address: every @ ! C@ MOVE ...
+ * is checked against [data_lo, hdr_lo). Word headers (names, kinds, C pointers)
+ * grow down from the guard and are never addressable, so a program cannot corrupt
+ * them. Threaded code lives in the data region; the inner interpreter validates
+ * every non-sequential change of the instruction pointer, and the guard cells at
+ * the very end stop a sequential run-off. */
+#ifndef FBRL_LANG_VM_INTERNAL_H
+#define FBRL_LANG_VM_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/vm.h"
+
+typedef uintptr_t fbrl_ucell;
+#define CELL ((fbrl_cell)sizeof(fbrl_cell))
+#define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
+
+#define FBRL_NAME_MAX 31      /* longest word name (as F-PC) */
+#define FBRL_LINE_MAX 1024    /* longest source line */
+#define FBRL_SRC_MAX 10       /* nested input sources (files, texts, EVALUATE) */
+#define FBRL_CF_MAX 64        /* control-flow stack entries */
+#define FBRL_HASH 512         /* dictionary hash buckets (power of two) */
+#define FBRL_PATH_MAX 256
+#define FBRL_REQ_POOL 4096    /* bytes for REQUIRE's list of included files */
+#define FBRL_GUARD_CELLS 8
+#define FBRL_XT_BASE 4096     /* execution tokens are FBRL_XT_BASE + header index */
+
+/* Sizes of the buffers at the start of the data region. */
+#define FBRL_WORDBUF 260
+#define FBRL_PADSIZE 256
+#define FBRL_HOLDSIZE 260
+#define FBRL_SBUF 256         /* each of the two interpretation-state S" buffers */
+
+enum {
+#define OP(id, name, flags, stack, help) OP_##id,
+#include "ops.def"
+#undef OP
+    OP__END
+};
+
+/* word kinds */
+enum { K_PRIM, K_COLON, K_VAR, K_CREATE, K_CONST, K_2CONST, K_FCONST, K_VALUE, K_2VALUE,
+       K_FVALUE, K_DEFER, K_CFUNC, K_MARKER };
+/* header flags */
+#define FI 1u   /* immediate */
+#define FC 2u   /* compile-only */
+#define FH 4u   /* hidden (being defined, or :NONAME) */
+
+typedef struct fbrl_hdr {
+    uint32_t next;            /* next header in the hash chain, as index+1 (0 = end) */
+    uint8_t kind, flags, len;
+    char name[FBRL_NAME_MAX + 1];
+    uint16_t op;              /* K_PRIM: opcode */
+    fbrl_cell body;           /* data field / colon body (a data-region address) */
+    fbrl_cell end;            /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
+    fbrl_cell does;           /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
+    fbrl_vm_prim fn;          /* K_CFUNC */
+    void *arg;
+    const char *stack, *help; /* HELP text (NUL-terminated) */
+} fbrl_hdr;
+
+enum { SRC_TEXT, SRC_FILE, SRC_STRING };
+
+typedef struct fbrl_src {
+    int kind;
+    char *buf;                /* current line (data region) */
+    size_t len;
+    char *linebuf;            /* SRC_TEXT/SRC_FILE: this level's line buffer */
+    const char *text, *text_end; /* SRC_TEXT: text not yet read */
+    void *fh;                 /* SRC_FILE: host handle */
+    unsigned long line;
+    fbrl_cell id;             /* SOURCE-ID */
+    fbrl_cell saved_in;       /* the parent's >IN */
+    char path[FBRL_PATH_MAX]; /* SRC_FILE: the file's path */
+} fbrl_src;
+
+enum { CF_COLON = 1, CF_ORIG, CF_DEST, CF_DO, CF_CASE, CF_OF, CF_ENDOF };
+
+typedef struct fbrl_cf { int tag; fbrl_cell a; } fbrl_cf;
+
+/* THROW codes the engine uses internally to unwind without being catchable. */
+#define THROW_BYE (-100000)
+#define THROW_QUIT (-56)
+/* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
+#define FBRL_THROW_STATUS(st) (-300 + (int)(st))
+
+struct fbrl_vm {
+    fbrl_vm_host host;
+    unsigned char *mem_end;
+    /* stacks: sp/rp point at the next free slot */
+    fbrl_cell *ds0, *ds_end, *sp;
+    fbrl_cell *rs0, *rs_end, *rp;
+    double *fs0, *fs_end, *fp;
+    /* data region */
+    unsigned char *data_lo;   /* first addressable byte */
+    unsigned char *dict_lo;   /* first dictionary byte (MARKER cannot go below) */
+    unsigned char *here;
+    fbrl_hdr *hdr_top;        /* header i is hdr_top[-1 - i] */
+    unsigned char *data_hi;   /* end of the addressable region = lowest header */
+    uint32_t nwords;
+    uint32_t hash[FBRL_HASH];
+    fbrl_cell *base, *state, *toin;  /* system variables in the data region */
+    char *wordbuf, *pad, *hold, *sbuf;
+    char *hld;                /* pictured output: next free position (moves down) */
+    int sbuf_next;
+    /* compilation */
+    fbrl_cf cf[FBRL_CF_MAX];
+    int ncf;
+    int defining;             /* a definition is open */
+    uint32_t def_word;        /* its header index */
+    unsigned char *def_here;  /* HERE before it started */
+    uint32_t def_nwords;
+    /* input sources */
+    fbrl_src src[FBRL_SRC_MAX];
+    int nsrc;
+    int nest;                 /* nested run() calls */
+    fbrl_cell handler;        /* return-stack depth of the innermost CATCH frame, 0 = none */
+    /* errors */
+    int pending_throw;
+    const char *pending_msg;
+    int pending_code;         /* the code pending_msg belongs to */
+    char throw_msg[128];      /* ABORT" text, or a C word's message */
+    int err_captured;
+    char cur_word[64];
+    fbrl_vm_error err;
+    int bye;
+    int running;              /* inside fbrl_vm_eval/include */
+    int precision;
+    fbrl_cell catch_depth_limit;
+    char req_pool[FBRL_REQ_POOL];
+    size_t req_used;
+    fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */
+};
+
+#define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
+
+/* True if [a, a+n) lies inside the VM's addressable data region. */
+static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
+{
+    fbrl_ucell size = (fbrl_ucell)(vm->data_hi - vm->data_lo);
+    fbrl_ucell off = (fbrl_ucell)a - (fbrl_ucell)vm->data_lo;
+    return (fbrl_ucell)n <= size && off <= size - (fbrl_ucell)n;
+}
+
+/* vm.c */
+int fbrl__run(fbrl_vm *vm, fbrl_cell xt);
+int fbrl__throw_msg(fbrl_vm *vm, int code, const char *msg);
+fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt);
+int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);
+void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
+void fbrl__puts(fbrl_vm *vm, const char *s);
+const char *fbrl__throw_text(int code);
+
+/* words_fbrl.c */
+fbrl_status fbrl__fbrl_words(fbrl_vm *vm);
+
+#endif

@@ -1,0 +1,1193 @@
+/* words.c - the words that are not worth inlining in the inner interpreter:
+ * double-cell arithmetic, control-structure compilers, defining and parsing words,
+ * number and float formatting, and the tools (.S SEE WORDS DUMP HELP).
+ * Each group works on the VM's own stack pointers (run.c saved them). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "words.h"
+
+#define U(x) ((fbrl_ucell)(x))
+
+/* ---- stack access for helpers ---- */
+static int pop(fbrl_vm *vm, fbrl_cell *v)
+{
+    if (vm->sp <= vm->ds0) return -4;
+    *v = *--vm->sp;
+    return 0;
+}
+static int push(fbrl_vm *vm, fbrl_cell v)
+{
+    if (vm->sp >= vm->ds_end) return -3;
+    *vm->sp++ = v;
+    return 0;
+}
+static int need(fbrl_vm *vm, int n) { return vm->sp - vm->ds0 < n ? -4 : 0; }
+static int fpop(fbrl_vm *vm, double *v)
+{
+    if (vm->fp <= vm->fs0) return -45;
+    *v = *--vm->fp;
+    return 0;
+}
+static int fpush(fbrl_vm *vm, double v)
+{
+    if (vm->fp >= vm->fs_end) return -44;
+    *vm->fp++ = v;
+    return 0;
+}
+/* pop a string ( a u ) that must lie in data space */
+static int pop_str(fbrl_vm *vm, const char **s, size_t *n)
+{
+    fbrl_cell a, u;
+    if (need(vm, 2)) return -4;
+    u = *--vm->sp;
+    a = *--vm->sp;
+    if (u < 0) return -24;
+    if (u > 0 && !fbrl__addr_ok(vm, a, u)) return -9;
+    *s = u ? (const char *)a : "";
+    *n = (size_t)u;
+    return 0;
+}
+
+/* ---- double-cell arithmetic (portable: half-cell products, shift-subtract division) ---- */
+void fbrl__umul(fbrl_ucell a, fbrl_ucell b, fbrl_ucell *hi, fbrl_ucell *lo)
+{
+    const int hb = CELL_BITS / 2;
+    const fbrl_ucell m = ((fbrl_ucell)1 << hb) - 1;
+    fbrl_ucell a0 = a & m, a1 = a >> hb, b0 = b & m, b1 = b >> hb;
+    fbrl_ucell p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    fbrl_ucell mid = (p00 >> hb) + (p01 & m) + (p10 & m);
+    *lo = (p00 & m) | (mid << hb);
+    *hi = p11 + (p01 >> hb) + (p10 >> hb) + (mid >> hb);
+}
+
+/* (hi:lo) / d with hi < d */
+void fbrl__udiv(fbrl_ucell hi, fbrl_ucell lo, fbrl_ucell d, fbrl_ucell *q, fbrl_ucell *r)
+{
+    for (int i = 0; i < CELL_BITS; i++) {
+        fbrl_ucell top = hi >> (CELL_BITS - 1);
+        hi = (hi << 1) | (lo >> (CELL_BITS - 1));
+        lo <<= 1;
+        if (top || hi >= d) { hi -= d; lo |= 1; }
+    }
+    *q = lo;
+    *r = hi;
+}
+
+static void dneg(fbrl_ucell *lo, fbrl_ucell *hi)
+{
+    *lo = ~*lo + 1;
+    *hi = ~*hi + (*lo == 0);
+}
+
+void fbrl__mstar(fbrl_cell a, fbrl_cell b, fbrl_cell *lo, fbrl_cell *hi)
+{
+    fbrl_ucell ua = a < 0 ? 0 - U(a) : U(a), ub = b < 0 ? 0 - U(b) : U(b), h, l;
+    fbrl__umul(ua, ub, &h, &l);
+    if ((a < 0) != (b < 0)) dneg(&l, &h);
+    *lo = (fbrl_cell)l;
+    *hi = (fbrl_cell)h;
+}
+
+int fbrl__dsdiv(fbrl_cell lo, fbrl_cell hi, fbrl_cell n, int floored, fbrl_cell *q, fbrl_cell *r)
+{
+    if (n == 0) return -10;
+    fbrl_ucell l = U(lo), h = U(hi), un = n < 0 ? 0 - U(n) : U(n), uq, ur;
+    int nd = hi < 0, nn = n < 0;
+    if (nd) dneg(&l, &h);
+    if (h >= un) return -11;
+    fbrl__udiv(h, l, un, &uq, &ur);
+    const fbrl_ucell maxpos = (~(fbrl_ucell)0) >> 1;
+    fbrl_cell qs, rs;
+    if (nd != nn) {
+        if (uq > maxpos + 1) return -11;
+        qs = (fbrl_cell)(0 - uq);
+    } else {
+        if (uq > maxpos) return -11;
+        qs = (fbrl_cell)uq;
+    }
+    rs = nd ? (fbrl_cell)(0 - ur) : (fbrl_cell)ur;
+    if (floored && rs != 0 && ((rs < 0) != (n < 0))) {
+        if (qs == (fbrl_cell)(maxpos + 1)) return -11;
+        qs--;
+        rs = (fbrl_cell)(U(rs) + U(n));
+    }
+    *q = qs;
+    *r = rs;
+    return 0;
+}
+
+int fbrl__starslash(fbrl_cell a, fbrl_cell b, fbrl_cell c, fbrl_cell *q, fbrl_cell *r)
+{
+    fbrl_cell lo, hi;
+    fbrl__mstar(a, b, &lo, &hi);
+    return fbrl__dsdiv(lo, hi, c, 1, q, r);
+}
+
+int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div)
+{
+    if (div == 0) return -10;
+    if (div < 0) return -24;
+    fbrl_ucell l = U(*lo), h = U(*hi), un = n < 0 ? 0 - U(n) : U(n), ud = U(div);
+    int neg = (*hi < 0) != (n < 0);
+    if (*hi < 0) dneg(&l, &h);
+    fbrl_ucell h1, l1, h2, l2, t0, t1, t2, q0, q1, r;
+    fbrl__umul(l, un, &h1, &l1);
+    fbrl__umul(h, un, &h2, &l2);
+    t0 = l1;
+    t1 = h1 + l2;
+    t2 = h2 + (t1 < h1);
+    if (t2 >= ud) return -11;
+    fbrl__udiv(t2, t1, ud, &q1, &r);
+    fbrl__udiv(r, t0, ud, &q0, &r);
+    if (neg && r) { q0++; q1 += q0 == 0; }
+    if (q1 >> (CELL_BITS - 1)) return -11;
+    if (neg) dneg(&q0, &q1);
+    *lo = (fbrl_cell)q0;
+    *hi = (fbrl_cell)q1;
+    return 0;
+}
+
+double fbrl__d_to_f(fbrl_cell lo, fbrl_cell hi)
+{
+    return (double)hi * ldexp(1.0, CELL_BITS) + (double)U(lo);
+}
+
+int fbrl__f_to_d(double r, fbrl_cell *lo, fbrl_cell *hi)
+{
+    double t = trunc(r), a = fabs(t), base = ldexp(1.0, CELL_BITS);
+    if (!(a < base * base / 2)) return -11;
+    fbrl_ucell h = (fbrl_ucell)floor(a / base);
+    fbrl_ucell l = (fbrl_ucell)(a - (double)h * base);
+    if (t < 0) dneg(&l, &h);
+    *lo = (fbrl_cell)l;
+    *hi = (fbrl_cell)h;
+    return 0;
+}
+
+/* ---- strings ---- */
+int fbrl__w_string(fbrl_vm *vm, int op)
+{
+    fbrl_cell a, u, n;
+    const char *s1, *s2;
+    size_t n1, n2;
+    int r;
+    switch (op) {
+    case OP_COMPARE:
+        if ((r = need(vm, 4)) || (r = pop_str(vm, &s2, &n2)) || (r = pop_str(vm, &s1, &n1))) return r;
+        {
+            size_t m = n1 < n2 ? n1 : n2;
+            int c = m ? memcmp(s1, s2, m) : 0;
+            if (c == 0) c = n1 < n2 ? -1 : n1 > n2;
+            return push(vm, c < 0 ? -1 : c > 0);
+        }
+    case OP_SEARCH:
+        if ((r = need(vm, 4)) || (r = pop_str(vm, &s2, &n2)) || (r = pop_str(vm, &s1, &n1))) return r;
+        for (size_t i = 0; n2 <= n1 && i <= n1 - n2; i++) {
+            if (n2 == 0 || memcmp(s1 + i, s2, n2) == 0) {
+                vm->sp += 2;
+                vm->sp[-2] = (fbrl_cell)(s1 + i);
+                vm->sp[-1] = (fbrl_cell)(n1 - i);
+                return push(vm, -1);
+            }
+        }
+        vm->sp += 2; /* the original a1 u1 are still in place below */
+        return push(vm, 0);
+    case OP_SLASHSTRING:
+        if ((r = need(vm, 3)) || (r = pop(vm, &n))) return r;
+        vm->sp[-2] = (fbrl_cell)(U(vm->sp[-2]) + U(n));
+        vm->sp[-1] = (fbrl_cell)(U(vm->sp[-1]) - U(n));
+        return 0;
+    case OP_MTRAILING:
+        if ((r = need(vm, 2))) return r;
+        a = vm->sp[-2];
+        u = vm->sp[-1];
+        if (u < 0) return -24;
+        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        while (u > 0 && ((const char *)a)[u - 1] == ' ') u--;
+        vm->sp[-1] = u;
+        return 0;
+    }
+    return -21;
+}
+
+/* ---- control structures ---- */
+static int cf_push(fbrl_vm *vm, int tag, fbrl_cell a)
+{
+    if (vm->ncf >= FBRL_CF_MAX) return -52;
+    vm->cf[vm->ncf].tag = tag;
+    vm->cf[vm->ncf].a = a;
+    vm->ncf++;
+    return 0;
+}
+
+static int cf_pop(fbrl_vm *vm, int tag, fbrl_cell *a)
+{
+    if (vm->ncf == 0 || vm->cf[vm->ncf - 1].tag != tag)
+        return fbrl__throw_msg(vm, -22, "control structure mismatch (unbalanced IF/DO/BEGIN/CASE?)");
+    *a = vm->cf[--vm->ncf].a;
+    return 0;
+}
+
+static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
+{
+    int r = fbrl__emit(vm, op);
+    if (r) return r;
+    *orig = (fbrl_cell)vm->here;
+    return fbrl__emit(vm, 0);
+}
+
+static int resolve(fbrl_vm *vm, fbrl_cell orig)
+{
+    fbrl_cell t = (fbrl_cell)vm->here;
+    if (!fbrl__addr_ok(vm, orig, CELL)) return -9;
+    memcpy((void *)orig, &t, sizeof t);
+    return 0;
+}
+
+static int back(fbrl_vm *vm, int op, fbrl_cell dest)
+{
+    int r = fbrl__emit(vm, op);
+    return r ? r : fbrl__emit(vm, dest);
+}
+
+int fbrl__w_control(fbrl_vm *vm, int op)
+{
+    fbrl_cell o = 0, d = 0;
+    int r = 0;
+    if (*vm->state == 0) return -14;
+    switch (op) {
+    case OP_IF: return (r = forward(vm, OP_ZBRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
+    case OP_AHEAD: return (r = forward(vm, OP_BRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
+    case OP_ELSE:
+        if ((r = cf_pop(vm, CF_ORIG, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o))) return r;
+        return cf_push(vm, CF_ORIG, d);
+    case OP_THEN: return (r = cf_pop(vm, CF_ORIG, &o)) ? r : resolve(vm, o);
+    case OP_BEGIN: return cf_push(vm, CF_DEST, (fbrl_cell)vm->here);
+    case OP_UNTIL: return (r = cf_pop(vm, CF_DEST, &d)) ? r : back(vm, OP_ZBRANCH, d);
+    case OP_AGAIN: return (r = cf_pop(vm, CF_DEST, &d)) ? r : back(vm, OP_BRANCH, d);
+    case OP_WHILE:
+        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = forward(vm, OP_ZBRANCH, &o)) || (r = cf_push(vm, CF_ORIG, o)))
+            return r;
+        return cf_push(vm, CF_DEST, d);
+    case OP_REPEAT:
+        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = back(vm, OP_BRANCH, d)) || (r = cf_pop(vm, CF_ORIG, &o)))
+            return r;
+        return resolve(vm, o);
+    case OP_DO: case OP_QDO:
+        if ((r = forward(vm, op == OP_DO ? OP_PDO : OP_PQDO, &o)) || (r = cf_push(vm, CF_DO, o))) return r;
+        return cf_push(vm, CF_DEST, (fbrl_cell)vm->here);
+    case OP_LOOP: case OP_PLUSLOOP:
+        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = cf_pop(vm, CF_DO, &o))) return r;
+        if ((r = back(vm, op == OP_LOOP ? OP_PLOOP : OP_PPLOOP, d))) return r;
+        return resolve(vm, o);
+    case OP_CASE: return cf_push(vm, CF_CASE, 0);
+    case OP_OF: return (r = forward(vm, OP_POF, &o)) ? r : cf_push(vm, CF_OF, o);
+    case OP_ENDOF:
+        if ((r = cf_pop(vm, CF_OF, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o))) return r;
+        return cf_push(vm, CF_ENDOF, d);
+    case OP_ENDCASE:
+        while (vm->ncf > 0 && vm->cf[vm->ncf - 1].tag == CF_ENDOF) {
+            if ((r = cf_pop(vm, CF_ENDOF, &o)) || (r = resolve(vm, o))) return r;
+        }
+        if ((r = cf_pop(vm, CF_CASE, &o))) return r;
+        return fbrl__emit(vm, OP_DROP);
+    case OP_RECURSE:
+        if (!vm->defining) return -22;
+        return back(vm, OP_CALL, HDR(vm, vm->def_word)->body);
+    case OP_DOES:
+        if (!vm->defining) return -22;
+        return fbrl__emit(vm, OP_DOESSET);
+    }
+    return -21;
+}
+
+/* ---- defining words ---- */
+static int falign_body(fbrl_vm *vm, fbrl_hdr *h)
+{
+    fbrl_ucell a = U(vm->here), m = sizeof(double) - 1;
+    int r = fbrl__allot(vm, (fbrl_cell)(((a + m) & ~m) - a));
+    h->body = (fbrl_cell)vm->here;
+    return r;
+}
+
+int fbrl__w_define(fbrl_vm *vm, int op)
+{
+    fbrl_hdr *h;
+    fbrl_cell v = 0, v2 = 0;
+    double f = 0;
+    int r;
+    switch (op) {
+    case OP_CREATE: return fbrl__create(vm, K_CREATE, "( -- a )", "created word: pushes its data address", &h);
+    case OP_VARIABLE:
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "variable", &h))) return r;
+        return fbrl__emit(vm, 0);
+    case OP_TWOVARIABLE:
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "double variable", &h)) || (r = fbrl__emit(vm, 0))) return r;
+        return fbrl__emit(vm, 0);
+    case OP_CONSTANT: case OP_VALUE:
+        if ((r = pop(vm, &v))) return r;
+        if ((r = fbrl__create(vm, op == OP_CONSTANT ? K_CONST : K_VALUE, "( -- x )",
+                              op == OP_CONSTANT ? "constant" : "value (set with TO)", &h)))
+            return r;
+        return fbrl__emit(vm, v);
+    case OP_TWOCONSTANT: case OP_TWOVALUE:
+        if ((r = need(vm, 2))) return r;
+        pop(vm, &v2);
+        pop(vm, &v);
+        if ((r = fbrl__create(vm, op == OP_TWOCONSTANT ? K_2CONST : K_2VALUE, "( -- x1 x2 )",
+                              op == OP_TWOCONSTANT ? "double constant" : "double value (set with TO)", &h)) ||
+            (r = fbrl__emit(vm, v2)))
+            return r;
+        return fbrl__emit(vm, v);
+    case OP_DEFER:
+        if ((r = fbrl__create(vm, K_DEFER, "( i*x -- j*x )", "deferred word (set with IS)", &h))) return r;
+        return fbrl__emit(vm, 0);
+    case OP_BUFFERCOLON:
+        if ((r = pop(vm, &v))) return r;
+        if (v < 0) return -24;
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "buffer", &h))) return r;
+        return fbrl__allot(vm, v);
+    case OP_MARKER: {
+        unsigned char *here = vm->here;
+        uint32_t n = vm->nwords;
+        if ((r = fbrl__create(vm, K_MARKER, "( -- )", "forget this marker and everything after it", &h)))
+            return r;
+        h->body = (fbrl_cell)here;
+        h->end = (fbrl_cell)n;
+        h->does = (fbrl_cell)vm->req_used;
+        return 0;
+    }
+    case OP_FVARIABLE:
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "float variable", &h)) || (r = falign_body(vm, h))) return r;
+        if ((r = fbrl__allot(vm, (fbrl_cell)sizeof(double)))) return r;
+        memset(vm->here - sizeof(double), 0, sizeof(double));
+        return 0;
+    case OP_FCONSTANT: case OP_FVALUE:
+        if ((r = fpop(vm, &f))) return r;
+        if ((r = fbrl__create(vm, op == OP_FCONSTANT ? K_FCONST : K_FVALUE, "( F: -- r )",
+                              op == OP_FCONSTANT ? "float constant" : "float value (set with TO)", &h)) ||
+            (r = falign_body(vm, h)) || (r = fbrl__allot(vm, (fbrl_cell)sizeof(double))))
+            return r;
+        memcpy(vm->here - sizeof(double), &f, sizeof f);
+        return 0;
+    }
+    return -21;
+}
+
+/* ---- parsing words ---- */
+static int parse_word_xt(fbrl_vm *vm, fbrl_cell *xt, fbrl_hdr **h)
+{
+    const char *name;
+    size_t len;
+    fbrl__parse_name(vm, &name, &len);
+    if (len == 0) return -16;
+    int i = fbrl__find(vm, name, len);
+    if (i < 0) {
+        size_t n = len < 60 ? len : 60;
+        memcpy(vm->cur_word, name, n);
+        vm->cur_word[n] = 0;
+        return -13;
+    }
+    *xt = FBRL_XT_BASE + i;
+    *h = HDR(vm, i);
+    return 0;
+}
+
+/* S\" escapes; parses up to the closing quote into out */
+static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
+{
+    fbrl_src *s = fbrl__src(vm);
+    size_t i = (size_t)(*vm->toin < 0 ? 0 : *vm->toin), k = 0;
+    if (i > s->len) i = s->len;
+    for (;;) {
+        if (i >= s->len) return fbrl__throw_msg(vm, -39, "unterminated string");
+        char c = s->buf[i++];
+        if (c == '"') break;
+        if (c == '\\' && i < s->len) {
+            c = s->buf[i++];
+            switch (c) {
+            case 'a': c = 7; break;
+            case 'b': c = 8; break;
+            case 'e': c = 27; break;
+            case 'f': c = 12; break;
+            case 'l': case 'n': c = 10; break;
+            case 'q': c = '"'; break;
+            case 'r': c = 13; break;
+            case 't': c = 9; break;
+            case 'v': c = 11; break;
+            case 'z': c = 0; break;
+            case 'm':
+                if (k >= cap) return -18;
+                out[k++] = 13;
+                c = 10;
+                break;
+            case 'x': {
+                int v = 0;
+                for (int j = 0; j < 2; j++) {
+                    int d = -1;
+                    if (i < s->len) {
+                        char h = s->buf[i];
+                        d = h >= '0' && h <= '9' ? h - '0' : h >= 'a' && h <= 'f' ? h - 'a' + 10
+                          : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1;
+                    }
+                    if (d < 0) return fbrl__throw_msg(vm, -24, "bad \\x escape");
+                    v = v * 16 + d;
+                    i++;
+                }
+                c = (char)v;
+                break;
+            }
+            default: break; /* \" \\ and anything else: the character itself */
+            }
+        }
+        if (k >= cap) return -18;
+        out[k++] = c;
+    }
+    *vm->toin = (fbrl_cell)i;
+    *n = k;
+    return 0;
+}
+
+static int string_literal(fbrl_vm *vm, const char *s, size_t n)
+{
+    if (*vm->state) return fbrl__compile_str(vm, OP_SLIT, s, n);
+    if (n > FBRL_SBUF) return -18;
+    char *b = vm->sbuf + FBRL_SBUF * vm->sbuf_next;
+    vm->sbuf_next ^= 1;
+    memmove(b, s, n);
+    int r = push(vm, (fbrl_cell)b);
+    return r ? r : push(vm, (fbrl_cell)n);
+}
+
+static int parse_quoted(fbrl_vm *vm, char delim, const char **p, size_t *n)
+{
+    int found;
+    fbrl__parse(vm, delim, p, n, &found);
+    if (!found) return fbrl__throw_msg(vm, -39, delim == ')' ? "unterminated comment" : "unterminated string");
+    return 0;
+}
+
+static int paren_comment(fbrl_vm *vm)
+{
+    for (;;) {
+        const char *p;
+        size_t n;
+        int found, r;
+        fbrl__parse(vm, ')', &p, &n, &found);
+        if (found) return 0;
+        if (fbrl__src(vm)->kind == SRC_STRING) return fbrl__throw_msg(vm, -39, "unterminated comment");
+        if ((r = fbrl__refill(vm)) < 0) return r;
+        if (r == 0) return fbrl__throw_msg(vm, -39, "unterminated comment");
+    }
+}
+
+static void put_num(fbrl_vm *vm, fbrl_cell n)
+{
+    char b[32];
+    int k = snprintf(b, sizeof b, "%ld", (long)n);
+    fbrl__write(vm, b, (size_t)k);
+}
+
+static fbrl_hdr *hdr_by_body(fbrl_vm *vm, fbrl_cell body)
+{
+    for (uint32_t i = vm->nwords; i-- > 0;)
+        if (HDR(vm, i)->body == body && HDR(vm, i)->kind != K_PRIM && HDR(vm, i)->kind != K_CFUNC)
+            return HDR(vm, i);
+    return NULL;
+}
+
+static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
+{
+    if (h && h->len) fbrl__write(vm, h->name, h->len);
+    else fbrl__puts(vm, ":NONAME");
+}
+
+static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
+{
+    fbrl_cell pc = h->body, end = h->end;
+    fbrl__puts(vm, ": ");
+    put_name(vm, h);
+    while (pc < end && fbrl__addr_ok(vm, pc, CELL)) {
+        fbrl_cell w, a;
+        memcpy(&w, (void *)pc, sizeof w);
+        pc += CELL;
+        if (w == OP_EXIT && pc == end) break; /* the EXIT that ; compiled */
+        fbrl__puts(vm, " ");
+        if (w >= FBRL_XT_BASE) {
+            put_name(vm, fbrl__xt_hdr(vm, w));
+            continue;
+        }
+        if (w < 0 || w >= OP__END) { fbrl__puts(vm, "?"); continue; }
+        const char *nm = fbrl__op_name((int)w);
+        if (nm[0]) { fbrl__puts(vm, nm); continue; }
+        if (!fbrl__addr_ok(vm, pc, CELL)) break;
+        memcpy(&a, (void *)pc, sizeof a);
+        switch (w) {
+        case OP_LIT: put_num(vm, a); pc += CELL; break;
+        case OP_FLIT: {
+            double d;
+            char b[40];
+            memcpy(&d, (void *)pc, sizeof d);
+            snprintf(b, sizeof b, "%.17gE", d);
+            fbrl__puts(vm, b);
+            pc += (fbrl_cell)((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell)) * CELL;
+            break;
+        }
+        case OP_CALL: put_name(vm, hdr_by_body(vm, a)); pc += CELL; break;
+        case OP_BRANCH: case OP_ZBRANCH:
+            fbrl__puts(vm, w == OP_BRANCH ? "BRANCH(" : "0BRANCH(");
+            put_num(vm, (a - pc - CELL) / CELL);
+            fbrl__puts(vm, ")");
+            pc += CELL;
+            break;
+        case OP_PDO: fbrl__puts(vm, "DO"); pc += CELL; break;
+        case OP_PQDO: fbrl__puts(vm, "?DO"); pc += CELL; break;
+        case OP_PLOOP: fbrl__puts(vm, "LOOP"); pc += CELL; break;
+        case OP_PPLOOP: fbrl__puts(vm, "+LOOP"); pc += CELL; break;
+        case OP_POF: fbrl__puts(vm, "OF"); pc += CELL; break;
+        case OP_DOESSET: fbrl__puts(vm, "DOES>"); break;
+        case OP_PTOVAL: case OP_PTO2VAL: case OP_PTOFVAL:
+            fbrl__puts(vm, "TO ");
+            put_name(vm, hdr_by_body(vm, a));
+            pc += CELL;
+            break;
+        case OP_SLIT: case OP_CSLIT: case OP_PABORTQ: {
+            fbrl_cell s = pc + CELL;
+            fbrl__puts(vm, w == OP_SLIT ? "S\" " : w == OP_CSLIT ? "C\" " : "ABORT\" ");
+            if (a >= 0 && a <= 65536 && fbrl__addr_ok(vm, s, a)) {
+                fbrl_cell t = w == OP_CSLIT ? 1 : 0;
+                fbrl__write(vm, (const char *)s + t, (size_t)(a - t));
+            }
+            fbrl__puts(vm, "\"");
+            pc = s + (a / CELL + 1) * CELL;
+            break;
+        }
+        default: fbrl__puts(vm, "?"); break;
+        }
+    }
+    fbrl__puts(vm, " ;");
+    if (h->flags & FI) fbrl__puts(vm, " IMMEDIATE");
+    fbrl__puts(vm, "\n");
+}
+
+static void see(fbrl_vm *vm, fbrl_hdr *h)
+{
+    static const char *const kinds[] = { "primitive", "", "variable", "created", "constant",
+                                         "double constant", "float constant", "value", "double value",
+                                         "float value", "deferred", "C word", "marker" };
+    if (h->kind == K_COLON) { see_colon(vm, h); return; }
+    put_name(vm, h);
+    fbrl__puts(vm, " is a ");
+    fbrl__puts(vm, kinds[h->kind]);
+    if (h->kind == K_DEFER && fbrl__addr_ok(vm, h->body, CELL)) {
+        fbrl_cell x;
+        memcpy(&x, (void *)h->body, sizeof x);
+        fbrl__puts(vm, " -> ");
+        if (fbrl__xt_hdr(vm, x)) put_name(vm, fbrl__xt_hdr(vm, x));
+        else fbrl__puts(vm, "(not set)");
+    } else if ((h->kind == K_CONST || h->kind == K_VALUE) && fbrl__addr_ok(vm, h->body, CELL)) {
+        fbrl_cell x;
+        memcpy(&x, (void *)h->body, sizeof x);
+        fbrl__puts(vm, " = ");
+        put_num(vm, x);
+    }
+    if (h->flags & FI) fbrl__puts(vm, " (immediate)");
+    fbrl__puts(vm, "\n");
+}
+
+static int env_query(fbrl_vm *vm, const char *s, size_t n)
+{
+    static const struct { const char *name; int kind; } q[] = {
+        { "/COUNTED-STRING", 1 }, { "/HOLD", 2 }, { "/PAD", 3 }, { "ADDRESS-UNIT-BITS", 4 },
+        { "FLOORED", 5 }, { "MAX-CHAR", 6 }, { "MAX-N", 7 }, { "MAX-U", 8 }, { "MAX-D", 9 },
+        { "MAX-UD", 10 }, { "RETURN-STACK-CELLS", 11 }, { "STACK-CELLS", 12 },
+        { "FLOATING-STACK", 13 }, { "MAX-FLOAT", 14 },
+    };
+    const fbrl_ucell umax = ~(fbrl_ucell)0;
+    for (size_t i = 0; i < sizeof q / sizeof q[0]; i++) {
+        if (strlen(q[i].name) != n) continue;
+        size_t j = 0;
+        while (j < n && (s[j] == q[i].name[j] || (s[j] >= 'a' && s[j] <= 'z' && s[j] - 32 == q[i].name[j]))) j++;
+        if (j != n) continue;
+        int r = 0;
+        switch (q[i].kind) {
+        case 1: r = push(vm, 255); break;
+        case 2: r = push(vm, FBRL_HOLDSIZE); break;
+        case 3: r = push(vm, FBRL_PADSIZE); break;
+        case 4: r = push(vm, 8); break;
+        case 5: r = push(vm, -1); break;
+        case 6: r = push(vm, 255); break;
+        case 7: r = push(vm, (fbrl_cell)(umax >> 1)); break;
+        case 8: r = push(vm, (fbrl_cell)umax); break;
+        case 9: r = push(vm, -1); if (!r) r = push(vm, (fbrl_cell)(umax >> 1)); break;
+        case 10: r = push(vm, -1); if (!r) r = push(vm, -1); break;
+        case 11: r = push(vm, vm->rs_end - vm->rs0); break;
+        case 12: r = push(vm, vm->ds_end - vm->ds0); break;
+        case 13: r = push(vm, vm->fs_end - vm->fs0); break;
+        case 14: r = fpush(vm, 1.7976931348623157e308); break;
+        }
+        return r ? r : push(vm, -1);
+    }
+    return push(vm, 0);
+}
+
+int fbrl__w_parse(fbrl_vm *vm, int op)
+{
+    const char *p;
+    size_t n;
+    fbrl_cell xt, v;
+    fbrl_hdr *h;
+    double f;
+    int r, found;
+    switch (op) {
+    case OP_TO: case OP_IS: case OP_ACTIONOF:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if (op == OP_TO) {
+            int k = h->kind;
+            if (k != K_VALUE && k != K_2VALUE && k != K_FVALUE)
+                return fbrl__throw_msg(vm, -32, "TO needs a VALUE, 2VALUE or FVALUE");
+            if (*vm->state)
+                return back(vm, k == K_VALUE ? OP_PTOVAL : k == K_2VALUE ? OP_PTO2VAL : OP_PTOFVAL, h->body);
+            if (k == K_FVALUE) {
+                if ((r = fpop(vm, &f))) return r;
+                memcpy((void *)h->body, &f, sizeof f);
+            } else if (k == K_VALUE) {
+                if ((r = pop(vm, &v))) return r;
+                memcpy((void *)h->body, &v, sizeof v);
+            } else {
+                if ((r = need(vm, 2))) return r;
+                memcpy((void *)h->body, vm->sp - 1, sizeof v);
+                memcpy((void *)(h->body + CELL), vm->sp - 2, sizeof v);
+                vm->sp -= 2;
+            }
+            return 0;
+        }
+        if (h->kind != K_DEFER) return fbrl__throw_msg(vm, -32, "IS and ACTION-OF need a DEFERred word");
+        if (*vm->state) {
+            if ((r = fbrl__compile_lit(vm, xt))) return r;
+            return fbrl__emit(vm, op == OP_IS ? OP_DEFERSTORE : OP_DEFERFETCH);
+        }
+        if (op == OP_IS) {
+            if ((r = pop(vm, &v))) return r;
+            memcpy((void *)h->body, &v, sizeof v);
+            return 0;
+        }
+        memcpy(&v, (void *)h->body, sizeof v);
+        return push(vm, v);
+    case OP_DEFERFETCH: case OP_DEFERSTORE:
+        if ((r = pop(vm, &xt))) return r;
+        h = fbrl__xt_hdr(vm, xt);
+        if (!h || h->kind != K_DEFER) return fbrl__throw_msg(vm, -21, "not a DEFERred word");
+        if (op == OP_DEFERSTORE) {
+            if ((r = pop(vm, &v))) return r;
+            memcpy((void *)h->body, &v, sizeof v);
+            return 0;
+        }
+        memcpy(&v, (void *)h->body, sizeof v);
+        return push(vm, v);
+    case OP_POSTPONE:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if (h->flags & FI) return fbrl__compile_xt(vm, xt);
+        if ((r = fbrl__compile_lit(vm, xt))) return r;
+        return fbrl__emit(vm, OP_COMPILECOMMA);
+    case OP_BCOMPILE:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        return fbrl__compile_xt(vm, xt);
+    case OP_BTICK:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        return fbrl__compile_lit(vm, xt);
+    case OP_TICK:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        return push(vm, xt);
+    case OP_BCHAR: case OP_CHAR:
+        fbrl__parse_name(vm, &p, &n);
+        if (n == 0) return -16;
+        return op == OP_CHAR ? push(vm, (unsigned char)p[0]) : fbrl__compile_lit(vm, (unsigned char)p[0]);
+    case OP_PAREN: return paren_comment(vm);
+    case OP_BACKSLASH:
+        if (vm->nsrc) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
+        return 0;
+    case OP_DOTPAREN:
+        if ((r = parse_quoted(vm, ')', &p, &n))) return r;
+        fbrl__write(vm, p, n);
+        return 0;
+    case OP_DOTQUOTE:
+        if ((r = parse_quoted(vm, '"', &p, &n)) || (r = fbrl__compile_str(vm, OP_SLIT, p, n))) return r;
+        return fbrl__emit(vm, OP_TYPE);
+    case OP_SQUOTE:
+        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        return string_literal(vm, p, n);
+    case OP_SBQUOTE: {
+        char b[FBRL_LINE_MAX];
+        if ((r = parse_escaped(vm, b, sizeof b, &n))) return r;
+        return string_literal(vm, b, n);
+    }
+    case OP_CQUOTE: {
+        char b[256];
+        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        if (n > 255) return -18;
+        b[0] = (char)n;
+        memcpy(b + 1, p, n);
+        return fbrl__compile_str(vm, OP_CSLIT, b, n + 1);
+    }
+    case OP_ABORTQ:
+        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        return fbrl__compile_str(vm, OP_PABORTQ, p, n);
+    case OP_PARSE:
+        if ((r = pop(vm, &v))) return r;
+        fbrl__parse(vm, (char)v, &p, &n, &found);
+        if ((r = push(vm, (fbrl_cell)p))) return r;
+        return push(vm, (fbrl_cell)n);
+    case OP_PARSENAME:
+        fbrl__parse_name(vm, &p, &n);
+        if ((r = push(vm, (fbrl_cell)p))) return r;
+        return push(vm, (fbrl_cell)n);
+    case OP_WORD: {
+        if ((r = pop(vm, &v))) return r;
+        char c = (char)v;
+        if (vm->nsrc) {
+            fbrl_src *s = fbrl__src(vm);
+            size_t i = (size_t)(*vm->toin < 0 ? 0 : *vm->toin);
+            if (i > s->len) i = s->len;
+            while (i < s->len && (s->buf[i] == c || (c == ' ' && (unsigned char)s->buf[i] < ' '))) i++;
+            *vm->toin = (fbrl_cell)i;
+        }
+        fbrl__parse(vm, c, &p, &n, &found);
+        if (n > 255) return -18;
+        vm->wordbuf[0] = (char)n;
+        memmove(vm->wordbuf + 1, p, n);
+        vm->wordbuf[n + 1] = ' ';
+        return push(vm, (fbrl_cell)vm->wordbuf);
+    }
+    case OP_FIND: {
+        if ((r = need(vm, 1))) return r;
+        v = vm->sp[-1];
+        if (!fbrl__addr_ok(vm, v, 1)) return -9;
+        n = *(unsigned char *)v;
+        if (!fbrl__addr_ok(vm, v, (fbrl_cell)n + 1)) return -9;
+        int i = fbrl__find(vm, (const char *)v + 1, n);
+        if (i < 0) return push(vm, 0);
+        vm->sp[-1] = FBRL_XT_BASE + i;
+        return push(vm, (HDR(vm, i)->flags & FI) ? 1 : -1);
+    }
+    case OP_LITERAL:
+        if ((r = pop(vm, &v))) return r;
+        return fbrl__compile_lit(vm, v);
+    case OP_TWOLITERAL:
+        if ((r = need(vm, 2))) return r;
+        vm->sp -= 2;
+        if ((r = fbrl__compile_lit(vm, vm->sp[0]))) return r;
+        return fbrl__compile_lit(vm, vm->sp[1]);
+    case OP_SLITERAL:
+        if ((r = pop_str(vm, &p, &n))) return r;
+        return fbrl__compile_str(vm, OP_SLIT, p, n);
+    case OP_FLITERAL:
+        if ((r = fpop(vm, &f))) return r;
+        return fbrl__compile_flit(vm, f);
+    case OP_COMPILECOMMA:
+        if ((r = pop(vm, &xt))) return r;
+        return fbrl__compile_xt(vm, xt);
+    case OP_IMMEDIATE:
+        if (vm->nwords == 0) return -21;
+        HDR(vm, vm->nwords - 1)->flags |= FI;
+        return 0;
+    case OP_TONUMBER: {
+        if ((r = need(vm, 4))) return r;
+        fbrl_cell a = vm->sp[-2], u = vm->sp[-1];
+        fbrl_ucell lo = U(vm->sp[-4]), hi = U(vm->sp[-3]);
+        if (u < 0) return -24;
+        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        if (*vm->base < 2 || *vm->base > 36) return -24;
+        size_t k = u ? fbrl__to_number((const char *)a, (size_t)u, *vm->base, &lo, &hi) : 0;
+        vm->sp[-4] = (fbrl_cell)lo;
+        vm->sp[-3] = (fbrl_cell)hi;
+        vm->sp[-2] = a + (fbrl_cell)k;
+        vm->sp[-1] = u - (fbrl_cell)k;
+        return 0;
+    }
+    case OP_SEE:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        see(vm, h);
+        return 0;
+    case OP_HELP:
+        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        put_name(vm, h);
+        fbrl__puts(vm, " ");
+        fbrl__puts(vm, h->stack);
+        fbrl__puts(vm, h->stack[0] ? " " : "");
+        fbrl__puts(vm, h->help);
+        fbrl__puts(vm, "\n");
+        return 0;
+    case OP_INCLUDE: case OP_REQUIRE:
+        fbrl__parse_name(vm, &p, &n);
+        if (n == 0) return fbrl__throw_msg(vm, -38, "file name expected");
+        {
+            char name[FBRL_PATH_MAX];
+            if (n >= sizeof name) return -38;
+            memcpy(name, p, n); /* the line buffer is reused by the nested source */
+            return fbrl__included(vm, name, n, op == OP_REQUIRE);
+        }
+    case OP_REFILL:
+        r = fbrl__refill(vm);
+        if (r < 0) return r;
+        return push(vm, r ? -1 : 0);
+    case OP_ENVQ:
+        if ((r = pop_str(vm, &p, &n))) return r;
+        return env_query(vm, p, n);
+    case OP_LATESTXT:
+        if (vm->nwords == 0) return -21;
+        return push(vm, (fbrl_cell)(FBRL_XT_BASE + vm->nwords - 1));
+    case OP_TOBODY:
+        if ((r = pop(vm, &xt))) return r;
+        h = fbrl__xt_hdr(vm, xt);
+        if (!h || h->kind == K_PRIM || h->kind == K_COLON || h->kind == K_CFUNC || h->kind == K_MARKER)
+            return -31;
+        return push(vm, h->body);
+    }
+    return -21;
+}
+
+/* ---- number and float output ---- */
+static int get_base(fbrl_vm *vm, unsigned *b)
+{
+    fbrl_cell x = *vm->base;
+    if (x < 2 || x > 36) {
+        *vm->base = 10;
+        return fbrl__throw_msg(vm, -24, "invalid BASE (reset to decimal)");
+    }
+    *b = (unsigned)x;
+    return 0;
+}
+
+static char digit_char(fbrl_ucell d) { return (char)(d < 10 ? '0' + d : 'A' + d - 10); }
+
+/* ud / base in place, returns the remainder */
+static fbrl_ucell ud_divsmall(fbrl_ucell *lo, fbrl_ucell *hi, unsigned base)
+{
+    fbrl_ucell qh = *hi / base, r = *hi % base, ql;
+    fbrl__udiv(r, *lo, base, &ql, &r);
+    *hi = qh;
+    *lo = ql;
+    return r;
+}
+
+static int print_d(fbrl_vm *vm, fbrl_cell lo, fbrl_cell hi, int is_signed, fbrl_cell width, int space)
+{
+    unsigned base = 10;
+    int r = get_base(vm, &base);
+    if (r) return r;
+    char b[CELL_BITS * 2 + 4], *e = b + sizeof b, *p = e;
+    fbrl_ucell l = U(lo), h = U(hi);
+    int neg = is_signed && hi < 0;
+    if (neg) dneg(&l, &h);
+    do *--p = digit_char(ud_divsmall(&l, &h, base)); while (l || h);
+    if (neg) *--p = '-';
+    for (fbrl_cell k = width - (fbrl_cell)(e - p); k > 0; k--) fbrl__write(vm, " ", 1);
+    fbrl__write(vm, p, (size_t)(e - p));
+    if (space) fbrl__write(vm, " ", 1);
+    return 0;
+}
+
+static int hold_char(fbrl_vm *vm, char c)
+{
+    if (vm->hld <= vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE) return -17;
+    *--vm->hld = c;
+    return 0;
+}
+
+/* REPRESENT: u significant digits of r; returns validity */
+static int represent(double r, char *out, int u, int *exp, int *neg)
+{
+    char t[64];
+    *neg = signbit(r) != 0;
+    *exp = 0;
+    if (!isfinite(r)) {
+        for (int i = 0; i < u; i++) out[i] = isnan(r) ? 'n' : 'i';
+        return 0;
+    }
+    int d = u < 1 ? 1 : u > 17 ? 17 : u;
+    snprintf(t, sizeof t, "%.*e", d - 1, fabs(r));
+    const char *e = strchr(t, 'e');
+    int k = 0;
+    for (const char *q = t; q < e && k < d; q++)
+        if (*q >= '0' && *q <= '9') out[k++] = *q;
+    for (int i = k; i < u; i++) out[i] = '0';
+    *exp = r == 0 ? 1 : atoi(e + 1) + 1;
+    return 1;
+}
+
+static int print_float(fbrl_vm *vm, double r, int mode)
+{
+    char dg[20], b[400];
+    int exp, neg, prec = vm->precision, k = 0;
+    if (!represent(r, dg, prec, &exp, &neg)) {
+        fbrl__puts(vm, isnan(r) ? "NaN " : neg ? "-Inf " : "Inf ");
+        return 0;
+    }
+    if (neg) b[k++] = '-';
+    if (mode == 0) { /* F. fixed point, trailing zeros dropped */
+        int last = prec;
+        while (last > 0 && dg[last - 1] == '0') last--;
+        if (exp <= 0) {
+            b[k++] = '0';
+            b[k++] = '.';
+            for (int i = 0; i < -exp && k < 350; i++) b[k++] = '0';
+            for (int i = 0; i < last; i++) b[k++] = dg[i];
+        } else {
+            for (int i = 0; i < exp && k < 350; i++) b[k++] = i < prec ? dg[i] : '0';
+            b[k++] = '.';
+            for (int i = exp; i < last; i++) b[k++] = dg[i];
+        }
+    } else { /* FS. scientific, FE. engineering */
+        int lead = 1, e = exp - 1;
+        if (mode == 2) {
+            int m = ((e % 3) + 3) % 3;
+            lead += m;
+            e -= m;
+            if (lead > prec) { /* not enough digits: pad */
+                for (int i = prec; i < lead; i++) dg[i] = '0';
+                prec = lead;
+            }
+        }
+        for (int i = 0; i < lead; i++) b[k++] = dg[i];
+        b[k++] = '.';
+        for (int i = lead; i < prec; i++) b[k++] = dg[i];
+        k += snprintf(b + k, sizeof b - (size_t)k, "E%d", r == 0 ? 0 : e);
+    }
+    b[k++] = ' ';
+    fbrl__write(vm, b, (size_t)k);
+    return 0;
+}
+
+static int parse_float_text(const char *s, size_t n, int need_e, double *out)
+{
+    char b[400];
+    size_t i = 0, k = 0;
+    int nd = 0;
+    if (n > 350) return 0;
+    if (i < n && (s[i] == '+' || s[i] == '-')) b[k++] = s[i++];
+    while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; }
+    if (i < n && s[i] == '.') {
+        b[k++] = s[i++];
+        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; }
+    }
+    if (nd == 0) return 0;
+    if (i < n && (s[i] == 'E' || s[i] == 'e' || s[i] == 'D' || s[i] == 'd')) {
+        i++;
+        b[k++] = 'e';
+        if (i < n && (s[i] == '+' || s[i] == '-')) b[k++] = s[i++];
+        int ed = 0;
+        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; ed++; }
+        if (!ed) b[k++] = '0';
+    } else if (need_e) {
+        return 0;
+    } else if (i < n && (s[i] == '+' || s[i] == '-')) {
+        b[k++] = 'e';
+        b[k++] = s[i++];
+        int ed = 0;
+        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; ed++; }
+        if (!ed) return 0;
+    }
+    if (i != n) return 0;
+    b[k] = 0;
+    char *end;
+    double v = strtod(b, &end);
+    if (*end || !isfinite(v)) return 0;
+    *out = v;
+    return 1;
+}
+
+int fbrl__parse_float(const char *s, size_t n, double *out) { return parse_float_text(s, n, 1, out); }
+
+static int words_line(void *ctx, const char *name, size_t len)
+{
+    fbrl_vm *vm = ctx;
+    fbrl__write(vm, name, len);
+    fbrl__write(vm, " ", 1);
+    return 0;
+}
+
+int fbrl__w_io(fbrl_vm *vm, int op)
+{
+    fbrl_cell a, u, v, w;
+    double f;
+    int r;
+    unsigned base = 10;
+    switch (op) {
+    case OP_KEY:
+        if (!vm->host.key) return fbrl__throw_msg(vm, -21, "no console input in this host");
+        r = vm->host.key(vm->host.user);
+        if (r < 0) return -57;
+        return push(vm, (unsigned char)r);
+    case OP_KEYQ:
+        if (!vm->host.key_ready) return fbrl__throw_msg(vm, -21, "no console input in this host");
+        return push(vm, vm->host.key_ready(vm->host.user) ? -1 : 0);
+    case OP_ACCEPT: {
+        if ((r = need(vm, 2))) return r;
+        u = *--vm->sp;
+        a = *--vm->sp;
+        if (u < 0) return -24;
+        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        if (!vm->host.key) return fbrl__throw_msg(vm, -21, "no console input in this host");
+        fbrl_cell k = 0;
+        for (;;) {
+            int c = vm->host.key(vm->host.user);
+            if (c < 0 || c == '\n' || c == '\r') break;
+            if (k < u) ((char *)a)[k++] = (char)c;
+        }
+        return push(vm, k);
+    }
+    case OP_DOT: case OP_UDOT:
+        if ((r = pop(vm, &v))) return r;
+        return print_d(vm, v, op == OP_DOT && v < 0 ? -1 : 0, op == OP_DOT, 0, 1);
+    case OP_DOTR: case OP_UDOTR:
+        if ((r = need(vm, 2))) return r;
+        w = *--vm->sp;
+        v = *--vm->sp;
+        return print_d(vm, v, op == OP_DOTR && v < 0 ? -1 : 0, op == OP_DOTR, w, 0);
+    case OP_DDOT: case OP_UDDOT:
+        if ((r = need(vm, 2))) return r;
+        vm->sp -= 2;
+        return print_d(vm, vm->sp[0], vm->sp[1], op == OP_DDOT, 0, 1);
+    case OP_DDOTR:
+        if ((r = need(vm, 3))) return r;
+        vm->sp -= 3;
+        return print_d(vm, vm->sp[0], vm->sp[1], 1, vm->sp[2], 0);
+    case OP_QUESTION:
+        if ((r = pop(vm, &a))) return r;
+        if (!fbrl__addr_ok(vm, a, CELL)) return -9;
+        memcpy(&v, (void *)a, sizeof v);
+        return print_d(vm, v, v < 0 ? -1 : 0, 1, 0, 1);
+    case OP_LTNUM:
+        vm->hld = vm->hold + FBRL_HOLDSIZE;
+        return 0;
+    case OP_NUM: case OP_NUMS: {
+        if ((r = need(vm, 2)) || (r = get_base(vm, &base))) return r;
+        fbrl_ucell lo = U(vm->sp[-2]), hi = U(vm->sp[-1]);
+        do {
+            if ((r = hold_char(vm, digit_char(ud_divsmall(&lo, &hi, base))))) return r;
+        } while (op == OP_NUMS && (lo || hi));
+        vm->sp[-2] = (fbrl_cell)lo;
+        vm->sp[-1] = (fbrl_cell)hi;
+        return 0;
+    }
+    case OP_NUMGT:
+        if ((r = need(vm, 2))) return r;
+        if (vm->hld < vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE) vm->hld = vm->hold + FBRL_HOLDSIZE;
+        vm->sp[-2] = (fbrl_cell)vm->hld;
+        vm->sp[-1] = (fbrl_cell)(vm->hold + FBRL_HOLDSIZE - vm->hld);
+        return 0;
+    case OP_HOLD:
+        if ((r = pop(vm, &v))) return r;
+        return hold_char(vm, (char)v);
+    case OP_HOLDS: {
+        const char *s;
+        size_t n;
+        if ((r = pop_str(vm, &s, &n))) return r;
+        while (n > 0)
+            if ((r = hold_char(vm, s[--n]))) return r;
+        return 0;
+    }
+    case OP_SIGN:
+        if ((r = pop(vm, &v))) return r;
+        return v < 0 ? hold_char(vm, '-') : 0;
+    case OP_DOTS: {
+        char b[24];
+        int k = snprintf(b, sizeof b, "<%ld> ", (long)(vm->sp - vm->ds0));
+        fbrl__write(vm, b, (size_t)k);
+        for (fbrl_cell *p = vm->ds0; p < vm->sp; p++)
+            if ((r = print_d(vm, *p, *p < 0 ? -1 : 0, 1, 0, 1))) return r;
+        if (vm->fp > vm->fs0) {
+            k = snprintf(b, sizeof b, "F: <%ld> ", (long)(vm->fp - vm->fs0));
+            fbrl__write(vm, b, (size_t)k);
+            for (double *p = vm->fs0; p < vm->fp; p++) print_float(vm, *p, 1);
+        }
+        fbrl__write(vm, "\n", 1);
+        return 0;
+    }
+    case OP_DUMP: {
+        if ((r = need(vm, 2))) return r;
+        u = *--vm->sp;
+        a = *--vm->sp;
+        if (u < 0) return -24;
+        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        for (fbrl_cell i = 0; i < u; i += 16) {
+            char b[100];
+            int k = snprintf(b, sizeof b, "%0*lx ", (int)(2 * sizeof(fbrl_cell)), (unsigned long)U(a + i));
+            for (fbrl_cell j = 0; j < 16; j++) {
+                if (i + j < u) k += snprintf(b + k, sizeof b - (size_t)k, " %02x", ((unsigned char *)a)[i + j]);
+                else k += snprintf(b + k, sizeof b - (size_t)k, "   ");
+            }
+            b[k++] = ' ';
+            b[k++] = ' ';
+            for (fbrl_cell j = 0; j < 16 && i + j < u; j++) {
+                unsigned char c = ((unsigned char *)a)[i + j];
+                b[k++] = (char)(c >= 32 && c < 127 ? c : '.');
+            }
+            b[k++] = '\n';
+            fbrl__write(vm, b, (size_t)k);
+        }
+        return 0;
+    }
+    case OP_WORDS:
+        fbrl_vm_words(vm, words_line, vm);
+        fbrl__write(vm, "\n", 1);
+        return 0;
+    case OP_MS:
+        if ((r = pop(vm, &v))) return r;
+        if (!vm->host.sleep_ms) return fbrl__throw_msg(vm, -21, "no clock in this host");
+        if (v > 0) vm->host.sleep_ms(vm->host.user, (uint32_t)(v > 0x7fffffff ? 0x7fffffff : v));
+        return 0;
+    case OP_TIMEDATE: {
+        int t[6] = { 0 };
+        if (!vm->host.time_date) return fbrl__throw_msg(vm, -21, "no clock in this host");
+        if (vm->ds_end - vm->sp < 6) return -3;
+        vm->host.time_date(vm->host.user, t);
+        for (int i = 0; i < 6; i++) *vm->sp++ = t[i];
+        return 0;
+    }
+    case OP_USECS: {
+        if (!vm->host.now_us) return fbrl__throw_msg(vm, -21, "no clock in this host");
+        uint64_t t = vm->host.now_us(vm->host.user);
+        if ((r = push(vm, (fbrl_cell)t))) return r;
+        return push(vm, sizeof(fbrl_cell) >= 8 ? 0 : (fbrl_cell)(t >> 31 >> 1));
+    }
+    case OP_FDOT: case OP_FSDOT: case OP_FEDOT:
+        if ((r = fpop(vm, &f))) return r;
+        return print_float(vm, f, op == OP_FDOT ? 0 : op == OP_FSDOT ? 1 : 2);
+    case OP_REPRESENT: {
+        int exp, neg, ok;
+        char dg[64];
+        if ((r = need(vm, 2))) return r;
+        u = vm->sp[-1];
+        a = vm->sp[-2];
+        if (u < 0) return -24;
+        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        if ((r = fpop(vm, &f))) return r;
+        ok = represent(f, dg, u > 17 ? 17 : (int)u, &exp, &neg);
+        memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
+        if (u > 17) memset((char *)a + 17, '0', (size_t)(u - 17));
+        vm->sp[-2] = exp;
+        vm->sp[-1] = neg ? -1 : 0;
+        return push(vm, ok ? -1 : 0);
+    }
+    case OP_TOFLOAT: {
+        const char *s;
+        size_t n, i = 0;
+        if ((r = pop_str(vm, &s, &n))) return r;
+        while (i < n && s[i] == ' ') i++;
+        if (i == n) {
+            if ((r = fpush(vm, 0.0))) return r;
+            return push(vm, -1);
+        }
+        if (parse_float_text(s, n, 0, &f)) {
+            if ((r = fpush(vm, f))) return r;
+            return push(vm, -1);
+        }
+        return push(vm, 0);
+    }
+    }
+    return -21;
+}

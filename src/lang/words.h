@@ -1,0 +1,46 @@
+/* words.h - helpers shared by the engine's source files (private). */
+#ifndef FBRL_LANG_WORDS_H
+#define FBRL_LANG_WORDS_H
+
+#include "vm_internal.h"
+
+/* vm.c: dictionary, parsing and compilation */
+const char *fbrl__op_name(int op);
+int fbrl__emit(fbrl_vm *vm, fbrl_cell v);
+int fbrl__allot(fbrl_vm *vm, fbrl_cell n);
+int fbrl__align(fbrl_vm *vm);
+int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt);
+int fbrl__semicolon(fbrl_vm *vm);
+void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used);
+int fbrl__evaluate(fbrl_vm *vm, char *text, size_t len);
+int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require);
+fbrl_src *fbrl__src(fbrl_vm *vm);
+void fbrl__parse_name(fbrl_vm *vm, const char **p, size_t *n);
+void fbrl__parse(fbrl_vm *vm, char c, const char **p, size_t *n, int *found);
+int fbrl__refill(fbrl_vm *vm);
+size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, fbrl_ucell *hi);
+int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt);
+int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v);
+int fbrl__compile_flit(fbrl_vm *vm, double d);
+int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n);
+int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, fbrl_hdr **out);
+int fbrl__parse_float(const char *s, size_t n, double *out);
+
+/* words.c: arithmetic */
+void fbrl__umul(fbrl_ucell a, fbrl_ucell b, fbrl_ucell *hi, fbrl_ucell *lo);
+void fbrl__udiv(fbrl_ucell hi, fbrl_ucell lo, fbrl_ucell d, fbrl_ucell *q, fbrl_ucell *r);
+void fbrl__mstar(fbrl_cell a, fbrl_cell b, fbrl_cell *lo, fbrl_cell *hi);
+int fbrl__dsdiv(fbrl_cell lo, fbrl_cell hi, fbrl_cell n, int floored, fbrl_cell *q, fbrl_cell *r);
+int fbrl__starslash(fbrl_cell a, fbrl_cell b, fbrl_cell c, fbrl_cell *q, fbrl_cell *r);
+int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div);
+double fbrl__d_to_f(fbrl_cell lo, fbrl_cell hi);
+int fbrl__f_to_d(double r, fbrl_cell *lo, fbrl_cell *hi);
+
+/* words.c: word groups run on the VM's stacks (after SAVE) */
+int fbrl__w_string(fbrl_vm *vm, int op);
+int fbrl__w_control(fbrl_vm *vm, int op);
+int fbrl__w_define(fbrl_vm *vm, int op);
+int fbrl__w_parse(fbrl_vm *vm, int op);
+int fbrl__w_io(fbrl_vm *vm, int op);
+
+#endif

@@ -1,0 +1,236 @@
+/* matrix.c - arrays over caller storage and location matrices (thesis 5.1, 5.4). */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include "fbrl/units.h"
+#include "fbrl/matrix.h"
+
+fbrl_status fbrl_array_bytes(size_t cell_size, size_t rows, size_t cols, size_t *bytes)
+{
+    if (!bytes || cell_size == 0 || rows == 0 || cols == 0)
+        return FBRL_EINVAL;
+    if (rows > SIZE_MAX / cols || cell_size > SIZE_MAX / (rows * cols))
+        return FBRL_EOVERFLOW;
+    *bytes = cell_size * rows * cols;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size,
+                             size_t cell_size, size_t rows, size_t cols)
+{
+    size_t need;
+    fbrl_status st;
+    if (!a || !storage)
+        return FBRL_EINVAL;
+    if ((st = fbrl_array_bytes(cell_size, rows, cols, &need)) != FBRL_OK)
+        return st;
+    if (storage_size < need)
+        return FBRL_ENOSPC;
+    a->data = storage;
+    a->cell_size = cell_size;
+    a->rows = rows;
+    a->cols = cols;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size,
+                            size_t cell_size, size_t count)
+{
+    return fbrl_array2_init(a, storage, storage_size, cell_size, count, 1);
+}
+
+/* A descriptor that init did not produce (zeroed, or fields changed) is refused rather
+ * than trusted, so a cell address can never leave the storage init checked. */
+static int array_ok(const fbrl_array *a)
+{
+    size_t bytes;
+    return a && a->data && fbrl_array_bytes(a->cell_size, a->rows, a->cols, &bytes) == FBRL_OK;
+}
+
+fbrl_status fbrl_array_cell(const fbrl_array *a, size_t index, void **cell)
+{
+    if (!array_ok(a) || !cell)
+        return FBRL_EINVAL;
+    if (index >= a->rows * a->cols)
+        return FBRL_ERANGE;
+    *cell = a->data + index * a->cell_size;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_array2_cell(const fbrl_array *a, size_t row, size_t col, void **cell)
+{
+    if (!array_ok(a) || !cell)
+        return FBRL_EINVAL;
+    if (row >= a->rows || col >= a->cols)
+        return FBRL_ERANGE;
+    *cell = a->data + (row * a->cols + col) * a->cell_size;
+    return FBRL_OK;
+}
+
+/* ---- RECTMAT ---- */
+
+fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base,
+                              double dx, double dy, double dz)
+{
+    fbrl_status st;
+    if (!m || !base)
+        return FBRL_EINVAL;
+    if ((st = fbrl_loc_check(base)) != FBRL_OK)
+        return st;
+    if (!isfinite(dx) || !isfinite(dy) || !isfinite(dz))
+        return FBRL_ENONFINITE;
+    m->base = *base;
+    m->dx = dx;
+    m->dy = dy;
+    m->dz = dz;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_rectmat_loc(const fbrl_rectmat *m, long i, long j, long k, fbrl_loc *out)
+{
+    fbrl_loc r;
+    fbrl_status st;
+    if (!m || !out)
+        return FBRL_EINVAL;
+    if ((st = fbrl_loc_check(&m->base)) != FBRL_OK)
+        return st;
+    if (!isfinite(m->dx) || !isfinite(m->dy) || !isfinite(m->dz))
+        return FBRL_ENONFINITE;
+    r = m->base;
+    r.x += (double)i * m->dx;
+    r.y += (double)j * m->dy;
+    r.z += (double)k * m->dz;
+    if (fbrl_loc_check(&r) != FBRL_OK)
+        return FBRL_EOVERFLOW;
+    *out = r;
+    return FBRL_OK;
+}
+
+/* ---- RADMAT ---- */
+
+fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base,
+                             double inc_angle, double ring_dist, double z_off)
+{
+    fbrl_status st;
+    double r0;
+    if (!m || !base)
+        return FBRL_EINVAL;
+    if ((st = fbrl_loc_check(base)) != FBRL_OK)
+        return st;
+    if (!isfinite(inc_angle) || !isfinite(ring_dist) || !isfinite(z_off))
+        return FBRL_ENONFINITE;
+    r0 = hypot(base->x, base->y);
+    if (r0 == 0.0)
+        return FBRL_ERANGE;
+    if (!isfinite(r0))
+        return FBRL_EOVERFLOW;
+    m->base = *base;
+    m->inc_angle = inc_angle;
+    m->ring_dist = ring_dist;
+    m->z_off = z_off;
+    m->r0 = r0;
+    m->a0 = atan2(base->y, base->x);
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, fbrl_loc *out)
+{
+    fbrl_loc r;
+    double radius, turn, s, c, scale;
+    if (!m || !out)
+        return FBRL_EINVAL;
+    if (fbrl_loc_check(&m->base) != FBRL_OK || !(m->r0 > 0.0) || !isfinite(m->r0) ||
+        !isfinite(m->inc_angle) || !isfinite(m->ring_dist) || !isfinite(m->z_off))
+        return FBRL_EINVAL; /* not a descriptor fbrl_radmat_init produced */
+    radius = m->r0 + (double)ring * m->ring_dist;
+    if (radius < 0.0)
+        return FBRL_ERANGE;
+    /* Turning the base's own (x, y) by the index angle and scaling it to the ring is
+     * a0 + idx*inc at radius r0 + ring*ring_dist, and gives (0,0,k) the base's x and y
+     * to the last bit (cos 0 = 1, sin 0 = 0, r0/r0 = 1). */
+    turn = (double)idx * m->inc_angle;
+    c = cos(turn);
+    s = sin(turn);
+    scale = radius / m->r0;
+    r = m->base;
+    r.x = scale * (m->base.x * c - m->base.y * s);
+    r.y = scale * (m->base.x * s + m->base.y * c);
+    r.z = m->base.z + (double)k * m->z_off;
+    r.o = m->base.o + FBRL_DEG(turn);
+    if (fbrl_loc_check(&r) != FBRL_OK)
+        return FBRL_EOVERFLOW;
+    *out = r;
+    return FBRL_OK;
+}
+
+/* ---- SHOW-AUTOMAT, SHOW-RADMAT ---- */
+
+/* "<name> base <loc text>  " into buf; the rest is appended by the caller. */
+static fbrl_status format_base(const char *name, const fbrl_loc *base, int metric, char *buf,
+                               size_t size, size_t *used)
+{
+    char loc[FBRL_LOC_TEXT_SIZE];
+    fbrl_status st = fbrl_loc_format(base, metric, loc, sizeof loc);
+    int n;
+    if (st != FBRL_OK)
+        return st;
+    n = snprintf(buf, size, "%s base %s  ", name, loc);
+    if (n < 0 || (size_t)n >= size)
+        return FBRL_ENOSPC;
+    *used = (size_t)n;
+    return FBRL_OK;
+}
+
+/* Lengths shown in the user's unit; a conversion overflow is reported, not printed. */
+static fbrl_status shown_lengths(int metric, const double *in, double *out, int count)
+{
+    fbrl_units u = FBRL_UNITS_INIT;
+    fbrl_status st;
+    int i;
+    if (metric)
+        fbrl_units_metric_on(&u);
+    for (i = 0; i < count; i++)
+        if ((st = fbrl_units_out(&u, in[i], &out[i])) != FBRL_OK)
+            return st;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, size_t size)
+{
+    double len[3], shown[3];
+    size_t used;
+    fbrl_status st;
+    int n;
+    if (!m || !buf || size == 0)
+        return FBRL_EINVAL;
+    buf[0] = '\0';
+    len[0] = m->dx; len[1] = m->dy; len[2] = m->dz;
+    if ((st = shown_lengths(metric, len, shown, 3)) != FBRL_OK ||
+        (st = format_base("RECTMAT", &m->base, metric, buf, size, &used)) != FBRL_OK)
+        return st;
+    n = snprintf(buf + used, size - used, "step X %+10.4f Y %+10.4f Z %+10.4f %s", shown[0],
+                 shown[1], shown[2], metric ? "cm" : "in");
+    return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
+}
+
+fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size_t size)
+{
+    double len[3], shown[3];
+    size_t used;
+    fbrl_status st;
+    int n;
+    if (!m || !buf || size == 0)
+        return FBRL_EINVAL;
+    buf[0] = '\0';
+    if (!isfinite(m->inc_angle) || !isfinite(m->a0))
+        return FBRL_ENONFINITE;
+    len[0] = m->ring_dist; len[1] = m->z_off; len[2] = m->r0;
+    if ((st = shown_lengths(metric, len, shown, 3)) != FBRL_OK ||
+        (st = format_base("RADMAT", &m->base, metric, buf, size, &used)) != FBRL_OK)
+        return st;
+    n = snprintf(buf + used, size - used,
+                 "inc %+.6f rad  ring %+10.4f Z %+10.4f %s  radius %+10.4f %s  angle %+.6f rad",
+                 m->inc_angle, shown[0], shown[1], metric ? "cm" : "in", shown[2],
+                 metric ? "cm" : "in", m->a0);
+    return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
+}

@@ -1,0 +1,523 @@
+/* test_vm.c - the FBRL language engine: the Forth conformance suite in tests/forth
+ * (each file must report zero failures) and the C embedding API. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "fbrl/vm.h"
+
+#define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
+
+/* ---- a host: output into a buffer, files through stdio ---- */
+typedef struct host {
+    char out[1 << 16];
+    size_t n;
+    const char *keys;  /* input for KEY/ACCEPT */
+} host;
+
+static void h_write(void *user, const char *s, size_t n)
+{
+    host *h = user;
+    size_t room = sizeof h->out - 1 - h->n;
+    if (n > room) n = room;
+    memcpy(h->out + h->n, s, n);
+    h->n += n;
+    h->out[h->n] = 0;
+}
+
+static int h_key(void *user)
+{
+    host *h = user;
+    if (!h->keys || !*h->keys) return -1;
+    return (unsigned char)*h->keys++;
+}
+
+static fbrl_status h_open(void *user, const char *path, void **handle)
+{
+    (void)user;
+    FILE *f = fopen(path, "r");
+    if (!f) return FBRL_ENOENT;
+    *handle = f;
+    return FBRL_OK;
+}
+
+static fbrl_status h_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
+{
+    (void)user;
+    size_t n = 0;
+    int c;
+    while ((c = fgetc((FILE *)handle)) != EOF && c != '\n') {
+        if (n >= cap) return FBRL_ENOSPC;
+        buf[n++] = (char)c;
+    }
+    if (c == EOF && n == 0) return FBRL_EEOF;
+    *len = n;
+    return FBRL_OK;
+}
+
+static void h_close(void *user, void *handle)
+{
+    (void)user;
+    fclose(handle);
+}
+
+typedef struct fixture {
+    void *mem;
+    host h;
+    fbrl_vm *vm;
+} fixture;
+
+static fixture *new_vm(size_t mem_size)
+{
+    fixture *f = calloc(1, sizeof *f);
+    assert_non_null(f);
+    f->mem = malloc(mem_size);
+    assert_non_null(f->mem);
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.mem = f->mem;
+    cfg.mem_size = mem_size;
+    cfg.host.user = &f->h;
+    cfg.host.write = h_write;
+    cfg.host.key = h_key;
+    cfg.host.file_open = h_open;
+    cfg.host.file_read_line = h_read_line;
+    cfg.host.file_close = h_close;
+    assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    return f;
+}
+
+static void free_vm(fixture *f)
+{
+    free(f->mem);
+    free(f);
+}
+
+static fbrl_status ev(fixture *f, const char *text) { return fbrl_vm_eval(f->vm, text, strlen(text)); }
+
+static fbrl_cell pop1(fixture *f)
+{
+    fbrl_cell v = 0;
+    assert_int_equal(fbrl_vm_pop(f->vm, &v), FBRL_OK);
+    return v;
+}
+
+/* ---- the Forth suite ---- */
+static void run_forth_file(const char *name)
+{
+    fixture *f = new_vm(4 << 20);
+    char path[512];
+    fbrl_status st = fbrl_vm_include(f->vm, FORTH_DIR "tester.fs");
+    assert_int_equal(st, FBRL_OK);
+    snprintf(path, sizeof path, "%s%s", FORTH_DIR, name);
+    st = fbrl_vm_include(f->vm, path);
+    if (st != FBRL_OK) {
+        const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
+        print_error("%s: error %d (%s) at word '%s' %s:%lu\n", name, e->throw_code, e->message, e->word,
+                    e->file, e->line);
+    }
+    assert_int_equal(st, FBRL_OK);
+    assert_int_equal(ev(f, "#ERRORS @ #TESTS @"), FBRL_OK);
+    fbrl_cell tests = pop1(f), errors = pop1(f);
+    if (errors) print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->h.out);
+    assert_int_equal(errors, 0);
+    assert_true(tests > 10);
+    print_message("%s: %ld tests passed\n", name, (long)tests);
+    free_vm(f);
+}
+
+#define FORTH_TEST(fn, file) static void fn(void **state) { (void)state; run_forth_file(file); }
+FORTH_TEST(forth_core, "core.fs")
+
+/* ---- the C API ---- */
+static void create_rejects_bad_config(void **state)
+{
+    (void)state;
+    static unsigned char small[4096];
+    fbrl_vm *vm;
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    assert_int_equal(fbrl_vm_create(&vm, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_EINVAL);
+    cfg.mem = small;
+    cfg.mem_size = sizeof small;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_ENOSPC);
+}
+
+static int count_words(void *ctx, const char *name, size_t len)
+{
+    (void)name;
+    (void)len;
+    ++*(int *)ctx;
+    return 0;
+}
+
+static void size_for_is_enough(void **state)
+{
+    (void)state;
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    size_t need = fbrl_vm_size_for(&cfg, 10000);
+    void *mem = malloc(need);
+    cfg.mem = mem;
+    cfg.mem_size = need;
+    fbrl_vm *vm;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vm_eval(vm, "UNUSED", 6), FBRL_OK);
+    fbrl_cell unused;
+    assert_int_equal(fbrl_vm_pop(vm, &unused), FBRL_OK);
+    assert_true(unused >= 10000);
+    /* dictionary exhaustion is an error, not a crash, and the VM still works */
+    assert_int_equal(fbrl_vm_eval(vm, "UNUSED 16 + ALLOT", 17), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(vm)->throw_code, -8);
+    const char *fill = ": F BEGIN 1 , AGAIN ; F";
+    assert_int_equal(fbrl_vm_eval(vm, fill, strlen(fill)), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(vm)->throw_code, -8);
+    assert_int_equal(fbrl_vm_eval(vm, "1 2 +", 5), FBRL_OK);
+    assert_int_equal(fbrl_vm_pop(vm, &unused), FBRL_OK);
+    assert_int_equal(unused, 3);
+    int n = 0;
+    fbrl_vm_words(vm, count_words, &n);
+    assert_true(n > 300);
+    free(mem);
+    /* too small by a little */
+    cfg.mem_size = fbrl_vm_size_for(&cfg, 0) / 2;
+    mem = malloc(cfg.mem_size);
+    cfg.mem = mem;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_ENOSPC);
+    free(mem);
+}
+
+static void two_vms_are_independent(void **state)
+{
+    (void)state;
+    fixture *a = new_vm(1 << 20), *b = new_vm(1 << 20);
+    assert_int_equal(ev(a, ": TWICE 2 * ; 21 TWICE HEX"), FBRL_OK);
+    assert_int_equal(ev(b, "TWICE"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(b->vm)->throw_code, -13);
+    assert_int_equal(ev(b, "10"), FBRL_OK);
+    assert_int_equal(pop1(b), 10); /* b is still decimal */
+    assert_int_equal(ev(a, "10"), FBRL_OK);
+    assert_int_equal(pop1(a), 16);
+    assert_int_equal(pop1(a), 42);
+    free_vm(a);
+    free_vm(b);
+}
+
+static fbrl_status c_add(fbrl_vm *vm, void *arg)
+{
+    fbrl_cell x, y;
+    fbrl_status st;
+    if ((st = fbrl_vm_pop(vm, &y)) || (st = fbrl_vm_pop(vm, &x))) return fbrl_vm_throw(vm, -4, NULL);
+    return fbrl_vm_push(vm, x + y + *(fbrl_cell *)arg);
+}
+
+static fbrl_status c_fail(fbrl_vm *vm, void *arg)
+{
+    (void)arg;
+    return fbrl_vm_throw(vm, -1001, "arm is not homed");
+}
+
+static fbrl_status c_offline(fbrl_vm *vm, void *arg)
+{
+    (void)vm;
+    (void)arg;
+    return FBRL_EOFFLINE;
+}
+
+static fbrl_status c_parse(fbrl_vm *vm, void *arg)
+{
+    const char *name;
+    size_t len;
+    (void)arg;
+    fbrl_vm_parse_name(vm, &name, &len);
+    return fbrl_vm_push(vm, (fbrl_cell)len);
+}
+
+static void c_words(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    static fbrl_cell bias = 100;
+    assert_int_equal(fbrl_vm_define(f->vm, "C-ADD", c_add, &bias, "( a b -- a+b+100 )", "adds with bias"),
+                     FBRL_OK);
+    assert_int_equal(fbrl_vm_define(f->vm, "C-FAIL", c_fail, NULL, "( -- )", "always fails"), FBRL_OK);
+    assert_int_equal(fbrl_vm_define(f->vm, "C-OFF", c_offline, NULL, "( -- )", "offline"), FBRL_OK);
+    assert_int_equal(fbrl_vm_define(f->vm, "C-PARSE", c_parse, NULL, "( \"name\" -- len )", "parses"), FBRL_OK);
+    assert_int_equal(fbrl_vm_define(f->vm, "BAD NAME", c_add, NULL, "", ""), FBRL_ENAME);
+    assert_int_equal(fbrl_vm_define(f->vm, "", c_add, NULL, "", ""), FBRL_ENAME);
+    assert_int_equal(fbrl_vm_define(f->vm, "X", NULL, NULL, "", ""), FBRL_EINVAL);
+    assert_int_equal(ev(f, "1 2 c-add : T C-ADD ; 3 4 T C-PARSE abcde"), FBRL_OK);
+    assert_int_equal(pop1(f), 5);
+    assert_int_equal(pop1(f), 107);
+    assert_int_equal(pop1(f), 103);
+    const char *se, *help;
+    assert_int_equal(fbrl_vm_help(f->vm, "c-add", &se, &help), FBRL_OK);
+    assert_string_equal(se, "( a b -- a+b+100 )");
+    assert_string_equal(help, "adds with bias");
+    assert_int_equal(fbrl_vm_help(f->vm, "nope", &se, &help), FBRL_ENOENT);
+    /* errors raised in C carry their code and message */
+    assert_int_equal(ev(f, "1 2 C-FAIL 3"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -1001);
+    assert_string_equal(fbrl_vm_last_error(f->vm)->message, "arm is not homed");
+    assert_string_equal(fbrl_vm_last_error(f->vm)->word, "C-FAIL");
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    /* a plain status becomes that status, catchable in Forth */
+    assert_int_equal(ev(f, "C-OFF"), FBRL_EOFFLINE);
+    assert_string_equal(fbrl_vm_last_error(f->vm)->message, fbrl_status_str(FBRL_EOFFLINE));
+    assert_int_equal(ev(f, "' C-FAIL CATCH ' C-OFF CATCH"), FBRL_OK);
+    assert_int_equal(pop1(f), -300 + FBRL_EOFFLINE);
+    assert_int_equal(pop1(f), -1001);
+    assert_int_equal(ev(f, "C-ADD"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -4);
+    free_vm(f);
+}
+
+static void api_stacks(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    double d;
+    fbrl_cell v;
+    assert_int_equal(fbrl_vm_pop(f->vm, &v), FBRL_EEMPTY);
+    assert_int_equal(fbrl_vm_fpop(f->vm, &d), FBRL_EEMPTY);
+    assert_int_equal(fbrl_vm_fpush(f->vm, 1.0 / 0.0), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_vm_fpush(f->vm, 2.5), FBRL_OK);
+    assert_int_equal(fbrl_vm_push(f->vm, 3), FBRL_OK);
+    assert_int_equal(ev(f, "S>F F* F>S"), FBRL_OK);
+    assert_int_equal(fbrl_vm_depth(f->vm), 1);
+    assert_int_equal(fbrl_vm_fdepth(f->vm), 0);
+    assert_int_equal(pop1(f), 7);
+    for (int i = 0; i < 256; i++) assert_int_equal(fbrl_vm_push(f->vm, i), FBRL_OK);
+    assert_int_equal(fbrl_vm_push(f->vm, 0), FBRL_ENOMEM);
+    assert_int_equal(ev(f, "1"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -3);
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    /* fbrl_vm_addr only maps the VM's own data space */
+    assert_int_equal(ev(f, "HERE"), FBRL_OK);
+    v = pop1(f);
+    assert_non_null(fbrl_vm_addr(f->vm, v, 16));
+    assert_null(fbrl_vm_addr(f->vm, 0, 1));
+    assert_null(fbrl_vm_addr(f->vm, (fbrl_cell)f, 1));
+    assert_null(fbrl_vm_addr(f->vm, v, (size_t)1 << 40));
+    free_vm(f);
+}
+
+static void errors_carry_word_file_line(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
+    assert_int_equal(ev(f, "1 2\n3 4\n: X 5 FROB ;\n6"), FBRL_ETHROW);
+    assert_int_equal(e->throw_code, -13);
+    assert_string_equal(e->message, "undefined word");
+    assert_string_equal(e->word, "FROB");
+    assert_string_equal(e->file, "");
+    assert_int_equal(e->line, 3);
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(ev(f, "X"), FBRL_ETHROW); /* the half-made X is gone */
+    assert_string_equal(e->word, "X");
+
+    assert_int_equal(fbrl_vm_include(f->vm, FORTH_DIR "files/bad.fs"), FBRL_ETHROW);
+    assert_int_equal(e->throw_code, -13);
+    assert_string_equal(e->word, "NO-SUCH-WORD");
+    assert_string_equal(e->file, FORTH_DIR "files/bad.fs");
+    assert_int_equal(e->line, 4);
+    assert_int_equal(ev(f, "GOOD"), FBRL_OK); /* words before the error stay */
+    assert_int_equal(pop1(f), 1);
+    assert_int_equal(ev(f, "HALF"), FBRL_ETHROW);
+
+    /* errors in nested files name the inner file */
+    assert_int_equal(ev(f, "S\" " FORTH_DIR "files/bad.fs\" INCLUDED"), FBRL_ETHROW);
+    assert_string_equal(e->file, FORTH_DIR "files/bad.fs");
+    assert_int_equal(e->line, 4);
+
+    assert_int_equal(fbrl_vm_include(f->vm, FORTH_DIR "files/unterminated.fs"), FBRL_ETHROW);
+    assert_int_equal(e->throw_code, -39);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(ev(f, "OPEN"), FBRL_ETHROW);
+
+    assert_int_equal(fbrl_vm_include(f->vm, FORTH_DIR "files/no-such-file.fs"), FBRL_ETHROW);
+    assert_int_equal(e->throw_code, -38);
+
+    /* ABORT" carries its text */
+    assert_int_equal(ev(f, ": CHECK ABORT\" gripper open\" ; 0 CHECK 1 CHECK"), FBRL_ETHROW);
+    assert_int_equal(e->throw_code, -2);
+    assert_string_equal(e->message, "gripper open");
+    assert_string_equal(e->word, "CHECK");
+    free_vm(f);
+}
+
+static void include_relative_and_require(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(fbrl_vm_include(f->vm, FORTH_DIR "files/outer.fs"), FBRL_OK);
+    assert_int_equal(ev(f, "OUTER-SUM INNER-LOADS @"), FBRL_OK);
+    assert_int_equal(pop1(f), 1);
+    assert_int_equal(pop1(f), 3);
+    assert_int_equal(ev(f, "S\" " FORTH_DIR "files/inner.fs\" REQUIRED INNER-LOADS @"), FBRL_OK);
+    assert_int_equal(pop1(f), 1);
+    assert_int_equal(ev(f, "S\" " FORTH_DIR "files/inner.fs\" INCLUDED INNER-LOADS @"), FBRL_OK);
+    assert_int_equal(pop1(f), 2);
+    free_vm(f);
+}
+
+static void multi_line_definitions_and_bye(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(ev(f, ": SQ ( n -- n*n ) \\ square a number"), FBRL_OK);
+    assert_true(fbrl_vm_compiling(f->vm));
+    assert_int_equal(ev(f, "  DUP *"), FBRL_OK);
+    assert_int_equal(ev(f, ";"), FBRL_OK);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(ev(f, "7 SQ"), FBRL_OK);
+    assert_int_equal(pop1(f), 49);
+    const char *se, *help;
+    assert_int_equal(fbrl_vm_help(f->vm, "sq", &se, &help), FBRL_OK);
+    assert_string_equal(se, "( n -- n*n )");
+    assert_string_equal(help, "square a number");
+    f->h.n = 0;
+    assert_int_equal(ev(f, "HELP SQ HELP DUP"), FBRL_OK);
+    assert_string_equal(f->h.out, "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
+    assert_int_equal(ev(f, "1 BYE 2"), FBRL_OK);
+    assert_true(fbrl_vm_bye(f->vm));
+    assert_int_equal(fbrl_vm_depth(f->vm), 1);
+    free_vm(f);
+}
+
+static int check_help(void *ctx, const char *name, size_t len)
+{
+    fixture *f = ctx;
+    char n[64];
+    const char *se = NULL, *help = NULL;
+    memcpy(n, name, len);
+    n[len] = 0;
+    assert_int_equal(fbrl_vm_help(f->vm, n, &se, &help), FBRL_OK);
+    if (!se[0] || strlen(help) < 4) print_error("word %s lacks help\n", n);
+    assert_true(se[0] == '(');
+    assert_true(strlen(help) >= 4);
+    return 0;
+}
+
+static void every_word_has_help(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    fbrl_vm_words(f->vm, check_help, f);
+    f->h.n = 0;
+    assert_int_equal(ev(f, "WORDS"), FBRL_OK);
+    assert_non_null(strstr(f->h.out, " DUP "));
+    free_vm(f);
+}
+
+/* Wrong programs must give errors, never crashes (run under ASan+UBSan in CI). */
+static void hostile_programs_fail_cleanly(void **state)
+{
+    (void)state;
+    static const struct { const char *src; int code; } cases[] = {
+        { "0 @", -9 }, { "-1 @", -9 }, { "HERE 1000000000 + C@", -9 }, { "1 0 !", -9 },
+        { "0 100 ERASE", -9 }, { "HERE 0 1000000 MOVE", -9 },
+        { "0 10 TYPE", -9 }, { "DROP", -4 }, { "1 2 3 2ROT", -4 }, { "5 PICK", -4 }, { "F+", -45 },
+        { ": R1 RECURSE ; R1", -5 }, { ": D1 1 1 RECURSE ; D1", -3 }, { ": F1 1E0 RECURSE ; F1", -44 },
+        { ": B1 BEGIN 1 AGAIN ; B1", -3 }, { "1 0 /", -10 }, { "1 0 MOD", -10 }, { "1 0 0 UM/MOD", -10 },
+        { "1E0 0E0 F/", -42 }, { "-1E0 FSQRT", -46 }, { "0E0 FLN", -46 }, { "1E300 1E300 F*", -43 },
+        { "1E30 F>S", -11 }, { "R>", -14 }, { ": X1 R> R> R> R> ; X1", -6 },
+        { ": X2 12345 >R ; X2", -9 }, { ": X3 HERE >R ; X3", -9 }, { ": X4 -8 >R ; X4", -9 },
+        { "THEN", -14 }, { ": X5 THEN ;", -22 }, { ": X6 IF ;", -22 }, { ": X7 BEGIN UNTIL UNTIL ;", -22 },
+        { ": X8 DO IF LOOP ;", -22 }, { ": X9 ELSE ;", -22 }, { ": XA 1 ; ;", -14 }, { ": XB [ : Y ;", -29 },
+        { ": ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ;", -19 }, { "CREATE", -16 }, { "S\" abc", -39 },
+        { "( abc", -39 }, { ".( abc", -39 }, { "12X3", -13 }, { "--5", -13 }, { "1.2.3", -13 },
+        { "$", -13 }, { "'ab'", -13 }, { "1E", 0 }, { "' DUP 99999 + EXECUTE", -13 }, { "0 EXECUTE", -13 },
+        { "-1 EXECUTE", -13 }, { "123 THROW", 123 }, { "ABORT", -1 }, { "DEFER DF DF", -21 },
+        { "1 2 3 4 5 6 7 8 9 10 2 ROLL 100 ROLL", -4 }, { ": X10 0 >R EXIT ; X10", -9 },
+        { "10 0 BASE ! .", -24 }, { "1 BASE ! 10", -13 }, { "S\" foo\" 2DROP 0 -1 EVALUATE", -24 },
+        { "PAD 0 EVALUATE", 0 }, { "-1 ALLOT", 0 }, { "-1000000000 ALLOT", -9 },
+        { "1000000000000 ALLOT", -8 }, { "0 1 1 FM/MOD", -11 }, { "1 1 1 SM/REM", -11 },
+        { "MAX-D", -13 }, { "' + >BODY", -31 }, { "1 TO DUP", -32 }, { "5 IS DUP", -32 },
+        { "DOES>", -14 }, { "-5 SPACES 0 0 D. : HO <# 300 0 DO 65 HOLD LOOP ; HO", -17 }, { "<# #S", -4 },
+        { "INCLUDE", -38 }, { "S\" \" INCLUDED", -38 }, { "KEY KEY", -57 }, { "1 RDROP", -14 },
+        { "CATCH", -4 }, { "5 CATCH -13 <> THROW", 0 }, { "' DROP CATCH", 0 },
+        { "MARKER M1 : X11 ; M1 X11", -13 },
+        { "' EXIT EXECUTE", -6 },
+    };
+    fixture *f = new_vm(1 << 20);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        fbrl_status st = ev(f, cases[i].src);
+        int code = st == FBRL_OK ? 0 : fbrl_vm_last_error(f->vm)->throw_code;
+        if (code != cases[i].code) print_error("'%s' gave %d, expected %d\n", cases[i].src, code, cases[i].code);
+        assert_int_equal(code, cases[i].code);
+        if (code) assert_int_equal(fbrl_vm_depth(f->vm), 0);
+        fbrl_vm_eval(f->vm, "DECIMAL", 7);
+        while (fbrl_vm_depth(f->vm)) pop1(f);
+        double d;
+        while (fbrl_vm_fdepth(f->vm)) fbrl_vm_fpop(f->vm, &d);
+        /* the VM keeps working */
+        assert_int_equal(ev(f, "2 3 *"), FBRL_OK);
+        assert_int_equal(pop1(f), 6);
+    }
+    /* an over-long line */
+    char *line = malloc(5000);
+    memset(line, ' ', 4999);
+    line[4999] = 0;
+    assert_int_equal(ev(f, line), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -18);
+    free(line);
+    free_vm(f);
+}
+
+/* Overwrite freshly compiled code with pseudo-random cells and run it: every
+ * corrupted instruction stream must end in a THROW or normally, never a crash. */
+static void corrupted_code_is_contained(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(ev(f, "VARIABLE SEED : RND SEED @ 1103515245 * 12345 + DUP SEED ! 16 RSHIFT ;"), FBRL_OK);
+    assert_int_equal(ev(f, ": MIX ( a n -- ) 0 DO RND 3 AND CASE 0 OF RND 400 MOD ENDOF 1 OF RND ENDOF "
+                           "2 OF RND 50 MOD 4096 + ENDOF DUP OF HERE RND 64 MOD CELLS - ENDOF ENDCASE "
+                           "OVER I CELLS + ! LOOP DROP ;"),
+                     FBRL_OK);
+    int ok = 0, thrown = 0;
+    for (int seed = 1; seed <= 300; seed++) {
+        char src[256];
+        snprintf(src, sizeof src,
+                 "MARKER GONE : VICTIM 1 2 3 4 5 6 7 8 9 10 11 12 ; %d SEED ! HERE 13 CELLS - 13 MIX VICTIM", seed);
+        fbrl_status st = ev(f, src);
+        if (st == FBRL_OK) ok++;
+        else thrown++;
+        fbrl_vm_eval(f->vm, "GONE DECIMAL", 12);
+        while (fbrl_vm_depth(f->vm)) pop1(f);
+        double d;
+        while (fbrl_vm_fdepth(f->vm)) fbrl_vm_fpop(f->vm, &d);
+    }
+    assert_true(thrown > 0);
+    assert_int_equal(ok + thrown, 300);
+    assert_int_equal(ev(f, "2 3 +"), FBRL_OK);
+    assert_int_equal(pop1(f), 5);
+    free_vm(f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(forth_core),
+        cmocka_unit_test(create_rejects_bad_config),
+        cmocka_unit_test(size_for_is_enough),
+        cmocka_unit_test(two_vms_are_independent),
+        cmocka_unit_test(c_words),
+        cmocka_unit_test(api_stacks),
+        cmocka_unit_test(errors_carry_word_file_line),
+        cmocka_unit_test(include_relative_and_require),
+        cmocka_unit_test(multi_line_definitions_and_bye),
+        cmocka_unit_test(every_word_has_help),
+        cmocka_unit_test(hostile_programs_fail_cleanly),
+        cmocka_unit_test(corrupted_code_is_contained),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
