@@ -139,8 +139,12 @@ int main(int argc, char **argv)
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
         const action *a = &opt.actions[i];
         if (a->is_text) {
+            unsigned long lines = 1;
+            const char *p;
+            for (p = a->arg; *p; p++)
+                lines += *p == '\n';
             if (mon_eval(&m, a->arg, strlen(a->arg), "-e", 1, 1) == 0)
-                mon_check_closed(&m, "-e", 0);
+                mon_check_closed(&m, "text", "-e", lines);
         } else {
             mon_include(&m, a->arg);
         }
@@ -156,7 +160,7 @@ int main(int argc, char **argv)
             while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
                 mon_eval(&m, line, len, "stdin", ++ln, 1);
             if (!fbrl_vm_bye(m.vm))
-                mon_check_closed(&m, "stdin", ln);
+                mon_check_closed(&m, "input", "stdin", ln);
         }
     }
 

@@ -62,7 +62,11 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     mon_host_newline(&m->host);
     fputs("error: ", stderr);
     put_clean(msg);
-    if (e != NULL && e->word[0] && strstr(msg, e->word) == NULL) {
+    /* Codes outside the system's ranges are the program's own: show the number. */
+    if (e != NULL && (e->throw_code > 0 || e->throw_code < -4095))
+        fprintf(stderr, " %d", e->throw_code);
+    /* The word that failed; -39 (end of file) happens between words. */
+    if (e != NULL && e->word[0] && e->throw_code != -39) {
         fputs(e->throw_code == -13 ? " " : " in ", stderr);
         put_clean(e->word);
     }
@@ -70,10 +74,14 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
         fputs(" (", stderr);
         put_clean(e->file);
         fprintf(stderr, ":%lu)", e->line);
-    } else if (where != NULL) {
+    } else if (where != NULL && line > 0) {
         fputs(" (", stderr);
         put_clean(where);
         fprintf(stderr, ":%lu)", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
+    } else if (where != NULL) {
+        fputs(" (", stderr);
+        put_clean(where);
+        fputc(')', stderr);
     }
     fputc('\n', stderr);
     fflush(stderr);
@@ -94,22 +102,24 @@ int mon_include(mon *m, const char *path)
 {
     fbrl_status st = fbrl_vm_include(m->vm, path);
     if (st == FBRL_OK)
-        return mon_check_closed(m, path, 0);
+        return 0;  /* (the engine itself refuses a file that ends inside a definition) */
     report(m, st, path, 0);
     m->errors++;
     return -1;
 }
 
-int mon_check_closed(mon *m, const char *where, unsigned long line)
+int mon_check_closed(mon *m, const char *what, const char *where, unsigned long line)
 {
     fbrl_cell c;
     double f;
     if (!fbrl_vm_compiling(m->vm))
         return 0;
     mon_host_newline(&m->host);
-    fputs("error: unterminated definition at end of input (", stderr);
+    fprintf(stderr, "error: unterminated definition at end of %s (", what);
     put_clean(where);
-    fprintf(stderr, line ? ":%lu)\n" : ")\n", line);
+    if (line > 0)
+        fprintf(stderr, ":%lu", line);
+    fputs(")\n", stderr);
     fflush(stderr);
     m->errors++;
     /* Back to interpreting, as after any other error: `[` ends compilation and

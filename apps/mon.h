@@ -30,9 +30,10 @@ void mon_close(mon *m);
 int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts);
 /* INCLUDED the file at path; errors as for mon_eval (always counted). */
 int mon_include(mon *m, const char *path);
-/* At the end of a file, -e text or piped input a definition must not be left
- * open: report it as an error (counted) and return the VM to interpreting. */
-int mon_check_closed(mon *m, const char *where, unsigned long line);
+/* At the end of -e text or piped input a definition must not be left open:
+ * report it as an error (counted; `what` is "text" or "input")
+ * and return the VM to interpreting. */
+int mon_check_closed(mon *m, const char *what, const char *where, unsigned long line);
 
 /* Interactive session on the terminal (mon_edit.c). Returns when the user ends
  * it (BYE or end of input). */

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <poll.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -72,15 +73,42 @@ void mon_host_free(mon_host *h)
     h->line_cap = 0;
 }
 
+static int only_blanks(const char *s, size_t n)
+{
+    while (n > 0 && (*s == ' ' || *s == '\t'))
+        s++, n--;
+    return n == 0;
+}
+
+/* On a terminal, a piece of output that would run past the right margin starts
+ * a new line, so WORDS and long runs of numbers wrap between words, not inside
+ * them. Piped output is written unchanged. */
 static void host_write(void *user, const char *s, size_t n)
 {
     mon_host *h = user;
+    const char *nl;
     if (n == 0)
         return;
+    if (h->width > 0 && h->column > 0 && h->column + (long)n > h->width &&
+        memchr(s, '\n', n) == NULL && !only_blanks(s, n)) {
+        fputc('\n', h->out);
+        h->column = 0;
+    }
     fwrite(s, 1, n, h->out);
-    h->column = s[n - 1] != '\n';
+    for (nl = s + n; nl > s && nl[-1] != '\n'; nl--)
+        ;
+    n = nl > s ? (size_t)(s + n - nl) : (size_t)h->column + n;
+    h->column = n > 65535 ? 65535 : (int)n;  /* only compared with the width */
     if (h->out_is_tty)
         fflush(h->out);
+}
+
+static void update_width(mon_host *h)
+{
+    struct winsize ws;
+    h->width = 0;
+    if (h->out_is_tty && ioctl(fileno(h->out), TIOCGWINSZ, &ws) == 0)
+        h->width = ws.ws_col > 0 ? ws.ws_col : 80;
 }
 
 /* One byte from the keyboard. On a terminal KEY must not wait for Enter, so the
@@ -215,6 +243,7 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     memset(h, 0, sizeof *h);
     h->out = out;
     h->out_is_tty = isatty(fileno(out));
+    update_width(h);
     h->in_fd = in_fd;
     h->in_is_tty = isatty(in_fd);
 
@@ -233,9 +262,11 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
 
 void mon_host_newline(mon_host *h)
 {
-    if (h->column) {
+    /* Only a terminal needs it; piped output stays exactly what the program wrote. */
+    if (h->column && h->out_is_tty) {
         fputc('\n', h->out);
         h->column = 0;
     }
     fflush(h->out);
+    update_width(h);  /* the window may have been resized */
 }

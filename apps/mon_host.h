@@ -9,7 +9,8 @@
 typedef struct mon_host {
     FILE *out;          /* console output (stdout) */
     int out_is_tty;     /* flush every write so output shows before long words */
-    int column;         /* 0 when the last byte written was a newline (or nothing yet) */
+    int column;         /* bytes written since the last newline */
+    int width;          /* terminal columns (0: not a terminal) */
     int in_fd;          /* keyboard for KEY / KEY? (stdin) */
     int in_is_tty;
     /* Read-ahead of in_fd shared by the line reader and KEY, so a program that
@@ -32,7 +33,8 @@ const char *mon_host_read_line(mon_host *h, size_t *len);
 /* Release what the host allocated. */
 void mon_host_free(mon_host *h);
 
-/* Start the next output on a fresh line (before a prompt or an error line). */
+/* On a terminal, start the next output on a fresh line (before a prompt or an
+ * error line); flush the output either way. */
 void mon_host_newline(mon_host *h);
 
 #endif
