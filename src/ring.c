@@ -78,7 +78,8 @@ fbrl_status fbrl_ring_write(fbrl_ring *r, const void *src, size_t len, size_t *w
     size_t at = h & r->mask;
     size_t first = r->mask + 1 - at < n ? r->mask + 1 - at : n;
     memcpy(r->buf + at, src, first);
-    memcpy(r->buf, (const uint8_t *)src + first, n - first);
+    if (n > first) /* wrapped: the rest goes to the start */
+        memcpy(r->buf, (const uint8_t *)src + first, n - first);
     fbrl_store_rel(&r->head, h + n);
     *written = n;
     return FBRL_OK;
@@ -92,7 +93,8 @@ static size_t copy_out(const fbrl_ring *r, size_t t, void *dst, size_t len)
     size_t at = t & r->mask;
     size_t first = r->mask + 1 - at < n ? r->mask + 1 - at : n;
     memcpy(dst, r->buf + at, first);
-    memcpy((uint8_t *)dst + first, r->buf, n - first);
+    if (n > first)
+        memcpy((uint8_t *)dst + first, r->buf, n - first);
     return n;
 }
 

@@ -143,12 +143,13 @@ fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *
     return done == len ? FBRL_OK : st;
 }
 
-/* After the main line drained the rx ring: if we hold the peer off and the ring is
- * down to the low-water mark, start the transmitter so isr_tx sends XON. */
-static void maybe_release_peer(fbrl_uart *u)
+/* After the main line took bytes from the rx ring: wake the transmitter side when we
+ * hold the peer off and the ring is down to the low-water mark (isr_tx then sends
+ * XON), or when the ring had been full (a backend that stopped reading resumes). */
+static void after_rx_drain(fbrl_uart *u, bool was_full)
 {
-    if (fbrl_load_acq(&u->rx_stopped) &&
-        (!fbrl_load_acq(&u->flow) || fbrl_ring_count(&u->rx) <= u->rx_low))
+    if (was_full || (fbrl_load_acq(&u->rx_stopped) &&
+                     (!fbrl_load_acq(&u->flow) || fbrl_ring_count(&u->rx) <= u->rx_low)))
         u->ops->tx_kick(u->ctx);
 }
 
@@ -166,8 +167,9 @@ fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
     wait w = wait_start(u, timeout_ms);
     for (;;) {
         size_t n = 0;
+        bool was_full = fbrl_ring_full(&u->rx);
         fbrl_ring_read(&u->rx, buf, len, &n);
-        maybe_release_peer(u);
+        after_rx_drain(u, was_full && n > 0);
         if (n > 0) {
             *got = n;
             return FBRL_OK;
@@ -175,7 +177,9 @@ fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
         fbrl_status st = wait_step(u, &w);
         if (st != FBRL_OK) {
             /* Bytes that arrived with the error (e.g. just before a hang-up) come first. */
+            bool was_full = fbrl_ring_full(&u->rx);
             fbrl_ring_read(&u->rx, buf, len, &n);
+            after_rx_drain(u, was_full && n > 0);
             *got = n;
             return n > 0 ? FBRL_OK : st;
         }
@@ -203,6 +207,11 @@ size_t fbrl_uart_rx_available(const fbrl_uart *u)
 size_t fbrl_uart_tx_pending(const fbrl_uart *u)
 {
     return is_open(u) ? fbrl_ring_count(&u->tx) : 0;
+}
+
+size_t fbrl_uart_rx_room(const fbrl_uart *u)
+{
+    return is_open(u) ? fbrl_ring_space(&u->rx) : 0;
 }
 
 int fbrl_uart_peer_stopped(const fbrl_uart *u)

@@ -56,6 +56,10 @@ typedef struct fbrl_uart_counters {
  *    fbrl_uart_isr_rx() when it must send XOFF, or restart output after the peer's
  *    XON, and now_us from the interrupt side to time XOFF holds. Both must be safe
  *    there (no blocking; on bare metal: no re-enabling interrupts).
+ *  - The main line also calls tx_kick after it took bytes from a receive ring that
+ *    was full: a backend that stopped receiving when fbrl_uart_rx_room() was 0
+ *    (masked the receive interrupt, left bytes in the kernel) resumes then. A kick
+ *    with nothing to send simply finds fbrl_uart_isr_tx() returning -1.
  *  - After tx_kick, the backend calls fbrl_uart_isr_tx() until it returns -1 (or its
  *    transmitter is full); it need not call it again until the next tx_kick.
  *  - The backend calls the fbrl_uart_isr_*() entry points from one context at a time
@@ -140,6 +144,11 @@ fbrl_status fbrl_uart_drain(fbrl_uart *u, uint32_t timeout_ms);
 /* Bytes waiting to be read / waiting to be sent (0 for a bad handle). */
 size_t fbrl_uart_rx_available(const fbrl_uart *u);
 size_t fbrl_uart_tx_pending(const fbrl_uart *u);
+
+/* Interrupt side: how many more bytes the receive ring can take now (0 for a bad
+ * handle). A backend that can leave bytes in a lower queue (the kernel's, a FIFO it
+ * can mask) reads no more than this, so nothing is lost while the reader is slow. */
+size_t fbrl_uart_rx_room(const fbrl_uart *u);
 
 /* 1 while the peer's XOFF holds our transmitter, 0 otherwise (or bad handle). */
 int fbrl_uart_peer_stopped(const fbrl_uart *u);

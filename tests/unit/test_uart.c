@@ -411,6 +411,24 @@ static void no_flow_control_passes_everything(void **state)
     assert_int_equal(c.xoff_sent, 0);
 }
 
+/* Taking bytes from a full ring wakes the backend (it may have stopped receiving). */
+static void reading_a_full_ring_kicks_the_backend(void **state)
+{
+    (void)state;
+    uint8_t buf[8];
+    size_t n;
+    for (int i = 0; i < 64; i++)
+        fbrl_uart_isr_rx(&B.u, 'f');
+    assert_int_equal(fbrl_uart_rx_room(&B.u), 0);
+    int kicks = B.kicks;
+    assert_int_equal(fbrl_uart_read(&B.u, buf, sizeof buf, &n, 0), FBRL_OK);
+    assert_int_equal(B.kicks, kicks + 1);
+    assert_int_equal(fbrl_uart_rx_room(&B.u), 8);
+    assert_int_equal(fbrl_uart_read(&B.u, buf, sizeof buf, &n, 0), FBRL_OK);
+    assert_int_equal(B.kicks, kicks + 1); /* not full before this read: no kick */
+    assert_int_equal(fbrl_uart_rx_room(NULL), 0);
+}
+
 /* Turning flow control off while we hold the peer off sends the XON it waits for. */
 static void flow_off_releases_the_peer(void **state)
 {
@@ -489,6 +507,7 @@ int main(void)
         cmocka_unit_test_setup(overrun_is_counted_and_xoff_resent, setup_xon),
         cmocka_unit_test_setup(no_flow_control_passes_everything, setup_none),
         cmocka_unit_test_setup(flow_off_releases_the_peer, setup_xon),
+        cmocka_unit_test_setup(reading_a_full_ring_kicks_the_backend, setup_none),
         cmocka_unit_test_setup(line_status_counts, setup_xon),
         cmocka_unit_test_setup(disconnect_after_buffered_bytes, setup_xon),
         cmocka_unit_test_setup(counters_survive_a_wrap, setup_xon),
