@@ -1,0 +1,62 @@
+/* fbrlsim.h - the RAPL-II controller emulator as an embeddable library.
+ *
+ * fbrl_sim_create() opens a pseudo-terminal (or a TCP port on 127.0.0.1) and
+ * loads the persistent state; fbrl_sim_step() runs one slice of the event loop,
+ * fbrl_sim_run() loops until fbrl_sim_stop(), fbrl_sim_start() runs that loop
+ * in its own thread. All emulator state belongs to the loop's thread; only
+ * fbrl_sim_stop() may be called from another thread. Unlike libfbrl, the
+ * emulator allocates and uses the OS. Wire grammar: docs/rapl-commands.md. */
+#ifndef FBRL_SIM_H
+#define FBRL_SIM_H
+
+#include <stddef.h>
+
+#include "fbrl/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct fbrl_sim fbrl_sim;
+
+typedef struct fbrl_sim_options {
+    int tcp_port;             /* -1: pseudo-terminal (default); 0: any free TCP port; >0: that port */
+    const char *link_path;    /* pty only: a symlink to the slave device (replaced if present) */
+    long baud;                /* > 0: pace bytes as an 8N1 line at this rate, finite receive buffer */
+    double time_scale;        /* simulated time runs this many times faster than real time (1) */
+    const char *state_path;   /* persistent memory (locations, variables, I/O, settings) or NULL */
+    const char *log_path;     /* one line per command executed, or NULL */
+    const char *inputs_path;  /* time-stamped control lines "T IN 3 1", or NULL */
+    const char *control_path; /* FIFO created for control lines "IN 3 1", or NULL */
+    const char *faults;       /* "drop=P,corrupt=P,noise=P,stall=MS,seed=S" or NULL */
+    int rx_buffer;            /* receive buffer size with baud pacing (128) */
+} fbrl_sim_options;
+
+void fbrl_sim_options_init(fbrl_sim_options *o);
+
+/* Creates the emulator; on failure *out is NULL and err (if given) explains. */
+fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err, size_t errlen);
+
+/* The device path of the pty slave, or "tcp:127.0.0.1:PORT". */
+const char *fbrl_sim_path(const fbrl_sim *s);
+
+/* One slice of the event loop, waiting at most timeout_ms for I/O. */
+fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms);
+
+/* Loops in the calling thread until fbrl_sim_stop(). */
+fbrl_status fbrl_sim_run(fbrl_sim *s);
+
+/* Runs the loop in a new thread. */
+fbrl_status fbrl_sim_start(fbrl_sim *s);
+
+/* Asks the loop to end; callable from any thread and from a signal handler. */
+void fbrl_sim_stop(fbrl_sim *s);
+
+/* Stops and joins the loop's thread, saves the state, closes everything and
+ * removes the link. NULL is ignored. */
+void fbrl_sim_destroy(fbrl_sim *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
