@@ -1,0 +1,191 @@
+/* link.h - a robot session: RAPL commands over an fbrl_uart with echo verification.
+ *
+ * The link types a command, checks the controller's echo of every character, and sends
+ * the CR only when the whole line came back exactly; then it waits for the prompt and
+ * reads the reply (errors, positions, STATUS, values). When anything is unclear it asks
+ * the controller (probes that can never execute a line) instead of guessing, so a
+ * command is never executed twice or altered by the host. docs/link.md describes the
+ * protocol; docs/rapl-commands.md the controller's side.
+ *
+ * Every wait goes through fbrl_uart_read()'s timeout: the link never blocks otherwise.
+ * fbrl_link_start() + fbrl_link_poll() run one command step by step, so one thread can
+ * drive several links (several robots), see fbrl_link_poll_many(); the blocking calls
+ * (fbrl_link_cmd(), fbrl_link_where(), ...) are start + poll until done.
+ * No OS header: time comes from the uart backend's now_us or the config's clock. */
+#ifndef FBRL_LINK_H
+#define FBRL_LINK_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/status.h"
+#include "fbrl/uart.h"
+#include "fbrl/rapl_encode.h"
+#include "fbrl/rapl_reply.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The controller's line limit (longer lines fail with 025). */
+#define FBRL_LINK_LINE_MAX 80
+
+/* What a command prints and how the link reads it. */
+typedef enum fbrl_link_reply {
+    FBRL_LINK_REPLY_NONE = 0, /* nothing but an error line, if any */
+    FBRL_LINK_REPLY_POS,      /* W0 W2 W4 block */
+    FBRL_LINK_REPLY_STATUS,   /* STATUS block */
+    FBRL_LINK_REPLY_INT,      /* one integer line (TYPEI) */
+    FBRL_LINK_REPLY_REAL,     /* one real line (TYPEV) */
+    FBRL_LINK_REPLY_LINES,    /* any lines, handed to the line callback */
+    FBRL_LINK_REPLY_STREAM    /* W1 W3 W5 WE*: value lines until stopped */
+} fbrl_link_reply;
+
+typedef struct fbrl_link_config {
+    fbrl_rapl_form form;       /* keyword (default) or /NNN token form */
+    int lower_case;            /* send letters in lower case (default 1; see docs/link.md) */
+    uint32_t echo_timeout_ms;  /* silence after which an awaited byte counts as lost (100) */
+    uint32_t reply_timeout_ms; /* prompt after CR for ordinary commands (5000) */
+    uint32_t wait_timeout_ms;  /* prompt after CR for commands that may wait: motion, FINISH,
+                                * WAIT, RUN and unknown raw lines (120000) */
+    unsigned max_attempts;     /* typing attempts / query repeats per command (12) */
+    unsigned naxes;            /* axes in W0/W2/W4 and STATUS rows (5) */
+    /* Clock; NULL = the uart backend's now_us. */
+    uint64_t (*now_us)(void *ctx);
+    void *clock_ctx;
+    /* Called once for every line the link knows the controller executed (the user's
+     * commands and the link's own STATUS queries), with the command's result
+     * (FBRL_OK or FBRL_ECONTROLLER ...). Lines whose fate is unknown are not reported
+     * here; they end with FBRL_ETIMEOUT. May be NULL. */
+    void (*on_exec)(void *ctx, const char *line, size_t len, fbrl_status result);
+    void *exec_ctx;
+    /* Lines of FBRL_LINK_REPLY_LINES and STREAM replies (flawed = a byte was damaged). */
+    void (*on_line)(void *ctx, const char *line, size_t len, int flawed);
+    void *line_ctx;
+} fbrl_link_config;
+
+void fbrl_link_config_init(fbrl_link_config *c);
+
+typedef struct fbrl_link_stats {
+    uint64_t commands;        /* commands started */
+    uint64_t executed;        /* lines the controller executed (incl. the link's queries) */
+    uint64_t attempts;        /* lines typed (first tries and retypes) */
+    uint64_t echo_mismatch;   /* an echoed byte differed */
+    uint64_t echo_timeout;    /* an echoed byte never came */
+    uint64_t probes;          /* erase/verify/idle probes sent */
+    uint64_t cr_unconfirmed;  /* CR sent but the line was found unexecuted: retyped */
+    uint64_t prompt_lost;     /* executed, prompt damaged: confirmed by a probe */
+    uint64_t requeries;       /* read-only queries repeated because the reply was damaged */
+    uint64_t error_queries;   /* STATUS read to learn a damaged error line's code */
+    uint64_t failed;          /* commands that ended with an error other than ECONTROLLER */
+} fbrl_link_stats;
+
+/* A session. Caller-owned; every field is private. */
+typedef struct fbrl_link {
+    fbrl_uart *u;
+    fbrl_link_config cfg;
+    int xon_ok;                              /* flow NONE: probes may carry an XON byte */
+    /* the command */
+    char line[FBRL_LINK_LINE_MAX + 1];       /* canonical (upper-case) text */
+    size_t len;
+    fbrl_link_reply kind;
+    uint32_t timeout_ms;
+    int stage;                               /* main command or error query */
+    unsigned stream_lines;                   /* STREAM: value lines wanted */
+    /* progress */
+    int phase;
+    int ctrl_len;                            /* characters on the controller's line, -1 unknown */
+    size_t match, expect, triples;
+    unsigned attempts, probes_here;
+    uint64_t t_last, t_deadline, t_probe;
+    /* reply analysis */
+    fbrl_rapl_reader rd;
+    size_t after_cr;
+    int eol_seen, first_byte, prompt_seen, probe_out, probe_seen;
+    unsigned char tail[5];
+    int err_state, err_code, out_bad, nvalues;
+    unsigned stream_got;
+    int stop_sent;
+    char err_text[48];
+    /* results */
+    fbrl_rapl_pos pos;
+    fbrl_rapl_status_info st;
+    long ival;
+    double rval;
+    fbrl_status result;
+    int busy;
+    fbrl_link_stats stats;
+} fbrl_link;
+
+/* Bind a session to an open uart (its receive and transmit rings should hold at least
+ * 2 * FBRL_LINK_LINE_MAX bytes). cfg NULL = defaults. */
+fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg);
+
+/* Start-up handshake: bring the controller's line to a known state (erasing whatever
+ * was typed) and send NOHELP. Blocking (through the uart's timeouts). */
+fbrl_status fbrl_link_connect(fbrl_link *l);
+
+/* ---- one command, step by step (several links from one thread) ---- */
+
+/* Start a command line (printable ASCII, at most FBRL_LINK_LINE_MAX, no '?': the probes
+ * use it). FBRL_ESTATE if a command is still running. */
+fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind);
+
+/* Make progress for at most timeout_ms (0 = only what is already there). *done = 1
+ * when the command has ended; the return value is then its result. While it runs the
+ * return value is FBRL_OK. */
+fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done);
+
+/* Non-zero while a command runs. */
+int fbrl_link_busy(const fbrl_link *l);
+
+/* Serve several links from one thread for at most timeout_ms: polls every busy link in
+ * turn (each in slices of at most 1 ms) and returns as soon as one has finished:
+ * *index = that link, its result is returned. FBRL_ETIMEOUT (and *index = n) if none
+ * finished in time, FBRL_EEMPTY if none was busy. */
+fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index);
+
+/* ---- blocking calls ---- */
+
+/* Encode and run one command from the table. W0/W2/W4, STATUS, TYPEI and TYPEV fill the
+ * results below (fbrl_link_last_pos() ...); streams are run by fbrl_link_stream(). */
+fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                          int straight);
+
+/* Run a raw line; its output lines go to cfg.on_line. */
+fbrl_status fbrl_link_raw(fbrl_link *l, const char *line);
+
+/* FINISH: wait until the current motion is done. */
+fbrl_status fbrl_link_finish(fbrl_link *l);
+
+/* W2 (or W0 / W4 with cmd): position read back; out may be NULL. */
+fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out);
+
+/* STATUS into out. */
+fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out);
+
+/* TYPEI / TYPEV of a variable name (or any expression the controller understands,
+ * e.g. "SIG(3)"). */
+fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value);
+fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value);
+
+/* Digital input n (1..16): *on = 0 or 1, read with TYPEI SIG(n). */
+fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
+
+/* Continuous readout (W1 W3 W5 WE1 WE3 WE5): read `lines` value lines, each passed to
+ * cfg.on_line, then stop the stream. */
+fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
+
+/* ---- results ---- */
+
+/* The controller's error of the last command that ended with FBRL_ECONTROLLER:
+ * *code (e.g. 29) and its text ("TRANSFORM ILLEGAL"); code -1 if none. */
+fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
+
+const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l);
+const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
+fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,120 @@
+/* rapl_encode.h - RAPL-II command lines for the CRS controller, from one command table.
+ *
+ * fbrl_rapl_encode() writes one command line (without the CR) into a caller's buffer,
+ * either with the command's keyword ("APPRO P1,2.0000,S") or its /NNN token
+ * ("/002 P1,2.0000,S"). Keyword text is the default: no public client shows a real
+ * controller accepting tokens (DESIGN 5). Commands without a known token are written
+ * as keywords in both forms.
+ *
+ * Arguments are checked against the command's signature before a byte is written:
+ * names (locations, variables, programs) are 1-8 letters/digits/'_' starting with a letter,
+ * a location name may carry a '#' prefix (precision point); reals are written with
+ * exactly four decimals and never an exponent, independent of the C locale.
+ * The module includes no OS header. */
+#ifndef FBRL_RAPL_ENCODE_H
+#define FBRL_RAPL_ENCODE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Every command the FBRL robot instruction set (thesis 5.3, appendix I-5) sends. */
+typedef enum fbrl_rapl_cmd {
+    FBRL_RAPL_ACTUAL, FBRL_RAPL_ALIGN, FBRL_RAPL_APPRO, FBRL_RAPL_ARM, FBRL_RAPL_CLOSE,
+    FBRL_RAPL_CONFIG, FBRL_RAPL_DEPART, FBRL_RAPL_FINISH, FBRL_RAPL_FLASH, FBRL_RAPL_GAIN,
+    FBRL_RAPL_GRIP, FBRL_RAPL_HALT, FBRL_RAPL_HERE, FBRL_RAPL_HOME, FBRL_RAPL_JOG,
+    FBRL_RAPL_JOINT, FBRL_RAPL_LIMP, FBRL_RAPL_LOCK, FBRL_RAPL_MA, FBRL_RAPL_MANUAL,
+    FBRL_RAPL_MI, FBRL_RAPL_MOTOR, FBRL_RAPL_MOVE, FBRL_RAPL_NOFLASH, FBRL_RAPL_NOHELP,
+    FBRL_RAPL_NOLIMP, FBRL_RAPL_NOMANUAL, FBRL_RAPL_NOTEACH,
+    FBRL_RAPL_OPEN, FBRL_RAPL_OUTPUT, FBRL_RAPL_POINT, FBRL_RAPL_READY, FBRL_RAPL_RUN,
+    FBRL_RAPL_SERIAL, FBRL_RAPL_SET, FBRL_RAPL_SHIFTA, FBRL_RAPL_SPEED, FBRL_RAPL_STATUS,
+    FBRL_RAPL_TEACH, FBRL_RAPL_TOOL, FBRL_RAPL_TYPEI, FBRL_RAPL_TYPEV, FBRL_RAPL_UNLOCK,
+    FBRL_RAPL_W0, FBRL_RAPL_W1, FBRL_RAPL_W2, FBRL_RAPL_W3, FBRL_RAPL_W4, FBRL_RAPL_W5,
+    FBRL_RAPL_WAIT, FBRL_RAPL_WE1, FBRL_RAPL_WE3, FBRL_RAPL_WE5, FBRL_RAPL_XCAL,
+    FBRL_RAPL_XHOME, FBRL_RAPL_XZERO,
+    FBRL_RAPL_ASSIGN, /* variable assignment: NAME=value */
+    FBRL_RAPL_NCMDS
+} fbrl_rapl_cmd;
+
+typedef enum fbrl_rapl_form {
+    FBRL_RAPL_KEYWORD = 0, /* "APPRO P1,2.0000" (default) */
+    FBRL_RAPL_TOKEN = 1    /* "/002 P1,2.0000" (the thesis's tokenised form) */
+} fbrl_rapl_form;
+
+/* Command properties (fbrl_rapl_cmdinfo.flags). */
+#define FBRL_RAPL_F_STRAIGHT 0x1u /* accepts the ",S" straight-line suffix */
+#define FBRL_RAPL_F_MOTION   0x2u /* starts a motion: the prompt returns when it starts */
+#define FBRL_RAPL_F_STREAM   0x4u /* prints until the host sends a bare CR (W1 W3 W5 WE*) */
+
+/* One table entry. The signature has one character per argument:
+ *   L location name ('#' prefix allowed)   V variable name   N program name
+ *   I integer   R real (an integer argument is accepted)
+ *   W one of `words` ('|'-separated; ';' starts the list of the next W slot)
+ *   [ the arguments after it are optional   * the previous kind repeats (1..8 in all)
+ *   = the next argument follows '=' instead of ',' (assignment)
+ * POINT is special: after a cartesian name come 6 reals (x y z yaw pitch roll), after a
+ * '#' name 5 integers (motor pulses). */
+typedef struct fbrl_rapl_cmdinfo {
+    const char *keyword; /* "APPRO"; "" for the assignment */
+    uint16_t token;      /* 2 for /002; 0 = no token (keyword in both forms) */
+    const char *sig;
+    const char *words;   /* for 'W': allowed words separated by '|', else NULL */
+    unsigned flags;
+} fbrl_rapl_cmdinfo;
+
+/* The table entry of cmd, or NULL when cmd is out of range. */
+const fbrl_rapl_cmdinfo *fbrl_rapl_cmd_info(fbrl_rapl_cmd cmd);
+
+/* Look a keyword up (case-insensitive, whole word). FBRL_ENOENT when unknown. */
+fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd);
+
+typedef enum fbrl_rapl_argkind { FBRL_RAPL_ARG_INT, FBRL_RAPL_ARG_REAL, FBRL_RAPL_ARG_STR } fbrl_rapl_argkind;
+
+/* One argument. Use the helpers below to build them. */
+typedef struct fbrl_rapl_arg {
+    fbrl_rapl_argkind kind;
+    long i;        /* FBRL_RAPL_ARG_INT */
+    double r;      /* FBRL_RAPL_ARG_REAL */
+    const char *s; /* FBRL_RAPL_ARG_STR: a name or a word, NUL-terminated */
+} fbrl_rapl_arg;
+
+static inline fbrl_rapl_arg fbrl_rapl_int(long v) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_INT, v, 0.0, 0}; return a; }
+static inline fbrl_rapl_arg fbrl_rapl_real(double v) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_REAL, 0, v, 0}; return a; }
+static inline fbrl_rapl_arg fbrl_rapl_str(const char *s) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_STR, 0, 0.0, s}; return a; }
+
+/* Largest magnitude of a real and an integer argument. A real is sent with four
+ * decimals; 999999.9999 keeps it exact as a fixed-point number and far beyond any
+ * distance, angle or gain the controller handles. Integers cover 10-digit pulses
+ * within 32 bits. */
+#define FBRL_RAPL_REAL_MAX 999999.9999
+#define FBRL_RAPL_INT_MAX  2147483647L
+
+/* Longest line the encoder produces (POINT with 6 reals); buffers of this size never
+ * give FBRL_ENOSPC. The controller's own line limit (error 025) is larger. */
+#define FBRL_RAPL_LINE_MAX 96
+
+/* Encode one command line into buf (NUL-terminated; *len = bytes without the NUL; no CR).
+ * straight != 0 appends ",S" (only for commands with FBRL_RAPL_F_STRAIGHT).
+ * Errors: FBRL_EINVAL (null pointer, unknown cmd, wrong argument count or kind, ",S" not
+ * allowed), FBRL_ENAME (bad name), FBRL_ENONFINITE, FBRL_ERANGE (magnitude too large or
+ * word not allowed), FBRL_ENOSPC (buf too small; buf then holds ""). */
+fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form,
+                             fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                             int straight);
+
+/* Check a name: 1-8 characters, a letter then letters, digits or '_' (either case); a
+ * leading '#' (precision point) only when hash_ok. FBRL_ENAME otherwise. */
+fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok);
+
+/* Write a real as [-]digits.dddd (rounded to four decimals, "-0.0000" never appears).
+ * FBRL_ENONFINITE, FBRL_ERANGE (|v| > FBRL_RAPL_REAL_MAX), FBRL_ENOSPC. */
+fbrl_status fbrl_rapl_format_real(char *buf, size_t cap, size_t *len, double v);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,841 @@
+/* link.c - echo-verified RAPL session over an fbrl_uart (no OS header).
+ *
+ * The controller (docs/rapl-commands.md 1) echoes every printable byte upper-cased,
+ * erases with BS SP BS (one "triple" per erased character), ignores other control
+ * bytes, and on CR/LF prints CR LF, the output lines and the prompt ">>". The link
+ * keeps track of how many characters sit on the controller's line (ctrl_len) and:
+ *  - types a command as [CAN] + text; the echo must be exactly ctrl_len triples then
+ *    the text, or the attempt is abandoned before any CR is sent;
+ *  - after the CR, proof of execution is the controller's end of line: a CR/LF, the
+ *    prompt, or two or more bytes (a CR damaged into another byte echoes exactly one);
+ *  - whenever the line's content is unknown it sends an erase probe "? CAN ? CAN !"
+ *    whose echo "? (triples) ? BS SP BS !" proves the line now holds exactly "!".
+ * None of the bytes the link sends can turn into CR or LF by a single bit flip except
+ * '-' (see docs/link.md): letters go out in lower case for that reason. */
+#include "fbrl/link.h"
+
+#define CAN 0x18
+#define BS 0x08
+#define XON 0x11
+
+enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY };
+enum { ST_MAIN, ST_ERRQ };
+enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
+/* probe_out: what was sent after the CR and not yet answered */
+enum { PR_NONE, PR_IDLE, PR_VERIFY };
+
+void fbrl_link_config_init(fbrl_link_config *c)
+{
+    if (!c)
+        return;
+    c->form = FBRL_RAPL_KEYWORD;
+    c->lower_case = 1;
+    c->echo_timeout_ms = 100;
+    c->reply_timeout_ms = 5000;
+    c->wait_timeout_ms = 120000;
+    c->max_attempts = 12;
+    c->naxes = 5;
+    c->now_us = 0;
+    c->clock_ctx = 0;
+    c->on_exec = 0;
+    c->exec_ctx = 0;
+    c->on_line = 0;
+    c->line_ctx = 0;
+}
+
+static uint64_t now_us(const fbrl_link *l)
+{
+    if (l->cfg.now_us)
+        return l->cfg.now_us(l->cfg.clock_ctx);
+    return l->u->ops->now_us(l->u->ctx);
+}
+
+static uint64_t ms(uint32_t v) { return (uint64_t)v * 1000u; }
+
+fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg)
+{
+    if (!l || !u || !u->ops || !u->ops->now_us)
+        return FBRL_EINVAL;
+    fbrl_link_config c;
+    if (cfg)
+        c = *cfg;
+    else
+        fbrl_link_config_init(&c);
+    if (c.echo_timeout_ms == 0 || c.reply_timeout_ms == 0 || c.wait_timeout_ms == 0 || c.max_attempts == 0 ||
+        c.naxes == 0 || c.naxes > FBRL_RAPL_MAX_AXES ||
+        (c.form != FBRL_RAPL_KEYWORD && c.form != FBRL_RAPL_TOKEN))
+        return FBRL_EINVAL;
+    fbrl_uart_config uc;
+    if (fbrl_uart_get_config(u, &uc) != FBRL_OK)
+        return FBRL_EINVAL;
+    *l = (fbrl_link){0};
+    l->u = u;
+    l->cfg = c;
+    l->xon_ok = uc.flow == FBRL_FLOW_NONE; /* with XON/XOFF the uart owns 0x11 */
+    l->ctrl_len = -1;
+    l->phase = PH_IDLE;
+    l->err_code = -1;
+    return FBRL_OK;
+}
+
+int fbrl_link_busy(const fbrl_link *l) { return l && l->busy; }
+
+/* ---- sending ---- */
+
+static fbrl_status send(fbrl_link *l, const uint8_t *p, size_t n)
+{
+    size_t done = 0;
+    fbrl_status st = fbrl_uart_write(l->u, p, n, &done, l->cfg.echo_timeout_ms);
+    l->t_last = now_us(l);
+    return st;
+}
+
+static char lower(char c) { return (c >= 'A' && c <= 'Z') ? (char)(c - 'A' + 'a') : c; }
+static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A') : c; }
+
+static fbrl_status finish(fbrl_link *l, fbrl_status st)
+{
+    l->result = st;
+    l->busy = 0;
+    l->phase = PH_IDLE;
+    if (st != FBRL_OK && st != FBRL_ECONTROLLER)
+        l->stats.failed++;
+    return st;
+}
+
+/* "? CAN ? CAN !": erases whatever the line holds and leaves exactly "!" on it. */
+static fbrl_status send_erase_probe(fbrl_link *l)
+{
+    static const uint8_t probe[] = {XON, '?', CAN, '?', CAN, '!'};
+    l->stats.probes++;
+    l->probes_here++;
+    l->t_probe = now_us(l);
+    for (int k = 0; k < 5; k++)
+        l->tail[k] = 0;
+    return l->xon_ok ? send(l, probe, sizeof probe) : send(l, probe + 1, sizeof probe - 1);
+}
+
+/* "? CAN" on a line known to be empty: answered "? BS SP BS" once the controller reads
+ * again, which proves it is idle at its prompt. */
+static fbrl_status send_idle_probe(fbrl_link *l)
+{
+    static const uint8_t probe[] = {XON, '?', CAN};
+    l->stats.probes++;
+    l->probes_here++;
+    l->t_probe = now_us(l);
+    for (int k = 0; k < 5; k++)
+        l->tail[k] = 0;
+    return l->xon_ok ? send(l, probe, sizeof probe) : send(l, probe + 1, sizeof probe - 1);
+}
+
+static void push_tail(fbrl_link *l, uint8_t b)
+{
+    for (int k = 0; k < 4; k++)
+        l->tail[k] = l->tail[k + 1];
+    l->tail[4] = b;
+}
+
+static int tail_is(const fbrl_link *l, const char *s, int n)
+{
+    for (int k = 0; k < n; k++)
+        if (l->tail[5 - n + k] != (uint8_t)s[k])
+            return 0;
+    return 1;
+}
+
+static fbrl_status begin_erase(fbrl_link *l)
+{
+    l->phase = PH_ERASE;
+    l->ctrl_len = -1;
+    return send_erase_probe(l);
+}
+
+/* The byte the controller should echo next: ctrl_len triples, then the text. */
+static uint8_t expected(const fbrl_link *l, size_t i, size_t triples)
+{
+    if (i < 3 * triples)
+        return (uint8_t)"\b \b"[i % 3];
+    return (uint8_t)l->line[i - 3 * triples];
+}
+
+static fbrl_status begin_type(fbrl_link *l)
+{
+    if (l->attempts >= l->cfg.max_attempts) {
+        l->ctrl_len = -1;
+        return finish(l, FBRL_EECHO);
+    }
+    l->attempts++;
+    l->stats.attempts++;
+    uint8_t out[FBRL_LINK_LINE_MAX + 1];
+    size_t n = 0, triples = l->ctrl_len > 0 ? (size_t)l->ctrl_len : 0;
+    if (l->ctrl_len != 0)
+        out[n++] = CAN;
+    for (size_t k = 0; k < l->len; k++)
+        out[n++] = (uint8_t)(l->cfg.lower_case ? lower(l->line[k]) : l->line[k]);
+    l->match = 0;
+    l->triples = triples;
+    l->expect = 3 * triples + l->len;
+    l->phase = PH_TYPE;
+    l->ctrl_len = -1; /* unknown until the echo is complete */
+    return send(l, out, n);
+}
+
+static void begin_reply(fbrl_link *l)
+{
+    fbrl_rapl_reader_init(&l->rd);
+    l->phase = PH_REPLY;
+    l->after_cr = 0;
+    l->eol_seen = 0;
+    l->first_byte = -1;
+    l->prompt_seen = 0;
+    l->probe_out = PR_NONE;
+    l->probe_seen = 0;
+    l->probes_here = 0;
+    l->err_state = ERR_NONE;
+    l->out_bad = 0;
+    l->nvalues = 0;
+    l->stream_got = 0;
+    l->stop_sent = 0;
+    fbrl_rapl_pos_init(&l->pos);
+    fbrl_rapl_status_init(&l->st);
+    l->t_deadline = now_us(l) + ms(l->timeout_ms);
+}
+
+/* ---- replies ---- */
+
+static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
+{
+    int code;
+    char text[sizeof l->err_text];
+    fbrl_status est = fbrl_rapl_parse_error(s, n, &code, text, sizeof text);
+    if (est == FBRL_OK && !flawed) {
+        l->err_state = ERR_VALID;
+        l->err_code = code;
+        for (size_t k = 0; k < sizeof text; k++)
+            l->err_text[k] = text[k];
+        return;
+    }
+    if (est == FBRL_ECHECKSUM || (est == FBRL_OK && flawed)) {
+        l->err_state = ERR_GARBLED;
+        return;
+    }
+    switch (l->kind) {
+    case FBRL_LINK_REPLY_NONE:
+        /* anything of error length is a damaged error line; shorter is damaged framing */
+        if (n >= 5)
+            l->err_state = ERR_GARBLED;
+        break;
+    case FBRL_LINK_REPLY_POS:
+        if (flawed || fbrl_rapl_pos_line(&l->pos, s, n) != FBRL_OK)
+            l->out_bad = 1;
+        break;
+    case FBRL_LINK_REPLY_STATUS:
+        if (flawed || fbrl_rapl_status_line(&l->st, s, n) == FBRL_ESYNTAX)
+            l->out_bad = 1;
+        break;
+    case FBRL_LINK_REPLY_INT:
+        if (flawed || fbrl_rapl_parse_int(s, n, &l->ival) != FBRL_OK)
+            l->out_bad = 1;
+        l->nvalues++;
+        break;
+    case FBRL_LINK_REPLY_REAL:
+        if (flawed || fbrl_rapl_parse_real(s, n, &l->rval) != FBRL_OK)
+            l->out_bad = 1;
+        l->nvalues++;
+        break;
+    case FBRL_LINK_REPLY_STREAM: {
+        long v[FBRL_RAPL_MAX_AXES];
+        size_t nv;
+        if (fbrl_rapl_parse_ints(s, n, v, FBRL_RAPL_MAX_AXES, &nv) == FBRL_OK && !flawed)
+            l->stream_got++;
+        if (l->cfg.on_line)
+            l->cfg.on_line(l->cfg.line_ctx, s, n, flawed);
+        break;
+    }
+    case FBRL_LINK_REPLY_LINES:
+        if (l->cfg.on_line)
+            l->cfg.on_line(l->cfg.line_ctx, s, n, flawed);
+        break;
+    }
+}
+
+static void feed_reply(fbrl_link *l, uint8_t b)
+{
+    fbrl_rapl_event ev = fbrl_rapl_reader_feed(&l->rd, b);
+    if (ev == FBRL_RAPL_EV_PROMPT) {
+        l->prompt_seen = 1;
+    } else if (ev == FBRL_RAPL_EV_LINE) {
+        size_t n;
+        int flawed;
+        const char *s = fbrl_rapl_reader_line(&l->rd, &n, &flawed);
+        reply_line(l, s, n, flawed);
+    }
+}
+
+static fbrl_status run_status_query(fbrl_link *l);
+
+/* The controller executed the line: judge the reply, repeat a damaged read-only query,
+ * or read STATUS for a damaged error line. */
+static fbrl_status executed(fbrl_link *l)
+{
+    fbrl_status st = FBRL_OK;
+    int requery = 0;
+    l->stats.executed++;
+    if (l->err_state == ERR_VALID) {
+        st = FBRL_ECONTROLLER;
+    } else if (l->err_state == ERR_GARBLED) {
+        st = FBRL_EPROTOCOL;
+        requery = l->kind != FBRL_LINK_REPLY_NONE && l->kind != FBRL_LINK_REPLY_LINES;
+    } else {
+        switch (l->kind) {
+        case FBRL_LINK_REPLY_POS:
+            requery = l->out_bad || !fbrl_rapl_pos_complete(&l->pos, l->cfg.naxes);
+            break;
+        case FBRL_LINK_REPLY_STATUS: {
+            unsigned need = FBRL_RAPL_ST_ERROR | FBRL_RAPL_ST_SPEED | FBRL_RAPL_ST_HOMED | FBRL_RAPL_ST_LOCK |
+                            FBRL_RAPL_ST_DONE | FBRL_RAPL_ST_LIMP | FBRL_RAPL_ST_AXHOMED;
+            requery = l->out_bad || (l->st.have & need) != need || l->st.naxes != l->cfg.naxes;
+            break;
+        }
+        case FBRL_LINK_REPLY_INT:
+        case FBRL_LINK_REPLY_REAL:
+            requery = l->out_bad || l->nvalues != 1;
+            break;
+        default:
+            break;
+        }
+        if (requery)
+            st = FBRL_EPROTOCOL;
+    }
+    if (l->cfg.on_exec)
+        l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, l->err_state != ERR_NONE ? FBRL_ECONTROLLER : st);
+    if (requery) {
+        /* read-only: running it again cannot change anything */
+        l->stats.requeries++;
+        if (l->attempts >= l->cfg.max_attempts)
+            return finish(l, FBRL_EPROTOCOL);
+        return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
+    }
+    if (l->stage == ST_MAIN && l->err_state == ERR_GARBLED && st == FBRL_EPROTOCOL) {
+        l->stats.error_queries++;
+        return run_status_query(l);
+    }
+    if (l->stage == ST_ERRQ) {
+        /* the STATUS read for a damaged error line of the main command */
+        if (st == FBRL_OK && l->st.last_error >= 0) {
+            l->err_code = l->st.last_error;
+            const char *t = fbrl_rapl_error_text(l->err_code);
+            size_t k = 0;
+            for (; t && t[k] && k + 1 < sizeof l->err_text; k++)
+                l->err_text[k] = t[k];
+            l->err_text[k] = '\0';
+            return finish(l, FBRL_ECONTROLLER);
+        }
+        return finish(l, FBRL_EPROTOCOL);
+    }
+    return finish(l, st);
+}
+
+static fbrl_status run_status_query(fbrl_link *l)
+{
+    static const char q[] = "STATUS";
+    for (size_t k = 0; k < sizeof q; k++)
+        l->line[k] = q[k];
+    l->len = sizeof q - 1;
+    l->kind = FBRL_LINK_REPLY_STATUS;
+    l->stage = ST_ERRQ;
+    l->attempts = 0;
+    l->timeout_ms = l->cfg.reply_timeout_ms;
+    return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
+}
+
+/* Proof that the CR ended the line (docs/link.md "after the CR"). */
+static int cr_took_effect(const fbrl_link *l)
+{
+    return l->prompt_seen || l->eol_seen || l->after_cr >= 2 ||
+           (l->after_cr == 1 && (l->first_byte == '>'));
+}
+
+/* ---- the byte-driven state machine ---- */
+
+static fbrl_status on_byte(fbrl_link *l, uint8_t b)
+{
+    l->t_last = now_us(l);
+    switch (l->phase) {
+    case PH_ERASE:
+        push_tail(l, b);
+        if (tail_is(l, "?\b \b!", 5)) {
+            l->ctrl_len = 1;
+            return begin_type(l);
+        }
+        return FBRL_OK;
+    case PH_TYPE:
+        if (upper((char)b) != (char)expected(l, l->match, l->triples)) {
+            l->stats.echo_mismatch++;
+            return begin_erase(l);
+        }
+        if (++l->match == l->expect) {
+            static const uint8_t cr = '\r';
+            begin_reply(l);
+            return send(l, &cr, 1);
+        }
+        return FBRL_OK;
+    case PH_REPLY:
+        if (l->probe_out == PR_IDLE && (b == '?' || l->probe_seen)) {
+            /* the idle probe's echo: the controller reads input again, so it is idle */
+            l->probe_seen = 1;
+            push_tail(l, b);
+            if (tail_is(l, "?\b \b", 4)) {
+                l->ctrl_len = l->probes_here == 1 ? 0 : -1; /* more probe echoes may follow */
+                if (!l->prompt_seen)
+                    l->stats.prompt_lost++;
+                l->probe_out = PR_NONE;
+                l->prompt_seen = 1;
+                return executed(l);
+            }
+            return FBRL_OK;
+        }
+        if (l->after_cr++ == 0)
+            l->first_byte = b;
+        if (b == '\r' || b == '\n')
+            l->eol_seen = 1;
+        feed_reply(l, b);
+        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->stop_sent && l->stream_got >= l->stream_lines) {
+            static const uint8_t cr = '\r';
+            l->stop_sent = 1;
+            return send(l, &cr, 1);
+        }
+        if (l->prompt_seen && l->probe_out == PR_NONE) {
+            l->ctrl_len = 0;
+            return executed(l);
+        }
+        return FBRL_OK;
+    case PH_VERIFY:
+        if (!l->probe_seen && b != '?' && b != BS) {
+            /* still the command's reply (or its absence): bytes before the probe's echo */
+            if (l->after_cr++ == 0)
+                l->first_byte = b;
+            if (b == '\r' || b == '\n')
+                l->eol_seen = 1;
+            feed_reply(l, b);
+            return FBRL_OK;
+        }
+        l->probe_seen = 1;
+        push_tail(l, b);
+        if (tail_is(l, "?\b \b!", 5)) {
+            l->ctrl_len = l->probes_here == 1 ? 1 : -1;
+            l->probe_out = PR_NONE;
+            if (cr_took_effect(l)) {
+                if (!l->prompt_seen)
+                    l->stats.prompt_lost++;
+                return executed(l);
+            }
+            l->stats.cr_unconfirmed++;
+            return l->ctrl_len == 1 ? begin_type(l) : begin_erase(l);
+        }
+        return FBRL_OK;
+    default:
+        return FBRL_OK; /* idle: stray bytes */
+    }
+}
+
+/* Nothing arrived for a while: decide what the silence means. */
+static fbrl_status on_silence(fbrl_link *l, uint64_t t)
+{
+    switch (l->phase) {
+    case PH_ERASE:
+        if (l->attempts >= l->cfg.max_attempts)
+            return finish(l, FBRL_EECHO);
+        l->attempts++;
+        return send_erase_probe(l);
+    case PH_TYPE:
+        l->stats.echo_timeout++;
+        return begin_erase(l);
+    case PH_REPLY:
+        if (l->kind == FBRL_LINK_REPLY_STREAM && l->stop_sent && !l->prompt_seen && l->after_cr > 0) {
+            static const uint8_t cr = '\r'; /* the stop byte may have been lost */
+            l->t_last = t;
+            return send(l, &cr, 1);
+        }
+        if (cr_took_effect(l)) {
+            /* executed; the prompt is late (a waiting command) or was damaged: ask */
+            if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms) || l->probe_out == PR_NONE) {
+                l->probe_out = PR_IDLE;
+                l->probe_seen = 0;
+                return send_idle_probe(l);
+            }
+            l->t_last = t;
+            return FBRL_OK;
+        }
+        /* no proof the CR arrived: find out without risking an execution */
+        l->phase = PH_VERIFY;
+        l->probe_out = PR_VERIFY;
+        l->probe_seen = 0;
+        l->probes_here = 0;
+        return send_erase_probe(l);
+    case PH_VERIFY:
+        if (l->probe_seen) {
+            /* the probe's echo was damaged, but the bytes before it decide */
+            l->ctrl_len = -1;
+            l->probe_out = PR_NONE;
+            if (cr_took_effect(l)) {
+                if (!l->prompt_seen)
+                    l->stats.prompt_lost++;
+                return executed(l);
+            }
+            l->stats.cr_unconfirmed++;
+            return begin_erase(l);
+        }
+        if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms))
+            return send_erase_probe(l);
+        l->t_last = t;
+        return FBRL_OK;
+    default:
+        return FBRL_OK;
+    }
+}
+
+fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
+{
+    if (!l || !done)
+        return FBRL_EINVAL;
+    *done = 0;
+    if (!l->busy) {
+        *done = 1;
+        return l->result;
+    }
+    uint64_t start = now_us(l), budget = ms(timeout_ms);
+    for (;;) {
+        uint64_t t = now_us(l);
+        uint64_t quiet_end = l->t_last + ms(l->cfg.echo_timeout_ms);
+        if ((l->phase == PH_REPLY || l->phase == PH_VERIFY) && t >= l->t_deadline) {
+            l->ctrl_len = -1;
+            *done = 1;
+            return finish(l, FBRL_ETIMEOUT);
+        }
+        if (t >= quiet_end) {
+            fbrl_status st = on_silence(l, t);
+            if (!l->busy || st != FBRL_OK) {
+                *done = 1;
+                return l->busy ? finish(l, st) : l->result;
+            }
+            continue;
+        }
+        uint64_t spent = t - start;
+        if (spent > budget)
+            return FBRL_OK;
+        uint64_t wait = quiet_end - t;
+        if (wait > budget - spent)
+            wait = budget - spent;
+        uint8_t buf[64];
+        size_t got = 0;
+        fbrl_status st = fbrl_uart_read(l->u, buf, sizeof buf, &got, (uint32_t)((wait + 999) / 1000));
+        if (st != FBRL_OK && st != FBRL_ETIMEOUT && got == 0) {
+            l->ctrl_len = -1;
+            *done = 1;
+            return finish(l, st);
+        }
+        for (size_t k = 0; k < got && l->busy; k++) {
+            fbrl_status s2 = on_byte(l, buf[k]);
+            if (s2 != FBRL_OK && l->busy) {
+                *done = 1;
+                return finish(l, s2);
+            }
+        }
+        if (!l->busy) {
+            *done = 1;
+            return l->result;
+        }
+        if (got == 0 && spent >= budget)
+            return FBRL_OK;
+    }
+}
+
+static fbrl_status check_line(const char *line, size_t *len)
+{
+    size_t n = 0;
+    if (!line)
+        return FBRL_EINVAL;
+    for (; line[n]; n++)
+        if (n >= FBRL_LINK_LINE_MAX || line[n] < 0x20 || line[n] > 0x7e || line[n] == '?')
+            return FBRL_EINVAL;
+    if (n == 0)
+        return FBRL_EINVAL;
+    *len = n;
+    return FBRL_OK;
+}
+
+static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms)
+{
+    size_t n;
+    if (!l || !l->u)
+        return FBRL_EINVAL;
+    if (l->busy)
+        return FBRL_ESTATE;
+    fbrl_status st = check_line(line, &n);
+    if (st != FBRL_OK)
+        return st;
+    for (size_t k = 0; k < n; k++)
+        l->line[k] = upper(line[k]);
+    l->line[n] = '\0';
+    l->len = n;
+    l->kind = kind;
+    l->timeout_ms = timeout_ms;
+    l->stage = ST_MAIN;
+    l->attempts = 0;
+    l->err_code = -1;
+    l->err_text[0] = '\0';
+    l->result = FBRL_OK;
+    l->busy = 1;
+    l->stats.commands++;
+    return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
+}
+
+/* Does a raw line's first word name a command that never waits? */
+static uint32_t timeout_for_line(const fbrl_link *l, const char *line)
+{
+    char word[12];
+    size_t k = 0;
+    while (*line == ' ')
+        line++;
+    while (line[k] && line[k] != ' ' && line[k] != ',' && k + 1 < sizeof word) {
+        word[k] = line[k];
+        k++;
+    }
+    word[k] = '\0';
+    fbrl_rapl_cmd c;
+    if (fbrl_rapl_cmd_find(word, &c) == FBRL_OK) {
+        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(c);
+        if (!(ci->flags & FBRL_RAPL_F_MOTION) && c != FBRL_RAPL_FINISH && c != FBRL_RAPL_WAIT && c != FBRL_RAPL_RUN)
+            return l->cfg.reply_timeout_ms;
+    }
+    return l->cfg.wait_timeout_ms;
+}
+
+fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind)
+{
+    if (!l || !line || (int)kind < 0 || kind > FBRL_LINK_REPLY_STREAM)
+        return FBRL_EINVAL;
+    return start(l, line, kind, timeout_for_line(l, line));
+}
+
+static fbrl_status run(fbrl_link *l)
+{
+    for (;;) {
+        int done = 0;
+        fbrl_status st = fbrl_link_poll(l, 1000, &done);
+        if (done)
+            return st;
+    }
+}
+
+fbrl_status fbrl_link_connect(fbrl_link *l)
+{
+    if (!l || !l->u)
+        return FBRL_EINVAL;
+    l->ctrl_len = -1;
+    fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms);
+    return st == FBRL_OK ? run(l) : st;
+}
+
+static fbrl_link_reply reply_of(fbrl_rapl_cmd cmd)
+{
+    switch (cmd) {
+    case FBRL_RAPL_W0: case FBRL_RAPL_W2: case FBRL_RAPL_W4:
+        return FBRL_LINK_REPLY_POS;
+    case FBRL_RAPL_STATUS:
+        return FBRL_LINK_REPLY_STATUS;
+    case FBRL_RAPL_TYPEI:
+        return FBRL_LINK_REPLY_INT;
+    case FBRL_RAPL_TYPEV:
+        return FBRL_LINK_REPLY_REAL;
+    case FBRL_RAPL_W1: case FBRL_RAPL_W3: case FBRL_RAPL_W5:
+    case FBRL_RAPL_WE1: case FBRL_RAPL_WE3: case FBRL_RAPL_WE5:
+        return FBRL_LINK_REPLY_STREAM;
+    case FBRL_RAPL_SERIAL: case FBRL_RAPL_GAIN:
+        return FBRL_LINK_REPLY_LINES;
+    default:
+        return FBRL_LINK_REPLY_NONE;
+    }
+}
+
+fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs, int straight)
+{
+    char text[FBRL_RAPL_LINE_MAX];
+    size_t n;
+    if (!l)
+        return FBRL_EINVAL;
+    fbrl_status st = fbrl_rapl_encode(text, sizeof text, &n, l->cfg.form, cmd, args, nargs, straight);
+    if (st != FBRL_OK)
+        return st;
+    if (n > FBRL_LINK_LINE_MAX)
+        return FBRL_ERANGE;
+    fbrl_link_reply kind = reply_of(cmd);
+    if (kind == FBRL_LINK_REPLY_STREAM)
+        return FBRL_EINVAL; /* fbrl_link_stream() */
+    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
+    uint32_t tmo = ((ci->flags & FBRL_RAPL_F_MOTION) || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT ||
+                    cmd == FBRL_RAPL_RUN)
+                       ? l->cfg.wait_timeout_ms
+                       : l->cfg.reply_timeout_ms;
+    st = start(l, text, kind, tmo);
+    return st == FBRL_OK ? run(l) : st;
+}
+
+fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
+{
+    fbrl_status st = fbrl_link_start(l, line, FBRL_LINK_REPLY_LINES);
+    return st == FBRL_OK ? run(l) : st;
+}
+
+fbrl_status fbrl_link_finish(fbrl_link *l)
+{
+    return fbrl_link_cmd(l, FBRL_RAPL_FINISH, 0, 0, 0);
+}
+
+fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out)
+{
+    if (cmd != FBRL_RAPL_W0 && cmd != FBRL_RAPL_W2 && cmd != FBRL_RAPL_W4)
+        return FBRL_EINVAL;
+    fbrl_status st = fbrl_link_cmd(l, cmd, 0, 0, 0);
+    if (st == FBRL_OK && out)
+        *out = l->pos;
+    return st;
+}
+
+fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out)
+{
+    fbrl_status st = fbrl_link_cmd(l, FBRL_RAPL_STATUS, 0, 0, 0);
+    if (st == FBRL_OK && out)
+        *out = l->st;
+    return st;
+}
+
+static fbrl_status type_value(fbrl_link *l, const char *kw, const char *expr, fbrl_link_reply kind)
+{
+    char text[FBRL_LINK_LINE_MAX + 1];
+    size_t n = 0;
+    if (!l || !expr)
+        return FBRL_EINVAL;
+    while (*kw)
+        text[n++] = *kw++;
+    text[n++] = ' ';
+    for (; *expr; expr++) {
+        if (n >= FBRL_LINK_LINE_MAX || *expr == ',')
+            return FBRL_EINVAL;
+        text[n++] = *expr;
+    }
+    text[n] = '\0';
+    fbrl_status st = start(l, text, kind, l->cfg.reply_timeout_ms);
+    return st == FBRL_OK ? run(l) : st;
+}
+
+fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value)
+{
+    if (!value)
+        return FBRL_EINVAL;
+    fbrl_status st = type_value(l, "TYPEI", expr, FBRL_LINK_REPLY_INT);
+    if (st == FBRL_OK)
+        *value = l->ival;
+    return st;
+}
+
+fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value)
+{
+    if (!value)
+        return FBRL_EINVAL;
+    fbrl_status st = type_value(l, "TYPEV", expr, FBRL_LINK_REPLY_REAL);
+    if (st == FBRL_OK)
+        *value = l->rval;
+    return st;
+}
+
+fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on)
+{
+    char expr[8] = "SIG(";
+    long v;
+    if (!on || n < 1 || n > 16)
+        return n < 1 || n > 16 ? FBRL_ERANGE : FBRL_EINVAL;
+    size_t k = 4;
+    if (n >= 10)
+        expr[k++] = (char)('0' + n / 10);
+    expr[k++] = (char)('0' + n % 10);
+    expr[k++] = ')';
+    expr[k] = '\0';
+    fbrl_status st = fbrl_link_typei(l, expr, &v);
+    if (st == FBRL_OK) {
+        if (v != 0 && v != 1)
+            return FBRL_EPROTOCOL;
+        *on = (int)v;
+    }
+    return st;
+}
+
+fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
+{
+    char text[FBRL_RAPL_LINE_MAX];
+    size_t n;
+    if (!l || lines == 0 || reply_of(cmd) != FBRL_LINK_REPLY_STREAM)
+        return FBRL_EINVAL;
+    fbrl_status st = fbrl_rapl_encode(text, sizeof text, &n, l->cfg.form, cmd, 0, 0, 0);
+    if (st != FBRL_OK)
+        return st;
+    l->stream_lines = lines;
+    st = start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u);
+    return st == FBRL_OK ? run(l) : st;
+}
+
+fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index)
+{
+    if (!links || !index)
+        return FBRL_EINVAL;
+    *index = n;
+    int any = 0;
+    for (size_t k = 0; k < n; k++)
+        if (links[k] && links[k]->busy)
+            any = 1;
+    if (!any)
+        return FBRL_EEMPTY;
+    fbrl_link *first = 0;
+    for (size_t k = 0; k < n && !first; k++)
+        if (links[k] && links[k]->busy)
+            first = links[k];
+    uint64_t end = now_us(first) + ms(timeout_ms);
+    for (;;) {
+        for (size_t k = 0; k < n; k++) {
+            int done = 0;
+            if (!links[k] || !links[k]->busy)
+                continue;
+            fbrl_status st = fbrl_link_poll(links[k], 1, &done);
+            if (done) {
+                *index = k;
+                return st;
+            }
+        }
+        if (now_us(first) >= end)
+            return FBRL_ETIMEOUT;
+    }
+}
+
+fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    int have = l->result == FBRL_ECONTROLLER;
+    if (code)
+        *code = have ? l->err_code : -1;
+    if (text)
+        *text = have ? l->err_text : "";
+    return FBRL_OK;
+}
+
+const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
+const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
+
+fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out)
+{
+    if (!l || !out)
+        return FBRL_EINVAL;
+    *out = l->stats;
+    return FBRL_OK;
+}

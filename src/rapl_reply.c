@@ -1,0 +1,533 @@
+/* rapl_reply.c - line assembly and parsers for the controller's output (no OS header). */
+#include "fbrl/rapl_reply.h"
+
+/* ---- reader ---- */
+
+void fbrl_rapl_reader_init(fbrl_rapl_reader *r)
+{
+    if (!r)
+        return;
+    r->len = 0;
+    r->line[0] = '\0';
+    r->cr = 0;
+    r->flawed = 0;
+    r->done = 0;
+}
+
+static fbrl_rapl_event end_line(fbrl_rapl_reader *r)
+{
+    if (r->len == 0) {
+        r->flawed = 0; /* an empty line carries nothing, not even a flaw */
+        return FBRL_RAPL_EV_NONE;
+    }
+    r->done = 1;
+    return FBRL_RAPL_EV_LINE;
+}
+
+fbrl_rapl_event fbrl_rapl_reader_feed(fbrl_rapl_reader *r, uint8_t byte)
+{
+    if (!r)
+        return FBRL_RAPL_EV_NONE;
+    if (r->done) {
+        r->len = 0;
+        r->line[0] = '\0';
+        r->flawed = 0;
+        r->done = 0;
+    }
+    if (byte == '\r' || byte == '\n') {
+        int after_cr = r->cr;
+        r->cr = byte == '\r';
+        if (byte == '\n' && after_cr)
+            return FBRL_RAPL_EV_NONE;
+        return end_line(r);
+    }
+    r->cr = 0;
+    if (byte < 0x20 || byte > 0x7e) {
+        r->flawed = 1;
+        return FBRL_RAPL_EV_NONE;
+    }
+    if (r->len >= FBRL_RAPL_REPLY_LINE_MAX) {
+        r->flawed = 1;
+        return FBRL_RAPL_EV_NONE;
+    }
+    r->line[r->len++] = (char)byte;
+    r->line[r->len] = '\0';
+    if (r->len == 2 && r->line[0] == '>' && r->line[1] == '>' && !r->flawed) {
+        r->done = 1; /* the prompt is not a line: whatever follows starts a new one */
+        return FBRL_RAPL_EV_PROMPT;
+    }
+    return FBRL_RAPL_EV_NONE;
+}
+
+const char *fbrl_rapl_reader_line(const fbrl_rapl_reader *r, size_t *len, int *flawed)
+{
+    if (!r) {
+        if (len)
+            *len = 0;
+        return "";
+    }
+    if (len)
+        *len = r->len;
+    if (flawed)
+        *flawed = r->flawed;
+    return r->line;
+}
+
+/* ---- errors ---- */
+
+static const char *const error_texts[] = {
+    [0] = "AXIS #1 OUT OF RANGE",
+    [1] = "AXIS #2 OUT OF RANGE",
+    [2] = "AXIS #3 OUT OF RANGE",
+    [3] = "AXIS #4 OUT OF RANGE",
+    [4] = "AXIS #5 OUT OF RANGE",
+    [5] = "AXIS #6 OUT OF RANGE",
+    [6] = "AXIS #7 OUT OF RANGE",
+    [7] = "AXIS #8 OUT OF RANGE",
+    [8] = "ILLEGAL OPERAND",
+    [9] = "END OF LINE NOT FOUND",
+    [10] = "SYMBOL UNDEFINED",
+    [11] = "LOCATION UNDEFINED",
+    [12] = "COMMAND ERROR",
+    [13] = "ARGUMENT MISSING",
+    [14] = "BAD SYNTAX",
+    [15] = "PRECISION POINT NOT LEGAL",
+    [16] = "I/O ADDRESS ERROR",
+    [17] = "PROGRAM NOT FOUND",
+    [18] = "ILLEGAL ARGUMENT",
+    [19] = "LINE NOT FOUND",
+    [20] = "ARGUMENT TOO BIG",
+    [21] = "NO ROOM LEFT",
+    [22] = "TABLE FULL",
+    [23] = "BAD LINE NUMBER",
+    [24] = "ILLEGAL A/D CHANNEL",
+    [25] = "LINE TOO LONG",
+    [26] = "END OF FILE NOT FOUND",
+    [27] = "PROGRAM EXISTS",
+    [28] = "LINE EXISTS",
+    [29] = "TRANSFORM ILLEGAL",
+    [32] = "JOINT #1 HOME FAILED",
+    [33] = "JOINT #2 HOME FAILED",
+    [34] = "JOINT #3 HOME FAILED",
+    [35] = "JOINT #4 HOME FAILED",
+    [36] = "JOINT #5 HOME FAILED",
+    [37] = "JOINT #6 HOME FAILED",
+    [38] = "JOINT #7 HOME FAILED",
+    [39] = "JOINT #8 HOME FAILED",
+    [40] = "ARM POWER HAS BEEN SWITCHED OFF",
+    [41] = "ROBOT HAS NOT BEEN HOMED",
+    [42] = "JOINT #1 OUT OF RANGE",
+    [43] = "JOINT #2 OUT OF RANGE",
+    [44] = "JOINT #3 OUT OF RANGE",
+    [45] = "JOINT #4 OUT OF RANGE",
+    [46] = "JOINT #5 OUT OF RANGE",
+    [47] = "CHECKSUM FAILURE",
+    [49] = "MEMORY NOT ALLOCATED",
+    [50] = "AMBIGUOUS COMMAND",
+    [51] = "SERIAL CHANNEL #0 TIMEOUT",
+    [52] = "SERIAL CHANNEL #0 CTS TIMEOUT",
+    [53] = "SERIAL CHANNEL #1 TIMEOUT",
+    [54] = "SERIAL CHANNEL #1 CTS TIMEOUT",
+    [58] = "CALIBRATION CHECKSUM ERROR",
+    [60] = "CANNOT USE PRIVILEGED COMMAND",
+    [61] = "ILLEGAL CHANNEL",
+    [62] = "REMOTE COMMUNICATION ERROR",
+    [64] = "NO RETURN LEVEL",
+    [65] = "BAD AXIS NUMBER",
+    [66] = "NOT AVAILABLE",
+    [67] = "AXIS SLOT ALREADY USED",
+    [68] = "STRAIGHT LINE ERROR",
+};
+
+const char *fbrl_rapl_error_text(int code)
+{
+    if (code < 0 || (size_t)code >= sizeof error_texts / sizeof error_texts[0])
+        return 0;
+    return error_texts[code];
+}
+
+static int is_digit(char c) { return c >= '0' && c <= '9'; }
+static int is_upper(char c) { return c >= 'A' && c <= 'Z'; }
+
+fbrl_status fbrl_rapl_parse_error(const char *line, size_t len, int *code, char *text, size_t cap)
+{
+    if (!line || !code || (text && cap == 0))
+        return FBRL_EINVAL;
+    if (len < 6 || !is_digit(line[0]) || !is_digit(line[1]) || !is_digit(line[2]) || line[3] != '-' ||
+        line[len - 1] != '.' || !is_upper(line[4]))
+        return FBRL_ESYNTAX;
+    for (size_t i = 4; i + 1 < len; i++) {
+        char c = line[i];
+        if (!(is_upper(c) || is_digit(c) || c == ' ' || c == '#' || c == '/' || c == '-'))
+            return FBRL_ESYNTAX;
+    }
+    *code = (line[0] - '0') * 100 + (line[1] - '0') * 10 + (line[2] - '0');
+    size_t tlen = len - 5;
+    if (text) {
+        if (tlen + 1 > cap)
+            return FBRL_ENOSPC;
+        for (size_t i = 0; i < tlen; i++)
+            text[i] = line[4 + i];
+        text[tlen] = '\0';
+    }
+    const char *known = fbrl_rapl_error_text(*code);
+    if (!known)
+        return FBRL_ECHECKSUM;
+    size_t i = 0;
+    for (; i < tlen && known[i] && known[i] == line[4 + i]; i++) {
+    }
+    return (i == tlen && !known[i]) ? FBRL_OK : FBRL_ECHECKSUM;
+}
+
+/* ---- numbers ---- */
+
+/* One number at s[*i]: [+-]digits[.digits]. Shape reported so callers can insist on the
+ * controller's exact layout. No exponent: the controller never prints one. */
+typedef struct num {
+    int sign;          /* '+', '-' or 0 when absent */
+    unsigned idig, fdig;
+    int dot;
+    double v;
+    long iv;           /* the value when it has no fraction and fits */
+} num;
+
+#define NUM_MAX_DIGITS 15 /* exact in a double */
+
+static int scan_num(const char *s, size_t len, size_t *i, num *n)
+{
+    size_t k = *i;
+    unsigned long long m = 0;
+    double scale = 1.0;
+    n->sign = 0;
+    n->idig = n->fdig = 0;
+    n->dot = 0;
+    if (k < len && (s[k] == '+' || s[k] == '-'))
+        n->sign = s[k++];
+    while (k < len && is_digit(s[k])) {
+        if (n->idig >= NUM_MAX_DIGITS)
+            return 0;
+        m = m * 10u + (unsigned)(s[k++] - '0');
+        n->idig++;
+    }
+    if (k < len && s[k] == '.') {
+        n->dot = 1;
+        k++;
+        while (k < len && is_digit(s[k])) {
+            if (n->idig + n->fdig >= NUM_MAX_DIGITS)
+                return 0;
+            m = m * 10u + (unsigned)(s[k++] - '0');
+            scale *= 10.0;
+            n->fdig++;
+        }
+        if (n->fdig == 0)
+            return 0;
+    }
+    if (n->idig == 0)
+        return 0;
+    n->v = (double)m / scale;
+    n->iv = (long)(m & 0x7fffffffu);
+    if (!n->dot && m > 0x7fffffffu)
+        n->iv = -1; /* callers check idig; the value is too large for a long on 32 bits */
+    if (n->sign == '-') {
+        n->v = -n->v;
+        n->iv = -n->iv;
+    }
+    *i = k;
+    return 1;
+}
+
+static void skip_spaces(const char *s, size_t len, size_t *i)
+{
+    while (*i < len && s[*i] == ' ')
+        (*i)++;
+}
+
+static fbrl_status whole_number(const char *line, size_t len, num *n)
+{
+    size_t i = 0;
+    if (!line)
+        return FBRL_EINVAL;
+    skip_spaces(line, len, &i);
+    if (!scan_num(line, len, &i, n))
+        return FBRL_ESYNTAX;
+    skip_spaces(line, len, &i);
+    return i == len ? FBRL_OK : FBRL_ESYNTAX;
+}
+
+fbrl_status fbrl_rapl_parse_real(const char *line, size_t len, double *v)
+{
+    num n;
+    if (!v)
+        return FBRL_EINVAL;
+    fbrl_status st = whole_number(line, len, &n);
+    if (st == FBRL_OK)
+        *v = n.v;
+    return st;
+}
+
+fbrl_status fbrl_rapl_parse_int(const char *line, size_t len, long *v)
+{
+    num n;
+    if (!v)
+        return FBRL_EINVAL;
+    fbrl_status st = whole_number(line, len, &n);
+    if (st != FBRL_OK)
+        return st;
+    if (n.dot)
+        return FBRL_ESYNTAX;
+    if (n.v > 2147483647.0 || n.v < -2147483647.0)
+        return FBRL_ERANGE;
+    *v = n.iv;
+    return FBRL_OK;
+}
+
+/* Integers in the "%+011ld" layout: sign and ten digits. */
+static int pulse_num(const num *n)
+{
+    return n->sign && !n->dot && n->idig == 10 && n->v <= 2147483647.0 && n->v >= -2147483647.0;
+}
+
+/* Reals in the "%+09.4f" layout: sign, at least three digits, four decimals. */
+static int fixed_num(const num *n)
+{
+    return n->sign && n->dot && n->idig >= 3 && n->fdig == 4;
+}
+
+fbrl_status fbrl_rapl_parse_ints(const char *line, size_t len, long *vals, size_t max, size_t *n)
+{
+    if (!line || !n || (max && !vals))
+        return FBRL_EINVAL;
+    size_t i = 0, k = 0;
+    *n = 0;
+    skip_spaces(line, len, &i);
+    while (i < len) {
+        num x;
+        if (k >= max || !scan_num(line, len, &i, &x) || !pulse_num(&x))
+            return FBRL_ESYNTAX;
+        if (i < len && line[i] != ' ')
+            return FBRL_ESYNTAX;
+        vals[k++] = x.iv;
+        skip_spaces(line, len, &i);
+    }
+    if (k == 0)
+        return FBRL_ESYNTAX;
+    *n = k;
+    return FBRL_OK;
+}
+
+/* ---- position blocks ---- */
+
+void fbrl_rapl_pos_init(fbrl_rapl_pos *p)
+{
+    if (!p)
+        return;
+    p->kind = 0;
+    p->npulses = p->njoints = p->nworld = 0;
+    p->part = 0;
+}
+
+/* Does line start with word (and then a space or the end)? */
+static int starts(const char *line, size_t len, const char *word, size_t *after)
+{
+    size_t k = 0;
+    while (word[k]) {
+        if (k >= len || line[k] != word[k])
+            return 0;
+        k++;
+    }
+    if (k < len && line[k] != ' ')
+        return 0;
+    *after = k;
+    return 1;
+}
+
+static int equals(const char *line, size_t len, const char *text)
+{
+    size_t k = 0;
+    while (text[k] && k < len && line[k] == text[k])
+        k++;
+    return !text[k] && k == len;
+}
+
+/* Read numbers from line[i..] into the section's array, checking the layout. */
+static fbrl_status pos_values(fbrl_rapl_pos *p, char part, const char *line, size_t len, size_t i)
+{
+    int any = 0;
+    skip_spaces(line, len, &i);
+    while (i < len) {
+        num x;
+        if (!scan_num(line, len, &i, &x) || (i < len && line[i] != ' '))
+            return FBRL_ESYNTAX;
+        if (part == 'P') {
+            if (!pulse_num(&x) || p->npulses >= FBRL_RAPL_MAX_AXES)
+                return FBRL_ESYNTAX;
+            p->pulses[p->npulses++] = x.iv;
+        } else if (part == 'J') {
+            if (!fixed_num(&x) || p->njoints >= FBRL_RAPL_MAX_AXES)
+                return FBRL_ESYNTAX;
+            p->joints[p->njoints++] = x.v;
+        } else {
+            if (!fixed_num(&x) || p->nworld >= 6)
+                return FBRL_ESYNTAX;
+            p->world[p->nworld++] = x.v;
+        }
+        any = 1;
+        skip_spaces(line, len, &i);
+    }
+    if (!any)
+        return FBRL_ESYNTAX;
+    p->part = (unsigned char)part;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_rapl_pos_line(fbrl_rapl_pos *p, const char *line, size_t len)
+{
+    size_t i;
+    if (!p || !line)
+        return FBRL_EINVAL;
+    if (equals(line, len, "CURRENT ACTUAL POSITION :")) {
+        fbrl_rapl_pos_init(p);
+        p->kind = 'A';
+        return FBRL_OK;
+    }
+    if (equals(line, len, "CURRENT COMMAND POSITION :")) {
+        fbrl_rapl_pos_init(p);
+        p->kind = 'C';
+        return FBRL_OK;
+    }
+    if (equals(line, len, "END OF PATH POSITION :")) {
+        fbrl_rapl_pos_init(p);
+        p->kind = 'E';
+        return FBRL_OK;
+    }
+    if (!p->kind)
+        return FBRL_ESYNTAX;
+    if (starts(line, len, "NAME", &i)) {
+        p->part = 0;
+        return FBRL_OK;
+    }
+    if (starts(line, len, "PULSES", &i))
+        return p->npulses ? FBRL_ESYNTAX : pos_values(p, 'P', line, len, i);
+    if (starts(line, len, "JOINTS", &i))
+        return p->njoints ? FBRL_ESYNTAX : pos_values(p, 'J', line, len, i);
+    if (starts(line, len, "WORLD", &i))
+        return p->nworld ? FBRL_ESYNTAX : pos_values(p, 'W', line, len, i);
+    if (len > 0 && line[0] == ' ' && (p->part == 'P' || p->part == 'J'))
+        return pos_values(p, (char)p->part, line, len, 0); /* axes 6.. wrap onto a new line */
+    return FBRL_ESYNTAX;
+}
+
+int fbrl_rapl_pos_complete(const fbrl_rapl_pos *p, unsigned naxes)
+{
+    return p && p->kind && naxes <= FBRL_RAPL_MAX_AXES && p->npulses == naxes && p->njoints == naxes &&
+           p->nworld == 6;
+}
+
+/* ---- STATUS ---- */
+
+void fbrl_rapl_status_init(fbrl_rapl_status_info *s)
+{
+    if (!s)
+        return;
+    s->last_error = -1;
+    s->speed = 0.0;
+    s->homed = 0;
+    s->naxes = 0;
+    s->inputs = s->outputs = 0;
+    s->have = 0;
+}
+
+/* "LOCK         N N N N N" -> flags; every row must have the same number of axes. */
+static fbrl_status yn_row(fbrl_rapl_status_info *s, char *flags, unsigned bit, const char *line, size_t len,
+                          size_t i)
+{
+    unsigned n = 0;
+    skip_spaces(line, len, &i);
+    while (i < len) {
+        if ((line[i] != 'Y' && line[i] != 'N') || n >= FBRL_RAPL_MAX_AXES)
+            return FBRL_ESYNTAX;
+        flags[n++] = line[i] == 'Y';
+        i++;
+        if (i < len && line[i] != ' ')
+            return FBRL_ESYNTAX;
+        skip_spaces(line, len, &i);
+    }
+    if (n == 0 || (s->naxes && n != s->naxes))
+        return FBRL_ESYNTAX;
+    s->naxes = n;
+    s->have |= bit;
+    return FBRL_OK;
+}
+
+/* "INPUTS  1-16: 0101..." -> bit mask, 16 digits exactly. */
+static fbrl_status io_row(uint32_t *mask, const char *line, size_t len, size_t i)
+{
+    uint32_t m = 0;
+    skip_spaces(line, len, &i);
+    if (len - i != 16)
+        return FBRL_ESYNTAX;
+    for (unsigned k = 0; k < 16; k++) {
+        char c = line[i + k];
+        if (c != '0' && c != '1')
+            return FBRL_ESYNTAX;
+        if (c == '1')
+            m |= 1u << k;
+    }
+    *mask = m;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_rapl_status_line(fbrl_rapl_status_info *s, const char *line, size_t len)
+{
+    size_t i;
+    if (!s || !line)
+        return FBRL_EINVAL;
+    if (starts(line, len, "LAST ERROR CODE:", &i)) {
+        skip_spaces(line, len, &i);
+        if (equals(line + i, len - i, "NONE")) {
+            s->last_error = -1;
+        } else {
+            int code;
+            if (fbrl_rapl_parse_error(line + i, len - i, &code, 0, 0) != FBRL_OK)
+                return FBRL_ESYNTAX;
+            s->last_error = code;
+        }
+        s->have |= FBRL_RAPL_ST_ERROR;
+        return FBRL_OK;
+    }
+    if (starts(line, len, "SPEED (% OF FULL) :", &i)) {
+        num x;
+        skip_spaces(line, len, &i);
+        if (!scan_num(line, len, &i, &x) || !x.sign || i != len)
+            return FBRL_ESYNTAX;
+        s->speed = x.v;
+        s->have |= FBRL_RAPL_ST_SPEED;
+        return FBRL_OK;
+    }
+    if (equals(line, len, "CONTROLLER IS HOMED") || equals(line, len, "CONTROLLER IS NOT HOMED")) {
+        s->homed = len == 19;
+        s->have |= FBRL_RAPL_ST_HOMED;
+        return FBRL_OK;
+    }
+    if (starts(line, len, "LOCK", &i))
+        return yn_row(s, s->lock, FBRL_RAPL_ST_LOCK, line, len, i);
+    if (starts(line, len, "DONE", &i))
+        return yn_row(s, s->done, FBRL_RAPL_ST_DONE, line, len, i);
+    if (starts(line, len, "LIMP", &i))
+        return yn_row(s, s->limp, FBRL_RAPL_ST_LIMP, line, len, i);
+    if (starts(line, len, "HOMED", &i))
+        return yn_row(s, s->axis_homed, FBRL_RAPL_ST_AXHOMED, line, len, i);
+    if (starts(line, len, "INPUTS  1-16:", &i)) {
+        fbrl_status st = io_row(&s->inputs, line, len, i);
+        if (st == FBRL_OK)
+            s->have |= FBRL_RAPL_ST_INPUTS;
+        return st;
+    }
+    if (starts(line, len, "OUTPUTS 1-16:", &i)) {
+        fbrl_status st = io_row(&s->outputs, line, len, i);
+        if (st == FBRL_OK)
+            s->have |= FBRL_RAPL_ST_OUTPUTS;
+        return st;
+    }
+    return FBRL_ENOENT;
+}

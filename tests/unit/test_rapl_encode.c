@@ -1,0 +1,310 @@
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <string.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "fbrl/rapl_encode.h"
+
+#define A(...) ((const fbrl_rapl_arg[]){__VA_ARGS__})
+#define NA(...) (sizeof((const fbrl_rapl_arg[]){__VA_ARGS__}) / sizeof(fbrl_rapl_arg))
+/* constant-expression argument builders, usable in static tables */
+#define I(v) {FBRL_RAPL_ARG_INT, (v), 0.0, 0}
+#define R(v) {FBRL_RAPL_ARG_REAL, 0, (v), 0}
+#define S(v) {FBRL_RAPL_ARG_STR, 0, 0.0, (v)}
+
+/* One expected encoding per command, in keyword and token form. */
+typedef struct golden {
+    fbrl_rapl_cmd cmd;
+    fbrl_rapl_arg args[7];
+    size_t nargs;
+    int straight;
+    const char *keyword, *token;
+} golden;
+
+#define G(cmd, st, kw, tok, ...) {cmd, {__VA_ARGS__}, NA(__VA_ARGS__), st, kw, tok}
+#define G0(cmd, kw, tok) {cmd, {{FBRL_RAPL_ARG_INT, 0, 0.0, 0}}, 0, 0, kw, tok}
+
+static golden goldens[] = {
+    G(FBRL_RAPL_ACTUAL, 0, "ACTUAL P1", "/152 P1", S("p1")),
+    G(FBRL_RAPL_ACTUAL, 0, "ACTUAL #PP", "/152 #PP", S("#pp")),
+    G0(FBRL_RAPL_ALIGN, "ALIGN", "/001"),
+    G(FBRL_RAPL_APPRO, 0, "APPRO P1,2.5000", "/002 P1,2.5000", S("P1"), R(2.5)),
+    G(FBRL_RAPL_APPRO, 1, "APPRO P1,-1.0000,S", "/002 P1,-1.0000,S", S("P1"), R(-1.0)),
+    G(FBRL_RAPL_ARM, 0, "ARM OFF", "/142 OFF", S("off")),
+    G0(FBRL_RAPL_CLOSE, "CLOSE", "/038"),
+    G(FBRL_RAPL_CLOSE, 0, "CLOSE 30", "/038 30", I(30)),
+    G(FBRL_RAPL_CONFIG, 0, "CONFIG 0,9600,N,8,1,X,1", "/110 0,9600,N,8,1,X,1",
+      I(0), I(9600), S("n"), I(8), I(1), S("X"), I(1)),
+    G(FBRL_RAPL_DEPART, 0, "DEPART 1.2500", "/004 1.2500", R(1.25)),
+    G(FBRL_RAPL_DEPART, 1, "DEPART 1.2500,S", "/004 1.2500,S", R(1.25)),
+    G0(FBRL_RAPL_FINISH, "FINISH", "/010"),
+    G(FBRL_RAPL_FLASH, 0, "FLASH 5", "/084 5", I(5)),
+    G(FBRL_RAPL_GAIN, 0, "GAIN 0,1.5000", "/150 0,1.5000", I(0), R(1.5)),
+    G(FBRL_RAPL_GAIN, 0, "GAIN 2", "/150 2", I(2)),
+    G(FBRL_RAPL_GRIP, 0, "GRIP 0.7500", "/039 0.7500", R(0.75)),
+    G(FBRL_RAPL_GRIP, 0, "GRIP 1.0000,40", "/039 1.0000,40", R(1.0), I(40)),
+    G0(FBRL_RAPL_HALT, "HALT", "/154"),
+    G(FBRL_RAPL_HERE, 0, "HERE HOLD", "/024 HOLD", S("Hold")),
+    G0(FBRL_RAPL_HOME, "HOME", "/020"),
+    G(FBRL_RAPL_JOG, 0, "JOG 1.0000,-2.0000,0.0001", "/005 1.0000,-2.0000,0.0001", R(1), R(-2), R(0.0001)),
+    G(FBRL_RAPL_JOINT, 0, "JOINT 3,-45.0000", "/006 3,-45.0000", I(3), R(-45.0)),
+    G0(FBRL_RAPL_LIMP, "LIMP", "/007"),
+    G(FBRL_RAPL_LIMP, 0, "LIMP 2,3", "/007 2,3", I(2), I(3)),
+    G(FBRL_RAPL_LOCK, 0, "LOCK 1,4", "/009 1,4", I(1), I(4)),
+    G(FBRL_RAPL_MA, 1, "MA 0.0000,0.0000,0.0000,0.0000,0.0000,S", "/132 0.0000,0.0000,0.0000,0.0000,0.0000,S",
+      R(0), R(0), R(0), R(0), R(0)),
+    G(FBRL_RAPL_MA, 0, "MA 0.0000,1.5708,-1.5708,0.0000,0.1000", "/132 0.0000,1.5708,-1.5708,0.0000,0.1000",
+      R(0), R(1.5707963), R(-1.5707963), R(0), R(0.1)),
+    G0(FBRL_RAPL_MANUAL, "MANUAL", "/045"),
+    G(FBRL_RAPL_MANUAL, 0, "MANUAL CYL", "/045 CYL", S("cyl")),
+    G(FBRL_RAPL_MI, 1, "MI 0.0100,0.0000,0.0000,0.0000,0.0000,S", "/131 0.0100,0.0000,0.0000,0.0000,0.0000,S",
+      R(0.01), R(0), R(0), R(0), R(0)),
+    G(FBRL_RAPL_MOTOR, 0, "MOTOR 1,-200", "/011 1,-200", I(1), I(-200)),
+    G(FBRL_RAPL_MOVE, 0, "MOVE P2", "MOVE P2", S("P2")),
+    G(FBRL_RAPL_MOVE, 1, "MOVE #P2,S", "MOVE #P2,S", S("#P2")),
+    G0(FBRL_RAPL_NOFLASH, "NOFLASH", "NOFLASH"),
+    G0(FBRL_RAPL_NOHELP, "NOHELP", "NOHELP"),
+    G0(FBRL_RAPL_NOMANUAL, "NOMANUAL", "NOMANUAL"),
+    G0(FBRL_RAPL_NOTEACH, "NOTEACH", "NOTEACH"),
+    G0(FBRL_RAPL_NOLIMP, "NOLIMP", "NOLIMP"),
+    G0(FBRL_RAPL_OPEN, "OPEN", "/040"),
+    G(FBRL_RAPL_OPEN, 0, "OPEN 50", "/040 50", I(50)),
+    G(FBRL_RAPL_OUTPUT, 0, "OUTPUT -3,5", "/089 -3,5", I(-3), I(5)),
+    G(FBRL_RAPL_POINT, 0, "POINT A,10.0000,0.0000,5.0000,0.0000,-90.0000,0.0000",
+      "/050 A,10.0000,0.0000,5.0000,0.0000,-90.0000,0.0000", S("A"), R(10), R(0), R(5), R(0), R(-90), R(0)),
+    G(FBRL_RAPL_POINT, 0, "POINT #B,100,-200,300,0,22", "/050 #B,100,-200,300,0,22",
+      S("#b"), I(100), I(-200), I(300), I(0), I(22)),
+    G0(FBRL_RAPL_READY, "READY", "/015"),
+    G(FBRL_RAPL_RUN, 0, "RUN CAL", "/109 CAL", S("CAL")),
+    G(FBRL_RAPL_RUN, 0, "RUN CAL,3", "/109 CAL,3", S("CAL"), I(3)),
+    G0(FBRL_RAPL_SERIAL, "SERIAL", "/111"),
+    G(FBRL_RAPL_SET, 0, "SET A=B", "/051 A=B", S("A"), S("B")),
+    G(FBRL_RAPL_SHIFTA, 0, "SHIFTA A,D", "/053 A,D", S("A"), S("D")),
+    G(FBRL_RAPL_SPEED, 0, "SPEED 50", "/016 50", I(50)),
+    G0(FBRL_RAPL_STATUS, "STATUS", "/025"),
+    G(FBRL_RAPL_TEACH, 0, "TEACH T1", "/044 T1", S("T1")),
+    G(FBRL_RAPL_TOOL, 0, "TOOL TL", "/054 TL", S("TL")),
+    G0(FBRL_RAPL_TOOL, "TOOL", "/054"),
+    G(FBRL_RAPL_TYPEI, 0, "TYPEI COUNT", "/059 COUNT", S("count")),
+    G(FBRL_RAPL_TYPEV, 0, "TYPEV X", "/060 X", S("X")),
+    G(FBRL_RAPL_UNLOCK, 0, "UNLOCK 1", "/017 1", I(1)),
+    G0(FBRL_RAPL_UNLOCK, "UNLOCK", "/017"),
+    G0(FBRL_RAPL_W0, "W0", "/027"),
+    G0(FBRL_RAPL_W1, "W1", "/029"),
+    G0(FBRL_RAPL_W2, "W2", "/031"),
+    G0(FBRL_RAPL_W3, "W3", "/033"),
+    G0(FBRL_RAPL_W4, "W4", "/035"),
+    G0(FBRL_RAPL_W5, "W5", "/037"),
+    G(FBRL_RAPL_WAIT, 0, "WAIT -7", "/094 -7", I(-7)),
+    G(FBRL_RAPL_WAIT, 0, "WAIT 1,-2", "/094 1,-2", I(1), I(-2)),
+    G0(FBRL_RAPL_WE1, "WE1", "/028"),
+    G0(FBRL_RAPL_WE3, "WE3", "/032"),
+    G0(FBRL_RAPL_WE5, "WE5", "/036"),
+    G(FBRL_RAPL_XCAL, 0, "XCAL 6", "/157 6", I(6)),
+    G(FBRL_RAPL_XHOME, 0, "XHOME 6", "/158 6", I(6)),
+    G(FBRL_RAPL_XZERO, 0, "XZERO 6", "/159 6", I(6)),
+    G(FBRL_RAPL_ASSIGN, 0, "V1=2.5000", "V1=2.5000", S("v1"), R(2.5)),
+    G(FBRL_RAPL_ASSIGN, 0, "N=7.0000", "N=7.0000", S("N"), I(7)),
+};
+
+static void every_command_encodes_in_both_forms(void **state)
+{
+    (void)state;
+    int seen[FBRL_RAPL_NCMDS] = {0};
+    for (size_t g = 0; g < sizeof goldens / sizeof goldens[0]; g++) {
+        const golden *e = &goldens[g];
+        char buf[FBRL_RAPL_LINE_MAX];
+        size_t len = 99;
+        assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, e->cmd, e->args,
+                                          e->nargs, e->straight), FBRL_OK);
+        assert_string_equal(buf, e->keyword);
+        assert_int_equal(len, strlen(e->keyword));
+        assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_TOKEN, e->cmd, e->args,
+                                          e->nargs, e->straight), FBRL_OK);
+        assert_string_equal(buf, e->token);
+        assert_int_equal(len, strlen(e->token));
+        /* exactly one byte too few for the line and its NUL gives ENOSPC and an empty buffer */
+        assert_int_equal(fbrl_rapl_encode(buf, strlen(e->keyword), &len, FBRL_RAPL_KEYWORD, e->cmd,
+                                          e->args, e->nargs, e->straight), FBRL_ENOSPC);
+        assert_string_equal(buf, "");
+        seen[e->cmd] = 1;
+    }
+    for (int c = 0; c < FBRL_RAPL_NCMDS; c++)
+        assert_true(seen[c]);
+}
+
+static void table_is_complete_and_lookups_work(void **state)
+{
+    (void)state;
+    for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
+        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)c);
+        assert_non_null(ci);
+        assert_non_null(ci->keyword);
+        assert_non_null(ci->sig);
+        assert_true(ci->token < 1000);
+        if (ci->keyword[0]) {
+            fbrl_rapl_cmd found;
+            assert_int_equal(fbrl_rapl_cmd_find(ci->keyword, &found), FBRL_OK);
+            assert_int_equal(found, c);
+        }
+        /* tokens are unique */
+        for (int d = c + 1; d < FBRL_RAPL_NCMDS && ci->token; d++)
+            assert_int_not_equal(ci->token, fbrl_rapl_cmd_info((fbrl_rapl_cmd)d)->token);
+    }
+    fbrl_rapl_cmd c;
+    assert_int_equal(fbrl_rapl_cmd_find("appro", &c), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_APPRO);
+    assert_int_equal(fbrl_rapl_cmd_find("APPROX", &c), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_cmd_find("APP", &c), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_cmd_find("", &c), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_cmd_find(NULL, &c), FBRL_EINVAL);
+    assert_null(fbrl_rapl_cmd_info(FBRL_RAPL_NCMDS));
+    assert_null(fbrl_rapl_cmd_info((fbrl_rapl_cmd)-1));
+    assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_MOVE)->flags & FBRL_RAPL_F_MOTION);
+    assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_W1)->flags & FBRL_RAPL_F_STREAM);
+    assert_false(fbrl_rapl_cmd_info(FBRL_RAPL_W2)->flags & FBRL_RAPL_F_STREAM);
+}
+
+static void reals_have_four_decimals_and_no_exponent(void **state)
+{
+    (void)state;
+    static const struct { double v; const char *txt; } cases[] = {
+        {0.0, "0.0000"}, {-0.0, "0.0000"}, {-0.00004, "0.0000"}, {0.00005, "0.0001"},
+        {-0.00005, "-0.0001"}, {1e-9, "0.0000"}, {123.45678, "123.4568"}, {-7.5, "-7.5000"},
+        {999999.9999, "999999.9999"}, {-999999.9999, "-999999.9999"}, {1e5, "100000.0000"},
+        {0.1, "0.1000"}, {2.675, "2.6750"},
+    };
+    char buf[32];
+    size_t len;
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, cases[k].v), FBRL_OK);
+        assert_string_equal(buf, cases[k].txt);
+        assert_int_equal(len, strlen(cases[k].txt));
+        assert_null(strchr(buf, 'e'));
+    }
+    assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, NAN), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, INFINITY), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, -INFINITY), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, 1e6), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, -1e300), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_format_real(buf, 6, &len, 1.5), FBRL_ENOSPC);
+    assert_int_equal(fbrl_rapl_format_real(buf, 7, &len, 1.5), FBRL_OK);
+    assert_int_equal(fbrl_rapl_format_real(NULL, 7, &len, 1.5), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_format_real(buf, 0, &len, 1.5), FBRL_EINVAL);
+}
+
+static void names_are_validated(void **state)
+{
+    (void)state;
+    assert_int_equal(fbrl_rapl_name_check("A", 0), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("abcdefgh", 0), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("P12", 0), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("#P12", 1), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("#ABCDEFGH", 1), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("#P12", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("abcdefghi", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("#", 1), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("1A", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("A B", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("A,B", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("A\r", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("##A", 1), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check("A_B", 0), FBRL_OK);
+    assert_int_equal(fbrl_rapl_name_check("_AB", 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_name_check(NULL, 0), FBRL_EINVAL);
+
+    char buf[FBRL_RAPL_LINE_MAX];
+    size_t len;
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_MOVE,
+                                      A(S("TOOLONGNM")), 1, 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_TYPEI,
+                                      A(S("#V")), 1, 0), FBRL_ENAME); /* variables have no '#' */
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_HERE,
+                                      A(S("P;1")), 1, 0), FBRL_ENAME);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_SET,
+                                      A(S("A"), S("B C")), 2, 0), FBRL_ENAME);
+}
+
+static void arguments_are_checked(void **state)
+{
+    (void)state;
+    char buf[FBRL_RAPL_LINE_MAX];
+    size_t len;
+    fbrl_rapl_form kw = FBRL_RAPL_KEYWORD;
+    /* wrong counts */
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_APPRO, A(S("P1")), 1, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_HOME, A(I(1)), 1, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_LOCK, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_LOCK,
+                                      A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8), I(1)), 9, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_LOCK,
+                                      A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8)), 8, 0), FBRL_OK);
+    assert_string_equal(buf, "LOCK 1,2,3,4,5,6,7,8");
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
+                                      A(S("#B"), I(1), I(2), I(3), I(4), I(5), I(6)), 7, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
+                                      A(S("#B"), R(1), I(2), I(3), I(4), I(5)), 6, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT, NULL, 0, 0), FBRL_EINVAL);
+    /* wrong kinds */
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOINT, A(R(1), R(2)), 2, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOVE, A(I(1)), 1, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOVE, A(S(NULL)), 1, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("MAYBE")), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("O")), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("ONN")), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_CONFIG,
+                                      A(I(0), I(9600), S("X"), I(8), I(1), S("N"), I(1)), 7, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_CONFIG,
+                                      A(I(0), I(9600), S("E"), I(8), I(1), S("E"), I(1)), 7, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("on")), 1, 0), FBRL_OK);
+    assert_string_equal(buf, "ARM ON");
+    /* numbers */
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOG, A(R(1), R(NAN), R(0)), 3, 0),
+                     FBRL_ENONFINITE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(R(-INFINITY)), 1, 0),
+                     FBRL_ENONFINITE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(R(2e6)), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(I(2000000)), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOTOR, A(I(1), I(-2147483647L)), 2, 0),
+                     FBRL_OK);
+    assert_string_equal(buf, "MOTOR 1,-2147483647");
+    /* ",S" only where allowed */
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOG, A(R(1), R(1), R(0)), 3, 1), FBRL_EINVAL);
+    /* bad parameters */
+    assert_int_equal(fbrl_rapl_encode(NULL, 10, &len, kw, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, 0, &len, kw, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, NULL, kw, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_NCMDS, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, (fbrl_rapl_form)7, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_SPEED, NULL, 1, 0), FBRL_EINVAL);
+}
+
+static void longest_line_fits_line_max(void **state)
+{
+    (void)state;
+    char buf[FBRL_RAPL_LINE_MAX];
+    size_t len;
+    double m = -FBRL_RAPL_REAL_MAX;
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_TOKEN, FBRL_RAPL_POINT,
+                                      A(S("ABCDEFGH"), R(m), R(m), R(m), R(m), R(m), R(m)), 7, 0), FBRL_OK);
+    assert_true(len < FBRL_RAPL_LINE_MAX);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_POINT,
+                                      A(S("ABCDEFGH"), R(m), R(m), R(m), R(m), R(m), R(m)), 7, 0), FBRL_OK);
+    assert_true(len < FBRL_RAPL_LINE_MAX);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_command_encodes_in_both_forms),
+        cmocka_unit_test(table_is_complete_and_lookups_work),
+        cmocka_unit_test(reals_have_four_decimals_and_no_exponent),
+        cmocka_unit_test(names_are_validated),
+        cmocka_unit_test(arguments_are_checked),
+        cmocka_unit_test(longest_line_fits_line_max),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
