@@ -13,6 +13,11 @@ if(TARGET fbrlmon)
   add_test(NAME mon_script COMMAND sh ${_mon_dir}/mon_script.sh $<TARGET_FILE:fbrlmon> ${_mon_dir} ${_mon_tmp}/script)
   add_test(NAME mon_badinput COMMAND mon_cases $<TARGET_FILE:fbrlmon> ${_mon_dir}/mon_badinput.txt ${_mon_tmp})
   add_test(NAME mon_pty COMMAND mon_pty $<TARGET_FILE:fbrlmon> ${_mon_tmp}/pty)
-  set_tests_properties(mon_script mon_badinput mon_pty PROPERTIES LABELS e2e TIMEOUT 300
+  set(_mon_tests mon_script mon_badinput mon_pty)
+  if(TARGET fbrlsim)
+    add_test(NAME mon_conn COMMAND sh ${_mon_dir}/mon_conn.sh $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${_mon_tmp}/conn)
+    list(APPEND _mon_tests mon_conn)
+  endif()
+  set_tests_properties(${_mon_tests} PROPERTIES LABELS e2e TIMEOUT 300
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${_mon_dir}/mon_lsan.supp")
 endif()

@@ -201,6 +201,62 @@ static int file_contains(const char *path, const char *text)
     return strstr(buf, text) != NULL;
 }
 
+/* A pty nobody answers on: fbrlmon --port must say so and exit with status 3
+ * (it must not pretend to be connected). */
+static void silent_controller(void)
+{
+    char errpath[1024], *slave;
+    int master = posix_openpt(O_RDWR | O_NOCTTY), st;
+    long deadline = now_ms() + TIMEOUT_MS;
+    pid_t pid;
+    int reaped = 0;
+    if (master < 0 || grantpt(master) != 0 || unlockpt(master) != 0 || (slave = ptsname(master)) == NULL) {
+        perror("mon_pty: posix_openpt");
+        g_failed = 1;
+        return;
+    }
+    snprintf(errpath, sizeof errpath, "%s/silent.err", g_dir);
+    pid = fork();
+    if (pid == 0) {
+        int fd = open(errpath, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+        int null = open("/dev/null", O_RDWR);
+        dup2(null, 0);
+        dup2(null, 1);
+        dup2(fd, 2);
+        execl(g_mon, g_mon, "--port", slave, "-e", "1 .", (char *)NULL);
+        _exit(127);
+    }
+    /* Drain what fbrlmon types (it waits for an echo that never comes). */
+    for (;;) {
+        char junk[256];
+        struct pollfd p;
+        if (waitpid(pid, &st, WNOHANG) == pid) {
+            reaped = 1;
+            break;
+        }
+        if (now_ms() > deadline) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &st, 0);
+            fprintf(stderr, "FAIL: fbrlmon --port on a silent pty did not give up\n");
+            g_failed = 1;
+            close(master);
+            return;
+        }
+        p.fd = master;
+        p.events = POLLIN;
+        if (poll(&p, 1, 50) > 0 && read(master, junk, sizeof junk) < 0)
+            break;
+    }
+    if (!reaped)
+        waitpid(pid, &st, 0);
+    close(master);
+    if (!WIFEXITED(st) || WEXITSTATUS(st) != 3 || !file_contains(errpath, "no controller answers")) {
+        fprintf(stderr, "FAIL: fbrlmon --port on a silent pty: status %d, want 3 and 'no controller answers'\n",
+                WIFEXITED(st) ? WEXITSTATUS(st) : -1);
+        g_failed = 1;
+    }
+}
+
 int main(int argc, char **argv)
 {
     session s;
@@ -217,10 +273,12 @@ int main(int argc, char **argv)
     snprintf(hist, sizeof hist, "%s/history", g_dir);
     unlink(hist);
 
+    silent_controller();
+
     /* Session 1. */
     if (start(&s) != 0)
         return 1;
-    if (expect(&s, "ok> ", "first prompt")) {
+    if (expect(&s, "offline", "banner names the connection") && expect(&s, "ok> ", "first prompt")) {
         type(&s, "1 2 + .\r");
         expect(&s, "1 2 + .", "echo of the typed line");
         expect(&s, "3 ", "output of 1 2 + .");
