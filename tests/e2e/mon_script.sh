@@ -1,6 +1,7 @@
 #!/bin/sh
 # mon_script.sh FBRLMON SRCDIR TMPDIR - fbrlmon on script files, -e texts and
-# piped standard input: exact output, error lines and exit status.
+# piped standard input: exact output, error lines and exit status. (Offline:
+# the connection has its own test, mon_conn.sh.)
 mon=$1
 src=$2
 tmp=$3
@@ -17,7 +18,7 @@ t() {
     name=$1 want_st=$2 want_out=$3 want_err=$4 input=$5
     shift 5
     count=$((count + 1))
-    printf '%b' "$input" | "$mon" "$@" >out.txt 2>err.txt
+    printf '%b' "$input" | "$mon" --offline "$@" >out.txt 2>err.txt
     st=$?
     printf '%b' "$want_out" >want_out.txt
     ok=1
