@@ -89,7 +89,7 @@ static void host_write(void *user, const char *s, size_t n)
     const char *nl;
     if (n == 0)
         return;
-    if (h->width > 0 && h->column > 0 && h->column + (long)n > h->width &&
+    if (h->width > 0 && h->column > 0 && h->column + (long)n >= h->width &&
         memchr(s, '\n', n) == NULL && !only_blanks(s, n)) {
         fputc('\n', h->out);
         h->column = 0;

@@ -188,6 +188,29 @@ static int finish(session *s)
     return WEXITSTATUS(st);
 }
 
+/* Longest line (printable bytes between newlines; escape sequences skipped)
+ * in buf[from, to). */
+static size_t longest_line(const char *buf, size_t from, size_t to)
+{
+    size_t i, col = 0, max = 0;
+    for (i = from; i < to; i++) {
+        unsigned char c = (unsigned char)buf[i];
+        if (c == '\n' || c == '\r') {
+            col = 0;
+        } else if (c == 0x1b) {  /* ESC [ ... final byte */
+            if (i + 1 < to && buf[i + 1] == '[') {
+                i += 2;
+                while (i < to && !((unsigned char)buf[i] >= 0x40 && (unsigned char)buf[i] <= 0x7e))
+                    i++;
+            }
+        } else if (c >= 0x20) {
+            if (++col > max)
+                max = col;
+        }
+    }
+    return max;
+}
+
 static int file_contains(const char *path, const char *text)
 {
     char buf[65536];
@@ -305,6 +328,22 @@ int main(int argc, char **argv)
         type(&s, "A");
         expect(&s, "65 ", "KEY got the key");
         expect(&s, "ok> ", "prompt after KEY");
+        /* WORDS fits the 80-column terminal: names wrap between words. */
+        {
+            size_t from;
+            type(&s, "words\r");
+            expect(&s, "words", "echo of words");
+            from = s.mark;
+            if (expect(&s, "ok> ", "prompt after WORDS")) {
+                size_t longest = longest_line(s.buf, from, s.mark);
+                if (longest > 80 || s.mark - from < 400) {
+                    fprintf(stderr, "FAIL: WORDS output: %zu bytes, longest line %zu columns (want <= 80)\n",
+                            s.mark - from, longest);
+                    transcript(&s);
+                    g_failed = 1;
+                }
+            }
+        }
         type(&s, "1000 7 + .\r");
         expect(&s, "1007 ", "last line of session 1");
         expect(&s, "ok> ", "prompt before end");
