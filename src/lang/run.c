@@ -370,6 +370,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_SLITERAL: case OP_FLITERAL: case OP_COMPILECOMMA: case OP_IMMEDIATE: case OP_TONUMBER:
         case OP_SEE: case OP_HELP: case OP_INCLUDE: case OP_REQUIRE: case OP_REFILL: case OP_ENVQ:
         case OP_LATESTXT: case OP_TOBODY: case OP_DEFERFETCH: case OP_DEFERSTORE:
+        case OP_BIF: case OP_BELSE: case OP_BTHEN: case OP_BDEFINED: case OP_BUNDEFINED:
+        case OP_SAVEINPUT: case OP_RESTOREINPUT:
             CALLC(fbrl__w_parse(vm, (int)w));
             continue;
         case OP_LBRACKET: *vm->state = 0; continue;

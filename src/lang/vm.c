@@ -429,7 +429,26 @@ static void capture_help(fbrl_vm *vm, fbrl_hdr *h, const char *dstack, const cha
     }
 }
 
-/* Parse a name and make a header of the given kind, with its data field aligned at HERE. */
+/* Make a word of the given kind with its data field aligned at HERE. */
+int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack,
+                   const char *help, fbrl_hdr **out)
+{
+    fbrl_hdr *h;
+    int r;
+    if (len == 0) return -16;
+    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return -8;
+    if ((r = new_header(vm, name, len, kind, 0, &h))) return r;
+    h->stack = stack;
+    h->help = help;
+    h->body = (fbrl_cell)vm->here;
+    if ((r = fbrl__align(vm))) return r;
+    h->body = (fbrl_cell)vm->here;
+    *out = h;
+    return 0;
+}
+
+/* Parse a name and make a word of the given kind; a "( stack )" and "\ help" comment
+ * after the name on its line become the word's HELP text. */
 int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, fbrl_hdr **out)
 {
     const char *name;
@@ -437,9 +456,7 @@ int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, f
     fbrl_hdr *h;
     int r;
     fbrl__parse_name(vm, &name, &len);
-    if (len == 0) return -16;
-    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return -8;
-    if ((r = new_header(vm, name, len, kind, 0, &h))) return r;
+    if ((r = fbrl__new_word(vm, name, len, kind, dstack, dhelp, &h))) return r;
     capture_help(vm, h, dstack, dhelp);
     if ((r = fbrl__align(vm))) return r;
     h->body = (fbrl_cell)vm->here;
@@ -790,6 +807,8 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     }
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st != FBRL_OK) return st == FBRL_ENOMEM ? FBRL_ENOSPC : st;
+    st = fbrl_vm_eval(vm, fbrl__prelude, strlen(fbrl__prelude));
+    if (st != FBRL_OK) return vm->err.throw_code == -8 ? FBRL_ENOSPC : st;
     vm->dict_lo = vm->here;
     *out = vm;
     return FBRL_OK;

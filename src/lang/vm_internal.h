@@ -158,6 +158,9 @@ void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
 void fbrl__puts(fbrl_vm *vm, const char *s);
 const char *fbrl__throw_text(int code);
 
+/* prelude.c */
+extern const char fbrl__prelude[];
+
 /* words_fbrl.c */
 fbrl_status fbrl__fbrl_words(fbrl_vm *vm);
 

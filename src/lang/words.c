@@ -50,6 +50,12 @@ static int pop_str(fbrl_vm *vm, const char **s, size_t *n)
     return 0;
 }
 
+static void dneg(fbrl_ucell *lo, fbrl_ucell *hi)
+{
+    *lo = ~*lo + 1;
+    *hi = ~*hi + (*lo == 0);
+}
+
 /* ---- double-cell arithmetic (portable: half-cell products, shift-subtract division) ---- */
 void fbrl__umul(fbrl_ucell a, fbrl_ucell b, fbrl_ucell *hi, fbrl_ucell *lo)
 {
@@ -75,11 +81,6 @@ void fbrl__udiv(fbrl_ucell hi, fbrl_ucell lo, fbrl_ucell d, fbrl_ucell *q, fbrl_
     *r = hi;
 }
 
-static void dneg(fbrl_ucell *lo, fbrl_ucell *hi)
-{
-    *lo = ~*lo + 1;
-    *hi = ~*hi + (*lo == 0);
-}
 
 void fbrl__mstar(fbrl_cell a, fbrl_cell b, fbrl_cell *lo, fbrl_cell *hi)
 {
@@ -151,7 +152,11 @@ int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div)
 
 double fbrl__d_to_f(fbrl_cell lo, fbrl_cell hi)
 {
-    return (double)hi * ldexp(1.0, CELL_BITS) + (double)U(lo);
+    fbrl_ucell l = U(lo), h = U(hi);
+    int neg = hi < 0;
+    if (neg) dneg(&l, &h); /* magnitude first: a negative sum would cancel to 0 */
+    double r = (double)h * ldexp(1.0, CELL_BITS) + (double)l;
+    return neg ? -r : r;
 }
 
 int fbrl__f_to_d(double r, fbrl_cell *lo, fbrl_cell *hi)
@@ -287,12 +292,12 @@ int fbrl__w_control(fbrl_vm *vm, int op)
     case OP_ENDOF:
         if ((r = cf_pop(vm, CF_OF, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o))) return r;
         return cf_push(vm, CF_ENDOF, d);
-    case OP_ENDCASE:
+    case OP_ENDCASE: /* the default path drops the selector; ENDOFs jump past that */
+        if ((r = fbrl__emit(vm, OP_DROP))) return r;
         while (vm->ncf > 0 && vm->cf[vm->ncf - 1].tag == CF_ENDOF) {
             if ((r = cf_pop(vm, CF_ENDOF, &o)) || (r = resolve(vm, o))) return r;
         }
-        if ((r = cf_pop(vm, CF_CASE, &o))) return r;
-        return fbrl__emit(vm, OP_DROP);
+        return cf_pop(vm, CF_CASE, &o);
     case OP_RECURSE:
         if (!vm->defining) return -22;
         return back(vm, OP_CALL, HDR(vm, vm->def_word)->body);
@@ -633,6 +638,39 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
     return push(vm, 0);
 }
 
+static int name_is(const char *p, size_t n, const char *w)
+{
+    size_t k = strlen(w);
+    if (n != k) return 0;
+    for (size_t i = 0; i < n; i++) {
+        char c = p[i];
+        if (c >= 'a' && c <= 'z') c = (char)(c - 32);
+        if (c != w[i]) return 0;
+    }
+    return 1;
+}
+
+/* Skip words up to the [ELSE] (if else_ok) or [THEN] matching this level, across lines. */
+static int skip_conditional(fbrl_vm *vm, int else_ok)
+{
+    int level = 0;
+    for (;;) {
+        const char *p;
+        size_t n;
+        fbrl__parse_name(vm, &p, &n);
+        if (n == 0) {
+            int r = fbrl__refill(vm);
+            if (r < 0) return r;
+            if (r == 0) return fbrl__throw_msg(vm, -58, "[IF] without [THEN]");
+            continue;
+        }
+        if (name_is(p, n, "[IF]")) level++;
+        else if (name_is(p, n, "[THEN]")) { if (level-- == 0) return 0; }
+        else if (name_is(p, n, "[ELSE]") && level == 0 && else_ok) return 0;
+        else if (name_is(p, n, "\\")) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
+    }
+}
+
 int fbrl__w_parse(fbrl_vm *vm, int op)
 {
     const char *p;
@@ -714,7 +752,12 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         fbrl__write(vm, p, n);
         return 0;
     case OP_DOTQUOTE:
-        if ((r = parse_quoted(vm, '"', &p, &n)) || (r = fbrl__compile_str(vm, OP_SLIT, p, n))) return r;
+        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        if (*vm->state == 0) {
+            fbrl__write(vm, p, n);
+            return 0;
+        }
+        if ((r = fbrl__compile_str(vm, OP_SLIT, p, n))) return r;
         return fbrl__emit(vm, OP_TYPE);
     case OP_SQUOTE:
         if ((r = parse_quoted(vm, '"', &p, &n))) return r;
@@ -836,6 +879,35 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_ENVQ:
         if ((r = pop_str(vm, &p, &n))) return r;
         return env_query(vm, p, n);
+    case OP_BIF:
+        if ((r = pop(vm, &v))) return r;
+        return v ? 0 : skip_conditional(vm, 1);
+    case OP_BELSE: return skip_conditional(vm, 0);
+    case OP_BTHEN: return 0;
+    case OP_BDEFINED: case OP_BUNDEFINED:
+        fbrl__parse_name(vm, &p, &n);
+        found = fbrl__find(vm, p, n) >= 0;
+        return push(vm, (op == OP_BDEFINED) == found ? -1 : 0);
+    case OP_SAVEINPUT: {
+        const fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
+        if (vm->ds_end - vm->sp < 4) return -3;
+        *vm->sp++ = *vm->toin;
+        *vm->sp++ = s ? (fbrl_cell)s->line : 0;
+        *vm->sp++ = s ? s->id : 0;
+        *vm->sp++ = 3;
+        return 0;
+    }
+    case OP_RESTOREINPUT: {
+        const fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
+        if ((r = pop(vm, &v))) return r;
+        if (v < 0 || vm->sp - vm->ds0 < v) return -4;
+        vm->sp -= v;
+        if (v != 3 || !s || vm->sp[2] != s->id || vm->sp[1] != (fbrl_cell)s->line || vm->sp[0] < 0 ||
+            (size_t)vm->sp[0] > s->len)
+            return push(vm, -1);
+        *vm->toin = vm->sp[0];
+        return push(vm, 0);
+    }
     case OP_LATESTXT:
         if (vm->nwords == 0) return -21;
         return push(vm, (fbrl_cell)(FBRL_XT_BASE + vm->nwords - 1));

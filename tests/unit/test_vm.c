@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
@@ -65,6 +66,41 @@ static void h_close(void *user, void *handle)
     fclose(handle);
 }
 
+static uint64_t h_now_us(void *user)
+{
+    struct timespec t;
+    (void)user;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
+
+static void h_sleep_ms(void *user, uint32_t ms)
+{
+    struct timespec t = { (time_t)(ms / 1000), (long)(ms % 1000) * 1000000L };
+    (void)user;
+    nanosleep(&t, NULL);
+}
+
+static void h_time_date(void *user, int out[6])
+{
+    time_t now = time(NULL);
+    struct tm tm;
+    (void)user;
+    localtime_r(&now, &tm);
+    out[0] = tm.tm_sec;
+    out[1] = tm.tm_min;
+    out[2] = tm.tm_hour;
+    out[3] = tm.tm_mday;
+    out[4] = tm.tm_mon + 1;
+    out[5] = tm.tm_year + 1900;
+}
+
+static int h_key_ready(void *user)
+{
+    host *h = user;
+    return h->keys && *h->keys;
+}
+
 typedef struct fixture {
     void *mem;
     host h;
@@ -87,6 +123,10 @@ static fixture *new_vm(size_t mem_size)
     cfg.host.file_open = h_open;
     cfg.host.file_read_line = h_read_line;
     cfg.host.file_close = h_close;
+    cfg.host.now_us = h_now_us;
+    cfg.host.sleep_ms = h_sleep_ms;
+    cfg.host.time_date = h_time_date;
+    cfg.host.key_ready = h_key_ready;
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     return f;
 }
@@ -132,6 +172,13 @@ static void run_forth_file(const char *name)
 
 #define FORTH_TEST(fn, file) static void fn(void **state) { (void)state; run_forth_file(file); }
 FORTH_TEST(forth_core, "core.fs")
+FORTH_TEST(forth_coreext, "coreext.fs")
+FORTH_TEST(forth_exception, "exception.fs")
+FORTH_TEST(forth_double, "double.fs")
+FORTH_TEST(forth_float, "float.fs")
+FORTH_TEST(forth_string, "string.fs")
+FORTH_TEST(forth_tools, "tools.fs")
+FORTH_TEST(forth_fbrl, "fbrl.fs")
 
 /* ---- the C API ---- */
 static void create_rejects_bad_config(void **state)
@@ -417,6 +464,75 @@ static void every_word_has_help(void **state)
     free_vm(f);
 }
 
+/* What the printing words print. */
+static void expect_output(fixture *f, const char *src, const char *want)
+{
+    f->h.n = 0;
+    f->h.out[0] = 0;
+    fbrl_status st = ev(f, src);
+    if (st != FBRL_OK) print_error("'%s': %s\n", src, fbrl_vm_last_error(f->vm)->message);
+    assert_int_equal(st, FBRL_OK);
+    if (strcmp(f->h.out, want) != 0) print_error("'%s' printed '%s', expected '%s'\n", src, f->h.out, want);
+    assert_string_equal(f->h.out, want);
+}
+
+static void output_formats(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    expect_output(f, "1 . -1 . 0 .", "1 -1 0 ");
+    expect_output(f, "-1 U.", sizeof(fbrl_cell) == 8 ? "18446744073709551615 " : "4294967295 ");
+    expect_output(f, "42 5 .R -42 5 .R 7 3 U.R 12345 2 .R", "   42  -42  712345");
+    expect_output(f, "255 HEX . -1 . DECIMAL", "FF -1 ");
+    expect_output(f, "5 2 BASE ! . DECIMAL 35 36 BASE ! . DECIMAL", "101 Z ");
+    expect_output(f, "123. D. -5. D. 7. 4 D.R 5. UD.", "123 -5    75 ");
+    expect_output(f, "1 2 3 .S DROP DROP DROP", "<3> 1 2 3 \n");
+    expect_output(f, "VARIABLE V 77 V ! V ?", "77 ");
+    expect_output(f, "65 EMIT 3 SPACES 66 EMIT CR S\" ok\" TYPE SPACE .( paren) .\" x\"", "A   B\nok parenx");
+    expect_output(f, ": DQ .\" in def\" ; DQ", "in def");
+    expect_output(f, "1.5E0 F. 2E0 F. 0.125E0 F. 1234.5E0 F. -3.25E0 F. 0E0 F.", "1.5 2. 0.125 1234.5 -3.25 0. ");
+    expect_output(f, "1234.5E0 FS. 1234.5E0 FE. 0.5E0 FE. -2E0 FS.", "1.23450E3 1.23450E3 500.000E-3 -2.00000E0 ");
+    expect_output(f, "3 SET-PRECISION 3.14159E0 F. 2E0 FSQRT FS. 6 SET-PRECISION", "3.14 1.41E0 ");
+    expect_output(f, "1E0 2E0 .S FDROP FDROP", "<0> F: <2> 1.00000E0 2.00000E0 \n");
+    expect_output(f, ": SQ ( n -- n*n ) DUP * ; SEE SQ", ": SQ DUP * ;\n");
+    expect_output(f, ": SW 1 IF 2 ELSE 3 THEN S\" s\" ; SEE SW", ": SW 1 0BRANCH(4) 2 BRANCH(2) 3 S\" s\" ;\n");
+    expect_output(f, "5 CONSTANT FIVE SEE FIVE", "FIVE is a constant = 5\n");
+    expect_output(f, "HELP SQ", "SQ ( n -- n*n ) colon definition\n");
+    expect_output(f, "HELP ENQ", "ENQ ( c q-addr -- ) add a character to the queue (throws when full)\n");
+    assert_int_equal(ev(f, "CREATE DD 65 C, 66 C,"), FBRL_OK);
+    f->h.n = 0;
+    assert_int_equal(ev(f, "DD 2 DUMP"), FBRL_OK);
+    assert_non_null(strstr(f->h.out, " 41 42 "));
+    assert_non_null(strstr(f->h.out, "AB\n"));
+    f->h.n = 0;
+    assert_int_equal(ev(f, ": NEWEST ; WORDS"), FBRL_OK);
+    assert_int_equal(strncmp(f->h.out, "NEWEST DD ", 10), 0);
+    free_vm(f);
+}
+
+static void console_input(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    f->h.keys = "xyz\nHello arm\nrest";
+    assert_int_equal(ev(f, "KEY KEY? PAD 40 ACCEPT PAD SWAP"), FBRL_OK);
+    fbrl_cell n = pop1(f), a = pop1(f);
+    assert_int_equal(n, 2);
+    assert_memory_equal((void *)a, "yz", 2);
+    assert_int_equal(pop1(f), -1);
+    assert_int_equal(pop1(f), 'x');
+    assert_int_equal(ev(f, "20 STRING S S GET-STRING S STRING-TEXT"), FBRL_OK);
+    n = pop1(f);
+    a = pop1(f);
+    assert_int_equal(n, 9);
+    assert_memory_equal((void *)a, "Hello arm", 9);
+    assert_int_equal(ev(f, "PAD 2 ACCEPT"), FBRL_OK); /* keeps 2 of "rest" */
+    assert_int_equal(pop1(f), 2);
+    assert_int_equal(ev(f, "KEY"), FBRL_ETHROW);      /* end of input */
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -57);
+    free_vm(f);
+}
+
 /* Wrong programs must give errors, never crashes (run under ASan+UBSan in CI). */
 static void hostile_programs_fail_cleanly(void **state)
 {
@@ -507,6 +623,15 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(forth_core),
+        cmocka_unit_test(forth_coreext),
+        cmocka_unit_test(forth_exception),
+        cmocka_unit_test(forth_double),
+        cmocka_unit_test(forth_float),
+        cmocka_unit_test(forth_string),
+        cmocka_unit_test(forth_tools),
+        cmocka_unit_test(forth_fbrl),
+        cmocka_unit_test(output_formats),
+        cmocka_unit_test(console_input),
         cmocka_unit_test(create_rejects_bad_config),
         cmocka_unit_test(size_for_is_enough),
         cmocka_unit_test(two_vms_are_independent),

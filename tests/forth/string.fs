@@ -1,0 +1,27 @@
+\ string.fs - STRING word set
+DECIMAL
+: S1 S" abcdefghijklmnopqrstuvwxyz" ;
+: S2 S" abc" ;  : S3 S" jklmn" ;  : S4 S" z" ;  : S5 S" mnoq" ;  : S6 S" 12345" ;  : S7 S" " ;
+T{ S1 S2 SEARCH -> S1 TRUE }T
+T{ S1 S3 SEARCH -> S1 9 /STRING TRUE }T
+T{ S1 S4 SEARCH -> S1 25 /STRING TRUE }T
+T{ S1 S5 SEARCH -> S1 FALSE }T
+T{ S1 S6 SEARCH -> S1 FALSE }T
+T{ S1 S7 SEARCH -> S1 TRUE }T
+T{ S2 S1 SEARCH -> S2 FALSE }T
+T{ S1 5 /STRING -> S1 SWAP 5 + SWAP 5 - }T
+T{ S1 10 /STRING -4 /STRING -> S1 6 /STRING }T
+T{ S1 0 /STRING -> S1 }T
+: S8 S" abc  " ;  : S9 S"    " ;
+T{ S8 -TRAILING -> S8 2 - }T T{ S9 -TRAILING -> S9 DROP 0 }T T{ S2 -TRAILING -> S2 }T T{ S7 -TRAILING -> S7 }T
+T{ S2 S2 COMPARE -> 0 }T T{ S2 S" abd" COMPARE -> -1 }T T{ S" abd" S2 COMPARE -> 1 }T
+T{ S2 S" ab" COMPARE -> 1 }T T{ S" ab" S2 COMPARE -> -1 }T T{ S7 S7 COMPARE -> 0 }T T{ S7 S2 COMPARE -> -1 }T
+T{ S" ABC" S2 COMPARE -> -1 }T
+CREATE BUF 20 ALLOT
+T{ BUF 20 BLANK BUF C@ BUF 19 + C@ -> BL BL }T
+T{ S2 BUF SWAP CMOVE BUF 3 S2 COMPARE -> 0 }T
+T{ BUF BUF 1+ 3 CMOVE BUF 4 S" aaaa" COMPARE -> 0 }T
+T{ S2 BUF SWAP CMOVE BUF 1+ BUF 2 CMOVE> BUF 3 S" ccc" COMPARE -> 0 }T
+T{ S2 BUF SWAP CMOVE BUF BUF 1+ 3 CMOVE> BUF 4 S" aabc" COMPARE -> 0 }T
+T{ : SL [ S2 ] SLITERAL ; SL S2 COMPARE -> 0 }T
+T{ S1 DROP 0 S7 COMPARE -> 0 }T

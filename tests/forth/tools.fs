@@ -1,0 +1,17 @@
+\ tools.fs - TOOLS and FACILITY words (their output is checked by test_vm.c)
+DECIMAL
+T{ 1 2 .S -> 1 2 }T
+T{ 1E0 .S -> 1E0 }T
+VARIABLE TV 5 TV !
+T{ TV ? -> }T
+T{ PAD 16 DUMP -> }T
+T{ SEE DUP -> }T
+T{ : SEEME 1 IF 2 ELSE 3 THEN ; SEE SEEME -> }T
+
+T{ : AH AHEAD 1 THEN 2 ; AH -> 2 }T
+T{ 0 MS -> }T
+T{ TIME&DATE NIP NIP NIP NIP NIP 2000 > -> TRUE }T
+T{ TIME&DATE DROP DROP DROP DROP 0 60 WITHIN SWAP 0 61 WITHIN -> TRUE TRUE }T
+T{ UTIME UTIME 2SWAP D- D0< -> FALSE }T
+T{ KEY? DUP 0= OR -> TRUE }T
+T{ STATE @ -> 0 }T
