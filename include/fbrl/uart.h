@@ -133,7 +133,8 @@ fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *
 /* Take up to len received bytes, waiting up to timeout_ms for the first one (0 = do
  * not wait). Returns as soon as at least one byte is there: FBRL_OK with *got >= 1
  * (len 0: FBRL_OK, *got 0), FBRL_ETIMEOUT with *got 0 when none came in time. Bytes
- * already received are returned before a backend error such as FBRL_EDISCONNECTED. */
+ * already received are returned before a backend error such as FBRL_EDISCONNECTED.
+ * got must not be NULL. */
 fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
                            uint32_t timeout_ms);
 
