@@ -1,6 +1,8 @@
 /* mon_conn.c - opening the controller connection for fbrlmon. */
 #include "mon_conn.h"
 
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -34,7 +36,19 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
             snprintf(err, errlen, "cannot start the emulator: %s", serr[0] ? serr : fbrl_status_str(st));
             return st;
         }
-        st = fbrl_sim_start(c->sim);
+        {
+            /* The emulator's thread must not take the terminal's signals: the
+             * line editor (Ctrl-C, window size) handles them in the main thread. */
+            static const int sigs[] = { SIGINT, SIGQUIT, SIGTSTP, SIGCONT, SIGWINCH, SIGHUP, SIGTERM };
+            sigset_t block, old;
+            size_t i;
+            sigemptyset(&block);
+            for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
+                sigaddset(&block, sigs[i]);
+            pthread_sigmask(SIG_BLOCK, &block, &old);
+            st = fbrl_sim_start(c->sim);
+            pthread_sigmask(SIG_SETMASK, &old, NULL);
+        }
         if (st != FBRL_OK) {
             fbrl_sim_destroy(c->sim);
             c->sim = NULL;

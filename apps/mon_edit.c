@@ -25,11 +25,85 @@ static void eval_line(mon *m, const char *line, size_t len)
 }
 
 #ifdef FBRLMON_HAVE_LIBEDIT
+#include <errno.h>
 #include <histedit.h>
+#include <poll.h>
+#include <signal.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
+#include <wchar.h>
 
 static mon *g_mon;  /* the session libedit's callbacks serve (one per process) */
+
+/* Ctrl-C at the prompt discards the line being typed. While a line is being
+ * evaluated Ctrl-C keeps its default meaning (end fbrlmon): the engine cannot be
+ * interrupted in the middle of a word, and a runaway loop must stay stoppable. */
+static volatile sig_atomic_t g_sigint;
+
+static void on_sigint(int sig)
+{
+    (void)sig;
+    g_sigint = 1;
+}
+
+/* libedit's key reader, replaced so that Ctrl-C is never lost: libedit retries
+ * a read() that a signal interrupted, so the flag is checked here instead (poll
+ * wakes on the signal; the timeout covers a signal that came just before it). */
+static int read_key(EditLine *el, wchar_t *wc)
+{
+    mbstate_t mb;
+    (void)el;
+    memset(&mb, 0, sizeof mb);
+    for (;;) {
+        struct pollfd p;
+        unsigned char b;
+        ssize_t r;
+        size_t k;
+        if (g_sigint) {
+            errno = EINTR;
+            return -1;
+        }
+        p.fd = STDIN_FILENO;
+        p.events = POLLIN;
+        p.revents = 0;
+        if (poll(&p, 1, 100) <= 0)
+            continue;
+        r = read(STDIN_FILENO, &b, 1);
+        if (r == 0)
+            return 0;
+        if (r < 0) {
+            if (errno == EINTR || errno == EAGAIN)
+                continue;
+            return -1;
+        }
+        k = mbrtowc(wc, (const char *)&b, 1, &mb);
+        if (k == (size_t)-2)
+            continue;  /* more bytes of a multibyte character to come */
+        if (k == (size_t)-1)
+            *wc = (wchar_t)b;  /* not valid here: take the byte as it is */
+        return 1;
+    }
+}
+
+/* Read one line; NULL at end of input. */
+static const char *read_line(EditLine *el, int *count)
+{
+    struct sigaction sa, old;
+    const char *line;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;  /* no SA_RESTART: the read must return */
+    sigemptyset(&sa.sa_mask);
+    for (;;) {
+        g_sigint = 0;
+        sigaction(SIGINT, &sa, &old);
+        line = el_gets(el, count);
+        sigaction(SIGINT, &old, NULL);
+        if (!g_sigint)
+            return line;
+        el_reset(el);  /* drop the half-typed line */
+        fputs("\n", stdout);
+    }
+}
 
 static char *el_prompt(EditLine *el)
 {
@@ -212,12 +286,13 @@ void mon_interactive(mon *m)
     el_set(el, EL_EDITOR, "emacs");
     el_set(el, EL_SIGNAL, 1);
     el_set(el, EL_PROMPT, el_prompt);
+    el_set(el, EL_GETCFN, read_key);
     el_set(el, EL_HIST, history, hist);
     el_set(el, EL_ADDFN, "fbrl-complete", "complete an FBRL word name", el_complete);
     el_set(el, EL_BIND, "^I", "fbrl-complete", NULL);
     el_source(el, NULL);  /* the user's ~/.editrc, if any */
 
-    while (!fbrl_vm_bye(m->vm) && (line = el_gets(el, &count)) != NULL && count > 0) {
+    while (!fbrl_vm_bye(m->vm) && (line = read_line(el, &count)) != NULL && count > 0) {
         size_t len = strlen(line);
         size_t k = len;
         while (k > 0 && isspace((unsigned char)line[k - 1]))

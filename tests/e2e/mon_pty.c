@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <termios.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -98,9 +99,23 @@ static int expect(session *s, const char *text, const char *what)
     }
 }
 
+/* Wait until the terminal is in single-key mode (ICANON off): libedit draws the
+ * prompt a moment before it leaves line mode, and keys typed in between would be
+ * taken by the kernel's line discipline (^D as end-of-line, ^C as a signal
+ * before libedit listens). The master sees the slave's termios. */
+static void wait_keys(session *s)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    struct termios t;
+    while (now_ms() < deadline && tcgetattr(s->master, &t) == 0 && (t.c_lflag & ICANON))
+        if (!pump(s, 5))
+            return;
+}
+
 static void type(session *s, const char *text)
 {
     size_t n = strlen(text), off = 0;
+    wait_keys(s);
     while (off < n) {
         ssize_t w = write(s->master, text + off, n - off);
         if (w < 0 && errno == EINTR)
@@ -322,6 +337,15 @@ int main(int argc, char **argv)
         type(&s, ".\r");
         expect(&s, "42 ", "completed word runs");
         expect(&s, "ok> ", "prompt after completed line");
+        /* Ctrl-C at the prompt drops the half-typed line; the session goes on. */
+        type(&s, "11 22 33");
+        expect(&s, "33", "echo before Ctrl-C");
+        type(&s, "\003");
+        expect(&s, "ok> ", "prompt after Ctrl-C");
+        type(&s, "depth .\r");
+        expect(&s, "depth .", "echo after Ctrl-C");
+        expect(&s, "0 ", "the dropped line was not evaluated");
+        expect(&s, "ok> ", "prompt after depth");
         /* KEY reads one key without waiting for Enter. */
         type(&s, "key .\r");
         expect(&s, "key .", "echo of key line");
