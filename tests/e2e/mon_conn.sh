@@ -48,6 +48,23 @@ expect "--port with --parity O" 0 "5 " --port "$port" --parity O -e '5 .'
 kill $simpid
 wait $simpid 2>/dev/null
 
+# The same over TCP (a serial server): fbrlsim --tcp 0 prints tcp:127.0.0.1:PORT.
+rm -f tcp.log tcp.out
+"$sim" --tcp 0 --log "$tmp/tcp.log" >tcp.out 2>tcp.err &
+tcppid=$!
+trap 'kill $simpid $tcppid 2>/dev/null' EXIT
+i=0
+while [ ! -s tcp.out ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
+tcpport=$(head -n 1 tcp.out)
+case $tcpport in
+tcp:*)
+    expect "--port tcp:HOST:PORT" 0 "10 " --port "$tcpport" -e '10 .'
+    grep -q '^NOHELP' tcp.log || fail "the handshake did not reach the emulator over TCP" ;;
+*) fail "fbrlsim --tcp printed no address: $(cat tcp.out tcp.err)" ;;
+esac
+kill $tcppid
+wait $tcppid 2>/dev/null
+
 expect "--port that does not exist" 3 "" --port "$tmp/no-such-port" -e '1 .'
 grep -q 'cannot open' err.txt || fail "no 'cannot open' message"
 : >plainfile
