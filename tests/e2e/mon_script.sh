@@ -68,6 +68,15 @@ printf '1 . bye\n2 .\n' >bye.fbrl
 t "BYE in a file ends the session" 0 "1 " "" '3 .\n' "$tmp/bye.fbrl" "$src/mon_basic.fbrl"
 t "BYE in piped input" 0 "1 " "" '1 .\nbye\n2 .\n'
 t "KEY reads the bytes after the current line" 0 "AB3 " "" 'key emit key emit\nAB\n3 .\n'
+printf '#!%s --offline\n: hi ." hello" cr ;\nhi\n' "$mon" >script.fbrl
+chmod +x script.fbrl
+count=$((count + 1))
+if [ "$(./script.fbrl </dev/null)" != "hello" ]; then
+    fails=$((fails + 1))
+    echo "FAIL: executable plan file with #! line: $(./script.fbrl </dev/null 2>&1)"
+fi
+printf '#!fbrlmon\nnosuch\n' >lines.fbrl
+t "#! line keeps line numbers" 1 "" "error: undefined word nosuch ($tmp/lines.fbrl:2)\n" "" "$tmp/lines.fbrl"
 t "WORDS lists the dictionary" 0 "*" "" 'words\n'
 grep -qiw dup out.txt && grep -qiw words out.txt || { fails=$((fails + 1)); echo "FAIL: WORDS output lacks DUP/WORDS"; }
 t "HELP shows a word's stack effect" 0 "*" "" 'help dup\n'
