@@ -59,7 +59,10 @@ typedef struct fbrl_vm_error {
 } fbrl_vm_error;
 
 /* A C primitive: pops its arguments and pushes its results through the API below.
- * Return FBRL_OK, or fbrl_vm_throw()'s result to raise a Forth exception. */
+ * Return FBRL_OK, or fbrl_vm_throw()'s result to raise a Forth exception. Any other
+ * fbrl_status st raises THROW code FBRL_VM_THROW_OF_STATUS(st) (catchable in Forth;
+ * its message is fbrl_status_str(st)); uncaught, fbrl_vm_eval() returns st itself. */
+#define FBRL_VM_THROW_OF_STATUS(st) (-300 + (int)(st))
 typedef fbrl_status (*fbrl_vm_prim)(fbrl_vm *vm, void *arg);
 
 fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg);
@@ -68,15 +71,26 @@ size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes);
 
 /* Interpret text (any number of lines) as if typed. On error: stacks are reset,
  * the interpreter is back in interpretation state, the dictionary is unharmed,
- * and fbrl_vm_last_error() says what happened. */
+ * and fbrl_vm_last_error() says what happened. Returns FBRL_OK (also after BYE,
+ * which stops the text), FBRL_ETHROW for a Forth error, the status a C word failed
+ * with (see FBRL_VM_THROW_OF_STATUS), FBRL_EINVAL, or FBRL_ESTATE when called from
+ * inside a running word. A definition may span several calls (fbrl_vm_compiling). */
 fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 /* INCLUDED: interpret a file through the host's file callbacks. */
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
+/* Ask the running evaluation to stop: it throws -28 ("user interrupt") at its next
+ * call, loop iteration or backward branch. Safe from a signal handler or another
+ * thread (e.g. the monitor's Ctrl-C). A request is dropped when it is delivered and
+ * at the start of each fbrl_vm_eval()/fbrl_vm_include(). */
+void fbrl_vm_interrupt(fbrl_vm *vm);
 /* True once BYE ran. */
 int fbrl_vm_bye(const fbrl_vm *vm);
 /* True while a colon definition (or other compilation) spans lines. */
 int fbrl_vm_compiling(const fbrl_vm *vm);
+/* Back to a clean prompt, as after an error: an unfinished definition is dropped,
+ * the stacks are emptied, interpretation state. (Not from inside a running word.) */
+void fbrl_vm_reset(fbrl_vm *vm);
 
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */

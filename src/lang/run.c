@@ -6,6 +6,7 @@
  * written back (SAVE) before any helper that works on the VM's stacks. */
 #include <math.h>
 #include <string.h>
+#include "atomic.h"
 #include "vm_internal.h"
 #include "words.h"
 
@@ -22,6 +23,8 @@
 #define CODE_OK(t) ((fbrl_ucell)(t) - code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
 #define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) THROW(-9); ip = (const fbrl_cell *)t_; } while (0)
 #define CALLC(expr) do { SAVE(); code = (expr); LOAD(); if (code) goto do_throw; } while (0)
+/* fbrl_vm_interrupt() is honoured wherever a program can loop or recurse */
+#define POLL() if (fbrl_load_rlx(&vm->interrupt)) { fbrl_store_rlx(&vm->interrupt, 0); THROW(-28); }
 #define T sp[-1]
 #define S sp[-2]
 #define U(x) ((fbrl_ucell)(x))
@@ -83,10 +86,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             continue;
         case OP_LIT: ROOM(1); *sp++ = *ip++; continue;
         case OP_FLIT: FROOM(1); memcpy(fp, ip, sizeof(double)); fp++; ip += FCELLS; continue;
-        case OP_CALL: RROOM(1); a = *ip++; *rp++ = (fbrl_cell)ip; JUMP(a); continue;
+        case OP_CALL: POLL(); RROOM(1); a = *ip++; *rp++ = (fbrl_cell)ip; JUMP(a); continue;
         case OP_EXIT: RNEED(1); JUMP(*--rp); continue;
-        case OP_BRANCH: JUMP(*ip); continue;
-        case OP_ZBRANCH: NEED(1); if (*--sp == 0) JUMP(*ip); else ip++; continue;
+        case OP_BRANCH: POLL(); JUMP(*ip); continue;
+        case OP_ZBRANCH: NEED(1); if (*--sp == 0) { POLL(); JUMP(*ip); } else ip++; continue;
         case OP_PQDO:
             NEED(2);
             if (S == T) { sp -= 2; JUMP(*ip); continue; }
@@ -99,13 +102,13 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_PLOOP:
             RNEED(3);
             a = (fbrl_cell)(U(rp[-1]) + 1);
-            if (a == rp[-2]) { rp -= 3; ip++; } else { rp[-1] = a; JUMP(*ip); }
+            if (a == rp[-2]) { rp -= 3; ip++; } else { POLL(); rp[-1] = a; JUMP(*ip); }
             continue;
         case OP_PPLOOP: {
             NEED(1); RNEED(3);
             fbrl_ucell d = U(rp[-1]) - U(rp[-2]), n = U(*--sp), nd = d + n;
             if ((fbrl_cell)((d ^ nd) & (d ^ n)) < 0) { rp -= 3; ip++; }
-            else { rp[-1] = (fbrl_cell)(U(rp[-1]) + n); JUMP(*ip); }
+            else { POLL(); rp[-1] = (fbrl_cell)(U(rp[-1]) + n); JUMP(*ip); }
             continue;
         }
         case OP_I: RNEED(1); ROOM(1); *sp++ = rp[-1]; continue;
@@ -146,6 +149,18 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEED(2);
             if (S == T) { sp -= 2; ip++; } else { sp--; JUMP(*ip); }
             continue;
+        case OP_COMPSEM: { /* run a state-smart word as if compiling */
+            fbrl_cell saved = *vm->state;
+            NEED(1);
+            a = *--sp;
+            *vm->state = -1;
+            SAVE();
+            code = fbrl__run(vm, a);
+            LOAD();
+            if (*vm->state == -1) *vm->state = saved;
+            if (code) goto do_throw;
+            continue;
+        }
         case OP_PTOVAL: NEED(1); a = *ip++; CHK(a, CELL); st(a, *--sp); continue;
         case OP_PTO2VAL: NEED(2); a = *ip++; CHK(a, 2 * CELL); st(a, T); st(a + CELL, S); sp -= 2; continue;
         case OP_PTOFVAL: FNEED(1); a = *ip++; CHK(a, (fbrl_cell)sizeof(double)); stf(a, *--fp); continue;
@@ -364,7 +379,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CALLC(fbrl__w_define(vm, (int)w));
             continue;
         case OP_TO: case OP_IS: case OP_ACTIONOF: case OP_POSTPONE: case OP_BCOMPILE: case OP_BTICK:
-        case OP_BCHAR: case OP_TICK: case OP_CHAR: case OP_PAREN: case OP_BACKSLASH: case OP_DOTPAREN:
+        case OP_BCHAR: case OP_TICK: case OP_CHAR: case OP_PAREN: case OP_BACKSLASH: case OP_SHEBANG: case OP_DOTPAREN:
         case OP_DOTQUOTE: case OP_SQUOTE: case OP_SBQUOTE: case OP_CQUOTE: case OP_ABORTQ:
         case OP_PARSE: case OP_PARSENAME: case OP_WORD: case OP_FIND: case OP_LITERAL: case OP_TWOLITERAL:
         case OP_SLITERAL: case OP_FLITERAL: case OP_COMPILECOMMA: case OP_IMMEDIATE: case OP_TONUMBER:
@@ -555,7 +570,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (!h) THROW(fbrl__throw_msg(vm, -13, "invalid execution token"));
             switch (h->kind) {
             case K_PRIM: defers = 0; w = h->op; goto dispatch;
-            case K_COLON: defers = 0; RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->body); continue;
+            case K_COLON: defers = 0; POLL(); RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->body); continue;
             case K_VAR: ROOM(1); *sp++ = h->body; continue;
             case K_CREATE:
                 ROOM(1); *sp++ = h->body;
@@ -575,6 +590,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 if (++defers > 1000) THROW(fbrl__throw_msg(vm, -21, "deferred words loop"));
                 goto execute_xt;
             case K_CFUNC: {
+                if (!h->fn) THROW(-21);
                 SAVE();
                 vm->pending_throw = 0;
                 fbrl_status st = h->fn(vm, h->arg);
@@ -586,6 +602,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 continue;
             }
             case K_MARKER:
+                if (vm->defining) THROW(fbrl__throw_msg(vm, -29, "a MARKER cannot run inside a definition"));
                 fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)h->end, (size_t)h->does);
                 continue;
             default: THROW(-21);

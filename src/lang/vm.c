@@ -1,6 +1,7 @@
 /* vm.c - the FBRL engine: memory layout, dictionary, text interpreter, C API.
  * The inner interpreter (the big switch) is in run.c. */
 #include <string.h>
+#include "atomic.h"
 #include "words.h"
 
 typedef struct opinfo { const char *name; uint8_t flags; const char *stack, *help; } opinfo;
@@ -465,11 +466,16 @@ int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, f
 }
 
 /* ---- colon definitions ---- */
+static void discard_definition(fbrl_vm *vm);
+
 int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
 {
     fbrl_hdr *h;
     int r;
-    if (vm->defining || *vm->state) return -29;
+    if (*vm->state) return -29;
+    /* A definition left open in interpretation state (": A 1 [" and never closed)
+     * is abandoned: it was never finished, so it was never findable either. */
+    if (vm->defining) discard_definition(vm);
     vm->def_here = vm->here;
     vm->def_nwords = vm->nwords;
     if (noname) {
@@ -716,7 +722,7 @@ typedef struct layout {
 
 #define FBRL_SYSVARS 8
 #define FBRL_BUFS (FBRL_SYSVARS * sizeof(fbrl_cell) + FBRL_WORDBUF + FBRL_PADSIZE + FBRL_HOLDSIZE \
-                   + 2 * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
+                   + FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
 #define FBRL_EXTRA_WORDS 64     /* headers beyond the primitives (data words) */
 
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
@@ -782,7 +788,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     vm->pad = (char *)d; d += FBRL_PADSIZE;
     vm->hold = (char *)d; d += FBRL_HOLDSIZE;
     vm->hld = vm->hold + FBRL_HOLDSIZE;
-    vm->sbuf = (char *)d; d += 2 * FBRL_SBUF;
+    vm->sbuf = (char *)d; d += FBRL_NSBUF * FBRL_SBUF;
     for (int i = 0; i < FBRL_SRC_MAX; i++) { vm->src[i].linebuf = (char *)d; d += FBRL_LINE_MAX + 8; }
     vm->dict_lo = vm->here = vm->data_lo + align16(FBRL_BUFS);
 
@@ -826,8 +832,14 @@ static void reset_after_error(fbrl_vm *vm)
     vm->hld = vm->hold + FBRL_HOLDSIZE;
 }
 
+void fbrl_vm_interrupt(fbrl_vm *vm)
+{
+    if (vm) fbrl_store_rlx(&vm->interrupt, 1);
+}
+
 static void begin_top(fbrl_vm *vm)
 {
+    fbrl_store_rlx(&vm->interrupt, 0);
     vm->running = 1;
     vm->err_captured = 0;
     vm->pending_msg = NULL;
@@ -895,7 +907,13 @@ fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path)
 
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm) { return vm ? &vm->err : NULL; }
 int fbrl_vm_bye(const fbrl_vm *vm) { return vm ? vm->bye : 0; }
-int fbrl_vm_compiling(const fbrl_vm *vm) { return vm ? *vm->state != 0 : 0; }
+int fbrl_vm_compiling(const fbrl_vm *vm) { return vm ? (*vm->state != 0 || vm->defining) : 0; }
+
+void fbrl_vm_reset(fbrl_vm *vm)
+{
+    if (!vm || vm->running) return;
+    reset_after_error(vm);
+}
 
 static int valid_name(const char *name, size_t n)
 {

@@ -36,7 +36,8 @@ typedef uintptr_t fbrl_ucell;
 #define FBRL_WORDBUF 260
 #define FBRL_PADSIZE 256
 #define FBRL_HOLDSIZE 260
-#define FBRL_SBUF 256         /* each of the two interpretation-state S" buffers */
+#define FBRL_SBUF 256         /* each interpretation-state S" buffer */
+#define FBRL_NSBUF 8          /* S" buffers in rotation (the standard asks for 2) */
 
 enum {
 #define OP(id, name, flags, stack, help) OP_##id,
@@ -52,6 +53,7 @@ enum { K_PRIM, K_COLON, K_VAR, K_CREATE, K_CONST, K_2CONST, K_FCONST, K_VALUE, K
 #define FI 1u   /* immediate */
 #define FC 2u   /* compile-only */
 #define FH 4u   /* hidden (being defined, or :NONAME) */
+#define FS 8u   /* state-smart immediate word (POSTPONE runs it compiling) */
 
 typedef struct fbrl_hdr {
     uint32_t next;            /* next header in the hash chain, as index+1 (0 = end) */
@@ -89,7 +91,7 @@ typedef struct fbrl_cf { int tag; fbrl_cell a; } fbrl_cf;
 #define THROW_BYE (-100000)
 #define THROW_QUIT (-56)
 /* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
-#define FBRL_THROW_STATUS(st) (-300 + (int)(st))
+#define FBRL_THROW_STATUS(st) FBRL_VM_THROW_OF_STATUS(st)
 
 struct fbrl_vm {
     fbrl_vm_host host;
@@ -131,9 +133,9 @@ struct fbrl_vm {
     char cur_word[64];
     fbrl_vm_error err;
     int bye;
+    size_t interrupt;         /* set by fbrl_vm_interrupt (atomic access only) */
     int running;              /* inside fbrl_vm_eval/include */
     int precision;
-    fbrl_cell catch_depth_limit;
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
     fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */

@@ -261,7 +261,8 @@ int fbrl__w_control(fbrl_vm *vm, int op)
 {
     fbrl_cell o = 0, d = 0;
     int r = 0;
-    if (*vm->state == 0) return -14;
+    /* also valid between [ ] inside a definition (a POSTPONEd IF run there) */
+    if (*vm->state == 0 && !vm->defining) return -14;
     switch (op) {
     case OP_IF: return (r = forward(vm, OP_ZBRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
     case OP_AHEAD: return (r = forward(vm, OP_BRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
@@ -460,7 +461,7 @@ static int string_literal(fbrl_vm *vm, const char *s, size_t n)
     if (*vm->state) return fbrl__compile_str(vm, OP_SLIT, s, n);
     if (n > FBRL_SBUF) return -18;
     char *b = vm->sbuf + FBRL_SBUF * vm->sbuf_next;
-    vm->sbuf_next ^= 1;
+    vm->sbuf_next = (vm->sbuf_next + 1) % FBRL_NSBUF;
     memmove(b, s, n);
     int r = push(vm, (fbrl_cell)b);
     return r ? r : push(vm, (fbrl_cell)n);
@@ -543,7 +544,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
         case OP_CALL: put_name(vm, hdr_by_body(vm, a)); pc += CELL; break;
         case OP_BRANCH: case OP_ZBRANCH:
             fbrl__puts(vm, w == OP_BRANCH ? "BRANCH(" : "0BRANCH(");
-            put_num(vm, (a - pc - CELL) / CELL);
+            put_num(vm, (fbrl_cell)(U(a) - U(pc) - U(CELL)) / CELL);
             fbrl__puts(vm, ")");
             pc += CELL;
             break;
@@ -553,6 +554,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
         case OP_PPLOOP: fbrl__puts(vm, "+LOOP"); pc += CELL; break;
         case OP_POF: fbrl__puts(vm, "OF"); pc += CELL; break;
         case OP_DOESSET: fbrl__puts(vm, "DOES>"); break;
+        case OP_COMPSEM: fbrl__puts(vm, "(COMPILING-EXECUTE)"); break;
         case OP_PTOVAL: case OP_PTO2VAL: case OP_PTOFVAL:
             fbrl__puts(vm, "TO ");
             put_name(vm, hdr_by_body(vm, a));
@@ -609,6 +611,9 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         { "FLOORED", 5 }, { "MAX-CHAR", 6 }, { "MAX-N", 7 }, { "MAX-U", 8 }, { "MAX-D", 9 },
         { "MAX-UD", 10 }, { "RETURN-STACK-CELLS", 11 }, { "STACK-CELLS", 12 },
         { "FLOATING-STACK", 13 }, { "MAX-FLOAT", 14 },
+        /* Forth-94 word-set queries (obsolescent, still asked by test suites) */
+        { "CORE", 15 }, { "CORE-EXT", 15 }, { "DOUBLE", 15 }, { "EXCEPTION", 15 }, { "EXCEPTION-EXT", 15 },
+        { "FACILITY", 15 }, { "FLOATING", 15 }, { "FLOATING-EXT", 15 }, { "STRING", 15 }, { "TOOLS", 15 },
     };
     const fbrl_ucell umax = ~(fbrl_ucell)0;
     for (size_t i = 0; i < sizeof q / sizeof q[0]; i++) {
@@ -632,6 +637,7 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         case 12: r = push(vm, vm->ds_end - vm->ds0); break;
         case 13: r = push(vm, vm->fs_end - vm->fs0); break;
         case 14: r = fpush(vm, 1.7976931348623157e308); break;
+        case 15: r = push(vm, -1); break;
         }
         return r ? r : push(vm, -1);
     }
@@ -688,6 +694,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
                 return fbrl__throw_msg(vm, -32, "TO needs a VALUE, 2VALUE or FVALUE");
             if (*vm->state)
                 return back(vm, k == K_VALUE ? OP_PTOVAL : k == K_2VALUE ? OP_PTO2VAL : OP_PTOFVAL, h->body);
+            if (!fbrl__addr_ok(vm, h->body, 2 * CELL)) return -9;
             if (k == K_FVALUE) {
                 if ((r = fpop(vm, &f))) return r;
                 memcpy((void *)h->body, &f, sizeof f);
@@ -707,6 +714,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
             if ((r = fbrl__compile_lit(vm, xt))) return r;
             return fbrl__emit(vm, op == OP_IS ? OP_DEFERSTORE : OP_DEFERFETCH);
         }
+        if (!fbrl__addr_ok(vm, h->body, CELL)) return -9;
         if (op == OP_IS) {
             if ((r = pop(vm, &v))) return r;
             memcpy((void *)h->body, &v, sizeof v);
@@ -718,6 +726,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if ((r = pop(vm, &xt))) return r;
         h = fbrl__xt_hdr(vm, xt);
         if (!h || h->kind != K_DEFER) return fbrl__throw_msg(vm, -21, "not a DEFERred word");
+        if (!fbrl__addr_ok(vm, h->body, CELL)) return -9;
         if (op == OP_DEFERSTORE) {
             if ((r = pop(vm, &v))) return r;
             memcpy((void *)h->body, &v, sizeof v);
@@ -727,6 +736,10 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return push(vm, v);
     case OP_POSTPONE:
         if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if (h->flags & FS) { /* its compilation semantics, even if run between [ ] */
+            if ((r = fbrl__compile_lit(vm, xt))) return r;
+            return fbrl__emit(vm, OP_COMPSEM);
+        }
         if (h->flags & FI) return fbrl__compile_xt(vm, xt);
         if ((r = fbrl__compile_lit(vm, xt))) return r;
         return fbrl__emit(vm, OP_COMPILECOMMA);
@@ -744,7 +757,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (n == 0) return -16;
         return op == OP_CHAR ? push(vm, (unsigned char)p[0]) : fbrl__compile_lit(vm, (unsigned char)p[0]);
     case OP_PAREN: return paren_comment(vm);
-    case OP_BACKSLASH:
+    case OP_BACKSLASH: case OP_SHEBANG:
         if (vm->nsrc) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
         return 0;
     case OP_DOTPAREN:
@@ -1239,7 +1252,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         if (u && !fbrl__addr_ok(vm, a, u)) return -9;
         if ((r = fpop(vm, &f))) return r;
         ok = represent(f, dg, u > 17 ? 17 : (int)u, &exp, &neg);
-        memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
+        if (u) memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
         if (u > 17) memset((char *)a + 17, '0', (size_t)(u - 17));
         vm->sp[-2] = exp;
         vm->sp[-1] = neg ? -1 : 0;

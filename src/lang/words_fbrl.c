@@ -170,7 +170,7 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
     if (rows < 1 || cols < 1 || size < 1 || rows > 65535 || cols > 65535 || size > 65535)
         return fail(vm, -24, "array sizes must be 1..65535");
     if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK) return fail(vm, -24, NULL);
-    if ((st = make(vm, K_CFUNC, CELL + (fbrl_cell)sizeof(fbrl_array) + 16 + (fbrl_cell)bytes,
+    if ((st = make(vm, K_VAR, CELL + (fbrl_cell)sizeof(fbrl_array) + 16 + (fbrl_cell)bytes,
                    two ? "( row col -- addr )" : "( index -- addr )",
                    two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY", &h)))
         return st;
@@ -179,6 +179,7 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
     fbrl_cell data = align16(aa + (fbrl_cell)sizeof(fbrl_array));
     h->fn = two ? w_array2_run : w_array1_run;
     h->arg = (void *)h->body;
+    h->kind = K_CFUNC; /* only now that it has its code */
     if (two)
         st = fbrl_array2_init((fbrl_array *)aa, (void *)data, bytes, (size_t)size, (size_t)rows, (size_t)cols);
     else
@@ -361,7 +362,7 @@ static fbrl_status w_string_put(fbrl_vm *vm, void *arg)
     if (!c) return st;
     if (u < 0 || (u && !fbrl__addr_ok(vm, a, u))) return fail(vm, -9, NULL);
     if (u > (fbrl_cell)size) return overflow(vm);
-    memmove(c, (void *)a, (size_t)u);
+    if (u) memmove(c, (void *)a, (size_t)u);
     set_len(s, (unsigned)u);
     return FBRL_OK;
 }
@@ -469,6 +470,6 @@ fbrl_status fbrl__fbrl_words(fbrl_vm *vm)
                                         words[i].help);
         if (st != FBRL_OK) return st;
     }
-    HDR(vm, fbrl__find(vm, "STRING-LIT", 10))->flags |= FI;
+    HDR(vm, fbrl__find(vm, "STRING-LIT", 10))->flags |= FI | FS;
     return FBRL_OK;
 }

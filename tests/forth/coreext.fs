@@ -79,3 +79,18 @@ T{ BL -> 32 }T
 T{ CELL FLOAT -> 1 CELLS 1 FLOATS }T
 T{ VARIABLE FLG FLG ON FLG @ FLG OFF FLG @ -> -1 0 }T
 T{ NOOP -> }T
+
+\ POSTPONE runs compilation semantics even between [ ] (regressions)
+: POSTPONE-+LOOP POSTPONE +LOOP ;
+T{ : PGD2 DO I -1 [ POSTPONE-+LOOP ] ; -> }T
+T{ 1 4 PGD2 -> 4 3 2 1 }T
+: POSTPONE-S" POSTPONE S" ;
+T{ : PSQ4 [ POSTPONE-S" XY" ] ; -> }T
+T{ PSQ4 SWAP DROP -> 2 }T
+: POSTPONE-IF POSTPONE IF ;  : POSTPONE-THEN POSTPONE THEN ;
+T{ : PIF [ POSTPONE-IF ] 1 [ POSTPONE-THEN ] 2 ; 0 PIF 5 PIF -> 2 1 2 }T
+: POSTPONE-TO POSTPONE TO ;
+T{ 5 VALUE PV : SETPV [ POSTPONE-TO PV ] ; 9 SETPV PV -> 9 }T
+\ three interpreted strings are alive at once
+T{ S" abcdef" S" bcd" SEARCH -ROT S" bcdef" COMPARE -> TRUE 0 }T
+T{ S" FLOATING" ENVIRONMENT? S" CORE" ENVIRONMENT? -> TRUE TRUE TRUE TRUE }T

@@ -1,5 +1,6 @@
 /* test_vm.c - the FBRL language engine: the Forth conformance suite in tests/forth
  * (each file must report zero failures) and the C embedding API. */
+/* ctest-labels: threads */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -7,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <pthread.h>
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
@@ -433,6 +435,22 @@ static void multi_line_definitions_and_bye(void **state)
     f->h.n = 0;
     assert_int_equal(ev(f, "HELP SQ HELP DUP"), FBRL_OK);
     assert_string_equal(f->h.out, "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
+    /* a definition abandoned in interpretation state */
+    assert_int_equal(ev(f, ": HALF 1 ["), FBRL_OK);
+    assert_true(fbrl_vm_compiling(f->vm));
+    assert_int_equal(ev(f, ": WHOLE 2 ; WHOLE"), FBRL_OK);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(pop1(f), 2);
+    assert_int_equal(ev(f, "HALF"), FBRL_ETHROW);
+    /* fbrl_vm_reset drops an open definition and the stacks */
+    assert_int_equal(ev(f, "1 2 3 : OPEN 4"), FBRL_OK);
+    assert_true(fbrl_vm_compiling(f->vm));
+    fbrl_vm_reset(f->vm);
+    assert_false(fbrl_vm_compiling(f->vm));
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    assert_int_equal(ev(f, "OPEN"), FBRL_ETHROW);
+    assert_int_equal(ev(f, "#! /usr/bin/env fbrlmon\n5"), FBRL_OK);
+    assert_int_equal(pop1(f), 5);
     assert_int_equal(ev(f, "1 BYE 2"), FBRL_OK);
     assert_true(fbrl_vm_bye(f->vm));
     assert_int_equal(fbrl_vm_depth(f->vm), 1);
@@ -547,7 +565,7 @@ static void hostile_programs_fail_cleanly(void **state)
         { "1E30 F>S", -11 }, { "R>", -14 }, { ": X1 R> R> R> R> ; X1", -6 },
         { ": X2 12345 >R ; X2", -9 }, { ": X3 HERE >R ; X3", -9 }, { ": X4 -8 >R ; X4", -9 },
         { "THEN", -14 }, { ": X5 THEN ;", -22 }, { ": X6 IF ;", -22 }, { ": X7 BEGIN UNTIL UNTIL ;", -22 },
-        { ": X8 DO IF LOOP ;", -22 }, { ": X9 ELSE ;", -22 }, { ": XA 1 ; ;", -14 }, { ": XB [ : Y ;", -29 },
+        { ": X8 DO IF LOOP ;", -22 }, { ": X9 ELSE ;", -22 }, { ": XA 1 ; ;", -14 }, { ": XB [ : Y ;", 0 },
         { ": ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ;", -19 }, { "CREATE", -16 }, { "S\" abc", -39 },
         { "( abc", -39 }, { ".( abc", -39 }, { "12X3", -13 }, { "--5", -13 }, { "1.2.3", -13 },
         { "$", -13 }, { "'ab'", -13 }, { "1E", 0 }, { "' DUP 99999 + EXECUTE", -13 }, { "0 EXECUTE", -13 },
@@ -561,7 +579,9 @@ static void hostile_programs_fail_cleanly(void **state)
         { "INCLUDE", -38 }, { "S\" \" INCLUDED", -38 }, { "KEY KEY", -57 }, { "1 RDROP", -14 },
         { "CATCH", -4 }, { "5 CATCH -13 <> THROW", 0 }, { "' DROP CATCH", 0 },
         { "MARKER M1 : X11 ; M1 X11", -13 },
-        { "' EXIT EXECUTE", -6 },
+        { "' EXIT EXECUTE", -6 }, { "MARKER MM : XM [ MM ] ;", -29 }, { "XM", -13 },
+        { "8 CREATE-Q QQ 0 QQ ! 1 QQ ENQ", -12 }, { "8 CREATE-Q QR QR CELL+ 3 CELLS 0 FILL 1 QR ENQ", -9 },
+        { "4 CHR ARRAY AR 0 ' AR >BODY", -31 }, { "HERE 4 ALLOT 1 SWAP STRING-CNT", -12 },
     };
     fixture *f = new_vm(1 << 20);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -590,15 +610,21 @@ static void hostile_programs_fail_cleanly(void **state)
 
 /* Overwrite freshly compiled code with pseudo-random cells and run it: every
  * corrupted instruction stream must end in a THROW or normally, never a crash. */
-static void corrupted_code_is_contained(void **state)
+static fixture *mixer_vm(void)
 {
-    (void)state;
     fixture *f = new_vm(1 << 20);
     assert_int_equal(ev(f, "VARIABLE SEED : RND SEED @ 1103515245 * 12345 + DUP SEED ! 16 RSHIFT ;"), FBRL_OK);
     assert_int_equal(ev(f, ": MIX ( a n -- ) 0 DO RND 3 AND CASE 0 OF RND 400 MOD ENDOF 1 OF RND ENDOF "
                            "2 OF RND 50 MOD 4096 + ENDOF DUP OF HERE RND 64 MOD CELLS - ENDOF ENDCASE "
                            "OVER I CELLS + ! LOOP DROP ;"),
                      FBRL_OK);
+    return f;
+}
+
+static void corrupted_code_is_contained(void **state)
+{
+    (void)state;
+    fixture *f = mixer_vm();
     int ok = 0, thrown = 0;
     for (int seed = 1; seed <= 300; seed++) {
         char src[256];
@@ -607,15 +633,123 @@ static void corrupted_code_is_contained(void **state)
         fbrl_status st = ev(f, src);
         if (st == FBRL_OK) ok++;
         else thrown++;
+        if (fbrl_vm_bye(f->vm)) { /* a random BYE opcode: that VM is finished */
+            free_vm(f);
+            f = mixer_vm();
+            continue;
+        }
         fbrl_vm_eval(f->vm, "GONE DECIMAL", 12);
-        while (fbrl_vm_depth(f->vm)) pop1(f);
-        double d;
-        while (fbrl_vm_fdepth(f->vm)) fbrl_vm_fpop(f->vm, &d);
+        fbrl_vm_reset(f->vm);
     }
     assert_true(thrown > 0);
     assert_int_equal(ok + thrown, 300);
     assert_int_equal(ev(f, "2 3 +"), FBRL_OK);
     assert_int_equal(pop1(f), 5);
+    free_vm(f);
+}
+
+/* fbrl_vm_interrupt from another thread stops an endless loop with -28. The
+ * interrupter repeats its request until the evaluation has returned, so a slow
+ * start of the evaluation cannot make the test hang. */
+typedef struct stopper { fbrl_vm *vm; int done; } stopper;
+
+static void *interrupter(void *arg)
+{
+    stopper *s = arg;
+    while (!__atomic_load_n(&s->done, __ATOMIC_ACQUIRE)) {
+        h_sleep_ms(NULL, 5);
+        fbrl_vm_interrupt(s->vm);
+    }
+    return NULL;
+}
+
+static fbrl_status eval_interrupted(fixture *f, const char *src)
+{
+    stopper s = { f->vm, 0 };
+    pthread_t t;
+    assert_int_equal(pthread_create(&t, NULL, interrupter, &s), 0);
+    fbrl_status st = ev(f, src);
+    __atomic_store_n(&s.done, 1, __ATOMIC_RELEASE);
+    pthread_join(t, NULL);
+    return st;
+}
+
+static void interrupt_stops_endless_loops(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(eval_interrupted(f, ": SPIN BEGIN AGAIN ; SPIN"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_string_equal(fbrl_vm_last_error(f->vm)->message, "user interrupt");
+    assert_string_equal(fbrl_vm_last_error(f->vm)->word, "SPIN");
+    assert_int_equal(eval_interrupted(f, ": R RECURSE ; : LOOPS 0 BEGIN 1+ DUP 0< UNTIL ; LOOPS"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(eval_interrupted(f, ": DL -1 0 DO LOOP ; DL"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(eval_interrupted(f, "' SPIN CATCH"), FBRL_OK); /* catchable */
+    assert_int_equal(pop1(f), -28);
+    fbrl_vm_interrupt(f->vm); /* a request made before an evaluation is dropped */
+    assert_int_equal(ev(f, ": FIVE 0 5 0 DO 1+ LOOP ; FIVE"), FBRL_OK);
+    assert_int_equal(pop1(f), 5);
+    free_vm(f);
+}
+
+/* Random token streams built from the dictionary's own words: whatever they do,
+ * the VM must answer with OK or an error and stay usable. */
+typedef struct names { char list[700][40]; int n; } names;
+
+static int collect(void *ctx, const char *name, size_t len)
+{
+    names *nm = ctx;
+    /* words that could wait or loop for ever on random input (legitimately) */
+    static const char *const skip[] = { "BYE", "MS", "SPACES", ".R", "U.R", "D.R", "QUIT", "DUMP", "WORDS",
+                                        "KEY", "ACCEPT", "GET-STRING", ">IN", "SAVE-INPUT", "RESTORE-INPUT",
+                                        "BEGIN", "AGAIN", "UNTIL", "WHILE", "REPEAT", "DO", "?DO", "LOOP", "+LOOP" };
+    for (size_t i = 0; i < sizeof skip / sizeof skip[0]; i++)
+        if (strlen(skip[i]) == len && memcmp(skip[i], name, len) == 0) return 0;
+    if (nm->n < 700 && len < 39) {
+        memcpy(nm->list[nm->n], name, len);
+        nm->list[nm->n][len] = 0;
+        nm->n++;
+    }
+    return 0;
+}
+
+static void random_programs_are_contained(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    static names nm;
+    static const char *const extra[] = { "0", "1", "-1", "3", "100", "65535", "-9999999999", "PAD", "HERE",
+                                         "1E0", "0E0", "-2.5E3", "S\" x\"", ":", ";", "IF", "THEN", "ELSE",
+                                         "CASE", "OF", "ENDOF", "'", "[']", "X", "Y" };
+    nm.n = 0;
+    fbrl_vm_words(f->vm, collect, &nm);
+    assert_true(nm.n > 300);
+    uint32_t seed = 12345;
+    int errors = 0;
+    for (int line = 0; line < 3000; line++) {
+        char src[512];
+        size_t n = 0;
+        for (int t = 0; t < 10; t++) {
+            seed = seed * 1103515245u + 12345u;
+            uint32_t r = seed >> 8;
+            const char *w = (r & 1) ? nm.list[(r >> 1) % (uint32_t)nm.n]
+                                    : extra[(r >> 1) % (sizeof extra / sizeof extra[0])];
+            n += (size_t)snprintf(src + n, sizeof src - n, "%s ", w);
+        }
+        f->h.n = 0;
+        if (ev(f, src) != FBRL_OK) errors++;
+        if (line % 100 == 99) {
+            while (fbrl_vm_depth(f->vm)) pop1(f);
+            ev(f, "; DECIMAL");
+        }
+    }
+    assert_true(errors > 0);
+    assert_int_equal(ev(f, "; DECIMAL"), fbrl_vm_compiling(f->vm) ? FBRL_OK : FBRL_ETHROW);
+    while (fbrl_vm_depth(f->vm)) pop1(f);
+    assert_int_equal(ev(f, "DECIMAL 6 7 *"), FBRL_OK);
+    assert_int_equal(pop1(f), 42);
     free_vm(f);
 }
 
@@ -643,6 +777,8 @@ int main(void)
         cmocka_unit_test(every_word_has_help),
         cmocka_unit_test(hostile_programs_fail_cleanly),
         cmocka_unit_test(corrupted_code_is_contained),
+        cmocka_unit_test(random_programs_are_contained),
+        cmocka_unit_test(interrupt_stops_endless_loops),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
