@@ -41,21 +41,19 @@ void fbrl_sim_arm_fk(const double q[FBRL_SIM_ARM_AXES], double tool_len, double 
     pose[5] = q[4];
 }
 
-int fbrl_sim_arm_ik(const double pose[6], double tool_len, double waist_hint,
-                    double q[FBRL_SIM_ARM_AXES])
+/* Solves with the waist at `waist` and the tool point at signed distance s
+ * from the base axis along the waist direction. */
+static int solve(const double pose[6], double tl, double waist, double s, double q[FBRL_SIM_ARM_AXES])
 {
     const double l2 = FBRL_SIM_ARM_UPPER, l3 = FBRL_SIM_ARM_FORE;
-    double tl = FBRL_SIM_ARM_FLANGE + tool_len;
-    double r = hypot(pose[0], pose[1]);
-    double waist = r < 1e-9 ? waist_hint : DEG(atan2(pose[1], pose[0]));
     double p = RAD(pose[4]);
     /* The wrist pitch axis, in the arm's vertical plane. */
-    double rw = r - tl * cos(p);
+    double rw = s - tl * cos(p);
     double zw = pose[2] - FBRL_SIM_ARM_BASE_H - tl * sin(p);
     double c3 = (rw * rw + zw * zw - l2 * l2 - l3 * l3) / (2.0 * l2 * l3);
     double t3, t2;
 
-    if (!isfinite(c3))
+    if (!isfinite(c3) || !isfinite(waist))
         return 29;
     if (c3 > 1.0 || c3 < -1.0) {
         if (fabs(c3) > 1.0 + 1e-12)
@@ -64,12 +62,35 @@ int fbrl_sim_arm_ik(const double pose[6], double tool_len, double waist_hint,
     }
     t3 = -acos(c3); /* elbow bends down: the only branch inside -130..0 */
     t2 = atan2(zw, rw) - atan2(l3 * sin(t3), l2 + l3 * cos(t3));
-    q[0] = waist;
+    q[0] = fbrl_sim_arm_wrap(waist);
     q[1] = DEG(t2);
     q[2] = DEG(t3);
     q[3] = fbrl_sim_arm_wrap(pose[4] - q[1] - q[2]);
     q[4] = fbrl_sim_arm_wrap(pose[5]);
-    return 0;
+    return fbrl_sim_arm_check(q);
+}
+
+int fbrl_sim_arm_ik(const double pose[6], double tool_len, double waist_hint,
+                    double q[FBRL_SIM_ARM_AXES])
+{
+    double tl = FBRL_SIM_ARM_FLANGE + tool_len;
+    double r = hypot(pose[0], pose[1]), alt[FBRL_SIM_ARM_AXES];
+    double waist = r < 1e-9 ? waist_hint : DEG(atan2(pose[1], pose[0]));
+    int e, i;
+
+    if (!isfinite(r))
+        return 29;
+    /* Reach forward: the waist points at the target. */
+    e = solve(pose, tl, waist, r, q);
+    if (e == 0)
+        return 0;
+    /* Reach backward over the shoulder: waist turned away, target behind the base axis. */
+    if (solve(pose, tl, waist + 180.0, -r, alt) == 0) {
+        for (i = 0; i < FBRL_SIM_ARM_AXES; i++)
+            q[i] = alt[i];
+        return 0;
+    }
+    return e;
 }
 
 int fbrl_sim_arm_check(const double q[FBRL_SIM_ARM_AXES])
@@ -116,7 +137,7 @@ int fbrl_sim_arm_check_line(const double a[6], const double b[6], double tool_le
         n = 100000;
     for (i = 0; i <= n; i++) {
         fbrl_sim_arm_lerp(a, b, (double)i / n, pose);
-        if (fbrl_sim_arm_ik(pose, tool_len, prev, q) != 0 || fbrl_sim_arm_check(q) != 0)
+        if (fbrl_sim_arm_ik(pose, tool_len, prev, q) != 0)
             return 68;
         /* Passing next to the base axis would whip the waist round: not a line the arm can follow. */
         if (i > 0 && fabs(q[0] - prev) > 20.0)

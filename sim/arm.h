@@ -27,10 +27,12 @@ extern const double fbrl_sim_arm_ready[FBRL_SIM_ARM_AXES];  /* READY joint angle
 /* Forward kinematics. tool_len = tool length beyond the flange (0 = flange). */
 void fbrl_sim_arm_fk(const double q[FBRL_SIM_ARM_AXES], double tool_len, double pose[6]);
 
-/* Inverse kinematics of pose (yaw ignored). The waist points at the target;
- * when the target lies on the base axis, waist_hint is kept. Returns 0 and
- * fills q, or 29 (RAPL "transform illegal") when no solution exists. Limits
- * are not checked here. */
+/* Inverse kinematics of pose (yaw ignored): the first solution inside the
+ * joint limits, reaching forward (waist pointing at the target) or else
+ * backward over the shoulder (waist turned away). On the base axis the waist
+ * keeps waist_hint. Returns 0 and fills q; 29 (RAPL "transform illegal") when
+ * the forward reach has no solution at all, 42..46 when its solution passes a
+ * joint limit (q then holds that solution). */
 int fbrl_sim_arm_ik(const double pose[6], double tool_len, double waist_hint,
                     double q[FBRL_SIM_ARM_AXES]);
 

@@ -1211,7 +1211,7 @@ static void print_loc(sim_out *o, const sim_loc *l)
     } else {
         sim_out_printf(o, "%-9s", l->name);
         for (i = 0; i < 6; i++)
-            sim_out_printf(o, " %+09.4f", l->v[i]);
+            sim_out_printf(o, " %+09.4f", l->v[i] + 0.0);
     }
     sim_out_printf(o, "\r\n");
 }
@@ -1557,10 +1557,10 @@ static void print_position(fbrl_sim *s, const char *title, const double q[NAXES]
         sim_out_printf(o, i < NAXES - 1 ? "JT#%d      " : "JT#%d", i + 1);
     sim_out_printf(o, "\r\nJOINTS   ");
     for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", q[i]);
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", q[i] + 0.0); /* no "-000.0000" */
     sim_out_printf(o, "\r\nWORLD     ");
     for (i = 0; i < 6; i++)
-        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", pose[i]);
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", pose[i] + 0.0);
     sim_out_printf(o, "\r\n");
 }
 

@@ -219,6 +219,8 @@ static void close_conn(fbrl_sim *s)
         close(s->conn);
     s->conn = -1;
     s->io = -1;
+    if (s->ps == PS_STREAM)
+        s->ps = PS_IDLE; /* nobody left to stop the readout */
     s->len = 0;
     s->overlong = 0;
     s->rxcount = 0;
@@ -332,7 +334,10 @@ static void finish(fbrl_sim *s, int err)
         emit_str(s, ">>");
     }
     if (s->dirty && s->state_path) {
-        sim_state_save(s);
+        if (sim_state_save(s) != 0 && !s->save_warned) {
+            fprintf(stderr, "fbrlsim: cannot write %s: %s\n", s->state_path, strerror(errno));
+            s->save_warned = 1;
+        }
         s->dirty = 0;
     }
 }
@@ -382,6 +387,8 @@ static void erase_one(fbrl_sim *s)
         s->len--;
         echo(s, "\b \b", 3);
     }
+    if (s->len == 0)
+        s->overlong = 0; /* an emptied line starts afresh */
 }
 
 static void line_byte(fbrl_sim *s, unsigned char b)

@@ -126,6 +126,7 @@ struct fbrl_sim {
     struct sim_event { double t; char *cmd; } *events;
     int nevents, next_event;
     int dirty;
+    int save_warned;   /* told stderr once that the state file cannot be written */
 };
 
 /* sim_core.c */

@@ -1,0 +1,1260 @@
+/* sim_e2e_test.c - fbrlsim driven over real pseudo-terminals (and TCP) by a
+ * small raw client: line discipline, every command with its effects, readout
+ * formats, persistence, baud pacing, faults and the command log.
+ * Usage: sim_e2e_test GROUP (line motion io persist baud faults log tcp embed). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <arpa/inet.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "fbrlsim.h"
+
+#define TIMEOUT 15.0 /* seconds: generous, the machine may be loaded */
+
+typedef struct simp {
+    pid_t pid;
+    int fd;
+    char path[256];
+} simp;
+
+static char g_dir[64]; /* per-run scratch directory */
+static pid_t g_pids[64]; /* emulators started, killed by the group teardown if a test failed */
+static int g_npids;
+static char g_buf[1 << 16];
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static const char *tmp(const char *name)
+{
+    static char p[8][256];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(p[k], sizeof p[k], "%s/%s", g_dir, name);
+    return p[k];
+}
+
+static void raw_fd(int fd)
+{
+    struct termios t;
+    if (tcgetattr(fd, &t) == 0) {
+        cfmakeraw(&t);
+        tcsetattr(fd, TCSANOW, &t);
+    }
+}
+
+/* Starts fbrlsim with the given options (NULL-terminated) and opens its line. */
+static void spawn(simp *p, const char *const *extra)
+{
+    const char *argv[32];
+    int pipefd[2], n = 0, i;
+    size_t len = 0;
+    double end = now_s() + TIMEOUT;
+
+    argv[n++] = FBRLSIM_PATH;
+    for (i = 0; extra && extra[i]; i++)
+        argv[n++] = extra[i];
+    argv[n] = NULL;
+    assert_int_equal(pipe(pipefd), 0);
+    p->pid = fork();
+    assert_true(p->pid >= 0);
+    if (p->pid == 0) {
+        dup2(pipefd[1], 1);
+        close(pipefd[0]);
+        execv(FBRLSIM_PATH, (char *const *)argv);
+        _exit(127);
+    }
+    close(pipefd[1]);
+    if (g_npids < 64)
+        g_pids[g_npids++] = p->pid;
+    while (now_s() < end) {
+        struct pollfd pf = { pipefd[0], POLLIN, 0 };
+        char c;
+        if (poll(&pf, 1, 100) > 0) {
+            if (read(pipefd[0], &c, 1) != 1)
+                break;
+            if (c == '\n')
+                break;
+            if (len < sizeof p->path - 1)
+                p->path[len++] = c;
+        }
+    }
+    p->path[len] = 0;
+    close(pipefd[0]);
+    if (!len)
+        fail_msg("fbrlsim printed no path");
+    if (!strncmp(p->path, "tcp:", 4)) {
+        struct sockaddr_in a;
+        memset(&a, 0, sizeof a);
+        a.sin_family = AF_INET;
+        a.sin_port = htons((unsigned short)atoi(strrchr(p->path, ':') + 1));
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        p->fd = socket(AF_INET, SOCK_STREAM, 0);
+        assert_int_equal(connect(p->fd, (struct sockaddr *)&a, sizeof a), 0);
+    } else {
+        p->fd = open(p->path, O_RDWR | O_NOCTTY);
+        assert_true(p->fd >= 0);
+        raw_fd(p->fd);
+    }
+}
+
+static void forget(pid_t pid)
+{
+    int i;
+    for (i = 0; i < g_npids; i++)
+        if (g_pids[i] == pid)
+            g_pids[i] = g_pids[--g_npids];
+}
+
+static int kill_all(void **st)
+{
+    (void)st;
+    while (g_npids > 0) {
+        pid_t pid = g_pids[--g_npids];
+        kill(pid, SIGKILL);
+        waitpid(pid, NULL, 0);
+    }
+    return 0;
+}
+
+static void stop(simp *p)
+{
+    int st = 0;
+    close(p->fd);
+    kill(p->pid, SIGTERM);
+    forget(p->pid);
+    assert_int_equal(waitpid(p->pid, &st, 0), p->pid);
+    assert_true(WIFEXITED(st));
+    assert_int_equal(WEXITSTATUS(st), 0);
+}
+
+static void put(simp *p, const char *b, size_t n)
+{
+    while (n) {
+        ssize_t w = write(p->fd, b, n);
+        if (w < 0 && errno == EINTR)
+            continue;
+        assert_true(w > 0);
+        b += w;
+        n -= (size_t)w;
+    }
+}
+
+static void puts_(simp *p, const char *s)
+{
+    put(p, s, strlen(s));
+}
+
+static int ends_with(const char *b, size_t n, const char *suf)
+{
+    size_t k = strlen(suf);
+    return n >= k && !memcmp(b + n - k, suf, k);
+}
+
+/* Reads until the data ends with suf (or the timeout); returns the length. */
+static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double timeout)
+{
+    size_t n = 0;
+    double end = now_s() + timeout;
+    while (n < cap - 1 && !(suf && ends_with(buf, n, suf)) && now_s() < end) {
+        struct pollfd pf = { p->fd, POLLIN, 0 };
+        if (poll(&pf, 1, 20) > 0) {
+            ssize_t r = read(p->fd, buf + n, cap - 1 - n);
+            if (r <= 0)
+                break;
+            n += (size_t)r;
+        }
+    }
+    buf[n] = 0;
+    return n;
+}
+
+/* Sends a line with CR; returns everything up to and including the prompt. */
+static const char *raw(simp *p, const char *line)
+{
+    size_t n;
+    puts_(p, line);
+    puts_(p, "\r");
+    n = read_until(p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    if (!ends_with(g_buf, n, "\r\n>>"))
+        fail_msg("no prompt after '%s': got '%s'", line, g_buf);
+    return g_buf;
+}
+
+/* Sends a command (NOHELP already given): checks the echo and returns the reply
+ * body between the echoed line's CR LF and the prompt. */
+static const char *cmd(simp *p, const char *line)
+{
+    const char *r = raw(p, line);
+    size_t k = strlen(line), n = strlen(r);
+    char up[256];
+    size_t i;
+    for (i = 0; i <= k; i++)
+        up[i] = (char)(line[i] >= 'a' && line[i] <= 'z' ? line[i] - 32 : line[i]);
+    if (strncmp(r, up, k) != 0 || strncmp(r + k, "\r\n", 2) != 0)
+        fail_msg("echo of '%s' wrong: '%s'", line, r);
+    g_buf[n - 2] = 0; /* drop ">>" */
+    return r + k + 2;
+}
+
+static void ok(simp *p, const char *line)
+{
+    const char *r = cmd(p, line);
+    if (*r)
+        fail_msg("'%s' gave '%s'", line, r);
+}
+
+static void err(simp *p, const char *line, int code)
+{
+    const char *r = cmd(p, line);
+    char want[8];
+    snprintf(want, sizeof want, "%03d-", code);
+    if (strncmp(r, want, 4) != 0 || !strstr(r, ".\r\n"))
+        fail_msg("'%s': want error %03d, got '%s'", line, code, r);
+}
+
+static void start(simp *p, const char *const *extra)
+{
+    spawn(p, extra);
+    ok(p, "NOHELP");
+}
+
+static const char *const FAST[] = { "--time-scale", "200", NULL };
+
+/* Position from W2: six WORLD numbers and five JOINTS. */
+static void where(simp *p, double w[6], double j[5], long pulses[5])
+{
+    const char *r = cmd(p, "W2"), *x;
+    x = strstr(r, "WORLD     ");
+    assert_non_null(x);
+    assert_int_equal(sscanf(x + 5, "%lf %lf %lf %lf %lf %lf", &w[0], &w[1], &w[2], &w[3], &w[4], &w[5]), 6);
+    x = strstr(r, "JOINTS   ");
+    assert_non_null(x);
+    if (j)
+        assert_int_equal(sscanf(x + 6, "%lf %lf %lf %lf %lf", &j[0], &j[1], &j[2], &j[3], &j[4]), 5);
+    x = strstr(r, "PULSES   ");
+    assert_non_null(x);
+    if (pulses)
+        assert_int_equal(sscanf(x + 6, "%ld %ld %ld %ld %ld", &pulses[0], &pulses[1], &pulses[2],
+                                &pulses[3], &pulses[4]), 5);
+}
+
+static void at(simp *p, double x, double y, double z, double pitch, double roll)
+{
+    double w[6];
+    ok(p, "FINISH");
+    where(p, w, NULL, NULL);
+    if (fabs(w[0] - x) > 0.001 || fabs(w[1] - y) > 0.001 || fabs(w[2] - z) > 0.001
+        || fabs(w[4] - pitch) > 0.001 || fabs(w[5] - roll) > 0.001)
+        fail_msg("at %f %f %f %f %f, want %f %f %f %f %f", w[0], w[1], w[2], w[4], w[5], x, y, z, pitch, roll);
+}
+
+static const char *status_line(simp *p, const char *prefix)
+{
+    static char line[256];
+    const char *r = cmd(p, "STATUS"), *x = strstr(r, prefix), *e;
+    if (!x)
+        fail_msg("STATUS has no '%s': %s", prefix, r);
+    e = strstr(x, "\r\n");
+    snprintf(line, sizeof line, "%.*s", (int)(e - x), x);
+    return line;
+}
+
+/* ---- line discipline ------------------------------------------------- */
+
+static void t_echo_prompt(void **st)
+{
+    simp p;
+    size_t n;
+    (void)st;
+    spawn(&p, FAST);
+    /* HELP mode is on at power-up: the hint is written and erased again */
+    assert_string_equal(raw(&p, "SPEED 40"), "SPEED <PERCENT>\b \b\b \b\b \b\b \b\b \b\b \b\b \b\b \b\b \b40\r\n>>");
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 40"), "SPEED 40\r\n>>");
+    assert_string_equal(raw(&p, "speed 41"), "SPEED 41\r\n>>");
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +41");
+    assert_string_equal(raw(&p, ""), "\r\n>>");
+    /* LF and CRLF end lines too, without an extra prompt */
+    puts_(&p, "SPEED 42\n");
+    n = read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    assert_string_equal(g_buf, "SPEED 42\r\n>>");
+    puts_(&p, "SPEED 43\r\n");
+    n = read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    assert_string_equal(g_buf, "SPEED 43\r\n>>");
+    n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.2);
+    assert_int_equal(n, 0);
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +43");
+    ok(&p, "HELP");
+    {
+        /* the hint follows a comma as well; the echo of the line itself is unchanged */
+        char want[256];
+        const char *hint = "<JOINT#>,<DEGREES>";
+        size_t i;
+        snprintf(want, sizeof want, "JOINT,%s", hint);
+        for (i = 0; i < strlen(hint); i++)
+            strcat(want, "\b \b");
+        strcat(want, "1,5\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>");
+        assert_string_equal(raw(&p, "JOINT,1,5"), want);
+    }
+    stop(&p);
+}
+
+static void t_editing(void **st)
+{
+    simp p;
+    (void)st;
+    start(&p, FAST);
+    assert_string_equal(raw(&p, "SPEEX\bD 3\x7f""44"), "SPEEX\b \bD 3\b \b44\r\n>>");
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +44");
+    /* BS on an empty line echoes nothing; Ctrl-X erases the whole line */
+    assert_string_equal(raw(&p, "\b\bFOO\x18SPEED 45"), "FOO\b \b\b \b\b \bSPEED 45\r\n>>");
+    /* control characters are ignored */
+    assert_string_equal(raw(&p, "SPE\x01\x02""ED 46"), "SPEED 46\r\n>>");
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +46");
+    /* XOFF from the host holds all output, XON releases it */
+    {
+        size_t n;
+        puts_(&p, "\x13SPEED 47\r");
+        n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.3);
+        assert_int_equal(n, 0);
+        puts_(&p, "\x11");
+        n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+        assert_string_equal(g_buf, "SPEED 47\r\n>>");
+    }
+    /* an over-long line emptied with Ctrl-X is a fresh line */
+    {
+        char l[100];
+        memset(l, 'B', 90);
+        l[90] = 0;
+        puts_(&p, l);
+        puts_(&p, "\x18");
+        read_until(&p, g_buf, sizeof g_buf, NULL, 0.3);
+        assert_string_equal(raw(&p, "SPEED 48"), "SPEED 48\r\n>>");
+    }
+    stop(&p);
+}
+
+static void t_errors(void **st)
+{
+    simp p;
+    char longline[120];
+    (void)st;
+    start(&p, FAST);
+    assert_string_equal(status_line(&p, "LAST ERROR"), "LAST ERROR CODE: NONE");
+    err(&p, "FOO", 12);
+    assert_string_equal(status_line(&p, "LAST ERROR"), "LAST ERROR CODE: 012-COMMAND ERROR.");
+    err(&p, "S 1", 50);            /* SPEED, SET, SERIAL, ... */
+    ok(&p, "SP 30");               /* unique prefix */
+    ok(&p, "/016 20");             /* token form */
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +20");
+    err(&p, "/999", 12);
+    {
+        char a[4096];
+        snprintf(a, sizeof a, "%s", cmd(&p, "STATUS"));
+        assert_string_equal(cmd(&p, "/025"), a);
+        snprintf(a, sizeof a, "%s", cmd(&p, "W2"));
+        assert_string_equal(cmd(&p, "/031"), a);
+        snprintf(a, sizeof a, "%s", cmd(&p, "SERIAL"));
+        assert_string_equal(cmd(&p, "/111"), a);
+        ok(&p, "/089 5");     /* OUTPUT */
+        assert_string_equal(cmd(&p, "/059 OSIG(5)"), "1\r\n"); /* TYPEI */
+        ok(&p, "/020");       /* HOME */
+        ok(&p, "/015");       /* READY */
+        ok(&p, "/010");       /* FINISH */
+        ok(&p, "/050 TP,12,0,20,0,0,0"); /* POINT */
+        ok(&p, "/006 1,10");  /* JOINT */
+        ok(&p, "/002 TP,0");  /* APPRO */
+        ok(&p, "/010");
+        assert_non_null(strstr(cmd(&p, "W2"), "WORLD     +012.0000 +000.0000 +020.0000"));
+    }
+    err(&p, "/16 20", 12);
+    err(&p, "SPEED", 13);
+    err(&p, "SPEED 1,2", 14);
+    err(&p, "SPEED 1,,2", 14);
+    err(&p, "SPEED 0", 18);
+    err(&p, "SPEED 101", 20);
+    err(&p, "SPEED Q", 10);
+    err(&p, "SPEED 1X", 14);
+    memset(longline, 'A', 100);
+    longline[100] = 0;
+    /* beyond 80 characters nothing is stored or echoed, and the line fails */
+    {
+        const char *r;
+        puts_(&p, longline);
+        puts_(&p, "\r");
+        read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+        r = g_buf;
+        assert_int_equal(strspn(r, "A"), 80);
+        assert_string_equal(r + 80, "\r\n025-LINE TOO LONG.\r\n>>");
+    }
+    assert_string_equal(status_line(&p, "LAST ERROR"), "LAST ERROR CODE: 025-LINE TOO LONG.");
+    ok(&p, "SPEED 10"); /* success keeps the last error */
+    assert_string_equal(status_line(&p, "LAST ERROR"), "LAST ERROR CODE: 025-LINE TOO LONG.");
+    stop(&p);
+}
+
+/* ---- motion ---------------------------------------------------------- */
+
+static void t_home_ready(void **st)
+{
+    simp p;
+    long pul[5];
+    double w[6], j[5];
+    const char *r;
+    (void)st;
+    start(&p, FAST);
+    err(&p, "READY", 41);
+    err(&p, "JOINT 1,10", 41);
+    assert_string_equal(status_line(&p, "CONTROLLER"), "CONTROLLER IS NOT HOMED");
+    ok(&p, "HOME");
+    assert_string_equal(status_line(&p, "CONTROLLER"), "CONTROLLER IS HOMED");
+    assert_string_equal(status_line(&p, "HOMED "), "HOMED        Y Y Y Y Y");
+    ok(&p, "JOINT 1,30");
+    ok(&p, "READY");
+    ok(&p, "FINISH");
+    where(&p, w, j, pul);
+    assert_int_equal(pul[1], 18000);
+    assert_int_equal(pul[2], -18000);
+    r = cmd(&p, "W2");
+    assert_string_equal(r, "\r\nCURRENT ACTUAL POSITION :\r\n"
+                           "NAME       AX#1        AX#2        AX#3        AX#4        AX#5\r\n"
+                           "PULSES   +0000000000 +0000018000 -0000018000 +0000000000 +0000000000\r\n"
+                           "NAME       JT#1      JT#2      JT#3      JT#4      JT#5\r\n"
+                           "JOINTS   +000.0000 +090.0000 -090.0000 +000.0000 +000.0000\r\n"
+                           "WORLD     +012.0000 +000.0000 +020.0000 +000.0000 +000.0000 +000.0000\r\n");
+    assert_non_null(strstr(cmd(&p, "W0"), "CURRENT COMMAND POSITION :\r\n"));
+    assert_non_null(strstr(cmd(&p, "W4"), "END OF PATH POSITION :\r\n"));
+    stop(&p);
+}
+
+static void t_moves(void **st)
+{
+    simp p;
+    long pul[5];
+    double w[6];
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "HOME");
+    ok(&p, "POINT P1,10,5,4,0,-90,30");
+    ok(&p, "MOVE P1");
+    at(&p, 10, 5, 4, -90, 30);
+    ok(&p, "POINT P2,14,-3,8.5,0,-45,-20");
+    ok(&p, "MOVE P2,S");
+    at(&p, 14, -3, 8.5, -45, -20);
+    ok(&p, "JOG 1,2,-3");
+    at(&p, 15, -1, 5.5, -45, -20);
+    ok(&p, "APPRO P1,2");
+    at(&p, 10, 5, 6, -90, 30);
+    ok(&p, "APPRO P1,1,S");
+    at(&p, 10, 5, 5, -90, 30);
+    ok(&p, "MOVE P1,S");
+    at(&p, 10, 5, 4, -90, 30);
+    ok(&p, "DEPART 3");
+    at(&p, 10, 5, 7, -90, 30);
+    ok(&p, "DEPART -2,S");
+    at(&p, 10, 5, 5, -90, 30);
+    /* yaw is reported, not obeyed */
+    ok(&p, "POINT P3,0,12,10,77,0,0");
+    ok(&p, "MOVE P3");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[3] - 90.0) < 0.001);
+    /* precision points: exact pulses */
+    ok(&p, "POINT #Q1,1000,16000,-20000,444,-222");
+    ok(&p, "MOVE #Q1");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, pul);
+    assert_int_equal(pul[0], 1000);
+    assert_int_equal(pul[1], 16000);
+    assert_int_equal(pul[2], -20000);
+    assert_int_equal(pul[3], 444);
+    assert_int_equal(pul[4], -222);
+    ok(&p, "HERE #H1");
+    ok(&p, "HERE H2");
+    ok(&p, "ACTUAL H3");
+    {
+        char a[256];
+        snprintf(a, sizeof a, "%s", cmd(&p, "LISTL H2"));
+        a[1] = '3';
+        assert_string_equal(cmd(&p, "LISTL H3"), a);
+    }
+    assert_string_equal(cmd(&p, "LISTL #H1"), "#H1       +0000001000 +0000016000 -0000020000 +0000000444 -0000000222\r\n");
+    ok(&p, "READY");
+    ok(&p, "MOVE H2,S");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, pul);
+    assert_int_equal(pul[1], 16000);
+    /* joint moves, MI/MA in radians, MOTOR in pulses */
+    ok(&p, "READY");
+    ok(&p, "JOINT 1,-45");
+    ok(&p, "JOINT 5,90");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, pul);
+    assert_int_equal(pul[0], -9000);
+    assert_int_equal(pul[4], 2000); /* 90 * 22.22 = 1999.8, rounded */
+    ok(&p, "MA 0,1.5707963267948966,-1.5707963267948966,0,0");
+    ok(&p, "MI 0.1,0,0,0,0");
+    ok(&p, "MOTOR 3,-200");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, pul);
+    assert_int_equal(pul[0], 1146); /* 0.1 rad = 5.7296 deg * 200 */
+    assert_int_equal(pul[1], 18000);
+    assert_int_equal(pul[2], -18200);
+    ok(&p, "MA 0,1.5707963267948966,-1.5707963267948966,0,0,S");
+    at(&p, 12, 0, 20, 0, 0);
+    /* ALIGN: pitch to the nearest of -90, 0, 90 */
+    ok(&p, "POINT A1,12,0,8,0,-70,0");
+    ok(&p, "MOVE A1");
+    ok(&p, "ALIGN");
+    at(&p, 12, 0, 8, -90, 0);
+    stop(&p);
+}
+
+static void t_motion_errors(void **st)
+{
+    simp p;
+    double w[6];
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "POINT FAR,30,0,10,0,0,0");
+    err(&p, "MOVE FAR", 41);
+    ok(&p, "HOME");
+    err(&p, "MOVE FAR", 29);
+    err(&p, "MOVE FAR,S", 29);
+    err(&p, "MOVE NOPE", 11);
+    err(&p, "MOVE #NOPE", 11);
+    err(&p, "APPRO NOPE,1", 11);
+    err(&p, "MOVE TOOLONGNAME", 18);
+    err(&p, "JOINT 1,200", 42);
+    err(&p, "JOINT 2,30", 43);
+    err(&p, "JOINT 3,100", 44);
+    err(&p, "JOINT 4,150", 45);
+    err(&p, "JOINT 5,-200", 46);
+    err(&p, "JOINT 6,1", 65);
+    err(&p, "JOINT 1", 13);
+    /* reachable but elbow past its range: pointing up, close to the base */
+    ok(&p, "POINT UP,2,0,10,0,90,0");
+    {
+        const char *r = cmd(&p, "MOVE UP");
+        assert_true(!strncmp(r, "04", 2));
+    }
+    /* straight line through the base axis */
+    ok(&p, "POINT L1,14,0,10,0,-90,0");
+    ok(&p, "POINT L2,-14,-2,10,0,-90,0");
+    ok(&p, "MOVE L1");
+    err(&p, "MOVE L2,S", 68);
+    ok(&p, "MOVE L2");
+    at(&p, -14, -2, 10, -90, 0);
+    /* a failed move leaves the arm where it was */
+    err(&p, "JOG 0,0,30", 29);
+    at(&p, -14, -2, 10, -90, 0);
+    /* LIMP forbids motion, NOLIMP allows it again */
+    ok(&p, "LIMP 2");
+    assert_string_equal(status_line(&p, "LIMP "), "LIMP         N Y N N N");
+    err(&p, "JOINT 1,1", 18);
+    ok(&p, "NOLIMP");
+    ok(&p, "JOINT 1,1");
+    /* LOCK holds a joint in joint moves; an S move needing it fails */
+    ok(&p, "READY");
+    ok(&p, "LOCK 1");
+    assert_string_equal(status_line(&p, "LOCK "), "LOCK         Y N N N N");
+    ok(&p, "POINT SIDE,0,12,20,0,0,0");
+    ok(&p, "MOVE SIDE");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[3]) < 0.001);
+    err(&p, "MOVE SIDE,S", 68);
+    ok(&p, "UNLOCK");
+    ok(&p, "MOVE SIDE");
+    at(&p, 0, 12, 20, 0, 0);
+    ok(&p, "LOCK 5");
+    ok(&p, "READY"); /* READY clears LOCK */
+    assert_string_equal(status_line(&p, "LOCK "), "LOCK         N N N N N");
+    ok(&p, "ARM OFF");
+    err(&p, "READY", 40);
+    assert_string_equal(status_line(&p, "ARM POWER IS"), "ARM POWER IS OFF");
+    ok(&p, "ARM ON");
+    ok(&p, "READY");
+    stop(&p);
+}
+
+/* The DONE flag of axis 1 in STATUS. */
+static char done1(simp *p)
+{
+    return status_line(p, "DONE ")[13];
+}
+
+/* A motion command returns at the start; the next waits until it is done. */
+static void t_motion_timing(void **st)
+{
+    static const char *const rt[] = { "--time-scale", "1", NULL };
+    simp p;
+    double t0, t1, w[6];
+    (void)st;
+    start(&p, rt);
+    ok(&p, "HOME");
+    ok(&p, "SPEED 100");
+    t0 = now_s();
+    ok(&p, "JOINT 1,90"); /* 1.5 s at 60 deg/s */
+    t1 = now_s();
+    if (t1 - t0 < 1.0) {
+        char d = done1(&p);
+        assert_true(d == 'N' || now_s() - t0 >= 1.5);
+    }
+    cmd(&p, "W2"); /* readouts do not wait */
+    if (now_s() - t0 < 1.2) {
+        /* W4: the end of the path, while W0 still shows the way there */
+        assert_non_null(strstr(cmd(&p, "W4"), "JOINTS   +090.0000 +090.0000"));
+        assert_null(strstr(cmd(&p, "W0"), "JOINTS   +090.0000 +090.0000"));
+    }
+    ok(&p, "JOINT 1,-90"); /* waits for the first */
+    assert_true(now_s() - t0 >= 1.4);
+    ok(&p, "HALT");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(w[3] > 0.0 && w[3] < 90.0); /* stopped on the way back */
+    assert_int_equal(done1(&p), 'Y');
+    stop(&p);
+}
+
+static void t_locations(void **st)
+{
+    simp p;
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "HOME");
+    ok(&p, "POINT B,1,2,3,4,5,6");
+    ok(&p, "POINT A,10,0,5,0,-90,0");
+    err(&p, "POINT C,1,2,3", 13);
+    err(&p, "POINT C,1,2,3,4,5,6,7", 14);
+    err(&p, "POINT #C,1,2", 13);
+    err(&p, "POINT 9X,1,2,3,4,5,6", 18);
+    ok(&p, "SET C=A");
+    ok(&p, "SET #D=A");
+    ok(&p, "SET E = #D");
+    assert_string_equal(cmd(&p, "LISTL"),
+                        "A         +010.0000 +000.0000 +005.0000 +000.0000 -090.0000 +000.0000\r\n"
+                        "B         +001.0000 +002.0000 +003.0000 +004.0000 +005.0000 +006.0000\r\n"
+                        "C         +010.0000 +000.0000 +005.0000 +000.0000 -090.0000 +000.0000\r\n"
+                        "#D        +0000000000 +0000008367 -0000023413 -0000000656 +0000000000\r\n"
+                        "E         +010.0004 +000.0000 +005.0003 +000.0000 -089.9915 +000.0000\r\n");
+    /* E went through whole pulses: within a pulse of A (0.0225 deg on the wrist) */
+    err(&p, "SET F=NOPE", 11);
+    ok(&p, "POINT FAR,30,0,0,0,0,0");
+    err(&p, "SET #F=FAR", 29);
+    ok(&p, "SHIFT C,1,-1,0.5");
+    assert_string_equal(cmd(&p, "LISTL C"), "C         +011.0000 -001.0000 +005.5000 +000.0000 -090.0000 +000.0000\r\n");
+    ok(&p, "SHIFTA C,B");
+    assert_string_equal(cmd(&p, "LISTL C"), "C         +012.0000 +001.0000 +008.5000 +004.0000 -085.0000 +006.0000\r\n");
+    err(&p, "SHIFTA C,#D", 15);
+    err(&p, "SHIFT #D,1,1,1", 15);
+    ok(&p, "DLOCN B");
+    err(&p, "LISTL B", 11);
+    err(&p, "DLOCN B", 11);
+    /* TOOL: a tool length moves the tool point along the tool axis */
+    ok(&p, "POINT T,0,0,3,0,0,0");
+    ok(&p, "POINT BADT,1,0,3,0,0,0");
+    err(&p, "TOOL BADT", 18);
+    ok(&p, "READY");
+    ok(&p, "TOOL T");
+    at(&p, 15, 0, 20, 0, 0);
+    assert_string_equal(status_line(&p, "TOOL  "), "TOOL      +000.0000 +000.0000 +003.0000 +000.0000 +000.0000 +000.0000");
+    ok(&p, "MOVE A");
+    at(&p, 10, 0, 5, -90, 0);
+    ok(&p, "TOOL");
+    at(&p, 10, 0, 8, -90, 0);
+    /* 100 locations fit, the 101st does not */
+    {
+        int i, n = 0;
+        char line[64];
+        for (i = 0; i < 200 && n == 0; i++) {
+            const char *r;
+            snprintf(line, sizeof line, "POINT L%d,1,2,3,4,5,6", i);
+            r = cmd(&p, line);
+            if (*r) {
+                assert_string_equal(r, "022-TABLE FULL.\r\n");
+                n = i;
+            }
+        }
+        assert_int_equal(n, 100 - 7); /* A C #D E FAR T BADT were there */
+    }
+    stop(&p);
+}
+
+static void t_teach(void **st)
+{
+    simp p;
+    const char *ctl = tmp("ctl-teach");
+    const char *const opts[] = { "--time-scale", "200", "--control", ctl, NULL };
+    int fd;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "HOME");
+    ok(&p, "TEACH PT");
+    assert_string_equal(status_line(&p, "TEACH"), "TEACH MODE IS ON: PT, NEXT 001");
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "TEACH\n", 6), 6);
+    usleep(100000);
+    ok(&p, "JOINT 1,90");
+    ok(&p, "FINISH");
+    assert_int_equal(write(fd, "TEACH\n", 6), 6);
+    usleep(100000);
+    assert_string_equal(cmd(&p, "LISTL"),
+                        "PT001     +012.0000 +000.0000 +020.0000 +000.0000 +000.0000 +000.0000\r\n"
+                        "PT002     +000.0000 +012.0000 +020.0000 +090.0000 +000.0000 +000.0000\r\n");
+    ok(&p, "NOTEACH");
+    err(&p, "TEACH TOOLONG", 18);
+    close(fd);
+    stop(&p);
+}
+
+/* ---- I/O, gripper, settings, programs -------------------------------- */
+
+static void t_io(void **st)
+{
+    simp p;
+    const char *ctl = tmp("ctl-io");
+    const char *const opts[] = { "--time-scale", "200", "--control", ctl, NULL };
+    int fd;
+    double t0;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "OUTPUT 1,3,-1,16");
+    assert_string_equal(status_line(&p, "OUTPUTS"), "OUTPUTS 1-16: 0010000000000001");
+    err(&p, "OUTPUT 17", 16);
+    err(&p, "OUTPUT 0", 16);
+    err(&p, "OUTPUT", 13);
+    assert_string_equal(cmd(&p, "TYPEI OSIG(3)+OSIG(16)*10"), "11\r\n");
+    assert_string_equal(cmd(&p, "TYPEI SIG(3)"), "0\r\n");
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "IN 3 1\n", 7), 7);
+    usleep(100000);
+    assert_string_equal(cmd(&p, "TYPEI SIG(3)"), "1\r\n");
+    assert_string_equal(status_line(&p, "INPUTS"), "INPUTS  1-16: 0010000000000000");
+    ok(&p, "WAIT 3,-4");
+    /* WAIT blocks until the inputs match */
+    puts_(&p, "WAIT -3\r");
+    read_until(&p, g_buf, sizeof g_buf, ">>", 0.5);
+    assert_string_equal(g_buf, "WAIT -3\r\n");
+    t0 = now_s();
+    assert_int_equal(write(fd, "IN 3 0\n", 7), 7);
+    read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    assert_string_equal(g_buf, ">>");
+    assert_true(now_s() - t0 < TIMEOUT);
+    err(&p, "WAIT 20", 16);
+    close(fd);
+    stop(&p);
+}
+
+static void t_inputs_script(void **st)
+{
+    simp p;
+    const char *script = tmp("inputs.txt");
+    const char *const opts[] = { "--time-scale", "10", "--inputs", script, NULL };
+    FILE *f = fopen(script, "w");
+    (void)st;
+    assert_non_null(f);
+    fprintf(f, "# t IN n v\n0 IN 1 1\n5 IN 2 1\n5 IN 1 0\n");
+    fclose(f);
+    start(&p, opts);
+    ok(&p, "WAIT 2,-1"); /* 5 simulated seconds = 0.5 s */
+    assert_string_equal(status_line(&p, "INPUTS"), "INPUTS  1-16: 0100000000000000");
+    stop(&p);
+}
+
+static void t_gripper(void **st)
+{
+    simp p;
+    const char *ctl = tmp("ctl-grip");
+    const char *const opts[] = { "--time-scale", "200", "--control", ctl, NULL };
+    int fd;
+    (void)st;
+    start(&p, opts);
+    assert_string_equal(status_line(&p, "GRIPPER OPENING"), "GRIPPER OPENING: +002.0000 FORCE (% OF FULL):    +50");
+    ok(&p, "CLOSE 80");
+    assert_string_equal(status_line(&p, "GRIPPER OPENING"), "GRIPPER OPENING: +000.0000 FORCE (% OF FULL):    +80");
+    ok(&p, "GRIP 1.25");
+    assert_string_equal(cmd(&p, "TYPEV GRIPPER"), "+1.250000\r\n");
+    ok(&p, "OPEN");
+    err(&p, "GRIP 2.5", 20);
+    err(&p, "GRIP -1", 18);
+    err(&p, "CLOSE 101", 20);
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "OBJECT 0.75\n", 12), 12);
+    usleep(100000);
+    ok(&p, "CLOSE");
+    assert_string_equal(cmd(&p, "TYPEV GRIPPER"), "+0.750000\r\n");
+    ok(&p, "GRIP 0.5,30");
+    assert_string_equal(status_line(&p, "GRIPPER OPENING"), "GRIPPER OPENING: +000.7500 FORCE (% OF FULL):    +30");
+    close(fd);
+    stop(&p);
+}
+
+static void t_variables(void **st)
+{
+    simp p;
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "X=3*4+1");
+    ok(&p, "Y = (X - 1) / 4");
+    ok(&p, "GRIP=-2.5");
+    assert_string_equal(cmd(&p, "TYPEI X"), "13\r\n");
+    assert_string_equal(cmd(&p, "TYPEV Y"), "+3.000000\r\n");
+    assert_string_equal(cmd(&p, "TYPEV SIN(30)+COS(60)+ABS(GRIP)+SQRT(16)+INT(-2.7)"), "+5.500000\r\n");
+    assert_string_equal(cmd(&p, "TYPEI ATAN(1)"), "45\r\n");
+    assert_string_equal(cmd(&p, "TYPE \"HELLO, WORLD\""), "HELLO, WORLD\r\n");
+    assert_string_equal(cmd(&p, "LISTV"), "GRIP     = -2.500000\r\nX        = +13.000000\r\nY        = +3.000000\r\n");
+    assert_string_equal(cmd(&p, "LISTV X"), "X        = +13.000000\r\n");
+    err(&p, "TYPEV Z", 10);
+    err(&p, "TYPEV 1/0", 18);
+    err(&p, "TYPEV (1", 14);
+    err(&p, "TYPEV ASIN(2)", 18);
+    err(&p, "TYPEV SIG(17)", 16);
+    err(&p, "Z=", 14);
+    err(&p, "TOOLONGNAME=1", 18);
+    ok(&p, "SPEED Y*10");
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +30");
+    ok(&p, "DVAR X");
+    err(&p, "DVAR X", 10);
+    err(&p, "TYPEI X", 10);
+    stop(&p);
+}
+
+static void t_settings(void **st)
+{
+    simp p;
+    (void)st;
+    start(&p, FAST);
+    assert_string_equal(cmd(&p, "SERIAL"), "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
+                                           "CHANNEL 1: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE N ECHO 1\r\n");
+    ok(&p, "CONFIG 1,2400,E,7,2,N,1");
+    err(&p, "CONFIG 2,2400,E,7,2,N,1", 61);
+    err(&p, "CONFIG 1,2401,E,7,2,N,1", 18);
+    err(&p, "CONFIG 1,2400,Q,7,2,N,1", 18);
+    err(&p, "CONFIG 1,2400,E,7,2,N", 13);
+    assert_string_equal(cmd(&p, "SERIAL"), "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
+                                           "CHANNEL 1: BAUD 2400 PARITY E DATA 7 STOP 2 HANDSHAKE N ECHO 1\r\n");
+    /* echo off on channel 0: only the reply comes back */
+    assert_string_equal(raw(&p, "CONFIG 0,9600,N,8,1,X,OFF"), "CONFIG 0,9600,N,8,1,X,OFF\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 20"), "\r\n>>");
+    assert_string_equal(raw(&p, "CONFIG 0,9600,N,8,1,X,ON"), "\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 21"), "SPEED 21\r\n>>");
+    ok(&p, "GAIN 0,2.5");
+    ok(&p, "GAIN 3,4");
+    assert_string_equal(cmd(&p, "GAIN 3"), "GAIN MOTOR 3: +4.0000\r\n");
+    assert_string_equal(cmd(&p, "GAIN 1"), "GAIN MOTOR 1: +2.5000\r\n");
+    err(&p, "GAIN 7,1", 65);
+    ok(&p, "FLASH 0.5");
+    assert_string_equal(status_line(&p, "PENDANT"), "PENDANT LAMP IS FLASHING");
+    ok(&p, "NOFLASH");
+    assert_string_equal(status_line(&p, "PENDANT"), "PENDANT LAMP IS OFF");
+    ok(&p, "MANUAL JOI");
+    assert_string_equal(status_line(&p, "MANUAL"), "MANUAL MODE STATUS IS ON");
+    ok(&p, "NOMANUAL");
+    assert_string_equal(status_line(&p, "MANUAL"), "MANUAL MODE STATUS IS OFF");
+    err(&p, "MANUAL XYZ", 18);
+    err(&p, "HALT ON 3", 66);
+    ok(&p, "HOME");
+    err(&p, "MOTOR 1,10,ONHOME", 66);
+    stop(&p);
+}
+
+/* Starts a continuous readout, takes its first value, stops it with CR. */
+static long stream_value(simp *p, const char *command, const char *title)
+{
+    char *x;
+    long v = -1;
+    size_t n;
+    puts_(p, command);
+    puts_(p, "\r");
+    n = read_until(p, g_buf, sizeof g_buf, NULL, 0.35);
+    x = strstr(g_buf, title);
+    if (!x || sscanf(x + strlen(title), "\r\n%ld", &v) != 1)
+        fail_msg("%s: '%s'", command, g_buf);
+    puts_(p, "\r");
+    n = read_until(p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\r\n>>"));
+    return v;
+}
+
+static void t_streams_extra(void **st)
+{
+    simp p;
+    size_t n;
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "HOME");
+    /* W1: title, then lines ended by CR until any byte */
+    puts_(&p, "W1\r");
+    n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.35);
+    assert_true(n > 0);
+    assert_int_equal(strncmp(g_buf, "W1\r\nACTUAL POSITION (MOTOR PULSES):\r\n+0000000000 +0000018000 -0000018000 +0000000000 +0000000000\r", 4 + 33 + 60), 0);
+    puts_(&p, "\r");
+    n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\r\n>>"));
+    /* the extra axis */
+    err(&p, "XHOME 5", 65);
+    ok(&p, "MOTOR 6,500");
+    ok(&p, "FINISH");
+    assert_int_equal(stream_value(&p, "WE1", "EXTRA AXIS ACTUAL (MOTOR PULSES):"), 500);
+    ok(&p, "XCAL 6");
+    ok(&p, "XZERO 6");
+    assert_int_equal(stream_value(&p, "WE3", "EXTRA AXIS COMMAND (MOTOR PULSES):"), 0);
+    ok(&p, "XHOME 6");
+    ok(&p, "FINISH");
+    assert_int_equal(stream_value(&p, "WE1", "EXTRA AXIS ACTUAL (MOTOR PULSES):"), 500);
+    assert_int_equal(stream_value(&p, "WE5", "EXTRA AXIS VELOCITY (PULSES/SEC):"), 0);
+    assert_int_equal(stream_value(&p, "W5", "VELOCITY (PULSES/SEC):"), 0);
+    ok(&p, "JOINT 1,-10");
+    ok(&p, "FINISH");
+    assert_int_equal(stream_value(&p, "W3", "COMMAND POSITION (MOTOR PULSES):"), -2000);
+    assert_int_equal(stream_value(&p, "W1", "ACTUAL POSITION (MOTOR PULSES):"), -2000);
+    ok(&p, "SPEED 50");
+    stop(&p);
+}
+
+static void t_run(void **st)
+{
+    simp p;
+    const char *state = tmp("prog.state");
+    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    FILE *f = fopen(state, "w");
+    (void)st;
+    assert_non_null(f);
+    fprintf(f, "FBRLSIM-STATE 1\nVAR N 0\nPROGRAM COUNT\n  N=N+1\n  JOINT 1,1\nEND\n"
+               "PROGRAM BAD\n  TYPE BEFORE\n  MOVE NOWHERE\n  TYPE AFTER\nEND\n");
+    fclose(f);
+    start(&p, opts);
+    ok(&p, "HOME");
+    ok(&p, "RUN COUNT,5");
+    ok(&p, "FINISH");
+    assert_string_equal(cmd(&p, "TYPEI N"), "5\r\n");
+    assert_string_equal(cmd(&p, "TYPEI INT(0.5+1000*0)"), "0\r\n");
+    {
+        double w[6], j[5];
+        where(&p, w, j, NULL);
+        assert_true(fabs(j[0] - 5.0) < 1e-6);
+    }
+    assert_string_equal(cmd(&p, "RUN BAD"), "BEFORE\r\n011-LOCATION UNDEFINED.\r\n");
+    err(&p, "RUN NONE", 17);
+    stop(&p);
+}
+
+/* ---- persistence ----------------------------------------------------- */
+
+static void t_persist(void **st)
+{
+    simp p;
+    const char *state = tmp("persist.state");
+    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    struct stat sb;
+    double w[6];
+    (void)st;
+    start(&p, opts);
+    ok(&p, "HOME");
+    ok(&p, "POINT P1,10,5,4,0,-90,30");
+    ok(&p, "POINT #Q,1,2,3,4,5");
+    ok(&p, "V1=42.5");
+    ok(&p, "OUTPUT 2,15");
+    ok(&p, "SPEED 33");
+    ok(&p, "GRIP 1.5");
+    ok(&p, "CONFIG 1,4800,O,7,1,N,0");
+    ok(&p, "MOVE P1");
+    ok(&p, "FINISH");
+    stop(&p);
+    assert_int_equal(stat(tmp("persist.state.tmp"), &sb), -1); /* no temporary left behind */
+    start(&p, opts);
+    assert_string_equal(status_line(&p, "CONTROLLER"), "CONTROLLER IS NOT HOMED");
+    assert_string_equal(cmd(&p, "LISTL"),
+                        "P1        +010.0000 +005.0000 +004.0000 +000.0000 -090.0000 +030.0000\r\n"
+                        "#Q        +0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r\n");
+    assert_string_equal(cmd(&p, "TYPEV V1"), "+42.500000\r\n");
+    assert_string_equal(status_line(&p, "OUTPUTS"), "OUTPUTS 1-16: 0100000000000010");
+    assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +33");
+    assert_string_equal(cmd(&p, "TYPEV GRIPPER"), "+1.500000\r\n");
+    assert_string_equal(cmd(&p, "SERIAL"), "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
+                                           "CHANNEL 1: BAUD 4800 PARITY O DATA 7 STOP 1 HANDSHAKE N ECHO 0\r\n");
+    /* the arm is where it stopped */
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[0] - 10) < 0.001 && fabs(w[1] - 5) < 0.001 && fabs(w[2] - 4) < 0.001);
+    stop(&p);
+    /* a damaged state file is refused, not silently replaced */
+    {
+        FILE *f = fopen(state, "a");
+        int pid, stt;
+        fputs("GARBAGE LINE\n", f);
+        fclose(f);
+        pid = fork();
+        if (pid == 0) {
+            int dn = open("/dev/null", O_WRONLY);
+            dup2(dn, 1);
+            dup2(dn, 2);
+            execl(FBRLSIM_PATH, FBRLSIM_PATH, "--state", state, (char *)NULL);
+            _exit(127);
+        }
+        waitpid(pid, &stt, 0);
+        assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+    }
+}
+
+/* ---- baud pacing and overrun ----------------------------------------- */
+
+static void t_baud(void **st)
+{
+    static const char *const opts[] = { "--time-scale", "1", "--baud", "9600", NULL };
+    simp p;
+    double t0, dt;
+    size_t n, i, k, bytes;
+    int xoff = 0, xon = 0;
+    char big[301];
+    (void)st;
+    start(&p, opts);
+    /* STATUS is about 900 characters: at 960 characters per second, about 0.9 s */
+    puts_(&p, "STATUS\r");
+    t0 = now_s();
+    n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    dt = now_s() - t0;
+    bytes = n;
+    assert_true(ends_with(g_buf, n, "\r\n>>"));
+    assert_true(dt >= 0.7 * (double)bytes / 960.0);
+    /* overrun: while a motion command waits, input piles up in the 128-byte buffer */
+    ok(&p, "HOME");
+    ok(&p, "SPEED 10");
+    ok(&p, "JOINT 1,10"); /* 10 deg at 6 deg/s: 1.7 s */
+    puts_(&p, "JOINT 1,-10\r");
+    memset(big, 'A', 300);
+    big[300] = 0;
+    memcpy(big, "TYPE ", 5);
+    usleep(50000);
+    puts_(&p, big);
+    puts_(&p, "\r");
+    /* the motion ends after about 1.7 s; then the buffered bytes are processed */
+    n = read_until(&p, g_buf, sizeof g_buf, NULL, 4.0);
+    /* the CR may have been lost in the overrun: end the line again */
+    puts_(&p, "\r");
+    n += read_until(&p, g_buf + n, sizeof g_buf - n, "\r\n>>", TIMEOUT);
+    for (i = 0, k = 0; i < n; i++) {
+        if (g_buf[i] == 0x13)
+            xoff++;
+        if (g_buf[i] == 0x11)
+            xon++;
+        if (g_buf[i] == 'A')
+            k++;
+    }
+    assert_true(xoff >= 1);
+    assert_true(xon >= 1);
+    assert_true(k < 290); /* characters were lost in the overrun */
+    stop(&p);
+}
+
+/* ---- faults ---------------------------------------------------------- */
+
+static size_t exchange(simp *p, const char *line, double wait)
+{
+    puts_(p, line);
+    puts_(p, "\r");
+    return read_until(p, g_buf, sizeof g_buf, "\r\n>>", wait);
+}
+
+static void t_faults(void **st)
+{
+    static const char *const clean[] = { "--time-scale", "200", "--faults", "drop=0,corrupt=0,noise=0,seed=3", NULL };
+    static const char *const noisy[] = { "--time-scale", "200", "--faults", "corrupt=0.05,seed=7", NULL };
+    static const char *const drops[] = { "--time-scale", "200", "--faults", "drop=0.05,noise=0.05,seed=9", NULL };
+    static const char *const stall[] = { "--time-scale", "200", "--faults", "stall=400", NULL };
+    simp p;
+    int i, bad = 0;
+    double t0;
+    (void)st;
+    /* disabled faults: every byte exact */
+    spawn(&p, clean);
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    for (i = 0; i < 50; i++)
+        assert_string_equal(raw(&p, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"),
+                            "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789\r\nABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789\r\n>>");
+    stop(&p);
+    /* corrupted bytes: some exchanges differ from the clean text */
+    for (i = 0; i < 2; i++) {
+        int k;
+        spawn(&p, i == 0 ? noisy : drops);
+        bad = 0;
+        for (k = 0; k < 30; k++) {
+            exchange(&p, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ", 0.3);
+            if (strcmp(g_buf, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ\r\nABCDEFGHIJKLMNOPQRSTUVWXYZ\r\n>>") != 0
+                && strstr(g_buf, "HELP") == NULL)
+                bad++;
+        }
+        assert_true(bad > 0);
+        stop(&p);
+    }
+    /* stall: the reply is held back */
+    spawn(&p, stall);
+    t0 = now_s();
+    exchange(&p, "NOHELP", TIMEOUT);
+    assert_true(now_s() - t0 >= 0.35);
+    assert_string_equal(g_buf, "NOHELP\r\n>>");
+    stop(&p);
+}
+
+/* ---- the command log ------------------------------------------------- */
+
+static void t_log(void **st)
+{
+    simp p;
+    const char *log = tmp("commands.log");
+    const char *const opts[] = { "--time-scale", "200", "--log", log, NULL };
+    char line[256];
+    FILE *f;
+    static const char *want[] = { "NOHELP", "SPEED 25", "FOO", "POINT P1,10,0,5,0,-90,0", "HOME", "MOVE P1", "W2" };
+    int i = 0;
+    (void)st;
+    start(&p, opts);
+    assert_string_equal(raw(&p, "SPEEX\bD 25"), "SPEEX\b \bD 25\r\n>>");
+    err(&p, "FOO", 12);
+    ok(&p, "POINT P1,10,0,5,0,-90,0");
+    raw(&p, "");
+    ok(&p, "HOME");
+    ok(&p, "move p1");
+    cmd(&p, "W2");
+    stop(&p);
+    f = fopen(log, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = 0;
+        assert_true(i < 7);
+        assert_string_equal(line, want[i]);
+        i++;
+    }
+    assert_int_equal(i, 7);
+    fclose(f);
+}
+
+/* ---- TCP and in-process ---------------------------------------------- */
+
+static void t_tcp(void **st)
+{
+    static const char *const opts[] = { "--tcp", "0", "--time-scale", "200", NULL };
+    simp p;
+    (void)st;
+    start(&p, opts);
+    assert_int_equal(strncmp(p.path, "tcp:127.0.0.1:", 14), 0);
+    ok(&p, "HOME");
+    ok(&p, "READY");
+    at(&p, 12, 0, 20, 0, 0);
+    /* a second connection while one is open is refused; after closing, a new one works */
+    close(p.fd);
+    usleep(100000);
+    {
+        struct sockaddr_in a;
+        memset(&a, 0, sizeof a);
+        a.sin_family = AF_INET;
+        a.sin_port = htons((unsigned short)atoi(strrchr(p.path, ':') + 1));
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        p.fd = socket(AF_INET, SOCK_STREAM, 0);
+        assert_int_equal(connect(p.fd, (struct sockaddr *)&a, sizeof a), 0);
+    }
+    assert_string_equal(status_line(&p, "CONTROLLER"), "CONTROLLER IS HOMED");
+    stop(&p);
+}
+
+static void t_embed(void **st)
+{
+    fbrl_sim_options o;
+    fbrl_sim *s = NULL;
+    simp p;
+    char e[256];
+    const char *link = tmp("robot-link");
+    struct stat sb;
+    (void)st;
+    fbrl_sim_options_init(&o);
+    o.time_scale = 100;
+    o.link_path = link;
+    assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_OK);
+    assert_int_equal(fbrl_sim_start(s), FBRL_OK);
+    p.pid = 0;
+    p.fd = open(link, O_RDWR | O_NOCTTY);
+    assert_true(p.fd >= 0);
+    raw_fd(p.fd);
+    ok(&p, "NOHELP");
+    ok(&p, "HOME");
+    ok(&p, "JOINT 1,45");
+    ok(&p, "FINISH");
+    {
+        double w[6];
+        where(&p, w, NULL, NULL);
+        assert_true(fabs(w[0] - 12 * cos(M_PI / 4)) < 0.001);
+    }
+    close(p.fd);
+    fbrl_sim_stop(s);
+    fbrl_sim_destroy(s);
+    assert_int_equal(lstat(link, &sb), -1); /* the link is removed */
+    /* bad options are refused with a message */
+    o.time_scale = 0;
+    assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EINVAL);
+    assert_null(s);
+    fbrl_sim_options_init(&o);
+    o.faults = "bogus=1";
+    assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EIO);
+    assert_non_null(strstr(e, "bogus"));
+}
+
+static int cleanup(void)
+{
+    char c[128];
+    snprintf(c, sizeof c, "rm -rf '%s'", g_dir);
+    return system(c);
+}
+
+int main(int argc, char **argv)
+{
+    const char *g = argc > 1 ? argv[1] : "";
+    int rc = 0;
+    strcpy(g_dir, "/tmp/fbrlsim-test-XXXXXX");
+    if (!mkdtemp(g_dir))
+        return 1;
+    signal(SIGPIPE, SIG_IGN);
+#define GROUP(name, ...)                                                            \
+    if (!strcmp(g, name) || !*g) {                                              \
+        const struct CMUnitTest t[] = { __VA_ARGS__ };                          \
+        rc |= _cmocka_run_group_tests(name, t, sizeof t / sizeof t[0], NULL, kill_all); \
+    }
+    GROUP("line", cmocka_unit_test(t_echo_prompt), cmocka_unit_test(t_editing), cmocka_unit_test(t_errors))
+    GROUP("motion", cmocka_unit_test(t_home_ready), cmocka_unit_test(t_moves), cmocka_unit_test(t_motion_errors),
+          cmocka_unit_test(t_motion_timing), cmocka_unit_test(t_locations), cmocka_unit_test(t_teach))
+    GROUP("io", cmocka_unit_test(t_io), cmocka_unit_test(t_inputs_script), cmocka_unit_test(t_gripper),
+          cmocka_unit_test(t_variables), cmocka_unit_test(t_settings), cmocka_unit_test(t_streams_extra),
+          cmocka_unit_test(t_run))
+    GROUP("persist", cmocka_unit_test(t_persist))
+    GROUP("baud", cmocka_unit_test(t_baud))
+    GROUP("faults", cmocka_unit_test(t_faults))
+    GROUP("log", cmocka_unit_test(t_log))
+    GROUP("tcp", cmocka_unit_test(t_tcp))
+    GROUP("embed", cmocka_unit_test(t_embed))
+    cleanup();
+    return rc;
+}
