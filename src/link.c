@@ -6,10 +6,13 @@
  * keeps track of how many characters sit on the controller's line (ctrl_len) and:
  *  - types a command as [CAN] + text; the echo must be exactly ctrl_len triples then
  *    the text, or the attempt is abandoned before any CR is sent;
- *  - after the CR, proof of execution is the controller's end of line: a CR/LF, the
- *    prompt, or two or more bytes (a CR damaged into another byte echoes exactly one);
- *  - whenever the line's content is unknown it sends an erase probe "? CAN ? CAN !"
- *    whose echo "? (triples) ? BS SP BS !" proves the line now holds exactly "!".
+ *  - after the CR, proof of execution is the controller's CR LF, its prompt, or three
+ *    or more bytes (a line that did not end shows at most two stray bytes); without
+ *    proof, a probe decides, and a CR is never sent twice;
+ *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN mmm" whose
+ *    echo "? (triples) ? BS SP BS mmm" proves the line now holds exactly "mmm". The
+ *    markers change from probe to probe, so the echo of an older probe still on its
+ *    way is never taken for the answer to the latest one.
  * None of the bytes the link sends can turn into CR or LF by a single bit flip except
  * '-' (see docs/link.md): letters go out in lower case for that reason. */
 #include "fbrl/link.h"
@@ -34,6 +37,7 @@ void fbrl_link_config_init(fbrl_link_config *c)
     c->reply_timeout_ms = 5000;
     c->wait_timeout_ms = 120000;
     c->max_attempts = 12;
+    c->query_reads = 2;
     c->naxes = 5;
     c->now_us = 0;
     c->clock_ctx = 0;
@@ -62,6 +66,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     else
         fbrl_link_config_init(&c);
     if (c.echo_timeout_ms == 0 || c.reply_timeout_ms == 0 || c.wait_timeout_ms == 0 || c.max_attempts == 0 ||
+        c.query_reads == 0 || c.query_reads > 3 ||
         c.naxes == 0 || c.naxes > FBRL_RAPL_MAX_AXES ||
         (c.form != FBRL_RAPL_KEYWORD && c.form != FBRL_RAPL_TOKEN))
         return FBRL_EINVAL;
@@ -93,6 +98,12 @@ static fbrl_status send(fbrl_link *l, const uint8_t *p, size_t n)
 static char lower(char c) { return (c >= 'A' && c <= 'Z') ? (char)(c - 'A' + 'a') : c; }
 static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A') : c; }
 
+/* Out of attempts: the echo never matched, or nothing at all came back. */
+static fbrl_status gave_up(const fbrl_link *l)
+{
+    return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT;
+}
+
 static fbrl_status finish(fbrl_link *l, fbrl_status st)
 {
     l->result = st;
@@ -103,51 +114,60 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
     return st;
 }
 
-/* "? CAN ? CAN !": erases whatever the line holds and leaves exactly "!" on it. */
-static fbrl_status send_erase_probe(fbrl_link *l)
-{
-    static const uint8_t probe[] = {XON, '?', CAN, '?', CAN, '!'};
-    l->stats.probes++;
-    l->probes_here++;
-    l->t_probe = now_us(l);
-    for (int k = 0; k < 5; k++)
-        l->tail[k] = 0;
-    return l->xon_ok ? send(l, probe, sizeof probe) : send(l, probe + 1, sizeof probe - 1);
-}
+/* Marker characters: any two differ in at least two bits, so one flipped bit cannot turn
+ * one into another. A probe ends with three of them, the probe's number in base 6, so
+ * the echo of any of the 215 probes before it is never taken for its answer. */
+static const char markers[] = "!$@^|'";
+#define NMARK 6u
 
-/* "? CAN" on a line known to be empty: answered "? BS SP BS" once the controller reads
- * again, which proves it is idle at its prompt. */
-static fbrl_status send_idle_probe(fbrl_link *l)
+/* "? CAN ? CAN m m m": erases whatever the line holds and leaves exactly the three
+ * marker characters on it. Answered once the controller reads input again, so it also
+ * shows the controller is idle at its prompt. */
+static fbrl_status send_probe(fbrl_link *l)
 {
-    static const uint8_t probe[] = {XON, '?', CAN};
+    uint8_t probe[] = {XON, '?', CAN, '?', CAN, 0, 0, 0};
+    unsigned v = l->marker_idx++ % (NMARK * NMARK * NMARK);
+    for (int k = 2; k >= 0; k--) {
+        l->marker[k] = markers[v % NMARK];
+        probe[5 + k] = (uint8_t)l->marker[k];
+        v /= NMARK;
+    }
     l->stats.probes++;
     l->probes_here++;
     l->t_probe = now_us(l);
-    for (int k = 0; k < 5; k++)
+    for (int k = 0; k < 7; k++)
         l->tail[k] = 0;
     return l->xon_ok ? send(l, probe, sizeof probe) : send(l, probe + 1, sizeof probe - 1);
 }
 
 static void push_tail(fbrl_link *l, uint8_t b)
 {
-    for (int k = 0; k < 4; k++)
+    for (int k = 0; k < 6; k++)
         l->tail[k] = l->tail[k + 1];
-    l->tail[4] = b;
+    l->tail[6] = b;
 }
 
-static int tail_is(const fbrl_link *l, const char *s, int n)
+/* The latest probe's closing characters have just arrived (they are the last bytes it
+ * sent, so its echo is over), whatever came before them. */
+static int marker_seen(const fbrl_link *l)
 {
-    for (int k = 0; k < n; k++)
-        if (l->tail[5 - n + k] != (uint8_t)s[k])
-            return 0;
-    return 1;
+    return l->tail[4] == (uint8_t)l->marker[0] && l->tail[5] == (uint8_t)l->marker[1] &&
+           l->tail[6] == (uint8_t)l->marker[2];
+}
+
+/* The latest probe's echo has just ended, undamaged. */
+static int probe_answered(const fbrl_link *l)
+{
+    return l->tail[0] == '?' && l->tail[1] == BS && l->tail[2] == ' ' && l->tail[3] == BS &&
+           l->tail[4] == (uint8_t)l->marker[0] && l->tail[5] == (uint8_t)l->marker[1] &&
+           l->tail[6] == (uint8_t)l->marker[2];
 }
 
 static fbrl_status begin_erase(fbrl_link *l)
 {
     l->phase = PH_ERASE;
     l->ctrl_len = -1;
-    return send_erase_probe(l);
+    return send_probe(l);
 }
 
 /* The byte the controller should echo next: ctrl_len triples, then the text. */
@@ -162,7 +182,7 @@ static fbrl_status begin_type(fbrl_link *l)
 {
     if (l->attempts >= l->cfg.max_attempts) {
         l->ctrl_len = -1;
-        return finish(l, FBRL_EECHO);
+        return finish(l, gave_up(l));
     }
     l->attempts++;
     l->stats.attempts++;
@@ -186,6 +206,8 @@ static void begin_reply(fbrl_link *l)
     l->phase = PH_REPLY;
     l->after_cr = 0;
     l->eol_seen = 0;
+    l->gtgt = 0;
+    l->last_byte = 0;
     l->first_byte = -1;
     l->prompt_seen = 0;
     l->probe_out = PR_NONE;
@@ -203,6 +225,13 @@ static void begin_reply(fbrl_link *l)
 
 /* ---- replies ---- */
 
+/* "NNN-": the start of an error line, whatever happened to the rest. */
+static int error_shaped(const char *s, size_t n)
+{
+    return n >= 6 && s[0] >= '0' && s[0] <= '9' && s[1] >= '0' && s[1] <= '9' && s[2] >= '0' && s[2] <= '9' &&
+           s[3] == '-';
+}
+
 static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
 {
     int code;
@@ -215,10 +244,12 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
             l->err_text[k] = text[k];
         return;
     }
-    if (est == FBRL_ECHECKSUM || (est == FBRL_OK && flawed)) {
+    if (est == FBRL_ECHECKSUM || (est == FBRL_OK && flawed) || error_shaped(s, n)) {
         l->err_state = ERR_GARBLED;
         return;
     }
+    if (l->kind != FBRL_LINK_REPLY_NONE && l->kind != FBRL_LINK_REPLY_STREAM && l->cfg.on_line)
+        l->cfg.on_line(l->cfg.line_ctx, s, n, flawed);
     switch (l->kind) {
     case FBRL_LINK_REPLY_NONE:
         /* anything of error length is a damaged error line; shorter is damaged framing */
@@ -230,6 +261,11 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
             l->out_bad = 1;
         break;
     case FBRL_LINK_REPLY_STATUS:
+        if (l->stage == ST_ERRQ) {
+            /* only the LAST ERROR CODE line counts (its text is checked against the code) */
+            (void)fbrl_rapl_status_line(&l->st, s, n);
+            break;
+        }
         if (flawed || fbrl_rapl_status_line(&l->st, s, n) == FBRL_ESYNTAX)
             l->out_bad = 1;
         break;
@@ -253,8 +289,6 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
         break;
     }
     case FBRL_LINK_REPLY_LINES:
-        if (l->cfg.on_line)
-            l->cfg.on_line(l->cfg.line_ctx, s, n, flawed);
         break;
     }
 }
@@ -273,6 +307,65 @@ static void feed_reply(fbrl_link *l, uint8_t b)
 }
 
 static fbrl_status run_status_query(fbrl_link *l);
+
+static int same_pos(const fbrl_rapl_pos *a, const fbrl_rapl_pos *b)
+{
+    if (a->kind != b->kind || a->npulses != b->npulses || a->njoints != b->njoints || a->nworld != b->nworld)
+        return 0;
+    for (unsigned k = 0; k < a->npulses; k++)
+        if (a->pulses[k] != b->pulses[k])
+            return 0;
+    for (unsigned k = 0; k < a->njoints; k++)
+        if (a->joints[k] != b->joints[k])
+            return 0;
+    for (unsigned k = 0; k < a->nworld; k++)
+        if (a->world[k] != b->world[k])
+            return 0;
+    return 1;
+}
+
+static int same_status(const fbrl_rapl_status_info *a, const fbrl_rapl_status_info *b, int error_only)
+{
+    if (a->last_error != b->last_error)
+        return 0;
+    if (error_only)
+        return 1;
+    if (a->have != b->have || a->speed != b->speed || a->homed != b->homed || a->naxes != b->naxes ||
+        a->inputs != b->inputs || a->outputs != b->outputs)
+        return 0;
+    for (unsigned k = 0; k < a->naxes; k++)
+        if (a->lock[k] != b->lock[k] || a->done[k] != b->done[k] || a->limp[k] != b->limp[k] ||
+            a->axis_homed[k] != b->axis_homed[k])
+            return 0;
+    return 1;
+}
+
+/* Count agreeing reads: same values and the same number of reply bytes (a dropped
+ * digit can leave a well-formed number; it cannot keep the length). A read that
+ * disagrees becomes the new reference. True once query_reads reads agree. */
+static int confirmed(fbrl_link *l)
+{
+    int same = 0;
+    if (l->have_prev && l->after_cr == l->prev_len) {
+        switch (l->kind) {
+        case FBRL_LINK_REPLY_POS: same = same_pos(&l->pos, &l->prev_pos); break;
+        case FBRL_LINK_REPLY_STATUS: same = same_status(&l->st, &l->prev_st, l->stage == ST_ERRQ); break;
+        case FBRL_LINK_REPLY_INT: same = l->ival == l->prev_i; break;
+        case FBRL_LINK_REPLY_REAL: same = l->rval == l->prev_r; break;
+        default: break;
+        }
+    }
+    if (!same) {
+        l->prev_pos = l->pos;
+        l->prev_st = l->st;
+        l->prev_i = l->ival;
+        l->prev_r = l->rval;
+        l->prev_len = l->after_cr;
+        l->have_prev = 1;
+        return l->cfg.query_reads <= 1;
+    }
+    return (unsigned)++l->have_prev >= l->cfg.query_reads;
+}
 
 /* The controller executed the line: judge the reply, repeat a damaged read-only query,
  * or read STATUS for a damaged error line. */
@@ -294,7 +387,10 @@ static fbrl_status executed(fbrl_link *l)
         case FBRL_LINK_REPLY_STATUS: {
             unsigned need = FBRL_RAPL_ST_ERROR | FBRL_RAPL_ST_SPEED | FBRL_RAPL_ST_HOMED | FBRL_RAPL_ST_LOCK |
                             FBRL_RAPL_ST_DONE | FBRL_RAPL_ST_LIMP | FBRL_RAPL_ST_AXHOMED;
-            requery = l->out_bad || (l->st.have & need) != need || l->st.naxes != l->cfg.naxes;
+            if (l->stage == ST_ERRQ)
+                requery = !(l->st.have & FBRL_RAPL_ST_ERROR);
+            else
+                requery = l->out_bad || (l->st.have & need) != need || l->st.naxes != l->cfg.naxes;
             break;
         }
         case FBRL_LINK_REPLY_INT:
@@ -304,8 +400,14 @@ static fbrl_status executed(fbrl_link *l)
         default:
             break;
         }
-        if (requery)
+        if (requery) {
             st = FBRL_EPROTOCOL;
+        } else if (l->kind >= FBRL_LINK_REPLY_POS && l->kind <= FBRL_LINK_REPLY_REAL && l->stage != ST_ERRQ &&
+                   !confirmed(l)) {
+            /* not yet query_reads agreeing replies (the error query needs only one: its
+             * line is checked against the code's text) */
+            requery = 1;
+        }
     }
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, l->err_state != ERR_NONE ? FBRL_ECONTROLLER : st);
@@ -345,15 +447,30 @@ static fbrl_status run_status_query(fbrl_link *l)
     l->kind = FBRL_LINK_REPLY_STATUS;
     l->stage = ST_ERRQ;
     l->attempts = 0;
+    l->have_prev = 0;
     l->timeout_ms = l->cfg.reply_timeout_ms;
     return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
 }
 
-/* Proof that the CR ended the line (docs/link.md "after the CR"). */
+/* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR
+ * LF, its prompt, or three bytes or more. A line that did not end can show at most two
+ * stray bytes: a damaged CR echoed as a character, and the first byte of the probe
+ * damaged into another ('?' becomes '>' by one flip, so a single '>' proves nothing). */
 static int cr_took_effect(const fbrl_link *l)
 {
-    return l->prompt_seen || l->eol_seen || l->after_cr >= 2 ||
-           (l->after_cr == 1 && (l->first_byte == '>'));
+    return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= 3;
+}
+
+/* A byte of the command's reply (before any probe echo). */
+static void count_reply_byte(fbrl_link *l, uint8_t b)
+{
+    if (l->after_cr++ == 0)
+        l->first_byte = b;
+    if (b == '\r' || b == '\n')
+        l->eol_seen = 1;
+    if (b == '>' && l->last_byte == '>')
+        l->gtgt = 1;
+    l->last_byte = b;
 }
 
 /* ---- the byte-driven state machine ---- */
@@ -361,16 +478,26 @@ static int cr_took_effect(const fbrl_link *l)
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
     l->t_last = now_us(l);
+    l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
         push_tail(l, b);
-        if (tail_is(l, "?\b \b!", 5)) {
-            l->ctrl_len = 1;
+        if (probe_answered(l)) {
+            l->ctrl_len = 3;
             return begin_type(l);
+        }
+        if (marker_seen(l)) {
+            /* the probe's echo ended damaged: no need to wait for silence */
+            if (l->attempts >= l->cfg.max_attempts)
+                return finish(l, gave_up(l));
+            l->attempts++;
+            return send_probe(l);
         }
         return FBRL_OK;
     case PH_TYPE:
-        if (upper((char)b) != (char)expected(l, l->match, l->triples)) {
+        /* exact: the controller echoes letters upper-cased, so a lower-case letter in
+         * the echo is a damaged byte */
+        if (b != expected(l, l->match, l->triples)) {
             l->stats.echo_mismatch++;
             return begin_erase(l);
         }
@@ -385,8 +512,8 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             /* the idle probe's echo: the controller reads input again, so it is idle */
             l->probe_seen = 1;
             push_tail(l, b);
-            if (tail_is(l, "?\b \b", 4)) {
-                l->ctrl_len = l->probes_here == 1 ? 0 : -1; /* more probe echoes may follow */
+            if (probe_answered(l)) {
+                l->ctrl_len = 3;
                 if (!l->prompt_seen)
                     l->stats.prompt_lost++;
                 l->probe_out = PR_NONE;
@@ -395,14 +522,13 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             }
             return FBRL_OK;
         }
-        if (l->after_cr++ == 0)
-            l->first_byte = b;
-        if (b == '\r' || b == '\n')
-            l->eol_seen = 1;
+        count_reply_byte(l, b);
         feed_reply(l, b);
-        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->stop_sent && l->stream_got >= l->stream_lines) {
+        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->prompt_seen &&
+            l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent) {
+            /* any byte ends the stream; if the stream goes on, the stop byte was lost */
             static const uint8_t cr = '\r';
-            l->stop_sent = 1;
+            l->stop_sent++;
             return send(l, &cr, 1);
         }
         if (l->prompt_seen && l->probe_out == PR_NONE) {
@@ -413,17 +539,14 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     case PH_VERIFY:
         if (!l->probe_seen && b != '?' && b != BS) {
             /* still the command's reply (or its absence): bytes before the probe's echo */
-            if (l->after_cr++ == 0)
-                l->first_byte = b;
-            if (b == '\r' || b == '\n')
-                l->eol_seen = 1;
+            count_reply_byte(l, b);
             feed_reply(l, b);
             return FBRL_OK;
         }
         l->probe_seen = 1;
         push_tail(l, b);
-        if (tail_is(l, "?\b \b!", 5)) {
-            l->ctrl_len = l->probes_here == 1 ? 1 : -1;
+        if (probe_answered(l)) {
+            l->ctrl_len = 3;
             l->probe_out = PR_NONE;
             if (cr_took_effect(l)) {
                 if (!l->prompt_seen)
@@ -431,12 +554,22 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
                 return executed(l);
             }
             l->stats.cr_unconfirmed++;
-            return l->ctrl_len == 1 ? begin_type(l) : begin_erase(l);
+            return begin_type(l);
         }
         return FBRL_OK;
     default:
         return FBRL_OK; /* idle: stray bytes */
     }
+}
+
+/* How long an unanswered probe is given before the next: a controller busy with a long
+ * motion answers none, so the interval doubles (4, 8, 16 ... echo timeouts, at most 2 s). */
+static uint64_t probe_interval(const fbrl_link *l)
+{
+    uint64_t iv = ms(4 * l->cfg.echo_timeout_ms);
+    for (unsigned k = 1; k < l->probes_here && iv < 2000000u; k++)
+        iv *= 2;
+    return iv < 2000000u ? iv : 2000000u;
 }
 
 /* Nothing arrived for a while: decide what the silence means. */
@@ -445,9 +578,9 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
     switch (l->phase) {
     case PH_ERASE:
         if (l->attempts >= l->cfg.max_attempts)
-            return finish(l, FBRL_EECHO);
+            return finish(l, gave_up(l));
         l->attempts++;
-        return send_erase_probe(l);
+        return send_probe(l);
     case PH_TYPE:
         l->stats.echo_timeout++;
         return begin_erase(l);
@@ -459,10 +592,10 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         }
         if (cr_took_effect(l)) {
             /* executed; the prompt is late (a waiting command) or was damaged: ask */
-            if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms) || l->probe_out == PR_NONE) {
+            if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
-                return send_idle_probe(l);
+                return send_probe(l);
             }
             l->t_last = t;
             return FBRL_OK;
@@ -472,7 +605,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->probe_out = PR_VERIFY;
         l->probe_seen = 0;
         l->probes_here = 0;
-        return send_erase_probe(l);
+        return send_probe(l);
     case PH_VERIFY:
         if (l->probe_seen) {
             /* the probe's echo was damaged, but the bytes before it decide */
@@ -486,8 +619,8 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
             l->stats.cr_unconfirmed++;
             return begin_erase(l);
         }
-        if (t - l->t_probe >= ms(4 * l->cfg.echo_timeout_ms))
-            return send_erase_probe(l);
+        if (t - l->t_probe >= probe_interval(l))
+            return send_probe(l);
         l->t_last = t;
         return FBRL_OK;
     default:
@@ -517,6 +650,8 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             fbrl_status st = on_silence(l, t);
             if (!l->busy || st != FBRL_OK) {
                 *done = 1;
+                if (l->busy)
+                    l->ctrl_len = -1;
                 return l->busy ? finish(l, st) : l->result;
             }
             continue;
@@ -538,6 +673,7 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
         for (size_t k = 0; k < got && l->busy; k++) {
             fbrl_status s2 = on_byte(l, buf[k]);
             if (s2 != FBRL_OK && l->busy) {
+                l->ctrl_len = -1; /* a byte may not have gone out */
                 *done = 1;
                 return finish(l, s2);
             }
@@ -583,6 +719,8 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->timeout_ms = timeout_ms;
     l->stage = ST_MAIN;
     l->attempts = 0;
+    l->have_prev = 0;
+    l->heard = 0;
     l->err_code = -1;
     l->err_text[0] = '\0';
     l->result = FBRL_OK;
@@ -591,26 +729,53 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
 }
 
-/* Does a raw line's first word name a command that never waits? */
-static uint32_t timeout_for_line(const fbrl_link *l, const char *line)
+/* The command a line starts with: 1 = *cmd found (keyword or /NNN token), 2 = a
+ * variable assignment, 0 = not known here. */
+static int line_cmd(const char *line, fbrl_rapl_cmd *cmd)
 {
     char word[12];
     size_t k = 0;
     while (*line == ' ')
         line++;
-    while (line[k] && line[k] != ' ' && line[k] != ',' && k + 1 < sizeof word) {
+    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
         word[k] = line[k];
         k++;
     }
     word[k] = '\0';
+    const char *rest = line + k;
+    while (*rest == ' ')
+        rest++;
+    if (*rest == '=')
+        return 2;
+    if (word[0] == '/') {
+        int tok = 0;
+        for (size_t d = 1; d < k; d++)
+            tok = (word[d] >= '0' && word[d] <= '9') ? tok * 10 + (word[d] - '0') : -1000;
+        for (int c = 0; c < FBRL_RAPL_NCMDS && tok > 0; c++)
+            if (fbrl_rapl_cmd_info((fbrl_rapl_cmd)c)->token == tok) {
+                *cmd = (fbrl_rapl_cmd)c;
+                return 1;
+            }
+        return 0;
+    }
+    return fbrl_rapl_cmd_find(word, cmd) == FBRL_OK;
+}
+
+static uint32_t timeout_for_line(const fbrl_link *l, const char *line)
+{
     fbrl_rapl_cmd c;
-    if (fbrl_rapl_cmd_find(word, &c) == FBRL_OK) {
+    int known = line_cmd(line, &c);
+    if (known == 2)
+        return l->cfg.reply_timeout_ms;
+    if (known == 1) {
         const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(c);
         if (!(ci->flags & FBRL_RAPL_F_MOTION) && c != FBRL_RAPL_FINISH && c != FBRL_RAPL_WAIT && c != FBRL_RAPL_RUN)
             return l->cfg.reply_timeout_ms;
     }
     return l->cfg.wait_timeout_ms;
 }
+
+static fbrl_link_reply reply_of(fbrl_rapl_cmd cmd);
 
 fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind)
 {
@@ -684,7 +849,18 @@ fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *
 
 fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
 {
-    fbrl_status st = fbrl_link_start(l, line, FBRL_LINK_REPLY_LINES);
+    fbrl_rapl_cmd c;
+    fbrl_link_reply kind = FBRL_LINK_REPLY_LINES;
+    if (!l || !line)
+        return FBRL_EINVAL;
+    int known = line_cmd(line, &c);
+    if (known == 2)
+        kind = FBRL_LINK_REPLY_NONE;
+    else if (known == 1)
+        kind = reply_of(c);
+    if (kind == FBRL_LINK_REPLY_STREAM)
+        return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
+    fbrl_status st = fbrl_link_start(l, line, kind);
     return st == FBRL_OK ? run(l) : st;
 }
 
@@ -831,6 +1007,26 @@ fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
 
 const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
+
+fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v)
+{
+    if (!l || !v)
+        return FBRL_EINVAL;
+    if (l->busy || l->result != FBRL_OK || l->kind != FBRL_LINK_REPLY_INT)
+        return FBRL_ESTATE;
+    *v = l->ival;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v)
+{
+    if (!l || !v)
+        return FBRL_EINVAL;
+    if (l->busy || l->result != FBRL_OK || l->kind != FBRL_LINK_REPLY_REAL)
+        return FBRL_ESTATE;
+    *v = l->rval;
+    return FBRL_OK;
+}
 
 fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out)
 {

@@ -47,7 +47,10 @@ typedef struct fbrl_link_config {
     uint32_t reply_timeout_ms; /* prompt after CR for ordinary commands (5000) */
     uint32_t wait_timeout_ms;  /* prompt after CR for commands that may wait: motion, FINISH,
                                 * WAIT, RUN and unknown raw lines (120000) */
-    unsigned max_attempts;     /* typing attempts / query repeats per command (12) */
+    unsigned max_attempts;     /* typing attempts / query repeats per command (12); then
+                                * FBRL_EECHO, or FBRL_ETIMEOUT if the controller sent nothing */
+    unsigned query_reads;      /* identical consecutive replies a read-only query needs
+                                * (1..3, default 2; see docs/link.md for the odds) */
     unsigned naxes;            /* axes in W0/W2/W4 and STATUS rows (5) */
     /* Clock; NULL = the uart backend's now_us. */
     uint64_t (*now_us)(void *ctx);
@@ -74,7 +77,7 @@ typedef struct fbrl_link_stats {
     uint64_t probes;          /* erase/verify/idle probes sent */
     uint64_t cr_unconfirmed;  /* CR sent but the line was found unexecuted: retyped */
     uint64_t prompt_lost;     /* executed, prompt damaged: confirmed by a probe */
-    uint64_t requeries;       /* read-only queries repeated because the reply was damaged */
+    uint64_t requeries;       /* read-only queries repeated: damaged reply or confirmation */
     uint64_t error_queries;   /* STATUS read to learn a damaged error line's code */
     uint64_t failed;          /* commands that ended with an error other than ECONTROLLER */
 } fbrl_link_stats;
@@ -84,6 +87,8 @@ typedef struct fbrl_link {
     fbrl_uart *u;
     fbrl_link_config cfg;
     int xon_ok;                              /* flow NONE: probes may carry an XON byte */
+    char marker[3];                          /* the latest probe's closing characters */
+    unsigned marker_idx;
     /* the command */
     char line[FBRL_LINK_LINE_MAX + 1];       /* canonical (upper-case) text */
     size_t len;
@@ -96,12 +101,13 @@ typedef struct fbrl_link {
     int ctrl_len;                            /* characters on the controller's line, -1 unknown */
     size_t match, expect, triples;
     unsigned attempts, probes_here;
+    int heard;                               /* any byte from the controller this command */
     uint64_t t_last, t_deadline, t_probe;
     /* reply analysis */
     fbrl_rapl_reader rd;
     size_t after_cr;
-    int eol_seen, first_byte, prompt_seen, probe_out, probe_seen;
-    unsigned char tail[5];
+    int eol_seen, gtgt, last_byte, first_byte, prompt_seen, probe_out, probe_seen;
+    unsigned char tail[7];
     int err_state, err_code, out_bad, nvalues;
     unsigned stream_got;
     int stop_sent;
@@ -111,6 +117,12 @@ typedef struct fbrl_link {
     fbrl_rapl_status_info st;
     long ival;
     double rval;
+    int have_prev;                           /* reads that agreed so far (0 = none yet) */
+    size_t prev_len;                         /* reply bytes of those reads */
+    fbrl_rapl_pos prev_pos;
+    fbrl_rapl_status_info prev_st;
+    long prev_i;
+    double prev_r;
     fbrl_status result;
     int busy;
     fbrl_link_stats stats;
@@ -182,6 +194,9 @@ fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
 
 const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l);
+/* The value of the last FBRL_LINK_REPLY_INT / REAL command that succeeded. */
+fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v);
+fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v);
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
 fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out);
 

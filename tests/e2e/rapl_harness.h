@@ -27,7 +27,7 @@ typedef struct rig {
 
 /* Start fbrlsim with the given extra arguments (NULL-terminated), read the device path
  * it prints first, and open it: 8N1 at baud, flow control as asked. 0 on success. */
-static int rig_start(rig *r, const char *sim, const char *const *args, uint32_t baud, fbrl_flow flow,
+static inline int rig_start(rig *r, const char *sim, const char *const *args, uint32_t baud, fbrl_flow flow,
                      const fbrl_link_config *cfg)
 {
     int pipefd[2];
@@ -78,7 +78,7 @@ static int rig_start(rig *r, const char *sim, const char *const *args, uint32_t 
     return 0;
 }
 
-static void rig_stop(rig *r)
+static inline void rig_stop(rig *r)
 {
     if (r->uart.open)
         fbrl_uart_close(&r->uart);
@@ -90,7 +90,7 @@ static void rig_stop(rig *r)
 }
 
 /* A private scratch directory for state and log files. */
-static void rig_tmpdir(char *dir, size_t cap, const char *tag)
+static inline void rig_tmpdir(char *dir, size_t cap, const char *tag)
 {
     snprintf(dir, cap, "/tmp/fbrl-%s-XXXXXX", tag);
     if (!mkdtemp(dir))

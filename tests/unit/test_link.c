@@ -1,0 +1,496 @@
+/* test_link: the link's protocol against a scripted controller on a real pty pair.
+ * The test plays the controller on the master side (line discipline of
+ * docs/rapl-commands.md 1: upper-case echo, BS/DEL/CAN erase with BS SP BS, CR LF,
+ * replies, ">>") and damages chosen bytes in either direction, so each hard case of
+ * the protocol (a lost or damaged CR, a lost last echo, a damaged prompt, a damaged
+ * error line, a damaged reply digit) happens exactly once, deterministically. */
+#define _XOPEN_SOURCE 700 /* posix_openpt */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <string.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <fcntl.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include "fbrl/clock.h"
+#include "fbrl/link.h"
+#include "fbrl/uart_posix.h"
+
+enum { IN = 0, OUT = 1 };
+enum { NONE, DROP, REPLACE };
+
+/* Damage the (skip+1)-th byte equal to `match` going in direction dir. */
+typedef struct rule {
+    int dir, action, skip;
+    uint8_t match, with;
+} rule;
+
+typedef struct ctl {
+    int fd; /* pty master */
+    char line[128];
+    size_t len;
+    char log[32][136];
+    int nlog;
+    rule rules[4];
+    int nrules;
+    int dead; /* reads nothing, answers nothing */
+    const char *typev;
+} ctl;
+
+typedef struct session {
+    ctl c;
+    fbrl_uart_posix port;
+    fbrl_uart u;
+    uint8_t rx[1024], tx[1024];
+    fbrl_link l;
+} session;
+
+static void ctl_rule(ctl *c, int dir, uint8_t match, int skip, int action, uint8_t with)
+{
+    rule r = {dir, action, skip, match, with};
+    assert_true(c->nrules < 4);
+    c->rules[c->nrules++] = r;
+}
+
+/* Apply the rules to one byte: -1 = dropped. */
+static int fault(ctl *c, int dir, uint8_t b)
+{
+    for (int k = 0; k < c->nrules; k++) {
+        rule *r = &c->rules[k];
+        if (r->dir != dir || r->action == NONE || r->match != b)
+            continue;
+        if (r->skip-- > 0)
+            continue;
+        int act = r->action;
+        r->action = NONE;
+        return act == DROP ? -1 : r->with;
+    }
+    return b;
+}
+
+static void out(ctl *c, const char *s, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        int b = fault(c, OUT, (uint8_t)s[k]);
+        if (b >= 0) {
+            uint8_t x = (uint8_t)b;
+            assert_int_equal(write(c->fd, &x, 1), 1);
+        }
+    }
+}
+static void outs(ctl *c, const char *s) { out(c, s, strlen(s)); }
+
+static void execute(ctl *c)
+{
+    c->line[c->len] = '\0';
+    outs(c, "\r\n");
+    if (c->len) {
+        snprintf(c->log[c->nlog++ % 32], sizeof c->log[0], "%s", c->line);
+        if (!strcmp(c->line, "BAD")) {
+            outs(c, "029-TRANSFORM ILLEGAL.\r\n");
+        } else if (!strncmp(c->line, "TYPEV", 5) || !strncmp(c->line, "TYPEI", 5)) {
+            outs(c, c->typev ? c->typev : "+1.500000");
+            outs(c, "\r\n");
+        } else if (!strcmp(c->line, "STATUS")) {
+            outs(c, "RAPL-II Version 2.60     A255 Robot (test)\r\nLAST ERROR CODE: 029-TRANSFORM ILLEGAL.\r\n"
+                    "SPEED (% OF FULL) :    +50\r\nCONTROLLER IS HOMED\r\nAXIS#        1 2 3 4 5\r\n"
+                    "LOCK         N N N N N\r\nDONE         Y Y Y Y Y\r\nLIMP         N N N N N\r\n"
+                    "HOMED        Y Y Y Y Y\r\n");
+        } else if (!strcmp(c->line, "W2")) {
+            outs(c, "\r\nCURRENT ACTUAL POSITION :\r\n"
+                    "PULSES   +0000000000 +0000018000 -0000018000 +0000000000 +0000000000\r\n"
+                    "JOINTS   +000.0000 +090.0000 -090.0000 +000.0000 +000.0000\r\n"
+                    "WORLD     +012.0000 +000.0000 +020.0000 +000.0000 +000.0000 +000.0000\r\n");
+        }
+    }
+    c->len = 0;
+    outs(c, ">>");
+}
+
+/* Serve whatever the host sent. */
+static void ctl_service(ctl *c)
+{
+    uint8_t buf[256];
+    if (c->dead)
+        return;
+    ssize_t n = read(c->fd, buf, sizeof buf);
+    for (ssize_t k = 0; k < n; k++) {
+        int b = fault(c, IN, buf[k]);
+        if (b < 0)
+            continue;
+        if (b == '\r' || b == '\n') {
+            execute(c);
+        } else if (b == 0x08 || b == 0x7f) {
+            if (c->len) {
+                c->len--;
+                outs(c, "\b \b");
+            }
+        } else if (b == 0x18) {
+            for (; c->len; c->len--)
+                outs(c, "\b \b");
+        } else if (b >= 0x20 && b <= 0x7e && c->len + 1 < sizeof c->line) {
+            char ch = (char)(b >= 'a' && b <= 'z' ? b - 32 : b);
+            c->line[c->len++] = ch;
+            out(c, &ch, 1);
+        }
+    }
+}
+
+static int open_session(session *s)
+{
+    memset(s, 0, sizeof *s);
+    s->c.fd = posix_openpt(O_RDWR | O_NOCTTY);
+    if (s->c.fd < 0 || grantpt(s->c.fd) || unlockpt(s->c.fd))
+        return -1;
+    fcntl(s->c.fd, F_SETFL, O_NONBLOCK);
+    fbrl_uart_config uc = FBRL_UART_CONFIG_DEFAULT;
+    uc.flow = FBRL_FLOW_NONE;
+    if (fbrl_uart_posix_open(&s->port, &s->u, ptsname(s->c.fd), &uc, s->rx, sizeof s->rx, s->tx, sizeof s->tx,
+                             NULL) != FBRL_OK)
+        return -1;
+    fbrl_link_config cfg;
+    fbrl_link_config_init(&cfg);
+    cfg.echo_timeout_ms = 30;
+    cfg.reply_timeout_ms = 2000;
+    cfg.wait_timeout_ms = 2000;
+    cfg.max_attempts = 6;
+    return fbrl_link_init(&s->l, &s->u, &cfg) == FBRL_OK ? 0 : -1;
+}
+
+static void close_session(session *s)
+{
+    fbrl_uart_close(&s->u);
+    close(s->c.fd);
+}
+
+/* Run the started command, serving the controller in between. */
+static fbrl_status drive(session *s)
+{
+    uint64_t end = fbrl_clock_now_us() + 10000000u;
+    while (fbrl_clock_now_us() < end) {
+        int done = 0;
+        fbrl_status st = fbrl_link_poll(&s->l, 1, &done);
+        ctl_service(&s->c);
+        if (done)
+            return st;
+    }
+    fail_msg("command never ended");
+    return FBRL_ETIMEOUT;
+}
+
+static fbrl_status run(session *s, const char *line, fbrl_link_reply kind)
+{
+    fbrl_status st = fbrl_link_start(&s->l, line, kind);
+    if (st != FBRL_OK)
+        return st;
+    return drive(s);
+}
+
+static int setup(void **state)
+{
+    session *s = malloc(sizeof *s);
+    if (!s || open_session(s) != 0)
+        return -1;
+    /* the handshake: NOHELP through the same machinery */
+    if (run(s, "NOHELP", FBRL_LINK_REPLY_NONE) != FBRL_OK)
+        return -1;
+    *state = s;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    session *s = *state;
+    close_session(s);
+    free(s);
+    return 0;
+}
+
+static void assert_log(session *s, const char *const *want, int n)
+{
+    assert_int_equal(s->c.nlog, n);
+    for (int k = 0; k < n; k++)
+        assert_string_equal(s->c.log[k], want[k]);
+}
+
+static void clean_command_runs_once(void **state)
+{
+    session *s = *state;
+    assert_int_equal(run(s, "home", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"NOHELP", "HOME"};
+    assert_log(s, want, 2);
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.attempts, 2);
+    assert_int_equal(st.echo_mismatch, 0);
+}
+
+/* The CR is lost, turned into a printable byte, or into an ignored control byte: the
+ * line is found unexecuted by a probe, retyped, and runs exactly once. */
+static void damaged_cr_never_runs_twice(void **state)
+{
+    session *s = *state;
+    static const uint8_t into[] = {0, '-', 'M', 0x0c, 0x05};
+    for (size_t k = 0; k < sizeof into; k++) {
+        s->c.nlog = 0;
+        ctl_rule(&s->c, IN, '\r', 0, into[k] ? REPLACE : DROP, into[k]);
+        assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+        static const char *const want[] = {"HOME"};
+        assert_log(s, want, 1);
+        s->c.nrules = 0;
+    }
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.cr_unconfirmed, sizeof into);
+}
+
+/* The echo of the last character never comes: no CR is sent for an unconfirmed line;
+ * it is erased and typed again. */
+static void lost_last_echo_is_retyped(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, 'E', 0, DROP, 0);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"HOME"};
+    assert_log(s, want, 1);
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.echo_timeout, 1);
+}
+
+/* A byte damaged on the way in shows in the echo: the altered line never runs. */
+static void damaged_character_never_runs(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, 'o', 0, REPLACE, 'p');
+    ctl_rule(&s->c, IN, 'e', 0, REPLACE, 0x0e); /* and one into an ignored control byte */
+    assert_int_equal(run(s, "home", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"HOME"};
+    assert_log(s, want, 1);
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_true(st.echo_mismatch >= 1);
+}
+
+/* The prompt comes back damaged, or the CR LF before it is lost: the command ran (the
+ * CR LF, or the intact prompt, proves it); a probe confirms the controller is idle and
+ * nothing is sent again. */
+static void damaged_prompt_is_not_a_failure(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '>', 0, REPLACE, '<');
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '\n', 0, DROP, 0);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK); /* only ">>" came */
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\n', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '>', 1, REPLACE, '.');
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK); /* "CR > ." came */
+    static const char *const want[] = {"HOME", "HOME", "HOME"};
+    assert_log(s, want, 3);
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_int_equal(s->c.nlog, 1);
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.prompt_lost, 2);
+    assert_int_equal(st.cr_unconfirmed, 0);
+}
+
+/* Errors carry the controller's code; a damaged error line is never guessed from: the
+ * code is read from STATUS. */
+static void errors_carry_the_code(void **state)
+{
+    session *s = *state;
+    int code;
+    const char *text;
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    fbrl_link_error(&s->l, &code, &text);
+    assert_int_equal(code, 29);
+    assert_string_equal(text, "TRANSFORM ILLEGAL");
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '9', 0, REPLACE, '8'); /* 028-TRANSFORM ILLEGAL. */
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    fbrl_link_error(&s->l, &code, &text);
+    assert_int_equal(code, 29);
+    static const char *const want[] = {"BAD", "STATUS"};
+    assert_log(s, want, 2);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    fbrl_link_error(&s->l, &code, &text);
+    assert_int_equal(code, -1);
+}
+
+/* Queries are read until two replies agree: a damaged digit cannot pass. */
+static void queries_are_confirmed(void **state)
+{
+    session *s = *state;
+    double v = 0;
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "TYPEV X", FBRL_LINK_REPLY_REAL), FBRL_OK);
+    assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_OK);
+    assert_true(v == 1.5);
+    assert_int_equal(s->c.nlog, 2);
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '5', 0, REPLACE, '4'); /* first reply says +1.400000 */
+    assert_int_equal(run(s, "TYPEV X", FBRL_LINK_REPLY_REAL), FBRL_OK);
+    assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_OK);
+    assert_true(v == 1.5);
+    assert_int_equal(s->c.nlog, 3);
+    s->c.typev = "-3";
+    assert_int_equal(run(s, "TYPEI X", FBRL_LINK_REPLY_INT), FBRL_OK);
+    long iv = 0;
+    assert_int_equal(fbrl_link_last_int(&s->l, &iv), FBRL_OK);
+    assert_int_equal(iv, -3);
+    assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_ESTATE);
+
+    assert_int_equal(run(s, "W2", FBRL_LINK_REPLY_POS), FBRL_OK);
+    const fbrl_rapl_pos *p = fbrl_link_last_pos(&s->l);
+    assert_true(fbrl_rapl_pos_complete(p, 5));
+    assert_true(p->world[0] == 12.0 && p->joints[1] == 90.0 && p->pulses[2] == -18000);
+    assert_int_equal(run(s, "STATUS", FBRL_LINK_REPLY_STATUS), FBRL_OK);
+    const fbrl_rapl_status_info *st = fbrl_link_last_status(&s->l);
+    assert_int_equal(st->last_error, 29);
+    assert_int_equal(st->homed, 1);
+    assert_int_equal(st->naxes, 5);
+}
+
+/* A controller that never answers ends every command with an error, never a hang. */
+static void silence_is_an_error(void **state)
+{
+    session *s = *state;
+    s->c.dead = 1;
+    uint64_t t0 = fbrl_clock_now_us();
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_ETIMEOUT);
+    assert_true(fbrl_clock_now_us() - t0 < 3000000u);
+    /* echoes everything wrong: the echo never matches */
+    s->c.dead = 0;
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
+    s->l.cfg.max_attempts = 3;
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_EECHO);
+    assert_int_equal(s->c.nlog, 0);
+    s->l.cfg.max_attempts = 6;
+    s->c.nrules = 0;
+    /* echoes, then stops reading (a command that waits forever): the reply deadline */
+    s->c.dead = 0;
+    assert_int_equal(fbrl_link_start(&s->l, "WAIT 3", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    uint64_t end = fbrl_clock_now_us() + 10000000u;
+    int done = 0;
+    fbrl_status r = FBRL_OK;
+    while (!done && fbrl_clock_now_us() < end) {
+        r = fbrl_link_poll(&s->l, 1, &done);
+        if (s->c.len == 6) /* typed, echoed: from now on the controller is busy */
+            s->c.dead = 1;
+        ctl_service(&s->c);
+    }
+    assert_true(done);
+    assert_int_equal(r, FBRL_ETIMEOUT);
+    /* after a timeout the line state is unknown: the next command starts with a probe */
+    s->c.dead = 0;
+    s->c.len = 0;
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"HOME"};
+    assert_log(s, want, 1);
+}
+
+static void bad_calls_are_refused(void **state)
+{
+    session *s = *state;
+    char longline[FBRL_LINK_LINE_MAX + 2];
+    memset(longline, 'A', sizeof longline - 1);
+    longline[sizeof longline - 1] = '\0';
+    assert_int_equal(fbrl_link_start(&s->l, longline, FBRL_LINK_REPLY_NONE), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start(&s->l, "", FBRL_LINK_REPLY_NONE), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start(&s->l, "A?B", FBRL_LINK_REPLY_NONE), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start(&s->l, "A\rB", FBRL_LINK_REPLY_NONE), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start(&s->l, NULL, FBRL_LINK_REPLY_NONE), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start(&s->l, "HOME", (fbrl_link_reply)99), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start(&s->l, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_int_equal(fbrl_link_busy(&s->l), 1);
+    assert_int_equal(fbrl_link_start(&s->l, "HOME", FBRL_LINK_REPLY_NONE), FBRL_ESTATE);
+    assert_int_equal(drive(s), FBRL_OK);
+    assert_int_equal(fbrl_link_busy(&s->l), 0);
+    int done;
+    assert_int_equal(fbrl_link_poll(NULL, 0, &done), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_poll(&s->l, 0, &done), FBRL_OK);
+    assert_int_equal(done, 1);
+    assert_int_equal(fbrl_link_init(NULL, &s->u, NULL), FBRL_EINVAL);
+    fbrl_link_config cfg;
+    fbrl_link_config_init(&cfg);
+    cfg.query_reads = 4;
+    fbrl_link other;
+    assert_int_equal(fbrl_link_init(&other, &s->u, &cfg), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_cmd(&s->l, FBRL_RAPL_W1, NULL, 0, 0), FBRL_EINVAL); /* streams: fbrl_link_stream */
+    assert_int_equal(fbrl_link_raw(&s->l, "W1"), FBRL_EINVAL);
+    int on;
+    assert_int_equal(fbrl_link_input(&s->l, 0, &on), FBRL_ERANGE);
+}
+
+/* One thread, two robots: both commands progress and finish through poll_many. */
+static void one_thread_serves_two_links(void **state)
+{
+    session *a = *state;
+    session *b = malloc(sizeof *b);
+    assert_non_null(b);
+    assert_int_equal(open_session(b), 0);
+    assert_int_equal(run(b, "NOHELP", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    ctl_rule(&a->c, IN, '\r', 0, DROP, 0); /* a needs a probe and a retype */
+    a->c.nlog = b->c.nlog = 0;
+    assert_int_equal(fbrl_link_start(&a->l, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_int_equal(fbrl_link_start(&b->l, "READY", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    fbrl_link *links[2] = {&a->l, &b->l};
+    int finished = 0, seen[2] = {0, 0};
+    uint64_t end = fbrl_clock_now_us() + 10000000u;
+    while (finished < 2 && fbrl_clock_now_us() < end) {
+        size_t idx;
+        fbrl_status st = fbrl_link_poll_many(links, 2, 2, &idx);
+        ctl_service(&a->c);
+        ctl_service(&b->c);
+        if (idx < 2) {
+            assert_int_equal(st, FBRL_OK);
+            assert_int_equal(seen[idx], 0);
+            seen[idx] = 1;
+            finished++;
+        } else {
+            assert_int_equal(st, FBRL_ETIMEOUT);
+        }
+    }
+    assert_int_equal(finished, 2);
+    size_t idx;
+    assert_int_equal(fbrl_link_poll_many(links, 2, 1, &idx), FBRL_EEMPTY);
+    static const char *const wa[] = {"HOME"}, *const wb[] = {"READY"};
+    assert_log(a, wa, 1);
+    assert_log(b, wb, 1);
+    close_session(b);
+    free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(clean_command_runs_once, setup, teardown),
+        cmocka_unit_test_setup_teardown(damaged_cr_never_runs_twice, setup, teardown),
+        cmocka_unit_test_setup_teardown(lost_last_echo_is_retyped, setup, teardown),
+        cmocka_unit_test_setup_teardown(damaged_character_never_runs, setup, teardown),
+        cmocka_unit_test_setup_teardown(damaged_prompt_is_not_a_failure, setup, teardown),
+        cmocka_unit_test_setup_teardown(errors_carry_the_code, setup, teardown),
+        cmocka_unit_test_setup_teardown(queries_are_confirmed, setup, teardown),
+        cmocka_unit_test_setup_teardown(silence_is_an_error, setup, teardown),
+        cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
