@@ -110,8 +110,6 @@ int mon_include(mon *m, const char *path)
 
 int mon_check_closed(mon *m, const char *what, const char *where, unsigned long line)
 {
-    fbrl_cell c;
-    double f;
     if (!fbrl_vm_compiling(m->vm))
         return 0;
     mon_host_newline(&m->host);
@@ -122,12 +120,6 @@ int mon_check_closed(mon *m, const char *what, const char *where, unsigned long 
     fputs(")\n", stderr);
     fflush(stderr);
     m->errors++;
-    /* Back to interpreting, as after any other error: `[` ends compilation and
-     * the open definition stays unfinished (never found); the stacks are emptied. */
-    fbrl_vm_eval(m->vm, "[", 1);
-    while (fbrl_vm_depth(m->vm) > 0 && fbrl_vm_pop(m->vm, &c) == FBRL_OK)
-        ;
-    while (fbrl_vm_fdepth(m->vm) > 0 && fbrl_vm_fpop(m->vm, &f) == FBRL_OK)
-        ;
+    fbrl_vm_reset(m->vm);  /* as after any other error: the definition is dropped */
     return -1;
 }

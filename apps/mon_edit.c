@@ -4,6 +4,7 @@
 #include "mon.h"
 
 #include <ctype.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,12 +16,43 @@ static const char *prompt_text(const mon *m)
     return fbrl_vm_compiling(m->vm) ? "compiling> " : "ok> ";
 }
 
+static mon *g_eval_mon;  /* the session whose line is being evaluated */
+
+/* Ctrl-C while a line runs: ask the engine to stop (it throws "user interrupt" at
+ * its next call or loop step, and the session goes on). The request is repeated
+ * by a second Ctrl-C (one that came just as the line started may be lost); a
+ * third ends fbrlmon, in case a word never gets to a stop. */
+static void on_sigint_eval(int sig)
+{
+    if (g_eval_mon->host.interrupted >= 2) {
+        signal(sig, SIG_DFL);
+        raise(sig);
+        return;
+    }
+    g_eval_mon->host.interrupted++;
+    fbrl_vm_interrupt(g_eval_mon->vm);
+}
+
 /* Evaluate one typed line; errors print but do not count toward the exit status. */
 static void eval_line(mon *m, const char *line, size_t len)
 {
+    struct sigaction sa, old;
     while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
         len--;
-    mon_eval(m, line, len, NULL, 0, 0);
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint_eval;  /* no SA_RESTART: waits in MS and KEY return */
+    sigemptyset(&sa.sa_mask);
+    g_eval_mon = m;
+    m->host.interrupted = 0;
+    sigaction(SIGINT, &sa, &old);
+    if (mon_eval(m, line, len, NULL, 0, 0) == 0 && m->host.interrupted) {
+        /* The engine stops at its next call or loop step; a line that ended
+         * before one (e.g. a lone MS cut short) still says it was interrupted. */
+        mon_host_newline(&m->host);
+        fputs("error: user interrupt\n", stderr);
+    }
+    sigaction(SIGINT, &old, NULL);
+    m->host.interrupted = 0;
     mon_host_newline(&m->host);
 }
 
@@ -28,16 +60,14 @@ static void eval_line(mon *m, const char *line, size_t len)
 #include <errno.h>
 #include <histedit.h>
 #include <poll.h>
-#include <signal.h>
 #include <sys/ioctl.h>
 #include <unistd.h>
 #include <wchar.h>
 
 static mon *g_mon;  /* the session libedit's callbacks serve (one per process) */
 
-/* Ctrl-C at the prompt discards the line being typed. While a line is being
- * evaluated Ctrl-C keeps its default meaning (end fbrlmon): the engine cannot be
- * interrupted in the middle of a word, and a runaway loop must stay stoppable. */
+/* Ctrl-C at the prompt discards the line being typed (while a line is evaluated
+ * it interrupts the evaluation, see eval_line). */
 static volatile sig_atomic_t g_sigint;
 
 static void on_sigint(int sig)

@@ -133,9 +133,9 @@ static int host_key(void *user)
         raw.c_cc[VTIME] = 0;
         restore = tcsetattr(h->in_fd, TCSANOW, &raw) == 0;
     }
-    do {
-        n = read(h->in_fd, &c, 1);
-    } while (n < 0 && errno == EINTR);
+    n = -1;
+    while (!h->interrupted && (n = read(h->in_fd, &c, 1)) < 0 && errno == EINTR)
+        ;
     if (restore)
         tcsetattr(h->in_fd, TCSANOW, &saved);
     return n == 1 ? c : -1;
@@ -232,15 +232,21 @@ static uint64_t host_now_us(void *user)
     return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
 }
 
+/* Sleeps in slices so that a Ctrl-C (h->interrupted) ends the wait promptly even
+ * if it came just before the sleep began. */
 static void host_sleep_ms(void *user, uint32_t ms)
 {
     mon_host *h = user;
-    struct timespec ts;
     fflush(h->out);
-    ts.tv_sec = (time_t)(ms / 1000u);
-    ts.tv_nsec = (long)(ms % 1000u) * 1000000L;
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR)
-        ;
+    while (ms > 0 && !h->interrupted) {
+        uint32_t slice = ms < 100u ? ms : 100u;
+        struct timespec ts;
+        ts.tv_sec = 0;
+        ts.tv_nsec = (long)slice * 1000000L;
+        while (nanosleep(&ts, &ts) != 0 && errno == EINTR && !h->interrupted)
+            ;
+        ms -= slice;
+    }
 }
 
 static void host_time_date(void *user, int out[6])

@@ -3,6 +3,7 @@
 #ifndef FBRLMON_HOST_H
 #define FBRLMON_HOST_H
 
+#include <signal.h>
 #include <stdio.h>
 #include "fbrl/vm.h"
 
@@ -13,6 +14,9 @@ typedef struct mon_host {
     int width;          /* terminal columns (0: not a terminal) */
     int in_fd;          /* keyboard for KEY / KEY? (stdin) */
     int in_is_tty;
+    /* Ctrl-C presses while a line is evaluated: waits in MS and KEY end early so
+     * the engine sees its interrupt request (fbrl_vm_interrupt) at once. */
+    volatile sig_atomic_t interrupted;
     /* Read-ahead of in_fd shared by the line reader and KEY, so a program that
      * reads keys from piped input gets the bytes after the current line. */
     unsigned char inbuf[4096];

@@ -121,10 +121,21 @@ static void wait_keys(session *s)
             return;
 }
 
-static void type(session *s, const char *text)
+/* Wait until the terminal is back in line mode (ICANON on): fbrlmon has left
+ * the line editor and is evaluating the line. */
+static void wait_running(session *s)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    struct termios t;
+    while (now_ms() < deadline && tcgetattr(s->master, &t) == 0 && !(t.c_lflag & ICANON))
+        if (!pump(s, 5))
+            return;
+}
+
+/* Write keys at once (for Ctrl-C while a line runs and the terminal is in line mode). */
+static void type_now(session *s, const char *text)
 {
     size_t n = strlen(text), off = 0;
-    wait_keys(s);
     while (off < n) {
         ssize_t w = write(s->master, text + off, n - off);
         if (w < 0 && errno == EINTR)
@@ -133,6 +144,12 @@ static void type(session *s, const char *text)
             return;
         off += (size_t)w;
     }
+}
+
+static void type(session *s, const char *text)
+{
+    wait_keys(s);
+    type_now(s, text);
 }
 
 static int start(session *s)
@@ -364,6 +381,34 @@ int main(int argc, char **argv)
         expect(&s, "depth .", "echo after Ctrl-C");
         expect(&s, "0 ", "the dropped line was not evaluated");
         expect(&s, "ok> ", "prompt after depth");
+        /* Ctrl-C while a line runs interrupts it (an endless loop, a long MS);
+         * one error line, and the session goes on with the dictionary intact. */
+        type(&s, ": spin begin again ;\r");
+        expect(&s, "ok> ", "prompt after spin");
+        type(&s, "spin\r");
+        expect(&s, "spin", "echo of spin");
+        wait_running(&s);
+        pump(&s, 200);
+        type_now(&s, "\003");
+        expect(&s, "interrupt", "Ctrl-C stops an endless loop");
+        expect(&s, "ok> ", "prompt after the interrupted loop");
+        type(&s, "600000 ms\r");
+        expect(&s, "600000 ms", "echo of ms");
+        wait_running(&s);
+        pump(&s, 200);
+        type_now(&s, "\003");
+        expect(&s, "interrupt", "Ctrl-C stops a long MS");
+        expect(&s, "ok> ", "prompt after the interrupted MS");
+        type(&s, ": naps begin 600000 ms again ; naps\r");
+        expect(&s, "naps\r", "echo of naps");
+        wait_running(&s);
+        pump(&s, 200);
+        type_now(&s, "\003");
+        expect(&s, "interrupt in naps", "Ctrl-C stops a plan waiting in MS");
+        expect(&s, "ok> ", "prompt after the interrupted plan");
+        type(&s, "zebra-count .\r");
+        expect(&s, "42 ", "dictionary intact after interrupts");
+        expect(&s, "ok> ", "prompt after zebra-count");
         /* KEY reads one key without waiting for Enter. */
         type(&s, "key .\r");
         expect(&s, "key .", "echo of key line");
