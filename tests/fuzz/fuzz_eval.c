@@ -1,13 +1,13 @@
 /* fuzz_eval.c - fuzz target for the FBRL evaluator: any input text, evaluated
- * in a fresh VM, must never crash, hang or touch memory outside the VM.
+ * in a fresh VM, must never crash, hang or touch memory outside the VM, and the
+ * VM must stay usable afterwards.
  *
  * The VM lives in a static buffer and has no host services except output
  * (discarded), so the input cannot read files or sleep. An input that loops
- * forever (legal Forth: BEGIN AGAIN) is cut off by a CPU-time alarm: the VM is
- * abandoned (siglongjmp) and re-created for the next input, which is safe because
- * the engine keeps all its state in the buffer. SIGVTALRM is used because
- * libFuzzer keeps SIGALRM for its own -timeout. */
-#include <setjmp.h>
+ * forever (legal Forth: BEGIN AGAIN) is stopped the way the monitor's Ctrl-C
+ * stops it: a CPU-time alarm calls fbrl_vm_interrupt(), and the engine throws
+ * -28 at its next loop step. (SIGVTALRM, because libFuzzer keeps SIGALRM for
+ * its own -timeout, which still catches a loop the engine would not stop.) */
 #include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -24,14 +24,14 @@ static union {
     long double align;
     unsigned char bytes[FUZZ_MEM_BYTES];
 } vm_mem;
-static sigjmp_buf cut_off;
-static volatile sig_atomic_t running;
+static fbrl_vm *volatile running_vm;
 
 static void on_vtalrm(int sig)
 {
+    fbrl_vm *vm = running_vm;
     (void)sig;
-    if (running)
-        siglongjmp(cut_off, 1);
+    if (vm != NULL)
+        fbrl_vm_interrupt(vm);
 }
 
 static void discard(void *user, const char *s, size_t n)
@@ -47,6 +47,7 @@ static void arm_timer(long us)
     memset(&it, 0, sizeof it);
     it.it_value.tv_sec = us / 1000000;
     it.it_value.tv_usec = us % 1000000;
+    it.it_interval = it.it_value;  /* repeat: one request may land between two evaluations */
     setitimer(ITIMER_VIRTUAL, &it, NULL);
 }
 
@@ -63,6 +64,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         memset(&sa, 0, sizeof sa);
         sa.sa_handler = on_vtalrm;
         sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESTART;
         sigaction(SIGVTALRM, &sa, NULL);
         installed = 1;
     }
@@ -72,14 +74,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.host.write = discard;
     if (fbrl_vm_create(&vm, &cfg) != FBRL_OK)
         return 0;
-    if (sigsetjmp(cut_off, 1) == 0) {
-        running = 1;
-        arm_timer(FUZZ_CPU_LIMIT_US);
-        /* Whatever the status, the VM must stay usable after an error. */
-        if (fbrl_vm_eval(vm, (const char *)data, size) != FBRL_OK && !fbrl_vm_bye(vm))
-            fbrl_vm_eval(vm, "1 2 + DROP", 10);
-    }
-    running = 0;
+    running_vm = vm;
+    arm_timer(FUZZ_CPU_LIMIT_US);
+    /* Whatever happened, the VM must still evaluate. */
+    if (fbrl_vm_eval(vm, (const char *)data, size) != FBRL_OK && !fbrl_vm_bye(vm))
+        fbrl_vm_eval(vm, "1 2 + DROP", 10);
     arm_timer(0);
+    running_vm = NULL;
     return 0;
 }
