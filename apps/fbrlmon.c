@@ -31,6 +31,7 @@ typedef struct options {
     size_t n_actions;
     size_t dict_bytes;
     int list_ports;
+    int conn_default;     /* no --port, --sim or --offline given */
     mon_conn_options conn;
 } options;
 
@@ -212,6 +213,7 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         }
     }
+    o->conn_default = !explicit_conn;
     if (!explicit_conn)
 #ifdef FBRLMON_HAVE_SIM
         o->conn.kind = MON_CONN_SIM;
@@ -252,9 +254,16 @@ int main(int argc, char **argv)
     {
         char err[512];
         if (mon_conn_open(&g_conn, &opt.conn, err, sizeof err) != FBRL_OK) {
-            fprintf(stderr, "fbrlmon: %s\n", err);
-            free(opt.actions);
-            return MON_EXIT_CONNECT;
+            if (!opt.conn_default) {
+                fprintf(stderr, "fbrlmon: %s\n", err);
+                free(opt.actions);
+                return MON_EXIT_CONNECT;
+            }
+            /* Nobody asked for the emulator: say why it is missing and go on
+             * without a controller rather than refuse to run Forth at all. */
+            fprintf(stderr, "fbrlmon: %s; running offline\n", err);
+            opt.conn.kind = MON_CONN_OFFLINE;
+            mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
         }
     }
     if (mon_open(&m, opt.dict_bytes) != 0) {
