@@ -155,40 +155,57 @@ static int host_key_ready(void *user)
     return poll(&p, 1, 0) > 0 && (p.revents & (POLLIN | POLLHUP));
 }
 
+/* An open source file; the line count lets a "#!" first line be skipped. */
+typedef struct mon_file {
+    FILE *f;
+    unsigned long lines;
+} mon_file;
+
 static fbrl_status host_file_open(void *user, const char *path, void **handle)
 {
-    FILE *f;
+    mon_file *mf;
     (void)user;
     if (path == NULL || handle == NULL)
         return FBRL_EINVAL;
-    f = fopen(path, "r");
-    if (f == NULL)
-        return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO;
-    *handle = f;
+    mf = malloc(sizeof *mf);
+    if (mf == NULL)
+        return FBRL_ENOSPC;
+    mf->lines = 0;
+    mf->f = fopen(path, "r");
+    if (mf->f == NULL) {
+        fbrl_status st = errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO;
+        free(mf);
+        return st;
+    }
+    *handle = mf;
     return FBRL_OK;
 }
 
 /* One line without its end (LF or CRLF). A line longer than cap is consumed to
- * its end and reported as FBRL_ENOSPC, so the next read starts on a fresh line. */
+ * its end and reported as FBRL_ENOSPC, so the next read starts on a fresh line.
+ * A first line starting with "#!" reads as empty, so a plan file can be an
+ * executable script (#!/usr/bin/env fbrlmon) and line numbers stay right. */
 static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
 {
-    FILE *f = handle;
+    mon_file *mf = handle;
     size_t n = 0;
     int c, too_long = 0;
     (void)user;
-    if (f == NULL || buf == NULL || len == NULL)
+    if (mf == NULL || buf == NULL || len == NULL)
         return FBRL_EINVAL;
     *len = 0;
-    while ((c = getc(f)) != EOF && c != '\n') {
+    while ((c = getc(mf->f)) != EOF && c != '\n') {
         if (n < cap)
             buf[n++] = (char)c;
         else
             too_long = 1;
     }
-    if (ferror(f))
+    if (ferror(mf->f))
         return FBRL_EIO;
     if (c == EOF && n == 0 && !too_long)
         return FBRL_EEOF;
+    if (++mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!')
+        return FBRL_OK;
     if (too_long)
         return FBRL_ENOSPC;
     if (n > 0 && buf[n - 1] == '\r')
@@ -199,9 +216,12 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
 
 static void host_file_close(void *user, void *handle)
 {
+    mon_file *mf = handle;
     (void)user;
-    if (handle != NULL)
-        fclose(handle);
+    if (mf != NULL) {
+        fclose(mf->f);
+        free(mf);
+    }
 }
 
 static uint64_t host_now_us(void *user)
