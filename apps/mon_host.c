@@ -184,7 +184,8 @@ static fbrl_status host_file_open(void *user, const char *path, void **handle)
 /* One line without its end (LF or CRLF). A line longer than cap is consumed to
  * its end and reported as FBRL_ENOSPC, so the next read starts on a fresh line.
  * A first line starting with "#!" reads as empty, so a plan file can be an
- * executable script (#!/usr/bin/env fbrlmon) and line numbers stay right. */
+ * executable script (#!/usr/bin/env fbrlmon) and line numbers stay right. (The
+ * engine's #! word needs a blank after it, which a shebang line rarely has.) */
 static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
 {
     mon_file *mf = handle;
