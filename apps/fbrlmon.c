@@ -53,7 +53,7 @@ static void usage(FILE *f)
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
 #endif
-          "  --offline        no controller: robot words report an error\n"
+          "  --offline        no controller connected\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
