@@ -139,8 +139,9 @@ int fbrl_sim_arm_check_line(const double a[6], const double b[6], double tool_le
         fbrl_sim_arm_lerp(a, b, (double)i / n, pose);
         if (fbrl_sim_arm_ik(pose, tool_len, prev, q) != 0)
             return 68;
-        /* Passing next to the base axis would whip the waist round: not a line the arm can follow. */
-        if (i > 0 && fabs(q[0] - prev) > 20.0)
+        /* A waist that jumps (next to the base axis, or from one reach to the other) is
+         * not a line the arm can follow; the first sample is compared with the arm's waist. */
+        if (fabs(fbrl_sim_arm_wrap(q[0] - prev)) > 20.0)
             return 68;
         prev = q[0];
     }

@@ -44,8 +44,9 @@ long fbrl_sim_arm_pulses(int axis, double deg);
 double fbrl_sim_arm_degrees(int axis, long pulses);
 
 /* Checks the straight segment from pose a to pose b (position and pitch/roll
- * interpolated linearly): 0 when every sample has a solution inside the limits
- * and the waist turns continuously, else 68 (RAPL "straight line error"). */
+ * interpolated linearly), the arm's waist now being waist_hint: 0 when every
+ * sample has a solution inside the limits and the waist turns continuously
+ * from waist_hint on, else 68 (RAPL "straight line error"). */
 int fbrl_sim_arm_check_line(const double a[6], const double b[6], double tool_len,
                             double waist_hint);
 

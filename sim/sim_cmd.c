@@ -576,6 +576,14 @@ static int move_line(fbrl_sim *s, const double pose[6], const double *qknown)
     fbrl_sim_arm_fk(qt, tool_len(s), s->pb);
     if (fbrl_sim_arm_check_line(from, s->pb, tool_len(s), s->q[0]) != 0)
         return 68;
+    {
+        /* the line must end in the target's own configuration (a precision point may
+         * hold the other reach) */
+        double qe[NAXES];
+        if (fbrl_sim_arm_ik(s->pb, tool_len(s), s->q[0], qe) != 0
+            || fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
+            return 68;
+    }
     memcpy(s->pa, from, sizeof from);
     d = sqrt((s->pb[0] - from[0]) * (s->pb[0] - from[0]) + (s->pb[1] - from[1]) * (s->pb[1] - from[1])
              + (s->pb[2] - from[2]) * (s->pb[2] - from[2]));
@@ -1676,7 +1684,13 @@ static int h_status(fbrl_sim *s, args *a, int *b)
     for (i = 0; i < NAXES; i++)
         sim_out_printf(o, i ? " %c" : "%c", s->homed ? 'Y' : 'N');
     sim_out_printf(o, "\r\nREQUESTED ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
-    sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
+    {
+        /* backward when the tool point lies behind the base axis, seen along the waist */
+        double pose[6], w = q[0] * 3.14159265358979323846 / 180.0;
+        fbrl_sim_arm_fk(q, tool_len(s), pose);
+        sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH %s/ELBOW UP/WRIST FREE\r\n",
+                       pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
+    }
     sim_out_printf(o, "MANUAL MODE STATUS IS %s\r\n", s->manual ? "ON" : "OFF");
     sim_out_printf(o, "ARM POWER IS %s\r\n", s->power ? "ON" : "OFF");
     sim_out_printf(o, "PENDANT LAMP IS %s\r\n", s->flash ? "FLASHING" : "OFF");

@@ -565,7 +565,14 @@ static int open_pty(fbrl_sim *s, char *err, size_t errlen)
     fcntl(s->master, F_SETFL, fcntl(s->master, F_GETFL) | O_NONBLOCK);
     s->io = s->master;
     if (s->link_path) {
-        unlink(s->link_path);
+        struct stat st;
+        if (lstat(s->link_path, &st) == 0 && !S_ISLNK(st.st_mode)) {
+            seterr(err, errlen, "link %s: exists and is not a symlink", s->link_path);
+            free(s->link_path);
+            s->link_path = NULL;
+            return -1;
+        }
+        unlink(s->link_path); /* a stale link from an earlier run */
         if (symlink(s->path, s->link_path) != 0) {
             seterr(err, errlen, "link %s: %s", s->link_path, strerror(errno));
             free(s->link_path);
@@ -665,7 +672,9 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->master = s->slave = s->lfd = s->conn = s->io = s->ctl = -1;
     s->wake[0] = s->wake[1] = -1;
     s->urgent = -1;
-    s->rxcap = o->rx_buffer > 0 ? o->rx_buffer : 128;
+    /* Without a line model the buffer stands in for the kernel's: large, so that XON
+     * from the host is still read while the controller waits for output to drain. */
+    s->rxcap = o->baud > 0 ? (o->rx_buffer > 0 ? o->rx_buffer : 128) : 65536;
     s->rx = malloc((size_t)s->rxcap);
     s->state_path = dupstr(o->state_path);
     s->log_path = dupstr(o->log_path);
@@ -898,8 +907,15 @@ void fbrl_sim_destroy(fbrl_sim *s)
         close(s->wake[0]);
     if (s->wake[1] >= 0)
         close(s->wake[1]);
-    if (s->link_path)
-        unlink(s->link_path);
+    if (s->link_path) {
+        char target[sizeof s->path];
+        ssize_t n = readlink(s->link_path, target, sizeof target - 1);
+        if (n > 0) {
+            target[n] = 0;
+            if (!strcmp(target, s->path)) /* still ours, not a newer emulator's */
+                unlink(s->link_path);
+        }
+    }
     if (s->log)
         fclose(s->log);
     for (i = 0; i < s->nevents; i++)

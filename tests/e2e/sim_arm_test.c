@@ -77,6 +77,9 @@ static void round_trip(void **st)
                 near(back[i], q[i], 1e-6);
         } else {
             other++; /* a second configuration reaching the same pose */
+            /* a straight line cannot start by switching from one configuration to the other */
+            assert_int_equal(fbrl_sim_arm_check_line(p, p, 0.5, q[0]), 68);
+            assert_int_equal(fbrl_sim_arm_check_line(p, p, 0.5, back[0]), 0);
         }
     }
     assert_true(same > 10000);

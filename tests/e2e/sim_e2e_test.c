@@ -592,6 +592,13 @@ static void t_motion_errors(void **st)
     ok(&p, "LOCK 5");
     ok(&p, "READY"); /* READY clears LOCK */
     assert_string_equal(status_line(&p, "LOCK "), "LOCK         N N N N N");
+    assert_string_equal(status_line(&p, "CURRENT ROBOT"), "CURRENT ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE");
+    /* a target whose forward reach passes the waist limit is reached backward, over the shoulder */
+    ok(&p, "POINT BACK,-2.5,-0.1,30.5,0,30,0");
+    ok(&p, "MOVE BACK");
+    at(&p, -2.5, -0.1, 30.5, 30, 0);
+    assert_string_equal(status_line(&p, "CURRENT ROBOT"), "CURRENT ROBOT CONFIG : UPRIGHT/REACH BACKWARD/ELBOW UP/WRIST FREE");
+    ok(&p, "READY");
     ok(&p, "ARM OFF");
     err(&p, "READY", 40);
     assert_string_equal(status_line(&p, "ARM POWER IS"), "ARM POWER IS OFF");
@@ -784,6 +791,22 @@ static void t_inputs_script(void **st)
     ok(&p, "WAIT 2,-1"); /* 5 simulated seconds = 0.5 s */
     assert_string_equal(status_line(&p, "INPUTS"), "INPUTS  1-16: 0100000000000000");
     stop(&p);
+    /* a line fbrlsim does not understand stops it at start */
+    f = fopen(script, "w");
+    fprintf(f, "1 IN 17 1\n");
+    fclose(f);
+    {
+        int pid = fork(), stt;
+        if (pid == 0) {
+            int dn = open("/dev/null", O_WRONLY);
+            dup2(dn, 1);
+            dup2(dn, 2);
+            execl(FBRLSIM_PATH, FBRLSIM_PATH, "--inputs", script, (char *)NULL);
+            _exit(127);
+        }
+        waitpid(pid, &stt, 0);
+        assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+    }
 }
 
 static void t_gripper(void **st)
@@ -962,7 +985,21 @@ static void t_run(void **st)
     }
     assert_string_equal(cmd(&p, "RUN BAD"), "BEFORE\r\n011-LOCATION UNDEFINED.\r\n");
     err(&p, "RUN NONE", 17);
+    err(&p, "RUN COUNT,0", 18);
     stop(&p);
+    /* the programs are written back with the rest of the memory */
+    {
+        char text[4096];
+        size_t n;
+        f = fopen(state, "r");
+        assert_non_null(f);
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_non_null(strstr(text, "\nVAR N 5\n"));
+        assert_non_null(strstr(text, "\nPROGRAM COUNT\n  N=N+1\n  JOINT 1,1\nEND\n"));
+        assert_non_null(strstr(text, "\nPROGRAM BAD\n  TYPE BEFORE\n  MOVE NOWHERE\n  TYPE AFTER\nEND\n"));
+    }
 }
 
 /* ---- persistence ----------------------------------------------------- */
@@ -1121,6 +1158,39 @@ static void t_faults(void **st)
     stop(&p);
 }
 
+/* Random keystrokes (no W: WAIT could wait for ever): the emulator survives
+ * and still answers afterwards. Runs under the sanitizers in CI. */
+static void t_garbage(void **st)
+{
+    static const char alphabet[] = "ABCDEFGHIJKLMNOPQSTUVXYZ0123456789 ,.-+*/()=#\"\r\r\r\b\x18\x7f\x01\x13\x11";
+    simp p;
+    unsigned long x = 99;
+    char chunk[256];
+    int i, k;
+    (void)st;
+    start(&p, FAST);
+    ok(&p, "HOME");
+    for (i = 0; i < 200; i++) {
+        for (k = 0; k < (int)sizeof chunk; k++) {
+            x = x * 6364136223846793005UL + 1442695040888963407UL;
+            chunk[k] = alphabet[(x >> 33) % (sizeof alphabet - 1)];
+        }
+        put(&p, chunk, sizeof chunk);
+        read_until(&p, g_buf, sizeof g_buf, NULL, 0.005); /* keep the pty drained */
+    }
+    puts_(&p, "\x11\x18\r");
+    read_until(&p, g_buf, sizeof g_buf, NULL, 1.0);
+    puts_(&p, "\x11\x18");
+    read_until(&p, g_buf, sizeof g_buf, NULL, 0.3);
+    ok(&p, "NOHELP");
+    ok(&p, "FINISH");
+    ok(&p, "NOLIMP");
+    ok(&p, "ARM ON");
+    ok(&p, "READY");
+    at(&p, 12, 0, 20, 0, 0);
+    stop(&p);
+}
+
 /* ---- the command log ------------------------------------------------- */
 
 static void t_log(void **st)
@@ -1217,6 +1287,19 @@ static void t_embed(void **st)
     o.time_scale = 0;
     assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EINVAL);
     assert_null(s);
+    {
+        /* a --link that names an ordinary file is refused, and the file kept */
+        const char *plain = tmp("plain-file");
+        FILE *f = fopen(plain, "w");
+        fputs("keep\n", f);
+        fclose(f);
+        fbrl_sim_options_init(&o);
+        o.link_path = plain;
+        assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EIO);
+        assert_non_null(strstr(e, "not a symlink"));
+        assert_int_equal(stat(plain, &sb), 0);
+        assert_true(S_ISREG(sb.st_mode));
+    }
     fbrl_sim_options_init(&o);
     o.faults = "bogus=1";
     assert_int_equal(fbrl_sim_create(&s, &o, e, sizeof e), FBRL_EIO);
@@ -1251,7 +1334,7 @@ int main(int argc, char **argv)
           cmocka_unit_test(t_run))
     GROUP("persist", cmocka_unit_test(t_persist))
     GROUP("baud", cmocka_unit_test(t_baud))
-    GROUP("faults", cmocka_unit_test(t_faults))
+    GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp))
     GROUP("embed", cmocka_unit_test(t_embed))
