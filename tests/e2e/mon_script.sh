@@ -81,6 +81,10 @@ t "WORDS lists the dictionary" 0 "*" "" 'words\n'
 grep -qiw dup out.txt && grep -qiw words out.txt || { fails=$((fails + 1)); echo "FAIL: WORDS output lacks DUP/WORDS"; }
 t "HELP shows a word's stack effect" 0 "*" "" 'help dup\n'
 grep -qi 'dup' out.txt && grep -q -- '--' out.txt || { fails=$((fails + 1)); echo "FAIL: HELP DUP output: $(cat out.txt)"; }
+t "--dict: a small dictionary runs out, the session goes on" 1 "7 " "~^error: dictionary overflow.*\\(stdin:1\\)$" \
+    ': fill-up 100000 0 do 0 , loop ; fill-up\n7 .\n' --dict 64K
+t "--dict 0" 2 "" "~*bad size" "" --dict 0
+t "--dict not a size" 2 "" "~*bad size" "" --dict lots
 t "unknown option" 2 "" "~*unknown option" "" --bogus
 t "-e without its text" 2 "" "~*needs an argument" "" -e
 t "--help" 0 "*" "" "" --help
