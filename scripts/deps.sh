@@ -1,33 +1,47 @@
 #!/bin/sh
 # Installs what libfbrl needs to build and test, only when something is missing.
 # Debian/Ubuntu (apt-get); elsewhere it says what to install and stops.
+# Usage: deps.sh [EXTRA-PACKAGE...]   (extras are required too, e.g. gforth pforth for benchmarks)
 set -eu
 
-PKGS="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev libserialport-dev qemu-system-x86 clang"
-[ $# -gt 0 ] && PKGS="$PKGS $*"
+REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev qemu-system-x86 $*"
+# Optional: the build works without them (fewer features or tests).
+OPTIONAL="libserialport-dev clang libclang-rt-14-dev"
 
-missing=""
-for p in $PKGS; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
-[ -z "$missing" ] && exit 0
+is_installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+
+missing=""; opt_missing=""
+if command -v dpkg-query >/dev/null 2>&1; then
+    for p in $REQUIRED; do is_installed "$p" || missing="$missing $p"; done
+    for p in $OPTIONAL; do is_installed "$p" || opt_missing="$opt_missing $p"; done
+else
+    missing="$REQUIRED"
+fi
+[ -z "$missing$opt_missing" ] && exit 0
 
 if ! command -v apt-get >/dev/null 2>&1; then
-    echo "deps: these packages are missing:$missing" >&2
-    echo "deps: apt-get is not available here; install them with your package manager" >&2
+    echo "deps: cannot check or install packages here (no apt-get)." >&2
+    echo "deps: libfbrl needs: a C99 compiler, cmake, ninja or make, pkg-config, cmocka, libedit, qemu-system-i386;" >&2
+    echo "deps: optional: libserialport, clang with libFuzzer. Install them, then run the build again." >&2
     exit 1
 fi
+SUDO=
 if [ "$(id -u)" -ne 0 ]; then
     if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else
-        echo "deps: missing:$missing; run as root (or install sudo) so apt-get can install them" >&2
+        echo "deps: missing:$missing$opt_missing; run as root so apt-get can install them" >&2
         exit 1
     fi
-else
-    SUDO=
 fi
-echo "deps: installing$missing" >&2
 export DEBIAN_FRONTEND=noninteractive
+echo "deps: installing$missing$opt_missing" >&2
 $SUDO apt-get update -qq >&2 || { echo "deps: apt-get update failed (no network or no package source?)" >&2; exit 1; }
-# shellcheck disable=SC2086
-$SUDO apt-get install -y -qq --no-install-recommends $missing >&2 ||
-    { echo "deps: apt-get could not install:$missing" >&2; exit 1; }
+if [ -n "$missing" ]; then
+    # shellcheck disable=SC2086
+    $SUDO apt-get install -y -qq --no-install-recommends $missing >&2 ||
+        { echo "deps: apt-get could not install:$missing" >&2; exit 1; }
+fi
+for p in $opt_missing; do
+    $SUDO apt-get install -y -qq --no-install-recommends "$p" >&2 ||
+        echo "deps: optional package $p not available; continuing without it" >&2
+done
+exit 0

@@ -8,6 +8,8 @@
 #include <stdint.h>
 #include <string.h>
 #include "fbrl/calib.h"
+#include "fbrl/crc32.h"
+#include "le.h"
 
 /* ---- small vector helpers ---- */
 
@@ -559,49 +561,7 @@ fbrl_status fbrl_calib_rotate(double x, double y, double ang, double *xr, double
 
 /* ---- save and load ---- */
 
-static uint32_t crc32(const unsigned char *p, size_t n)
-{
-    uint32_t crc = 0xFFFFFFFFu;
-    size_t i;
-    int b;
-    for (i = 0; i < n; i++) {
-        crc ^= p[i];
-        for (b = 0; b < 8; b++)
-            crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-    }
-    return crc ^ 0xFFFFFFFFu;
-}
 
-static void put_le(unsigned char *p, uint64_t v, int bytes)
-{
-    int i;
-    for (i = 0; i < bytes; i++)
-        p[i] = (unsigned char)(v >> (8 * i));
-}
-
-static uint64_t get_le(const unsigned char *p, int bytes)
-{
-    uint64_t v = 0;
-    int i;
-    for (i = 0; i < bytes; i++)
-        v |= (uint64_t)p[i] << (8 * i);
-    return v;
-}
-
-static void put_double(unsigned char *p, double d)
-{
-    uint64_t v;
-    memcpy(&v, &d, sizeof v); /* IEEE-754 binary64 assumed, as on every target we build */
-    put_le(p, v, 8);
-}
-
-static double get_double(const unsigned char *p)
-{
-    uint64_t v = get_le(p, 8);
-    double d;
-    memcpy(&d, &v, sizeof d);
-    return d;
-}
 
 #define CAL_CRC_AT 104
 
@@ -613,14 +573,14 @@ fbrl_status fbrl_calib_save(const fbrl_calib *c, unsigned char *buf, size_t size
     if (size < FBRL_CALIB_BYTES)
         return FBRL_ENOSPC;
     memcpy(buf, "FBCL", 4);
-    put_le(buf + 4, FBRL_CALIB_VERSION, 2);
-    put_le(buf + 6, 0, 2);
+    fbrl_le_put16(buf + 4, FBRL_CALIB_VERSION);
+    fbrl_le_put16(buf + 6, 0);
     for (i = 0; i < 3; i++)
         for (j = 0; j < 3; j++)
-            put_double(buf + 8 + 8 * (3 * i + j), c->r[i][j]);
+            fbrl_le_put_double(buf + 8 + 8 * (3 * i + j), c->r[i][j]);
     for (i = 0; i < 3; i++)
-        put_double(buf + 80 + 8 * i, c->t[i]);
-    put_le(buf + CAL_CRC_AT, crc32(buf, CAL_CRC_AT), 4);
+        fbrl_le_put_double(buf + 80 + 8 * i, c->t[i]);
+    fbrl_le_put32(buf + CAL_CRC_AT, fbrl_crc32(0, buf, CAL_CRC_AT));
     return FBRL_OK;
 }
 
@@ -634,17 +594,17 @@ fbrl_status fbrl_calib_load(fbrl_calib *c, const unsigned char *buf, size_t size
         return FBRL_ETRUNCATED;
     if (memcmp(buf, "FBCL", 4) != 0)
         return FBRL_EFORMAT;
-    if (get_le(buf + 4, 2) != FBRL_CALIB_VERSION)
+    if (fbrl_le_get16(buf + 4) != FBRL_CALIB_VERSION)
         return FBRL_EVERSION;
-    if (get_le(buf + CAL_CRC_AT, 4) != crc32(buf, CAL_CRC_AT))
+    if (fbrl_le_get32(buf + CAL_CRC_AT) != fbrl_crc32(0, buf, CAL_CRC_AT))
         return FBRL_ECHECKSUM;
-    if (get_le(buf + 6, 2) != 0)
+    if (fbrl_le_get16(buf + 6) != 0)
         return FBRL_EFORMAT;
     for (i = 0; i < 3; i++)
         for (j = 0; j < 3; j++)
-            r.r[i][j] = get_double(buf + 8 + 8 * (3 * i + j));
+            r.r[i][j] = fbrl_le_get_double(buf + 8 + 8 * (3 * i + j));
     for (i = 0; i < 3; i++)
-        r.t[i] = get_double(buf + 80 + 8 * i);
+        r.t[i] = fbrl_le_get_double(buf + 80 + 8 * i);
     if (!is_rigid(&r))
         return FBRL_EFORMAT;
     *c = r;

@@ -1,0 +1,113 @@
+/* glossary.h - the thesis's data glossary in the FBRL language: location templates and
+ * matrices (appendix III), calibration and mapping (appendix II), metric conversion (I-7)
+ * and typed data files (I-9), bound to the loc, matrix, calib, units and fileio modules.
+ *
+ * fbrl_glossary_install() defines the words in one VM. Their state (metric switch, mapping
+ * switch, WITH-CAL structure, open files, PRINT-LOC's port) lives in an fbrl_glossary the
+ * caller owns, one per VM, never in a global. docs/glossary.md lists every word.
+ *
+ * The robot words (another part of the language) use the mapping and metric state through
+ * fbrl_glossary_map_out / _map_in / _units, and locations in VM memory through
+ * fbrl_glossary_loc. */
+#ifndef FBRL_GLOSSARY_H
+#define FBRL_GLOSSARY_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/status.h"
+#include "fbrl/loc.h"
+#include "fbrl/units.h"
+#include "fbrl/fileio.h"
+#include "fbrl/calib.h"
+#include "fbrl/vm.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Files that may be open at once in one VM (OPEN-FILE beyond this throws "too many open
+ * files"). Each open file gets an equal share of the storage given to
+ * fbrl_glossary_set_file_storage(). */
+#define FBRL_GLOSSARY_FILES 8
+
+/* Most point pairs CALIBRATE-N takes (its residuals live on the C stack). */
+#define FBRL_GLOSSARY_NPOINT_MAX 256
+
+/* User record tag under which SAVE-CAL stores a calibration (fileio user type of
+ * FBRL_CALIB_BYTES bytes). */
+#define FBRL_GLOSSARY_CAL_TAG 0x434Cu /* "CL" */
+
+/* One slot of the file table. Private. */
+typedef struct fbrl_glossary_file {
+    fbrl_file file;        /* the open file (fileio handle) */
+    fbrl_cell owner;       /* VM address of the handle word's data field; 0 = slot free */
+} fbrl_glossary_file;
+
+/* Per-VM state. Caller-owned (static, heap or stack); fbrl_glossary_install() initialises
+ * every field. All fields are private: use the functions below. */
+typedef struct fbrl_glossary {
+    uint32_t magic;                 /* set by install; marks an installed glossary */
+    fbrl_vm *vm;                    /* the VM the words were installed in */
+    fbrl_units units;               /* METRIC-ON / METRIC-OFF */
+    int map_on;                     /* MAP-ON / MAP-OFF */
+    fbrl_cell with_cal;             /* VM address of the WITH-CAL structure; 0 = none */
+    void (*port_write)(void *ctx, const char *s, size_t n); /* PRINT-LOC's destination */
+    void *port_ctx;
+    unsigned char *file_mem;        /* fbrl_glossary_set_file_storage() */
+    size_t file_mem_size;
+    fbrl_glossary_file files[FBRL_GLOSSARY_FILES];
+} fbrl_glossary;
+
+/* Initialise g (metric off, mapping off, no calibration, no files, no port) and define all
+ * the glossary words in vm. g must outlive vm (the words keep a pointer to it). Needs the
+ * FBRL data words (LOCATION, ARRAY, ...) that every VM has. FBRL_EINVAL for NULL,
+ * FBRL_ENOMEM if the dictionary is full. */
+fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
+
+/* Give the file words their buffer storage (the VM never allocates): mem[0..size) is cut
+ * into FBRL_GLOSSARY_FILES equal slices, one per open file, so one file can hold
+ * size / FBRL_GLOSSARY_FILES bytes of records (fileio: 8 + payload bytes per record).
+ * Call after install, while no file is open (FBRL_ESTATE otherwise). mem must stay valid
+ * until fbrl_glossary_finish(). Without storage OPEN-FILE throws "no file storage". */
+fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
+
+/* Close every open file, committing its changes to disk (CLOSE-FILE for each). Call when
+ * the VM is done. Every file is closed even if one fails (its changes are then discarded
+ * and the first error is returned). */
+fbrl_status fbrl_glossary_finish(fbrl_glossary *g);
+
+/* Mapping for the robot words (DESIGN 7). With MAP-ON, map_out carries a location from the
+ * original block frame to the moved block through the WITH-CAL structure (fbrl_calib_map)
+ * and map_in carries a taught/read-back location back (fbrl_calib_unmap). With MAP-OFF both
+ * leave loc unchanged and return FBRL_OK. Errors (loc unchanged): FBRL_EINVAL for NULL or
+ * an uninstalled g, FBRL_ESTATE if mapping is on but the WITH-CAL structure is gone or was
+ * overwritten, FBRL_ENONFINITE / FBRL_EOVERFLOW from the mapping. */
+fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc);
+fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc);
+
+/* The location at VM address addr: 48 bytes wholly inside the VM's data space and aligned
+ * to 8 bytes (as CREATE-LOC and ARRAY cells are). FBRL_EINVAL for NULL, FBRL_ERANGE for an
+ * address outside the data space or misaligned. Its contents are not checked: call
+ * fbrl_loc_check() before using it as a position. */
+fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out);
+
+/* The three location slots of the CREATE-CAL structure at VM address addr (what the
+ * structure's name pushes), e.g. for GET-CAL-POINTS teaching them with the arm. FBRL_EINVAL
+ * for NULL, FBRL_ERANGE if addr is outside the data space, FBRL_ETYPE if no CREATE-CAL
+ * structure is there. Slot k (1..3) is (*out)->p[k - 1]. */
+fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out);
+
+/* The metric switch of this VM (for converting user input and output with the units
+ * module); NULL for NULL g. */
+const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g);
+
+/* PRINT-LOC's destination, the communication port: write(ctx, s, n) receives each line
+ * (the DISPLAY-LOC text followed by CR LF). write = NULL removes it; PRINT-LOC then
+ * throws "no communication port". */
+void fbrl_glossary_set_port_writer(fbrl_glossary *g,
+                                   void (*write)(void *ctx, const char *s, size_t n), void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,100 @@
+/* robot.h - FBRL's robot-side words: communications (thesis I-4), robot commands (I-5),
+ * parameter input (I-6), RAPL line building (I-8), named peripherals and timers.
+ *
+ * fbrl_robot_install() binds the words into a VM. The robot context is caller-owned
+ * and holds everything the words keep between calls (the line being built by SEND-*,
+ * pending serial settings, the device table, the timer mark, the base offset), so
+ * several VMs may drive several robots in one process. Words that talk to the
+ * controller go through an fbrl_link (echo-verified RAPL session); without one
+ * (link NULL) they throw "no controller connected: start fbrlmon with --sim or --port".
+ *
+ * Locations are the glossary's 6-float templates (X Y Z O A T, inches and degrees) in
+ * the VM's data space. With a glossary, MAP-ON mapping applies to every location sent
+ * to the controller and its inverse to every location read back, and METRIC-ON to the
+ * lengths the user types (docs/robot.md). Words: docs/glossary-robot.md. */
+#ifndef FBRL_ROBOT_H
+#define FBRL_ROBOT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/status.h"
+#include "fbrl/vm.h"
+#include "fbrl/link.h"
+#include "fbrl/uart.h"
+#include "fbrl/glossary.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Named peripherals (OUTPUT-DEVICE, INPUT-DEVICE) a robot context can hold. */
+#define FBRL_ROBOT_MAX_DEVICES 32
+/* Controller digital inputs and outputs are numbered 1..FBRL_ROBOT_IO_MAX. */
+#define FBRL_ROBOT_IO_MAX 16
+/* Lines a continuous readout (W1 W3 W5 WE1 WE3 WE5) shows before it is stopped. */
+#define FBRL_ROBOT_STREAM_LINES 10
+
+typedef struct fbrl_robot_device {
+    fbrl_cell addr;     /* the device word's data address (what its name pushes); 0 = free */
+    int port;           /* 1..16 */
+    int output;         /* 1 = output device, 0 = input device */
+    uint32_t pulse_ms;  /* output: width of one DISPENSE pulse (and the gap after it) */
+} fbrl_robot_device;
+
+/* Words a context binds (fbrl_robot_install checks the count). */
+#define FBRL_ROBOT_MAX_WORDS 160
+/* Room for one console line GET-CAL-POINTS reads. */
+#define FBRL_ROBOT_TIB 256
+
+typedef struct fbrl_robot_bind {
+    struct fbrl_robot *r;
+    const void *word;               /* the word's table entry */
+} fbrl_robot_bind;
+
+/* A robot context: caller-owned, fields private. Keep it at a fixed address while the
+ * VM uses it (the words point at it). */
+typedef struct fbrl_robot {
+    fbrl_vm *vm;
+    fbrl_link *link;                /* NULL = offline */
+    fbrl_glossary *g;               /* NULL = no mapping, no metric */
+    /* I-8: the command line being built by SEND-* (sent by SEND-CR) */
+    char line[FBRL_LINK_LINE_MAX + 1];
+    size_t len;
+    int line_bad;                   /* the line overflowed: SEND-CR refuses it */
+    /* I-4: settings collected by SETBAUDRATE ... and applied by SETUPUART */
+    fbrl_uart_config comm;
+    /* scratch controller points (alternating, so a running motion keeps its target) */
+    unsigned scratch;
+    /* BASE-OFFSET: the user's world frame as seen from the arm's base */
+    double base[4];                 /* dx dy dz (in), dO (deg) */
+    /* timers */
+    uint64_t mark_ms;               /* START-TIMER (host clock) */
+    int mark_set;
+    int teaching;                   /* GET-CAL-POINTS is running */
+    /* devices */
+    fbrl_robot_device dev[FBRL_ROBOT_MAX_DEVICES];
+    /* the controller's last error code seen by a robot word (-1 none) */
+    int last_error;
+    /* scratch storage in the VM's data space (made at install) */
+    fbrl_cell tib;                  /* FBRL_ROBOT_TIB bytes */
+    fbrl_robot_bind bind[FBRL_ROBOT_MAX_WORDS];
+    size_t nbind;
+} fbrl_robot;
+
+/* Bind every robot word into vm. link NULL = offline (the words exist and throw when
+ * used); g NULL = no mapping and no metric conversion. r must stay valid as long as
+ * the VM runs. FBRL_EINVAL for a NULL vm or r; FBRL_ENOMEM if the dictionary is full. */
+fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
+
+/* Connect (or, with NULL, disconnect) a controller later, e.g. after the monitor
+ * opened a port. The link should already be connected (fbrl_link_connect). */
+fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+
+/* The controller error code of the last robot word that failed with a controller
+ * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */
+int fbrl_robot_last_error(const fbrl_robot *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

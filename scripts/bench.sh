@@ -1,0 +1,17 @@
+#!/bin/sh
+# Builds an optimised tree and runs every benchmark, printing their figures.
+# Benchmarks never run inside the test suite: speed is reported, not asserted.
+set -eu
+here=$(cd "$(dirname "$0")/.." && pwd)
+"$here/scripts/deps.sh" gforth pforth
+"$here/scripts/build.sh" "$here/build-bench" -DCMAKE_BUILD_TYPE=Release -DFBRL_TESTS=OFF >/dev/null
+echo "machine: $(nproc) cores, $(uname -m), load $(cut -d' ' -f1-3 /proc/loadavg)"
+for b in "$here"/build-bench/bench/bench_*; do
+    [ -x "$b" ] || continue
+    echo "== $(basename "$b")"
+    "$b"
+done
+if [ -x "$here/bench/run_forth.sh" ]; then
+    echo "== Forth benchmarks (fbrlmon vs gforth vs pforth)"
+    "$here/bench/run_forth.sh" "$here/build-bench/apps/fbrlmon"
+fi

@@ -1,0 +1,306 @@
+/* glossary_cal.c - three-dimensional calibration and mapping words (thesis appendix II),
+ * bound to the calib module.
+ *
+ * CREATE-CAL makes three location slots numbered 1 2 3 (P1 origin, P2 on the block's x
+ * axis, P3 in its plane). CREATE-CAL-STRU makes a calibration structure: the rigid motion
+ * p_moved = r p_original + t of the calib module (the thesis kept 11 intermediate angles
+ * instead). CAL-STRU@ and CAL-STRU! address it as the 3x4 matrix [r | t] row by row:
+ * index 1..3 = r row 1, 4 = t x, 5..7 = r row 2, 8 = t y, 9..11 = r row 3, 12 = t z
+ * (inches). A new structure holds the identity (block not moved). */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "fbrl/calib.h"
+#include "glossary_internal.h"
+
+/* The three slots of a CREATE-CAL structure at a, or throw. */
+static fbrl_status cal_at(fbrl_vm *vm, fbrl_cell a, const char *word, fbrl_calpts **c)
+{
+    *c = gl_struct(vm, a, MAGIC_CAL, sizeof(fbrl_calpts));
+    if (!*c) return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a calibration (use a CREATE-CAL name)", word);
+    return FBRL_OK;
+}
+
+static fbrl_status slot_index(fbrl_vm *vm, fbrl_cell i, const char *word)
+{
+    if (i < 1 || i > 3) return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: slot must be 1, 2 or 3", word);
+    return FBRL_OK;
+}
+
+/* ---- II-1 calibration abstraction ---- */
+static fbrl_status w_map_on(fbrl_vm *vm, void *arg)
+{
+    fbrl_glossary *g = arg;
+    fbrl_calib *c;
+    fbrl_status st;
+    if (!g->with_cal)
+        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ESTATE), "MAP-ON: no calibration selected (cal-stru WITH-CAL)");
+    if ((st = gl_stru(vm, g->with_cal, 1, "MAP-ON", &c))) return st;
+    g->map_on = 1;
+    return FBRL_OK;
+}
+
+static fbrl_status w_map_off(fbrl_vm *vm, void *arg)
+{
+    (void)vm;
+    ((fbrl_glossary *)arg)->map_on = 0;
+    return FBRL_OK;
+}
+
+static fbrl_status w_mapping_q(fbrl_vm *vm, void *arg) { return gl_push_flag(vm, ((fbrl_glossary *)arg)->map_on); }
+
+static fbrl_status w_with_cal(fbrl_vm *vm, void *arg)
+{
+    fbrl_glossary *g = arg;
+    fbrl_cell a;
+    fbrl_calib *c;
+    fbrl_status st;
+    if ((st = gl_pop(vm, 1, &a)) || (st = gl_stru(vm, a, 0, "WITH-CAL", &c))) return st;
+    g->with_cal = a;
+    return FBRL_OK;
+}
+
+static fbrl_status w_create_cal(fbrl_vm *vm, void *arg)
+{
+    void *p;
+    (void)arg;
+    return gl_make(vm, NULL, MAGIC_CAL, sizeof(fbrl_calpts), "( -- cal )", "calibration: three location slots 1 2 3",
+                   &p);
+}
+
+static fbrl_status w_cal_addr(fbrl_vm *vm, void *arg)
+{
+    fbrl_cell a[2];
+    fbrl_calpts *c;
+    fbrl_status st;
+    (void)arg;
+    if ((st = gl_pop(vm, 2, a)) || (st = cal_at(vm, a[0], "CAL-ADDR", &c)) || (st = slot_index(vm, a[1], "CAL-ADDR")))
+        return st;
+    return fbrl_vm_push(vm, (fbrl_cell)&c->p[a[1] - 1]);
+}
+
+/* SET-CAL (cal index loc --) and GET-CAL (cal index loc --) */
+static fbrl_status set_get_cal(fbrl_vm *vm, int set)
+{
+    const char *word = set ? "SET-CAL" : "GET-CAL";
+    fbrl_cell a[3];
+    fbrl_calpts *c;
+    fbrl_loc *loc;
+    fbrl_status st;
+    if ((st = gl_pop(vm, 3, a)) || (st = cal_at(vm, a[0], word, &c)) || (st = slot_index(vm, a[1], word)) ||
+        (st = gl_loc(vm, a[2], set, word, &loc)))
+        return st;
+    /* through a copy: loc may overlap a slot in part */
+    fbrl_loc tmp;
+    if (set) {
+        tmp = *loc;
+        st = fbrl_calpts_set(c, (int)a[1], &tmp);
+    } else if ((st = fbrl_calpts_get(c, (int)a[1], &tmp)) == FBRL_OK) {
+        *loc = tmp;
+    }
+    return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
+}
+static fbrl_status w_set_cal(fbrl_vm *vm, void *arg) { (void)arg; return set_get_cal(vm, 1); }
+static fbrl_status w_get_cal(fbrl_vm *vm, void *arg) { (void)arg; return set_get_cal(vm, 0); }
+
+static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg)
+{
+    void *p;
+    fbrl_status st;
+    (void)arg;
+    if ((st = gl_make(vm, NULL, MAGIC_STRU, sizeof(fbrl_calib), "( -- cal-stru )",
+                      "calibration structure: the block's motion (identity until CALIBRATE)", &p)))
+        return st;
+    return fbrl_calib_identity(p);
+}
+
+static fbrl_status stru_entry(fbrl_vm *vm, const char *word, fbrl_calib **c, double **e)
+{
+    fbrl_cell a[2];
+    fbrl_status st;
+    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 0, word, c))) return st;
+    if (a[1] < 1 || a[1] > 12)
+        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: index must be 1..12", word);
+    int row = (int)(a[1] - 1) / 4, col = (int)(a[1] - 1) % 4;
+    *e = col < 3 ? &(*c)->r[row][col] : &(*c)->t[row];
+    return FBRL_OK;
+}
+
+static fbrl_status w_cal_stru_fetch(fbrl_vm *vm, void *arg)
+{
+    fbrl_calib *c;
+    double *e;
+    fbrl_status st;
+    (void)arg;
+    if ((st = stru_entry(vm, "CAL-STRU@", &c, &e))) return st;
+    return fbrl_vm_fpush(vm, *e);
+}
+
+static fbrl_status w_cal_stru_store(fbrl_vm *vm, void *arg)
+{
+    fbrl_calib *c;
+    double *e, v;
+    fbrl_status st;
+    (void)arg;
+    if (fbrl_vm_fdepth(vm) < 1) return fbrl_vm_throw(vm, GL_FSTACK_UNDERFLOW, NULL);
+    if ((st = stru_entry(vm, "CAL-STRU!", &c, &e)) || (st = gl_fpop(vm, 1, &v))) return st;
+    if (!isfinite(v)) return gl_throw_st(vm, FBRL_ENONFINITE, "CAL-STRU!");
+    *e = v;
+    return FBRL_OK;
+}
+
+static fbrl_status w_num_cal_cells(fbrl_vm *vm, void *arg)
+{
+    (void)arg;
+    return fbrl_vm_push(vm, 12);
+}
+
+/* ---- II-2 calibration transformation ---- */
+static fbrl_status w_ang_from_origin(fbrl_vm *vm, void *arg)
+{
+    double v[4], ang;
+    fbrl_status st;
+    (void)arg;
+    if ((st = gl_fpop(vm, 4, v))) return st;
+    st = fbrl_calib_ang_from_origin(v[0], v[1], v[2], v[3], &ang);
+    if (st == FBRL_EDEGENERATE)
+        return gl_throw(vm, FBRL_THROW_STATUS(st), "ANG-FROM-ORIGIN: the two points coincide");
+    if (st != FBRL_OK) return gl_throw_st(vm, st, "ANG-FROM-ORIGIN");
+    return fbrl_vm_fpush(vm, ang);
+}
+
+static fbrl_status w_rotate(fbrl_vm *vm, void *arg)
+{
+    double v[3], x, y;
+    fbrl_status st;
+    (void)arg;
+    if ((st = gl_fpop(vm, 3, v))) return st;
+    if ((st = fbrl_calib_rotate(v[0], v[1], v[2], &x, &y)) != FBRL_OK) return gl_throw_st(vm, st, "ROTATE");
+    fbrl_vm_fpush(vm, x);
+    return fbrl_vm_fpush(vm, y);
+}
+
+/* Name which point set is degenerate, so the user knows which block to re-teach. */
+static fbrl_status degenerate(fbrl_vm *vm, const char *word, const char *which)
+{
+    return gl_throw(vm, FBRL_THROW_STATUS(FBRL_EDEGENERATE),
+                    "%s: %s points coincident or collinear (degenerate calibration)", word, which);
+}
+
+static fbrl_status w_calibrate(fbrl_vm *vm, void *arg)
+{
+    fbrl_cell a[3];
+    fbrl_calpts *recal, *cal;
+    fbrl_calib *c, frame;
+    fbrl_status st;
+    (void)arg;
+    if ((st = gl_pop(vm, 3, a)) || (st = cal_at(vm, a[0], "CALIBRATE", &recal)) ||
+        (st = cal_at(vm, a[1], "CALIBRATE", &cal)) || (st = gl_stru(vm, a[2], 0, "CALIBRATE", &c)))
+        return st;
+    if (fbrl_calib_frame(cal, &frame) == FBRL_EDEGENERATE) return degenerate(vm, "CALIBRATE", "calibration");
+    if (fbrl_calib_frame(recal, &frame) == FBRL_EDEGENERATE) return degenerate(vm, "CALIBRATE", "recalibration");
+    if ((st = fbrl_calib_3point(c, cal, recal)) != FBRL_OK) return gl_throw_st(vm, st, "CALIBRATE");
+    return FBRL_OK;
+}
+
+/* (MAP) and UNMAP ( cal-stru loc -- ) */
+static fbrl_status map_word(fbrl_vm *vm, int out)
+{
+    const char *word = out ? "(MAP)" : "UNMAP";
+    fbrl_cell a[2];
+    fbrl_calib *c;
+    fbrl_loc *loc;
+    fbrl_status st;
+    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 1, word, &c)) || (st = gl_loc(vm, a[1], 1, word, &loc)))
+        return st;
+    st = out ? fbrl_calib_map(c, loc, loc) : fbrl_calib_unmap(c, loc, loc);
+    return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
+}
+static fbrl_status w_map(fbrl_vm *vm, void *arg) { (void)arg; return map_word(vm, 1); }
+static fbrl_status w_unmap(fbrl_vm *vm, void *arg) { (void)arg; return map_word(vm, 0); }
+
+/* CALIBRATE-N ( n cal-locs recal-locs cal-stru -- worst ) ( F: -- rms ): least squares over
+ * n point pairs held as n consecutive locations (an ARRAY of LOCATION cells: 0 PTS); prints
+ * each pair's residual, the RMS and the worst point (indices from 0, as the ARRAY's). */
+static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
+{
+    fbrl_glossary *g = arg;
+    const char *word = "CALIBRATE-N";
+    fbrl_cell a[4];
+    fbrl_calib *c;
+    double res[FBRL_GLOSSARY_NPOINT_MAX], rms, v;
+    size_t worst;
+    char line[96];
+    fbrl_status st;
+    if ((st = gl_pop(vm, 4, a))) return st;
+    if (a[0] < 3 || a[0] > FBRL_GLOSSARY_NPOINT_MAX)
+        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: n must be 3..%d", word, FBRL_GLOSSARY_NPOINT_MAX);
+    size_t n = (size_t)a[0];
+    fbrl_cell bytes = (fbrl_cell)(n * sizeof(fbrl_loc));
+    for (int k = 1; k <= 2; k++) {
+        if (!fbrl__addr_ok(vm, a[k], bytes))
+            return gl_throw(vm, GL_BAD_ADDRESS, "%s: %d locations at that address leave data space", word, (int)n);
+        if ((fbrl_ucell)a[k] % sizeof(double))
+            return gl_throw(vm, GL_ALIGNMENT, "%s: location address not aligned to 8 bytes", word);
+        for (size_t i = 0; i < n; i++)
+            if (fbrl_loc_check((const fbrl_loc *)a[k] + i) != FBRL_OK)
+                return gl_throw(vm, GL_TYPE_MISMATCH, "%s: %s point %d is not a location", word,
+                                k == 1 ? "calibration" : "recalibration", (int)i);
+    }
+    if ((st = gl_stru(vm, a[3], 0, word, &c))) return st;
+    const fbrl_loc *cal = (const fbrl_loc *)a[1], *recal = (const fbrl_loc *)a[2];
+    st = fbrl_calib_npoint(c, cal, recal, n, res, &rms, &worst);
+    if (st == FBRL_EDEGENERATE) {
+        fbrl_calib scratch;
+        return degenerate(vm, word,
+                          fbrl_calib_npoint(&scratch, cal, cal, n, NULL, NULL, NULL) == FBRL_EDEGENERATE
+                              ? "calibration" : "recalibration");
+    }
+    if (st != FBRL_OK) return gl_throw_st(vm, st, word);
+    const char *unit = g->units.metric ? "cm" : "in";
+    for (size_t i = 0; i < n; i++) {
+        if ((st = gl_out(vm, g, res[i], &v))) return st;
+        snprintf(line, sizeof line, "point %3d residual %10.4f %s\n", (int)i, v, unit);
+        fbrl__puts(vm, line);
+    }
+    double wv;
+    if ((st = gl_out(vm, g, rms, &v)) || (st = gl_out(vm, g, res[worst], &wv))) return st;
+    snprintf(line, sizeof line, "RMS %.4f %s, worst point %d (%.4f %s)\n", v, unit, (int)worst, wv, unit);
+    fbrl__puts(vm, line);
+    if ((st = fbrl_vm_push(vm, (fbrl_cell)worst))) return st;
+    return fbrl_vm_fpush(vm, v);
+}
+
+static const gl_word cal_words[] = {
+    { "MAP-ON", w_map_on, "( -- )",
+      "map outgoing locations through the WITH-CAL structure (and unmap taught ones)" },
+    { "MAP-OFF", w_map_off, "( -- )", "stop mapping locations (the default)" },
+    { "MAPPING?", w_mapping_q, "( -- flag )", "true if MAP-ON" },
+    { "WITH-CAL", w_with_cal, "( cal-stru -- )", "select the calibration structure mapping uses" },
+    { "CREATE-CAL", w_create_cal, "( \"name\" -- ) ( run: -- cal )",
+      "make a calibration: three location slots 1 2 3 (P1 origin, P2 on x, P3 in the plane)" },
+    { "CAL-ADDR", w_cal_addr, "( cal index -- loc )", "address of location slot index (1..3)" },
+    { "SET-CAL", w_set_cal, "( cal index loc -- )", "copy loc into slot index (1..3)" },
+    { "GET-CAL", w_get_cal, "( cal index loc -- )", "copy slot index (1..3) into loc" },
+    { "CREATE-CAL-STRU", w_create_cal_stru, "( \"name\" -- ) ( run: -- cal-stru )",
+      "make a calibration structure (the block's rigid motion; identity until CALIBRATE)" },
+    { "CAL-STRU@", w_cal_stru_fetch, "( cal-stru index -- ) ( F: -- v )",
+      "entry 1..12 of the 3x4 motion [r | t], row by row (4 8 12 = shift, inches)" },
+    { "CAL-STRU!", w_cal_stru_store, "( cal-stru index -- ) ( F: v -- )",
+      "store entry 1..12 of the 3x4 motion [r | t], row by row (mapping refuses a non-rigid result)" },
+    { "NUM-CAL-CELLS", w_num_cal_cells, "( -- 12 )", "number of CAL-STRU@ entries" },
+    { "ANG-FROM-ORIGIN", w_ang_from_origin, "( F: x1 y1 x2 y2 -- angle )",
+      "angle in radians of the line (x1,y1)->(x2,y2) from the positive x axis (all quadrants)" },
+    { "ROTATE", w_rotate, "( F: x y angle -- x' y' )", "turn the point about the origin by angle radians" },
+    { "CALIBRATE", w_calibrate, "( recal-cal cal-cal cal-stru -- )",
+      "compute the motion from the block taught in cal-cal to the block taught in recal-cal" },
+    { "(MAP)", w_map, "( cal-stru loc -- )", "map loc from the original block to the moved block" },
+    { "UNMAP", w_unmap, "( cal-stru loc -- )", "map loc from the moved block back to the original block" },
+    { "CALIBRATE-N", w_calibrate_n, "( n cal-locs recal-locs cal-stru -- worst ) ( F: -- rms )",
+      "least-squares calibration over n >= 3 point pairs; prints each residual, the RMS and the worst" },
+};
+
+fbrl_status gl_install_cal(fbrl_vm *vm, fbrl_glossary *g)
+{
+    return gl_define(vm, g, cal_words, sizeof cal_words / sizeof cal_words[0]);
+}

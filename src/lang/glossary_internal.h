@@ -1,0 +1,84 @@
+/* glossary_internal.h - helpers shared by the data glossary's sources (private).
+ *
+ * The glossary words make their structures in the VM's data space, where a program can
+ * overwrite them. Each structure therefore starts with a magic cell, its C payload follows
+ * at GL_PAYLOAD bytes (16-aligned), and every use re-checks the magic and the payload's
+ * extent before the C modules see it: a wrong or corrupted address throws, it never lets a
+ * module touch memory outside the VM. */
+#ifndef FBRL_LANG_GLOSSARY_INTERNAL_H
+#define FBRL_LANG_GLOSSARY_INTERNAL_H
+
+#include "fbrl/glossary.h"
+#include "fbrl/calib.h"
+#include "words.h"
+
+#define GL_INSTALLED 0x474C4F53u /* g->magic once installed: "GLOS" */
+
+#define MAGIC_CAL  ((fbrl_cell)0x43414C33) /* CREATE-CAL: "CAL3" */
+#define MAGIC_STRU ((fbrl_cell)0x43414C53) /* CREATE-CAL-STRU: "CALS" */
+#define MAGIC_RECT ((fbrl_cell)0x52454354) /* RECTMAT: "RECT" */
+#define MAGIC_RAD  ((fbrl_cell)0x5241444D) /* RADMAT: "RADM" */
+#define MAGIC_HNDL ((fbrl_cell)0x484E444C) /* OPEN-FILE handle: "HNDL" */
+#define GL_PAYLOAD 16
+
+/* Forth THROW codes used besides FBRL_THROW_STATUS(st). */
+#define GL_STACK_UNDERFLOW (-4)
+#define GL_BAD_ADDRESS     (-9)
+#define GL_TYPE_MISMATCH   (-12)
+#define GL_NO_NAME         (-16)
+#define GL_ALIGNMENT       (-23)
+#define GL_BAD_NUMBER      (-24)
+#define GL_FSTACK_UNDERFLOW (-45)
+
+typedef struct gl_word {
+    const char *name;
+    fbrl_vm_prim fn;
+    const char *stack, *help;
+} gl_word;
+
+/* Define the n words of a table with arg = g. */
+fbrl_status gl_define(fbrl_vm *vm, fbrl_glossary *g, const gl_word *w, size_t n);
+
+/* Throw `code` with a formatted message (at most 127 characters are kept). */
+fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* Throw FBRL_THROW_STATUS(st) with "what: <status text>". */
+fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what);
+
+/* Pop n cells (v[0] was deepest) / n floats; throw stack underflow if fewer. */
+fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v);
+fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v);
+fbrl_status gl_push_flag(fbrl_vm *vm, int yes);
+
+/* The location at a (48 bytes in data space, 8-aligned); with finite, also refuse one
+ * whose components are not all finite ("not a location"). Throws, naming `word`. */
+fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_loc **loc);
+
+/* Parse a name and make a word whose data field is a magic cell followed, at GL_PAYLOAD,
+ * by `bytes` zeroed bytes (magic 0: the bare bytes, 16-aligned); *payload = their address.
+ * With run NULL the word pushes its data field address; otherwise it is a C word running
+ * run(vm, data field address). Throws on error, leaving no half-made word. */
+fbrl_status gl_make(fbrl_vm *vm, fbrl_vm_prim run, fbrl_cell magic, size_t bytes, const char *stack,
+                    const char *help, void **payload);
+
+/* The payload of a structure with this magic at a, or NULL. */
+void *gl_struct(fbrl_vm *vm, fbrl_cell a, fbrl_cell magic, size_t bytes);
+
+/* A calibration structure (CREATE-CAL-STRU) at a, or throw naming `word`. With rigid, also
+ * refuse one that CAL-STRU! left not a rigid motion. */
+fbrl_status gl_stru(fbrl_vm *vm, fbrl_cell a, int rigid, const char *word, fbrl_calib **c);
+int gl_rigid(const fbrl_calib *c);
+
+/* Metric: user value <-> inches through g's switch; throw on a non-finite value. */
+fbrl_status gl_in(fbrl_vm *vm, const fbrl_glossary *g, double user, double *inches);
+fbrl_status gl_out(fbrl_vm *vm, const fbrl_glossary *g, double inches, double *user);
+
+/* The word groups. */
+fbrl_status gl_install_loc(fbrl_vm *vm, fbrl_glossary *g);
+fbrl_status gl_install_cal(fbrl_vm *vm, fbrl_glossary *g);
+fbrl_status gl_install_file(fbrl_vm *vm, fbrl_glossary *g);
+
+#endif

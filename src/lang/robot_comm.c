@@ -1,0 +1,290 @@
+/* robot_comm.c - thesis I-4: the communications words on the uart API.
+ *
+ * The thesis programmed a PC's 8250 through BIOS INT 14h and revectored its
+ * interrupts. Here the port is the link's fbrl_uart (a termios tty or pty, TCP, or the
+ * 8250 backend), which already runs in the background with XON/XOFF; the setup words
+ * collect settings and SETUPUART applies them with fbrl_uart_configure(). EMIT-COM and
+ * friends write raw bytes past the link (no echo check); RESET-COMM discards what came
+ * in and brings the controller's line back to a known state. The DOS-only words are not
+ * bound (docs/glossary-robot.md says why). */
+#include <stdio.h>
+#include <string.h>
+
+#include "robot_internal.h"
+
+/* How long the raw words wait for room to send, or for a byte to arrive. */
+#define COMM_TIMEOUT_MS 1000u
+
+static fbrl_status uart_of(fbrl_robot *r, fbrl_uart **u)
+{
+    fbrl_status st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    *u = r->link->u;
+    return FBRL_OK;
+}
+
+static fbrl_status check_port(fbrl_robot *r, const rb_word *w, fbrl_cell port)
+{
+    if (port == 1) return FBRL_OK;
+    char msg[96];
+    snprintf(msg, sizeof msg, "%s: port %ld: only port 1 (the controller's line) exists here", w->name, (long)port);
+    return rb_fail(r, -24, msg);
+}
+
+static fbrl_status bad_setting(fbrl_robot *r, const rb_word *w, const char *what)
+{
+    char msg[96];
+    snprintf(msg, sizeof msg, "%s: %s", w->name, what);
+    return rb_fail(r, -24, msg);
+}
+
+static fbrl_status set_word_length(fbrl_robot *r, const rb_word *w, fbrl_cell n)
+{
+    if (n < 5 || n > 8) return bad_setting(r, w, "word length 5..8 bits");
+    r->comm.data_bits = (uint8_t)n;
+    return FBRL_OK;
+}
+
+static fbrl_status set_stop_bits(fbrl_robot *r, const rb_word *w, fbrl_cell n)
+{
+    if (n < 1 || n > 2) return bad_setting(r, w, "1 or 2 stop bits");
+    r->comm.stop_bits = (uint8_t)n;
+    return FBRL_OK;
+}
+
+static fbrl_status set_parity(fbrl_robot *r, const rb_word *w, fbrl_cell c)
+{
+    switch (c) {
+    case 'N': case 'n': r->comm.parity = FBRL_PARITY_NONE; return FBRL_OK;
+    case 'E': case 'e': r->comm.parity = FBRL_PARITY_EVEN; return FBRL_OK;
+    case 'O': case 'o': r->comm.parity = FBRL_PARITY_ODD; return FBRL_OK;
+    default: return bad_setting(r, w, "parity is the character N, E or O (ASC E)");
+    }
+}
+
+static fbrl_status set_baud(fbrl_robot *r, const rb_word *w, fbrl_cell b)
+{
+    if (b < 50 || b > 4000000) return bad_setting(r, w, "baud rate 50..4000000");
+    r->comm.baud = (uint32_t)b;
+    return FBRL_OK;
+}
+
+static fbrl_status w_setting(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    switch (w->arg) {
+    case 0: return set_word_length(r, w, v[0].i);
+    case 1: return set_stop_bits(r, w, v[0].i);
+    case 2: return set_parity(r, w, v[0].i);
+    default: return set_baud(r, w, v[0].i);
+    }
+}
+
+/* COMMSET ( baud parity stopbits wordlen -- ): all four; nothing changes on an error */
+static fbrl_status w_commset(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_uart_config keep = r->comm;
+    fbrl_status st = set_baud(r, w, v[0].i);
+    if (st == FBRL_OK) st = set_parity(r, w, v[1].i);
+    if (st == FBRL_OK) st = set_stop_bits(r, w, v[2].i);
+    if (st == FBRL_OK) st = set_word_length(r, w, v[3].i);
+    if (st != FBRL_OK) r->comm = keep;
+    return st;
+}
+
+static fbrl_status apply(fbrl_robot *r, const rb_word *w)
+{
+    fbrl_uart *u;
+    fbrl_status st = uart_of(r, &u);
+    if (st != FBRL_OK) return st;
+    /* bytes already queued leave at the old settings */
+    fbrl_uart_drain(u, COMM_TIMEOUT_MS);
+    st = fbrl_uart_configure(u, &r->comm);
+    if (st != FBRL_OK) {
+        fbrl_uart_get_config(u, &r->comm);
+        return rb_fail_st(r, w, st, "port settings");
+    }
+    return FBRL_OK;
+}
+
+/* SETUPUART ( comm-port -- ) */
+static fbrl_status w_setupuart(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_status st = check_port(r, w, v[0].i);
+    return st == FBRL_OK ? apply(r, w) : st;
+}
+
+/* COMM-SETUP ( pt# bd prty stop-bit wrdlen -- ) */
+static fbrl_status w_comm_setup(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_status st = check_port(r, w, v[0].i);
+    if (st == FBRL_OK) st = w_commset(r, w, v + 1);
+    return st == FBRL_OK ? apply(r, w) : st;
+}
+
+/* Raw bytes to the port (no echo verification). */
+static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size_t n)
+{
+    fbrl_uart *u;
+    fbrl_status st = uart_of(r, &u);
+    if (st != FBRL_OK) return st;
+    fbrl_uart_config c;
+    if (fbrl_uart_get_config(u, &c) == FBRL_OK && c.flow == FBRL_FLOW_XONXOFF)
+        for (size_t k = 0; k < n; k++)
+            if (((const uint8_t *)p)[k] == FBRL_XON || ((const uint8_t *)p)[k] == FBRL_XOFF)
+                return rb_fail(r, -24, "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
+    st = fbrl_uart_write(u, p, n, NULL, COMM_TIMEOUT_MS);
+    if (st == FBRL_OK && w->arg) st = fbrl_uart_drain(u, COMM_TIMEOUT_MS);
+    return st == FBRL_OK ? FBRL_OK : rb_fail_st(r, w, st, "port");
+}
+
+/* EMIT-COM ( char -- ), DIRECT-WRITE-COM ( c -- ) */
+static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    if (v[0].i < 0 || v[0].i > 255) return rb_fail(r, -24, "EMIT-COM: a byte 0..255");
+    uint8_t b = (uint8_t)v[0].i;
+    return send_raw(r, w, &b, 1);
+}
+
+/* TYPE-COM ( chrs addr -- ) - the thesis's order: count first */
+static fbrl_status w_type_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    if (v[0].i < 0 || (v[0].i > 0 && !fbrl__addr_ok(r->vm, v[1].i, v[0].i))) return rb_fail(r, -9, NULL);
+    return send_raw(r, w, (const void *)v[1].i, (size_t)v[0].i);
+}
+
+/* .-COM ( n -- ) */
+static fbrl_status w_dot_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    char buf[32];
+    int n = snprintf(buf, sizeof buf, "%ld", (long)v[0].i);
+    return send_raw(r, w, buf, (size_t)n);
+}
+
+/* F.-COM ( F: r -- ): as RAPL reads reals (four decimals) */
+static fbrl_status w_fdot_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    char buf[32];
+    size_t n;
+    fbrl_status st = fbrl_rapl_format_real(buf, sizeof buf, &n, v[0].f);
+    if (st != FBRL_OK) return rb_fail_st(r, w, st, NULL);
+    return send_raw(r, w, buf, n);
+}
+
+/* GET-COM ( -- char ): the next received byte, -1 if none came within a second */
+static fbrl_status w_get_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_uart *u;
+    uint8_t b;
+    size_t got = 0;
+    (void)v;
+    fbrl_status st = uart_of(r, &u);
+    if (st != FBRL_OK) return st;
+    st = fbrl_uart_read(u, &b, 1, &got, COMM_TIMEOUT_MS);
+    if (st != FBRL_OK && st != FBRL_ETIMEOUT) return rb_fail_st(r, w, st, "port");
+    return fbrl_vm_push(r->vm, got ? (fbrl_cell)b : -1) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+}
+
+/* Bring the link back in step after raw output: let the controller finish answering,
+ * discard it all (at most 2 s: a stream started raw never goes quiet, the connect step's
+ * probe ends it), then erase the controller's line and send NOHELP. */
+fbrl_status rb_resync(fbrl_robot *r)
+{
+    uint8_t buf[64];
+    for (int quiet = 0, rounds = 0; quiet < 3 && rounds < 40; rounds++) {
+        size_t got = 0;
+        fbrl_status st = fbrl_uart_read(r->link->u, buf, sizeof buf, &got, 50);
+        if (st != FBRL_OK && st != FBRL_ETIMEOUT) return st;
+        quiet = got ? 0 : quiet + 1;
+    }
+    return fbrl_link_connect(r->link);
+}
+
+/* RESET-COMM ( port -- ): drop what was received and not read, and resynchronise. */
+static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_uart *u;
+    fbrl_status st = check_port(r, w, v[0].i);
+    if (st == FBRL_OK) st = uart_of(r, &u);
+    if (st != FBRL_OK) return st;
+    return rb_link_result(r, w, rb_resync(r));
+}
+
+/* PRINT-LOC's destination (the glossary's port writer): the text goes out on the
+ * controller's line as it is, as the thesis's PRINT-LOC did. A controller takes the line
+ * for a command and rejects it; its answer is discarded and the link resynchronised. */
+static void print_to_port(void *ctx, const char *s, size_t n)
+{
+    fbrl_robot *r = ctx;
+    if (!r->link) return;
+    if (fbrl_uart_write(r->link->u, s, n, NULL, COMM_TIMEOUT_MS) == FBRL_OK && n && s[n - 1] == '\n')
+        rb_resync(r);
+}
+
+void rb_port_writer(fbrl_robot *r)
+{
+    if (r->g) fbrl_glossary_set_port_writer(r->g, r->link ? print_to_port : NULL, r);
+}
+
+/* .COMM ( -- ): the port's settings as the uart has them now */
+static fbrl_status w_dot_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_uart *u;
+    fbrl_uart_config c;
+    char buf[96];
+    (void)w;
+    (void)v;
+    fbrl_status st = uart_of(r, &u);
+    if (st != FBRL_OK) return st;
+    fbrl_uart_get_config(u, &c);
+    snprintf(buf, sizeof buf, "%lu baud, %u data bits, parity %c, %u stop bit%s, %s\n", (unsigned long)c.baud,
+             (unsigned)c.data_bits, (char)c.parity, (unsigned)c.stop_bits, c.stop_bits > 1 ? "s" : "",
+             c.flow == FBRL_FLOW_XONXOFF ? "XON/XOFF" : "no flow control");
+    rb_puts(r, buf);
+    return FBRL_OK;
+}
+
+/* ASC ( "c" -- char ): F-PC's character literal, used by the thesis's examples
+ * (ASC E SETPARITY); compiles a literal inside definitions. */
+static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    const char *s;
+    size_t n;
+    (void)w;
+    (void)v;
+    fbrl__parse_name(r->vm, &s, &n);
+    if (n == 0) return rb_fail(r, -16, "ASC needs a character after it");
+    if (*r->vm->state) {
+        int e = fbrl__compile_lit(r->vm, (unsigned char)s[0]);
+        return e ? fbrl_vm_throw(r->vm, e, NULL) : FBRL_OK;
+    }
+    return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+}
+
+static const rb_word comm_words[] = {
+    { "SETWORDLENGTH", w_setting, "I", 0, -1, 0, "( num-bits -- )", "word length for the next SETUPUART (5..8)" },
+    { "SETSTOPBITS", w_setting, "I", 0, -1, 1, "( numbits -- )", "stop bits for the next SETUPUART (1..2)" },
+    { "SETPARITY", w_setting, "C", 0, -1, 2, "( parity-char -- )", "parity for the next SETUPUART: ASC N, ASC E or ASC O" },
+    { "SETBAUDRATE", w_setting, "I", 0, -1, 3, "( baud-rate -- )", "baud rate for the next SETUPUART" },
+    { "COMMSET", w_commset, "ICII", 0, -1, 0, "( baud parity stopbits wordlen -- )", "all four settings for the next SETUPUART" },
+    { "SETUPUART", w_setupuart, "I", 0, -1, 0, "( comm-port -- )", "apply the settings to the port (1 = the controller's line)" },
+    { "COMM-SETUP", w_comm_setup, "IICII", 0, -1, 0, "( pt# bd prty stop-bit wrdlen -- )", "set and apply all port settings" },
+    { "EMIT-COM", w_emit_com, "I", 0, -1, 0, "( char -- )", "send a byte to the port (raw, no echo check)" },
+    { "DIRECT-WRITE-COM", w_emit_com, "I", 0, -1, 1, "( c -- )", "send a byte and wait until it has left the queue" },
+    { "TYPE-COM", w_type_com, "II", 0, -1, 0, "( chrs addr -- )", "send a string to the port (raw)" },
+    { ".-COM", w_dot_com, "I", 0, -1, 0, "( n -- )", "send a number as decimal text (raw)" },
+    { "F.-COM", w_fdot_com, "R", 0, -1, 0, "( F: r -- )", "send a real as RAPL text, four decimals (raw)" },
+    { "GET-COM", w_get_com, "", 0, -1, 0, "( -- char )", "next received byte; -1 if none came within a second" },
+    { ".COMM", w_dot_comm, "", 0, -1, 0, "( -- )", "show the port's settings in use" },
+    { "RESET-COMM", w_reset_comm, "I", 0, -1, 0, "( port -- )", "discard received bytes and resynchronise the controller line" },
+};
+
+fbrl_status rb_install_comm(fbrl_robot *r)
+{
+    static const rb_word asc = { "ASC", w_asc, "", 0, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };
+    fbrl_status st = rb_define(r, comm_words, sizeof comm_words / sizeof comm_words[0]);
+    if (st == FBRL_OK && fbrl__find(r->vm, "ASC", 3) < 0) {
+        st = rb_define(r, &asc, 1);
+        if (st == FBRL_OK) HDR(r->vm, fbrl__find(r->vm, "ASC", 3))->flags |= FI;
+    }
+    return st;
+}
