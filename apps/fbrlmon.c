@@ -53,7 +53,7 @@ static void usage(FILE *f)
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
 #endif
-          "  --offline        no controller connected\n"
+          "  --offline        no controller: robot words report an error\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -232,7 +232,7 @@ static mon_conn g_conn;  /* fixed address while open, as the uart backend needs 
 int main(int argc, char **argv)
 {
     options opt;
-    mon m;
+    static mon m;  /* fixed address for the words; large */
     int status = MON_EXIT_OK;
     size_t i;
 
@@ -266,7 +266,7 @@ int main(int argc, char **argv)
             mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
         }
     }
-    if (mon_open(&m, opt.dict_bytes) != 0) {
+    if (mon_open(&m, opt.dict_bytes, g_conn.open ? &g_conn.link : NULL) != 0) {
         mon_conn_close(&g_conn);
         free(opt.actions);
         return MON_EXIT_CONNECT;
@@ -303,8 +303,8 @@ int main(int argc, char **argv)
         }
     }
 
-    status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
     mon_close(&m);
+    status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
     mon_conn_close(&g_conn);
     free(opt.actions);
     return status;

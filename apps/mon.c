@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-int mon_open(mon *m, size_t dict_bytes)
+int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
 {
     fbrl_vm_config cfg;
     size_t size;
@@ -26,10 +26,23 @@ int mon_open(mon *m, size_t dict_bytes)
     cfg.mem = m->vm_mem;
     cfg.mem_size = size;
     st = fbrl_vm_create(&m->vm, &cfg);
+    if (st == FBRL_OK)
+        st = fbrl_glossary_install(m->vm, &m->glossary);
+    if (st == FBRL_OK) {
+        /* calloc: pages are only touched when a file really uses them. */
+        m->file_mem = calloc(1, MON_FILE_STORAGE);
+        st = m->file_mem == NULL ? FBRL_ENOSPC
+                                 : fbrl_glossary_set_file_storage(&m->glossary, m->file_mem, MON_FILE_STORAGE);
+    }
+    if (st == FBRL_OK)
+        st = fbrl_robot_install(m->vm, &m->robot, link, &m->glossary);
     if (st != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
+        free(m->file_mem);
         free(m->vm_mem);
+        m->file_mem = NULL;
         m->vm_mem = NULL;
+        m->vm = NULL;
         return -1;
     }
     return 0;
@@ -37,7 +50,14 @@ int mon_open(mon *m, size_t dict_bytes)
 
 void mon_close(mon *m)
 {
+    fbrl_status st = fbrl_glossary_finish(&m->glossary);
     fflush(m->host.out);
+    if (st != FBRL_OK) {
+        fprintf(stderr, "error: closing the data files: %s\n", fbrl_status_str(st));
+        m->errors++;
+    }
+    free(m->file_mem);
+    m->file_mem = NULL;
     mon_host_free(&m->host);
     free(m->vm_mem);
     m->vm_mem = NULL;

@@ -4,6 +4,9 @@
 #define FBRLMON_MON_H
 
 #include <stddef.h>
+#include "fbrl/glossary.h"
+#include "fbrl/link.h"
+#include "fbrl/robot.h"
 #include "fbrl/vm.h"
 #include "mon_host.h"
 
@@ -13,15 +16,25 @@
 #define MON_EXIT_USAGE   2  /* bad command line */
 #define MON_EXIT_CONNECT 3  /* could not start: no memory for the VM, port would not open */
 
+/* Storage for the typed data files the file words keep open (split among them). */
+#define MON_FILE_STORAGE (8u * 1024u * 1024u)
+
+/* Keep at a fixed address while the VM runs (the words point into it). */
 typedef struct mon {
     fbrl_vm *vm;
     void *vm_mem;
+    void *file_mem;
     mon_host host;
-    unsigned long errors;  /* errors in files, -e text and piped input */
+    fbrl_glossary glossary;  /* locations, matrices, calibration, metric, data files */
+    fbrl_robot robot;        /* robot words; talk through the link, if any */
+    unsigned long errors;    /* errors in files, -e text and piped input */
 } mon;
 
-/* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin. */
-int mon_open(mon *m, size_t dict_bytes);
+/* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,
+ * and the thesis's glossary and robot words; link is the connected controller or
+ * NULL (offline: the robot words say so when used). */
+int mon_open(mon *m, size_t dict_bytes, fbrl_link *link);
+/* Close the data files (committing them; a failure counts as an error) and free. */
 void mon_close(mon *m);
 
 /* Evaluate one line (or text) from `where` (a name for messages, e.g. "stdin"),

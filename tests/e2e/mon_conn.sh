@@ -45,6 +45,17 @@ expect "--port with line settings" 0 "4 " --port "$port" --baud 2400 --data-bits
     --stop-bits 2 --flow none -e '4 .'
 [ "$(grep -c '^NOHELP' sim.log)" -gt "$n1" ] || fail "second handshake missing from the log"
 expect "--port with --parity O" 0 "5 " --port "$port" --parity O -e '5 .'
+
+# A plan moving the arm through robot words: the emulator executes the RAPL
+# commands (its log) and the position read back lands in a host location.
+cat >plan.fbrl <<'PLAN'
+HOME READY
+CREATE-LOC T1  12E0 3E0 8E0 0E0 -90E0 0E0 T1 DEFINE-LOC
+T1 MOV
+CREATE-LOC NOW  NOW ARM-HERE  NOW GETX F>S .  NOW GETY F>S .  NOW GETZ F>S .
+PLAN
+expect "robot words over --port" 0 "12 3 8 " --port "$port" "$tmp/plan.fbrl"
+grep -q '^MOVE FBRLT1' sim.log || fail "MOVE did not reach the emulator (log: $(cat sim.log))"
 kill $simpid
 wait $simpid 2>/dev/null
 
@@ -82,11 +93,15 @@ expect "--port missing" 2 "" --port
 
 if "$mon" --help | grep -q -- '--sim '; then
     expect "--sim" 0 "6 " --sim -e '6 .'
+    expect "robot words on the built-in emulator" 0 "12 3 8 " --sim "$tmp/plan.fbrl"
     expect "emulator is the default" 0 "7 " -e '7 .'
     expect "--sim-state keeps the emulator's memory" 0 "8 " --sim --sim-state "$tmp/sim.state" -e '8 .'
     [ -s "$tmp/sim.state" ] || fail "--sim-state: no state file written"
 fi
 expect "--offline" 0 "9 " --offline -e '9 .'
+expect "robot words offline: one clear error" 1 "" --offline -e 'HOME'
+grep -q '^error: no controller connected.*(-e:1)$' err.txt && [ "$(wc -l <err.txt)" = 1 ] ||
+    fail "offline HOME: want one 'no controller connected' line"
 count=$((count + 1))
 "$mon" --list-ports >out.txt 2>err.txt
 st=$?
