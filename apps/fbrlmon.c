@@ -1,0 +1,311 @@
+/* fbrlmon - the FBRL monitor: the language at a terminal, or running files.
+ *
+ *   fbrlmon [options] [FILE...]
+ *
+ * Evaluates -e texts and FILEs in command-line order; then, when standard input
+ * is a terminal, an interactive session (line editing, history, completion);
+ * otherwise standard input line by line. See docs/fbrlmon.md. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "mon.h"
+#include "mon_conn.h"
+
+#ifndef FBRL_VERSION
+#define FBRL_VERSION "unknown"
+#endif
+
+#define DICT_BYTES_DEFAULT (8u * 1024u * 1024u)
+
+/* A FILE or -e TEXT, kept in command-line order. */
+typedef struct action {
+    int is_text;
+    const char *arg;
+} action;
+
+typedef struct options {
+    action *actions;
+    size_t n_actions;
+    size_t dict_bytes;
+    int list_ports;
+    int conn_default;     /* no --port, --sim or --offline given */
+    mon_conn_options conn;
+} options;
+
+static void usage(FILE *f)
+{
+    fputs("usage: fbrlmon [options] [FILE...]\n"
+          "Evaluate FBRL (Forth) source FILEs in order, then read commands from a\n"
+          "terminal (interactive session) or from piped standard input.\n"
+          "\n"
+          "options:\n"
+          "  -e TEXT          evaluate TEXT (in order with the FILEs)\n"
+          "  --port PATH      controller on a serial device, pty or tcp:HOST:PORT\n"
+          "  --baud N         line speed (default 9600)\n"
+          "  --data-bits N    5, 6, 7 or 8 (default 8)\n"
+          "  --parity P       none, even or odd (default none)\n"
+          "  --stop-bits N    1 or 2 (default 1)\n"
+          "  --flow F         none or xonxoff (default xonxoff)\n"
+#ifdef FBRLMON_HAVE_SIM
+          "  --sim            built-in emulated controller (the default without --port)\n"
+          "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
+#endif
+          "  --offline        no controller: robot words report an error\n"
+          "  --list-ports     list the serial ports and exit\n"
+          "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
+          "  -h, --help       show this help and exit\n"
+          "  -V, --version    show the version and exit\n"
+          "\n"
+          "exit status: 0 no error, 1 an error aborted a file, -e text or piped line,\n"
+          "             2 bad command line, 3 could not start\n",
+          f);
+}
+
+static int parse_size(const char *s, size_t *out)
+{
+    char *end;
+    unsigned long long v;
+    errno = 0;
+    v = strtoull(s, &end, 10);
+    if (errno != 0 || end == s)
+        return -1;
+    if (*end == 'K' || *end == 'k')
+        v *= 1024u, end++;
+    else if (*end == 'M' || *end == 'm')
+        v *= 1024u * 1024u, end++;
+    if (*end != '\0' || v == 0 || v > (1ull << 32))
+        return -1;
+    *out = (size_t)v;
+    return 0;
+}
+
+/* Options that take a value (other than -e and --dict). */
+static int is_valued(const char *a)
+{
+    static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
+                                         "--flow", "--sim-state", NULL };
+    int i;
+    for (i = 0; names[i] != NULL; i++)
+        if (strcmp(a, names[i]) == 0)
+            return 1;
+    return 0;
+}
+
+static int parse_uint(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
+{
+    char *end;
+    unsigned long v;
+    errno = 0;
+    v = strtoul(s, &end, 10);
+    if (errno != 0 || end == s || *end != '\0' || s[0] == '-' || v < lo || v > hi)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int set_valued(options *o, const char *a, const char *v)
+{
+    unsigned long n;
+    fbrl_uart_config *l = &o->conn.line;
+    if (strcmp(a, "--port") == 0) {
+        o->conn.kind = MON_CONN_PORT;
+        o->conn.port = v;
+    } else if (strcmp(a, "--sim-state") == 0) {
+        o->conn.sim_state = v;
+    } else if (strcmp(a, "--baud") == 0) {
+        if (parse_uint(v, 1, 4000000, &n) != 0)
+            return -1;
+        l->baud = (uint32_t)n;
+    } else if (strcmp(a, "--data-bits") == 0) {
+        if (parse_uint(v, 5, 8, &n) != 0)
+            return -1;
+        l->data_bits = (uint8_t)n;
+    } else if (strcmp(a, "--stop-bits") == 0) {
+        if (parse_uint(v, 1, 2, &n) != 0)
+            return -1;
+        l->stop_bits = (uint8_t)n;
+    } else if (strcmp(a, "--parity") == 0) {
+        if (strcmp(v, "none") == 0 || strcmp(v, "N") == 0 || strcmp(v, "n") == 0)
+            l->parity = FBRL_PARITY_NONE;
+        else if (strcmp(v, "even") == 0 || strcmp(v, "E") == 0 || strcmp(v, "e") == 0)
+            l->parity = FBRL_PARITY_EVEN;
+        else if (strcmp(v, "odd") == 0 || strcmp(v, "O") == 0 || strcmp(v, "o") == 0)
+            l->parity = FBRL_PARITY_ODD;
+        else
+            return -1;
+    } else if (strcmp(a, "--flow") == 0) {
+        if (strcmp(v, "none") == 0)
+            l->flow = FBRL_FLOW_NONE;
+        else if (strcmp(v, "xonxoff") == 0)
+            l->flow = FBRL_FLOW_XONXOFF;
+        else
+            return -1;
+    }
+    return 0;
+}
+
+/* Returns -1 to exit with `*status`, 0 to go on. */
+static int parse_args(int argc, char **argv, options *o, int *status)
+{
+    int i, only_files = 0, explicit_conn = 0;
+    fbrl_uart_config line = FBRL_UART_CONFIG_DEFAULT;
+    o->conn.line = line;
+    o->actions = calloc((size_t)argc, sizeof *o->actions);
+    o->dict_bytes = DICT_BYTES_DEFAULT;
+    if (o->actions == NULL) {
+        *status = MON_EXIT_CONNECT;
+        return -1;
+    }
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
+            o->actions[o->n_actions].is_text = 0;
+            o->actions[o->n_actions++].arg = a;
+        } else if (strcmp(a, "--") == 0) {
+            only_files = 1;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage(stdout);
+            *status = MON_EXIT_OK;
+            return -1;
+        } else if (strcmp(a, "-V") == 0 || strcmp(a, "--version") == 0) {
+            printf("fbrlmon (libfbrl) %s\n", FBRL_VERSION);
+            *status = MON_EXIT_OK;
+            return -1;
+        } else if (strcmp(a, "--offline") == 0) {
+            o->conn.kind = MON_CONN_OFFLINE;
+            explicit_conn = 1;
+#ifdef FBRLMON_HAVE_SIM
+        } else if (strcmp(a, "--sim") == 0) {
+            o->conn.kind = MON_CONN_SIM;
+            explicit_conn = 1;
+#endif
+        } else if (strcmp(a, "--list-ports") == 0) {
+            o->list_ports = 1;
+        } else if (is_valued(a)) {
+            const char *v = i + 1 < argc ? argv[++i] : NULL;
+            if (v == NULL) {
+                fprintf(stderr, "fbrlmon: %s needs an argument\n", a);
+                goto bad;
+            }
+            if (set_valued(o, a, v) != 0) {
+                fprintf(stderr, "fbrlmon: %s: bad value '%s'\n", a, v);
+                goto bad;
+            }
+            if (strcmp(a, "--port") == 0)
+                explicit_conn = 1;
+        } else if (strcmp(a, "-e") == 0 || strcmp(a, "--dict") == 0) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "fbrlmon: %s needs an argument\n", a);
+                goto bad;
+            }
+            if (a[1] == 'e') {
+                o->actions[o->n_actions].is_text = 1;
+                o->actions[o->n_actions++].arg = argv[++i];
+            } else if (parse_size(argv[++i], &o->dict_bytes) != 0) {
+                fprintf(stderr, "fbrlmon: --dict: bad size '%s'\n", argv[i]);
+                goto bad;
+            }
+        } else {
+            fprintf(stderr, "fbrlmon: unknown option '%s'\n", a);
+            goto bad;
+        }
+    }
+    o->conn_default = !explicit_conn;
+    if (!explicit_conn)
+#ifdef FBRLMON_HAVE_SIM
+        o->conn.kind = MON_CONN_SIM;
+#else
+        o->conn.kind = MON_CONN_OFFLINE;
+#endif
+    return 0;
+bad:
+    fputs("Try 'fbrlmon --help'.\n", stderr);
+    *status = MON_EXIT_USAGE;
+    return -1;
+}
+
+static mon_conn g_conn;  /* fixed address while open, as the uart backend needs */
+
+int main(int argc, char **argv)
+{
+    options opt;
+    static mon m;  /* fixed address for the words; large */
+    int status = MON_EXIT_OK;
+    size_t i;
+
+    memset(&opt, 0, sizeof opt);
+    if (parse_args(argc, argv, &opt, &status) != 0) {
+        free(opt.actions);
+        return status;
+    }
+    if (opt.list_ports) {
+        fbrl_status st = mon_conn_list_ports(stdout);
+        free(opt.actions);
+        if (st != FBRL_OK) {
+            fprintf(stderr, "fbrlmon: --list-ports: %s\n",
+                    st == FBRL_EUNSUPPORTED ? "this fbrlmon was built without libserialport" : fbrl_status_str(st));
+            return MON_EXIT_CONNECT;
+        }
+        return MON_EXIT_OK;
+    }
+    {
+        char err[512];
+        if (mon_conn_open(&g_conn, &opt.conn, err, sizeof err) != FBRL_OK) {
+            if (!opt.conn_default) {
+                fprintf(stderr, "fbrlmon: %s\n", err);
+                free(opt.actions);
+                return MON_EXIT_CONNECT;
+            }
+            /* Nobody asked for the emulator: say why it is missing and go on
+             * without a controller rather than refuse to run Forth at all. */
+            fprintf(stderr, "fbrlmon: %s; running offline\n", err);
+            opt.conn.kind = MON_CONN_OFFLINE;
+            mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
+        }
+    }
+    if (mon_open(&m, opt.dict_bytes, g_conn.open ? &g_conn.link : NULL) != 0) {
+        mon_conn_close(&g_conn);
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
+
+    for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
+        const action *a = &opt.actions[i];
+        if (a->is_text) {
+            unsigned long lines = 1;
+            const char *p;
+            for (p = a->arg; *p; p++)
+                lines += *p == '\n';
+            if (mon_eval(&m, a->arg, strlen(a->arg), "-e", 1, 1) == 0)
+                mon_check_closed(&m, "text", "-e", lines);
+        } else {
+            mon_include(&m, a->arg);
+        }
+    }
+
+    if (!fbrl_vm_bye(m.vm)) {
+        if (m.host.in_is_tty) {
+            char desc[512];
+            mon_conn_describe(&g_conn, desc, sizeof desc);
+            printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", FBRL_VERSION, desc);
+            mon_interactive(&m);
+        } else {
+            unsigned long ln = 0;
+            const char *line;
+            size_t len;
+            while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
+                mon_eval(&m, line, len, "stdin", ++ln, 1);
+            if (!fbrl_vm_bye(m.vm))
+                mon_check_closed(&m, "input", "stdin", ln);
+        }
+    }
+
+    mon_close(&m);
+    status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
+    mon_conn_close(&g_conn);
+    free(opt.actions);
+    return status;
+}

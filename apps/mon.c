@@ -1,0 +1,145 @@
+/* mon.c - the monitor's session: VM setup and one-line error reports. */
+#include "mon.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
+{
+    fbrl_vm_config cfg;
+    size_t size;
+    fbrl_status st;
+
+    memset(m, 0, sizeof *m);
+    memset(&cfg, 0, sizeof cfg);
+    mon_host_init(&m->host, stdout, STDIN_FILENO, &cfg.host);
+    size = fbrl_vm_size_for(&cfg, dict_bytes);
+    /* calloc's alignment (max_align_t) is at least 16 bytes on the hosts we build for;
+     * aligned_alloc would need C11. */
+    m->vm_mem = calloc(1, size);
+    if (m->vm_mem == NULL) {
+        fprintf(stderr, "fbrlmon: cannot allocate %zu bytes for the VM\n", size);
+        return -1;
+    }
+    cfg.mem = m->vm_mem;
+    cfg.mem_size = size;
+    st = fbrl_vm_create(&m->vm, &cfg);
+    if (st == FBRL_OK)
+        st = fbrl_glossary_install(m->vm, &m->glossary);
+    if (st == FBRL_OK) {
+        /* calloc: pages are only touched when a file really uses them. */
+        m->file_mem = calloc(1, MON_FILE_STORAGE);
+        st = m->file_mem == NULL ? FBRL_ENOSPC
+                                 : fbrl_glossary_set_file_storage(&m->glossary, m->file_mem, MON_FILE_STORAGE);
+    }
+    if (st == FBRL_OK)
+        st = fbrl_robot_install(m->vm, &m->robot, link, &m->glossary);
+    if (st != FBRL_OK) {
+        fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
+        free(m->file_mem);
+        free(m->vm_mem);
+        m->file_mem = NULL;
+        m->vm_mem = NULL;
+        m->vm = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+void mon_close(mon *m)
+{
+    fbrl_status st = fbrl_glossary_finish(&m->glossary);
+    fflush(m->host.out);
+    if (st != FBRL_OK) {
+        fprintf(stderr, "error: closing the data files: %s\n", fbrl_status_str(st));
+        m->errors++;
+    }
+    free(m->file_mem);
+    m->file_mem = NULL;
+    mon_host_free(&m->host);
+    free(m->vm_mem);
+    m->vm_mem = NULL;
+    m->vm = NULL;
+}
+
+/* Write s to stderr with control characters shown as '?', so a report is
+ * always exactly one line whatever bytes the input held. */
+static void put_clean(const char *s)
+{
+    for (; *s; s++)
+        fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, stderr);
+}
+
+/* One line: "error: MESSAGE [WORD] (FILE:LINE)". Errors inside an included file
+ * carry that file's name and line; otherwise `where` and the line we counted. */
+static void report(mon *m, fbrl_status st, const char *where, unsigned long line)
+{
+    const fbrl_vm_error *e = fbrl_vm_last_error(m->vm);
+    const char *msg = e != NULL && e->message[0] ? e->message : fbrl_status_str(st);
+
+    mon_host_newline(&m->host);
+    fputs("error: ", stderr);
+    put_clean(msg);
+    /* Codes outside the system's ranges are the program's own: show the number. */
+    if (e != NULL && (e->throw_code > 0 || e->throw_code < -4095))
+        fprintf(stderr, " %d", e->throw_code);
+    /* The word that failed; -39 (end of file) happens between words. */
+    if (e != NULL && e->word[0] && e->throw_code != -39) {
+        fputs(e->throw_code == -13 ? " " : " in ", stderr);
+        put_clean(e->word);
+    }
+    if (e != NULL && e->file[0]) {
+        fputs(" (", stderr);
+        put_clean(e->file);
+        fprintf(stderr, ":%lu)", e->line);
+    } else if (where != NULL && line > 0) {
+        fputs(" (", stderr);
+        put_clean(where);
+        fprintf(stderr, ":%lu)", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
+    } else if (where != NULL) {
+        fputs(" (", stderr);
+        put_clean(where);
+        fputc(')', stderr);
+    }
+    fputc('\n', stderr);
+    fflush(stderr);
+}
+
+int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts)
+{
+    fbrl_status st = fbrl_vm_eval(m->vm, text, len);
+    if (st == FBRL_OK)
+        return 0;
+    report(m, st, where, line);
+    if (counts)
+        m->errors++;
+    return -1;
+}
+
+int mon_include(mon *m, const char *path)
+{
+    fbrl_status st = fbrl_vm_include(m->vm, path);
+    if (st == FBRL_OK)
+        return 0;  /* (the engine itself refuses a file that ends inside a definition) */
+    report(m, st, path, 0);
+    m->errors++;
+    return -1;
+}
+
+int mon_check_closed(mon *m, const char *what, const char *where, unsigned long line)
+{
+    if (!fbrl_vm_compiling(m->vm))
+        return 0;
+    mon_host_newline(&m->host);
+    fprintf(stderr, "error: unterminated definition at end of %s (", what);
+    put_clean(where);
+    if (line > 0)
+        fprintf(stderr, ":%lu", line);
+    fputs(")\n", stderr);
+    fflush(stderr);
+    m->errors++;
+    fbrl_vm_reset(m->vm);  /* as after any other error: the definition is dropped */
+    return -1;
+}

@@ -1,0 +1,55 @@
+/* mon.h - the monitor's session: one FBRL engine, its host services, and the
+ * rules for reporting errors (one line each) shared by every input source. */
+#ifndef FBRLMON_MON_H
+#define FBRLMON_MON_H
+
+#include <stddef.h>
+#include "fbrl/glossary.h"
+#include "fbrl/link.h"
+#include "fbrl/robot.h"
+#include "fbrl/vm.h"
+#include "mon_host.h"
+
+/* Exit status (documented in docs/fbrlmon.md). */
+#define MON_EXIT_OK      0  /* everything evaluated without error */
+#define MON_EXIT_ERROR   1  /* an error aborted a file, -e text or a line of piped input */
+#define MON_EXIT_USAGE   2  /* bad command line */
+#define MON_EXIT_CONNECT 3  /* could not start: no memory for the VM, port would not open */
+
+/* Storage for the typed data files the file words keep open (split among them). */
+#define MON_FILE_STORAGE (8u * 1024u * 1024u)
+
+/* Keep at a fixed address while the VM runs (the words point into it). */
+typedef struct mon {
+    fbrl_vm *vm;
+    void *vm_mem;
+    void *file_mem;
+    mon_host host;
+    fbrl_glossary glossary;  /* locations, matrices, calibration, metric, data files */
+    fbrl_robot robot;        /* robot words; talk through the link, if any */
+    unsigned long errors;    /* errors in files, -e text and piped input */
+} mon;
+
+/* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,
+ * and the thesis's glossary and robot words; link is the connected controller or
+ * NULL (offline: the robot words say so when used). */
+int mon_open(mon *m, size_t dict_bytes, fbrl_link *link);
+/* Close the data files (committing them; a failure counts as an error) and free. */
+void mon_close(mon *m);
+
+/* Evaluate one line (or text) from `where` (a name for messages, e.g. "stdin"),
+ * whose first line is `line`. On error print one line to stderr and return -1;
+ * counts toward the exit status only if `counts`. */
+int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts);
+/* INCLUDED the file at path; errors as for mon_eval (always counted). */
+int mon_include(mon *m, const char *path);
+/* At the end of -e text or piped input a definition must not be left open:
+ * report it as an error (counted; `what` is "text" or "input")
+ * and return the VM to interpreting. */
+int mon_check_closed(mon *m, const char *what, const char *where, unsigned long line);
+
+/* Interactive session on the terminal (mon_edit.c). Returns when the user ends
+ * it (BYE or end of input). */
+void mon_interactive(mon *m);
+
+#endif

@@ -1,0 +1,44 @@
+/* mon_host.h - the operating-system services fbrlmon gives the FBRL engine:
+ * console output, keyboard input, source files (stdio), time. */
+#ifndef FBRLMON_HOST_H
+#define FBRLMON_HOST_H
+
+#include <signal.h>
+#include <stdio.h>
+#include "fbrl/vm.h"
+
+typedef struct mon_host {
+    FILE *out;          /* console output (stdout) */
+    int out_is_tty;     /* flush every write so output shows before long words */
+    int column;         /* bytes written since the last newline */
+    int width;          /* terminal columns (0: not a terminal) */
+    int in_fd;          /* keyboard for KEY / KEY? (stdin) */
+    int in_is_tty;
+    /* Ctrl-C presses while a line is evaluated: waits in MS and KEY end early so
+     * the engine sees its interrupt request (fbrl_vm_interrupt) at once. */
+    volatile sig_atomic_t interrupted;
+    /* Read-ahead of in_fd shared by the line reader and KEY, so a program that
+     * reads keys from piped input gets the bytes after the current line. */
+    unsigned char inbuf[4096];
+    size_t inpos, inlen;
+    int in_eof;
+    char *line;         /* mon_host_read_line()'s growing buffer */
+    size_t line_cap;
+} mon_host;
+
+/* Fill h (output to `out`, keys from file descriptor `in_fd`) and the engine's
+ * callback table that points at it. */
+void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb);
+
+/* Next line of input from in_fd without its end (LF or CRLF); NULL at end of
+ * input. The line stays valid until the next call. */
+const char *mon_host_read_line(mon_host *h, size_t *len);
+
+/* Release what the host allocated. */
+void mon_host_free(mon_host *h);
+
+/* On a terminal, start the next output on a fresh line (before a prompt or an
+ * error line); flush the output either way. */
+void mon_host_newline(mon_host *h);
+
+#endif

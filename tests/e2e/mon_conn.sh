@@ -1,0 +1,113 @@
+#!/bin/sh
+# mon_conn.sh FBRLMON FBRLSIM TMPDIR - fbrlmon's controller connection: --port to a
+# real fbrlsim process on a pty (its log proves the handshake reached it), line
+# settings, the built-in emulator (--sim, the default), --offline, --list-ports,
+# and the failures: bad values (status 2), ports that cannot open (status 3).
+mon=$1
+sim=$2
+tmp=$3
+mkdir -p "$tmp" || exit 2
+cd "$tmp" || exit 2
+fails=0
+count=0
+
+fail() { fails=$((fails + 1)); echo "FAIL: $*"; echo "  stdout: $(cat out.txt)"; echo "  stderr: $(cat err.txt)"; }
+
+# expect NAME STATUS STDOUT ARG... (stdin is empty)
+expect() {
+    name=$1 want_st=$2 want_out=$3
+    shift 3
+    count=$((count + 1))
+    "$mon" "$@" </dev/null >out.txt 2>err.txt
+    st=$?
+    if [ "$st" != "$want_st" ] || { [ "$want_out" != "*" ] && [ "$(cat out.txt)" != "$want_out" ]; }; then
+        fail "$name: status $st (want $want_st)"
+    fi
+}
+
+# A real emulator process on a pty, logging every command it executes.
+rm -f sim.log sim.out
+"$sim" --log "$tmp/sim.log" >sim.out 2>sim.err &
+simpid=$!
+trap 'kill $simpid 2>/dev/null' EXIT
+i=0
+while [ ! -s sim.out ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
+port=$(head -n 1 sim.out)
+case $port in
+/dev/*) ;;
+*) echo "FAIL: fbrlsim printed no device path: $(cat sim.out sim.err)"; exit 1 ;;
+esac
+
+expect "--port to fbrlsim" 0 "3 " --port "$port" -e '1 2 + .'
+grep -q '^NOHELP' sim.log || fail "the handshake did not reach the emulator (log: $(cat sim.log))"
+n1=$(grep -c '^NOHELP' sim.log)
+expect "--port with line settings" 0 "4 " --port "$port" --baud 2400 --data-bits 7 --parity even \
+    --stop-bits 2 --flow none -e '4 .'
+[ "$(grep -c '^NOHELP' sim.log)" -gt "$n1" ] || fail "second handshake missing from the log"
+expect "--port with --parity O" 0 "5 " --port "$port" --parity O -e '5 .'
+
+# A plan moving the arm through robot words: the emulator executes the RAPL
+# commands (its log) and the position read back lands in a host location.
+cat >plan.fbrl <<'PLAN'
+HOME READY
+CREATE-LOC T1  12E0 3E0 8E0 0E0 -90E0 0E0 T1 DEFINE-LOC
+T1 MOV
+CREATE-LOC NOW  NOW ARM-HERE  NOW GETX F>S .  NOW GETY F>S .  NOW GETZ F>S .
+PLAN
+expect "robot words over --port" 0 "12 3 8 " --port "$port" "$tmp/plan.fbrl"
+grep -q '^MOVE FBRLT1' sim.log || fail "MOVE did not reach the emulator (log: $(cat sim.log))"
+kill $simpid
+wait $simpid 2>/dev/null
+
+# The same over TCP (a serial server): fbrlsim --tcp 0 prints tcp:127.0.0.1:PORT.
+rm -f tcp.log tcp.out
+"$sim" --tcp 0 --log "$tmp/tcp.log" >tcp.out 2>tcp.err &
+tcppid=$!
+trap 'kill $simpid $tcppid 2>/dev/null' EXIT
+i=0
+while [ ! -s tcp.out ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
+tcpport=$(head -n 1 tcp.out)
+case $tcpport in
+tcp:*)
+    expect "--port tcp:HOST:PORT" 0 "10 " --port "$tcpport" -e '10 .'
+    grep -q '^NOHELP' tcp.log || fail "the handshake did not reach the emulator over TCP" ;;
+*) fail "fbrlsim --tcp printed no address: $(cat tcp.out tcp.err)" ;;
+esac
+kill $tcppid
+wait $tcppid 2>/dev/null
+
+expect "--port that does not exist" 3 "" --port "$tmp/no-such-port" -e '1 .'
+grep -q 'cannot open' err.txt || fail "no 'cannot open' message"
+: >plainfile
+expect "--port that is not a terminal" 3 "" --port "$tmp/plainfile" -e '1 .'
+grep -q 'not a terminal' err.txt || fail "no 'not a terminal' message"
+expect "--port tcp: without a server" 3 "" --port tcp:127.0.0.1:1 -e '1 .'
+
+expect "--baud not a number" 2 "" --baud fast
+expect "--baud missing" 2 "" --baud
+expect "--data-bits 9" 2 "" --data-bits 9
+expect "--stop-bits 3" 2 "" --stop-bits 3
+expect "--parity x" 2 "" --parity x
+expect "--flow rts" 2 "" --flow rts
+expect "--port missing" 2 "" --port
+
+if "$mon" --help | grep -q -- '--sim '; then
+    expect "--sim" 0 "6 " --sim -e '6 .'
+    expect "robot words on the built-in emulator" 0 "12 3 8 " --sim "$tmp/plan.fbrl"
+    expect "emulator is the default" 0 "7 " -e '7 .'
+    expect "--sim-state keeps the emulator's memory" 0 "8 " --sim --sim-state "$tmp/sim.state" -e '8 .'
+    [ -s "$tmp/sim.state" ] || fail "--sim-state: no state file written"
+fi
+expect "--offline" 0 "9 " --offline -e '9 .'
+expect "robot words offline: one clear error" 1 "" --offline -e 'HOME'
+grep -q '^error: no controller connected.*(-e:1)$' err.txt && [ "$(wc -l <err.txt)" = 1 ] ||
+    fail "offline HOME: want one 'no controller connected' line"
+count=$((count + 1))
+"$mon" --list-ports >out.txt 2>err.txt
+st=$?
+if [ $st != 0 ] && ! { [ $st = 3 ] && grep -q 'without libserialport' err.txt; }; then
+    fail "--list-ports: status $st"
+fi
+
+echo "mon_conn: $count runs, $fails failed"
+[ "$fails" = 0 ]

@@ -1,0 +1,1 @@
+: t 5 0 ?do i 3 = if leave then loop ; t

@@ -1,0 +1,1 @@
+variable v 5 v ! v @ . 3 v +! v ? 

@@ -1,0 +1,1 @@
+create buf 16 allot buf 16 65 fill buf 16 type

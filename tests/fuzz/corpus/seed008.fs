@@ -1,0 +1,1 @@
+: c create , does> @ ; 42 c answer answer .

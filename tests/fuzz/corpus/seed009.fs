@@ -1,0 +1,1 @@
+1.5e0 2e0 f* f. 3e0 fsqrt f.

@@ -1,0 +1,1 @@
+: y begin dup 0> while 1- repeat drop ; 10 y

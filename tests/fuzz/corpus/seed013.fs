@@ -1,0 +1,1 @@
+: z 0 begin 1+ dup 5 = until ; z .

@@ -1,0 +1,1 @@
+char A emit [char] B

@@ -1,0 +1,1 @@
+1 2 3 rot -rot swap over nip tuck 2dup 2drop .s

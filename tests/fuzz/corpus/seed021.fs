@@ -1,0 +1,1 @@
+: w postpone dup ; immediate

@@ -1,0 +1,1 @@
+: deep 1000 0 do loop ; deep

@@ -1,0 +1,1 @@
+: a ; : b a ; : c b ; c forget

@@ -1,0 +1,1 @@
+marker m : zz ; m

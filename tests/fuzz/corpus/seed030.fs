@@ -1,0 +1,1 @@
+: s1 s" hello" ; s1 type s1 drop c@ .

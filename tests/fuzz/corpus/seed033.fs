@@ -1,0 +1,1 @@
+defer d ' dup is d 3 d . .

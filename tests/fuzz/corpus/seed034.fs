@@ -1,0 +1,1 @@
+:noname 2 * ; 21 swap execute .

@@ -1,0 +1,1 @@
+case-test 1 case 1 of 10 endof 2 of 20 endof 0 endcase .

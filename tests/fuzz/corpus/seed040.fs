@@ -1,0 +1,1 @@
+: nest 0 begin 1+ dup 0< until ; nest

@@ -1,0 +1,1 @@
+0 >r begin r> 1+ >r again
