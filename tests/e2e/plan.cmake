@@ -15,7 +15,6 @@ if(TARGET fbrlsim AND TARGET fbrlmon)
   add_test(NAME plan_sample_prep_notube COMMAND ${_plan_run} ${_plan_tmp}/notube -
     ${_plan_ex}/sample_prep_notube.expected ${_plan_ex}/sample_prep_notube.out.expected
     $<TARGET_FILE:fbrlmon> -e "600 CONSTANT TIME-SCALE" --port @PORT@ ${_plan_ex}/sample_prep.fbrl)
-  set_tests_properties(plan_sample_prep_notube PROPERTIES ENVIRONMENT PLAN_COLLAPSE_POLLS=1)
   set(_plan_tests plan_sample_prep plan_sample_prep_notube)
   if(TARGET example_sample_prep)
     add_test(NAME plan_sample_prep_c COMMAND ${_plan_run} ${_plan_tmp}/c
@@ -24,5 +23,9 @@ if(TARGET fbrlsim AND TARGET fbrlmon)
       $<TARGET_FILE:example_sample_prep> @PORT@)
     list(APPEND _plan_tests plan_sample_prep_c)
   endif()
-  set_tests_properties(${_plan_tests} PROPERTIES LABELS e2e TIMEOUT 120)
+  # fbrlmon's known leak suppressions for sanitizer builds (as in mon.cmake)
+  set_tests_properties(${_plan_tests} PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+  set_tests_properties(plan_sample_prep_notube PROPERTIES ENVIRONMENT
+    "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp;PLAN_COLLAPSE_POLLS=1")
 endif()
