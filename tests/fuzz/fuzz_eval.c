@@ -2,8 +2,9 @@
  * in a fresh VM, must never crash, hang or touch memory outside the VM, and the
  * VM must stay usable afterwards.
  *
- * The VM lives in a static buffer and has no host services except output
- * (discarded), so the input cannot read files or sleep. An input that loops
+ * The VM lives in a static buffer with the whole language the monitor has (the
+ * glossary words, and the robot words offline), and no host services except
+ * output (discarded), so the input cannot open files, sleep or move an arm. An input that loops
  * forever (legal Forth: BEGIN AGAIN) is stopped the way the monitor's Ctrl-C
  * stops it: a CPU-time alarm calls fbrl_vm_interrupt(), and the engine throws
  * -28 at its next loop step. (SIGVTALRM, because libFuzzer keeps SIGALRM for
@@ -14,6 +15,8 @@
 #include <string.h>
 #include <sys/time.h>
 
+#include "fbrl/glossary.h"
+#include "fbrl/robot.h"
 #include "fbrl/vm.h"
 
 #define FUZZ_MEM_BYTES (512u * 1024u)
@@ -24,6 +27,8 @@ static union {
     long double align;
     unsigned char bytes[FUZZ_MEM_BYTES];
 } vm_mem;
+static fbrl_glossary glossary;
+static fbrl_robot robot;
 static fbrl_vm *volatile running_vm;
 
 static void on_vtalrm(int sig)
@@ -72,7 +77,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     cfg.mem = vm_mem.bytes;
     cfg.mem_size = sizeof vm_mem.bytes;
     cfg.host.write = discard;
-    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK)
+    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_glossary_install(vm, &glossary) != FBRL_OK ||
+        fbrl_robot_install(vm, &robot, NULL, &glossary) != FBRL_OK)
         return 0;
     running_vm = vm;
     arm_timer(FUZZ_CPU_LIMIT_US);

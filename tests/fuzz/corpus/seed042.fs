@@ -1,0 +1,1 @@
+create-loc p  1e0 2e0 3e0 0e0 -90e0 0e0 p define-loc  p getx f. p display-loc

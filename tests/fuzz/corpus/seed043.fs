@@ -1,0 +1,1 @@
+create-loc b 0e0 0e0 0e0 0e0 0e0 0e0 b define-loc b 1e0 1e0 0e0 rectmat rm create-loc t 1 2 0 t rm t getx f.

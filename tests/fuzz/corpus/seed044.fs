@@ -1,0 +1,1 @@
+home ready 50 speed metric-on map-on 3 output-device valve valve on
