@@ -22,10 +22,11 @@ shift 5
 rm -rf "$work" && mkdir -p "$work" || exit 2
 
 set -- "$@" @END@
-simargs="--time-scale 600 --log $work/sim.log"
-[ "$inputs" = - ] || simargs="$simargs --inputs $inputs"
-# shellcheck disable=SC2086
-"$sim" $simargs >"$work/sim.out" 2>"$work/sim.err" &
+if [ "$inputs" = - ]; then
+    "$sim" --time-scale 600 --log "$work/sim.log" >"$work/sim.out" 2>"$work/sim.err" &
+else
+    "$sim" --time-scale 600 --log "$work/sim.log" --inputs "$inputs" >"$work/sim.out" 2>"$work/sim.err" &
+fi
 simpid=$!
 trap 'kill $simpid 2>/dev/null' EXIT
 trap 'exit 1' INT TERM
