@@ -1,5 +1,6 @@
 /* mon.c - the monitor's session: VM setup and one-line error reports. */
 #include "mon.h"
+#include "mon_teach.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,6 +37,10 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     }
     if (st == FBRL_OK)
         st = fbrl_robot_install(m->vm, &m->robot, link, &m->glossary);
+    if (st == FBRL_OK) {
+        m->link = link;
+        st = mon_teach_install(m);
+    }
     if (st != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
         free(m->file_mem);

@@ -27,6 +27,7 @@ typedef struct mon {
     mon_host host;
     fbrl_glossary glossary;  /* locations, matrices, calibration, metric, data files */
     fbrl_robot robot;        /* robot words; talk through the link, if any */
+    fbrl_link *link;         /* the controller (NULL offline); TEACH talks through it too */
     unsigned long errors;    /* errors in files, -e text and piped input */
 } mon;
 

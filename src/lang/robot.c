@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "atomic.h"
 #include "robot_internal.h"
 
 static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim or --port";
@@ -54,9 +55,42 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
     return rb_fail(r, FBRL_THROW_STATUS(st), msg);
 }
 
+/* Ctrl-C: fbrl_vm_interrupt() sets a flag the engine polls only between words, so a
+ * word that waits on the controller looks at it itself (read and dropped exactly as
+ * the engine's own poll does) and throws -28 "user interrupt". */
+fbrl_status rb_interrupted(fbrl_robot *r)
+{
+    if (!fbrl_load_rlx(&r->vm->interrupt)) return FBRL_OK;
+    fbrl_store_rlx(&r->vm->interrupt, 0);
+    return rb_fail(r, -28, "user interrupt (a command the controller already has still runs;"
+                           " the next robot word waits for it)");
+}
+
+/* Run the link's current command to its end in slices, looking for Ctrl-C between
+ * them. Interrupted, the command stays in the link (the controller cannot take a
+ * line back): rb_online() finishes it before the next command. */
+static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+{
+    for (;;) {
+        int done = 0;
+        fbrl_status st = fbrl_link_poll(r->link, 100, &done);
+        if (done || st != FBRL_OK) {
+            *result = st;
+            return FBRL_OK;
+        }
+        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
+    }
+}
+
 fbrl_status rb_online(fbrl_robot *r)
 {
-    return r->link ? FBRL_OK : rb_fail(r, FBRL_THROW_STATUS(FBRL_EOFFLINE), OFFLINE);
+    if (!r->link) return rb_fail(r, FBRL_THROW_STATUS(FBRL_EOFFLINE), OFFLINE);
+    if (fbrl_link_busy(r->link)) { /* left running by an interrupted word: end it first */
+        fbrl_status res = FBRL_OK, st = rb_drive(r, &res);
+        if (st != FBRL_OK) return st;
+        if (res == FBRL_ECONTROLLER) fbrl_link_error(r->link, &r->last_error, NULL);
+    }
+    return FBRL_OK;
 }
 
 void rb_puts(fbrl_robot *r, const char *s) { fbrl__write(r->vm, s, strlen(s)); }
@@ -129,7 +163,19 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
 {
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
-    return rb_link_result(r, w, fbrl_link_cmd(r->link, cmd, a, n, straight));
+    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
+    if (!ci || !((ci->flags & FBRL_RAPL_F_MOTION) || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT ||
+                 cmd == FBRL_RAPL_RUN))
+        return rb_link_result(r, w, fbrl_link_cmd(r->link, cmd, a, n, straight));
+    /* A command that may wait for the arm or an input (no reply but the prompt): run it
+     * step by step so that Ctrl-C is noticed while it waits. */
+    char text[FBRL_RAPL_LINE_MAX];
+    size_t len;
+    fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, r->link->cfg.form, cmd, a, n, straight);
+    if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
+    if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
+    if (res == FBRL_OK && (st = rb_drive(r, &res)) != FBRL_OK) return st;
+    return rb_link_result(r, w, res);
 }
 
 static void print_line(void *ctx, const char *line, size_t len, int flawed)
@@ -271,7 +317,7 @@ static fbrl_status arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_l
     fbrl_rapl_pos p;
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
-    if (finish && (st = rb_link_result(r, w, fbrl_link_finish(r->link))) != FBRL_OK) return st;
+    if (finish && (st = rb_cmd(r, w, FBRL_RAPL_FINISH, NULL, 0, 0)) != FBRL_OK) return st;
     if ((st = rb_link_result(r, w, fbrl_link_where(r->link, FBRL_RAPL_W2, &p))) != FBRL_OK) return st;
     if (p.nworld < 6) return rb_fail_st(r, w, FBRL_EPROTOCOL, "W2 had no WORLD line");
     arm->x = p.world[0];
@@ -798,11 +844,48 @@ static fbrl_status w_waitport(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_cmd(r, w, FBRL_RAPL_WAIT, &a, 1, 0);
 }
 
+/* W0 W2 W4: the link repeats a read-only query until query_reads replies agree and
+ * hands over the lines of every reply; only the last block (the confirmed reading)
+ * is kept for the console. A block starts at its title line. */
+typedef struct rb_block {
+    char text[2048];
+    size_t n;
+} rb_block;
+
+static void keep_block(void *ctx, const char *line, size_t len, int flawed)
+{
+    rb_block *b = ctx;
+    fbrl_rapl_pos title;
+    fbrl_rapl_pos_init(&title);
+    if (!flawed && fbrl_rapl_pos_line(&title, line, len) == FBRL_OK) b->n = 0; /* only a title fits an empty block */
+    if (b->n + len + 1 > sizeof b->text) return;
+    memcpy(b->text + b->n, line, len);
+    b->n += len;
+    b->text[b->n++] = '\n';
+}
+
 /* W0 W2 W4 ROBOT-STATUS SERIAL: the controller's text on the console */
 static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     (void)v;
-    return rb_raw(r, w, fbrl_rapl_cmd_info((fbrl_rapl_cmd)w->cmd)->keyword, 1);
+    fbrl_rapl_cmd cmd = (fbrl_rapl_cmd)w->cmd;
+    if (cmd != FBRL_RAPL_W0 && cmd != FBRL_RAPL_W2 && cmd != FBRL_RAPL_W4)
+        return rb_raw(r, w, fbrl_rapl_cmd_info(cmd)->keyword, 1);
+    rb_block b;
+    void (*fn)(void *, const char *, size_t, int);
+    void *ctx;
+    fbrl_status st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    b.n = 0;
+    fn = r->link->cfg.on_line; /* borrowed for this command, as borrow_lines() does */
+    ctx = r->link->cfg.line_ctx;
+    r->link->cfg.on_line = keep_block;
+    r->link->cfg.line_ctx = &b;
+    st = fbrl_link_where(r->link, cmd, NULL);
+    r->link->cfg.on_line = fn;
+    r->link->cfg.line_ctx = ctx;
+    if (st == FBRL_OK) fbrl__write(r->vm, b.text, b.n);
+    return rb_link_result(r, w, st);
 }
 
 /* W1 W3 W5 WE1 WE3 WE5: FBRL_ROBOT_STREAM_LINES readings, then the stream is stopped */

@@ -42,8 +42,12 @@ fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n);
 fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg);
 /* Throw for a libfbrl status, prefixed with the word's name. */
 fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const char *what);
-/* Throw unless a controller is connected. */
+/* Throw unless a controller is connected; a command an interrupted word left running
+ * in the link is finished first. */
 fbrl_status rb_online(fbrl_robot *r);
+/* Throw -28 "user interrupt" if Ctrl-C (fbrl_vm_interrupt) was pressed (for words that
+ * wait or loop); FBRL_OK otherwise. */
+fbrl_status rb_interrupted(fbrl_robot *r);
 
 /* Run one command from the RAPL table; controller errors become exceptions whose
  * message holds the controller's code and text. */

@@ -150,6 +150,7 @@ static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
     for (long k = 0; k < (long)n; k++) {
         if ((st = pulse(r, w, d, d->pulse_ms)) != FBRL_OK) return st;
         if (k + 1 < (long)n && (st = rb_sleep_ms(r, d->pulse_ms)) != FBRL_OK) return st;
+        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
     }
     return FBRL_OK;
 }
@@ -190,6 +191,7 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
         uint64_t left = t0 + (uint64_t)v[2].i > now ? t0 + (uint64_t)v[2].i - now : 0;
         if (left == 0) break;
         if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK) return st;
+        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
     }
     return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
 }

@@ -1,0 +1,392 @@
+/* mon_teach.c - TEACH, fbrlmon's keyboard teach pendant, on a real pseudo-terminal
+ * against a real fbrlsim process (its command log is the independent witness):
+ *  1. arrow, page and pitch keys jog the arm, Enter stores: P holds the position W2
+ *     reports, the log shows the JOG / POINT / MOVE commands;
+ *  2. a jog out of the workspace shows the controller's error on the status line
+ *     and TEACH goes on; Esc leaves P unchanged;
+ *  3. with MAP-ON (a calibration that shifts the block by +1 +2 in) the stored
+ *     location is the arm's position unmapped;
+ *  4. W2 prints its position block once.
+ *
+ *   mon_teach FBRLMON FBRLSIM TMPDIR      exit 0 on success; the transcript is printed on failure */
+#define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#define TIMEOUT_MS 60000 /* generous: the machine may be loaded, or ASan slow */
+
+typedef struct session {
+    int master;
+    pid_t pid;
+    char buf[1 << 18]; /* everything the child wrote */
+    size_t len;
+    size_t mark;       /* expect() searches from here */
+} session;
+
+static int g_failed;
+
+static long now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+static void transcript(const session *s)
+{
+    size_t i;
+    fprintf(stderr, "---- transcript (%zu bytes) ----\n", s->len);
+    for (i = 0; i < s->len; i++) {
+        unsigned char c = (unsigned char)s->buf[i];
+        if (c == '\n' || (c >= 0x20 && c < 0x7f))
+            fputc(c, stderr);
+        else if (c != '\r')
+            fprintf(stderr, "<%02x>", c);
+    }
+    fprintf(stderr, "\n---- end ----\n");
+}
+
+/* Read what is available within ms milliseconds; 0 at EOF/error. */
+static int pump(session *s, int ms)
+{
+    struct pollfd p;
+    ssize_t n;
+    size_t i, k;
+    p.fd = s->master;
+    p.events = POLLIN;
+    if (poll(&p, 1, ms) <= 0)
+        return 1;
+    if (s->len + 1 >= sizeof s->buf)
+        return 0;
+    n = read(s->master, s->buf + s->len, sizeof s->buf - s->len - 1);
+    if (n <= 0)
+        return 0;
+    for (i = k = s->len; i < s->len + (size_t)n; i++) /* drop NUL padding */
+        if (s->buf[i] != '\0')
+            s->buf[k++] = s->buf[i];
+    s->len = k;
+    s->buf[s->len] = '\0';
+    return 1;
+}
+
+/* Wait until `text` appears after the mark; move the mark past it. */
+static int expect(session *s, const char *text, const char *what)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    if (g_failed)
+        return 0;
+    for (;;) {
+        char *hit = strstr(s->buf + s->mark, text);
+        if (hit != NULL) {
+            s->mark = (size_t)(hit - s->buf) + strlen(text);
+            return 1;
+        }
+        if (now_ms() > deadline || !pump(s, 200)) {
+            hit = strstr(s->buf + s->mark, text);
+            if (hit != NULL) {
+                s->mark = (size_t)(hit - s->buf) + strlen(text);
+                return 1;
+            }
+            fprintf(stderr, "FAIL: %s: did not see \"%s\"\n", what, text);
+            transcript(s);
+            g_failed = 1;
+            return 0;
+        }
+    }
+}
+
+/* Occurrences of text in the output since `from`. */
+static int count(const session *s, size_t from, const char *text)
+{
+    int n = 0;
+    const char *p = s->buf + from;
+    while ((p = strstr(p, text)) != NULL) {
+        n++;
+        p += strlen(text);
+    }
+    return n;
+}
+
+/* Wait until the terminal is in single-key mode (ICANON off): libedit's prompt
+ * or TEACH's pendant reads keys. The master sees the slave's termios. */
+static void wait_keys(session *s)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    struct termios t;
+    while (now_ms() < deadline && tcgetattr(s->master, &t) == 0 && (t.c_lflag & ICANON))
+        if (!pump(s, 5))
+            return;
+}
+
+static void type(session *s, const char *text)
+{
+    size_t n = strlen(text), off = 0;
+    wait_keys(s);
+    while (off < n) {
+        ssize_t w = write(s->master, text + off, n - off);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0)
+            return;
+        off += (size_t)w;
+    }
+}
+
+/* A key inside TEACH, then its status line (the arm has moved and been read back). */
+static void key(session *s, const char *seq, const char *status_text, const char *what)
+{
+    type(s, seq);
+    expect(s, status_text, what);
+}
+
+static int start(session *s, const char *mon, const char *port, const char *dir)
+{
+    char hist[1024], *slave;
+    struct winsize ws;
+    memset(s, 0, sizeof *s);
+    s->master = posix_openpt(O_RDWR | O_NOCTTY);
+    if (s->master < 0 || grantpt(s->master) != 0 || unlockpt(s->master) != 0 ||
+        (slave = ptsname(s->master)) == NULL) {
+        perror("mon_teach: posix_openpt");
+        return -1;
+    }
+    memset(&ws, 0, sizeof ws);
+    ws.ws_row = 24;
+    ws.ws_col = 160; /* the status line is cut to the width: room for all of it */
+    ioctl(s->master, TIOCSWINSZ, &ws);
+    snprintf(hist, sizeof hist, "%s/history", dir);
+    s->pid = fork();
+    if (s->pid < 0)
+        return -1;
+    if (s->pid == 0) {
+        int fd;
+        setsid();
+        fd = open(slave, O_RDWR);
+        if (fd < 0)
+            _exit(127);
+        dup2(fd, 0);
+        dup2(fd, 1);
+        dup2(fd, 2);
+        if (fd > 2)
+            close(fd);
+        close(s->master);
+        setenv("HOME", dir, 1);
+        setenv("FBRLMON_HISTORY", hist, 1);
+        setenv("TERM", "vt100", 1);
+        execl(mon, mon, "--port", port, (char *)NULL);
+        _exit(127);
+    }
+    return 0;
+}
+
+static int finish(session *s)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    int st;
+    for (;;) {
+        pid_t r = waitpid(s->pid, &st, WNOHANG);
+        if (r == s->pid)
+            break;
+        if (now_ms() > deadline) {
+            kill(s->pid, SIGKILL);
+            waitpid(s->pid, &st, 0);
+            fprintf(stderr, "FAIL: fbrlmon did not exit\n");
+            transcript(s);
+            g_failed = 1;
+            close(s->master);
+            return -1;
+        }
+        pump(s, 50);
+    }
+    close(s->master);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static int file_count(const char *path, const char *text)
+{
+    static char buf[1 << 20];
+    size_t n;
+    int c = 0;
+    const char *p = buf;
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return -1;
+    n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    while ((p = strstr(p, text)) != NULL) {
+        c++;
+        p += strlen(text);
+    }
+    return c;
+}
+
+/* Start fbrlsim on a pty with a command log; its first output line is the pty's path. */
+static pid_t start_sim(const char *sim, const char *dir, char *port, size_t cap, char *log, size_t logcap)
+{
+    int pfd[2];
+    pid_t pid;
+    size_t n = 0;
+    long deadline = now_ms() + TIMEOUT_MS;
+    snprintf(log, logcap, "%s/sim.log", dir);
+    remove(log);
+    if (pipe(pfd) != 0)
+        return -1;
+    pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        dup2(pfd[1], 1);
+        close(pfd[0]);
+        close(pfd[1]);
+        execl(sim, sim, "--log", log, (char *)NULL);
+        _exit(127);
+    }
+    close(pfd[1]);
+    while (n + 1 < cap && now_ms() < deadline) {
+        char c;
+        ssize_t r = read(pfd[0], &c, 1);
+        if (r <= 0 || c == '\n')
+            break;
+        port[n++] = c;
+    }
+    port[n] = '\0';
+    close(pfd[0]); /* fbrlsim prints nothing more on stdout */
+    if (strncmp(port, "/dev/", 5) != 0) {
+        fprintf(stderr, "FAIL: fbrlsim printed no device path (\"%s\")\n", port);
+        kill(pid, SIGTERM);
+        waitpid(pid, NULL, 0);
+        return -1;
+    }
+    return pid;
+}
+
+int main(int argc, char **argv)
+{
+    static session s;
+    char port[256], log[1024];
+    pid_t sim;
+    size_t from;
+    int st;
+
+    if (argc != 4) {
+        fprintf(stderr, "usage: mon_teach FBRLMON FBRLSIM TMPDIR\n");
+        return 2;
+    }
+    mkdir(argv[3], 0777);
+    signal(SIGPIPE, SIG_IGN);
+    sim = start_sim(argv[2], argv[3], port, sizeof port, log, sizeof log);
+    if (sim < 0)
+        return 1;
+    if (start(&s, argv[1], port, argv[3]) != 0) {
+        kill(sim, SIGTERM);
+        return 1;
+    }
+    expect(&s, "ok> ", "first prompt");
+    type(&s, "HOME READY CREATE-LOC P CREATE-LOC Q\r");
+    expect(&s, "ok> ", "home");
+
+    /* 1. jog X +0.5, Y +0.5, Z -0.5, pitch +1, then Enter */
+    type(&s, "TEACH P\r");
+    expect(&s, "TEACH keys", "TEACH shows its keys");
+    expect(&s, "Enter  store", "the key list");
+    expect(&s, "X+12.000 Y+0.000 Z+20.000 in pitch+0.0 roll+0.0 | step 0.1 in 1 deg", "status line at READY");
+    key(&s, "3", "step 0.5 in 5 deg", "3 chooses 0.5 in");
+    key(&s, "\033[C", "X+12.500 Y+0.000 Z+20.000", "Right jogs X+");
+    key(&s, "\033[A", "X+12.500 Y+0.500 Z+20.000", "Up jogs Y+");
+    key(&s, "\033[6~", "X+12.500 Y+0.500 Z+19.500", "PgDn jogs Z-");
+    key(&s, "2", "step 0.1 in 1 deg", "2 chooses 0.1 in");
+    key(&s, "]", "Z+19.500 in pitch+1.0", "] turns the pitch up");
+    key(&s, "?", "TEACH keys", "? shows the keys again");
+    type(&s, "\r");
+    expect(&s, "stored", "Enter stores");
+    expect(&s, "ok> ", "back at the prompt");
+    type(&s, "P DISPLAY-LOC\r");
+    /* (yaw O is the waist's direction, atan2(0.5, 12.5) = 2.291 deg: reported, not chosen) */
+    expect(&s, "X   +12.5000 Y    +0.5000 Z   +19.5000 in  O   +2.291 A   +1.000 T   +0.000 deg", "P holds the taught position");
+    expect(&s, "ok> ", "prompt");
+    /* W2 read independently: the same position, printed once (not once per confirming read) */
+    from = s.mark;
+    type(&s, "W2\r");
+    expect(&s, "WORLD     +012.5000 +000.5000 +019.5000 +002.2906 +001.0000 +000.0000", "W2 agrees with P");
+    expect(&s, "ok> ", "prompt after W2");
+    if (!g_failed && (count(&s, from, "CURRENT ACTUAL POSITION") != 1 || count(&s, from, "WORLD ") != 1)) {
+        fprintf(stderr, "FAIL: W2 printed its block %d times\n", count(&s, from, "CURRENT ACTUAL POSITION"));
+        transcript(&s);
+        g_failed = 1;
+    }
+
+    /* 2. out of the workspace: the error shows on the status line, TEACH goes on; Esc */
+    type(&s, "TEACH P\r");
+    expect(&s, "X+12.500 Y+0.500 Z+19.500", "second TEACH starts at the arm's position");
+    key(&s, "4", "step 1 in 10 deg", "4 chooses 1 in");
+    key(&s, "\033[B", "X+12.500 Y-0.500 Z+19.500", "Down jogs Y-");
+    {
+        int k;
+        for (k = 0; k < 12 && !g_failed; k++) {
+            type(&s, "\033[5~"); /* PgUp until the arm cannot reach */
+            expect(&s, "| step 1 in 10 deg", "status after PgUp");
+            pump(&s, 300);
+            if (strstr(s.buf + s.mark, "JOG: 029-") != NULL)
+                break;
+        }
+        expect(&s, "JOG: 029-TRANSFORM ILLEGAL.", "the controller's error on the status line");
+    }
+    key(&s, "\033[D", "X+11.500", "TEACH goes on after the error: Left jogs X-");
+    type(&s, "\033");
+    expect(&s, "cancelled: the location is unchanged", "Esc cancels");
+    expect(&s, "ok> ", "prompt after Esc");
+    type(&s, "P DISPLAY-LOC\r");
+    expect(&s, "X   +12.5000 Y    +0.5000 Z   +19.5000 in  O   +2.291 A   +1.000", "P unchanged after Esc");
+    expect(&s, "ok> ", "prompt");
+
+    /* 3. MAP-ON: a block moved by +1 +2 in; the taught location is stored unmapped */
+    type(&s, "CREATE-CAL C0 CREATE-CAL C1 CREATE-CAL-STRU B CREATE-LOC T\r");
+    expect(&s, "ok> ", "cal");
+    type(&s, ": PT ( cal slot -- ) ( F: x y z -- ) T >R 0E0 -90E0 0E0 R@ DEFINE-LOC R> SET-CAL ;\r");
+    expect(&s, "ok> ", "PT");
+    type(&s, "10E0 -2E0 1E0 C0 1 PT 14E0 -2E0 1E0 C0 2 PT 10E0 2E0 1E0 C0 3 PT\r");
+    expect(&s, "ok> ", "C0");
+    type(&s, "11E0 0E0 1E0 C1 1 PT 15E0 0E0 1E0 C1 2 PT 11E0 4E0 1E0 C1 3 PT C1 C0 B CALIBRATE B WITH-CAL MAP-ON\r");
+    expect(&s, "ok> ", "MAP-ON");
+    type(&s, "TEACH Q\r");
+    expect(&s, "X+11.500 Y-0.500 Z+", "TEACH under MAP-ON shows the arm's position");
+    type(&s, "\r");
+    expect(&s, "stored", "Enter under MAP-ON");
+    expect(&s, "ok> ", "prompt");
+    type(&s, "MAP-OFF Q DISPLAY-LOC\r");
+    expect(&s, "X   +10.5000 Y    -2.5000 Z", "Q holds the unmapped position (arm - (1, 2))");
+    expect(&s, "ok> ", "prompt");
+
+    type(&s, "BYE\r");
+    st = finish(&s);
+    kill(sim, SIGTERM);
+    waitpid(sim, NULL, 0);
+    if (!g_failed && st != 0) {
+        fprintf(stderr, "FAIL: fbrlmon exit status %d\n", st);
+        g_failed = 1;
+    }
+    /* the emulator's log: the jogs and the pitch move TEACH sent */
+    if (!g_failed && (file_count(log, "JOG ") < 4 || file_count(log, "POINT FBRLTP") < 1 ||
+                      file_count(log, "MOVE FBRLTP,S") < 1)) {
+        fprintf(stderr, "FAIL: the emulator's log lacks TEACH's commands (JOG %d, POINT %d, MOVE %d)\n",
+                file_count(log, "JOG "), file_count(log, "POINT FBRLTP"), file_count(log, "MOVE FBRLTP,S"));
+        g_failed = 1;
+    }
+    if (g_failed)
+        return 1;
+    printf("mon_teach: all checks passed\n");
+    return 0;
+}
