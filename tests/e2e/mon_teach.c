@@ -6,7 +6,9 @@
  *     and TEACH goes on; Esc leaves P unchanged;
  *  3. with MAP-ON (a calibration that shifts the block by +1 +2 in) the stored
  *     location is the arm's position unmapped;
- *  4. W2 prints its position block once.
+ *  4. W2 prints its position block once;
+ *  5. Ctrl-C ends a robot word's wait for the arm (FINISH) at once, and the next
+ *     robot word waits for the motion before it runs.
  *
  *   mon_teach FBRLMON FBRLSIM TMPDIR      exit 0 on success; the transcript is printed on failure */
 #define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
@@ -107,6 +109,24 @@ static int expect(session *s, const char *text, const char *what)
     }
 }
 
+/* expect() with its own time limit (ms). */
+static int expect_within(session *s, const char *text, const char *what, long ms)
+{
+    long deadline = now_ms() + ms;
+    if (g_failed)
+        return 0;
+    while (strstr(s->buf + s->mark, text) == NULL && now_ms() < deadline)
+        if (!pump(s, 50))
+            break;
+    if (strstr(s->buf + s->mark, text) == NULL) {
+        fprintf(stderr, "FAIL: %s: did not see \"%s\" within %ld ms\n", what, text, ms);
+        transcript(s);
+        g_failed = 1;
+        return 0;
+    }
+    return expect(s, text, what);
+}
+
 /* Occurrences of text in the output since `from`. */
 static int count(const session *s, size_t from, const char *text)
 {
@@ -130,10 +150,20 @@ static void wait_keys(session *s)
             return;
 }
 
-static void type(session *s, const char *text)
+/* Wait until the terminal is back in line mode: fbrlmon evaluates the line. */
+static void wait_running(session *s)
+{
+    long deadline = now_ms() + TIMEOUT_MS;
+    struct termios t;
+    while (now_ms() < deadline && tcgetattr(s->master, &t) == 0 && !(t.c_lflag & ICANON))
+        if (!pump(s, 5))
+            return;
+}
+
+/* Write keys at once (Ctrl-C while a line runs). */
+static void type_now(session *s, const char *text)
 {
     size_t n = strlen(text), off = 0;
-    wait_keys(s);
     while (off < n) {
         ssize_t w = write(s->master, text + off, n - off);
         if (w < 0 && errno == EINTR)
@@ -142,6 +172,12 @@ static void type(session *s, const char *text)
             return;
         off += (size_t)w;
     }
+}
+
+static void type(session *s, const char *text)
+{
+    wait_keys(s);
+    type_now(s, text);
 }
 
 /* A key inside TEACH, then its status line (the arm has moved and been read back). */
@@ -368,6 +404,26 @@ int main(int argc, char **argv)
     expect(&s, "ok> ", "prompt");
     type(&s, "MAP-OFF Q DISPLAY-LOC\r");
     expect(&s, "X   +10.5000 Y    -2.5000 Z", "Q holds the unmapped position (arm - (1, 2))");
+    expect(&s, "ok> ", "prompt");
+
+    /* 4. Ctrl-C while a robot word waits for the arm (FINISH of a 10 s motion at 1 %
+     * speed): the word stops at once; the next robot word waits for the motion first,
+     * so W2 sees it ended */
+    type(&s, "MAP-OFF READY FINISH 1 SPEED\r");
+    expect(&s, "ok> ", "READY");
+    type(&s, "1 6 JOINT FINISH\r");
+    wait_running(&s);
+    pump(&s, 300);
+    {
+        long t0 = now_ms();
+        type_now(&s, "\003");
+        if (expect_within(&s, "error: user interrupt", "Ctrl-C ends FINISH's wait", 6000) &&
+            expect(&s, "in FINISH", "the interrupted word"))
+            printf("mon_teach: FINISH interrupted after %ld ms\n", now_ms() - t0);
+    }
+    expect(&s, "ok> ", "prompt after Ctrl-C");
+    type(&s, "W2 100 SPEED\r");
+    expect(&s, "JOINTS   +006.0000 +090.0000 -090.0000 +000.0000 +000.0000", "W2 after the motion ended");
     expect(&s, "ok> ", "prompt");
 
     type(&s, "BYE\r");
