@@ -18,6 +18,11 @@ static const char *prompt_text(const mon *m)
 
 static mon *g_eval_mon;  /* the session whose line is being evaluated */
 
+/* Ctrl-C at the prompt (libedit): the handler stays installed from the prompt until
+ * the line's own handler takes over, so a Ctrl-C just after Enter is never the
+ * default action (which would end fbrlmon): it cancels the line before it runs. */
+static volatile sig_atomic_t g_sigint;
+
 /* Ctrl-C while a line runs: ask the engine to stop (it throws "user interrupt" at
  * its next call or loop step, and the session goes on). The request is repeated
  * by a second Ctrl-C (one that came just as the line started may be lost); a
@@ -45,7 +50,12 @@ static void eval_line(mon *m, const char *line, size_t len)
     g_eval_mon = m;
     m->host.interrupted = 0;
     sigaction(SIGINT, &sa, &old);
-    if (mon_eval(m, line, len, NULL, 0, 0) == 0 && m->host.interrupted) {
+    if (g_sigint) {
+        /* Ctrl-C came between Enter and now: the line has not started */
+        g_sigint = 0;
+        mon_host_newline(&m->host);
+        fputs("error: user interrupt (the line did not run)\n", stderr);
+    } else if (mon_eval(m, line, len, NULL, 0, 0) == 0 && m->host.interrupted) {
         /* The engine stops at its next call or loop step; a line that ended
          * before one (e.g. a lone MS cut short) still says it was interrupted. */
         mon_host_newline(&m->host);
@@ -67,8 +77,7 @@ static void eval_line(mon *m, const char *line, size_t len)
 static mon *g_mon;  /* the session libedit's callbacks serve (one per process) */
 
 /* Ctrl-C at the prompt discards the line being typed (while a line is evaluated
- * it interrupts the evaluation, see eval_line). */
-static volatile sig_atomic_t g_sigint;
+ * it interrupts the evaluation, see eval_line); g_sigint is above. */
 
 static void on_sigint(int sig)
 {
@@ -118,16 +127,16 @@ static int read_key(EditLine *el, wchar_t *wc)
 /* Read one line; NULL at end of input. */
 static const char *read_line(EditLine *el, int *count)
 {
-    struct sigaction sa, old;
+    struct sigaction sa;
     const char *line;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_sigint;  /* no SA_RESTART: the read must return */
     sigemptyset(&sa.sa_mask);
     for (;;) {
         g_sigint = 0;
-        sigaction(SIGINT, &sa, &old);
+        /* left installed after the line is read (eval_line takes over; see g_sigint) */
+        sigaction(SIGINT, &sa, NULL);
         line = el_gets(el, count);
-        sigaction(SIGINT, &old, NULL);
         if (!g_sigint)
             return line;
         el_reset(el);  /* drop the half-typed line */
@@ -295,8 +304,10 @@ void mon_interactive(mon *m)
     char *hpath = history_path();
     const char *line;
     int count;
+    struct sigaction saved;
 
     g_mon = m;
+    sigaction(SIGINT, NULL, &saved);
     hist = history_init();
     el = el_init("fbrlmon", stdin, stdout, stderr);
     if (hist == NULL || el == NULL) {
@@ -336,6 +347,7 @@ void mon_interactive(mon *m)
     }
     if (!fbrl_vm_bye(m->vm))
         fputc('\n', stdout);  /* end of input (Ctrl-D) leaves the cursor after the prompt */
+    sigaction(SIGINT, &saved, NULL);
     el_end(el);
     history_end(hist);
     free(hpath);

@@ -132,6 +132,15 @@ static void wait_running(session *s)
             return;
 }
 
+/* Read output for ms milliseconds (pump() returns as soon as anything came). */
+static void settle(session *s, long ms)
+{
+    long end = now_ms() + ms;
+    while (now_ms() < end)
+        if (!pump(s, (int)(end - now_ms())))
+            return;
+}
+
 /* Write keys at once (for Ctrl-C while a line runs and the terminal is in line mode). */
 static void type_now(session *s, const char *text)
 {
@@ -388,21 +397,21 @@ int main(int argc, char **argv)
         type(&s, "spin\r");
         expect(&s, "spin", "echo of spin");
         wait_running(&s);
-        pump(&s, 200);
+        settle(&s, 200);
         type_now(&s, "\003");
         expect(&s, "interrupt", "Ctrl-C stops an endless loop");
         expect(&s, "ok> ", "prompt after the interrupted loop");
         type(&s, "600000 ms\r");
         expect(&s, "600000 ms", "echo of ms");
         wait_running(&s);
-        pump(&s, 200);
+        settle(&s, 200);
         type_now(&s, "\003");
         expect(&s, "interrupt", "Ctrl-C stops a long MS");
         expect(&s, "ok> ", "prompt after the interrupted MS");
         type(&s, ": naps begin 600000 ms again ; naps\r");
         expect(&s, "naps\r", "echo of naps");
         wait_running(&s);
-        pump(&s, 200);
+        settle(&s, 200);
         type_now(&s, "\003");
         expect(&s, "interrupt in naps", "Ctrl-C stops a plan waiting in MS");
         expect(&s, "ok> ", "prompt after the interrupted plan");
