@@ -5,10 +5,10 @@
  *  2. a jog out of the workspace shows the controller's error on the status line
  *     and TEACH goes on; Esc leaves P unchanged;
  *  3. with MAP-ON (a calibration that shifts the block by +1 +2 in) the stored
- *     location is the arm's position unmapped;
+ *     location is the arm's position unmapped; METRIC-ON shows cm; Ctrl-C cancels;
  *  4. W2 prints its position block once;
  *  5. Ctrl-C ends a robot word's wait for the arm (FINISH) at once, and the next
- *     robot word waits for the motion before it runs.
+ *     robot word waits for the motion before it runs; Ctrl-C ends WAIT-INPUT.
  *
  *   mon_teach FBRLMON FBRLSIM TMPDIR      exit 0 on success; the transcript is printed on failure */
 #define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
@@ -406,6 +406,18 @@ int main(int argc, char **argv)
     expect(&s, "X   +10.5000 Y    -2.5000 Z", "Q holds the unmapped position (arm - (1, 2))");
     expect(&s, "ok> ", "prompt");
 
+    /* METRIC-ON: lengths and steps in cm; Ctrl-C cancels TEACH like Esc, with an error */
+    type(&s, "MAP-OFF METRIC-ON TEACH Q\r");
+    expect(&s, "X+29.210 Y-1.270 Z+67.310 cm pitch+1.0 roll+0.0 | step 0.25 cm 1 deg", "TEACH in cm");
+    key(&s, "\033[D", "X+28.960 Y-1.270", "Left jogs 0.25 cm");
+    type(&s, "\003");
+    expect(&s, "cancelled: the location is unchanged", "Ctrl-C cancels TEACH");
+    expect(&s, "TEACH cancelled by Ctrl-C", "the error line");
+    expect(&s, "ok> ", "prompt");
+    type(&s, "METRIC-OFF Q DISPLAY-LOC\r");
+    expect(&s, "X   +10.5000 Y    -2.5000 Z", "Q unchanged after Ctrl-C");
+    expect(&s, "ok> ", "prompt");
+
     /* 4. Ctrl-C while a robot word waits for the arm (FINISH of a 10 s motion at 1 %
      * speed): the word stops at once; the next robot word waits for the motion first,
      * so W2 sees it ended */
@@ -424,6 +436,18 @@ int main(int argc, char **argv)
     expect(&s, "ok> ", "prompt after Ctrl-C");
     type(&s, "W2 100 SPEED\r");
     expect(&s, "JOINTS   +006.0000 +090.0000 -090.0000 +000.0000 +000.0000", "W2 after the motion ended");
+    expect(&s, "ok> ", "prompt");
+
+    /* WAIT-INPUT polls the controller until its time is up: Ctrl-C ends it too */
+    type(&s, "5 INPUT-DEVICE SENSOR  SENSOR TRUE 600000 WAIT-INPUT\r");
+    wait_running(&s);
+    pump(&s, 300);
+    type_now(&s, "\003");
+    expect_within(&s, "error: user interrupt", "Ctrl-C ends WAIT-INPUT", 10000);
+    expect(&s, "in WAIT-INPUT", "the interrupted word");
+    expect(&s, "ok> ", "prompt after WAIT-INPUT");
+    type(&s, "SENSOR INPUT? .\r");
+    expect(&s, "0 ", "the link works after the interrupted WAIT-INPUT");
     expect(&s, "ok> ", "prompt");
 
     type(&s, "BYE\r");
