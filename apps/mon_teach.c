@@ -148,29 +148,44 @@ static void out(teach *t, const char *s)
 static double len_shown(const teach *t, double inches) { return t->metric ? inches * 2.54 : inches; }
 static const char *unit(const teach *t) { return t->metric ? "cm" : "in"; }
 
-/* Redraw the status line in place: position, step, gripper, last message; cut to
- * the terminal's width so it never wraps. */
+/* Append " text" to line when it still fits in cap columns. */
+static void seg(char *line, size_t cap, const char *text)
+{
+    size_t n = strlen(line), k = strlen(text);
+    if (n + 2 + k < cap) {
+        memcpy(line + n, "  ", 2);
+        memcpy(line + n + 2, text, k + 1);
+    }
+}
+
+/* Redraw the status line in place: position, then the last message, the step and
+ * the gripper as far as the terminal is wide (so it never wraps; at 80 columns
+ * all of it fits, or all but the gripper when a message shows). */
 static void status(teach *t)
 {
-    char line[320];
-    int n, width = t->m->host.width > 0 ? t->m->host.width : 80;
+    char line[256], pos[96], msg[140], step[48], grip[32];
+    size_t width = t->m->host.width > 0 ? (size_t)t->m->host.width : 80;
     const double *p = t->pos;
+    if (width > sizeof line)
+        width = sizeof line;
     if (t->have_pos)
-        n = snprintf(line, sizeof line, "X%+.3f Y%+.3f Z%+.3f %s pitch%+.1f roll%+.1f", len_shown(t, p[0]),
-                     len_shown(t, p[1]), len_shown(t, p[2]), unit(t), p[4], p[5]);
+        snprintf(pos, sizeof pos, "X%+.3f Y%+.3f Z%+.3f %s  pitch%+.1f roll%+.1f", len_shown(t, p[0]),
+                 len_shown(t, p[1]), len_shown(t, p[2]), unit(t), p[4], p[5]);
     else
-        n = snprintf(line, sizeof line, "position unknown");
-    n += snprintf(line + n, sizeof line - (size_t)n, " | step %g %s %g deg",
-                  t->metric ? step_cm[t->level] : step_in[t->level], unit(t), step_deg[t->level]);
-    if (t->have_grip)
-        n += snprintf(line + n, sizeof line - (size_t)n, " | grip %.2f %s", len_shown(t, t->grip), unit(t));
+        snprintf(pos, sizeof pos, "position unknown");
+    snprintf(msg, sizeof msg, "! %s", t->msg);
+    snprintf(step, sizeof step, "step %g %s %g deg", t->metric ? step_cm[t->level] : step_in[t->level], unit(t),
+             step_deg[t->level]);
+    snprintf(grip, sizeof grip, "grip %.2f", len_shown(t, t->grip));
+    snprintf(line, width, "%s", pos);
     if (t->msg[0])
-        snprintf(line + n, sizeof line - (size_t)n, " | %s", t->msg);
-    if ((int)strlen(line) > width - 1)
-        line[width - 1] = '\0';
+        seg(line, width, msg);
+    seg(line, width, step);
+    if (t->have_grip)
+        seg(line, width, grip);
     out(t, "\r");
     out(t, line);
-    out(t, "\033[K");  /* erase the rest of the old line */
+    out(t, "\033[K"); /* erase the rest of the old line */
     fflush(t->m->host.out);
     t->m->host.column = (int)strlen(line);
 }
@@ -179,16 +194,16 @@ static void help(teach *t)
 {
     char s[200];
     out(t, "\r\033[K");
-    out(t, "TEACH keys (the arm moves at once; W2 is read after each motion):\n"
+    out(t, "TEACH keys (the arm moves at once and is read back after each motion):\n"
            "  Left Right  X -/+    Down Up  Y -/+    PgDn PgUp  Z -/+\n"
            "  [ ]  pitch -/+       , .  roll -/+     o c  gripper open / close\n");
-    snprintf(s, sizeof s, "  1 2 3 4  step %g %g %g %g %s (angles %g %g %g %g deg)   - +  smaller / larger step\n",
+    snprintf(s, sizeof s, "  1 2 3 4  step %g %g %g %g %s, %g %g %g %g deg    - +  smaller / larger\n",
              t->metric ? step_cm[0] : step_in[0], t->metric ? step_cm[1] : step_in[1],
              t->metric ? step_cm[2] : step_in[2], t->metric ? step_cm[3] : step_in[3], unit(t), step_deg[0],
              step_deg[1], step_deg[2], step_deg[3]);
     out(t, s);
-    out(t, "  r  read the position again   ?  these keys\n"
-           "  Enter  store the position in the location   Esc  cancel (the location is not changed)\n");
+    out(t, "  r  read again    ?  these keys\n"
+           "  Enter  store the position    Esc  cancel (the location is not changed)\n");
     t->m->host.column = 0;
 }
 

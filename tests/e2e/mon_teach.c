@@ -160,6 +160,15 @@ static void wait_running(session *s)
             return;
 }
 
+/* Read output for ms milliseconds (pump() returns as soon as anything came). */
+static void settle(session *s, long ms)
+{
+    long end = now_ms() + ms;
+    while (now_ms() < end)
+        if (!pump(s, (int)(end - now_ms())))
+            return;
+}
+
 /* Write keys at once (Ctrl-C while a line runs). */
 static void type_now(session *s, const char *text)
 {
@@ -200,7 +209,7 @@ static int start(session *s, const char *mon, const char *port, const char *dir)
     }
     memset(&ws, 0, sizeof ws);
     ws.ws_row = 24;
-    ws.ws_col = 160; /* the status line is cut to the width: room for all of it */
+    ws.ws_col = 80; /* the status line is cut to the width: it must say enough in 80 */
     ioctl(s->master, TIOCSWINSZ, &ws);
     snprintf(hist, sizeof hist, "%s/history", dir);
     s->pid = fork();
@@ -337,14 +346,14 @@ int main(int argc, char **argv)
     /* 1. jog X +0.5, Y +0.5, Z -0.5, pitch +1, then Enter */
     type(&s, "TEACH P\r");
     expect(&s, "TEACH keys", "TEACH shows its keys");
-    expect(&s, "Enter  store", "the key list");
-    expect(&s, "X+12.000 Y+0.000 Z+20.000 in pitch+0.0 roll+0.0 | step 0.1 in 1 deg", "status line at READY");
+    expect(&s, "Enter  store the position", "the key list");
+    expect(&s, "X+12.000 Y+0.000 Z+20.000 in  pitch+0.0 roll+0.0  step 0.1 in 1 deg  grip 2.00", "status line at READY");
     key(&s, "3", "step 0.5 in 5 deg", "3 chooses 0.5 in");
     key(&s, "\033[C", "X+12.500 Y+0.000 Z+20.000", "Right jogs X+");
     key(&s, "\033[A", "X+12.500 Y+0.500 Z+20.000", "Up jogs Y+");
     key(&s, "\033[6~", "X+12.500 Y+0.500 Z+19.500", "PgDn jogs Z-");
     key(&s, "2", "step 0.1 in 1 deg", "2 chooses 0.1 in");
-    key(&s, "]", "Z+19.500 in pitch+1.0", "] turns the pitch up");
+    key(&s, "]", "Z+19.500 in  pitch+1.0", "] turns the pitch up");
     key(&s, "?", "TEACH keys", "? shows the keys again");
     type(&s, "\r");
     expect(&s, "stored", "Enter stores");
@@ -372,13 +381,18 @@ int main(int argc, char **argv)
     {
         int k;
         for (k = 0; k < 12 && !g_failed; k++) {
+            size_t before = s.mark;
             type(&s, "\033[5~"); /* PgUp until the arm cannot reach */
-            expect(&s, "| step 1 in 10 deg", "status after PgUp");
-            pump(&s, 300);
-            if (strstr(s.buf + s.mark, "JOG: 029-") != NULL)
+            expect(&s, "\033[K", "status line after PgUp");
+            /* (at 80 columns the message takes the step's place) */
+            if (strstr(s.buf + before, "Z+26.500 in  pitch+1.0 roll+0.0  ! JOG: 029-TRANSFORM ILLEGAL.") != NULL)
                 break;
         }
-        expect(&s, "JOG: 029-TRANSFORM ILLEGAL.", "the controller's error on the status line");
+        if (!g_failed && k == 12) {
+            fprintf(stderr, "FAIL: 12 jogs up never left the workspace (no 029 on the status line)\n");
+            transcript(&s);
+            g_failed = 1;
+        }
     }
     key(&s, "\033[D", "X+11.500", "TEACH goes on after the error: Left jogs X-");
     type(&s, "\033");
@@ -408,7 +422,7 @@ int main(int argc, char **argv)
 
     /* METRIC-ON: lengths and steps in cm; Ctrl-C cancels TEACH like Esc, with an error */
     type(&s, "MAP-OFF METRIC-ON TEACH Q\r");
-    expect(&s, "X+29.210 Y-1.270 Z+67.310 cm pitch+1.0 roll+0.0 | step 0.25 cm 1 deg", "TEACH in cm");
+    expect(&s, "X+29.210 Y-1.270 Z+67.310 cm  pitch+1.0 roll+0.0  step 0.25 cm 1 deg", "TEACH in cm");
     key(&s, "\033[D", "X+28.960 Y-1.270", "Left jogs 0.25 cm");
     type(&s, "\003");
     expect(&s, "cancelled: the location is unchanged", "Ctrl-C cancels TEACH");
@@ -425,7 +439,7 @@ int main(int argc, char **argv)
     expect(&s, "ok> ", "READY");
     type(&s, "1 6 JOINT FINISH\r");
     wait_running(&s);
-    pump(&s, 300);
+    settle(&s, 300); /* the line is running */
     {
         long t0 = now_ms();
         type_now(&s, "\003");
@@ -441,7 +455,7 @@ int main(int argc, char **argv)
     /* WAIT-INPUT polls the controller until its time is up: Ctrl-C ends it too */
     type(&s, "5 INPUT-DEVICE SENSOR  SENSOR TRUE 600000 WAIT-INPUT\r");
     wait_running(&s);
-    pump(&s, 300);
+    settle(&s, 300); /* the line is running */
     type_now(&s, "\003");
     expect_within(&s, "error: user interrupt", "Ctrl-C ends WAIT-INPUT", 10000);
     expect(&s, "in WAIT-INPUT", "the interrupted word");
