@@ -225,14 +225,17 @@ static int failed(teach *t, fbrl_status st, const char *what)
     return 1;
 }
 
-/* A command left running by an interrupted robot word must end before TEACH talks. */
-static fbrl_status idle(teach *t)
+/* A command left running by an interrupted robot word must end before TEACH talks
+ * (its result is no longer anyone's). -1 if Ctrl-C came first. */
+static int idle(teach *t)
 {
-    fbrl_status st = FBRL_OK;
     int done = 0;
-    while (fbrl_link_busy(t->link) && !done)
-        st = fbrl_link_poll(t->link, 100, &done);
-    return st;
+    while (fbrl_link_busy(t->link) && !done) {
+        if (t->m->host.interrupted)
+            return -1;
+        (void)fbrl_link_poll(t->link, 100, &done);
+    }
+    return 0;
 }
 
 /* Wait for the motion to end, then read where the arm is. */
@@ -381,6 +384,8 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     t.level = 1;
     fbrl_units_is_metric(fbrl_glossary_units(&m->glossary), &metric);
     t.metric = metric;
+    if (idle(&t) != 0)
+        return fbrl_vm_throw(vm, -28, "TEACH cancelled by Ctrl-C (the location is unchanged)");
 
     /* Single keys without echo; ISIG stays on, so Ctrl-C still reaches the monitor. */
     raw = saved;
@@ -391,14 +396,10 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
 
     mon_host_newline(&m->host);
     help(&t);
-    failed(&t, idle(&t), "link");
     if (read_pos(&t) == 0)
         read_grip(&t);
     status(&t);
     r = pendant(&t);
-    /* the arm must be at rest before anything else talks to it */
-    if (fbrl_link_busy(t.link))
-        idle(&t);
 
     tcsetattr(m->host.in_fd, TCSANOW, &saved);
     out(&t, r == 1 ? "\nstored\n" : "\ncancelled: the location is unchanged\n");
