@@ -199,7 +199,7 @@ static int forth_line_uses(const char *line, const char *word)
             len = i;
             break;
         }
-    return has_token(line, len, word, " \t\r\n");
+    return has_token(line, len, word, " \t\r\n\""); /* a word may be in an S" string */
 }
 
 /* A C line uses word inside one of its string literals. */
