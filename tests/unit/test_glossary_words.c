@@ -441,8 +441,8 @@ static void checks_catch_drift(void **state)
         "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | `tests/forth/no-such.fs:1` |\n",
         "| word | stack effect | test |\n|---|---|---|\n| `TYPE-STRING` | `( str -- )` | `tests/unit/test_glossary_words.c:no_such()` |\n",
         /* listed twice */
-        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n"
-        "| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n",
+        ("| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n"
+         "| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n"),
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         print_message("expected problem %zu:\n", k);
