@@ -93,7 +93,9 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     if (e != NULL && e->file[0]) {
         fputs(" (", stderr);
         put_clean(e->file);
-        fprintf(stderr, ":%lu)", e->line);
+        if (e->line > 0)
+            fprintf(stderr, ":%lu", e->line);
+        fputc(')', stderr);
     } else if (where != NULL && line > 0) {
         fputs(" (", stderr);
         put_clean(where);
