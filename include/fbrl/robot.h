@@ -11,7 +11,7 @@
  * Locations are the glossary's 6-float templates (X Y Z O A T, inches and degrees) in
  * the VM's data space. With a glossary, MAP-ON mapping applies to every location sent
  * to the controller and its inverse to every location read back, and METRIC-ON to the
- * lengths the user types (docs/robot.md). Words: docs/glossary-robot.md. */
+ * lengths the user types (docs/robot.md). Words: docs/glossary.md. */
 #ifndef FBRL_ROBOT_H
 #define FBRL_ROBOT_H
 

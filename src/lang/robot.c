@@ -5,7 +5,7 @@
  * command line is echo-verified before its CR is sent. Locations come from the host
  * side (6 floats in the VM's data space); a word that moves to one first defines a
  * scratch controller point with POINT, then moves to that point. docs/robot.md tells
- * the rules, docs/glossary-robot.md lists every word with the text it sends. */
+ * the rules, docs/glossary.md lists every word with the text it sends. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -6,7 +6,7 @@
  * collect settings and SETUPUART applies them with fbrl_uart_configure(). EMIT-COM and
  * friends write raw bytes past the link (no echo check); RESET-COMM discards what came
  * in and brings the controller's line back to a known state. The DOS-only words are not
- * bound (docs/glossary-robot.md says why). */
+ * bound (docs/glossary.md says why). */
 #include <stdio.h>
 #include <string.h>
 
