@@ -1084,6 +1084,18 @@ fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
     return FBRL_OK;
 }
 
+fbrl_status fbrl_link_clear_line(fbrl_link *l)
+{
+    static const uint8_t can = CAN;
+    if (!l || !l->u)
+        return FBRL_EINVAL;
+    if (l->busy)
+        return FBRL_ESTATE;
+    fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : send(l, &can, 1);
+    l->ctrl_len = -1;
+    return st;
+}
+
 fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx, fbrl_link_line_fn *old_fn,
                                        void **old_ctx)
 {

@@ -196,6 +196,13 @@ fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
  * cfg.on_line, then stop the stream. */
 fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
 
+/* Before writing raw bytes to the uart yourself (outside the link): erase whatever the
+ * link may have left on the controller's line (a probe leaves three marker characters
+ * there), so that a CR or LF you send runs only your own text. Sends one CAN unless the
+ * line is known to be empty; afterwards the link treats the line as unknown and
+ * verifies it before its next command. FBRL_ESTATE while a command runs. */
+fbrl_status fbrl_link_clear_line(fbrl_link *l);
+
 /* ---- settings after init ---- */
 
 typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int flawed);

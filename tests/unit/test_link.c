@@ -564,6 +564,32 @@ static void parity_errors_are_damage(void **state)
     assert_int_equal(s->c.nlog, 3);
 }
 
+/* Raw output after a command that needed a probe: the probe's markers are still on the
+ * controller's line; fbrl_link_clear_line() erases them, so a raw CR runs only the raw
+ * text, and the link's next command still runs once. */
+static void clear_line_before_raw_output(void **state)
+{
+    session *s = *state;
+    ctl_rule(&s->c, OUT, '>', 0, REPLACE, '<'); /* damaged prompt: a probe, markers left */
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    assert_true(s->c.len == 3);
+    assert_int_equal(fbrl_link_clear_line(&s->l), FBRL_OK);
+    size_t n = 0;
+    assert_int_equal(fbrl_uart_write(&s->u, "READY\r", 6, &n, 1000), FBRL_OK);
+    for (int k = 0; k < 50 && s->c.nlog == 0; k++) {
+        uint8_t junk[64];
+        size_t got;
+        ctl_service(&s->c);
+        fbrl_uart_read(&s->u, junk, sizeof junk, &got, 2);
+    }
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"READY", "HOME"};
+    assert_log(s, want, 2);
+    assert_int_equal(fbrl_link_clear_line(NULL), FBRL_EINVAL);
+}
+
 static void bad_calls_are_refused(void **state)
 {
     session *s = *state;
@@ -657,6 +683,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(stream_stop_runs_nothing, setup, teardown),
         cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
+        cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
     };
