@@ -160,8 +160,8 @@ static fbrl_status px_configure(void *ctx, const fbrl_uart_config *cfg)
     }
     p->raw = t;
     p->baud = cfg->baud;
-    p->marked = cfg->parity != FBRL_PARITY_NONE;
-    p->mark_state = 0;
+    /* read by the service thread; the parse state is its own */
+    fbrl_store_rel(&p->marked, cfg->parity != FBRL_PARITY_NONE && p->is_tty);
     /* About 10 ms of line time may wait in the kernel: enough to keep the line busy,
      * little enough that the peer's XOFF takes effect at once. */
     p->outq_limit = cfg->baud / 1000u < 16u ? 16u : cfg->baud / 1000u;
@@ -201,7 +201,7 @@ static void poll_line_errors(fbrl_uart_posix *p)
     for (; p->ic_frame != (uint32_t)ic.frame; p->ic_frame++)
         fbrl_uart_isr_line_status(p->u, FBRL_UART_LS_FRAMING);
     /* with marks, each mark is the report (Linux marks framing and parity errors alike) */
-    if (p->marked) {
+    if (fbrl_load_acq(&p->marked)) {
         p->ic_frame = (uint32_t)ic.frame;
         p->ic_parity = (uint32_t)ic.parity;
     }
@@ -251,8 +251,11 @@ static fbrl_status do_read(fbrl_uart_posix *p, short revents, size_t *moved)
     ssize_t n = p->is_socket ? recv(p->fd, buf, room < sizeof buf ? room : sizeof buf, 0)
                              : read(p->fd, buf, room < sizeof buf ? room : sizeof buf);
     if (n > 0) {
+        size_t marked = fbrl_load_acq(&p->marked);
+        if (!marked)
+            p->mark_state = 0;
         for (ssize_t i = 0; i < n; i++) {
-            if (p->marked && p->is_tty)
+            if (marked)
                 parse_marked(p, buf[i]);
             else
                 fbrl_uart_isr_rx(p->u, buf[i]);

@@ -64,8 +64,8 @@ typedef struct fbrl_uart_posix {
     int is_tty, is_pty, is_socket, locked, saved_valid;
     int icount_ok;               /* the driver reports error counts (TIOCGICOUNT) */
     uint32_t ic_frame, ic_parity, ic_overrun;
-    int marked;                  /* parity on (tty): received bytes come in PARMRK format */
-    int mark_state;              /* 0, 1 after 0xFF, 2 after 0xFF 0x00 */
+    size_t marked;               /* parity on (tty): received bytes come in PARMRK format */
+    int mark_state;              /* service side: 0, 1 after 0xFF, 2 after 0xFF 0x00 */
     struct termios saved, raw;
     uint32_t baud;
     size_t chunk, outq_limit;
