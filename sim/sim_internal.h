@@ -80,6 +80,7 @@ struct fbrl_sim {
     /* faults */
     double f_drop, f_corrupt, f_noise;
     int f_stall;
+    long parity_in, parity_out; /* parity errors: dropped by our UART / marked for the host */
     unsigned long long rng;
     /* line editor */
     char line[SIM_LINE_MAX + 1];

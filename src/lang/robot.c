@@ -139,20 +139,16 @@ static void print_line(void *ctx, const char *line, size_t len, int flawed)
     fbrl__write(r->vm, flawed ? " (damaged)\n" : "\n", flawed ? 12 : 1);
 }
 
-/* The link has no setter for its line handler; the robot borrows it for one command
- * (docs/robot.md) and puts the owner's back. */
+/* The robot borrows the link's line handler for one command (docs/robot.md) and puts
+ * the owner's back. */
 static void borrow_lines(fbrl_robot *r, void (**fn)(void *, const char *, size_t, int), void **ctx)
 {
-    *fn = r->link->cfg.on_line;
-    *ctx = r->link->cfg.line_ctx;
-    r->link->cfg.on_line = print_line;
-    r->link->cfg.line_ctx = r;
+    (void)fbrl_link_set_line_handler(r->link, print_line, r, fn, ctx);
 }
 
 static void return_lines(fbrl_robot *r, void (*fn)(void *, const char *, size_t, int), void *ctx)
 {
-    r->link->cfg.on_line = fn;
-    r->link->cfg.line_ctx = ctx;
+    (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
 }
 
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
@@ -1062,7 +1058,10 @@ static fbrl_status w_send_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
         const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)c);
         if (ci->token && ci->token == v[0].i) {
-            if (r->link && r->link->cfg.form == FBRL_RAPL_TOKEN) {
+            fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
+            if (r->link)
+                (void)fbrl_link_get_form(r->link, &form);
+            if (form == FBRL_RAPL_TOKEN) {
                 snprintf(tok, sizeof tok, "/%03u", (unsigned)ci->token);
                 text = tok;
             } else {
