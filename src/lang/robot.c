@@ -869,6 +869,19 @@ static fbrl_status w_set_var(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_cmd(r, w, FBRL_RAPL_ASSIGN, a, 2, 0);
 }
 
+/* RAPL-ANALOG ( PAR: input# variable ): the controller reads A/D channel n into a
+ * variable with `NAME=ADC(n)` (ADC is our decision; see docs/rapl-commands.md). */
+static fbrl_status w_analog(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    char name[16], line[40];
+    fbrl_status st = name_arg(r, w, &v[1], name, 10);
+    if (st != FBRL_OK) return st;
+    if (v[0].i < 1 || v[0].i > 8) return rb_fail(r, -24, "RAPL-ANALOG: the analog input must be 1..8");
+    if (fbrl_rapl_name_check(name, 0) != FBRL_OK) return rb_fail_st(r, w, FBRL_ENAME, name);
+    snprintf(line, sizeof line, "%s=ADC(%ld)", name, (long)v[0].i);
+    return rb_raw(r, w, line, 0);
+}
+
 /* RAPL-HERE, RAPL-RUN ( PAR: name ) */
 static fbrl_status w_name1(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
@@ -1223,6 +1236,7 @@ static const rb_word robot_words[] = {
     { "RAPL", w_rapl, "T", 0, -1, 0, "( PAR: text ) or ( c-addr u -- )", "send a line to the controller as it is; show its output" },
     { "SET-RAPL-REAL", w_set_var, "SR", 0, -1, 1, "( PAR: variable value ) or ( c-addr u -- ) ( F: r -- )", "set a controller variable to a real" },
     { "SET-RAPL-INT", w_set_var, "SI", 0, -1, 0, "( PAR: variable value ) or ( c-addr u n -- )", "set a controller variable to an integer" },
+    { "RAPL-ANALOG", w_analog, "IS", 0, -1, 0, "( PAR: input# variable ) or ( n c-addr u -- )", "read analog input n (1..8, volts) into a controller variable" },
     { "RAPL-HERE", w_name1, "S", 0, CMD(HERE), 0, "( PAR: name ) or ( c-addr u -- )", "store the arm's position in a controller location" },
     { "RAPL-RUN", w_name1, "S", 0, CMD(RUN), 0, "( PAR: program ) or ( c-addr u -- )", "run a RAPL program stored in the controller" },
     { "RAPL-SET", w_name2, "SS", 0, CMD(SET), 0, "( PAR: loc1 loc2 ) or ( c-addr1 u1 c-addr2 u2 -- )", "controller location loc1 := loc2" },
