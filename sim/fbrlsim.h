@@ -30,6 +30,9 @@ typedef struct fbrl_sim_options {
     const char *control_path; /* FIFO created for control lines "IN 3 1", or NULL */
     const char *faults;       /* "drop=P,corrupt=P,noise=P,stall=MS,seed=S" or NULL */
     int rx_buffer;            /* receive buffer size with baud pacing (128) */
+    char parity;              /* 'N' 'E' 'O': the host channel's parity (CONFIG 0 sets it
+                               * too); 0 = from the state file, else N. With E or O a
+                               * corrupted byte is a parity error (docs/fbrlsim.md) */
 } fbrl_sim_options;
 
 void fbrl_sim_options_init(fbrl_sim_options *o);

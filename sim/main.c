@@ -32,6 +32,8 @@ static void usage(FILE *f)
           "  --inputs FILE       time-stamped control lines, e.g. '2.5 IN 3 1'\n"
           "  --control PATH      FIFO for control lines: IN n 0|1, POWER 0|1, OBJECT w, TEACH\n"
           "  --faults SPEC       drop=P,corrupt=P,noise=P,stall=MS,seed=S (both directions)\n"
+          "  --parity N|E|O      the line's parity (default N): with E or O a corrupted byte\n"
+          "                      is a parity error, dropped inbound, marked 0xFF 0x00 outbound\n"
           "  --help              this text\n",
           f);
 }
@@ -91,6 +93,8 @@ int main(int argc, char **argv)
             o.control_path = v;
         } else if (!strcmp(a, "--faults") && v) {
             o.faults = v;
+        } else if (!strcmp(a, "--parity") && v && strlen(v) == 1 && strchr("NEO", v[0])) {
+            o.parity = v[0];
         } else {
             fprintf(stderr, "fbrlsim: unknown option or missing value: %s\n", a);
             usage(stderr);

@@ -22,7 +22,8 @@ const char *sim_error_text(int code)
         { 11, "LOCATION UNDEFINED" }, { 12, "COMMAND ERROR" }, { 13, "ARGUMENT MISSING" },
         { 14, "BAD SYNTAX" }, { 15, "PRECISION POINT NOT LEGAL" }, { 16, "I/O ADDRESS ERROR" },
         { 17, "PROGRAM NOT FOUND" }, { 18, "ILLEGAL ARGUMENT" }, { 20, "ARGUMENT TOO BIG" },
-        { 21, "NO ROOM LEFT" }, { 22, "TABLE FULL" }, { 25, "LINE TOO LONG" },
+        { 21, "NO ROOM LEFT" }, { 22, "TABLE FULL" }, { 24, "ILLEGAL A/D CHANNEL" },
+        { 25, "LINE TOO LONG" },
         { 29, "TRANSFORM ILLEGAL" }, { 40, "ARM POWER HAS BEEN SWITCHED OFF" },
         { 41, "ROBOT HAS NOT BEEN HOMED" }, { 42, "JOINT #1 OUT OF RANGE" },
         { 43, "JOINT #2 OUT OF RANGE" }, { 44, "JOINT #3 OUT OF RANGE" },
@@ -245,6 +246,19 @@ static double e_io(expr *e, const int *bits, double n)
     return bits[i - 1] ? 1.0 : 0.0;
 }
 
+/* ADC(n): analog input n in volts; a channel outside 1..8 is 024, as on the controller. */
+static double e_adc(expr *e, double n)
+{
+    long i = lround(n);
+    if (e->err)
+        return 0;
+    if (i < 1 || i > SIM_AIN) {
+        e->err = 24;
+        return 0;
+    }
+    return e->s->ain[i - 1];
+}
+
 static double e_primary(expr *e)
 {
     e_space(e);
@@ -295,7 +309,7 @@ static double e_primary(expr *e)
         char id[32];
         size_t n = 0;
         static const char *fn[] = { "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN",
-                                    "ABS", "SQRT", "INT", "SIG", "OSIG" };
+                                    "ABS", "SQRT", "INT", "SIG", "OSIG", "ADC" };
         size_t i;
         while ((isalnum((unsigned char)*e->p) || *e->p == '_') && n < sizeof id - 1)
             id[n++] = *e->p++;
@@ -329,7 +343,8 @@ static double e_primary(expr *e)
             case 7: r = sqrt(x); break;
             case 8: r = trunc(x); break;
             case 9: return e_io(e, e->s->in, x);
-            default: return e_io(e, e->s->out_, x);
+            case 10: return e_io(e, e->s->out_, x);
+            default: return e_adc(e, x);
             }
             if (!isfinite(r) && !e->err)
                 e->err = 18;
@@ -1986,6 +2001,11 @@ int sim_control(fbrl_sim *s, const char *line)
     if (!strcmp(w, "IN") && n == 3 && a >= 1 && a <= SIM_IO && (b == 0 || b == 1)) {
         if (s)
             s->in[(int)a - 1] = (int)b;
+        return 0;
+    }
+    if (!strcmp(w, "AIN") && n == 3 && a >= 1 && a <= SIM_AIN && a == (int)a && b >= -10 && b <= 10) {
+        if (s)
+            s->ain[(int)a - 1] = b;
         return 0;
     }
     if (!strcmp(w, "POWER") && n == 2 && (a == 0 || a == 1)) {

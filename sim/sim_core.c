@@ -117,18 +117,41 @@ static int parse_faults(fbrl_sim *s, const char *spec, char *err, size_t errlen)
     return 0;
 }
 
-/* Applies the line faults to one byte; returns how many bytes went to out (0..2). */
-static int fault_byte(fbrl_sim *s, unsigned char b, unsigned char out[2])
+/* The host channel checks parity (CONFIG 0 / --parity E or O). */
+static int parity_on(fbrl_sim *s)
+{
+    return s->chan[0].parity == 'E' || s->chan[0].parity == 'O';
+}
+
+/* Applies the line faults to one byte; returns how many bytes went to out (0..2).
+ * bad[k] = the receiving UART sees a parity error on out[k] (only with parity on): a
+ * corrupted byte always (one bit flipped: an odd number), a noise byte half the time
+ * (its parity bit is as random as its data). */
+static int fault_byte(fbrl_sim *s, unsigned char b, unsigned char out[2], int bad[2])
 {
     int n = 0;
+    bad[0] = bad[1] = 0;
     if (s->f_drop > 0 && rnd(s) < s->f_drop)
         return 0;
-    if (s->f_corrupt > 0 && rnd(s) < s->f_corrupt)
+    if (s->f_corrupt > 0 && rnd(s) < s->f_corrupt) {
         b ^= (unsigned char)(1u << (int)(rnd(s) * 8.0)); /* one bit flipped: always a different byte */
+        bad[0] = parity_on(s);
+    }
     out[n++] = b;
-    if (s->f_noise > 0 && rnd(s) < s->f_noise)
+    if (s->f_noise > 0 && rnd(s) < s->f_noise) {
+        bad[n] = parity_on(s) && rnd(s) < 0.5;
         out[n++] = rnd_byte(s);
+    }
     return n;
+}
+
+/* A parity error, noted in the log (not a command: the line starts with '#'). */
+static void log_parity(fbrl_sim *s, const char *dir)
+{
+    if (s->log) {
+        fprintf(s->log, "# PARITY ERROR %s\n", dir);
+        fflush(s->log);
+    }
 }
 
 static void tx_push(fbrl_sim *s, unsigned char b)
@@ -153,14 +176,27 @@ static void tx_push(fbrl_sim *s, unsigned char b)
     s->tx[s->txlen++] = b;
 }
 
+/* What the host reads is what its UART delivers. With parity on, that is the format of
+ * a Linux serial port opened with INPCK|PARMRK: a byte with a parity error comes as
+ * 0xFF 0x00 byte, a data byte 0xFF as 0xFF 0xFF. */
 void sim_emit(fbrl_sim *s, const char *bytes, size_t n)
 {
     size_t i;
     for (i = 0; i < n; i++) {
         unsigned char o[2];
-        int k = fault_byte(s, (unsigned char)bytes[i], o), j;
-        for (j = 0; j < k; j++)
+        int bad[2];
+        int k = fault_byte(s, (unsigned char)bytes[i], o, bad), j;
+        for (j = 0; j < k; j++) {
+            if (bad[j]) {
+                s->parity_out++;
+                log_parity(s, "OUT");
+                tx_push(s, 0xFF);
+                tx_push(s, 0x00);
+            } else if (parity_on(s) && o[j] == 0xFF) {
+                tx_push(s, 0xFF);
+            }
             tx_push(s, o[j]);
+        }
     }
 }
 
@@ -262,9 +298,17 @@ static void read_line(fbrl_sim *s)
         s->rx_credit -= (double)n;
     for (i = 0; i < n; i++) {
         unsigned char o[2];
-        int k = fault_byte(s, buf[i], o), j;
-        for (j = 0; j < k; j++)
+        int bad[2];
+        int k = fault_byte(s, buf[i], o, bad), j;
+        for (j = 0; j < k; j++) {
+            if (bad[j]) {
+                /* the controller's UART flags it; its firmware drops the character */
+                s->parity_in++;
+                log_parity(s, "IN");
+                continue;
+            }
             rx_byte(s, o[j]);
+        }
     }
 }
 
@@ -692,6 +736,13 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
         goto fail;
     if (o->baud > 0)
         s->chan[0].baud = o->baud;
+    if (o->parity) {
+        if (o->parity != 'N' && o->parity != 'E' && o->parity != 'O') {
+            seterr(err, errlen, "parity must be N, E or O");
+            goto fail;
+        }
+        s->chan[0].parity = o->parity;
+    }
     if (o->inputs_path && load_inputs(s, o->inputs_path, err, errlen) != 0)
         goto fail;
     if (s->log_path && !(s->log = fopen(s->log_path, "a"))) {

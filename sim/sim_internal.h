@@ -13,6 +13,7 @@
 #define SIM_MAX_LOCS 100
 #define SIM_MAX_VARS 100
 #define SIM_IO 16
+#define SIM_AIN 8      /* analog inputs (A/D channels), volts */
 #define SIM_GRIP_MAX 2.0  /* servo gripper fully open, in */
 #define SIM_EXTRA_RATE 10000.0 /* extra axis, pulses/s at 100 % */
 
@@ -80,6 +81,7 @@ struct fbrl_sim {
     /* faults */
     double f_drop, f_corrupt, f_noise;
     int f_stall;
+    long parity_in, parity_out; /* parity errors: dropped by our UART / marked for the host */
     unsigned long long rng;
     /* line editor */
     char line[SIM_LINE_MAX + 1];
@@ -112,6 +114,7 @@ struct fbrl_sim {
     char tool_name[SIM_NAME_MAX + 1];
     double tool[6];
     int in[SIM_IO], out_[SIM_IO];
+    double ain[SIM_AIN];      /* analog inputs: live signals, not kept in the state file */
     double grip, grip_force, object;
     sim_chan chan[2];
     /* the arm: one motion segment at a time, evaluated from simulated time */

@@ -77,6 +77,9 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     l->u = u;
     l->cfg = c;
     l->xon_ok = uc.flow == FBRL_FLOW_NONE; /* with XON/XOFF the uart owns 0x11 */
+    fbrl_uart_counters cnt;
+    if (fbrl_uart_get_counters(u, &cnt) == FBRL_OK)
+        l->parity_seen = cnt.parity_errors;
     l->ctrl_len = -1;
     l->phase = PH_IDLE;
     l->err_code = -1;
@@ -374,6 +377,16 @@ static fbrl_status executed(fbrl_link *l)
     fbrl_status st = FBRL_OK;
     int requery = 0;
     l->stats.executed++;
+    if (!l->rd.done && l->rd.len > 0) {
+        /* the reply ended in an unfinished line (its CR LF was lost, and the prompt was
+         * found by a probe): an error line "011-LOCATION UNDEFINED.>>" must not pass as
+         * success. Only the error shape counts: the rest of such a line is the damaged
+         * echo of a probe. */
+        size_t n;
+        const char *s = fbrl_rapl_reader_line(&l->rd, &n, 0);
+        if (error_shaped(s, n))
+            l->err_state = ERR_GARBLED;
+    }
     if (l->err_state == ERR_VALID) {
         st = FBRL_ECONTROLLER;
     } else if (l->err_state == ERR_GARBLED) {
@@ -455,10 +468,13 @@ static fbrl_status run_status_query(fbrl_link *l)
 /* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR
  * LF, its prompt, or three bytes or more. A line that did not end can show at most two
  * stray bytes: a damaged CR echoed as a character, and the first byte of the probe
- * damaged into another ('?' becomes '>' by one flip, so a single '>' proves nothing). */
+ * damaged into another ('?' becomes '>' by one flip, so a single '>' proves nothing).
+ * With parity a damaged byte is dropped, never echoed as another: a line that did not
+ * end shows nothing at all, so one byte (or one parity error) before the probe is
+ * proof. That matters: "CR LF >>" can lose CR, LF and one '>'. */
 static int cr_took_effect(const fbrl_link *l)
 {
-    return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= 3;
+    return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= (l->parity ? 1u : 3u);
 }
 
 /* A byte of the command's reply (before any probe echo). */
@@ -471,6 +487,26 @@ static void count_reply_byte(fbrl_link *l, uint8_t b)
     if (b == '>' && l->last_byte == '>')
         l->gtgt = 1;
     l->last_byte = b;
+}
+
+/* Enough stream lines came: stop the readout. Any byte ends a stream and is consumed.
+ * The first stop is a bare CR (what clients of real controllers send), and only while
+ * nothing else has been sent since the W1's own CR: then the controller's line is
+ * empty and the stream is running (only a byte from the host ends it), so the CR can
+ * end nothing but the stream. Once any byte may have reached the line editor - a
+ * probe, or a stop byte the stream had no need of - a CR could run what is on the
+ * line (a probe's markers, a damaged earlier byte), so every later stop is a probe:
+ * its first byte ends a stream still running, and its echo proves the line's state. */
+static fbrl_status stop_stream(fbrl_link *l)
+{
+    l->stop_sent++;
+    if (l->stop_sent == 1 && l->probes_here == 0) {
+        static const uint8_t cr = '\r';
+        return send(l, &cr, 1);
+    }
+    l->probe_out = PR_IDLE;
+    l->probe_seen = 0;
+    return send_probe(l);
 }
 
 /* ---- the byte-driven state machine ---- */
@@ -525,14 +561,12 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         count_reply_byte(l, b);
         feed_reply(l, b);
         if (l->kind == FBRL_LINK_REPLY_STREAM && !l->prompt_seen &&
-            l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent) {
-            /* any byte ends the stream; if the stream goes on, the stop byte was lost */
-            static const uint8_t cr = '\r';
-            l->stop_sent++;
-            return send(l, &cr, 1);
-        }
+            l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent)
+            return stop_stream(l);
         if (l->prompt_seen && l->probe_out == PR_NONE) {
-            l->ctrl_len = 0;
+            /* after a stream the stop byte may have reached the line editor (a real
+             * controller may pass it on): the line is verified before the next command */
+            l->ctrl_len = l->kind == FBRL_LINK_REPLY_STREAM ? -1 : 0;
             return executed(l);
         }
         return FBRL_OK;
@@ -562,6 +596,18 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     }
 }
 
+/* The uart dropped a byte with a parity error since the last look (the marks of
+ * uart_posix, or a UART's line status): the bytes just read are incomplete. */
+static int parity_error(fbrl_link *l)
+{
+    fbrl_uart_counters c;
+    if (fbrl_uart_get_counters(l->u, &c) != FBRL_OK || c.parity_errors == l->parity_seen)
+        return 0;
+    l->stats.parity_errors += c.parity_errors - l->parity_seen;
+    l->parity_seen = c.parity_errors;
+    return 1;
+}
+
 /* How long an unanswered probe is given before the next: a controller busy with a long
  * motion answers none, so the interval doubles (4, 8, 16 ... echo timeouts, at most 2 s). */
 static uint64_t probe_interval(const fbrl_link *l)
@@ -585,10 +631,12 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->stats.echo_timeout++;
         return begin_erase(l);
     case PH_REPLY:
-        if (l->kind == FBRL_LINK_REPLY_STREAM && l->stop_sent && !l->prompt_seen && l->after_cr > 0) {
-            static const uint8_t cr = '\r'; /* the stop byte may have been lost */
+        if (l->kind == FBRL_LINK_REPLY_STREAM && !l->stop_sent && !l->prompt_seen && cr_took_effect(l)) {
+            /* a running stream may be slower than the echo timeout: a probe now would
+             * end it and leave its markers on the line; wait for the lines (the
+             * deadline bounds this) */
             l->t_last = t;
-            return send(l, &cr, 1);
+            return FBRL_OK;
         }
         if (cr_took_effect(l)) {
             /* executed; the prompt is late (a waiting command) or was damaged: ask */
@@ -670,7 +718,25 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             *done = 1;
             return finish(l, st);
         }
-        for (size_t k = 0; k < got && l->busy; k++) {
+        if (parity_error(l)) {
+            if (l->phase == PH_TYPE) {
+                /* a byte of the echo (or a stray one before it) was lost: nothing of it
+                 * can be trusted, and no CR goes out for it; older than the probe, the
+                 * bytes just read are of no use after it */
+                st = begin_erase(l);
+                if (st != FBRL_OK) {
+                    *done = 1;
+                    return finish(l, st);
+                }
+                got = 0;
+            } else if (l->phase == PH_REPLY || l->phase == PH_VERIFY) {
+                l->out_bad = 1; /* a query is asked again; an error line is checked anyway */
+                if (l->phase == PH_REPLY && l->probe_out == PR_NONE)
+                    l->after_cr++; /* a byte came after the CR, before any probe */
+            }
+        }
+        size_t k = 0;
+        for (; k < got && l->busy; k++) {
             fbrl_status s2 = on_byte(l, buf[k]);
             if (s2 != FBRL_OK && l->busy) {
                 l->ctrl_len = -1; /* a byte may not have gone out */
@@ -679,6 +745,10 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             }
         }
         if (!l->busy) {
+            /* bytes after the prompt are the echo of something on the line (noise): the
+             * next command must not type onto it unverified */
+            if (k < got)
+                l->ctrl_len = -1;
             *done = 1;
             return l->result;
         }
@@ -726,6 +796,8 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->result = FBRL_OK;
     l->busy = 1;
     l->stats.commands++;
+    fbrl_uart_config uc;
+    l->parity = fbrl_uart_get_config(l->u, &uc) == FBRL_OK && uc.parity != FBRL_PARITY_NONE;
     return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
 }
 
@@ -947,17 +1019,24 @@ fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on)
     return st;
 }
 
-fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
+fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
 {
     char text[FBRL_RAPL_LINE_MAX];
     size_t n;
     if (!l || lines == 0 || reply_of(cmd) != FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL;
+    if (l->busy)
+        return FBRL_ESTATE;
     fbrl_status st = fbrl_rapl_encode(text, sizeof text, &n, l->cfg.form, cmd, 0, 0, 0);
     if (st != FBRL_OK)
         return st;
     l->stream_lines = lines;
-    st = start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u);
+    return start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u);
+}
+
+fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
+{
+    fbrl_status st = fbrl_link_start_stream(l, cmd, lines);
     return st == FBRL_OK ? run(l) : st;
 }
 
@@ -1002,6 +1081,40 @@ fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
         *code = have ? l->err_code : -1;
     if (text)
         *text = have ? l->err_text : "";
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_clear_line(fbrl_link *l)
+{
+    static const uint8_t can = CAN;
+    if (!l || !l->u)
+        return FBRL_EINVAL;
+    if (l->busy)
+        return FBRL_ESTATE;
+    fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : send(l, &can, 1);
+    l->ctrl_len = -1;
+    return st;
+}
+
+fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx, fbrl_link_line_fn *old_fn,
+                                       void **old_ctx)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    if (old_fn)
+        *old_fn = l->cfg.on_line;
+    if (old_ctx)
+        *old_ctx = l->cfg.line_ctx;
+    l->cfg.on_line = fn;
+    l->cfg.line_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
+{
+    if (!l || !form)
+        return FBRL_EINVAL;
+    *form = l->cfg.form;
     return FBRL_OK;
 }
 

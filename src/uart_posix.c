@@ -100,10 +100,18 @@ int fbrl_uart_posix_fd(const fbrl_uart_posix *p)
 /* ---- the line: termios ---- */
 
 /* Raw mode with cfg's framing: no echo, no editing, no CR/LF mapping, no kernel
- * XON/XOFF (the core runs flow control), reads return as soon as one byte is there. */
-static void make_raw(struct termios *t, const fbrl_uart_config *cfg)
+ * XON/XOFF (the core runs flow control), reads return as soon as one byte is there.
+ * With parity, INPCK|PARMRK: the driver delivers a byte received with an error as
+ * 0xFF 0x00 byte and a data byte 0xFF as 0xFF 0xFF (parse_marked() reads that). On a
+ * pty (no wire, no parity) PARMRK is left off, because the pty's line discipline
+ * would double every 0xFF its peer writes: there the peer (fbrlsim --parity) writes
+ * the marked format itself, exactly as a real port's driver would deliver it. */
+static void make_raw(struct termios *t, const fbrl_uart_config *cfg, int is_pty)
 {
-    t->c_iflag &= ~(tcflag_t)(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF | IXANY | INPCK);
+    t->c_iflag &= ~(tcflag_t)(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF | IXANY | INPCK |
+                              IGNPAR);
+    if (cfg->parity != FBRL_PARITY_NONE)
+        t->c_iflag |= INPCK | (is_pty ? 0 : PARMRK);
     t->c_oflag &= ~(tcflag_t)OPOST;
     t->c_lflag &= ~(tcflag_t)(ECHO | ECHONL | ICANON | ISIG | IEXTEN);
     t->c_cflag &= ~(tcflag_t)(CSIZE | PARENB | PARODD | CSTOPB);
@@ -133,7 +141,7 @@ static fbrl_status px_configure(void *ctx, const fbrl_uart_config *cfg)
     if (st != FBRL_OK)
         return st;
     struct termios t = p->raw, r;
-    make_raw(&t, cfg);
+    make_raw(&t, cfg, p->is_pty);
     if (cfsetispeed(&t, sp) != 0 || cfsetospeed(&t, sp) != 0)
         return FBRL_EUNSUPPORTED;
     if (tcsetattr(p->fd, TCSANOW, &t) != 0)
@@ -152,6 +160,8 @@ static fbrl_status px_configure(void *ctx, const fbrl_uart_config *cfg)
     }
     p->raw = t;
     p->baud = cfg->baud;
+    /* read by the service thread; the parse state is its own */
+    fbrl_store_rel(&p->marked, cfg->parity != FBRL_PARITY_NONE && p->is_tty);
     /* About 10 ms of line time may wait in the kernel: enough to keep the line busy,
      * little enough that the peer's XOFF takes effect at once. */
     p->outq_limit = cfg->baud / 1000u < 16u ? 16u : cfg->baud / 1000u;
@@ -190,6 +200,11 @@ static void poll_line_errors(fbrl_uart_posix *p)
         return;
     for (; p->ic_frame != (uint32_t)ic.frame; p->ic_frame++)
         fbrl_uart_isr_line_status(p->u, FBRL_UART_LS_FRAMING);
+    /* with marks, each mark is the report (Linux marks framing and parity errors alike) */
+    if (fbrl_load_acq(&p->marked)) {
+        p->ic_frame = (uint32_t)ic.frame;
+        p->ic_parity = (uint32_t)ic.parity;
+    }
     for (; p->ic_parity != (uint32_t)ic.parity; p->ic_parity++)
         fbrl_uart_isr_line_status(p->u, FBRL_UART_LS_PARITY);
     uint32_t over = (uint32_t)ic.overrun + (uint32_t)ic.buf_overrun;
@@ -198,6 +213,33 @@ static void poll_line_errors(fbrl_uart_posix *p)
 #else
     (void)p;
 #endif
+}
+
+/* The PARMRK format: 0xFF 0x00 X = X arrived with a parity (or framing) error: it is
+ * reported and dropped, as a UART's firmware drops it; 0xFF 0xFF = a data byte 0xFF.
+ * The state carries over between reads (a mark may be split). */
+static void parse_marked(fbrl_uart_posix *p, uint8_t b)
+{
+    switch (p->mark_state) {
+    case 1:
+        p->mark_state = b == 0x00 ? 2 : 0;
+        if (b == 0x00)
+            return;
+        fbrl_uart_isr_rx(p->u, 0xFF);
+        if (b != 0xFF)
+            fbrl_uart_isr_rx(p->u, b); /* not a mark (a driver never sends this): keep both */
+        return;
+    case 2:
+        p->mark_state = 0;
+        fbrl_uart_isr_line_status(p->u, FBRL_UART_LS_PARITY);
+        return;
+    default:
+        if (b == 0xFF)
+            p->mark_state = 1;
+        else
+            fbrl_uart_isr_rx(p->u, b);
+        return;
+    }
 }
 
 static fbrl_status do_read(fbrl_uart_posix *p, short revents, size_t *moved)
@@ -209,8 +251,15 @@ static fbrl_status do_read(fbrl_uart_posix *p, short revents, size_t *moved)
     ssize_t n = p->is_socket ? recv(p->fd, buf, room < sizeof buf ? room : sizeof buf, 0)
                              : read(p->fd, buf, room < sizeof buf ? room : sizeof buf);
     if (n > 0) {
-        for (ssize_t i = 0; i < n; i++)
-            fbrl_uart_isr_rx(p->u, buf[i]);
+        size_t marked = fbrl_load_acq(&p->marked);
+        if (!marked)
+            p->mark_state = 0;
+        for (ssize_t i = 0; i < n; i++) {
+            if (marked)
+                parse_marked(p, buf[i]);
+            else
+                fbrl_uart_isr_rx(p->u, buf[i]);
+        }
         *moved += (size_t)n;
         poll_line_errors(p);
         return FBRL_OK;

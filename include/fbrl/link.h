@@ -61,7 +61,8 @@ typedef struct fbrl_link_config {
      * here; they end with FBRL_ETIMEOUT. May be NULL. */
     void (*on_exec)(void *ctx, const char *line, size_t len, fbrl_status result);
     void *exec_ctx;
-    /* Lines of FBRL_LINK_REPLY_LINES and STREAM replies (flawed = a byte was damaged). */
+    /* Lines of FBRL_LINK_REPLY_LINES and STREAM replies (flawed = a byte was damaged).
+     * fbrl_link_set_line_handler() changes it later. */
     void (*on_line)(void *ctx, const char *line, size_t len, int flawed);
     void *line_ctx;
 } fbrl_link_config;
@@ -80,6 +81,8 @@ typedef struct fbrl_link_stats {
     uint64_t requeries;       /* read-only queries repeated: damaged reply or confirmation */
     uint64_t error_queries;   /* STATUS read to learn a damaged error line's code */
     uint64_t failed;          /* commands that ended with an error other than ECONTROLLER */
+    uint64_t parity_errors;   /* bytes the uart dropped with a parity error (line with E/O
+                               * parity): in an echo a retype, in a reply a damaged reply */
 } fbrl_link_stats;
 
 /* A session. Caller-owned; every field is private. */
@@ -87,6 +90,8 @@ typedef struct fbrl_link {
     fbrl_uart *u;
     fbrl_link_config cfg;
     int xon_ok;                              /* flow NONE: probes may carry an XON byte */
+    uint64_t parity_seen;                    /* the uart's parity error count, last looked at */
+    int parity;                              /* the line has parity: damaged bytes are dropped */
     char marker[3];                          /* the latest probe's closing characters */
     unsigned marker_idx;
     /* the command */
@@ -147,6 +152,10 @@ fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind
  * return value is FBRL_OK. */
 fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done);
 
+/* Start a continuous readout (W1 W3 W5 WE1 WE3 WE5) that ends after `lines` value
+ * lines (each passed to the line handler); fbrl_link_poll() runs it. */
+fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
+
 /* Non-zero while a command runs. */
 int fbrl_link_busy(const fbrl_link *l);
 
@@ -186,6 +195,26 @@ fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
 /* Continuous readout (W1 W3 W5 WE1 WE3 WE5): read `lines` value lines, each passed to
  * cfg.on_line, then stop the stream. */
 fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
+
+/* Before writing raw bytes to the uart yourself (outside the link): erase whatever the
+ * link may have left on the controller's line (a probe leaves three marker characters
+ * there), so that a CR or LF you send runs only your own text. Sends one CAN unless the
+ * line is known to be empty; afterwards the link treats the line as unknown and
+ * verifies it before its next command. FBRL_ESTATE while a command runs. */
+fbrl_status fbrl_link_clear_line(fbrl_link *l);
+
+/* ---- settings after init ---- */
+
+typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int flawed);
+
+/* Replace the handler of output lines (cfg.on_line, cfg.line_ctx; fn may be NULL).
+ * The previous one goes to *old_fn / *old_ctx when those are not NULL, so a caller
+ * can borrow the lines for one command and put the owner's handler back. */
+fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx, fbrl_link_line_fn *old_fn,
+                                       void **old_ctx);
+
+/* The command form the link sends (keyword or /NNN token, cfg.form). */
+fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form);
 
 /* ---- results ---- */
 

@@ -11,7 +11,7 @@
  * Locations are the glossary's 6-float templates (X Y Z O A T, inches and degrees) in
  * the VM's data space. With a glossary, MAP-ON mapping applies to every location sent
  * to the controller and its inverse to every location read back, and METRIC-ON to the
- * lengths the user types (docs/robot.md). Words: docs/glossary-robot.md. */
+ * lengths the user types (docs/robot.md). Words: docs/glossary.md. */
 #ifndef FBRL_ROBOT_H
 #define FBRL_ROBOT_H
 
@@ -73,6 +73,10 @@ typedef struct fbrl_robot {
     int teaching;                   /* GET-CAL-POINTS is running */
     /* devices */
     fbrl_robot_device dev[FBRL_ROBOT_MAX_DEVICES];
+    /* raw output (TYPE-COM, EMIT-COM, PRINT-LOC): an unfinished raw line is on the
+     * controller's line while the link has sent nothing since (raw_link_mark) */
+    int raw_open;
+    uint64_t raw_link_mark;
     /* the controller's last error code seen by a robot word (-1 none) */
     int last_error;
     /* scratch storage in the VM's data space (made at install) */

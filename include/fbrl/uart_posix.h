@@ -16,6 +16,10 @@
  *    writable, at most tx_chunk at a time and, on a real tty, only while the
  *    kernel's output queue holds less than about 10 ms of line time, so that a
  *    peer's XOFF stops the output quickly.
+ *  - Parity E or O on a tty: INPCK|PARMRK; a byte received with a parity error is
+ *    counted (fbrl_uart_counters.parity_errors, through fbrl_uart_isr_line_status)
+ *    and dropped; it never reaches the receive ring. On a pty PARMRK stays off and
+ *    the peer is expected to write that format (fbrlsim --parity does).
  *  - Without a service thread the loop runs inside fbrl_uart_read/write/drain (one
  *    thread may use the port). With service_thread = 1 a background thread runs it,
  *    answering flow control while the application computes; read/write/drain then
@@ -60,6 +64,8 @@ typedef struct fbrl_uart_posix {
     int is_tty, is_pty, is_socket, locked, saved_valid;
     int icount_ok;               /* the driver reports error counts (TIOCGICOUNT) */
     uint32_t ic_frame, ic_parity, ic_overrun;
+    size_t marked;               /* parity on (tty): received bytes come in PARMRK format */
+    int mark_state;              /* service side: 0, 1 after 0xFF, 2 after 0xFF 0x00 */
     struct termios saved, raw;
     uint32_t baud;
     size_t chunk, outq_limit;

@@ -80,10 +80,14 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 /* Ask the running evaluation to stop: it throws -28 ("user interrupt") at its next
- * call, loop iteration or backward branch. Safe from a signal handler or another
+ * call, loop iteration, backward branch, C word's return, MS or output padding. Safe from a signal handler or another
  * thread (e.g. the monitor's Ctrl-C). A request is dropped when it is delivered and
  * at the start of each fbrl_vm_eval()/fbrl_vm_include(). */
 void fbrl_vm_interrupt(fbrl_vm *vm);
+/* True while an interrupt is requested and not yet delivered: a C word that waits
+ * (motion, input, sleep) polls this and returns early; the engine then throws -28
+ * as soon as the word returns. */
+int fbrl_vm_interrupt_pending(const fbrl_vm *vm);
 /* True once BYE ran. */
 int fbrl_vm_bye(const fbrl_vm *vm);
 /* True while a colon definition (or other compilation) spans lines. */

@@ -5,7 +5,7 @@
  * command line is echo-verified before its CR is sent. Locations come from the host
  * side (6 floats in the VM's data space); a word that moves to one first defines a
  * scratch controller point with POINT, then moves to that point. docs/robot.md tells
- * the rules, docs/glossary-robot.md lists every word with the text it sends. */
+ * the rules, docs/glossary.md lists every word with the text it sends. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -171,7 +171,9 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
      * step by step so that Ctrl-C is noticed while it waits. */
     char text[FBRL_RAPL_LINE_MAX];
     size_t len;
-    fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, r->link->cfg.form, cmd, a, n, straight);
+    fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
+    (void)fbrl_link_get_form(r->link, &form);
+    fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
     if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
     if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
     if (res == FBRL_OK && (st = rb_drive(r, &res)) != FBRL_OK) return st;
@@ -185,20 +187,16 @@ static void print_line(void *ctx, const char *line, size_t len, int flawed)
     fbrl__write(r->vm, flawed ? " (damaged)\n" : "\n", flawed ? 12 : 1);
 }
 
-/* The link has no setter for its line handler; the robot borrows it for one command
- * (docs/robot.md) and puts the owner's back. */
+/* The robot borrows the link's line handler for one command (docs/robot.md) and puts
+ * the owner's back. */
 static void borrow_lines(fbrl_robot *r, void (**fn)(void *, const char *, size_t, int), void **ctx)
 {
-    *fn = r->link->cfg.on_line;
-    *ctx = r->link->cfg.line_ctx;
-    r->link->cfg.on_line = print_line;
-    r->link->cfg.line_ctx = r;
+    (void)fbrl_link_set_line_handler(r->link, print_line, r, fn, ctx);
 }
 
 static void return_lines(fbrl_robot *r, void (*fn)(void *, const char *, size_t, int), void *ctx)
 {
-    r->link->cfg.on_line = fn;
-    r->link->cfg.line_ctx = ctx;
+    (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
 }
 
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
@@ -872,18 +870,14 @@ static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (cmd != FBRL_RAPL_W0 && cmd != FBRL_RAPL_W2 && cmd != FBRL_RAPL_W4)
         return rb_raw(r, w, fbrl_rapl_cmd_info(cmd)->keyword, 1);
     rb_block b;
-    void (*fn)(void *, const char *, size_t, int);
-    void *ctx;
+    fbrl_link_line_fn fn = NULL;
+    void *ctx = NULL;
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     b.n = 0;
-    fn = r->link->cfg.on_line; /* borrowed for this command, as borrow_lines() does */
-    ctx = r->link->cfg.line_ctx;
-    r->link->cfg.on_line = keep_block;
-    r->link->cfg.line_ctx = &b;
+    (void)fbrl_link_set_line_handler(r->link, keep_block, &b, &fn, &ctx); /* for this command */
     st = fbrl_link_where(r->link, cmd, NULL);
-    r->link->cfg.on_line = fn;
-    r->link->cfg.line_ctx = ctx;
+    (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
     if (st == FBRL_OK) fbrl__write(r->vm, b.text, b.n);
     return rb_link_result(r, w, st);
 }
@@ -954,6 +948,19 @@ static fbrl_status w_set_var(fbrl_robot *r, const rb_word *w, rb_val *v)
     }
     fbrl_rapl_arg a[2] = { fbrl_rapl_str(name), fbrl_rapl_real(v[1].f) };
     return rb_cmd(r, w, FBRL_RAPL_ASSIGN, a, 2, 0);
+}
+
+/* RAPL-ANALOG ( PAR: input# variable ): the controller reads A/D channel n into a
+ * variable with `NAME=ADC(n)` (ADC is our decision; see docs/rapl-commands.md). */
+static fbrl_status w_analog(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    char name[16], line[40];
+    fbrl_status st = name_arg(r, w, &v[1], name, 10);
+    if (st != FBRL_OK) return st;
+    if (v[0].i < 1 || v[0].i > 8) return rb_fail(r, -24, "RAPL-ANALOG: the analog input must be 1..8");
+    if (fbrl_rapl_name_check(name, 0) != FBRL_OK) return rb_fail_st(r, w, FBRL_ENAME, name);
+    snprintf(line, sizeof line, "%s=ADC(%ld)", name, (long)v[0].i);
+    return rb_raw(r, w, line, 0);
 }
 
 /* RAPL-HERE, RAPL-RUN ( PAR: name ) */
@@ -1145,7 +1152,10 @@ static fbrl_status w_send_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
         const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)c);
         if (ci->token && ci->token == v[0].i) {
-            if (r->link && r->link->cfg.form == FBRL_RAPL_TOKEN) {
+            fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
+            if (r->link)
+                (void)fbrl_link_get_form(r->link, &form);
+            if (form == FBRL_RAPL_TOKEN) {
                 snprintf(tok, sizeof tok, "/%03u", (unsigned)ci->token);
                 text = tok;
             } else {
@@ -1307,6 +1317,7 @@ static const rb_word robot_words[] = {
     { "RAPL", w_rapl, "T", 0, -1, 0, "( PAR: text ) or ( c-addr u -- )", "send a line to the controller as it is; show its output" },
     { "SET-RAPL-REAL", w_set_var, "SR", 0, -1, 1, "( PAR: variable value ) or ( c-addr u -- ) ( F: r -- )", "set a controller variable to a real" },
     { "SET-RAPL-INT", w_set_var, "SI", 0, -1, 0, "( PAR: variable value ) or ( c-addr u n -- )", "set a controller variable to an integer" },
+    { "RAPL-ANALOG", w_analog, "IS", 0, -1, 0, "( PAR: input# variable ) or ( n c-addr u -- )", "read analog input n (1..8, volts) into a controller variable" },
     { "RAPL-HERE", w_name1, "S", 0, CMD(HERE), 0, "( PAR: name ) or ( c-addr u -- )", "store the arm's position in a controller location" },
     { "RAPL-RUN", w_name1, "S", 0, CMD(RUN), 0, "( PAR: program ) or ( c-addr u -- )", "run a RAPL program stored in the controller" },
     { "RAPL-SET", w_name2, "SS", 0, CMD(SET), 0, "( PAR: loc1 loc2 ) or ( c-addr1 u1 c-addr2 u2 -- )", "controller location loc1 := loc2" },

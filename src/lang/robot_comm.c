@@ -6,7 +6,7 @@
  * collect settings and SETUPUART applies them with fbrl_uart_configure(). EMIT-COM and
  * friends write raw bytes past the link (no echo check); RESET-COMM discards what came
  * in and brings the controller's line back to a known state. The DOS-only words are not
- * bound (docs/glossary-robot.md says why). */
+ * bound (docs/glossary.md says why). */
 #include <stdio.h>
 #include <string.h>
 
@@ -121,6 +121,27 @@ static fbrl_status w_comm_setup(fbrl_robot *r, const rb_word *w, rb_val *v)
     return st == FBRL_OK ? apply(r, w) : st;
 }
 
+/* Everything the link has typed so far: if it changed, the link used the line. */
+static uint64_t link_mark(const fbrl_link *l) { return l->stats.attempts + l->stats.probes; }
+
+/* Before raw bytes: unless they continue our own unfinished raw line, erase what the link
+ * may have left on the controller's line (a probe leaves marker characters there), so a
+ * CR in the raw text runs only the raw text. */
+static fbrl_status raw_begin(fbrl_robot *r)
+{
+    if (!r->link || (r->raw_open && r->raw_link_mark == link_mark(r->link))) return FBRL_OK;
+    return fbrl_link_clear_line(r->link);
+}
+
+/* After raw bytes: a CR or LF ends the raw line (the controller ran it). */
+static void raw_end(fbrl_robot *r, const void *p, size_t n)
+{
+    if (!r->link || n == 0) return;
+    uint8_t last = ((const uint8_t *)p)[n - 1];
+    r->raw_open = last != '\r' && last != '\n';
+    r->raw_link_mark = link_mark(r->link);
+}
+
 /* Raw bytes to the port (no echo verification). */
 static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size_t n)
 {
@@ -132,7 +153,9 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
         for (size_t k = 0; k < n; k++)
             if (((const uint8_t *)p)[k] == FBRL_XON || ((const uint8_t *)p)[k] == FBRL_XOFF)
                 return rb_fail(r, -24, "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
+    if ((st = raw_begin(r)) != FBRL_OK) return rb_fail_st(r, w, st, "port");
     st = fbrl_uart_write(u, p, n, NULL, COMM_TIMEOUT_MS);
+    if (st == FBRL_OK) raw_end(r, p, n);
     if (st == FBRL_OK && w->arg) st = fbrl_uart_drain(u, COMM_TIMEOUT_MS);
     return st == FBRL_OK ? FBRL_OK : rb_fail_st(r, w, st, "port");
 }
@@ -215,8 +238,10 @@ static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
 static void print_to_port(void *ctx, const char *s, size_t n)
 {
     fbrl_robot *r = ctx;
-    if (!r->link) return;
-    if (fbrl_uart_write(r->link->u, s, n, NULL, COMM_TIMEOUT_MS) == FBRL_OK && n && s[n - 1] == '\n')
+    if (!r->link || raw_begin(r) != FBRL_OK) return;
+    if (fbrl_uart_write(r->link->u, s, n, NULL, COMM_TIMEOUT_MS) != FBRL_OK) return;
+    raw_end(r, s, n);
+    if (n && s[n - 1] == '\n')
         rb_resync(r);
 }
 

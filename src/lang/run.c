@@ -446,7 +446,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             continue;
         case OP_CR: fbrl__write(vm, "\n", 1); continue;
         case OP_SPACE: fbrl__write(vm, " ", 1); continue;
-        case OP_SPACES: NEED(1); for (a = *--sp; a > 0; a--) fbrl__write(vm, " ", 1); continue;
+        case OP_SPACES: NEED(1); a = *--sp; CALLC(fbrl__spaces(vm, a)); continue;
         case OP_KEY: case OP_KEYQ: case OP_ACCEPT: case OP_DOT: case OP_UDOT: case OP_DOTR: case OP_UDOTR:
         case OP_DDOT: case OP_DDOTR: case OP_UDDOT: case OP_QUESTION: case OP_LTNUM: case OP_NUM:
         case OP_NUMS: case OP_NUMGT: case OP_HOLD: case OP_HOLDS: case OP_SIGN: case OP_DOTS:
@@ -599,6 +599,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 if (st != FBRL_OK)
                     THROW(st == FBRL_ETHROW ? (vm->pending_throw ? vm->pending_throw : -1)
                                             : FBRL_THROW_STATUS(st));
+                POLL(); /* a C word that waited (robot motion, I/O) may have been interrupted */
                 continue;
             }
             case K_MARKER:

@@ -837,6 +837,18 @@ void fbrl_vm_interrupt(fbrl_vm *vm)
     if (vm) fbrl_store_rlx(&vm->interrupt, 1);
 }
 
+int fbrl_vm_interrupt_pending(const fbrl_vm *vm)
+{
+    return vm ? fbrl_load_rlx(&((fbrl_vm *)vm)->interrupt) != 0 : 0;
+}
+
+int fbrl__take_interrupt(fbrl_vm *vm)
+{
+    if (!fbrl_load_rlx(&vm->interrupt)) return 0;
+    fbrl_store_rlx(&vm->interrupt, 0);
+    return 1;
+}
+
 static void begin_top(fbrl_vm *vm)
 {
     fbrl_store_rlx(&vm->interrupt, 0);

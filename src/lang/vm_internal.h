@@ -153,6 +153,7 @@ static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
 
 /* vm.c */
 int fbrl__run(fbrl_vm *vm, fbrl_cell xt);
+int fbrl__take_interrupt(fbrl_vm *vm); /* 1 (and cleared) if fbrl_vm_interrupt() was called */
 int fbrl__throw_msg(fbrl_vm *vm, int code, const char *msg);
 fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt);
 int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);

@@ -958,6 +958,19 @@ static fbrl_ucell ud_divsmall(fbrl_ucell *lo, fbrl_ucell *hi, unsigned base)
     return r;
 }
 
+/* n spaces in chunks, so a huge count (`1E11 SPACES`, a wide `.R`) stays interruptible. */
+int fbrl__spaces(fbrl_vm *vm, fbrl_cell n)
+{
+    static const char blanks[64] = "                                                                ";
+    while (n > 0) {
+        size_t k = n > (fbrl_cell)sizeof blanks ? sizeof blanks : (size_t)n;
+        if (fbrl__take_interrupt(vm)) return -28;
+        fbrl__write(vm, blanks, k);
+        n -= (fbrl_cell)k;
+    }
+    return 0;
+}
+
 static int print_d(fbrl_vm *vm, fbrl_cell lo, fbrl_cell hi, int is_signed, fbrl_cell width, int space)
 {
     unsigned base = 10;
@@ -969,7 +982,7 @@ static int print_d(fbrl_vm *vm, fbrl_cell lo, fbrl_cell hi, int is_signed, fbrl_
     if (neg) dneg(&l, &h);
     do *--p = digit_char(ud_divsmall(&l, &h, base)); while (l || h);
     if (neg) *--p = '-';
-    for (fbrl_cell k = width - (fbrl_cell)(e - p); k > 0; k--) fbrl__write(vm, " ", 1);
+    if ((r = fbrl__spaces(vm, width - (fbrl_cell)(e - p)))) return r;
     fbrl__write(vm, p, (size_t)(e - p));
     if (space) fbrl__write(vm, " ", 1);
     return 0;
@@ -1226,7 +1239,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         if ((r = pop(vm, &v))) return r;
         if (!vm->host.sleep_ms) return fbrl__throw_msg(vm, -21, "no clock in this host");
         if (v > 0) vm->host.sleep_ms(vm->host.user, (uint32_t)(v > 0x7fffffff ? 0x7fffffff : v));
-        return 0;
+        return fbrl__take_interrupt(vm) ? -28 : 0; /* a host may cut the sleep short on Ctrl-C */
     case OP_TIMEDATE: {
         int t[6] = { 0 };
         if (!vm->host.time_date) return fbrl__throw_msg(vm, -21, "no clock in this host");

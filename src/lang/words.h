@@ -28,6 +28,9 @@ int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const ch
 int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, fbrl_hdr **out);
 int fbrl__parse_float(const char *s, size_t n, double *out);
 
+/* words.c: output */
+int fbrl__spaces(fbrl_vm *vm, fbrl_cell n);
+
 /* words.c: arithmetic */
 void fbrl__umul(fbrl_ucell a, fbrl_ucell b, fbrl_ucell *hi, fbrl_ucell *lo);
 void fbrl__udiv(fbrl_ucell hi, fbrl_ucell lo, fbrl_ucell d, fbrl_ucell *q, fbrl_ucell *r);

@@ -1,14 +1,22 @@
 /* link_e2e_faults: N commands through fbrlsim with 1% of the bytes dropped and 1% with a
  * bit flipped, in both directions. fbrlsim's --log (every line it executed) must equal,
- * line for line and in order, the lines the link reported as executed (cfg.on_exec):
- * nothing executed twice, nothing executed that the link does not know of, nothing
- * altered. Commands the link could not complete end with an error and are counted.
+ * line for line and in order, the lines the link reported as executed (cfg.on_exec),
+ * and every command other than a read-only query ran exactly once if the link says it
+ * ran (OK or a controller error) and never if it says it failed.
  *
- * One alteration no echo check can see is reported, not failed: the same bit of the
- * same byte flipped on the way in and again on the way back (about p * p/8 per typed byte,
- * a few per 10,000 commands here; docs/link.md 3.6). Such a line differs from the
- * intended one in exactly one byte, by exactly one bit; any other difference fails.
- * Usage: link_e2e_faults FBRLSIM [N] [SEED] */
+ * PARITY E (the default, as ctest runs it): both ends use even parity, so a flipped
+ * bit is a parity error at the receiving UART (fbrlsim drops it inbound, marks it
+ * outbound, uart_posix drops and counts it). Nothing altered may run: any difference
+ * fails. Negative numbers are included.
+ * PARITY N (8N1): two alterations no host protocol can see are possible and are
+ * counted, and every difference must be one of them (docs/link.md 3.6): a bit flipped
+ * on the way in and the same bit flipped back in the echo (one byte differs by one
+ * bit), and a '-' turned into CR, which runs the line typed so far (the log then holds
+ * a prefix of the line, ending before a '-', that the link never saw run).
+ * A trailing X (EX, NX) runs XON/XOFF flow control on both ends (the emulator has no
+ * --baud here, so it never sends XOFF itself): with parity no damaged byte may act as
+ * XOFF, so the host's uart must receive none; with 8N1 the count is reported.
+ * Usage: link_e2e_faults FBRLSIM [N] [SEED] [N|E|NX|EX] */
 #include <math.h>
 
 #include "rapl_harness.h"
@@ -52,20 +60,67 @@ static uint32_t rnd(uint32_t n)
     return (rng >> 8) % n;
 }
 
+/* Edit distance (drops, flips, extra bytes) between a and the first bn bytes of b. */
+static size_t distance(const char *a, const char *b, size_t bn)
+{
+    size_t an = strlen(a), row[FBRL_LINK_LINE_MAX + 2];
+    if (an > FBRL_LINK_LINE_MAX)
+        return (size_t)-1;
+    for (size_t i = 0; i <= an; i++)
+        row[i] = i;
+    for (size_t j = 1; j <= bn; j++) {
+        size_t diag = row[0];
+        row[0] = j;
+        for (size_t i = 1; i <= an; i++) {
+            size_t up = row[i], best = diag + (a[i - 1] != b[j - 1]);
+            if (row[i - 1] + 1 < best)
+                best = row[i - 1] + 1;
+            if (up + 1 < best)
+                best = up + 1;
+            diag = up;
+            row[i] = best;
+        }
+    }
+    return row[an];
+}
+
+/* The log line is the link's line cut where a '-' became CR: the controller had the
+ * whole line (the link types it in one go) and ran what came before that '-', with
+ * whatever other damage it had; the link saw a wrong echo and never sent its CR. */
+static int cut_at_minus(const char *log, const char *line)
+{
+    for (size_t p = 0; line[p]; p++)
+        if (line[p] == '-' && distance(log, line, p) <= 3)
+            return 1;
+    return 0;
+}
+
+static double signed_val(uint32_t range, double scale)
+{
+    double v = rnd(range) / scale;
+    return rnd(4) == 0 ? -v : v;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fprintf(stderr, "usage: %s FBRLSIM [N] [SEED]\n", argv[0]);
+        fprintf(stderr, "usage: %s FBRLSIM [N] [SEED] [N|E]\n", argv[0]);
         return 2;
     }
     long n = argc > 2 ? atol(argv[2]) : 10000;
     long seed = argc > 3 ? atol(argv[3]) : 7;
+    char parity = argc > 4 ? argv[4][0] : 'E';
+    int xonxoff = argc > 4 && argv[4][1] == 'X';
+    if ((parity != 'N' && parity != 'E') || (argc > 4 && argv[4][1] && !xonxoff)) {
+        fprintf(stderr, "mode must be N, E, NX or EX\n");
+        return 2;
+    }
     rng = (uint32_t)seed;
-    char dir[64], logp[128], faults[96];
+    char dir[64], logp[128], faults[96], par[2] = {parity, 0};
     rig_tmpdir(dir, sizeof dir, "faults");
     snprintf(logp, sizeof logp, "%s/log", dir);
     snprintf(faults, sizeof faults, "drop=0.01,corrupt=0.01,seed=%ld", seed);
-    const char *args[] = {"--time-scale", "200", "--log", logp, "--faults", faults, NULL};
+    const char *args[] = {"--time-scale", "200", "--log", logp, "--faults", faults, "--parity", par, NULL};
     fbrl_link_config cfg;
     fbrl_link_config_init(&cfg);
     cfg.on_exec = on_exec;
@@ -75,7 +130,8 @@ int main(int argc, char **argv)
     cfg.max_attempts = 60;
     cfg.query_reads = 3;
     rig r;
-    if (rig_start(&r, argv[1], args, 115200, FBRL_FLOW_NONE, &cfg) != 0)
+    if (rig_start_parity(&r, argv[1], args, 115200, xonxoff ? FBRL_FLOW_XONXOFF : FBRL_FLOW_NONE, parity == 'E' ? FBRL_PARITY_EVEN : FBRL_PARITY_NONE,
+                  &cfg) != 0)
         return 1;
     fbrl_link *L = &r.link;
     uint64_t t0 = fbrl_clock_now_us();
@@ -85,12 +141,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "connect: %s\n", fbrl_status_name(st));
         return 1;
     }
-    /* Values never negative: a '-' is the one byte that a single flip turns into CR,
-     * which makes the controller execute the line typed so far (docs/link.md). */
     double vars[10] = {0};
     int defined[10] = {0};
-    long ok = 0, ctrl_err = 0, failed = 0, bad = 0, queries_ok = 0;
-    /* Surprises are judged at the end: an invisible double flip may explain them. */
+    long ok = 0, ctrl_err = 0, failed = 0, bad = 0, queries_ok = 0, twice = 0;
+    /* Surprises are judged at the end: with 8N1 an invisible alteration may explain them. */
     struct { size_t from, to; int var; } ev[256];
     size_t nev = 0;
     for (long i = 0; i < n; i++) {
@@ -98,7 +152,7 @@ int main(int argc, char **argv)
         size_t exec_before = nexec;
         int kind = (int)rnd(100), k = (int)rnd(10);
         int expect_err = 0, is_typev = 0;
-        double v = rnd(1000000) / 1000.0;
+        double v = signed_val(1000000, 1000.0);
         if (i < 3) {
             /* set the scene: homed, two reachable points */
             static const char *const setup[] = {"HOME", "POINT PA,14.0000,2.0000,9.0000,0.0000,0.0000,0.0000",
@@ -115,11 +169,11 @@ int main(int argc, char **argv)
             }
         } else if (kind < 65) {
             snprintf(line, sizeof line, "POINT Q%d,%.4f,%.4f,%.4f,0.0000,%.4f,0.0000", k, 10 + rnd(40000) / 10000.0,
-                     rnd(40000) / 10000.0, 5 + rnd(50000) / 10000.0, rnd(900000) / 10000.0);
+                     signed_val(40000, 10000.0), 5 + rnd(50000) / 10000.0, signed_val(900000, 10000.0));
         } else if (kind < 72) {
             snprintf(line, sizeof line, "SPEED %d", 10 + (int)rnd(91));
         } else if (kind < 80) {
-            snprintf(line, sizeof line, "OUTPUT %d", 1 + (int)rnd(16));
+            snprintf(line, sizeof line, "OUTPUT %d", (rnd(2) ? 1 : -1) * (1 + (int)rnd(16)));
         } else if (kind < 90) {
             snprintf(line, sizeof line, "MOVE %s", (i & 1) ? "PA" : "PB");
         } else if (kind < 95) {
@@ -143,6 +197,14 @@ int main(int argc, char **argv)
             if (st == FBRL_OK && line[0] == 'V') {
                 vars[k] = v;
                 defined[k] = 1;
+            }
+            /* exactly once if it ran, never if it failed */
+            size_t runs = 0;
+            for (size_t x = exec_before; x < nexec && x < MAXLOG; x++)
+                runs += strcmp(exec_lines[x], line) == 0;
+            if (runs != (st == FBRL_OK || st == FBRL_ECONTROLLER ? 1u : 0u)) {
+                fprintf(stderr, "%s: reported executed %zu times (%s)\n", line, runs, fbrl_status_name(st));
+                twice++;
             }
         }
         if (st == FBRL_OK) {
@@ -169,7 +231,9 @@ int main(int argc, char **argv)
     }
     double secs = (fbrl_clock_now_us() - t0) / 1e6;
     fbrl_link_stats s;
+    fbrl_uart_counters uc;
     fbrl_link_get_stats(L, &s);
+    fbrl_uart_get_counters(&r.uart, &uc);
     rig_stop(&r);
 
     /* the controller's log against the link's account */
@@ -179,49 +243,82 @@ int main(int argc, char **argv)
         return 1;
     }
     char buf[256];
-    size_t nlog = 0, mismatch = 0, flips = 0;
+    size_t nlog = 0, x = 0, mismatch = 0, flips = 0, cuts = 0, par_in = 0, par_out = 0;
     static char flipped[MAXLOG];
     int flipped_var[10] = {0};
     while (fgets(buf, sizeof buf, f)) {
         buf[strcspn(buf, "\r\n")] = '\0';
-        if (nlog < nexec && strcmp(buf, exec_lines[nlog]) != 0 && one_bit_apart(buf, exec_lines[nlog])) {
-            fprintf(stderr, "log line %zu: '%s' for '%s': one bit flipped in and out again\n", nlog + 1, buf,
-                    exec_lines[nlog]);
-            flips++;
-            flipped[nlog] = 1;
-            if (exec_lines[nlog][0] == 'V' && exec_lines[nlog][2] == '=')
-                flipped_var[exec_lines[nlog][1] - '0'] = 1;
-        } else if (nlog >= nexec || strcmp(buf, exec_lines[nlog]) != 0) {
-            if (mismatch++ < 10)
-                fprintf(stderr, "log line %zu: '%s', link: '%s'\n", nlog + 1, buf,
-                        nlog < nexec ? exec_lines[nlog] : "(none)");
+        if (!strcmp(buf, "# PARITY ERROR IN")) {
+            par_in++;
+            continue;
+        }
+        if (!strcmp(buf, "# PARITY ERROR OUT")) {
+            par_out++;
+            continue;
         }
         nlog++;
+        if (x < nexec && strcmp(buf, exec_lines[x]) == 0) {
+            x++;
+            continue;
+        }
+        if (parity == 'N' && x < nexec && one_bit_apart(buf, exec_lines[x])) {
+            fprintf(stderr, "log line %zu: '%s' for '%s': one bit flipped in and out again\n", nlog, buf,
+                    exec_lines[x]);
+            flips++;
+            flipped[x] = 1;
+            if (exec_lines[x][0] == 'V' && exec_lines[x][2] == '=')
+                flipped_var[exec_lines[x][1] - '0'] = 1;
+            x++;
+        } else if (parity == 'N' && x < nexec && cut_at_minus(buf, exec_lines[x])) {
+            fprintf(stderr, "log line %zu: '%s' ran, cut from '%s' by a '-' turned into CR\n", nlog, buf,
+                    exec_lines[x]);
+            cuts++; /* not an executed line of the link's: the link's line follows */
+        } else {
+            if (mismatch++ < 10)
+                fprintf(stderr, "log line %zu: '%s', link: '%s'\n", nlog, buf, x < nexec ? exec_lines[x] : "(none)");
+            x++;
+        }
     }
     fclose(f);
     for (size_t e = 0; e < nev; e++) {
-        int excused = ev[e].var >= 0 && flipped_var[ev[e].var];
-        for (size_t x = ev[e].from; x < ev[e].to && x < MAXLOG && ev[e].var < 0; x++)
-            excused |= flipped[x];
+        int excused = parity == 'N' && ev[e].var >= 0 && flipped_var[ev[e].var];
+        for (size_t y = ev[e].from; parity == 'N' && y < ev[e].to && y < MAXLOG && ev[e].var < 0; y++)
+            excused |= flipped[y];
         if (!excused)
             bad++;
     }
-    if (nlog != nexec) {
+    if (x != nexec) {
         fprintf(stderr, "log has %zu lines, link reported %zu executed\n", nlog, nexec);
         mismatch++;
     }
-    printf("%ld commands in %.1f s: %ld ok, %ld controller errors (expected), %ld reported failed, %ld wrong\n", n,
-           secs, ok, ctrl_err, failed, bad);
-    printf("executed lines: log %zu, link %zu, %zu differences, %zu invisible double flips; %ld TYPEV values "
-           "checked\n", nlog, nexec, mismatch, flips, queries_ok);
+    printf("parity %c%s: %ld commands in %.1f s: %ld ok, %ld controller errors (expected), %ld reported failed, "
+           "%ld wrong, %ld not run exactly once\n",
+           parity, xonxoff ? ", XON/XOFF" : "", n, secs, ok, ctrl_err, failed, bad, twice);
+    printf("executed lines: log %zu, link %zu, %zu unexplained differences; altered lines: %zu double flips, %zu "
+           "cut by '-' -> CR; %ld TYPEV values checked\n",
+           nlog, nexec, mismatch, flips, cuts, queries_ok);
+    printf("parity errors: host -> controller %zu (dropped by fbrlsim), controller -> host %zu (marked by fbrlsim), "
+           "%llu seen by the uart, %llu by the link\n",
+           par_in, par_out, (unsigned long long)uc.parity_errors, (unsigned long long)s.parity_errors);
+    if (xonxoff)
+        printf("XOFF received by the host: %llu (the emulator sends none of its own here)\n",
+               (unsigned long long)uc.xoff_received);
     printf("link: attempts %llu echo mismatches %llu echo timeouts %llu probes %llu cr unconfirmed %llu "
            "prompt lost %llu requeries %llu error queries %llu\n",
            (unsigned long long)s.attempts, (unsigned long long)s.echo_mismatch, (unsigned long long)s.echo_timeout,
            (unsigned long long)s.probes, (unsigned long long)s.cr_unconfirmed, (unsigned long long)s.prompt_lost,
            (unsigned long long)s.requeries, (unsigned long long)s.error_queries);
-    remove(logp);
-    rmdir(dir);
     for (size_t k = 0; k < nexec; k++)
         free(exec_lines[k]);
-    return (mismatch == 0 && bad == 0) ? 0 : 1;
+    int pass = mismatch == 0 && bad == 0 && twice == 0;
+    if (parity == 'E')
+        pass = pass && flips == 0 && cuts == 0 && par_in > 0 && par_out > 0 && uc.parity_errors <= par_out &&
+               uc.parity_errors + 5 >= par_out /* a few may still be on their way */ && uc.xoff_received == 0;
+    if (pass) {
+        remove(logp);
+        rmdir(dir);
+    } else {
+        fprintf(stderr, "fbrlsim's log kept in %s\n", logp);
+    }
+    return pass ? 0 : 1;
 }

@@ -26,9 +26,10 @@ typedef struct rig {
 } rig;
 
 /* Start fbrlsim with the given extra arguments (NULL-terminated), read the device path
- * it prints first, and open it: 8N1 at baud, flow control as asked. 0 on success. */
-static inline int rig_start(rig *r, const char *sim, const char *const *args, uint32_t baud, fbrl_flow flow,
-                     const fbrl_link_config *cfg)
+ * it prints first, and open it: 8 data bits, the parity given, at baud, flow control as
+ * asked. 0 on success. */
+static inline int rig_start_parity(rig *r, const char *sim, const char *const *args, uint32_t baud,
+                                   fbrl_flow flow, fbrl_parity parity, const fbrl_link_config *cfg)
 {
     int pipefd[2];
     memset(r, 0, sizeof *r);
@@ -64,6 +65,7 @@ static inline int rig_start(rig *r, const char *sim, const char *const *args, ui
     fbrl_uart_config uc = FBRL_UART_CONFIG_DEFAULT;
     uc.baud = baud;
     uc.flow = flow;
+    uc.parity = parity;
     fbrl_status st = fbrl_uart_posix_open(&r->port, &r->uart, r->path, &uc, r->rx, sizeof r->rx, r->tx,
                                           sizeof r->tx, NULL);
     if (st != FBRL_OK) {
@@ -76,6 +78,13 @@ static inline int rig_start(rig *r, const char *sim, const char *const *args, ui
         return -1;
     }
     return 0;
+}
+
+/* The same with 8N1. */
+static inline int rig_start(rig *r, const char *sim, const char *const *args, uint32_t baud, fbrl_flow flow,
+                            const fbrl_link_config *cfg)
+{
+    return rig_start_parity(r, sim, args, baud, flow, FBRL_PARITY_NONE, cfg);
 }
 
 static inline void rig_stop(rig *r)

@@ -1158,6 +1158,89 @@ static void t_faults(void **st)
     stop(&p);
 }
 
+/* --parity E: a corrupted byte is never an altered byte. Inbound the controller drops
+ * it (the log shows "# PARITY ERROR IN", and no executed line holds a character that
+ * was not sent); outbound it comes as 0xFF 0x00 X (PARMRK), X one bit away from a
+ * byte the controller meant, and every unmarked byte is one it meant. With parity N
+ * the same faults alter bytes. */
+static int one_bit_from(unsigned char x, const char *set)
+{
+    for (; *set; set++) {
+        unsigned d = x ^ (unsigned char)*set;
+        if (d && !(d & (d - 1)))
+            return 1;
+    }
+    return 0;
+}
+
+static void t_parity(void **st)
+{
+    const char *log = tmp("parity.log");
+    const char *const opts[] = { "--time-scale", "200", "--log", log, "--parity", "E", "--faults", "corrupt=0.05,seed=5",
+                                 NULL };
+    const char *const opts_n[] = { "--time-scale", "200", "--parity", "N", "--faults", "corrupt=0.05,seed=5", NULL };
+    /* no space: no HELP-mode hint; a line cut by a lost byte may give an error line */
+    static const char sent[] = "V1=1234567890";
+    static const char meant[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789=-. \r\n>";
+    char buf[4096], line[256];
+    simp p;
+    int k, marks = 0, in = 0, lines = 0, altered = 0;
+    size_t n, i;
+    FILE *f;
+    (void)st;
+    remove(log);
+    spawn(&p, opts);
+    for (k = 0; k < 40; k++) {
+        puts_(&p, sent);
+        puts_(&p, "\r");
+        n = read_until(&p, buf, sizeof buf, "\r\n>>", 0.3);
+        for (i = 0; i < n; i++) {
+            unsigned char b = (unsigned char)buf[i];
+            if (b == 0xFF) {
+                assert_true(i + 2 < n + 1 && (unsigned char)buf[i + 1] == 0x00);
+                assert_true(i + 2 < n);
+                assert_true(one_bit_from((unsigned char)buf[i + 2], meant));
+                marks++;
+                i += 2;
+            } else {
+                assert_non_null(strchr(meant, b));
+            }
+        }
+    }
+    stop(&p);
+    /* parity N: the same faults alter bytes */
+    spawn(&p, opts_n);
+    for (k = 0; k < 40; k++) {
+        puts_(&p, "\x18");
+        puts_(&p, sent);
+        puts_(&p, "\r");
+        n = read_until(&p, buf, sizeof buf, "\r\n>>", 0.3);
+        for (i = 0; i < n; i++)
+            altered += !strchr(meant, buf[i]) && buf[i] != '\b';
+    }
+    stop(&p);
+    assert_true(marks > 0);
+    assert_true(altered > 0);
+    f = fopen(log, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = 0;
+        if (!strcmp(line, "# PARITY ERROR IN")) {
+            in++;
+            continue;
+        }
+        if (!strcmp(line, "# PARITY ERROR OUT"))
+            continue;
+        lines++;
+        for (i = 0; line[i]; i++)
+            if (!strchr(sent, line[i]))
+                fail_msg("executed line '%s' holds a byte that was not sent", line);
+    }
+    fclose(f);
+    assert_true(in > 0);
+    assert_true(lines > 0);
+}
+
 /* Random keystrokes (no W: WAIT could wait for ever): the emulator survives
  * and still answers afterwards. Runs under the sanitizers in CI. */
 static void t_garbage(void **st)
@@ -1334,7 +1417,7 @@ int main(int argc, char **argv)
           cmocka_unit_test(t_run))
     GROUP("persist", cmocka_unit_test(t_persist))
     GROUP("baud", cmocka_unit_test(t_baud))
-    GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_garbage))
+    GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_parity), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp))
     GROUP("embed", cmocka_unit_test(t_embed))

@@ -21,7 +21,7 @@
 #include "fbrl/uart_posix.h"
 
 enum { IN = 0, OUT = 1 };
-enum { NONE, DROP, REPLACE };
+enum { NONE, DROP, REPLACE, MARK };
 
 /* Damage the (skip+1)-th byte equal to `match` going in direction dir. */
 typedef struct rule {
@@ -39,6 +39,13 @@ typedef struct ctl {
     int nrules;
     int dead; /* reads nothing, answers nothing */
     const char *typev;
+    /* W1: a value line every stream_ms until any byte arrives (consumed). The line
+     * already in the controller's transmit FIFO when that byte comes still goes out,
+     * as on a real UART: the host may read a stream line after its byte has landed. */
+    char stray; /* a noise byte that arrives right behind the next CR */
+    int streaming;
+    unsigned stream_ms;
+    uint64_t stream_next;
 } ctl;
 
 typedef struct session {
@@ -67,7 +74,7 @@ static int fault(ctl *c, int dir, uint8_t b)
             continue;
         int act = r->action;
         r->action = NONE;
-        return act == DROP ? -1 : r->with;
+        return act == DROP ? -1 : act == MARK ? 0x100 | b : r->with;
     }
     return b;
 }
@@ -76,7 +83,10 @@ static void out(ctl *c, const char *s, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
         int b = fault(c, OUT, (uint8_t)s[k]);
-        if (b >= 0) {
+        if (b >= 0x100) { /* a parity error, as the host's driver (PARMRK) delivers it */
+            uint8_t m[3] = {0xFF, 0x00, (uint8_t)b};
+            assert_int_equal(write(c->fd, m, 3), 3);
+        } else if (b >= 0) {
             uint8_t x = (uint8_t)b;
             assert_int_equal(write(c->fd, &x, 1), 1);
         }
@@ -100,6 +110,12 @@ static void execute(ctl *c)
                     "SPEED (% OF FULL) :    +50\r\nCONTROLLER IS HOMED\r\nAXIS#        1 2 3 4 5\r\n"
                     "LOCK         N N N N N\r\nDONE         Y Y Y Y Y\r\nLIMP         N N N N N\r\n"
                     "HOMED        Y Y Y Y Y\r\n");
+        } else if (!strcmp(c->line, "W1")) {
+            outs(c, "\r\nACTUAL POSITION (MOTOR PULSES):\r");
+            c->streaming = 1;
+            c->stream_next = fbrl_clock_now_us();
+            c->len = 0;
+            return; /* no prompt until the stream stops */
         } else if (!strcmp(c->line, "W2")) {
             outs(c, "\r\nCURRENT ACTUAL POSITION :\r\n"
                     "PULSES   +0000000000 +0000018000 -0000018000 +0000000000 +0000000000\r\n"
@@ -109,6 +125,16 @@ static void execute(ctl *c)
     }
     c->len = 0;
     outs(c, ">>");
+    if (c->stray) {
+        c->line[c->len++] = c->stray;
+        out(c, &c->stray, 1);
+        c->stray = 0;
+    }
+}
+
+static void stream_line(ctl *c)
+{
+    outs(c, "+0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r");
 }
 
 /* Serve whatever the host sent. */
@@ -117,11 +143,21 @@ static void ctl_service(ctl *c)
     uint8_t buf[256];
     if (c->dead)
         return;
+    if (c->streaming && fbrl_clock_now_us() >= c->stream_next) {
+        stream_line(c);
+        c->stream_next = fbrl_clock_now_us() + c->stream_ms * 1000u;
+    }
     ssize_t n = read(c->fd, buf, sizeof buf);
     for (ssize_t k = 0; k < n; k++) {
         int b = fault(c, IN, buf[k]);
         if (b < 0)
             continue;
+        if (c->streaming) {
+            stream_line(c); /* in the FIFO already */
+            c->streaming = 0;
+            outs(c, "\r\n>>");
+            continue; /* the byte that stops the stream is consumed */
+        }
         if (b == '\r' || b == '\n') {
             execute(c);
         } else if (b == 0x08 || b == 0x7f) {
@@ -140,7 +176,7 @@ static void ctl_service(ctl *c)
     }
 }
 
-static int open_session(session *s)
+static int open_session_parity(session *s, fbrl_parity parity)
 {
     memset(s, 0, sizeof *s);
     s->c.fd = posix_openpt(O_RDWR | O_NOCTTY);
@@ -149,6 +185,7 @@ static int open_session(session *s)
     fcntl(s->c.fd, F_SETFL, O_NONBLOCK);
     fbrl_uart_config uc = FBRL_UART_CONFIG_DEFAULT;
     uc.flow = FBRL_FLOW_NONE;
+    uc.parity = parity;
     if (fbrl_uart_posix_open(&s->port, &s->u, ptsname(s->c.fd), &uc, s->rx, sizeof s->rx, s->tx, sizeof s->tx,
                              NULL) != FBRL_OK)
         return -1;
@@ -159,6 +196,11 @@ static int open_session(session *s)
     cfg.wait_timeout_ms = 2000;
     cfg.max_attempts = 6;
     return fbrl_link_init(&s->l, &s->u, &cfg) == FBRL_OK ? 0 : -1;
+}
+
+static int open_session(session *s)
+{
+    return open_session_parity(s, FBRL_PARITY_NONE);
 }
 
 static void close_session(session *s)
@@ -190,10 +232,10 @@ static fbrl_status run(session *s, const char *line, fbrl_link_reply kind)
     return drive(s);
 }
 
-static int setup(void **state)
+static int setup_with(void **state, fbrl_parity parity)
 {
     session *s = malloc(sizeof *s);
-    if (!s || open_session(s) != 0)
+    if (!s || open_session_parity(s, parity) != 0)
         return -1;
     /* the handshake: NOHELP through the same machinery */
     if (run(s, "NOHELP", FBRL_LINK_REPLY_NONE) != FBRL_OK)
@@ -201,6 +243,9 @@ static int setup(void **state)
     *state = s;
     return 0;
 }
+
+static int setup(void **state) { return setup_with(state, FBRL_PARITY_NONE); }
+static int setup_even(void **state) { return setup_with(state, FBRL_PARITY_EVEN); }
 
 static int teardown(void **state)
 {
@@ -212,6 +257,9 @@ static int teardown(void **state)
 
 static void assert_log(session *s, const char *const *want, int n)
 {
+    if (s->c.nlog != n)
+        for (int k = 0; k < s->c.nlog && k < 32; k++)
+            print_message("executed: %s\n", s->c.log[k]);
     assert_int_equal(s->c.nlog, n);
     for (int k = 0; k < n; k++)
         assert_string_equal(s->c.log[k], want[k]);
@@ -324,6 +372,16 @@ static void errors_carry_the_code(void **state)
     assert_int_equal(code, 29);
     static const char *const want[] = {"BAD", "STATUS"};
     assert_log(s, want, 2);
+    /* the CR LF after the error line is lost: "029-TRANSFORM ILLEGAL.>>" is no prompt,
+     * and no success either */
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '\r', 1, DROP, 0);
+    ctl_rule(&s->c, OUT, '\n', 1, DROP, 0);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    fbrl_link_error(&s->l, &code, &text);
+    assert_int_equal(code, 29);
+    assert_log(s, want, 2);
     assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
     fbrl_link_error(&s->l, &code, &text);
     assert_int_equal(code, -1);
@@ -406,6 +464,132 @@ static void silence_is_an_error(void **state)
     assert_log(s, want, 1);
 }
 
+static int lines_seen;
+static void count_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    (void)line;
+    (void)len;
+    (void)flawed;
+    *(int *)ctx += 1;
+}
+
+/* Run a W1 stream of `lines` value lines with the step-by-step calls. */
+static fbrl_status run_stream(session *s, unsigned lines)
+{
+    fbrl_status st = fbrl_link_start_stream(&s->l, FBRL_RAPL_W1, lines);
+    return st == FBRL_OK ? drive(s) : st;
+}
+
+/* A continuous readout slower than the echo timeout, stopped while a line is in the
+ * controller's FIFO, with the stop byte lost, with the prompt after the stop damaged:
+ * only W1 and the commands asked for ever run (an earlier link probed the silent
+ * stream, and the CR that stopped it then ran the probe's markers as a command), and
+ * the command after a stream is typed onto a line the link has verified. */
+static void stream_stop_runs_nothing(void **state)
+{
+    session *s = *state;
+    s->c.stream_ms = 75; /* > echo_timeout_ms (30) */
+    s->c.nlog = 0;
+    fbrl_link_line_fn old_fn = count_line;
+    void *old_ctx = s;
+    assert_int_equal(fbrl_link_set_line_handler(&s->l, count_line, &lines_seen, &old_fn, &old_ctx), FBRL_OK);
+    assert_null(old_fn);
+    assert_null(old_ctx);
+    lines_seen = 0;
+    assert_int_equal(run_stream(s, 2), FBRL_OK);
+    assert_true(lines_seen >= 2); /* the value lines, and the one in the FIFO */
+    assert_int_equal(fbrl_link_set_line_handler(&s->l, NULL, NULL, &old_fn, &old_ctx), FBRL_OK);
+    assert_true(old_fn == count_line && old_ctx == &lines_seen);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    ctl_rule(&s->c, IN, '\r', 1, DROP, 0); /* the stop byte (after W1's own CR) */
+    assert_int_equal(run_stream(s, 2), FBRL_OK);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '>', 0, REPLACE, '<'); /* the prompt after the stop */
+    assert_int_equal(run_stream(s, 3), FBRL_OK);
+    s->c.nrules = 0;
+    s->c.stream_ms = 5; /* faster than the link: stopped as soon as enough came */
+    assert_int_equal(run_stream(s, 4), FBRL_OK);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"W1", "HOME", "W1", "HOME", "W1", "W1", "HOME"};
+    assert_log(s, want, 7);
+}
+
+/* A noise byte lands on the line right behind a command's CR: its echo follows the
+ * prompt. The next command is not typed onto it (it would run as "XHOME"). */
+static void noise_after_prompt_is_erased(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    s->c.stray = 'X';
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"HOME", "HOME"};
+    assert_log(s, want, 2);
+}
+
+/* Even parity: a damaged byte reaches the link only as a parity error (the uart drops
+ * it). In an echo it means: erase and type again, without waiting, and no CR. After
+ * the CR, "CR LF >>" that lost CR (parity), LF and one '>' still proves the line ran
+ * (without parity one byte would not: 3.2), so it is not typed a second time. */
+static void parity_errors_are_damage(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, 'O', 0, MARK, 0);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.parity_errors, 1);
+    assert_int_equal(st.echo_timeout, 0);
+    assert_int_equal(st.attempts, 3); /* NOHELP, HOME twice */
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, MARK, 0);
+    ctl_rule(&s->c, OUT, '\n', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '>', 0, MARK, 0);
+    assert_int_equal(run(s, "READY", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"HOME", "READY"};
+    assert_log(s, want, 2);
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.parity_errors, 3);
+    assert_int_equal(st.cr_unconfirmed, 0);
+    /* a query whose reply lost a byte is asked again */
+    s->c.nlog = 0;
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '5', 0, MARK, 0);
+    double v = 0;
+    assert_int_equal(run(s, "TYPEV X", FBRL_LINK_REPLY_REAL), FBRL_OK);
+    assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_OK);
+    assert_true(v == 1.5);
+    assert_int_equal(s->c.nlog, 3);
+}
+
+/* Raw output after a command that needed a probe: the probe's markers are still on the
+ * controller's line; fbrl_link_clear_line() erases them, so a raw CR runs only the raw
+ * text, and the link's next command still runs once. */
+static void clear_line_before_raw_output(void **state)
+{
+    session *s = *state;
+    ctl_rule(&s->c, OUT, '>', 0, REPLACE, '<'); /* damaged prompt: a probe, markers left */
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    assert_true(s->c.len == 3);
+    assert_int_equal(fbrl_link_clear_line(&s->l), FBRL_OK);
+    size_t n = 0;
+    assert_int_equal(fbrl_uart_write(&s->u, "READY\r", 6, &n, 1000), FBRL_OK);
+    for (int k = 0; k < 50 && s->c.nlog == 0; k++) {
+        uint8_t junk[64];
+        size_t got;
+        ctl_service(&s->c);
+        fbrl_uart_read(&s->u, junk, sizeof junk, &got, 2);
+    }
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"READY", "HOME"};
+    assert_log(s, want, 2);
+    assert_int_equal(fbrl_link_clear_line(NULL), FBRL_EINVAL);
+}
+
 static void bad_calls_are_refused(void **state)
 {
     session *s = *state;
@@ -437,6 +621,13 @@ static void bad_calls_are_refused(void **state)
     assert_int_equal(fbrl_link_raw(&s->l, "W1"), FBRL_EINVAL);
     int on;
     assert_int_equal(fbrl_link_input(&s->l, 0, &on), FBRL_ERANGE);
+    assert_int_equal(fbrl_link_set_line_handler(NULL, NULL, NULL, NULL, NULL), FBRL_EINVAL);
+    fbrl_rapl_form form = FBRL_RAPL_TOKEN;
+    assert_int_equal(fbrl_link_get_form(&s->l, &form), FBRL_OK);
+    assert_int_equal(form, FBRL_RAPL_KEYWORD);
+    assert_int_equal(fbrl_link_get_form(&s->l, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start_stream(&s->l, FBRL_RAPL_W2, 3), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start_stream(&s->l, FBRL_RAPL_W1, 0), FBRL_EINVAL);
 }
 
 /* One thread, two robots: both commands progress and finish through poll_many. */
@@ -489,6 +680,10 @@ int main(void)
         cmocka_unit_test_setup_teardown(errors_carry_the_code, setup, teardown),
         cmocka_unit_test_setup_teardown(queries_are_confirmed, setup, teardown),
         cmocka_unit_test_setup_teardown(silence_is_an_error, setup, teardown),
+        cmocka_unit_test_setup_teardown(stream_stop_runs_nothing, setup, teardown),
+        cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
+        cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
+        cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
     };

@@ -178,7 +178,7 @@ static void every_word_has_help(void **state)
         assert_int_equal(fbrl_vm_help(f->vm, names[k], &stack, &help), FBRL_OK);
         assert_true(stack[0] == '(' && strlen(help) > 10);
     }
-    /* the DOS-only words of I-4 are not bound (docs/glossary-robot.md) */
+    /* the DOS-only words of I-4 are not bound (docs/glossary.md) */
     assert_int_equal(fbrl_vm_help(f->vm, "INSTALL-INTERRUPT", NULL, NULL), FBRL_ENOENT);
     assert_int_equal(fbrl_vm_help(f->vm, "COMM-INT-ENABLE", NULL, NULL), FBRL_ENOENT);
 }

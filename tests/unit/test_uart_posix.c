@@ -484,6 +484,80 @@ static void idle_read_times_out(void **state)
     }
 }
 
+/* Read what the peer wrote until `want` bytes came (or 2 s). */
+static size_t read_all(fbrl_uart *u, uint8_t *buf, size_t cap, size_t want)
+{
+    size_t got = 0;
+    uint64_t end = fbrl_clock_now_us() + 2000000u;
+    while (got < want && got < cap && fbrl_clock_now_us() < end) {
+        size_t n = 0;
+        fbrl_uart_read(u, buf + got, cap - got, &n, 50);
+        got += n;
+    }
+    return got;
+}
+
+/* With parity, bytes come in the PARMRK format (on a pty the peer writes it, as
+ * fbrlsim --parity does): 0xFF 0x00 X is a parity error, counted, X dropped; 0xFF 0xFF
+ * is one data byte 0xFF; a mark split across writes (and reads) is still one mark.
+ * Without parity every byte is data. Polled and thread mode. */
+static void parity_marks_are_parsed(void **state)
+{
+    (void)state;
+    for (int threaded = 0; threaded < 2; threaded++) {
+        char name[64];
+        int m = make_pty(name, sizeof name);
+        fbrl_uart_posix p;
+        fbrl_uart u;
+        fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
+        fbrl_uart_posix_options opt = FBRL_UART_POSIX_OPTIONS_DEFAULT;
+        opt.service_thread = threaded;
+        cfg.flow = FBRL_FLOW_NONE;
+        cfg.parity = threaded ? FBRL_PARITY_ODD : FBRL_PARITY_EVEN;
+        assert_int_equal(fbrl_uart_posix_open(&p, &u, name, &cfg, rxa, 256, txa, 256, &opt), FBRL_OK);
+        struct termios t;
+        assert_int_equal(tcgetattr(fbrl_uart_posix_fd(&p), &t), 0);
+        assert_true(t.c_iflag & INPCK);
+        assert_int_equal(t.c_iflag & (PARMRK | IGNPAR), 0); /* a pty would double 0xFF */
+        static const uint8_t in[] = {'A', 0xFF, 0x00, 'Q', 'B', 0xFF, 0xFF, 'C', 0xFF, 0x00, 0xFF, 'D'};
+        static const uint8_t want[] = {'A', 'B', 0xFF, 'C', 'D'};
+        assert_int_equal(write(m, in, sizeof in), (ssize_t)sizeof in);
+        uint8_t buf[64];
+        size_t got = read_all(&u, buf, sizeof buf, sizeof want);
+        assert_int_equal(got, sizeof want);
+        assert_memory_equal(buf, want, sizeof want);
+        /* split marks: 0xFF | 0x00 | X, and 0xFF | 0xFF, each written separately */
+        static const uint8_t parts[][2] = {{'E', 0xFF}, {0x00, 0}, {'R', 'F'}, {0xFF, 0}, {0xFF, 'G'}};
+        static const size_t plen[] = {2, 1, 2, 1, 2};
+        got = 0;
+        for (size_t k = 0; k < 5; k++) {
+            assert_int_equal(write(m, parts[k], plen[k]), (ssize_t)plen[k]);
+            usleep(20000);
+            size_t n = 0;
+            fbrl_uart_read(&u, buf + got, sizeof buf - got, &n, 20); /* each part read on its own */
+            got += n;
+        }
+        static const uint8_t want2[] = {'E', 'F', 0xFF, 'G'};
+        got += read_all(&u, buf + got, sizeof buf - got, sizeof want2 - got);
+        assert_int_equal(got, sizeof want2);
+        assert_memory_equal(buf, want2, sizeof want2);
+        fbrl_uart_counters c;
+        assert_int_equal(fbrl_uart_get_counters(&u, &c), FBRL_OK);
+        assert_int_equal(c.parity_errors, 3);
+        /* parity off: 0xFF and 0x00 are data */
+        cfg.parity = FBRL_PARITY_NONE;
+        assert_int_equal(fbrl_uart_configure(&u, &cfg), FBRL_OK);
+        assert_int_equal(write(m, in, 4), 4);
+        got = read_all(&u, buf, sizeof buf, 4);
+        assert_int_equal(got, 4);
+        assert_memory_equal(buf, in, 4);
+        assert_int_equal(fbrl_uart_get_counters(&u, &c), FBRL_OK);
+        assert_int_equal(c.parity_errors, 3);
+        fbrl_uart_close(&u);
+        close(m);
+    }
+}
+
 /* The master side goes away: reads and writes on the slave end report
  * FBRL_EDISCONNECTED (after any bytes that came first), within their timeouts. */
 static void peer_gone_is_disconnected(void **state)
@@ -613,6 +687,7 @@ int main(void)
         cmocka_unit_test(thread_answers_flow_control_while_app_computes),
         cmocka_unit_test(idle_read_times_out),
         cmocka_unit_test(peer_gone_is_disconnected),
+        cmocka_unit_test(parity_marks_are_parsed),
         cmocka_unit_test(tcp_serial_server),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

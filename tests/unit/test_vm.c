@@ -694,6 +694,35 @@ static void interrupt_stops_endless_loops(void **state)
     free_vm(f);
 }
 
+/* Output padding of any width and C words that wait are interruptible too: a huge
+ * SPACES or U.R ends, and code after an interrupted C word does not run. */
+static fbrl_status c_wait_for_interrupt(fbrl_vm *vm, void *arg)
+{
+    (void)arg;
+    while (!fbrl_vm_interrupt_pending(vm))
+        h_sleep_ms(NULL, 1);
+    return FBRL_OK;
+}
+
+static void interrupt_stops_padding_and_waiting_c_words(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(eval_interrupted(f, "100000000000 SPACES"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(eval_interrupted(f, "1 100000000000 U.R"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(fbrl_vm_define(f->vm, "C-WAIT", c_wait_for_interrupt, NULL, "( -- )", "waits for Ctrl-C"),
+                     FBRL_OK);
+    assert_int_equal(ev(f, "VARIABLE RAN 0 RAN ! : P C-WAIT 1 RAN ! ;"), FBRL_OK);
+    assert_int_equal(eval_interrupted(f, "P"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
+    assert_int_equal(ev(f, "RAN @"), FBRL_OK);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(ev(f, "3 SPACES 7 5 U.R"), FBRL_OK); /* still pads normally */
+    free_vm(f);
+}
+
 /* Random token streams built from the dictionary's own words: whatever they do,
  * the VM must answer with OK or an error and stay usable. */
 typedef struct names { char list[700][40]; int n; } names;
@@ -779,6 +808,7 @@ int main(void)
         cmocka_unit_test(corrupted_code_is_contained),
         cmocka_unit_test(random_programs_are_contained),
         cmocka_unit_test(interrupt_stops_endless_loops),
+        cmocka_unit_test(interrupt_stops_padding_and_waiting_c_words),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,27 @@
+/* fbrl.h - all of libfbrl's public headers. Include this, or only the modules you use. */
+#ifndef FBRL_FBRL_H
+#define FBRL_FBRL_H
+
+#include "fbrl/status.h"
+#include "fbrl/crc32.h"
+#include "fbrl/ring.h"
+#include "fbrl/clock.h"
+#include "fbrl/uart.h"
+#include "fbrl/uart_posix.h"
+#include "fbrl/uart_8250.h"
+#ifdef FBRL_HAVE_SERIALPORT
+#include "fbrl/uart_serialport.h"
+#endif
+#include "fbrl/rapl_encode.h"
+#include "fbrl/rapl_reply.h"
+#include "fbrl/link.h"
+#include "fbrl/loc.h"
+#include "fbrl/units.h"
+#include "fbrl/matrix.h"
+#include "fbrl/calib.h"
+#include "fbrl/fileio.h"
+#include "fbrl/vm.h"
+#include "fbrl/glossary.h"
+#include "fbrl/robot.h"
+
+#endif
