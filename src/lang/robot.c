@@ -10,7 +10,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "atomic.h"
 #include "robot_internal.h"
 
 static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim or --port";
@@ -55,13 +54,12 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
     return rb_fail(r, FBRL_THROW_STATUS(st), msg);
 }
 
-/* Ctrl-C: fbrl_vm_interrupt() sets a flag the engine polls only between words, so a
- * word that waits on the controller looks at it itself (read and dropped exactly as
- * the engine's own poll does) and throws -28 "user interrupt". */
+/* Ctrl-C while a robot word waits on the controller: take the VM's interrupt request
+ * here (the engine would deliver it only after the word returns) and throw -28 with
+ * what it means for the controller. */
 fbrl_status rb_interrupted(fbrl_robot *r)
 {
-    if (!fbrl_load_rlx(&r->vm->interrupt)) return FBRL_OK;
-    fbrl_store_rlx(&r->vm->interrupt, 0);
+    if (!fbrl__take_interrupt(r->vm)) return FBRL_OK;
     return rb_fail(r, -28, "user interrupt (a command the controller already has still runs;"
                            " the next robot word waits for it)");
 }
