@@ -4,7 +4,7 @@
 # commands fbrlsim executed with LOG: (its --log).
 if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
   add_executable(robot_e2e ${CMAKE_CURRENT_SOURCE_DIR}/e2e/robot_e2e.c)
-  target_include_directories(robot_e2e PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/e2e)
+  target_include_directories(robot_e2e PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/e2e)
   target_compile_definitions(robot_e2e PRIVATE _DEFAULT_SOURCE FBRL_TEST_SRCDIR="${PROJECT_SOURCE_DIR}")
   target_link_libraries(robot_e2e PRIVATE fbrl_static Threads::Threads m)
   add_dependencies(robot_e2e fbrlsim)

@@ -24,6 +24,7 @@
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
+#include "support/vm_host.h"
 
 static rig R;
 static fbrl_vm *vm;
@@ -50,61 +51,6 @@ static int h_key(void *user)
 {
     (void)user;
     return *keys ? (unsigned char)*keys++ : -1;
-}
-
-static fbrl_status h_open(void *user, const char *path, void **handle)
-{
-    (void)user;
-    FILE *f = fopen(path, "r");
-    if (!f) return FBRL_ENOENT;
-    *handle = f;
-    return FBRL_OK;
-}
-
-static fbrl_status h_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
-{
-    size_t n = 0;
-    int c;
-    (void)user;
-    while ((c = fgetc((FILE *)handle)) != EOF && c != '\n') {
-        if (n >= cap) return FBRL_ENOSPC;
-        buf[n++] = (char)c;
-    }
-    if (c == EOF && n == 0) return FBRL_EEOF;
-    *len = n;
-    return FBRL_OK;
-}
-
-static void h_close(void *user, void *handle)
-{
-    (void)user;
-    fclose(handle);
-}
-
-static uint64_t h_now_us(void *user)
-{
-    (void)user;
-    return fbrl_clock_now_us();
-}
-
-static void h_sleep_ms(void *user, uint32_t ms)
-{
-    (void)user;
-    fbrl_clock_sleep_us((uint64_t)ms * 1000u);
-}
-
-static void h_time_date(void *user, int out[6])
-{
-    time_t now = time(NULL);
-    struct tm tm;
-    (void)user;
-    localtime_r(&now, &tm);
-    out[0] = tm.tm_sec;
-    out[1] = tm.tm_min;
-    out[2] = tm.tm_hour;
-    out[3] = tm.tm_mday;
-    out[4] = tm.tm_mon + 1;
-    out[5] = tm.tm_year + 1900;
 }
 
 /* ---- test words ---- */
@@ -303,12 +249,8 @@ int main(int argc, char **argv)
     cfg.mem_size = sizeof mem;
     cfg.host.write = h_write;
     cfg.host.key = h_key;
-    cfg.host.file_open = h_open;
-    cfg.host.file_read_line = h_read_line;
-    cfg.host.file_close = h_close;
-    cfg.host.now_us = h_now_us;
-    cfg.host.sleep_ms = h_sleep_ms;
-    cfg.host.time_date = h_time_date;
+    vmh_use_files(&cfg.host);
+    vmh_use_clock(&cfg.host);
     if (fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_glossary_install(vm, &G) != FBRL_OK ||
         fbrl_robot_install(vm, &robot, &R.link, &G) != FBRL_OK) {
         fprintf(stderr, "VM setup failed\n");

@@ -17,59 +17,16 @@
 #include "fbrl/fileio.h"
 #include "fbrl/glossary.h"
 #include "fbrl/vm.h"
+#include "support/vm_host.h"
 
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
 #define FILE_STORAGE (8 * 8192) /* 8 KB of records per open file */
 
-/* ---- a host: console and port output into buffers, source files through stdio ---- */
-typedef struct text {
-    char s[1 << 16];
-    size_t n;
-} text;
-
-static void put(text *t, const char *s, size_t n)
-{
-    size_t room = sizeof t->s - 1 - t->n;
-    if (n > room) n = room;
-    memcpy(t->s + t->n, s, n);
-    t->n += n;
-    t->s[t->n] = 0;
-}
-
-static void h_write(void *user, const char *s, size_t n) { put(user, s, n); }
-
-static fbrl_status h_open(void *user, const char *path, void **handle)
-{
-    (void)user;
-    FILE *f = fopen(path, "r");
-    if (!f) return FBRL_ENOENT;
-    *handle = f;
-    return FBRL_OK;
-}
-
-static fbrl_status h_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
-{
-    (void)user;
-    size_t n = 0;
-    int c;
-    while ((c = fgetc((FILE *)handle)) != EOF && c != '\n') {
-        if (n >= cap) return FBRL_ENOSPC;
-        buf[n++] = (char)c;
-    }
-    if (c == EOF && n == 0) return FBRL_EEOF;
-    *len = n;
-    return FBRL_OK;
-}
-
-static void h_close(void *user, void *handle)
-{
-    (void)user;
-    fclose(handle);
-}
-
+/* ---- a host: console and port output into texts, source files through stdio
+ * (support/vm_host.h) ---- */
 typedef struct fixture {
     void *mem;
-    text out, port;
+    vmh_text out, port;
     fbrl_vm *vm;
     fbrl_glossary g;
     unsigned char files[FILE_STORAGE];
@@ -90,10 +47,8 @@ static fixture *new_vm(void)
     cfg.mem = f->mem;
     cfg.mem_size = mem_size;
     cfg.host.user = &f->out;
-    cfg.host.write = h_write;
-    cfg.host.file_open = h_open;
-    cfg.host.file_read_line = h_read_line;
-    cfg.host.file_close = h_close;
+    cfg.host.write = vmh_write;
+    vmh_use_files(&cfg.host);
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     assert_int_equal(fbrl_glossary_install(f->vm, &f->g), FBRL_OK);
     assert_int_equal(fbrl_glossary_set_file_storage(&f->g, f->files, sizeof f->files), FBRL_OK);
@@ -275,7 +230,7 @@ static void display_loc_text(void **state)
     free_vm(f);
 }
 
-static void port_writer(void *ctx, const char *s, size_t n) { put(ctx, s, n); }
+static void port_writer(void *ctx, const char *s, size_t n) { vmh_put(ctx, s, n); }
 
 static void print_loc_port(void **state)
 {

@@ -22,57 +22,19 @@
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
+#include "support/vm_host.h"
 
 #define GLOSSARY FBRL_TEST_SRCDIR "/docs/glossary.md"
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
 
-/* ---- an offline VM: console into a buffer, source files through stdio ---- */
+/* ---- an offline VM: console into a text, source files through stdio (support/vm_host.h) ---- */
 typedef struct fixture {
     unsigned char *mem;
     fbrl_vm *vm;
     fbrl_glossary g;
     fbrl_robot r;
-    char out[1 << 16];
-    size_t n;
+    vmh_text out;
 } fixture;
-
-static void h_write(void *user, const char *s, size_t n)
-{
-    fixture *f = user;
-    if (n > sizeof f->out - 1 - f->n) n = sizeof f->out - 1 - f->n;
-    memcpy(f->out + f->n, s, n);
-    f->n += n;
-    f->out[f->n] = 0;
-}
-
-static fbrl_status h_open(void *user, const char *path, void **handle)
-{
-    (void)user;
-    FILE *fp = fopen(path, "r");
-    if (!fp) return FBRL_ENOENT;
-    *handle = fp;
-    return FBRL_OK;
-}
-
-static fbrl_status h_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
-{
-    (void)user;
-    size_t n = 0;
-    int c;
-    while ((c = fgetc((FILE *)handle)) != EOF && c != '\n') {
-        if (n >= cap) return FBRL_ENOSPC;
-        buf[n++] = (char)c;
-    }
-    if (c == EOF && n == 0) return FBRL_EEOF;
-    *len = n;
-    return FBRL_OK;
-}
-
-static void h_close(void *user, void *handle)
-{
-    (void)user;
-    fclose(handle);
-}
 
 static int setup(void **state)
 {
@@ -84,11 +46,9 @@ static int setup(void **state)
     memset(&cfg, 0, sizeof cfg);
     cfg.mem = f->mem;
     cfg.mem_size = 4 << 20;
-    cfg.host.user = f;
-    cfg.host.write = h_write;
-    cfg.host.file_open = h_open;
-    cfg.host.file_read_line = h_read_line;
-    cfg.host.file_close = h_close;
+    cfg.host.user = &f->out;
+    cfg.host.write = vmh_write;
+    vmh_use_files(&cfg.host);
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     assert_int_equal(fbrl_glossary_install(f->vm, &f->g), FBRL_OK);
     assert_int_equal(fbrl_robot_install(f->vm, &f->r, NULL, &f->g), FBRL_OK);
@@ -459,9 +419,9 @@ static void type_string_prints(void **state)
 {
     fixture *f = *state;
     const char *src = "10 STRING TS  TS STRING-LIT \"ROBOT\"  TS TYPE-STRING  TS NULL-STRING TS TYPE-STRING";
-    f->n = 0;
+    f->out.n = 0;
     assert_int_equal(fbrl_vm_eval(f->vm, src, strlen(src)), FBRL_OK);
-    assert_string_equal(f->out, "ROBOT");
+    assert_string_equal(f->out.s, "ROBOT");
 }
 
 static void forth_glossary_audit(void **state)
@@ -472,7 +432,7 @@ static void forth_glossary_audit(void **state)
     if (st != FBRL_OK) {
         const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
         print_error("glossary_audit.fs: error %d (%s) at '%s' %s:%lu\n%s\n", e->throw_code, e->message, e->word,
-                    e->file, e->line, f->out);
+                    e->file, e->line, f->out.s);
     }
     assert_int_equal(st, FBRL_OK);
     const char *q = "#ERRORS @ #TESTS @";
@@ -480,7 +440,7 @@ static void forth_glossary_audit(void **state)
     fbrl_cell tests = 0, errors = 0;
     assert_int_equal(fbrl_vm_pop(f->vm, &tests), FBRL_OK);
     assert_int_equal(fbrl_vm_pop(f->vm, &errors), FBRL_OK);
-    if (errors) print_error("glossary_audit.fs: %ld failures:\n%s\n", (long)errors, f->out);
+    if (errors) print_error("glossary_audit.fs: %ld failures:\n%s\n", (long)errors, f->out.s);
     assert_int_equal(errors, 0);
     assert_true(tests >= 5);
 }

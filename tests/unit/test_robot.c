@@ -18,6 +18,7 @@
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
+#include "support/vm_host.h"
 
 #define OFFLINE_CODE (-300 + (int)FBRL_EOFFLINE)
 
@@ -39,18 +40,6 @@ static void h_write(void *user, const char *s, size_t n)
     f->out[f->n] = 0;
 }
 
-static uint64_t h_now_us(void *user)
-{
-    (void)user;
-    return fbrl_clock_now_us();
-}
-
-static void h_sleep_ms(void *user, uint32_t ms)
-{
-    (void)user;
-    fbrl_clock_sleep_us((uint64_t)ms * 1000u);
-}
-
 static fixture *make(void)
 {
     fixture *f = calloc(1, sizeof *f);
@@ -63,8 +52,8 @@ static fixture *make(void)
     cfg.mem_size = 2 << 20;
     cfg.host.user = f;
     cfg.host.write = h_write;
-    cfg.host.now_us = h_now_us;
-    cfg.host.sleep_ms = h_sleep_ms;
+    cfg.host.now_us = vmh_now_us; /* the timers; no time_date (vmh_use_clock would add it) */
+    cfg.host.sleep_ms = vmh_sleep_ms;
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     assert_int_equal(fbrl_glossary_install(f->vm, &f->g), FBRL_OK);
     assert_int_equal(fbrl_robot_install(f->vm, &f->r, NULL, &f->g), FBRL_OK);

@@ -12,24 +12,20 @@
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
+#include "support/vm_host.h"
 
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
 
-/* ---- a host: output into a buffer, files through stdio ---- */
+/* ---- a host: output into a buffer, keys from a string, files and clock (support/vm_host.h) ---- */
 typedef struct host {
-    char out[1 << 16];
-    size_t n;
+    vmh_text out;
     const char *keys;  /* input for KEY/ACCEPT */
 } host;
 
 static void h_write(void *user, const char *s, size_t n)
 {
     host *h = user;
-    size_t room = sizeof h->out - 1 - h->n;
-    if (n > room) n = room;
-    memcpy(h->out + h->n, s, n);
-    h->n += n;
-    h->out[h->n] = 0;
+    vmh_put(&h->out, s, n);
 }
 
 static int h_key(void *user)
@@ -37,64 +33,6 @@ static int h_key(void *user)
     host *h = user;
     if (!h->keys || !*h->keys) return -1;
     return (unsigned char)*h->keys++;
-}
-
-static fbrl_status h_open(void *user, const char *path, void **handle)
-{
-    (void)user;
-    FILE *f = fopen(path, "r");
-    if (!f) return FBRL_ENOENT;
-    *handle = f;
-    return FBRL_OK;
-}
-
-static fbrl_status h_read_line(void *user, void *handle, char *buf, size_t cap, size_t *len)
-{
-    (void)user;
-    size_t n = 0;
-    int c;
-    while ((c = fgetc((FILE *)handle)) != EOF && c != '\n') {
-        if (n >= cap) return FBRL_ENOSPC;
-        buf[n++] = (char)c;
-    }
-    if (c == EOF && n == 0) return FBRL_EEOF;
-    *len = n;
-    return FBRL_OK;
-}
-
-static void h_close(void *user, void *handle)
-{
-    (void)user;
-    fclose(handle);
-}
-
-static uint64_t h_now_us(void *user)
-{
-    struct timespec t;
-    (void)user;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
-}
-
-static void h_sleep_ms(void *user, uint32_t ms)
-{
-    struct timespec t = { (time_t)(ms / 1000), (long)(ms % 1000) * 1000000L };
-    (void)user;
-    nanosleep(&t, NULL);
-}
-
-static void h_time_date(void *user, int out[6])
-{
-    time_t now = time(NULL);
-    struct tm tm;
-    (void)user;
-    localtime_r(&now, &tm);
-    out[0] = tm.tm_sec;
-    out[1] = tm.tm_min;
-    out[2] = tm.tm_hour;
-    out[3] = tm.tm_mday;
-    out[4] = tm.tm_mon + 1;
-    out[5] = tm.tm_year + 1900;
 }
 
 static int h_key_ready(void *user)
@@ -122,13 +60,9 @@ static fixture *new_vm(size_t mem_size)
     cfg.host.user = &f->h;
     cfg.host.write = h_write;
     cfg.host.key = h_key;
-    cfg.host.file_open = h_open;
-    cfg.host.file_read_line = h_read_line;
-    cfg.host.file_close = h_close;
-    cfg.host.now_us = h_now_us;
-    cfg.host.sleep_ms = h_sleep_ms;
-    cfg.host.time_date = h_time_date;
     cfg.host.key_ready = h_key_ready;
+    vmh_use_files(&cfg.host);
+    vmh_use_clock(&cfg.host);
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     return f;
 }
@@ -165,7 +99,7 @@ static void run_forth_file(const char *name)
     assert_int_equal(st, FBRL_OK);
     assert_int_equal(ev(f, "#ERRORS @ #TESTS @"), FBRL_OK);
     fbrl_cell tests = pop1(f), errors = pop1(f);
-    if (errors) print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->h.out);
+    if (errors) print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->h.out.s);
     assert_int_equal(errors, 0);
     assert_true(tests > 10);
     print_message("%s: %ld tests passed\n", name, (long)tests);
@@ -432,9 +366,9 @@ static void multi_line_definitions_and_bye(void **state)
     assert_int_equal(fbrl_vm_help(f->vm, "sq", &se, &help), FBRL_OK);
     assert_string_equal(se, "( n -- n*n )");
     assert_string_equal(help, "square a number");
-    f->h.n = 0;
+    f->h.out.n = 0;
     assert_int_equal(ev(f, "HELP SQ HELP DUP"), FBRL_OK);
-    assert_string_equal(f->h.out, "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
+    assert_string_equal(f->h.out.s, "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
     /* a definition abandoned in interpretation state */
     assert_int_equal(ev(f, ": HALF 1 ["), FBRL_OK);
     assert_true(fbrl_vm_compiling(f->vm));
@@ -476,22 +410,22 @@ static void every_word_has_help(void **state)
     (void)state;
     fixture *f = new_vm(1 << 20);
     fbrl_vm_words(f->vm, check_help, f);
-    f->h.n = 0;
+    f->h.out.n = 0;
     assert_int_equal(ev(f, "WORDS"), FBRL_OK);
-    assert_non_null(strstr(f->h.out, " DUP "));
+    assert_non_null(strstr(f->h.out.s, " DUP "));
     free_vm(f);
 }
 
 /* What the printing words print. */
 static void expect_output(fixture *f, const char *src, const char *want)
 {
-    f->h.n = 0;
-    f->h.out[0] = 0;
+    f->h.out.n = 0;
+    f->h.out.s[0] = 0;
     fbrl_status st = ev(f, src);
     if (st != FBRL_OK) print_error("'%s': %s\n", src, fbrl_vm_last_error(f->vm)->message);
     assert_int_equal(st, FBRL_OK);
-    if (strcmp(f->h.out, want) != 0) print_error("'%s' printed '%s', expected '%s'\n", src, f->h.out, want);
-    assert_string_equal(f->h.out, want);
+    if (strcmp(f->h.out.s, want) != 0) print_error("'%s' printed '%s', expected '%s'\n", src, f->h.out.s, want);
+    assert_string_equal(f->h.out.s, want);
 }
 
 static void output_formats(void **state)
@@ -518,13 +452,13 @@ static void output_formats(void **state)
     expect_output(f, "HELP SQ", "SQ ( n -- n*n ) colon definition\n");
     expect_output(f, "HELP ENQ", "ENQ ( c q-addr -- ) add a character to the queue (throws when full)\n");
     assert_int_equal(ev(f, "CREATE DD 65 C, 66 C,"), FBRL_OK);
-    f->h.n = 0;
+    f->h.out.n = 0;
     assert_int_equal(ev(f, "DD 2 DUMP"), FBRL_OK);
-    assert_non_null(strstr(f->h.out, " 41 42 "));
-    assert_non_null(strstr(f->h.out, "AB\n"));
-    f->h.n = 0;
+    assert_non_null(strstr(f->h.out.s, " 41 42 "));
+    assert_non_null(strstr(f->h.out.s, "AB\n"));
+    f->h.out.n = 0;
     assert_int_equal(ev(f, ": NEWEST ; WORDS"), FBRL_OK);
-    assert_int_equal(strncmp(f->h.out, "NEWEST DD ", 10), 0);
+    assert_int_equal(strncmp(f->h.out.s, "NEWEST DD ", 10), 0);
     free_vm(f);
 }
 
@@ -657,7 +591,7 @@ static void *interrupter(void *arg)
 {
     stopper *s = arg;
     while (!__atomic_load_n(&s->done, __ATOMIC_ACQUIRE)) {
-        h_sleep_ms(NULL, 5);
+        vmh_sleep_ms(NULL, 5);
         fbrl_vm_interrupt(s->vm);
     }
     return NULL;
@@ -700,7 +634,7 @@ static fbrl_status c_wait_for_interrupt(fbrl_vm *vm, void *arg)
 {
     (void)arg;
     while (!fbrl_vm_interrupt_pending(vm))
-        h_sleep_ms(NULL, 1);
+        vmh_sleep_ms(NULL, 1);
     return FBRL_OK;
 }
 
@@ -767,7 +701,7 @@ static void random_programs_are_contained(void **state)
                                     : extra[(r >> 1) % (sizeof extra / sizeof extra[0])];
             n += (size_t)snprintf(src + n, sizeof src - n, "%s ", w);
         }
-        f->h.n = 0;
+        f->h.out.n = 0;
         if (ev(f, src) != FBRL_OK) errors++;
         if (line % 100 == 99) {
             while (fbrl_vm_depth(f->vm)) pop1(f);
