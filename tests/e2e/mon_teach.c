@@ -12,102 +12,11 @@
  *
  *   mon_teach FBRLMON FBRLSIM TMPDIR      exit 0 on success; the transcript is printed on failure */
 #define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
-#include <errno.h>
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/ioctl.h>
 #include <sys/stat.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <termios.h>
-#include <time.h>
-#include <unistd.h>
+
+#include "mon_session.h"
 
 #define TIMEOUT_MS 60000 /* generous: the machine may be loaded, or ASan slow */
-
-typedef struct session {
-    int master;
-    pid_t pid;
-    char buf[1 << 18]; /* everything the child wrote */
-    size_t len;
-    size_t mark;       /* expect() searches from here */
-} session;
-
-static int g_failed;
-
-static long now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
-}
-
-static void transcript(const session *s)
-{
-    size_t i;
-    fprintf(stderr, "---- transcript (%zu bytes) ----\n", s->len);
-    for (i = 0; i < s->len; i++) {
-        unsigned char c = (unsigned char)s->buf[i];
-        if (c == '\n' || (c >= 0x20 && c < 0x7f))
-            fputc(c, stderr);
-        else if (c != '\r')
-            fprintf(stderr, "<%02x>", c);
-    }
-    fprintf(stderr, "\n---- end ----\n");
-}
-
-/* Read what is available within ms milliseconds; 0 at EOF/error. */
-static int pump(session *s, int ms)
-{
-    struct pollfd p;
-    ssize_t n;
-    size_t i, k;
-    p.fd = s->master;
-    p.events = POLLIN;
-    if (poll(&p, 1, ms) <= 0)
-        return 1;
-    if (s->len + 1 >= sizeof s->buf)
-        return 0;
-    n = read(s->master, s->buf + s->len, sizeof s->buf - s->len - 1);
-    if (n <= 0)
-        return 0;
-    for (i = k = s->len; i < s->len + (size_t)n; i++) /* drop NUL padding */
-        if (s->buf[i] != '\0')
-            s->buf[k++] = s->buf[i];
-    s->len = k;
-    s->buf[s->len] = '\0';
-    return 1;
-}
-
-/* Wait until `text` appears after the mark; move the mark past it. */
-static int expect(session *s, const char *text, const char *what)
-{
-    long deadline = now_ms() + TIMEOUT_MS;
-    if (g_failed)
-        return 0;
-    for (;;) {
-        char *hit = strstr(s->buf + s->mark, text);
-        if (hit != NULL) {
-            s->mark = (size_t)(hit - s->buf) + strlen(text);
-            return 1;
-        }
-        if (now_ms() > deadline || !pump(s, 200)) {
-            hit = strstr(s->buf + s->mark, text);
-            if (hit != NULL) {
-                s->mark = (size_t)(hit - s->buf) + strlen(text);
-                return 1;
-            }
-            fprintf(stderr, "FAIL: %s: did not see \"%s\"\n", what, text);
-            transcript(s);
-            g_failed = 1;
-            return 0;
-        }
-    }
-}
 
 /* expect() with its own time limit (ms). */
 static int expect_within(session *s, const char *text, const char *what, long ms)
@@ -139,124 +48,11 @@ static int count(const session *s, size_t from, const char *text)
     return n;
 }
 
-/* Wait until the terminal is in single-key mode (ICANON off): libedit's prompt
- * or TEACH's pendant reads keys. The master sees the slave's termios. */
-static void wait_keys(session *s)
-{
-    long deadline = now_ms() + TIMEOUT_MS;
-    struct termios t;
-    while (now_ms() < deadline && tcgetattr(s->master, &t) == 0 && (t.c_lflag & ICANON))
-        if (!pump(s, 5))
-            return;
-}
-
-/* Wait until the terminal is back in line mode: fbrlmon evaluates the line. */
-static void wait_running(session *s)
-{
-    long deadline = now_ms() + TIMEOUT_MS;
-    struct termios t;
-    while (now_ms() < deadline && tcgetattr(s->master, &t) == 0 && !(t.c_lflag & ICANON))
-        if (!pump(s, 5))
-            return;
-}
-
-/* Read output for ms milliseconds (pump() returns as soon as anything came). */
-static void settle(session *s, long ms)
-{
-    long end = now_ms() + ms;
-    while (now_ms() < end)
-        if (!pump(s, (int)(end - now_ms())))
-            return;
-}
-
-/* Write keys at once (Ctrl-C while a line runs). */
-static void type_now(session *s, const char *text)
-{
-    size_t n = strlen(text), off = 0;
-    while (off < n) {
-        ssize_t w = write(s->master, text + off, n - off);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            return;
-        off += (size_t)w;
-    }
-}
-
-static void type(session *s, const char *text)
-{
-    wait_keys(s);
-    type_now(s, text);
-}
-
 /* A key inside TEACH, then its status line (the arm has moved and been read back). */
 static void key(session *s, const char *seq, const char *status_text, const char *what)
 {
     type(s, seq);
     expect(s, status_text, what);
-}
-
-static int start(session *s, const char *mon, const char *port, const char *dir)
-{
-    char hist[1024], *slave;
-    struct winsize ws;
-    memset(s, 0, sizeof *s);
-    s->master = posix_openpt(O_RDWR | O_NOCTTY);
-    if (s->master < 0 || grantpt(s->master) != 0 || unlockpt(s->master) != 0 ||
-        (slave = ptsname(s->master)) == NULL) {
-        perror("mon_teach: posix_openpt");
-        return -1;
-    }
-    memset(&ws, 0, sizeof ws);
-    ws.ws_row = 24;
-    ws.ws_col = 80; /* the status line is cut to the width: it must say enough in 80 */
-    ioctl(s->master, TIOCSWINSZ, &ws);
-    snprintf(hist, sizeof hist, "%s/history", dir);
-    s->pid = fork();
-    if (s->pid < 0)
-        return -1;
-    if (s->pid == 0) {
-        int fd;
-        setsid();
-        fd = open(slave, O_RDWR);
-        if (fd < 0)
-            _exit(127);
-        dup2(fd, 0);
-        dup2(fd, 1);
-        dup2(fd, 2);
-        if (fd > 2)
-            close(fd);
-        close(s->master);
-        setenv("HOME", dir, 1);
-        setenv("FBRLMON_HISTORY", hist, 1);
-        setenv("TERM", "vt100", 1);
-        execl(mon, mon, "--port", port, (char *)NULL);
-        _exit(127);
-    }
-    return 0;
-}
-
-static int finish(session *s)
-{
-    long deadline = now_ms() + TIMEOUT_MS;
-    int st;
-    for (;;) {
-        pid_t r = waitpid(s->pid, &st, WNOHANG);
-        if (r == s->pid)
-            break;
-        if (now_ms() > deadline) {
-            kill(s->pid, SIGKILL);
-            waitpid(s->pid, &st, 0);
-            fprintf(stderr, "FAIL: fbrlmon did not exit\n");
-            transcript(s);
-            g_failed = 1;
-            close(s->master);
-            return -1;
-        }
-        pump(s, 50);
-    }
-    close(s->master);
-    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
 static int file_count(const char *path, const char *text)
@@ -335,7 +131,7 @@ int main(int argc, char **argv)
     sim = start_sim(argv[2], argv[3], port, sizeof port, log, sizeof log);
     if (sim < 0)
         return 1;
-    if (start(&s, argv[1], port, argv[3]) != 0) {
+    if (start_mon(&s, TIMEOUT_MS, argv[3], argv[1], "--port", port) != 0) {
         kill(sim, SIGTERM);
         return 1;
     }
