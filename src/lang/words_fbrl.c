@@ -55,6 +55,15 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
     return r;
 }
 
+/* Pops ( q -- ) and checks it is a queue. */
+static fbrl_ring *pop_queue(fbrl_vm *vm, fbrl_status *st)
+{
+    fbrl_cell q;
+    if ((*st = need(vm, 1))) return NULL;
+    fbrl_vm_pop(vm, &q);
+    return queue_at(vm, q, st);
+}
+
 static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
 {
     fbrl_cell n;
@@ -86,13 +95,10 @@ static fbrl_status w_enq(fbrl_vm *vm, void *arg)
 
 static fbrl_status w_deq(fbrl_vm *vm, void *arg)
 {
-    fbrl_cell q;
     uint8_t b;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 1))) return st;
-    fbrl_vm_pop(vm, &q);
-    fbrl_ring *r = queue_at(vm, q, &st);
+    fbrl_ring *r = pop_queue(vm, &st);
     if (!r) return st;
     if (fbrl_ring_get(r, &b) != FBRL_OK) return fail(vm, FBRL_THROW_STATUS(FBRL_EEMPTY), "queue empty");
     return fbrl_vm_push(vm, b);
@@ -100,11 +106,8 @@ static fbrl_status w_deq(fbrl_vm *vm, void *arg)
 
 static fbrl_status w_q_test(fbrl_vm *vm, void *arg)
 {
-    fbrl_cell q;
     fbrl_status st;
-    if ((st = need(vm, 1))) return st;
-    fbrl_vm_pop(vm, &q);
-    fbrl_ring *r = queue_at(vm, q, &st);
+    fbrl_ring *r = pop_queue(vm, &st);
     if (!r) return st;
     int yes = arg ? fbrl_ring_full(r) : fbrl_ring_empty(r);
     return fbrl_vm_push(vm, yes ? -1 : 0);
@@ -112,12 +115,9 @@ static fbrl_status w_q_test(fbrl_vm *vm, void *arg)
 
 static fbrl_status w_q_count(fbrl_vm *vm, void *arg)
 {
-    fbrl_cell q;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 1))) return st;
-    fbrl_vm_pop(vm, &q);
-    fbrl_ring *r = queue_at(vm, q, &st);
+    fbrl_ring *r = pop_queue(vm, &st);
     if (!r) return st;
     return fbrl_vm_push(vm, (fbrl_cell)fbrl_ring_count(r));
 }
@@ -226,6 +226,14 @@ static unsigned char *string_at(fbrl_vm *vm, fbrl_cell s, unsigned *size, unsign
     return (unsigned char *)s + 4;
 }
 
+/* Pops ( str -- ) and checks it is a string: its characters, *s its address. */
+static unsigned char *pop_string(fbrl_vm *vm, fbrl_cell *s, unsigned *size, unsigned *len, fbrl_status *st)
+{
+    if ((*st = need(vm, 1))) return NULL;
+    fbrl_vm_pop(vm, s);
+    return string_at(vm, *s, size, len, st);
+}
+
 static void set_len(fbrl_cell s, unsigned len)
 {
     uint16_t v = (uint16_t)len;
@@ -254,9 +262,7 @@ static fbrl_status w_str1(fbrl_vm *vm, void *arg)
     fbrl_cell s;
     unsigned size, len;
     fbrl_status st;
-    if ((st = need(vm, 1))) return st;
-    fbrl_vm_pop(vm, &s);
-    unsigned char *c = string_at(vm, s, &size, &len, &st);
+    unsigned char *c = pop_string(vm, &s, &size, &len, &st);
     if (!c) return st;
     switch ((int)(intptr_t)arg) {
     case S_CNT: return fbrl_vm_push(vm, len);
@@ -394,9 +400,7 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *arg)
     fbrl_cell s;
     unsigned size, len;
     fbrl_status st;
-    if ((st = need(vm, 1))) return st;
-    fbrl_vm_pop(vm, &s);
-    unsigned char *c = string_at(vm, s, &size, &len, &st);
+    unsigned char *c = pop_string(vm, &s, &size, &len, &st);
     if (!c) return st;
     if (n > size) return overflow(vm);
     memmove(c, p, n);
@@ -411,9 +415,7 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
     unsigned size, len, k = 0;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 1))) return st;
-    fbrl_vm_pop(vm, &s);
-    unsigned char *c = string_at(vm, s, &size, &len, &st);
+    unsigned char *c = pop_string(vm, &s, &size, &len, &st);
     if (!c) return st;
     if (!vm->host.key) return fail(vm, -21, "no console input in this host");
     for (;;) {
