@@ -477,6 +477,22 @@ static int cr_took_effect(const fbrl_link *l)
     return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= (l->parity ? 1u : 3u);
 }
 
+/* A probe has decided the command (ctrl_len: the characters now on the controller's
+ * line, -1 unknown): 1 when the CR took effect and the command ran, 0 when it did not
+ * and the command must be typed again. */
+static int probe_decides(fbrl_link *l, int ctrl_len)
+{
+    l->ctrl_len = ctrl_len;
+    l->probe_out = PR_NONE;
+    if (cr_took_effect(l)) {
+        if (!l->prompt_seen)
+            l->stats.prompt_lost++;
+        return 1;
+    }
+    l->stats.cr_unconfirmed++;
+    return 0;
+}
+
 /* A byte of the command's reply (before any probe echo). */
 static void count_reply_byte(fbrl_link *l, uint8_t b)
 {
@@ -580,14 +596,8 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         l->probe_seen = 1;
         push_tail(l, b);
         if (probe_answered(l)) {
-            l->ctrl_len = 3;
-            l->probe_out = PR_NONE;
-            if (cr_took_effect(l)) {
-                if (!l->prompt_seen)
-                    l->stats.prompt_lost++;
+            if (probe_decides(l, 3))
                 return executed(l);
-            }
-            l->stats.cr_unconfirmed++;
             return begin_type(l);
         }
         return FBRL_OK;
@@ -657,14 +667,8 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
     case PH_VERIFY:
         if (l->probe_seen) {
             /* the probe's echo was damaged, but the bytes before it decide */
-            l->ctrl_len = -1;
-            l->probe_out = PR_NONE;
-            if (cr_took_effect(l)) {
-                if (!l->prompt_seen)
-                    l->stats.prompt_lost++;
+            if (probe_decides(l, -1))
                 return executed(l);
-            }
-            l->stats.cr_unconfirmed++;
             return begin_erase(l);
         }
         if (t - l->t_probe >= probe_interval(l))
@@ -1121,11 +1125,17 @@ fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
 const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
 
+/* The last command has finished, succeeded and gave a reply of this kind. */
+static int reply_is(const fbrl_link *l, fbrl_link_reply kind)
+{
+    return !l->busy && l->result == FBRL_OK && l->kind == kind;
+}
+
 fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v)
 {
     if (!l || !v)
         return FBRL_EINVAL;
-    if (l->busy || l->result != FBRL_OK || l->kind != FBRL_LINK_REPLY_INT)
+    if (!reply_is(l, FBRL_LINK_REPLY_INT))
         return FBRL_ESTATE;
     *v = l->ival;
     return FBRL_OK;
@@ -1135,7 +1145,7 @@ fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v)
 {
     if (!l || !v)
         return FBRL_EINVAL;
-    if (l->busy || l->result != FBRL_OK || l->kind != FBRL_LINK_REPLY_REAL)
+    if (!reply_is(l, FBRL_LINK_REPLY_REAL))
         return FBRL_ESTATE;
     *v = l->rval;
     return FBRL_OK;
