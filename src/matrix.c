@@ -165,33 +165,26 @@ fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, f
 
 /* ---- SHOW-AUTOMAT, SHOW-RADMAT ---- */
 
-/* "<name> base <loc text>  " into buf; the rest is appended by the caller. */
-static fbrl_status format_base(const char *name, const fbrl_loc *base, int metric, char *buf,
-                               size_t size, size_t *used)
+/* The three lengths in the user's unit into shown (a conversion overflow is reported,
+ * not printed), then "<name> base <loc text>  " into buf; the caller appends the rest. */
+static fbrl_status format_head(const char *name, const fbrl_loc *base, int metric, const double len[3],
+                               double shown[3], char *buf, size_t size, size_t *used)
 {
     char loc[FBRL_LOC_TEXT_SIZE];
-    fbrl_status st = fbrl_loc_format(base, metric, loc, sizeof loc);
-    int n;
-    if (st != FBRL_OK)
+    fbrl_units u = FBRL_UNITS_INIT;
+    fbrl_status st;
+    int i, n;
+    if (metric)
+        fbrl_units_metric_on(&u);
+    for (i = 0; i < 3; i++)
+        if ((st = fbrl_units_out(&u, len[i], &shown[i])) != FBRL_OK)
+            return st;
+    if ((st = fbrl_loc_format(base, metric, loc, sizeof loc)) != FBRL_OK)
         return st;
     n = snprintf(buf, size, "%s base %s  ", name, loc);
     if (n < 0 || (size_t)n >= size)
         return FBRL_ENOSPC;
     *used = (size_t)n;
-    return FBRL_OK;
-}
-
-/* Lengths shown in the user's unit; a conversion overflow is reported, not printed. */
-static fbrl_status shown_lengths(int metric, const double *in, double *out, int count)
-{
-    fbrl_units u = FBRL_UNITS_INIT;
-    fbrl_status st;
-    int i;
-    if (metric)
-        fbrl_units_metric_on(&u);
-    for (i = 0; i < count; i++)
-        if ((st = fbrl_units_out(&u, in[i], &out[i])) != FBRL_OK)
-            return st;
     return FBRL_OK;
 }
 
@@ -205,8 +198,7 @@ fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, si
         return FBRL_EINVAL;
     buf[0] = '\0';
     len[0] = m->dx; len[1] = m->dy; len[2] = m->dz;
-    if ((st = shown_lengths(metric, len, shown, 3)) != FBRL_OK ||
-        (st = format_base("RECTMAT", &m->base, metric, buf, size, &used)) != FBRL_OK)
+    if ((st = format_head("RECTMAT", &m->base, metric, len, shown, buf, size, &used)) != FBRL_OK)
         return st;
     n = snprintf(buf + used, size - used, "step X %+10.4f Y %+10.4f Z %+10.4f %s", shown[0],
                  shown[1], shown[2], metric ? "cm" : "in");
@@ -225,8 +217,7 @@ fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size
     if (!isfinite(m->inc_angle) || !isfinite(m->a0))
         return FBRL_ENONFINITE;
     len[0] = m->ring_dist; len[1] = m->z_off; len[2] = m->r0;
-    if ((st = shown_lengths(metric, len, shown, 3)) != FBRL_OK ||
-        (st = format_base("RADMAT", &m->base, metric, buf, size, &used)) != FBRL_OK)
+    if ((st = format_head("RADMAT", &m->base, metric, len, shown, buf, size, &used)) != FBRL_OK)
         return st;
     n = snprintf(buf + used, size - used,
                  "inc %+.6f rad  ring %+10.4f Z %+10.4f %s  radius %+10.4f %s  angle %+.6f rad",
