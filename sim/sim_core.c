@@ -48,7 +48,7 @@ static char *dupstr(const char *p)
     return d;
 }
 
-static void seterr(char *err, size_t errlen, const char *fmt, ...)
+void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
 {
     va_list ap;
     if (!err || !errlen)
@@ -79,7 +79,7 @@ static int parse_faults(fbrl_sim *s, const char *spec, char *err, size_t errlen)
     char buf[256], *tok, *save = NULL;
     unsigned long long seed = 1;
     if (strlen(spec) >= sizeof buf) {
-        seterr(err, errlen, "fault spec too long");
+        sim_seterr(err, errlen, "fault spec too long");
         return -1;
     }
     strcpy(buf, spec);
@@ -87,13 +87,13 @@ static int parse_faults(fbrl_sim *s, const char *spec, char *err, size_t errlen)
         char *eq = strchr(tok, '='), *end;
         double v;
         if (!eq) {
-            seterr(err, errlen, "fault '%s': expected name=value", tok);
+            sim_seterr(err, errlen, "fault '%s': expected name=value", tok);
             return -1;
         }
         *eq = 0;
         v = strtod(eq + 1, &end);
         if (*end || end == eq + 1 || !isfinite(v) || v < 0) {
-            seterr(err, errlen, "fault '%s': bad value", tok);
+            sim_seterr(err, errlen, "fault '%s': bad value", tok);
             return -1;
         }
         if (!strcmp(tok, "drop") && v <= 1)
@@ -107,7 +107,7 @@ static int parse_faults(fbrl_sim *s, const char *spec, char *err, size_t errlen)
         else if (!strcmp(tok, "seed"))
             seed = (unsigned long long)v;
         else {
-            seterr(err, errlen, "fault '%s': unknown name or value out of range", tok);
+            sim_seterr(err, errlen, "fault '%s': unknown name or value out of range", tok);
             return -1;
         }
     }
@@ -534,7 +534,7 @@ static int load_inputs(fbrl_sim *s, const char *path, char *err, size_t errlen)
     char line[256];
     int lineno = 0;
     if (!f) {
-        seterr(err, errlen, "%s: %s", path, strerror(errno));
+        sim_seterr(err, errlen, "%s: %s", path, strerror(errno));
         return -1;
     }
     while (fgets(line, sizeof line, f)) {
@@ -550,7 +550,7 @@ static int load_inputs(fbrl_sim *s, const char *path, char *err, size_t errlen)
             continue;
         t = strtod(p, &end);
         if (end == p || !isfinite(t) || t < 0) {
-            seterr(err, errlen, "%s:%d: expected a time in seconds", path, lineno);
+            sim_seterr(err, errlen, "%s:%d: expected a time in seconds", path, lineno);
             fclose(f);
             return -1;
         }
@@ -569,7 +569,7 @@ static int load_inputs(fbrl_sim *s, const char *path, char *err, size_t errlen)
         s->events[i].cmd = dupstr(end);
         s->nevents++;
         if (sim_control(NULL, end) != 0) {
-            seterr(err, errlen, "%s:%d: unknown control line '%s'", path, lineno, end);
+            sim_seterr(err, errlen, "%s:%d: unknown control line '%s'", path, lineno, end);
             fclose(f);
             return -1;
         }
@@ -595,13 +595,13 @@ static int open_pty(fbrl_sim *s, char *err, size_t errlen)
     s->master = posix_openpt(O_RDWR | O_NOCTTY);
     if (s->master < 0 || grantpt(s->master) != 0 || unlockpt(s->master) != 0
         || ptsname_r(s->master, s->path, sizeof s->path) != 0) {
-        seterr(err, errlen, "pseudo-terminal: %s", strerror(errno));
+        sim_seterr(err, errlen, "pseudo-terminal: %s", strerror(errno));
         return -1;
     }
     /* Holding the slave open keeps the master from hanging up between clients. */
     s->slave = open(s->path, O_RDWR | O_NOCTTY);
     if (s->slave < 0 || tcgetattr(s->slave, &tio) != 0) {
-        seterr(err, errlen, "%s: %s", s->path, strerror(errno));
+        sim_seterr(err, errlen, "%s: %s", s->path, strerror(errno));
         return -1;
     }
     cfmakeraw(&tio);
@@ -611,14 +611,14 @@ static int open_pty(fbrl_sim *s, char *err, size_t errlen)
     if (s->link_path) {
         struct stat st;
         if (lstat(s->link_path, &st) == 0 && !S_ISLNK(st.st_mode)) {
-            seterr(err, errlen, "link %s: exists and is not a symlink", s->link_path);
+            sim_seterr(err, errlen, "link %s: exists and is not a symlink", s->link_path);
             free(s->link_path);
             s->link_path = NULL;
             return -1;
         }
         unlink(s->link_path); /* a stale link from an earlier run */
         if (symlink(s->path, s->link_path) != 0) {
-            seterr(err, errlen, "link %s: %s", s->link_path, strerror(errno));
+            sim_seterr(err, errlen, "link %s: %s", s->link_path, strerror(errno));
             free(s->link_path);
             s->link_path = NULL;
             return -1;
@@ -634,7 +634,7 @@ static int open_tcp(fbrl_sim *s, char *err, size_t errlen)
     int one = 1;
     s->lfd = socket(AF_INET, SOCK_STREAM, 0);
     if (s->lfd < 0) {
-        seterr(err, errlen, "socket: %s", strerror(errno));
+        sim_seterr(err, errlen, "socket: %s", strerror(errno));
         return -1;
     }
     setsockopt(s->lfd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
@@ -644,7 +644,7 @@ static int open_tcp(fbrl_sim *s, char *err, size_t errlen)
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     if (bind(s->lfd, (struct sockaddr *)&a, sizeof a) != 0 || listen(s->lfd, 1) != 0
         || getsockname(s->lfd, (struct sockaddr *)&a, &alen) != 0) {
-        seterr(err, errlen, "tcp port %d: %s", s->opt.tcp_port, strerror(errno));
+        sim_seterr(err, errlen, "tcp port %d: %s", s->opt.tcp_port, strerror(errno));
         return -1;
     }
     fcntl(s->lfd, F_SETFL, fcntl(s->lfd, F_GETFL) | O_NONBLOCK);
@@ -670,17 +670,17 @@ static int open_control(fbrl_sim *s, char *err, size_t errlen)
 {
     struct stat st;
     if (stat(s->control_path, &st) == 0 && !S_ISFIFO(st.st_mode)) {
-        seterr(err, errlen, "%s exists and is not a FIFO", s->control_path);
+        sim_seterr(err, errlen, "%s exists and is not a FIFO", s->control_path);
         return -1;
     }
     if (stat(s->control_path, &st) != 0 && mkfifo(s->control_path, 0600) != 0) {
-        seterr(err, errlen, "mkfifo %s: %s", s->control_path, strerror(errno));
+        sim_seterr(err, errlen, "mkfifo %s: %s", s->control_path, strerror(errno));
         return -1;
     }
     /* Read-write so the FIFO never reports end-of-file between writers. */
     s->ctl = open(s->control_path, O_RDWR | O_NONBLOCK);
     if (s->ctl < 0) {
-        seterr(err, errlen, "%s: %s", s->control_path, strerror(errno));
+        sim_seterr(err, errlen, "%s: %s", s->control_path, strerror(errno));
         return -1;
     }
     return 0;
@@ -700,13 +700,13 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
 {
     fbrl_sim *s;
     if (!out || !o) {
-        seterr(err, errlen, "null argument");
+        sim_seterr(err, errlen, "null argument");
         return FBRL_EINVAL;
     }
     *out = NULL;
     if (!(o->time_scale > 0) || !isfinite(o->time_scale) || o->baud < 0 || o->rx_buffer < 0
         || o->tcp_port > 65535) {
-        seterr(err, errlen, "bad option value");
+        sim_seterr(err, errlen, "bad option value");
         return FBRL_EINVAL;
     }
     s = calloc(1, sizeof *s);
@@ -738,7 +738,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
         s->chan[0].baud = o->baud;
     if (o->parity) {
         if (o->parity != 'N' && o->parity != 'E' && o->parity != 'O') {
-            seterr(err, errlen, "parity must be N, E or O");
+            sim_seterr(err, errlen, "parity must be N, E or O");
             goto fail;
         }
         s->chan[0].parity = o->parity;
@@ -746,11 +746,11 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     if (o->inputs_path && load_inputs(s, o->inputs_path, err, errlen) != 0)
         goto fail;
     if (s->log_path && !(s->log = fopen(s->log_path, "a"))) {
-        seterr(err, errlen, "%s: %s", s->log_path, strerror(errno));
+        sim_seterr(err, errlen, "%s: %s", s->log_path, strerror(errno));
         goto fail;
     }
     if (pipe(s->wake) != 0) {
-        seterr(err, errlen, "pipe: %s", strerror(errno));
+        sim_seterr(err, errlen, "pipe: %s", strerror(errno));
         goto fail;
     }
     fcntl(s->wake[0], F_SETFL, O_NONBLOCK);
@@ -763,7 +763,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     *out = s;
     return FBRL_OK;
 fail_mem:
-    seterr(err, errlen, "out of memory");
+    sim_seterr(err, errlen, "out of memory");
 fail:
     free(s->state_path); /* nothing was loaded into a file: do not write it back */
     s->state_path = NULL;

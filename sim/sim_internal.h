@@ -136,6 +136,12 @@ struct fbrl_sim {
 double sim_now(fbrl_sim *s);          /* simulated seconds since start */
 void sim_emit(fbrl_sim *s, const char *bytes, size_t n);
 int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line */
+/* An error message into err[errlen] (nothing when err is NULL or errlen 0). */
+void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
 
 /* sim_cmd.c */
 enum { EXEC_DONE, EXEC_BLOCK };

@@ -5,22 +5,11 @@
 
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #define MAGIC "FBRLSIM-STATE 1"
-
-static void seterr(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (!err || !errlen)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
 
 int sim_state_save(fbrl_sim *s)
 {
@@ -121,11 +110,11 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
     if (!f) {
         if (errno == ENOENT)
             return 0; /* a new controller: empty memory */
-        seterr(err, errlen, "%s: %s", s->state_path, strerror(errno));
+        sim_seterr(err, errlen, "%s: %s", s->state_path, strerror(errno));
         return -1;
     }
     if (!fgets(line, sizeof line, f) || strncmp(line, MAGIC, strlen(MAGIC)) != 0) {
-        seterr(err, errlen, "%s: not an fbrlsim state file", s->state_path);
+        sim_seterr(err, errlen, "%s: not an fbrlsim state file", s->state_path);
         fclose(f);
         return -1;
     }
@@ -229,14 +218,14 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
             bad = 1;
         }
         if (bad) {
-            seterr(err, errlen, "%s:%d: bad line '%s'", s->state_path, lineno, line);
+            sim_seterr(err, errlen, "%s:%d: bad line '%s'", s->state_path, lineno, line);
             fclose(f);
             return -1;
         }
     }
     fclose(f);
     if (prog) {
-        seterr(err, errlen, "%s: PROGRAM %s has no END", s->state_path, prog->name);
+        sim_seterr(err, errlen, "%s: PROGRAM %s has no END", s->state_path, prog->name);
         return -1;
     }
     return 0;
