@@ -644,6 +644,15 @@ static int want(args *a, int lo, int hi)
     return 0;
 }
 
+/* A command without arguments that sets a mode flag (TEACH off, MANUAL off, HELP). */
+static int set_mode(args *a, int *flag, int on)
+{
+    int e = want(a, 0, 0);
+    if (!e)
+        *flag = on;
+    return e;
+}
+
 static int h_align(fbrl_sim *s, args *a, int *b)
 {
     double pose[6];
@@ -933,24 +942,26 @@ static void grip_to(fbrl_sim *s, double d)
     s->dirty = 1;
 }
 
-static int h_open(fbrl_sim *s, args *a, int *b)
+/* OPEN and CLOSE [force]: the gripper fully open or closed. */
+static int open_close(fbrl_sim *s, args *a, double d)
 {
     int e = want(a, 0, 1);
-    (void)b;
     if (e || (e = force_arg(s, a, 0)))
         return e;
-    grip_to(s, SIM_GRIP_MAX);
+    grip_to(s, d);
     return 0;
+}
+
+static int h_open(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return open_close(s, a, SIM_GRIP_MAX);
 }
 
 static int h_close(fbrl_sim *s, args *a, int *b)
 {
-    int e = want(a, 0, 1);
     (void)b;
-    if (e || (e = force_arg(s, a, 0)))
-        return e;
-    grip_to(s, 0.0);
-    return 0;
+    return open_close(s, a, 0.0);
 }
 
 static int h_grip(fbrl_sim *s, args *a, int *b)
@@ -987,11 +998,8 @@ static int h_teach(fbrl_sim *s, args *a, int *b)
 
 static int h_noteach(fbrl_sim *s, args *a, int *b)
 {
-    int e = want(a, 0, 0);
     (void)b;
-    if (!e)
-        s->teach = 0;
-    return e;
+    return set_mode(a, &s->teach, 0);
 }
 
 static int h_manual(fbrl_sim *s, args *a, int *b)
@@ -1008,11 +1016,8 @@ static int h_manual(fbrl_sim *s, args *a, int *b)
 
 static int h_nomanual(fbrl_sim *s, args *a, int *b)
 {
-    int e = want(a, 0, 0);
     (void)b;
-    if (!e)
-        s->manual = 0;
-    return e;
+    return set_mode(a, &s->manual, 0);
 }
 
 static int h_flash(fbrl_sim *s, args *a, int *b)
@@ -1042,20 +1047,14 @@ static int h_noflash(fbrl_sim *s, args *a, int *b)
 
 static int h_nohelp(fbrl_sim *s, args *a, int *b)
 {
-    int e = want(a, 0, 0);
     (void)b;
-    if (!e)
-        s->help = 0;
-    return e;
+    return set_mode(a, &s->help, 0);
 }
 
 static int h_help(fbrl_sim *s, args *a, int *b)
 {
-    int e = want(a, 0, 0);
     (void)b;
-    if (!e)
-        s->help = 1;
-    return e;
+    return set_mode(a, &s->help, 1);
 }
 
 static int h_point(fbrl_sim *s, args *a, int *b)
