@@ -41,6 +41,18 @@ static int make_pty(char *name, size_t n)
 
 static uint8_t rxa[4096], txa[4096], rxb[4096], txb[4096];
 
+/* A pty and the port on its slave end with rings of ring bytes, polled or with the
+ * service thread; the master's fd. */
+static int open_on_pty(fbrl_uart_posix *p, fbrl_uart *u, const fbrl_uart_config *cfg, size_t ring, int threaded)
+{
+    char name[64];
+    int m = make_pty(name, sizeof name);
+    fbrl_uart_posix_options opt = FBRL_UART_POSIX_OPTIONS_DEFAULT;
+    opt.service_thread = threaded;
+    assert_int_equal(fbrl_uart_posix_open(p, u, name, cfg, rxa, ring, txa, ring, &opt), FBRL_OK);
+    return m;
+}
+
 static void open_errors(void **state)
 {
     (void)state;
@@ -459,14 +471,10 @@ static void idle_read_times_out(void **state)
 {
     (void)state;
     for (int threaded = 0; threaded < 2; threaded++) {
-        char name[64];
-        int m = make_pty(name, sizeof name);
         fbrl_uart_posix p;
         fbrl_uart u;
         fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
-        fbrl_uart_posix_options opt = FBRL_UART_POSIX_OPTIONS_DEFAULT;
-        opt.service_thread = threaded;
-        assert_int_equal(fbrl_uart_posix_open(&p, &u, name, &cfg, rxa, 64, txa, 64, &opt), FBRL_OK);
+        int m = open_on_pty(&p, &u, &cfg, 64, threaded);
         uint8_t b;
         size_t n;
         uint64_t t0 = fbrl_clock_now_us();
@@ -505,16 +513,12 @@ static void parity_marks_are_parsed(void **state)
 {
     (void)state;
     for (int threaded = 0; threaded < 2; threaded++) {
-        char name[64];
-        int m = make_pty(name, sizeof name);
         fbrl_uart_posix p;
         fbrl_uart u;
         fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
-        fbrl_uart_posix_options opt = FBRL_UART_POSIX_OPTIONS_DEFAULT;
-        opt.service_thread = threaded;
         cfg.flow = FBRL_FLOW_NONE;
         cfg.parity = threaded ? FBRL_PARITY_ODD : FBRL_PARITY_EVEN;
-        assert_int_equal(fbrl_uart_posix_open(&p, &u, name, &cfg, rxa, 256, txa, 256, &opt), FBRL_OK);
+        int m = open_on_pty(&p, &u, &cfg, 256, threaded);
         struct termios t;
         assert_int_equal(tcgetattr(fbrl_uart_posix_fd(&p), &t), 0);
         assert_true(t.c_iflag & INPCK);
@@ -564,14 +568,10 @@ static void peer_gone_is_disconnected(void **state)
 {
     (void)state;
     for (int threaded = 0; threaded < 2; threaded++) {
-        char name[64];
-        int m = make_pty(name, sizeof name);
         fbrl_uart_posix p;
         fbrl_uart u;
         fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
-        fbrl_uart_posix_options opt = FBRL_UART_POSIX_OPTIONS_DEFAULT;
-        opt.service_thread = threaded;
-        assert_int_equal(fbrl_uart_posix_open(&p, &u, name, &cfg, rxa, 64, txa, 64, &opt), FBRL_OK);
+        int m = open_on_pty(&p, &u, &cfg, 64, threaded);
         assert_int_equal(write(m, "bye", 3), 3);
         uint8_t buf[8];
         size_t n = 0, got = 0;
