@@ -6,15 +6,9 @@
 #include <string.h>
 #include <time.h>
 #include "fbrl/calib.h"
+#include "bench_util.h"
 
 #define NPTS 4096
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 static void report(const char *what, double count, double secs)
 {
@@ -63,56 +57,56 @@ int main(void)
 
     printf("bench_calib: %d points per pass\n", NPTS);
     reps = 20000;
-    t0 = now();
+    t0 = bench_now();
     for (r = 0; r < reps; r++) {
         fbrl_calib_map_points(&c, in, out, NPTS);
         sink += out[r % (3 * NPTS)];
     }
-    secs = now() - t0;
+    secs = bench_now() - t0;
     report("position map (map_points, 3x4, out of place)", (double)reps * NPTS, secs);
 
-    t0 = now();
+    t0 = bench_now();
     for (r = 0; r < reps; r++) {
         fbrl_calib_map_points(&c, out, out, NPTS); /* in place */
         sink += out[r % (3 * NPTS)];
     }
-    secs = now() - t0;
+    secs = bench_now() - t0;
     report("position map (map_points, in place)", (double)reps * NPTS, secs);
 
     reps = 5000;
-    t0 = now();
+    t0 = bench_now();
     for (r = 0; r < reps; r++)
         for (i = 0; i < NPTS; i++) {
             fbrl_calib_map_points(&c, &in[3 * i], &out[3 * i], 1);
         }
     sink += out[7];
-    secs = now() - t0;
+    secs = bench_now() - t0;
     report("position map (one call per point)", (double)reps * NPTS, secs);
 
     reps = 300;
-    t0 = now();
+    t0 = bench_now();
     for (r = 0; r < reps; r++)
         for (i = 0; i < NPTS; i++)
             fbrl_calib_map(&c, &locs[i], &mapped[i]);
-    secs = now() - t0;
+    secs = bench_now() - t0;
     sink += mapped[5].o;
     report("full location map (position + orientation)", (double)reps * NPTS, secs);
 
-    t0 = now();
+    t0 = bench_now();
     for (r = 0; r < reps; r++)
         for (i = 0; i < NPTS; i++)
             fbrl_calib_unmap(&c, &mapped[i], &locs[i]);
-    secs = now() - t0;
+    secs = bench_now() - t0;
     sink += locs[5].o;
     report("full location unmap", (double)reps * NPTS, secs);
 
     reps = 1000000;
-    t0 = now();
+    t0 = bench_now();
     for (r = 0; r < reps; r++) {
         cal.p[0].x = 10.0 + (double)(r & 1) * 1e-6;
         fbrl_calib_3point(&c, &cal, &recal);
     }
-    secs = now() - t0;
+    secs = bench_now() - t0;
     sink += c.t[0];
     report("3-point calibrations", (double)reps, secs);
 
@@ -127,12 +121,12 @@ int main(void)
             fbrl_calib_map(&c, &a[i], &b[i]);
         }
         reps = 200000;
-        t0 = now();
+        t0 = bench_now();
         for (r = 0; r < reps; r++) {
             b[0].x += 1e-9;
             fbrl_calib_npoint(&c, a, b, 8, res, &rms, &worst);
         }
-        secs = now() - t0;
+        secs = bench_now() - t0;
         sink += rms;
         report("8-point least-squares calibrations", (double)reps, secs);
     }

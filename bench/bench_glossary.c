@@ -8,29 +8,13 @@
 #include <time.h>
 #include "fbrl/glossary.h"
 #include "fbrl/vm.h"
+#include "bench_util.h"
 
 #define N 1000000L
 
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
 static fbrl_vm *vm;
 
-static double run(const char *src)
-{
-    double t0 = now();
-    if (fbrl_vm_eval(vm, src, strlen(src)) != FBRL_OK) {
-        fprintf(stderr, "'%s': %s\n", src, fbrl_vm_last_error(vm)->message);
-        exit(1);
-    }
-    return now() - t0;
-}
-
-static void ev(const char *src) { (void)run(src); }
+static void ev(const char *src) { (void)bench_eval(vm, src); }
 
 int main(void)
 {
@@ -57,7 +41,7 @@ int main(void)
        ": RM-LOOP 1000000 0 DO I 3 AND 1 2 Q RM LOOP ; "
        ": MAP-LOOP 1000000 0 DO S P (MAP) LOOP ; "
        ": UNMAP-LOOP 1000000 0 DO S P UNMAP LOOP ;");
-    double base = run("EMPTY-LOOP");
+    double base = bench_eval(vm, "EMPTY-LOOP");
     struct { const char *what, *src; } w[] = {
         { "GETX", "GETX-LOOP" },
         { "SETX (float literal)", "SETX-LOOP" },
@@ -69,18 +53,18 @@ int main(void)
     };
     printf("empty loop (loop + 1 literal): %.1f ns per iteration\n", base / N * 1e9);
     for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {
-        double t = run(w[i].src);
+        double t = bench_eval(vm, w[i].src);
         printf("%-36s %8.1f ns per call (loop included %.1f ns)\n", w[i].what, (t - base) / N * 1e9,
                t / N * 1e9);
     }
     ev("MAP-ON");
     fbrl_loc l = { 1, 2, 3, 30, -45, 10 }, m;
-    double t0 = now();
+    double t0 = bench_now();
     for (long i = 0; i < N; i++) {
         m = l;
         if (fbrl_glossary_map_out(&g, &m) != FBRL_OK) return 1;
     }
-    printf("%-36s %8.1f ns per call\n", "fbrl_glossary_map_out (MAP-ON)", (now() - t0) / N * 1e9);
+    printf("%-36s %8.1f ns per call\n", "fbrl_glossary_map_out (MAP-ON)", (bench_now() - t0) / N * 1e9);
     free(mem);
     return 0;
 }

@@ -10,27 +10,11 @@
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
+#include "bench_util.h"
 
 #define N 200000L
 
 static fbrl_vm *vm;
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static double run(const char *src)
-{
-    double t0 = now();
-    if (fbrl_vm_eval(vm, src, strlen(src)) != FBRL_OK) {
-        fprintf(stderr, "'%s': %s\n", src, fbrl_vm_last_error(vm)->message);
-        exit(1);
-    }
-    return now() - t0;
-}
 
 int main(void)
 {
@@ -46,7 +30,7 @@ int main(void)
     if (!mem || fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_glossary_install(vm, &g) != FBRL_OK ||
         fbrl_robot_install(vm, &r, NULL, &g) != FBRL_OK)
         return 1;
-    run(": EMPTY 0 DO LOOP ;\n"
+    bench_eval(vm, ": EMPTY 0 DO LOOP ;\n"
         ": STACK 0 DO 5 SHIFT-RIGHT 2DROP LOOP ;\n"
         ": EMPTY-EVAL 0 DO S\" 5 DROP\" EVALUATE LOOP ;\n"
         ": LINE-EVAL 0 DO S\" SHIFT-RIGHT 5 2DROP\" EVALUATE LOOP ;\n"
@@ -59,20 +43,20 @@ int main(void)
         "10E0 Q SETX 2E0 Q SETY C1 3 Q SET-CAL 9E0 Q SETX 3E0 Q SETY C2 3 Q SET-CAL "
         "C2 C1 S CALIBRATE S WITH-CAL");
     snprintf(src, sizeof src, "%ld EMPTY", N);
-    double empty = run(src);
+    double empty = bench_eval(vm, src);
     snprintf(src, sizeof src, "%ld STACK", N);
-    double stack = run(src) - empty;
+    double stack = bench_eval(vm, src) - empty;
     snprintf(src, sizeof src, "%ld EMPTY-EVAL", N);
-    double eempty = run(src);
+    double eempty = bench_eval(vm, src);
     snprintf(src, sizeof src, "%ld STACK-EVAL", N);
-    double estack = run(src) - eempty;
+    double estack = bench_eval(vm, src) - eempty;
     snprintf(src, sizeof src, "%ld LINE-EVAL", N);
-    double eline = run(src) - eempty;
+    double eline = bench_eval(vm, src) - eempty;
     snprintf(src, sizeof src, "%ld BUILD", N);
-    double build = run(src) - empty;
-    run("MAP-ON");
+    double build = bench_eval(vm, src) - empty;
+    bench_eval(vm, "MAP-ON");
     snprintf(src, sizeof src, "%ld BUILD", N);
-    double build_map = run(src) - empty;
+    double build_map = bench_eval(vm, src) - empty;
     printf("robot word, parameters from the stack:          %7.1f ns\n", stack / N * 1e9);
     printf("  interpreted: '5 SHIFT-RIGHT' (stack)           %7.1f ns\n", estack / N * 1e9);
     printf("  interpreted: 'SHIFT-RIGHT 5' (after the word)  %7.1f ns\n", eline / N * 1e9);

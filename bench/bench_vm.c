@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 #include "fbrl/vm.h"
+#include "bench_util.h"
 
 typedef struct load { const char *name, *setup, *run; } load;
 
@@ -22,13 +23,6 @@ static const load loads[] = {
     { "nested-loops", ": NEST ( -- n ) 0 10000 0 DO 1000 0 DO I J + + LOOP LOOP ;\n", "NEST DROP\n" },
     { "float-loop", ": FLOOP 0E0 5000000 0 DO I S>F 0.5E0 F* FSQRT F+ LOOP FDROP ;\n", "FLOOP\n" },
 };
-
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
-}
 
 /* a large source text: 250 definitions (pforth's default dictionary holds no more),
  * each followed by 50 lines that interpret it and a few numbers */
@@ -88,13 +82,13 @@ int main(int argc, char **argv)
         fbrl_status st;
         if (i < sizeof loads / sizeof loads[0]) {
             if (fbrl_vm_eval(vm, loads[i].setup, strlen(loads[i].setup)) != FBRL_OK) return 1;
-            t0 = now_s();
+            t0 = bench_now();
             st = fbrl_vm_eval(vm, loads[i].run, strlen(loads[i].run));
         } else {
-            t0 = now_s();
+            t0 = bench_now();
             st = fbrl_vm_eval(vm, big, blen);
         }
-        double t = now_s() - t0;
+        double t = bench_now() - t0;
         if (st != FBRL_OK) {
             printf("%s failed: %s\n", name, fbrl_vm_last_error(vm)->message);
             return 1;
