@@ -36,16 +36,21 @@ static int expect_within(session *s, const char *text, const char *what, long ms
     return expect(s, text, what);
 }
 
-/* Occurrences of text in the output since `from`. */
-static int count(const session *s, size_t from, const char *text)
+/* Occurrences of text in the string p. */
+static int occurrences(const char *p, const char *text)
 {
     int n = 0;
-    const char *p = s->buf + from;
     while ((p = strstr(p, text)) != NULL) {
         n++;
         p += strlen(text);
     }
     return n;
+}
+
+/* Occurrences of text in the output since `from`. */
+static int count(const session *s, size_t from, const char *text)
+{
+    return occurrences(s->buf + from, text);
 }
 
 /* A key inside TEACH, then its status line (the arm has moved and been read back). */
@@ -59,19 +64,13 @@ static int file_count(const char *path, const char *text)
 {
     static char buf[1 << 20];
     size_t n;
-    int c = 0;
-    const char *p = buf;
     FILE *f = fopen(path, "r");
     if (f == NULL)
         return -1;
     n = fread(buf, 1, sizeof buf - 1, f);
     fclose(f);
     buf[n] = '\0';
-    while ((p = strstr(p, text)) != NULL) {
-        c++;
-        p += strlen(text);
-    }
-    return c;
+    return occurrences(buf, text);
 }
 
 /* Start fbrlsim on a pty with a command log; its first output line is the pty's path. */
