@@ -5,7 +5,8 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 dir=$1; shift
 gen=""
 command -v ninja >/dev/null 2>&1 && gen="-G Ninja"
+# The generator can only be chosen when the directory is first configured.
+[ -f "$dir/CMakeCache.txt" ] && gen=""
 # shellcheck disable=SC2086
-[ -f "$dir/CMakeCache.txt" ] || cmake -S "$here" -B "$dir" $gen "$@" >/dev/null
-cmake -S "$here" -B "$dir" "$@" >/dev/null
+cmake -S "$here" -B "$dir" $gen "$@" >/dev/null
 cmake --build "$dir" -j "$(nproc 2>/dev/null || echo 2)"
