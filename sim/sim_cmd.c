@@ -2,6 +2,7 @@
  * docs/rapl-commands.md, expressions, locations, the motion model, readouts
  * and the control lines. */
 #include "sim_internal.h"
+#include "fbrl/rapl_encode.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -1774,77 +1775,76 @@ static int h_run(fbrl_sim *s, args *a, int *b)
 /* ---- the command table ----------------------------------------------- */
 
 typedef struct cmd {
-    const char *name;
-    int token; /* /NNN, or 0 */
+    const char *name; /* its /NNN token: libfbrl's command table (rapl_encode.c) */
     int flags;
     const char *hint;
     handler fn;
 } cmd;
 
 static const cmd cmds[] = {
-    { "ACTUAL", 152, 0, "<LOC>", h_here },
-    { "ALIGN", 1, F_MOTION, "", h_align },
-    { "APPRO", 2, F_MOTION, "<LOC>,<DIST>[,S]", h_appro },
-    { "ARM", 142, 0, "<ON|OFF>", h_arm },
-    { "CLOSE", 38, 0, "[FORCE]", h_close },
-    { "CONFIG", 110, 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", h_config },
-    { "DEPART", 4, F_MOTION, "<DIST>[,S]", h_depart },
-    { "DLOCN", 48, 0, "<LOC>", h_dlocn },
-    { "DVAR", 67, 0, "<VAR>", h_dvar },
-    { "FINISH", 10, 0, "", h_finish },
-    { "FLASH", 84, 0, "[INTERVAL]", h_flash },
-    { "GAIN", 150, 0, "<MOTOR#>[,<VALUE>]", h_gain },
-    { "GRIP", 39, 0, "<DIST>[,FORCE]", h_grip },
-    { "HALT", 154, 0, "", h_halt },
-    { "HELP", 95, 0, "", h_help },
-    { "HERE", 24, 0, "<LOC>", h_here },
-    { "HOME", 20, 0, "", h_home },
-    { "JOG", 5, F_MOTION, "<DX>,<DY>,<DZ>", h_jog },
-    { "JOINT", 6, F_MOTION, "<JOINT#>,<DEGREES>", h_joint },
-    { "LIMP", 7, 0, "[AXIS#,...]", h_limp },
-    { "LISTL", 49, 0, "[LOC]", h_listl },
-    { "LISTV", 69, 0, "[VAR]", h_listv },
-    { "LOCK", 9, 0, "<JOINT#,...>", h_lock },
-    { "MA", 132, F_MOTION, "<J1>,<J2>,<J3>,<J4>,<J5>[,S]", h_ma },
-    { "MANUAL", 45, 0, "[JOI|CYL]", h_manual },
-    { "MI", 131, F_MOTION, "<J1>,<J2>,<J3>,<J4>,<J5>[,S]", h_mi },
-    { "MOTOR", 11, F_MOTION, "<MOTOR#>,<PULSES>", h_motor },
-    { "MOVE", 0, F_MOTION, "<LOC>[,S]", h_move },
-    { "NOFLASH", 0, 0, "", h_noflash },
-    { "NOHELP", 0, 0, "", h_nohelp },
-    { "NOLIMP", 0, 0, "", h_nolimp },
-    { "NOMANUAL", 0, 0, "", h_nomanual },
-    { "NOTEACH", 0, 0, "", h_noteach },
-    { "OPEN", 40, 0, "[FORCE]", h_open },
-    { "OUTPUT", 89, 0, "<[-]OUT#,...>", h_output },
-    { "POINT", 50, 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", h_point },
-    { "READY", 15, F_MOTION, "", h_ready },
-    { "RUN", 109, F_TOP, "<PROG>[,<COUNT>]", h_run },
-    { "SERIAL", 111, 0, "", h_serial },
-    { "SET", 51, F_RAW, "<LOC1>=<LOC2>", h_set },
-    { "SHIFT", 52, 0, "<LOC>,<DX>,<DY>,<DZ>", h_shift },
-    { "SHIFTA", 53, F_RAW, "<LOC1>,<LOC2>", h_shifta },
-    { "SPEED", 16, 0, "<PERCENT>", h_speed },
-    { "STATUS", 25, 0, "", h_status },
-    { "TEACH", 44, 0, "<NAME>", h_teach },
-    { "TOOL", 54, 0, "[LOC]", h_tool },
-    { "TYPE", 58, F_RAW, "<TEXT>", h_type },
-    { "TYPEI", 59, F_RAW, "<EXPR>", h_typei },
-    { "TYPEV", 60, F_RAW, "<EXPR>", h_typev },
-    { "UNLOCK", 17, 0, "[JOINT#,...]", h_unlock },
-    { "W0", 27, 0, "", h_w0 },
-    { "W1", 29, F_TOP, "", h_w1 },
-    { "W2", 31, 0, "", h_w2 },
-    { "W3", 33, F_TOP, "", h_w3 },
-    { "W4", 35, 0, "", h_w4 },
-    { "W5", 37, F_TOP, "", h_w5 },
-    { "WAIT", 94, 0, "<[-]IN#,...>", h_wait },
-    { "WE1", 28, F_TOP, "", h_we1 },
-    { "WE3", 32, F_TOP, "", h_we3 },
-    { "WE5", 36, F_TOP, "", h_we5 },
-    { "XCAL", 157, 0, "<AXIS#>", h_xcal },
-    { "XHOME", 158, 0, "<AXIS#>", h_xhome },
-    { "XZERO", 159, 0, "<AXIS#>", h_xzero },
+    { "ACTUAL", 0, "<LOC>", h_here },
+    { "ALIGN", F_MOTION, "", h_align },
+    { "APPRO", F_MOTION, "<LOC>,<DIST>[,S]", h_appro },
+    { "ARM", 0, "<ON|OFF>", h_arm },
+    { "CLOSE", 0, "[FORCE]", h_close },
+    { "CONFIG", 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", h_config },
+    { "DEPART", F_MOTION, "<DIST>[,S]", h_depart },
+    { "DLOCN", 0, "<LOC>", h_dlocn },
+    { "DVAR", 0, "<VAR>", h_dvar },
+    { "FINISH", 0, "", h_finish },
+    { "FLASH", 0, "[INTERVAL]", h_flash },
+    { "GAIN", 0, "<MOTOR#>[,<VALUE>]", h_gain },
+    { "GRIP", 0, "<DIST>[,FORCE]", h_grip },
+    { "HALT", 0, "", h_halt },
+    { "HELP", 0, "", h_help },
+    { "HERE", 0, "<LOC>", h_here },
+    { "HOME", 0, "", h_home },
+    { "JOG", F_MOTION, "<DX>,<DY>,<DZ>", h_jog },
+    { "JOINT", F_MOTION, "<JOINT#>,<DEGREES>", h_joint },
+    { "LIMP", 0, "[AXIS#,...]", h_limp },
+    { "LISTL", 0, "[LOC]", h_listl },
+    { "LISTV", 0, "[VAR]", h_listv },
+    { "LOCK", 0, "<JOINT#,...>", h_lock },
+    { "MA", F_MOTION, "<J1>,<J2>,<J3>,<J4>,<J5>[,S]", h_ma },
+    { "MANUAL", 0, "[JOI|CYL]", h_manual },
+    { "MI", F_MOTION, "<J1>,<J2>,<J3>,<J4>,<J5>[,S]", h_mi },
+    { "MOTOR", F_MOTION, "<MOTOR#>,<PULSES>", h_motor },
+    { "MOVE", F_MOTION, "<LOC>[,S]", h_move },
+    { "NOFLASH", 0, "", h_noflash },
+    { "NOHELP", 0, "", h_nohelp },
+    { "NOLIMP", 0, "", h_nolimp },
+    { "NOMANUAL", 0, "", h_nomanual },
+    { "NOTEACH", 0, "", h_noteach },
+    { "OPEN", 0, "[FORCE]", h_open },
+    { "OUTPUT", 0, "<[-]OUT#,...>", h_output },
+    { "POINT", 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", h_point },
+    { "READY", F_MOTION, "", h_ready },
+    { "RUN", F_TOP, "<PROG>[,<COUNT>]", h_run },
+    { "SERIAL", 0, "", h_serial },
+    { "SET", F_RAW, "<LOC1>=<LOC2>", h_set },
+    { "SHIFT", 0, "<LOC>,<DX>,<DY>,<DZ>", h_shift },
+    { "SHIFTA", F_RAW, "<LOC1>,<LOC2>", h_shifta },
+    { "SPEED", 0, "<PERCENT>", h_speed },
+    { "STATUS", 0, "", h_status },
+    { "TEACH", 0, "<NAME>", h_teach },
+    { "TOOL", 0, "[LOC]", h_tool },
+    { "TYPE", F_RAW, "<TEXT>", h_type },
+    { "TYPEI", F_RAW, "<EXPR>", h_typei },
+    { "TYPEV", F_RAW, "<EXPR>", h_typev },
+    { "UNLOCK", 0, "[JOINT#,...]", h_unlock },
+    { "W0", 0, "", h_w0 },
+    { "W1", F_TOP, "", h_w1 },
+    { "W2", 0, "", h_w2 },
+    { "W3", F_TOP, "", h_w3 },
+    { "W4", 0, "", h_w4 },
+    { "W5", F_TOP, "", h_w5 },
+    { "WAIT", 0, "<[-]IN#,...>", h_wait },
+    { "WE1", F_TOP, "", h_we1 },
+    { "WE3", F_TOP, "", h_we3 },
+    { "WE5", F_TOP, "", h_we5 },
+    { "XCAL", 0, "<AXIS#>", h_xcal },
+    { "XHOME", 0, "<AXIS#>", h_xhome },
+    { "XZERO", 0, "<AXIS#>", h_xzero },
 };
 
 #define NCMDS ((int)(sizeof cmds / sizeof cmds[0]))
@@ -1855,16 +1855,23 @@ static int lookup(const char *word, const cmd **out)
     int i, found = -1, count = 0;
     size_t n = strlen(word);
     if (word[0] == '/') {
+        /* the token numbers are the library's: one table for the host and the emulator */
         int t;
         if (n != 4 || !isdigit((unsigned char)word[1]) || !isdigit((unsigned char)word[2])
             || !isdigit((unsigned char)word[3]))
             return 12;
         t = atoi(word + 1);
-        for (i = 0; i < NCMDS; i++)
-            if (cmds[i].token == t) {
-                *out = &cmds[i];
-                return 0;
-            }
+        for (i = 0; i < FBRL_RAPL_NCMDS; i++) {
+            const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)i);
+            int k;
+            if (!ci->token || ci->token != t)
+                continue;
+            for (k = 0; k < NCMDS; k++)
+                if (!strcmp(cmds[k].name, ci->keyword)) {
+                    *out = &cmds[k];
+                    return 0;
+                }
+        }
         return 12;
     }
     if (!n)

@@ -39,10 +39,12 @@ typedef enum fbrl_status {
     FBRL_EOVERFLOW     = -27,  /* arithmetic result does not fit */
     FBRL_ETHROW        = -28,  /* language: uncaught THROW (code in the VM) */
     FBRL_ENOMEM        = -29,  /* language: dictionary or stack space exhausted */
-    FBRL_EOFFLINE      = -30   /* no controller connected */
+    FBRL_EOFFLINE      = -30,  /* no controller connected */
+    FBRL_EMAYBE        = -31   /* link: the command may have run; the link cannot prove
+                                * either way (docs/link.md 3.9): do not repeat it blindly */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EOFFLINE
+#define FBRL_STATUS_MIN FBRL_EMAYBE
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 const char *fbrl_status_str(fbrl_status st);

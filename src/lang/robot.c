@@ -148,7 +148,18 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
         const char *text = "";
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
-        snprintf(msg, sizeof msg, "%s: controller error %03d-%s", w->name, code, text);
+        if (code < 0)
+            snprintf(msg, sizeof msg, "%s: controller error, code unknown (its error line came damaged)", w->name);
+        else
+            snprintf(msg, sizeof msg, "%s: controller error %03d-%s", w->name, code, text);
+        return rb_fail(r, FBRL_THROW_STATUS(st), msg);
+    }
+    if (st == FBRL_EMAYBE) {
+        /* docs/link.md 3.9: say it plainly, with what the controller was last seen doing */
+        fbrl_link_outcome o;
+        (void)fbrl_link_outcome_get(r->link, &o);
+        snprintf(msg, sizeof msg, "%s: may have run: %s (%s); check before repeating it", w->name, o.seen,
+                 fbrl_status_str(o.cause));
         return rb_fail(r, FBRL_THROW_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
@@ -162,8 +173,7 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
-    if (!ci || !((ci->flags & FBRL_RAPL_F_MOTION) || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT ||
-                 cmd == FBRL_RAPL_RUN))
+    if (!ci || !(ci->flags & FBRL_RAPL_F_WAITS))
         return rb_link_result(r, w, fbrl_link_cmd(r->link, cmd, a, n, straight));
     /* A command that may wait for the arm or an input (no reply but the prompt): run it
      * step by step so that Ctrl-C is noticed while it waits. */
