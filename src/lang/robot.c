@@ -158,8 +158,11 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
         /* docs/link.md 3.9: say it plainly, with what the controller was last seen doing */
         fbrl_link_outcome o;
         (void)fbrl_link_outcome_get(r->link, &o);
-        snprintf(msg, sizeof msg, "%s: may have run: %s (%s); check before repeating it", w->name, o.seen,
-                 fbrl_status_str(o.cause));
+        if (o.cause == FBRL_EPROTOCOL || o.cause == FBRL_OK)
+            snprintf(msg, sizeof msg, "%s: may have run: %s; check the robot before repeating it", w->name, o.seen);
+        else
+            snprintf(msg, sizeof msg, "%s: may have run: %s (%s); check the robot first", w->name, o.seen,
+                     fbrl_status_str(o.cause));
         return rb_fail(r, FBRL_THROW_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
