@@ -30,9 +30,9 @@ if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
     # runs take seconds; FBRL_LONG_TESTS=ON runs the full counts (label long).
     set(_burst $<TARGET_FILE:link_e2e_burst> $<TARGET_FILE:fbrlsim> $<TARGET_FILE:burst_relay>)
     add_test(NAME link_e2e_burst COMMAND ${_burst} burst 3000 1)
-    # at 5 %+5 % most typings need many tries (10 ms each): 100 commands by default
-    add_test(NAME link_e2e_5x5_parity COMMAND ${_burst} E 100 2)
-    add_test(NAME link_e2e_5x5_8n1 COMMAND ${_burst} N 100 3)
+    # at 5 %+5 % most typings need many tries (10 ms each): 60 commands by default
+    add_test(NAME link_e2e_5x5_parity COMMAND ${_burst} E 60 2)
+    add_test(NAME link_e2e_5x5_8n1 COMMAND ${_burst} N 60 3)
     set(_burst_tests link_e2e_burst link_e2e_5x5_parity link_e2e_5x5_8n1)
     if(FBRL_LONG_TESTS)
       add_test(NAME link_e2e_5x5_parity_long COMMAND ${_burst} E 1000 2)
