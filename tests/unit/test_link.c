@@ -187,6 +187,20 @@ static void ctl_service(ctl *c)
     }
 }
 
+/* cfg.on_exec: the run log */
+static char journal_line[8][64];
+static fbrl_status journal_res[8];
+static int njournal;
+static void on_exec(void *ctx, const char *line, size_t len, fbrl_status result)
+{
+    (void)ctx;
+    if (njournal < 8) {
+        snprintf(journal_line[njournal], sizeof journal_line[0], "%.*s", (int)len, line);
+        journal_res[njournal] = result;
+    }
+    njournal++;
+}
+
 static int open_session_parity(session *s, fbrl_parity parity)
 {
     memset(s, 0, sizeof *s);
@@ -206,6 +220,7 @@ static int open_session_parity(session *s, fbrl_parity parity)
     cfg.reply_timeout_ms = 2000;
     cfg.wait_timeout_ms = 2000;
     cfg.max_attempts = 6;
+    cfg.on_exec = on_exec;
     return fbrl_link_init(&s->l, &s->u, &cfg) == FBRL_OK ? 0 : -1;
 }
 
@@ -611,6 +626,106 @@ static void clear_line_before_raw_output(void **state)
     assert_int_equal(fbrl_link_clear_line(NULL), FBRL_EINVAL);
 }
 
+/* Exactly once (docs/link.md 3.9). A line not safe to repeat whose CR is lost is typed
+ * again only when the first probe's echo proves the text was still on the line; when
+ * that echo is damaged too, nothing proves either way: it is reported "may have run"
+ * and never typed again. A safe line in the same spot is typed again. */
+static void unsafe_line_is_never_retyped_without_proof(void **state)
+{
+    session *s = *state;
+    assert_false(fbrl_link_line_safe("V1=V1+1"));
+    assert_false(fbrl_link_line_safe("v1 = 2*v1"));
+    assert_true(fbrl_link_line_safe("V1=V2+1"));
+    assert_true(fbrl_link_line_safe("V1=2.5"));
+    assert_true(fbrl_link_line_safe("MOVE P1"));
+    assert_false(fbrl_link_line_safe("JOG 1,0,0"));
+    assert_false(fbrl_link_line_safe("/005 1,0,0"));
+    assert_false(fbrl_link_line_safe("FROB 1"));
+    /* the CR is lost, the probe's echo is whole: proven not run, typed again */
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const once[] = {"V1=V1+1"};
+    assert_log(s, once, 1);
+    s->c.nrules = 0;
+    /* the CR is lost and so is the first byte of the probe's echo */
+    s->c.nlog = 0;
+    njournal = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    assert_int_equal(s->c.nlog, 0); /* it did not run, and it was not typed twice */
+    assert_int_equal(njournal, 1);
+    assert_int_equal(journal_res[0], FBRL_EMAYBE);
+    fbrl_link_outcome o;
+    assert_int_equal(fbrl_link_outcome_get(&s->l, &o), FBRL_OK);
+    assert_int_equal(o.fate, FBRL_LINK_MAY_HAVE_RUN);
+    assert_non_null(strstr(o.seen, "may not have arrived"));
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.not_retyped, 1);
+    s->c.nrules = 0;
+    /* the same damage to a line that is safe to repeat: typed again, runs once */
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=5", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const v5[] = {"V1=5"};
+    assert_log(s, v5, 1);
+    assert_int_equal(fbrl_link_fate_of(FBRL_OK), FBRL_LINK_RAN);
+    assert_int_equal(fbrl_link_fate_of(FBRL_ECONTROLLER), FBRL_LINK_REFUSED);
+    assert_int_equal(fbrl_link_fate_of(FBRL_EMAYBE), FBRL_LINK_MAY_HAVE_RUN);
+    assert_int_equal(fbrl_link_fate_of(FBRL_EECHO), FBRL_LINK_NOT_RUN);
+}
+
+/* The whole reply is lost in a burst: the first probe finds the line empty, so the CR
+ * took effect; the reply is not whole, so STATUS settles it. A refusal whose error line
+ * is cut is a refusal (LAST ERROR changed), never a success; the same refusal again
+ * cannot be told from success: "may have run". */
+static void lost_reply_is_settled_not_guessed(void **state)
+{
+    session *s = *state;
+    assert_int_equal(run(s, "STATUS", FBRL_LINK_REPLY_STATUS), FBRL_OK); /* LAST ERROR: NONE */
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 4); /* CR LF > > */
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"V1=V1+1", "STATUS"};
+    assert_log(s, want, 2);
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 10); /* "CR LF 029-TRAN" */
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    int code;
+    const char *text;
+    fbrl_link_error(&s->l, &code, &text);
+    assert_int_equal(code, 29);
+    /* a piece of text in the reply of a command that prints nothing else is a piece of
+     * an error line: refused, code from STATUS */
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 10);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    /* the whole error line lost, the prompt kept: STATUS shows the same error as before */
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 26);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    fbrl_link_outcome o;
+    fbrl_link_outcome_get(&s->l, &o);
+    assert_non_null(strstr(o.seen, "earlier error"));
+    static const char *const bad[] = {"BAD", "STATUS", "BAD", "STATUS", "BAD", "STATUS"};
+    assert_log(s, bad, 6);
+    /* a position block is believed on its own consistency: one read; a damaged digit
+     * breaks it (joint 2 reads 80 for 18000 pulses), and it is read again */
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "W2", FBRL_LINK_REPLY_POS), FBRL_OK);
+    assert_int_equal(s->c.nlog, 1);
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '9', 0, REPLACE, '8');
+    assert_int_equal(run(s, "W2", FBRL_LINK_REPLY_POS), FBRL_OK);
+    assert_int_equal(s->c.nlog, 2);
+    assert_true(fbrl_link_last_pos(&s->l)->joints[1] == 90.0);
+}
+
 static void bad_calls_are_refused(void **state)
 {
     session *s = *state;
@@ -705,6 +820,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
         cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
+        cmocka_unit_test_setup_teardown(unsafe_line_is_never_retyped_without_proof, setup, teardown),
+        cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
     };
