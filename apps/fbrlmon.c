@@ -52,6 +52,8 @@ static void usage(FILE *f)
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
+          "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
+          "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
           "  --offline        no controller: robot words report an error\n"
           "  --list-ports     list the serial ports and exit\n"
@@ -86,7 +88,7 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", NULL };
+                                         "--flow", "--sim-state", "--sim-inputs", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -115,6 +117,8 @@ static int set_valued(options *o, const char *a, const char *v)
         o->conn.port = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
+    } else if (strcmp(a, "--sim-inputs") == 0) {
+        o->conn.sim_inputs = v;
     } else if (strcmp(a, "--baud") == 0) {
         if (parse_uint(v, 1, 4000000, &n) != 0)
             return -1;
@@ -213,6 +217,9 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         }
     }
+    /* Inputs for the emulator ask for the emulator: one that cannot start is an error. */
+    if (!explicit_conn && o->conn.sim_inputs != NULL)
+        explicit_conn = 1, o->conn.kind = MON_CONN_SIM;
     o->conn_default = !explicit_conn;
     if (!explicit_conn)
 #ifdef FBRLMON_HAVE_SIM
