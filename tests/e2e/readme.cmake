@@ -7,3 +7,12 @@ if(TARGET fbrlsim AND TARGET fbrlmon)
   set_tests_properties(readme_examples PROPERTIES LABELS "e2e;readme" TIMEOUT 300
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+
+# docs/guide.md's sessions, plan file and commands, run in order; the outputs it shows must
+# be what they print (tests/e2e/guide_test.sh).
+if(TARGET fbrlsim AND TARGET fbrlmon)
+  add_test(NAME docs_guide COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/guide_test.sh
+    ${PROJECT_SOURCE_DIR}/docs/guide.md $<TARGET_FILE_DIR:fbrlmon> $<TARGET_FILE_DIR:fbrlsim>)
+  set_tests_properties(docs_guide PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()
