@@ -45,7 +45,8 @@ typedef struct teach {
     int have_pos;
     double grip;         /* gripper opening (in) */
     int have_grip;
-    char msg[128];       /* the last error or note, shown on the status line */
+    char msg[256];       /* the last error or note, shown on the status line */
+    char above[256];     /* the message already printed on its own line above it */
 } teach;
 
 /* ---- keys ---- */
@@ -159,11 +160,12 @@ static void seg(char *line, size_t cap, const char *text)
 }
 
 /* Redraw the status line in place: position, then the last message, the step and
- * the gripper as far as the terminal is wide (so it never wraps; at 80 columns
- * all of it fits, or all but the gripper when a message shows). */
+ * the gripper as far as the terminal is wide (so it never wraps). A message that does
+ * not fit after the position is printed once on its own line above the status line:
+ * a refused jog is always seen. */
 static void status(teach *t)
 {
-    char line[256], pos[96], msg[140], step[48], grip[32];
+    char line[256], pos[96], msg[272], step[48], grip[32];
     size_t width = t->m->host.width > 0 ? (size_t)t->m->host.width : 80;
     const double *p = t->pos;
     if (width > sizeof line)
@@ -178,8 +180,16 @@ static void status(teach *t)
              step_deg[t->level]);
     snprintf(grip, sizeof grip, "grip %.2f", len_shown(t, t->grip));
     snprintf(line, width, "%s", pos);
-    if (t->msg[0])
+    if (!t->msg[0]) {
+        t->above[0] = '\0';
+    } else if (strlen(line) + 2 + strlen(msg) < width) {
         seg(line, width, msg);
+    } else if (strcmp(t->above, t->msg) != 0) {
+        out(t, "\r\033[K");
+        out(t, msg);
+        out(t, "\n");
+        snprintf(t->above, sizeof t->above, "%s", t->msg);
+    }
     seg(line, width, step);
     if (t->have_grip)
         seg(line, width, grip);

@@ -58,6 +58,9 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight);
 /* Run a raw line; its output lines go to the console when print != 0. */
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* METRIC-ON: lengths the user sees are centimetres. */
+int rb_metric(const fbrl_robot *r);
+fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link_line_fn fn, void *ctx);
 /* Convert a finished link call's status (st) into an exception, or FBRL_OK. */
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st);
 

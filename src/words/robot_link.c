@@ -94,10 +94,61 @@ static void return_lines(fbrl_robot *r, void (*fn)(void *, const char *, size_t,
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
 }
 
+typedef struct rb_show_ctx {
+    fbrl_robot *r;
+    fbrl_link_line_fn fn;
+    void *ctx;
+} rb_show_ctx;
+
+static void show_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    rb_show_ctx *c = ctx;
+    print_line(c->r, line, len, flawed);
+    if (c->fn) c->fn(c->ctx, line, len, flawed);
+}
+
+/* A display (W0 W2 W4, ROBOT-STATUS, SERIAL, a query typed with RAPL) shows what the
+ * controller printed, once: one reading, sent once. The link reads a value a program
+ * uses (STATUS, TYPEV, W2 for ARM-HERE) until two readings agree; a display needs no
+ * second reading (a damaged line is shown marked), and a position read while the arm
+ * moves could never agree. Each line also goes to fn (may be NULL). */
+fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link_line_fn fn, void *ctx)
+{
+    fbrl_link_line_fn old_fn = NULL;
+    void *old_ctx = NULL;
+    rb_show_ctx c = { r, fn, ctx };
+    fbrl_status res, st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    (void)fbrl_link_set_line_handler(r->link, show_line, &c, &old_fn, &old_ctx);
+    res = fbrl_link_start(r->link, line, FBRL_LINK_REPLY_LINES);
+    if (res == FBRL_OK) st = rb_drive(r, &res);
+    (void)fbrl_link_set_line_handler(r->link, old_fn, old_ctx, NULL, NULL);
+    if (st != FBRL_OK) return st;
+    return rb_link_result(r, w, res);
+}
+
+/* Is line a read-only query the link would read twice (W0 W2 W4 STATUS TYPEI TYPEV)? */
+static int display_query(const char *line)
+{
+    char word[12];
+    size_t k = 0;
+    fbrl_rapl_cmd c;
+    while (*line == ' ') line++;
+    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
+        word[k] = line[k];
+        k++;
+    }
+    word[k] = '\0';
+    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK) return 0;
+    return c == FBRL_RAPL_W0 || c == FBRL_RAPL_W2 || c == FBRL_RAPL_W4 || c == FBRL_RAPL_STATUS ||
+           c == FBRL_RAPL_TYPEI || c == FBRL_RAPL_TYPEV;
+}
+
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
 {
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
+    if (print && display_query(line)) return rb_show(r, w, line, NULL, NULL);
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     if (print) borrow_lines(r, &fn, &ctx);

@@ -22,6 +22,11 @@ static int gl_metric(const fbrl_robot *r)
     return r->g && fbrl_units_is_metric(fbrl_glossary_units(r->g), &on) == FBRL_OK && on;
 }
 
+int rb_metric(const fbrl_robot *r)
+{
+    return gl_metric(r);
+}
+
 /* MAP-ON mapping (identity without a glossary or with MAP-OFF). */
 static fbrl_status gl_map_out(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out)
 {
