@@ -228,7 +228,9 @@ static int failed(teach *t, fbrl_status st, const char *what)
         int code = -1;
         const char *text = "";
         fbrl_link_error(t->link, &code, &text);
-        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.", what, code, text);
+        const char *help = fbrl_rapl_error_help(code);
+        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.%s%s%s", what, code, text, help ? " (" : "", help ? help : "",
+                 help ? ")" : "");
     } else {
         snprintf(t->msg, sizeof t->msg, "%s: %s", what, fbrl_status_str(st));
     }

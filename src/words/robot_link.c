@@ -38,14 +38,16 @@ fbrl_status rb_online(fbrl_robot *r)
 
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
-    char msg[128];
+    char msg[240];
     if (st == FBRL_OK) return FBRL_OK;
     if (st == FBRL_ECONTROLLER) {
         int code = -1;
-        const char *text = "";
+        const char *text = "", *help;
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
-        snprintf(msg, sizeof msg, "%s: controller error %03d-%s", w->name, code, text);
+        help = fbrl_rapl_error_help(code);  /* its meaning and what to do, in plain words */
+        snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text, help ? " (" : "",
+                 help ? help : "", help ? ")" : "");
         return rb_fail(r, FBRL_THROW_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)

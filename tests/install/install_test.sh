@@ -47,7 +47,9 @@ for prog in "$tmp/doc/build/hello_arm" "$tmp/doc/hello_arm_pc"; do
     [ "$got" = "arm at x 14.00 y 2.00 z 8.00 in" ] || { echo "FAIL: $prog printed '$got'"; exit 1; }
 done
 got=$("$tmp/doc/far" "$tmp/robot" 2>&1) && { echo "FAIL: a point out of reach succeeded"; exit 1; }
-[ "$got" = "hello_arm: move: controller error 029-TRANSFORM ILLEGAL" ] ||
+# the page shows the message: it must be the program's
+want=$(grep '^hello_arm: move: controller error 029' "$doc")
+[ -n "$want" ] && [ "$got" = "$want" ] ||
     { echo "FAIL: out of reach: '$got'"; exit 1; }
 echo "install test: find_package (shared, static) and pkg-config consumers ran;" \
     "docs/c-programs.md's $lines-line program built with its CMakeLists.txt and pkg-config and moved the arm"
