@@ -325,6 +325,9 @@ int main(int argc, char **argv)
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
             printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", FBRL_VERSION, desc);
+            /* a person at the prompt: motions say what they started and when a wait ended */
+            if (m.host.out_is_tty)
+                fbrl_robot_set_console(&m.robot, mon_host_progress, &m.host, 1);
             mon_interactive(&m);
         } else {
             unsigned long ln = 0;

@@ -73,6 +73,7 @@ double rb_len_in(const fbrl_robot *r, double v);
 /* Host clock and sleep (throw when the host has none). */
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms);
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms);
+fbrl_status rb_wait_ms(fbrl_robot *r, const char *who, uint32_t ms);
 
 /* Any control character counts as blank (as the engine's parser has it). */
 static inline int rb_blank(char c) { return (unsigned char)c <= ' '; }

@@ -12,17 +12,42 @@ static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim
 /* Run the link's current command to its end in slices, looking for Ctrl-C between
  * them. Interrupted, the command stays in the link (the controller cannot take a
  * line back): rb_online() finishes it before the next command. */
-static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+static fbrl_status rb_drive_for(fbrl_robot *r, const char *who, const char *what, fbrl_status *result)
 {
+    uint64_t t0 = 0, now = 0, shown = 0;
+    int timed = r->progress && r->vm->host.now_us && rb_now_ms(r, &t0) == FBRL_OK;
+    fbrl_status st, interrupted = FBRL_OK;
     for (;;) {
         int done = 0;
-        fbrl_status st = fbrl_link_poll(r->link, 100, &done);
+        st = fbrl_link_poll(r->link, 100, &done);
         if (done || st != FBRL_OK) {
             *result = st;
-            return FBRL_OK;
+            break;
         }
-        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
+        if ((interrupted = rb_interrupted(r)) != FBRL_OK) break;
+        /* a long wait shows how long it has been, about once a second */
+        if (timed && rb_now_ms(r, &now) == FBRL_OK && now - t0 >= FBRL_ROBOT_PROGRESS_MS &&
+            (now - t0) / 1000u != shown) {
+            char line[96];
+            shown = (now - t0) / 1000u;
+            snprintf(line, sizeof line, "%s: waiting for %s, %lu s", who, what, (unsigned long)shown);
+            r->progress(r->progress_ctx, line);
+        }
     }
+    if (shown) {
+        r->progress(r->progress_ctx, NULL);
+        if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
+            char line[96];
+            snprintf(line, sizeof line, "%s: waited %.1f s for %s\n", who, (double)(now - t0) / 1000.0, what);
+            rb_puts(r, line);
+        }
+    }
+    return interrupted;
+}
+
+static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+{
+    return rb_drive_for(r, "the controller", "the last command", result);
 }
 
 fbrl_status rb_online(fbrl_robot *r)
@@ -55,6 +80,22 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     return rb_fail_st(r, w, st, "link");
 }
 
+/* At a terminal: what the motion just started. The prompt comes back while the arm moves
+ * (the next motion or FINISH waits for it). */
+static void tell_motion(fbrl_robot *r, const rb_word *w, const char *text)
+{
+    char line[200];
+    if (r->have_target) {
+        int metric = rb_metric(r);
+        double k = metric ? FBRL_CM_PER_IN : 1.0;
+        snprintf(line, sizeof line, "%s: the arm is moving to X %+.4f Y %+.4f Z %+.4f %s (%s)\n", w->name,
+                 r->target.x * k, r->target.y * k, r->target.z * k, metric ? "cm" : "in", text);
+    } else {
+        snprintf(line, sizeof line, "%s: the arm is moving (%s)\n", w->name, text);
+    }
+    rb_puts(r, line);
+}
+
 fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
                    int straight)
 {
@@ -73,7 +114,13 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
     if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
     if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
-    if (res == FBRL_OK && (st = rb_drive(r, &res)) != FBRL_OK) return st;
+    if (res == FBRL_OK &&
+        (st = rb_drive_for(r, w->name, cmd == FBRL_RAPL_WAIT ? "the input" : "the arm", &res)) != FBRL_OK) {
+        r->have_target = 0;
+        return st;
+    }
+    if (res == FBRL_OK && r->tell && (ci->flags & FBRL_RAPL_F_MOTION)) tell_motion(r, w, text);
+    r->have_target = 0;
     return rb_link_result(r, w, res);
 }
 

@@ -16,16 +16,7 @@ static fbrl_loc *gl_loc(fbrl_robot *r, fbrl_cell addr)
     return fbrl_glossary_loc(r->vm, addr, &p) == FBRL_OK ? p : NULL;
 }
 
-static int gl_metric(const fbrl_robot *r)
-{
-    int on = 0;
-    return r->g && fbrl_units_is_metric(fbrl_glossary_units(r->g), &on) == FBRL_OK && on;
-}
-
-int rb_metric(const fbrl_robot *r)
-{
-    return gl_metric(r);
-}
+static int gl_metric(const fbrl_robot *r) { return rb_metric(r); }
 
 /* MAP-ON mapping (identity without a glossary or with MAP-OFF). */
 static fbrl_status gl_map_out(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out)
