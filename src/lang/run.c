@@ -590,10 +590,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 if (++defers > 1000) THROW(fbrl__throw_msg(vm, -21, "deferred words loop"));
                 goto execute_xt;
             case K_CFUNC: {
-                if (!h->fn) THROW(-21);
+                if (!h->fn && !h->xfn) THROW(-21);
                 SAVE();
                 vm->pending_throw = 0;
-                fbrl_status st = h->fn(vm, h->arg);
+                fbrl_status st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
                 LOAD();
                 if (sp < ds0 || sp > dse || fp < fs0 || fp > fse) { sp = ds0; fp = fs0; THROW(-4); }
                 if (st != FBRL_OK)

@@ -301,7 +301,7 @@ size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, 
 int fbrl__parse_float(const char *s, size_t n, double *out);
 
 /* The text interpreter's number syntax. kind: 1 single, 2 double, 3 float; 0 not a number. */
-static int parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f)
+int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f)
 {
     fbrl_cell base = *vm->base;
     if (n == 3 && s[0] == '\'' && s[2] == '\'') { v[0] = (unsigned char)s[1]; return 1; }
@@ -575,7 +575,7 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
     }
     fbrl_cell v[2];
     double f;
-    int kind = parse_number(vm, name, len, v, &f);
+    int kind = fbrl__parse_number(vm, name, len, v, &f);
     if (kind == 0) return -13;
     if (*vm->state) {
         if (kind == 3) return fbrl__compile_flit(vm, f);

@@ -17,8 +17,8 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 
-typedef uintptr_t fbrl_ucell;
 #define CELL ((fbrl_cell)sizeof(fbrl_cell))
 #define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
 
@@ -65,6 +65,8 @@ typedef struct fbrl_hdr {
     fbrl_cell does;           /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn;          /* K_CFUNC */
     void *arg;
+    fbrl_vmx_fn xfn;          /* K_CFUNC defined through vmx.h: called instead of fn */
+    const void *word;         /* its word pointer */
     const char *stack, *help; /* HELP text (NUL-terminated) */
 } fbrl_hdr;
 
@@ -160,6 +162,10 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);
 void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
 void fbrl__puts(fbrl_vm *vm, const char *s);
 const char *fbrl__throw_text(int code);
+
+/* vm.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
+ * 3 float (*f); 0 not a number. */
+int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f);
 
 /* prelude.c */
 extern const char fbrl__prelude[];

@@ -171,7 +171,7 @@ static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 /* TYPE-COM ( chrs addr -- ) - the thesis's order: count first */
 static fbrl_status w_type_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    if (v[0].i < 0 || (v[0].i > 0 && !fbrl__addr_ok(r->vm, v[1].i, v[0].i))) return rb_fail(r, -9, NULL);
+    if (v[0].i < 0 || (v[0].i > 0 && !fbrl_vm_addr(r->vm, v[1].i, (size_t)v[0].i))) return rb_fail(r, -9, NULL);
     return send_raw(r, w, (const void *)v[1].i, (size_t)v[0].i);
 }
 
@@ -276,12 +276,9 @@ static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
     size_t n;
     (void)w;
     (void)v;
-    fbrl__parse_name(r->vm, &s, &n);
+    fbrl_vm_parse_name(r->vm, &s, &n);
     if (n == 0) return rb_fail(r, -16, "ASC needs a character after it");
-    if (*r->vm->state) {
-        int e = fbrl__compile_lit(r->vm, (unsigned char)s[0]);
-        return e ? fbrl_vm_throw(r->vm, e, NULL) : FBRL_OK;
-    }
+    if (fbrl_vmx_compiling(r->vm)) return fbrl_vmx_compile_lit(r->vm, (unsigned char)s[0]);
     return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
 }
 
@@ -306,4 +303,4 @@ const rb_word rb_comm_words[] = {
 const size_t rb_comm_nwords = sizeof rb_comm_words / sizeof rb_comm_words[0];
 
 /* ASC is F-PC's; a VM that has one keeps it. Immediate. */
-const rb_word rb_comm_asc = { "ASC", w_asc, "", 0, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };
+const rb_word rb_comm_asc = { "ASC", w_asc, "", FBRL_VMX_IMMEDIATE, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };

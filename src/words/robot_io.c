@@ -15,7 +15,9 @@
 
 #include "robot_internal.h"
 
-#define DEVICE_MAGIC ((fbrl_cell)0x44455643) /* "DEVC" */
+/* A device word's data: this magic, then its port number (the table in the robot is what
+ * counts; the data only marks the word as a device). */
+static const fbrl_vmx_type device_type = { "device", (fbrl_cell)0x44455643 /* "DEVC" */ };
 #define DEFAULT_PULSE_MS 100u
 #define POLL_MS 20u
 #define MAX_WAIT_MS 86400000L /* one day */
@@ -24,10 +26,7 @@ static fbrl_robot_device *device_at(fbrl_robot *r, fbrl_cell addr)
 {
     for (size_t k = 0; k < FBRL_ROBOT_MAX_DEVICES; k++) {
         fbrl_robot_device *d = &r->dev[k];
-        fbrl_cell magic;
-        if (!d->addr || d->addr != addr || !fbrl__addr_ok(r->vm, addr, 2 * CELL)) continue;
-        memcpy(&magic, (const void *)addr, sizeof magic);
-        if (magic == DEVICE_MAGIC) return d;
+        if (d->addr && d->addr == addr && fbrl_vmx_data(r->vm, addr, &device_type, sizeof(fbrl_cell))) return d;
     }
     return NULL;
 }
@@ -51,8 +50,9 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
 /* OUTPUT-DEVICE / INPUT-DEVICE ( port "name" -- ) */
 static fbrl_status w_make_device(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    fbrl_hdr *h;
     size_t k;
+    fbrl_cell addr;
+    void *port;
     char msg[96];
     if (v[0].i < 1 || v[0].i > FBRL_ROBOT_IO_MAX) {
         snprintf(msg, sizeof msg, "%s: port %ld outside 1..%d", w->name, (long)v[0].i, FBRL_ROBOT_IO_MAX);
@@ -60,14 +60,12 @@ static fbrl_status w_make_device(fbrl_robot *r, const rb_word *w, rb_val *v)
     }
     for (k = 0; k < FBRL_ROBOT_MAX_DEVICES && device_at(r, r->dev[k].addr); k++)
         ;
-    if (k == FBRL_ROBOT_MAX_DEVICES) return rb_fail(r, FBRL_THROW_STATUS(FBRL_EFULL), "too many devices");
-    int e = fbrl__create(r->vm, K_VAR, w->arg ? "( -- dev )" : "( -- dev )",
-                         w->arg ? "output device" : "input device", &h);
-    if (!e) e = fbrl__allot(r->vm, 2 * CELL);
-    if (e) return fbrl_vm_throw(r->vm, e, NULL);
-    fbrl_cell cells[2] = { DEVICE_MAGIC, v[0].i };
-    memcpy((void *)h->body, cells, sizeof cells);
-    r->dev[k].addr = h->body;
+    if (k == FBRL_ROBOT_MAX_DEVICES) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "too many devices");
+    fbrl_status st = fbrl_vmx_create(r->vm, NULL, 0, &device_type, sizeof(fbrl_cell), NULL, NULL, "( -- dev )",
+                                     w->arg ? "output device" : "input device", &addr, &port);
+    if (st != FBRL_OK) return st;
+    memcpy(port, &v[0].i, sizeof v[0].i);
+    r->dev[k].addr = addr;
     r->dev[k].port = (int)v[0].i;
     r->dev[k].output = (int)w->arg;
     r->dev[k].pulse_ms = DEFAULT_PULSE_MS;
@@ -86,7 +84,7 @@ static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_device *d = device_at(r, v[0].i);
     if (!d) {
         fbrl_cell flag = w->arg ? -1 : 0;
-        if (!fbrl__addr_ok(r->vm, v[0].i, CELL)) return rb_fail(r, -9, NULL);
+        if (!fbrl_vm_addr(r->vm, v[0].i, sizeof(fbrl_cell))) return rb_fail(r, -9, NULL);
         memcpy((void *)v[0].i, &flag, sizeof flag);
         return FBRL_OK;
     }
@@ -246,8 +244,9 @@ static fbrl_status w_time_of_day(fbrl_robot *r, const rb_word *w, rb_val *v)
     int t[6];
     (void)w;
     (void)v;
-    if (!r->vm->host.time_date) return rb_fail(r, -21, "no clock in this host");
-    r->vm->host.time_date(r->vm->host.user, t);
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    if (!h->time_date) return rb_fail(r, -21, "no clock in this host");
+    h->time_date(h->user, t);
     return fbrl_vm_push(r->vm, (fbrl_cell)t[2] * 3600 + t[1] * 60 + t[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
 }
 

@@ -121,7 +121,7 @@ static fbrl_status w_send_cr(fbrl_robot *r, const rb_word *w, rb_val *v)
     r->len = 0;
     r->line[0] = '\0';
     r->line_bad = 0;
-    if (bad) return rb_fail(r, FBRL_THROW_STATUS(FBRL_ERANGE), "SEND-CR: the line grew past 80 characters");
+    if (bad) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "SEND-CR: the line grew past 80 characters");
     if (n == 0) return rb_fail(r, -24, "SEND-CR: nothing to send (start with SEND-COM)");
     return rb_raw(r, w, line, 1);
 }

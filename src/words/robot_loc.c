@@ -49,7 +49,7 @@ fbrl_status rb_loc_read(fbrl_robot *r, const rb_word *w, fbrl_cell addr, fbrl_lo
     }
     if (fbrl_loc_check(p) != FBRL_OK) {
         snprintf(msg, sizeof msg, "%s: location holds a NaN or infinity", w->name);
-        return rb_fail(r, FBRL_THROW_STATUS(FBRL_ENONFINITE), msg);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ENONFINITE), msg);
     }
     *out = *p;
     return FBRL_OK;

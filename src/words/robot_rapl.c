@@ -72,7 +72,7 @@ static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)fbrl_link_set_line_handler(r->link, keep_block, &b, &fn, &ctx); /* for this command */
     st = fbrl_link_where(r->link, cmd, NULL);
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
-    if (st == FBRL_OK) fbrl__write(r->vm, b.text, b.n);
+    if (st == FBRL_OK) fbrl_vmx_write(r->vm, b.text, b.n);
     return rb_link_result(r, w, st);
 }
 
