@@ -32,6 +32,9 @@ extern "C" {
 /* A cell as an unsigned number. */
 typedef uintptr_t fbrl_ucell;
 
+/* The longest word name. */
+#define FBRL_VMX_NAME_MAX 31
+
 /* ---- defining words ---- */
 
 /* Word flags. */
@@ -84,8 +87,9 @@ fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbr
  * NULL if addr is not one (wrong magic, outside, misaligned). */
 void *fbrl_vmx_data(fbrl_vm *vm, fbrl_cell addr, const fbrl_vmx_type *type, size_t bytes);
 
-/* The data field of the word xt if fbrl_vmx_create made it with this run function:
- * FBRL_OK, or FBRL_ETYPE (another word, or no word). */
+/* The data field of the word xt if fbrl_vmx_create made it with this run function (run
+ * NULL: if xt only pushes its data field's address, as VARIABLE and fbrl_vmx_create without
+ * run make it): FBRL_OK, or FBRL_ETYPE (another word, or no word). */
 fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, fbrl_cell *addr);
 
 /* ---- arguments: from the stacks or from the input after the word ---- */
@@ -172,6 +176,12 @@ fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+
+/* ---- the built-in word set ---- */
+
+/* The data words every VM has (queues, arrays, strings, type sizes: thesis I-1 .. I-3);
+ * fbrl_vm_create() installs them. */
+fbrl_status fbrl_vmx_data_words(fbrl_vm *vm);
 
 #ifdef __cplusplus
 }

@@ -22,7 +22,7 @@
 #define CELL ((fbrl_cell)sizeof(fbrl_cell))
 #define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
 
-#define FBRL_NAME_MAX 31      /* longest word name (as F-PC) */
+#define FBRL_NAME_MAX FBRL_VMX_NAME_MAX /* longest word name (as F-PC) */
 #define FBRL_LINE_MAX 1024    /* longest source line */
 #define FBRL_SRC_MAX 10       /* nested input sources (files, texts, EVALUATE) */
 #define FBRL_CF_MAX 64        /* control-flow stack entries */
@@ -171,6 +171,6 @@ int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], dou
 extern const char fbrl__prelude[];
 
 /* src/words/data.c: the data words every VM has */
-fbrl_status fbrl__fbrl_words(fbrl_vm *vm);
+static inline fbrl_status fbrl__fbrl_words(fbrl_vm *vm) { return fbrl_vmx_data_words(vm); }
 
 #endif

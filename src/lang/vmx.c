@@ -91,9 +91,9 @@ void *fbrl_vmx_data(fbrl_vm *vm, fbrl_cell addr, const fbrl_vmx_type *type, size
 
 fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, fbrl_cell *addr)
 {
-    if (!vm || !run || !addr) return FBRL_EINVAL;
+    if (!vm || !addr) return FBRL_EINVAL;
     const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
-    if (!h || h->kind != K_CFUNC || h->xfn != run) return FBRL_ETYPE;
+    if (!h || (run ? (h->kind != K_CFUNC || h->xfn != run) : h->kind != K_VAR)) return FBRL_ETYPE;
     *addr = h->body;
     return FBRL_OK;
 }
