@@ -85,6 +85,10 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
  * opened a port. The link should already be connected (fbrl_link_connect). */
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
 
+/* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
+ * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */
+const char *fbrl_robot_word(size_t i);
+
 /* The controller error code of the last robot word that failed with a controller
  * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */
 int fbrl_robot_last_error(const fbrl_robot *r);

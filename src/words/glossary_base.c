@@ -37,11 +37,16 @@ fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v)
     return FBRL_OK;
 }
 
+/* The words pop their cells first, so the reals given as integers are the cells just
+ * beneath them: vmx.h's one rule. */
 fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v)
 {
-    if (fbrl_vm_fdepth(vm) < n) return fbrl_vm_throw(vm, GL_FSTACK_UNDERFLOW, NULL);
-    while (n--) fbrl_vm_fpop(vm, &v[n]);
-    return FBRL_OK;
+    static const char reals[FBRL_VMX_MAXARGS + 1] = "RRRRRRRR";
+    fbrl_vmx_val val[FBRL_VMX_MAXARGS];
+    if (n > FBRL_VMX_MAXARGS) return FBRL_EINVAL;
+    fbrl_status st = fbrl_vmx_args(vm, NULL, reals + FBRL_VMX_MAXARGS - n, NULL, FBRL_VMX_STACKS, val);
+    for (size_t k = 0; st == FBRL_OK && k < n; k++) v[k] = val[k].f;
+    return st;
 }
 
 fbrl_status gl_push_flag(fbrl_vm *vm, int yes) { return fbrl_vm_push(vm, yes ? -1 : 0); }

@@ -46,7 +46,8 @@ fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
 /* Throw FBRL_THROW_STATUS(st) with "what: <status text>". */
 fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what);
 
-/* Pop n cells (v[0] was deepest) / n floats; throw stack underflow if fewer. */
+/* Pop n cells (v[0] was deepest) / n reals (integers accepted by vmx.h's rule); throw stack
+ * underflow if fewer. */
 fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v);
 fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v);
 fbrl_status gl_push_flag(fbrl_vm *vm, int yes);

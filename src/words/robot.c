@@ -35,6 +35,27 @@ static fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n)
     return FBRL_OK;
 }
 
+/* The word tables, in this order: HELP and WORDS list the words as they were defined. */
+static const size_t one = 1;
+static const struct {
+    const rb_word *t;
+    const size_t *n;
+} tables[] = {
+    { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords }, { rb_teach_words, &rb_teach_nwords },
+    { rb_param_words, &rb_param_nwords },   { rb_line_words, &rb_line_nwords }, { rb_comm_words, &rb_comm_nwords },
+    { &rb_comm_asc, &one },                 { rb_io_words, &rb_io_nwords },
+};
+#define NTABLES (sizeof tables / sizeof tables[0])
+
+const char *fbrl_robot_word(size_t i)
+{
+    for (size_t k = 0; k < NTABLES; k++) {
+        if (i < *tables[k].n) return tables[k].t[i].name;
+        i -= *tables[k].n;
+    }
+    return NULL;
+}
+
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g)
 {
     fbrl_cell xt;
@@ -50,17 +71,12 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, "( -- a )",
                         "robot words' line buffer", &r->tib, NULL) != FBRL_OK)
         return FBRL_ENOMEM;
-    /* in this order: HELP and WORDS list them as they were defined */
-    static const struct { const rb_word *t; const size_t *n; } tables[] = {
-        { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords },
-        { rb_teach_words, &rb_teach_nwords },   { rb_param_words, &rb_param_nwords },
-        { rb_line_words, &rb_line_nwords },     { rb_comm_words, &rb_comm_nwords },
-    };
     fbrl_status st = FBRL_OK;
-    for (size_t k = 0; st == FBRL_OK && k < sizeof tables / sizeof tables[0]; k++)
+    for (size_t k = 0; st == FBRL_OK && k < NTABLES; k++) {
+        /* ASC is F-PC's: a VM that has one keeps it */
+        if (tables[k].t == &rb_comm_asc && fbrl_vmx_find(vm, "ASC", 3, &xt) == FBRL_OK) continue;
         st = rb_define(r, tables[k].t, *tables[k].n);
-    if (st == FBRL_OK && fbrl_vmx_find(vm, "ASC", 3, &xt) == FBRL_ENOENT) st = rb_define(r, &rb_comm_asc, 1);
-    if (st == FBRL_OK) st = rb_define(r, rb_io_words, rb_io_nwords);
+    }
     if (st == FBRL_OK) st = fbrl_robot_set_link(r, link);
     return st;
 }
