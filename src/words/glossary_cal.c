@@ -142,7 +142,6 @@ static fbrl_status w_cal_stru_store(fbrl_vm *vm, void *arg)
     double *e, v;
     fbrl_status st;
     (void)arg;
-    if (fbrl_vm_fdepth(vm) < 1) return fbrl_vm_throw(vm, GL_FSTACK_UNDERFLOW, NULL);
     if ((st = stru_entry(vm, "CAL-STRU!", &c, &e)) || (st = gl_fpop(vm, 1, &v))) return st;
     if (!isfinite(v)) return gl_throw_st(vm, FBRL_ENONFINITE, "CAL-STRU!");
     *e = v;
