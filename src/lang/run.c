@@ -13,18 +13,18 @@
 #define SAVE() (vm->sp = sp, vm->rp = rp, vm->fp = fp)
 #define LOAD() (sp = vm->sp, rp = vm->rp, fp = vm->fp)
 #define THROW(c) do { code = (c); goto do_throw; } while (0)
-#define NEED(n) if (sp - ds0 < (n)) THROW(-4)
-#define ROOM(n) if (dse - sp < (n)) THROW(-3)
-#define RNEED(n) if (rp - rs0 < (n)) THROW(-6)
-#define RROOM(n) if (rse - rp < (n)) THROW(-5)
-#define FNEED(n) if (fp - fs0 < (n)) THROW(-45)
-#define FROOM(n) if (fse - fp < (n)) THROW(-44)
-#define CHK(a, n) if (!fbrl__addr_ok(vm, (a), (n))) THROW(-9)
+#define NEED(n) if (sp - ds0 < (n)) THROW(FBRL_THROW_STACK_UNDERFLOW)
+#define ROOM(n) if (dse - sp < (n)) THROW(FBRL_THROW_STACK_OVERFLOW)
+#define RNEED(n) if (rp - rs0 < (n)) THROW(FBRL_THROW_RSTACK_UNDERFLOW)
+#define RROOM(n) if (rse - rp < (n)) THROW(FBRL_THROW_RSTACK_OVERFLOW)
+#define FNEED(n) if (fp - fs0 < (n)) THROW(FBRL_THROW_FSTACK_UNDERFLOW)
+#define FROOM(n) if (fse - fp < (n)) THROW(FBRL_THROW_FSTACK_OVERFLOW)
+#define CHK(a, n) if (!fbrl__addr_ok(vm, (a), (n))) THROW(FBRL_THROW_BAD_ADDRESS)
 #define CODE_OK(t) ((fbrl_ucell)(t) - code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
-#define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) THROW(-9); ip = (const fbrl_cell *)t_; } while (0)
+#define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) THROW(FBRL_THROW_BAD_ADDRESS); ip = (const fbrl_cell *)t_; } while (0)
 #define CALLC(expr) do { SAVE(); code = (expr); LOAD(); if (code) goto do_throw; } while (0)
 /* fbrl_vm_interrupt() is honoured wherever a program can loop or recurse */
-#define POLL() if (fbrl_load_rlx(&vm->interrupt)) { fbrl_store_rlx(&vm->interrupt, 0); THROW(-28); }
+#define POLL() if (fbrl_load_rlx(&vm->interrupt)) { fbrl_store_rlx(&vm->interrupt, 0); THROW(FBRL_THROW_INTERRUPT); }
 #define T sp[-1]
 #define S sp[-2]
 #define U(x) ((fbrl_ucell)(x))
@@ -40,7 +40,7 @@ static void stf(fbrl_cell a, double v) { memcpy((void *)a, &v, sizeof v); }
 
 static int floordiv(fbrl_cell a, fbrl_cell b, fbrl_cell *q, fbrl_cell *r)
 {
-    if (b == 0) return -10;
+    if (b == 0) return FBRL_THROW_DIV_ZERO;
     if (b == -1) { *q = (fbrl_cell)(0 - U(a)); *r = 0; return 0; }
     fbrl_cell qq = a / b, rr = a % b;
     if (rr != 0 && ((rr < 0) != (b < 0))) { qq--; rr += b; }
@@ -66,7 +66,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 
     LOAD();
     entry = rp - rs0;
-    if (vm->nest >= 64) return -5;
+    if (vm->nest >= 64) return FBRL_THROW_RSTACK_OVERFLOW;
     vm->nest++;
     goto execute_xt;
 
@@ -74,10 +74,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         w = *ip++;
     dispatch:
         switch ((fbrl_ucell)w) {
-        case OP_BAD: THROW(fbrl__throw_msg(vm, -9, "invalid instruction (corrupted code?)"));
+        case OP_BAD: THROW(fbrl__throw_msg(vm, FBRL_THROW_BAD_ADDRESS, "invalid instruction (corrupted code?)"));
         case OP_HALT: goto out;
         case OP_CATCHEND:
-            if (vm->handler != rp - rs0 || rp - rs0 < 5) THROW(-25);
+            if (vm->handler != rp - rs0 || rp - rs0 < 5) THROW(FBRL_THROW_RSTACK_IMBALANCE);
             rp -= 5;
             vm->handler = (rp[3] >= 0 && rp[3] <= rp - rs0) ? rp[3] : 0;
             JUMP(rp[0]);
@@ -118,7 +118,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_SLIT: case OP_CSLIT: case OP_PABORTQ: {
             fbrl_ucell n = U(*ip++), skip = (n / U(CELL) + 1) * U(CELL);
             fbrl_cell s = (fbrl_cell)ip;
-            if (n > 65536) THROW(-9);
+            if (n > 65536) THROW(FBRL_THROW_BAD_ADDRESS);
             JUMP((fbrl_cell)(U(s) + skip));
             if (w == OP_PABORTQ) {
                 NEED(1);
@@ -128,7 +128,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                     CHK(s, (fbrl_cell)k);
                     memcpy(m, (const void *)s, k);
                     m[k] = 0;
-                    THROW(fbrl__throw_msg(vm, -2, m));
+                    THROW(fbrl__throw_msg(vm, FBRL_THROW_ABORTQ, m));
                 }
             } else if (w == OP_CSLIT) {
                 ROOM(1); *sp++ = s;
@@ -139,7 +139,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         }
         case OP_DOESSET: {
             fbrl_hdr *h = vm->nwords ? HDR(vm, vm->nwords - 1) : NULL;
-            if (!h || h->kind != K_CREATE) THROW(fbrl__throw_msg(vm, -31, "DOES> needs a CREATEd word"));
+            if (!h || h->kind != K_CREATE) THROW(fbrl__throw_msg(vm, FBRL_THROW_TO_BODY, "DOES> needs a CREATEd word"));
             h->does = (fbrl_cell)ip;
             RNEED(1);
             JUMP(*--rp);
@@ -176,12 +176,12 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_TUCK: NEED(2); ROOM(1); a = T; sp[0] = a; T = S; S = a; sp++; continue;
         case OP_PICK:
             NEED(1); ua = U(T);
-            if (ua >= U(sp - ds0 - 1)) THROW(-4);
+            if (ua >= U(sp - ds0 - 1)) THROW(FBRL_THROW_STACK_UNDERFLOW);
             T = sp[-2 - (fbrl_cell)ua];
             continue;
         case OP_ROLL:
             NEED(1); ua = U(T);
-            if (ua >= U(sp - ds0 - 1)) THROW(-4);
+            if (ua >= U(sp - ds0 - 1)) THROW(FBRL_THROW_STACK_UNDERFLOW);
             sp--;
             a = sp[-1 - (fbrl_cell)ua];
             memmove(sp - 1 - ua, sp - ua, (size_t)ua * sizeof(fbrl_cell));
@@ -237,8 +237,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_UMSTAR: NEED(2); fbrl__umul(U(S), U(T), &ua, &ub); S = (fbrl_cell)ub; T = (fbrl_cell)ua; continue;
         case OP_UMSLASHMOD:
             NEED(3);
-            if (T == 0) THROW(-10);
-            if (U(S) >= U(T)) THROW(-11);
+            if (T == 0) THROW(FBRL_THROW_DIV_ZERO);
+            if (U(S) >= U(T)) THROW(FBRL_THROW_RESULT_RANGE);
             fbrl__udiv(U(S), U(sp[-3]), U(T), &ua, &ub);
             sp--; S = (fbrl_cell)ub; T = (fbrl_cell)ua;
             continue;
@@ -408,19 +408,19 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_EVALUATE:
             NEED(2);
             a = sp[-2]; b = T; sp -= 2;
-            if (b < 0) THROW(-24);
+            if (b < 0) THROW(FBRL_THROW_BAD_NUMBER);
             CHK(a, b);
             CALLC(fbrl__evaluate(vm, (char *)a, (size_t)b));
             continue;
         case OP_INCLUDED: case OP_REQUIRED:
             NEED(2);
             a = sp[-2]; b = T; sp -= 2;
-            if (b < 0) THROW(-24);
+            if (b < 0) THROW(FBRL_THROW_BAD_NUMBER);
             CHK(a, b);
             CALLC(fbrl__included(vm, (const char *)a, (size_t)b, w == OP_REQUIRED));
             continue;
         case OP_QUIT: THROW(THROW_QUIT);
-        case OP_ABORT: THROW(-1);
+        case OP_ABORT: THROW(FBRL_THROW_ABORT);
         case OP_BYE: vm->bye = 1; THROW(THROW_BYE);
         case OP_CATCH:
             NEED(1); RROOM(6);
@@ -435,7 +435,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             a = *--sp;
             if (a == 0) continue;
             if (a == THROW_BYE) a = -1;
-            THROW((int)(a < -2000000000 || a > 2000000000 ? -24 : a));
+            THROW((int)(a < -2000000000 || a > 2000000000 ? FBRL_THROW_BAD_NUMBER : a));
 
         /* I/O, output, tools, facility: helpers */
         case OP_EMIT: { char ch; NEED(1); ch = (char)*--sp; fbrl__write(vm, &ch, 1); continue; }
@@ -456,36 +456,36 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             continue;
 
         /* floating point */
-        case OP_FPLUS: FNEED(2); fp--; FRES(fp[-1] + fp[0], -43); continue;
-        case OP_FMINUS: FNEED(2); fp--; FRES(fp[-1] - fp[0], -43); continue;
-        case OP_FSTAR: FNEED(2); fp--; FRES(fp[-1] * fp[0], -43); continue;
-        case OP_FSLASH: FNEED(2); fp--; if (fp[0] == 0) THROW(-42); FRES(fp[-1] / fp[0], -43); continue;
+        case OP_FPLUS: FNEED(2); fp--; FRES(fp[-1] + fp[0], FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FMINUS: FNEED(2); fp--; FRES(fp[-1] - fp[0], FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FSTAR: FNEED(2); fp--; FRES(fp[-1] * fp[0], FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FSLASH: FNEED(2); fp--; if (fp[0] == 0) THROW(FBRL_THROW_FDIV_ZERO); FRES(fp[-1] / fp[0], FBRL_THROW_FRESULT_RANGE); continue;
         case OP_FNEGATE: FNEED(1); fp[-1] = -fp[-1]; continue;
         case OP_FABS: FNEED(1); fp[-1] = fabs(fp[-1]); continue;
         case OP_FMIN: FNEED(2); fp--; if (fp[0] < fp[-1]) fp[-1] = fp[0]; continue;
         case OP_FMAX: FNEED(2); fp--; if (fp[0] > fp[-1]) fp[-1] = fp[0]; continue;
-        case OP_FSQRT: FNEED(1); FRES(sqrt(fp[-1]), -46); continue;
-        case OP_FSIN: FNEED(1); FRES(sin(fp[-1]), -46); continue;
-        case OP_FCOS: FNEED(1); FRES(cos(fp[-1]), -46); continue;
-        case OP_FTAN: FNEED(1); FRES(tan(fp[-1]), -46); continue;
+        case OP_FSQRT: FNEED(1); FRES(sqrt(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FSIN: FNEED(1); FRES(sin(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FCOS: FNEED(1); FRES(cos(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FTAN: FNEED(1); FRES(tan(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
         case OP_FSINCOS: FNEED(1); FROOM(1); fa = fp[-1]; fp[-1] = sin(fa); fp[0] = cos(fa); fp++; continue;
-        case OP_FASIN: FNEED(1); FRES(asin(fp[-1]), -46); continue;
-        case OP_FACOS: FNEED(1); FRES(acos(fp[-1]), -46); continue;
-        case OP_FATAN: FNEED(1); FRES(atan(fp[-1]), -46); continue;
-        case OP_FATAN2: FNEED(2); fp--; FRES(atan2(fp[-1], fp[0]), -46); continue;
-        case OP_FSINH: FNEED(1); FRES(sinh(fp[-1]), -43); continue;
-        case OP_FCOSH: FNEED(1); FRES(cosh(fp[-1]), -43); continue;
-        case OP_FTANH: FNEED(1); FRES(tanh(fp[-1]), -46); continue;
-        case OP_FASINH: FNEED(1); FRES(asinh(fp[-1]), -46); continue;
-        case OP_FACOSH: FNEED(1); FRES(acosh(fp[-1]), -46); continue;
-        case OP_FATANH: FNEED(1); FRES(atanh(fp[-1]), -46); continue;
-        case OP_FEXP: FNEED(1); FRES(exp(fp[-1]), -43); continue;
-        case OP_FEXPM1: FNEED(1); FRES(expm1(fp[-1]), -43); continue;
-        case OP_FLN: FNEED(1); FRES(log(fp[-1]), -46); continue;
-        case OP_FLNP1: FNEED(1); FRES(log1p(fp[-1]), -46); continue;
-        case OP_FLOG: FNEED(1); FRES(log10(fp[-1]), -46); continue;
-        case OP_FALOG: FNEED(1); FRES(pow(10.0, fp[-1]), -43); continue;
-        case OP_FPOW: FNEED(2); fp--; FRES(pow(fp[-1], fp[0]), -46); continue;
+        case OP_FASIN: FNEED(1); FRES(asin(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FACOS: FNEED(1); FRES(acos(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FATAN: FNEED(1); FRES(atan(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FATAN2: FNEED(2); fp--; FRES(atan2(fp[-1], fp[0]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FSINH: FNEED(1); FRES(sinh(fp[-1]), FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FCOSH: FNEED(1); FRES(cosh(fp[-1]), FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FTANH: FNEED(1); FRES(tanh(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FASINH: FNEED(1); FRES(asinh(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FACOSH: FNEED(1); FRES(acosh(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FATANH: FNEED(1); FRES(atanh(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FEXP: FNEED(1); FRES(exp(fp[-1]), FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FEXPM1: FNEED(1); FRES(expm1(fp[-1]), FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FLN: FNEED(1); FRES(log(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FLNP1: FNEED(1); FRES(log1p(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FLOG: FNEED(1); FRES(log10(fp[-1]), FBRL_THROW_FBAD_ARG); continue;
+        case OP_FALOG: FNEED(1); FRES(pow(10.0, fp[-1]), FBRL_THROW_FRESULT_RANGE); continue;
+        case OP_FPOW: FNEED(2); fp--; FRES(pow(fp[-1], fp[0]), FBRL_THROW_FBAD_ARG); continue;
         case OP_FLOOR: FNEED(1); fp[-1] = floor(fp[-1]); continue;
         case OP_FROUND: FNEED(1); fp[-1] = nearbyint(fp[-1]); continue;
         case OP_FTRUNC: FNEED(1); fp[-1] = trunc(fp[-1]); continue;
@@ -514,7 +514,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_SFSTORE: {
             float f; NEED(1); FNEED(1); CHK(T, 4);
             fa = *--fp;
-            if (fabs(fa) > 3.4028234663852886e38) THROW(-43);
+            if (fabs(fa) > 3.4028234663852886e38) THROW(FBRL_THROW_FRESULT_RANGE);
             f = (float)fa; memcpy((void *)*--sp, &f, 4); continue;
         }
         case OP_FDUP: FNEED(1); FROOM(1); fp[0] = fp[-1]; fp++; continue;
@@ -526,14 +526,14 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         case OP_FTUCK: FNEED(2); FROOM(1); fa = fp[-1]; fp[0] = fa; fp[-1] = fp[-2]; fp[-2] = fa; fp++; continue;
         case OP_FPICK:
             NEED(1); ua = U(*--sp);
-            if (ua >= U(fp - fs0)) THROW(-45);
+            if (ua >= U(fp - fs0)) THROW(FBRL_THROW_FSTACK_UNDERFLOW);
             FROOM(1); fp[0] = fp[-1 - (fbrl_cell)ua]; fp++;
             continue;
         case OP_FDEPTH: ROOM(1); *sp++ = fp - fs0; continue;
         case OP_FTOS:
             FNEED(1); ROOM(1);
             fa = trunc(*--fp);
-            if (!(fa >= -9.2233720368547758e18 && fa < 9.2233720368547758e18)) THROW(-11);
+            if (!(fa >= -9.2233720368547758e18 && fa < 9.2233720368547758e18)) THROW(FBRL_THROW_RESULT_RANGE);
             *sp++ = (fbrl_cell)fa;
             continue;
         case OP_STOF: NEED(1); FROOM(1); *fp++ = (double)*--sp; continue;
@@ -567,7 +567,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         default:
         execute_xt: {
             fbrl_hdr *h = fbrl__xt_hdr(vm, w);
-            if (!h) THROW(fbrl__throw_msg(vm, -13, "invalid execution token"));
+            if (!h) THROW(fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token"));
             switch (h->kind) {
             case K_PRIM: defers = 0; w = h->op; goto dispatch;
             case K_COLON: defers = 0; POLL(); RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->body); continue;
@@ -586,16 +586,16 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             case K_DEFER:
                 CHK(h->body, CELL);
                 w = ld(h->body);
-                if (w == 0) THROW(fbrl__throw_msg(vm, -21, "deferred word not set (use IS)"));
-                if (++defers > 1000) THROW(fbrl__throw_msg(vm, -21, "deferred words loop"));
+                if (w == 0) THROW(fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "deferred word not set (use IS)"));
+                if (++defers > 1000) THROW(fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "deferred words loop"));
                 goto execute_xt;
             case K_CFUNC: {
-                if (!h->fn && !h->xfn) THROW(-21);
+                if (!h->fn && !h->xfn) THROW(FBRL_THROW_UNSUPPORTED);
                 SAVE();
                 vm->pending_throw = 0;
                 fbrl_status st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
                 LOAD();
-                if (sp < ds0 || sp > dse || fp < fs0 || fp > fse) { sp = ds0; fp = fs0; THROW(-4); }
+                if (sp < ds0 || sp > dse || fp < fs0 || fp > fse) { sp = ds0; fp = fs0; THROW(FBRL_THROW_STACK_UNDERFLOW); }
                 if (st != FBRL_OK)
                     THROW(st == FBRL_ETHROW ? (vm->pending_throw ? vm->pending_throw : -1)
                                             : FBRL_THROW_STATUS(st));
@@ -603,10 +603,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 continue;
             }
             case K_MARKER:
-                if (vm->defining) THROW(fbrl__throw_msg(vm, -29, "a MARKER cannot run inside a definition"));
+                if (vm->defining) THROW(fbrl__throw_msg(vm, FBRL_THROW_COMPILER_NESTING, "a MARKER cannot run inside a definition"));
                 fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)h->end, (size_t)h->does);
                 continue;
-            default: THROW(-21);
+            default: THROW(FBRL_THROW_UNSUPPORTED);
             }
         }
         }
@@ -623,7 +623,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 sp = ds0 + (U(f[1]) < U(dse - ds0) ? f[1] : 0);
                 fp = fs0 + (U(f[2]) <= U(fse - fs0) ? f[2] : 0);
                 vm->err_captured = 0;
-                if (!CODE_OK(f[0])) { code = -9; goto do_throw; }
+                if (!CODE_OK(f[0])) { code = FBRL_THROW_BAD_ADDRESS; goto do_throw; }
                 ip = (const fbrl_cell *)f[0];
                 *sp++ = code;
                 code = 0;

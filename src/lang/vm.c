@@ -135,9 +135,9 @@ static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
 static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsigned flags,
                       fbrl_hdr **out)
 {
-    if (len > FBRL_NAME_MAX) return -19;
+    if (len > FBRL_NAME_MAX) return FBRL_THROW_NAME_TOO_LONG;
     unsigned char *newlo = (unsigned char *)(vm->hdr_top - vm->nwords - 1);
-    if (vm->here > newlo) return -8;
+    if (vm->here > newlo) return FBRL_THROW_DICT_OVERFLOW;
     fbrl_hdr *h = HDR(vm, vm->nwords);
     memset(h, 0, sizeof *h);
     memcpy(h->name, name, len);
@@ -163,9 +163,9 @@ static fbrl_cell unused_bytes(const fbrl_vm *vm)
 int fbrl__allot(fbrl_vm *vm, fbrl_cell n)
 {
     if (n >= 0) {
-        if (n > unused_bytes(vm)) return -8;
+        if (n > unused_bytes(vm)) return FBRL_THROW_DICT_OVERFLOW;
     } else if ((fbrl_ucell)(-(n + 1)) >= (fbrl_ucell)(vm->here - vm->dict_lo)) {
-        return -9;
+        return FBRL_THROW_BAD_ADDRESS;
     }
     vm->here += n;
     return 0;
@@ -179,7 +179,7 @@ int fbrl__align(fbrl_vm *vm)
 
 int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
 {
-    if (unused_bytes(vm) < CELL) return -8;
+    if (unused_bytes(vm) < CELL) return FBRL_THROW_DICT_OVERFLOW;
     memcpy(vm->here, &v, sizeof v);
     vm->here += CELL;
     return 0;
@@ -244,16 +244,16 @@ int fbrl__refill(fbrl_vm *vm)
         if (len > FBRL_LINE_MAX) {
             s->text = nl ? nl + 1 : s->text_end;
             s->line++;
-            return fbrl__throw_msg(vm, -18, "input line too long");
+            return fbrl__throw_msg(vm, FBRL_THROW_PARSED_OVERFLOW, "input line too long");
         }
         memcpy(s->linebuf, s->text, len);
         s->text = nl ? nl + 1 : s->text_end;
     } else {
-        if (!vm->host.file_read_line) return fbrl__throw_msg(vm, -21, "no file support in this host");
+        if (!vm->host.file_read_line) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no file support in this host");
         fbrl_status st = vm->host.file_read_line(vm->host.user, s->fh, s->linebuf, FBRL_LINE_MAX, &len);
         if (st == FBRL_EEOF) return 0;
-        if (st == FBRL_ENOSPC) { s->line++; return fbrl__throw_msg(vm, -18, "input line too long"); }
-        if (st != FBRL_OK || len > FBRL_LINE_MAX) return -37;
+        if (st == FBRL_ENOSPC) { s->line++; return fbrl__throw_msg(vm, FBRL_THROW_PARSED_OVERFLOW, "input line too long"); }
+        if (st != FBRL_OK || len > FBRL_LINE_MAX) return FBRL_THROW_FILE_IO;
         if (len > 0 && s->linebuf[len - 1] == '\r') len--;
     }
     s->buf = s->linebuf;
@@ -335,7 +335,7 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
     fbrl_cell v;
     int r;
-    if (!h) return fbrl__throw_msg(vm, -13, "invalid execution token");
+    if (!h) return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
     case K_PRIM: return fbrl__emit(vm, h->op);
     case K_COLON:
@@ -376,10 +376,10 @@ int fbrl__compile_flit(fbrl_vm *vm, double d)
 int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n)
 {
     int r;
-    if (n > 65535) return -18;
+    if (n > 65535) return FBRL_THROW_PARSED_OVERFLOW;
     if ((r = fbrl__emit(vm, op)) || (r = fbrl__emit(vm, (fbrl_cell)n))) return r;
     fbrl_cell need = (fbrl_cell)((n + 1 + (size_t)CELL - 1) / (size_t)CELL * (size_t)CELL);
-    if (unused_bytes(vm) < need) return -8;
+    if (unused_bytes(vm) < need) return FBRL_THROW_DICT_OVERFLOW;
     memmove(vm->here, s, n);
     memset(vm->here + n, 0, (size_t)need - n);
     vm->here += need;
@@ -436,8 +436,8 @@ int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const ch
 {
     fbrl_hdr *h;
     int r;
-    if (len == 0) return -16;
-    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return -8;
+    if (len == 0) return FBRL_THROW_NO_NAME;
+    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return FBRL_THROW_DICT_OVERFLOW;
     if ((r = new_header(vm, name, len, kind, 0, &h))) return r;
     h->stack = stack;
     h->help = help;
@@ -472,14 +472,14 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
 {
     fbrl_hdr *h;
     int r;
-    if (*vm->state) return -29;
+    if (*vm->state) return FBRL_THROW_COMPILER_NESTING;
     /* A definition left open in interpretation state (": A 1 [" and never closed)
      * is abandoned: it was never finished, so it was never findable either. */
     if (vm->defining) discard_definition(vm);
     vm->def_here = vm->here;
     vm->def_nwords = vm->nwords;
     if (noname) {
-        if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return -8;
+        if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return FBRL_THROW_DICT_OVERFLOW;
         if ((r = new_header(vm, "", 0, K_COLON, FH, &h)) || (r = fbrl__align(vm))) goto fail;
         h->body = (fbrl_cell)vm->here;
     } else {
@@ -506,7 +506,7 @@ fail:
 int fbrl__semicolon(fbrl_vm *vm)
 {
     int r;
-    if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON) return -22;
+    if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON) return FBRL_THROW_CONTROL_MISMATCH;
     if ((r = fbrl__emit(vm, OP_EXIT))) return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
     h->end = (fbrl_cell)vm->here;
@@ -569,25 +569,25 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
     if (idx >= 0) {
         fbrl_hdr *h = HDR(vm, idx);
         fbrl_cell xt = FBRL_XT_BASE + idx;
-        if (*vm->state == 0 && (h->flags & FC)) return -14;
+        if (*vm->state == 0 && (h->flags & FC)) return FBRL_THROW_COMPILE_ONLY;
         if (*vm->state != 0 && !(h->flags & FI)) return fbrl__compile_xt(vm, xt);
         return fbrl__run(vm, xt);
     }
     fbrl_cell v[2];
     double f;
     int kind = fbrl__parse_number(vm, name, len, v, &f);
-    if (kind == 0) return -13;
+    if (kind == 0) return FBRL_THROW_UNDEFINED;
     if (*vm->state) {
         if (kind == 3) return fbrl__compile_flit(vm, f);
         int r = fbrl__compile_lit(vm, v[0]);
         return (r || kind == 1) ? r : fbrl__compile_lit(vm, v[1]);
     }
     if (kind == 3) {
-        if (vm->fp >= vm->fs_end) return -44;
+        if (vm->fp >= vm->fs_end) return FBRL_THROW_FSTACK_OVERFLOW;
         *vm->fp++ = f;
         return 0;
     }
-    if (vm->ds_end - vm->sp < kind) return -3;
+    if (vm->ds_end - vm->sp < kind) return FBRL_THROW_STACK_OVERFLOW;
     *vm->sp++ = v[0];
     if (kind == 2) *vm->sp++ = v[1];
     return 0;
@@ -616,7 +616,7 @@ static int interpret(fbrl_vm *vm)
 
 static int push_source(fbrl_vm *vm, int kind, fbrl_src **out)
 {
-    if (vm->nsrc >= FBRL_SRC_MAX) return fbrl__throw_msg(vm, -37, "input sources nested too deeply");
+    if (vm->nsrc >= FBRL_SRC_MAX) return fbrl__throw_msg(vm, FBRL_THROW_FILE_IO, "input sources nested too deeply");
     fbrl_src *s = &vm->src[vm->nsrc];
     char *lb = s->linebuf;
     memset(s, 0, sizeof *s);
@@ -663,7 +663,7 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
 {
     char path[FBRL_PATH_MAX];
     size_t dl = 0;
-    if (n == 0) return -38;
+    if (n == 0) return FBRL_THROW_NO_FILE;
     if (name[0] != '/') {
         for (int i = vm->nsrc - 1; i >= 0; i--) {
             if (vm->src[i].kind != SRC_FILE) continue;
@@ -673,16 +673,16 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
             break;
         }
     }
-    if (dl + n >= sizeof path) return fbrl__throw_msg(vm, -38, "file name too long");
+    if (dl + n >= sizeof path) return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, "file name too long");
     memcpy(path + dl, name, n);
     path[dl + n] = 0;
-    if (memchr(path, 0, dl + n)) return -38;
+    if (memchr(path, 0, dl + n)) return FBRL_THROW_NO_FILE;
     if (require && is_included(vm, path)) return 0;
     if (!vm->host.file_open || !vm->host.file_read_line)
-        return fbrl__throw_msg(vm, -21, "no file support in this host");
+        return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no file support in this host");
     if (!is_included(vm, path)) {
         if (vm->req_used + dl + n + 1 > sizeof vm->req_pool)
-            return fbrl__throw_msg(vm, -37, "too many included files");
+            return fbrl__throw_msg(vm, FBRL_THROW_FILE_IO, "too many included files");
         memcpy(vm->req_pool + vm->req_used, path, dl + n + 1);
         vm->req_used += dl + n + 1;
     }
@@ -700,12 +700,12 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
         memcpy(msg, "cannot open ", 12);
         memcpy(msg + 12, name, k);
         msg[12 + k] = 0;
-        return fbrl__throw_msg(vm, -38, msg);
+        return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, msg);
     }
     fbrl_cell state0 = *vm->state;
     r = interpret(vm);
     if (r == 0 && *vm->state != 0 && state0 == 0) {
-        r = fbrl__throw_msg(vm, -39, "unterminated definition at end of file");
+        r = fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated definition at end of file");
         capture_error(vm);
     }
     pop_source(vm);
@@ -814,7 +814,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st != FBRL_OK) return st == FBRL_ENOMEM ? FBRL_ENOSPC : st;
     st = fbrl_vm_eval(vm, fbrl__prelude, strlen(fbrl__prelude));
-    if (st != FBRL_OK) return vm->err.throw_code == -8 ? FBRL_ENOSPC : st;
+    if (st != FBRL_OK) return vm->err.throw_code == FBRL_THROW_DICT_OVERFLOW ? FBRL_ENOSPC : st;
     vm->dict_lo = vm->here;
     *out = vm;
     return FBRL_OK;

@@ -91,7 +91,7 @@ typedef struct fbrl_cf { int tag; fbrl_cell a; } fbrl_cf;
 
 /* THROW codes the engine uses internally to unwind without being catchable. */
 #define THROW_BYE (-100000)
-#define THROW_QUIT (-56)
+#define THROW_QUIT (FBRL_THROW_QUIT)
 /* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
 #define FBRL_THROW_STATUS(st) FBRL_VM_THROW_OF_STATUS(st)
 

@@ -21,7 +21,7 @@ static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) 
 static fbrl_status fail(fbrl_vm *vm, int code, const char *msg) { return fbrl_vm_throw(vm, code, msg); }
 static fbrl_status need(fbrl_vm *vm, size_t n)
 {
-    return fbrl_vm_depth(vm) < n ? fbrl_vm_throw(vm, -4, NULL) : FBRL_OK;
+    return fbrl_vm_depth(vm) < n ? fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL) : FBRL_OK;
 }
 
 /* ---- I-1 queues ---- */
@@ -29,14 +29,14 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
 {
     fbrl_cell magic;
     *st = FBRL_OK;
-    if (!fbrl_vm_addr(vm, q, sizeof(fbrl_cell))) { *st = fail(vm, -9, NULL); return NULL; }
+    if (!fbrl_vm_addr(vm, q, sizeof(fbrl_cell))) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
     memcpy(&magic, (void *)q, sizeof magic);
-    if (magic != queue_type.magic) { *st = fail(vm, -12, "not a queue (use a CREATE-Q name)"); return NULL; }
+    if (magic != queue_type.magic) { *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a queue (use a CREATE-Q name)"); return NULL; }
     fbrl_ring *r = fbrl_vmx_data(vm, q, &queue_type, sizeof(fbrl_ring));
-    if (!r) { *st = fail(vm, -9, NULL); return NULL; }
+    if (!r) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
     size_t cap = r->mask + 1;
     if (r->buf != (uint8_t *)(r + 1) || cap == 0 || (cap & r->mask) || !fbrl_vm_addr(vm, (fbrl_cell)r->buf, cap)) {
-        *st = fail(vm, -9, "queue structure overwritten");
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, "queue structure overwritten");
         return NULL;
     }
     return r;
@@ -59,7 +59,7 @@ static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
     (void)arg;
     if ((st = need(vm, 1))) return st;
     fbrl_vm_pop(vm, &n);
-    if (n < 2 || n > (1 << 24)) return fail(vm, -24, "queue size must be 2..16777216 bytes");
+    if (n < 2 || n > (1 << 24)) return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
     if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL, "( -- q-addr )",
                               "queue", NULL, &p)))
         return st;
@@ -115,13 +115,13 @@ static fbrl_array *array_at(fbrl_vm *vm, fbrl_cell body, fbrl_status *st)
     size_t bytes;
     *st = FBRL_OK;
     if (!fbrl_vm_addr(vm, body, FBRL_VMX_PAYLOAD + sizeof(fbrl_array))) {
-        *st = fail(vm, -9, NULL);
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
         return NULL;
     }
     fbrl_array *a = fbrl_vmx_data(vm, body, &array_type, sizeof(fbrl_array));
     if (!a || a->data != (unsigned char *)align16((fbrl_cell)a + (fbrl_cell)sizeof(fbrl_array)) ||
         fbrl_array_bytes(a->cell_size, a->rows, a->cols, &bytes) != FBRL_OK || !fbrl_vm_addr(vm, (fbrl_cell)a->data, bytes)) {
-        *st = fail(vm, -9, "array structure overwritten");
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, "array structure overwritten");
         return NULL;
     }
     return a;
@@ -159,8 +159,8 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
     void *p;
     fbrl_status st;
     if (rows < 1 || cols < 1 || size < 1 || rows > 65535 || cols > 65535 || size > 65535)
-        return fail(vm, -24, "array sizes must be 1..65535");
-    if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK) return fail(vm, -24, NULL);
+        return fail(vm, FBRL_THROW_BAD_NUMBER, "array sizes must be 1..65535");
+    if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK) return fail(vm, FBRL_THROW_BAD_NUMBER, NULL);
     if ((st = fbrl_vmx_create(vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes, two ? w_array2_run : w_array1_run,
                               NULL, two ? "( row col -- addr )" : "( index -- addr )",
                               two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY",
@@ -203,10 +203,10 @@ static unsigned char *string_at(fbrl_vm *vm, fbrl_cell s, unsigned *size, unsign
 {
     uint16_t v[2];
     *st = FBRL_OK;
-    if (!fbrl_vm_addr(vm, s, 4)) { *st = fail(vm, -9, NULL); return NULL; }
+    if (!fbrl_vm_addr(vm, s, 4)) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
     memcpy(v, (void *)s, 4);
     if (v[0] == 0 || v[1] > v[0] || !fbrl_vm_addr(vm, s + 4, v[0])) {
-        *st = fail(vm, -12, "not a string (use a STRING name)");
+        *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a string (use a STRING name)");
         return NULL;
     }
     *size = v[0];
@@ -236,7 +236,7 @@ static fbrl_status w_string(fbrl_vm *vm, void *arg)
     (void)arg;
     if ((st = need(vm, 1))) return st;
     fbrl_vm_pop(vm, &n);
-    if (n < 1 || n > STR_MAX) return fail(vm, -24, "string length must be 1..65535");
+    if (n < 1 || n > STR_MAX) return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
     if ((st = fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, "( -- str )", "string", NULL, &p))) return st;
     uint16_t v = (uint16_t)n;
     memcpy(p, &v, 2);
@@ -354,7 +354,7 @@ static fbrl_status w_string_put(fbrl_vm *vm, void *arg)
     fbrl_vm_pop(vm, &s);
     unsigned char *c = string_at(vm, s, &size, &len, &st);
     if (!c) return st;
-    if (u < 0 || (u && !fbrl_vm_addr(vm, a, (size_t)u))) return fail(vm, -9, NULL);
+    if (u < 0 || (u && !fbrl_vm_addr(vm, a, (size_t)u))) return fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
     if (u > (fbrl_cell)size) return overflow(vm);
     if (u) memmove(c, (void *)a, (size_t)u);
     set_len(s, (unsigned)u);
@@ -370,8 +370,8 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
     (void)ctx;
     (void)word;
     int found = fbrl_vmx_parse_quoted(vm, &p, &n);
-    if (found < 0) return fail(vm, -24, "STRING-LIT needs a \"quoted\" text");
-    if (!found) return fail(vm, -39, "unterminated string");
+    if (found < 0) return fail(vm, FBRL_THROW_BAD_NUMBER, "STRING-LIT needs a \"quoted\" text");
+    if (!found) return fail(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
     if (fbrl_vmx_compiling(vm)) {
         fbrl_status st = fbrl_vmx_find(vm, "STRING-PUT", 10, &put);
         if (st == FBRL_OK) st = fbrl_vmx_compile_string(vm, p, n);
@@ -399,7 +399,7 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
     unsigned char *c = pop_string(vm, &s, &size, &len, &st);
     if (!c) return st;
     const fbrl_vm_host *host = fbrl_vmx_host(vm);
-    if (!host->key) return fail(vm, -21, "no console input in this host");
+    if (!host->key) return fail(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
     for (;;) {
         int ch = host->key(host->user);
         if (ch < 0 || ch == '\n' || ch == '\r') break;

@@ -96,7 +96,7 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
     int slot;
     fbrl_vm_parse_name(vm, &name, &len);
     if (len == 0) return gl_throw(vm, GL_NO_NAME, "OPEN-FILE: handle name missing (OPEN-FILE hndl filename)");
-    if (len > FBRL_VMX_NAME_MAX) return gl_throw(vm, -19, "OPEN-FILE: handle name too long");
+    if (len > FBRL_VMX_NAME_MAX) return gl_throw(vm, FBRL_THROW_NAME_TOO_LONG, "OPEN-FILE: handle name too long");
     if ((st = parse_path(vm, "OPEN-FILE", path))) return st;
     if (fbrl_vmx_find(vm, name, len, &xt) == FBRL_OK) { /* an existing handle word is reused */
         cells = fbrl_vmx_created(vm, xt, NULL, &owner) == FBRL_OK
@@ -109,7 +109,7 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
                             (int)len, name);
     }
     if (share(g) == 0)
-        return gl_throw(vm, -21, "OPEN-FILE: no file storage (host: fbrl_glossary_set_file_storage)");
+        return gl_throw(vm, FBRL_THROW_UNSUPPORTED, "OPEN-FILE: no file storage (host: fbrl_glossary_set_file_storage)");
     for (slot = 0; slot < FBRL_GLOSSARY_FILES && g->files[slot].owner; slot++) {}
     if (slot == FBRL_GLOSSARY_FILES)
         return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "OPEN-FILE: too many open files (%d)", FBRL_GLOSSARY_FILES);

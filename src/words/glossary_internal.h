@@ -20,13 +20,13 @@ extern const fbrl_vmx_type gl_type_cal, gl_type_stru, gl_type_rect, gl_type_rad,
 #define GL_PAYLOAD FBRL_VMX_PAYLOAD
 
 /* Forth THROW codes used besides FBRL_THROW_STATUS(st). */
-#define GL_STACK_UNDERFLOW (-4)
-#define GL_BAD_ADDRESS     (-9)
-#define GL_TYPE_MISMATCH   (-12)
-#define GL_NO_NAME         (-16)
-#define GL_ALIGNMENT       (-23)
-#define GL_BAD_NUMBER      (-24)
-#define GL_FSTACK_UNDERFLOW (-45)
+#define GL_STACK_UNDERFLOW (FBRL_THROW_STACK_UNDERFLOW)
+#define GL_BAD_ADDRESS     (FBRL_THROW_BAD_ADDRESS)
+#define GL_TYPE_MISMATCH   (FBRL_THROW_TYPE_MISMATCH)
+#define GL_NO_NAME         (FBRL_THROW_NO_NAME)
+#define GL_ALIGNMENT       (FBRL_THROW_ALIGNMENT)
+#define GL_BAD_NUMBER      (FBRL_THROW_BAD_NUMBER)
+#define GL_FSTACK_UNDERFLOW (FBRL_THROW_FSTACK_UNDERFLOW)
 
 typedef struct gl_word {
     const char *name;

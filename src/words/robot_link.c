@@ -41,7 +41,7 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     char msg[128];
     if (st == FBRL_OK) return FBRL_OK;
     if (st == FBRL_ECONTROLLER) {
-        int code = -1;
+        int code = FBRL_THROW_ABORT;
         const char *text = "";
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;

@@ -60,7 +60,7 @@ fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cel
     if (v >= lo && v <= hi) return FBRL_OK;
     char msg[96];
     snprintf(msg, sizeof msg, "%s: %s %ld outside %ld..%ld", w->name, what, (long)v, (long)lo, (long)hi);
-    return rb_fail(r, -24, msg);
+    return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
 fbrl_status rb_finite(fbrl_robot *r, const rb_word *w, const rb_val *v, size_t n)
@@ -80,21 +80,21 @@ static fbrl_status w_getreal(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_parse_param(r, w, 'R', v);
     if (st != FBRL_OK) return st;
-    return fbrl_vm_fpush(r->vm, v[0].f) == FBRL_OK ? FBRL_OK : rb_fail(r, -44, NULL);
+    return fbrl_vm_fpush(r->vm, v[0].f) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_FSTACK_OVERFLOW, NULL);
 }
 
 static fbrl_status w_getint(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_parse_param(r, w, 'I', v);
     if (st != FBRL_OK) return st;
-    return fbrl_vm_push(r->vm, v[0].i) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return fbrl_vm_push(r->vm, v[0].i) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 static fbrl_status w_getstring(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_parse_param(r, w, 'S', v);
     if (st != FBRL_OK) return st;
-    if (fbrl_vm_push(r->vm, (fbrl_cell)v[0].s) || fbrl_vm_push(r->vm, (fbrl_cell)v[0].n)) return rb_fail(r, -3, NULL);
+    if (fbrl_vm_push(r->vm, (fbrl_cell)v[0].s) || fbrl_vm_push(r->vm, (fbrl_cell)v[0].n)) return rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
     return FBRL_OK;
 }
 

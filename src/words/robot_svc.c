@@ -21,7 +21,7 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
 fbrl_status rb_interrupted(fbrl_robot *r)
 {
     if (!fbrl_vmx_take_interrupt(r->vm)) return FBRL_OK;
-    return rb_fail(r, -28, "user interrupt (a command the controller already has still runs;"
+    return rb_fail(r, FBRL_THROW_INTERRUPT, "user interrupt (a command the controller already has still runs;"
                            " the next robot word waits for it)");
 }
 
@@ -30,7 +30,7 @@ void rb_puts(fbrl_robot *r, const char *s) { fbrl_vmx_write(r->vm, s, strlen(s))
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms)
 {
     const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
-    if (!h->now_us) return rb_fail(r, -21, "no clock in this host");
+    if (!h->now_us) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
     *ms = h->now_us(h->user) / 1000u;
     return FBRL_OK;
 }
@@ -38,7 +38,7 @@ fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms)
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms)
 {
     const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
-    if (!h->sleep_ms) return rb_fail(r, -21, "no clock in this host");
+    if (!h->sleep_ms) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
     if (ms) h->sleep_ms(h->user, ms);
     return FBRL_OK;
 }
