@@ -779,7 +779,10 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
 
     unsigned char *d = m + l.o_data;
     vm->data_lo = d;
-    memset(d, 0, (size_t)(vm->mem_end - d)); /* unused dictionary reads as OP_BAD */
+    /* Unused dictionary reads as OP_BAD (0), so a stray jump stops at once; a
+     * caller that passes zeroed memory saves touching (and so backing) every page. */
+    if (cfg->mem_zeroed) memset(d, 0, align16(FBRL_BUFS));
+    else memset(d, 0, (size_t)(vm->mem_end - d));
     vm->base = (fbrl_cell *)(void *)d;
     vm->state = vm->base + 1;
     vm->toin = vm->base + 2;

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 #include <pthread.h>
+#include <sys/resource.h>
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
@@ -129,6 +130,65 @@ static void create_rejects_bad_config(void **state)
     cfg.mem = small;
     cfg.mem_size = sizeof small;
     assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_ENOSPC);
+}
+
+/* The caller's promise of zeroed memory (mem_zeroed) lets a big dictionary cost
+ * only the pages a program uses; without it the engine clears the block itself. */
+static long max_rss_kb(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (long)ru.ru_maxrss; /* kilobytes on Linux */
+}
+
+static fbrl_cell eval_pop(fbrl_vm *vm, const char *text)
+{
+    fbrl_cell v = 0;
+    assert_int_equal(fbrl_vm_eval(vm, text, strlen(text)), FBRL_OK);
+    assert_int_equal(fbrl_vm_pop(vm, &v), FBRL_OK);
+    return v;
+}
+
+static void zeroed_memory_is_used_lazily(void **state)
+{
+    (void)state;
+    enum { GARBAGE = 0xA5, SMALL = 1 << 20, BIG = 64 << 20 };
+    fbrl_vm *vm;
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    /* Not promised zero: the engine clears the dictionary, whatever the block held. */
+    void *mem = malloc(SMALL);
+    assert_non_null(mem);
+    memset(mem, GARBAGE, SMALL);
+    cfg.mem = mem;
+    cfg.mem_size = SMALL;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_OK);
+    assert_int_equal(eval_pop(vm, "HERE 4096 + @  UNUSED 64 - HERE + @ OR"), 0);
+    free(mem);
+
+    /* Promised zero: a 64 MB dictionary works in full, but creating it and
+     * running a little code touches a small part of it. */
+    long rss0 = max_rss_kb();
+    mem = calloc(1, BIG);
+    assert_non_null(mem);
+    cfg.mem = mem;
+    cfg.mem_size = BIG;
+    cfg.mem_zeroed = 1;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_OK);
+    assert_int_equal(eval_pop(vm, ": SQ DUP * ; 12 SQ"), 144);
+    assert_int_equal(eval_pop(vm, "HERE 4096 + @  UNUSED 64 - HERE + @ OR"), 0);
+    fbrl_cell unused = eval_pop(vm, "UNUSED");
+    assert_true(unused > BIG - (1 << 20));
+#ifdef __linux__
+    long grew_kb = max_rss_kb() - rss0;
+    print_message("64 MB dictionary: peak memory grew by %ld KB\n", grew_kb);
+    assert_true(grew_kb < 24 * 1024); /* clearing it would have added 65536 KB */
+#else
+    (void)rss0;
+#endif
+    /* ... and all of it can be filled */
+    assert_int_equal(fbrl_vm_eval(vm, "UNUSED 4096 - ALLOT  1 ,", 24), FBRL_OK);
+    free(mem);
 }
 
 static int count_words(void *ctx, const char *name, size_t len)
@@ -731,6 +791,7 @@ int main(void)
         cmocka_unit_test(console_input),
         cmocka_unit_test(create_rejects_bad_config),
         cmocka_unit_test(size_for_is_enough),
+        cmocka_unit_test(zeroed_memory_is_used_lazily),
         cmocka_unit_test(two_vms_are_independent),
         cmocka_unit_test(c_words),
         cmocka_unit_test(api_stacks),
