@@ -35,15 +35,16 @@
 #define LOAD() (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp)
 #define THROW(c) do { code = (c); goto do_throw; } while (0)
 /* depth checks: NEED(n) at least n cells, ROOM(n) space for n more */
-#define NEED(n) if (sp - ds0 < (n) - 1) THROW(-4)
-#define ROOM(n) if (dse - sp <= (n)) THROW(-3)
-#define RNEED(n) if (rp - rs0 < (n)) THROW(-6)
-#define RROOM(n) if (rse - rp < (n)) THROW(-5)
-#define FNEED(n) if (fp - fs0 < (n) - 1) THROW(-45)
-#define FROOM(n) if (fse - fp <= (n)) THROW(-44)
-#define CHK(a, n) if (!fbrl__addr_ok(vm, (a), (n))) THROW(-9)
+/* (each error has its own label, so the hot path does not set up a throw code) */
+#define NEED(n) if (sp < ds0 + ((n) - 1)) goto e_underflow
+#define ROOM(n) if (sp >= dse - (n)) goto e_overflow
+#define RNEED(n) if (rp < rs0 + (n)) goto e_r_underflow
+#define RROOM(n) if (rp > rse - (n)) goto e_r_overflow
+#define FNEED(n) if (fp < fs0 + ((n) - 1)) goto e_f_underflow
+#define FROOM(n) if (fp >= fse - (n)) goto e_f_overflow
+#define CHK(a, n) if (!fbrl__addr_ok(vm, (a), (n))) goto e_address
 #define CODE_OK(t) ((fbrl_ucell)(t) - code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
-#define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) THROW(-9); ip = (const fbrl_cell *)t_; } while (0)
+#define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) goto e_address; ip = (const fbrl_cell *)t_; } while (0)
 #define CALLC(expr) do { SAVE(); code = (expr); LOAD(); if (code) goto do_throw; } while (0)
 /* fbrl_vm_interrupt() is honoured wherever a program can loop or recurse */
 #define POLL() if (fbrl_load_rlx(&vm->interrupt)) { fbrl_store_rlx(&vm->interrupt, 0); THROW(-28); }
@@ -62,7 +63,7 @@
 #define FLAG(c) ((c) ? (fbrl_cell)-1 : 0)
 #define FCELLS ((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell))
 /* a float result must be finite when its inputs were (else -43 / -46) */
-#define FRES(r, bad) do { double r_ = (r); if (!isfinite(r_)) THROW(bad); ftos = r_; } while (0)
+#define FRES(r, bad) do { double r_ = (r); if (!isfinite(r_)) goto e_f##bad; ftos = r_; } while (0)
 /* binary float op: r1 = second, r2 = top; the result replaces both */
 #define FBIN(expr, bad) do { double r1 = fp[-1], r2 = ftos; (void)r1; (void)r2; \
                              FRES(expr, bad); fp--; } while (0)
@@ -109,10 +110,12 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     const fbrl_ucell code_lo = (fbrl_ucell)vm->data_lo;
     const fbrl_ucell code_span = (fbrl_ucell)(vm->mem_end - vm->data_lo);
     const fbrl_cell *ip = (const fbrl_cell *)vm->guard_addr; /* the HALT cell */
-    fbrl_cell w = xt, entry, a, b, c = 0;
+    fbrl_cell w = xt, entry, a, b;
     fbrl_ucell ua, ub;
+    fbrl_cell o1, o2;      /* out-parameters: a, b and ua, ub never have their address taken */
+    fbrl_ucell uo1, uo2;
     double fa;
-    int code = 0, defers = 0;
+    int code = 0;
 #if FBRL_CGOTO
     static const void *const optab[OP__END] = {
 #define OP(id, name, flags, stack, help) &&L_##id,
@@ -137,7 +140,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         switch ((fbrl_ucell)w) {
 #endif
         CASE(BAD) THROW(fbrl__throw_msg(vm, -9, "invalid instruction (corrupted code?)"));
-        CASE(HALT) goto out;
+        CASE(HALT) code = 0; goto out; /* (so code is dead in the hot path) */
         CASE(CATCHEND)
             if (vm->handler != rp - rs0 || rp - rs0 < 5) THROW(-25);
             rp -= 5;
@@ -147,7 +150,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             PUSH(0);
             NEXT;
         CASE(LIT) ROOM(1); PUSH(*ip++); NEXT;
-        CASE(FLIT) FROOM(1); *fp++ = ftos; memcpy(&ftos, ip, sizeof(double)); ip += FCELLS; NEXT;
+        CASE(FLIT) FROOM(1); *fp++ = ftos; memcpy(fp, ip, sizeof(double)); ftos = *fp; ip += FCELLS; NEXT;
         CASE(CALL) POLL(); RROOM(1); a = *ip++; *rp++ = (fbrl_cell)ip; JUMP(a); NEXT;
         CASE(EXIT) RNEED(1); JUMP(*--rp); NEXT;
         CASE(BRANCH) POLL(); JUMP(*ip); NEXT;
@@ -307,13 +310,13 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         CASE(PLUS) NEED(2); T = (fbrl_cell)(U(S) + U(T)); sp--; NEXT;
         CASE(MINUS) NEED(2); T = (fbrl_cell)(U(S) - U(T)); sp--; NEXT;
         CASE(STAR) NEED(2); T = (fbrl_cell)(U(S) * U(T)); sp--; NEXT;
-        CASE(SLASH) NEED(2); if ((code = floordiv(S, T, &a, &b))) goto do_throw; T = a; sp--; NEXT;
-        CASE(MOD) NEED(2); if ((code = floordiv(S, T, &a, &b))) goto do_throw; T = b; sp--; NEXT;
-        CASE(SLASHMOD) NEED(2); if ((code = floordiv(S, T, &a, &b))) goto do_throw; S = b; T = a; NEXT;
+        CASE(SLASH) NEED(2); if ((code = floordiv(S, T, &o1, &o2))) goto do_throw; T = o1; sp--; NEXT;
+        CASE(MOD) NEED(2); if ((code = floordiv(S, T, &o1, &o2))) goto do_throw; T = o2; sp--; NEXT;
+        CASE(SLASHMOD) NEED(2); if ((code = floordiv(S, T, &o1, &o2))) goto do_throw; S = o2; T = o1; NEXT;
         CASE(STARSLASH) CASE(STARSLASHMOD)
             NEED(3);
-            if ((code = fbrl__starslash(S3, S, T, &a, &b))) goto do_throw;
-            if (w == OP_STARSLASH) { sp -= 2; T = a; } else { sp--; S = b; T = a; }
+            if ((code = fbrl__starslash(S3, S, T, &o1, &o2))) goto do_throw;
+            if (w == OP_STARSLASH) { sp -= 2; T = o1; } else { sp--; S = o2; T = o1; }
             NEXT;
         CASE(ONEPLUS) NEED(1); T = (fbrl_cell)(U(T) + 1); NEXT;
         CASE(ONEMINUS) NEED(1); T = (fbrl_cell)(U(T) - 1); NEXT;
@@ -329,19 +332,19 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         CASE(INVERT) NEED(1); T = ~T; NEXT;
         CASE(LSHIFT) NEED(2); T = U(T) >= (fbrl_ucell)CELL_BITS ? 0 : (fbrl_cell)(U(S) << U(T)); sp--; NEXT;
         CASE(RSHIFT) NEED(2); T = U(T) >= (fbrl_ucell)CELL_BITS ? 0 : (fbrl_cell)(U(S) >> U(T)); sp--; NEXT;
-        CASE(MSTAR) NEED(2); fbrl__mstar(S, T, &a, &b); S = a; T = b; NEXT;
-        CASE(UMSTAR) NEED(2); fbrl__umul(U(S), U(T), &ua, &ub); S = (fbrl_cell)ub; T = (fbrl_cell)ua; NEXT;
+        CASE(MSTAR) NEED(2); fbrl__mstar(S, T, &o1, &o2); S = o1; T = o2; NEXT;
+        CASE(UMSTAR) NEED(2); fbrl__umul(U(S), U(T), &uo1, &uo2); S = (fbrl_cell)uo2; T = (fbrl_cell)uo1; NEXT;
         CASE(UMSLASHMOD)
             NEED(3);
             if (T == 0) THROW(-10);
             if (U(S) >= U(T)) THROW(-11);
-            fbrl__udiv(U(S), U(S3), U(T), &ua, &ub);
-            sp--; S = (fbrl_cell)ub; T = (fbrl_cell)ua;
+            fbrl__udiv(U(S), U(S3), U(T), &uo1, &uo2);
+            sp--; S = (fbrl_cell)uo2; T = (fbrl_cell)uo1;
             NEXT;
         CASE(FMSLASHMOD) CASE(SMSLASHREM)
             NEED(3);
-            if ((code = fbrl__dsdiv(S3, S, T, w == OP_FMSLASHMOD, &a, &b))) goto do_throw;
-            sp--; S = b; T = a;
+            if ((code = fbrl__dsdiv(S3, S, T, w == OP_FMSLASHMOD, &o1, &o2))) goto do_throw;
+            sp--; S = o2; T = o1;
             NEXT;
         CASE(CELLPLUS) NEED(1); T = (fbrl_cell)(U(T) + U(CELL)); NEXT;
         CASE(CELLS) NEED(1); T = (fbrl_cell)(U(T) * U(CELL)); NEXT;
@@ -433,10 +436,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         CASE(UNUSED)
             ROOM(1); PUSH((fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here)); NEXT;
         CASE(PAD) ROOM(1); PUSH((fbrl_cell)vm->pad); NEXT;
-        CASE(FILL) NEED(3); c = T; DROP1(); /* fall through */
-        CASE(ERASE) CASE(BLANK)
-            if (w != OP_FILL) { NEED(2); c = w == OP_BLANK ? ' ' : 0; }
-            if (T > 0) { CHK(S, T); memset((void *)S, (int)(unsigned char)c, (size_t)T); }
+        CASE(FILL) CASE(ERASE) CASE(BLANK)
+            if (w == OP_FILL) { NEED(3); b = T; DROP1(); }
+            else { NEED(2); b = w == OP_BLANK ? ' ' : 0; }
+            if (T > 0) { CHK(S, T); memset((void *)S, (int)(unsigned char)b, (size_t)T); }
             sp -= 2; tos = *sp;
             NEXT;
         CASE(MOVE) CASE(CMOVE) CASE(CMOVEUP)
@@ -467,7 +470,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
         CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL)); NEXT;
-        CASE(NONAME) ROOM(1); CALLC(fbrl__colon(vm, 1, &a)); PUSH(a); NEXT;
+        CASE(NONAME) ROOM(1); CALLC(fbrl__colon(vm, 1, &o1)); PUSH(o1); NEXT;
         CASE(SEMI) CALLC(fbrl__semicolon(vm)); NEXT;
         CASE(CREATE) CASE(VARIABLE) CASE(TWOVARIABLE) CASE(CONSTANT) CASE(TWOCONSTANT)
         CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER)
@@ -554,36 +557,36 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 
 
         /* floating point */
-        CASE(FPLUS) FNEED(2); FBIN(r1 + r2, -43); NEXT;
-        CASE(FMINUS) FNEED(2); FBIN(r1 - r2, -43); NEXT;
-        CASE(FSTAR) FNEED(2); FBIN(r1 * r2, -43); NEXT;
-        CASE(FSLASH) FNEED(2); if (ftos == 0) THROW(-42); FBIN(r1 / r2, -43); NEXT;
+        CASE(FPLUS) FNEED(2); FBIN(r1 + r2, 43); NEXT;
+        CASE(FMINUS) FNEED(2); FBIN(r1 - r2, 43); NEXT;
+        CASE(FSTAR) FNEED(2); FBIN(r1 * r2, 43); NEXT;
+        CASE(FSLASH) FNEED(2); if (ftos == 0) THROW(-42); FBIN(r1 / r2, 43); NEXT;
         CASE(FNEGATE) FNEED(1); ftos = -ftos; NEXT;
         CASE(FABS) FNEED(1); ftos = fabs(ftos); NEXT;
         CASE(FMIN) FNEED(2); if (fp[-1] < ftos) ftos = fp[-1]; fp--; NEXT;
         CASE(FMAX) FNEED(2); if (fp[-1] > ftos) ftos = fp[-1]; fp--; NEXT;
-        CASE(FSQRT) FNEED(1); FRES(sqrt(ftos), -46); NEXT;
-        CASE(FSIN) FNEED(1); FRES(sin(ftos), -46); NEXT;
-        CASE(FCOS) FNEED(1); FRES(cos(ftos), -46); NEXT;
-        CASE(FTAN) FNEED(1); FRES(tan(ftos), -46); NEXT;
+        CASE(FSQRT) FNEED(1); FRES(sqrt(ftos), 46); NEXT;
+        CASE(FSIN) FNEED(1); FRES(sin(ftos), 46); NEXT;
+        CASE(FCOS) FNEED(1); FRES(cos(ftos), 46); NEXT;
+        CASE(FTAN) FNEED(1); FRES(tan(ftos), 46); NEXT;
         CASE(FSINCOS) FNEED(1); FROOM(1); fa = ftos; *fp++ = sin(fa); ftos = cos(fa); NEXT;
-        CASE(FASIN) FNEED(1); FRES(asin(ftos), -46); NEXT;
-        CASE(FACOS) FNEED(1); FRES(acos(ftos), -46); NEXT;
-        CASE(FATAN) FNEED(1); FRES(atan(ftos), -46); NEXT;
-        CASE(FATAN2) FNEED(2); FBIN(atan2(r1, r2), -46); NEXT;
-        CASE(FSINH) FNEED(1); FRES(sinh(ftos), -43); NEXT;
-        CASE(FCOSH) FNEED(1); FRES(cosh(ftos), -43); NEXT;
-        CASE(FTANH) FNEED(1); FRES(tanh(ftos), -46); NEXT;
-        CASE(FASINH) FNEED(1); FRES(asinh(ftos), -46); NEXT;
-        CASE(FACOSH) FNEED(1); FRES(acosh(ftos), -46); NEXT;
-        CASE(FATANH) FNEED(1); FRES(atanh(ftos), -46); NEXT;
-        CASE(FEXP) FNEED(1); FRES(exp(ftos), -43); NEXT;
-        CASE(FEXPM1) FNEED(1); FRES(expm1(ftos), -43); NEXT;
-        CASE(FLN) FNEED(1); FRES(log(ftos), -46); NEXT;
-        CASE(FLNP1) FNEED(1); FRES(log1p(ftos), -46); NEXT;
-        CASE(FLOG) FNEED(1); FRES(log10(ftos), -46); NEXT;
-        CASE(FALOG) FNEED(1); FRES(pow(10.0, ftos), -43); NEXT;
-        CASE(FPOW) FNEED(2); FBIN(pow(r1, r2), -46); NEXT;
+        CASE(FASIN) FNEED(1); FRES(asin(ftos), 46); NEXT;
+        CASE(FACOS) FNEED(1); FRES(acos(ftos), 46); NEXT;
+        CASE(FATAN) FNEED(1); FRES(atan(ftos), 46); NEXT;
+        CASE(FATAN2) FNEED(2); FBIN(atan2(r1, r2), 46); NEXT;
+        CASE(FSINH) FNEED(1); FRES(sinh(ftos), 43); NEXT;
+        CASE(FCOSH) FNEED(1); FRES(cosh(ftos), 43); NEXT;
+        CASE(FTANH) FNEED(1); FRES(tanh(ftos), 46); NEXT;
+        CASE(FASINH) FNEED(1); FRES(asinh(ftos), 46); NEXT;
+        CASE(FACOSH) FNEED(1); FRES(acosh(ftos), 46); NEXT;
+        CASE(FATANH) FNEED(1); FRES(atanh(ftos), 46); NEXT;
+        CASE(FEXP) FNEED(1); FRES(exp(ftos), 43); NEXT;
+        CASE(FEXPM1) FNEED(1); FRES(expm1(ftos), 43); NEXT;
+        CASE(FLN) FNEED(1); FRES(log(ftos), 46); NEXT;
+        CASE(FLNP1) FNEED(1); FRES(log1p(ftos), 46); NEXT;
+        CASE(FLOG) FNEED(1); FRES(log10(ftos), 46); NEXT;
+        CASE(FALOG) FNEED(1); FRES(pow(10.0, ftos), 43); NEXT;
+        CASE(FPOW) FNEED(2); FBIN(pow(r1, r2), 46); NEXT;
         CASE(FLOOR) FNEED(1); ftos = floor(ftos); NEXT;
         CASE(FROUND) FNEED(1); ftos = nearbyint(ftos); NEXT;
         CASE(FTRUNC) FNEED(1); ftos = trunc(ftos); NEXT;
@@ -639,8 +642,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         CASE(DTOF) NEED(2); FROOM(1); FPUSH(fbrl__d_to_f(S, T)); sp -= 2; tos = *sp; NEXT;
         CASE(FTOD)
             FNEED(1); ROOM(2);
-            if ((code = fbrl__f_to_d(ftos, &a, &b))) goto do_throw;
-            FDROP1(); PUSH(a); PUSH(b);
+            if ((code = fbrl__f_to_d(ftos, &o1, &o2))) goto do_throw;
+            FDROP1(); PUSH(o1); PUSH(o2);
             NEXT;
         CASE(FLOATS) CASE(DFLOATS) NEED(1); T = (fbrl_cell)(U(T) * sizeof(double)); NEXT;
         CASE(FLOATPLUS) CASE(DFLOATPLUS) NEED(1); T = (fbrl_cell)(U(T) + sizeof(double)); NEXT;
@@ -668,8 +671,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             fbrl_hdr *h = fbrl__xt_hdr(vm, w);
             if (!h) THROW(fbrl__throw_msg(vm, -13, "invalid execution token"));
             switch (h->kind) {
-            case K_PRIM: defers = 0; w = h->op; DISPATCH();
-            case K_COLON: defers = 0; POLL(); RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->body); NEXT;
+            case K_PRIM: w = h->op; DISPATCH();
+            case K_COLON: POLL(); RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->body); NEXT;
             case K_VAR: ROOM(1); PUSH(h->body); NEXT;
             case K_CREATE:
                 ROOM(1); PUSH(h->body);
@@ -682,12 +685,18 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 NEXT;
             case K_FCONST: case K_FVALUE:
                 FROOM(1); CHK(h->body, (fbrl_cell)sizeof(double)); FPUSH(ldf(h->body)); NEXT;
-            case K_DEFER:
-                CHK(h->body, CELL);
-                w = ld(h->body);
-                if (w == 0) THROW(fbrl__throw_msg(vm, -21, "deferred word not set (use IS)"));
-                if (++defers > 1000) THROW(fbrl__throw_msg(vm, -21, "deferred words loop"));
+            case K_DEFER: {
+                int n = 0;
+                for (;;) {
+                    CHK(h->body, CELL);
+                    w = ld(h->body);
+                    if (w == 0) THROW(fbrl__throw_msg(vm, -21, "deferred word not set (use IS)"));
+                    h = fbrl__xt_hdr(vm, w);
+                    if (!h || h->kind != K_DEFER) break;
+                    if (++n > 1000) THROW(fbrl__throw_msg(vm, -21, "deferred words loop"));
+                }
                 goto execute_xt;
+            }
             case K_CFUNC: {
                 fbrl_status st;
                 if (!h->fn) THROW(-21);
@@ -716,6 +725,18 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         }
         NEXT;
 
+    /* The error exits store their code in memory: as plain assignments, the
+     * compiler would load every exit's code into a register before each check. */
+    e_underflow: vm->run_code = -4; goto e_stored;
+    e_overflow: vm->run_code = -3; goto e_stored;
+    e_r_underflow: vm->run_code = -6; goto e_stored;
+    e_r_overflow: vm->run_code = -5; goto e_stored;
+    e_f_underflow: vm->run_code = -45; goto e_stored;
+    e_f_overflow: vm->run_code = -44; goto e_stored;
+    e_address: vm->run_code = -9; goto e_stored;
+    e_f43: vm->run_code = -43; goto e_stored;
+    e_f46: vm->run_code = -46; goto e_stored;
+    e_stored: code = vm->run_code;
     do_throw:
         if (code == THROW_BYE || code == THROW_QUIT) goto out;
         {
