@@ -32,7 +32,8 @@
 #endif
 
 #define SAVE() (*sp = tos, vm->sp = sp + 1, *fp = ftos, vm->fp = fp + 1, vm->rp = rp)
-#define LOAD() (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp)
+#define LOAD() (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp, \
+                data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo))
 #define THROW(c) do { code = (c); goto do_throw; } while (0)
 /* depth checks: NEED(n) at least n cells, ROOM(n) space for n more */
 /* (each error has its own label, so the hot path does not set up a throw code) */
@@ -43,6 +44,8 @@
 #define FNEED(n) if (fp < fs0 + ((n) - 1)) goto e_f_underflow
 #define FROOM(n) if (fp >= fse - (n)) goto e_f_overflow
 #define CHK(a, n) if (!fbrl__addr_ok(vm, (a), (n))) goto e_address
+/* the same for a small constant n, against the cached size of the data region */
+#define CHKC(a, n) if ((fbrl_ucell)(a) - code_lo > data_span - (fbrl_ucell)(n)) goto e_address
 #define CODE_OK(t) ((fbrl_ucell)(t) - code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
 #define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) goto e_address; ip = (const fbrl_cell *)t_; } while (0)
 #define CALLC(expr) do { SAVE(); code = (expr); LOAD(); if (code) goto do_throw; } while (0)
@@ -109,6 +112,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     double *const fs0 = vm->fs0, *const fse = vm->fs_end;
     const fbrl_ucell code_lo = (fbrl_ucell)vm->data_lo;
     const fbrl_ucell code_span = (fbrl_ucell)(vm->mem_end - vm->data_lo);
+    fbrl_ucell data_span;     /* addressable bytes (data_hi moves only in helpers: LOAD) */
     const fbrl_cell *ip = (const fbrl_cell *)vm->guard_addr; /* the HALT cell */
     fbrl_cell w = xt, entry, a, b;
     fbrl_ucell ua, ub;
@@ -232,9 +236,9 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (code) goto do_throw;
             NEXT;
         }
-        CASE(PTOVAL) NEED(1); a = *ip++; CHK(a, CELL); st(a, tos); DROP1(); NEXT;
-        CASE(PTO2VAL) NEED(2); a = *ip++; CHK(a, 2 * CELL); st(a, T); st(a + CELL, S); sp -= 2; tos = *sp; NEXT;
-        CASE(PTOFVAL) FNEED(1); a = *ip++; CHK(a, (fbrl_cell)sizeof(double)); stf(a, ftos); FDROP1(); NEXT;
+        CASE(PTOVAL) NEED(1); a = *ip++; CHKC(a, CELL); st(a, tos); DROP1(); NEXT;
+        CASE(PTO2VAL) NEED(2); a = *ip++; CHKC(a, 2 * CELL); st(a, T); st(a + CELL, S); sp -= 2; tos = *sp; NEXT;
+        CASE(PTOFVAL) FNEED(1); a = *ip++; CHKC(a, (fbrl_cell)sizeof(double)); stf(a, ftos); FDROP1(); NEXT;
 
         /* superinstructions (vm.c fuses them): a literal operand, or a branch target */
         CASE(LITPLUS) NEED(1); T = (fbrl_cell)(U(T) + U(*ip++)); NEXT;
@@ -245,11 +249,12 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         CASE(LITNE) NEED(1); T = FLAG(T != *ip); ip++; NEXT;
         CASE(LITLT) NEED(1); T = FLAG(T < *ip); ip++; NEXT;
         CASE(LITGT) NEED(1); T = FLAG(T > *ip); ip++; NEXT;
-        CASE(LITFETCH) ROOM(1); a = *ip++; CHK(a, CELL); PUSH(ld(a)); NEXT;
+        CASE(LITFETCH) ROOM(1); a = *ip++; CHKC(a, CELL); PUSH(ld(a)); NEXT;
         CASE(PICK2) NEED(3); ROOM(1); PUSH(S3); NEXT;
         CASE(OVERPLUS) NEED(2); T = (fbrl_cell)(U(T) + U(S)); NEXT;
         CASE(IPLUS) RNEED(1); NEED(1); T = (fbrl_cell)(U(T) + U(rp[-1])); NEXT;
-        CASE(CELLPLUSFETCH) NEED(1); a = (fbrl_cell)(U(T) + U(CELL)); CHK(a, CELL); T = ld(a); NEXT;
+        CASE(CELLPLUSFETCH) NEED(1); a = (fbrl_cell)(U(T) + U(CELL)); CHKC(a, CELL); T = ld(a); NEXT;
+        CASE(DUPFETCH) NEED(1); ROOM(1); CHKC(T, CELL); *sp++ = tos; T = ld(T); NEXT;
         CASE(EQZBR) NEED(2); a = S == T; sp--; tos = *--sp; goto zbr_a;
         CASE(NEZBR) NEED(2); a = S != T; sp--; tos = *--sp; goto zbr_a;
         CASE(LTZBR) NEED(2); a = S < T; sp--; tos = *--sp; goto zbr_a;
@@ -415,15 +420,15 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
 
         /* memory */
-        CASE(FETCH) NEED(1); CHK(T, CELL); T = ld(T); NEXT;
-        CASE(STORE) NEED(2); CHK(T, CELL); st(T, S); sp -= 2; tos = *sp; NEXT;
-        CASE(CFETCH) NEED(1); CHK(T, 1); T = *(unsigned char *)T; NEXT;
-        CASE(CSTORE) NEED(2); CHK(T, 1); *(unsigned char *)T = (unsigned char)S; sp -= 2; tos = *sp; NEXT;
-        CASE(PLUSSTORE) NEED(2); CHK(T, CELL); st(T, (fbrl_cell)(U(ld(T)) + U(S))); sp -= 2; tos = *sp; NEXT;
-        CASE(TWOFETCH) NEED(1); ROOM(1); CHK(T, 2 * CELL); a = T; *sp++ = ld(a + CELL); T = ld(a); NEXT;
-        CASE(TWOSTORE) NEED(3); CHK(T, 2 * CELL); st(T, S); st(T + CELL, S3); sp -= 3; tos = *sp; NEXT;
-        CASE(WFETCH) { uint16_t v; NEED(1); CHK(T, 2); memcpy(&v, (void *)T, 2); T = v; NEXT; }
-        CASE(WSTORE) { uint16_t v; NEED(2); CHK(T, 2); v = (uint16_t)S; memcpy((void *)T, &v, 2); sp -= 2; tos = *sp; NEXT; }
+        CASE(FETCH) NEED(1); CHKC(T, CELL); T = ld(T); NEXT;
+        CASE(STORE) NEED(2); CHKC(T, CELL); st(T, S); sp -= 2; tos = *sp; NEXT;
+        CASE(CFETCH) NEED(1); CHKC(T, 1); T = *(unsigned char *)T; NEXT;
+        CASE(CSTORE) NEED(2); CHKC(T, 1); *(unsigned char *)T = (unsigned char)S; sp -= 2; tos = *sp; NEXT;
+        CASE(PLUSSTORE) NEED(2); CHKC(T, CELL); st(T, (fbrl_cell)(U(ld(T)) + U(S))); sp -= 2; tos = *sp; NEXT;
+        CASE(TWOFETCH) NEED(1); ROOM(1); CHKC(T, 2 * CELL); a = T; *sp++ = ld(a + CELL); T = ld(a); NEXT;
+        CASE(TWOSTORE) NEED(3); CHKC(T, 2 * CELL); st(T, S); st(T + CELL, S3); sp -= 3; tos = *sp; NEXT;
+        CASE(WFETCH) { uint16_t v; NEED(1); CHKC(T, 2); memcpy(&v, (void *)T, 2); T = v; NEXT; }
+        CASE(WSTORE) { uint16_t v; NEED(2); CHKC(T, 2); v = (uint16_t)S; memcpy((void *)T, &v, 2); sp -= 2; tos = *sp; NEXT; }
         CASE(COMMA) NEED(1); if ((code = fbrl__emit(vm, T))) goto do_throw; DROP1(); NEXT;
         CASE(CCOMMA)
             NEED(1); if ((code = fbrl__allot(vm, 1))) goto do_throw;
@@ -457,7 +462,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             }
             sp -= 3; tos = *sp;
             NEXT;
-        CASE(COUNT) NEED(1); ROOM(1); CHK(T, 1); a = T; *sp++ = a + 1; T = *(unsigned char *)a; NEXT;
+        CASE(COUNT) NEED(1); ROOM(1); CHKC(T, 1); a = T; *sp++ = a + 1; T = *(unsigned char *)a; NEXT;
         CASE(COMPARE) CASE(SEARCH) CASE(SLASHSTRING) CASE(MTRAILING)
             CALLC(fbrl__w_string(vm, (int)w));
             NEXT;
@@ -608,12 +613,12 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
         }
         CASE(FFETCH) CASE(DFFETCH)
-            NEED(1); FROOM(1); CHK(T, (fbrl_cell)sizeof(double)); FPUSH(ldf(T)); DROP1(); NEXT;
+            NEED(1); FROOM(1); CHKC(T, (fbrl_cell)sizeof(double)); FPUSH(ldf(T)); DROP1(); NEXT;
         CASE(FSTORE) CASE(DFSTORE)
-            NEED(1); FNEED(1); CHK(T, (fbrl_cell)sizeof(double)); stf(T, ftos); DROP1(); FDROP1(); NEXT;
-        CASE(SFFETCH) { float f; NEED(1); FROOM(1); CHK(T, 4); memcpy(&f, (void *)T, 4); DROP1(); FPUSH(f); NEXT; }
+            NEED(1); FNEED(1); CHKC(T, (fbrl_cell)sizeof(double)); stf(T, ftos); DROP1(); FDROP1(); NEXT;
+        CASE(SFFETCH) { float f; NEED(1); FROOM(1); CHKC(T, 4); memcpy(&f, (void *)T, 4); DROP1(); FPUSH(f); NEXT; }
         CASE(SFSTORE) {
-            float f; NEED(1); FNEED(1); CHK(T, 4);
+            float f; NEED(1); FNEED(1); CHKC(T, 4);
             if (fabs(ftos) > 3.4028234663852886e38) THROW(-43);
             f = (float)ftos; memcpy((void *)T, &f, 4); DROP1(); FDROP1(); NEXT;
         }
@@ -678,17 +683,17 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 ROOM(1); PUSH(h->body);
                 if (h->does) { RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->does); }
                 NEXT;
-            case K_CONST: case K_VALUE: ROOM(1); CHK(h->body, CELL); PUSH(ld(h->body)); NEXT;
+            case K_CONST: case K_VALUE: ROOM(1); CHKC(h->body, CELL); PUSH(ld(h->body)); NEXT;
             case K_2CONST: case K_2VALUE:
-                ROOM(2); CHK(h->body, 2 * CELL);
+                ROOM(2); CHKC(h->body, 2 * CELL);
                 PUSH(ld(h->body + CELL)); PUSH(ld(h->body));
                 NEXT;
             case K_FCONST: case K_FVALUE:
-                FROOM(1); CHK(h->body, (fbrl_cell)sizeof(double)); FPUSH(ldf(h->body)); NEXT;
+                FROOM(1); CHKC(h->body, (fbrl_cell)sizeof(double)); FPUSH(ldf(h->body)); NEXT;
             case K_DEFER: {
                 int n = 0;
                 for (;;) {
-                    CHK(h->body, CELL);
+                    CHKC(h->body, CELL);
                     w = ld(h->body);
                     if (w == 0) THROW(fbrl__throw_msg(vm, -21, "deferred word not set (use IS)"));
                     h = fbrl__xt_hdr(vm, w);
@@ -718,6 +723,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             case K_MARKER:
                 if (vm->defining) THROW(fbrl__throw_msg(vm, -29, "a MARKER cannot run inside a definition"));
                 fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)h->end, (size_t)h->does);
+                data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo);
                 NEXT;
             default: THROW(-21);
             }

@@ -376,7 +376,7 @@ static int fuse(fbrl_cell prev, int op)
         { OP_LIT, OP_LT, OP_LITLT }, { OP_LIT, OP_GT, OP_LITGT },
         { OP_LIT, OP_FETCH, OP_LITFETCH },
         { OP_OVER, OP_PLUS, OP_OVERPLUS }, { OP_I, OP_PLUS, OP_IPLUS },
-        { OP_CELLPLUS, OP_FETCH, OP_CELLPLUSFETCH },
+        { OP_CELLPLUS, OP_FETCH, OP_CELLPLUSFETCH }, { OP_DUP, OP_FETCH, OP_DUPFETCH },
         { OP_EQ, OP_ZBRANCH, OP_EQZBR }, { OP_NE, OP_ZBRANCH, OP_NEZBR },
         { OP_LT, OP_ZBRANCH, OP_LTZBR }, { OP_GT, OP_ZBRANCH, OP_GTZBR },
         { OP_ZEQ, OP_ZBRANCH, OP_ZEQZBR },

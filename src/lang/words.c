@@ -531,7 +531,7 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
         { OP_LITAND, 1, 0, "AND" }, { OP_LITEQ, 1, 0, "=" }, { OP_LITNE, 1, 0, "<>" },
         { OP_LITLT, 1, 0, "<" }, { OP_LITGT, 1, 0, ">" }, { OP_LITFETCH, 1, 0, "@" },
         { OP_PICK2, 0, 0, "2 PICK" }, { OP_OVERPLUS, 0, 0, "OVER +" }, { OP_IPLUS, 0, 0, "I +" },
-        { OP_CELLPLUSFETCH, 0, 0, "CELL+ @" },
+        { OP_CELLPLUSFETCH, 0, 0, "CELL+ @" }, { OP_DUPFETCH, 0, 0, "DUP @" },
         { OP_EQZBR, 0, 1, "=" }, { OP_NEZBR, 0, 1, "<>" }, { OP_LTZBR, 0, 1, "<" },
         { OP_GTZBR, 0, 1, ">" }, { OP_ZEQZBR, 0, 1, "0=" },
         { OP_LITEQZBR, 1, 1, "=" }, { OP_LITNEZBR, 1, 1, "<>" }, { OP_LITLTZBR, 1, 1, "<" },
