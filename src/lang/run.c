@@ -166,9 +166,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         CASE(PQDO)
             NEED(2);
             if (S == T) { sp -= 2; tos = *sp; JUMP(*ip); NEXT; }
-            /* fall through */
+            goto pdo;
         CASE(PDO)
-            NEED(2); RROOM(3);
+            NEED(2);
+        pdo:
+            RROOM(3);
             rp[0] = *ip++; rp[1] = S; rp[2] = T;
             rp += 3; sp -= 2; tos = *sp;
             NEXT;

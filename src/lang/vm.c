@@ -814,6 +814,14 @@ typedef struct layout {
                    + FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
 #define FBRL_EXTRA_WORDS 64     /* headers beyond the primitives (data words) */
 
+/* Primitives with a dictionary entry (internal ops and superinstructions have none). */
+static size_t named_ops(void)
+{
+    size_t n = 0;
+    for (int op = 0; op < OP__END; op++) n += ops[op].name[0] != 0;
+    return n;
+}
+
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
     l->ds = cfg->data_stack_cells ? cfg->data_stack_cells : 256;
@@ -826,7 +834,7 @@ static void make_layout(const fbrl_vm_config *cfg, layout *l)
     l->o_fs = l->o_rs + align16(l->rs * sizeof(fbrl_cell)) + 16;
     l->o_data = l->o_fs + align16(l->fs * sizeof(double));
     l->fixed = l->o_data + align16(FBRL_BUFS) + FBRL_GUARD_CELLS * sizeof(fbrl_cell) + 16
-             + (OP__END + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
+             + (named_ops() + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
 }
 
 size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes)
