@@ -392,20 +392,27 @@ static int fuse(fbrl_cell prev, int op)
 int fbrl__compile_op(fbrl_vm *vm, int op)
 {
     if (vm->peep_end && vm->peep_end == vm->here) {
-        fbrl_cell *p = (fbrl_cell *)(void *)vm->peep;
-        fbrl_cell v;
+        /* (HERE need not be aligned: , and C, can leave it anywhere, so memcpy) */
+        unsigned char *p = vm->peep;
+        fbrl_cell prev, v;
         int f;
-        if (p[0] == OP_LIT) {
-            v = p[1];
-            if (fold_lit(op, &v)) { p[1] = v; return 0; }
+        memcpy(&prev, p, sizeof prev);
+        if (prev == OP_LIT) {
+            memcpy(&v, p + CELL, sizeof v);
+            if (fold_lit(op, &v)) { memcpy(p + CELL, &v, sizeof v); return 0; }
             if (op == OP_PICK && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
-                p[0] = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
+                prev = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
+                memcpy(p, &prev, sizeof prev);
                 vm->here -= CELL;
                 vm->peep_end = vm->here;
                 return 0;
             }
         }
-        if ((f = fuse(p[0], op))) { p[0] = f; return 0; }
+        if ((f = fuse(prev, op))) {
+            prev = f;
+            memcpy(p, &prev, sizeof prev);
+            return 0;
+        }
     }
     unsigned char *at = vm->here;
     int r = fbrl__emit(vm, op);

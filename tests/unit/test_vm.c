@@ -593,6 +593,8 @@ static void fused_code_keeps_meaning(void **state)
     assert_int_equal(eval_pop(f->vm, "1 2 -1 G5"), 101);
     assert_int_equal(eval_pop(f->vm, ": G6 0 BEGIN 1 + DUP 10 < WHILE REPEAT ; G6"), 10);
     assert_int_equal(eval_pop(f->vm, ": G7 5 [ HERE DROP ] + ; 1 G7"), 6);
+    /* fusion where C, left HERE unaligned (compiled only: such code is garbage) */
+    assert_int_equal(ev(f, ": G9 [ 1 C, ] 5 + 2 PICK ;"), FBRL_OK);
     /* SEE shows fused code as the words it came from */
     expect_output(f, ": G8 DUP 2 < IF 1 - THEN OVER + ; SEE G8",
                   ": G8 DUP 2 < 0BRANCH(2) 1 - OVER + ;\n");
