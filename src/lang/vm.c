@@ -168,6 +168,7 @@ int fbrl__allot(fbrl_vm *vm, fbrl_cell n)
         return FBRL_THROW_BAD_ADDRESS;
     }
     vm->here += n;
+    vm->peep_end = NULL;
     return 0;
 }
 
@@ -182,6 +183,7 @@ int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
     if (unused_bytes(vm) < CELL) return FBRL_THROW_DICT_OVERFLOW;
     memcpy(vm->here, &v, sizeof v);
     vm->here += CELL;
+    vm->peep_end = NULL;
     return 0;
 }
 
@@ -330,6 +332,94 @@ int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], dou
 }
 
 /* ---- compilation helpers ---- */
+/* Peephole fusion: common pairs of ops become one superinstruction (ops.def), and
+ * a literal followed by CELLS, 1+, ... is folded. vm->peep is the last instruction
+ * that fbrl__compile_op/fbrl__compile_lit emitted; it may be rewritten only while
+ * HERE still ends it (peep_end == here). Everything else that moves HERE clears
+ * peep_end, and so do the control-flow words and HERE itself, because a branch
+ * target (a label at HERE) must never end up inside a fused instruction. */
+static void peep_set(fbrl_vm *vm, unsigned char *at)
+{
+    vm->peep = at;
+    vm->peep_end = vm->here;
+}
+
+void fbrl__peep_reset(fbrl_vm *vm) { vm->peep_end = NULL; }
+
+/* What `LIT v op` folds to: 1 and *v updated, or 0. */
+static int fold_lit(int op, fbrl_cell *v)
+{
+    fbrl_ucell u = (fbrl_ucell)*v;
+    switch (op) {
+    case OP_CELLS: u *= (fbrl_ucell)CELL; break;
+    case OP_CELLPLUS: u += (fbrl_ucell)CELL; break;
+    case OP_FLOATS: case OP_DFLOATS: u *= sizeof(double); break;
+    case OP_ONEPLUS: case OP_CHARPLUS: u += 1; break;
+    case OP_ONEMINUS: u -= 1; break;
+    case OP_TWOSTAR: u <<= 1; break;
+    case OP_NEGATE: u = 0 - u; break;
+    case OP_INVERT: u = ~u; break;
+    case OP_CHARS: break;
+    default: return 0;
+    }
+    *v = (fbrl_cell)u;
+    return 1;
+}
+
+/* The superinstruction for `prev op`, or 0. */
+static int fuse(fbrl_cell prev, int op)
+{
+    static const struct { uint16_t prev, op, fused; } pairs[] = {
+        { OP_LIT, OP_PLUS, OP_LITPLUS }, { OP_LIT, OP_MINUS, OP_LITMINUS },
+        { OP_LIT, OP_STAR, OP_LITSTAR }, { OP_LIT, OP_AND, OP_LITAND },
+        { OP_LIT, OP_EQ, OP_LITEQ }, { OP_LIT, OP_NE, OP_LITNE },
+        { OP_LIT, OP_LT, OP_LITLT }, { OP_LIT, OP_GT, OP_LITGT },
+        { OP_LIT, OP_FETCH, OP_LITFETCH },
+        { OP_OVER, OP_PLUS, OP_OVERPLUS }, { OP_I, OP_PLUS, OP_IPLUS },
+        { OP_CELLPLUS, OP_FETCH, OP_CELLPLUSFETCH }, { OP_DUP, OP_FETCH, OP_DUPFETCH },
+        { OP_EQ, OP_ZBRANCH, OP_EQZBR }, { OP_NE, OP_ZBRANCH, OP_NEZBR },
+        { OP_LT, OP_ZBRANCH, OP_LTZBR }, { OP_GT, OP_ZBRANCH, OP_GTZBR },
+        { OP_ZEQ, OP_ZBRANCH, OP_ZEQZBR },
+        { OP_LITEQ, OP_ZBRANCH, OP_LITEQZBR }, { OP_LITNE, OP_ZBRANCH, OP_LITNEZBR },
+        { OP_LITLT, OP_ZBRANCH, OP_LITLTZBR }, { OP_LITGT, OP_ZBRANCH, OP_LITGTZBR },
+    };
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
+        if (pairs[i].prev == prev && pairs[i].op == op) return pairs[i].fused;
+    return 0;
+}
+
+/* Compile one op (a primitive, or OP_ZBRANCH whose target the caller emits next). */
+int fbrl__compile_op(fbrl_vm *vm, int op)
+{
+    if (vm->peep_end && vm->peep_end == vm->here) {
+        /* (HERE need not be aligned: , and C, can leave it anywhere, so memcpy) */
+        unsigned char *p = vm->peep;
+        fbrl_cell prev, v;
+        int f;
+        memcpy(&prev, p, sizeof prev);
+        if (prev == OP_LIT) {
+            memcpy(&v, p + CELL, sizeof v);
+            if (fold_lit(op, &v)) { memcpy(p + CELL, &v, sizeof v); return 0; }
+            if (op == OP_PICK && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
+                prev = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
+                memcpy(p, &prev, sizeof prev);
+                vm->here -= CELL;
+                vm->peep_end = vm->here;
+                return 0;
+            }
+        }
+        if ((f = fuse(prev, op))) {
+            prev = f;
+            memcpy(p, &prev, sizeof prev);
+            return 0;
+        }
+    }
+    unsigned char *at = vm->here;
+    int r = fbrl__emit(vm, op);
+    if (!r) peep_set(vm, at);
+    return r;
+}
+
 int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
 {
     fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
@@ -337,7 +427,7 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     int r;
     if (!h) return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
-    case K_PRIM: return fbrl__emit(vm, h->op);
+    case K_PRIM: return fbrl__compile_op(vm, h->op);
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL))) return r;
         return fbrl__emit(vm, h->body);
@@ -347,20 +437,21 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
         if (h->does) return fbrl__emit(vm, xt);
         /* fall through */
     case K_VAR:
-        if ((r = fbrl__emit(vm, OP_LIT))) return r;
-        return fbrl__emit(vm, h->body);
+        return fbrl__compile_lit(vm, h->body);
     case K_CONST:
         memcpy(&v, (void *)h->body, sizeof v);
-        if ((r = fbrl__emit(vm, OP_LIT))) return r;
-        return fbrl__emit(vm, v);
+        return fbrl__compile_lit(vm, v);
     default: return fbrl__emit(vm, xt);
     }
 }
 
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v)
 {
+    unsigned char *at = vm->here;
     int r = fbrl__emit(vm, OP_LIT);
-    return r ? r : fbrl__emit(vm, v);
+    if (r || (r = fbrl__emit(vm, v))) return r;
+    peep_set(vm, at);
+    return 0;
 }
 
 int fbrl__compile_flit(fbrl_vm *vm, double d)
@@ -383,6 +474,7 @@ int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n)
     memmove(vm->here, s, n);
     memset(vm->here + n, 0, (size_t)need - n);
     vm->here += need;
+    vm->peep_end = NULL;
     return 0;
 }
 
@@ -415,6 +507,7 @@ static void capture_help(fbrl_vm *vm, fbrl_hdr *h, const char *dstack, const cha
         while (hpn && (unsigned char)hp[hpn - 1] <= ' ') hpn--;
     }
     if (!st && !hp) return;
+    vm->peep_end = NULL;
     if (unused_bytes(vm) < (fbrl_cell)(stn + hpn + 2 + 64)) return;
     if (st) {
         memmove(vm->here, st, stn);
@@ -498,6 +591,7 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
     return 0;
 fail:
     vm->here = vm->def_here;
+    vm->peep_end = NULL;
     vm->nwords = vm->def_nwords;
     rebuild_hash(vm);
     return r;
@@ -525,6 +619,7 @@ static void discard_definition(fbrl_vm *vm)
         vm->nwords = vm->def_nwords;
         rebuild_hash(vm);
         vm->defining = 0;
+        vm->peep_end = NULL;
     }
     vm->ncf = 0;
     *vm->state = 0;
@@ -533,6 +628,7 @@ static void discard_definition(fbrl_vm *vm)
 void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used)
 {
     vm->here = here;
+    vm->peep_end = NULL;
     vm->nwords = nwords;
     if (req_used <= vm->req_used) vm->req_used = req_used;
     rebuild_hash(vm);
@@ -725,17 +821,27 @@ typedef struct layout {
                    + FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
 #define FBRL_EXTRA_WORDS 64     /* headers beyond the primitives (data words) */
 
+/* Primitives with a dictionary entry (internal ops and superinstructions have none). */
+static size_t named_ops(void)
+{
+    size_t n = 0;
+    for (int op = 0; op < OP__END; op++) n += ops[op].name[0] != 0;
+    return n;
+}
+
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
     l->ds = cfg->data_stack_cells ? cfg->data_stack_cells : 256;
     l->rs = cfg->return_stack_cells ? cfg->return_stack_cells : 256;
     l->fs = cfg->float_stack_cells ? cfg->float_stack_cells : 64;
-    l->o_ds = align16(sizeof(struct fbrl_vm));
+    /* 16 spare bytes below the data and float stacks: run.c stores the cached top
+     * of an empty stack there */
+    l->o_ds = align16(sizeof(struct fbrl_vm)) + 16;
     l->o_rs = l->o_ds + align16(l->ds * sizeof(fbrl_cell));
-    l->o_fs = l->o_rs + align16(l->rs * sizeof(fbrl_cell));
+    l->o_fs = l->o_rs + align16(l->rs * sizeof(fbrl_cell)) + 16;
     l->o_data = l->o_fs + align16(l->fs * sizeof(double));
     l->fixed = l->o_data + align16(FBRL_BUFS) + FBRL_GUARD_CELLS * sizeof(fbrl_cell) + 16
-             + (OP__END + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
+             + (named_ops() + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
 }
 
 size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes)
@@ -779,7 +885,10 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
 
     unsigned char *d = m + l.o_data;
     vm->data_lo = d;
-    memset(d, 0, (size_t)(vm->mem_end - d)); /* unused dictionary reads as OP_BAD */
+    /* Unused dictionary reads as OP_BAD (0), so a stray jump stops at once; a
+     * caller that passes zeroed memory saves touching (and so backing) every page. */
+    if (cfg->mem_zeroed) memset(d, 0, align16(FBRL_BUFS));
+    else memset(d, 0, (size_t)(vm->mem_end - d));
     vm->base = (fbrl_cell *)(void *)d;
     vm->state = vm->base + 1;
     vm->toin = vm->base + 2;

@@ -141,6 +141,9 @@ struct fbrl_vm {
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
     fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */
+    unsigned char *peep;      /* last instruction the compiler may fuse with (vm.c) */
+    unsigned char *peep_end;  /* HERE right after it; NULL: no fusion */
+    int run_code;             /* run.c: the code of an error exit */
 };
 
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))

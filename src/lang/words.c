@@ -235,9 +235,15 @@ static int cf_pop(fbrl_vm *vm, int tag, fbrl_cell *a)
     return 0;
 }
 
+/* A branch op and its target; 0BRANCH may fuse with the comparison before it. */
+static int branch_op(fbrl_vm *vm, int op)
+{
+    return op == OP_ZBRANCH ? fbrl__compile_op(vm, op) : fbrl__emit(vm, op);
+}
+
 static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 {
-    int r = fbrl__emit(vm, op);
+    int r = branch_op(vm, op);
     if (r) return r;
     *orig = (fbrl_cell)vm->here;
     return fbrl__emit(vm, 0);
@@ -253,11 +259,11 @@ static int resolve(fbrl_vm *vm, fbrl_cell orig)
 
 static int back(fbrl_vm *vm, int op, fbrl_cell dest)
 {
-    int r = fbrl__emit(vm, op);
+    int r = branch_op(vm, op);
     return r ? r : fbrl__emit(vm, dest);
 }
 
-int fbrl__w_control(fbrl_vm *vm, int op)
+static int control(fbrl_vm *vm, int op)
 {
     fbrl_cell o = 0, d = 0;
     int r = 0;
@@ -307,6 +313,13 @@ int fbrl__w_control(fbrl_vm *vm, int op)
         return fbrl__emit(vm, OP_DOESSET);
     }
     return FBRL_THROW_UNSUPPORTED;
+}
+
+int fbrl__w_control(fbrl_vm *vm, int op)
+{
+    int r = control(vm, op);
+    fbrl__peep_reset(vm); /* HERE may now be a branch target: fuse nothing across it */
+    return r;
 }
 
 /* ---- defining words ---- */
@@ -510,6 +523,44 @@ static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
     else fbrl__puts(vm, ":NONAME");
 }
 
+/* A superinstruction shows as the words it was compiled from. */
+static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
+{
+    static const struct { int16_t op, lit, br; const char *words; } fused[] = {
+        { OP_LITPLUS, 1, 0, "+" }, { OP_LITMINUS, 1, 0, "-" }, { OP_LITSTAR, 1, 0, "*" },
+        { OP_LITAND, 1, 0, "AND" }, { OP_LITEQ, 1, 0, "=" }, { OP_LITNE, 1, 0, "<>" },
+        { OP_LITLT, 1, 0, "<" }, { OP_LITGT, 1, 0, ">" }, { OP_LITFETCH, 1, 0, "@" },
+        { OP_PICK2, 0, 0, "2 PICK" }, { OP_OVERPLUS, 0, 0, "OVER +" }, { OP_IPLUS, 0, 0, "I +" },
+        { OP_CELLPLUSFETCH, 0, 0, "CELL+ @" }, { OP_DUPFETCH, 0, 0, "DUP @" },
+        { OP_EQZBR, 0, 1, "=" }, { OP_NEZBR, 0, 1, "<>" }, { OP_LTZBR, 0, 1, "<" },
+        { OP_GTZBR, 0, 1, ">" }, { OP_ZEQZBR, 0, 1, "0=" },
+        { OP_LITEQZBR, 1, 1, "=" }, { OP_LITNEZBR, 1, 1, "<>" }, { OP_LITLTZBR, 1, 1, "<" },
+        { OP_LITGTZBR, 1, 1, ">" },
+    };
+    for (size_t i = 0; i < sizeof fused / sizeof fused[0]; i++) {
+        fbrl_cell a;
+        if (fused[i].op != w) continue;
+        if (fused[i].lit) {
+            if (!fbrl__addr_ok(vm, *pc, CELL)) return 1;
+            memcpy(&a, (void *)*pc, sizeof a);
+            *pc += CELL;
+            put_num(vm, a);
+            fbrl__puts(vm, " ");
+        }
+        fbrl__puts(vm, fused[i].words);
+        if (fused[i].br) {
+            if (!fbrl__addr_ok(vm, *pc, CELL)) return 1;
+            memcpy(&a, (void *)*pc, sizeof a);
+            *pc += CELL;
+            fbrl__puts(vm, " 0BRANCH(");
+            put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
+            fbrl__puts(vm, ")");
+        }
+        return 1;
+    }
+    return 0;
+}
+
 static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
 {
     fbrl_cell pc = h->body, end = h->end;
@@ -526,6 +577,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             continue;
         }
         if (w < 0 || w >= OP__END) { fbrl__puts(vm, "?"); continue; }
+        if (see_fused(vm, w, &pc)) continue;
         const char *nm = fbrl__op_name((int)w);
         if (nm[0]) { fbrl__puts(vm, nm); continue; }
         if (!fbrl__addr_ok(vm, pc, CELL)) break;
