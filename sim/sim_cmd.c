@@ -142,10 +142,13 @@ static int parse_name(const char *tok, int *prec, char name[SIM_NAME_MAX + 1])
     n = strlen(tok);
     if (n == 0 || n > SIM_NAME_MAX || !isalpha((unsigned char)tok[0]))
         return 18;
-    for (i = 0; i < n; i++)
+    for (i = 0; i < n; i++) {
         if (!isalnum((unsigned char)tok[i]) && tok[i] != '_')
             return 18;
-    memcpy(name, tok, n + 1);
+        /* upper case wherever a name enters memory (a program line is not typed) */
+        name[i] = (char)toupper((unsigned char)tok[i]);
+    }
+    name[n] = 0;
     if (prec)
         *prec = p;
     return 0;

@@ -652,18 +652,38 @@ static int open_tcp(fbrl_sim *s, char *err, size_t errlen)
     return 0;
 }
 
+/* One client at a time, like one serial line. A second one is told so and closed
+ * at once: nothing it sent is read, so nothing it typed can ever run (before, it
+ * waited in the listen queue and its bytes ran after the first client left). */
+static void refuse_conn(int fd)
+{
+    static const char msg[] = "fbrlsim: the controller is busy: another client is connected\r\n";
+    char sink[512];
+    ssize_t w = write(fd, msg, sizeof msg - 1);
+    (void)w;
+    shutdown(fd, SHUT_WR);
+    /* Discard what already arrived: closing with unread data would send a reset
+     * that can overtake the message. */
+    while (read(fd, sink, sizeof sink) > 0)
+        ;
+    close(fd);
+}
+
 static void accept_conn(fbrl_sim *s)
 {
-    int fd = accept(s->lfd, NULL, NULL);
+    int fd = accept4(s->lfd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
     if (fd < 0)
         return;
-    if (s->conn >= 0) { /* one client at a time, like one serial line */
-        close(fd);
+    if (s->conn >= 0) {
+        refuse_conn(fd);
         return;
     }
-    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
     s->conn = s->io = fd;
     s->credit_time = real_now(s);
+    /* A connection is an event the controller can see: greet it with the prompt,
+     * so a user at nc or telnet knows the controller is there. */
+    if (s->ps == PS_IDLE && s->len == 0)
+        emit_str(s, ">>");
 }
 
 static int open_control(fbrl_sim *s, char *err, size_t errlen)
@@ -845,7 +865,7 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
         p[np].fd = s->ctl;
         p[np++].events = POLLIN;
     }
-    if (s->lfd >= 0 && s->conn < 0) {
+    if (s->lfd >= 0) {
         ilfd = np;
         p[np].fd = s->lfd;
         p[np++].events = POLLIN;

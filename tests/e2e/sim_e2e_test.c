@@ -64,6 +64,8 @@ static void raw_fd(int fd)
     }
 }
 
+static void expect_greeting(simp *p);
+
 /* Starts fbrlsim with the given options (NULL-terminated) and opens its line. */
 static void spawn(simp *p, const char *const *extra)
 {
@@ -112,6 +114,7 @@ static void spawn(simp *p, const char *const *extra)
         a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
         p->fd = socket(AF_INET, SOCK_STREAM, 0);
         assert_int_equal(connect(p->fd, (struct sockaddr *)&a, sizeof a), 0);
+        expect_greeting(p);
     } else {
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
@@ -188,6 +191,14 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     }
     buf[n] = 0;
     return n;
+}
+
+/* A TCP client is greeted with the prompt as soon as it connects. */
+static void expect_greeting(simp *p)
+{
+    size_t n = read_until(p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    if (n != 2 || strcmp(g_buf, ">>") != 0)
+        fail_msg("no prompt on connect: got '%s'", g_buf);
 }
 
 /* Sends a line with CR; returns everything up to and including the prompt. */
@@ -1059,6 +1070,179 @@ static void t_persist(void **st)
     }
 }
 
+/* Runs fbrlsim with a state file that must be refused: exit status 1 and a message
+ * naming file:line on stderr. */
+static void refused_state(const char *state, const char *where)
+{
+    int pfd[2], stt;
+    pid_t pid;
+    size_t n = 0;
+    ssize_t r;
+    char msg[1024];
+    assert_int_equal(pipe(pfd), 0);
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int dn = open("/dev/null", O_WRONLY);
+        dup2(dn, 1);
+        dup2(pfd[1], 2);
+        close(pfd[0]);
+        alarm(5); /* an accepted file would let it run forever */
+        execl(FBRLSIM_PATH, FBRLSIM_PATH, "--state", state, (char *)NULL);
+        _exit(127);
+    }
+    close(pfd[1]);
+    while (n < sizeof msg - 1 && (r = read(pfd[0], msg + n, sizeof msg - 1 - n)) > 0)
+        n += (size_t)r;
+    msg[n] = 0;
+    close(pfd[0]);
+    assert_int_equal(waitpid(pid, &stt, 0), pid);
+    if (!WIFEXITED(stt) || WEXITSTATUS(stt) != 1)
+        fail_msg("state line '%s' was accepted (status %d)", where, stt);
+    {
+        char want[512];
+        snprintf(want, sizeof want, "%s:2: ", state);
+        if (!strstr(msg, want))
+            fail_msg("state line '%s': message without %s: %s", where, want, msg);
+    }
+}
+
+/* Each junk value is refused with file:line, and the file is left as it was. */
+static void t_state_junk(void **st)
+{
+    static const char *const junk[] = {
+        "SPEED nan", "SPEED inf", "SPEED -inf", "SPEED 101", "SPEED 0", "SPEED 50x", "SPEED 50 7", "SPEED 1e999",
+        "SPEED", "JOINTS 0 90 -90 0 nan", "JOINTS 0 90 -90 0", "JOINTS 0 90 -90 0 0 0", "JOINTS 0 200 -90 0 0",
+        "CONFIG 0 -9223372036854775808 N 8 1 X 1", "CONFIG 0 99999999999999999999 N 8 1 X 1",
+        "CONFIG 0 9600 N 8 1 X 1 junk", "CONFIG 2 9600 N 8 1 X 1", "CONFIG 0 9600.5 N 8 1 X 1",
+        "CONFIG 0 9600 Q 8 1 X 1", "CONFIG 0 9600 N 9 1 X 1", "CONFIG 0 9600 N 8 1 X 7", "GAIN 1 1e999",
+        "GAIN 9 1", "GAIN 1 -1", "GAIN 1 0x10", "VAR V1 -inf", "VAR V1 nan", "VAR 1X 3", "VAR TOOLONGNAME 1",
+        "VAR V1 1 2", "PLOC P 1 2 3 4 99999999999", "PLOC P 1 2 3 4 5.5", "PLOC P 1 2 3 4",
+        "LOC P 1 2 3 4 5 nan", "LOC P 1 2 3 4 5", "LOC P 1 2 3 4 5 6 7", "EXTRA 1e300 0", "EXTRA 0 inf",
+        "GRIPPER 3 50", "GRIPPER 1 0", "GRIPPER 1 50 x", "OUTPUTS 01", "OUTPUTS 000000000000000x",
+        "FLASH 2", "FLASH -1", "FLASH 1 1", "TOOL T 0 0 1 0 0 0 x", "TOOL T 0 0 nan 0 0 0", "PROGRAM P junk",
+        "PROGRAM", "FOO 1", "SPEED\t50\tjunk",
+    };
+    const char *state = tmp("junk.state");
+    size_t i;
+    (void)st;
+    for (i = 0; i < sizeof junk / sizeof junk[0]; i++) {
+        FILE *f = fopen(state, "w");
+        char text[256], back[256];
+        size_t n;
+        snprintf(text, sizeof text, "FBRLSIM-STATE 1\n%s\nSPEED 50\n", junk[i]);
+        assert_non_null(f);
+        fputs(text, f);
+        fclose(f);
+        refused_state(state, junk[i]);
+        f = fopen(state, "r");
+        n = fread(back, 1, sizeof back - 1, f);
+        back[n] = 0;
+        fclose(f);
+        assert_string_equal(back, text); /* not overwritten */
+    }
+    {
+        /* a duplicate name, a program without END and a program line too long, too */
+        static const char *const late[] = { "VAR A 1\nVAR A 2\n", "LOC P 1 2 3 4 5 6\nLOC P 1 2 3 4 5 6\n",
+                                            "PROGRAM P\n  HOME\n" };
+        for (i = 0; i < sizeof late / sizeof late[0]; i++) {
+            FILE *f = fopen(state, "w");
+            int pid, stt;
+            fprintf(f, "FBRLSIM-STATE 1\n%s", late[i]);
+            fclose(f);
+            pid = fork();
+            if (pid == 0) {
+                int dn = open("/dev/null", O_WRONLY);
+                dup2(dn, 1);
+                dup2(dn, 2);
+                execl(FBRLSIM_PATH, FBRLSIM_PATH, "--state", state, (char *)NULL);
+                _exit(127);
+            }
+            waitpid(pid, &stt, 0);
+            assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+        }
+    }
+}
+
+/* A symlink planted where the old fixed temporary name was (and the directory's
+ * other files) is never written through; no temporary is left behind. */
+static void t_state_symlink(void **st)
+{
+    const char *state = tmp("sym.state"), *victim = tmp("victim"), *planted = tmp("sym.state.tmp");
+    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    simp p;
+    FILE *f = fopen(victim, "w");
+    char back[64];
+    size_t n;
+    struct stat sb;
+    int i;
+    (void)st;
+    fputs("precious\n", f);
+    fclose(f);
+    assert_int_equal(symlink(victim, planted), 0);
+    start(&p, opts);
+    for (i = 0; i < 20; i++) {
+        char c[64];
+        snprintf(c, sizeof c, "POINT P%d,%d,1,2,0,-90,0", i, i);
+        ok(&p, c);
+    }
+    stop(&p);
+    f = fopen(victim, "r");
+    n = fread(back, 1, sizeof back - 1, f);
+    back[n] = 0;
+    fclose(f);
+    assert_string_equal(back, "precious\n");
+    assert_int_equal(lstat(planted, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode)); /* left alone */
+    assert_int_equal(lstat(state, &sb), 0);
+    assert_true(S_ISREG(sb.st_mode));
+    {
+        /* only the state, the victim and the planted link: no temporary left */
+        char c[512];
+        snprintf(c, sizeof c, "test $(ls -A '%s' | grep -c '^sym.state') -eq 2", g_dir);
+        assert_int_equal(system(c), 0);
+    }
+    start(&p, opts);
+    assert_non_null(strstr(cmd(&p, "LISTL P19"), "+019.0000"));
+    stop(&p);
+}
+
+/* Names are upper-cased wherever they enter memory: a program written in lower case
+ * defines upper-case names, the state it saves loads again, and RUN still works. */
+static void t_state_lowercase(void **st)
+{
+    const char *state = tmp("lower.state");
+    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    simp p;
+    FILE *f = fopen(state, "w");
+    int i;
+    (void)st;
+    fputs("FBRLSIM-STATE 1\nvar count 0\nPROGRAM teach\n  here p1\n  point #q2,1,2,3,4,5\n"
+          "  set p3=p1\n  count=count+1\n  type done\nEND\n", f);
+    fclose(f);
+    for (i = 0; i < 2; i++) {
+        start(&p, opts);
+        ok(&p, "HOME");
+        assert_string_equal(cmd(&p, "RUN TEACH"), "DONE\r\n");
+        assert_string_equal(cmd(&p, "LISTL #Q2"), "#Q2       +0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r\n");
+        assert_non_null(strstr(cmd(&p, "LISTL"), "P1 "));
+        assert_non_null(strstr(cmd(&p, "LISTL P3"), "P3 "));
+        assert_string_equal(cmd(&p, "TYPEI COUNT"), i ? "2\r\n" : "1\r\n");
+        stop(&p); /* saves; the second round loads what was saved */
+    }
+    {
+        char text[4096];
+        size_t n;
+        f = fopen(state, "r");
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_non_null(strstr(text, "\nPLOC Q2 1 2 3 4 5\n"));
+        assert_non_null(strstr(text, "\nPROGRAM TEACH\n  HERE P1\n"));
+        assert_null(strstr(text, " p1"));
+    }
+}
+
 /* ---- baud pacing and overrun ----------------------------------------- */
 
 static void t_baud(void **st)
@@ -1330,9 +1514,74 @@ static void t_tcp(void **st)
         a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
         p.fd = socket(AF_INET, SOCK_STREAM, 0);
         assert_int_equal(connect(p.fd, (struct sockaddr *)&a, sizeof a), 0);
+        expect_greeting(&p);
     }
     assert_string_equal(status_line(&p, "CONTROLLER"), "CONTROLLER IS HOMED");
     stop(&p);
+}
+
+static int tcp_connect(const char *path)
+{
+    struct sockaddr_in a;
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    memset(&a, 0, sizeof a);
+    a.sin_family = AF_INET;
+    a.sin_port = htons((unsigned short)atoi(strrchr(path, ':') + 1));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    assert_true(fd >= 0);
+    assert_int_equal(connect(fd, (struct sockaddr *)&a, sizeof a), 0);
+    return fd;
+}
+
+/* A second client while one is connected is told the controller is busy and closed at
+ * once; what it typed never runs, not even after the first client leaves (the log is
+ * the truth for what ran). */
+static void t_tcp_busy(void **st)
+{
+    const char *log = tmp("busy.log");
+    const char *const opts[] = { "--tcp", "0", "--time-scale", "200", "--log", log, NULL };
+    simp p, q;
+    size_t n;
+    double t0;
+    char line[256];
+    FILE *f;
+    int i;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "V1=1");
+    for (i = 0; i < 3; i++) {
+        q.fd = tcp_connect(p.path);
+        puts_(&q, "V7=99\rOUTPUT 3\r");
+        t0 = now_s();
+        n = read_until(&q, g_buf, sizeof g_buf, "\r\n", TIMEOUT);
+        assert_true(n > 0);
+        assert_non_null(strstr(g_buf, "busy"));
+        assert_null(strstr(g_buf, ">>"));
+        /* and then end of file: closed at once, not left waiting */
+        n = read_until(&q, g_buf, sizeof g_buf, NULL, 2.0);
+        assert_int_equal(n, 0);
+        assert_true(now_s() - t0 < 2.0);
+        close(q.fd);
+    }
+    ok(&p, "V2=2"); /* the first client was not disturbed */
+    close(p.fd);
+    usleep(200000);
+    p.fd = tcp_connect(p.path);
+    expect_greeting(&p);
+    err(&p, "TYPEV V7", 10);
+    assert_string_equal(status_line(&p, "OUTPUTS"), "OUTPUTS 1-16: 0000000000000000");
+    p.fd = p.fd;
+    stop(&p);
+    f = fopen(log, "r");
+    assert_non_null(f);
+    n = 0;
+    while (fgets(line, sizeof line, f)) {
+        assert_null(strstr(line, "V7=99"));
+        assert_null(strstr(line, "OUTPUT 3"));
+        n++;
+    }
+    fclose(f);
+    assert_int_equal(n, 5); /* NOHELP V1=1 V2=2 TYPEV V7 STATUS */
 }
 
 static void t_embed(void **st)
@@ -1415,11 +1664,12 @@ int main(int argc, char **argv)
     GROUP("io", cmocka_unit_test(t_io), cmocka_unit_test(t_inputs_script), cmocka_unit_test(t_gripper),
           cmocka_unit_test(t_variables), cmocka_unit_test(t_settings), cmocka_unit_test(t_streams_extra),
           cmocka_unit_test(t_run))
-    GROUP("persist", cmocka_unit_test(t_persist))
+    GROUP("persist", cmocka_unit_test(t_persist), cmocka_unit_test(t_state_junk), cmocka_unit_test(t_state_symlink),
+          cmocka_unit_test(t_state_lowercase))
     GROUP("baud", cmocka_unit_test(t_baud))
     GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_parity), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))
-    GROUP("tcp", cmocka_unit_test(t_tcp))
+    GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
     GROUP("embed", cmocka_unit_test(t_embed))
     cleanup();
     return rc;
