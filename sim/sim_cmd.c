@@ -1051,13 +1051,13 @@ static int h_noflash(fbrl_sim *s, args *a, int *b)
 static int h_nohelp(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    return set_mode(a, &s->help, 0);
+    return set_mode(a, &s->term.help, 0);
 }
 
 static int h_help(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    return set_mode(a, &s->help, 1);
+    return set_mode(a, &s->term.help, 1);
 }
 
 static int h_point(fbrl_sim *s, args *a, int *b)
@@ -1255,12 +1255,12 @@ static int h_listl(fbrl_sim *s, args *a, int *b)
             return e;
         if (!(l = find_loc(s, name, prec)))
             return 11;
-        print_loc(&s->out, l);
+        print_loc(&s->term.out, l);
         return 0;
     }
     qsort(s->locs, (size_t)s->nlocs, sizeof s->locs[0], cmp_loc);
     for (i = 0; i < s->nlocs; i++)
-        print_loc(&s->out, &s->locs[i]);
+        print_loc(&s->term.out, &s->locs[i]);
     return 0;
 }
 
@@ -1282,12 +1282,12 @@ static int h_listv(fbrl_sim *s, args *a, int *b)
             return e;
         if (!(v = find_var(s, name)))
             return 10;
-        sim_out_printf(&s->out, "%-8s = %+.6f\r\n", v->name, v->v);
+        sim_out_printf(&s->term.out, "%-8s = %+.6f\r\n", v->name, v->v);
         return 0;
     }
     qsort(s->vars, (size_t)s->nvars, sizeof s->vars[0], cmp_var);
     for (i = 0; i < s->nvars; i++)
-        sim_out_printf(&s->out, "%-8s = %+.6f\r\n", s->vars[i].name, s->vars[i].v);
+        sim_out_printf(&s->term.out, "%-8s = %+.6f\r\n", s->vars[i].name, s->vars[i].v);
     return 0;
 }
 
@@ -1335,7 +1335,7 @@ static int h_type(fbrl_sim *s, args *a, int *b)
         r++;
         n -= 2;
     }
-    sim_out_printf(&s->out, "%.*s\r\n", (int)n, r);
+    sim_out_printf(&s->term.out, "%.*s\r\n", (int)n, r);
     return 0;
 }
 
@@ -1350,7 +1350,7 @@ static int h_typei(fbrl_sim *s, args *a, int *b)
         return e;
     if (fabs(v) > 9.2e18)
         return 20;
-    sim_out_printf(&s->out, "%ld\r\n", lround(v));
+    sim_out_printf(&s->term.out, "%ld\r\n", lround(v));
     return 0;
 }
 
@@ -1363,7 +1363,7 @@ static int h_typev(fbrl_sim *s, args *a, int *b)
         return 13;
     if ((e = eval(s, a->rest, &v)))
         return e;
-    sim_out_printf(&s->out, "%+.6f\r\n", v);
+    sim_out_printf(&s->term.out, "%+.6f\r\n", v);
     return 0;
 }
 
@@ -1477,7 +1477,7 @@ static int h_serial(fbrl_sim *s, args *a, int *b)
         return e;
     for (i = 0; i < 2; i++) {
         const sim_chan *c = &s->chan[i];
-        sim_out_printf(&s->out, "CHANNEL %d: BAUD %ld PARITY %c DATA %d STOP %d HANDSHAKE %c ECHO %d\r\n",
+        sim_out_printf(&s->term.out, "CHANNEL %d: BAUD %ld PARITY %c DATA %d STOP %d HANDSHAKE %c ECHO %d\r\n",
                        i, c->baud, c->parity, c->data, c->stop, c->handshake, c->echo);
     }
     return 0;
@@ -1496,7 +1496,7 @@ static int h_gain(fbrl_sim *s, args *a, int *b)
     if (a->n == 1) {
         if (m == 0)
             return 65;
-        sim_out_printf(&s->out, "GAIN MOTOR %ld: %+.4f\r\n", m, s->gain[m]);
+        sim_out_printf(&s->term.out, "GAIN MOTOR %ld: %+.4f\r\n", m, s->gain[m]);
         return 0;
     }
     if ((e = num(s, a, 1, &v)))
@@ -1567,7 +1567,7 @@ static int h_xzero(fbrl_sim *s, args *a, int *b) { return h_xaxis(s, a, 2, b); }
 
 static void print_position(fbrl_sim *s, const char *title, const double q[NAXES])
 {
-    sim_out *o = &s->out;
+    sim_out *o = &s->term.out;
     double pose[6];
     int i;
     fbrl_sim_arm_fk(q, tool_len(s), pose);
@@ -1618,9 +1618,9 @@ static int h_stream(fbrl_sim *s, args *a, int kind)
     int e = want(a, 0, 0);
     if (e)
         return e;
-    s->stream_kind = kind;
-    s->ps = PS_STREAM;
-    sim_out_printf(&s->out, "%s\r\n", titles[(kind % 10) / 2 + (kind > 10 ? 3 : 0)]);
+    s->term.stream_kind = kind;
+    s->term.ps = PS_STREAM;
+    sim_out_printf(&s->term.out, "%s\r\n", titles[(kind % 10) / 2 + (kind > 10 ? 3 : 0)]);
     return 0;
 }
 
@@ -1635,10 +1635,10 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
 {
     const double dt = 0.01; /* simulated seconds for the velocity difference */
     int i;
-    if (s->stream_kind < 10) {
+    if (s->term.stream_kind < 10) {
         double q[NAXES], q2[NAXES];
         sim_joints_now(s, q);
-        if (s->stream_kind == 5) {
+        if (s->term.stream_kind == 5) {
             /* the difference over the last dt of simulated time, from the segment's own formula */
             double save = s->t0;
             s->t0 += dt / s->opt.time_scale;
@@ -1651,7 +1651,7 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
             for (i = 0; i < NAXES; i++)
                 sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(i, q[i]));
         }
-    } else if (s->stream_kind == 15) {
+    } else if (s->term.stream_kind == 15) {
         double v = s->xmoving && sim_now(s) < s->xt1 ? (s->xtarget - s->xpos) / (s->xt1 - s->xt0) : 0.0;
         sim_out_printf(o, "%+011ld", lround(v));
     } else {
@@ -1662,7 +1662,7 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
 
 static int h_status(fbrl_sim *s, args *a, int *b)
 {
-    sim_out *o = &s->out;
+    sim_out *o = &s->term.out;
     double q[NAXES];
     int e = want(a, 0, 0), i, moving[NAXES];
     (void)b;
@@ -1975,7 +1975,8 @@ static int exec_line(fbrl_sim *s, const char *text, int top, int *block)
 
 int sim_exec(fbrl_sim *s, const char *line, int *err)
 {
-    snprintf(s->cur, sizeof s->cur, "%s", line);
+    if (line != s->term.cur)
+        snprintf(s->term.cur, sizeof s->term.cur, "%s", line);
     s->run_prog = NULL;
     return sim_exec_step(s, err);
 }
@@ -1984,7 +1985,7 @@ int sim_exec_step(fbrl_sim *s, int *err)
 {
     int block = 0, e;
     sim_arm_update(s);
-    e = s->run_prog ? run_continue(s, &block) : exec_line(s, s->cur, 1, &block);
+    e = s->run_prog ? run_continue(s, &block) : exec_line(s, s->term.cur, 1, &block);
     if (block)
         return EXEC_BLOCK;
     *err = e ? e : -1;
@@ -2056,7 +2057,7 @@ void sim_state_defaults(fbrl_sim *s)
     s->last_error = -1;
     s->speed = 50.0;
     s->power = 1;
-    s->help = 1;
+    s->term.help = 1;
     s->grip = SIM_GRIP_MAX;
     s->grip_force = 50.0;
     for (i = 0; i <= NAXES; i++)

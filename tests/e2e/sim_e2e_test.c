@@ -1293,6 +1293,198 @@ static void t_baud(void **st)
     stop(&p);
 }
 
+/* ---- the strict line ------------------------------------------------- */
+
+/* How late this test or the emulator may be woken by the OS (the machine is shared).
+ * Bytes handed over late bunch up at the receiver; that is the only slack the window
+ * check allows. The cumulative checks allow nothing: lateness can only make them
+ * hold more easily, earliness breaks them. */
+#define LATENESS 0.025
+#define WINDOW 0.100
+
+typedef struct arrivals {
+    double *t;   /* when each read returned */
+    size_t *n;   /* how many bytes (or prompts) it brought */
+    size_t k, cap;
+} arrivals;
+
+static void arr_add(arrivals *a, double t, size_t n)
+{
+    if (a->k == a->cap) {
+        a->cap = a->cap ? 2 * a->cap : 1024;
+        a->t = realloc(a->t, a->cap * sizeof *a->t);
+        a->n = realloc(a->n, a->cap * sizeof *a->n);
+        assert_non_null(a->t);
+        assert_non_null(a->n);
+    }
+    a->t[a->k] = t;
+    a->n[a->k++] = n;
+}
+
+/* The most units that arrived in any window of length w (windows start at an arrival). */
+static size_t max_window(const arrivals *a, double w)
+{
+    size_t i, j = 0, sum = 0, best = 0;
+    for (i = 0; i < a->k; i++) {
+        sum += a->n[i];
+        while (a->t[i] - a->t[j] > w)
+            sum -= a->n[j++];
+        if (sum > best)
+            best = sum;
+    }
+    return best;
+}
+
+/* Sends `count` copies of line (with CR) as fast as the pty takes them, never waiting
+ * for an echo, and records when the output bytes and the prompts arrive. */
+static double g_flood_t0; /* just before flood()'s first write: no byte left earlier */
+
+static void flood(simp *p, const char *line, int count, arrivals *bytes, arrivals *prompts)
+{
+    char out[64];
+    size_t len = strlen(line), sent = 0, total = (size_t)count * (len + 1), got_prompts = 0;
+    char *all = malloc(total);
+    double end = now_s() + 60.0;
+    int prev_gt = 0, i;
+    assert_non_null(all);
+    for (i = 0; i < count; i++) {
+        memcpy(all + (size_t)i * (len + 1), line, len);
+        all[(size_t)i * (len + 1) + len] = '\r';
+    }
+    fcntl(p->fd, F_SETFL, fcntl(p->fd, F_GETFL) | O_NONBLOCK);
+    g_flood_t0 = now_s();
+    while (got_prompts < (size_t)count && now_s() < end) {
+        struct pollfd pf = { p->fd, (short)(POLLIN | (sent < total ? POLLOUT : 0)), 0 };
+        if (poll(&pf, 1, 100) <= 0)
+            continue;
+        if ((pf.revents & POLLOUT) && sent < total) {
+            ssize_t w = write(p->fd, all + sent, total - sent);
+            if (w > 0)
+                sent += (size_t)w;
+        }
+        if (pf.revents & POLLIN) {
+            ssize_t r = read(p->fd, out, sizeof out);
+            double t = now_s();
+            size_t np = 0;
+            if (r <= 0)
+                continue;
+            for (i = 0; i < r; i++) {
+                if (out[i] == '>' && prev_gt)
+                    np++;
+                prev_gt = out[i] == '>' && !prev_gt;
+            }
+            arr_add(bytes, t, (size_t)r);
+            if (np)
+                arr_add(prompts, t, np);
+            got_prompts += np;
+        }
+    }
+    fcntl(p->fd, F_SETFL, fcntl(p->fd, F_GETFL) & ~O_NONBLOCK);
+    free(all);
+    assert_int_equal(got_prompts, count);
+}
+
+/* With --baud N: no direction carries more than N/10 bytes per second over any window
+ * (measured here, on the receiving side, with real clocks), and no byte arrives before
+ * its start plus ten bit times, not even after the line was idle. */
+static void t_strict(void **st)
+{
+    static const long bauds[] = { 9600, 38400, 115200 };
+    size_t b;
+    (void)st;
+    for (b = 0; b < sizeof bauds / sizeof bauds[0]; b++) {
+        char baud[16];
+        const char *const opts[] = { "--time-scale", "200", "--baud", baud, "--rx-buffer", "65536", NULL };
+        double rate = (double)bauds[b] / 10.0, bit10 = 1.0 / rate, fastest = 1e9;
+        arrivals out = { 0 }, prompts = { 0 }, in = { 0 }, inprompts = { 0 };
+        size_t most, allowed, k;
+        int i, cmds = (int)(rate * 0.6 / 14.0); /* 0.6 s of output: "TYPEI 1" -> 14 bytes back */
+        simp p;
+        snprintf(baud, sizeof baud, "%ld", bauds[b]);
+        start(&p, opts);
+        /* one character after an idle line: its echo needs two character times */
+        for (i = 0; i < 20; i++) {
+            double t0;
+            usleep(20000);
+            t0 = now_s();
+            puts_(&p, "A");
+            assert_int_equal(read_until(&p, g_buf, sizeof g_buf, "A", TIMEOUT), 1);
+            if (now_s() - t0 < fastest)
+                fastest = now_s() - t0;
+            puts_(&p, "\b");
+            read_until(&p, g_buf, sizeof g_buf, "\b \b", TIMEOUT);
+        }
+        if (fastest < 2.0 * bit10)
+            fail_msg("%ld baud: an echo came back after %.3f ms, before two character times (%.3f ms)",
+                     bauds[b], fastest * 1e3, 2e3 * bit10);
+        /* controller -> host, saturated: the host sends without waiting for echoes */
+        flood(&p, "TYPEI 1", cmds, &out, &prompts);
+        most = max_window(&out, WINDOW);
+        allowed = (size_t)floor((WINDOW + LATENESS) * rate) + 1;
+        print_message("%6ld baud, output: at most %zu bytes in a 100 ms window (N/10 per 100 ms = %.0f, "
+                      "ratio %.3f; allowed with %.0f ms lateness %zu); fastest echo %.3f ms >= %.3f ms\n",
+                      bauds[b], most, rate * WINDOW, most / (rate * WINDOW), LATENESS * 1e3, allowed,
+                      fastest * 1e3, 2e3 * bit10);
+        if (most > allowed)
+            fail_msg("%ld baud: %zu bytes in 100 ms, the line carries %.0f", bauds[b], most, rate * WINDOW);
+        /* strict: the first byte back is the echo of the first byte sent (two character
+         * times), and each later one at least one character time after it */
+        for (k = 0, i = 0; i < (int)out.k; i++) {
+            k += out.n[i];
+            if ((double)k > (out.t[i] - g_flood_t0) / bit10 - 1.0)
+                fail_msg("%ld baud: %zu bytes back %.3f ms after the first was sent: faster than the line",
+                         bauds[b], k, (out.t[i] - g_flood_t0) * 1e3);
+        }
+        /* host -> controller, saturated: echo off, so each 9-byte command gives only
+         * CR LF >> back and the input side limits; commands done per window tell how
+         * many bytes the controller took in */
+        ok(&p, "CONFIG 0,9600,N,8,1,X,0");
+        cmds = (int)(rate * 0.6 / 9.0);
+        flood(&p, "SPEED 50", cmds, &in, &inprompts);
+        most = max_window(&inprompts, WINDOW);
+        allowed = (size_t)floor(((WINDOW + LATENESS) * rate) / 9.0) + 1;
+        print_message("%6ld baud, input: at most %zu commands in a 100 ms window: %zu bytes between the first "
+                      "and the last (N/10 per 100 ms = %.0f, ratio %.3f; allowed %zu commands)\n",
+                      bauds[b], most, (most - 1) * 9, rate * WINDOW, (most - 1) * 9 / (rate * WINDOW), allowed);
+        if (most > allowed)
+            fail_msg("%ld baud: %zu commands of 9 bytes in 100 ms, the line carries %.0f bytes", bauds[b], most,
+                     rate * WINDOW);
+        /* strict: command m's CR is byte 9(m+1) sent; its CR LF >> takes four more */
+        for (k = 0, i = 0; i < (int)inprompts.k; i++) {
+            k += inprompts.n[i];
+            if (inprompts.t[i] - g_flood_t0 < (9.0 * (double)k + 4.0) * bit10)
+                fail_msg("%ld baud: %zu commands done %.3f ms after the first byte was sent: faster than the line",
+                         bauds[b], k, (inprompts.t[i] - g_flood_t0) * 1e3);
+        }
+        free(out.t);
+        free(out.n);
+        free(prompts.t);
+        free(prompts.n);
+        free(in.t);
+        free(in.n);
+        free(inprompts.t);
+        free(inprompts.n);
+        stop(&p);
+    }
+}
+
+/* --cmd-time: the controller reads a line for that long (simulated ms) before the
+ * reply starts. */
+static void t_cmd_time(void **st)
+{
+    static const char *const opts[] = { "--time-scale", "2", "--cmd-time", "200", NULL };
+    simp p;
+    double t0, dt;
+    (void)st;
+    start(&p, opts); /* NOHELP too waited */
+    t0 = now_s();
+    ok(&p, "SPEED 30");
+    dt = now_s() - t0;
+    assert_true(dt >= 0.1); /* 200 simulated ms at time scale 2 */
+    assert_true(dt < 5.0);
+    stop(&p);
+}
+
 /* ---- faults ---------------------------------------------------------- */
 
 static size_t exchange(simp *p, const char *line, double wait)
@@ -1666,7 +1858,7 @@ int main(int argc, char **argv)
           cmocka_unit_test(t_run))
     GROUP("persist", cmocka_unit_test(t_persist), cmocka_unit_test(t_state_junk), cmocka_unit_test(t_state_symlink),
           cmocka_unit_test(t_state_lowercase))
-    GROUP("baud", cmocka_unit_test(t_baud))
+    GROUP("baud", cmocka_unit_test(t_baud), cmocka_unit_test(t_strict), cmocka_unit_test(t_cmd_time))
     GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_parity), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
