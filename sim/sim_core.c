@@ -36,6 +36,29 @@ void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
     va_end(ap);
 }
 
+static void sim_defaults(fbrl_sim *s)
+{
+    int i;
+    s->last_error = -1;
+    s->speed = 50.0;
+    s->power = 1;
+    s->term.help = 1;
+    s->grip = SIM_GRIP_MAX;
+    s->grip_force = 50.0;
+    for (i = 0; i <= FBRL_SIM_ARM_AXES; i++)
+        s->gain[i] = 1.0;
+    memcpy(s->q, fbrl_sim_arm_ready, sizeof s->q);
+    memcpy(s->qt, s->q, sizeof s->q);
+    for (i = 0; i < 2; i++) {
+        s->chan[i].baud = 9600;
+        s->chan[i].parity = 'N';
+        s->chan[i].data = 8;
+        s->chan[i].stop = 1;
+        s->chan[i].handshake = i == 0 ? 'X' : 'N';
+        s->chan[i].echo = 1;
+    }
+}
+
 void fbrl_sim_options_init(fbrl_sim_options *o)
 {
     if (!o)
@@ -71,7 +94,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->io.link_path = o->tcp_port < 0 ? dupstr(o->link_path) : NULL;
     s->opt.state_path = s->opt.log_path = s->opt.control_path = s->opt.link_path = NULL;
     s->opt.inputs_path = s->opt.faults = NULL;
-    sim_state_defaults(s);
+    sim_defaults(s);
     s->term.help = 1;
     if (sim_line_init(&s->line, o->baud, o->rx_buffer) != 0)
         goto fail_mem;

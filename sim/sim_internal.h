@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "arm.h"
+#include "sim_errors.h"
 #include "fbrlsim.h"
 
 #define SIM_LINE_MAX 80   /* longest command line (error 025 beyond) */
@@ -226,18 +227,26 @@ void sim_events_free(sim_events *ev);
 enum { EXEC_DONE, EXEC_BLOCK };
 int sim_exec(fbrl_sim *s, const char *line, int *err); /* EXEC_*; *err = RAPL code or -1 */
 int sim_exec_step(fbrl_sim *s, int *err);  /* continue a blocked or running command */
+const char *sim_help_hint(const char *word);  /* HELP-mode hint for a first word, or NULL */
+
+/* sim_out.c */
 void sim_out_printf(sim_out *o, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-const char *sim_error_text(int code);
-const char *sim_help_hint(const char *word);  /* HELP-mode hint for a first word, or NULL */
-int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: only check */
+
+/* sim_motion.c */
 void sim_arm_update(fbrl_sim *s);             /* finish motions whose time has come */
 void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_AXES]);
-void sim_stream_line(fbrl_sim *s, sim_out *o);
-void sim_state_defaults(fbrl_sim *s);
+
+/* sim_h_read.c */
+void sim_stream_line(fbrl_sim *s, sim_out *o);  /* the next line of a W1/W3/W5 readout */
+
+/* sim_control.c */
+int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: only check */
+
+/* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);
 
 /* sim_state.c */
