@@ -23,9 +23,9 @@ int sim_args_split(const char *rest, args *a)
         if (!*p)
             return 0;
         if (*p == ',')
-            return 14;
+            return SIM_E_BAD_SYNTAX;
         if (a->n == MAXARGS)
-            return 14;
+            return SIM_E_BAD_SYNTAX;
         a->v[a->n++] = p;
         while (*p && *p != ' ' && *p != ',')
             p++;
@@ -36,7 +36,7 @@ int sim_args_split(const char *rest, args *a)
             while (*p == ' ')
                 p++;
             if (!*p || *p == ',')
-                return 14;
+                return SIM_E_BAD_SYNTAX;
             continue;
         }
         *p++ = 0;
@@ -47,7 +47,7 @@ int sim_args_split(const char *rest, args *a)
             while (*p == ' ')
                 p++;
             if (!*p || *p == ',')
-                return 14;
+                return SIM_E_BAD_SYNTAX;
         }
     }
 }
@@ -66,7 +66,7 @@ int sim_args_take_s(args *a, int need)
 int sim_arg_num(fbrl_sim *s, args *a, int i, double *v)
 {
     if (i >= a->n)
-        return 13;
+        return SIM_E_ARG_MISSING;
     return sim_eval(s, a->v[i], v);
 }
 
@@ -75,7 +75,7 @@ int sim_arg_int(fbrl_sim *s, args *a, int i, long *v)
     double d;
     int e = sim_arg_num(s, a, i, &d);
     if (!e && fabs(d) > 1e12)
-        e = 20;
+        e = SIM_E_ARG_TOO_BIG;
     if (!e)
         *v = lround(d);
     return e;
@@ -85,9 +85,9 @@ int sim_arg_int(fbrl_sim *s, args *a, int i, long *v)
 int sim_args_want(args *a, int lo, int hi)
 {
     if (a->n < lo)
-        return 13;
+        return SIM_E_ARG_MISSING;
     if (a->n > hi)
-        return 14;
+        return SIM_E_BAD_SYNTAX;
     return 0;
 }
 
@@ -104,7 +104,7 @@ int sim_arg_axis(fbrl_sim *s, args *a, int i, int hi, long *ax)
 {
     int e = sim_arg_int(s, a, i, ax);
     if (!e && (*ax < 1 || *ax > hi))
-        e = 65;
+        e = SIM_E_BAD_AXIS;
     return e;
 }
 
@@ -117,9 +117,9 @@ int sim_args_two_names(args *a, char *x, char *y)
         r++;
     sep = strpbrk(r, "=,");
     if (!*r)
-        return 13;
+        return SIM_E_ARG_MISSING;
     if (!sep)
-        return a->n < 2 ? 13 : a->n > 2 ? 14 : (strcpy(x, a->v[0]), strcpy(y, a->v[1]), 0);
+        return a->n < 2 ? SIM_E_ARG_MISSING : a->n > 2 ? SIM_E_BAD_SYNTAX : (strcpy(x, a->v[0]), strcpy(y, a->v[1]), 0);
     n = (size_t)(sep - r);
     while (n && r[n - 1] == ' ')
         n--;
@@ -133,8 +133,8 @@ int sim_args_two_names(args *a, char *x, char *y)
     while (n && y[n - 1] == ' ')
         y[--n] = 0;
     if (!*x || !*y)
-        return 13;
+        return SIM_E_ARG_MISSING;
     if (strpbrk(x, " =,") || strpbrk(y, " =,"))
-        return 14;
+        return SIM_E_BAD_SYNTAX;
     return 0;
 }

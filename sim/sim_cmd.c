@@ -16,23 +16,23 @@ static int exec_line(fbrl_sim *s, const char *text, int top, int *block);
 
 static int run_continue(fbrl_sim *s, int *block)
 {
-    while (s->run_left > 0) {
-        while (s->run_pc < s->run_prog->n) {
-            int b = 0, e = exec_line(s, s->run_prog->lines[s->run_pc], 0, &b);
+    while (s->run.left > 0) {
+        while (s->run.pc < s->run.prog->n) {
+            int b = 0, e = exec_line(s, s->run.prog->lines[s->run.pc], 0, &b);
             if (b) {
                 *block = 1;
                 return 0;
             }
-            s->run_pc++;
+            s->run.pc++;
             if (e) {
-                s->run_prog = NULL;
+                s->run.prog = NULL;
                 return e;
             }
         }
-        s->run_pc = 0;
-        s->run_left--;
+        s->run.pc = 0;
+        s->run.left--;
     }
-    s->run_prog = NULL;
+    s->run.prog = NULL;
     return 0;
 }
 
@@ -44,15 +44,15 @@ int sim_h_run(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_name_parse(a->v[0], NULL, name)) || (a->n == 2 && (e = sim_arg_int(s, a, 1, &count))))
         return e;
     if (count < 1)
-        return 18;
-    for (i = 0; i < s->nprogs; i++)
-        if (!strcmp(s->progs[i].name, name))
+        return SIM_E_ILLEGAL_ARG;
+    for (i = 0; i < s->mem.nprogs; i++)
+        if (!strcmp(s->mem.progs[i].name, name))
             break;
-    if (i == s->nprogs)
-        return 17;
-    s->run_prog = &s->progs[i];
-    s->run_pc = 0;
-    s->run_left = count;
+    if (i == s->mem.nprogs)
+        return SIM_E_PROGRAM_NOT_FOUND;
+    s->run.prog = &s->mem.progs[i];
+    s->run.pc = 0;
+    s->run.left = count;
     return run_continue(s, b);
 }
 
@@ -142,17 +142,17 @@ static int lookup(const char *word, const cmd **out)
         int t;
         if (n != 4 || !isdigit((unsigned char)word[1]) || !isdigit((unsigned char)word[2])
             || !isdigit((unsigned char)word[3]))
-            return 12;
+            return SIM_E_COMMAND;
         t = atoi(word + 1);
         for (i = 0; i < NCMDS; i++)
             if (cmds[i].token == t) {
                 *out = &cmds[i];
                 return 0;
             }
-        return 12;
+        return SIM_E_COMMAND;
     }
     if (!n)
-        return 12;
+        return SIM_E_COMMAND;
     for (i = 0; i < NCMDS; i++) {
         if (!strcmp(cmds[i].name, word)) {
             *out = &cmds[i];
@@ -167,7 +167,7 @@ static int lookup(const char *word, const cmd **out)
         *out = &cmds[found];
         return 0;
     }
-    return count ? 50 : 12;
+    return count ? SIM_E_AMBIGUOUS : SIM_E_COMMAND;
 }
 
 const char *sim_help_hint(const char *word)
@@ -192,9 +192,9 @@ static int assign(fbrl_sim *s, const char *text)
         return e;
     var = sim_var_find(s, name);
     if (!var) {
-        if (s->nvars == SIM_MAX_VARS)
-            return 22;
-        var = &s->vars[s->nvars++];
+        if (s->mem.nvars == SIM_MAX_VARS)
+            return SIM_E_TABLE_FULL;
+        var = &s->mem.vars[s->mem.nvars++];
         strcpy(var->name, name);
     }
     var->v = v;
@@ -232,24 +232,24 @@ static int exec_line(fbrl_sim *s, const char *text, int top, int *block)
     if ((e = lookup(word, &c)))
         return e;
     if ((c->flags & F_TOP) && !top)
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     if ((e = sim_args_split(p, &a)) && !(c->flags & F_RAW))
         return e;
     a.rest = p;
     if (*a.rest == ',')
         a.rest++;
     if (c->flags & F_MOTION) {
-        if (s->moving || s->xmoving) {
+        if (s->arm.moving || s->arm.xmoving) {
             *block = 1;
             return 0;
         }
-        if (!s->power)
-            return 40;
-        if (!s->homed)
-            return 41;
+        if (!s->arm.power)
+            return SIM_E_POWER_OFF;
+        if (!s->arm.homed)
+            return SIM_E_NOT_HOMED;
         for (n = 0; n < NAXES; n++)
-            if (s->limp[n])
-                return 18;
+            if (s->arm.limp[n])
+                return SIM_E_ILLEGAL_ARG;
     }
     return c->fn(s, &a, block);
 }
@@ -258,7 +258,7 @@ int sim_exec(fbrl_sim *s, const char *line, int *err)
 {
     if (line != s->term.cur)
         snprintf(s->term.cur, sizeof s->term.cur, "%s", line);
-    s->run_prog = NULL;
+    s->run.prog = NULL;
     return sim_exec_step(s, err);
 }
 
@@ -266,7 +266,7 @@ int sim_exec_step(fbrl_sim *s, int *err)
 {
     int block = 0, e;
     sim_arm_update(s);
-    e = s->run_prog ? run_continue(s, &block) : exec_line(s, s->term.cur, 1, &block);
+    e = s->run.prog ? run_continue(s, &block) : exec_line(s, s->term.cur, 1, &block);
     if (block)
         return EXEC_BLOCK;
     *err = e ? e : -1;

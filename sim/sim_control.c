@@ -15,42 +15,42 @@ int sim_control(fbrl_sim *s, const char *line)
         return -1;
     if (!strcmp(w, "IN") && n == 3 && a >= 1 && a <= SIM_IO && (b == 0 || b == 1)) {
         if (s)
-            s->in[(int)a - 1] = (int)b;
+            s->dev.in[(int)a - 1] = (int)b;
         return 0;
     }
     if (!strcmp(w, "AIN") && n == 3 && a >= 1 && a <= SIM_AIN && a == (int)a && b >= -10 && b <= 10) {
         if (s)
-            s->ain[(int)a - 1] = b;
+            s->dev.ain[(int)a - 1] = b;
         return 0;
     }
     if (!strcmp(w, "POWER") && n == 2 && (a == 0 || a == 1)) {
         if (s) {
             if (!a)
                 sim_halt(s);
-            s->power = (int)a;
+            s->arm.power = (int)a;
         }
         return 0;
     }
     if (!strcmp(w, "OBJECT") && n == 2 && a >= 0 && a <= SIM_GRIP_MAX) {
         if (s)
-            s->object = a;
+            s->dev.object = a;
         return 0;
     }
     if (!strcmp(w, "TEACH") && n == 1) {
-        if (s && s->teach && s->teach_next <= 999) {
+        if (s && s->mem.teach && s->mem.teach_next <= 999) {
             char name[32];
             double q[NAXES];
             sim_loc *l;
             int i;
-            snprintf(name, sizeof name, "%.5s%03d", s->teach_name, s->teach_next);
-            if (sim_loc_new(s, name, s->teach == 2, &l) == 0) {
+            snprintf(name, sizeof name, "%.5s%03d", s->mem.teach_name, s->mem.teach_next);
+            if (sim_loc_new(s, name, s->mem.teach == 2, &l) == 0) {
                 sim_joints_now(s, q);
-                if (s->teach == 2)
+                if (s->mem.teach == 2)
                     for (i = 0; i < NAXES; i++)
                         l->p[i] = fbrl_sim_arm_pulses(i, q[i]);
                 else
                     fbrl_sim_arm_fk(q, sim_tool_len(s), l->v);
-                s->teach_next++;
+                s->mem.teach_next++;
                 if (s->state_path)
                     sim_state_save(s);
                 s->dirty = 0;

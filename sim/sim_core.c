@@ -7,7 +7,6 @@
 #include <fcntl.h>
 #include <math.h>
 #include <poll.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -26,36 +25,26 @@ static char *dupstr(const char *p)
     return d;
 }
 
-void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
-{
-    va_list ap;
-    if (!err || !errlen)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err, errlen, fmt, ap);
-    va_end(ap);
-}
-
 static void sim_defaults(fbrl_sim *s)
 {
     int i;
-    s->last_error = -1;
-    s->speed = 50.0;
-    s->power = 1;
+    s->term.last_error = -1;
+    s->arm.speed = 50.0;
+    s->arm.power = 1;
     s->term.help = 1;
-    s->grip = SIM_GRIP_MAX;
-    s->grip_force = 50.0;
+    s->dev.grip = SIM_GRIP_MAX;
+    s->dev.grip_force = 50.0;
     for (i = 0; i <= FBRL_SIM_ARM_AXES; i++)
-        s->gain[i] = 1.0;
-    memcpy(s->q, fbrl_sim_arm_ready, sizeof s->q);
-    memcpy(s->qt, s->q, sizeof s->q);
+        s->arm.gain[i] = 1.0;
+    memcpy(s->arm.q, fbrl_sim_arm_ready, sizeof s->arm.q);
+    memcpy(s->arm.qt, s->arm.q, sizeof s->arm.q);
     for (i = 0; i < 2; i++) {
-        s->chan[i].baud = 9600;
-        s->chan[i].parity = 'N';
-        s->chan[i].data = 8;
-        s->chan[i].stop = 1;
-        s->chan[i].handshake = i == 0 ? 'X' : 'N';
-        s->chan[i].echo = 1;
+        s->dev.chan[i].baud = 9600;
+        s->dev.chan[i].parity = 'N';
+        s->dev.chan[i].data = 8;
+        s->dev.chan[i].stop = 1;
+        s->dev.chan[i].handshake = i == 0 ? 'X' : 'N';
+        s->dev.chan[i].echo = 1;
     }
 }
 
@@ -103,13 +92,13 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     if (s->state_path && sim_state_load(s, err, errlen) != 0)
         goto fail;
     if (o->baud > 0)
-        s->chan[0].baud = o->baud;
+        s->dev.chan[0].baud = o->baud;
     if (o->parity) {
         if (o->parity != 'N' && o->parity != 'E' && o->parity != 'O') {
             sim_seterr(err, errlen, "parity must be N, E or O");
             goto fail;
         }
-        s->chan[0].parity = o->parity;
+        s->dev.chan[0].parity = o->parity;
     }
     if (o->inputs_path && sim_events_load(&s->events, o->inputs_path, err, errlen) != 0)
         goto fail;
@@ -171,10 +160,10 @@ static void do_write(fbrl_sim *s, double now)
 static double due_in(fbrl_sim *s, double limit)
 {
     double r = limit, now = sim_real_now(s), t;
-    if (s->moving || s->xmoving) {
-        double end = s->moving ? s->mt1 : s->xt1;
-        if (s->moving && s->xmoving && s->xt1 < end)
-            end = s->xt1;
+    if (s->arm.moving || s->arm.xmoving) {
+        double end = s->arm.moving ? s->arm.mt1 : s->arm.xt1;
+        if (s->arm.moving && s->arm.xmoving && s->arm.xt1 < end)
+            end = s->arm.xt1;
         t = (end - sim_now(s)) / s->opt.time_scale;
         if (t < r)
             r = t;

@@ -30,7 +30,7 @@ static double e_io(expr *e, const int *bits, double n)
     if (e->err)
         return 0;
     if (i < 1 || i > SIM_IO) {
-        e->err = 16;
+        e->err = SIM_E_IO_ADDRESS;
         return 0;
     }
     return bits[i - 1] ? 1.0 : 0.0;
@@ -43,10 +43,10 @@ static double e_adc(expr *e, double n)
     if (e->err)
         return 0;
     if (i < 1 || i > SIM_AIN) {
-        e->err = 24;
+        e->err = SIM_E_AD_CHANNEL;
         return 0;
     }
-    return e->s->ain[i - 1];
+    return e->s->dev.ain[i - 1];
 }
 
 static double e_primary(expr *e)
@@ -63,7 +63,7 @@ static double e_primary(expr *e)
         while (isdigit((unsigned char)*q))
             q++;
         if (q == e->p + 1 && *e->p == '.') {
-            e->err = 14;
+            e->err = SIM_E_BAD_SYNTAX;
             return 0;
         }
         if (*q == 'E' && (isdigit((unsigned char)q[1])
@@ -74,7 +74,7 @@ static double e_primary(expr *e)
         }
         n = (size_t)(q - e->p);
         if (n >= sizeof num) {
-            e->err = 14;
+            e->err = SIM_E_BAD_SYNTAX;
             return 0;
         }
         memcpy(num, e->p, n);
@@ -89,7 +89,7 @@ static double e_primary(expr *e)
         e_space(e);
         if (*e->p != ')') {
             if (!e->err)
-                e->err = 14;
+                e->err = SIM_E_BAD_SYNTAX;
             return 0;
         }
         e->p++;
@@ -110,7 +110,7 @@ static double e_primary(expr *e)
             if (strcmp(id, fn[i]) != 0)
                 continue;
             if (*e->p != '(') {
-                e->err = 14;
+                e->err = SIM_E_BAD_SYNTAX;
                 return 0;
             }
             e->p++;
@@ -118,7 +118,7 @@ static double e_primary(expr *e)
             e_space(e);
             if (*e->p != ')') {
                 if (!e->err)
-                    e->err = 14;
+                    e->err = SIM_E_BAD_SYNTAX;
                 return 0;
             }
             e->p++;
@@ -132,28 +132,28 @@ static double e_primary(expr *e)
             case 6: r = fabs(x); break;
             case 7: r = sqrt(x); break;
             case 8: r = trunc(x); break;
-            case 9: return e_io(e, e->s->in, x);
-            case 10: return e_io(e, e->s->out_, x);
+            case 9: return e_io(e, e->s->dev.in, x);
+            case 10: return e_io(e, e->s->dev.out_, x);
             default: return e_adc(e, x);
             }
             if (!isfinite(r) && !e->err)
-                e->err = 18;
+                e->err = SIM_E_ILLEGAL_ARG;
             return r;
         }
         if (!strcmp(id, "GRIPPER"))
-            return e->s->grip;
+            return e->s->dev.grip;
         {
             sim_var *v = strlen(id) <= SIM_NAME_MAX ? sim_var_find(e->s, id) : NULL;
             if (!v) {
                 if (!e->err)
-                    e->err = 10;
+                    e->err = SIM_E_SYMBOL_UNDEFINED;
                 return 0;
             }
             return v->v;
         }
     }
     if (!e->err)
-        e->err = 14;
+        e->err = SIM_E_BAD_SYNTAX;
     return 0;
 }
 
@@ -185,7 +185,7 @@ static double e_product(expr *e)
             d = e_unary(e);
             if (d == 0.0) {
                 if (!e->err)
-                    e->err = 18;
+                    e->err = SIM_E_ILLEGAL_ARG;
                 return 0;
             }
             v /= d;
@@ -222,8 +222,8 @@ int sim_eval(fbrl_sim *s, const char *text, double *v)
     *v = e_sum(&e);
     e_space(&e);
     if (!e.err && *e.p)
-        e.err = 14;
+        e.err = SIM_E_BAD_SYNTAX;
     if (!e.err && !isfinite(*v))
-        e.err = 18;
+        e.err = SIM_E_ILLEGAL_ARG;
     return e.err;
 }

@@ -16,19 +16,19 @@ static int force_arg(fbrl_sim *s, args *a, int i)
     if ((e = sim_arg_num(s, a, i, &f)))
         return e;
     if (f > 100.0)
-        return 20;
+        return SIM_E_ARG_TOO_BIG;
     if (f < 1.0)
-        return 18;
-    s->grip_force = f;
+        return SIM_E_ILLEGAL_ARG;
+    s->dev.grip_force = f;
     return 0;
 }
 
 /* Moves the gripper towards d; an object between the fingers stops it. */
 static void grip_to(fbrl_sim *s, double d)
 {
-    if (s->object > 0 && d < s->object && s->grip >= s->object)
-        d = s->object;
-    s->grip = d;
+    if (s->dev.object > 0 && d < s->dev.object && s->dev.grip >= s->dev.object)
+        d = s->dev.object;
+    s->dev.grip = d;
     s->dirty = 1;
 }
 
@@ -62,9 +62,9 @@ int sim_h_grip(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_arg_num(s, a, 0, &d)))
         return e;
     if (d > SIM_GRIP_MAX)
-        return 20;
+        return SIM_E_ARG_TOO_BIG;
     if (d < 0)
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     if ((e = force_arg(s, a, 1)))
         return e;
     grip_to(s, d);
@@ -78,15 +78,15 @@ int sim_h_manual(fbrl_sim *s, args *a, int *b)
     if (e)
         return e;
     if (a->n && strcmp(a->v[0], "JOI") && strcmp(a->v[0], "CYL"))
-        return 18;
-    s->manual = 1;
+        return SIM_E_ILLEGAL_ARG;
+    s->dev.manual = 1;
     return 0;
 }
 
 int sim_h_nomanual(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    return sim_arg_mode(a, &s->manual, 0);
+    return sim_arg_mode(a, &s->dev.manual, 0);
 }
 
 int sim_h_flash(fbrl_sim *s, args *a, int *b)
@@ -97,8 +97,8 @@ int sim_h_flash(fbrl_sim *s, args *a, int *b)
     if (e || (a->n && (e = sim_arg_num(s, a, 0, &v))))
         return e;
     if (a->n && v < 0)
-        return 18;
-    s->flash = 1;
+        return SIM_E_ILLEGAL_ARG;
+    s->dev.flash = 1;
     s->dirty = 1;
     return 0;
 }
@@ -108,7 +108,7 @@ int sim_h_noflash(fbrl_sim *s, args *a, int *b)
     int e = sim_args_want(a, 0, 0);
     (void)b;
     if (!e) {
-        s->flash = 0;
+        s->dev.flash = 0;
         s->dirty = 1;
     }
     return e;
@@ -150,11 +150,11 @@ int sim_h_typei(fbrl_sim *s, args *a, int *b)
     int e;
     (void)b;
     if (!a->n)
-        return 13;
+        return SIM_E_ARG_MISSING;
     if ((e = sim_eval(s, a->rest, &v)))
         return e;
     if (fabs(v) > 9.2e18)
-        return 20;
+        return SIM_E_ARG_TOO_BIG;
     sim_out_printf(&s->term.out, "%ld\r\n", lround(v));
     return 0;
 }
@@ -165,7 +165,7 @@ int sim_h_typev(fbrl_sim *s, args *a, int *b)
     int e;
     (void)b;
     if (!a->n)
-        return 13;
+        return SIM_E_ARG_MISSING;
     if ((e = sim_eval(s, a->rest, &v)))
         return e;
     sim_out_printf(&s->term.out, "%+.6f\r\n", v);
@@ -183,7 +183,7 @@ static int io_item(fbrl_sim *s, const char *tok, int *n, int *on)
     if ((e = sim_eval(s, tok, &v)))
         return e;
     if (lround(v) < 1 || lround(v) > SIM_IO)
-        return 16;
+        return SIM_E_IO_ADDRESS;
     *n = (int)lround(v);
     return 0;
 }
@@ -193,13 +193,13 @@ int sim_h_output(fbrl_sim *s, args *a, int *b)
     int i, n, on, e;
     (void)b;
     if (!a->n)
-        return 13;
+        return SIM_E_ARG_MISSING;
     for (i = 0; i < a->n; i++)
         if ((e = io_item(s, a->v[i], &n, &on)))
             return e;
     for (i = 0; i < a->n; i++) {
         io_item(s, a->v[i], &n, &on);
-        s->out_[n - 1] = on;
+        s->dev.out_[n - 1] = on;
     }
     s->dirty = 1;
     return 0;
@@ -209,11 +209,11 @@ int sim_h_wait(fbrl_sim *s, args *a, int *b)
 {
     int i, n, on, e;
     if (!a->n)
-        return 13;
+        return SIM_E_ARG_MISSING;
     for (i = 0; i < a->n; i++) {
         if ((e = io_item(s, a->v[i], &n, &on)))
             return e;
-        if (s->in[n - 1] != on)
+        if (s->dev.in[n - 1] != on)
             *b = 1;
     }
     return 0;
@@ -236,13 +236,13 @@ int sim_h_config(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_arg_int(s, a, 0, &dev)))
         return e;
     if (dev != 0 && dev != 1)
-        return 61;
+        return SIM_E_ILLEGAL_CHANNEL;
     if ((e = sim_arg_int(s, a, 1, &baud)) || (e = sim_arg_int(s, a, 3, &data)) || (e = sim_arg_int(s, a, 4, &stop)))
         return e;
     for (i = 0; i < sizeof bauds / sizeof bauds[0]; i++)
         ok |= bauds[i] == baud;
     if (!ok || (data != 7 && data != 8) || (stop != 1 && stop != 2))
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     c.baud = baud;
     c.data = (int)data;
     c.stop = (int)stop;
@@ -254,22 +254,22 @@ int sim_h_config(fbrl_sim *s, args *a, int *b)
     else if (word_is(w, "O", "ODD"))
         c.parity = 'O';
     else
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     w = a->v[5];
     if (word_is(w, "N", "NONE"))
         c.handshake = 'N';
     else if (word_is(w, "X", "XON"))
         c.handshake = 'X';
     else
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     w = a->v[6];
     if (word_is(w, "1", "ON"))
         c.echo = 1;
     else if (word_is(w, "0", "OFF"))
         c.echo = 0;
     else
-        return 18;
-    s->chan[dev] = c;
+        return SIM_E_ILLEGAL_ARG;
+    s->dev.chan[dev] = c;
     s->dirty = 1;
     return 0;
 }
@@ -281,7 +281,7 @@ int sim_h_serial(fbrl_sim *s, args *a, int *b)
     if (e)
         return e;
     for (i = 0; i < 2; i++) {
-        const sim_chan *c = &s->chan[i];
+        const sim_chan *c = &s->dev.chan[i];
         sim_out_printf(&s->term.out, "CHANNEL %d: BAUD %ld PARITY %c DATA %d STOP %d HANDSHAKE %c ECHO %d\r\n",
                        i, c->baud, c->parity, c->data, c->stop, c->handshake, c->echo);
     }
@@ -297,20 +297,20 @@ int sim_h_gain(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_arg_int(s, a, 0, &m)))
         return e;
     if (m < 0 || m > NAXES)
-        return 65;
+        return SIM_E_BAD_AXIS;
     if (a->n == 1) {
         if (m == 0)
-            return 65;
-        sim_out_printf(&s->term.out, "GAIN MOTOR %ld: %+.4f\r\n", m, s->gain[m]);
+            return SIM_E_BAD_AXIS;
+        sim_out_printf(&s->term.out, "GAIN MOTOR %ld: %+.4f\r\n", m, s->arm.gain[m]);
         return 0;
     }
     if ((e = sim_arg_num(s, a, 1, &v)))
         return e;
     if (v < 0)
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     for (i = 1; i <= NAXES; i++)
         if (m == 0 || m == i)
-            s->gain[i] = v;
+            s->arm.gain[i] = v;
     s->dirty = 1;
     return 0;
 }

@@ -34,17 +34,17 @@ int sim_h_teach(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_name_parse(a->v[0], &prec, name)))
         return e;
     if (strlen(name) > SIM_NAME_MAX - 3)
-        return 18;
-    s->teach = 1 + prec; /* 2: precision points */
-    strcpy(s->teach_name, name);
-    s->teach_next = 1;
+        return SIM_E_ILLEGAL_ARG;
+    s->mem.teach = 1 + prec; /* 2: precision points */
+    strcpy(s->mem.teach_name, name);
+    s->mem.teach_next = 1;
     return 0;
 }
 
 int sim_h_noteach(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    return sim_arg_mode(a, &s->teach, 0);
+    return sim_arg_mode(a, &s->mem.teach, 0);
 }
 
 int sim_h_point(fbrl_sim *s, args *a, int *b)
@@ -55,7 +55,7 @@ int sim_h_point(fbrl_sim *s, args *a, int *b)
     sim_loc *l;
     (void)b;
     if (a->n < 1)
-        return 13;
+        return SIM_E_ARG_MISSING;
     if ((e = sim_name_parse(a->v[0], &prec, name)))
         return e;
     need = prec ? NAXES : 6;
@@ -65,7 +65,7 @@ int sim_h_point(fbrl_sim *s, args *a, int *b)
         if ((e = sim_arg_num(s, a, i + 1, &v[i])))
             return e;
         if (prec && fabs(v[i]) > 9999999999.0)
-            return 20;
+            return SIM_E_ARG_TOO_BIG;
     }
     if ((e = sim_loc_new(s, name, prec, &l)))
         return e;
@@ -89,7 +89,7 @@ int sim_h_set(fbrl_sim *s, args *a, int *b)
         || (e = sim_loc_value(s, y, pose, q, &sprec)))
         return e;
     if (prec && !sprec) {
-        if ((e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->q[0], q)) || (e = fbrl_sim_arm_check(q)))
+        if ((e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q)) || (e = fbrl_sim_arm_check(q)))
             return e;
     }
     if ((e = sim_loc_new(s, name, prec, &l)))
@@ -141,8 +141,8 @@ int sim_h_tool(fbrl_sim *s, args *a, int *b)
     if (e)
         return e;
     if (!a->n) {
-        s->tool_set = 0;
-        memset(s->tool, 0, sizeof s->tool);
+        s->mem.tool_set = 0;
+        memset(s->mem.tool, 0, sizeof s->mem.tool);
         s->dirty = 1;
         return 0;
     }
@@ -150,12 +150,12 @@ int sim_h_tool(fbrl_sim *s, args *a, int *b)
         return e;
     for (i = 0; i < 6; i++)
         if (i != 2 && l->v[i] != 0.0)
-            return 18;
-    if (s->moving)
+            return SIM_E_ILLEGAL_ARG;
+    if (s->arm.moving)
         sim_halt(s); /* the joints stay; the tool point moves with the new tool */
-    s->tool_set = 1;
-    strcpy(s->tool_name, l->name);
-    memcpy(s->tool, l->v, sizeof s->tool);
+    s->mem.tool_set = 1;
+    strcpy(s->mem.tool_name, l->name);
+    memcpy(s->mem.tool, l->v, sizeof s->mem.tool);
     s->dirty = 1;
     return 0;
 }
@@ -197,13 +197,13 @@ int sim_h_listl(fbrl_sim *s, args *a, int *b)
         if ((e = sim_name_parse(a->v[0], &prec, name)))
             return e;
         if (!(l = sim_loc_find(s, name, prec)))
-            return 11;
+            return SIM_E_LOCATION_UNDEFINED;
         print_loc(&s->term.out, l);
         return 0;
     }
-    qsort(s->locs, (size_t)s->nlocs, sizeof s->locs[0], cmp_loc);
-    for (i = 0; i < s->nlocs; i++)
-        print_loc(&s->term.out, &s->locs[i]);
+    qsort(s->mem.locs, (size_t)s->mem.nlocs, sizeof s->mem.locs[0], cmp_loc);
+    for (i = 0; i < s->mem.nlocs; i++)
+        print_loc(&s->term.out, &s->mem.locs[i]);
     return 0;
 }
 
@@ -224,13 +224,13 @@ int sim_h_listv(fbrl_sim *s, args *a, int *b)
         if ((e = sim_name_parse(a->v[0], NULL, name)))
             return e;
         if (!(v = sim_var_find(s, name)))
-            return 10;
+            return SIM_E_SYMBOL_UNDEFINED;
         sim_out_printf(&s->term.out, "%-8s = %+.6f\r\n", v->name, v->v);
         return 0;
     }
-    qsort(s->vars, (size_t)s->nvars, sizeof s->vars[0], cmp_var);
-    for (i = 0; i < s->nvars; i++)
-        sim_out_printf(&s->term.out, "%-8s = %+.6f\r\n", s->vars[i].name, s->vars[i].v);
+    qsort(s->mem.vars, (size_t)s->mem.nvars, sizeof s->mem.vars[0], cmp_var);
+    for (i = 0; i < s->mem.nvars; i++)
+        sim_out_printf(&s->term.out, "%-8s = %+.6f\r\n", s->mem.vars[i].name, s->mem.vars[i].v);
     return 0;
 }
 
@@ -243,8 +243,8 @@ int sim_h_dlocn(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_name_parse(a->v[0], &prec, name)))
         return e;
     if (!(l = sim_loc_find(s, name, prec)))
-        return 11;
-    *l = s->locs[--s->nlocs];
+        return SIM_E_LOCATION_UNDEFINED;
+    *l = s->mem.locs[--s->mem.nlocs];
     s->dirty = 1;
     return 0;
 }
@@ -258,8 +258,8 @@ int sim_h_dvar(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_name_parse(a->v[0], NULL, name)))
         return e;
     if (!(v = sim_var_find(s, name)))
-        return 10;
-    *v = s->vars[--s->nvars];
+        return SIM_E_SYMBOL_UNDEFINED;
+    *v = s->mem.vars[--s->mem.nvars];
     s->dirty = 1;
     return 0;
 }

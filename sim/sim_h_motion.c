@@ -29,7 +29,7 @@ int sim_h_appro(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)) || (e = sim_arg_num(s, a, 1, &d)))
         return e;
-    sim_back_off(pose, prec ? q[0] : s->q[0], d, t);
+    sim_back_off(pose, prec ? q[0] : s->arm.q[0], d, t);
     return S ? sim_move_line(s, t, NULL) : sim_move_pose(s, t);
 }
 
@@ -41,7 +41,7 @@ int sim_h_depart(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_arg_num(s, a, 0, &d)))
         return e;
     sim_current_pose(s, pose);
-    sim_back_off(pose, s->q[0], d, t);
+    sim_back_off(pose, s->arm.q[0], d, t);
     return S ? sim_move_line(s, t, NULL) : sim_move_pose(s, t);
 }
 
@@ -80,7 +80,7 @@ int sim_h_joint(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (e || (e = sim_arg_axis(s, a, 0, NAXES, &j)) || (e = sim_arg_num(s, a, 1, &d)))
         return e;
-    memcpy(q, s->q, sizeof q);
+    memcpy(q, s->arm.q, sizeof q);
     q[j - 1] += d;
     return sim_move_joints(s, q);
 }
@@ -91,19 +91,19 @@ int sim_h_motor(fbrl_sim *s, args *a, int *b)
     int e;
     (void)b;
     if (a->n > 2)
-        return 66;
+        return SIM_E_NOT_AVAILABLE;
     if ((e = sim_args_want(a, 2, 2)) || (e = sim_arg_axis(s, a, 0, NAXES + 1, &m)) || (e = sim_arg_int(s, a, 1, &p)))
         return e;
     if (m == NAXES + 1) {
-        s->xtarget = s->xpos + (double)p;
-        s->xt0 = sim_now(s);
-        s->xt1 = s->xt0 + fabs((double)p) / (SIM_EXTRA_RATE * s->speed / 100.0);
-        s->xmoving = p != 0;
+        s->arm.xtarget = s->arm.xpos + (double)p;
+        s->arm.xt0 = sim_now(s);
+        s->arm.xt1 = s->arm.xt0 + fabs((double)p) / (SIM_EXTRA_RATE * s->arm.speed / 100.0);
+        s->arm.xmoving = p != 0;
         s->dirty = 1;
         return 0;
     } else {
         double q[NAXES];
-        memcpy(q, s->q, sizeof q);
+        memcpy(q, s->arm.q, sizeof q);
         q[m - 1] += fbrl_sim_arm_degrees((int)m - 1, p);
         return sim_move_joints(s, q);
     }
@@ -116,7 +116,7 @@ static int h_mi_ma(fbrl_sim *s, args *a, int rel)
     for (i = 0; !e && i < NAXES; i++) {
         double r;
         e = sim_arg_num(s, a, i, &r);
-        q[i] = (rel ? s->q[i] : 0.0) + r * 180.0 / PI;
+        q[i] = (rel ? s->arm.q[i] : 0.0) + r * 180.0 / PI;
     }
     if (e)
         return e;
@@ -146,14 +146,14 @@ int sim_h_ready(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (e)
         return e;
-    memset(s->locked, 0, sizeof s->locked);
+    memset(s->arm.locked, 0, sizeof s->arm.locked);
     return sim_move_joints(s, fbrl_sim_arm_ready);
 }
 
 int sim_h_finish(fbrl_sim *s, args *a, int *b)
 {
     int e = sim_args_want(a, 0, 0);
-    if (!e && (s->moving || s->xmoving))
+    if (!e && (s->arm.moving || s->arm.xmoving))
         *b = 1;
     return e;
 }
@@ -162,7 +162,7 @@ int sim_h_halt(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
     if (a->n)
-        return 66;
+        return SIM_E_NOT_AVAILABLE;
     sim_halt(s);
     return 0;
 }
@@ -175,10 +175,10 @@ int sim_h_speed(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_arg_num(s, a, 0, &v)))
         return e;
     if (v > 100.0)
-        return 20;
+        return SIM_E_ARG_TOO_BIG;
     if (v <= 0.0)
-        return 18;
-    s->speed = v;
+        return SIM_E_ILLEGAL_ARG;
+    s->arm.speed = v;
     s->dirty = 1;
     return 0;
 }
@@ -189,9 +189,9 @@ int sim_h_home(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (e)
         return e;
-    if (!s->power)
-        return 40;
-    s->homed = 1;
+    if (!s->arm.power)
+        return SIM_E_POWER_OFF;
+    s->arm.homed = 1;
     return 0;
 }
 
@@ -201,7 +201,7 @@ static int axis_list(fbrl_sim *s, args *a, int *flags, int on, int empty_all)
     int i, sel[NAXES] = { 0 };
     if (a->n == 0) {
         if (!empty_all)
-            return 13;
+            return SIM_E_ARG_MISSING;
         for (i = 0; i < NAXES; i++)
             sel[i] = 1;
     }
@@ -221,9 +221,9 @@ static int axis_list(fbrl_sim *s, args *a, int *flags, int on, int empty_all)
 int sim_h_limp(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    if (s->moving)
+    if (s->arm.moving)
         sim_halt(s);
-    return axis_list(s, a, s->limp, 1, 1);
+    return axis_list(s, a, s->arm.limp, 1, 1);
 }
 
 int sim_h_nolimp(fbrl_sim *s, args *a, int *b)
@@ -231,20 +231,20 @@ int sim_h_nolimp(fbrl_sim *s, args *a, int *b)
     int e = sim_args_want(a, 0, 0);
     (void)b;
     if (!e)
-        memset(s->limp, 0, sizeof s->limp);
+        memset(s->arm.limp, 0, sizeof s->arm.limp);
     return e;
 }
 
 int sim_h_lock(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    return axis_list(s, a, s->locked, 1, 0);
+    return axis_list(s, a, s->arm.locked, 1, 0);
 }
 
 int sim_h_unlock(fbrl_sim *s, args *a, int *b)
 {
     (void)b;
-    return axis_list(s, a, s->locked, 0, 1);
+    return axis_list(s, a, s->arm.locked, 0, 1);
 }
 
 int sim_h_arm(fbrl_sim *s, args *a, int *b)
@@ -255,11 +255,11 @@ int sim_h_arm(fbrl_sim *s, args *a, int *b)
         return e;
     if (!strcmp(a->v[0], "OFF")) {
         sim_halt(s);
-        s->power = 0;
+        s->arm.power = 0;
     } else if (!strcmp(a->v[0], "ON")) {
-        s->power = 1;
+        s->arm.power = 1;
     } else {
-        return 18;
+        return SIM_E_ILLEGAL_ARG;
     }
     return 0;
 }
@@ -272,25 +272,25 @@ static int h_xaxis(fbrl_sim *s, args *a, int which, int *b)
     if (e || (e = sim_arg_axis(s, a, 0, NAXES + 1, &ax)))
         return e;
     if (ax != NAXES + 1)
-        return 65;
+        return SIM_E_BAD_AXIS;
     if (which == 0) { /* XCAL */
-        s->xhome = sim_extra_now(s);
+        s->arm.xhome = sim_extra_now(s);
     } else if (which == 1) { /* XHOME */
-        if (s->xmoving) {
+        if (s->arm.xmoving) {
             *b = 1;
             return 0;
         }
-        if (!s->power)
-            return 40;
-        s->xtarget = s->xhome;
-        s->xt0 = sim_now(s);
-        s->xt1 = s->xt0 + fabs(s->xhome - s->xpos) / (SIM_EXTRA_RATE * s->speed / 100.0);
-        s->xmoving = s->xhome != s->xpos;
-        s->xhomed = 1;
+        if (!s->arm.power)
+            return SIM_E_POWER_OFF;
+        s->arm.xtarget = s->arm.xhome;
+        s->arm.xt0 = sim_now(s);
+        s->arm.xt1 = s->arm.xt0 + fabs(s->arm.xhome - s->arm.xpos) / (SIM_EXTRA_RATE * s->arm.speed / 100.0);
+        s->arm.xmoving = s->arm.xhome != s->arm.xpos;
+        s->arm.xhomed = 1;
     } else { /* XZERO */
-        if (s->xmoving)
+        if (s->arm.xmoving)
             sim_halt(s);
-        s->xpos = 0;
+        s->arm.xpos = 0;
     }
     s->dirty = 1;
     return 0;

@@ -38,8 +38,8 @@ static int h_wonce(fbrl_sim *s, args *a, int which)
     int e = sim_args_want(a, 0, 0);
     if (e)
         return e;
-    if (which == 4 && s->moving)
-        memcpy(q, s->qt, sizeof q);
+    if (which == 4 && s->arm.moving)
+        memcpy(q, s->arm.qt, sizeof q);
     else
         sim_joints_now(s, q);
     print_position(s, which == 0 ? "CURRENT COMMAND POSITION :"
@@ -102,7 +102,7 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
                 sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(i, q[i]));
         }
     } else if (s->term.stream_kind == 15) {
-        double v = s->xmoving && sim_now(s) < s->xt1 ? (s->xtarget - s->xpos) / (s->xt1 - s->xt0) : 0.0;
+        double v = s->arm.xmoving && sim_now(s) < s->arm.xt1 ? (s->arm.xtarget - s->arm.xpos) / (s->arm.xt1 - s->arm.xt0) : 0.0;
         sim_out_printf(o, "%+011ld", lround(v));
     } else {
         sim_out_printf(o, "%+011ld", lround(sim_extra_now(s)));
@@ -120,36 +120,36 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
         return e;
     sim_joints_now(s, q);
     for (i = 0; i < NAXES; i++)
-        moving[i] = s->moving && fabs(s->qt[i] - s->q[i]) > 0 && sim_now(s) < s->mt1;
+        moving[i] = s->arm.moving && fabs(s->arm.qt[i] - s->arm.q[i]) > 0 && sim_now(s) < s->arm.mt1;
     sim_out_printf(o, "RAPL-II Version 2.60     A255 Robot (fbrlsim)\r\n");
-    if (s->last_error < 0)
+    if (s->term.last_error < 0)
         sim_out_printf(o, "LAST ERROR CODE: NONE\r\n");
     else
-        sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->last_error, sim_error_text(s->last_error));
-    sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->speed));
+        sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->term.last_error, sim_error_text(s->term.last_error));
+    sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->arm.speed));
     sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", FBRL_SIM_ARM_LINEAR);
-    sim_out_printf(o, "CURRENT PROGRAM EXECUTING:%s%s\r\n", s->run_prog ? " " : "",
-                   s->run_prog ? s->run_prog->name : "");
+    sim_out_printf(o, "CURRENT PROGRAM EXECUTING:%s%s\r\n", s->run.prog ? " " : "",
+                   s->run.prog ? s->run.prog->name : "");
     sim_out_printf(o, "JOINT LIMIT CHECK IS ON\r\n");
-    sim_out_printf(o, "CONTROLLER IS %sHOMED\r\n", s->homed ? "" : "NOT ");
-    sim_out_printf(o, "TOOL TRANSFORM\r\n%-10s", s->tool_set ? "TOOL" : "NULL");
+    sim_out_printf(o, "CONTROLLER IS %sHOMED\r\n", s->arm.homed ? "" : "NOT ");
+    sim_out_printf(o, "TOOL TRANSFORM\r\n%-10s", s->mem.tool_set ? "TOOL" : "NULL");
     for (i = 0; i < 6; i++)
-        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", s->tool[i]);
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", s->mem.tool[i]);
     sim_out_printf(o, "\r\nGRIPPER TYPE:  SERVO\r\n%-13s", "AXIS#");
     for (i = 0; i < NAXES; i++)
         sim_out_printf(o, i ? " %d" : "%d", i + 1);
     sim_out_printf(o, "\r\n%-13s", "LOCK");
     for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i ? " %c" : "%c", s->locked[i] ? 'Y' : 'N');
+        sim_out_printf(o, i ? " %c" : "%c", s->arm.locked[i] ? 'Y' : 'N');
     sim_out_printf(o, "\r\n%-13s", "DONE");
     for (i = 0; i < NAXES; i++)
         sim_out_printf(o, i ? " %c" : "%c", moving[i] ? 'N' : 'Y');
     sim_out_printf(o, "\r\n%-13s", "LIMP");
     for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i ? " %c" : "%c", s->limp[i] ? 'Y' : 'N');
+        sim_out_printf(o, i ? " %c" : "%c", s->arm.limp[i] ? 'Y' : 'N');
     sim_out_printf(o, "\r\n%-13s", "HOMED");
     for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i ? " %c" : "%c", s->homed ? 'Y' : 'N');
+        sim_out_printf(o, i ? " %c" : "%c", s->arm.homed ? 'Y' : 'N');
     sim_out_printf(o, "\r\nREQUESTED ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
     {
         /* backward when the tool point lies behind the base axis, seen along the waist */
@@ -158,22 +158,22 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
         sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH %s/ELBOW UP/WRIST FREE\r\n",
                        pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
     }
-    sim_out_printf(o, "MANUAL MODE STATUS IS %s\r\n", s->manual ? "ON" : "OFF");
-    sim_out_printf(o, "ARM POWER IS %s\r\n", s->power ? "ON" : "OFF");
-    sim_out_printf(o, "PENDANT LAMP IS %s\r\n", s->flash ? "FLASHING" : "OFF");
-    if (s->teach)
-        sim_out_printf(o, "TEACH MODE IS ON: %s%s, NEXT %03d\r\n", s->teach == 2 ? "#" : "",
-                       s->teach_name, s->teach_next);
+    sim_out_printf(o, "MANUAL MODE STATUS IS %s\r\n", s->dev.manual ? "ON" : "OFF");
+    sim_out_printf(o, "ARM POWER IS %s\r\n", s->arm.power ? "ON" : "OFF");
+    sim_out_printf(o, "PENDANT LAMP IS %s\r\n", s->dev.flash ? "FLASHING" : "OFF");
+    if (s->mem.teach)
+        sim_out_printf(o, "TEACH MODE IS ON: %s%s, NEXT %03d\r\n", s->mem.teach == 2 ? "#" : "",
+                       s->mem.teach_name, s->mem.teach_next);
     else
         sim_out_printf(o, "TEACH MODE IS OFF\r\n");
-    sim_out_printf(o, "GRIPPER OPENING: %+09.4f FORCE (%% OF FULL): %+6ld\r\n", s->grip,
-                   lround(s->grip_force));
+    sim_out_printf(o, "GRIPPER OPENING: %+09.4f FORCE (%% OF FULL): %+6ld\r\n", s->dev.grip,
+                   lround(s->dev.grip_force));
     sim_out_printf(o, "INPUTS  1-16: ");
     for (i = 0; i < SIM_IO; i++)
-        sim_out_printf(o, "%d", s->in[i]);
+        sim_out_printf(o, "%d", s->dev.in[i]);
     sim_out_printf(o, "\r\nOUTPUTS 1-16: ");
     for (i = 0; i < SIM_IO; i++)
-        sim_out_printf(o, "%d", s->out_[i]);
+        sim_out_printf(o, "%d", s->dev.out_[i]);
     sim_out_printf(o, "\r\nINCH UNITS.\r\n");
     return 0;
 }

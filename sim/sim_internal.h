@@ -108,6 +108,7 @@ typedef struct sim_term {
     int stream_kind;            /* W1 W3 W5 / WE1 WE3 WE5: 1,3,5, 11,13,15 */
     double stream_next;
     double think_until;         /* PS_THINK: the controller is still reading the line */
+    int last_error;             /* -1 none (STATUS shows it) */
 } sim_term;
 
 /* sim_events.c: control lines from the FIFO and the --inputs script. */
@@ -123,6 +124,53 @@ typedef struct sim_events {
     int n, next;
 } sim_events;
 
+/* sim_mem.c: the controller's battery-backed memory of names (and the tool). */
+typedef struct sim_mem {
+    sim_loc locs[SIM_MAX_LOCS];
+    int nlocs;
+    sim_var vars[SIM_MAX_VARS];
+    int nvars;
+    sim_prog *progs;
+    int nprogs;
+    int tool_set;
+    char tool_name[SIM_NAME_MAX + 1];
+    double tool[6];
+    int teach;                  /* TEACH mode: 1 cartesian, 2 precision points */
+    char teach_name[SIM_NAME_MAX + 1];
+    int teach_next;
+} sim_mem;
+
+/* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
+typedef struct sim_arm {
+    double q[FBRL_SIM_ARM_AXES];      /* joints at the segment's start (or at rest) */
+    double qt[FBRL_SIM_ARM_AXES];     /* joints at its end */
+    double pa[6], pb[6];              /* straight-line segment poses */
+    int moving, straight;
+    double mt0, mt1;                  /* simulated start and end */
+    double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
+    int xmoving, xhomed;
+    double speed;
+    int homed, power;
+    int locked[FBRL_SIM_ARM_AXES], limp[FBRL_SIM_ARM_AXES];
+    double gain[FBRL_SIM_ARM_AXES + 1];
+} sim_arm;
+
+/* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
+typedef struct sim_dev {
+    int in[SIM_IO], out_[SIM_IO];
+    double ain[SIM_AIN];      /* analog inputs: live signals, not kept in the state file */
+    double grip, grip_force, object;
+    sim_chan chan[2];
+    int flash, manual;
+} sim_dev;
+
+/* sim_cmd.c: the program being RUN. */
+typedef struct sim_run {
+    sim_prog *prog;
+    int pc;
+    long left;
+} sim_run;
+
 struct fbrl_sim {
     fbrl_sim_options opt;
     char *state_path, *log_path, *control_path;
@@ -136,39 +184,10 @@ struct fbrl_sim {
     sim_io io;
     sim_term term;
     sim_events events;
-    /* program being RUN */
-    sim_prog *run_prog;
-    int run_pc;
-    long run_left;
-    /* controller memory */
-    sim_loc locs[SIM_MAX_LOCS];
-    int nlocs;
-    sim_var vars[SIM_MAX_VARS];
-    int nvars;
-    sim_prog *progs;
-    int nprogs;
-    int last_error;             /* -1 none */
-    double speed;
-    int homed, power, manual, flash, teach;
-    char teach_name[SIM_NAME_MAX + 1];
-    int teach_next;
-    int locked[FBRL_SIM_ARM_AXES], limp[FBRL_SIM_ARM_AXES];
-    double gain[FBRL_SIM_ARM_AXES + 1];
-    int tool_set;
-    char tool_name[SIM_NAME_MAX + 1];
-    double tool[6];
-    int in[SIM_IO], out_[SIM_IO];
-    double ain[SIM_AIN];      /* analog inputs: live signals, not kept in the state file */
-    double grip, grip_force, object;
-    sim_chan chan[2];
-    /* the arm: one motion segment at a time, evaluated from simulated time */
-    double q[FBRL_SIM_ARM_AXES];      /* joints at the segment's start (or at rest) */
-    double qt[FBRL_SIM_ARM_AXES];     /* joints at its end */
-    double pa[6], pb[6];              /* straight-line segment poses */
-    int moving, straight;
-    double mt0, mt1;                  /* simulated start and end */
-    double xpos, xtarget, xhome, xt0, xt1; /* extra axis 6, pulses */
-    int xmoving, xhomed;
+    sim_mem mem;
+    sim_arm arm;
+    sim_dev dev;
+    sim_run run;
     int dirty;
     int save_warned;   /* told stderr once that the state file cannot be written */
 };
@@ -178,7 +197,7 @@ double sim_mono(void);
 double sim_real_now(const fbrl_sim *s); /* real seconds since start */
 double sim_now(const fbrl_sim *s);      /* simulated seconds since start */
 
-/* sim_core.c */
+/* sim_msg.c */
 /* An error message into err[errlen] (nothing when err is NULL or errlen 0). */
 void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
 #if defined(__GNUC__)

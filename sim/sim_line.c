@@ -113,12 +113,12 @@ int sim_line_faults(sim_line *l, const char *spec, char *err, size_t errlen)
 /* The host channel checks parity (CONFIG 0 / --parity E or O). */
 static int parity_on(const fbrl_sim *s)
 {
-    return s->chan[0].parity == 'E' || s->chan[0].parity == 'O';
+    return s->dev.chan[0].parity == 'E' || s->dev.chan[0].parity == 'O';
 }
 
 static int flow_on(const fbrl_sim *s)
 {
-    return s->chan[0].handshake == 'X';
+    return s->dev.chan[0].handshake == 'X';
 }
 
 /* Applies the line faults to one byte; returns how many bytes went to out (0..2).

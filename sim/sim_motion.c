@@ -10,7 +10,7 @@
 
 double sim_tool_len(fbrl_sim *s)
 {
-    return s->tool_set ? s->tool[2] : 0.0;
+    return s->mem.tool_set ? s->mem.tool[2] : 0.0;
 }
 
 static void pulses_to_joints(const long p[NAXES], double q[NAXES])
@@ -30,7 +30,7 @@ int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[NAXES],
         return e;
     l = sim_loc_find(s, name, prec);
     if (!l)
-        return 11;
+        return SIM_E_LOCATION_UNDEFINED;
     *is_prec = prec;
     if (prec) {
         pulses_to_joints(l->p, q);
@@ -45,50 +45,50 @@ int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[NAXES],
 void sim_joints_now(fbrl_sim *s, double q[NAXES])
 {
     double f, pose[6];
-    if (!s->moving) {
-        memcpy(q, s->q, sizeof s->q);
+    if (!s->arm.moving) {
+        memcpy(q, s->arm.q, sizeof s->arm.q);
         return;
     }
-    f = (sim_now(s) - s->mt0) / (s->mt1 - s->mt0);
+    f = (sim_now(s) - s->arm.mt0) / (s->arm.mt1 - s->arm.mt0);
     if (f >= 1.0) {
-        memcpy(q, s->qt, sizeof s->qt);
+        memcpy(q, s->arm.qt, sizeof s->arm.qt);
         return;
     }
     if (f < 0)
         f = 0;
-    if (s->straight) {
-        fbrl_sim_arm_lerp(s->pa, s->pb, f, pose);
-        if (fbrl_sim_arm_ik(pose, sim_tool_len(s), s->q[0], q) == 0)
+    if (s->arm.straight) {
+        fbrl_sim_arm_lerp(s->arm.pa, s->arm.pb, f, pose);
+        if (fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q) == 0)
             return;
     }
     {
         int i;
         for (i = 0; i < NAXES; i++)
-            q[i] = s->q[i] + (s->qt[i] - s->q[i]) * f;
+            q[i] = s->arm.q[i] + (s->arm.qt[i] - s->arm.q[i]) * f;
     }
 }
 
 double sim_extra_now(fbrl_sim *s)
 {
     double f;
-    if (!s->xmoving)
-        return s->xpos;
-    f = (sim_now(s) - s->xt0) / (s->xt1 - s->xt0);
+    if (!s->arm.xmoving)
+        return s->arm.xpos;
+    f = (sim_now(s) - s->arm.xt0) / (s->arm.xt1 - s->arm.xt0);
     if (f >= 1.0)
-        return s->xtarget;
-    return s->xpos + (s->xtarget - s->xpos) * (f < 0 ? 0 : f);
+        return s->arm.xtarget;
+    return s->arm.xpos + (s->arm.xtarget - s->arm.xpos) * (f < 0 ? 0 : f);
 }
 
 void sim_arm_update(fbrl_sim *s)
 {
     double now = sim_now(s);
-    if (s->moving && now >= s->mt1) {
-        memcpy(s->q, s->qt, sizeof s->q);
-        s->moving = 0;
+    if (s->arm.moving && now >= s->arm.mt1) {
+        memcpy(s->arm.q, s->arm.qt, sizeof s->arm.q);
+        s->arm.moving = 0;
     }
-    if (s->xmoving && now >= s->xt1) {
-        s->xpos = s->xtarget;
-        s->xmoving = 0;
+    if (s->arm.xmoving && now >= s->arm.xt1) {
+        s->arm.xpos = s->arm.xtarget;
+        s->arm.xmoving = 0;
     }
 }
 
@@ -96,10 +96,10 @@ void sim_halt(fbrl_sim *s)
 {
     double q[NAXES];
     sim_joints_now(s, q);
-    memcpy(s->q, q, sizeof q);
-    s->moving = 0;
-    s->xpos = sim_extra_now(s);
-    s->xmoving = 0;
+    memcpy(s->arm.q, q, sizeof q);
+    s->arm.moving = 0;
+    s->arm.xpos = sim_extra_now(s);
+    s->arm.xmoving = 0;
     s->dirty = 1;
 }
 
@@ -108,7 +108,7 @@ static double joint_time(fbrl_sim *s, const double a[NAXES], const double b[NAXE
     double t = 0;
     int i;
     for (i = 0; i < NAXES; i++) {
-        double ti = fabs(b[i] - a[i]) / (fbrl_sim_arm_speed[i] * s->speed / 100.0);
+        double ti = fabs(b[i] - a[i]) / (fbrl_sim_arm_speed[i] * s->arm.speed / 100.0);
         if (ti > t)
             t = ti;
     }
@@ -117,13 +117,13 @@ static double joint_time(fbrl_sim *s, const double a[NAXES], const double b[NAXE
 
 static void begin(fbrl_sim *s, const double qt[NAXES], double t, int straight)
 {
-    memcpy(s->qt, qt, sizeof s->qt);
-    s->straight = straight;
-    s->mt0 = sim_now(s);
-    s->mt1 = s->mt0 + t;
-    s->moving = t > 0;
-    if (!s->moving)
-        memcpy(s->q, qt, sizeof s->q);
+    memcpy(s->arm.qt, qt, sizeof s->arm.qt);
+    s->arm.straight = straight;
+    s->arm.mt0 = sim_now(s);
+    s->arm.mt1 = s->arm.mt0 + t;
+    s->arm.moving = t > 0;
+    if (!s->arm.moving)
+        memcpy(s->arm.q, qt, sizeof s->arm.q);
     s->dirty = 1;
 }
 
@@ -133,17 +133,17 @@ int sim_move_joints(fbrl_sim *s, const double target[NAXES])
     double qt[NAXES];
     int i, e;
     for (i = 0; i < NAXES; i++)
-        qt[i] = s->locked[i] ? s->q[i] : target[i];
+        qt[i] = s->arm.locked[i] ? s->arm.q[i] : target[i];
     e = fbrl_sim_arm_check(qt);
     if (e)
         return e;
-    begin(s, qt, joint_time(s, s->q, qt), 0);
+    begin(s, qt, joint_time(s, s->arm.q, qt), 0);
     return 0;
 }
 
 int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[NAXES])
 {
-    int e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->q[0], q);
+    int e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q);
     return e ? e : fbrl_sim_arm_check(q);
 }
 
@@ -169,26 +169,26 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
     if (e)
         return e;
     for (i = 0; i < NAXES; i++)
-        if (s->locked[i] && fabs(qt[i] - s->q[i]) > 1e-9)
-            return 68;
-    fbrl_sim_arm_fk(s->q, sim_tool_len(s), from);
-    fbrl_sim_arm_fk(qt, sim_tool_len(s), s->pb);
-    if (fbrl_sim_arm_check_line(from, s->pb, sim_tool_len(s), s->q[0]) != 0)
-        return 68;
+        if (s->arm.locked[i] && fabs(qt[i] - s->arm.q[i]) > 1e-9)
+            return SIM_E_STRAIGHT_LINE;
+    fbrl_sim_arm_fk(s->arm.q, sim_tool_len(s), from);
+    fbrl_sim_arm_fk(qt, sim_tool_len(s), s->arm.pb);
+    if (fbrl_sim_arm_check_line(from, s->arm.pb, sim_tool_len(s), s->arm.q[0]) != 0)
+        return SIM_E_STRAIGHT_LINE;
     {
         /* the line must end in the target's own configuration (a precision point may
          * hold the other reach) */
         double qe[NAXES];
-        if (fbrl_sim_arm_ik(s->pb, sim_tool_len(s), s->q[0], qe) != 0
+        if (fbrl_sim_arm_ik(s->arm.pb, sim_tool_len(s), s->arm.q[0], qe) != 0
             || fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
-            return 68;
+            return SIM_E_STRAIGHT_LINE;
     }
-    memcpy(s->pa, from, sizeof from);
-    d = sqrt((s->pb[0] - from[0]) * (s->pb[0] - from[0]) + (s->pb[1] - from[1]) * (s->pb[1] - from[1])
-             + (s->pb[2] - from[2]) * (s->pb[2] - from[2]));
-    t = d / (FBRL_SIM_ARM_LINEAR * s->speed / 100.0);
-    if (joint_time(s, s->q, qt) > t)
-        t = joint_time(s, s->q, qt);
+    memcpy(s->arm.pa, from, sizeof from);
+    d = sqrt((s->arm.pb[0] - from[0]) * (s->arm.pb[0] - from[0]) + (s->arm.pb[1] - from[1]) * (s->arm.pb[1] - from[1])
+             + (s->arm.pb[2] - from[2]) * (s->arm.pb[2] - from[2]));
+    t = d / (FBRL_SIM_ARM_LINEAR * s->arm.speed / 100.0);
+    if (joint_time(s, s->arm.q, qt) > t)
+        t = joint_time(s, s->arm.q, qt);
     begin(s, qt, t, 1);
     return 0;
 }

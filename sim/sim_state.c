@@ -73,32 +73,32 @@ static void write_state(fbrl_sim *s, FILE *f)
     int i, j;
     double q[FBRL_SIM_ARM_AXES];
     /* A motion in progress is saved at its end point: the arm is on its way there. */
-    memcpy(q, s->moving ? s->qt : s->q, sizeof q);
+    memcpy(q, s->arm.moving ? s->arm.qt : s->arm.q, sizeof q);
     fprintf(f, "%s\n", MAGIC);
-    fprintf(f, "SPEED %.17g\n", s->speed);
+    fprintf(f, "SPEED %.17g\n", s->arm.speed);
     fprintf(f, "JOINTS");
     for (i = 0; i < FBRL_SIM_ARM_AXES; i++)
         fprintf(f, " %.17g", q[i]);
     fputc('\n', f);
-    fprintf(f, "EXTRA %.17g %.17g\n", s->xmoving ? s->xtarget : s->xpos, s->xhome);
-    fprintf(f, "GRIPPER %.17g %.17g\n", s->grip, s->grip_force);
+    fprintf(f, "EXTRA %.17g %.17g\n", s->arm.xmoving ? s->arm.xtarget : s->arm.xpos, s->arm.xhome);
+    fprintf(f, "GRIPPER %.17g %.17g\n", s->dev.grip, s->dev.grip_force);
     fprintf(f, "OUTPUTS ");
     for (i = 0; i < SIM_IO; i++)
-        fputc(s->out_[i] ? '1' : '0', f);
+        fputc(s->dev.out_[i] ? '1' : '0', f);
     fputc('\n', f);
-    if (s->tool_set)
-        fprintf(f, "TOOL %s %.17g %.17g %.17g %.17g %.17g %.17g\n", s->tool_name, s->tool[0], s->tool[1],
-                s->tool[2], s->tool[3], s->tool[4], s->tool[5]);
-    fprintf(f, "FLASH %d\n", s->flash);
+    if (s->mem.tool_set)
+        fprintf(f, "TOOL %s %.17g %.17g %.17g %.17g %.17g %.17g\n", s->mem.tool_name, s->mem.tool[0], s->mem.tool[1],
+                s->mem.tool[2], s->mem.tool[3], s->mem.tool[4], s->mem.tool[5]);
+    fprintf(f, "FLASH %d\n", s->dev.flash);
     for (i = 0; i < 2; i++)
-        fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->chan[i].baud, s->chan[i].parity, s->chan[i].data,
-                s->chan[i].stop, s->chan[i].handshake, s->chan[i].echo);
+        fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity, s->dev.chan[i].data,
+                s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
     for (i = 1; i <= FBRL_SIM_ARM_AXES; i++)
-        fprintf(f, "GAIN %d %.17g\n", i, s->gain[i]);
-    for (i = 0; i < s->nvars; i++)
-        fprintf(f, "VAR %s %.17g\n", s->vars[i].name, s->vars[i].v);
-    for (i = 0; i < s->nlocs; i++) {
-        const sim_loc *l = &s->locs[i];
+        fprintf(f, "GAIN %d %.17g\n", i, s->arm.gain[i]);
+    for (i = 0; i < s->mem.nvars; i++)
+        fprintf(f, "VAR %s %.17g\n", s->mem.vars[i].name, s->mem.vars[i].v);
+    for (i = 0; i < s->mem.nlocs; i++) {
+        const sim_loc *l = &s->mem.locs[i];
         if (l->precision) {
             fprintf(f, "PLOC %s", l->name);
             for (j = 0; j < FBRL_SIM_ARM_AXES; j++)
@@ -109,10 +109,10 @@ static void write_state(fbrl_sim *s, FILE *f)
                     l->v[3], l->v[4], l->v[5]);
         }
     }
-    for (i = 0; i < s->nprogs; i++) {
-        fprintf(f, "PROGRAM %s\n", s->progs[i].name);
-        for (j = 0; j < s->progs[i].n; j++)
-            fprintf(f, "  %s\n", s->progs[i].lines[j]);
+    for (i = 0; i < s->mem.nprogs; i++) {
+        fprintf(f, "PROGRAM %s\n", s->mem.progs[i].name);
+        for (j = 0; j < s->mem.progs[i].n; j++)
+            fprintf(f, "  %s\n", s->mem.progs[i].lines[j]);
         fprintf(f, "END\n");
     }
 }
@@ -294,8 +294,8 @@ static int add_prog_line(loader *ld, sim_prog *p, const char *text)
 static int dup_loc(fbrl_sim *s, const char *name, int prec)
 {
     int i;
-    for (i = 0; i < s->nlocs; i++)
-        if (s->locs[i].precision == prec && !strcmp(s->locs[i].name, name))
+    for (i = 0; i < s->mem.nlocs; i++)
+        if (s->mem.locs[i].precision == prec && !strcmp(s->mem.locs[i].name, name))
             return 1;
     return 0;
 }
@@ -303,8 +303,8 @@ static int dup_loc(fbrl_sim *s, const char *name, int prec)
 static int dup_var(fbrl_sim *s, const char *name)
 {
     int i;
-    for (i = 0; i < s->nvars; i++)
-        if (!strcmp(s->vars[i].name, name))
+    for (i = 0; i < s->mem.nvars; i++)
+        if (!strcmp(s->mem.vars[i].name, name))
             return 1;
     return 0;
 }
@@ -320,7 +320,7 @@ static int load_item(loader *ld, sim_prog **prog)
     int i;
 
     if (!strcmp(k, "SPEED")) {
-        if (want_fields(ld, 2) || real_field(ld, 1, 1e-9, 100.0, &s->speed))
+        if (want_fields(ld, 2) || real_field(ld, 1, 1e-9, 100.0, &s->arm.speed))
             return -1;
     } else if (!strcmp(k, "JOINTS")) {
         if (want_fields(ld, FBRL_SIM_ARM_AXES + 1))
@@ -332,15 +332,15 @@ static int load_item(loader *ld, sim_prog **prog)
             sim_seterr(ld->err, ld->errlen, "%s:%d: joint %d outside its limits", ld->path, ld->lineno, i - 41);
             return -1;
         }
-        memcpy(s->q, d, sizeof s->q);
-        memcpy(s->qt, d, sizeof s->qt);
+        memcpy(s->arm.q, d, sizeof s->arm.q);
+        memcpy(s->arm.qt, d, sizeof s->arm.qt);
     } else if (!strcmp(k, "EXTRA")) {
-        if (want_fields(ld, 3) || real_field(ld, 1, -PULSE_MAX, PULSE_MAX, &s->xpos)
-            || real_field(ld, 2, -PULSE_MAX, PULSE_MAX, &s->xhome))
+        if (want_fields(ld, 3) || real_field(ld, 1, -PULSE_MAX, PULSE_MAX, &s->arm.xpos)
+            || real_field(ld, 2, -PULSE_MAX, PULSE_MAX, &s->arm.xhome))
             return -1;
     } else if (!strcmp(k, "GRIPPER")) {
-        if (want_fields(ld, 3) || real_field(ld, 1, 0.0, SIM_GRIP_MAX, &s->grip)
-            || real_field(ld, 2, 1.0, 100.0, &s->grip_force))
+        if (want_fields(ld, 3) || real_field(ld, 1, 0.0, SIM_GRIP_MAX, &s->dev.grip)
+            || real_field(ld, 2, 1.0, 100.0, &s->dev.grip_force))
             return -1;
     } else if (!strcmp(k, "OUTPUTS")) {
         if (want_fields(ld, 2))
@@ -348,20 +348,20 @@ static int load_item(loader *ld, sim_prog **prog)
         if (strlen(ld->tok[1]) != SIM_IO || strspn(ld->tok[1], "01") != SIM_IO)
             return bad(ld, "OUTPUTS needs 16 digits 0 or 1, not", ld->tok[1]);
         for (i = 0; i < SIM_IO; i++)
-            s->out_[i] = ld->tok[1][i] == '1';
+            s->dev.out_[i] = ld->tok[1][i] == '1';
     } else if (!strcmp(k, "TOOL")) {
         if (want_fields(ld, 8) || name_field(ld, 1, name))
             return -1;
         for (i = 0; i < 6; i++)
             if (real_field(ld, i + 2, -HUGE_VAL, HUGE_VAL, &d[i]))
                 return -1;
-        s->tool_set = 1;
-        strcpy(s->tool_name, name);
-        memcpy(s->tool, d, sizeof s->tool);
+        s->mem.tool_set = 1;
+        strcpy(s->mem.tool_name, name);
+        memcpy(s->mem.tool, d, sizeof s->mem.tool);
     } else if (!strcmp(k, "FLASH")) {
         if (want_fields(ld, 2) || int_field(ld, 1, 0, 1, &v[0]))
             return -1;
-        s->flash = (int)v[0];
+        s->dev.flash = (int)v[0];
     } else if (!strcmp(k, "CONFIG")) {
         sim_chan c;
         if (want_fields(ld, 8) || int_field(ld, 1, 0, 1, &v[0]) || int_field(ld, 2, 1, BAUD_MAX, &c.baud)
@@ -372,21 +372,21 @@ static int load_item(loader *ld, sim_prog **prog)
         c.data = (int)v[1];
         c.stop = (int)v[2];
         c.echo = (int)v[3];
-        s->chan[v[0]] = c;
+        s->dev.chan[v[0]] = c;
     } else if (!strcmp(k, "GAIN")) {
         if (want_fields(ld, 3) || int_field(ld, 1, 1, FBRL_SIM_ARM_AXES, &v[0])
             || real_field(ld, 2, 0.0, HUGE_VAL, &d[0]))
             return -1;
-        s->gain[v[0]] = d[0];
+        s->arm.gain[v[0]] = d[0];
     } else if (!strcmp(k, "VAR")) {
         if (want_fields(ld, 3) || name_field(ld, 1, name) || real_field(ld, 2, -HUGE_VAL, HUGE_VAL, &d[0]))
             return -1;
         if (dup_var(s, name))
             return bad(ld, "variable defined twice:", name);
-        if (s->nvars == SIM_MAX_VARS)
+        if (s->mem.nvars == SIM_MAX_VARS)
             return bad(ld, "too many variables", NULL);
-        strcpy(s->vars[s->nvars].name, name);
-        s->vars[s->nvars++].v = d[0];
+        strcpy(s->mem.vars[s->mem.nvars].name, name);
+        s->mem.vars[s->mem.nvars++].v = d[0];
     } else if (!strcmp(k, "PLOC") || !strcmp(k, "LOC")) {
         int prec = k[0] == 'P', need = prec ? FBRL_SIM_ARM_AXES : 6;
         sim_loc *l;
@@ -398,9 +398,9 @@ static int load_item(loader *ld, sim_prog **prog)
                 return -1;
         if (dup_loc(s, name, prec))
             return bad(ld, "location defined twice:", name);
-        if (s->nlocs == SIM_MAX_LOCS)
+        if (s->mem.nlocs == SIM_MAX_LOCS)
             return bad(ld, "too many locations", NULL);
-        l = &s->locs[s->nlocs++];
+        l = &s->mem.locs[s->mem.nlocs++];
         memset(l, 0, sizeof *l);
         strcpy(l->name, name);
         l->precision = prec;
@@ -414,14 +414,14 @@ static int load_item(loader *ld, sim_prog **prog)
         sim_prog *np;
         if (want_fields(ld, 2) || name_field(ld, 1, name))
             return -1;
-        for (i = 0; i < s->nprogs; i++)
-            if (!strcmp(s->progs[i].name, name))
+        for (i = 0; i < s->mem.nprogs; i++)
+            if (!strcmp(s->mem.progs[i].name, name))
                 return bad(ld, "program defined twice:", name);
-        np = realloc(s->progs, (size_t)(s->nprogs + 1) * sizeof *np);
+        np = realloc(s->mem.progs, (size_t)(s->mem.nprogs + 1) * sizeof *np);
         if (!np)
             return bad(ld, "out of memory", NULL);
-        s->progs = np;
-        *prog = &s->progs[s->nprogs++];
+        s->mem.progs = np;
+        *prog = &s->mem.progs[s->mem.nprogs++];
         memset(*prog, 0, sizeof **prog);
         strcpy((*prog)->name, name);
     } else {

@@ -40,7 +40,7 @@ static void finish(fbrl_sim *s, int err)
         char e[96];
         snprintf(e, sizeof e, "%03d-%s.\r\n", err, sim_error_text(err));
         emit_str(s, e);
-        s->last_error = err;
+        s->term.last_error = err;
     }
     if (t->ps == PS_STREAM) {
         t->stream_next = sim_real_now(s);
@@ -90,7 +90,7 @@ static void submit(fbrl_sim *s)
         fflush(s->log);
     }
     if (overlong) {
-        finish(s, 25);
+        finish(s, SIM_E_LINE_TOO_LONG);
         return;
     }
     if (s->opt.cmd_time_ms > 0) {
@@ -104,7 +104,7 @@ static void submit(fbrl_sim *s)
 
 static void echo(fbrl_sim *s, const char *b, size_t n)
 {
-    if (s->chan[0].echo)
+    if (s->dev.chan[0].echo)
         sim_emit(s, b, n);
 }
 
