@@ -47,15 +47,8 @@ typedef struct fbrl_robot_device {
 typedef void (*fbrl_robot_progress_fn)(void *ctx, const char *text);
 #define FBRL_ROBOT_PROGRESS_MS 1000u
 
-/* Words a context binds (fbrl_robot_install checks the count). */
-#define FBRL_ROBOT_MAX_WORDS 160
 /* Room for one console line GET-CAL-POINTS reads. */
 #define FBRL_ROBOT_TIB 256
-
-typedef struct fbrl_robot_bind {
-    struct fbrl_robot *r;
-    const void *word;               /* the word's table entry */
-} fbrl_robot_bind;
 
 /* A robot context: caller-owned, fields private. Keep it at a fixed address while the
  * VM uses it (the words point at it). */
@@ -94,8 +87,6 @@ typedef struct fbrl_robot {
     int have_target;
     /* scratch storage in the VM's data space (made at install) */
     fbrl_cell tib;                  /* FBRL_ROBOT_TIB bytes */
-    fbrl_robot_bind bind[FBRL_ROBOT_MAX_WORDS];
-    size_t nbind;
 } fbrl_robot;
 
 /* Bind every robot word into vm. link NULL = offline (the words exist and throw when
@@ -112,6 +103,10 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
  * what it started ("MOV: the arm is moving to X ... in") and a word that waited for the
  * arm says when it stopped. Off by default (plans, pipes and programs get no chatter). */
 void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell);
+
+/* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
+ * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */
+const char *fbrl_robot_word(size_t i);
 
 /* The controller error code of the last robot word that failed with a controller
  * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */
