@@ -180,21 +180,31 @@ void fbrl_glossary_set_port_writer(fbrl_glossary *g, void (*write)(void *ctx, co
     g->port_ctx = write ? ctx : NULL;
 }
 
-static fbrl_status map_loc(const fbrl_glossary *g, fbrl_loc *loc, int out)
+static fbrl_status map_loc(const fbrl_glossary *g, fbrl_loc *loc, int out, const double axis[2], double *off)
 {
     fbrl_loc res;
     fbrl_status st;
+    double dev = 0.0;
+    if (off) *off = 0.0;
     if (!installed(g) || !loc) return FBRL_EINVAL;
     if (!g->map_on) return FBRL_OK;
     const fbrl_calib *c = gl_struct(g->vm, g->with_cal, MAGIC_STRU, sizeof(fbrl_calib));
     if (!c || !gl_rigid(c)) return FBRL_ESTATE;
-    st = out ? fbrl_calib_map(c, loc, &res) : fbrl_calib_unmap(c, loc, &res);
+    st = out ? fbrl_calib_map_arm(c, axis, loc, &res, &dev) : fbrl_calib_unmap_arm(c, axis, loc, &res, &dev);
+    if (off) *off = dev;
+    if (st == FBRL_OK && out && dev > FBRL_CALIB_AXIS_MAX) st = FBRL_ERANGE;
     if (st == FBRL_OK) *loc = res;
     return st;
 }
 
-fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc) { return map_loc(g, loc, 1); }
-fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc) { return map_loc(g, loc, 0); }
+fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2], double *off)
+{
+    return map_loc(g, loc, 1, axis, off);
+}
+fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2])
+{
+    return map_loc(g, loc, 0, axis, NULL);
+}
 
 /* ---- III-1 location templates ---- */
 static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
@@ -290,7 +300,7 @@ static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, cha
     fbrl_status st;
     if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc))) return st;
     shown = *loc;
-    if ((st = fbrl_glossary_map_out(g, &shown)) != FBRL_OK) {
+    if ((st = fbrl_glossary_map_out(g, &shown, NULL, NULL)) != FBRL_OK) {
         if (st == FBRL_ESTATE)
             return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
                             word);

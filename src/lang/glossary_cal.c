@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "fbrl/calib.h"
+#include "fbrl/num.h"
 #include "glossary_internal.h"
 
 /* The three slots of a CREATE-CAL structure at a, or throw. */
@@ -213,7 +214,15 @@ static fbrl_status map_word(fbrl_vm *vm, int out)
     fbrl_status st;
     if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 1, word, &c)) || (st = gl_loc(vm, a[1], 1, word, &loc)))
         return st;
-    st = out ? fbrl_calib_map(c, loc, loc) : fbrl_calib_unmap(c, loc, loc);
+    double off = 0.0;
+    fbrl_loc res;
+    st = out ? fbrl_calib_map_arm(c, NULL, loc, &res, &off) : fbrl_calib_unmap(c, loc, &res);
+    if (st == FBRL_OK && off <= FBRL_CALIB_AXIS_MAX) *loc = res;
+    if (st == FBRL_OK && off > FBRL_CALIB_AXIS_MAX) {
+        char deg[32];
+        fbrl_num_fixed(deg, sizeof deg, off, 0, 2, 0, NULL);
+        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: tool axis %s deg across the arm (a 5-axis arm cannot follow)", word, deg);
+    }
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
 static fbrl_status w_map(fbrl_vm *vm, void *arg) { (void)arg; return map_word(vm, 1); }
