@@ -6,6 +6,7 @@
  * is a terminal, an interactive session (line editing, history, completion);
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -236,6 +237,9 @@ int main(int argc, char **argv)
     int status = MON_EXIT_OK;
     size_t i;
 
+    /* The user's locale (the terminal's character set for line editing). libfbrl reads
+     * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
+    setlocale(LC_ALL, "");
     memset(&opt, 0, sizeof opt);
     if (parse_args(argc, argv, &opt, &status) != 0) {
         free(opt.actions);

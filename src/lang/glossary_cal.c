@@ -239,7 +239,7 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
     fbrl_calib *c;
     double res[FBRL_GLOSSARY_NPOINT_MAX], rms, v;
     size_t worst;
-    char line[96];
+    char line[160], num[40], num2[40]; /* numbers through fbrl_num: locale-free */
     fbrl_status st;
     if ((st = gl_pop(vm, 4, a))) return st;
     if (a[0] < 3 || a[0] > FBRL_GLOSSARY_NPOINT_MAX)
@@ -269,12 +269,15 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
     const char *unit = g->units.metric ? "cm" : "in";
     for (size_t i = 0; i < n; i++) {
         if ((st = gl_out(vm, g, res[i], &v))) return st;
-        snprintf(line, sizeof line, "point %3d residual %10.4f %s\n", (int)i, v, unit);
+        fbrl_num_fixed(num, sizeof num, v, 10, 4, 0, NULL);
+        snprintf(line, sizeof line, "point %3d residual %s %s\n", (int)i, num, unit);
         fbrl__puts(vm, line);
     }
     double wv;
     if ((st = gl_out(vm, g, rms, &v)) || (st = gl_out(vm, g, res[worst], &wv))) return st;
-    snprintf(line, sizeof line, "RMS %.4f %s, worst point %d (%.4f %s)\n", v, unit, (int)worst, wv, unit);
+    fbrl_num_fixed(num, sizeof num, v, 0, 4, 0, NULL);
+    fbrl_num_fixed(num2, sizeof num2, wv, 0, 4, 0, NULL);
+    snprintf(line, sizeof line, "RMS %s %s, worst point %d (%s %s)\n", num, unit, (int)worst, num2, unit);
     fbrl__puts(vm, line);
     if ((st = fbrl_vm_push(vm, (fbrl_cell)worst))) return st;
     return fbrl_vm_fpush(vm, v);
