@@ -302,6 +302,11 @@ int main(int argc, char **argv)
             size_t len;
             while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
                 mon_eval(&m, line, len, "stdin", ++ln, 1);
+            if (m.host.line_too_long) {
+                fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n", ln,
+                        MON_HOST_LINE_MAX, ln);
+                m.errors++;
+            }
             if (!fbrl_vm_bye(m.vm))
                 mon_check_closed(&m, "input", "stdin", ln);
         }
