@@ -164,7 +164,7 @@ const char *fbrl__throw_text(int code);
 /* prelude.c */
 extern const char fbrl__prelude[];
 
-/* words_fbrl.c */
+/* src/words/data.c: the data words every VM has */
 fbrl_status fbrl__fbrl_words(fbrl_vm *vm);
 
 #endif

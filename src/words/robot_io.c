@@ -251,7 +251,7 @@ static fbrl_status w_time_of_day(fbrl_robot *r, const rb_word *w, rb_val *v)
     return fbrl_vm_push(r->vm, (fbrl_cell)t[2] * 3600 + t[1] * 60 + t[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
 }
 
-static const rb_word io_words[] = {
+const rb_word rb_io_words[] = {
     { "OUTPUT-DEVICE", w_make_device, "I", 0, -1, 1, "( port \"name\" -- )", "name a controller output (1..16); name pushes the device" },
     { "INPUT-DEVICE", w_make_device, "I", 0, -1, 0, "( port \"name\" -- )", "name a controller input (1..16); name pushes the device" },
     { "ON", w_on_off, "A", 0, -1, 1, "( dev -- ) or ( a -- )", "switch an output device on (OUTPUT n); at a variable, store true" },
@@ -267,7 +267,4 @@ static const rb_word io_words[] = {
     { "TIME-OF-DAY", w_time_of_day, "", 0, -1, 0, "( -- seconds )", "seconds since local midnight" },
 };
 
-fbrl_status rb_install_io(fbrl_robot *r)
-{
-    return rb_define(r, io_words, sizeof io_words / sizeof io_words[0]);
-}
+const size_t rb_io_nwords = sizeof rb_io_words / sizeof rb_io_words[0];

@@ -285,7 +285,7 @@ static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
     return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
 }
 
-static const rb_word comm_words[] = {
+const rb_word rb_comm_words[] = {
     { "SETWORDLENGTH", w_setting, "I", 0, -1, 0, "( num-bits -- )", "word length for the next SETUPUART (5..8)" },
     { "SETSTOPBITS", w_setting, "I", 0, -1, 1, "( numbits -- )", "stop bits for the next SETUPUART (1..2)" },
     { "SETPARITY", w_setting, "C", 0, -1, 2, "( parity-char -- )", "parity for the next SETUPUART: ASC N, ASC E or ASC O" },
@@ -303,13 +303,7 @@ static const rb_word comm_words[] = {
     { "RESET-COMM", w_reset_comm, "I", 0, -1, 0, "( port -- )", "discard received bytes and resynchronise the controller line" },
 };
 
-fbrl_status rb_install_comm(fbrl_robot *r)
-{
-    static const rb_word asc = { "ASC", w_asc, "", 0, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };
-    fbrl_status st = rb_define(r, comm_words, sizeof comm_words / sizeof comm_words[0]);
-    if (st == FBRL_OK && fbrl__find(r->vm, "ASC", 3) < 0) {
-        st = rb_define(r, &asc, 1);
-        if (st == FBRL_OK) HDR(r->vm, fbrl__find(r->vm, "ASC", 3))->flags |= FI;
-    }
-    return st;
-}
+const size_t rb_comm_nwords = sizeof rb_comm_words / sizeof rb_comm_words[0];
+
+/* ASC is F-PC's; a VM that has one keeps it. Immediate. */
+const rb_word rb_comm_asc = { "ASC", w_asc, "", 0, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };

@@ -1,5 +1,11 @@
-/* robot_internal.h - shared by robot.c (I-5, I-6, I-8), robot_comm.c (I-4) and
- * robot_io.c (peripherals, timers). Private to the library. */
+/* robot_internal.h - shared by the robot words' sources (private to the library):
+ *   robot.c        binding the tables into a VM (fbrl_robot_install)
+ *   robot_svc.c    errors, Ctrl-C, console, clock
+ *   robot_link.c   commands to the controller through the link
+ *   robot_param.c  parameters from the stacks or the input (I-6), their checks
+ *   robot_loc.c    locations: mapping, base offset, scratch points, the arm's position
+ *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c: the words
+ * Calls go downwards in that list (tables up to robot.c), never in a circle. */
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
 
@@ -35,9 +41,6 @@ typedef struct rb_word {
     const char *stack, *help;
 } rb_word;
 
-/* Define every word of a table (each bound to r). */
-fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n);
-
 /* Throw a Forth exception with a message (the message is copied). */
 fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg);
 /* Throw for a libfbrl status, prefixed with the word's name. */
@@ -68,14 +71,39 @@ double rb_len_in(const fbrl_robot *r, double v);
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms);
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms);
 
-/* I-6: parse one parameter of the given kind from the input after the word. */
+/* Any control character counts as blank (as the engine's parser has it). */
+static inline int rb_blank(char c) { return (unsigned char)c <= ' '; }
+
+/* robot_link.c: W1 W3 W5 WE1 WE3 WE5 readings on the console */
+fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd);
+
+/* robot_param.c: I-6: parse one parameter of the given kind from the input after the word;
+ * all of a word's parameters (docs/robot.md's one rule); argument checks that throw naming
+ * the word. */
 fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v);
+fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v);
+fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *buf, size_t cap);
+fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo, fbrl_cell hi);
+fbrl_status rb_finite(fbrl_robot *r, const rb_word *w, const rb_val *v, size_t n);
+
+/* robot_loc.c: a host location read (finite) or written, naming the word; the user's frame
+ * to the arm's (MAP-ON, BASE-OFFSET) and back (map = 0: no unmapping); a scratch controller
+ * point at arm coordinates; the arm's position from W2 (after FINISH when finish != 0). */
+fbrl_status rb_loc_read(fbrl_robot *r, const rb_word *w, fbrl_cell addr, fbrl_loc *out);
+fbrl_status rb_loc_write(fbrl_robot *r, const rb_word *w, fbrl_cell addr, const fbrl_loc *in);
+fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbrl_loc *arm);
+fbrl_status rb_from_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, fbrl_loc *user, int map);
+fbrl_status rb_scratch_point(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, const char **name);
+fbrl_status rb_arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_loc *arm);
 
 /* robot_comm.c: resynchronise the link after raw output; point PRINT-LOC at the port */
 fbrl_status rb_resync(fbrl_robot *r);
 void rb_port_writer(fbrl_robot *r);
 
-fbrl_status rb_install_comm(fbrl_robot *r);
-fbrl_status rb_install_io(fbrl_robot *r);
+/* The word tables, in the order robot.c defines them. */
+extern const rb_word rb_motion_words[], rb_rapl_words[], rb_teach_words[], rb_param_words[],
+    rb_line_words[], rb_comm_words[], rb_io_words[], rb_comm_asc;
+extern const size_t rb_motion_nwords, rb_rapl_nwords, rb_teach_nwords, rb_param_nwords, rb_line_nwords,
+    rb_comm_nwords, rb_io_nwords;
 
 #endif
