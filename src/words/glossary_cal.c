@@ -220,7 +220,7 @@ static fbrl_status map_word(fbrl_vm *vm, int out)
     if (st == FBRL_OK && off > FBRL_CALIB_AXIS_MAX) {
         char deg[32];
         fbrl_num_fixed(deg, sizeof deg, off, 0, 2, 0, NULL);
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: tool axis %s deg across the arm (a 5-axis arm cannot follow)", word, deg);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: tool axis %s deg across the arm (a 5-axis arm cannot follow)", word, deg);
     }
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }

@@ -102,7 +102,7 @@ fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbr
         fbrl_num_fixed(lim, sizeof lim, FBRL_CALIB_AXIS_MAX, 0, 1, 0, NULL);
         snprintf(msg, sizeof msg, "%s: mapping: the block's tilt asks for the tool axis %s deg across the arm,"
                  " which a 5-axis arm cannot follow (limit %s deg)", w->name, deg, lim);
-        return rb_fail(r, FBRL_THROW_STATUS(st), msg);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st != FBRL_OK) return rb_fail_st(r, w, st, "mapping");
     double c = cos(FBRL_RAD(r->base[3])), s = sin(FBRL_RAD(r->base[3]));
