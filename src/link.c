@@ -1425,7 +1425,7 @@ static const char *seen_text(int seen)
     case SEEN_AMBIGUOUS: return "its CR may not have arrived (reply and probe damaged)";
     case SEEN_STARTED: return "it started; its reply stopped before the prompt";
     case SEEN_BUSY: return "it started and was still busy";
-    case SEEN_UNREADABLE: return "it ran; every reply came back damaged";
+    case SEEN_UNREADABLE: return "it ran; no reply could be believed (damaged, or never twice the same)";
     case SEEN_UNSETTLED: return "it ran; reply damaged, STATUS unreadable";
     case SEEN_SAME_ERROR: return "it ran; reply damaged, STATUS shows the earlier error";
     default: return "it was not sent";

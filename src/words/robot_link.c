@@ -202,8 +202,8 @@ static int display_query(const char *line)
     }
     word[k] = '\0';
     if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK) return 0;
-    return c == FBRL_RAPL_W0 || c == FBRL_RAPL_W2 || c == FBRL_RAPL_W4 || c == FBRL_RAPL_STATUS ||
-           c == FBRL_RAPL_TYPEI || c == FBRL_RAPL_TYPEV;
+    fbrl_rapl_reply kind = fbrl_rapl_cmd_info(c)->reply; /* the table says what it prints */
+    return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
 }
 
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)

@@ -81,9 +81,9 @@ typedef struct motion {
 static double off_path(const motion *m, const double xyz[3], double f0, double f1)
 {
     double best = 1e9;
-    if (f0 < 0) f0 = 0;
-    if (f1 > 1) f1 = 1;
-    if (f1 < f0) f1 = f0;
+    /* before the start the arm is at the start, after the end at the end */
+    f0 = f0 < 0 ? 0 : f0 > 1 ? 1 : f0;
+    f1 = f1 < 0 ? 0 : f1 > 1 ? 1 : f1;
     for (int k = 0; k <= 400; k++) {
         double f = f0 + (f1 - f0) * k / 400.0, q[FBRL_SIM_ARM_AXES], pose[6];
         for (int j = 0; j < FBRL_SIM_ARM_AXES; j++)
@@ -142,6 +142,8 @@ int main(int argc, char **argv)
     const char *args[] = {"--time-scale", scale, NULL};
     fbrl_link_config lc;
     fbrl_link_config_init(&lc);
+    static const fbrl_link_arm bogus = {5, {1, 1, 1, 1, 1}, 10, 10, 10, 2};
+    if (getenv("LIVE_NO_SELFCHECK")) lc.arm = &bogus; /* the older rule: two equal replies */
     rig r;
     if (rig_start(&r, argv[1], args, 115200, FBRL_FLOW_NONE, &lc) != 0 || fbrl_link_connect(&r.link) != FBRL_OK)
         return 1;
