@@ -823,12 +823,23 @@ static fbrl_status stop_stream(fbrl_link *l)
 
 /* ---- the byte-driven state machine ---- */
 
+/* While no CR of ours is out (erasing, typing), a CR LF or a prompt from the controller
+ * means it ran something we did not send whole (a '-' turned into CR, 3.4): whatever
+ * that was may have set LAST ERROR, so STATUS no longer settles by comparison (3.5). */
+static void saw_foreign(fbrl_link *l, uint8_t b)
+{
+    if (b == '\r' || b == '\n' || (b == '>' && l->last_byte == '>'))
+        l->known_err = ERR_UNKNOWN;
+    l->last_byte = b;
+}
+
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
     l->t_last = now_us(l);
     l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
+        saw_foreign(l, b);
         push_tail(l, b);
         if (probe_answered(l)) {
             l->ctrl_len = 3;
@@ -847,8 +858,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
          * the echo is a damaged byte */
         if (b != expected(l, l->match, l->triples)) {
             l->stats.echo_mismatch++;
-            if (b == '\r' || b == '\n')
-                l->known_err = ERR_UNKNOWN; /* the controller ran something (3.4): its error is unknown */
+            saw_foreign(l, b);
             return begin_erase(l);
         }
         if (++l->match == l->expect) {
@@ -862,8 +872,19 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             /* the idle probe's echo: the controller reads input again, so it is idle */
             l->probe_seen = 1;
             push_tail(l, b);
+            if (l->first_probe)
+                pe_feed(l, b);
             if (probe_answered(l)) {
                 l->ctrl_len = 3;
+                if (l->first_probe && l->pe_state == PE_DONE && !l->prompt_seen &&
+                    (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)) {
+                    /* the "proof" was a damaged CR echoed back as CR or LF by a second flip
+                     * (3.6): the text is still on the line, the CR took no effect */
+                    l->stats.cr_unconfirmed++;
+                    l->cr_pending = 0;
+                    l->probe_out = PR_NONE;
+                    return retype(l);
+                }
                 if (!l->prompt_seen)
                     l->stats.prompt_lost++;
                 l->probe_out = PR_NONE;
@@ -948,6 +969,9 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         if (cr_took_effect(l)) {
             /* executed; the prompt is late (a waiting command) or was damaged: ask */
             if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
+                /* the first one also checks the proof (on_byte) */
+                l->first_probe = l->probes_here == 0 && l->kind != FBRL_LINK_REPLY_STREAM;
+                l->pe_state = PE_START;
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
                 return send_probe(l);
