@@ -49,9 +49,11 @@ static void usage(FILE *f)
           "  --parity P       none, even or odd (default none)\n"
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
+          "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
+          "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
 #endif
           "  --offline        no controller: robot words report an error\n"
           "  --list-ports     list the serial ports and exit\n"
@@ -86,7 +88,7 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", NULL };
+                                         "--flow", "--sim-state", "--sim-model", "--axes", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -115,6 +117,12 @@ static int set_valued(options *o, const char *a, const char *v)
         o->conn.port = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
+    } else if (strcmp(a, "--sim-model") == 0) {
+        o->conn.sim_model = v;
+    } else if (strcmp(a, "--axes") == 0) {
+        if (parse_uint(v, 1, FBRL_RAPL_MAX_AXES, &n) != 0)
+            return -1;
+        o->conn.axes = (unsigned)n;
     } else if (strcmp(a, "--baud") == 0) {
         if (parse_uint(v, 1, 4000000, &n) != 0)
             return -1;

@@ -31,6 +31,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         char serr[256] = "";
         fbrl_sim_options_init(&so);
         so.state_path = o->sim_state;
+        so.model = o->sim_model;
         st = fbrl_sim_create(&c->sim, &so, serr, sizeof serr);
         if (st != FBRL_OK) {
             snprintf(err, errlen, "cannot start the emulator: %s", serr[0] ? serr : fbrl_status_str(st));
@@ -69,7 +70,18 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         return fail(err, errlen, st, "cannot open", path);
     }
     c->open = 1;
-    st = fbrl_link_init(&c->link, &c->uart, NULL);
+    {
+        /* The link reads W2 and STATUS rows for as many axes as the arm has. */
+        fbrl_link_config lc;
+        fbrl_link_config_init(&lc);
+        if (o->axes)
+            lc.naxes = o->axes;
+#ifdef FBRLMON_HAVE_SIM
+        else if (c->sim != NULL)
+            lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
+#endif
+        st = fbrl_link_init(&c->link, &c->uart, &lc);
+    }
     if (st == FBRL_OK)
         st = fbrl_link_connect(&c->link);  /* NOHELP: a controller must answer */
     if (st != FBRL_OK) {

@@ -22,6 +22,8 @@ typedef struct mon_conn_options {
     const char *port;        /* MON_CONN_PORT: path or tcp:HOST:PORT */
     fbrl_uart_config line;   /* baud, data bits, parity, stop bits, flow */
     const char *sim_state;   /* MON_CONN_SIM: emulator's persistent memory, or NULL */
+    const char *sim_model;   /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
+    unsigned axes;           /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */

@@ -247,7 +247,7 @@ static int exec_line(fbrl_sim *s, const char *text, int top, int *block)
             return SIM_E_POWER_OFF;
         if (!s->arm.homed)
             return SIM_E_NOT_HOMED;
-        for (n = 0; n < NAXES; n++)
+        for (n = 0; n < (size_t)sim_naxes(s); n++)
             if (s->arm.limp[n])
                 return SIM_E_ILLEGAL_ARG;
     }

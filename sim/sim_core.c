@@ -25,29 +25,6 @@ static char *dupstr(const char *p)
     return d;
 }
 
-static void sim_defaults(fbrl_sim *s)
-{
-    int i;
-    s->term.last_error = -1;
-    s->arm.speed = 50.0;
-    s->arm.power = 1;
-    s->term.help = 1;
-    s->dev.grip = SIM_GRIP_MAX;
-    s->dev.grip_force = 50.0;
-    for (i = 0; i <= FBRL_SIM_ARM_AXES; i++)
-        s->arm.gain[i] = 1.0;
-    memcpy(s->arm.q, fbrl_sim_arm_ready, sizeof s->arm.q);
-    memcpy(s->arm.qt, s->arm.q, sizeof s->arm.q);
-    for (i = 0; i < 2; i++) {
-        s->dev.chan[i].baud = 9600;
-        s->dev.chan[i].parity = 'N';
-        s->dev.chan[i].data = 8;
-        s->dev.chan[i].stop = 1;
-        s->dev.chan[i].handshake = i == 0 ? 'X' : 'N';
-        s->dev.chan[i].echo = 1;
-    }
-}
-
 void fbrl_sim_options_init(fbrl_sim_options *o)
 {
     if (!o)
@@ -83,8 +60,17 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->io.link_path = o->tcp_port < 0 ? dupstr(o->link_path) : NULL;
     s->opt.state_path = s->opt.log_path = s->opt.control_path = s->opt.link_path = NULL;
     s->opt.inputs_path = s->opt.faults = NULL;
+    s->arm.model = o->model ? fbrl_sim_model_find(o->model) : &fbrl_sim_models[0];
+    s->model_given = o->model != NULL;
+    s->opt.model = NULL;
+    if (!s->arm.model) {
+        sim_seterr(err, errlen, "unknown arm model '%s' (a255 or a465)", o->model);
+        free(s->state_path);
+        s->state_path = NULL;
+        fbrl_sim_destroy(s);
+        return FBRL_EINVAL;
+    }
     sim_defaults(s);
-    s->term.help = 1;
     if (sim_line_init(&s->line, o->baud, o->rx_buffer) != 0)
         goto fail_mem;
     if (o->faults && sim_line_faults(&s->line, o->faults, err, errlen) != 0)
@@ -132,6 +118,11 @@ fail:
 const char *fbrl_sim_path(const fbrl_sim *s)
 {
     return s ? s->io.path : "";
+}
+
+int fbrl_sim_axes(const fbrl_sim *s)
+{
+    return s ? sim_naxes(s) : 0;
 }
 
 /* The client went away: what was on the line and half-typed is lost with it. */

@@ -22,7 +22,7 @@ typedef struct sim_loc {
     char name[SIM_NAME_MAX + 1]; /* without '#' */
     int precision;               /* 1: pulses in p, 0: cartesian in v */
     double v[6];
-    long p[FBRL_SIM_ARM_AXES];
+    long p[FBRL_SIM_ARM_MAX_AXES];
 } sim_loc;
 
 typedef struct sim_var {
@@ -142,17 +142,18 @@ typedef struct sim_mem {
 
 /* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
 typedef struct sim_arm {
-    double q[FBRL_SIM_ARM_AXES];      /* joints at the segment's start (or at rest) */
-    double qt[FBRL_SIM_ARM_AXES];     /* joints at its end */
+    double q[FBRL_SIM_ARM_MAX_AXES];      /* joints at the segment's start (or at rest) */
+    double qt[FBRL_SIM_ARM_MAX_AXES];     /* joints at its end */
     double pa[6], pb[6];              /* straight-line segment poses */
     int moving, straight;
     double mt0, mt1;                  /* simulated start and end */
     double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
     int xmoving, xhomed;
+    const fbrl_sim_model *model;      /* the arm: geometry, limits, speeds, axes */
     double speed;
     int homed, power;
-    int locked[FBRL_SIM_ARM_AXES], limp[FBRL_SIM_ARM_AXES];
-    double gain[FBRL_SIM_ARM_AXES + 1];
+    int locked[FBRL_SIM_ARM_MAX_AXES], limp[FBRL_SIM_ARM_MAX_AXES];
+    double gain[FBRL_SIM_ARM_MAX_AXES + 1];
 } sim_arm;
 
 /* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
@@ -188,9 +189,16 @@ struct fbrl_sim {
     sim_arm arm;
     sim_dev dev;
     sim_run run;
+    int model_given;   /* --model was given: the state file must be of that arm */
     int dirty;
     int save_warned;   /* told stderr once that the state file cannot be written */
 };
+
+/* The arm's axis count (its model's). */
+static inline int sim_naxes(const fbrl_sim *s)
+{
+    return s->arm.model->naxes;
+}
 
 /* sim_clock.c */
 double sim_mono(void);
@@ -257,7 +265,7 @@ void sim_out_printf(sim_out *o, const char *fmt, ...)
 
 /* sim_motion.c */
 void sim_arm_update(fbrl_sim *s);             /* finish motions whose time has come */
-void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_AXES]);
+void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES]);
 
 /* sim_h_read.c */
 void sim_stream_line(fbrl_sim *s, sim_out *o);  /* the next line of a W1/W3/W5 readout */
@@ -267,6 +275,9 @@ int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: on
 
 /* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);
+
+/* sim_defaults.c */
+void sim_defaults(fbrl_sim *s); /* power-up settings for the arm model in s->arm.model */
 
 /* sim_state.c */
 int sim_state_load(fbrl_sim *s, char *err, size_t errlen); /* 0 ok (missing file = ok) */

@@ -1861,6 +1861,99 @@ static void t_embed(void **st)
     assert_non_null(strstr(e, "bogus"));
 }
 
+/* ---- arm models ------------------------------------------------------ */
+
+/* fbrlsim --model a465: six axes in every readout, the A465's limits, a yaw the arm
+ * chooses, precision points of six pulses, and the model kept in the state file. */
+static void t_model_a465(void **st)
+{
+    const char *state = tmp("a465.state");
+    const char *const opts[] = { "--time-scale", "200", "--model", "a465", "--state", state, NULL };
+    const char *const plain[] = { "--time-scale", "200", "--state", state, NULL };
+    simp p;
+    double w[6];
+    const char *r, *x;
+    long pl[6];
+    (void)st;
+    start(&p, opts);
+    assert_non_null(strstr(cmd(&p, "STATUS"), "A465 Robot"));
+    assert_string_equal(status_line(&p, "AXIS#"), "AXIS#        1 2 3 4 5 6");
+    ok(&p, "HOME");
+    ok(&p, "READY");
+    r = cmd(&p, "W2");
+    x = strstr(r, "PULSES   ");
+    assert_non_null(x);
+    assert_int_equal(sscanf(x + 6, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]), 6);
+    assert_non_null(strstr(r, "AX#6"));
+    assert_non_null(strstr(r, "JT#6"));
+    /* READY: upper arm upright, forearm and tool level: 406 mm out, 635 mm up */
+    at(&p, 406.0 / 25.4, 0, 635.0 / 25.4, 0, 0);
+    /* its limits: wrist bend 105, tool roll 180 (048 for the sixth joint) */
+    err(&p, "JOINT 5,106", 46);
+    err(&p, "JOINT 6,181", 48);
+    err(&p, "JOINT 7,1", 65);
+    ok(&p, "JOINT 5,-30");
+    ok(&p, "FINISH");
+    /* six joints for MA (radians); five are not enough */
+    err(&p, "MA 0,0,1.5,0,0", 13);
+    ok(&p, "MA 0.2,0.3,1.2,0.1,-0.5,0.4");
+    ok(&p, "FINISH");
+    ok(&p, "HERE #Q");
+    ok(&p, "HERE Q");
+    /* a yaw of its own: the waist points one way, the tool another */
+    ok(&p, "POINT T,16,4,14,10,-45,20");
+    ok(&p, "MOVE T");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[0] - 16) < 1e-3 && fabs(w[1] - 4) < 1e-3 && fabs(w[2] - 14) < 1e-3);
+    assert_true(fabs(w[3] - 10) < 1e-3 && fabs(w[4] + 45) < 1e-3 && fabs(w[5] - 20) < 1e-3);
+    ok(&p, "MOVE T,S");
+    ok(&p, "MOVE #Q");
+    ok(&p, "FINISH");
+    r = cmd(&p, "LISTL #Q");
+    assert_int_equal(sscanf(r + 9, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]), 6);
+    assert_true(labs(pl[5] - lround(0.4 * 180.0 / M_PI * 138.89)) <= 1);
+    stop(&p);
+    {
+        char text[4096];
+        size_t n;
+        FILE *f = fopen(state, "r");
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_int_equal(strncmp(text, "FBRLSIM-STATE 1\nMODEL A465\n", strlen("FBRLSIM-STATE 1\nMODEL A465\n")), 0);
+    }
+    /* without --model the state file's arm comes back */
+    start(&p, plain);
+    assert_non_null(strstr(cmd(&p, "STATUS"), "A465 Robot"));
+    ok(&p, "HOME");
+    ok(&p, "MOVE Q");
+    ok(&p, "FINISH");
+    stop(&p);
+    {
+        /* another arm's memory is refused: --model a255 on an A465 file, and an old
+         * file without MODEL (an A255's) under --model a465 */
+        const char *old = tmp("old.state");
+        FILE *f = fopen(old, "w");
+        int i;
+        fputs("FBRLSIM-STATE 1\nSPEED 40\nJOINTS 0 90 -90 0 0\n", f);
+        fclose(f);
+        for (i = 0; i < 2; i++) {
+            int pid = fork(), stt;
+            if (pid == 0) {
+                int dn = open("/dev/null", O_WRONLY);
+                dup2(dn, 1);
+                dup2(dn, 2);
+                execl(FBRLSIM_PATH, FBRLSIM_PATH, "--model", i ? "a465" : "a255", "--state", i ? old : state,
+                      (char *)NULL);
+                _exit(127);
+            }
+            waitpid(pid, &stt, 0);
+            assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+        }
+    }
+}
+
 static int cleanup(void)
 {
     char c[128];
@@ -1894,6 +1987,7 @@ int main(int argc, char **argv)
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
     GROUP("embed", cmocka_unit_test(t_embed))
+    GROUP("model", cmocka_unit_test(t_model_a465))
     cleanup();
     return rc;
 }
