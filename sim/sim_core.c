@@ -52,7 +52,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     if (!s)
         return FBRL_ENOMEM;
     s->opt = *o;
-    s->io.master = s->io.slave = s->io.lfd = s->io.conn = s->io.fd = s->events.ctl = -1;
+    s->io.master = s->io.slave = s->io.lfd = s->io.conn = s->io.fd = s->io.ino = s->events.ctl = -1;
     s->wake[0] = s->wake[1] = -1;
     s->state_path = dupstr(o->state_path);
     s->log_path = dupstr(o->log_path);
@@ -177,9 +177,9 @@ static void work(fbrl_sim *s)
 
 fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
 {
-    struct pollfd p[4];
+    struct pollfd p[5];
     struct timespec ts;
-    int np = 0, iw, ictl = -1, iio = -1, ilfd = -1;
+    int np = 0, iw, ictl = -1, iio = -1, ilfd = -1, iino = -1;
     double now, wait;
 
     if (!s)
@@ -200,6 +200,11 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
     if (s->io.lfd >= 0) {
         ilfd = np;
         p[np].fd = s->io.lfd;
+        p[np++].events = POLLIN;
+    }
+    if (s->io.ino >= 0) {
+        iino = np;
+        p[np].fd = s->io.ino;
         p[np++].events = POLLIN;
     }
     if (s->io.fd >= 0) {
@@ -230,6 +235,8 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
          * so a user at nc or telnet knows the controller is there. */
         sim_term_greet(s);
     }
+    if (iino >= 0 && (p[iino].revents & POLLIN) && sim_io_pty_opened(&s->io) > 0)
+        sim_term_greet(s); /* before what the new client typed */
     if (iio >= 0 && s->io.fd >= 0 && (p[iio].revents & (POLLIN | POLLHUP | POLLERR)))
         do_read(s, now);
     work(s);

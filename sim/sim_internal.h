@@ -96,6 +96,7 @@ typedef struct sim_io {
     int master, slave;   /* pty (slave kept open so the master never hangs up) */
     int lfd, conn;       /* TCP listener and client */
     int fd;              /* fd the line uses: master or conn, -1 if none */
+    int ino;             /* inotify on the pty slave: a client opened it, -1 none */
 } sim_io;
 
 /* sim_term.c: terminal mode (line editor, reply framing, streams). */
@@ -234,6 +235,7 @@ int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
 int sim_io_accept(sim_io *io);        /* 1: a new client */
 int sim_io_close_client(sim_io *io);  /* 1: a client was closed */
+int sim_io_pty_opened(sim_io *io);    /* times the pty was opened since the last call */
 void sim_io_close(sim_io *io);
 
 /* sim_term.c */

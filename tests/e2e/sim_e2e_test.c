@@ -120,6 +120,7 @@ static void spawn(simp *p, const char *const *extra)
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
         raw_fd(p->fd);
+        expect_greeting(p);
     }
 }
 
@@ -194,7 +195,7 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     return n;
 }
 
-/* A TCP client is greeted with the prompt as soon as it connects. */
+/* A client is greeted with the prompt as soon as it connects (TCP) or opens the pty. */
 static void expect_greeting(simp *p)
 {
     size_t n = read_until(p, g_buf, sizeof g_buf, ">>", TIMEOUT);
@@ -330,6 +331,13 @@ static void t_echo_prompt(void **st)
         strcat(want, "1,5\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>");
         assert_string_equal(raw(&p, "JOINT,1,5"), want);
     }
+    /* a terminal program that opens the pty again is greeted again */
+    close(p.fd);
+    p.fd = open(p.path, O_RDWR | O_NOCTTY);
+    assert_true(p.fd >= 0);
+    raw_fd(p.fd);
+    expect_greeting(&p);
+    assert_string_equal(raw(&p, "SPEED 45"), "SPEED 45\r\n>>");
     stop(&p);
 }
 
@@ -1825,6 +1833,7 @@ static void t_embed(void **st)
     p.fd = open(link, O_RDWR | O_NOCTTY);
     assert_true(p.fd >= 0);
     raw_fd(p.fd);
+    expect_greeting(&p); /* opening the pty is its connect */
     ok(&p, "NOHELP");
     ok(&p, "HOME");
     ok(&p, "JOINT 1,45");
