@@ -61,6 +61,11 @@ enum { PS_IDLE, PS_BUSY, PS_STREAM, PS_THINK };
 #define SIM_POLL_BUSY 0.005     /* s: how often WAIT and RUN look at their conditions */
 #define SIM_LISTEN_BACKLOG 4
 
+/* sim_line.c: how fast characters are handed over (a bucket of about 1 ms). */
+typedef struct sim_pace {
+    double tokens, t;
+} sim_pace;
+
 /* sim_line.c: the serial line, each direction a UART (pacing, faults, parity, XON/XOFF). */
 typedef struct sim_line {
     double byte_time;           /* 10 bit times with --baud; 0: unpaced */
@@ -87,6 +92,7 @@ typedef struct sim_line {
     double tx_free;             /* when the last byte sent is complete */
     double tx_resume;           /* the host's XON: nothing starts before it */
     double tx_hold_until;       /* stall fault */
+    sim_pace tx_pace, rx_pace;  /* hand-over pace in each direction */
 } sim_line;
 
 /* sim_io.c: the transport under the line. */

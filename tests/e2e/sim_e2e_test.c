@@ -1331,6 +1331,14 @@ static void *late_probe(void *arg)
     return NULL;
 }
 
+/* fbrlsim hands over at most about 1 ms of characters at once (at least 2) when the OS
+ * woke it late (docs/fbrlsim.md): a fixed allowance, not one that grows with lateness. */
+static size_t burst(double rate)
+{
+    double c = ceil(0.001 * rate);
+    return c > 2 ? (size_t)c : 2;
+}
+
 static double lateness(void)
 {
     return 2.0 * g_probe_late > LATENESS ? 2.0 * g_probe_late : LATENESS;
@@ -1355,14 +1363,19 @@ static void arr_add(arrivals *a, double t, size_t n)
     a->n[a->k++] = n;
 }
 
-/* The most units that arrived in any window of length w (windows start at an arrival). */
+/* The most units that arrived in any window of length w that starts at a read, not
+ * counting that read's own units: a read takes everything waiting, so what it brought
+ * may have piled up while this test or the OS was late, but what the later reads
+ * bring cannot have arrived before it. */
 static size_t max_window(const arrivals *a, double w)
 {
     size_t i, j = 0, sum = 0, best = 0;
-    for (i = 0; i < a->k; i++) {
+    for (i = 1; i < a->k; i++) {
         sum += a->n[i];
-        while (a->t[i] - a->t[j] > w)
-            sum -= a->n[j++];
+        while (j + 1 <= i && a->t[i] - a->t[j] > w) {
+            j++;
+            sum -= a->n[j];
+        }
         if (sum > best)
             best = sum;
     }
@@ -1375,7 +1388,7 @@ static double g_flood_t0; /* just before flood()'s first write: no byte left ear
 
 static void flood(simp *p, const char *line, int count, arrivals *bytes, arrivals *prompts)
 {
-    char out[64];
+    char out[8192];
     size_t len = strlen(line), sent = 0, total = (size_t)count * (len + 1), got_prompts = 0;
     char *all = malloc(total);
     double end = now_s() + 60.0;
@@ -1459,7 +1472,7 @@ static void t_strict(void **st)
         /* controller -> host, saturated: the host sends without waiting for echoes */
         flood(&p, "TYPEI 1", cmds, &out, &prompts);
         most = max_window(&out, WINDOW);
-        allowed = (size_t)floor((WINDOW + lateness()) * rate) + 1;
+        allowed = (size_t)floor((WINDOW + lateness()) * rate) + 1 + burst(rate);
         print_message("%6ld baud, output: at most %zu bytes in a 100 ms window (N/10 per 100 ms = %.0f, "
                       "ratio %.3f; allowed with %.0f ms lateness %zu); fastest echo %.3f ms >= %.3f ms\n",
                       bauds[b], most, rate * WINDOW, most / (rate * WINDOW), lateness() * 1e3, allowed,
@@ -1481,10 +1494,10 @@ static void t_strict(void **st)
         cmds = (int)(rate * 0.6 / 9.0);
         flood(&p, "SPEED 50", cmds, &in, &inprompts);
         most = max_window(&inprompts, WINDOW);
-        allowed = (size_t)floor(((WINDOW + lateness()) * rate) / 9.0) + 1;
-        print_message("%6ld baud, input: at most %zu commands in a 100 ms window: %zu bytes between the first "
-                      "and the last (N/10 per 100 ms = %.0f, ratio %.3f; allowed %zu commands)\n",
-                      bauds[b], most, (most - 1) * 9, rate * WINDOW, (most - 1) * 9 / (rate * WINDOW), allowed);
+        allowed = (size_t)floor(((WINDOW + lateness()) * rate + (double)burst(rate)) / 9.0) + 1;
+        print_message("%6ld baud, input: at most %zu commands = %zu bytes taken in a 100 ms window (N/10 per 100 ms "
+                      "= %.0f, ratio %.3f; allowed with %.0f ms lateness %zu commands)\n",
+                      bauds[b], most, most * 9, rate * WINDOW, most * 9 / (rate * WINDOW), lateness() * 1e3, allowed);
         if (most > allowed)
             fail_msg("%ld baud: %zu commands of 9 bytes in 100 ms, the line carries %.0f bytes", bauds[b], most,
                      rate * WINDOW);
