@@ -116,6 +116,12 @@ static fbrl_status wait_step(fbrl_uart *u, wait *w)
     return st == FBRL_ETIMEOUT ? FBRL_OK : st;
 }
 
+/* A polled backend writes what is queued now. */
+static fbrl_status flush(fbrl_uart *u)
+{
+    return u->ops->flush != NULL ? u->ops->flush(u->ctx) : FBRL_OK;
+}
+
 fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
                             uint32_t timeout_ms)
 {
@@ -138,8 +144,11 @@ fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *
         if (done == len || (st = wait_step(u, &w)) != FBRL_OK)
             break;
     }
+    fbrl_status fst = done > 0 ? flush(u) : FBRL_OK;
     if (written != NULL)
         *written = done;
+    if (fst != FBRL_OK)
+        return fst; /* queued, but the line is gone: say so now */
     return done == len ? FBRL_OK : st;
 }
 
@@ -149,8 +158,10 @@ fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *
 static void after_rx_drain(fbrl_uart *u, bool was_full)
 {
     if (was_full || (fbrl_load_acq(&u->rx_stopped) &&
-                     (!fbrl_load_acq(&u->flow) || fbrl_ring_count(&u->rx) <= u->rx_low)))
+                     (!fbrl_load_acq(&u->flow) || fbrl_ring_count(&u->rx) <= u->rx_low))) {
         u->ops->tx_kick(u->ctx);
+        (void)flush(u); /* the XON the peer waits for leaves now; an error recurs at the next call */
+    }
 }
 
 fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,

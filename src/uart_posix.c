@@ -464,7 +464,19 @@ static fbrl_status px_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops posix_ops = {px_configure, px_kick, px_service, px_now, px_close};
+/* Polled mode: the bytes just queued go to the kernel inside fbrl_uart_write, so a
+ * host that waits for the fd to become readable (an event loop) never waits for a CR
+ * still in our ring. Thread mode: the thread writes them once tx_kick woke it. */
+static fbrl_status px_flush(void *ctx)
+{
+    fbrl_uart_posix *p = ctx;
+    size_t moved = 0;
+    if (!p->threaded && (p->stage_off < p->stage_len || fbrl_load_acq(&p->kick)))
+        return do_write(p, &moved);
+    return FBRL_OK;
+}
+
+static const fbrl_uart_ops posix_ops = {px_configure, px_kick, px_service, px_now, px_close, px_flush};
 
 /* ---- opening ---- */
 

@@ -77,6 +77,13 @@ typedef struct fbrl_uart_ops {
     uint64_t (*now_us)(void *ctx);
     /* Release the port (restore previous settings). May be NULL. */
     fbrl_status (*close)(void *ctx);
+    /* Polled backends: hand the bytes tx_kick announced to the OS or the hardware now,
+     * without waiting (a full OS queue keeps them for the next service); FBRL_OK, or
+     * the error that stopped it (FBRL_EDISCONNECTED). Called by the main line at the
+     * end of fbrl_uart_write(), and after a read made an XON due, so that a written
+     * byte never waits for the next read. NULL when the transmitter runs by itself
+     * after tx_kick (an interrupt, a service thread). */
+    fbrl_status (*flush)(void *ctx);
 } fbrl_uart_ops;
 
 /* Counter slots kept by the interrupt side (private; see fbrl_uart_counters). */
@@ -124,7 +131,9 @@ fbrl_status fbrl_uart_configure(fbrl_uart *u, const fbrl_uart_config *cfg);
 fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
 
 /* Queue len bytes for sending, waiting up to timeout_ms for room (0 = take what
- * fits now). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
+ * fits now), and hand them to the backend's transmitter before returning (a polled
+ * backend writes them to the OS within this call: ops->flush; an error it meets there,
+ * such as FBRL_EDISCONNECTED, is returned). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
  * first; *written (may be NULL) tells how many were queued either way. With XON/XOFF
  * the bytes 0x11 and 0x13 cannot be sent as data (the peer would obey them). */
 fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
