@@ -167,7 +167,7 @@ static fbrl_status sps_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops serialport_ops = {sps_configure, sps_kick, sps_service, sps_now, sps_close, sps_flush};
+static const fbrl_uart_ops serialport_ops = {sps_configure, sps_kick, sps_service, sps_now, sps_close, sps_flush, 0};
 
 fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, const char *name,
                                       const fbrl_uart_config *cfg,

@@ -74,7 +74,7 @@ static fbrl_status lb_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops lb_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close, 0};
+static const fbrl_uart_ops lb_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close, 0, 0};
 
 /* A polled backend's flush: the transmitter's bytes go onto the wire now, no waiting. */
 static fbrl_status lb_flush(void *ctx)
@@ -86,7 +86,7 @@ static fbrl_status lb_flush(void *ctx)
     return e->service_result;
 }
 
-static const fbrl_uart_ops lb_flush_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close, lb_flush};
+static const fbrl_uart_ops lb_flush_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close, lb_flush, 0};
 
 static line the_line;
 static end A, B;
