@@ -3,7 +3,7 @@
 # print, exit or abort; only the OS modules below may call the operating system.
 # Usage: check-hal.sh OBJ...   (prints each violation; exit 1 if any)
 set -u
-os_modules="uart_posix uart_serialport clock_posix fileio"
+os_modules="uart_posix uart_serialport clock_posix fileio port"
 never='^(malloc|calloc|realloc|free|printf|fprintf|vfprintf|puts|fputs|putchar|perror|exit|_exit|abort|__assert_fail|system)$'
 os_calls='^(open|open64|openat|close|read|write|poll|select|ioctl|fcntl|fcntl64|tcgetattr|tcsetattr|fopen|fopen64|fclose|fread|fwrite|fsync|rename|unlink|socket|connect|clock_gettime|nanosleep|usleep|sleep|pthread_[a-z_]*|signal|sigaction|getenv|time)$'
 bad=0
