@@ -37,6 +37,7 @@ static const struct {
     {"pl2303", FBRL_PORT_Q_USB},
     {"cdc_acm", FBRL_PORT_Q_USB},
     {"serial8250", FBRL_PORT_Q_LOW_LATENCY},
+    {"port", FBRL_PORT_Q_LOW_LATENCY}, /* Linux 6.x: serial core ports (8250 ...) */
 };
 
 static unsigned quirks_of(const char *driver)
