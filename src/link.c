@@ -1056,18 +1056,18 @@ static uint64_t due_at(const fbrl_link *l)
     return t;
 }
 
-/* Byte times that must pass before l can act, counted from t_last: while typing, the
- * rest of the echo (counted from the send, every echoed byte still has to cross; once
- * bytes came back, the next one may already be on its way, so one less); after the CR,
- * the CR itself and the shortest reply ("CR LF >>"). Otherwise 0: any byte may be the
- * one it waits for. */
+/* Byte times that must pass, counted from t_last, before all l waits for can be in:
+ * while typing, the rest of the echo; after the CR, the CR itself and the shortest
+ * reply ("CR LF >>"). One less in both cases, as a byte may already be on its way when
+ * l last looked, so a port is never looked at later than a strict line can deliver.
+ * 0 otherwise: any byte may be the one it waits for. */
 #define MIN_REPLY_BYTES 4u
 static size_t awaited(const fbrl_link *l)
 {
     if (l->phase == PH_TYPE && l->expect > l->match)
-        return l->expect - l->match - (l->match > 0);
+        return l->expect - l->match - 1;
     if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->after_cr == 0 && l->kind != FBRL_LINK_REPLY_STREAM)
-        return 1 + MIN_REPLY_BYTES;
+        return 1 + MIN_REPLY_BYTES - 1;
     return 0;
 }
 
