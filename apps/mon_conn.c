@@ -1,6 +1,7 @@
 /* mon_conn.c - opening the controller connection for fbrlmon, through fbrl_port. */
 #include "mon_conn.h"
 
+#include <locale.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
@@ -11,6 +12,34 @@
 #endif
 
 #ifdef FBRLMON_HAVE_SIM
+/* The built-in emulator reads and writes its state file as "C" text; fbrlmon runs in the
+ * user's locale (setlocale in main), so its create and destroy (load and save) run with
+ * the "C" locale on this thread. Its own thread sets "C" itself. */
+static locale_t sim_c_locale(void)
+{
+    static locale_t c;
+    if (!c)
+        c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    return c;
+}
+
+static fbrl_status sim_create_c(fbrl_sim **sim, const fbrl_sim_options *so, char *err, size_t errlen)
+{
+    locale_t prev = sim_c_locale() ? uselocale(sim_c_locale()) : (locale_t)0;
+    fbrl_status st = fbrl_sim_create(sim, so, err, errlen);
+    if (prev)
+        uselocale(prev);
+    return st;
+}
+
+static void sim_destroy_c(fbrl_sim *sim)
+{
+    locale_t prev = sim_c_locale() ? uselocale(sim_c_locale()) : (locale_t)0;
+    fbrl_sim_destroy(sim);
+    if (prev)
+        uselocale(prev);
+}
+
 /* fbrl_port's "sim:" hook: fbrlsim's core on a pty in a thread of this process (the
  * library itself never starts an emulator). arg (after "sim:") names a state file. */
 static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
@@ -20,7 +49,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     fbrl_status st;
     fbrl_sim_options_init(&so);
     so.state_path = arg[0] ? arg : c->sim_state;
-    st = fbrl_sim_create(&c->sim, &so, c->sim_err, sizeof c->sim_err);
+    st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;
         return st;
@@ -48,7 +77,7 @@ static void sim_stop(void *ctx)
 {
     mon_conn *c = ctx;
     if (c->sim != NULL)
-        fbrl_sim_destroy(c->sim);
+        sim_destroy_c(c->sim);
     c->sim = NULL;
 }
 #endif

@@ -1,207 +1,19 @@
-/* glossary.c - the data glossary in the language: installation, the C interface for the
- * robot words, shared helpers, location templates and matrices (thesis appendix III) and
- * metric conversion (I-7). Calibration is in glossary_cal.c, data files in glossary_file.c.
- *
- * Every word receives its VM's fbrl_glossary as arg. Stored locations are always inches;
- * with METRIC-ON the words that take or give location lengths (GETX/SETX and Y Z,
- * DEFINE-LOC, DISPLAY-LOC, PRINT-LOC, RECTMAT and RADMAT distances, SHOW-AUTOMAT,
- * SHOW-RADMAT) work in centimetres at the user side, as thesis chapter 5.6 prescribes. */
-#include <stdarg.h>
+/* glossary_loc.c - thesis appendix III location templates and matrices, and I-7 metric
+ * conversion. Stored locations are always inches; with METRIC-ON the words that take or
+ * give location lengths (GETX/SETX and Y Z, DEFINE-LOC, DISPLAY-LOC, PRINT-LOC, RECTMAT and
+ * RADMAT distances, SHOW-AUTOMAT, SHOW-RADMAT) work in centimetres at the user side, as
+ * thesis chapter 5.6 prescribes. */
 #include <stdio.h>
 #include <string.h>
 #include "fbrl/matrix.h"
 #include "glossary_internal.h"
-
-/* ---- helpers ---- */
-fbrl_status gl_define(fbrl_vm *vm, fbrl_glossary *g, const gl_word *w, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        fbrl_status st = fbrl_vm_define(vm, w[i].name, w[i].fn, g, w[i].stack, w[i].help);
-        if (st != FBRL_OK) return st;
-    }
-    return FBRL_OK;
-}
-
-fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
-{
-    char msg[128];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    return fbrl_vm_throw(vm, code, msg);
-}
-
-fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what)
-{
-    return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: %s", what, fbrl_status_str(st));
-}
-
-fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v)
-{
-    if (fbrl_vm_depth(vm) < n) return fbrl_vm_throw(vm, GL_STACK_UNDERFLOW, NULL);
-    while (n--) fbrl_vm_pop(vm, &v[n]);
-    return FBRL_OK;
-}
-
-fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v)
-{
-    if (fbrl_vm_fdepth(vm) < n) return fbrl_vm_throw(vm, GL_FSTACK_UNDERFLOW, NULL);
-    while (n--) fbrl_vm_fpop(vm, &v[n]);
-    return FBRL_OK;
-}
-
-fbrl_status gl_push_flag(fbrl_vm *vm, int yes) { return fbrl_vm_push(vm, yes ? -1 : 0); }
-
-fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_loc **loc)
-{
-    if (!fbrl__addr_ok(vm, a, (fbrl_cell)sizeof(fbrl_loc)))
-        return gl_throw(vm, GL_BAD_ADDRESS, "%s: address is not a location in data space", word);
-    if ((fbrl_ucell)a % sizeof(double))
-        return gl_throw(vm, GL_ALIGNMENT, "%s: location address not aligned to 8 bytes", word);
-    if (finite && fbrl_loc_check((fbrl_loc *)a) != FBRL_OK)
-        return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a location (a component is not a finite number)",
-                        word);
-    *loc = (fbrl_loc *)a;
-    return FBRL_OK;
-}
-
-static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) & ~(fbrl_ucell)15); }
-
-fbrl_status gl_make(fbrl_vm *vm, fbrl_vm_prim run, fbrl_cell magic, size_t bytes, const char *stack,
-                    const char *help, void **payload)
-{
-    unsigned char *here0 = vm->here;
-    uint32_t nwords0 = vm->nwords;
-    size_t total = (magic ? GL_PAYLOAD : 0) + bytes;
-    fbrl_hdr *h;
-    int r = fbrl__create(vm, run ? K_CFUNC : K_VAR, stack, help, &h);
-    if (!r) r = fbrl__allot(vm, align16((fbrl_cell)vm->here) - (fbrl_cell)vm->here);
-    if (!r) {
-        h->body = (fbrl_cell)vm->here;
-        r = fbrl__allot(vm, (fbrl_cell)total);
-    }
-    if (r) { /* no half-made word is left behind */
-        if (vm->nwords != nwords0) fbrl__forget(vm, here0, nwords0, vm->req_used);
-        return fbrl_vm_throw(vm, r, NULL);
-    }
-    memset((void *)h->body, 0, total);
-    if (magic) memcpy((void *)h->body, &magic, sizeof magic);
-    if (run) {
-        h->fn = run;
-        h->arg = (void *)h->body;
-    }
-    *payload = (void *)(h->body + (magic ? GL_PAYLOAD : 0));
-    return FBRL_OK;
-}
-
-void *gl_struct(fbrl_vm *vm, fbrl_cell a, fbrl_cell magic, size_t bytes)
-{
-    fbrl_cell m;
-    if ((fbrl_ucell)a % 16 || !fbrl__addr_ok(vm, a, GL_PAYLOAD + (fbrl_cell)bytes)) return NULL;
-    memcpy(&m, (void *)a, sizeof m);
-    return m == magic ? (void *)(a + GL_PAYLOAD) : NULL;
-}
-
-int gl_rigid(const fbrl_calib *c)
-{
-    /* The calib module's save accepts exactly the finite rigid motions. */
-    unsigned char b[FBRL_CALIB_BYTES];
-    return fbrl_calib_save(c, b, sizeof b) == FBRL_OK;
-}
-
-fbrl_status gl_stru(fbrl_vm *vm, fbrl_cell a, int rigid, const char *word, fbrl_calib **c)
-{
-    fbrl_calib *p = gl_struct(vm, a, MAGIC_STRU, sizeof(fbrl_calib));
-    if (!p)
-        return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a calibration structure (use a CREATE-CAL-STRU name)",
-                        word);
-    if (rigid && !gl_rigid(p))
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ESTATE),
-                        "%s: calibration structure is not a rigid motion (see CAL-STRU!)", word);
-    *c = p;
-    return FBRL_OK;
-}
-
-fbrl_status gl_in(fbrl_vm *vm, const fbrl_glossary *g, double user, double *inches)
-{
-    fbrl_status st = fbrl_units_in(&g->units, user, inches);
-    return st == FBRL_OK ? st : gl_throw_st(vm, st, "length");
-}
-
-fbrl_status gl_out(fbrl_vm *vm, const fbrl_glossary *g, double inches, double *user)
-{
-    fbrl_status st = fbrl_units_out(&g->units, inches, user);
-    return st == FBRL_OK ? st : gl_throw_st(vm, st, "length");
-}
-
-/* ---- the C interface ---- */
-static int installed(const fbrl_glossary *g) { return g && g->magic == GL_INSTALLED && g->vm; }
-
-fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g)
-{
-    fbrl_status st;
-    if (!vm || !g) return FBRL_EINVAL;
-    memset(g, 0, sizeof *g);
-    g->vm = vm;
-    fbrl_units_init(&g->units);
-    if ((st = gl_install_loc(vm, g)) != FBRL_OK || (st = gl_install_cal(vm, g)) != FBRL_OK ||
-        (st = gl_install_file(vm, g)) != FBRL_OK)
-        return st;
-    g->magic = GL_INSTALLED;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out)
-{
-    if (!vm || !out) return FBRL_EINVAL;
-    if (!fbrl_vm_addr(vm, addr, sizeof(fbrl_loc)) || (fbrl_ucell)addr % sizeof(double)) return FBRL_ERANGE;
-    *out = (fbrl_loc *)addr;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out)
-{
-    if (!vm || !out) return FBRL_EINVAL;
-    if (!fbrl_vm_addr(vm, addr, GL_PAYLOAD + sizeof(fbrl_calpts))) return FBRL_ERANGE;
-    fbrl_calpts *c = gl_struct(vm, addr, MAGIC_CAL, sizeof(fbrl_calpts));
-    if (!c) return FBRL_ETYPE;
-    *out = c;
-    return FBRL_OK;
-}
-
-const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g) { return g ? &g->units : NULL; }
-
-void fbrl_glossary_set_port_writer(fbrl_glossary *g, void (*write)(void *ctx, const char *s, size_t n),
-                                   void *ctx)
-{
-    if (!g) return;
-    g->port_write = write;
-    g->port_ctx = write ? ctx : NULL;
-}
-
-static fbrl_status map_loc(const fbrl_glossary *g, fbrl_loc *loc, int out)
-{
-    fbrl_loc res;
-    fbrl_status st;
-    if (!installed(g) || !loc) return FBRL_EINVAL;
-    if (!g->map_on) return FBRL_OK;
-    const fbrl_calib *c = gl_struct(g->vm, g->with_cal, MAGIC_STRU, sizeof(fbrl_calib));
-    if (!c || !gl_rigid(c)) return FBRL_ESTATE;
-    st = out ? fbrl_calib_map(c, loc, &res) : fbrl_calib_unmap(c, loc, &res);
-    if (st == FBRL_OK) *loc = res;
-    return st;
-}
-
-fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc) { return map_loc(g, loc, 1); }
-fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc) { return map_loc(g, loc, 0); }
 
 /* ---- III-1 location templates ---- */
 static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
 {
     void *p;
     (void)arg;
-    return gl_make(vm, NULL, 0, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &p);
+    return gl_make(vm, NULL, NULL, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &p);
 }
 
 static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
@@ -290,9 +102,9 @@ static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, cha
     fbrl_status st;
     if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc))) return st;
     shown = *loc;
-    if ((st = fbrl_glossary_map_out(g, &shown)) != FBRL_OK) {
+    if ((st = gl_map(g, &shown, 1, NULL, NULL)) != FBRL_OK) {
         if (st == FBRL_ESTATE)
-            return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
                             word);
         return gl_throw_st(vm, st, word);
     }
@@ -306,7 +118,7 @@ static fbrl_status w_display_loc(fbrl_vm *vm, void *g)
     fbrl_status st = loc_text(vm, g, "DISPLAY-LOC", buf, sizeof buf - 1);
     if (st) return st;
     strcat(buf, "\n");
-    fbrl__puts(vm, buf);
+    fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
 }
 
@@ -318,7 +130,7 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
     if (!g->port_write) {
         fbrl_cell a;
         if ((st = gl_pop(vm, 1, &a))) return st;
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_EOFFLINE), "PRINT-LOC: no communication port");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), "PRINT-LOC: no communication port");
     }
     if ((st = loc_text(vm, g, "PRINT-LOC", buf, sizeof buf - 2))) return st;
     strcat(buf, "\r\n");
@@ -327,8 +139,8 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
 }
 
 /* ---- III-2 location matrices ---- */
-static fbrl_status rect_run(fbrl_vm *vm, void *body);
-static fbrl_status rad_run(fbrl_vm *vm, void *body);
+static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body);
+static fbrl_status rad_run(fbrl_vm *vm, void *ctx, const void *body);
 
 static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **loc)
 {
@@ -337,18 +149,19 @@ static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **l
     if ((st = gl_pop(vm, 4, a)) || (st = gl_loc(vm, a[3], 0, word, loc))) return st;
     for (int i = 0; i < 3; i++) {
         if (a[i] < -1000000 || a[i] > 1000000)
-            return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: matrix index out of range", word);
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: matrix index out of range", word);
         idx[i] = (long)a[i];
     }
     return FBRL_OK;
 }
 
-static fbrl_status rect_run(fbrl_vm *vm, void *body)
+static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body)
 {
+    (void)ctx;
     long i[3];
     fbrl_loc *loc, out;
     fbrl_status st;
-    const fbrl_rectmat *m = gl_struct(vm, (fbrl_cell)body, MAGIC_RECT, sizeof(fbrl_rectmat));
+    const fbrl_rectmat *m = fbrl_vmx_data(vm, (fbrl_cell)body, &gl_type_rect, sizeof(fbrl_rectmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RECTMAT: matrix structure overwritten");
     if ((st = index3(vm, "RECTMAT", i, &loc))) return st;
     if ((st = fbrl_rectmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
@@ -356,12 +169,13 @@ static fbrl_status rect_run(fbrl_vm *vm, void *body)
     return FBRL_OK;
 }
 
-static fbrl_status rad_run(fbrl_vm *vm, void *body)
+static fbrl_status rad_run(fbrl_vm *vm, void *ctx, const void *body)
 {
+    (void)ctx;
     long i[3];
     fbrl_loc *loc, out;
     fbrl_status st;
-    const fbrl_radmat *m = gl_struct(vm, (fbrl_cell)body, MAGIC_RAD, sizeof(fbrl_radmat));
+    const fbrl_radmat *m = fbrl_vmx_data(vm, (fbrl_cell)body, &gl_type_rad, sizeof(fbrl_radmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RADMAT: matrix structure overwritten");
     if ((st = index3(vm, "RADMAT", i, &loc))) return st;
     if ((st = fbrl_radmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
@@ -391,7 +205,7 @@ static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
     fbrl_status st;
     if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v))) return st;
     if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
-    if ((st = gl_make(vm, rect_run, MAGIC_RECT, sizeof m, "( i j k loc -- )",
+    if ((st = gl_make(vm, rect_run, &gl_type_rect, sizeof m, "( i j k loc -- )",
                       "store location (i, j, k) of this RECTMAT into loc", &p)))
         return st;
     memcpy(p, &m, sizeof m);
@@ -408,9 +222,9 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
     if ((st = mat_args(vm, g, "RADMAT", 1, &base, v))) return st;
     st = fbrl_radmat_init(&m, base, v[0], v[1], v[2]);
     if (st == FBRL_ERANGE)
-        return gl_throw(vm, FBRL_THROW_STATUS(st), "RADMAT: base location on the centre axis has no angle");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "RADMAT: base location on the centre axis has no angle");
     if (st != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
-    if ((st = gl_make(vm, rad_run, MAGIC_RAD, sizeof m, "( ring idx k loc -- )",
+    if ((st = gl_make(vm, rad_run, &gl_type_rad, sizeof m, "( ring idx k loc -- )",
                       "store location (ring, idx, k) of this RADMAT into loc", &p)))
         return st;
     memcpy(p, &m, sizeof m);
@@ -426,18 +240,18 @@ static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, int rad)
     fbrl_cell xt;
     fbrl_status st;
     if ((st = gl_pop(vm, 1, &xt))) return st;
-    const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
-    if (!h || h->kind != K_CFUNC || h->fn != (rad ? rad_run : rect_run))
+    fbrl_cell body;
+    if (fbrl_vmx_created(vm, xt, rad ? rad_run : rect_run, &body) != FBRL_OK)
         return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a %s (pass its execution token: ' name)", word,
                         rad ? "RADMAT" : "RECTMAT");
-    const void *m = gl_struct(vm, h->body, rad ? MAGIC_RAD : MAGIC_RECT,
+    const void *m = fbrl_vmx_data(vm, body, rad ? &gl_type_rad : &gl_type_rect,
                               rad ? sizeof(fbrl_radmat) : sizeof(fbrl_rectmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "%s: matrix structure overwritten", word);
     st = rad ? fbrl_radmat_format(m, g->units.metric, buf, sizeof buf - 1)
              : fbrl_rectmat_format(m, g->units.metric, buf, sizeof buf - 1);
     if (st != FBRL_OK) return gl_throw_st(vm, st, word);
     strcat(buf, "\n");
-    fbrl__puts(vm, buf);
+    fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
 }
 static fbrl_status w_show_automat(fbrl_vm *vm, void *g) { return w_show(vm, g, 0); }

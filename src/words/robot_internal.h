@@ -1,0 +1,103 @@
+/* robot_internal.h - shared by the robot words' sources (private to the library):
+ *   robot.c        binding the tables into a VM (fbrl_robot_install)
+ *   robot_svc.c    errors, Ctrl-C, console, clock
+ *   robot_link.c   commands to the controller through the link
+ *   robot_param.c  parameters from the stacks or the input (I-6), their checks
+ *   robot_loc.c    locations: mapping, base offset, scratch points, the arm's position
+ *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c: the words
+ * Calls go downwards in that list (tables up to robot.c), never in a circle. */
+#ifndef FBRL_LANG_ROBOT_INTERNAL_H
+#define FBRL_LANG_ROBOT_INTERNAL_H
+
+#include "fbrl/loc.h"
+#include "fbrl/robot.h"
+#include "fbrl/vmx.h"
+
+/* One parameter, as fetched by rb_params(): i for I C L A (L: the location's address),
+ * f for R, s n for S T and for X given as a controller name. */
+typedef fbrl_vmx_val rb_val;
+
+#define RB_MAXP FBRL_VMX_MAXARGS
+
+struct rb_word;
+typedef fbrl_status (*rb_fn)(fbrl_robot *r, const struct rb_word *w, rb_val *v);
+
+/* A table entry. spec lists the parameters in stack-effect order: vmx.h's letters (I R C S T)
+ * and L location address, X location or controller location name, A device address.
+ * flags: FBRL_VMX_IMMEDIATE ... */
+typedef struct rb_word {
+    const char *name;
+    rb_fn fn;
+    const char *spec;
+    unsigned flags;
+    int cmd;           /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
+    intptr_t arg;      /* word-specific */
+    const char *stack, *help;
+} rb_word;
+
+/* Throw a Forth exception with a message (the message is copied). */
+fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg);
+/* Throw for a libfbrl status, prefixed with the word's name. */
+fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const char *what);
+/* Throw unless a controller is connected; a command an interrupted word left running
+ * in the link is finished first. */
+fbrl_status rb_online(fbrl_robot *r);
+/* Throw -28 "user interrupt" if Ctrl-C (fbrl_vm_interrupt) was pressed (for words that
+ * wait or loop); FBRL_OK otherwise. */
+fbrl_status rb_interrupted(fbrl_robot *r);
+
+/* Run one command from the RAPL table; controller errors become exceptions whose
+ * message holds the controller's code and text. */
+fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
+                   int straight);
+/* Run a raw line; its output lines go to the console when print != 0. */
+fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* Convert a finished link call's status (st) into an exception, or FBRL_OK. */
+fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st);
+
+/* Console output. */
+void rb_puts(fbrl_robot *r, const char *s);
+
+/* Metric: lengths the user gives (cm when METRIC-ON) -> inches. */
+double rb_len_in(const fbrl_robot *r, double v);
+
+/* Host clock and sleep (throw when the host has none). */
+fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms);
+fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms);
+
+/* Any control character counts as blank (as the engine's parser has it). */
+static inline int rb_blank(char c) { return (unsigned char)c <= ' '; }
+
+/* robot_link.c: W1 W3 W5 WE1 WE3 WE5 readings on the console */
+fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd);
+
+/* robot_param.c: I-6: parse one parameter of the given kind from the input after the word;
+ * all of a word's parameters (docs/robot.md's one rule); argument checks that throw naming
+ * the word. */
+fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v);
+fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v);
+fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *buf, size_t cap);
+fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo, fbrl_cell hi);
+fbrl_status rb_finite(fbrl_robot *r, const rb_word *w, const rb_val *v, size_t n);
+
+/* robot_loc.c: a host location read (finite) or written, naming the word; the user's frame
+ * to the arm's (MAP-ON, BASE-OFFSET) and back (map = 0: no unmapping); a scratch controller
+ * point at arm coordinates; the arm's position from W2 (after FINISH when finish != 0). */
+fbrl_status rb_loc_read(fbrl_robot *r, const rb_word *w, fbrl_cell addr, fbrl_loc *out);
+fbrl_status rb_loc_write(fbrl_robot *r, const rb_word *w, fbrl_cell addr, const fbrl_loc *in);
+fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbrl_loc *arm);
+fbrl_status rb_from_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, fbrl_loc *user, int map);
+fbrl_status rb_scratch_point(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, const char **name);
+fbrl_status rb_arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_loc *arm);
+
+/* robot_comm.c: resynchronise the link after raw output; point PRINT-LOC at the port */
+fbrl_status rb_resync(fbrl_robot *r);
+void rb_port_writer(fbrl_robot *r);
+
+/* The word tables, in the order robot.c defines them. */
+extern const rb_word rb_motion_words[], rb_rapl_words[], rb_teach_words[], rb_param_words[],
+    rb_line_words[], rb_comm_words[], rb_io_words[], rb_comm_asc;
+extern const size_t rb_motion_nwords, rb_rapl_nwords, rb_teach_nwords, rb_param_nwords, rb_line_nwords,
+    rb_comm_nwords, rb_io_nwords;
+
+#endif
