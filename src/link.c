@@ -1056,18 +1056,21 @@ static uint64_t due_at(const fbrl_link *l)
     return t;
 }
 
-/* Byte times that must pass, counted from t_last, before all l waits for can be in:
- * while typing, the rest of the echo; after the CR, the CR itself and the shortest
- * reply ("CR LF >>"). One less in both cases, as a byte may already be on its way when
- * l last looked, so a port is never looked at later than a strict line can deliver.
- * 0 otherwise: any byte may be the one it waits for. */
+/* Byte times that must pass, counted from t_last, before all l waits for can be in on
+ * a line that carries one character per byte time:
+ *  - typing, nothing back yet (t_last = the send): the first character must reach the
+ *    controller before its echo starts, then the whole echo crosses: expect + 1;
+ *  - after the CR, nothing back yet: the CR, then the shortest reply ("CR LF >>");
+ *  - part of either in: the rest, less one (the next byte may be on its way already).
+ * 0 otherwise: any byte may be the one l waits for. */
 #define MIN_REPLY_BYTES 4u
 static size_t awaited(const fbrl_link *l)
 {
     if (l->phase == PH_TYPE && l->expect > l->match)
-        return l->expect - l->match - 1;
-    if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->after_cr == 0 && l->kind != FBRL_LINK_REPLY_STREAM)
-        return 1 + MIN_REPLY_BYTES - 1;
+        return l->match == 0 ? l->expect + 1 : l->expect - l->match - 1;
+    if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
+        l->after_cr < MIN_REPLY_BYTES)
+        return l->after_cr == 0 ? 1 + MIN_REPLY_BYTES : MIN_REPLY_BYTES - l->after_cr - 1;
     return 0;
 }
 
