@@ -1085,11 +1085,14 @@ static uint64_t byte_us(const fbrl_link *l)
 }
 
 /* Nothing l waits for can be complete before this: the line carries one character per
- * byte time. Until then l's port is not watched (no wake-up per byte). */
+ * byte time. Until then l's port is not watched (no wake-up per byte). Half a byte time
+ * more: characters arrive a little after their line time (the sender is scheduled too),
+ * and a look just before the last one only costs a second wake-up for it. */
 static uint64_t not_before(const fbrl_link *l)
 {
     size_t r = awaited(l);
-    return r > 0 ? l->t_last + (uint64_t)r * byte_us(l) : 0;
+    uint64_t bt = byte_us(l);
+    return r > 0 ? l->t_last + (uint64_t)r * bt + bt / 2 : 0;
 }
 
 fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index)
