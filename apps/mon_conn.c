@@ -49,6 +49,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     fbrl_status st;
     fbrl_sim_options_init(&so);
     so.state_path = arg[0] ? arg : c->sim_state;
+    so.inputs_path = c->sim_inputs;
     st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;
@@ -91,6 +92,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     memset(c, 0, sizeof *c);
     c->kind = o->kind;
     c->sim_state = o->sim_state;
+    c->sim_inputs = o->sim_inputs;
     if (o->kind == MON_CONN_OFFLINE)
         return FBRL_OK;
     if (o->kind == MON_CONN_SIM) {

@@ -21,6 +21,7 @@ typedef struct mon_conn_options {
     const char *port;         /* MON_CONN_PORT: a name fbrl_port_open takes (path, tcp:HOST:PORT, ?options) */
     fbrl_port_options line;   /* baud, data bits, parity, stop bits, flow, low latency */
     const char *sim_state;    /* MON_CONN_SIM: emulator's persistent memory, or NULL */
+    const char *sim_inputs;   /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
@@ -30,7 +31,7 @@ typedef struct mon_conn {
 #ifdef FBRLMON_HAVE_SIM
     fbrl_sim *sim;
 #endif
-    const char *sim_state;
+    const char *sim_state, *sim_inputs;
     char sim_err[256];
     fbrl_port port;
     fbrl_link link;
