@@ -33,6 +33,7 @@ typedef struct options {
     size_t dict_bytes;
     int list_ports;
     int conn_default;     /* no --port, --sim or --offline given */
+    const char *printer;  /* --printer: PRINT-LOC's destination instead of the controller's line */
     mon_conn_options conn;
 } options;
 
@@ -50,13 +51,18 @@ static void usage(FILE *f)
           "  --parity P       none, even or odd (default none)\n"
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
+          "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
           "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
           "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
+          "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
+          "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
           "  --offline        no controller: robot words report an error\n"
+          "  --printer PATH   PRINT-LOC appends to PATH (a file, a printer, a second\n"
+          "                   serial line) instead of the controller's line\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -89,7 +95,8 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", "--sim-model", "--axes", NULL };
+                                         "--flow", "--low-latency", "--sim-state", "--sim-inputs", "--printer",
+                                         "--sim-model", "--axes", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -97,22 +104,8 @@ static int is_valued(const char *a)
     return 0;
 }
 
-static int parse_uint(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
-{
-    char *end;
-    unsigned long v;
-    errno = 0;
-    v = strtoul(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || s[0] == '-' || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
-}
-
 static int set_valued(options *o, const char *a, const char *v)
 {
-    unsigned long n;
-    fbrl_uart_config *l = &o->conn.line;
     if (strcmp(a, "--port") == 0) {
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
@@ -121,37 +114,18 @@ static int set_valued(options *o, const char *a, const char *v)
     } else if (strcmp(a, "--sim-model") == 0) {
         o->conn.sim_model = v;
     } else if (strcmp(a, "--axes") == 0) {
-        if (parse_uint(v, 1, FBRL_RAPL_MAX_AXES, &n) != 0)
+        char *end;
+        unsigned long n = strtoul(v, &end, 10);
+        if (end == v || *end != '\0' || v[0] == '-' || n < 1 || n > FBRL_RAPL_MAX_AXES)
             return -1;
         o->conn.axes = (unsigned)n;
-    } else if (strcmp(a, "--baud") == 0) {
-        if (parse_uint(v, 1, 4000000, &n) != 0)
-            return -1;
-        l->baud = (uint32_t)n;
-    } else if (strcmp(a, "--data-bits") == 0) {
-        if (parse_uint(v, 5, 8, &n) != 0)
-            return -1;
-        l->data_bits = (uint8_t)n;
-    } else if (strcmp(a, "--stop-bits") == 0) {
-        if (parse_uint(v, 1, 2, &n) != 0)
-            return -1;
-        l->stop_bits = (uint8_t)n;
-    } else if (strcmp(a, "--parity") == 0) {
-        if (strcmp(v, "none") == 0 || strcmp(v, "N") == 0 || strcmp(v, "n") == 0)
-            l->parity = FBRL_PARITY_NONE;
-        else if (strcmp(v, "even") == 0 || strcmp(v, "E") == 0 || strcmp(v, "e") == 0)
-            l->parity = FBRL_PARITY_EVEN;
-        else if (strcmp(v, "odd") == 0 || strcmp(v, "O") == 0 || strcmp(v, "o") == 0)
-            l->parity = FBRL_PARITY_ODD;
-        else
-            return -1;
-    } else if (strcmp(a, "--flow") == 0) {
-        if (strcmp(v, "none") == 0)
-            l->flow = FBRL_FLOW_NONE;
-        else if (strcmp(v, "xonxoff") == 0)
-            l->flow = FBRL_FLOW_XONXOFF;
-        else
-            return -1;
+    } else if (strcmp(a, "--printer") == 0) {
+        o->printer = v;
+    } else if (strcmp(a, "--sim-inputs") == 0) {
+        o->conn.sim_inputs = v;
+    } else if (fbrl_port_set_option(&o->conn.line, a + 2, v) != FBRL_OK) {
+        /* --baud, --data-bits, --parity, --stop-bits, --flow, --low-latency: the library's option text */
+        return -1;
     }
     return 0;
 }
@@ -160,8 +134,7 @@ static int set_valued(options *o, const char *a, const char *v)
 static int parse_args(int argc, char **argv, options *o, int *status)
 {
     int i, only_files = 0, explicit_conn = 0;
-    fbrl_uart_config line = FBRL_UART_CONFIG_DEFAULT;
-    o->conn.line = line;
+    fbrl_port_options_init(&o->conn.line);
     o->actions = calloc((size_t)argc, sizeof *o->actions);
     o->dict_bytes = DICT_BYTES_DEFAULT;
     if (o->actions == NULL) {
@@ -222,6 +195,9 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         }
     }
+    /* Inputs for the emulator ask for the emulator: one that cannot start is an error. */
+    if (!explicit_conn && o->conn.sim_inputs != NULL)
+        explicit_conn = 1, o->conn.kind = MON_CONN_SIM;
     o->conn_default = !explicit_conn;
     if (!explicit_conn)
 #ifdef FBRLMON_HAVE_SIM
@@ -238,12 +214,22 @@ bad:
 
 static mon_conn g_conn;  /* fixed address while open, as the uart backend needs */
 
+/* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
+ * (a printer or a second line shows it as it is printed). */
+static void print_to_printer(void *ctx, const char *s, size_t n)
+{
+    FILE *f = ctx;
+    if (fwrite(s, 1, n, f) != n || fflush(f) != 0)
+        fprintf(stderr, "fbrlmon: --printer: write failed: %s\n", strerror(errno));
+}
+
 int main(int argc, char **argv)
 {
     options opt;
     static mon m;  /* fixed address for the words; large */
     int status = MON_EXIT_OK;
     size_t i;
+    FILE *printer = NULL;
 
     /* The user's locale (the terminal's character set for line editing). libfbrl reads
      * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
@@ -284,6 +270,18 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
 
+    if (opt.printer != NULL) {
+        printer = fopen(opt.printer, "a");
+        if (printer == NULL) {
+            fprintf(stderr, "fbrlmon: --printer %s: %s\n", opt.printer, strerror(errno));
+            mon_close(&m);
+            mon_conn_close(&g_conn);
+            free(opt.actions);
+            return MON_EXIT_CONNECT;
+        }
+        fbrl_glossary_set_port_writer(&m.glossary, print_to_printer, printer);
+    }
+
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
         const action *a = &opt.actions[i];
         if (a->is_text) {
@@ -303,6 +301,9 @@ int main(int argc, char **argv)
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
             printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", FBRL_VERSION, desc);
+            /* a person at the prompt: motions say what they started and when a wait ended */
+            if (m.host.out_is_tty)
+                fbrl_robot_set_console(&m.robot, mon_host_progress, &m.host, 1);
             mon_interactive(&m);
         } else {
             unsigned long ln = 0;
@@ -321,6 +322,8 @@ int main(int argc, char **argv)
     }
 
     mon_close(&m);
+    if (printer != NULL && fclose(printer) != 0)
+        fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
     mon_conn_close(&g_conn);
     free(opt.actions);
