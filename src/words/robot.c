@@ -91,3 +91,19 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
 }
 
 int fbrl_robot_last_error(const fbrl_robot *r) { return r ? r->last_error : -1; }
+
+fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4])
+{
+    if (!r || !base) return FBRL_EINVAL;
+    memcpy(base, r->base, sizeof r->base);
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4])
+{
+    if (!r || !base) return FBRL_EINVAL;
+    for (int k = 0; k < 4; k++)
+        if (!isfinite(base[k])) return FBRL_ENONFINITE;
+    memcpy(r->base, base, sizeof r->base);
+    return FBRL_OK;
+}
