@@ -13,6 +13,7 @@
 
 #include "mon.h"
 #include "mon_conn.h"
+#include "mon_ws.h"
 
 #ifndef FBRL_VERSION
 #define FBRL_VERSION "unknown"
@@ -32,6 +33,7 @@ typedef struct options {
     size_t dict_bytes;
     int list_ports;
     int conn_default;     /* no --port, --sim or --offline given */
+    const char *workspace; /* --workspace FILE */
     mon_conn_options conn;
 } options;
 
@@ -54,6 +56,8 @@ static void usage(FILE *f)
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
 #endif
           "  --offline        no controller: robot words report an error\n"
+          "  --workspace FILE load the workspace FILE (if it exists) first; at exit offer\n"
+          "                   to save changes to it (docs/workspace.md)\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -86,7 +90,7 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", NULL };
+                                         "--flow", "--sim-state", "--workspace", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -113,6 +117,8 @@ static int set_valued(options *o, const char *a, const char *v)
     if (strcmp(a, "--port") == 0) {
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
+    } else if (strcmp(a, "--workspace") == 0) {
+        o->workspace = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
     } else if (strcmp(a, "--baud") == 0) {
@@ -272,6 +278,13 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
 
+    if (opt.workspace != NULL && mon_ws_start(&m, opt.workspace) != 0) {
+        mon_close(&m);
+        mon_conn_close(&g_conn);
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
+
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
         const action *a = &opt.actions[i];
         if (a->is_text) {
@@ -303,6 +316,7 @@ int main(int argc, char **argv)
         }
     }
 
+    mon_ws_finish(&m);
     mon_close(&m);
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
     mon_conn_close(&g_conn);

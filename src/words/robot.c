@@ -44,6 +44,7 @@ static const struct {
     { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords }, { rb_teach_words, &rb_teach_nwords },
     { rb_param_words, &rb_param_nwords },   { rb_line_words, &rb_line_nwords }, { rb_comm_words, &rb_comm_nwords },
     { &rb_comm_asc, &one },                 { rb_io_words, &rb_io_nwords },
+    { rb_import_words, &rb_import_nwords },
 };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
