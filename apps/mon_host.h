@@ -24,6 +24,10 @@ typedef struct mon_host {
     int in_eof;
     char *line;         /* mon_host_read_line()'s growing buffer */
     size_t line_cap;
+    /* The line editor while the interactive session runs (mon_edit.c): the engine's
+     * read_line (GET-CAL-POINTS) edits console lines with it. NULL: plain lines. */
+    const char *(*edit_line)(void *ctx, const char *prompt, size_t *len);
+    void *edit_ctx;
 } mon_host;
 
 /* Fill h (output to `out`, keys from file descriptor `in_fd`) and the engine's

@@ -62,24 +62,19 @@ void mon_ws_finish(mon *m)
         return;
     }
     mon_host_newline(&m->host);
-    if (target[0]) {
-        snprintf(q, sizeof q, "The workspace changed (%s). Save it to %s? [Y/n] ", what, target);
-        line = ask(m, q, &len);
-        if (line == NULL || (len > 0 && line[0] != 'y' && line[0] != 'Y')) {
-            printf("not saved\n");
-            return;
-        }
-        snprintf(path, sizeof path, "%s", target);
-    } else {
-        snprintf(q, sizeof q, "The workspace changed (%s). Save it to file (empty: do not save): ", what);
-        line = ask(m, q, &len);
-        if (line == NULL || len == 0 || len >= sizeof path) {
-            printf("not saved\n");
-            return;
-        }
-        memcpy(path, line, len);
-        path[len] = '\0';
+    if (!target[0]) {
+        /* no workspace file in this session: say what would be lost, without holding up
+         * the exit with a question nobody asked for */
+        fprintf(stderr, "note: %s not saved (SAVE-WORKSPACE FILE keeps them; docs/workspace.md)\n", what);
+        return;
     }
+    snprintf(q, sizeof q, "The workspace changed (%s). Save it to %s? [Y/n] ", what, target);
+    line = ask(m, q, &len);
+    if (line == NULL || (len > 0 && line[0] != 'y' && line[0] != 'Y')) {
+        printf("not saved\n");
+        return;
+    }
+    snprintf(path, sizeof path, "%s", target);
     fbrl_status st = fbrl_workspace_save(&m->ws, path, &n);
     if (st != FBRL_OK) {
         fprintf(stderr, "error: saving the workspace to %s: %s; %s\n", path,

@@ -9,9 +9,10 @@
  * reported), else remember it as the file to save to. */
 int mon_ws_start(mon *m, const char *path);
 
-/* At exit: when the workspace changed since it was loaded or saved, ask on a terminal
- * whether to save it (to the --workspace file, or a name the user types); without a
- * terminal, say on stderr that it was not saved (only when --workspace was given). */
+/* At exit: when the workspace changed since it was loaded or saved and the session has
+ * a workspace file (--workspace, or one saved or loaded), ask on a terminal whether to
+ * save it there; without a file, or without a terminal, say on stderr what was not saved
+ * (without a terminal only when --workspace was given). */
 void mon_ws_finish(mon *m);
 
 #endif

@@ -400,7 +400,10 @@ fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, i
     *code = 0;
     msg[0] = 0;
     int r = fbrl__evaluate(vm, (char *)(uintptr_t)text, len);
-    if (r == 0) return FBRL_OK;
+    if (r == 0) {
+        memcpy(vm->cur_word, word, sizeof word); /* an error after this is the caller's */
+        return FBRL_OK;
+    }
     if (r == THROW_BYE || r == THROW_QUIT) return fbrl_vm_throw(vm, r, NULL);
     const char *m = (vm->pending_msg && vm->pending_code == r) ? vm->pending_msg : fbrl__throw_text(r);
     if (r == FBRL_THROW_UNDEFINED && vm->cur_word[0])
