@@ -108,3 +108,11 @@ fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4])
     memcpy(r->base, base, sizeof r->base);
     return FBRL_OK;
 }
+
+void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell)
+{
+    if (!r) return;
+    r->progress = progress;
+    r->progress_ctx = ctx;
+    r->tell = tell != 0;
+}
