@@ -19,12 +19,14 @@
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
+#define AXES 5 /* the A255, fbrlsim's default model */
 #define SPEED_PCT 50.0
 #define MOTION_REAL_S 0.08 /* each motion lasts this long on the host's clock */
 #define TOL_IN 0.01
 #define SLACK_S 0.003      /* host scheduling around a reading's bracket */
 
 static vmh_text out;
+static const fbrl_sim_model *arm; /* fbrlsim's own A255 */
 static fbrl_vm *vm;
 static int failures;
 
@@ -72,7 +74,7 @@ static int loc_xyz(const char *name, double xyz[3])
 }
 
 typedef struct motion {
-    double qa[FBRL_SIM_ARM_AXES], qb[FBRL_SIM_ARM_AXES], pb[6];
+    double qa[AXES], qb[AXES], pb[6];
     double t_lo, t_hi; /* the motion began between these host times */
     double dur;        /* host seconds */
 } motion;
@@ -85,10 +87,10 @@ static double off_path(const motion *m, const double xyz[3], double f0, double f
     f0 = f0 < 0 ? 0 : f0 > 1 ? 1 : f0;
     f1 = f1 < 0 ? 0 : f1 > 1 ? 1 : f1;
     for (int k = 0; k <= 400; k++) {
-        double f = f0 + (f1 - f0) * k / 400.0, q[FBRL_SIM_ARM_AXES], pose[6];
-        for (int j = 0; j < FBRL_SIM_ARM_AXES; j++)
+        double f = f0 + (f1 - f0) * k / 400.0, q[AXES], pose[6];
+        for (int j = 0; j < AXES; j++)
             q[j] = m->qa[j] + (m->qb[j] - m->qa[j]) * f;
-        fbrl_sim_arm_fk(q, 0.0, pose);
+        fbrl_sim_arm_fk(arm, q, 0.0, pose);
         double d = sqrt((pose[0] - xyz[0]) * (pose[0] - xyz[0]) + (pose[1] - xyz[1]) * (pose[1] - xyz[1]) +
                         (pose[2] - xyz[2]) * (pose[2] - xyz[2]));
         if (d < best) best = d;
@@ -127,14 +129,16 @@ int main(int argc, char **argv)
     rng = argc > 3 ? (uint32_t)atol(argv[3]) : 1;
     /* two cartesian points, pitch straight down, far enough apart for a long motion */
     static const double pa[6] = {14.0, -6.0, 6.0, 0.0, -90.0, 0.0}, pb[6] = {9.0, 8.0, 12.0, 0.0, -90.0, 30.0};
-    double qa[FBRL_SIM_ARM_AXES], qb[FBRL_SIM_ARM_AXES];
-    if (fbrl_sim_arm_ik(pa, 0.0, 0.0, qa) || fbrl_sim_arm_ik(pb, 0.0, qa[0], qb)) {
+    double qa[AXES], qb[AXES];
+    static const double zero[AXES] = {0};
+    arm = fbrl_sim_model_find("A255");
+    if (!arm || arm->naxes != AXES || fbrl_sim_arm_ik(arm, pa, 0.0, zero, qa) || fbrl_sim_arm_ik(arm, pb, 0.0, qa, qb)) {
         fprintf(stderr, "test points unreachable\n");
         return 1;
     }
     double t_sim = 0;
-    for (int j = 0; j < FBRL_SIM_ARM_AXES; j++) {
-        double t = fabs(qb[j] - qa[j]) / (fbrl_sim_arm_speed[j] * SPEED_PCT / 100.0);
+    for (int j = 0; j < AXES; j++) {
+        double t = fabs(qb[j] - qa[j]) / (arm->speed[j] * SPEED_PCT / 100.0);
         if (t > t_sim) t_sim = t;
     }
     char scale[32];
