@@ -19,6 +19,8 @@
 /* Storage for the typed data files the file words keep open (split among them). */
 #define MON_FILE_STORAGE (8u * 1024u * 1024u)
 
+struct mon_conn;
+
 /* Keep at a fixed address while the VM runs (the words point into it). */
 typedef struct mon {
     fbrl_vm *vm;
@@ -29,6 +31,10 @@ typedef struct mon {
     fbrl_robot robot;        /* robot words; talk through the link, if any */
     fbrl_link *link;         /* the controller (NULL offline); TEACH talks through it too */
     unsigned long errors;    /* errors in files, -e text and piped input */
+    struct mon_conn *conn;   /* the connection RECONNECT opens again (NULL: none) */
+    int typed;               /* evaluating a line typed at the prompt */
+    char resume_file[256];   /* RESUME: the file and line of the last error in a file */
+    unsigned long resume_line;
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -10,9 +10,16 @@
 #include "fbrl/uart_serialport.h"
 #endif
 
+const char *mon_conn_hint(fbrl_status st)
+{
+    return st == FBRL_EPERM ? " (serial ports usually belong to the group dialout: "
+                              "sudo usermod -aG dialout $USER, then log in again)"
+                            : "";
+}
+
 static fbrl_status fail(char *err, size_t errlen, fbrl_status st, const char *what, const char *path)
 {
-    snprintf(err, errlen, "%s %s: %s", what, path, fbrl_status_str(st));
+    snprintf(err, errlen, "%s %s: %s%s", what, path, fbrl_status_str(st), mon_conn_hint(st));
     return st;
 }
 

@@ -43,6 +43,9 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
 /* One-line description, e.g. "emulator on /dev/pts/4 (9600 8N1, XON/XOFF)". */
 void mon_conn_describe(const mon_conn *c, char *buf, size_t cap);
 void mon_conn_close(mon_conn *c);
+/* What to do about an open failure, as text to append to the message ("" if nothing
+ * useful): for FBRL_EPERM, the dialout group. */
+const char *mon_conn_hint(fbrl_status st);
 
 /* --list-ports: print the serial ports the system knows, one per line.
  * FBRL_EUNSUPPORTED when fbrlmon was built without libserialport. */

@@ -159,24 +159,31 @@ static int host_key_ready(void *user)
 typedef struct mon_file {
     FILE *f;
     unsigned long lines;
+    unsigned long skip;  /* RESUME: lines read as empty */
 } mon_file;
 
 static fbrl_status host_file_open(void *user, const char *path, void **handle)
 {
+    mon_host *h = user;
     mon_file *mf;
-    (void)user;
     if (path == NULL || handle == NULL)
         return FBRL_EINVAL;
     mf = malloc(sizeof *mf);
     if (mf == NULL)
         return FBRL_ENOSPC;
     mf->lines = 0;
+    mf->skip = 0;
     mf->f = fopen(path, "r");
     if (mf->f == NULL) {
         fbrl_status st = errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO;
         free(mf);
         return st;
     }
+    if (h->skip_lines > 0 && h->skip_path != NULL && strcmp(h->skip_path, path) == 0) {
+        mf->skip = h->skip_lines;
+        h->skip_lines = 0;
+    }
+    h->file_depth++;
     *handle = mf;
     return FBRL_OK;
 }
@@ -205,7 +212,7 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
         return FBRL_EIO;
     if (c == EOF && n == 0 && !too_long)
         return FBRL_EEOF;
-    if (++mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!')
+    if (++mf->lines <= mf->skip || (mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!'))
         return FBRL_OK;
     if (too_long)
         return FBRL_ENOSPC;
@@ -217,11 +224,12 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
 
 static void host_file_close(void *user, void *handle)
 {
+    mon_host *h = user;
     mon_file *mf = handle;
-    (void)user;
     if (mf != NULL) {
         fclose(mf->f);
         free(mf);
+        h->file_depth--;
     }
 }
 

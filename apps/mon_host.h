@@ -24,6 +24,11 @@ typedef struct mon_host {
     int in_eof;
     char *line;         /* mon_host_read_line()'s growing buffer */
     size_t line_cap;
+    int file_depth;     /* source files open (INCLUDED nests) */
+    /* RESUME: the next open of skip_path reads its first skip_lines lines as empty
+     * (so line numbers stay right) */
+    const char *skip_path;
+    unsigned long skip_lines;
 } mon_host;
 
 /* Fill h (output to `out`, keys from file descriptor `in_fd`) and the engine's

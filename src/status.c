@@ -33,6 +33,7 @@ static const struct { const char *name, *text; } entries[] = {
     {"FBRL_ETHROW", "uncaught exception"},
     {"FBRL_ENOMEM", "out of memory space"},
     {"FBRL_EOFFLINE", "no controller connected"},
+    {"FBRL_EPERM", "permission denied"},
 };
 
 #define NENTRIES ((int)(sizeof entries / sizeof entries[0]))

@@ -5,6 +5,7 @@
  *   robot_param.c  parameters from the stacks or the input (I-6), their checks
  *   robot_loc.c    locations: mapping, base offset, scratch points, the arm's position
  *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c: the words
+ *   robot_safe.c   the safe stop after an abort (fbrl_robot_safe_stop)
  * Calls go downwards in that list (tables up to robot.c), never in a circle. */
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
@@ -58,6 +59,10 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight);
 /* Run a raw line; its output lines go to the console when print != 0. */
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* Wait until a motion this context sent has ended (STATUS every RB_STILL_POLL_MS; Ctrl-C
+ * throws), so that the next command never waits inside the controller. */
+#define RB_STILL_POLL_MS 100u
+fbrl_status rb_still(fbrl_robot *r, const rb_word *w);
 /* Convert a finished link call's status (st) into an exception, or FBRL_OK. */
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st);
 

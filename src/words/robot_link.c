@@ -28,10 +28,20 @@ static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
 fbrl_status rb_online(fbrl_robot *r)
 {
     if (!r->link) return rb_fail(r, FBRL_THROW_STATUS(FBRL_EOFFLINE), OFFLINE);
+    if (r->lost) { /* the controller went away: reconnect first, if the host can */
+        char msg[160];
+        fbrl_status st = r->relink ? r->relink(r->relink_ctx, r) : FBRL_EDISCONNECTED;
+        if (st != FBRL_OK || r->lost || !r->link) {
+            snprintf(msg, sizeof msg, "controller disconnected%s%s (RECONNECT when it is back)",
+                     r->relink ? ": reconnecting failed: " : "", r->relink ? fbrl_status_str(st) : "");
+            return rb_fail(r, FBRL_THROW_STATUS(FBRL_EDISCONNECTED), msg);
+        }
+    }
     if (fbrl_link_busy(r->link)) { /* left running by an interrupted word: end it first */
         fbrl_status res = FBRL_OK, st = rb_drive(r, &res);
         if (st != FBRL_OK) return st;
         if (res == FBRL_ECONTROLLER) fbrl_link_error(r->link, &r->last_error, NULL);
+        if (res == FBRL_EDISCONNECTED) r->lost = 1;
     }
     return FBRL_OK;
 }
@@ -40,6 +50,11 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
     char msg[128];
     if (st == FBRL_OK) return FBRL_OK;
+    if (st == FBRL_EDISCONNECTED) {
+        r->lost = 1;
+        snprintf(msg, sizeof msg, "%s: controller disconnected (RECONNECT when it is back)", w->name);
+        return rb_fail(r, FBRL_THROW_STATUS(st), msg);
+    }
     if (st == FBRL_ECONTROLLER) {
         int code = -1;
         const char *text = "";
@@ -53,25 +68,104 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     return rb_fail_st(r, w, st, "link");
 }
 
+/* One STATUS read for rb_still: the reply's lines parsed as they come. A read only
+ * decides "standing" when every line arrived whole; a damaged one means: ask again. */
+typedef struct still_read {
+    fbrl_rapl_status_info si;
+    int flawed;
+} still_read;
+
+static void still_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    still_read *sr = ctx;
+    sr->flawed |= flawed;
+    (void)fbrl_rapl_status_line(&sr->si, line, len);
+}
+
+/* All axes DONE (a STATUS without that row cannot say: then the controller's own
+ * queue decides, as before). */
+static int standing(const still_read *sr)
+{
+    if (sr->flawed) return 0;
+    if (!(sr->si.have & FBRL_RAPL_ST_DONE)) return 1;
+    for (unsigned k = 0; k < sr->si.naxes && k < FBRL_RAPL_MAX_AXES; k++)
+        if (!sr->si.done[k]) return 0;
+    return 1;
+}
+
+/* Run one command step by step, so that Ctrl-C is noticed while it waits. */
+static fbrl_status rb_run(fbrl_robot *r, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n, int straight,
+                          fbrl_link_reply kind, fbrl_status *res)
+{
+    char text[FBRL_RAPL_LINE_MAX];
+    size_t len;
+    fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
+    (void)fbrl_link_get_form(r->link, &form);
+    *res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
+    if (*res == FBRL_OK && len > FBRL_LINK_LINE_MAX) *res = FBRL_ERANGE;
+    if (*res == FBRL_OK) *res = fbrl_link_start(r->link, text, kind);
+    if (*res != FBRL_OK) return FBRL_OK;
+    if (cmd < FBRL_RAPL_NCMDS && (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION)) {
+        /* sent (its fate may stay unknown): count it as running until STATUS says not */
+        r->moving = 1;
+        memcpy(r->motion, text, len + 1); /* len <= FBRL_LINK_LINE_MAX */
+    }
+    return rb_drive(r, res);
+}
+
+fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
+{
+    fbrl_status st = rb_online(r);
+    while (st == FBRL_OK && r->moving) {
+        /* one read, not the link's confirmed query: a wrong "moving" costs one more
+         * poll, a wrong "standing" only lets the controller queue the next motion */
+        still_read sr;
+        fbrl_link_line_fn fn;
+        void *ctx;
+        fbrl_status res;
+        memset(&sr, 0, sizeof sr);
+        fbrl_rapl_status_init(&sr.si);
+        (void)fbrl_link_set_line_handler(r->link, still_line, &sr, &fn, &ctx);
+        st = rb_run(r, FBRL_RAPL_STATUS, NULL, 0, 0, FBRL_LINK_REPLY_LINES, &res);
+        (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
+        if (st != FBRL_OK) break; /* interrupted: STATUS ends in the link, unread */
+        if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
+        if (standing(&sr)) {
+            r->moving = 0;
+            break;
+        }
+        if ((st = rb_sleep_ms(r, RB_STILL_POLL_MS)) == FBRL_OK) st = rb_interrupted(r);
+    }
+    return st;
+}
+
+/* Outputs switched on by a command (OUTPUT n,-m,...): remembered for the safe stop. */
+static void note_outputs(fbrl_robot *r, const fbrl_rapl_arg *a, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (a[k].kind == FBRL_RAPL_ARG_INT && a[k].i >= 1 && a[k].i <= FBRL_ROBOT_IO_MAX)
+            r->outputs_on |= 1u << (a[k].i - 1);
+}
+
 fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
                    int straight)
 {
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
-    if (!ci || !((ci->flags & FBRL_RAPL_F_MOTION) || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT ||
-                 cmd == FBRL_RAPL_RUN))
-        return rb_link_result(r, w, fbrl_link_cmd(r->link, cmd, a, n, straight));
-    /* A command that may wait for the arm or an input (no reply but the prompt): run it
-     * step by step so that Ctrl-C is noticed while it waits. */
-    char text[FBRL_RAPL_LINE_MAX];
-    size_t len;
-    fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
-    (void)fbrl_link_get_form(r->link, &form);
-    fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
-    if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
-    if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
-    if (res == FBRL_OK && (st = rb_drive(r, &res)) != FBRL_OK) return st;
+    int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);
+    if (cmd == FBRL_RAPL_OUTPUT) note_outputs(r, a, n);
+    /* a motion or FINISH behind a running motion would make the controller wait, deaf
+     * to HALT: wait here instead, where Ctrl-C can stop the arm */
+    if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) return st;
+    fbrl_status res;
+    if (!ci || !(motion || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT || cmd == FBRL_RAPL_RUN)) {
+        res = fbrl_link_cmd(r->link, cmd, a, n, straight);
+    } else if ((st = rb_run(r, cmd, a, n, straight, FBRL_LINK_REPLY_NONE, &res)) != FBRL_OK) {
+        return st; /* interrupted: the command stays with the link */
+    }
+    if (res == FBRL_ECONTROLLER && motion) r->moving = 0; /* refused: nothing started */
+    if (res == FBRL_OK && (cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_HALT)) r->moving = 0;
     return rb_link_result(r, w, res);
 }
 
@@ -94,12 +188,51 @@ static void return_lines(fbrl_robot *r, void (*fn)(void *, const char *, size_t,
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
 }
 
+/* What a raw line is, from its first word: a motion, FINISH, OUTPUT (its outputs are
+ * noted), or a command the host cannot name (which might move the arm). */
+static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
+{
+    char word[16];
+    size_t k = 0;
+    fbrl_rapl_cmd cmd;
+    while (*line == ' ') line++;
+    while (k + 1 < sizeof word && line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=') {
+        word[k] = line[k];
+        k++;
+    }
+    word[k] = 0;
+    *motion = *finish = 0;
+    if (line[k] == '=') return; /* an assignment */
+    if (fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK) {
+        *motion = 1;
+        return;
+    }
+    *motion = (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN;
+    *finish = cmd == FBRL_RAPL_FINISH;
+    if (cmd == FBRL_RAPL_OUTPUT)
+        for (const char *p = line + k; *p; p++)
+            if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
+                long v = 0;
+                while (*p >= '0' && *p <= '9') v = v * 10 + (*p++ - '0');
+                fbrl_rapl_arg a = fbrl_rapl_int(v);
+                note_outputs(r, &a, 1);
+                if (!*p) break;
+            }
+}
+
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
 {
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
+    int motion, finish;
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
+    raw_kind(r, line, &motion, &finish);
+    if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK) return st;
+    if (motion) {
+        r->moving = 1;
+        snprintf(r->motion, sizeof r->motion, "%s", line);
+    }
     if (print) borrow_lines(r, &fn, &ctx);
     st = fbrl_link_raw(r->link, line);
     if (print) return_lines(r, fn, ctx);
