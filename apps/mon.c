@@ -26,6 +26,9 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     }
     cfg.mem = m->vm_mem;
     cfg.mem_size = size;
+    /* calloc hands a large block over as fresh zero pages the OS backs only when
+     * touched: the default 8 MB dictionary costs what the program really uses. */
+    cfg.mem_zeroed = 1;
     st = fbrl_vm_create(&m->vm, &cfg);
     if (st == FBRL_OK)
         st = fbrl_glossary_install(m->vm, &m->glossary);

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fbrl/vm_throw.h"
 #include "mon_conn.h"
 
 static fbrl_uart_config g_line;  /* the line settings of the first open */
@@ -127,12 +128,12 @@ static fbrl_status w_resume(fbrl_vm *vm, void *arg)
     size_t n = strlen(m->resume_file);
     char *p;
     if (fbrl_vm_pop(vm, &a) != FBRL_OK)
-        return fbrl_vm_throw(vm, -4, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
     if (n == 0 || m->resume_line == 0)
-        return fbrl_vm_throw(vm, -2, "RESUME: no plan file has failed in this session");
+        return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, "RESUME: no plan file has failed in this session");
     p = fbrl_vm_addr(vm, a, sizeof m->resume_file);
     if (p == NULL)
-        return fbrl_vm_throw(vm, -9, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_BAD_ADDRESS, NULL);
     memcpy(p, m->resume_file, n);
     m->host.skip_path = m->resume_file;
     m->host.skip_lines = m->resume_line - 1;
@@ -141,7 +142,7 @@ static fbrl_status w_resume(fbrl_vm *vm, void *arg)
     fflush(m->host.out);
     m->host.column = 0;
     if (fbrl_vm_push(vm, a) != FBRL_OK || fbrl_vm_push(vm, (fbrl_cell)n) != FBRL_OK)
-        return fbrl_vm_throw(vm, -3, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_STACK_OVERFLOW, NULL);
     return FBRL_OK;
 }
 

@@ -6,6 +6,7 @@
  * MON_QUIT_WINDOW_MS ends fbrlmon after that stop; a third, while the stop still runs,
  * ends it at once (the controller does not answer: check the cell by hand). */
 #include "mon_safe.h"
+#include "fbrl/vm_throw.h"
 
 #include <signal.h>
 #include <stdio.h>
@@ -158,9 +159,9 @@ int mon_safe_end(mon *m, const char *where, unsigned long line)
     g_mode = MODE_STOP;
     g_pending = 0;
     mon_host_newline(&m->host);
-    if (e != NULL && e->throw_code == -28 && e->file[0])
+    if (e != NULL && e->throw_code == FBRL_THROW_INTERRUPT && e->file[0])
         report(m, e->file, e->line, e->word);
-    else if (e != NULL && e->throw_code == -28)
+    else if (e != NULL && e->throw_code == FBRL_THROW_INTERRUPT)
         report(m, where, where != NULL && line > 0 ? line + (e->line > 1 ? e->line - 1 : 0) : 0, e->word);
     else
         report(m, where, line, NULL);

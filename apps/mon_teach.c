@@ -12,6 +12,7 @@
  * ARM-HERE (so BASE-OFFSET and MAP-ON apply exactly as to every read-back), Esc
  * leaves it untouched. docs/fbrlmon.md "TEACH" lists the keys. */
 #include "mon_teach.h"
+#include "fbrl/vm_throw.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -366,17 +367,17 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     int r, metric = 0;
 
     if (fbrl_vm_pop(vm, &addr) != FBRL_OK)
-        return fbrl_vm_throw(vm, -4, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
     if (fbrl_vm_push(vm, addr) != FBRL_OK)
-        return fbrl_vm_throw(vm, -3, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_STACK_OVERFLOW, NULL);
     if (fbrl_glossary_loc(vm, addr, &loc) != FBRL_OK)
-        return fbrl_vm_throw(vm, -9, "TEACH: not a location (use a CREATE-LOC name)");
+        return fbrl_vm_throw(vm, FBRL_THROW_BAD_ADDRESS, "TEACH: not a location (use a CREATE-LOC name)");
     if (m->link == NULL)
         return fbrl_vm_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), offline);
     if (!m->host.in_is_tty || !isatty(m->host.in_fd))
-        return fbrl_vm_throw(vm, -21, "TEACH needs a terminal: it reads single keys (standard input is not one)");
+        return fbrl_vm_throw(vm, FBRL_THROW_UNSUPPORTED, "TEACH needs a terminal: it reads single keys (standard input is not one)");
     if (tcgetattr(m->host.in_fd, &saved) != 0)
-        return fbrl_vm_throw(vm, -21, "TEACH: cannot read the terminal's settings");
+        return fbrl_vm_throw(vm, FBRL_THROW_UNSUPPORTED, "TEACH: cannot read the terminal's settings");
 
     memset(&t, 0, sizeof t);
     t.m = m;
@@ -385,7 +386,7 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     fbrl_units_is_metric(fbrl_glossary_units(&m->glossary), &metric);
     t.metric = metric;
     if (idle(&t) != 0)
-        return fbrl_vm_throw(vm, -28, "TEACH cancelled by Ctrl-C (the location is unchanged)");
+        return fbrl_vm_throw(vm, FBRL_THROW_INTERRUPT, "TEACH cancelled by Ctrl-C (the location is unchanged)");
 
     /* Single keys without echo; ISIG stays on, so Ctrl-C still reaches the monitor. */
     raw = saved;
@@ -406,10 +407,10 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     fflush(m->host.out);
     m->host.column = 0;
     if (r == -1)
-        return fbrl_vm_throw(vm, -28, "TEACH cancelled by Ctrl-C (the location is unchanged)");
+        return fbrl_vm_throw(vm, FBRL_THROW_INTERRUPT, "TEACH cancelled by Ctrl-C (the location is unchanged)");
     if (r == -2)
-        return fbrl_vm_throw(vm, -57, "TEACH: the terminal closed (the location is unchanged)");
-    return fbrl_vm_push(vm, r == 1 ? -1 : 0) == FBRL_OK ? FBRL_OK : fbrl_vm_throw(vm, -3, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_CHAR_IO, "TEACH: the terminal closed (the location is unchanged)");
+    return fbrl_vm_push(vm, r == 1 ? -1 : 0) == FBRL_OK ? FBRL_OK : fbrl_vm_throw(vm, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 fbrl_status mon_teach_install(mon *m)

@@ -1,22 +1,28 @@
 #!/bin/sh
-# run_forth.sh - time the standard-Forth benchmarks in bench/forth/ in fbrlmon,
-# pforth and gforth, and print a table of best-of-N times and ratios.
+# run_forth.sh - FBRL's Forth engine (fbrlmon) beside gforth-fast, gforth and
+# pforth: start-up time and peak memory, then the standard-Forth benchmarks in
+# bench/forth/ with best-of-N times, ratios and their geometric mean.
 #
-#   bench/run_forth.sh [BUILD_DIR]     (default: build; env RUNS=3, GEN_DEFS=10000)
+#   bench/run_forth.sh [BUILD_DIR]   (default: build; env RUNS=3, STARTS=20, GEN_DEFS=10000)
 #
 # Every benchmark prints a checksum; the runner compares the systems' answers so
-# a fast wrong result does not count. Times include process start-up (a few ms).
+# a fast wrong result does not count. Benchmark times are wall times of the whole
+# process (start-up included; it is printed first, and is a few ms). The geometric
+# mean covers the compute-bound programs, not the compile benchmark. Run it on an
+# idle machine: other load shows up as noise.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 build=${1:-$root/build}
 runs=${RUNS:-3}
+starts=${STARTS:-20}
 fbrlmon=$build/apps/fbrlmon
 [ -x "$fbrlmon" ] || { echo "run_forth.sh: $fbrlmon not built" >&2; exit 2; }
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/fbrlbench.XXXXXX") || exit 2
 trap 'rm -rf "$tmp"' EXIT INT TERM
 "$here/forth/gen_source.sh" "${GEN_DEFS:-10000}" > "$tmp/compile.fs"
+: > "$tmp/empty.fs"
 
 # run SYSTEM FILE: evaluate FILE in SYSTEM with no terminal input; stdout only.
 # (gforth gets an absolute path: it would otherwise prefer its own library
@@ -24,20 +30,21 @@ trap 'rm -rf "$tmp"' EXIT INT TERM
 run() {
     case $1 in
     fbrlmon) "$fbrlmon" --offline "$2" </dev/null ;;
+    fbrlmon-sim) "$fbrlmon" "$2" </dev/null ;;
     pforth)  pforth -q "$2" </dev/null ;;
-    gforth)  gforth "$2" -e bye </dev/null ;;
+    gforth|gforth-fast) "$1" "$2" -e bye </dev/null ;;
     esac
 }
 
 now_ns() { date +%s%N; }
 
-# best SYSTEM FILE: best wall time of $runs runs in ms (3 decimals); sets $out.
+# best SYSTEM FILE: best wall time of $runs runs in ns, or FAILED.
 best() {
     b=
     i=0
     while [ "$i" -lt "$runs" ]; do
         t0=$(now_ns)
-        out=$(run "$1" "$2" 2>"$tmp/err") || { echo "FAILED"; return; }
+        run "$1" "$2" >/dev/null 2>"$tmp/err" || { echo FAILED; return; }
         t1=$(now_ns)
         dt=$((t1 - t0))
         if [ -z "$b" ] || [ "$dt" -lt "$b" ]; then b=$dt; fi
@@ -46,16 +53,64 @@ best() {
     echo "$b"
 }
 
-systems=fbrlmon
-for s in pforth gforth; do
-    command -v "$s" >/dev/null 2>&1 && systems="$systems $s"
-done
+# startup SYSTEM: ms per run of the empty program, best of 3 batches of $starts.
+startup() {
+    b=
+    for batch in 1 2 3; do
+        t0=$(now_ns)
+        i=0
+        while [ "$i" -lt "$starts" ]; do
+            run "$1" "$tmp/empty.fs" >/dev/null 2>&1
+            i=$((i + 1))
+        done
+        t1=$(now_ns)
+        dt=$(( (t1 - t0) / starts ))
+        if [ -z "$b" ] || [ "$dt" -lt "$b" ]; then b=$dt; fi
+    done
+    awk -v n="$b" 'BEGIN{printf "%.2f", n/1e6}'
+}
 
+# peak SYSTEM: maximum resident set size in MB of the empty program.
+peak() {
+    if [ -x /usr/bin/time ]; then
+        case $1 in
+        fbrlmon) /usr/bin/time -f '%M' -o "$tmp/rss" "$fbrlmon" --offline "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
+        fbrlmon-sim) /usr/bin/time -f '%M' -o "$tmp/rss" "$fbrlmon" "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
+        pforth) /usr/bin/time -f '%M' -o "$tmp/rss" pforth -q "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
+        *) /usr/bin/time -f '%M' -o "$tmp/rss" "$1" -e bye </dev/null >/dev/null 2>&1 ;;
+        esac
+        awk '{printf "%.1f", $1/1024}' "$tmp/rss"
+    else
+        printf -
+    fi
+}
+
+others=
+for s in gforth-fast gforth pforth; do
+    command -v "$s" >/dev/null 2>&1 && others="$others $s"
+done
+[ -n "$others" ] || echo "(no gforth-fast, gforth or pforth installed: ./scripts/deps.sh gforth pforth)"
+
+echo "start-up (empty program, best of 3 x $starts runs) and peak memory (max RSS):"
+printf '  %-22s %10s %10s\n' system "ms" "MB"
+for s in fbrlmon fbrlmon-sim $others; do
+    case $s in
+    fbrlmon) label="fbrlmon --offline" ;;
+    fbrlmon-sim) label="fbrlmon (emulator)" ;;
+    *) label=$s ;;
+    esac
+    printf '  %-22s %10s %10s\n' "$label" "$(startup "$s")" "$(peak "$s")"
+done
+echo
+
+systems="fbrlmon$others"
 printf '%-10s' benchmark
-for s in $systems; do printf ' %12s' "$s ms"; done
-for s in $systems; do [ "$s" = fbrlmon ] || printf ' %15s' "fbrlmon/$s"; done
+for s in $systems; do printf ' %12s' "$s"; done
+for s in $others; do printf ' %14s' "/$s"; done
 printf '  %s\n' answer
 slow=
+logsum=
+nlog=0
 for f in "$here"/forth/*.fs "$tmp/compile.fs"; do
     name=$(basename "$f" .fs)
     line=$(printf '%-10s' "$name")
@@ -71,6 +126,7 @@ for f in "$here"/forth/*.fs "$tmp/compile.fs"; do
         if [ "$ns" = FAILED ]; then
             line="$line $(printf ' %12s' FAILED)"
             [ "$s" = fbrlmon ] && fbrl_ns=
+            [ "$s" = fbrlmon ] || ratios="$ratios $(printf ' %14s' -)"
             continue
         fi
         line="$line $(printf ' %12s' "$(awk -v n="$ns" 'BEGIN{printf "%.1f", n/1e6}')")"
@@ -78,12 +134,15 @@ for f in "$here"/forth/*.fs "$tmp/compile.fs"; do
             fbrl_ns=$ns
         elif [ -n "$fbrl_ns" ]; then
             r=$(awk -v a="$fbrl_ns" -v b="$ns" 'BEGIN{printf "%.2f", a/b}')
-            ratios="$ratios $(printf ' %15s' "$r")"
+            ratios="$ratios $(printf ' %14s' "$r")"
+            if [ "$name" != compile ] && [ "$agree" = yes ]; then
+                logsum="$logsum $s:$r"
+            fi
             if [ "$s" = pforth ] && awk -v r="$r" 'BEGIN{exit !(r >= 1)}'; then
                 slow="$slow $name(x$r)"
             fi
         else
-            ratios="$ratios $(printf ' %15s' -)"
+            ratios="$ratios $(printf ' %14s' -)"
         fi
     done
     if [ "$agree" = yes ]; then
@@ -92,7 +151,15 @@ for f in "$here"/forth/*.fs "$tmp/compile.fs"; do
         printf '%s%s  %s  MISMATCH: %s\n' "$line" "$ratios" "$answer" "$agree"
     fi
 done
-echo "(best of $runs runs, wall time incl. start-up; ratio < 1 means fbrlmon is faster)"
+# geometric mean of fbrlmon/SYSTEM over the compute-bound benchmarks
+printf '%-10s' geomean
+for s in $systems; do printf ' %12s' ""; done
+for s in $others; do
+    g=$(printf '%s\n' $logsum | awk -F: -v s="$s" '$1 == s { l += log($2); n++ } END { if (n) printf "%.2f", exp(l / n); else printf "-" }')
+    printf ' %14s' "$g"
+done
+printf '  %s\n' "(compute benchmarks; ratio < 1: fbrlmon is faster)"
+echo "(ms, best of $runs runs, wall time incl. start-up)"
 if [ -n "$slow" ]; then
     echo "fbrlmon is not faster than pforth on:$slow"
 fi

@@ -14,7 +14,7 @@ for b in "$here"/build-bench/bench/bench_*; do
     (cd "$here/build-bench" && "$b") || { echo "$(basename "$b") failed"; status=1; }
 done
 if [ -x "$here/bench/run_forth.sh" ]; then
-    echo "== Forth benchmarks (fbrlmon vs gforth vs pforth)"
+    echo "== Forth engine: start-up, peak memory and benchmarks (fbrlmon vs gforth-fast, gforth, pforth)"
     "$here/bench/run_forth.sh" "$here/build-bench" || status=1
 fi
 exit $status

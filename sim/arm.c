@@ -1,5 +1,6 @@
 /* arm.c - kinematics of the emulated arm; see arm.h. */
 #include "arm.h"
+#include "sim_errors.h"
 
 #include <math.h>
 
@@ -54,10 +55,10 @@ static int solve(const double pose[6], double tl, double waist, double s, double
     double t3, t2;
 
     if (!isfinite(c3) || !isfinite(waist))
-        return 29;
+        return SIM_E_TRANSFORM;
     if (c3 > 1.0 || c3 < -1.0) {
         if (fabs(c3) > 1.0 + 1e-12)
-            return 29;
+            return SIM_E_TRANSFORM;
         c3 = c3 > 0 ? 1.0 : -1.0; /* a fully stretched arm is still reachable */
     }
     t3 = -acos(c3); /* elbow bends down: the only branch inside -130..0 */
@@ -79,7 +80,7 @@ int fbrl_sim_arm_ik(const double pose[6], double tool_len, double waist_hint,
     int e, i;
 
     if (!isfinite(r))
-        return 29;
+        return SIM_E_TRANSFORM;
     /* Reach forward: the waist points at the target. */
     e = solve(pose, tl, waist, r, q);
     if (e == 0)
@@ -99,7 +100,7 @@ int fbrl_sim_arm_check(const double q[FBRL_SIM_ARM_AXES])
     for (i = 0; i < FBRL_SIM_ARM_AXES; i++) {
         if (!isfinite(q[i]) || q[i] < fbrl_sim_arm_min[i] - LIMIT_EPS
             || q[i] > fbrl_sim_arm_max[i] + LIMIT_EPS)
-            return 42 + i;
+            return sim_error_joint(i);
     }
     return 0;
 }
@@ -138,11 +139,11 @@ int fbrl_sim_arm_check_line(const double a[6], const double b[6], double tool_le
     for (i = 0; i <= n; i++) {
         fbrl_sim_arm_lerp(a, b, (double)i / n, pose);
         if (fbrl_sim_arm_ik(pose, tool_len, prev, q) != 0)
-            return 68;
+            return SIM_E_STRAIGHT_LINE;
         /* A waist that jumps (next to the base axis, or from one reach to the other) is
          * not a line the arm can follow; the first sample is compared with the arm's waist. */
         if (fabs(fbrl_sim_arm_wrap(q[0] - prev)) > 20.0)
-            return 68;
+            return SIM_E_STRAIGHT_LINE;
         prev = q[0];
     }
     return 0;

@@ -22,7 +22,9 @@ typedef struct fbrl_sim fbrl_sim;
 typedef struct fbrl_sim_options {
     int tcp_port;             /* -1: pseudo-terminal (default); 0: any free TCP port; >0: that port */
     const char *link_path;    /* pty only: a symlink to the slave device (replaced if present) */
-    long baud;                /* > 0: pace bytes as an 8N1 line at this rate, finite receive buffer */
+    long baud;                /* > 0: each direction a UART at this rate (8N1: at most baud/10
+                               * bytes/s, none before its start + 10 bit times), finite
+                               * receive buffer */
     double time_scale;        /* simulated time runs this many times faster than real time (1) */
     const char *state_path;   /* persistent memory (locations, variables, I/O, settings) or NULL */
     const char *log_path;     /* one line per command executed, or NULL */
@@ -30,6 +32,8 @@ typedef struct fbrl_sim_options {
     const char *control_path; /* FIFO created for control lines "IN 3 1", or NULL */
     const char *faults;       /* "drop=P,corrupt=P,noise=P,stall=MS,seed=S" or NULL */
     int rx_buffer;            /* receive buffer size with baud pacing (128) */
+    double cmd_time_ms;       /* the controller's own time to read a command line before it
+                               * acts, in simulated ms (0: none; docs/fbrlsim.md) */
     char parity;              /* 'N' 'E' 'O': the host channel's parity (CONFIG 0 sets it
                                * too); 0 = from the state file, else N. With E or O a
                                * corrupted byte is a parity error (docs/fbrlsim.md) */

@@ -23,8 +23,11 @@ static void usage(FILE *f)
           "  and prints the device path (or tcp:127.0.0.1:PORT) as the first line.\n"
           "  --link PATH         also make PATH a symlink to the pseudo-terminal\n"
           "  --tcp PORT          listen on 127.0.0.1:PORT instead (0 = any free port)\n"
-          "  --baud N            pace bytes as an 8N1 line at N baud; finite receive buffer,\n"
-          "                      XON/XOFF, overrun drops characters\n"
+          "  --baud N            a strict 8N1 line at N baud: each direction at most N/10\n"
+          "                      characters per second, none before its start + 10 bit\n"
+          "                      times; finite receive buffer, XON/XOFF, overrun drops\n"
+          "  --cmd-time MS       the controller's own time to read a command line before it\n"
+          "                      acts, in simulated ms (default 0)\n"
           "  --rx-buffer N       receive buffer size with --baud (default 128)\n"
           "  --time-scale N      run simulated time N times faster than real time\n"
           "  --state FILE        keep locations, variables, outputs and settings in FILE\n"
@@ -83,6 +86,10 @@ int main(int argc, char **argv)
             if (number(a, v, 1e-3, 1e6, &d))
                 return 2;
             o.time_scale = d;
+        } else if (!strcmp(a, "--cmd-time")) {
+            if (number(a, v, 0, 10000, &d))
+                return 2;
+            o.cmd_time_ms = d;
         } else if (!strcmp(a, "--state") && v) {
             o.state_path = v;
         } else if (!strcmp(a, "--log") && v) {

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "arm.h"
+#include "sim_errors.h"
 #include "fbrlsim.h"
 
 #define SIM_LINE_MAX 80   /* longest command line (error 025 beyond) */
@@ -49,93 +50,154 @@ typedef struct sim_out {
     size_t len, cap;
 } sim_out;
 
-enum { PS_IDLE, PS_BUSY, PS_STREAM };
+enum { PS_IDLE, PS_BUSY, PS_STREAM, PS_THINK };
 
-struct fbrl_sim {
-    fbrl_sim_options opt;
-    char *state_path, *log_path, *control_path, *link_path;
-    char path[256];
-    /* I/O */
-    int master, slave;   /* pty (slave kept open so the master never hangs up) */
-    int lfd, conn;       /* TCP listener and client */
-    int io;              /* fd the line uses: master or conn, -1 if none */
-    int wake[2];
-    int ctl;             /* control FIFO */
-    char ctlbuf[256];
-    size_t ctllen;
-    FILE *log;
-    int stop;            /* set by fbrl_sim_stop (atomic builtins) */
-    pthread_t thread;
-    int thread_started;
-    double t0;           /* real monotonic start */
-    /* line pacing and flow control */
+#define SIM_RX_DEFAULT 128      /* the controller's receive buffer with --baud */
+#define SIM_RX_UNPACED 65536    /* without --baud: stands in for the kernel's buffer */
+#define SIM_WIRE_MAX 256        /* host bytes taken off the OS but still on the wire */
+#define SIM_MARK (-1.0)         /* queue time of a PARMRK mark: no line time of its own */
+#define SIM_STALL_MAX_MS 600000
+#define SIM_CMD_TIME_MAX_MS 10000.0
+#define SIM_POLL_BUSY 0.005     /* s: how often WAIT and RUN look at their conditions */
+#define SIM_LISTEN_BACKLOG 4
+
+/* sim_line.c: the serial line, each direction a UART (pacing, faults, parity, XON/XOFF). */
+typedef struct sim_line {
+    double byte_time;           /* 10 bit times with --baud; 0: unpaced */
+    double f_drop, f_corrupt, f_noise;
+    int f_stall;                /* ms */
+    unsigned long long rng;
+    long parity_in, parity_out; /* parity errors: dropped by our UART / marked for the host */
+    /* host -> controller: on the wire (end times), then the receive buffer */
+    unsigned char wire[SIM_WIRE_MAX];
+    double wire_end[SIM_WIRE_MAX];
+    int whead, wn;
+    double rx_free;             /* when the last byte on the wire is complete */
+    int backlog;                /* bytes seen waiting in the OS at the last read */
     unsigned char *rx;
     int rxcap, rxhead, rxcount;
-    double rx_credit, tx_credit, credit_time;
-    int xoff_sent, peer_xoff;
-    int urgent;          /* XON/XOFF waiting to go out first, -1 none */
     long overruns;
+    int xoff_sent, peer_xoff;
+    /* controller -> host */
+    int urgent;                 /* XON/XOFF waiting to go out first, -1 none */
+    double urgent_q;
     unsigned char *tx;
+    double *txq;                /* when each byte was queued (SIM_MARK for marks) */
     size_t txlen, txcap, txoff;
-    double tx_hold_until;
-    /* faults */
-    double f_drop, f_corrupt, f_noise;
-    int f_stall;
-    long parity_in, parity_out; /* parity errors: dropped by our UART / marked for the host */
-    unsigned long long rng;
-    /* line editor */
+    double tx_free;             /* when the last byte sent is complete */
+    double tx_resume;           /* the host's XON: nothing starts before it */
+    double tx_hold_until;       /* stall fault */
+} sim_line;
+
+/* sim_io.c: the transport under the line. */
+typedef struct sim_io {
+    char path[256];
+    char *link_path;
+    int master, slave;   /* pty (slave kept open so the master never hangs up) */
+    int lfd, conn;       /* TCP listener and client */
+    int fd;              /* fd the line uses: master or conn, -1 if none */
+} sim_io;
+
+/* sim_term.c: terminal mode (line editor, reply framing, streams). */
+typedef struct sim_term {
     char line[SIM_LINE_MAX + 1];
     int len, overlong, last_cr, help;
-    /* command processor */
     int ps;
-    char cur[SIM_LINE_MAX + 1]; /* line being executed while PS_BUSY */
+    char cur[SIM_LINE_MAX + 1]; /* line being executed while PS_BUSY / PS_THINK */
     sim_out out;
     int stream_kind;            /* W1 W3 W5 / WE1 WE3 WE5: 1,3,5, 11,13,15 */
     double stream_next;
-    /* program being RUN */
-    sim_prog *run_prog;
-    int run_pc;
-    long run_left;
-    /* controller memory */
+    double think_until;         /* PS_THINK: the controller is still reading the line */
+    int last_error;             /* -1 none (STATUS shows it) */
+} sim_term;
+
+/* sim_events.c: control lines from the FIFO and the --inputs script. */
+struct sim_event {
+    double t;
+    char *cmd;
+};
+typedef struct sim_events {
+    int ctl;             /* control FIFO */
+    char ctlbuf[256];
+    size_t ctllen;
+    struct sim_event *list;
+    int n, next;
+} sim_events;
+
+/* sim_mem.c: the controller's battery-backed memory of names (and the tool). */
+typedef struct sim_mem {
     sim_loc locs[SIM_MAX_LOCS];
     int nlocs;
     sim_var vars[SIM_MAX_VARS];
     int nvars;
     sim_prog *progs;
     int nprogs;
-    int last_error;             /* -1 none */
-    double speed;
-    int homed, power, manual, flash, teach;
-    char teach_name[SIM_NAME_MAX + 1];
-    int teach_next;
-    int locked[FBRL_SIM_ARM_AXES], limp[FBRL_SIM_ARM_AXES];
-    double gain[FBRL_SIM_ARM_AXES + 1];
     int tool_set;
     char tool_name[SIM_NAME_MAX + 1];
     double tool[6];
-    int in[SIM_IO], out_[SIM_IO];
-    double ain[SIM_AIN];      /* analog inputs: live signals, not kept in the state file */
-    double grip, grip_force, object;
-    sim_chan chan[2];
-    /* the arm: one motion segment at a time, evaluated from simulated time */
+    int teach;                  /* TEACH mode: 1 cartesian, 2 precision points */
+    char teach_name[SIM_NAME_MAX + 1];
+    int teach_next;
+} sim_mem;
+
+/* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
+typedef struct sim_arm {
     double q[FBRL_SIM_ARM_AXES];      /* joints at the segment's start (or at rest) */
     double qt[FBRL_SIM_ARM_AXES];     /* joints at its end */
     double pa[6], pb[6];              /* straight-line segment poses */
     int moving, straight;
     double mt0, mt1;                  /* simulated start and end */
-    double xpos, xtarget, xhome, xt0, xt1; /* extra axis 6, pulses */
+    double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
     int xmoving, xhomed;
-    /* scripted inputs */
-    struct sim_event { double t; char *cmd; } *events;
-    int nevents, next_event;
+    double speed;
+    int homed, power;
+    int locked[FBRL_SIM_ARM_AXES], limp[FBRL_SIM_ARM_AXES];
+    double gain[FBRL_SIM_ARM_AXES + 1];
+} sim_arm;
+
+/* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
+typedef struct sim_dev {
+    int in[SIM_IO], out_[SIM_IO];
+    double ain[SIM_AIN];      /* analog inputs: live signals, not kept in the state file */
+    double grip, grip_force, object;
+    sim_chan chan[2];
+    int flash, manual;
+} sim_dev;
+
+/* sim_cmd.c: the program being RUN. */
+typedef struct sim_run {
+    sim_prog *prog;
+    int pc;
+    long left;
+} sim_run;
+
+struct fbrl_sim {
+    fbrl_sim_options opt;
+    char *state_path, *log_path, *control_path;
+    FILE *log;
+    int wake[2];
+    int stop;            /* set by fbrl_sim_stop (atomic builtins) */
+    pthread_t thread;
+    int thread_started;
+    double t0;           /* real monotonic start */
+    sim_line line;
+    sim_io io;
+    sim_term term;
+    sim_events events;
+    sim_mem mem;
+    sim_arm arm;
+    sim_dev dev;
+    sim_run run;
     int dirty;
     int save_warned;   /* told stderr once that the state file cannot be written */
 };
 
-/* sim_core.c */
-double sim_now(fbrl_sim *s);          /* simulated seconds since start */
-void sim_emit(fbrl_sim *s, const char *bytes, size_t n);
-int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line */
+/* sim_clock.c */
+double sim_mono(void);
+double sim_real_now(const fbrl_sim *s); /* real seconds since start */
+double sim_now(const fbrl_sim *s);      /* simulated seconds since start */
+
+/* sim_msg.c */
 /* An error message into err[errlen] (nothing when err is NULL or errlen 0). */
 void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -143,21 +205,67 @@ void sim_seterr(char *err, size_t errlen, const char *fmt, ...)
 #endif
     ;
 
+/* sim_line.c */
+int sim_line_init(sim_line *l, long baud, int rx_buffer);
+void sim_line_free(sim_line *l);
+int sim_line_faults(sim_line *l, const char *spec, char *err, size_t errlen);
+void sim_emit(fbrl_sim *s, const char *bytes, size_t n); /* controller output onto the line */
+int sim_line_tx_pending(const sim_line *l);
+void sim_line_hold(sim_line *l, double until);
+int sim_line_write(fbrl_sim *s, int fd, double now);
+int sim_line_read(fbrl_sim *s, int fd, double now);
+void sim_line_deliver(fbrl_sim *s, double now);
+int sim_line_rx_pop(fbrl_sim *s);
+int sim_line_rx_allow(const sim_line *l, double now);
+double sim_line_due(const sim_line *l, double now, double limit);
+int sim_line_wants_write(const sim_line *l, double now);
+void sim_line_reset(sim_line *l);
+
+/* sim_io.c */
+int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
+int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
+int sim_io_accept(sim_io *io);        /* 1: a new client */
+int sim_io_close_client(sim_io *io);  /* 1: a client was closed */
+void sim_io_close(sim_io *io);
+
+/* sim_term.c */
+void sim_term_reset(sim_term *t);
+void sim_term_greet(fbrl_sim *s);
+void sim_term_process(fbrl_sim *s);
+double sim_term_due(const sim_term *t, const sim_line *l, double now, double limit);
+
+/* sim_events.c */
+int sim_events_open_fifo(sim_events *ev, const char *path, char *err, size_t errlen);
+void sim_events_read_fifo(fbrl_sim *s);
+int sim_events_load(sim_events *ev, const char *path, char *err, size_t errlen);
+void sim_events_run(fbrl_sim *s);
+double sim_events_due(const fbrl_sim *s, double limit);
+void sim_events_free(sim_events *ev);
+
 /* sim_cmd.c */
 enum { EXEC_DONE, EXEC_BLOCK };
 int sim_exec(fbrl_sim *s, const char *line, int *err); /* EXEC_*; *err = RAPL code or -1 */
 int sim_exec_step(fbrl_sim *s, int *err);  /* continue a blocked or running command */
+const char *sim_help_hint(const char *word);  /* HELP-mode hint for a first word, or NULL */
+
+/* sim_out.c */
 void sim_out_printf(sim_out *o, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-const char *sim_error_text(int code);
-const char *sim_help_hint(const char *word);  /* HELP-mode hint for a first word, or NULL */
+
+/* sim_motion.c */
 void sim_arm_update(fbrl_sim *s);             /* finish motions whose time has come */
 void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_AXES]);
-void sim_stream_line(fbrl_sim *s, sim_out *o);
-void sim_state_defaults(fbrl_sim *s);
+
+/* sim_h_read.c */
+void sim_stream_line(fbrl_sim *s, sim_out *o);  /* the next line of a W1/W3/W5 readout */
+
+/* sim_control.c */
+int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: only check */
+
+/* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);
 
 /* sim_state.c */

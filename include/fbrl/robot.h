@@ -41,15 +41,8 @@ typedef struct fbrl_robot_device {
     uint32_t pulse_ms;  /* output: width of one DISPENSE pulse (and the gap after it) */
 } fbrl_robot_device;
 
-/* Words a context binds (fbrl_robot_install checks the count). */
-#define FBRL_ROBOT_MAX_WORDS 160
 /* Room for one console line GET-CAL-POINTS reads. */
 #define FBRL_ROBOT_TIB 256
-
-typedef struct fbrl_robot_bind {
-    struct fbrl_robot *r;
-    const void *word;               /* the word's table entry */
-} fbrl_robot_bind;
 
 /* A robot context: caller-owned, fields private. Keep it at a fixed address while the
  * VM uses it (the words point at it). */
@@ -93,8 +86,6 @@ typedef struct fbrl_robot {
     void *relink_ctx;
     /* scratch storage in the VM's data space (made at install) */
     fbrl_cell tib;                  /* FBRL_ROBOT_TIB bytes */
-    fbrl_robot_bind bind[FBRL_ROBOT_MAX_WORDS];
-    size_t nbind;
 } fbrl_robot;
 
 /* Bind every robot word into vm. link NULL = offline (the words exist and throw when
@@ -139,6 +130,10 @@ fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fb
 /* Non-zero after a robot word found the controller gone, until it is connected again
  * (fbrl_robot_set_link). */
 int fbrl_robot_lost(const fbrl_robot *r);
+
+/* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
+ * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */
+const char *fbrl_robot_word(size_t i);
 
 /* The controller error code of the last robot word that failed with a controller
  * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */

@@ -47,6 +47,14 @@ typedef struct fbrl_vm_config {
     size_t return_stack_cells; /* 0 = default (256) */
     size_t float_stack_cells;  /* 0 = default (64) */
     fbrl_vm_host host;
+    /* Non-zero: the caller promises that mem reads as all zero bytes (calloc, a
+     * fresh anonymous mmap). fbrl_vm_create() then writes only the pages it uses
+     * (stacks, buffers, the built-in words at both ends), so a large dictionary
+     * costs address space, not memory, until a program fills it. Zero (the
+     * default): fbrl_vm_create() clears the whole block itself, touching every
+     * page. Either way unused dictionary space reads as zero; the engine stays
+     * memory-safe whatever the block held (every code cell is checked). */
+    int mem_zeroed;
 } fbrl_vm_config;
 
 /* What went wrong in the last failed fbrl_vm_eval()/fbrl_vm_include(). */

@@ -135,9 +135,9 @@ static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
 static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsigned flags,
                       fbrl_hdr **out)
 {
-    if (len > FBRL_NAME_MAX) return -19;
+    if (len > FBRL_NAME_MAX) return FBRL_THROW_NAME_TOO_LONG;
     unsigned char *newlo = (unsigned char *)(vm->hdr_top - vm->nwords - 1);
-    if (vm->here > newlo) return -8;
+    if (vm->here > newlo) return FBRL_THROW_DICT_OVERFLOW;
     fbrl_hdr *h = HDR(vm, vm->nwords);
     memset(h, 0, sizeof *h);
     memcpy(h->name, name, len);
@@ -163,11 +163,12 @@ static fbrl_cell unused_bytes(const fbrl_vm *vm)
 int fbrl__allot(fbrl_vm *vm, fbrl_cell n)
 {
     if (n >= 0) {
-        if (n > unused_bytes(vm)) return -8;
+        if (n > unused_bytes(vm)) return FBRL_THROW_DICT_OVERFLOW;
     } else if ((fbrl_ucell)(-(n + 1)) >= (fbrl_ucell)(vm->here - vm->dict_lo)) {
-        return -9;
+        return FBRL_THROW_BAD_ADDRESS;
     }
     vm->here += n;
+    vm->peep_end = NULL;
     return 0;
 }
 
@@ -179,9 +180,10 @@ int fbrl__align(fbrl_vm *vm)
 
 int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
 {
-    if (unused_bytes(vm) < CELL) return -8;
+    if (unused_bytes(vm) < CELL) return FBRL_THROW_DICT_OVERFLOW;
     memcpy(vm->here, &v, sizeof v);
     vm->here += CELL;
+    vm->peep_end = NULL;
     return 0;
 }
 
@@ -244,16 +246,16 @@ int fbrl__refill(fbrl_vm *vm)
         if (len > FBRL_LINE_MAX) {
             s->text = nl ? nl + 1 : s->text_end;
             s->line++;
-            return fbrl__throw_msg(vm, -18, "input line too long");
+            return fbrl__throw_msg(vm, FBRL_THROW_PARSED_OVERFLOW, "input line too long");
         }
         memcpy(s->linebuf, s->text, len);
         s->text = nl ? nl + 1 : s->text_end;
     } else {
-        if (!vm->host.file_read_line) return fbrl__throw_msg(vm, -21, "no file support in this host");
+        if (!vm->host.file_read_line) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no file support in this host");
         fbrl_status st = vm->host.file_read_line(vm->host.user, s->fh, s->linebuf, FBRL_LINE_MAX, &len);
         if (st == FBRL_EEOF) return 0;
-        if (st == FBRL_ENOSPC) { s->line++; return fbrl__throw_msg(vm, -18, "input line too long"); }
-        if (st != FBRL_OK || len > FBRL_LINE_MAX) return -37;
+        if (st == FBRL_ENOSPC) { s->line++; return fbrl__throw_msg(vm, FBRL_THROW_PARSED_OVERFLOW, "input line too long"); }
+        if (st != FBRL_OK || len > FBRL_LINE_MAX) return FBRL_THROW_FILE_IO;
         if (len > 0 && s->linebuf[len - 1] == '\r') len--;
     }
     s->buf = s->linebuf;
@@ -301,7 +303,7 @@ size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, 
 int fbrl__parse_float(const char *s, size_t n, double *out);
 
 /* The text interpreter's number syntax. kind: 1 single, 2 double, 3 float; 0 not a number. */
-static int parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f)
+int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f)
 {
     fbrl_cell base = *vm->base;
     if (n == 3 && s[0] == '\'' && s[2] == '\'') { v[0] = (unsigned char)s[1]; return 1; }
@@ -330,14 +332,102 @@ static int parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], do
 }
 
 /* ---- compilation helpers ---- */
+/* Peephole fusion: common pairs of ops become one superinstruction (ops.def), and
+ * a literal followed by CELLS, 1+, ... is folded. vm->peep is the last instruction
+ * that fbrl__compile_op/fbrl__compile_lit emitted; it may be rewritten only while
+ * HERE still ends it (peep_end == here). Everything else that moves HERE clears
+ * peep_end, and so do the control-flow words and HERE itself, because a branch
+ * target (a label at HERE) must never end up inside a fused instruction. */
+static void peep_set(fbrl_vm *vm, unsigned char *at)
+{
+    vm->peep = at;
+    vm->peep_end = vm->here;
+}
+
+void fbrl__peep_reset(fbrl_vm *vm) { vm->peep_end = NULL; }
+
+/* What `LIT v op` folds to: 1 and *v updated, or 0. */
+static int fold_lit(int op, fbrl_cell *v)
+{
+    fbrl_ucell u = (fbrl_ucell)*v;
+    switch (op) {
+    case OP_CELLS: u *= (fbrl_ucell)CELL; break;
+    case OP_CELLPLUS: u += (fbrl_ucell)CELL; break;
+    case OP_FLOATS: case OP_DFLOATS: u *= sizeof(double); break;
+    case OP_ONEPLUS: case OP_CHARPLUS: u += 1; break;
+    case OP_ONEMINUS: u -= 1; break;
+    case OP_TWOSTAR: u <<= 1; break;
+    case OP_NEGATE: u = 0 - u; break;
+    case OP_INVERT: u = ~u; break;
+    case OP_CHARS: break;
+    default: return 0;
+    }
+    *v = (fbrl_cell)u;
+    return 1;
+}
+
+/* The superinstruction for `prev op`, or 0. */
+static int fuse(fbrl_cell prev, int op)
+{
+    static const struct { uint16_t prev, op, fused; } pairs[] = {
+        { OP_LIT, OP_PLUS, OP_LITPLUS }, { OP_LIT, OP_MINUS, OP_LITMINUS },
+        { OP_LIT, OP_STAR, OP_LITSTAR }, { OP_LIT, OP_AND, OP_LITAND },
+        { OP_LIT, OP_EQ, OP_LITEQ }, { OP_LIT, OP_NE, OP_LITNE },
+        { OP_LIT, OP_LT, OP_LITLT }, { OP_LIT, OP_GT, OP_LITGT },
+        { OP_LIT, OP_FETCH, OP_LITFETCH },
+        { OP_OVER, OP_PLUS, OP_OVERPLUS }, { OP_I, OP_PLUS, OP_IPLUS },
+        { OP_CELLPLUS, OP_FETCH, OP_CELLPLUSFETCH }, { OP_DUP, OP_FETCH, OP_DUPFETCH },
+        { OP_EQ, OP_ZBRANCH, OP_EQZBR }, { OP_NE, OP_ZBRANCH, OP_NEZBR },
+        { OP_LT, OP_ZBRANCH, OP_LTZBR }, { OP_GT, OP_ZBRANCH, OP_GTZBR },
+        { OP_ZEQ, OP_ZBRANCH, OP_ZEQZBR },
+        { OP_LITEQ, OP_ZBRANCH, OP_LITEQZBR }, { OP_LITNE, OP_ZBRANCH, OP_LITNEZBR },
+        { OP_LITLT, OP_ZBRANCH, OP_LITLTZBR }, { OP_LITGT, OP_ZBRANCH, OP_LITGTZBR },
+    };
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
+        if (pairs[i].prev == prev && pairs[i].op == op) return pairs[i].fused;
+    return 0;
+}
+
+/* Compile one op (a primitive, or OP_ZBRANCH whose target the caller emits next). */
+int fbrl__compile_op(fbrl_vm *vm, int op)
+{
+    if (vm->peep_end && vm->peep_end == vm->here) {
+        /* (HERE need not be aligned: , and C, can leave it anywhere, so memcpy) */
+        unsigned char *p = vm->peep;
+        fbrl_cell prev, v;
+        int f;
+        memcpy(&prev, p, sizeof prev);
+        if (prev == OP_LIT) {
+            memcpy(&v, p + CELL, sizeof v);
+            if (fold_lit(op, &v)) { memcpy(p + CELL, &v, sizeof v); return 0; }
+            if (op == OP_PICK && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
+                prev = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
+                memcpy(p, &prev, sizeof prev);
+                vm->here -= CELL;
+                vm->peep_end = vm->here;
+                return 0;
+            }
+        }
+        if ((f = fuse(prev, op))) {
+            prev = f;
+            memcpy(p, &prev, sizeof prev);
+            return 0;
+        }
+    }
+    unsigned char *at = vm->here;
+    int r = fbrl__emit(vm, op);
+    if (!r) peep_set(vm, at);
+    return r;
+}
+
 int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
 {
     fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
     fbrl_cell v;
     int r;
-    if (!h) return fbrl__throw_msg(vm, -13, "invalid execution token");
+    if (!h) return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
-    case K_PRIM: return fbrl__emit(vm, h->op);
+    case K_PRIM: return fbrl__compile_op(vm, h->op);
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL))) return r;
         return fbrl__emit(vm, h->body);
@@ -347,20 +437,21 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
         if (h->does) return fbrl__emit(vm, xt);
         /* fall through */
     case K_VAR:
-        if ((r = fbrl__emit(vm, OP_LIT))) return r;
-        return fbrl__emit(vm, h->body);
+        return fbrl__compile_lit(vm, h->body);
     case K_CONST:
         memcpy(&v, (void *)h->body, sizeof v);
-        if ((r = fbrl__emit(vm, OP_LIT))) return r;
-        return fbrl__emit(vm, v);
+        return fbrl__compile_lit(vm, v);
     default: return fbrl__emit(vm, xt);
     }
 }
 
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v)
 {
+    unsigned char *at = vm->here;
     int r = fbrl__emit(vm, OP_LIT);
-    return r ? r : fbrl__emit(vm, v);
+    if (r || (r = fbrl__emit(vm, v))) return r;
+    peep_set(vm, at);
+    return 0;
 }
 
 int fbrl__compile_flit(fbrl_vm *vm, double d)
@@ -376,13 +467,14 @@ int fbrl__compile_flit(fbrl_vm *vm, double d)
 int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n)
 {
     int r;
-    if (n > 65535) return -18;
+    if (n > 65535) return FBRL_THROW_PARSED_OVERFLOW;
     if ((r = fbrl__emit(vm, op)) || (r = fbrl__emit(vm, (fbrl_cell)n))) return r;
     fbrl_cell need = (fbrl_cell)((n + 1 + (size_t)CELL - 1) / (size_t)CELL * (size_t)CELL);
-    if (unused_bytes(vm) < need) return -8;
+    if (unused_bytes(vm) < need) return FBRL_THROW_DICT_OVERFLOW;
     memmove(vm->here, s, n);
     memset(vm->here + n, 0, (size_t)need - n);
     vm->here += need;
+    vm->peep_end = NULL;
     return 0;
 }
 
@@ -415,6 +507,7 @@ static void capture_help(fbrl_vm *vm, fbrl_hdr *h, const char *dstack, const cha
         while (hpn && (unsigned char)hp[hpn - 1] <= ' ') hpn--;
     }
     if (!st && !hp) return;
+    vm->peep_end = NULL;
     if (unused_bytes(vm) < (fbrl_cell)(stn + hpn + 2 + 64)) return;
     if (st) {
         memmove(vm->here, st, stn);
@@ -436,8 +529,8 @@ int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const ch
 {
     fbrl_hdr *h;
     int r;
-    if (len == 0) return -16;
-    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return -8;
+    if (len == 0) return FBRL_THROW_NO_NAME;
+    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return FBRL_THROW_DICT_OVERFLOW;
     if ((r = new_header(vm, name, len, kind, 0, &h))) return r;
     h->stack = stack;
     h->help = help;
@@ -472,14 +565,14 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
 {
     fbrl_hdr *h;
     int r;
-    if (*vm->state) return -29;
+    if (*vm->state) return FBRL_THROW_COMPILER_NESTING;
     /* A definition left open in interpretation state (": A 1 [" and never closed)
      * is abandoned: it was never finished, so it was never findable either. */
     if (vm->defining) discard_definition(vm);
     vm->def_here = vm->here;
     vm->def_nwords = vm->nwords;
     if (noname) {
-        if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return -8;
+        if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr)) return FBRL_THROW_DICT_OVERFLOW;
         if ((r = new_header(vm, "", 0, K_COLON, FH, &h)) || (r = fbrl__align(vm))) goto fail;
         h->body = (fbrl_cell)vm->here;
     } else {
@@ -498,6 +591,7 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
     return 0;
 fail:
     vm->here = vm->def_here;
+    vm->peep_end = NULL;
     vm->nwords = vm->def_nwords;
     rebuild_hash(vm);
     return r;
@@ -506,7 +600,7 @@ fail:
 int fbrl__semicolon(fbrl_vm *vm)
 {
     int r;
-    if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON) return -22;
+    if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON) return FBRL_THROW_CONTROL_MISMATCH;
     if ((r = fbrl__emit(vm, OP_EXIT))) return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
     h->end = (fbrl_cell)vm->here;
@@ -525,6 +619,7 @@ static void discard_definition(fbrl_vm *vm)
         vm->nwords = vm->def_nwords;
         rebuild_hash(vm);
         vm->defining = 0;
+        vm->peep_end = NULL;
     }
     vm->ncf = 0;
     *vm->state = 0;
@@ -533,6 +628,7 @@ static void discard_definition(fbrl_vm *vm)
 void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used)
 {
     vm->here = here;
+    vm->peep_end = NULL;
     vm->nwords = nwords;
     if (req_used <= vm->req_used) vm->req_used = req_used;
     rebuild_hash(vm);
@@ -569,25 +665,25 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
     if (idx >= 0) {
         fbrl_hdr *h = HDR(vm, idx);
         fbrl_cell xt = FBRL_XT_BASE + idx;
-        if (*vm->state == 0 && (h->flags & FC)) return -14;
+        if (*vm->state == 0 && (h->flags & FC)) return FBRL_THROW_COMPILE_ONLY;
         if (*vm->state != 0 && !(h->flags & FI)) return fbrl__compile_xt(vm, xt);
         return fbrl__run(vm, xt);
     }
     fbrl_cell v[2];
     double f;
-    int kind = parse_number(vm, name, len, v, &f);
-    if (kind == 0) return -13;
+    int kind = fbrl__parse_number(vm, name, len, v, &f);
+    if (kind == 0) return FBRL_THROW_UNDEFINED;
     if (*vm->state) {
         if (kind == 3) return fbrl__compile_flit(vm, f);
         int r = fbrl__compile_lit(vm, v[0]);
         return (r || kind == 1) ? r : fbrl__compile_lit(vm, v[1]);
     }
     if (kind == 3) {
-        if (vm->fp >= vm->fs_end) return -44;
+        if (vm->fp >= vm->fs_end) return FBRL_THROW_FSTACK_OVERFLOW;
         *vm->fp++ = f;
         return 0;
     }
-    if (vm->ds_end - vm->sp < kind) return -3;
+    if (vm->ds_end - vm->sp < kind) return FBRL_THROW_STACK_OVERFLOW;
     *vm->sp++ = v[0];
     if (kind == 2) *vm->sp++ = v[1];
     return 0;
@@ -616,7 +712,7 @@ static int interpret(fbrl_vm *vm)
 
 static int push_source(fbrl_vm *vm, int kind, fbrl_src **out)
 {
-    if (vm->nsrc >= FBRL_SRC_MAX) return fbrl__throw_msg(vm, -37, "input sources nested too deeply");
+    if (vm->nsrc >= FBRL_SRC_MAX) return fbrl__throw_msg(vm, FBRL_THROW_FILE_IO, "input sources nested too deeply");
     fbrl_src *s = &vm->src[vm->nsrc];
     char *lb = s->linebuf;
     memset(s, 0, sizeof *s);
@@ -663,7 +759,7 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
 {
     char path[FBRL_PATH_MAX];
     size_t dl = 0;
-    if (n == 0) return -38;
+    if (n == 0) return FBRL_THROW_NO_FILE;
     if (name[0] != '/') {
         for (int i = vm->nsrc - 1; i >= 0; i--) {
             if (vm->src[i].kind != SRC_FILE) continue;
@@ -673,16 +769,16 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
             break;
         }
     }
-    if (dl + n >= sizeof path) return fbrl__throw_msg(vm, -38, "file name too long");
+    if (dl + n >= sizeof path) return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, "file name too long");
     memcpy(path + dl, name, n);
     path[dl + n] = 0;
-    if (memchr(path, 0, dl + n)) return -38;
+    if (memchr(path, 0, dl + n)) return FBRL_THROW_NO_FILE;
     if (require && is_included(vm, path)) return 0;
     if (!vm->host.file_open || !vm->host.file_read_line)
-        return fbrl__throw_msg(vm, -21, "no file support in this host");
+        return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no file support in this host");
     if (!is_included(vm, path)) {
         if (vm->req_used + dl + n + 1 > sizeof vm->req_pool)
-            return fbrl__throw_msg(vm, -37, "too many included files");
+            return fbrl__throw_msg(vm, FBRL_THROW_FILE_IO, "too many included files");
         memcpy(vm->req_pool + vm->req_used, path, dl + n + 1);
         vm->req_used += dl + n + 1;
     }
@@ -700,12 +796,12 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
         memcpy(msg, "cannot open ", 12);
         memcpy(msg + 12, name, k);
         msg[12 + k] = 0;
-        return fbrl__throw_msg(vm, -38, msg);
+        return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, msg);
     }
     fbrl_cell state0 = *vm->state;
     r = interpret(vm);
     if (r == 0 && *vm->state != 0 && state0 == 0) {
-        r = fbrl__throw_msg(vm, -39, "unterminated definition at end of file");
+        r = fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated definition at end of file");
         capture_error(vm);
     }
     pop_source(vm);
@@ -725,17 +821,27 @@ typedef struct layout {
                    + FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
 #define FBRL_EXTRA_WORDS 64     /* headers beyond the primitives (data words) */
 
+/* Primitives with a dictionary entry (internal ops and superinstructions have none). */
+static size_t named_ops(void)
+{
+    size_t n = 0;
+    for (int op = 0; op < OP__END; op++) n += ops[op].name[0] != 0;
+    return n;
+}
+
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
     l->ds = cfg->data_stack_cells ? cfg->data_stack_cells : 256;
     l->rs = cfg->return_stack_cells ? cfg->return_stack_cells : 256;
     l->fs = cfg->float_stack_cells ? cfg->float_stack_cells : 64;
-    l->o_ds = align16(sizeof(struct fbrl_vm));
+    /* 16 spare bytes below the data and float stacks: run.c stores the cached top
+     * of an empty stack there */
+    l->o_ds = align16(sizeof(struct fbrl_vm)) + 16;
     l->o_rs = l->o_ds + align16(l->ds * sizeof(fbrl_cell));
-    l->o_fs = l->o_rs + align16(l->rs * sizeof(fbrl_cell));
+    l->o_fs = l->o_rs + align16(l->rs * sizeof(fbrl_cell)) + 16;
     l->o_data = l->o_fs + align16(l->fs * sizeof(double));
     l->fixed = l->o_data + align16(FBRL_BUFS) + FBRL_GUARD_CELLS * sizeof(fbrl_cell) + 16
-             + (OP__END + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
+             + (named_ops() + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
 }
 
 size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes)
@@ -779,7 +885,10 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
 
     unsigned char *d = m + l.o_data;
     vm->data_lo = d;
-    memset(d, 0, (size_t)(vm->mem_end - d)); /* unused dictionary reads as OP_BAD */
+    /* Unused dictionary reads as OP_BAD (0), so a stray jump stops at once; a
+     * caller that passes zeroed memory saves touching (and so backing) every page. */
+    if (cfg->mem_zeroed) memset(d, 0, align16(FBRL_BUFS));
+    else memset(d, 0, (size_t)(vm->mem_end - d));
     vm->base = (fbrl_cell *)(void *)d;
     vm->state = vm->base + 1;
     vm->toin = vm->base + 2;
@@ -814,7 +923,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st != FBRL_OK) return st == FBRL_ENOMEM ? FBRL_ENOSPC : st;
     st = fbrl_vm_eval(vm, fbrl__prelude, strlen(fbrl__prelude));
-    if (st != FBRL_OK) return vm->err.throw_code == -8 ? FBRL_ENOSPC : st;
+    if (st != FBRL_OK) return vm->err.throw_code == FBRL_THROW_DICT_OVERFLOW ? FBRL_ENOSPC : st;
     vm->dict_lo = vm->here;
     *out = vm;
     return FBRL_OK;

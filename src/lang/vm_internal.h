@@ -17,12 +17,12 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 
-typedef uintptr_t fbrl_ucell;
 #define CELL ((fbrl_cell)sizeof(fbrl_cell))
 #define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
 
-#define FBRL_NAME_MAX 31      /* longest word name (as F-PC) */
+#define FBRL_NAME_MAX FBRL_VMX_NAME_MAX /* longest word name (as F-PC) */
 #define FBRL_LINE_MAX 1024    /* longest source line */
 #define FBRL_SRC_MAX 10       /* nested input sources (files, texts, EVALUATE) */
 #define FBRL_CF_MAX 64        /* control-flow stack entries */
@@ -65,6 +65,8 @@ typedef struct fbrl_hdr {
     fbrl_cell does;           /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn;          /* K_CFUNC */
     void *arg;
+    fbrl_vmx_fn xfn;          /* K_CFUNC defined through vmx.h: called instead of fn */
+    const void *word;         /* its word pointer */
     const char *stack, *help; /* HELP text (NUL-terminated) */
 } fbrl_hdr;
 
@@ -89,7 +91,7 @@ typedef struct fbrl_cf { int tag; fbrl_cell a; } fbrl_cf;
 
 /* THROW codes the engine uses internally to unwind without being catchable. */
 #define THROW_BYE (-100000)
-#define THROW_QUIT (-56)
+#define THROW_QUIT (FBRL_THROW_QUIT)
 /* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
 #define FBRL_THROW_STATUS(st) FBRL_VM_THROW_OF_STATUS(st)
 
@@ -139,6 +141,9 @@ struct fbrl_vm {
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
     fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */
+    unsigned char *peep;      /* last instruction the compiler may fuse with (vm.c) */
+    unsigned char *peep_end;  /* HERE right after it; NULL: no fusion */
+    int run_code;             /* run.c: the code of an error exit */
 };
 
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
@@ -161,10 +166,14 @@ void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
 void fbrl__puts(fbrl_vm *vm, const char *s);
 const char *fbrl__throw_text(int code);
 
+/* vm.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
+ * 3 float (*f); 0 not a number. */
+int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f);
+
 /* prelude.c */
 extern const char fbrl__prelude[];
 
 /* src/words/data.c: the data words every VM has */
-fbrl_status fbrl__fbrl_words(fbrl_vm *vm);
+static inline fbrl_status fbrl__fbrl_words(fbrl_vm *vm) { return fbrl_vmx_data_words(vm); }
 
 #endif

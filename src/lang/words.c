@@ -13,26 +13,26 @@
 /* ---- stack access for helpers ---- */
 static int pop(fbrl_vm *vm, fbrl_cell *v)
 {
-    if (vm->sp <= vm->ds0) return -4;
+    if (vm->sp <= vm->ds0) return FBRL_THROW_STACK_UNDERFLOW;
     *v = *--vm->sp;
     return 0;
 }
 static int push(fbrl_vm *vm, fbrl_cell v)
 {
-    if (vm->sp >= vm->ds_end) return -3;
+    if (vm->sp >= vm->ds_end) return FBRL_THROW_STACK_OVERFLOW;
     *vm->sp++ = v;
     return 0;
 }
-static int need(fbrl_vm *vm, int n) { return vm->sp - vm->ds0 < n ? -4 : 0; }
+static int need(fbrl_vm *vm, int n) { return vm->sp - vm->ds0 < n ? FBRL_THROW_STACK_UNDERFLOW : 0; }
 static int fpop(fbrl_vm *vm, double *v)
 {
-    if (vm->fp <= vm->fs0) return -45;
+    if (vm->fp <= vm->fs0) return FBRL_THROW_FSTACK_UNDERFLOW;
     *v = *--vm->fp;
     return 0;
 }
 static int fpush(fbrl_vm *vm, double v)
 {
-    if (vm->fp >= vm->fs_end) return -44;
+    if (vm->fp >= vm->fs_end) return FBRL_THROW_FSTACK_OVERFLOW;
     *vm->fp++ = v;
     return 0;
 }
@@ -40,11 +40,11 @@ static int fpush(fbrl_vm *vm, double v)
 static int pop_str(fbrl_vm *vm, const char **s, size_t *n)
 {
     fbrl_cell a, u;
-    if (need(vm, 2)) return -4;
+    if (need(vm, 2)) return FBRL_THROW_STACK_UNDERFLOW;
     u = *--vm->sp;
     a = *--vm->sp;
-    if (u < 0) return -24;
-    if (u > 0 && !fbrl__addr_ok(vm, a, u)) return -9;
+    if (u < 0) return FBRL_THROW_BAD_NUMBER;
+    if (u > 0 && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
     *s = u ? (const char *)a : "";
     *n = (size_t)u;
     return 0;
@@ -93,24 +93,24 @@ void fbrl__mstar(fbrl_cell a, fbrl_cell b, fbrl_cell *lo, fbrl_cell *hi)
 
 int fbrl__dsdiv(fbrl_cell lo, fbrl_cell hi, fbrl_cell n, int floored, fbrl_cell *q, fbrl_cell *r)
 {
-    if (n == 0) return -10;
+    if (n == 0) return FBRL_THROW_DIV_ZERO;
     fbrl_ucell l = U(lo), h = U(hi), un = n < 0 ? 0 - U(n) : U(n), uq, ur;
     int nd = hi < 0, nn = n < 0;
     if (nd) dneg(&l, &h);
-    if (h >= un) return -11;
+    if (h >= un) return FBRL_THROW_RESULT_RANGE;
     fbrl__udiv(h, l, un, &uq, &ur);
     const fbrl_ucell maxpos = (~(fbrl_ucell)0) >> 1;
     fbrl_cell qs, rs;
     if (nd != nn) {
-        if (uq > maxpos + 1) return -11;
+        if (uq > maxpos + 1) return FBRL_THROW_RESULT_RANGE;
         qs = (fbrl_cell)(0 - uq);
     } else {
-        if (uq > maxpos) return -11;
+        if (uq > maxpos) return FBRL_THROW_RESULT_RANGE;
         qs = (fbrl_cell)uq;
     }
     rs = nd ? (fbrl_cell)(0 - ur) : (fbrl_cell)ur;
     if (floored && rs != 0 && ((rs < 0) != (n < 0))) {
-        if (qs == (fbrl_cell)(maxpos + 1)) return -11;
+        if (qs == (fbrl_cell)(maxpos + 1)) return FBRL_THROW_RESULT_RANGE;
         qs--;
         rs = (fbrl_cell)(U(rs) + U(n));
     }
@@ -128,8 +128,8 @@ int fbrl__starslash(fbrl_cell a, fbrl_cell b, fbrl_cell c, fbrl_cell *q, fbrl_ce
 
 int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div)
 {
-    if (div == 0) return -10;
-    if (div < 0) return -24;
+    if (div == 0) return FBRL_THROW_DIV_ZERO;
+    if (div < 0) return FBRL_THROW_BAD_NUMBER;
     fbrl_ucell l = U(*lo), h = U(*hi), un = n < 0 ? 0 - U(n) : U(n), ud = U(div);
     int neg = (*hi < 0) != (n < 0);
     if (*hi < 0) dneg(&l, &h);
@@ -139,11 +139,11 @@ int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div)
     t0 = l1;
     t1 = h1 + l2;
     t2 = h2 + (t1 < h1);
-    if (t2 >= ud) return -11;
+    if (t2 >= ud) return FBRL_THROW_RESULT_RANGE;
     fbrl__udiv(t2, t1, ud, &q1, &r);
     fbrl__udiv(r, t0, ud, &q0, &r);
     if (neg && r) { q0++; q1 += q0 == 0; }
-    if (q1 >> (CELL_BITS - 1)) return -11;
+    if (q1 >> (CELL_BITS - 1)) return FBRL_THROW_RESULT_RANGE;
     if (neg) dneg(&q0, &q1);
     *lo = (fbrl_cell)q0;
     *hi = (fbrl_cell)q1;
@@ -162,7 +162,7 @@ double fbrl__d_to_f(fbrl_cell lo, fbrl_cell hi)
 int fbrl__f_to_d(double r, fbrl_cell *lo, fbrl_cell *hi)
 {
     double t = trunc(r), a = fabs(t), base = ldexp(1.0, CELL_BITS);
-    if (!(a < base * base / 2)) return -11;
+    if (!(a < base * base / 2)) return FBRL_THROW_RESULT_RANGE;
     fbrl_ucell h = (fbrl_ucell)floor(a / base);
     fbrl_ucell l = (fbrl_ucell)(a - (double)h * base);
     if (t < 0) dneg(&l, &h);
@@ -208,19 +208,19 @@ int fbrl__w_string(fbrl_vm *vm, int op)
         if ((r = need(vm, 2))) return r;
         a = vm->sp[-2];
         u = vm->sp[-1];
-        if (u < 0) return -24;
-        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        if (u < 0) return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
         while (u > 0 && ((const char *)a)[u - 1] == ' ') u--;
         vm->sp[-1] = u;
         return 0;
     }
-    return -21;
+    return FBRL_THROW_UNSUPPORTED;
 }
 
 /* ---- control structures ---- */
 static int cf_push(fbrl_vm *vm, int tag, fbrl_cell a)
 {
-    if (vm->ncf >= FBRL_CF_MAX) return -52;
+    if (vm->ncf >= FBRL_CF_MAX) return FBRL_THROW_CF_OVERFLOW;
     vm->cf[vm->ncf].tag = tag;
     vm->cf[vm->ncf].a = a;
     vm->ncf++;
@@ -230,14 +230,20 @@ static int cf_push(fbrl_vm *vm, int tag, fbrl_cell a)
 static int cf_pop(fbrl_vm *vm, int tag, fbrl_cell *a)
 {
     if (vm->ncf == 0 || vm->cf[vm->ncf - 1].tag != tag)
-        return fbrl__throw_msg(vm, -22, "control structure mismatch (unbalanced IF/DO/BEGIN/CASE?)");
+        return fbrl__throw_msg(vm, FBRL_THROW_CONTROL_MISMATCH, "control structure mismatch (unbalanced IF/DO/BEGIN/CASE?)");
     *a = vm->cf[--vm->ncf].a;
     return 0;
 }
 
+/* A branch op and its target; 0BRANCH may fuse with the comparison before it. */
+static int branch_op(fbrl_vm *vm, int op)
+{
+    return op == OP_ZBRANCH ? fbrl__compile_op(vm, op) : fbrl__emit(vm, op);
+}
+
 static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 {
-    int r = fbrl__emit(vm, op);
+    int r = branch_op(vm, op);
     if (r) return r;
     *orig = (fbrl_cell)vm->here;
     return fbrl__emit(vm, 0);
@@ -246,23 +252,23 @@ static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 static int resolve(fbrl_vm *vm, fbrl_cell orig)
 {
     fbrl_cell t = (fbrl_cell)vm->here;
-    if (!fbrl__addr_ok(vm, orig, CELL)) return -9;
+    if (!fbrl__addr_ok(vm, orig, CELL)) return FBRL_THROW_BAD_ADDRESS;
     memcpy((void *)orig, &t, sizeof t);
     return 0;
 }
 
 static int back(fbrl_vm *vm, int op, fbrl_cell dest)
 {
-    int r = fbrl__emit(vm, op);
+    int r = branch_op(vm, op);
     return r ? r : fbrl__emit(vm, dest);
 }
 
-int fbrl__w_control(fbrl_vm *vm, int op)
+static int control(fbrl_vm *vm, int op)
 {
     fbrl_cell o = 0, d = 0;
     int r = 0;
     /* also valid between [ ] inside a definition (a POSTPONEd IF run there) */
-    if (*vm->state == 0 && !vm->defining) return -14;
+    if (*vm->state == 0 && !vm->defining) return FBRL_THROW_COMPILE_ONLY;
     switch (op) {
     case OP_IF: return (r = forward(vm, OP_ZBRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
     case OP_AHEAD: return (r = forward(vm, OP_BRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
@@ -300,13 +306,20 @@ int fbrl__w_control(fbrl_vm *vm, int op)
         }
         return cf_pop(vm, CF_CASE, &o);
     case OP_RECURSE:
-        if (!vm->defining) return -22;
+        if (!vm->defining) return FBRL_THROW_CONTROL_MISMATCH;
         return back(vm, OP_CALL, HDR(vm, vm->def_word)->body);
     case OP_DOES:
-        if (!vm->defining) return -22;
+        if (!vm->defining) return FBRL_THROW_CONTROL_MISMATCH;
         return fbrl__emit(vm, OP_DOESSET);
     }
-    return -21;
+    return FBRL_THROW_UNSUPPORTED;
+}
+
+int fbrl__w_control(fbrl_vm *vm, int op)
+{
+    int r = control(vm, op);
+    fbrl__peep_reset(vm); /* HERE may now be a branch target: fuse nothing across it */
+    return r;
 }
 
 /* ---- defining words ---- */
@@ -352,7 +365,7 @@ int fbrl__w_define(fbrl_vm *vm, int op)
         return fbrl__emit(vm, 0);
     case OP_BUFFERCOLON:
         if ((r = pop(vm, &v))) return r;
-        if (v < 0) return -24;
+        if (v < 0) return FBRL_THROW_BAD_NUMBER;
         if ((r = fbrl__create(vm, K_VAR, "( -- a )", "buffer", &h))) return r;
         return fbrl__allot(vm, v);
     case OP_MARKER: {
@@ -379,7 +392,7 @@ int fbrl__w_define(fbrl_vm *vm, int op)
         memcpy(vm->here - sizeof(double), &f, sizeof f);
         return 0;
     }
-    return -21;
+    return FBRL_THROW_UNSUPPORTED;
 }
 
 /* ---- parsing words ---- */
@@ -388,13 +401,13 @@ static int parse_word_xt(fbrl_vm *vm, fbrl_cell *xt, fbrl_hdr **h)
     const char *name;
     size_t len;
     fbrl__parse_name(vm, &name, &len);
-    if (len == 0) return -16;
+    if (len == 0) return FBRL_THROW_NO_NAME;
     int i = fbrl__find(vm, name, len);
     if (i < 0) {
         size_t n = len < 60 ? len : 60;
         memcpy(vm->cur_word, name, n);
         vm->cur_word[n] = 0;
-        return -13;
+        return FBRL_THROW_UNDEFINED;
     }
     *xt = FBRL_XT_BASE + i;
     *h = HDR(vm, i);
@@ -408,7 +421,7 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
     size_t i = (size_t)(*vm->toin < 0 ? 0 : *vm->toin), k = 0;
     if (i > s->len) i = s->len;
     for (;;) {
-        if (i >= s->len) return fbrl__throw_msg(vm, -39, "unterminated string");
+        if (i >= s->len) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
         char c = s->buf[i++];
         if (c == '"') break;
         if (c == '\\' && i < s->len) {
@@ -425,7 +438,7 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
             case 'v': c = 11; break;
             case 'z': c = 0; break;
             case 'm':
-                if (k >= cap) return -18;
+                if (k >= cap) return FBRL_THROW_PARSED_OVERFLOW;
                 out[k++] = 13;
                 c = 10;
                 break;
@@ -438,7 +451,7 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
                         d = h >= '0' && h <= '9' ? h - '0' : h >= 'a' && h <= 'f' ? h - 'a' + 10
                           : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1;
                     }
-                    if (d < 0) return fbrl__throw_msg(vm, -24, "bad \\x escape");
+                    if (d < 0) return fbrl__throw_msg(vm, FBRL_THROW_BAD_NUMBER, "bad \\x escape");
                     v = v * 16 + d;
                     i++;
                 }
@@ -448,7 +461,7 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
             default: break; /* \" \\ and anything else: the character itself */
             }
         }
-        if (k >= cap) return -18;
+        if (k >= cap) return FBRL_THROW_PARSED_OVERFLOW;
         out[k++] = c;
     }
     *vm->toin = (fbrl_cell)i;
@@ -459,7 +472,7 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
 static int string_literal(fbrl_vm *vm, const char *s, size_t n)
 {
     if (*vm->state) return fbrl__compile_str(vm, OP_SLIT, s, n);
-    if (n > FBRL_SBUF) return -18;
+    if (n > FBRL_SBUF) return FBRL_THROW_PARSED_OVERFLOW;
     char *b = vm->sbuf + FBRL_SBUF * vm->sbuf_next;
     vm->sbuf_next = (vm->sbuf_next + 1) % FBRL_NSBUF;
     memmove(b, s, n);
@@ -471,7 +484,7 @@ static int parse_quoted(fbrl_vm *vm, char delim, const char **p, size_t *n)
 {
     int found;
     fbrl__parse(vm, delim, p, n, &found);
-    if (!found) return fbrl__throw_msg(vm, -39, delim == ')' ? "unterminated comment" : "unterminated string");
+    if (!found) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, delim == ')' ? "unterminated comment" : "unterminated string");
     return 0;
 }
 
@@ -483,9 +496,9 @@ static int paren_comment(fbrl_vm *vm)
         int found, r;
         fbrl__parse(vm, ')', &p, &n, &found);
         if (found) return 0;
-        if (fbrl__src(vm)->kind == SRC_STRING) return fbrl__throw_msg(vm, -39, "unterminated comment");
+        if (fbrl__src(vm)->kind == SRC_STRING) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated comment");
         if ((r = fbrl__refill(vm)) < 0) return r;
-        if (r == 0) return fbrl__throw_msg(vm, -39, "unterminated comment");
+        if (r == 0) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated comment");
     }
 }
 
@@ -510,6 +523,44 @@ static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
     else fbrl__puts(vm, ":NONAME");
 }
 
+/* A superinstruction shows as the words it was compiled from. */
+static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
+{
+    static const struct { int16_t op, lit, br; const char *words; } fused[] = {
+        { OP_LITPLUS, 1, 0, "+" }, { OP_LITMINUS, 1, 0, "-" }, { OP_LITSTAR, 1, 0, "*" },
+        { OP_LITAND, 1, 0, "AND" }, { OP_LITEQ, 1, 0, "=" }, { OP_LITNE, 1, 0, "<>" },
+        { OP_LITLT, 1, 0, "<" }, { OP_LITGT, 1, 0, ">" }, { OP_LITFETCH, 1, 0, "@" },
+        { OP_PICK2, 0, 0, "2 PICK" }, { OP_OVERPLUS, 0, 0, "OVER +" }, { OP_IPLUS, 0, 0, "I +" },
+        { OP_CELLPLUSFETCH, 0, 0, "CELL+ @" }, { OP_DUPFETCH, 0, 0, "DUP @" },
+        { OP_EQZBR, 0, 1, "=" }, { OP_NEZBR, 0, 1, "<>" }, { OP_LTZBR, 0, 1, "<" },
+        { OP_GTZBR, 0, 1, ">" }, { OP_ZEQZBR, 0, 1, "0=" },
+        { OP_LITEQZBR, 1, 1, "=" }, { OP_LITNEZBR, 1, 1, "<>" }, { OP_LITLTZBR, 1, 1, "<" },
+        { OP_LITGTZBR, 1, 1, ">" },
+    };
+    for (size_t i = 0; i < sizeof fused / sizeof fused[0]; i++) {
+        fbrl_cell a;
+        if (fused[i].op != w) continue;
+        if (fused[i].lit) {
+            if (!fbrl__addr_ok(vm, *pc, CELL)) return 1;
+            memcpy(&a, (void *)*pc, sizeof a);
+            *pc += CELL;
+            put_num(vm, a);
+            fbrl__puts(vm, " ");
+        }
+        fbrl__puts(vm, fused[i].words);
+        if (fused[i].br) {
+            if (!fbrl__addr_ok(vm, *pc, CELL)) return 1;
+            memcpy(&a, (void *)*pc, sizeof a);
+            *pc += CELL;
+            fbrl__puts(vm, " 0BRANCH(");
+            put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
+            fbrl__puts(vm, ")");
+        }
+        return 1;
+    }
+    return 0;
+}
+
 static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
 {
     fbrl_cell pc = h->body, end = h->end;
@@ -526,6 +577,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             continue;
         }
         if (w < 0 || w >= OP__END) { fbrl__puts(vm, "?"); continue; }
+        if (see_fused(vm, w, &pc)) continue;
         const char *nm = fbrl__op_name((int)w);
         if (nm[0]) { fbrl__puts(vm, nm); continue; }
         if (!fbrl__addr_ok(vm, pc, CELL)) break;
@@ -667,7 +719,7 @@ static int skip_conditional(fbrl_vm *vm, int else_ok)
         if (n == 0) {
             int r = fbrl__refill(vm);
             if (r < 0) return r;
-            if (r == 0) return fbrl__throw_msg(vm, -58, "[IF] without [THEN]");
+            if (r == 0) return fbrl__throw_msg(vm, FBRL_THROW_BRACKET_IF, "[IF] without [THEN]");
             continue;
         }
         if (name_is(p, n, "[IF]")) level++;
@@ -691,10 +743,10 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (op == OP_TO) {
             int k = h->kind;
             if (k != K_VALUE && k != K_2VALUE && k != K_FVALUE)
-                return fbrl__throw_msg(vm, -32, "TO needs a VALUE, 2VALUE or FVALUE");
+                return fbrl__throw_msg(vm, FBRL_THROW_BAD_NAME_ARG, "TO needs a VALUE, 2VALUE or FVALUE");
             if (*vm->state)
                 return back(vm, k == K_VALUE ? OP_PTOVAL : k == K_2VALUE ? OP_PTO2VAL : OP_PTOFVAL, h->body);
-            if (!fbrl__addr_ok(vm, h->body, 2 * CELL)) return -9;
+            if (!fbrl__addr_ok(vm, h->body, 2 * CELL)) return FBRL_THROW_BAD_ADDRESS;
             if (k == K_FVALUE) {
                 if ((r = fpop(vm, &f))) return r;
                 memcpy((void *)h->body, &f, sizeof f);
@@ -709,12 +761,12 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
             }
             return 0;
         }
-        if (h->kind != K_DEFER) return fbrl__throw_msg(vm, -32, "IS and ACTION-OF need a DEFERred word");
+        if (h->kind != K_DEFER) return fbrl__throw_msg(vm, FBRL_THROW_BAD_NAME_ARG, "IS and ACTION-OF need a DEFERred word");
         if (*vm->state) {
             if ((r = fbrl__compile_lit(vm, xt))) return r;
             return fbrl__emit(vm, op == OP_IS ? OP_DEFERSTORE : OP_DEFERFETCH);
         }
-        if (!fbrl__addr_ok(vm, h->body, CELL)) return -9;
+        if (!fbrl__addr_ok(vm, h->body, CELL)) return FBRL_THROW_BAD_ADDRESS;
         if (op == OP_IS) {
             if ((r = pop(vm, &v))) return r;
             memcpy((void *)h->body, &v, sizeof v);
@@ -725,8 +777,8 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_DEFERFETCH: case OP_DEFERSTORE:
         if ((r = pop(vm, &xt))) return r;
         h = fbrl__xt_hdr(vm, xt);
-        if (!h || h->kind != K_DEFER) return fbrl__throw_msg(vm, -21, "not a DEFERred word");
-        if (!fbrl__addr_ok(vm, h->body, CELL)) return -9;
+        if (!h || h->kind != K_DEFER) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "not a DEFERred word");
+        if (!fbrl__addr_ok(vm, h->body, CELL)) return FBRL_THROW_BAD_ADDRESS;
         if (op == OP_DEFERSTORE) {
             if ((r = pop(vm, &v))) return r;
             memcpy((void *)h->body, &v, sizeof v);
@@ -754,7 +806,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return push(vm, xt);
     case OP_BCHAR: case OP_CHAR:
         fbrl__parse_name(vm, &p, &n);
-        if (n == 0) return -16;
+        if (n == 0) return FBRL_THROW_NO_NAME;
         return op == OP_CHAR ? push(vm, (unsigned char)p[0]) : fbrl__compile_lit(vm, (unsigned char)p[0]);
     case OP_PAREN: return paren_comment(vm);
     case OP_BACKSLASH: case OP_SHEBANG:
@@ -783,7 +835,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_CQUOTE: {
         char b[256];
         if ((r = parse_quoted(vm, '"', &p, &n))) return r;
-        if (n > 255) return -18;
+        if (n > 255) return FBRL_THROW_PARSED_OVERFLOW;
         b[0] = (char)n;
         memcpy(b + 1, p, n);
         return fbrl__compile_str(vm, OP_CSLIT, b, n + 1);
@@ -811,7 +863,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
             *vm->toin = (fbrl_cell)i;
         }
         fbrl__parse(vm, c, &p, &n, &found);
-        if (n > 255) return -18;
+        if (n > 255) return FBRL_THROW_PARSED_OVERFLOW;
         vm->wordbuf[0] = (char)n;
         memmove(vm->wordbuf + 1, p, n);
         vm->wordbuf[n + 1] = ' ';
@@ -820,9 +872,9 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_FIND: {
         if ((r = need(vm, 1))) return r;
         v = vm->sp[-1];
-        if (!fbrl__addr_ok(vm, v, 1)) return -9;
+        if (!fbrl__addr_ok(vm, v, 1)) return FBRL_THROW_BAD_ADDRESS;
         n = *(unsigned char *)v;
-        if (!fbrl__addr_ok(vm, v, (fbrl_cell)n + 1)) return -9;
+        if (!fbrl__addr_ok(vm, v, (fbrl_cell)n + 1)) return FBRL_THROW_BAD_ADDRESS;
         int i = fbrl__find(vm, (const char *)v + 1, n);
         if (i < 0) return push(vm, 0);
         vm->sp[-1] = FBRL_XT_BASE + i;
@@ -846,16 +898,16 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if ((r = pop(vm, &xt))) return r;
         return fbrl__compile_xt(vm, xt);
     case OP_IMMEDIATE:
-        if (vm->nwords == 0) return -21;
+        if (vm->nwords == 0) return FBRL_THROW_UNSUPPORTED;
         HDR(vm, vm->nwords - 1)->flags |= FI;
         return 0;
     case OP_TONUMBER: {
         if ((r = need(vm, 4))) return r;
         fbrl_cell a = vm->sp[-2], u = vm->sp[-1];
         fbrl_ucell lo = U(vm->sp[-4]), hi = U(vm->sp[-3]);
-        if (u < 0) return -24;
-        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
-        if (*vm->base < 2 || *vm->base > 36) return -24;
+        if (u < 0) return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
+        if (*vm->base < 2 || *vm->base > 36) return FBRL_THROW_BAD_NUMBER;
         size_t k = u ? fbrl__to_number((const char *)a, (size_t)u, *vm->base, &lo, &hi) : 0;
         vm->sp[-4] = (fbrl_cell)lo;
         vm->sp[-3] = (fbrl_cell)hi;
@@ -878,10 +930,10 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return 0;
     case OP_INCLUDE: case OP_REQUIRE:
         fbrl__parse_name(vm, &p, &n);
-        if (n == 0) return fbrl__throw_msg(vm, -38, "file name expected");
+        if (n == 0) return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, "file name expected");
         {
             char name[FBRL_PATH_MAX];
-            if (n >= sizeof name) return -38;
+            if (n >= sizeof name) return FBRL_THROW_NO_FILE;
             memcpy(name, p, n); /* the line buffer is reused by the nested source */
             return fbrl__included(vm, name, n, op == OP_REQUIRE);
         }
@@ -903,7 +955,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return push(vm, (op == OP_BDEFINED) == found ? -1 : 0);
     case OP_SAVEINPUT: {
         const fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
-        if (vm->ds_end - vm->sp < 4) return -3;
+        if (vm->ds_end - vm->sp < 4) return FBRL_THROW_STACK_OVERFLOW;
         *vm->sp++ = *vm->toin;
         *vm->sp++ = s ? (fbrl_cell)s->line : 0;
         *vm->sp++ = s ? s->id : 0;
@@ -913,7 +965,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_RESTOREINPUT: {
         const fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
         if ((r = pop(vm, &v))) return r;
-        if (v < 0 || vm->sp - vm->ds0 < v) return -4;
+        if (v < 0 || vm->sp - vm->ds0 < v) return FBRL_THROW_STACK_UNDERFLOW;
         vm->sp -= v;
         if (v != 3 || !s || vm->sp[2] != s->id || vm->sp[1] != (fbrl_cell)s->line || vm->sp[0] < 0 ||
             (size_t)vm->sp[0] > s->len)
@@ -922,16 +974,16 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return push(vm, 0);
     }
     case OP_LATESTXT:
-        if (vm->nwords == 0) return -21;
+        if (vm->nwords == 0) return FBRL_THROW_UNSUPPORTED;
         return push(vm, (fbrl_cell)(FBRL_XT_BASE + vm->nwords - 1));
     case OP_TOBODY:
         if ((r = pop(vm, &xt))) return r;
         h = fbrl__xt_hdr(vm, xt);
         if (!h || h->kind == K_PRIM || h->kind == K_COLON || h->kind == K_CFUNC || h->kind == K_MARKER)
-            return -31;
+            return FBRL_THROW_TO_BODY;
         return push(vm, h->body);
     }
-    return -21;
+    return FBRL_THROW_UNSUPPORTED;
 }
 
 /* ---- number and float output ---- */
@@ -940,7 +992,7 @@ static int get_base(fbrl_vm *vm, unsigned *b)
     fbrl_cell x = *vm->base;
     if (x < 2 || x > 36) {
         *vm->base = 10;
-        return fbrl__throw_msg(vm, -24, "invalid BASE (reset to decimal)");
+        return fbrl__throw_msg(vm, FBRL_THROW_BAD_NUMBER, "invalid BASE (reset to decimal)");
     }
     *b = (unsigned)x;
     return 0;
@@ -964,7 +1016,7 @@ int fbrl__spaces(fbrl_vm *vm, fbrl_cell n)
     static const char blanks[64] = "                                                                ";
     while (n > 0) {
         size_t k = n > (fbrl_cell)sizeof blanks ? sizeof blanks : (size_t)n;
-        if (fbrl__take_interrupt(vm)) return -28;
+        if (fbrl__take_interrupt(vm)) return FBRL_THROW_INTERRUPT;
         fbrl__write(vm, blanks, k);
         n -= (fbrl_cell)k;
     }
@@ -990,7 +1042,7 @@ static int print_d(fbrl_vm *vm, fbrl_cell lo, fbrl_cell hi, int is_signed, fbrl_
 
 static int hold_char(fbrl_vm *vm, char c)
 {
-    if (vm->hld <= vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE) return -17;
+    if (vm->hld <= vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE) return FBRL_THROW_PICTURED_OVERFLOW;
     *--vm->hld = c;
     return 0;
 }
@@ -1117,20 +1169,20 @@ int fbrl__w_io(fbrl_vm *vm, int op)
     unsigned base = 10;
     switch (op) {
     case OP_KEY:
-        if (!vm->host.key) return fbrl__throw_msg(vm, -21, "no console input in this host");
+        if (!vm->host.key) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         r = vm->host.key(vm->host.user);
-        if (r < 0) return -57;
+        if (r < 0) return FBRL_THROW_CHAR_IO;
         return push(vm, (unsigned char)r);
     case OP_KEYQ:
-        if (!vm->host.key_ready) return fbrl__throw_msg(vm, -21, "no console input in this host");
+        if (!vm->host.key_ready) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         return push(vm, vm->host.key_ready(vm->host.user) ? -1 : 0);
     case OP_ACCEPT: {
         if ((r = need(vm, 2))) return r;
         u = *--vm->sp;
         a = *--vm->sp;
-        if (u < 0) return -24;
-        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
-        if (!vm->host.key) return fbrl__throw_msg(vm, -21, "no console input in this host");
+        if (u < 0) return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
+        if (!vm->host.key) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         fbrl_cell k = 0;
         for (;;) {
             int c = vm->host.key(vm->host.user);
@@ -1157,7 +1209,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         return print_d(vm, vm->sp[0], vm->sp[1], 1, vm->sp[2], 0);
     case OP_QUESTION:
         if ((r = pop(vm, &a))) return r;
-        if (!fbrl__addr_ok(vm, a, CELL)) return -9;
+        if (!fbrl__addr_ok(vm, a, CELL)) return FBRL_THROW_BAD_ADDRESS;
         memcpy(&v, (void *)a, sizeof v);
         return print_d(vm, v, v < 0 ? -1 : 0, 1, 0, 1);
     case OP_LTNUM:
@@ -1211,8 +1263,8 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         if ((r = need(vm, 2))) return r;
         u = *--vm->sp;
         a = *--vm->sp;
-        if (u < 0) return -24;
-        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        if (u < 0) return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
         for (fbrl_cell i = 0; i < u; i += 16) {
             char b[100];
             int k = snprintf(b, sizeof b, "%0*lx ", (int)(2 * sizeof(fbrl_cell)), (unsigned long)U(a + i));
@@ -1237,19 +1289,19 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         return 0;
     case OP_MS:
         if ((r = pop(vm, &v))) return r;
-        if (!vm->host.sleep_ms) return fbrl__throw_msg(vm, -21, "no clock in this host");
+        if (!vm->host.sleep_ms) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
         if (v > 0) vm->host.sleep_ms(vm->host.user, (uint32_t)(v > 0x7fffffff ? 0x7fffffff : v));
-        return fbrl__take_interrupt(vm) ? -28 : 0; /* a host may cut the sleep short on Ctrl-C */
+        return fbrl__take_interrupt(vm) ? FBRL_THROW_INTERRUPT : 0; /* a host may cut the sleep short on Ctrl-C */
     case OP_TIMEDATE: {
         int t[6] = { 0 };
-        if (!vm->host.time_date) return fbrl__throw_msg(vm, -21, "no clock in this host");
-        if (vm->ds_end - vm->sp < 6) return -3;
+        if (!vm->host.time_date) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+        if (vm->ds_end - vm->sp < 6) return FBRL_THROW_STACK_OVERFLOW;
         vm->host.time_date(vm->host.user, t);
         for (int i = 0; i < 6; i++) *vm->sp++ = t[i];
         return 0;
     }
     case OP_USECS: {
-        if (!vm->host.now_us) return fbrl__throw_msg(vm, -21, "no clock in this host");
+        if (!vm->host.now_us) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
         uint64_t t = vm->host.now_us(vm->host.user);
         if ((r = push(vm, (fbrl_cell)t))) return r;
         return push(vm, sizeof(fbrl_cell) >= 8 ? 0 : (fbrl_cell)(t >> 31 >> 1));
@@ -1263,8 +1315,8 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         if ((r = need(vm, 2))) return r;
         u = vm->sp[-1];
         a = vm->sp[-2];
-        if (u < 0) return -24;
-        if (u && !fbrl__addr_ok(vm, a, u)) return -9;
+        if (u < 0) return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
         if ((r = fpop(vm, &f))) return r;
         ok = represent(f, dg, u > 17 ? 17 : (int)u, &exp, &neg);
         if (u) memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
@@ -1289,5 +1341,5 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         return push(vm, 0);
     }
     }
-    return -21;
+    return FBRL_THROW_UNSUPPORTED;
 }

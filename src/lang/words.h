@@ -21,6 +21,8 @@ int fbrl__refill(fbrl_vm *vm);
 size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, fbrl_ucell *hi);
 int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt);
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v);
+int fbrl__compile_op(fbrl_vm *vm, int op);
+void fbrl__peep_reset(fbrl_vm *vm);
 int fbrl__compile_flit(fbrl_vm *vm, double d);
 int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n);
 int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack,

@@ -10,10 +10,10 @@
 #include <string.h>
 #include "fbrl/matrix.h"
 #include "fbrl/ring.h"
-#include "words.h"
+#include "fbrl/vmx.h"
 
-#define MAGIC_QUEUE ((fbrl_cell)0x51554555) /* "QUEU" */
-#define MAGIC_ARRAY ((fbrl_cell)0x41525259) /* "ARRY" */
+static const fbrl_vmx_type queue_type = { "queue", (fbrl_cell)0x51554555 /* "QUEU" */ };
+static const fbrl_vmx_type array_type = { "array", (fbrl_cell)0x41525259 /* "ARRY" */ };
 #define STR_MAX 65535
 
 static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) & ~(fbrl_ucell)15); }
@@ -21,18 +21,7 @@ static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) 
 static fbrl_status fail(fbrl_vm *vm, int code, const char *msg) { return fbrl_vm_throw(vm, code, msg); }
 static fbrl_status need(fbrl_vm *vm, size_t n)
 {
-    return fbrl_vm_depth(vm) < n ? fbrl_vm_throw(vm, -4, NULL) : FBRL_OK;
-}
-
-/* Make "name" (parsed) with a data field of `bytes` bytes (zeroed) after a 16-aligned pad. */
-static fbrl_status make(fbrl_vm *vm, int kind, fbrl_cell bytes, const char *stack, const char *help,
-                        fbrl_hdr **h)
-{
-    int r = fbrl__create(vm, kind, stack, help, h);
-    if (!r) r = fbrl__allot(vm, bytes + 32);
-    if (r) return fbrl_vm_throw(vm, r, NULL);
-    memset((void *)(*h)->body, 0, (size_t)bytes + 32);
-    return FBRL_OK;
+    return fbrl_vm_depth(vm) < n ? fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL) : FBRL_OK;
 }
 
 /* ---- I-1 queues ---- */
@@ -40,16 +29,14 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
 {
     fbrl_cell magic;
     *st = FBRL_OK;
-    if (!fbrl__addr_ok(vm, q, CELL)) { *st = fail(vm, -9, NULL); return NULL; }
+    if (!fbrl_vm_addr(vm, q, sizeof(fbrl_cell))) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
     memcpy(&magic, (void *)q, sizeof magic);
-    if (magic != MAGIC_QUEUE) { *st = fail(vm, -12, "not a queue (use a CREATE-Q name)"); return NULL; }
-    fbrl_cell ra = align16(q + CELL);
-    if (!fbrl__addr_ok(vm, ra, (fbrl_cell)sizeof(fbrl_ring))) { *st = fail(vm, -9, NULL); return NULL; }
-    fbrl_ring *r = (fbrl_ring *)ra;
+    if (magic != queue_type.magic) { *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a queue (use a CREATE-Q name)"); return NULL; }
+    fbrl_ring *r = fbrl_vmx_data(vm, q, &queue_type, sizeof(fbrl_ring));
+    if (!r) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
     size_t cap = r->mask + 1;
-    if (r->buf != (uint8_t *)(ra + (fbrl_cell)sizeof(fbrl_ring)) || cap == 0 || (cap & r->mask) ||
-        !fbrl__addr_ok(vm, (fbrl_cell)r->buf, (fbrl_cell)cap)) {
-        *st = fail(vm, -9, "queue structure overwritten");
+    if (r->buf != (uint8_t *)(r + 1) || cap == 0 || (cap & r->mask) || !fbrl_vm_addr(vm, (fbrl_cell)r->buf, cap)) {
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, "queue structure overwritten");
         return NULL;
     }
     return r;
@@ -67,16 +54,16 @@ static fbrl_ring *pop_queue(fbrl_vm *vm, fbrl_status *st)
 static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
 {
     fbrl_cell n;
-    fbrl_hdr *h;
+    void *p;
     fbrl_status st;
     (void)arg;
     if ((st = need(vm, 1))) return st;
     fbrl_vm_pop(vm, &n);
-    if (n < 2 || n > (1 << 24)) return fail(vm, -24, "queue size must be 2..16777216 bytes");
-    if ((st = make(vm, K_VAR, CELL + (fbrl_cell)sizeof(fbrl_ring) + n, "( -- q-addr )", "queue", &h))) return st;
-    memcpy((void *)h->body, &(fbrl_cell){ MAGIC_QUEUE }, sizeof(fbrl_cell));
-    fbrl_cell ra = align16(h->body + CELL);
-    return fbrl_ring_init((fbrl_ring *)ra, (void *)(ra + (fbrl_cell)sizeof(fbrl_ring)), (size_t)n);
+    if (n < 2 || n > (1 << 24)) return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
+    if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL, "( -- q-addr )",
+                              "queue", NULL, &p)))
+        return st;
+    return fbrl_ring_init((fbrl_ring *)p, (fbrl_ring *)p + 1, (size_t)n);
 }
 
 static fbrl_status w_enq(fbrl_vm *vm, void *arg)
@@ -89,7 +76,7 @@ static fbrl_status w_enq(fbrl_vm *vm, void *arg)
     fbrl_vm_pop(vm, &c);
     fbrl_ring *r = queue_at(vm, q, &st);
     if (!r) return st;
-    if (fbrl_ring_put(r, (uint8_t)c) != FBRL_OK) return fail(vm, FBRL_THROW_STATUS(FBRL_EFULL), "queue full");
+    if (fbrl_ring_put(r, (uint8_t)c) != FBRL_OK) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "queue full");
     return FBRL_OK;
 }
 
@@ -100,7 +87,7 @@ static fbrl_status w_deq(fbrl_vm *vm, void *arg)
     (void)arg;
     fbrl_ring *r = pop_queue(vm, &st);
     if (!r) return st;
-    if (fbrl_ring_get(r, &b) != FBRL_OK) return fail(vm, FBRL_THROW_STATUS(FBRL_EEMPTY), "queue empty");
+    if (fbrl_ring_get(r, &b) != FBRL_OK) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EEMPTY), "queue empty");
     return fbrl_vm_push(vm, b);
 }
 
@@ -125,66 +112,67 @@ static fbrl_status w_q_count(fbrl_vm *vm, void *arg)
 /* ---- I-2 arrays ---- */
 static fbrl_array *array_at(fbrl_vm *vm, fbrl_cell body, fbrl_status *st)
 {
-    fbrl_cell magic;
     size_t bytes;
     *st = FBRL_OK;
-    fbrl_cell aa = align16(body + CELL);
-    if (!fbrl__addr_ok(vm, body, CELL) || !fbrl__addr_ok(vm, aa, (fbrl_cell)sizeof(fbrl_array))) {
-        *st = fail(vm, -9, NULL);
+    if (!fbrl_vm_addr(vm, body, FBRL_VMX_PAYLOAD + sizeof(fbrl_array))) {
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
         return NULL;
     }
-    memcpy(&magic, (void *)body, sizeof magic);
-    fbrl_array *a = (fbrl_array *)aa;
-    if (magic != MAGIC_ARRAY || a->data != (unsigned char *)align16(aa + (fbrl_cell)sizeof(fbrl_array)) ||
-        fbrl_array_bytes(a->cell_size, a->rows, a->cols, &bytes) != FBRL_OK ||
-        !fbrl__addr_ok(vm, (fbrl_cell)a->data, (fbrl_cell)bytes)) {
-        *st = fail(vm, -9, "array structure overwritten");
+    fbrl_array *a = fbrl_vmx_data(vm, body, &array_type, sizeof(fbrl_array));
+    if (!a || a->data != (unsigned char *)align16((fbrl_cell)a + (fbrl_cell)sizeof(fbrl_array)) ||
+        fbrl_array_bytes(a->cell_size, a->rows, a->cols, &bytes) != FBRL_OK || !fbrl_vm_addr(vm, (fbrl_cell)a->data, bytes)) {
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, "array structure overwritten");
         return NULL;
     }
     return a;
 }
 
-static fbrl_status array_run(fbrl_vm *vm, void *arg, int two)
+static fbrl_status array_run(fbrl_vm *vm, const void *body, int two)
 {
     fbrl_cell i, j = 0;
     fbrl_status st;
     void *cell;
-    fbrl_array *a = array_at(vm, (fbrl_cell)arg, &st);
+    fbrl_array *a = array_at(vm, (fbrl_cell)body, &st);
     if (!a) return st;
     if ((st = need(vm, two ? 2 : 1))) return st;
     if (two) fbrl_vm_pop(vm, &j);
     fbrl_vm_pop(vm, &i);
-    if (i < 0 || j < 0) return fail(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "array index out of range");
+    if (i < 0 || j < 0) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "array index out of range");
     st = two ? fbrl_array2_cell(a, (size_t)i, (size_t)j, &cell) : fbrl_array_cell(a, (size_t)i, &cell);
-    if (st != FBRL_OK) return fail(vm, FBRL_THROW_STATUS(st), "array index out of range");
+    if (st != FBRL_OK) return fail(vm, FBRL_VM_THROW_OF_STATUS(st), "array index out of range");
     return fbrl_vm_push(vm, (fbrl_cell)cell);
 }
-static fbrl_status w_array1_run(fbrl_vm *vm, void *arg) { return array_run(vm, arg, 0); }
-static fbrl_status w_array2_run(fbrl_vm *vm, void *arg) { return array_run(vm, arg, 1); }
+static fbrl_status w_array1_run(fbrl_vm *vm, void *ctx, const void *body)
+{
+    (void)ctx;
+    return array_run(vm, body, 0);
+}
+static fbrl_status w_array2_run(fbrl_vm *vm, void *ctx, const void *body)
+{
+    (void)ctx;
+    return array_run(vm, body, 1);
+}
 
 static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_cell size, int two)
 {
     size_t bytes;
-    fbrl_hdr *h;
+    void *p;
     fbrl_status st;
     if (rows < 1 || cols < 1 || size < 1 || rows > 65535 || cols > 65535 || size > 65535)
-        return fail(vm, -24, "array sizes must be 1..65535");
-    if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK) return fail(vm, -24, NULL);
-    if ((st = make(vm, K_VAR, CELL + (fbrl_cell)sizeof(fbrl_array) + 16 + (fbrl_cell)bytes,
-                   two ? "( row col -- addr )" : "( index -- addr )",
-                   two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY", &h)))
+        return fail(vm, FBRL_THROW_BAD_NUMBER, "array sizes must be 1..65535");
+    if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK) return fail(vm, FBRL_THROW_BAD_NUMBER, NULL);
+    if ((st = fbrl_vmx_create(vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes, two ? w_array2_run : w_array1_run,
+                              NULL, two ? "( row col -- addr )" : "( index -- addr )",
+                              two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY",
+                              NULL, &p)))
         return st;
-    memcpy((void *)h->body, &(fbrl_cell){ MAGIC_ARRAY }, sizeof(fbrl_cell));
-    fbrl_cell aa = align16(h->body + CELL);
+    fbrl_cell aa = (fbrl_cell)p;
     fbrl_cell data = align16(aa + (fbrl_cell)sizeof(fbrl_array));
-    h->fn = two ? w_array2_run : w_array1_run;
-    h->arg = (void *)h->body;
-    h->kind = K_CFUNC; /* only now that it has its code */
     if (two)
         st = fbrl_array2_init((fbrl_array *)aa, (void *)data, bytes, (size_t)size, (size_t)rows, (size_t)cols);
     else
         st = fbrl_array_init((fbrl_array *)aa, (void *)data, bytes, (size_t)size, (size_t)rows);
-    return st == FBRL_OK ? st : fail(vm, FBRL_THROW_STATUS(st), NULL);
+    return st == FBRL_OK ? st : fail(vm, FBRL_VM_THROW_OF_STATUS(st), NULL);
 }
 
 static fbrl_status w_array(fbrl_vm *vm, void *arg)
@@ -215,10 +203,10 @@ static unsigned char *string_at(fbrl_vm *vm, fbrl_cell s, unsigned *size, unsign
 {
     uint16_t v[2];
     *st = FBRL_OK;
-    if (!fbrl__addr_ok(vm, s, 4)) { *st = fail(vm, -9, NULL); return NULL; }
+    if (!fbrl_vm_addr(vm, s, 4)) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
     memcpy(v, (void *)s, 4);
-    if (v[0] == 0 || v[1] > v[0] || !fbrl__addr_ok(vm, s + 4, v[0])) {
-        *st = fail(vm, -12, "not a string (use a STRING name)");
+    if (v[0] == 0 || v[1] > v[0] || !fbrl_vm_addr(vm, s + 4, v[0])) {
+        *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a string (use a STRING name)");
         return NULL;
     }
     *size = v[0];
@@ -243,15 +231,15 @@ static void set_len(fbrl_cell s, unsigned len)
 static fbrl_status w_string(fbrl_vm *vm, void *arg)
 {
     fbrl_cell n;
-    fbrl_hdr *h;
+    void *p;
     fbrl_status st;
     (void)arg;
     if ((st = need(vm, 1))) return st;
     fbrl_vm_pop(vm, &n);
-    if (n < 1 || n > STR_MAX) return fail(vm, -24, "string length must be 1..65535");
-    if ((st = make(vm, K_VAR, 4 + n, "( -- str )", "string", &h))) return st;
+    if (n < 1 || n > STR_MAX) return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
+    if ((st = fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, "( -- str )", "string", NULL, &p))) return st;
     uint16_t v = (uint16_t)n;
-    memcpy((void *)h->body, &v, 2);
+    memcpy(p, &v, 2);
     return FBRL_OK;
 }
 
@@ -267,7 +255,7 @@ static fbrl_status w_str1(fbrl_vm *vm, void *arg)
     switch ((int)(intptr_t)arg) {
     case S_CNT: return fbrl_vm_push(vm, len);
     case S_SIZE: return fbrl_vm_push(vm, size);
-    case S_TYPE: fbrl__write(vm, (const char *)c, len); return FBRL_OK;
+    case S_TYPE: fbrl_vmx_write(vm, (const char *)c, len); return FBRL_OK;
     case S_NULL: set_len(s, 0); return FBRL_OK;
     default:
         if ((st = fbrl_vm_push(vm, (fbrl_cell)c))) return st;
@@ -275,7 +263,7 @@ static fbrl_status w_str1(fbrl_vm *vm, void *arg)
     }
 }
 
-static fbrl_status overflow(fbrl_vm *vm) { return fail(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "string overflow"); }
+static fbrl_status overflow(fbrl_vm *vm) { return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "string overflow"); }
 
 static fbrl_status w_append_chr(fbrl_vm *vm, void *arg)
 {
@@ -331,7 +319,7 @@ static fbrl_status w_sub_string(fbrl_vm *vm, void *arg)
     unsigned char *sc = string_at(vm, s, &ssize, &slen, &st);
     if (!sc) return st;
     if (m < 1 || n < m - 1 || n > (fbrl_cell)slen)
-        return fail(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "SUB-STRING positions out of range");
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "SUB-STRING positions out of range");
     if (n - m + 1 > (fbrl_cell)tsize) return overflow(vm);
     memmove(tc, sc + m - 1, (size_t)(n - m + 1));
     set_len(t, (unsigned)(n - m + 1));
@@ -349,7 +337,7 @@ static fbrl_status w_string_chr(fbrl_vm *vm, void *arg)
     fbrl_vm_pop(vm, &s);
     unsigned char *c = string_at(vm, s, &size, &len, &st);
     if (!c) return st;
-    if (pos < 1 || pos > (fbrl_cell)len) return fail(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "position out of range");
+    if (pos < 1 || pos > (fbrl_cell)len) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "position out of range");
     return fbrl_vm_push(vm, c[pos - 1]);
 }
 
@@ -366,7 +354,7 @@ static fbrl_status w_string_put(fbrl_vm *vm, void *arg)
     fbrl_vm_pop(vm, &s);
     unsigned char *c = string_at(vm, s, &size, &len, &st);
     if (!c) return st;
-    if (u < 0 || (u && !fbrl__addr_ok(vm, a, u))) return fail(vm, -9, NULL);
+    if (u < 0 || (u && !fbrl_vm_addr(vm, a, (size_t)u))) return fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
     if (u > (fbrl_cell)size) return overflow(vm);
     if (u) memmove(c, (void *)a, (size_t)u);
     set_len(s, (unsigned)u);
@@ -374,28 +362,21 @@ static fbrl_status w_string_put(fbrl_vm *vm, void *arg)
 }
 
 /* STRING-LIT "text" (immediate): stores the quoted text into the string on the stack */
-static fbrl_status w_string_lit(fbrl_vm *vm, void *arg)
+static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
 {
     const char *p;
     size_t n;
-    int found, r;
-    (void)arg;
-    fbrl_src *src = vm->nsrc ? fbrl__src(vm) : NULL;
-    if (src) { /* skip blanks up to the opening quote */
-        fbrl_cell in = *vm->toin;
-        while (in >= 0 && (size_t)in < src->len && (unsigned char)src->buf[in] <= ' ') in++;
-        *vm->toin = in;
-        if (in < 0 || (size_t)in >= src->len || src->buf[in] != '"')
-            return fail(vm, -24, "STRING-LIT needs a \"quoted\" text");
-        *vm->toin = in + 1;
-    }
-    fbrl__parse(vm, '"', &p, &n, &found);
-    if (!found) return fail(vm, -39, "unterminated string");
-    if (*vm->state) {
-        int k = fbrl__find(vm, "STRING-PUT", 10);
-        if ((r = fbrl__compile_str(vm, OP_SLIT, p, n)) || (r = fbrl__compile_xt(vm, FBRL_XT_BASE + k)))
-            return fbrl_vm_throw(vm, r, NULL);
-        return FBRL_OK;
+    fbrl_cell put;
+    (void)ctx;
+    (void)word;
+    int found = fbrl_vmx_parse_quoted(vm, &p, &n);
+    if (found < 0) return fail(vm, FBRL_THROW_BAD_NUMBER, "STRING-LIT needs a \"quoted\" text");
+    if (!found) return fail(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
+    if (fbrl_vmx_compiling(vm)) {
+        fbrl_status st = fbrl_vmx_find(vm, "STRING-PUT", 10, &put);
+        if (st == FBRL_OK) st = fbrl_vmx_compile_string(vm, p, n);
+        if (st == FBRL_OK) st = fbrl_vmx_compile_xt(vm, put);
+        return st;
     }
     fbrl_cell s;
     unsigned size, len;
@@ -417,9 +398,10 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
     (void)arg;
     unsigned char *c = pop_string(vm, &s, &size, &len, &st);
     if (!c) return st;
-    if (!vm->host.key) return fail(vm, -21, "no console input in this host");
+    const fbrl_vm_host *host = fbrl_vmx_host(vm);
+    if (!host->key) return fail(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
     for (;;) {
-        int ch = vm->host.key(vm->host.user);
+        int ch = host->key(host->user);
         if (ch < 0 || ch == '\n' || ch == '\r') break;
         if (k < size) c[k++] = (unsigned char)ch;
     }
@@ -430,48 +412,58 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
 /* ---- data type sizes ---- */
 static fbrl_status w_const(fbrl_vm *vm, void *arg) { return fbrl_vm_push(vm, (fbrl_cell)(intptr_t)arg); }
 
-typedef struct word { const char *name; fbrl_vm_prim fn; intptr_t arg; const char *stack, *help; } word;
+/* A word: fn(vm, arg), or (fn NULL) xfn with flags. */
+typedef struct word {
+    const char *name;
+    fbrl_vm_prim fn;
+    intptr_t arg;
+    const char *stack, *help;
+    fbrl_vmx_fn xfn;
+    unsigned flags;
+} word;
 static const word words[] = {
-    { "CREATE-Q", w_create_q, 0, "( n \"name\" -- )", "make a character queue named name; it holds n characters, rounded down to a power of two" },
-    { "ENQ", w_enq, 0, "( c q-addr -- )", "add a character to the queue (throws when full)" },
-    { "DEQ", w_deq, 0, "( q-addr -- c )", "take the oldest character from the queue (throws when empty)" },
-    { "EMPTY-Q?", w_q_test, 0, "( q-addr -- flag )", "true if the queue is empty" },
-    { "FULL-Q?", w_q_test, 1, "( q-addr -- flag )", "true if the queue is full" },
-    { "ENQ-L", w_enq, 0, "( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)" },
-    { "DEQ-L", w_deq, 0, "( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)" },
-    { "EMPTY-Q?-L", w_q_test, 0, "( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)" },
-    { "FULL-Q?-L", w_q_test, 1, "( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)" },
-    { "Q-COUNT", w_q_count, 0, "( q-addr -- n )", "number of characters in the queue" },
-    { "ARRAY", w_array, 0, "( n cell-size \"name\" -- ) ( run: index -- addr )", "make a one-dimensional array of n cells" },
-    { "2ARRAY", w_2array, 0, "( rows cols cell-size \"name\" -- ) ( run: row col -- addr )", "make a two-dimensional array" },
-    { "STRING", w_string, 0, "( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters" },
-    { "STRING-CNT", w_str1, S_CNT, "( str -- cnt )", "number of characters in the string" },
-    { "STRING-SIZE", w_str1, S_SIZE, "( str -- size )", "number of characters reserved for the string" },
-    { "TYPE-STRING", w_str1, S_TYPE, "( str -- )", "print the string" },
-    { "NULL-STRING", w_str1, S_NULL, "( str -- )", "make the string empty" },
-    { "STRING-TEXT", w_str1, S_TEXT, "( str -- a u )", "address and length of the string's characters" },
-    { "APPEND-CHR", w_append_chr, 0, "( c str -- )", "append a character to the string" },
-    { "APPEND-STRING", w_append_copy, 1, "( targ src -- )", "append string src to string targ" },
-    { "COPY-STRING", w_append_copy, 0, "( targ src -- )", "copy string src into string targ" },
-    { "SUB-STRING", w_sub_string, 0, "( targ src m n -- )", "copy characters m..n (from 1) of src into targ" },
-    { "STRING->CHR", w_string_chr, 0, "( str n -- c )", "the n-th character of the string (from 1)" },
-    { "STRING-PUT", w_string_put, 0, "( str a u -- )", "store the text a u into the string" },
-    { "STRING-LIT", w_string_lit, 0, "( str \"\"text\"\" -- )", "store the quoted text into the string" },
-    { "GET-STRING", w_get_string, 0, "( str -- )", "read a line from the console into the string" },
-    { "CHR", w_const, 1, "( -- 1 )", "size in bytes of a character (for ARRAY)" },
-    { "INTEGER", w_const, 2, "( -- 2 )", "size in bytes of an integer (for ARRAY)" },
-    { "LONG-INTEGER", w_const, 4, "( -- 4 )", "size in bytes of a long integer (for ARRAY)" },
-    { "REAL", w_const, 8, "( -- 8 )", "size in bytes of a real (a float, for ARRAY)" },
-    { "LOCATION", w_const, 48, "( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)" },
+    { "CREATE-Q", w_create_q, 0, "( n \"name\" -- )", "make a character queue named name; it holds n characters, rounded down to a power of two", NULL, 0 },
+    { "ENQ", w_enq, 0, "( c q-addr -- )", "add a character to the queue (throws when full)", NULL, 0 },
+    { "DEQ", w_deq, 0, "( q-addr -- c )", "take the oldest character from the queue (throws when empty)", NULL, 0 },
+    { "EMPTY-Q?", w_q_test, 0, "( q-addr -- flag )", "true if the queue is empty", NULL, 0 },
+    { "FULL-Q?", w_q_test, 1, "( q-addr -- flag )", "true if the queue is full", NULL, 0 },
+    { "ENQ-L", w_enq, 0, "( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)", NULL, 0 },
+    { "DEQ-L", w_deq, 0, "( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)", NULL, 0 },
+    { "EMPTY-Q?-L", w_q_test, 0, "( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)", NULL, 0 },
+    { "FULL-Q?-L", w_q_test, 1, "( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)", NULL, 0 },
+    { "Q-COUNT", w_q_count, 0, "( q-addr -- n )", "number of characters in the queue", NULL, 0 },
+    { "ARRAY", w_array, 0, "( n cell-size \"name\" -- ) ( run: index -- addr )", "make a one-dimensional array of n cells", NULL, 0 },
+    { "2ARRAY", w_2array, 0, "( rows cols cell-size \"name\" -- ) ( run: row col -- addr )", "make a two-dimensional array", NULL, 0 },
+    { "STRING", w_string, 0, "( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters", NULL, 0 },
+    { "STRING-CNT", w_str1, S_CNT, "( str -- cnt )", "number of characters in the string", NULL, 0 },
+    { "STRING-SIZE", w_str1, S_SIZE, "( str -- size )", "number of characters reserved for the string", NULL, 0 },
+    { "TYPE-STRING", w_str1, S_TYPE, "( str -- )", "print the string", NULL, 0 },
+    { "NULL-STRING", w_str1, S_NULL, "( str -- )", "make the string empty", NULL, 0 },
+    { "STRING-TEXT", w_str1, S_TEXT, "( str -- a u )", "address and length of the string's characters", NULL, 0 },
+    { "APPEND-CHR", w_append_chr, 0, "( c str -- )", "append a character to the string", NULL, 0 },
+    { "APPEND-STRING", w_append_copy, 1, "( targ src -- )", "append string src to string targ", NULL, 0 },
+    { "COPY-STRING", w_append_copy, 0, "( targ src -- )", "copy string src into string targ", NULL, 0 },
+    { "SUB-STRING", w_sub_string, 0, "( targ src m n -- )", "copy characters m..n (from 1) of src into targ", NULL, 0 },
+    { "STRING->CHR", w_string_chr, 0, "( str n -- c )", "the n-th character of the string (from 1)", NULL, 0 },
+    { "STRING-PUT", w_string_put, 0, "( str a u -- )", "store the text a u into the string", NULL, 0 },
+    { "STRING-LIT", NULL, 0, "( str \"\"text\"\" -- )", "store the quoted text into the string", w_string_lit,
+      FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART },
+    { "GET-STRING", w_get_string, 0, "( str -- )", "read a line from the console into the string", NULL, 0 },
+    { "CHR", w_const, 1, "( -- 1 )", "size in bytes of a character (for ARRAY)", NULL, 0 },
+    { "INTEGER", w_const, 2, "( -- 2 )", "size in bytes of an integer (for ARRAY)", NULL, 0 },
+    { "LONG-INTEGER", w_const, 4, "( -- 4 )", "size in bytes of a long integer (for ARRAY)", NULL, 0 },
+    { "REAL", w_const, 8, "( -- 8 )", "size in bytes of a real (a float, for ARRAY)", NULL, 0 },
+    { "LOCATION", w_const, 48, "( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)", NULL, 0 },
 };
 
-fbrl_status fbrl__fbrl_words(fbrl_vm *vm)
+fbrl_status fbrl_vmx_data_words(fbrl_vm *vm)
 {
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st = fbrl_vm_define(vm, words[i].name, words[i].fn, (void *)words[i].arg, words[i].stack,
-                                        words[i].help);
+        fbrl_status st = words[i].fn ? fbrl_vm_define(vm, words[i].name, words[i].fn, (void *)words[i].arg,
+                                                      words[i].stack, words[i].help)
+                                     : fbrl_vmx_define(vm, words[i].name, words[i].xfn, NULL, &words[i],
+                                                       words[i].flags, words[i].stack, words[i].help);
         if (st != FBRL_OK) return st;
     }
-    HDR(vm, fbrl__find(vm, "STRING-LIT", 10))->flags |= FI | FS;
     return FBRL_OK;
 }

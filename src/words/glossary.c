@@ -33,7 +33,7 @@ fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out)
 {
     if (!vm || !out) return FBRL_EINVAL;
     if (!fbrl_vm_addr(vm, addr, GL_PAYLOAD + sizeof(fbrl_calpts))) return FBRL_ERANGE;
-    fbrl_calpts *c = gl_struct(vm, addr, MAGIC_CAL, sizeof(fbrl_calpts));
+    fbrl_calpts *c = fbrl_vmx_data(vm, addr, &gl_type_cal, sizeof(fbrl_calpts));
     if (!c) return FBRL_ETYPE;
     *out = c;
     return FBRL_OK;

@@ -27,7 +27,7 @@ fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
 
 fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what)
 {
-    return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: %s", what, fbrl_status_str(st));
+    return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: %s", what, fbrl_status_str(st));
 }
 
 fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v)
@@ -37,18 +37,23 @@ fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v)
     return FBRL_OK;
 }
 
+/* The words pop their cells first, so the reals given as integers are the cells just
+ * beneath them: vmx.h's one rule. */
 fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v)
 {
-    if (fbrl_vm_fdepth(vm) < n) return fbrl_vm_throw(vm, GL_FSTACK_UNDERFLOW, NULL);
-    while (n--) fbrl_vm_fpop(vm, &v[n]);
-    return FBRL_OK;
+    static const char reals[FBRL_VMX_MAXARGS + 1] = "RRRRRRRR";
+    fbrl_vmx_val val[FBRL_VMX_MAXARGS];
+    if (n > FBRL_VMX_MAXARGS) return FBRL_EINVAL;
+    fbrl_status st = fbrl_vmx_args(vm, NULL, reals + FBRL_VMX_MAXARGS - n, NULL, FBRL_VMX_STACKS, val);
+    for (size_t k = 0; st == FBRL_OK && k < n; k++) v[k] = val[k].f;
+    return st;
 }
 
 fbrl_status gl_push_flag(fbrl_vm *vm, int yes) { return fbrl_vm_push(vm, yes ? -1 : 0); }
 
 fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_loc **loc)
 {
-    if (!fbrl__addr_ok(vm, a, (fbrl_cell)sizeof(fbrl_loc)))
+    if (!fbrl_vm_addr(vm, a, sizeof(fbrl_loc)))
         return gl_throw(vm, GL_BAD_ADDRESS, "%s: address is not a location in data space", word);
     if ((fbrl_ucell)a % sizeof(double))
         return gl_throw(vm, GL_ALIGNMENT, "%s: location address not aligned to 8 bytes", word);
@@ -59,41 +64,16 @@ fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_
     return FBRL_OK;
 }
 
-static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) & ~(fbrl_ucell)15); }
+const fbrl_vmx_type gl_type_cal = { "calibration", (fbrl_cell)0x43414C33 /* "CAL3" */ };
+const fbrl_vmx_type gl_type_stru = { "calibration structure", (fbrl_cell)0x43414C53 /* "CALS" */ };
+const fbrl_vmx_type gl_type_rect = { "RECTMAT", (fbrl_cell)0x52454354 /* "RECT" */ };
+const fbrl_vmx_type gl_type_rad = { "RADMAT", (fbrl_cell)0x5241444D /* "RADM" */ };
+const fbrl_vmx_type gl_type_hndl = { "file handle", (fbrl_cell)0x484E444C /* "HNDL" */ };
 
-fbrl_status gl_make(fbrl_vm *vm, fbrl_vm_prim run, fbrl_cell magic, size_t bytes, const char *stack,
+fbrl_status gl_make(fbrl_vm *vm, fbrl_vmx_fn run, const fbrl_vmx_type *type, size_t bytes, const char *stack,
                     const char *help, void **payload)
 {
-    unsigned char *here0 = vm->here;
-    uint32_t nwords0 = vm->nwords;
-    size_t total = (magic ? GL_PAYLOAD : 0) + bytes;
-    fbrl_hdr *h;
-    int r = fbrl__create(vm, run ? K_CFUNC : K_VAR, stack, help, &h);
-    if (!r) r = fbrl__allot(vm, align16((fbrl_cell)vm->here) - (fbrl_cell)vm->here);
-    if (!r) {
-        h->body = (fbrl_cell)vm->here;
-        r = fbrl__allot(vm, (fbrl_cell)total);
-    }
-    if (r) { /* no half-made word is left behind */
-        if (vm->nwords != nwords0) fbrl__forget(vm, here0, nwords0, vm->req_used);
-        return fbrl_vm_throw(vm, r, NULL);
-    }
-    memset((void *)h->body, 0, total);
-    if (magic) memcpy((void *)h->body, &magic, sizeof magic);
-    if (run) {
-        h->fn = run;
-        h->arg = (void *)h->body;
-    }
-    *payload = (void *)(h->body + (magic ? GL_PAYLOAD : 0));
-    return FBRL_OK;
-}
-
-void *gl_struct(fbrl_vm *vm, fbrl_cell a, fbrl_cell magic, size_t bytes)
-{
-    fbrl_cell m;
-    if ((fbrl_ucell)a % 16 || !fbrl__addr_ok(vm, a, GL_PAYLOAD + (fbrl_cell)bytes)) return NULL;
-    memcpy(&m, (void *)a, sizeof m);
-    return m == magic ? (void *)(a + GL_PAYLOAD) : NULL;
+    return fbrl_vmx_create(vm, NULL, 0, type, bytes, run, NULL, stack, help, NULL, payload);
 }
 
 int gl_rigid(const fbrl_calib *c)
@@ -105,12 +85,12 @@ int gl_rigid(const fbrl_calib *c)
 
 fbrl_status gl_stru(fbrl_vm *vm, fbrl_cell a, int rigid, const char *word, fbrl_calib **c)
 {
-    fbrl_calib *p = gl_struct(vm, a, MAGIC_STRU, sizeof(fbrl_calib));
+    fbrl_calib *p = fbrl_vmx_data(vm, a, &gl_type_stru, sizeof(fbrl_calib));
     if (!p)
         return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a calibration structure (use a CREATE-CAL-STRU name)",
                         word);
     if (rigid && !gl_rigid(p))
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ESTATE),
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE),
                         "%s: calibration structure is not a rigid motion (see CAL-STRU!)", word);
     *c = p;
     return FBRL_OK;
@@ -134,7 +114,7 @@ fbrl_status gl_map(const fbrl_glossary *g, fbrl_loc *loc, int out)
     fbrl_status st;
     if (!g || g->magic != GL_INSTALLED || !g->vm || !loc) return FBRL_EINVAL;
     if (!g->map_on) return FBRL_OK;
-    const fbrl_calib *c = gl_struct(g->vm, g->with_cal, MAGIC_STRU, sizeof(fbrl_calib));
+    const fbrl_calib *c = fbrl_vmx_data(g->vm, g->with_cal, &gl_type_stru, sizeof(fbrl_calib));
     if (!c || !gl_rigid(c)) return FBRL_ESTATE;
     st = out ? fbrl_calib_map(c, loc, &res) : fbrl_calib_unmap(c, loc, &res);
     if (st == FBRL_OK) *loc = res;

@@ -16,14 +16,14 @@
 /* The three slots of a CREATE-CAL structure at a, or throw. */
 static fbrl_status cal_at(fbrl_vm *vm, fbrl_cell a, const char *word, fbrl_calpts **c)
 {
-    *c = gl_struct(vm, a, MAGIC_CAL, sizeof(fbrl_calpts));
+    *c = fbrl_vmx_data(vm, a, &gl_type_cal, sizeof(fbrl_calpts));
     if (!*c) return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a calibration (use a CREATE-CAL name)", word);
     return FBRL_OK;
 }
 
 static fbrl_status slot_index(fbrl_vm *vm, fbrl_cell i, const char *word)
 {
-    if (i < 1 || i > 3) return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: slot must be 1, 2 or 3", word);
+    if (i < 1 || i > 3) return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: slot must be 1, 2 or 3", word);
     return FBRL_OK;
 }
 
@@ -34,7 +34,7 @@ static fbrl_status w_map_on(fbrl_vm *vm, void *arg)
     fbrl_calib *c;
     fbrl_status st;
     if (!g->with_cal)
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ESTATE), "MAP-ON: no calibration selected (cal-stru WITH-CAL)");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), "MAP-ON: no calibration selected (cal-stru WITH-CAL)");
     if ((st = gl_stru(vm, g->with_cal, 1, "MAP-ON", &c))) return st;
     g->map_on = 1;
     return FBRL_OK;
@@ -64,7 +64,7 @@ static fbrl_status w_create_cal(fbrl_vm *vm, void *arg)
 {
     void *p;
     (void)arg;
-    return gl_make(vm, NULL, MAGIC_CAL, sizeof(fbrl_calpts), "( -- cal )", "calibration: three location slots 1 2 3",
+    return gl_make(vm, NULL, &gl_type_cal, sizeof(fbrl_calpts), "( -- cal )", "calibration: three location slots 1 2 3",
                    &p);
 }
 
@@ -108,7 +108,7 @@ static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg)
     void *p;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_make(vm, NULL, MAGIC_STRU, sizeof(fbrl_calib), "( -- cal-stru )",
+    if ((st = gl_make(vm, NULL, &gl_type_stru, sizeof(fbrl_calib), "( -- cal-stru )",
                       "calibration structure: the block's motion (identity until CALIBRATE)", &p)))
         return st;
     return fbrl_calib_identity(p);
@@ -120,7 +120,7 @@ static fbrl_status stru_entry(fbrl_vm *vm, const char *word, fbrl_calib **c, dou
     fbrl_status st;
     if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 0, word, c))) return st;
     if (a[1] < 1 || a[1] > 12)
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: index must be 1..12", word);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: index must be 1..12", word);
     int row = (int)(a[1] - 1) / 4, col = (int)(a[1] - 1) % 4;
     *e = col < 3 ? &(*c)->r[row][col] : &(*c)->t[row];
     return FBRL_OK;
@@ -142,7 +142,6 @@ static fbrl_status w_cal_stru_store(fbrl_vm *vm, void *arg)
     double *e, v;
     fbrl_status st;
     (void)arg;
-    if (fbrl_vm_fdepth(vm) < 1) return fbrl_vm_throw(vm, GL_FSTACK_UNDERFLOW, NULL);
     if ((st = stru_entry(vm, "CAL-STRU!", &c, &e)) || (st = gl_fpop(vm, 1, &v))) return st;
     if (!isfinite(v)) return gl_throw_st(vm, FBRL_ENONFINITE, "CAL-STRU!");
     *e = v;
@@ -164,7 +163,7 @@ static fbrl_status w_ang_from_origin(fbrl_vm *vm, void *arg)
     if ((st = gl_fpop(vm, 4, v))) return st;
     st = fbrl_calib_ang_from_origin(v[0], v[1], v[2], v[3], &ang);
     if (st == FBRL_EDEGENERATE)
-        return gl_throw(vm, FBRL_THROW_STATUS(st), "ANG-FROM-ORIGIN: the two points coincide");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "ANG-FROM-ORIGIN: the two points coincide");
     if (st != FBRL_OK) return gl_throw_st(vm, st, "ANG-FROM-ORIGIN");
     return fbrl_vm_fpush(vm, ang);
 }
@@ -183,7 +182,7 @@ static fbrl_status w_rotate(fbrl_vm *vm, void *arg)
 /* Name which point set is degenerate, so the user knows which block to re-teach. */
 static fbrl_status degenerate(fbrl_vm *vm, const char *word, const char *which)
 {
-    return gl_throw(vm, FBRL_THROW_STATUS(FBRL_EDEGENERATE),
+    return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EDEGENERATE),
                     "%s: %s points coincident or collinear (degenerate calibration)", word, which);
 }
 
@@ -234,11 +233,11 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
     fbrl_status st;
     if ((st = gl_pop(vm, 4, a))) return st;
     if (a[0] < 3 || a[0] > FBRL_GLOSSARY_NPOINT_MAX)
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: n must be 3..%d", word, FBRL_GLOSSARY_NPOINT_MAX);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: n must be 3..%d", word, FBRL_GLOSSARY_NPOINT_MAX);
     size_t n = (size_t)a[0];
     fbrl_cell bytes = (fbrl_cell)(n * sizeof(fbrl_loc));
     for (int k = 1; k <= 2; k++) {
-        if (!fbrl__addr_ok(vm, a[k], bytes))
+        if (!fbrl_vm_addr(vm, a[k], (size_t)(bytes)))
             return gl_throw(vm, GL_BAD_ADDRESS, "%s: %d locations at that address leave data space", word, (int)n);
         if ((fbrl_ucell)a[k] % sizeof(double))
             return gl_throw(vm, GL_ALIGNMENT, "%s: location address not aligned to 8 bytes", word);
@@ -261,12 +260,12 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
     for (size_t i = 0; i < n; i++) {
         if ((st = gl_out(vm, g, res[i], &v))) return st;
         snprintf(line, sizeof line, "point %3d residual %10.4f %s\n", (int)i, v, unit);
-        fbrl__puts(vm, line);
+        fbrl_vmx_puts(vm, line);
     }
     double wv;
     if ((st = gl_out(vm, g, rms, &v)) || (st = gl_out(vm, g, res[worst], &wv))) return st;
     snprintf(line, sizeof line, "RMS %.4f %s, worst point %d (%.4f %s)\n", v, unit, (int)worst, wv, unit);
-    fbrl__puts(vm, line);
+    fbrl_vmx_puts(vm, line);
     if ((st = fbrl_vm_push(vm, (fbrl_cell)worst))) return st;
     return fbrl_vm_fpush(vm, v);
 }

@@ -49,10 +49,10 @@ fbrl_status fbrl_glossary_finish(fbrl_glossary *g)
 /* The open file of handle a, or throw naming `word`. */
 static fbrl_status file_at(fbrl_vm *vm, fbrl_glossary *g, fbrl_cell a, const char *word, fbrl_glossary_file **s)
 {
-    fbrl_cell *slot = gl_struct(vm, a, MAGIC_HNDL, sizeof(fbrl_cell));
+    fbrl_cell *slot = fbrl_vmx_data(vm, a, &gl_type_hndl, sizeof(fbrl_cell));
     if (!slot) return gl_throw(vm, GL_TYPE_MISMATCH, "%s: unknown file handle (OPEN-FILE makes one)", word);
     if (*slot < 0 || *slot >= FBRL_GLOSSARY_FILES || g->files[*slot].owner != a)
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ESTATE), "%s: file handle not open", word);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), "%s: file handle not open", word);
     *s = &g->files[*slot];
     return FBRL_OK;
 }
@@ -71,7 +71,7 @@ static fbrl_status parse_path(fbrl_vm *vm, const char *word, char *path)
 
 static fbrl_status file_error(fbrl_vm *vm, fbrl_status st, const char *word, const char *path)
 {
-    return gl_throw(vm, FBRL_THROW_STATUS(st), "%s %.64s: %s", word, path, fbrl_status_str(st));
+    return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s %.64s: %s", word, path, fbrl_status_str(st));
 }
 
 static fbrl_status w_create_file(fbrl_vm *vm, void *arg)
@@ -90,53 +90,44 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
     char path[FBRL_FILE_PATH_MAX];
     const char *name;
     size_t len;
-    fbrl_hdr *h = NULL;
+    fbrl_cell xt, owner = 0;
     fbrl_cell *cells = NULL;
     fbrl_status st;
-    int r, slot;
+    int slot;
     fbrl_vm_parse_name(vm, &name, &len);
     if (len == 0) return gl_throw(vm, GL_NO_NAME, "OPEN-FILE: handle name missing (OPEN-FILE hndl filename)");
-    if (len > FBRL_NAME_MAX) return gl_throw(vm, -19, "OPEN-FILE: handle name too long");
+    if (len > FBRL_VMX_NAME_MAX) return gl_throw(vm, FBRL_THROW_NAME_TOO_LONG, "OPEN-FILE: handle name too long");
     if ((st = parse_path(vm, "OPEN-FILE", path))) return st;
-    int idx = fbrl__find(vm, name, len);
-    if (idx >= 0) { /* an existing handle word is reused */
-        h = HDR(vm, idx);
-        cells = h->kind == K_VAR ? gl_struct(vm, h->body, MAGIC_HNDL, sizeof(fbrl_cell)) : NULL;
+    if (fbrl_vmx_find(vm, name, len, &xt) == FBRL_OK) { /* an existing handle word is reused */
+        cells = fbrl_vmx_created(vm, xt, NULL, &owner) == FBRL_OK
+                    ? fbrl_vmx_data(vm, owner, &gl_type_hndl, sizeof(fbrl_cell)) : NULL;
         if (!cells)
             return gl_throw(vm, GL_TYPE_MISMATCH, "OPEN-FILE: %.*s is defined and is not a file handle", (int)len,
                             name);
-        if (*cells >= 0 && *cells < FBRL_GLOSSARY_FILES && g->files[*cells].owner == h->body)
-            return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ESTATE), "OPEN-FILE: %.*s is open; CLOSE-FILE it first",
+        if (*cells >= 0 && *cells < FBRL_GLOSSARY_FILES && g->files[*cells].owner == owner)
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), "OPEN-FILE: %.*s is open; CLOSE-FILE it first",
                             (int)len, name);
     }
     if (share(g) == 0)
-        return gl_throw(vm, -21, "OPEN-FILE: no file storage (host: fbrl_glossary_set_file_storage)");
+        return gl_throw(vm, FBRL_THROW_UNSUPPORTED, "OPEN-FILE: no file storage (host: fbrl_glossary_set_file_storage)");
     for (slot = 0; slot < FBRL_GLOSSARY_FILES && g->files[slot].owner; slot++) {}
     if (slot == FBRL_GLOSSARY_FILES)
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_EFULL), "OPEN-FILE: too many open files (%d)", FBRL_GLOSSARY_FILES);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "OPEN-FILE: too many open files (%d)", FBRL_GLOSSARY_FILES);
     fbrl_file *f = &g->files[slot].file;
     if ((st = fbrl_file_open(f, path, g->file_mem + (size_t)slot * share(g), share(g))) != FBRL_OK)
         return file_error(vm, st, "OPEN-FILE", path);
-    if (!h) {
-        unsigned char *here0 = vm->here;
-        uint32_t nwords0 = vm->nwords;
-        r = fbrl__new_word(vm, name, len, K_VAR, "( -- hndl )", "file handle (made by OPEN-FILE)", &h);
-        if (!r) r = fbrl__allot(vm, (fbrl_cell)(((fbrl_ucell)vm->here + 15) & ~(fbrl_ucell)15) - (fbrl_cell)vm->here);
-        if (!r) {
-            h->body = (fbrl_cell)vm->here;
-            r = fbrl__allot(vm, GL_PAYLOAD + CELL);
-        }
-        if (r) { /* no half-made handle is left behind */
-            if (vm->nwords != nwords0) fbrl__forget(vm, here0, nwords0, vm->req_used);
+    if (!cells) { /* a new handle word: made whole, or not at all */
+        void *p;
+        st = fbrl_vmx_create(vm, name, len, &gl_type_hndl, sizeof(fbrl_cell), NULL, NULL, "( -- hndl )",
+                             "file handle (made by OPEN-FILE)", &owner, &p);
+        if (st != FBRL_OK) {
             fbrl_file_discard(f);
-            return fbrl_vm_throw(vm, r, NULL);
+            return st;
         }
-        memset((void *)h->body, 0, GL_PAYLOAD + CELL);
-        memcpy((void *)h->body, &(fbrl_cell){ MAGIC_HNDL }, sizeof(fbrl_cell));
-        cells = (fbrl_cell *)(h->body + GL_PAYLOAD);
+        cells = p;
     }
     *cells = slot;
-    g->files[slot].owner = h->body;
+    g->files[slot].owner = owner;
     return FBRL_OK;
 }
 
@@ -183,9 +174,9 @@ static const char *type_name(fbrl_ftype_code c)
 static fbrl_status read_error(fbrl_vm *vm, const fbrl_file *f, fbrl_status st, fbrl_ftype want, const char *word)
 {
     fbrl_ftype have;
-    if (st == FBRL_EEOF) return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: end of file", word);
+    if (st == FBRL_EEOF) return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: end of file", word);
     if (st != FBRL_ETYPE || fbrl_file_peek(f, &have) != FBRL_OK) return gl_throw_st(vm, st, word);
-    return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: next record is %s (%lu bytes), not %s (%lu bytes); nothing read",
+    return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: next record is %s (%lu bytes), not %s (%lu bytes); nothing read",
                     word, type_name(have.code), (unsigned long)have.size, type_name(want.code),
                     (unsigned long)want.size);
 }
@@ -211,7 +202,7 @@ static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, int write)
     if ((st = gl_pop(vm, 3, a)) || (st = file_at(vm, g, a[2], word, &s))) return st;
     if (a[1] < 1 || a[1] > TYPE_MAX)
         return gl_throw(vm, GL_BAD_NUMBER, "%s: type must be a size of 1..%d bytes", word, TYPE_MAX);
-    if (!fbrl__addr_ok(vm, a[0], a[1]))
+    if (!fbrl_vm_addr(vm, a[0], (size_t)(a[1])))
         return gl_throw(vm, GL_BAD_ADDRESS, "%s: the variable is not in data space", word);
     fbrl_ftype t = fbrl_ftype_of_size((size_t)a[1]);
     void *obj = t.code == FBRL_FT_USER ? (void *)a[0] : (void *)&v;
@@ -219,7 +210,7 @@ static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, int write)
         if (obj == &v) memcpy(&v, (void *)a[0], t.size);
         st = fbrl_file_write(&s->file, t, obj);
         if (st == FBRL_ENOSPC)
-            return gl_throw(vm, FBRL_THROW_STATUS(st), "WRITE-FILE: file full (%lu bytes of records per open file)",
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "WRITE-FILE: file full (%lu bytes of records per open file)",
                             (unsigned long)share(g));
         return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
     }
@@ -250,7 +241,7 @@ static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, int save)
     }
     if ((st = fbrl_file_read(&s->file, t, buf)) != FBRL_OK) {
         if (st == FBRL_ETYPE)
-            return gl_throw(vm, FBRL_THROW_STATUS(st), "LOAD-CAL: next record is not a calibration; nothing read");
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "LOAD-CAL: next record is not a calibration; nothing read");
         return read_error(vm, &s->file, st, t, word);
     }
     if ((st = fbrl_calib_load(c, buf, sizeof buf)) != FBRL_OK) return gl_throw_st(vm, st, word);

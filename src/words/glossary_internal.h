@@ -10,25 +10,23 @@
 
 #include "fbrl/glossary.h"
 #include "fbrl/calib.h"
-#include "words.h"
+#include "fbrl/vmx.h"
 
 #define GL_INSTALLED 0x474C4F53u /* g->magic once installed: "GLOS" */
 
-#define MAGIC_CAL  ((fbrl_cell)0x43414C33) /* CREATE-CAL: "CAL3" */
-#define MAGIC_STRU ((fbrl_cell)0x43414C53) /* CREATE-CAL-STRU: "CALS" */
-#define MAGIC_RECT ((fbrl_cell)0x52454354) /* RECTMAT: "RECT" */
-#define MAGIC_RAD  ((fbrl_cell)0x5241444D) /* RADMAT: "RADM" */
-#define MAGIC_HNDL ((fbrl_cell)0x484E444C) /* OPEN-FILE handle: "HNDL" */
-#define GL_PAYLOAD 16
+/* The structures' types (vmx.h typed data): CREATE-CAL, CREATE-CAL-STRU, RECTMAT, RADMAT,
+ * OPEN-FILE's handle. */
+extern const fbrl_vmx_type gl_type_cal, gl_type_stru, gl_type_rect, gl_type_rad, gl_type_hndl;
+#define GL_PAYLOAD FBRL_VMX_PAYLOAD
 
 /* Forth THROW codes used besides FBRL_THROW_STATUS(st). */
-#define GL_STACK_UNDERFLOW (-4)
-#define GL_BAD_ADDRESS     (-9)
-#define GL_TYPE_MISMATCH   (-12)
-#define GL_NO_NAME         (-16)
-#define GL_ALIGNMENT       (-23)
-#define GL_BAD_NUMBER      (-24)
-#define GL_FSTACK_UNDERFLOW (-45)
+#define GL_STACK_UNDERFLOW (FBRL_THROW_STACK_UNDERFLOW)
+#define GL_BAD_ADDRESS     (FBRL_THROW_BAD_ADDRESS)
+#define GL_TYPE_MISMATCH   (FBRL_THROW_TYPE_MISMATCH)
+#define GL_NO_NAME         (FBRL_THROW_NO_NAME)
+#define GL_ALIGNMENT       (FBRL_THROW_ALIGNMENT)
+#define GL_BAD_NUMBER      (FBRL_THROW_BAD_NUMBER)
+#define GL_FSTACK_UNDERFLOW (FBRL_THROW_FSTACK_UNDERFLOW)
 
 typedef struct gl_word {
     const char *name;
@@ -48,7 +46,8 @@ fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
 /* Throw FBRL_THROW_STATUS(st) with "what: <status text>". */
 fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what);
 
-/* Pop n cells (v[0] was deepest) / n floats; throw stack underflow if fewer. */
+/* Pop n cells (v[0] was deepest) / n reals (integers accepted by vmx.h's rule); throw stack
+ * underflow if fewer. */
 fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v);
 fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v);
 fbrl_status gl_push_flag(fbrl_vm *vm, int yes);
@@ -57,15 +56,12 @@ fbrl_status gl_push_flag(fbrl_vm *vm, int yes);
  * whose components are not all finite ("not a location"). Throws, naming `word`. */
 fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_loc **loc);
 
-/* Parse a name and make a word whose data field is a magic cell followed, at GL_PAYLOAD,
- * by `bytes` zeroed bytes (magic 0: the bare bytes, 16-aligned); *payload = their address.
- * With run NULL the word pushes its data field address; otherwise it is a C word running
- * run(vm, data field address). Throws on error, leaving no half-made word. */
-fbrl_status gl_make(fbrl_vm *vm, fbrl_vm_prim run, fbrl_cell magic, size_t bytes, const char *stack,
+/* Parse a name and make a word whose data field holds a structure of this type (NULL: bare
+ * bytes) with `bytes` zeroed payload bytes (fbrl_vmx_create); *payload = their address. With
+ * run NULL the word pushes its data field address; otherwise it is a C word running
+ * run(vm, NULL, data field). Throws on error, leaving no half-made word. */
+fbrl_status gl_make(fbrl_vm *vm, fbrl_vmx_fn run, const fbrl_vmx_type *type, size_t bytes, const char *stack,
                     const char *help, void **payload);
-
-/* The payload of a structure with this magic at a, or NULL. */
-void *gl_struct(fbrl_vm *vm, fbrl_cell a, fbrl_cell magic, size_t bytes);
 
 /* A calibration structure (CREATE-CAL-STRU) at a, or throw naming `word`. With rigid, also
  * refuse one that CAL-STRU! left not a rigid motion. */

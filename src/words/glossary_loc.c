@@ -13,7 +13,7 @@ static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
 {
     void *p;
     (void)arg;
-    return gl_make(vm, NULL, 0, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &p);
+    return gl_make(vm, NULL, NULL, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &p);
 }
 
 static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
@@ -104,7 +104,7 @@ static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, cha
     shown = *loc;
     if ((st = gl_map(g, &shown, 1)) != FBRL_OK) {
         if (st == FBRL_ESTATE)
-            return gl_throw(vm, FBRL_THROW_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
                             word);
         return gl_throw_st(vm, st, word);
     }
@@ -118,7 +118,7 @@ static fbrl_status w_display_loc(fbrl_vm *vm, void *g)
     fbrl_status st = loc_text(vm, g, "DISPLAY-LOC", buf, sizeof buf - 1);
     if (st) return st;
     strcat(buf, "\n");
-    fbrl__puts(vm, buf);
+    fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
 }
 
@@ -130,7 +130,7 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
     if (!g->port_write) {
         fbrl_cell a;
         if ((st = gl_pop(vm, 1, &a))) return st;
-        return gl_throw(vm, FBRL_THROW_STATUS(FBRL_EOFFLINE), "PRINT-LOC: no communication port");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), "PRINT-LOC: no communication port");
     }
     if ((st = loc_text(vm, g, "PRINT-LOC", buf, sizeof buf - 2))) return st;
     strcat(buf, "\r\n");
@@ -139,8 +139,8 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
 }
 
 /* ---- III-2 location matrices ---- */
-static fbrl_status rect_run(fbrl_vm *vm, void *body);
-static fbrl_status rad_run(fbrl_vm *vm, void *body);
+static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body);
+static fbrl_status rad_run(fbrl_vm *vm, void *ctx, const void *body);
 
 static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **loc)
 {
@@ -149,18 +149,19 @@ static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **l
     if ((st = gl_pop(vm, 4, a)) || (st = gl_loc(vm, a[3], 0, word, loc))) return st;
     for (int i = 0; i < 3; i++) {
         if (a[i] < -1000000 || a[i] > 1000000)
-            return gl_throw(vm, FBRL_THROW_STATUS(FBRL_ERANGE), "%s: matrix index out of range", word);
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: matrix index out of range", word);
         idx[i] = (long)a[i];
     }
     return FBRL_OK;
 }
 
-static fbrl_status rect_run(fbrl_vm *vm, void *body)
+static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body)
 {
+    (void)ctx;
     long i[3];
     fbrl_loc *loc, out;
     fbrl_status st;
-    const fbrl_rectmat *m = gl_struct(vm, (fbrl_cell)body, MAGIC_RECT, sizeof(fbrl_rectmat));
+    const fbrl_rectmat *m = fbrl_vmx_data(vm, (fbrl_cell)body, &gl_type_rect, sizeof(fbrl_rectmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RECTMAT: matrix structure overwritten");
     if ((st = index3(vm, "RECTMAT", i, &loc))) return st;
     if ((st = fbrl_rectmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
@@ -168,12 +169,13 @@ static fbrl_status rect_run(fbrl_vm *vm, void *body)
     return FBRL_OK;
 }
 
-static fbrl_status rad_run(fbrl_vm *vm, void *body)
+static fbrl_status rad_run(fbrl_vm *vm, void *ctx, const void *body)
 {
+    (void)ctx;
     long i[3];
     fbrl_loc *loc, out;
     fbrl_status st;
-    const fbrl_radmat *m = gl_struct(vm, (fbrl_cell)body, MAGIC_RAD, sizeof(fbrl_radmat));
+    const fbrl_radmat *m = fbrl_vmx_data(vm, (fbrl_cell)body, &gl_type_rad, sizeof(fbrl_radmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RADMAT: matrix structure overwritten");
     if ((st = index3(vm, "RADMAT", i, &loc))) return st;
     if ((st = fbrl_radmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
@@ -203,7 +205,7 @@ static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
     fbrl_status st;
     if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v))) return st;
     if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
-    if ((st = gl_make(vm, rect_run, MAGIC_RECT, sizeof m, "( i j k loc -- )",
+    if ((st = gl_make(vm, rect_run, &gl_type_rect, sizeof m, "( i j k loc -- )",
                       "store location (i, j, k) of this RECTMAT into loc", &p)))
         return st;
     memcpy(p, &m, sizeof m);
@@ -220,9 +222,9 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
     if ((st = mat_args(vm, g, "RADMAT", 1, &base, v))) return st;
     st = fbrl_radmat_init(&m, base, v[0], v[1], v[2]);
     if (st == FBRL_ERANGE)
-        return gl_throw(vm, FBRL_THROW_STATUS(st), "RADMAT: base location on the centre axis has no angle");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "RADMAT: base location on the centre axis has no angle");
     if (st != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
-    if ((st = gl_make(vm, rad_run, MAGIC_RAD, sizeof m, "( ring idx k loc -- )",
+    if ((st = gl_make(vm, rad_run, &gl_type_rad, sizeof m, "( ring idx k loc -- )",
                       "store location (ring, idx, k) of this RADMAT into loc", &p)))
         return st;
     memcpy(p, &m, sizeof m);
@@ -238,18 +240,18 @@ static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, int rad)
     fbrl_cell xt;
     fbrl_status st;
     if ((st = gl_pop(vm, 1, &xt))) return st;
-    const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
-    if (!h || h->kind != K_CFUNC || h->fn != (rad ? rad_run : rect_run))
+    fbrl_cell body;
+    if (fbrl_vmx_created(vm, xt, rad ? rad_run : rect_run, &body) != FBRL_OK)
         return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a %s (pass its execution token: ' name)", word,
                         rad ? "RADMAT" : "RECTMAT");
-    const void *m = gl_struct(vm, h->body, rad ? MAGIC_RAD : MAGIC_RECT,
+    const void *m = fbrl_vmx_data(vm, body, rad ? &gl_type_rad : &gl_type_rect,
                               rad ? sizeof(fbrl_radmat) : sizeof(fbrl_rectmat));
     if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "%s: matrix structure overwritten", word);
     st = rad ? fbrl_radmat_format(m, g->units.metric, buf, sizeof buf - 1)
              : fbrl_rectmat_format(m, g->units.metric, buf, sizeof buf - 1);
     if (st != FBRL_OK) return gl_throw_st(vm, st, word);
     strcat(buf, "\n");
-    fbrl__puts(vm, buf);
+    fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
 }
 static fbrl_status w_show_automat(fbrl_vm *vm, void *g) { return w_show(vm, g, 0); }

@@ -13,34 +13,52 @@
 
 #include "robot_internal.h"
 
-static fbrl_status tramp(fbrl_vm *vm, void *arg)
+/* Every robot word: its parameters fetched by the one rule, then its function. */
+static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
 {
-    const fbrl_robot_bind *b = arg;
-    const rb_word *w = b->word;
+    fbrl_robot *r = ctx;
+    const rb_word *w = word;
     rb_val v[RB_MAXP];
     (void)vm;
     memset(v, 0, sizeof v);
-    fbrl_status st = rb_params(b->r, w, v);
+    fbrl_status st = rb_params(r, w, v);
     if (st != FBRL_OK) return st;
-    return w->fn(b->r, w, v);
+    return w->fn(r, w, v);
 }
 
 static fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
-        if (r->nbind >= FBRL_ROBOT_MAX_WORDS) return FBRL_ENOSPC;
-        fbrl_robot_bind *b = &r->bind[r->nbind++];
-        b->r = r;
-        b->word = &t[i];
-        fbrl_status st = fbrl_vm_define(r->vm, t[i].name, tramp, b, t[i].stack, t[i].help);
+        fbrl_status st = fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, t[i].stack, t[i].help);
         if (st != FBRL_OK) return st;
     }
     return FBRL_OK;
 }
 
+/* The word tables, in this order: HELP and WORDS list the words as they were defined. */
+static const size_t one = 1;
+static const struct {
+    const rb_word *t;
+    const size_t *n;
+} tables[] = {
+    { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords }, { rb_teach_words, &rb_teach_nwords },
+    { rb_param_words, &rb_param_nwords },   { rb_line_words, &rb_line_nwords }, { rb_comm_words, &rb_comm_nwords },
+    { &rb_comm_asc, &one },                 { rb_io_words, &rb_io_nwords },
+};
+#define NTABLES (sizeof tables / sizeof tables[0])
+
+const char *fbrl_robot_word(size_t i)
+{
+    for (size_t k = 0; k < NTABLES; k++) {
+        if (i < *tables[k].n) return tables[k].t[i].name;
+        i -= *tables[k].n;
+    }
+    return NULL;
+}
+
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g)
 {
-    fbrl_hdr *h;
+    fbrl_cell xt;
     if (!vm || !r) return FBRL_EINVAL;
     memset(r, 0, sizeof *r);
     r->vm = vm;
@@ -48,29 +66,19 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     r->last_error = -1;
     fbrl_uart_config def = FBRL_UART_CONFIG_DEFAULT;
     r->comm = def;
-    if (vm->defining) return FBRL_ESTATE;
+    if (fbrl_vm_compiling(vm)) return FBRL_ESTATE;
     /* GET-CAL-POINTS' line buffer lives in the data space: the words it runs parse it */
-    if (fbrl__new_word(vm, "(ROBOT-TIB)", 11, K_VAR, "( -- a )", "robot words' line buffer", &h) ||
-        fbrl__allot(vm, FBRL_ROBOT_TIB))
+    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, "( -- a )",
+                        "robot words' line buffer", &r->tib, NULL) != FBRL_OK)
         return FBRL_ENOMEM;
-    r->tib = h->body;
-    memset((void *)h->body, 0, FBRL_ROBOT_TIB);
-    /* in this order: HELP and WORDS list them as they were defined */
-    static const struct { const rb_word *t; const size_t *n; } tables[] = {
-        { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords },
-        { rb_teach_words, &rb_teach_nwords },   { rb_param_words, &rb_param_nwords },
-        { rb_line_words, &rb_line_nwords },     { rb_comm_words, &rb_comm_nwords },
-    };
     fbrl_status st = FBRL_OK;
-    for (size_t k = 0; st == FBRL_OK && k < sizeof tables / sizeof tables[0]; k++)
+    for (size_t k = 0; st == FBRL_OK && k < NTABLES; k++) {
+        /* ASC is F-PC's: a VM that has one keeps it */
+        if (tables[k].t == &rb_comm_asc && fbrl_vmx_find(vm, "ASC", 3, &xt) == FBRL_OK) continue;
         st = rb_define(r, tables[k].t, *tables[k].n);
-    if (st == FBRL_OK && fbrl__find(r->vm, "ASC", 3) < 0) {
-        st = rb_define(r, &rb_comm_asc, 1);
-        if (st == FBRL_OK) HDR(r->vm, fbrl__find(r->vm, "ASC", 3))->flags |= FI;
     }
-    if (st == FBRL_OK) st = rb_define(r, rb_io_words, rb_io_nwords);
     if (st == FBRL_OK) st = fbrl_robot_set_link(r, link);
-    return st == FBRL_ENOSPC ? FBRL_ENOMEM : st;
+    return st;
 }
 
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)

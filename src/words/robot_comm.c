@@ -28,14 +28,14 @@ static fbrl_status check_port(fbrl_robot *r, const rb_word *w, fbrl_cell port)
     if (port == 1) return FBRL_OK;
     char msg[96];
     snprintf(msg, sizeof msg, "%s: port %ld: only port 1 (the controller's line) exists here", w->name, (long)port);
-    return rb_fail(r, -24, msg);
+    return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
 static fbrl_status bad_setting(fbrl_robot *r, const rb_word *w, const char *what)
 {
     char msg[96];
     snprintf(msg, sizeof msg, "%s: %s", w->name, what);
-    return rb_fail(r, -24, msg);
+    return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
 static fbrl_status set_word_length(fbrl_robot *r, const rb_word *w, fbrl_cell n)
@@ -152,7 +152,7 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
     if (fbrl_uart_get_config(u, &c) == FBRL_OK && c.flow == FBRL_FLOW_XONXOFF)
         for (size_t k = 0; k < n; k++)
             if (((const uint8_t *)p)[k] == FBRL_XON || ((const uint8_t *)p)[k] == FBRL_XOFF)
-                return rb_fail(r, -24, "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
+                return rb_fail(r, FBRL_THROW_BAD_NUMBER, "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
     if ((st = raw_begin(r)) != FBRL_OK) return rb_fail_st(r, w, st, "port");
     st = fbrl_uart_write(u, p, n, NULL, COMM_TIMEOUT_MS);
     if (st == FBRL_OK) raw_end(r, p, n);
@@ -163,7 +163,7 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
 /* EMIT-COM ( char -- ), DIRECT-WRITE-COM ( c -- ) */
 static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    if (v[0].i < 0 || v[0].i > 255) return rb_fail(r, -24, "EMIT-COM: a byte 0..255");
+    if (v[0].i < 0 || v[0].i > 255) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "EMIT-COM: a byte 0..255");
     uint8_t b = (uint8_t)v[0].i;
     return send_raw(r, w, &b, 1);
 }
@@ -171,7 +171,7 @@ static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 /* TYPE-COM ( chrs addr -- ) - the thesis's order: count first */
 static fbrl_status w_type_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    if (v[0].i < 0 || (v[0].i > 0 && !fbrl__addr_ok(r->vm, v[1].i, v[0].i))) return rb_fail(r, -9, NULL);
+    if (v[0].i < 0 || (v[0].i > 0 && !fbrl_vm_addr(r->vm, v[1].i, (size_t)v[0].i))) return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
     return send_raw(r, w, (const void *)v[1].i, (size_t)v[0].i);
 }
 
@@ -204,7 +204,7 @@ static fbrl_status w_get_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK) return st;
     st = fbrl_uart_read(u, &b, 1, &got, COMM_TIMEOUT_MS);
     if (st != FBRL_OK && st != FBRL_ETIMEOUT) return rb_fail_st(r, w, st, "port");
-    return fbrl_vm_push(r->vm, got ? (fbrl_cell)b : -1) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return fbrl_vm_push(r->vm, got ? (fbrl_cell)b : -1) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* Bring the link back in step after raw output: let the controller finish answering,
@@ -276,13 +276,10 @@ static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
     size_t n;
     (void)w;
     (void)v;
-    fbrl__parse_name(r->vm, &s, &n);
-    if (n == 0) return rb_fail(r, -16, "ASC needs a character after it");
-    if (*r->vm->state) {
-        int e = fbrl__compile_lit(r->vm, (unsigned char)s[0]);
-        return e ? fbrl_vm_throw(r->vm, e, NULL) : FBRL_OK;
-    }
-    return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    fbrl_vm_parse_name(r->vm, &s, &n);
+    if (n == 0) return rb_fail(r, FBRL_THROW_NO_NAME, "ASC needs a character after it");
+    if (fbrl_vmx_compiling(r->vm)) return fbrl_vmx_compile_lit(r->vm, (unsigned char)s[0]);
+    return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 const rb_word rb_comm_words[] = {
@@ -306,4 +303,4 @@ const rb_word rb_comm_words[] = {
 const size_t rb_comm_nwords = sizeof rb_comm_words / sizeof rb_comm_words[0];
 
 /* ASC is F-PC's; a VM that has one keeps it. Immediate. */
-const rb_word rb_comm_asc = { "ASC", w_asc, "", 0, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };
+const rb_word rb_comm_asc = { "ASC", w_asc, "", FBRL_VMX_IMMEDIATE, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };

@@ -12,26 +12,20 @@
 
 #include "fbrl/loc.h"
 #include "fbrl/robot.h"
-#include "words.h"
+#include "fbrl/vmx.h"
 
-/* One parameter, as fetched by rb_params(). */
-typedef struct rb_val {
-    fbrl_cell i;       /* 'I': integer; 'L': the location's address */
-    double f;          /* 'R' */
-    const char *s;     /* 'S': text (in the VM's data space) */
-    size_t n;
-} rb_val;
+/* One parameter, as fetched by rb_params(): i for I C L A (L: the location's address),
+ * f for R, s n for S T and for X given as a controller name. */
+typedef fbrl_vmx_val rb_val;
 
-#define RB_MAXP 8
-
-/* Word flags. */
-#define RB_PAR 1u      /* parameters always come from the input line (thesis "PAR:") */
+#define RB_MAXP FBRL_VMX_MAXARGS
 
 struct rb_word;
 typedef fbrl_status (*rb_fn)(fbrl_robot *r, const struct rb_word *w, rb_val *v);
 
-/* A table entry. spec lists the parameters in stack-effect order:
- * I integer, R real (float stack), L location address, S string (c-addr u). */
+/* A table entry. spec lists the parameters in stack-effect order: vmx.h's letters (I R C S T)
+ * and L location address, X location or controller location name, A device address.
+ * flags: FBRL_VMX_IMMEDIATE ... */
 typedef struct rb_word {
     const char *name;
     rb_fn fn;

@@ -15,7 +15,9 @@
 
 #include "robot_internal.h"
 
-#define DEVICE_MAGIC ((fbrl_cell)0x44455643) /* "DEVC" */
+/* A device word's data: this magic, then its port number (the table in the robot is what
+ * counts; the data only marks the word as a device). */
+static const fbrl_vmx_type device_type = { "device", (fbrl_cell)0x44455643 /* "DEVC" */ };
 #define DEFAULT_PULSE_MS 100u
 #define POLL_MS 20u
 #define MAX_WAIT_MS 86400000L /* one day */
@@ -24,10 +26,7 @@ static fbrl_robot_device *device_at(fbrl_robot *r, fbrl_cell addr)
 {
     for (size_t k = 0; k < FBRL_ROBOT_MAX_DEVICES; k++) {
         fbrl_robot_device *d = &r->dev[k];
-        fbrl_cell magic;
-        if (!d->addr || d->addr != addr || !fbrl__addr_ok(r->vm, addr, 2 * CELL)) continue;
-        memcpy(&magic, (const void *)addr, sizeof magic);
-        if (magic == DEVICE_MAGIC) return d;
+        if (d->addr && d->addr == addr && fbrl_vmx_data(r->vm, addr, &device_type, sizeof(fbrl_cell))) return d;
     }
     return NULL;
 }
@@ -38,11 +37,11 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
     fbrl_robot_device *d = device_at(r, addr);
     if (!d) {
         snprintf(msg, sizeof msg, "%s: not a device (use an OUTPUT-DEVICE or INPUT-DEVICE name)", w->name);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     if (output >= 0 && d->output != output) {
         snprintf(msg, sizeof msg, "%s: that is an %s device (port %d)", w->name, d->output ? "output" : "input", d->port);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     *out = d;
     return FBRL_OK;
@@ -51,23 +50,22 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
 /* OUTPUT-DEVICE / INPUT-DEVICE ( port "name" -- ) */
 static fbrl_status w_make_device(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    fbrl_hdr *h;
     size_t k;
+    fbrl_cell addr;
+    void *port;
     char msg[96];
     if (v[0].i < 1 || v[0].i > FBRL_ROBOT_IO_MAX) {
         snprintf(msg, sizeof msg, "%s: port %ld outside 1..%d", w->name, (long)v[0].i, FBRL_ROBOT_IO_MAX);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     for (k = 0; k < FBRL_ROBOT_MAX_DEVICES && device_at(r, r->dev[k].addr); k++)
         ;
-    if (k == FBRL_ROBOT_MAX_DEVICES) return rb_fail(r, FBRL_THROW_STATUS(FBRL_EFULL), "too many devices");
-    int e = fbrl__create(r->vm, K_VAR, w->arg ? "( -- dev )" : "( -- dev )",
-                         w->arg ? "output device" : "input device", &h);
-    if (!e) e = fbrl__allot(r->vm, 2 * CELL);
-    if (e) return fbrl_vm_throw(r->vm, e, NULL);
-    fbrl_cell cells[2] = { DEVICE_MAGIC, v[0].i };
-    memcpy((void *)h->body, cells, sizeof cells);
-    r->dev[k].addr = h->body;
+    if (k == FBRL_ROBOT_MAX_DEVICES) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "too many devices");
+    fbrl_status st = fbrl_vmx_create(r->vm, NULL, 0, &device_type, sizeof(fbrl_cell), NULL, NULL, "( -- dev )",
+                                     w->arg ? "output device" : "input device", &addr, &port);
+    if (st != FBRL_OK) return st;
+    memcpy(port, &v[0].i, sizeof v[0].i);
+    r->dev[k].addr = addr;
     r->dev[k].port = (int)v[0].i;
     r->dev[k].output = (int)w->arg;
     r->dev[k].pulse_ms = DEFAULT_PULSE_MS;
@@ -86,14 +84,14 @@ static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_device *d = device_at(r, v[0].i);
     if (!d) {
         fbrl_cell flag = w->arg ? -1 : 0;
-        if (!fbrl__addr_ok(r->vm, v[0].i, CELL)) return rb_fail(r, -9, NULL);
+        if (!fbrl_vm_addr(r->vm, v[0].i, sizeof(fbrl_cell))) return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
         memcpy((void *)v[0].i, &flag, sizeof flag);
         return FBRL_OK;
     }
     if (!d->output) {
         char msg[96];
         snprintf(msg, sizeof msg, "%s: input device (port %d) cannot be switched", w->name, d->port);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     return set_output(r, w, d, (int)w->arg);
 }
@@ -103,7 +101,7 @@ static fbrl_status ms_arg(fbrl_robot *r, const rb_word *w, fbrl_cell ms)
     if (ms >= 0 && ms <= MAX_WAIT_MS) return FBRL_OK;
     char msg[96];
     snprintf(msg, sizeof msg, "%s: time %ld ms outside 0..%ld", w->name, (long)ms, MAX_WAIT_MS);
-    return rb_fail(r, -24, msg);
+    return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
 /* One pulse: on, hold, off. The output is switched off even when the wait fails. */
@@ -132,7 +130,7 @@ static fbrl_status w_pulse_width(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_device *d = NULL;
     fbrl_status st = device(r, w, v[1].i, 1, &d);
     if (st != FBRL_OK) return st;
-    if (v[0].i < 1 || v[0].i > 60000) return rb_fail(r, -24, "PULSE-WIDTH: 1..60000 ms");
+    if (v[0].i < 1 || v[0].i > 60000) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "PULSE-WIDTH: 1..60000 ms");
     d->pulse_ms = (uint32_t)v[0].i;
     return FBRL_OK;
 }
@@ -145,7 +143,7 @@ static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK) return st;
     double ml = v[1].f, n = floor(ml + 0.5);
     if (!isfinite(ml) || ml < 0 || ml > 10000 || fabs(ml - n) > 1e-6)
-        return rb_fail(r, -24, "DISPENSE: a whole number of ml, 0..10000 (one pulse per ml)");
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, "DISPENSE: a whole number of ml, 0..10000 (one pulse per ml)");
     if ((st = rb_online(r)) != FBRL_OK) return st;
     for (long k = 0; k < (long)n; k++) {
         if ((st = pulse(r, w, d, d->pulse_ms)) != FBRL_OK) return st;
@@ -170,7 +168,7 @@ static fbrl_status w_input_q(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = device(r, w, v[0].i, 0, &d);
     if (st == FBRL_OK) st = read_input(r, w, d, &on);
     if (st != FBRL_OK) return st;
-    return fbrl_vm_push(r->vm, on ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return fbrl_vm_push(r->vm, on ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* WAIT-INPUT ( dev state ms -- flag ): true once the input has the state (a flag),
@@ -193,7 +191,7 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
         if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK) return st;
         if ((st = rb_interrupted(r)) != FBRL_OK) return st;
     }
-    return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* START-TIMER ( -- ) */
@@ -212,7 +210,7 @@ static fbrl_status elapsed(fbrl_robot *r, const rb_word *w, uint64_t *ms)
     char msg[64];
     if (!r->mark_set) {
         snprintf(msg, sizeof msg, "%s: no timer started (START-TIMER)", w->name);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     fbrl_status st = rb_now_ms(r, &now);
     if (st != FBRL_OK) return st;
@@ -227,7 +225,7 @@ static fbrl_status w_elapsed(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)v;
     fbrl_status st = elapsed(r, w, &ms);
     if (st != FBRL_OK) return st;
-    return fbrl_vm_push(r->vm, (fbrl_cell)ms) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return fbrl_vm_push(r->vm, (fbrl_cell)ms) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* WAIT-UNTIL ( ms -- ): until ms after START-TIMER (at once if that has passed) */
@@ -246,9 +244,10 @@ static fbrl_status w_time_of_day(fbrl_robot *r, const rb_word *w, rb_val *v)
     int t[6];
     (void)w;
     (void)v;
-    if (!r->vm->host.time_date) return rb_fail(r, -21, "no clock in this host");
-    r->vm->host.time_date(r->vm->host.user, t);
-    return fbrl_vm_push(r->vm, (fbrl_cell)t[2] * 3600 + t[1] * 60 + t[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    if (!h->time_date) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    h->time_date(h->user, t);
+    return fbrl_vm_push(r->vm, (fbrl_cell)t[2] * 3600 + t[1] * 60 + t[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 const rb_word rb_io_words[] = {

@@ -49,7 +49,7 @@ static fbrl_status w_send_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (!text) {
         char msg[80];
         snprintf(msg, sizeof msg, "%s: no RAPL command has the number %ld", w->name, (long)v[0].i);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     r->len = 0;
     r->line[0] = '\0';
@@ -80,7 +80,7 @@ static fbrl_status w_send_text(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     for (size_t k = 0; k < v[0].n; k++)
         if (v[0].s[k] < 0x20 || v[0].s[k] > 0x7e || v[0].s[k] == '?')
-            return rb_fail(r, -24, "SEND-TEXT: only printable characters (no '?')");
+            return rb_fail(r, FBRL_THROW_BAD_NUMBER, "SEND-TEXT: only printable characters (no '?')");
     (void)w;
     sep(r);
     return put(r, v[0].s, v[0].n);
@@ -121,8 +121,8 @@ static fbrl_status w_send_cr(fbrl_robot *r, const rb_word *w, rb_val *v)
     r->len = 0;
     r->line[0] = '\0';
     r->line_bad = 0;
-    if (bad) return rb_fail(r, FBRL_THROW_STATUS(FBRL_ERANGE), "SEND-CR: the line grew past 80 characters");
-    if (n == 0) return rb_fail(r, -24, "SEND-CR: nothing to send (start with SEND-COM)");
+    if (bad) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "SEND-CR: the line grew past 80 characters");
+    if (n == 0) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "SEND-CR: nothing to send (start with SEND-COM)");
     return rb_raw(r, w, line, 1);
 }
 

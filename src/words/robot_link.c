@@ -27,14 +27,14 @@ static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
 
 fbrl_status rb_online(fbrl_robot *r)
 {
-    if (!r->link) return rb_fail(r, FBRL_THROW_STATUS(FBRL_EOFFLINE), OFFLINE);
+    if (!r->link) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), OFFLINE);
     if (r->lost) { /* the controller went away: reconnect first, if the host can */
         char msg[160];
         fbrl_status st = r->relink ? r->relink(r->relink_ctx, r) : FBRL_EDISCONNECTED;
         if (st != FBRL_OK || r->lost || !r->link) {
             snprintf(msg, sizeof msg, "controller disconnected%s%s (RECONNECT when it is back)",
                      r->relink ? ": reconnecting failed: " : "", r->relink ? fbrl_status_str(st) : "");
-            return rb_fail(r, FBRL_THROW_STATUS(FBRL_EDISCONNECTED), msg);
+            return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EDISCONNECTED), msg);
         }
     }
     if (fbrl_link_busy(r->link)) { /* left running by an interrupted word: end it first */
@@ -53,15 +53,15 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     if (st == FBRL_EDISCONNECTED) {
         r->lost = 1;
         snprintf(msg, sizeof msg, "%s: controller disconnected (RECONNECT when it is back)", w->name);
-        return rb_fail(r, FBRL_THROW_STATUS(st), msg);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_ECONTROLLER) {
-        int code = -1;
+        int code = FBRL_THROW_ABORT;
         const char *text = "";
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
         snprintf(msg, sizeof msg, "%s: controller error %03d-%s", w->name, code, text);
-        return rb_fail(r, FBRL_THROW_STATUS(st), msg);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
         return rb_fail_st(r, w, st, "cannot encode the command");
@@ -172,8 +172,8 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
 static void print_line(void *ctx, const char *line, size_t len, int flawed)
 {
     fbrl_robot *r = ctx;
-    fbrl__write(r->vm, line, len);
-    fbrl__write(r->vm, flawed ? " (damaged)\n" : "\n", flawed ? 12 : 1);
+    fbrl_vmx_write(r->vm, line, len);
+    fbrl_vmx_write(r->vm, flawed ? " (damaged)\n" : "\n", flawed ? 12 : 1);
 }
 
 /* The robot borrows the link's line handler for one command (docs/robot.md) and puts

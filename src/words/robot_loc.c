@@ -45,11 +45,11 @@ fbrl_status rb_loc_read(fbrl_robot *r, const rb_word *w, fbrl_cell addr, fbrl_lo
     char msg[96];
     if (!p) {
         snprintf(msg, sizeof msg, "%s: not a location (use a CREATE-LOC name)", w->name);
-        return rb_fail(r, -9, msg);
+        return rb_fail(r, FBRL_THROW_BAD_ADDRESS, msg);
     }
     if (fbrl_loc_check(p) != FBRL_OK) {
         snprintf(msg, sizeof msg, "%s: location holds a NaN or infinity", w->name);
-        return rb_fail(r, FBRL_THROW_STATUS(FBRL_ENONFINITE), msg);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ENONFINITE), msg);
     }
     *out = *p;
     return FBRL_OK;
@@ -61,7 +61,7 @@ fbrl_status rb_loc_write(fbrl_robot *r, const rb_word *w, fbrl_cell addr, const 
     if (!p) {
         char msg[96];
         snprintf(msg, sizeof msg, "%s: not a location (use a CREATE-LOC name)", w->name);
-        return rb_fail(r, -9, msg);
+        return rb_fail(r, FBRL_THROW_BAD_ADDRESS, msg);
     }
     if (in) *p = *in; /* in NULL: only check that addr is a location */
     return FBRL_OK;

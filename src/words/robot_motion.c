@@ -51,7 +51,7 @@ static fbrl_status w_gain(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_range(r, w, "motor", v[0].i, 0, 8);
     if (st == FBRL_OK) st = rb_finite(r, w, &v[1], 1);
-    if (st == FBRL_OK && v[1].f < 0) st = rb_fail(r, -24, "GAIN: value must not be negative");
+    if (st == FBRL_OK && v[1].f < 0) st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "GAIN: value must not be negative");
     if (st != FBRL_OK) return st;
     fbrl_rapl_arg a[2] = { fbrl_rapl_int((long)v[0].i), fbrl_rapl_real(v[1].f) };
     return rb_cmd(r, w, FBRL_RAPL_GAIN, a, 2, 0);
@@ -64,7 +64,7 @@ static fbrl_status w_grip(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st == FBRL_OK) st = rb_finite(r, w, &v[1], 1);
     if (st != FBRL_OK) return st;
     double d = rb_len_in(r, v[1].f);
-    if (d < 0) return rb_fail(r, -24, "GRIP: distance must not be negative");
+    if (d < 0) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "GRIP: distance must not be negative");
     fbrl_rapl_arg a[2] = { fbrl_rapl_real(d), fbrl_rapl_int((long)v[0].i) };
     return rb_cmd(r, w, FBRL_RAPL_GRIP, a, 2, 0);
 }
@@ -201,7 +201,7 @@ static fbrl_status w_shift_right(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_ucell u = (fbrl_ucell)v[0].i;
     fbrl_status st = fbrl_vm_push(r->vm, (fbrl_cell)(u >> 1));
     if (st == FBRL_OK) st = fbrl_vm_push(r->vm, (fbrl_cell)(u & 1u));
-    return st == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return st == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* OUTPORT ( output# -- ): output n on, -n off */

@@ -14,7 +14,7 @@ static fbrl_status w_config(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = rb_range(r, w, "device", v[0].i, 0, 1);
     for (k = 0; st == FBRL_OK && k < sizeof bauds / sizeof bauds[0] && bauds[k] != v[1].i; k++)
         ;
-    if (st == FBRL_OK && k == sizeof bauds / sizeof bauds[0]) st = rb_fail(r, -24, "CONFIG: baud must be 300..38400 (a standard rate)");
+    if (st == FBRL_OK && k == sizeof bauds / sizeof bauds[0]) st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "CONFIG: baud must be 300..38400 (a standard rate)");
     switch (v[2].i) {
     case 'N': case 'n': par = "N"; break;
     case 'E': case 'e': par = "E"; break;
@@ -26,10 +26,10 @@ static fbrl_status w_config(fbrl_robot *r, const rb_word *w, rb_val *v)
     case 'X': case 'x': case 1: case -1: hs = "X"; break;
     default: break;
     }
-    if (st == FBRL_OK && !par) st = rb_fail(r, -24, "CONFIG: parity must be the character N, E or O");
+    if (st == FBRL_OK && !par) st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "CONFIG: parity must be the character N, E or O");
     if (st == FBRL_OK) st = rb_range(r, w, "data bits", v[3].i, 7, 8);
     if (st == FBRL_OK) st = rb_range(r, w, "stop bits", v[4].i, 1, 2);
-    if (st == FBRL_OK && !hs) st = rb_fail(r, -24, "CONFIG: handshake must be N or X (or 0 / 1)");
+    if (st == FBRL_OK && !hs) st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "CONFIG: handshake must be N or X (or 0 / 1)");
     if (st == FBRL_OK) st = rb_range(r, w, "echo", v[6].i, -1, 1);
     if (st != FBRL_OK) return st;
     fbrl_rapl_arg a[7] = { fbrl_rapl_int((long)v[0].i), fbrl_rapl_int((long)v[1].i), fbrl_rapl_str(par),
@@ -72,7 +72,7 @@ static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)fbrl_link_set_line_handler(r->link, keep_block, &b, &fn, &ctx); /* for this command */
     st = fbrl_link_where(r->link, cmd, NULL);
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
-    if (st == FBRL_OK) fbrl__write(r->vm, b.text, b.n);
+    if (st == FBRL_OK) fbrl_vmx_write(r->vm, b.text, b.n);
     return rb_link_result(r, w, st);
 }
 
@@ -93,12 +93,12 @@ static fbrl_status w_typevar(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (w->arg) {
         double d;
         if ((st = rb_link_result(r, w, fbrl_link_typev(r->link, name, &d))) != FBRL_OK) return st;
-        if (w->arg == 2) return fbrl_vm_fpush(r->vm, d) == FBRL_OK ? FBRL_OK : rb_fail(r, -44, NULL);
+        if (w->arg == 2) return fbrl_vm_fpush(r->vm, d) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_FSTACK_OVERFLOW, NULL);
         snprintf(out, sizeof out, "%.6f ", d);
     } else {
         long i;
         if ((st = rb_link_result(r, w, fbrl_link_typei(r->link, name, &i))) != FBRL_OK) return st;
-        if (w->cmd == 1) return fbrl_vm_push(r->vm, (fbrl_cell)i) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+        if (w->cmd == 1) return fbrl_vm_push(r->vm, (fbrl_cell)i) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
         snprintf(out, sizeof out, "%ld ", i);
     }
     rb_puts(r, out);
@@ -110,7 +110,7 @@ static fbrl_status w_rapl(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     char line[FBRL_LINK_LINE_MAX + 1];
     if (v[0].n == 0 || v[0].n > FBRL_LINK_LINE_MAX)
-        return rb_fail(r, -24, "RAPL: the line must be 1..80 characters");
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, "RAPL: the line must be 1..80 characters");
     memcpy(line, v[0].s, v[0].n);
     line[v[0].n] = '\0';
     return rb_raw(r, w, line, 1);
@@ -140,7 +140,7 @@ static fbrl_status w_analog(fbrl_robot *r, const rb_word *w, rb_val *v)
     char name[16], line[40];
     fbrl_status st = rb_name_arg(r, w, &v[1], name, 10);
     if (st != FBRL_OK) return st;
-    if (v[0].i < 1 || v[0].i > 8) return rb_fail(r, -24, "RAPL-ANALOG: the analog input must be 1..8");
+    if (v[0].i < 1 || v[0].i > 8) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "RAPL-ANALOG: the analog input must be 1..8");
     if (fbrl_rapl_name_check(name, 0) != FBRL_OK) return rb_fail_st(r, w, FBRL_ENAME, name);
     snprintf(line, sizeof line, "%s=ADC(%ld)", name, (long)v[0].i);
     return rb_raw(r, w, line, 0);
@@ -173,7 +173,7 @@ static fbrl_status w_rapl_point(fbrl_robot *r, const rb_word *w, rb_val *v)
     char name[16];
     fbrl_loc user, arm;
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
-    if (st == FBRL_OK && name[0] == '#') st = rb_fail(r, -24, "RAPL-POINT: a host location is cartesian: no '#' name");
+    if (st == FBRL_OK && name[0] == '#') st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "RAPL-POINT: a host location is cartesian: no '#' name");
     if (st == FBRL_OK) st = rb_loc_read(r, w, v[1].i, &user);
     if (st == FBRL_OK) st = rb_online(r);
     if (st == FBRL_OK) st = rb_to_arm(r, w, &user, &arm);
@@ -188,7 +188,7 @@ static fbrl_status w_rapl_error(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     (void)w;
     (void)v;
-    return fbrl_vm_push(r->vm, r->last_error) == FBRL_OK ? FBRL_OK : rb_fail(r, -3, NULL);
+    return fbrl_vm_push(r->vm, r->last_error) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 

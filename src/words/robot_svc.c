@@ -12,7 +12,7 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
 {
     char msg[128];
     snprintf(msg, sizeof msg, "%s: %s%s%s", w->name, what ? what : "", what ? ": " : "", fbrl_status_str(st));
-    return rb_fail(r, FBRL_THROW_STATUS(st), msg);
+    return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
 }
 
 /* Ctrl-C while a robot word waits on the controller: take the VM's interrupt request
@@ -22,22 +22,24 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
  * it (fbrl_robot_safe_stop: fbrlmon does on every Ctrl-C). */
 fbrl_status rb_interrupted(fbrl_robot *r)
 {
-    if (!fbrl__take_interrupt(r->vm)) return FBRL_OK;
-    return rb_fail(r, -28, "user interrupt");
+    if (!fbrl_vmx_take_interrupt(r->vm)) return FBRL_OK;
+    return rb_fail(r, FBRL_THROW_INTERRUPT, "user interrupt");
 }
 
-void rb_puts(fbrl_robot *r, const char *s) { fbrl__write(r->vm, s, strlen(s)); }
+void rb_puts(fbrl_robot *r, const char *s) { fbrl_vmx_write(r->vm, s, strlen(s)); }
 
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms)
 {
-    if (!r->vm->host.now_us) return rb_fail(r, -21, "no clock in this host");
-    *ms = r->vm->host.now_us(r->vm->host.user) / 1000u;
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    if (!h->now_us) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    *ms = h->now_us(h->user) / 1000u;
     return FBRL_OK;
 }
 
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms)
 {
-    if (!r->vm->host.sleep_ms) return rb_fail(r, -21, "no clock in this host");
-    if (ms) r->vm->host.sleep_ms(r->vm->host.user, ms);
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    if (!h->sleep_ms) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    if (ms) h->sleep_ms(h->user, ms);
     return FBRL_OK;
 }

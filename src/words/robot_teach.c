@@ -14,31 +14,29 @@
 static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, size_t *len)
 {
     fbrl_vm *vm = r->vm;
+    const fbrl_vm_host *host = fbrl_vmx_host(vm);
     char *buf = (char *)r->tib;
-    fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
-    if (s && s->kind != SRC_STRING) {
-        int got = fbrl__refill(vm);
-        if (got < 0) return fbrl_vm_throw(vm, got, NULL);
-        if (got > 0) {
-            size_t n = s->len < FBRL_ROBOT_TIB ? s->len : FBRL_ROBOT_TIB;
-            memcpy(buf, s->buf, n);
-            *vm->toin = (fbrl_cell)s->len;
-            *len = n;
-            return FBRL_OK;
-        }
+    const char *line;
+    size_t n = 0;
+    fbrl_status st = fbrl_vmx_refill(vm, &line, &n);
+    if (st == FBRL_OK) {
+        if (n > FBRL_ROBOT_TIB) n = FBRL_ROBOT_TIB;
+        memcpy(buf, line, n);
+        *len = n;
+        return FBRL_OK;
     }
-    if (!vm->host.key) {
+    if (st != FBRL_EEOF) return st;
+    if (!host->key) {
         char msg[96];
         snprintf(msg, sizeof msg, "%s: input ended before point %d was taken", w->name, slot);
-        return rb_fail(r, -24, msg);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
-    size_t n = 0;
     for (;;) {
-        int c = vm->host.key(vm->host.user);
+        int c = host->key(host->user);
         if (c < 0) {
             char msg[96];
             snprintf(msg, sizeof msg, "%s: input ended before point %d was taken", w->name, slot);
-            return rb_fail(r, -24, msg);
+            return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
         }
         if (c == '\n' || c == '\r') break;
         if (n < FBRL_ROBOT_TIB) buf[n++] = (char)c;
@@ -58,16 +56,16 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = fbrl_glossary_calpts(vm, v[0].i, &cal);
     if (st != FBRL_OK) {
         snprintf(msg, sizeof msg, "%s: not a calibration (use a CREATE-CAL name)", w->name);
-        return rb_fail(r, st == FBRL_ETYPE ? -12 : -9, msg);
+        return rb_fail(r, st == FBRL_ETYPE ? FBRL_THROW_TYPE_MISMATCH : -9, msg);
     }
     if ((st = rb_online(r)) != FBRL_OK) return st;
-    if (r->teaching) return rb_fail(r, -24, "GET-CAL-POINTS: already teaching (not inside its own lines)");
+    if (r->teaching) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "GET-CAL-POINTS: already teaching (not inside its own lines)");
     r->teaching = 1;
     st = teach3(r, w, pts);
     r->teaching = 0;
     if (st != FBRL_OK) return st;
     /* the lines run while teaching may have changed the dictionary: look the structure up again */
-    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK) return rb_fail(r, -9, "GET-CAL-POINTS: calibration gone");
+    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK) return rb_fail(r, FBRL_THROW_BAD_ADDRESS, "GET-CAL-POINTS: calibration gone");
     for (int slot = 1; slot <= 3; slot++)
         if ((st = fbrl_calpts_set(cal, slot, &pts[slot - 1])) != FBRL_OK) return rb_fail_st(r, w, st, NULL);
     return FBRL_OK;
@@ -88,8 +86,7 @@ static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3])
             size_t k = 0;
             while (k < n && rb_blank(((char *)r->tib)[k])) k++;
             if (k == n) break;
-            int e = fbrl__evaluate(vm, (char *)r->tib, n);
-            if (e) return fbrl_vm_throw(vm, e, NULL);
+            if ((st = fbrl_vmx_evaluate(vm, (const char *)r->tib, n)) != FBRL_OK) return st;
         }
         fbrl_loc arm;
         if ((st = rb_arm_where(r, w, 1, &arm)) != FBRL_OK) return st;

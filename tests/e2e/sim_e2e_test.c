@@ -13,6 +13,7 @@
 #include <math.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,6 +65,8 @@ static void raw_fd(int fd)
     }
 }
 
+static void expect_greeting(simp *p);
+
 /* Starts fbrlsim with the given options (NULL-terminated) and opens its line. */
 static void spawn(simp *p, const char *const *extra)
 {
@@ -112,6 +115,7 @@ static void spawn(simp *p, const char *const *extra)
         a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
         p->fd = socket(AF_INET, SOCK_STREAM, 0);
         assert_int_equal(connect(p->fd, (struct sockaddr *)&a, sizeof a), 0);
+        expect_greeting(p);
     } else {
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
@@ -188,6 +192,14 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     }
     buf[n] = 0;
     return n;
+}
+
+/* A TCP client is greeted with the prompt as soon as it connects. */
+static void expect_greeting(simp *p)
+{
+    size_t n = read_until(p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    if (n != 2 || strcmp(g_buf, ">>") != 0)
+        fail_msg("no prompt on connect: got '%s'", g_buf);
 }
 
 /* Sends a line with CR; returns everything up to and including the prompt. */
@@ -1059,6 +1071,179 @@ static void t_persist(void **st)
     }
 }
 
+/* Runs fbrlsim with a state file that must be refused: exit status 1 and a message
+ * naming file:line on stderr. */
+static void refused_state(const char *state, const char *where)
+{
+    int pfd[2], stt;
+    pid_t pid;
+    size_t n = 0;
+    ssize_t r;
+    char msg[1024];
+    assert_int_equal(pipe(pfd), 0);
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int dn = open("/dev/null", O_WRONLY);
+        dup2(dn, 1);
+        dup2(pfd[1], 2);
+        close(pfd[0]);
+        alarm(5); /* an accepted file would let it run forever */
+        execl(FBRLSIM_PATH, FBRLSIM_PATH, "--state", state, (char *)NULL);
+        _exit(127);
+    }
+    close(pfd[1]);
+    while (n < sizeof msg - 1 && (r = read(pfd[0], msg + n, sizeof msg - 1 - n)) > 0)
+        n += (size_t)r;
+    msg[n] = 0;
+    close(pfd[0]);
+    assert_int_equal(waitpid(pid, &stt, 0), pid);
+    if (!WIFEXITED(stt) || WEXITSTATUS(stt) != 1)
+        fail_msg("state line '%s' was accepted (status %d)", where, stt);
+    {
+        char want[512];
+        snprintf(want, sizeof want, "%s:2: ", state);
+        if (!strstr(msg, want))
+            fail_msg("state line '%s': message without %s: %s", where, want, msg);
+    }
+}
+
+/* Each junk value is refused with file:line, and the file is left as it was. */
+static void t_state_junk(void **st)
+{
+    static const char *const junk[] = {
+        "SPEED nan", "SPEED inf", "SPEED -inf", "SPEED 101", "SPEED 0", "SPEED 50x", "SPEED 50 7", "SPEED 1e999",
+        "SPEED", "JOINTS 0 90 -90 0 nan", "JOINTS 0 90 -90 0", "JOINTS 0 90 -90 0 0 0", "JOINTS 0 200 -90 0 0",
+        "CONFIG 0 -9223372036854775808 N 8 1 X 1", "CONFIG 0 99999999999999999999 N 8 1 X 1",
+        "CONFIG 0 9600 N 8 1 X 1 junk", "CONFIG 2 9600 N 8 1 X 1", "CONFIG 0 9600.5 N 8 1 X 1",
+        "CONFIG 0 9600 Q 8 1 X 1", "CONFIG 0 9600 N 9 1 X 1", "CONFIG 0 9600 N 8 1 X 7", "GAIN 1 1e999",
+        "GAIN 9 1", "GAIN 1 -1", "GAIN 1 0x10", "VAR V1 -inf", "VAR V1 nan", "VAR 1X 3", "VAR TOOLONGNAME 1",
+        "VAR V1 1 2", "PLOC P 1 2 3 4 99999999999", "PLOC P 1 2 3 4 5.5", "PLOC P 1 2 3 4",
+        "LOC P 1 2 3 4 5 nan", "LOC P 1 2 3 4 5", "LOC P 1 2 3 4 5 6 7", "EXTRA 1e300 0", "EXTRA 0 inf",
+        "GRIPPER 3 50", "GRIPPER 1 0", "GRIPPER 1 50 x", "OUTPUTS 01", "OUTPUTS 000000000000000x",
+        "FLASH 2", "FLASH -1", "FLASH 1 1", "TOOL T 0 0 1 0 0 0 x", "TOOL T 0 0 nan 0 0 0", "PROGRAM P junk",
+        "PROGRAM", "FOO 1", "SPEED\t50\tjunk",
+    };
+    const char *state = tmp("junk.state");
+    size_t i;
+    (void)st;
+    for (i = 0; i < sizeof junk / sizeof junk[0]; i++) {
+        FILE *f = fopen(state, "w");
+        char text[256], back[256];
+        size_t n;
+        snprintf(text, sizeof text, "FBRLSIM-STATE 1\n%s\nSPEED 50\n", junk[i]);
+        assert_non_null(f);
+        fputs(text, f);
+        fclose(f);
+        refused_state(state, junk[i]);
+        f = fopen(state, "r");
+        n = fread(back, 1, sizeof back - 1, f);
+        back[n] = 0;
+        fclose(f);
+        assert_string_equal(back, text); /* not overwritten */
+    }
+    {
+        /* a duplicate name, a program without END and a program line too long, too */
+        static const char *const late[] = { "VAR A 1\nVAR A 2\n", "LOC P 1 2 3 4 5 6\nLOC P 1 2 3 4 5 6\n",
+                                            "PROGRAM P\n  HOME\n" };
+        for (i = 0; i < sizeof late / sizeof late[0]; i++) {
+            FILE *f = fopen(state, "w");
+            int pid, stt;
+            fprintf(f, "FBRLSIM-STATE 1\n%s", late[i]);
+            fclose(f);
+            pid = fork();
+            if (pid == 0) {
+                int dn = open("/dev/null", O_WRONLY);
+                dup2(dn, 1);
+                dup2(dn, 2);
+                execl(FBRLSIM_PATH, FBRLSIM_PATH, "--state", state, (char *)NULL);
+                _exit(127);
+            }
+            waitpid(pid, &stt, 0);
+            assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+        }
+    }
+}
+
+/* A symlink planted where the old fixed temporary name was (and the directory's
+ * other files) is never written through; no temporary is left behind. */
+static void t_state_symlink(void **st)
+{
+    const char *state = tmp("sym.state"), *victim = tmp("victim"), *planted = tmp("sym.state.tmp");
+    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    simp p;
+    FILE *f = fopen(victim, "w");
+    char back[64];
+    size_t n;
+    struct stat sb;
+    int i;
+    (void)st;
+    fputs("precious\n", f);
+    fclose(f);
+    assert_int_equal(symlink(victim, planted), 0);
+    start(&p, opts);
+    for (i = 0; i < 20; i++) {
+        char c[64];
+        snprintf(c, sizeof c, "POINT P%d,%d,1,2,0,-90,0", i, i);
+        ok(&p, c);
+    }
+    stop(&p);
+    f = fopen(victim, "r");
+    n = fread(back, 1, sizeof back - 1, f);
+    back[n] = 0;
+    fclose(f);
+    assert_string_equal(back, "precious\n");
+    assert_int_equal(lstat(planted, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode)); /* left alone */
+    assert_int_equal(lstat(state, &sb), 0);
+    assert_true(S_ISREG(sb.st_mode));
+    {
+        /* only the state, the victim and the planted link: no temporary left */
+        char c[512];
+        snprintf(c, sizeof c, "test $(ls -A '%s' | grep -c '^sym.state') -eq 2", g_dir);
+        assert_int_equal(system(c), 0);
+    }
+    start(&p, opts);
+    assert_non_null(strstr(cmd(&p, "LISTL P19"), "+019.0000"));
+    stop(&p);
+}
+
+/* Names are upper-cased wherever they enter memory: a program written in lower case
+ * defines upper-case names, the state it saves loads again, and RUN still works. */
+static void t_state_lowercase(void **st)
+{
+    const char *state = tmp("lower.state");
+    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    simp p;
+    FILE *f = fopen(state, "w");
+    int i;
+    (void)st;
+    fputs("FBRLSIM-STATE 1\nvar count 0\nPROGRAM teach\n  here p1\n  point #q2,1,2,3,4,5\n"
+          "  set p3=p1\n  count=count+1\n  type done\nEND\n", f);
+    fclose(f);
+    for (i = 0; i < 2; i++) {
+        start(&p, opts);
+        ok(&p, "HOME");
+        assert_string_equal(cmd(&p, "RUN TEACH"), "DONE\r\n");
+        assert_string_equal(cmd(&p, "LISTL #Q2"), "#Q2       +0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r\n");
+        assert_non_null(strstr(cmd(&p, "LISTL"), "P1 "));
+        assert_non_null(strstr(cmd(&p, "LISTL P3"), "P3 "));
+        assert_string_equal(cmd(&p, "TYPEI COUNT"), i ? "2\r\n" : "1\r\n");
+        stop(&p); /* saves; the second round loads what was saved */
+    }
+    {
+        char text[4096];
+        size_t n;
+        f = fopen(state, "r");
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_non_null(strstr(text, "\nPLOC Q2 1 2 3 4 5\n"));
+        assert_non_null(strstr(text, "\nPROGRAM TEACH\n  HERE P1\n"));
+        assert_null(strstr(text, " p1"));
+    }
+}
+
 /* ---- baud pacing and overrun ----------------------------------------- */
 
 static void t_baud(void **st)
@@ -1106,6 +1291,228 @@ static void t_baud(void **st)
     assert_true(xoff >= 1);
     assert_true(xon >= 1);
     assert_true(k < 290); /* characters were lost in the overrun */
+    stop(&p);
+}
+
+/* ---- the strict line ------------------------------------------------- */
+
+/* How late this test or the emulator may be woken by the OS (the machine is shared).
+ * Bytes handed over late bunch up at the receiver; that is the only slack the window
+ * check allows. The cumulative checks allow nothing: lateness can only make them
+ * hold more easily, earliness breaks them. */
+#define LATENESS 0.010 /* s: the least allowance, also on an idle machine */
+#define WINDOW 0.100
+
+/* How late the OS wakes a thread of this process while the flood runs: a thread sleeps
+ * 1 ms at a time and records its worst oversleep. The emulator competes for the same
+ * CPUs, so twice this bounds how late either side handled bytes. */
+static volatile int g_probe_run;
+static double g_probe_late;
+
+static void *late_probe(void *arg)
+{
+    (void)arg;
+    g_probe_late = 0;
+    while (g_probe_run) {
+        double t0 = now_s(), late;
+        usleep(1000);
+        late = now_s() - t0 - 0.001;
+        if (late > g_probe_late)
+            g_probe_late = late;
+    }
+    return NULL;
+}
+
+static double lateness(void)
+{
+    return 2.0 * g_probe_late > LATENESS ? 2.0 * g_probe_late : LATENESS;
+}
+
+typedef struct arrivals {
+    double *t;   /* when each read returned */
+    size_t *n;   /* how many bytes (or prompts) it brought */
+    size_t k, cap;
+} arrivals;
+
+static void arr_add(arrivals *a, double t, size_t n)
+{
+    if (a->k == a->cap) {
+        a->cap = a->cap ? 2 * a->cap : 1024;
+        a->t = realloc(a->t, a->cap * sizeof *a->t);
+        a->n = realloc(a->n, a->cap * sizeof *a->n);
+        assert_non_null(a->t);
+        assert_non_null(a->n);
+    }
+    a->t[a->k] = t;
+    a->n[a->k++] = n;
+}
+
+/* The most units that arrived in any window of length w (windows start at an arrival). */
+static size_t max_window(const arrivals *a, double w)
+{
+    size_t i, j = 0, sum = 0, best = 0;
+    for (i = 0; i < a->k; i++) {
+        sum += a->n[i];
+        while (a->t[i] - a->t[j] > w)
+            sum -= a->n[j++];
+        if (sum > best)
+            best = sum;
+    }
+    return best;
+}
+
+/* Sends `count` copies of line (with CR) as fast as the pty takes them, never waiting
+ * for an echo, and records when the output bytes and the prompts arrive. */
+static double g_flood_t0; /* just before flood()'s first write: no byte left earlier */
+
+static void flood(simp *p, const char *line, int count, arrivals *bytes, arrivals *prompts)
+{
+    char out[64];
+    size_t len = strlen(line), sent = 0, total = (size_t)count * (len + 1), got_prompts = 0;
+    char *all = malloc(total);
+    double end = now_s() + 60.0;
+    int prev_gt = 0, i;
+    assert_non_null(all);
+    for (i = 0; i < count; i++) {
+        memcpy(all + (size_t)i * (len + 1), line, len);
+        all[(size_t)i * (len + 1) + len] = '\r';
+    }
+    pthread_t probe;
+    fcntl(p->fd, F_SETFL, fcntl(p->fd, F_GETFL) | O_NONBLOCK);
+    g_probe_run = 1;
+    assert_int_equal(pthread_create(&probe, NULL, late_probe, NULL), 0);
+    g_flood_t0 = now_s();
+    while (got_prompts < (size_t)count && now_s() < end) {
+        struct pollfd pf = { p->fd, (short)(POLLIN | (sent < total ? POLLOUT : 0)), 0 };
+        if (poll(&pf, 1, 100) <= 0)
+            continue;
+        if ((pf.revents & POLLOUT) && sent < total) {
+            ssize_t w = write(p->fd, all + sent, total - sent);
+            if (w > 0)
+                sent += (size_t)w;
+        }
+        if (pf.revents & POLLIN) {
+            ssize_t r = read(p->fd, out, sizeof out);
+            double t = now_s();
+            size_t np = 0;
+            if (r <= 0)
+                continue;
+            for (i = 0; i < r; i++) {
+                if (out[i] == '>' && prev_gt)
+                    np++;
+                prev_gt = out[i] == '>' && !prev_gt;
+            }
+            arr_add(bytes, t, (size_t)r);
+            if (np)
+                arr_add(prompts, t, np);
+            got_prompts += np;
+        }
+    }
+    g_probe_run = 0;
+    pthread_join(probe, NULL);
+    fcntl(p->fd, F_SETFL, fcntl(p->fd, F_GETFL) & ~O_NONBLOCK);
+    free(all);
+    assert_int_equal(got_prompts, count);
+}
+
+/* With --baud N: no direction carries more than N/10 bytes per second over any window
+ * (measured here, on the receiving side, with real clocks), and no byte arrives before
+ * its start plus ten bit times, not even after the line was idle. */
+static void t_strict(void **st)
+{
+    static const long bauds[] = { 9600, 38400, 115200 };
+    size_t b;
+    (void)st;
+    for (b = 0; b < sizeof bauds / sizeof bauds[0]; b++) {
+        char baud[16];
+        const char *const opts[] = { "--time-scale", "200", "--baud", baud, "--rx-buffer", "65536", NULL };
+        double rate = (double)bauds[b] / 10.0, bit10 = 1.0 / rate, fastest = 1e9;
+        arrivals out = { 0 }, prompts = { 0 }, in = { 0 }, inprompts = { 0 };
+        size_t most, allowed, k;
+        int i, cmds = (int)(rate * 0.6 / 14.0); /* 0.6 s of output: "TYPEI 1" -> 14 bytes back */
+        simp p;
+        snprintf(baud, sizeof baud, "%ld", bauds[b]);
+        start(&p, opts);
+        /* one character after an idle line: its echo needs two character times */
+        for (i = 0; i < 20; i++) {
+            double t0;
+            usleep(20000);
+            t0 = now_s();
+            puts_(&p, "A");
+            assert_int_equal(read_until(&p, g_buf, sizeof g_buf, "A", TIMEOUT), 1);
+            if (now_s() - t0 < fastest)
+                fastest = now_s() - t0;
+            puts_(&p, "\b");
+            read_until(&p, g_buf, sizeof g_buf, "\b \b", TIMEOUT);
+        }
+        if (fastest < 2.0 * bit10)
+            fail_msg("%ld baud: an echo came back after %.3f ms, before two character times (%.3f ms)",
+                     bauds[b], fastest * 1e3, 2e3 * bit10);
+        /* controller -> host, saturated: the host sends without waiting for echoes */
+        flood(&p, "TYPEI 1", cmds, &out, &prompts);
+        most = max_window(&out, WINDOW);
+        allowed = (size_t)floor((WINDOW + lateness()) * rate) + 1;
+        print_message("%6ld baud, output: at most %zu bytes in a 100 ms window (N/10 per 100 ms = %.0f, "
+                      "ratio %.3f; allowed with %.0f ms lateness %zu); fastest echo %.3f ms >= %.3f ms\n",
+                      bauds[b], most, rate * WINDOW, most / (rate * WINDOW), lateness() * 1e3, allowed,
+                      fastest * 1e3, 2e3 * bit10);
+        if (most > allowed)
+            fail_msg("%ld baud: %zu bytes in 100 ms, the line carries %.0f", bauds[b], most, rate * WINDOW);
+        /* strict: the first byte back is the echo of the first byte sent (two character
+         * times), and each later one at least one character time after it */
+        for (k = 0, i = 0; i < (int)out.k; i++) {
+            k += out.n[i];
+            if ((double)k > (out.t[i] - g_flood_t0) / bit10 - 1.0)
+                fail_msg("%ld baud: %zu bytes back %.3f ms after the first was sent: faster than the line",
+                         bauds[b], k, (out.t[i] - g_flood_t0) * 1e3);
+        }
+        /* host -> controller, saturated: echo off, so each 9-byte command gives only
+         * CR LF >> back and the input side limits; commands done per window tell how
+         * many bytes the controller took in */
+        ok(&p, "CONFIG 0,9600,N,8,1,X,0");
+        cmds = (int)(rate * 0.6 / 9.0);
+        flood(&p, "SPEED 50", cmds, &in, &inprompts);
+        most = max_window(&inprompts, WINDOW);
+        allowed = (size_t)floor(((WINDOW + lateness()) * rate) / 9.0) + 1;
+        print_message("%6ld baud, input: at most %zu commands in a 100 ms window: %zu bytes between the first "
+                      "and the last (N/10 per 100 ms = %.0f, ratio %.3f; allowed %zu commands)\n",
+                      bauds[b], most, (most - 1) * 9, rate * WINDOW, (most - 1) * 9 / (rate * WINDOW), allowed);
+        if (most > allowed)
+            fail_msg("%ld baud: %zu commands of 9 bytes in 100 ms, the line carries %.0f bytes", bauds[b], most,
+                     rate * WINDOW);
+        /* strict: command m's CR is byte 9(m+1) sent; its CR LF >> takes four more */
+        for (k = 0, i = 0; i < (int)inprompts.k; i++) {
+            k += inprompts.n[i];
+            if (inprompts.t[i] - g_flood_t0 < (9.0 * (double)k + 4.0) * bit10)
+                fail_msg("%ld baud: %zu commands done %.3f ms after the first byte was sent: faster than the line",
+                         bauds[b], k, (inprompts.t[i] - g_flood_t0) * 1e3);
+        }
+        free(out.t);
+        free(out.n);
+        free(prompts.t);
+        free(prompts.n);
+        free(in.t);
+        free(in.n);
+        free(inprompts.t);
+        free(inprompts.n);
+        stop(&p);
+    }
+}
+
+/* --cmd-time: the controller reads a line for that long (simulated ms) before the
+ * reply starts. */
+static void t_cmd_time(void **st)
+{
+    static const char *const opts[] = { "--time-scale", "2", "--cmd-time", "200", NULL };
+    simp p;
+    double t0, dt;
+    (void)st;
+    start(&p, opts); /* NOHELP too waited */
+    t0 = now_s();
+    ok(&p, "SPEED 30");
+    dt = now_s() - t0;
+    assert_true(dt >= 0.1); /* 200 simulated ms at time scale 2 */
+    assert_true(dt < 5.0);
     stop(&p);
 }
 
@@ -1330,9 +1737,74 @@ static void t_tcp(void **st)
         a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
         p.fd = socket(AF_INET, SOCK_STREAM, 0);
         assert_int_equal(connect(p.fd, (struct sockaddr *)&a, sizeof a), 0);
+        expect_greeting(&p);
     }
     assert_string_equal(status_line(&p, "CONTROLLER"), "CONTROLLER IS HOMED");
     stop(&p);
+}
+
+static int tcp_connect(const char *path)
+{
+    struct sockaddr_in a;
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    memset(&a, 0, sizeof a);
+    a.sin_family = AF_INET;
+    a.sin_port = htons((unsigned short)atoi(strrchr(path, ':') + 1));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    assert_true(fd >= 0);
+    assert_int_equal(connect(fd, (struct sockaddr *)&a, sizeof a), 0);
+    return fd;
+}
+
+/* A second client while one is connected is told the controller is busy and closed at
+ * once; what it typed never runs, not even after the first client leaves (the log is
+ * the truth for what ran). */
+static void t_tcp_busy(void **st)
+{
+    const char *log = tmp("busy.log");
+    const char *const opts[] = { "--tcp", "0", "--time-scale", "200", "--log", log, NULL };
+    simp p, q;
+    size_t n;
+    double t0;
+    char line[256];
+    FILE *f;
+    int i;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "V1=1");
+    for (i = 0; i < 3; i++) {
+        q.fd = tcp_connect(p.path);
+        puts_(&q, "V7=99\rOUTPUT 3\r");
+        t0 = now_s();
+        n = read_until(&q, g_buf, sizeof g_buf, "\r\n", TIMEOUT);
+        assert_true(n > 0);
+        assert_non_null(strstr(g_buf, "busy"));
+        assert_null(strstr(g_buf, ">>"));
+        /* and then end of file: closed at once, not left waiting */
+        n = read_until(&q, g_buf, sizeof g_buf, NULL, 2.0);
+        assert_int_equal(n, 0);
+        assert_true(now_s() - t0 < 2.0);
+        close(q.fd);
+    }
+    ok(&p, "V2=2"); /* the first client was not disturbed */
+    close(p.fd);
+    usleep(200000);
+    p.fd = tcp_connect(p.path);
+    expect_greeting(&p);
+    err(&p, "TYPEV V7", 10);
+    assert_string_equal(status_line(&p, "OUTPUTS"), "OUTPUTS 1-16: 0000000000000000");
+    p.fd = p.fd;
+    stop(&p);
+    f = fopen(log, "r");
+    assert_non_null(f);
+    n = 0;
+    while (fgets(line, sizeof line, f)) {
+        assert_null(strstr(line, "V7=99"));
+        assert_null(strstr(line, "OUTPUT 3"));
+        n++;
+    }
+    fclose(f);
+    assert_int_equal(n, 5); /* NOHELP V1=1 V2=2 TYPEV V7 STATUS */
 }
 
 static void t_embed(void **st)
@@ -1415,11 +1887,12 @@ int main(int argc, char **argv)
     GROUP("io", cmocka_unit_test(t_io), cmocka_unit_test(t_inputs_script), cmocka_unit_test(t_gripper),
           cmocka_unit_test(t_variables), cmocka_unit_test(t_settings), cmocka_unit_test(t_streams_extra),
           cmocka_unit_test(t_run))
-    GROUP("persist", cmocka_unit_test(t_persist))
-    GROUP("baud", cmocka_unit_test(t_baud))
+    GROUP("persist", cmocka_unit_test(t_persist), cmocka_unit_test(t_state_junk), cmocka_unit_test(t_state_symlink),
+          cmocka_unit_test(t_state_lowercase))
+    GROUP("baud", cmocka_unit_test(t_baud), cmocka_unit_test(t_strict), cmocka_unit_test(t_cmd_time))
     GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_parity), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))
-    GROUP("tcp", cmocka_unit_test(t_tcp))
+    GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
     GROUP("embed", cmocka_unit_test(t_embed))
     cleanup();
     return rc;

@@ -8,6 +8,8 @@
  *   - every implemented word cites at least one test, and each cited test really uses the
  *     word: `tests/forth/F.fs:N` = line N of F.fs uses it outside a comment;
  *     `tests/unit/F.c:fn()` = test function fn in F.c uses it in a string.
+ * and the other way round: every word the glossary and the robot words define (all but the
+ * engine's own) has a row, so a new word missing from the document fails too.
  * It also runs tests/forth/glossary_audit.fs (the words no other test covered) and checks
  * TYPE-STRING's console output. */
 #include <stdarg.h>
@@ -237,6 +239,10 @@ typedef struct tally {
     int implemented, absent, citations;
 } tally;
 
+/* Every word name check_text() saw in a word column (for the reverse check). */
+static char documented[1024][64];
+static int ndocumented;
+
 /* The next line of text (up to '\n') into line; 0 at the end. */
 static int next_line(const char **p, char *line, size_t cap)
 {
@@ -300,6 +306,7 @@ static int check_text(fixture *f, const char *doc, tally *t)
                     failures++;
                 }
             if (nseen < 512) strcpy(seen[nseen++], name);
+            if (ndocumented < 1024) strcpy(documented[ndocumented++], name);
             const char *stack = NULL, *help = NULL;
             if (fbrl_vm_help(f->vm, name, &stack, &help) != FBRL_OK) {
                 print_error("glossary.md:%ld: %s is listed as implemented but is not defined\n", ln, name);
@@ -369,6 +376,80 @@ static void glossary_matches_the_words(void **state)
     /* the thesis's appendices list 183 words: 167 are implemented, the additions come on top */
     assert_true(t.implemented >= 167);
     assert_true(t.absent >= 16);
+}
+
+/* ---- the other way: every word of the word sets has a row ---- */
+typedef struct names {
+    char (*name)[64];
+    int n, cap;
+} names;
+
+static int collect(void *ctx, const char *name, size_t len)
+{
+    names *s = ctx;
+    if (s->n < s->cap && len < 64) {
+        memcpy(s->name[s->n], name, len);
+        s->name[s->n++][len] = 0;
+    }
+    return 0;
+}
+
+static int has(const names *s, const char *name)
+{
+    for (int k = 0; k < s->n; k++)
+        if (strcmp(s->name[k], name) == 0) return 1;
+    return 0;
+}
+
+/* The words of f's VM that a bare VM (the engine and its data words) lacks, except internal
+ * "(names)", and that the last document checked did not list; each is printed. */
+static int undocumented(fixture *f, int print)
+{
+    static char all_buf[2048][64], bare_buf[2048][64];
+    names all = { all_buf, 0, 2048 }, bare = { bare_buf, 0, 2048 };
+    size_t size = 1 << 20;
+    unsigned char *mem = malloc(size);
+    assert_non_null(mem);
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.mem = mem;
+    cfg.mem_size = size;
+    fbrl_vm *vm;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_OK);
+    fbrl_vm_words(vm, collect, &bare);
+    free(mem);
+    fbrl_vm_words(f->vm, collect, &all);
+    assert_true(all.n < all.cap && bare.n < bare.cap);
+    int missing = 0;
+    for (int k = 0; k < all.n; k++) {
+        const char *w = all.name[k];
+        if (w[0] == '(' || has(&bare, w)) continue;
+        int listed = 0;
+        for (int d = 0; d < ndocumented && !listed; d++) listed = strcmp(documented[d], w) == 0;
+        if (!listed) {
+            if (print) print_error("docs/glossary.md has no row for %s\n", w);
+            missing++;
+        }
+    }
+    return missing;
+}
+
+static void every_word_is_in_the_glossary(void **state)
+{
+    fixture *f = *state;
+    tally t = {0, 0, 0};
+    ndocumented = 0;
+    check_document(f, &t);
+    assert_int_equal(undocumented(f, 1), 0);
+    /* and the check can fail: a document of two rows leaves almost every word out */
+    static const char two[] = "| word | stack effect | test |\n|---|---|---|\n"
+                              "| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n"
+                              "| `JOG` | `( F: dX dY dZ -- )` | `tests/forth/robot_motion.fs:51` |\n";
+    ndocumented = 0;
+    assert_int_equal(check_text(f, two, &t), 0);
+    int n = undocumented(f, 0);
+    print_message("a two-row glossary leaves %d words undocumented\n", n);
+    assert_true(n >= 100);
 }
 
 /* The checks themselves can fail: a wrong effect, a missing or an extra word, a bad citation. */
@@ -450,6 +531,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(glossary_matches_the_words, setup, teardown),
         cmocka_unit_test_setup_teardown(checks_catch_drift, setup, teardown),
+        cmocka_unit_test_setup_teardown(every_word_is_in_the_glossary, setup, teardown),
         cmocka_unit_test_setup_teardown(type_string_prints, setup, teardown),
         cmocka_unit_test_setup_teardown(forth_glossary_audit, setup, teardown),
     };

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 #include <pthread.h>
+#include <sys/resource.h>
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
@@ -129,6 +130,65 @@ static void create_rejects_bad_config(void **state)
     cfg.mem = small;
     cfg.mem_size = sizeof small;
     assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_ENOSPC);
+}
+
+/* The caller's promise of zeroed memory (mem_zeroed) lets a big dictionary cost
+ * only the pages a program uses; without it the engine clears the block itself. */
+static long max_rss_kb(void)
+{
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (long)ru.ru_maxrss; /* kilobytes on Linux */
+}
+
+static fbrl_cell eval_pop(fbrl_vm *vm, const char *text)
+{
+    fbrl_cell v = 0;
+    assert_int_equal(fbrl_vm_eval(vm, text, strlen(text)), FBRL_OK);
+    assert_int_equal(fbrl_vm_pop(vm, &v), FBRL_OK);
+    return v;
+}
+
+static void zeroed_memory_is_used_lazily(void **state)
+{
+    (void)state;
+    enum { GARBAGE = 0xA5, SMALL = 1 << 20, BIG = 64 << 20 };
+    fbrl_vm *vm;
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    /* Not promised zero: the engine clears the dictionary, whatever the block held. */
+    void *mem = malloc(SMALL);
+    assert_non_null(mem);
+    memset(mem, GARBAGE, SMALL);
+    cfg.mem = mem;
+    cfg.mem_size = SMALL;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_OK);
+    assert_int_equal(eval_pop(vm, "HERE 4096 + @  UNUSED 64 - HERE + @ OR"), 0);
+    free(mem);
+
+    /* Promised zero: a 64 MB dictionary works in full, but creating it and
+     * running a little code touches a small part of it. */
+    long rss0 = max_rss_kb();
+    mem = calloc(1, BIG);
+    assert_non_null(mem);
+    cfg.mem = mem;
+    cfg.mem_size = BIG;
+    cfg.mem_zeroed = 1;
+    assert_int_equal(fbrl_vm_create(&vm, &cfg), FBRL_OK);
+    assert_int_equal(eval_pop(vm, ": SQ DUP * ; 12 SQ"), 144);
+    assert_int_equal(eval_pop(vm, "HERE 4096 + @  UNUSED 64 - HERE + @ OR"), 0);
+    fbrl_cell unused = eval_pop(vm, "UNUSED");
+    assert_true(unused > BIG - (1 << 20));
+#ifdef __linux__
+    long grew_kb = max_rss_kb() - rss0;
+    print_message("64 MB dictionary: peak memory grew by %ld KB\n", grew_kb);
+    assert_true(grew_kb < 24 * 1024); /* clearing it would have added 65536 KB */
+#else
+    (void)rss0;
+#endif
+    /* ... and all of it can be filled */
+    assert_int_equal(fbrl_vm_eval(vm, "UNUSED 4096 - ALLOT  1 ,", 24), FBRL_OK);
+    free(mem);
 }
 
 static int count_words(void *ctx, const char *name, size_t len)
@@ -486,6 +546,61 @@ static void console_input(void **state)
 }
 
 /* Wrong programs must give errors, never crashes (run under ASan+UBSan in CI). */
+/* The compiler fuses common pairs (a literal and an operator, a comparison and a
+ * branch) and folds literals; each fused form must do exactly what the words do
+ * one at a time (run here through EXECUTE, which nothing fuses), including errors. */
+static void fused_code_keeps_meaning(void **state)
+{
+    (void)state;
+    static const char *const binops[] = { "+", "-", "*", "AND", "=", "<>", "<", ">" };
+    static const fbrl_cell vals[] = { 0, 1, -1, 2, 7, -9, 1000000007, INTPTR_MAX, INTPTR_MIN };
+    fixture *f = new_vm(1 << 20);
+    char src[256];
+    for (size_t o = 0; o < sizeof binops / sizeof binops[0]; o++) {
+        for (size_t i = 0; i < sizeof vals / sizeof vals[0]; i++) {
+            /* x LIT op  and  x y op IF ... THEN */
+            snprintf(src, sizeof src,
+                     ": F1 %ld %s ; : F2 %ld %s IF 1 ELSE 2 THEN ; : F3 %s IF 1 ELSE 2 THEN ;",
+                     (long)vals[i], binops[o], (long)vals[i], binops[o], binops[o]);
+            assert_int_equal(ev(f, src), FBRL_OK);
+            for (size_t j = 0; j < sizeof vals / sizeof vals[0]; j++) {
+                snprintf(src, sizeof src, "%ld F1  %ld %ld ' %s EXECUTE", (long)vals[j], (long)vals[j],
+                         (long)vals[i], binops[o]);
+                fbrl_cell want = eval_pop(f->vm, src);
+                assert_int_equal(pop1(f), want);
+                snprintf(src, sizeof src, "%ld F2  %ld %ld F3", (long)vals[j], (long)vals[j], (long)vals[i]);
+                want = eval_pop(f->vm, src);
+                assert_int_equal(pop1(f), want);
+                assert_int_equal(fbrl_vm_depth(f->vm), 0);
+            }
+            /* an empty stack is still an underflow */
+            assert_int_equal(ev(f, "F1"), FBRL_ETHROW);
+            assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -4);
+            assert_int_equal(ev(f, "1 F3"), FBRL_ETHROW);
+            assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -4);
+        }
+    }
+    /* folded literals and PICK with a literal */
+    assert_int_equal(eval_pop(f->vm, ": G1 3 CELLS 1+ 2* NEGATE ; G1"), -2 * (3 * (fbrl_cell)sizeof(fbrl_cell) + 1));
+    assert_int_equal(eval_pop(f->vm, ": G2 10 20 30 2 PICK 1 PICK 0 PICK ; G2"), 30);
+    static const fbrl_cell picked[] = { 30, 10, 30, 20, 10 };
+    for (size_t i = 0; i < sizeof picked / sizeof picked[0]; i++) assert_int_equal(pop1(f), picked[i]);
+    assert_int_equal(ev(f, ": G3 2 PICK ; 1 2 G3"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -4);
+    assert_int_equal(eval_pop(f->vm, "VARIABLE V 41 V ! : G4 V @ 1+ DUP V ! ; G4"), 42);
+    /* a branch target between a literal and its operator must stay a separate op */
+    assert_int_equal(eval_pop(f->vm, ": G5 IF DROP 100 THEN + ; 1 2 0 G5"), 3);
+    assert_int_equal(eval_pop(f->vm, "1 2 -1 G5"), 101);
+    assert_int_equal(eval_pop(f->vm, ": G6 0 BEGIN 1 + DUP 10 < WHILE REPEAT ; G6"), 10);
+    assert_int_equal(eval_pop(f->vm, ": G7 5 [ HERE DROP ] + ; 1 G7"), 6);
+    /* fusion where C, left HERE unaligned (compiled only: such code is garbage) */
+    assert_int_equal(ev(f, ": G9 [ 1 C, ] 5 + 2 PICK ;"), FBRL_OK);
+    /* SEE shows fused code as the words it came from */
+    expect_output(f, ": G8 DUP 2 < IF 1 - THEN OVER + ; SEE G8",
+                  ": G8 DUP 2 < 0BRANCH(2) 1 - OVER + ;\n");
+    free_vm(f);
+}
+
 static void hostile_programs_fail_cleanly(void **state)
 {
     (void)state;
@@ -731,6 +846,7 @@ int main(void)
         cmocka_unit_test(console_input),
         cmocka_unit_test(create_rejects_bad_config),
         cmocka_unit_test(size_for_is_enough),
+        cmocka_unit_test(zeroed_memory_is_used_lazily),
         cmocka_unit_test(two_vms_are_independent),
         cmocka_unit_test(c_words),
         cmocka_unit_test(api_stacks),
@@ -738,6 +854,7 @@ int main(void)
         cmocka_unit_test(include_relative_and_require),
         cmocka_unit_test(multi_line_definitions_and_bye),
         cmocka_unit_test(every_word_has_help),
+        cmocka_unit_test(fused_code_keeps_meaning),
         cmocka_unit_test(hostile_programs_fail_cleanly),
         cmocka_unit_test(corrupted_code_is_contained),
         cmocka_unit_test(random_programs_are_contained),

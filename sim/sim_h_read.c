@@ -1,0 +1,179 @@
+/* sim_h_read.c - the readouts: W0/W2/W4 once, W1/W3/W5 and WE1/WE3/WE5 as a
+ * stream until a key, and STATUS, in the RAPL-II layouts (docs/rapl-commands.md)
+ * that clients parse at fixed places. */
+#include "sim_cmd.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+static void print_position(fbrl_sim *s, const char *title, const double q[NAXES])
+{
+    sim_out *o = &s->term.out;
+    double pose[6];
+    int i;
+    fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+    sim_out_printf(o, "\r\n%s\r\nNAME       ", title);
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i < NAXES - 1 ? "AX#%d        " : "AX#%d", i + 1);
+    sim_out_printf(o, "\r\nPULSES   ");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(i, q[i]));
+    sim_out_printf(o, "\r\nNAME       ");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i < NAXES - 1 ? "JT#%d      " : "JT#%d", i + 1);
+    sim_out_printf(o, "\r\nJOINTS   ");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", q[i] + 0.0); /* no "-000.0000" */
+    sim_out_printf(o, "\r\nWORLD     ");
+    for (i = 0; i < 6; i++)
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", pose[i] + 0.0);
+    sim_out_printf(o, "\r\n");
+}
+
+static int h_wonce(fbrl_sim *s, args *a, int which)
+{
+    double q[NAXES];
+    int e = sim_args_want(a, 0, 0);
+    if (e)
+        return e;
+    if (which == 4 && s->arm.moving)
+        memcpy(q, s->arm.qt, sizeof q);
+    else
+        sim_joints_now(s, q);
+    print_position(s, which == 0 ? "CURRENT COMMAND POSITION :"
+                      : which == 2 ? "CURRENT ACTUAL POSITION :" : "END OF PATH POSITION :", q);
+    return 0;
+}
+
+int sim_h_w0(fbrl_sim *s, args *a, int *b) { (void)b; return h_wonce(s, a, 0); }
+
+int sim_h_w2(fbrl_sim *s, args *a, int *b) { (void)b; return h_wonce(s, a, 2); }
+
+int sim_h_w4(fbrl_sim *s, args *a, int *b) { (void)b; return h_wonce(s, a, 4); }
+
+static int h_stream(fbrl_sim *s, args *a, int kind)
+{
+    static const char *titles[] = {
+        "ACTUAL POSITION (MOTOR PULSES):", "COMMAND POSITION (MOTOR PULSES):", "VELOCITY (PULSES/SEC):",
+        "EXTRA AXIS ACTUAL (MOTOR PULSES):", "EXTRA AXIS COMMAND (MOTOR PULSES):",
+        "EXTRA AXIS VELOCITY (PULSES/SEC):"
+    };
+    int e = sim_args_want(a, 0, 0);
+    if (e)
+        return e;
+    s->term.stream_kind = kind;
+    s->term.ps = PS_STREAM;
+    sim_out_printf(&s->term.out, "%s\r\n", titles[(kind % 10) / 2 + (kind > 10 ? 3 : 0)]);
+    return 0;
+}
+
+int sim_h_w1(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 1); }
+
+int sim_h_w3(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 3); }
+
+int sim_h_w5(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 5); }
+
+int sim_h_we1(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 11); }
+
+int sim_h_we3(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 13); }
+
+int sim_h_we5(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 15); }
+
+void sim_stream_line(fbrl_sim *s, sim_out *o)
+{
+    const double dt = 0.01; /* simulated seconds for the velocity difference */
+    int i;
+    if (s->term.stream_kind < 10) {
+        double q[NAXES], q2[NAXES];
+        sim_joints_now(s, q);
+        if (s->term.stream_kind == 5) {
+            /* the difference over the last dt of simulated time, from the segment's own formula */
+            double save = s->t0;
+            s->t0 += dt / s->opt.time_scale;
+            sim_joints_now(s, q2);
+            s->t0 = save;
+            for (i = 0; i < NAXES; i++)
+                sim_out_printf(o, i ? " %+011ld" : "%+011ld",
+                               lround((q[i] - q2[i]) * fbrl_sim_arm_ppd[i] / dt));
+        } else {
+            for (i = 0; i < NAXES; i++)
+                sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(i, q[i]));
+        }
+    } else if (s->term.stream_kind == 15) {
+        double v = s->arm.xmoving && sim_now(s) < s->arm.xt1 ? (s->arm.xtarget - s->arm.xpos) / (s->arm.xt1 - s->arm.xt0) : 0.0;
+        sim_out_printf(o, "%+011ld", lround(v));
+    } else {
+        sim_out_printf(o, "%+011ld", lround(sim_extra_now(s)));
+    }
+    sim_out_printf(o, "\r");
+}
+
+int sim_h_status(fbrl_sim *s, args *a, int *b)
+{
+    sim_out *o = &s->term.out;
+    double q[NAXES];
+    int e = sim_args_want(a, 0, 0), i, moving[NAXES];
+    (void)b;
+    if (e)
+        return e;
+    sim_joints_now(s, q);
+    for (i = 0; i < NAXES; i++)
+        moving[i] = s->arm.moving && fabs(s->arm.qt[i] - s->arm.q[i]) > 0 && sim_now(s) < s->arm.mt1;
+    sim_out_printf(o, "RAPL-II Version 2.60     A255 Robot (fbrlsim)\r\n");
+    if (s->term.last_error < 0)
+        sim_out_printf(o, "LAST ERROR CODE: NONE\r\n");
+    else
+        sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->term.last_error, sim_error_text(s->term.last_error));
+    sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->arm.speed));
+    sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", FBRL_SIM_ARM_LINEAR);
+    sim_out_printf(o, "CURRENT PROGRAM EXECUTING:%s%s\r\n", s->run.prog ? " " : "",
+                   s->run.prog ? s->run.prog->name : "");
+    sim_out_printf(o, "JOINT LIMIT CHECK IS ON\r\n");
+    sim_out_printf(o, "CONTROLLER IS %sHOMED\r\n", s->arm.homed ? "" : "NOT ");
+    sim_out_printf(o, "TOOL TRANSFORM\r\n%-10s", s->mem.tool_set ? "TOOL" : "NULL");
+    for (i = 0; i < 6; i++)
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", s->mem.tool[i]);
+    sim_out_printf(o, "\r\nGRIPPER TYPE:  SERVO\r\n%-13s", "AXIS#");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %d" : "%d", i + 1);
+    sim_out_printf(o, "\r\n%-13s", "LOCK");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %c" : "%c", s->arm.locked[i] ? 'Y' : 'N');
+    sim_out_printf(o, "\r\n%-13s", "DONE");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %c" : "%c", moving[i] ? 'N' : 'Y');
+    sim_out_printf(o, "\r\n%-13s", "LIMP");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %c" : "%c", s->arm.limp[i] ? 'Y' : 'N');
+    sim_out_printf(o, "\r\n%-13s", "HOMED");
+    for (i = 0; i < NAXES; i++)
+        sim_out_printf(o, i ? " %c" : "%c", s->arm.homed ? 'Y' : 'N');
+    sim_out_printf(o, "\r\nREQUESTED ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
+    {
+        /* backward when the tool point lies behind the base axis, seen along the waist */
+        double pose[6], w = q[0] * 3.14159265358979323846 / 180.0;
+        fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+        sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH %s/ELBOW UP/WRIST FREE\r\n",
+                       pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
+    }
+    sim_out_printf(o, "MANUAL MODE STATUS IS %s\r\n", s->dev.manual ? "ON" : "OFF");
+    sim_out_printf(o, "ARM POWER IS %s\r\n", s->arm.power ? "ON" : "OFF");
+    sim_out_printf(o, "PENDANT LAMP IS %s\r\n", s->dev.flash ? "FLASHING" : "OFF");
+    if (s->mem.teach)
+        sim_out_printf(o, "TEACH MODE IS ON: %s%s, NEXT %03d\r\n", s->mem.teach == 2 ? "#" : "",
+                       s->mem.teach_name, s->mem.teach_next);
+    else
+        sim_out_printf(o, "TEACH MODE IS OFF\r\n");
+    sim_out_printf(o, "GRIPPER OPENING: %+09.4f FORCE (%% OF FULL): %+6ld\r\n", s->dev.grip,
+                   lround(s->dev.grip_force));
+    sim_out_printf(o, "INPUTS  1-16: ");
+    for (i = 0; i < SIM_IO; i++)
+        sim_out_printf(o, "%d", s->dev.in[i]);
+    sim_out_printf(o, "\r\nOUTPUTS 1-16: ");
+    for (i = 0; i < SIM_IO; i++)
+        sim_out_printf(o, "%d", s->dev.out_[i]);
+    sim_out_printf(o, "\r\nINCH UNITS.\r\n");
+    return 0;
+}

@@ -1,0 +1,143 @@
+/* sim_io.c - where the line's bytes come from and go to: a pseudo-terminal
+ * (with an optional stable symlink) or one TCP client on 127.0.0.1. Pacing and
+ * faults are the line's (sim_line.c); this file only opens, accepts and closes. */
+#include "sim_internal.h"
+
+#include <arpa/inet.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <termios.h>
+#include <unistd.h>
+
+int sim_io_open_pty(sim_io *io, char *err, size_t errlen)
+{
+    struct termios tio;
+    io->master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (io->master < 0 || grantpt(io->master) != 0 || unlockpt(io->master) != 0
+        || ptsname_r(io->master, io->path, sizeof io->path) != 0) {
+        sim_seterr(err, errlen, "pseudo-terminal: %s", strerror(errno));
+        return -1;
+    }
+    /* Holding the slave open keeps the master from hanging up between clients. */
+    io->slave = open(io->path, O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (io->slave < 0 || tcgetattr(io->slave, &tio) != 0) {
+        sim_seterr(err, errlen, "%s: %s", io->path, strerror(errno));
+        return -1;
+    }
+    cfmakeraw(&tio);
+    tcsetattr(io->slave, TCSANOW, &tio);
+    fcntl(io->master, F_SETFL, fcntl(io->master, F_GETFL) | O_NONBLOCK);
+    io->fd = io->master;
+    if (io->link_path) {
+        struct stat st;
+        if (lstat(io->link_path, &st) == 0 && !S_ISLNK(st.st_mode)) {
+            sim_seterr(err, errlen, "link %s: exists and is not a symlink", io->link_path);
+            free(io->link_path);
+            io->link_path = NULL;
+            return -1;
+        }
+        unlink(io->link_path); /* a stale link from an earlier run */
+        if (symlink(io->path, io->link_path) != 0) {
+            sim_seterr(err, errlen, "link %s: %s", io->link_path, strerror(errno));
+            free(io->link_path);
+            io->link_path = NULL;
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen)
+{
+    struct sockaddr_in a;
+    socklen_t alen = sizeof a;
+    int one = 1;
+    io->lfd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (io->lfd < 0) {
+        sim_seterr(err, errlen, "socket: %s", strerror(errno));
+        return -1;
+    }
+    setsockopt(io->lfd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    memset(&a, 0, sizeof a);
+    a.sin_family = AF_INET;
+    a.sin_port = htons((unsigned short)port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (bind(io->lfd, (struct sockaddr *)&a, sizeof a) != 0 || listen(io->lfd, SIM_LISTEN_BACKLOG) != 0
+        || getsockname(io->lfd, (struct sockaddr *)&a, &alen) != 0) {
+        sim_seterr(err, errlen, "tcp port %d: %s", port, strerror(errno));
+        return -1;
+    }
+    fcntl(io->lfd, F_SETFL, fcntl(io->lfd, F_GETFL) | O_NONBLOCK);
+    snprintf(io->path, sizeof io->path, "tcp:127.0.0.1:%d", ntohs(a.sin_port));
+    return 0;
+}
+
+/* One client at a time, like one serial line. A second one is told so and closed
+ * at once: nothing it sent is read, so nothing it typed can ever run (before, it
+ * waited in the listen queue and its bytes ran after the first client left). */
+static void refuse(int fd)
+{
+    static const char msg[] = "fbrlsim: the controller is busy: another client is connected\r\n";
+    char sink[512];
+    ssize_t w = write(fd, msg, sizeof msg - 1);
+    (void)w;
+    shutdown(fd, SHUT_WR);
+    /* Discard what already arrived: closing with unread data would send a reset
+     * that can overtake the message. */
+    while (read(fd, sink, sizeof sink) > 0)
+        ;
+    close(fd);
+}
+
+int sim_io_accept(sim_io *io)
+{
+    int fd = accept4(io->lfd, NULL, NULL, SOCK_NONBLOCK | SOCK_CLOEXEC);
+    if (fd < 0)
+        return 0;
+    if (io->conn >= 0) {
+        refuse(fd);
+        return 0;
+    }
+    io->conn = io->fd = fd;
+    return 1;
+}
+
+/* Only a TCP client can go away; a pty stays. */
+int sim_io_close_client(sim_io *io)
+{
+    if (io->conn < 0)
+        return 0;
+    close(io->conn);
+    io->conn = -1;
+    io->fd = -1;
+    return 1;
+}
+
+void sim_io_close(sim_io *io)
+{
+    if (io->conn >= 0)
+        close(io->conn);
+    if (io->lfd >= 0)
+        close(io->lfd);
+    if (io->master >= 0)
+        close(io->master);
+    if (io->slave >= 0)
+        close(io->slave);
+    io->conn = io->lfd = io->master = io->slave = io->fd = -1;
+    if (io->link_path) {
+        char target[sizeof io->path];
+        ssize_t n = readlink(io->link_path, target, sizeof target - 1);
+        if (n > 0) {
+            target[n] = 0;
+            if (!strcmp(target, io->path)) /* still ours, not a newer emulator's */
+                unlink(io->link_path);
+        }
+    }
+    free(io->link_path);
+    io->link_path = NULL;
+}

@@ -1,0 +1,212 @@
+/* sim_motion.c - the arm in motion: one segment at a time (joint-interpolated or
+ * straight), evaluated from simulated time, so any readout at any moment shows
+ * where the arm is. The kinematics are arm.c's; this file plans and times. */
+#include "sim_cmd.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+double sim_tool_len(fbrl_sim *s)
+{
+    return s->mem.tool_set ? s->mem.tool[2] : 0.0;
+}
+
+static void pulses_to_joints(const long p[NAXES], double q[NAXES])
+{
+    int i;
+    for (i = 0; i < NAXES; i++)
+        q[i] = fbrl_sim_arm_degrees(i, p[i]);
+}
+
+/* Location by token: pose always; joints too for a precision point (*is_prec). */
+int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[NAXES], int *is_prec)
+{
+    char name[SIM_NAME_MAX + 1];
+    int prec, e = sim_name_parse(tok, &prec, name);
+    sim_loc *l;
+    if (e)
+        return e;
+    l = sim_loc_find(s, name, prec);
+    if (!l)
+        return SIM_E_LOCATION_UNDEFINED;
+    *is_prec = prec;
+    if (prec) {
+        pulses_to_joints(l->p, q);
+        fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+    } else {
+        memcpy(pose, l->v, sizeof l->v);
+    }
+    return 0;
+}
+
+
+void sim_joints_now(fbrl_sim *s, double q[NAXES])
+{
+    double f, pose[6];
+    if (!s->arm.moving) {
+        memcpy(q, s->arm.q, sizeof s->arm.q);
+        return;
+    }
+    f = (sim_now(s) - s->arm.mt0) / (s->arm.mt1 - s->arm.mt0);
+    if (f >= 1.0) {
+        memcpy(q, s->arm.qt, sizeof s->arm.qt);
+        return;
+    }
+    if (f < 0)
+        f = 0;
+    if (s->arm.straight) {
+        fbrl_sim_arm_lerp(s->arm.pa, s->arm.pb, f, pose);
+        if (fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q) == 0)
+            return;
+    }
+    {
+        int i;
+        for (i = 0; i < NAXES; i++)
+            q[i] = s->arm.q[i] + (s->arm.qt[i] - s->arm.q[i]) * f;
+    }
+}
+
+double sim_extra_now(fbrl_sim *s)
+{
+    double f;
+    if (!s->arm.xmoving)
+        return s->arm.xpos;
+    f = (sim_now(s) - s->arm.xt0) / (s->arm.xt1 - s->arm.xt0);
+    if (f >= 1.0)
+        return s->arm.xtarget;
+    return s->arm.xpos + (s->arm.xtarget - s->arm.xpos) * (f < 0 ? 0 : f);
+}
+
+void sim_arm_update(fbrl_sim *s)
+{
+    double now = sim_now(s);
+    if (s->arm.moving && now >= s->arm.mt1) {
+        memcpy(s->arm.q, s->arm.qt, sizeof s->arm.q);
+        s->arm.moving = 0;
+    }
+    if (s->arm.xmoving && now >= s->arm.xt1) {
+        s->arm.xpos = s->arm.xtarget;
+        s->arm.xmoving = 0;
+    }
+}
+
+void sim_halt(fbrl_sim *s)
+{
+    double q[NAXES];
+    sim_joints_now(s, q);
+    memcpy(s->arm.q, q, sizeof q);
+    s->arm.moving = 0;
+    s->arm.xpos = sim_extra_now(s);
+    s->arm.xmoving = 0;
+    s->dirty = 1;
+}
+
+static double joint_time(fbrl_sim *s, const double a[NAXES], const double b[NAXES])
+{
+    double t = 0;
+    int i;
+    for (i = 0; i < NAXES; i++) {
+        double ti = fabs(b[i] - a[i]) / (fbrl_sim_arm_speed[i] * s->arm.speed / 100.0);
+        if (ti > t)
+            t = ti;
+    }
+    return t;
+}
+
+static void begin(fbrl_sim *s, const double qt[NAXES], double t, int straight)
+{
+    memcpy(s->arm.qt, qt, sizeof s->arm.qt);
+    s->arm.straight = straight;
+    s->arm.mt0 = sim_now(s);
+    s->arm.mt1 = s->arm.mt0 + t;
+    s->arm.moving = t > 0;
+    if (!s->arm.moving)
+        memcpy(s->arm.q, qt, sizeof s->arm.q);
+    s->dirty = 1;
+}
+
+/* Joint-interpolated move to joint angles; locked joints stay. */
+int sim_move_joints(fbrl_sim *s, const double target[NAXES])
+{
+    double qt[NAXES];
+    int i, e;
+    for (i = 0; i < NAXES; i++)
+        qt[i] = s->arm.locked[i] ? s->arm.q[i] : target[i];
+    e = fbrl_sim_arm_check(qt);
+    if (e)
+        return e;
+    begin(s, qt, joint_time(s, s->arm.q, qt), 0);
+    return 0;
+}
+
+int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[NAXES])
+{
+    int e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q);
+    return e ? e : fbrl_sim_arm_check(q);
+}
+
+/* Joint-interpolated move to a cartesian pose. */
+int sim_move_pose(fbrl_sim *s, const double pose[6])
+{
+    double q[NAXES];
+    int e = sim_pose_joints(s, pose, q);
+    return e ? e : sim_move_joints(s, q);
+}
+
+/* Straight-line move to a pose (target joints qt if known, else from IK). */
+int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
+{
+    double qt[NAXES], from[6], t, d;
+    int e, i;
+    if (qknown) {
+        memcpy(qt, qknown, sizeof qt);
+        e = fbrl_sim_arm_check(qt);
+    } else {
+        e = sim_pose_joints(s, pose, qt);
+    }
+    if (e)
+        return e;
+    for (i = 0; i < NAXES; i++)
+        if (s->arm.locked[i] && fabs(qt[i] - s->arm.q[i]) > 1e-9)
+            return SIM_E_STRAIGHT_LINE;
+    fbrl_sim_arm_fk(s->arm.q, sim_tool_len(s), from);
+    fbrl_sim_arm_fk(qt, sim_tool_len(s), s->arm.pb);
+    if (fbrl_sim_arm_check_line(from, s->arm.pb, sim_tool_len(s), s->arm.q[0]) != 0)
+        return SIM_E_STRAIGHT_LINE;
+    {
+        /* the line must end in the target's own configuration (a precision point may
+         * hold the other reach) */
+        double qe[NAXES];
+        if (fbrl_sim_arm_ik(s->arm.pb, sim_tool_len(s), s->arm.q[0], qe) != 0
+            || fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
+            return SIM_E_STRAIGHT_LINE;
+    }
+    memcpy(s->arm.pa, from, sizeof from);
+    d = sqrt((s->arm.pb[0] - from[0]) * (s->arm.pb[0] - from[0]) + (s->arm.pb[1] - from[1]) * (s->arm.pb[1] - from[1])
+             + (s->arm.pb[2] - from[2]) * (s->arm.pb[2] - from[2]));
+    t = d / (FBRL_SIM_ARM_LINEAR * s->arm.speed / 100.0);
+    if (joint_time(s, s->arm.q, qt) > t)
+        t = joint_time(s, s->arm.q, qt);
+    begin(s, qt, t, 1);
+    return 0;
+}
+
+void sim_current_pose(fbrl_sim *s, double pose[6])
+{
+    double q[NAXES];
+    sim_joints_now(s, q);
+    fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+}
+
+/* The point dist back along a pose's tool axis. */
+void sim_back_off(const double pose[6], double waist, double dist, double out[6])
+{
+    double w = (hypot(pose[0], pose[1]) > 1e-9 ? atan2(pose[1], pose[0]) : waist * PI / 180.0);
+    double p = pose[4] * PI / 180.0;
+    memcpy(out, pose, 6 * sizeof *out);
+    out[0] -= dist * cos(p) * cos(w);
+    out[1] -= dist * cos(p) * sin(w);
+    out[2] -= dist * sin(p);
+}
