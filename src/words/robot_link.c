@@ -52,8 +52,7 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     if (st == FBRL_OK) return FBRL_OK;
     if (st == FBRL_EDISCONNECTED) {
         r->lost = 1;
-        snprintf(msg, sizeof msg, "%s: controller disconnected (RECONNECT when it is back)", w->name);
-        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), "controller disconnected (RECONNECT when it is back)");
     }
     if (st == FBRL_ECONTROLLER) {
         int code = FBRL_THROW_ABORT;
