@@ -67,29 +67,25 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     return rb_fail_st(r, w, st, "link");
 }
 
-/* One STATUS read for rb_still: the reply's lines parsed as they come. A read only
- * decides "standing" when every line arrived whole; a damaged one means: ask again. */
+/* rb_still reads the controller's commanded velocity (W5, a few lines a round): the
+ * motion is over when the last RB_STILL_ZERO value lines were all zero. Far shorter on
+ * the wire than STATUS (60 bytes a line against some 900), so the next motion follows
+ * the end of the last one closely even at 9600 baud. */
 typedef struct still_read {
-    fbrl_rapl_status_info si;
-    int flawed;
+    unsigned zeros;  /* consecutive all-zero value lines, up to the last one */
+    unsigned lines;  /* value lines seen */
 } still_read;
 
 static void still_line(void *ctx, const char *line, size_t len, int flawed)
 {
     still_read *sr = ctx;
-    sr->flawed |= flawed;
-    (void)fbrl_rapl_status_line(&sr->si, line, len);
-}
-
-/* All axes DONE (a STATUS without that row cannot say: then the controller's own
- * queue decides, as before). */
-static int standing(const still_read *sr)
-{
-    if (sr->flawed) return 0;
-    if (!(sr->si.have & FBRL_RAPL_ST_DONE)) return 1;
-    for (unsigned k = 0; k < sr->si.naxes && k < FBRL_RAPL_MAX_AXES; k++)
-        if (!sr->si.done[k]) return 0;
-    return 1;
+    long v[FBRL_RAPL_MAX_AXES];
+    size_t n = 0, k;
+    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0) return; /* title */
+    sr->lines++;
+    for (k = 0; k < n && v[k] == 0; k++)
+        ;
+    sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
 }
 
 /* Run one command step by step, so that Ctrl-C is noticed while it waits. */
@@ -116,24 +112,24 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
 {
     fbrl_status st = rb_online(r);
     while (st == FBRL_OK && r->moving) {
-        /* one read, not the link's confirmed query: a wrong "moving" costs one more
-         * poll, a wrong "standing" only lets the controller queue the next motion */
         still_read sr;
         fbrl_link_line_fn fn;
         void *ctx;
-        fbrl_status res;
+        fbrl_status res = FBRL_OK;
         memset(&sr, 0, sizeof sr);
-        fbrl_rapl_status_init(&sr.si);
         (void)fbrl_link_set_line_handler(r->link, still_line, &sr, &fn, &ctx);
-        st = rb_run(r, FBRL_RAPL_STATUS, NULL, 0, 0, FBRL_LINK_REPLY_LINES, &res);
+        st = fbrl_link_start_stream(r->link, FBRL_RAPL_W5, RB_STILL_LINES);
+        if (st == FBRL_OK) st = rb_drive(r, &res);
+        else res = st, st = FBRL_OK;
         (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
-        if (st != FBRL_OK) break; /* interrupted: STATUS ends in the link, unread */
-        if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
-        if (standing(&sr)) {
+        if (st != FBRL_OK) break; /* interrupted: the stream ends in the link, unread */
+        if (res == FBRL_ECONTROLLER) { /* no W5 here: the controller's own queue decides */
             r->moving = 0;
             break;
         }
-        if ((st = rb_sleep_ms(r, RB_STILL_POLL_MS)) == FBRL_OK) st = rb_interrupted(r);
+        if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
+        if (sr.zeros >= RB_STILL_ZERO) r->moving = 0;
+        else st = rb_interrupted(r);
     }
     return st;
 }
