@@ -6,6 +6,7 @@
  * is a terminal, an interactive session (line editing, history, completion);
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -238,6 +239,9 @@ int main(int argc, char **argv)
     int status = MON_EXIT_OK, stopped = 0;
     size_t i;
 
+    /* The user's locale (the terminal's character set for line editing). libfbrl reads
+     * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
+    setlocale(LC_ALL, "");
     memset(&opt, 0, sizeof opt);
     if (parse_args(argc, argv, &opt, &status) != 0) {
         free(opt.actions);
@@ -316,6 +320,11 @@ int main(int argc, char **argv)
                 mon_safe_begin(&m);
                 mon_eval(&m, line, len, "stdin", ++ln, 1);
                 stopped = mon_safe_end(&m, "stdin", ln);
+            }
+            if (m.host.line_too_long) {
+                fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n", ln,
+                        MON_HOST_LINE_MAX, ln);
+                m.errors++;
             }
             if (!fbrl_vm_bye(m.vm) && !stopped)
                 mon_check_closed(&m, "input", "stdin", ln);

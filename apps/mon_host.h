@@ -29,14 +29,21 @@ typedef struct mon_host {
      * (so line numbers stay right) */
     const char *skip_path;
     unsigned long skip_lines;
+    int line_too_long;  /* a line passed MON_HOST_LINE_MAX: input was stopped there */
 } mon_host;
+
+/* The longest input line read from stdin (far above the engine's own line limit, so
+ * the engine still names the line; a stream with no line end stops here). */
+#define MON_HOST_LINE_MAX (1L << 20)
 
 /* Fill h (output to `out`, keys from file descriptor `in_fd`) and the engine's
  * callback table that points at it. */
 void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb);
 
 /* Next line of input from in_fd without its end (LF or CRLF); NULL at end of
- * input. The line stays valid until the next call. */
+ * input. The line stays valid until the next call. A line reaching MON_HOST_LINE_MAX
+ * bytes is handed over as read so far, and input ends there (h->line_too_long set):
+ * a stream without line ends (/dev/zero) cannot keep fbrlmon reading. */
 const char *mon_host_read_line(mon_host *h, size_t *len);
 
 /* Release what the host allocated. */

@@ -40,7 +40,8 @@ typedef enum fbrl_status {
     FBRL_ETHROW        = -28,  /* language: uncaught THROW (code in the VM) */
     FBRL_ENOMEM        = -29,  /* language: dictionary or stack space exhausted */
     FBRL_EOFFLINE      = -30,  /* no controller connected */
-    FBRL_EPERM         = -31   /* the operating system refused access (e.g. a port's mode) */
+    FBRL_ENOTFILE      = -31,  /* not a regular file (a device, FIFO or directory) */
+    FBRL_EPERM         = -32   /* the operating system refused access (e.g. a port's mode) */
 } fbrl_status;
 
 #define FBRL_STATUS_MIN FBRL_EPERM

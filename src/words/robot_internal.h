@@ -53,11 +53,11 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight);
 /* Run a raw line; its output lines go to the console when print != 0. */
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
-/* Wait until a motion this context sent has ended (the commanded velocity, W5, read in
- * rounds of RB_STILL_LINES lines until the last RB_STILL_ZERO are zero; Ctrl-C throws),
- * so that the next motion or FINISH never waits inside the controller, deaf to HALT. */
-#define RB_STILL_LINES 3u
-#define RB_STILL_ZERO 2u
+/* Wait until a motion this context sent has ended (the commanded velocity, W5, one line
+ * a round, a round every RB_STILL_POLL_MS or as fast as the line allows, until it reads
+ * zero; Ctrl-C throws), so that the next motion or FINISH never waits inside the
+ * controller, deaf to HALT. */
+#define RB_STILL_POLL_MS 50u
 fbrl_status rb_still(fbrl_robot *r, const rb_word *w);
 /* Convert a finished link call's status (st) into an exception, or FBRL_OK. */
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st);

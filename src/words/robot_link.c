@@ -67,10 +67,11 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     return rb_fail_st(r, w, st, "link");
 }
 
-/* rb_still reads the controller's commanded velocity (W5, a few lines a round): the
- * motion is over when the last RB_STILL_ZERO value lines were all zero. Far shorter on
- * the wire than STATUS (60 bytes a line against some 900), so the next motion follows
- * the end of the last one closely even at 9600 baud. */
+/* rb_still reads the controller's commanded velocity (W5): the motion is over when a
+ * value line is all zero. Far shorter on the wire than STATUS (60 bytes a line against
+ * some 900), so the next motion follows the end of the last one closely even at 9600
+ * baud. A zero read just as a motion starts would only let the controller queue the
+ * next motion (as it did before this wait): nothing runs early or twice. */
 typedef struct still_read {
     unsigned zeros;  /* consecutive all-zero value lines, up to the last one */
     unsigned lines;  /* value lines seen */
@@ -118,7 +119,7 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
         fbrl_status res = FBRL_OK;
         memset(&sr, 0, sizeof sr);
         (void)fbrl_link_set_line_handler(r->link, still_line, &sr, &fn, &ctx);
-        st = fbrl_link_start_stream(r->link, FBRL_RAPL_W5, RB_STILL_LINES);
+        st = fbrl_link_start_stream(r->link, FBRL_RAPL_W5, 1);
         if (st == FBRL_OK) st = rb_drive(r, &res);
         else res = st, st = FBRL_OK;
         (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
@@ -128,8 +129,8 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
             break;
         }
         if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
-        if (sr.zeros >= RB_STILL_ZERO) r->moving = 0;
-        else st = rb_interrupted(r);
+        if (sr.zeros > 0) r->moving = 0;
+        else if ((st = rb_sleep_ms(r, RB_STILL_POLL_MS)) == FBRL_OK) st = rb_interrupted(r);
     }
     return st;
 }

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fbrl/num.h"
 #include "robot_internal.h"
 
 static fbrl_status w_config(fbrl_robot *r, const rb_word *w, rb_val *v)
@@ -94,7 +95,8 @@ static fbrl_status w_typevar(fbrl_robot *r, const rb_word *w, rb_val *v)
         double d;
         if ((st = rb_link_result(r, w, fbrl_link_typev(r->link, name, &d))) != FBRL_OK) return st;
         if (w->arg == 2) return fbrl_vm_fpush(r->vm, d) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_FSTACK_OVERFLOW, NULL);
-        snprintf(out, sizeof out, "%.6f ", d);
+        fbrl_num_fixed(out, sizeof out - 1, d, 0, 6, 0, NULL); /* "%.6f", whatever the locale */
+        strcat(out, " ");
     } else {
         long i;
         if ((st = rb_link_result(r, w, fbrl_link_typei(r->link, name, &i))) != FBRL_OK) return st;
