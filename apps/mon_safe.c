@@ -6,6 +6,7 @@
  * MON_QUIT_WINDOW_MS ends fbrlmon after that stop; a third, while the stop still runs,
  * ends it at once (the controller does not answer: check the cell by hand). */
 #include "mon_safe.h"
+#include "fbrl/num.h"
 #include "fbrl/vm_throw.h"
 
 #include <signal.h>
@@ -118,9 +119,18 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
                 so.was_moving ? so.motion : "", ")");
     else
         fprintf(stderr, "HALT failed (%s)", fbrl_status_str(so.result));
-    if (so.have_where)
-        fprintf(stderr, "; it stands at X %.4f Y %.4f Z %.4f pitch %.4f roll %.4f", so.where[0], so.where[1],
-                so.where[2], so.where[4], so.where[5]);
+    if (so.have_where) {
+        /* fbrl_num: the same digits in every locale (fbrlmon runs in the user's) */
+        static const char *const label[6] = { "X", "Y", "Z", NULL, "pitch", "roll" };
+        char num[40];
+        int k;
+        fputs("; it stands at", stderr);
+        for (k = 0; k < 6; k++)
+            if (label[k] != NULL) {
+                fbrl_num_fixed(num, sizeof num, so.where[k], 0, 4, 0, NULL);
+                fprintf(stderr, " %s %s", label[k], num);
+            }
+    }
     fputc('\n', stderr);
     fputs("stopped:", stderr);
     put_outputs(" outputs switched off:", so.switched_off);
