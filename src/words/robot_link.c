@@ -74,7 +74,6 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
  * next motion (as it did before this wait): nothing runs early or twice. */
 typedef struct still_read {
     unsigned zeros;  /* consecutive all-zero value lines, up to the last one */
-    unsigned lines;  /* value lines seen */
 } still_read;
 
 static void still_line(void *ctx, const char *line, size_t len, int flawed)
@@ -83,7 +82,6 @@ static void still_line(void *ctx, const char *line, size_t len, int flawed)
     long v[FBRL_RAPL_MAX_AXES];
     size_t n = 0, k;
     if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0) return; /* title */
-    sr->lines++;
     for (k = 0; k < n && v[k] == 0; k++)
         ;
     sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
@@ -102,7 +100,7 @@ static fbrl_status rb_run(fbrl_robot *r, fbrl_rapl_cmd cmd, const fbrl_rapl_arg 
     if (*res == FBRL_OK) *res = fbrl_link_start(r->link, text, kind);
     if (*res != FBRL_OK) return FBRL_OK;
     if (cmd < FBRL_RAPL_NCMDS && (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION)) {
-        /* sent (its fate may stay unknown): count it as running until STATUS says not */
+        /* sent (its fate may stay unknown): count it as running until W5 says not */
         r->moving = 1;
         memcpy(r->motion, text, len + 1); /* len <= FBRL_LINK_LINE_MAX */
     }
@@ -129,8 +127,13 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
             break;
         }
         if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
-        if (sr.zeros > 0) r->moving = 0;
-        else if ((st = rb_sleep_ms(r, RB_STILL_POLL_MS)) == FBRL_OK) st = rb_interrupted(r);
+        if (sr.zeros > 0) {
+            r->moving = 0;
+        } else {
+            const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+            if (h->sleep_ms) h->sleep_ms(h->user, RB_STILL_POLL_MS); /* none: W5 rounds pace it */
+            st = rb_interrupted(r);
+        }
     }
     return st;
 }
