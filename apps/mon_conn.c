@@ -69,6 +69,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         char serr[256] = "";
         fbrl_sim_options_init(&so);
         so.state_path = o->sim_state;
+        so.inputs_path = o->sim_inputs;
         st = sim_create_c(&c->sim, &so, serr, sizeof serr);
         if (st != FBRL_OK) {
             snprintf(err, errlen, "cannot start the emulator: %s", serr[0] ? serr : fbrl_status_str(st));

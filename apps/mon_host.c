@@ -334,6 +334,23 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->time_date = host_time_date;
 }
 
+void mon_host_progress(void *ctx, const char *text)
+{
+    mon_host *h = ctx;
+    if (!h->out_is_tty || (h->column != 0 && !h->progress_shown))
+        return;
+    if (text == NULL) {
+        if (h->progress_shown)
+            fputs("\r\033[K", h->out);  /* erase it: the column is 0 again */
+        h->progress_shown = 0;
+    } else {
+        int room = h->width > 1 ? h->width - 1 : 79;  /* never wrap */
+        fprintf(h->out, "\r%.*s\033[K", room, text);
+        h->progress_shown = 1;
+    }
+    fflush(h->out);
+}
+
 void mon_host_newline(mon_host *h)
 {
     /* Only a terminal needs it; piped output stays exactly what the program wrote. */

@@ -29,6 +29,7 @@ typedef struct mon_host {
      * (so line numbers stay right) */
     const char *skip_path;
     unsigned long skip_lines;
+    int progress_shown; /* a progress line is on the screen (mon_host_progress) */
     int line_too_long;  /* a line passed MON_HOST_LINE_MAX: input was stopped there */
 } mon_host;
 
@@ -45,6 +46,11 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb);
  * bytes is handed over as read so far, and input ends there (h->line_too_long set):
  * a stream without line ends (/dev/zero) cannot keep fbrlmon reading. */
 const char *mon_host_read_line(mon_host *h, size_t *len);
+
+/* A robot word's progress line (fbrl_robot_progress_fn; ctx is the mon_host): shown in
+ * place on a terminal at the start of a line, erased with NULL. Never on a file or pipe,
+ * and never over output that does not end in a newline. */
+void mon_host_progress(void *ctx, const char *text);
 
 /* Release what the host allocated. */
 void mon_host_free(mon_host *h);

@@ -47,7 +47,8 @@ typedef struct teach {
     int have_pos;
     double grip;         /* gripper opening (in) */
     int have_grip;
-    char msg[128];       /* the last error or note, shown on the status line */
+    char msg[256];       /* the last error or note, shown on the status line */
+    char above[256];     /* the message already printed on its own line above it */
 } teach;
 
 /* ---- keys ---- */
@@ -175,11 +176,12 @@ static const char *gen(char b[NUM_CHARS], double v)
 }
 
 /* Redraw the status line in place: position, then the last message, the step and
- * the gripper as far as the terminal is wide (so it never wraps; at 80 columns
- * all of it fits, or all but the gripper when a message shows). */
+ * the gripper as far as the terminal is wide (so it never wraps). A message that does
+ * not fit after the position is printed once on its own line above the status line:
+ * a refused jog is always seen. */
 static void status(teach *t)
 {
-    char line[256], pos[256], msg[140], step[128], grip[64];
+    char line[256], pos[256], msg[272], step[128], grip[64];
     size_t width = t->m->host.width > 0 ? (size_t)t->m->host.width : 80;
     const double *p = t->pos;
     if (width > sizeof line)
@@ -196,8 +198,16 @@ static void status(teach *t)
              unit(t), gen(n[1], step_deg[t->level]));
     snprintf(grip, sizeof grip, "grip %s", fix(n[5], len_shown(t, t->grip), 2, 0));
     snprintf(line, width, "%s", pos);
-    if (t->msg[0])
+    if (!t->msg[0]) {
+        t->above[0] = '\0';
+    } else if (strlen(line) + 2 + strlen(msg) < width) {
         seg(line, width, msg);
+    } else if (strcmp(t->above, t->msg) != 0) {
+        out(t, "\r\033[K");
+        out(t, msg);
+        out(t, "\n");
+        snprintf(t->above, sizeof t->above, "%s", t->msg);
+    }
     seg(line, width, step);
     if (t->have_grip)
         seg(line, width, grip);
@@ -238,7 +248,9 @@ static int failed(teach *t, fbrl_status st, const char *what)
         int code = -1;
         const char *text = "";
         fbrl_link_error(t->link, &code, &text);
-        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.", what, code, text);
+        const char *help = fbrl_rapl_error_help(code);
+        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.%s%s%s", what, code, text, help ? " (" : "", help ? help : "",
+                 help ? ")" : "");
     } else {
         snprintf(t->msg, sizeof t->msg, "%s: %s", what, fbrl_status_str(st));
     }

@@ -922,7 +922,12 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         see(vm, h);
         return 0;
     case OP_HELP:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)) == FBRL_THROW_NO_NAME) {  /* no name after HELP: say how */
+            fbrl__puts(vm, "HELP name shows what a word does and its stack effect, e.g. HELP MOV;\n"
+                           "WORDS lists every word (TAB at the prompt completes a name).\n");
+            return 0;
+        }
+        if (r) return r;
         put_name(vm, h);
         fbrl__puts(vm, " ");
         fbrl__puts(vm, h->stack);

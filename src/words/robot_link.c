@@ -9,20 +9,70 @@
 
 static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim or --port";
 
+/* A wait a person may watch: at a terminal (r->progress) it shows how long it has been,
+ * about once a second, and (r->tell) how long it took. */
+typedef struct rb_wait {
+    uint64_t t0;
+    unsigned long shown;  /* seconds shown so far */
+    int timed;
+} rb_wait;
+
+static void wait_begin(fbrl_robot *r, rb_wait *wt)
+{
+    wt->t0 = 0;
+    wt->shown = 0;
+    wt->timed = r->progress && fbrl_vmx_host(r->vm)->now_us && rb_now_ms(r, &wt->t0) == FBRL_OK;
+}
+
+static void wait_tick(fbrl_robot *r, rb_wait *wt, const char *who, const char *what)
+{
+    uint64_t now = 0;
+    if (wt->timed && rb_now_ms(r, &now) == FBRL_OK && now - wt->t0 >= FBRL_ROBOT_PROGRESS_MS &&
+        (now - wt->t0) / 1000u != wt->shown) {
+        char line[96];
+        wt->shown = (unsigned long)((now - wt->t0) / 1000u);
+        snprintf(line, sizeof line, "%s: waiting for %s, %lu s", who, what, wt->shown);
+        r->progress(r->progress_ctx, line);
+    }
+}
+
+static void wait_end(fbrl_robot *r, rb_wait *wt, const char *who, const char *what)
+{
+    uint64_t now = 0;
+    if (!wt->shown) return;
+    r->progress(r->progress_ctx, NULL);
+    if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
+        char line[96];
+        snprintf(line, sizeof line, "%s: waited %.1f s for %s\n", who, (double)(now - wt->t0) / 1000.0, what);
+        rb_puts(r, line);
+    }
+}
+
 /* Run the link's current command to its end in slices, looking for Ctrl-C between
  * them. Interrupted, the command stays in the link (the controller cannot take a
  * line back): rb_online() finishes it before the next command. */
-static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+static fbrl_status rb_drive_for(fbrl_robot *r, const char *who, const char *what, fbrl_status *result)
 {
+    rb_wait wt;
+    fbrl_status st, interrupted = FBRL_OK;
+    wait_begin(r, &wt);
     for (;;) {
         int done = 0;
-        fbrl_status st = fbrl_link_poll(r->link, 100, &done);
+        st = fbrl_link_poll(r->link, 100, &done);
         if (done || st != FBRL_OK) {
             *result = st;
-            return FBRL_OK;
+            break;
         }
-        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
+        if ((interrupted = rb_interrupted(r)) != FBRL_OK) break;
+        wait_tick(r, &wt, who, what);
     }
+    wait_end(r, &wt, who, what);
+    return interrupted;
+}
+
+static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+{
+    return rb_drive_for(r, "the controller", "the last command", result);
 }
 
 fbrl_status rb_online(fbrl_robot *r)
@@ -48,7 +98,7 @@ fbrl_status rb_online(fbrl_robot *r)
 
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
-    char msg[128];
+    char msg[240];
     if (st == FBRL_OK) return FBRL_OK;
     if (st == FBRL_EDISCONNECTED) {
         r->lost = 1;
@@ -56,10 +106,12 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     }
     if (st == FBRL_ECONTROLLER) {
         int code = FBRL_THROW_ABORT;
-        const char *text = "";
+        const char *text = "", *help;
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
-        snprintf(msg, sizeof msg, "%s: controller error %03d-%s", w->name, code, text);
+        help = fbrl_rapl_error_help(code);  /* its meaning and what to do, in plain words */
+        snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text, help ? " (" : "",
+                 help ? help : "", help ? ")" : "");
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
@@ -87,29 +139,11 @@ static void still_line(void *ctx, const char *line, size_t len, int flawed)
     sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
 }
 
-/* Run one command step by step, so that Ctrl-C is noticed while it waits. */
-static fbrl_status rb_run(fbrl_robot *r, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n, int straight,
-                          fbrl_link_reply kind, fbrl_status *res)
-{
-    char text[FBRL_RAPL_LINE_MAX];
-    size_t len;
-    fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
-    (void)fbrl_link_get_form(r->link, &form);
-    *res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
-    if (*res == FBRL_OK && len > FBRL_LINK_LINE_MAX) *res = FBRL_ERANGE;
-    if (*res == FBRL_OK) *res = fbrl_link_start(r->link, text, kind);
-    if (*res != FBRL_OK) return FBRL_OK;
-    if (cmd < FBRL_RAPL_NCMDS && (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION)) {
-        /* sent (its fate may stay unknown): count it as running until W5 says not */
-        r->moving = 1;
-        memcpy(r->motion, text, len + 1); /* len <= FBRL_LINK_LINE_MAX */
-    }
-    return rb_drive(r, res);
-}
-
 fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
 {
+    rb_wait wt;
     fbrl_status st = rb_online(r);
+    wait_begin(r, &wt);
     while (st == FBRL_OK && r->moving) {
         still_read sr;
         fbrl_link_line_fn fn;
@@ -118,7 +152,7 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
         memset(&sr, 0, sizeof sr);
         (void)fbrl_link_set_line_handler(r->link, still_line, &sr, &fn, &ctx);
         st = fbrl_link_start_stream(r->link, FBRL_RAPL_W5, 1);
-        if (st == FBRL_OK) st = rb_drive(r, &res);
+        if (st == FBRL_OK) st = rb_drive_for(r, w->name, "the arm", &res);
         else res = st, st = FBRL_OK;
         (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
         if (st != FBRL_OK) break; /* interrupted: the stream ends in the link, unread */
@@ -133,8 +167,10 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
             const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
             if (h->sleep_ms) h->sleep_ms(h->user, RB_STILL_POLL_MS); /* none: W5 rounds pace it */
             st = rb_interrupted(r);
+            wait_tick(r, &wt, w->name, "the arm");
         }
     }
+    wait_end(r, &wt, w->name, "the arm");
     return st;
 }
 
@@ -144,6 +180,22 @@ static void note_outputs(fbrl_robot *r, const fbrl_rapl_arg *a, size_t n)
     for (size_t k = 0; k < n; k++)
         if (a[k].kind == FBRL_RAPL_ARG_INT && a[k].i >= 1 && a[k].i <= FBRL_ROBOT_IO_MAX)
             r->outputs_on |= 1u << (a[k].i - 1);
+}
+
+/* At a terminal: what the motion just started. The prompt comes back while the arm moves
+ * (the next motion or FINISH waits for it). */
+static void tell_motion(fbrl_robot *r, const rb_word *w, const char *text)
+{
+    char line[200];
+    if (r->have_target) {
+        int metric = rb_metric(r);
+        double k = metric ? FBRL_CM_PER_IN : 1.0;
+        snprintf(line, sizeof line, "%s: the arm is moving to X %+.4f Y %+.4f Z %+.4f %s (%s)\n", w->name,
+                 r->target.x * k, r->target.y * k, r->target.z * k, metric ? "cm" : "in", text);
+    } else {
+        snprintf(line, sizeof line, "%s: the arm is moving (%s)\n", w->name, text);
+    }
+    rb_puts(r, line);
 }
 
 fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
@@ -156,15 +208,38 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     if (cmd == FBRL_RAPL_OUTPUT) note_outputs(r, a, n);
     /* a motion or FINISH behind a running motion would make the controller wait, deaf
      * to HALT: wait here instead, where Ctrl-C can stop the arm */
-    if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) return st;
-    fbrl_status res;
+    if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) {
+        r->have_target = 0;
+        return st;
+    }
     if (!ci || !(motion || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT || cmd == FBRL_RAPL_RUN)) {
-        res = fbrl_link_cmd(r->link, cmd, a, n, straight);
-    } else if ((st = rb_run(r, cmd, a, n, straight, FBRL_LINK_REPLY_NONE, &res)) != FBRL_OK) {
+        fbrl_status res = fbrl_link_cmd(r->link, cmd, a, n, straight);
+        if (res == FBRL_OK && cmd == FBRL_RAPL_HALT) r->moving = 0;
+        return rb_link_result(r, w, res);
+    }
+    /* A command that may wait for the arm or an input (no reply but the prompt): run it
+     * step by step so that Ctrl-C is noticed while it waits. */
+    char text[FBRL_RAPL_LINE_MAX];
+    size_t len;
+    fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
+    (void)fbrl_link_get_form(r->link, &form);
+    fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
+    if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
+    if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
+    if (res == FBRL_OK && motion) {
+        /* sent (its fate may stay unknown): count it as running until W5 says not */
+        r->moving = 1;
+        memcpy(r->motion, text, len + 1); /* len <= FBRL_LINK_LINE_MAX */
+    }
+    if (res == FBRL_OK &&
+        (st = rb_drive_for(r, w->name, cmd == FBRL_RAPL_WAIT ? "the input" : "the arm", &res)) != FBRL_OK) {
+        r->have_target = 0;
         return st; /* interrupted: the command stays with the link */
     }
     if (res == FBRL_ECONTROLLER && motion) r->moving = 0; /* refused: nothing started */
-    if (res == FBRL_OK && (cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_HALT)) r->moving = 0;
+    if (res == FBRL_OK && cmd == FBRL_RAPL_FINISH) r->moving = 0;
+    if (res == FBRL_OK && r->tell && motion) tell_motion(r, w, text);
+    r->have_target = 0;
     return rb_link_result(r, w, res);
 }
 
@@ -185,6 +260,56 @@ static void borrow_lines(fbrl_robot *r, void (**fn)(void *, const char *, size_t
 static void return_lines(fbrl_robot *r, void (*fn)(void *, const char *, size_t, int), void *ctx)
 {
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
+}
+
+typedef struct rb_show_ctx {
+    fbrl_robot *r;
+    fbrl_link_line_fn fn;
+    void *ctx;
+} rb_show_ctx;
+
+static void show_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    rb_show_ctx *c = ctx;
+    print_line(c->r, line, len, flawed);
+    if (c->fn) c->fn(c->ctx, line, len, flawed);
+}
+
+/* A display (W0 W2 W4, ROBOT-STATUS, SERIAL, a query typed with RAPL) shows what the
+ * controller printed, once: one reading, sent once. The link reads a value a program
+ * uses (STATUS, TYPEV, W2 for ARM-HERE) until two readings agree; a display needs no
+ * second reading (a damaged line is shown marked), and a position read while the arm
+ * moves could never agree. Each line also goes to fn (may be NULL). */
+fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link_line_fn fn, void *ctx)
+{
+    fbrl_link_line_fn old_fn = NULL;
+    void *old_ctx = NULL;
+    rb_show_ctx c = { r, fn, ctx };
+    fbrl_status res, st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    (void)fbrl_link_set_line_handler(r->link, show_line, &c, &old_fn, &old_ctx);
+    res = fbrl_link_start(r->link, line, FBRL_LINK_REPLY_LINES);
+    if (res == FBRL_OK) st = rb_drive(r, &res);
+    (void)fbrl_link_set_line_handler(r->link, old_fn, old_ctx, NULL, NULL);
+    if (st != FBRL_OK) return st;
+    return rb_link_result(r, w, res);
+}
+
+/* Is line a read-only query the link would read twice (W0 W2 W4 STATUS TYPEI TYPEV)? */
+static int display_query(const char *line)
+{
+    char word[12];
+    size_t k = 0;
+    fbrl_rapl_cmd c;
+    while (*line == ' ') line++;
+    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
+        word[k] = line[k];
+        k++;
+    }
+    word[k] = '\0';
+    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK) return 0;
+    return c == FBRL_RAPL_W0 || c == FBRL_RAPL_W2 || c == FBRL_RAPL_W4 || c == FBRL_RAPL_STATUS ||
+           c == FBRL_RAPL_TYPEI || c == FBRL_RAPL_TYPEV;
 }
 
 /* What a raw line is, from its first word: a motion, FINISH, OUTPUT (its outputs are
@@ -224,6 +349,7 @@ fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
     int motion, finish;
+    if (print && display_query(line)) return rb_show(r, w, line, NULL, NULL);
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     raw_kind(r, line, &motion, &finish);

@@ -17,11 +17,7 @@ static fbrl_loc *gl_loc(fbrl_robot *r, fbrl_cell addr)
     return fbrl_glossary_loc(r->vm, addr, &p) == FBRL_OK ? p : NULL;
 }
 
-static int gl_metric(const fbrl_robot *r)
-{
-    int on = 0;
-    return r->g && fbrl_units_is_metric(fbrl_glossary_units(r->g), &on) == FBRL_OK && on;
-}
+static int gl_metric(const fbrl_robot *r) { return rb_metric(r); }
 
 /* MAP-ON mapping (identity without a glossary or with MAP-OFF). The waist turns about the
  * arm's base axis: where BASE-OFFSET puts it in the user's frame. */

@@ -12,7 +12,7 @@ if(TARGET fbrlsim AND TARGET fbrlmon)
   add_test(NAME calib_plan_jogged COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/calib_plan.sh
     $<TARGET_FILE:fbrlsim> $<TARGET_FILE:fbrlmon> ${PROJECT_SOURCE_DIR}/examples
     ${PROJECT_BINARY_DIR}/e2e-calib-plan ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_run.sh
-    ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_tube_present.inputs)
+    ${PROJECT_SOURCE_DIR}/examples/tube_present.inputs)
   set_tests_properties(calib_plan_jogged PROPERTIES LABELS e2e TIMEOUT 120
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()

@@ -14,7 +14,7 @@ add_test(NAME locale_host COMMAND ${_de} $<TARGET_FILE:locale_host>)
 set(_locale_tests locale_host)
 if(TARGET fbrlsim AND TARGET fbrlmon)
   add_test(NAME locale_plan COMMAND ${_de} sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_run.sh $<TARGET_FILE:fbrlsim>
-    ${PROJECT_BINARY_DIR}/e2e-locale-plan ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_tube_present.inputs
+    ${PROJECT_BINARY_DIR}/e2e-locale-plan ${PROJECT_SOURCE_DIR}/examples/tube_present.inputs
     ${PROJECT_SOURCE_DIR}/examples/sample_prep.expected ${PROJECT_SOURCE_DIR}/examples/sample_prep.out.expected
     $<TARGET_FILE:fbrlmon> -e "600 CONSTANT TIME-SCALE" --port @PORT@ ${PROJECT_SOURCE_DIR}/examples/sample_prep.fbrl)
   list(APPEND _locale_tests locale_plan)
