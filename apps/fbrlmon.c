@@ -53,6 +53,7 @@ static void usage(FILE *f)
           "  --parity P       none, even or odd (default none)\n"
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
+          "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
@@ -94,7 +95,8 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", "--sim-inputs", "--printer", NULL };
+                                         "--flow", "--low-latency", "--sim-state", "--sim-inputs", "--printer",
+                                         NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -102,22 +104,8 @@ static int is_valued(const char *a)
     return 0;
 }
 
-static int parse_uint(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
-{
-    char *end;
-    unsigned long v;
-    errno = 0;
-    v = strtoul(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || s[0] == '-' || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
-}
-
 static int set_valued(options *o, const char *a, const char *v)
 {
-    unsigned long n;
-    fbrl_uart_config *l = &o->conn.line;
     if (strcmp(a, "--port") == 0) {
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
@@ -127,34 +115,9 @@ static int set_valued(options *o, const char *a, const char *v)
         o->printer = v;
     } else if (strcmp(a, "--sim-inputs") == 0) {
         o->conn.sim_inputs = v;
-    } else if (strcmp(a, "--baud") == 0) {
-        if (parse_uint(v, 1, 4000000, &n) != 0)
-            return -1;
-        l->baud = (uint32_t)n;
-    } else if (strcmp(a, "--data-bits") == 0) {
-        if (parse_uint(v, 5, 8, &n) != 0)
-            return -1;
-        l->data_bits = (uint8_t)n;
-    } else if (strcmp(a, "--stop-bits") == 0) {
-        if (parse_uint(v, 1, 2, &n) != 0)
-            return -1;
-        l->stop_bits = (uint8_t)n;
-    } else if (strcmp(a, "--parity") == 0) {
-        if (strcmp(v, "none") == 0 || strcmp(v, "N") == 0 || strcmp(v, "n") == 0)
-            l->parity = FBRL_PARITY_NONE;
-        else if (strcmp(v, "even") == 0 || strcmp(v, "E") == 0 || strcmp(v, "e") == 0)
-            l->parity = FBRL_PARITY_EVEN;
-        else if (strcmp(v, "odd") == 0 || strcmp(v, "O") == 0 || strcmp(v, "o") == 0)
-            l->parity = FBRL_PARITY_ODD;
-        else
-            return -1;
-    } else if (strcmp(a, "--flow") == 0) {
-        if (strcmp(v, "none") == 0)
-            l->flow = FBRL_FLOW_NONE;
-        else if (strcmp(v, "xonxoff") == 0)
-            l->flow = FBRL_FLOW_XONXOFF;
-        else
-            return -1;
+    } else if (fbrl_port_set_option(&o->conn.line, a + 2, v) != FBRL_OK) {
+        /* --baud, --data-bits, --parity, --stop-bits, --flow, --low-latency: the library's option text */
+        return -1;
     }
     return 0;
 }
@@ -163,8 +126,7 @@ static int set_valued(options *o, const char *a, const char *v)
 static int parse_args(int argc, char **argv, options *o, int *status)
 {
     int i, only_files = 0, explicit_conn = 0;
-    fbrl_uart_config line = FBRL_UART_CONFIG_DEFAULT;
-    o->conn.line = line;
+    fbrl_port_options_init(&o->conn.line);
     o->actions = calloc((size_t)argc, sizeof *o->actions);
     o->dict_bytes = DICT_BYTES_DEFAULT;
     if (o->actions == NULL) {

@@ -18,8 +18,6 @@
 #include "fbrl/vm_throw.h"
 #include "mon_conn.h"
 
-static fbrl_uart_config g_line;  /* the line settings of the first open */
-
 /* What the controller says about itself now, in one line to the console. */
 static void tell_state(mon *m)
 {
@@ -27,7 +25,7 @@ static void tell_state(mon *m)
     FILE *o = m->host.out;
     fbrl_status st = fbrl_link_status(m->link, &si);
     mon_host_newline(&m->host);
-    fprintf(o, "reconnected to %s", m->conn->path);
+    fprintf(o, "reconnected to %s", m->conn->port.name);
     if (st != FBRL_OK) {
         fprintf(o, "; STATUS failed (%s): the arm's state is unknown\n", fbrl_status_str(st));
     } else {
@@ -56,34 +54,15 @@ static void tell_state(mon *m)
 
 fbrl_status mon_relink(mon *m, char *err, size_t errlen)
 {
-    mon_conn *c = m->conn;
     fbrl_status st;
-    if (c == NULL || c->kind == MON_CONN_OFFLINE || m->link == NULL) {
+    if (m->conn == NULL || m->conn->kind == MON_CONN_OFFLINE || m->link == NULL) {
         snprintf(err, errlen, "no controller port to reconnect (fbrlmon runs offline)");
         return FBRL_EOFFLINE;
     }
-    if (c->kind == MON_CONN_PORT) {
-        /* the old descriptor leads to a pty or device that is gone: a new open finds
-         * whatever the path names now */
-        if (c->open)
-            fbrl_uart_close(&c->uart);
-        c->open = 0;
-        st = fbrl_uart_posix_open(&c->port, &c->uart, c->path, &g_line, c->rx, sizeof c->rx, c->tx,
-                                  sizeof c->tx, NULL);
-        if (st != FBRL_OK) {
-            snprintf(err, errlen, "cannot open %s: %s%s", c->path, fbrl_status_str(st), mon_conn_hint(st));
-            return st;
-        }
-        c->open = 1;
-    }
-    st = fbrl_link_init(&c->link, &c->uart, NULL);
-    if (st == FBRL_OK)
-        st = fbrl_link_connect(&c->link);  /* NOHELP, as at start */
-    if (st != FBRL_OK) {
-        snprintf(err, errlen, "no controller answers on %s: %s", c->path, fbrl_status_str(st));
+    st = mon_conn_reopen(m->conn, err, errlen);
+    if (st != FBRL_OK)
         return st;
-    }
-    fbrl_robot_set_link(&m->robot, &c->link);  /* not lost; motion state unknown */
+    fbrl_robot_set_link(&m->robot, &m->conn->link); /* not lost; motion state unknown */
     tell_state(m);
     return FBRL_OK;
 }
@@ -152,10 +131,7 @@ fbrl_status mon_relink_install(mon *m)
         "CREATE (RESUME-FILE) 256 ALLOT\n"
         ": RESUME ( -- ) \\ run the plan file that failed last again, from the line that failed\n"
         "  (RESUME-FILE) (RESUME) INCLUDED ;\n";
-    fbrl_status st;
-    if (m->conn != NULL && m->conn->open)
-        fbrl_uart_get_config(&m->conn->uart, &g_line);
-    st = fbrl_vm_define(m->vm, "RECONNECT", w_reconnect, m, "( -- )",
+    fbrl_status st = fbrl_vm_define(m->vm, "RECONNECT", w_reconnect, m, "( -- )",
                         "open the controller's port again, NOHELP, and report its state (STATUS)");
     if (st == FBRL_OK)
         st = fbrl_vm_define(m->vm, "(RESUME)", w_resume, m, "( a -- a u )",

@@ -340,9 +340,9 @@ static void send_words_build_a_line(void **state)
     fixture *f = *state;
     assert_int_equal(ev(f, "CREATE-LOC PS  1E0 -2.5E0 3E0 0E0 -90E0 45E0 PS DEFINE-LOC"), FBRL_OK);
     assert_int_equal(ev(f, "2 SEND-COM S\" PX\" SEND-TEXT SEND-COMMA 1.5E0 SEND-REAL SEND-STRT"), FBRL_OK);
-    assert_string_equal(f->r.line, "APPRO PX,1.5000,S");
+    assert_string_equal(f->r.line, "APPRO PX,1.5,S");
     assert_int_equal(ev(f, "50 SEND-COM S\" PY\" SEND-TEXT SEND-COMMA PS SEND-LOC"), FBRL_OK);
-    assert_string_equal(f->r.line, "POINT PY,1.0000,-2.5000,3.0000,0.0000,-90.0000,45.0000");
+    assert_string_equal(f->r.line, "POINT PY,1,-2.5,3,0,-90,45");
     assert_int_equal(ev(f, "6 SEND-COM 1 SEND-INT SEND-COMMA -30 SEND-INT"), FBRL_OK);
     assert_string_equal(f->r.line, "JOINT 1,-30");
     assert_int_equal(ev(f, "20 SEND-COM"), FBRL_OK);
