@@ -16,6 +16,7 @@
 #include "mon_conn.h"
 #include "mon_relink.h"
 #include "mon_safe.h"
+#include "mon_ws.h"
 
 #ifndef FBRL_VERSION
 #define FBRL_VERSION "unknown"
@@ -35,6 +36,7 @@ typedef struct options {
     size_t dict_bytes;
     int list_ports;
     int conn_default;     /* no --port, --sim or --offline given */
+    const char *workspace; /* --workspace FILE */
     const char *printer;  /* --printer: PRINT-LOC's destination instead of the controller's line */
     mon_conn_options conn;
 } options;
@@ -63,6 +65,8 @@ static void usage(FILE *f)
           "  --offline        no controller: robot words report an error\n"
           "  --printer PATH   PRINT-LOC appends to PATH (a file, a printer, a second\n"
           "                   serial line) instead of the controller's line\n"
+          "  --workspace FILE load the workspace FILE (if it exists) first; at exit offer\n"
+          "                   to save changes to it (docs/workspace.md)\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -96,7 +100,7 @@ static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
                                          "--flow", "--low-latency", "--sim-state", "--sim-inputs", "--printer",
-                                         NULL };
+                                         "--workspace", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -109,6 +113,8 @@ static int set_valued(options *o, const char *a, const char *v)
     if (strcmp(a, "--port") == 0) {
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
+    } else if (strcmp(a, "--workspace") == 0) {
+        o->workspace = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
     } else if (strcmp(a, "--printer") == 0) {
@@ -282,6 +288,14 @@ int main(int argc, char **argv)
         }
         fbrl_glossary_set_port_writer(&m.glossary, print_to_printer, printer);
     }
+    if (opt.workspace != NULL && mon_ws_start(&m, opt.workspace) != 0) {
+        if (printer != NULL)
+            fclose(printer);
+        mon_close(&m);
+        mon_conn_close(&g_conn);
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
 
     /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
      * skipped (docs/fbrlmon.md "Ctrl-C") */
@@ -330,6 +344,7 @@ int main(int argc, char **argv)
         }
     }
 
+    mon_ws_finish(&m);
     mon_close(&m);
     if (printer != NULL && fclose(printer) != 0)
         fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));

@@ -67,7 +67,7 @@ static int read_key(EditLine *el, wchar_t *wc)
         unsigned char b;
         ssize_t r;
         size_t k;
-        if (mon_safe_pending()) {
+        if (mon_safe_pending() || (g_mon != NULL && g_mon->host.interrupted)) {
             errno = EINTR;
             return -1;
         }
@@ -111,10 +111,44 @@ static const char *read_line(EditLine *el, int *count)
     }
 }
 
+static const char *g_alt_prompt; /* a word's own prompt (GET-CAL-POINTS' "cal 1> ") */
+static History *g_hist;
+
 static char *el_prompt(EditLine *el)
 {
     (void)el;
-    return (char *)prompt_text(g_mon);
+    return (char *)(g_alt_prompt != NULL ? g_alt_prompt : prompt_text(g_mon));
+}
+
+/* A line for a word that reads the console while a typed line runs (mon_host's
+ * read_line): the same editor, history and completion as the prompt. NULL at the end of
+ * input or on Ctrl-C (the line's Ctrl-C handler has told the engine). */
+static const char *edit_line(void *ctx, const char *prompt, size_t *len)
+{
+    EditLine *el = ctx;
+    HistEvent ev;
+    const char *line;
+    size_t n, k;
+    int count = 0;
+    g_alt_prompt = prompt;
+    line = el_gets(el, &count);
+    g_alt_prompt = NULL;
+    if (line == NULL || count <= 0 || g_mon->host.interrupted) {
+        if (g_mon->host.interrupted) {
+            el_reset(el);
+            fputs("\n", stdout);
+        }
+        return NULL;
+    }
+    n = strlen(line);
+    for (k = n; k > 0 && isspace((unsigned char)line[k - 1]); k--)
+        ;
+    if (k > 0 && g_hist != NULL)
+        history(g_hist, &ev, H_ENTER, line);
+    while (n > 0 && (line[n - 1] == '\n' || line[n - 1] == '\r'))
+        n--;
+    *len = n;
+    return line;
 }
 
 /* Words whose name starts with a prefix, gathered from fbrl_vm_words(). */
@@ -297,6 +331,9 @@ void mon_interactive(mon *m)
     el_set(el, EL_ADDFN, "fbrl-complete", "complete an FBRL word name", el_complete);
     el_set(el, EL_BIND, "^I", "fbrl-complete", NULL);
     el_source(el, NULL);  /* the user's ~/.editrc, if any */
+    g_hist = hist;
+    m->host.edit_line = edit_line;
+    m->host.edit_ctx = el;
 
     while (!fbrl_vm_bye(m->vm) && !mon_safe_quit() && (line = read_line(el, &count)) != NULL && count > 0) {
         size_t len = strlen(line);
@@ -312,6 +349,9 @@ void mon_interactive(mon *m)
     }
     if (!fbrl_vm_bye(m->vm) && !mon_safe_quit())
         fputc('\n', stdout);  /* end of input (Ctrl-D) leaves the cursor after the prompt */
+    m->host.edit_line = NULL;
+    m->host.edit_ctx = NULL;
+    g_hist = NULL;
     el_end(el);
     history_end(hist);
     free(hpath);

@@ -21,7 +21,9 @@ static int in_fill(mon_host *h)
         return 0;
     do {
         n = read(h->in_fd, h->inbuf, sizeof h->inbuf);
-    } while (n < 0 && errno == EINTR);
+    } while (n < 0 && errno == EINTR && !h->interrupted);
+    if (n < 0 && errno == EINTR)
+        return 0;  /* Ctrl-C while a word reads a line: not the end of input */
     if (n <= 0) {
         h->in_eof = 1;
         return 0;
@@ -297,6 +299,35 @@ static void host_sleep_ms(void *user, uint32_t ms)
     }
 }
 
+/* A console line for the engine (GET-CAL-POINTS): the line editor when the interactive
+ * session runs, else a plain line (the prompt shown only on a terminal). */
+static fbrl_status host_read_line(void *user, const char *prompt, char *buf, size_t cap, size_t *len)
+{
+    mon_host *h = user;
+    const char *line;
+    size_t n = 0;
+    if (cap == 0)
+        return FBRL_EINVAL;
+    if (h->edit_line != NULL) {
+        fflush(h->out);
+        line = h->edit_line(h->edit_ctx, prompt, &n);
+    } else {
+        if (h->in_is_tty) {
+            fputs(prompt, h->out);
+            fflush(h->out);
+        }
+        line = h->interrupted ? NULL : mon_host_read_line(h, &n);
+    }
+    h->column = 0;
+    if (line == NULL)
+        return FBRL_EEOF;
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(buf, line, n);
+    *len = n;
+    return FBRL_OK;
+}
+
 static void host_time_date(void *user, int out[6])
 {
     time_t t = time(NULL);
@@ -332,6 +363,7 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->now_us = host_now_us;
     cb->sleep_ms = host_sleep_ms;
     cb->time_date = host_time_date;
+    cb->read_line = host_read_line;
 }
 
 void mon_host_progress(void *ctx, const char *text)

@@ -141,8 +141,9 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
     fputc('\n', stderr);
 }
 
-static void tail(const mon *m)
+static void tail(mon *m)
 {
+    m->host.interrupted = 0;  /* handled: waits (KEY, the line editor) may wait again */
     if (g_quit)
         fputs("fbrlmon: ended by a second Ctrl-C\n", stderr);
     else if (m->link != NULL)

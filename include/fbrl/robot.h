@@ -153,6 +153,26 @@ void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void
  * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */
 const char *fbrl_robot_word(size_t i);
 
+/* Limits of a device's DISPENSE pulse (PULSE-WIDTH), ms. */
+#define FBRL_ROBOT_PULSE_MIN 1u
+#define FBRL_ROBOT_PULSE_MAX 60000u
+
+/* Named devices, as a workspace keeps them (fbrl/workspace.h). device_of: the device the
+ * word xt names (its port, direction and pulse width in *d; d->addr its data address), or
+ * FBRL_ENOENT. define_device: make the word `name` a device as OUTPUT-DEVICE / INPUT-DEVICE
+ * would, or, when name already is a device word, change that device in place.
+ * FBRL_ERANGE for a port outside 1..FBRL_ROBOT_IO_MAX or a pulse width outside
+ * FBRL_ROBOT_PULSE_MIN..MAX, FBRL_EFULL when the table is full, FBRL_ETHROW (thrown in the
+ * VM, no word left) when the word cannot be made. devices_free: free table slots. */
+fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_device *d);
+fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
+                                     uint32_t pulse_ms);
+size_t fbrl_robot_devices_free(const fbrl_robot *r);
+
+/* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
+fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);
+fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4]);
+
 /* The controller error code of the last robot word that failed with a controller
  * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */
 int fbrl_robot_last_error(const fbrl_robot *r);

@@ -375,3 +375,16 @@ fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd)
     return_lines(r, fn, ctx);
     return rb_link_result(r, w, st);
 }
+
+fbrl_status rb_raw_lines(fbrl_robot *r, const rb_word *w, const char *line,
+                         void (*fn)(void *, const char *, size_t, int), void *ctx)
+{
+    void (*old)(void *, const char *, size_t, int);
+    void *old_ctx;
+    fbrl_status st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    (void)fbrl_link_set_line_handler(r->link, fn, ctx, &old, &old_ctx);
+    st = fbrl_link_raw(r->link, line);
+    return_lines(r, old, old_ctx);
+    return rb_link_result(r, w, st);
+}
