@@ -56,9 +56,11 @@ static void usage(FILE *f)
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
           "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
+          "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
+          "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
           "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
           "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
@@ -100,7 +102,7 @@ static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
                                          "--flow", "--low-latency", "--sim-state", "--sim-inputs", "--printer",
-                                         "--workspace", NULL };
+                                         "--workspace", "--sim-model", "--axes", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -117,6 +119,14 @@ static int set_valued(options *o, const char *a, const char *v)
         o->workspace = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
+    } else if (strcmp(a, "--sim-model") == 0) {
+        o->conn.sim_model = v;
+    } else if (strcmp(a, "--axes") == 0) {
+        char *end;
+        unsigned long n = strtoul(v, &end, 10);
+        if (end == v || *end != '\0' || v[0] == '-' || n < 1 || n > FBRL_RAPL_MAX_AXES)
+            return -1;
+        o->conn.axes = (unsigned)n;
     } else if (strcmp(a, "--printer") == 0) {
         o->printer = v;
     } else if (strcmp(a, "--sim-inputs") == 0) {

@@ -57,6 +57,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     fbrl_sim_options_init(&so);
     so.state_path = arg[0] ? arg : c->sim_state;
     so.inputs_path = c->sim_inputs;
+    so.model = c->sim_model;
     st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;
@@ -100,6 +101,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     c->kind = o->kind;
     c->sim_state = o->sim_state;
     c->sim_inputs = o->sim_inputs;
+    c->sim_model = o->sim_model;
     if (o->kind == MON_CONN_OFFLINE)
         return FBRL_OK;
     if (o->kind == MON_CONN_SIM) {
@@ -124,7 +126,19 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     c->open = 1;
     c->url = name;
     c->opts = po;
-    st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), NULL);
+    {
+        /* The link reads W2 and STATUS rows for as many axes as the arm has. */
+        fbrl_link_config lc;
+        fbrl_link_config_init(&lc);
+        if (o->axes)
+            lc.naxes = o->axes;
+#ifdef FBRLMON_HAVE_SIM
+        else if (c->sim != NULL)
+            lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
+#endif
+        c->lcfg = lc;  /* mon_conn_reopen uses it again */
+        st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
+    }
     if (st == FBRL_OK)
         st = fbrl_link_connect(&c->link);  /* NOHELP: a controller must answer */
     if (st != FBRL_OK) {
@@ -202,7 +216,7 @@ fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen)
         }
         c->open = 1;
     }
-    st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), NULL);
+    st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &c->lcfg);
     if (st == FBRL_OK)
         st = fbrl_link_connect(&c->link); /* NOHELP, as at start */
     if (st != FBRL_OK)

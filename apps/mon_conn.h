@@ -22,6 +22,8 @@ typedef struct mon_conn_options {
     fbrl_port_options line;   /* baud, data bits, parity, stop bits, flow, low latency */
     const char *sim_state;    /* MON_CONN_SIM: emulator's persistent memory, or NULL */
     const char *sim_inputs;   /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
+    const char *sim_model;    /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
+    unsigned axes;            /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
@@ -31,12 +33,13 @@ typedef struct mon_conn {
 #ifdef FBRLMON_HAVE_SIM
     fbrl_sim *sim;
 #endif
-    const char *sim_state, *sim_inputs;
+    const char *sim_state, *sim_inputs, *sim_model;
     char sim_err[256];
     fbrl_port port;
     fbrl_link link;
     const char *url;          /* what was opened, and how (for mon_conn_reopen) */
     fbrl_port_options opts;
+    fbrl_link_config lcfg;
 } mon_conn;
 
 /* Connect as asked; on failure err says why (one line, no newline). */
