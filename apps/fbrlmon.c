@@ -14,6 +14,8 @@
 
 #include "mon.h"
 #include "mon_conn.h"
+#include "mon_relink.h"
+#include "mon_safe.h"
 #include "mon_ws.h"
 
 #ifndef FBRL_VERSION
@@ -233,7 +235,7 @@ int main(int argc, char **argv)
 {
     options opt;
     static mon m;  /* fixed address for the words; large */
-    int status = MON_EXIT_OK;
+    int status = MON_EXIT_OK, stopped = 0;
     size_t i;
     FILE *printer = NULL;
 
@@ -275,6 +277,15 @@ int main(int argc, char **argv)
         free(opt.actions);
         return MON_EXIT_CONNECT;
     }
+    m.conn = g_conn.open ? &g_conn : NULL;
+    if (mon_relink_install(&m) != FBRL_OK) {
+        fprintf(stderr, "fbrlmon: cannot define RECONNECT and RESUME\n");
+        mon_close(&m);
+        mon_conn_close(&g_conn);
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
+    mon_safe_install(&m);
 
     if (opt.printer != NULL) {
         printer = fopen(opt.printer, "a");
@@ -296,8 +307,11 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
 
-    for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
+    /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
+     * skipped (docs/fbrlmon.md "Ctrl-C") */
+    for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm) && !stopped; i++) {
         const action *a = &opt.actions[i];
+        mon_safe_begin(&m);
         if (a->is_text) {
             unsigned long lines = 1;
             const char *p;
@@ -308,9 +322,11 @@ int main(int argc, char **argv)
         } else {
             mon_include(&m, a->arg);
         }
+        stopped = mon_safe_end(&m, a->is_text ? "-e" : a->arg, a->is_text ? 1 : 0);
     }
 
-    if (!fbrl_vm_bye(m.vm)) {
+    /* after a Ctrl-C, only a terminal goes on (at the prompt); piped input ends */
+    if (!fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
         if (m.host.in_is_tty) {
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
@@ -323,14 +339,17 @@ int main(int argc, char **argv)
             unsigned long ln = 0;
             const char *line;
             size_t len;
-            while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
+            while (!fbrl_vm_bye(m.vm) && !stopped && (line = mon_host_read_line(&m.host, &len)) != NULL) {
+                mon_safe_begin(&m);
                 mon_eval(&m, line, len, "stdin", ++ln, 1);
+                stopped = mon_safe_end(&m, "stdin", ln);
+            }
             if (m.host.line_too_long) {
                 fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n", ln,
                         MON_HOST_LINE_MAX, ln);
                 m.errors++;
             }
-            if (!fbrl_vm_bye(m.vm))
+            if (!fbrl_vm_bye(m.vm) && !stopped)
                 mon_check_closed(&m, "input", "stdin", ln);
         }
     }
@@ -340,6 +359,8 @@ int main(int argc, char **argv)
     if (printer != NULL && fclose(printer) != 0)
         fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
+    if (mon_safe_quit() || (stopped && !m.host.in_is_tty))
+        status = MON_EXIT_INTERRUPT;
     mon_conn_close(&g_conn);
     free(opt.actions);
     return status;

@@ -110,6 +110,10 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
         fputs(e->throw_code == -13 ? " " : " in ", stderr);
         put_clean(e->word);
     }
+    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
+        strcpy(m->resume_file, e->file);  /* where RESUME goes on */
+        m->resume_line = e->line;
+    }
     if (e != NULL && e->file[0]) {
         fputs(" (", stderr);
         put_clean(e->file);

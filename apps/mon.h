@@ -24,6 +24,8 @@
  * each, so about 20,000 named objects. */
 #define MON_WORKSPACE_STORAGE (4u * 1024u * 1024u)
 
+struct mon_conn;
+
 /* Keep at a fixed address while the VM runs (the words point into it). */
 typedef struct mon {
     fbrl_vm *vm;
@@ -36,6 +38,10 @@ typedef struct mon {
     void *ws_mem;
     fbrl_link *link;         /* the controller (NULL offline); TEACH talks through it too */
     unsigned long errors;    /* errors in files, -e text and piped input */
+    struct mon_conn *conn;   /* the connection RECONNECT opens again (NULL: none) */
+    int typed;               /* evaluating a line typed at the prompt */
+    char resume_file[256];   /* RESUME: the file and line of the last error in a file */
+    unsigned long resume_line;
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -170,18 +170,20 @@ static int host_key_ready(void *user)
 typedef struct mon_file {
     FILE *f;
     unsigned long lines;
+    unsigned long skip;  /* RESUME: lines read as empty */
 } mon_file;
 
 static fbrl_status host_file_open(void *user, const char *path, void **handle)
 {
+    mon_host *h = user;
     mon_file *mf;
-    (void)user;
     if (path == NULL || handle == NULL)
         return FBRL_EINVAL;
     mf = malloc(sizeof *mf);
     if (mf == NULL)
         return FBRL_ENOSPC;
     mf->lines = 0;
+    mf->skip = 0;
     /* Only regular files: a device (/dev/zero) never ends, a FIFO with no writer would
      * block the open itself. O_NONBLOCK keeps that open from blocking; fstat on the open
      * descriptor then decides (no window between a check and the open). */
@@ -206,6 +208,11 @@ static fbrl_status host_file_open(void *user, const char *path, void **handle)
             return FBRL_EIO;
         }
     }
+    if (h->skip_lines > 0 && h->skip_path != NULL && strcmp(h->skip_path, path) == 0) {
+        mf->skip = h->skip_lines;
+        h->skip_lines = 0;
+    }
+    h->file_depth++;
     *handle = mf;
     return FBRL_OK;
 }
@@ -238,7 +245,12 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
         return FBRL_EIO;
     if (c == EOF && n == 0 && !too_long)
         return FBRL_EEOF;
-    if (++mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!') {
+    if (++mf->lines <= mf->skip) { /* RESUME: before the line to go on from */
+        while (too_long && (c = getc(mf->f)) != EOF && c != '\n')
+            ;
+        return FBRL_OK;
+    }
+    if (mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!') {
         while (too_long && (c = getc(mf->f)) != EOF && c != '\n')
             ; /* the rest of a long "#!" line (a regular file ends) */
         return FBRL_OK;
@@ -253,11 +265,12 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
 
 static void host_file_close(void *user, void *handle)
 {
+    mon_host *h = user;
     mon_file *mf = handle;
-    (void)user;
     if (mf != NULL) {
         fclose(mf->f);
         free(mf);
+        h->file_depth--;
     }
 }
 

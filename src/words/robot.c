@@ -86,10 +86,24 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
 {
     if (!r) return FBRL_EINVAL;
     r->link = link;
+    r->lost = 0;
+    /* a controller we did not watch may be moving: the next motion asks it first */
+    r->moving = link != NULL;
+    r->motion[0] = 0;
     if (link && link->u) fbrl_uart_get_config(link->u, &r->comm);
     rb_port_writer(r);
     return FBRL_OK;
 }
+
+fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fbrl_robot *r), void *ctx)
+{
+    if (!r) return FBRL_EINVAL;
+    r->relink = fn;
+    r->relink_ctx = ctx;
+    return FBRL_OK;
+}
+
+int fbrl_robot_lost(const fbrl_robot *r) { return r ? r->lost : 0; }
 
 int fbrl_robot_last_error(const fbrl_robot *r) { return r ? r->last_error : -1; }
 

@@ -6,6 +6,7 @@
  *   robot_loc.c    locations: mapping, base offset, scratch points, the arm's position
  *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c
  *   robot_import.c: the words
+ *   robot_safe.c   the safe stop after an abort (fbrl_robot_safe_stop)
  * Calls go downwards in that list (tables up to robot.c), never in a circle. */
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
@@ -53,6 +54,12 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight);
 /* Run a raw line; its output lines go to the console when print != 0. */
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* Wait until a motion this context sent has ended (the commanded velocity, W5, one line
+ * a round, a round every RB_STILL_POLL_MS or as fast as the line allows, until it reads
+ * zero; Ctrl-C throws), so that the next motion or FINISH never waits inside the
+ * controller, deaf to HALT. */
+#define RB_STILL_POLL_MS 50u
+fbrl_status rb_still(fbrl_robot *r, const rb_word *w);
 /* Run a raw line; its output lines go to fn(ctx, ...). */
 fbrl_status rb_raw_lines(fbrl_robot *r, const rb_word *w, const char *line,
                          void (*fn)(void *, const char *, size_t, int), void *ctx);
