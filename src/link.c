@@ -23,7 +23,7 @@
 #define BS 0x08
 #define XON 0x11
 
-enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY };
+enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
 enum { ST_MAIN, ST_ERRQ };
 enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
 /* The verify probe's echo "? (k1 triples) ? BS SP BS m m m", parsed byte by byte. */
@@ -821,6 +821,35 @@ static fbrl_status stop_stream(fbrl_link *l)
     return send_probe(l);
 }
 
+/* A probe's markers stay on the controller's line. When a command's idle probe has
+ * been answered (it waited: FINISH, a motion, WAIT), the command erases them itself
+ * with one CAN and waits for its three triples, so the next command is typed onto an
+ * empty line, as fast as after any other command (docs/link.md 3.3). The controller is
+ * idle then and the CAN cannot run anything; if its echo is not exactly the triples the
+ * line counts as unknown and the next command starts with a probe, as before. */
+#define MARKER_LEN 3u
+static fbrl_status begin_clean(fbrl_link *l)
+{
+    static const uint8_t can = CAN;
+    l->phase = PH_CLEAN;
+    l->match = 0;
+    l->expect = 3u * MARKER_LEN;
+    l->ctrl_len = -1;
+    fbrl_status st = send(l, &can, 1);
+    if (st != FBRL_OK)
+        return st;
+    l->stats.cleans++;
+    return FBRL_OK;
+}
+
+/* The clean step ended: erased (ctrl_len 0) or not known (-1); the reply decides now. */
+static fbrl_status clean_done(fbrl_link *l, int ctrl_len)
+{
+    l->ctrl_len = ctrl_len;
+    l->phase = PH_REPLY;
+    return executed(l);
+}
+
 /* ---- the byte-driven state machine ---- */
 
 /* While no CR of ours is out (erasing, typing), a CR LF or a prompt from the controller
@@ -889,7 +918,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
                     l->stats.prompt_lost++;
                 l->probe_out = PR_NONE;
                 l->prompt_seen = 1;
-                return executed(l);
+                return begin_clean(l);
             }
             return FBRL_OK;
         }
@@ -905,6 +934,10 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             return executed(l);
         }
         return FBRL_OK;
+    case PH_CLEAN:
+        if (b != expected(l, l->match, MARKER_LEN))
+            return clean_done(l, -1);
+        return ++l->match == l->expect ? clean_done(l, 0) : FBRL_OK;
     case PH_VERIFY:
         if (!l->probe_seen && b != '?' && b != BS) {
             /* still the command's reply (or its absence): bytes before the probe's echo */
@@ -987,6 +1020,8 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->first_probe = 1;
         l->pe_state = PE_START;
         return send_probe(l);
+    case PH_CLEAN:
+        return clean_done(l, -1);
     case PH_VERIFY:
         if (l->probe_seen) {
             /* the probe's echo was damaged, but the bytes before it may decide */
@@ -1133,7 +1168,9 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->stats.commands++;
     fbrl_uart_config uc;
     l->parity = fbrl_uart_get_config(l->u, &uc) == FBRL_OK && uc.parity != FBRL_PARITY_NONE;
-    return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
+    /* a known line (a probe's markers) is erased by the CAN in front of the text, whose
+     * echo must show exactly its triples: no probe needed */
+    return l->ctrl_len >= 0 ? begin_type(l) : begin_erase(l);
 }
 
 static int is_name_char(char c)

@@ -126,6 +126,8 @@ typedef struct fbrl_link_stats {
                                * ineffective: reported "may have run" instead of retyped */
     uint64_t may_have_run;    /* commands that ended FBRL_EMAYBE */
     uint64_t self_checked;    /* position blocks believed on their own consistency */
+    uint64_t cleans;          /* probe markers erased by the command that left them (after
+                               * a wait), so the next command starts on an empty line */
 } fbrl_link_stats;
 
 /* The last command's outcome, for messages. */
