@@ -19,6 +19,12 @@ extern "C" {
 
 typedef struct fbrl_sim fbrl_sim;
 
+/* With baud pacing, how far (s) the emulated line catches up after the OS woke the
+ * emulator late: characters handed over at once end at most this long before the moment
+ * they are handed over. Beyond it the line is taken to have stood still, as a UART whose
+ * clock stopped: never a burst faster than baud/10 bytes/s beyond this (docs/fbrlsim.md). */
+#define FBRL_SIM_LINE_CATCHUP_S 0.002
+
 typedef struct fbrl_sim_options {
     int tcp_port;             /* -1: pseudo-terminal (default); 0: any free TCP port; >0: that port */
     const char *link_path;    /* pty only: a symlink to the slave device (replaced if present) */

@@ -8,7 +8,9 @@
  * and no character is handed over before its start plus ten bit times. The
  * emulator only ever hands bytes over late (when the OS wakes it late), never
  * early. Idle time earns no credit: a character that finds the line idle starts
- * when it is queued, not in the past.
+ * when it is queued, not in the past. Lateness earns none either beyond
+ * FBRL_SIM_LINE_CATCHUP_S: the line then stood still while the emulator did, so the
+ * other side never sees a burst faster than the line (only a pause).
  *
  * Faults (drop, corrupt, noise, stall), parity and XON/XOFF are modelled here
  * too, because they happen on the line, not in the controller. */
@@ -294,6 +296,8 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
                 start = l->tx_resume;
             if (start < l->tx_hold_until)
                 start = l->tx_hold_until;
+            if (start < now - FBRL_SIM_LINE_CATCHUP_S - l->byte_time)
+                start = now - FBRL_SIM_LINE_CATCHUP_S - l->byte_time; /* woken late: no burst */
             end = start + l->byte_time;
             if (end > now)
                 break;
@@ -389,7 +393,15 @@ void sim_line_deliver(fbrl_sim *s, double now)
 {
     sim_line *l = &s->line;
     while (l->wn > 0 && l->wire_end[l->whead] <= now) {
-        unsigned char b = l->wire[l->whead];
+        unsigned char b;
+        double late = now - FBRL_SIM_LINE_CATCHUP_S - l->wire_end[l->whead];
+        if (late > 0) { /* woken late: the line stood still, the rest follows from here */
+            int k;
+            for (k = 0; k < l->wn; k++)
+                l->wire_end[(l->whead + k) % SIM_WIRE_MAX] += late;
+            l->rx_free += late;
+        }
+        b = l->wire[l->whead];
         l->whead = (l->whead + 1) % SIM_WIRE_MAX;
         l->wn--;
         arrive(s, b, now);
@@ -403,6 +415,8 @@ int sim_line_rx_allow(const sim_line *l, double now)
 {
     if (l->byte_time > 0) {
         double start = l->backlog > 0 || l->rx_free > now ? l->rx_free : now;
+        if (start < now - FBRL_SIM_LINE_CATCHUP_S)
+            start = now - FBRL_SIM_LINE_CATCHUP_S; /* as in sim_line_read */
         double ahead = l->byte_time > WIRE_AHEAD_MIN ? l->byte_time : WIRE_AHEAD_MIN;
         int k = (int)floor((now + ahead - start) / l->byte_time);
         if (k < 1 && l->wn == 0)
@@ -444,6 +458,8 @@ int sim_line_read(fbrl_sim *s, int fd, double now)
             int at = (l->whead + l->wn) % SIM_WIRE_MAX;
             if (i >= l->backlog && t < now)
                 t = now;
+            if (t < now - FBRL_SIM_LINE_CATCHUP_S)
+                t = now - FBRL_SIM_LINE_CATCHUP_S; /* woken late: the line stood still */
             t += l->byte_time;
             l->wire[at] = buf[i];
             l->wire_end[at] = t;
