@@ -1308,8 +1308,10 @@ static void t_baud(void **st)
  *  - this reader: a byte written after this thread's last read that left the pty empty
  *    waits, before this thread reads it, at most the time the thread spent running or
  *    waiting for a CPU since then (/proc/thread-self/schedstat);
- *  - the kernel's own hand-over of pty data (a work queue no process's figures show):
- *    KERNEL_SLACK. */
+ *  - the kernel's own hand-over of pty data, by a kernel worker that waits for a CPU
+ *    like any thread: the machine's CPU pressure (/proc/pressure/cpu, "some": time in
+ *    which some thread waited for a CPU, averaged over the CPUs, so times their number)
+ *    bounds its wait, and that of the emulator; KERNEL_SLACK for its own running. */
 #define WINDOW 0.100
 #define KERNEL_SLACK 0.005 /* s */
 
@@ -1327,6 +1329,21 @@ static double sched_busy(int fd)
     if (sscanf(b, "%llu %llu", &run, &wait) != 2)
         return 0.0;
     return (double)(run + wait) * 1e-9;
+}
+
+static double g_ncpu = 1.0;
+
+/* The machine's total CPU pressure (s): /proc/pressure/cpu "some ... total=US"; 0 where
+ * the kernel has no PSI (then the emulator's own wait is taken alone). */
+static double psi_some(int fd)
+{
+    char b[256], *t;
+    ssize_t n = fd >= 0 ? pread(fd, b, sizeof b - 1, 0) : -1;
+    if (n <= 0)
+        return 0.0;
+    b[n] = 0;
+    t = strstr(b, "total=");
+    return t ? strtod(t + 6, NULL) * 1e-6 : 0.0;
 }
 
 static double sched_wait(int fd)
@@ -1350,12 +1367,14 @@ typedef struct arrivals {
     double *meat;  /* this thread's sched_busy when this read returned */
     double *simw;  /* the emulator's sched_wait at the same moment as me */
     double *simwat; /* ... when this read returned */
+    double *psi;   /* the machine's CPU pressure (psi_some) at the same moment as me */
+    double *psiat; /* ... when this read returned */
     size_t k, cap;
 } arrivals;
 
 /* The figures before the last read that left the pty empty. */
 typedef struct read_mark {
-    double me, simw;
+    double me, simw, psi;
 } read_mark;
 
 static void *grow(void *p, size_t n, size_t size)
@@ -1375,12 +1394,16 @@ static void arr_add(arrivals *a, double t, size_t n, const read_mark *m, const r
         a->meat = grow(a->meat, a->cap, sizeof *a->meat);
         a->simw = grow(a->simw, a->cap, sizeof *a->simw);
         a->simwat = grow(a->simwat, a->cap, sizeof *a->simwat);
+        a->psi = grow(a->psi, a->cap, sizeof *a->psi);
+        a->psiat = grow(a->psiat, a->cap, sizeof *a->psiat);
     }
     a->t[a->k] = t;
     a->n[a->k] = n;
     a->me[a->k] = m->me;
     a->meat[a->k] = at->me;
     a->simw[a->k] = m->simw;
+    a->psi[a->k] = m->psi;
+    a->psiat[a->k] = at->psi;
     a->simwat[a->k++] = at->simw;
 }
 
@@ -1392,14 +1415,17 @@ static void arr_free(arrivals *a)
     free(a->meat);
     free(a->simw);
     free(a->simwat);
+    free(a->psi);
+    free(a->psiat);
 }
 
 /* The worst window of length w (windows start at an arrival): the units in it against
  * the most a strict line of `rate` units/s can carry in it, given the lateness measured
  * for it. The first unit of window [t_j, t_i] reached this thread at most (this thread's
  * busy time since the last read before it that left the pty empty) after it was written,
- * and was written at most `fixed` plus the emulator's wait for a CPU after its end. Over
- * a span a strict line carries at most 1 + span * rate units. */
+ * and was written at most `fixed` plus the emulator's wait for a CPU after its end (or
+ * the kernel worker's: the larger of the emulator's wait and the CPU pressure). Over a
+ * span a strict line carries at most 1 + span * rate units. */
 typedef struct window_worst {
     size_t most;    /* units in the window with the highest ratio to what it allowed */
     size_t allowed; /* what that window allowed */
@@ -1415,7 +1441,8 @@ static window_worst worst_window(const arrivals *a, double w, double rate, doubl
     for (j = 0; j < a->k; j++) {
         size_t sum = 0;
         for (i = j; i < a->k && a->t[i] - a->t[j] <= w; i++) {
-            double late = fixed + (a->meat[j] - a->me[j]) + (a->simwat[i] - a->simw[j]);
+            double sim = a->simwat[i] - a->simw[j], psi = g_ncpu * (a->psiat[i] - a->psi[j]);
+            double late = fixed + (a->meat[j] - a->me[j]) + (psi > sim ? psi : sim);
             size_t allowed = (size_t)floor((a->t[i] - a->t[j] + late) * rate + 1e-9) + 1;
             sum += a->n[i];
             if ((double)sum / (double)allowed > best) {
@@ -1456,7 +1483,7 @@ static void flood(simp *p, const char *line, int count, arrivals *bytes, arrival
     size_t len = strlen(line), sent = 0, total = (size_t)count * (len + 1), got_prompts = 0;
     char *all = malloc(total);
     double end = now_s() + 60.0;
-    int prev_gt = 0, i, me_fd, sim_fd;
+    int prev_gt = 0, i, me_fd, sim_fd, psi_fd;
     read_mark mark, before, after;
     assert_non_null(all);
     for (i = 0; i < count; i++) {
@@ -1466,9 +1493,12 @@ static void flood(simp *p, const char *line, int count, arrivals *bytes, arrival
     me_fd = open("/proc/thread-self/schedstat", O_RDONLY);
     snprintf(path, sizeof path, "/proc/%ld/schedstat", (long)p->pid); /* fbrlsim: one thread */
     sim_fd = open(path, O_RDONLY);
+    psi_fd = open("/proc/pressure/cpu", O_RDONLY);
+    g_ncpu = (double)sysconf(_SC_NPROCESSORS_ONLN);
     fcntl(p->fd, F_SETFL, fcntl(p->fd, F_GETFL) | O_NONBLOCK);
     mark.me = sched_busy(me_fd);
     mark.simw = sched_wait(sim_fd);
+    mark.psi = psi_some(psi_fd);
     g_flood_t0 = now_s();
     while (got_prompts < (size_t)count && now_s() < end) {
         struct pollfd pf = { p->fd, (short)(POLLIN | (sent < total ? POLLOUT : 0)), 0 };
@@ -1485,12 +1515,14 @@ static void flood(simp *p, const char *line, int count, arrivals *bytes, arrival
             size_t np = 0;
             before.me = sched_busy(me_fd);
             before.simw = sched_wait(sim_fd);
+            before.psi = psi_some(psi_fd);
             r = read(p->fd, out, sizeof out);
             t = now_s();
             if (r <= 0)
                 continue;
             after.me = sched_busy(me_fd);
             after.simw = sched_wait(sim_fd);
+            after.psi = psi_some(psi_fd);
             for (i = 0; i < r; i++) {
                 if (out[i] == '>' && prev_gt)
                     np++;
@@ -1508,6 +1540,8 @@ static void flood(simp *p, const char *line, int count, arrivals *bytes, arrival
         close(me_fd);
     if (sim_fd >= 0)
         close(sim_fd);
+    if (psi_fd >= 0)
+        close(psi_fd);
     fcntl(p->fd, F_SETFL, fcntl(p->fd, F_GETFL) & ~O_NONBLOCK);
     free(all);
     assert_int_equal(got_prompts, count);
