@@ -11,6 +11,13 @@
 #include "fbrl/uart_serialport.h"
 #endif
 
+const char *mon_conn_hint(fbrl_status st)
+{
+    return st == FBRL_EPERM ? " (serial ports usually belong to the group dialout: "
+                              "sudo usermod -aG dialout $USER, then log in again)"
+                            : "";
+}
+
 #ifdef FBRLMON_HAVE_SIM
 /* The built-in emulator reads and writes its state file as "C" text; fbrlmon runs in the
  * user's locale (setlocale in main), so its create and destroy (load and save) run with
@@ -50,6 +57,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     fbrl_sim_options_init(&so);
     so.state_path = arg[0] ? arg : c->sim_state;
     so.inputs_path = c->sim_inputs;
+    so.model = c->sim_model;
     st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;
@@ -93,6 +101,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     c->kind = o->kind;
     c->sim_state = o->sim_state;
     c->sim_inputs = o->sim_inputs;
+    c->sim_model = o->sim_model;
     if (o->kind == MON_CONN_OFFLINE)
         return FBRL_OK;
     if (o->kind == MON_CONN_SIM) {
@@ -111,11 +120,25 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         if (o->kind == MON_CONN_SIM)
             snprintf(err, errlen, "cannot start the emulator: %s", c->sim_err[0] ? c->sim_err : fbrl_status_str(st));
         else
-            snprintf(err, errlen, "cannot open %s: %s", name, fbrl_status_str(st));
+            snprintf(err, errlen, "cannot open %s: %s%s", name, fbrl_status_str(st), mon_conn_hint(st));
         return st;
     }
     c->open = 1;
-    st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), NULL);
+    c->url = name;
+    c->opts = po;
+    {
+        /* The link reads W2 and STATUS rows for as many axes as the arm has. */
+        fbrl_link_config lc;
+        fbrl_link_config_init(&lc);
+        if (o->axes)
+            lc.naxes = o->axes;
+#ifdef FBRLMON_HAVE_SIM
+        else if (c->sim != NULL)
+            lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
+#endif
+        c->lcfg = lc;  /* mon_conn_reopen uses it again */
+        st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
+    }
     if (st == FBRL_OK)
         st = fbrl_link_connect(&c->link);  /* NOHELP: a controller must answer */
     if (st != FBRL_OK) {
@@ -175,4 +198,28 @@ fbrl_status mon_conn_list_ports(FILE *out)
     (void)out;
     return FBRL_EUNSUPPORTED;
 #endif
+}
+
+fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen)
+{
+    fbrl_status st;
+    if (c->kind == MON_CONN_PORT) {
+        /* the old descriptor leads to a pty or device that is gone: a new open finds
+         * whatever the name stands for now */
+        if (c->open)
+            fbrl_port_close(&c->port);
+        c->open = 0;
+        st = fbrl_port_open(&c->port, c->url, &c->opts);
+        if (st != FBRL_OK) {
+            snprintf(err, errlen, "cannot open %s: %s%s", c->url, fbrl_status_str(st), mon_conn_hint(st));
+            return st;
+        }
+        c->open = 1;
+    }
+    st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &c->lcfg);
+    if (st == FBRL_OK)
+        st = fbrl_link_connect(&c->link); /* NOHELP, as at start */
+    if (st != FBRL_OK)
+        snprintf(err, errlen, "no controller answers on %s: %s", c->port.name, fbrl_status_str(st));
+    return st;
 }

@@ -22,6 +22,8 @@ typedef struct mon_conn_options {
     fbrl_port_options line;   /* baud, data bits, parity, stop bits, flow, low latency */
     const char *sim_state;    /* MON_CONN_SIM: emulator's persistent memory, or NULL */
     const char *sim_inputs;   /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
+    const char *sim_model;    /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
+    unsigned axes;            /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
@@ -31,10 +33,13 @@ typedef struct mon_conn {
 #ifdef FBRLMON_HAVE_SIM
     fbrl_sim *sim;
 #endif
-    const char *sim_state, *sim_inputs;
+    const char *sim_state, *sim_inputs, *sim_model;
     char sim_err[256];
     fbrl_port port;
     fbrl_link link;
+    const char *url;          /* what was opened, and how (for mon_conn_reopen) */
+    fbrl_port_options opts;
+    fbrl_link_config lcfg;
 } mon_conn;
 
 /* Connect as asked; on failure err says why (one line, no newline). */
@@ -43,6 +48,13 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
  * latency: not supported)". */
 void mon_conn_describe(const mon_conn *c, char *buf, size_t cap);
 void mon_conn_close(mon_conn *c);
+/* After the controller went away: open the port again by the same name and options (the
+ * built-in emulator is not restarted) and run the connect handshake; on failure err says
+ * why. */
+fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen);
+/* What to do about an open failure, as text to append to the message ("" if nothing
+ * useful): for FBRL_EPERM, the dialout group. */
+const char *mon_conn_hint(fbrl_status st);
 
 /* --list-ports: print the serial ports the system knows, one per line, with a USB
  * adapter's driver and latency timer. FBRL_EUNSUPPORTED when fbrlmon was built without

@@ -19,12 +19,6 @@ extern "C" {
 
 typedef struct fbrl_sim fbrl_sim;
 
-/* With baud pacing, how far (s) the emulated line catches up after the OS woke the
- * emulator late: characters handed over at once end at most this long before the moment
- * they are handed over. Beyond it the line is taken to have stood still, as a UART whose
- * clock stopped: never a burst faster than baud/10 bytes/s beyond this (docs/fbrlsim.md). */
-#define FBRL_SIM_LINE_CATCHUP_S 0.002
-
 typedef struct fbrl_sim_options {
     int tcp_port;             /* -1: pseudo-terminal (default); 0: any free TCP port; >0: that port */
     const char *link_path;    /* pty only: a symlink to the slave device (replaced if present) */
@@ -38,6 +32,7 @@ typedef struct fbrl_sim_options {
     const char *control_path; /* FIFO created for control lines "IN 3 1", or NULL */
     const char *faults;       /* "drop=P,corrupt=P,noise=P,stall=MS,seed=S" or NULL */
     int rx_buffer;            /* receive buffer size with baud pacing (128) */
+    const char *model;        /* the arm: "a255" or "a465"; NULL: the state file's, else A255 */
     double cmd_time_ms;       /* the controller's own time to read a command line before it
                                * acts, in simulated ms (0: none; docs/fbrlsim.md) */
     char parity;              /* 'N' 'E' 'O': the host channel's parity (CONFIG 0 sets it
@@ -58,6 +53,10 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms);
 
 /* Loops in the calling thread until fbrl_sim_stop(). */
 fbrl_status fbrl_sim_run(fbrl_sim *s);
+
+/* The emulated arm's axis count (5 for the A255, 6 for the A465): W2 and STATUS
+ * show that many. Fixed after fbrl_sim_create. */
+int fbrl_sim_axes(const fbrl_sim *s);
 
 /* Runs the loop in a new thread. */
 fbrl_status fbrl_sim_start(fbrl_sim *s);

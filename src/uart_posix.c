@@ -717,7 +717,10 @@ fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *p
     }
     fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
-        return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : errno == EBUSY ? FBRL_EBUSY : FBRL_EIO;
+        return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT
+               : errno == EBUSY                  ? FBRL_EBUSY
+               : errno == EACCES || errno == EPERM ? FBRL_EPERM
+                                                  : FBRL_EIO;
     if (!isatty(fd)) {
         close(fd);
         return FBRL_ENOTTY;

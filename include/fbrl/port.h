@@ -106,7 +106,7 @@ typedef struct fbrl_port {
 } fbrl_port;
 
 /* Open url (see the top of this file) with opt (NULL: defaults). Errors: those of
- * fbrl_uart_posix_open (FBRL_ENOENT, FBRL_ENOTTY, FBRL_EBUSY, FBRL_EUNSUPPORTED,
+ * fbrl_uart_posix_open (FBRL_ENOENT, FBRL_ENOTTY, FBRL_EBUSY, FBRL_EPERM, FBRL_EUNSUPPORTED,
  * FBRL_ETIMEOUT, FBRL_EIO), FBRL_EINVAL for a bad name or option text,
  * FBRL_EUNSUPPORTED for "sim:" without a hook, or what the hook returned. A low-latency
  * mode the driver lacks is no error: fbrl_port_describe() tells it. */

@@ -79,3 +79,12 @@ T{ 8 S" VAM" RAPL-ANALOG -> }T  LOG: VAM=ADC(8)
 T{ S" VAM" RAPL-REAL@ -1.5E0 ~= -> TRUE }T  LOG: TYPEV VAM
 T{ 9 S" VAM" ' RAPL-ANALOG CATCH NIP NIP NIP -> -24 }T
 T{ S" VX=ADC(9)" SEND-TEXT ' SEND-CR CATCH RAPL-ERROR -> -321 24 }T  LOG: VX=ADC(9)
+
+\ IMPORT-LOC: a controller location into a host location of its name, listed, not moved to
+RAPL POINT CL7,10,2,5,0,-90,0
+T{ IMPORT-LOC CL7 CL7 GETX CL7 GETZ F>S F>S -> 5 10 }T  LOG: POINT CL7,10,2,5,0,-90,0
+                                                        LOG: LISTL CL7
+RAPL SET #PC1=CL7
+T{ IMPORT-LOC #PC1 PC1 GETY 2E0 ~= -> TRUE }T  LOG: SET #PC1=CL7
+                                               LOG: SET FBRLTI=#PC1
+                                               LOG: LISTL FBRLTI

@@ -184,6 +184,23 @@ static void offline_words_throw_a_clear_error(void **state)
     }
 }
 
+/* The safe stop offline: nothing to halt, said so in the report, nothing thrown (a robot
+ * word that failed just before does not change that). */
+static void safe_stop_offline(void **state)
+{
+    fixture *f = *state;
+    fbrl_robot_stop so;
+    assert_int_equal(fbrl_robot_safe_stop(&f->r, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_safe_stop(NULL, &so), FBRL_EINVAL);
+    throws(f, "7 OUTPORT", OFFLINE_CODE);
+    assert_int_equal(fbrl_robot_safe_stop(&f->r, &so), FBRL_EOFFLINE);
+    assert_int_equal(so.result, FBRL_EOFFLINE);
+    assert_int_equal(so.halted, 0);
+    assert_int_equal(so.switched_off, 0);
+    assert_int_equal(fbrl_robot_lost(&f->r), 0);
+    assert_int_equal(fbrl_robot_set_relink(NULL, NULL, NULL), FBRL_EINVAL);
+}
+
 static void print_loc_needs_the_port(void **state)
 {
     fixture *f = *state;
@@ -468,6 +485,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(every_word_has_help, setup, teardown),
         cmocka_unit_test_setup_teardown(offline_words_throw_a_clear_error, setup, teardown),
         cmocka_unit_test_setup_teardown(print_loc_needs_the_port, setup, teardown),
+        cmocka_unit_test_setup_teardown(safe_stop_offline, setup, teardown),
         cmocka_unit_test_setup_teardown(arguments_are_checked_before_anything_is_sent, setup, teardown),
         cmocka_unit_test_setup_teardown(getreal_getint_getstring, setup, teardown),
         cmocka_unit_test_setup_teardown(parameters_come_from_the_stacks_or_the_line, setup, teardown),
