@@ -166,11 +166,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "VM setup failed\n");
         return 1;
     }
-    char setup[256];
-    snprintf(setup, sizeof setup,
+    char setup[1024]; /* room for any %g: a Debug build's -Wformat-truncation counts the worst case */
+    int setup_len = snprintf(setup, sizeof setup,
              "CREATE-LOC L1 CREATE-LOC L2 RAPL HOME\nRAPL SPEED %d\nRAPL POINT PA,%g,%g,%g,%g,%g,%g\n"
              "RAPL POINT PB,%g,%g,%g,%g,%g,%g\nRAPL MOVE PA\nRAPL FINISH",
              (int)SPEED_PCT, pa[0], pa[1], pa[2], pa[3], pa[4], pa[5], pb[0], pb[1], pb[2], pb[3], pb[4], pb[5]);
+    if (setup_len < 0 || (size_t)setup_len >= sizeof setup) {
+        fprintf(stderr, "setup text too long\n");
+        return 1;
+    }
     for (char *line = strtok(setup, "\n"); line; line = strtok(NULL, "\n"))
         if (eval(line) != 0) return 1;
     long moving_reads = 0, finals = 0;
