@@ -6,6 +6,7 @@
  * is a terminal, an interactive session (line editing, history, completion);
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
+#include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -32,6 +33,7 @@ typedef struct options {
     size_t dict_bytes;
     int list_ports;
     int conn_default;     /* no --port, --sim or --offline given */
+    const char *printer;  /* --printer: PRINT-LOC's destination instead of the controller's line */
     mon_conn_options conn;
 } options;
 
@@ -52,8 +54,12 @@ static void usage(FILE *f)
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
+          "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
+          "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
           "  --offline        no controller: robot words report an error\n"
+          "  --printer PATH   PRINT-LOC appends to PATH (a file, a printer, a second\n"
+          "                   serial line) instead of the controller's line\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -86,7 +92,7 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", NULL };
+                                         "--flow", "--sim-state", "--sim-inputs", "--printer", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -115,6 +121,10 @@ static int set_valued(options *o, const char *a, const char *v)
         o->conn.port = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
+    } else if (strcmp(a, "--printer") == 0) {
+        o->printer = v;
+    } else if (strcmp(a, "--sim-inputs") == 0) {
+        o->conn.sim_inputs = v;
     } else if (strcmp(a, "--baud") == 0) {
         if (parse_uint(v, 1, 4000000, &n) != 0)
             return -1;
@@ -213,6 +223,9 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         }
     }
+    /* Inputs for the emulator ask for the emulator: one that cannot start is an error. */
+    if (!explicit_conn && o->conn.sim_inputs != NULL)
+        explicit_conn = 1, o->conn.kind = MON_CONN_SIM;
     o->conn_default = !explicit_conn;
     if (!explicit_conn)
 #ifdef FBRLMON_HAVE_SIM
@@ -229,13 +242,26 @@ bad:
 
 static mon_conn g_conn;  /* fixed address while open, as the uart backend needs */
 
+/* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
+ * (a printer or a second line shows it as it is printed). */
+static void print_to_printer(void *ctx, const char *s, size_t n)
+{
+    FILE *f = ctx;
+    if (fwrite(s, 1, n, f) != n || fflush(f) != 0)
+        fprintf(stderr, "fbrlmon: --printer: write failed: %s\n", strerror(errno));
+}
+
 int main(int argc, char **argv)
 {
     options opt;
     static mon m;  /* fixed address for the words; large */
     int status = MON_EXIT_OK;
     size_t i;
+    FILE *printer = NULL;
 
+    /* The user's locale (the terminal's character set for line editing). libfbrl reads
+     * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
+    setlocale(LC_ALL, "");
     memset(&opt, 0, sizeof opt);
     if (parse_args(argc, argv, &opt, &status) != 0) {
         free(opt.actions);
@@ -272,6 +298,18 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
 
+    if (opt.printer != NULL) {
+        printer = fopen(opt.printer, "a");
+        if (printer == NULL) {
+            fprintf(stderr, "fbrlmon: --printer %s: %s\n", opt.printer, strerror(errno));
+            mon_close(&m);
+            mon_conn_close(&g_conn);
+            free(opt.actions);
+            return MON_EXIT_CONNECT;
+        }
+        fbrl_glossary_set_port_writer(&m.glossary, print_to_printer, printer);
+    }
+
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
         const action *a = &opt.actions[i];
         if (a->is_text) {
@@ -291,6 +329,9 @@ int main(int argc, char **argv)
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
             printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", FBRL_VERSION, desc);
+            /* a person at the prompt: motions say what they started and when a wait ended */
+            if (m.host.out_is_tty)
+                fbrl_robot_set_console(&m.robot, mon_host_progress, &m.host, 1);
             mon_interactive(&m);
         } else {
             unsigned long ln = 0;
@@ -298,12 +339,19 @@ int main(int argc, char **argv)
             size_t len;
             while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
                 mon_eval(&m, line, len, "stdin", ++ln, 1);
+            if (m.host.line_too_long) {
+                fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n", ln,
+                        MON_HOST_LINE_MAX, ln);
+                m.errors++;
+            }
             if (!fbrl_vm_bye(m.vm))
                 mon_check_closed(&m, "input", "stdin", ln);
         }
     }
 
     mon_close(&m);
+    if (printer != NULL && fclose(printer) != 0)
+        fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
     mon_conn_close(&g_conn);
     free(opt.actions);

@@ -44,6 +44,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         m->link = link;
         st = mon_teach_install(m);
     }
+    if (st == FBRL_OK && m->host.out_is_tty)  /* long waits show their progress at a terminal */
+        fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
         free(m->file_mem);

@@ -1,6 +1,7 @@
 /* mon_conn.c - opening the controller connection for fbrlmon. */
 #include "mon_conn.h"
 
+#include <locale.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
@@ -15,6 +16,36 @@ static fbrl_status fail(char *err, size_t errlen, fbrl_status st, const char *wh
     snprintf(err, errlen, "%s %s: %s", what, path, fbrl_status_str(st));
     return st;
 }
+
+#ifdef FBRLMON_HAVE_SIM
+/* The built-in emulator reads and writes its state file as "C" text; fbrlmon runs in the
+ * user's locale (setlocale in main), so its create and destroy (load and save) run with
+ * the "C" locale on this thread. Its own thread sets "C" itself. */
+static locale_t sim_c_locale(void)
+{
+    static locale_t c;
+    if (!c)
+        c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    return c;
+}
+
+static fbrl_status sim_create_c(fbrl_sim **sim, const fbrl_sim_options *so, char *err, size_t errlen)
+{
+    locale_t prev = sim_c_locale() ? uselocale(sim_c_locale()) : (locale_t)0;
+    fbrl_status st = fbrl_sim_create(sim, so, err, errlen);
+    if (prev)
+        uselocale(prev);
+    return st;
+}
+
+static void sim_destroy_c(fbrl_sim *sim)
+{
+    locale_t prev = sim_c_locale() ? uselocale(sim_c_locale()) : (locale_t)0;
+    fbrl_sim_destroy(sim);
+    if (prev)
+        uselocale(prev);
+}
+#endif
 
 fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, size_t errlen)
 {
@@ -31,7 +62,8 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         char serr[256] = "";
         fbrl_sim_options_init(&so);
         so.state_path = o->sim_state;
-        st = fbrl_sim_create(&c->sim, &so, serr, sizeof serr);
+        so.inputs_path = o->sim_inputs;
+        st = sim_create_c(&c->sim, &so, serr, sizeof serr);
         if (st != FBRL_OK) {
             snprintf(err, errlen, "cannot start the emulator: %s", serr[0] ? serr : fbrl_status_str(st));
             return st;
@@ -50,7 +82,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
             pthread_sigmask(SIG_SETMASK, &old, NULL);
         }
         if (st != FBRL_OK) {
-            fbrl_sim_destroy(c->sim);
+            sim_destroy_c(c->sim);
             c->sim = NULL;
             snprintf(err, errlen, "cannot start the emulator: %s", fbrl_status_str(st));
             return st;
@@ -98,7 +130,7 @@ void mon_conn_close(mon_conn *c)
     c->open = 0;
 #ifdef FBRLMON_HAVE_SIM
     if (c->sim != NULL)
-        fbrl_sim_destroy(c->sim);
+        sim_destroy_c(c->sim);
     c->sim = NULL;
 #endif
 }

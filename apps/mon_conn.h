@@ -22,6 +22,7 @@ typedef struct mon_conn_options {
     const char *port;        /* MON_CONN_PORT: path or tcp:HOST:PORT */
     fbrl_uart_config line;   /* baud, data bits, parity, stop bits, flow */
     const char *sim_state;   /* MON_CONN_SIM: emulator's persistent memory, or NULL */
+    const char *sim_inputs;  /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */

@@ -4,7 +4,9 @@
 #include <errno.h>
 #include <poll.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -33,6 +35,8 @@ const char *mon_host_read_line(mon_host *h, size_t *len)
 {
     size_t n = 0;
     int got = 0;
+    if (h->line_too_long)
+        return NULL; /* input was stopped */
     for (;;) {
         unsigned char c;
         if (h->inpos == h->inlen && !in_fill(h))
@@ -41,6 +45,11 @@ const char *mon_host_read_line(mon_host *h, size_t *len)
         got = 1;
         if (c == '\n')
             break;
+        if (n >= (size_t)MON_HOST_LINE_MAX) {
+            h->line_too_long = 1;
+            h->in_eof = 1;
+            break;
+        }
         if (n + 1 >= h->line_cap) {
             size_t cap = h->line_cap ? h->line_cap * 2 : 256;
             char *p = realloc(h->line, cap);
@@ -171,18 +180,38 @@ static fbrl_status host_file_open(void *user, const char *path, void **handle)
     if (mf == NULL)
         return FBRL_ENOSPC;
     mf->lines = 0;
-    mf->f = fopen(path, "r");
-    if (mf->f == NULL) {
-        fbrl_status st = errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO;
-        free(mf);
-        return st;
+    /* Only regular files: a device (/dev/zero) never ends, a FIFO with no writer would
+     * block the open itself. O_NONBLOCK keeps that open from blocking; fstat on the open
+     * descriptor then decides (no window between a check and the open). */
+    {
+        struct stat sb;
+        int fd = open(path, O_RDONLY | O_NONBLOCK);
+        if (fd < 0) {
+            fbrl_status st = errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO;
+            free(mf);
+            return st;
+        }
+        if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+            close(fd);
+            free(mf);
+            return FBRL_ENOTFILE;
+        }
+        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+        mf->f = fdopen(fd, "r");
+        if (mf->f == NULL) {
+            close(fd);
+            free(mf);
+            return FBRL_EIO;
+        }
     }
     *handle = mf;
     return FBRL_OK;
 }
 
-/* One line without its end (LF or CRLF). A line longer than cap is consumed to
- * its end and reported as FBRL_ENOSPC, so the next read starts on a fresh line.
+/* One line without its end (LF or CRLF). A line longer than cap is reported as
+ * FBRL_ENOSPC as soon as cap is passed (the engine stops the file there and names
+ * file:line); nothing more of it is read, so a file with no line end cannot keep
+ * fbrlmon reading.
  * A first line starting with "#!" reads as empty, so a plan file can be an
  * executable script (#!/usr/bin/env fbrlmon) and line numbers stay right. (The
  * engine's #! word needs a blank after it, which a shebang line rarely has.) */
@@ -198,15 +227,20 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
     while ((c = getc(mf->f)) != EOF && c != '\n') {
         if (n < cap)
             buf[n++] = (char)c;
-        else
+        else if (!(c == '\r' && n == cap)) { /* a CR just before LF is not content */
             too_long = 1;
+            break;
+        }
     }
     if (ferror(mf->f))
         return FBRL_EIO;
     if (c == EOF && n == 0 && !too_long)
         return FBRL_EEOF;
-    if (++mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!')
+    if (++mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!') {
+        while (too_long && (c = getc(mf->f)) != EOF && c != '\n')
+            ; /* the rest of a long "#!" line (a regular file ends) */
         return FBRL_OK;
+    }
     if (too_long)
         return FBRL_ENOSPC;
     if (n > 0 && buf[n - 1] == '\r')
@@ -285,6 +319,23 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->now_us = host_now_us;
     cb->sleep_ms = host_sleep_ms;
     cb->time_date = host_time_date;
+}
+
+void mon_host_progress(void *ctx, const char *text)
+{
+    mon_host *h = ctx;
+    if (!h->out_is_tty || (h->column != 0 && !h->progress_shown))
+        return;
+    if (text == NULL) {
+        if (h->progress_shown)
+            fputs("\r\033[K", h->out);  /* erase it: the column is 0 again */
+        h->progress_shown = 0;
+    } else {
+        int room = h->width > 1 ? h->width - 1 : 79;  /* never wrap */
+        fprintf(h->out, "\r%.*s\033[K", room, text);
+        h->progress_shown = 1;
+    }
+    fflush(h->out);
 }
 
 void mon_host_newline(mon_host *h)

@@ -24,15 +24,28 @@ typedef struct mon_host {
     int in_eof;
     char *line;         /* mon_host_read_line()'s growing buffer */
     size_t line_cap;
+    int progress_shown; /* a progress line is on the screen (mon_host_progress) */
+    int line_too_long;  /* a line passed MON_HOST_LINE_MAX: input was stopped there */
 } mon_host;
+
+/* The longest input line read from stdin (far above the engine's own line limit, so
+ * the engine still names the line; a stream with no line end stops here). */
+#define MON_HOST_LINE_MAX (1L << 20)
 
 /* Fill h (output to `out`, keys from file descriptor `in_fd`) and the engine's
  * callback table that points at it. */
 void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb);
 
 /* Next line of input from in_fd without its end (LF or CRLF); NULL at end of
- * input. The line stays valid until the next call. */
+ * input. The line stays valid until the next call. A line reaching MON_HOST_LINE_MAX
+ * bytes is handed over as read so far, and input ends there (h->line_too_long set):
+ * a stream without line ends (/dev/zero) cannot keep fbrlmon reading. */
 const char *mon_host_read_line(mon_host *h, size_t *len);
+
+/* A robot word's progress line (fbrl_robot_progress_fn; ctx is the mon_host): shown in
+ * place on a terminal at the start of a line, erased with NULL. Never on a file or pipe,
+ * and never over output that does not end in a newline. */
+void mon_host_progress(void *ctx, const char *text);
 
 /* Release what the host allocated. */
 void mon_host_free(mon_host *h);

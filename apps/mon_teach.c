@@ -12,6 +12,7 @@
  * ARM-HERE (so BASE-OFFSET and MAP-ON apply exactly as to every read-back), Esc
  * leaves it untouched. docs/fbrlmon.md "TEACH" lists the keys. */
 #include "mon_teach.h"
+#include "fbrl/num.h"
 #include "fbrl/vm_throw.h"
 
 #include <errno.h>
@@ -46,7 +47,8 @@ typedef struct teach {
     int have_pos;
     double grip;         /* gripper opening (in) */
     int have_grip;
-    char msg[128];       /* the last error or note, shown on the status line */
+    char msg[256];       /* the last error or note, shown on the status line */
+    char above[256];     /* the message already printed on its own line above it */
 } teach;
 
 /* ---- keys ---- */
@@ -159,28 +161,53 @@ static void seg(char *line, size_t cap, const char *text)
     }
 }
 
+/* Numbers as printf's %+.Nf / %g in the C locale, whatever locale fbrlmon runs in
+ * (fbrl_num), so the pendant shows what the language prints. */
+#define NUM_CHARS 32
+static const char *fix(char b[NUM_CHARS], double v, int decimals, int plus)
+{
+    fbrl_num_fixed(b, NUM_CHARS, v, 0, decimals, plus ? FBRL_NUM_PLUS : 0, NULL);
+    return b;
+}
+static const char *gen(char b[NUM_CHARS], double v)
+{
+    fbrl_num_general(b, NUM_CHARS, v, 6, NULL);
+    return b;
+}
+
 /* Redraw the status line in place: position, then the last message, the step and
- * the gripper as far as the terminal is wide (so it never wraps; at 80 columns
- * all of it fits, or all but the gripper when a message shows). */
+ * the gripper as far as the terminal is wide (so it never wraps). A message that does
+ * not fit after the position is printed once on its own line above the status line:
+ * a refused jog is always seen. */
 static void status(teach *t)
 {
-    char line[256], pos[96], msg[140], step[48], grip[32];
+    char line[256], pos[256], msg[272], step[128], grip[64];
     size_t width = t->m->host.width > 0 ? (size_t)t->m->host.width : 80;
     const double *p = t->pos;
     if (width > sizeof line)
         width = sizeof line;
+    char n[6][NUM_CHARS];
     if (t->have_pos)
-        snprintf(pos, sizeof pos, "X%+.3f Y%+.3f Z%+.3f %s  pitch%+.1f roll%+.1f", len_shown(t, p[0]),
-                 len_shown(t, p[1]), len_shown(t, p[2]), unit(t), p[4], p[5]);
+        snprintf(pos, sizeof pos, "X%s Y%s Z%s %s  pitch%s roll%s", fix(n[0], len_shown(t, p[0]), 3, 1),
+                 fix(n[1], len_shown(t, p[1]), 3, 1), fix(n[2], len_shown(t, p[2]), 3, 1), unit(t),
+                 fix(n[3], p[4], 1, 1), fix(n[4], p[5], 1, 1));
     else
         snprintf(pos, sizeof pos, "position unknown");
     snprintf(msg, sizeof msg, "! %s", t->msg);
-    snprintf(step, sizeof step, "step %g %s %g deg", t->metric ? step_cm[t->level] : step_in[t->level], unit(t),
-             step_deg[t->level]);
-    snprintf(grip, sizeof grip, "grip %.2f", len_shown(t, t->grip));
+    snprintf(step, sizeof step, "step %s %s %s deg", gen(n[0], t->metric ? step_cm[t->level] : step_in[t->level]),
+             unit(t), gen(n[1], step_deg[t->level]));
+    snprintf(grip, sizeof grip, "grip %s", fix(n[5], len_shown(t, t->grip), 2, 0));
     snprintf(line, width, "%s", pos);
-    if (t->msg[0])
+    if (!t->msg[0]) {
+        t->above[0] = '\0';
+    } else if (strlen(line) + 2 + strlen(msg) < width) {
         seg(line, width, msg);
+    } else if (strcmp(t->above, t->msg) != 0) {
+        out(t, "\r\033[K");
+        out(t, msg);
+        out(t, "\n");
+        snprintf(t->above, sizeof t->above, "%s", t->msg);
+    }
     seg(line, width, step);
     if (t->have_grip)
         seg(line, width, grip);
@@ -193,15 +220,17 @@ static void status(teach *t)
 
 static void help(teach *t)
 {
-    char s[200];
+    char s[400];
     out(t, "\r\033[K");
     out(t, "TEACH keys (the arm moves at once and is read back after each motion):\n"
            "  Left Right  X -/+    Down Up  Y -/+    PgDn PgUp  Z -/+\n"
            "  [ ]  pitch -/+       , .  roll -/+     o c  gripper open / close\n");
-    snprintf(s, sizeof s, "  1 2 3 4  step %g %g %g %g %s, %g %g %g %g deg    - +  smaller / larger\n",
-             t->metric ? step_cm[0] : step_in[0], t->metric ? step_cm[1] : step_in[1],
-             t->metric ? step_cm[2] : step_in[2], t->metric ? step_cm[3] : step_in[3], unit(t), step_deg[0],
-             step_deg[1], step_deg[2], step_deg[3]);
+    char n[8][NUM_CHARS];
+    snprintf(s, sizeof s, "  1 2 3 4  step %s %s %s %s %s, %s %s %s %s deg    - +  smaller / larger\n",
+             gen(n[0], t->metric ? step_cm[0] : step_in[0]), gen(n[1], t->metric ? step_cm[1] : step_in[1]),
+             gen(n[2], t->metric ? step_cm[2] : step_in[2]), gen(n[3], t->metric ? step_cm[3] : step_in[3]),
+             unit(t), gen(n[4], step_deg[0]), gen(n[5], step_deg[1]), gen(n[6], step_deg[2]),
+             gen(n[7], step_deg[3]));
     out(t, s);
     out(t, "  r  read again    ?  these keys\n"
            "  Enter  store the position    Esc  cancel (the location is not changed)\n");
@@ -219,7 +248,9 @@ static int failed(teach *t, fbrl_status st, const char *what)
         int code = -1;
         const char *text = "";
         fbrl_link_error(t->link, &code, &text);
-        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.", what, code, text);
+        const char *help = fbrl_rapl_error_help(code);
+        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.%s%s%s", what, code, text, help ? " (" : "", help ? help : "",
+                 help ? ")" : "");
     } else {
         snprintf(t->msg, sizeof t->msg, "%s: %s", what, fbrl_status_str(st));
     }

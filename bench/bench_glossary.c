@@ -62,7 +62,7 @@ int main(void)
     double t0 = bench_now();
     for (long i = 0; i < N; i++) {
         m = l;
-        if (fbrl_glossary_map_out(&g, &m) != FBRL_OK) return 1;
+        if (fbrl_glossary_map_out(&g, &m, NULL, NULL) != FBRL_OK) return 1;
     }
     printf("%-36s %8.1f ns per call\n", "fbrl_glossary_map_out (MAP-ON)", (bench_now() - t0) / N * 1e9);
     free(mem);

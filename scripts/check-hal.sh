@@ -5,6 +5,9 @@
 set -u
 os_modules="uart_posix uart_serialport clock_posix fileio"
 never='^(malloc|calloc|realloc|free|printf|fprintf|vfprintf|puts|fputs|putchar|perror|exit|_exit|abort|__assert_fail|system)$'
+# Text <-> number through the C library follows the host's locale (LC_NUMERIC): the library
+# converts with fbrl_num (docs/language.md, "Numbers do not depend on the locale").
+locale_calls='^(strtod|strtof|strtold|atof|sscanf|vsscanf|localeconv|setlocale)$'
 os_calls='^(open|open64|openat|close|read|write|poll|select|ioctl|fcntl|fcntl64|tcgetattr|tcsetattr|fopen|fopen64|fclose|fread|fwrite|fsync|rename|unlink|socket|connect|clock_gettime|nanosleep|usleep|sleep|pthread_[a-z_]*|signal|sigaction|getenv|time)$'
 bad=0
 for obj in "$@"; do
@@ -13,6 +16,8 @@ for obj in "$@"; do
     for s in $syms; do
         if echo "$s" | grep -Eq "$never"; then
             echo "hal: $mod calls $s (the library never allocates, prints, exits or aborts)"; bad=1
+        elif echo "$s" | grep -Eq "$locale_calls"; then
+            echo "hal: $mod calls $s (locale-dependent numbers; use fbrl_num)"; bad=1
         elif echo "$s" | grep -Eq "$os_calls"; then
             case " $os_modules " in *" $mod "*) ;; *)
                 echo "hal: $mod calls $s (only $os_modules may touch the OS)"; bad=1 ;;

@@ -4,11 +4,21 @@
 # Usage: deps.sh [EXTRA-PACKAGE...]   (extras are required too, e.g. gforth pforth for benchmarks)
 set -eu
 
-REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev qemu-system-x86 $*"
+REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev qemu-system-x86 locales $*"
 # Optional: the build works without them (fewer features or tests).
 OPTIONAL="libserialport-dev clang libclang-rt-14-dev"
 
 is_installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+# The suite also runs under a German locale (decimal comma) to prove that numbers do not
+# follow the host's locale (tests/e2e/locale.cmake): generate de_DE.UTF-8 if it is missing.
+have_de() { locale -a 2>/dev/null | grep -qi '^de_DE\.utf-\?8$'; }
+gen_de() {
+    have_de && return 0
+    command -v localedef >/dev/null 2>&1 || { echo "deps: no localedef; de_DE.UTF-8 not generated" >&2; return 0; }
+    S=; [ "$(id -u)" -ne 0 ] && command -v sudo >/dev/null 2>&1 && S=sudo
+    $S localedef -i de_DE -f UTF-8 de_DE.UTF-8 >&2 ||
+        echo "deps: could not generate de_DE.UTF-8 (the locale tests will generate it in the build directory)" >&2
+}
 
 missing=""; opt_missing=""
 if command -v dpkg-query >/dev/null 2>&1; then
@@ -17,7 +27,7 @@ if command -v dpkg-query >/dev/null 2>&1; then
 else
     missing="$REQUIRED"
 fi
-[ -z "$missing$opt_missing" ] && exit 0
+if [ -z "$missing$opt_missing" ]; then gen_de; exit 0; fi
 
 if ! command -v apt-get >/dev/null 2>&1; then
     echo "deps: cannot check or install packages here (no apt-get)." >&2
@@ -44,4 +54,5 @@ for p in $opt_missing; do
     $SUDO apt-get install -y -qq --no-install-recommends "$p" >&2 ||
         echo "deps: optional package $p not available; continuing without it" >&2
 done
+gen_de
 exit 0

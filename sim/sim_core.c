@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <locale.h>
 #include <math.h>
 #include <poll.h>
 #include <stdlib.h>
@@ -264,7 +265,16 @@ fbrl_status fbrl_sim_run(fbrl_sim *s)
 
 static void *thread_main(void *arg)
 {
+    /* RAPL replies and the state file are "C" text whatever locale the host process set
+     * (a program embedding the emulator may call setlocale(LC_ALL, "")). */
+    locale_t c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    if (c)
+        uselocale(c);
     fbrl_sim_run(arg);
+    if (c) {
+        uselocale(LC_GLOBAL_LOCALE);
+        freelocale(c);
+    }
     return NULL;
 }
 

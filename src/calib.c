@@ -481,39 +481,113 @@ fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint,
     return FBRL_OK;
 }
 
-fbrl_status fbrl_calib_map(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out)
+/* ---- mapping what a 5-axis arm can do ----
+ *
+ * The arm's tool frame at a location is Rz(waist) * Ry(-pitch) * Rx(roll) (the
+ * orient_to_matrix convention with yaw = waist): the waist, not the location's yaw, sets
+ * the heading, and the controller points the waist at the target (DESIGN 6). So a location
+ * is mapped by turning the tool frame the arm really has there with the block, then
+ * finding the frame the arm can have at the mapped position: the waist points at it, the
+ * tool axis is the wanted one brought into the waist's vertical plane by the smallest
+ * rotation (its angle is the part the arm cannot follow, reported), and the roll is what
+ * that same rotation leaves of the wanted grip. docs/calibration.md has the model. */
+
+/* The waist direction (degrees) for a position: the heading of (x, y) from the arm's base
+ * axis; on the axis itself (no heading) the caller's fallback. */
+static double waist_of(const double p[3], const double axis[2], double fallback)
 {
-    double p[3], hx, hy, hint;
-    fbrl_rot tool, moved;
+    double dx = p[0] - axis[0], dy = p[1] - axis[1];
+    return hypot(dx, dy) > FBRL_CALIB_AXIS_R ? FBRL_DEG(atan2(dy, dx)) : fallback;
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
+                               fbrl_loc *out, double *off)
+{
+    static const double origin[2] = {0.0, 0.0};
+    double p[3], q[3], w0, w1, hx, hy, d[3], g[3], h[3], n[3], a[3], v[3], vg[3], vvg[3];
+    double f2[3], f3[3], dh, dz, cs, ch, pitch, cp, sp, cw, sw, roll, dev;
+    fbrl_rot tool;
     fbrl_loc res;
     fbrl_status st;
-    int i, j;
+    int i;
     if (!c || !in || !out || !calib_finite(c))
         return FBRL_EINVAL;
+    if (!axis)
+        axis = origin;
+    if (!isfinite(axis[0]) || !isfinite(axis[1]))
+        return FBRL_ENONFINITE;
     if ((st = fbrl_loc_check(in)) != FBRL_OK)
         return st;
     pos_of(in, p);
-    if ((st = fbrl_calib_map_points(c, p, p, 1)) != FBRL_OK)
+    if ((st = fbrl_calib_map_points(c, p, q, 1)) != FBRL_OK)
         return st;
-    fbrl_calib_orient_to_matrix(in->o, in->a, in->t, &tool);
+    /* The tool frame the arm has at the original location, turned with the block:
+     * d its wanted axis, g its wanted grip direction (the tool's y axis). */
+    w0 = waist_of(p, axis, in->o);
+    fbrl_calib_orient_to_matrix(w0, in->a, in->t, &tool);
+    for (i = 0; i < 3; i++) {
+        d[i] = c->r[i][0] * tool.m[0][0] + c->r[i][1] * tool.m[1][0] + c->r[i][2] * tool.m[2][0];
+        g[i] = c->r[i][0] * tool.m[0][1] + c->r[i][1] * tool.m[1][1] + c->r[i][2] * tool.m[2][1];
+    }
+    /* The waist at the mapped position; on the base axis, the original waist's heading
+     * turned with the block. */
+    hx = c->r[0][0] * cos(FBRL_RAD(w0)) + c->r[0][1] * sin(FBRL_RAD(w0));
+    hy = c->r[1][0] * cos(FBRL_RAD(w0)) + c->r[1][1] * sin(FBRL_RAD(w0));
+    w1 = waist_of(q, axis, hypot(hx, hy) > 1e-9 ? FBRL_DEG(atan2(hy, hx)) : w0);
+    cw = cos(FBRL_RAD(w1));
+    sw = sin(FBRL_RAD(w1));
+    h[0] = cw; h[1] = sw; h[2] = 0.0;    /* along the arm, horizontal */
+    n[0] = -sw; n[1] = cw; n[2] = 0.0;   /* across the arm: what the arm cannot tilt to */
+    /* The reachable axis nearest d: d without its part across the arm. Pitch may pass
+     * -90 or 90 (tool leaning back toward the base), so a straight-down tool on a slightly
+     * tilted block has no flip in it. */
+    dh = dot3(d, h);
+    dz = d[2];
+    ch = hypot(dh, dz);
+    if (ch > 1e-12) {
+        pitch = atan2(dz, dh);
+        dev = atan2(fabs(dot3(d, n)), ch);
+    } else { /* the wanted axis points straight across the arm: no nearest one */
+        pitch = FBRL_RAD(in->a);
+        dev = FBRL_PI / 2.0;
+    }
+    cp = cos(pitch);
+    sp = sin(pitch);
     for (i = 0; i < 3; i++)
-        for (j = 0; j < 3; j++)
-            moved.m[i][j] = c->r[i][0] * tool.m[0][j] + c->r[i][1] * tool.m[1][j] +
-                            c->r[i][2] * tool.m[2][j];
-    /* The heading (yaw direction) turned with the block, for a vertical tool. */
-    hx = c->r[0][0] * cos(FBRL_RAD(in->o)) + c->r[0][1] * sin(FBRL_RAD(in->o));
-    hy = c->r[1][0] * cos(FBRL_RAD(in->o)) + c->r[1][1] * sin(FBRL_RAD(in->o));
-    hint = hypot(hx, hy) > 1e-9 ? FBRL_DEG(atan2(hy, hx)) : in->o;
-    res.x = p[0];
-    res.y = p[1];
-    res.z = p[2];
-    if ((st = fbrl_calib_matrix_to_orient(&moved, hint, &res.o, &res.a, &res.t)) != FBRL_OK)
-        return st;
+        a[i] = cp * h[i] + (i == 2 ? sp : 0.0);
+    /* Bring g along with the smallest rotation taking d to a (Rodrigues with v = d x a,
+     * cos = d.a >= 0 here since a is d's projection): R g = g + v x g + v x (v x g)/(1+cos). */
+    cross3(d, a, v);
+    cs = dot3(d, a);
+    cross3(v, g, vg);
+    cross3(v, vg, vvg);
+    for (i = 0; i < 3; i++)
+        g[i] += vg[i] + vvg[i] / (1.0 + cs);
+    /* Roll: g = cos(roll) f2 + sin(roll) f3 in the arm's frame Rz(w1) Ry(-pitch). */
+    f2[0] = -sw; f2[1] = cw; f2[2] = 0.0;
+    f3[0] = -cw * sp; f3[1] = -sw * sp; f3[2] = cp;
+    roll = atan2(dot3(g, f3), dot3(g, f2));
+    if (!isfinite(roll) || !isfinite(pitch))
+        return FBRL_EOVERFLOW;
+    res.x = q[0];
+    res.y = q[1];
+    res.z = q[2];
+    res.o = wrap180(w1);
+    res.a = wrap180(FBRL_DEG(pitch));
+    res.t = wrap180(FBRL_DEG(roll));
+    if (off)
+        *off = FBRL_DEG(dev);
     *out = res;
     return FBRL_OK;
 }
 
-fbrl_status fbrl_calib_unmap(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out)
+fbrl_status fbrl_calib_unmap_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
+                                 fbrl_loc *out, double *off)
 {
     fbrl_calib inv;
     fbrl_status st;
@@ -521,7 +595,25 @@ fbrl_status fbrl_calib_unmap(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *
         return FBRL_EINVAL;
     if ((st = fbrl_calib_invert(c, &inv)) != FBRL_OK)
         return st;
-    return fbrl_calib_map(&inv, in, out);
+    return fbrl_calib_map_arm(&inv, axis, in, out, off);
+}
+
+fbrl_status fbrl_calib_map(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out)
+{
+    fbrl_loc res;
+    double off;
+    fbrl_status st = out ? fbrl_calib_map_arm(c, NULL, in, &res, &off) : FBRL_EINVAL;
+    if (st != FBRL_OK)
+        return st;
+    if (off > FBRL_CALIB_AXIS_MAX)
+        return FBRL_ERANGE;
+    *out = res;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_calib_unmap(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out)
+{
+    return fbrl_calib_unmap_arm(c, NULL, in, out, NULL);
 }
 
 /* ---- the thesis's planar helpers ---- */

@@ -2,7 +2,11 @@
 #include <math.h>
 #include <stdio.h>
 #include "fbrl/loc.h"
+#include "fbrl/num.h"
 #include "fbrl/units.h"
+
+/* Room for one formatted number of a location (what fits FBRL_LOC_TEXT_SIZE and more). */
+#define LOC_NUM_CHARS 64
 
 /* The six components as an array view, in X Y Z O A T order. */
 static double *comp(fbrl_loc *loc, int axis)
@@ -133,9 +137,21 @@ fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t s
         buf[0] = '\0';
         return st;
     }
-    n = snprintf(buf, size, "X %+10.4f Y %+10.4f Z %+10.4f %s  O %+8.3f A %+8.3f T %+8.3f deg",
-                 tidy(shown.x, 5e-5), tidy(shown.y, 5e-5), tidy(shown.z, 5e-5), metric ? "cm" : "in",
-                 tidy(shown.o, 5e-4), tidy(shown.a, 5e-4), tidy(shown.t, 5e-4));
+    /* fbrl_num, not printf's %f: the same text whatever locale the host has set. */
+    {
+        const double v[6] = {tidy(shown.x, 5e-5), tidy(shown.y, 5e-5), tidy(shown.z, 5e-5),
+                             tidy(shown.o, 5e-4), tidy(shown.a, 5e-4), tidy(shown.t, 5e-4)};
+        char f[6][LOC_NUM_CHARS];
+        int i;
+        for (i = 0; i < 6; i++)
+            if (fbrl_num_fixed(f[i], sizeof f[i], v[i], i < 3 ? 10 : 8, i < 3 ? 4 : 3, FBRL_NUM_PLUS,
+                               NULL) != FBRL_OK) {
+                buf[0] = '\0';
+                return FBRL_ENOSPC;
+            }
+        n = snprintf(buf, size, "X %s Y %s Z %s %s  O %s A %s T %s deg", f[0], f[1], f[2],
+                     metric ? "cm" : "in", f[3], f[4], f[5]);
+    }
     if (n < 0) {
         buf[0] = '\0';
         return FBRL_EINVAL;

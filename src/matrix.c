@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "fbrl/num.h"
 #include "fbrl/units.h"
 #include "fbrl/matrix.h"
 
@@ -167,6 +168,14 @@ fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, f
 
 /* The three lengths in the user's unit into shown (a conversion overflow is reported,
  * not printed), then "<name> base <loc text>  " into buf; the caller appends the rest. */
+/* One number as printf's "%+W.Df" would write it in the C locale, whatever locale the
+ * host has set (fbrl_num); 0 if it does not fit. */
+#define MAT_NUM_CHARS 64
+static int num_text(char out[MAT_NUM_CHARS], double v, int width, int decimals)
+{
+    return fbrl_num_fixed(out, MAT_NUM_CHARS, v, width, decimals, FBRL_NUM_PLUS, NULL) == FBRL_OK;
+}
+
 static fbrl_status format_head(const char *name, const fbrl_loc *base, int metric, const double len[3],
                                double shown[3], char *buf, size_t size, size_t *used)
 {
@@ -190,6 +199,7 @@ static fbrl_status format_head(const char *name, const fbrl_loc *base, int metri
 
 fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, size_t size)
 {
+    char f[3][MAT_NUM_CHARS];
     double len[3], shown[3];
     size_t used;
     fbrl_status st;
@@ -200,13 +210,17 @@ fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, si
     len[0] = m->dx; len[1] = m->dy; len[2] = m->dz;
     if ((st = format_head("RECTMAT", &m->base, metric, len, shown, buf, size, &used)) != FBRL_OK)
         return st;
-    n = snprintf(buf + used, size - used, "step X %+10.4f Y %+10.4f Z %+10.4f %s", shown[0],
-                 shown[1], shown[2], metric ? "cm" : "in");
+    if (!num_text(f[0], shown[0], 10, 4) || !num_text(f[1], shown[1], 10, 4) ||
+        !num_text(f[2], shown[2], 10, 4))
+        return FBRL_ENOSPC;
+    n = snprintf(buf + used, size - used, "step X %s Y %s Z %s %s", f[0], f[1], f[2],
+                 metric ? "cm" : "in");
     return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
 }
 
 fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size_t size)
 {
+    char f[5][MAT_NUM_CHARS];
     double len[3], shown[3];
     size_t used;
     fbrl_status st;
@@ -219,9 +233,11 @@ fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size
     len[0] = m->ring_dist; len[1] = m->z_off; len[2] = m->r0;
     if ((st = format_head("RADMAT", &m->base, metric, len, shown, buf, size, &used)) != FBRL_OK)
         return st;
-    n = snprintf(buf + used, size - used,
-                 "inc %+.6f rad  ring %+10.4f Z %+10.4f %s  radius %+10.4f %s  angle %+.6f rad",
-                 m->inc_angle, shown[0], shown[1], metric ? "cm" : "in", shown[2],
-                 metric ? "cm" : "in", m->a0);
+    if (!num_text(f[0], m->inc_angle, 0, 6) || !num_text(f[1], shown[0], 10, 4) ||
+        !num_text(f[2], shown[1], 10, 4) || !num_text(f[3], shown[2], 10, 4) ||
+        !num_text(f[4], m->a0, 0, 6))
+        return FBRL_ENOSPC;
+    n = snprintf(buf + used, size - used, "inc %s rad  ring %s Z %s %s  radius %s %s  angle %s rad",
+                 f[0], f[1], f[2], metric ? "cm" : "in", f[3], metric ? "cm" : "in", f[4]);
     return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
 }

@@ -146,6 +146,64 @@ const char *fbrl_rapl_error_text(int code)
     return error_texts[code];
 }
 
+/* What each error means for the user, in plain words, and what to do: the one table
+ * every message uses (docs/rapl-commands.md shows it). */
+#define AXIS_RANGE "that axis would pass its limit - choose a point or a motion that keeps it in range"
+#define HOME_FAILED "homing that joint failed - check that nothing blocks it, then HOME again"
+#define JOINT_RANGE "the move would take that joint past its limit - choose a point the arm reaches another way (closer, higher, another pitch)"
+#define SERIAL_TIMEOUT "the controller's serial channel timed out - check the cable and the line settings"
+static const char *const error_help[] = {
+    [0] = AXIS_RANGE, [1] = AXIS_RANGE, [2] = AXIS_RANGE, [3] = AXIS_RANGE,
+    [4] = AXIS_RANGE, [5] = AXIS_RANGE, [6] = AXIS_RANGE, [7] = AXIS_RANGE,
+    [8] = "a value the command cannot take - check the numbers given to the word",
+    [9] = "the command line ended too early - complete the command",
+    [10] = "the controller has no variable of that name - set it first (SET-RAPL-INT, SET-RAPL-REAL)",
+    [11] = "the controller has no location of that name - define it first (RAPL-POINT, RAPL-HERE)",
+    [12] = "the controller does not know that command - check its spelling (docs/rapl-commands.md)",
+    [13] = "the command needs more arguments - see HELP for the word",
+    [14] = "the command's arguments are badly written - see HELP for the word",
+    [15] = "a precision point (#name) cannot be used here - use a cartesian location",
+    [16] = "no such input or output - use an I/O number 1..16",
+    [17] = "the controller has no program of that name",
+    [18] = "an argument is out of its allowed range - see HELP for the word",
+    [19] = "the program has no line of that number",
+    [20] = "a number is too large for the controller",
+    [21] = "the controller's memory is full - delete locations or programs it no longer needs",
+    [22] = "the controller's table of names is full - delete locations or variables it no longer needs",
+    [23] = "that program line number cannot be used",
+    [24] = "no such analog input - use a channel 1..8",
+    [25] = "the command line is longer than the controller takes (80 characters)",
+    [26] = "the end of the program was not found",
+    [27] = "a program of that name exists already",
+    [28] = "that program line exists already",
+    [29] = "the position is out of the arm's reach, or not with that orientation: the arm did not move - choose a point closer to the base, or another pitch",
+    [32] = HOME_FAILED, [33] = HOME_FAILED, [34] = HOME_FAILED, [35] = HOME_FAILED,
+    [36] = HOME_FAILED, [37] = HOME_FAILED, [38] = HOME_FAILED, [39] = HOME_FAILED,
+    [40] = "the arm's power is off - switch it on at the controller, then HOME",
+    [41] = "the arm must find its zero first - HOME, then try again",
+    [42] = JOINT_RANGE, [43] = JOINT_RANGE, [44] = JOINT_RANGE, [45] = JOINT_RANGE, [46] = JOINT_RANGE,
+    [47] = "the controller's memory failed its check - its stored programs and locations may be lost",
+    [49] = "the controller has no memory set aside for that",
+    [50] = "the text is the beginning of several commands, so the controller ran none - write the command out in full",
+    [51] = SERIAL_TIMEOUT, [52] = SERIAL_TIMEOUT, [53] = SERIAL_TIMEOUT, [54] = SERIAL_TIMEOUT,
+    [58] = "the arm's calibration data failed its check - calibrate the controller again (XCAL)",
+    [60] = "that command is not allowed from this line",
+    [61] = "no such serial channel - use 0 or 1",
+    [62] = "the controller's remote line failed",
+    [64] = "RETURN without a subroutine call",
+    [65] = "no such axis",
+    [66] = "this controller does not have that",
+    [67] = "that axis slot is taken already",
+    [68] = "the straight line passes outside the arm's reach - move in steps, or joint-interpolated (without -STRT)",
+};
+
+const char *fbrl_rapl_error_help(int code)
+{
+    if (code < 0 || (size_t)code >= sizeof error_help / sizeof error_help[0])
+        return 0;
+    return error_help[code];
+}
+
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 static int is_upper(char c) { return c >= 'A' && c <= 'Z'; }
 

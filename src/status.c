@@ -33,6 +33,7 @@ static const struct { const char *name, *text; } entries[] = {
     {"FBRL_ETHROW", "uncaught exception"},
     {"FBRL_ENOMEM", "out of memory space"},
     {"FBRL_EOFFLINE", "no controller connected"},
+    {"FBRL_ENOTFILE", "not a regular file (a device, FIFO or directory)"},
 };
 
 #define NENTRIES ((int)(sizeof entries / sizeof entries[0]))

@@ -34,6 +34,13 @@ typedef struct fbrl_calpts {
  * largest pairwise distance) are refused with FBRL_EDEGENERATE: their frame would be noise. */
 #define FBRL_CALIB_TOL 1e-3
 
+/* Most a mapped tool axis may miss the one the block asks for, degrees (the block tilted
+ * across the arm, which a 5-axis arm cannot follow), before fbrl_calib_map refuses it. */
+#define FBRL_CALIB_AXIS_MAX 2.0
+
+/* Positions closer than this to the arm's base axis (inches) have no waist direction. */
+#define FBRL_CALIB_AXIS_R 1e-6
+
 /* Size of a saved calibration (see fbrl_calib_save). */
 #define FBRL_CALIB_BYTES 108
 #define FBRL_CALIB_VERSION 1
@@ -63,11 +70,34 @@ fbrl_status fbrl_calib_3point(fbrl_calib *c, const fbrl_calpts *cal, const fbrl_
 fbrl_status fbrl_calib_npoint(fbrl_calib *c, const fbrl_loc *cal, const fbrl_loc *recal,
                               size_t n, double *residuals, double *rms, size_t *worst);
 
-/* (MAP) and UNMAP of a whole location: the position moves with the block and the
- * orientation turns with it. Angles come back with pitch in [-90, 90] and yaw, roll in
- * (-180, 180] (an equal orientation may so read differently, e.g. yaw 390 as 30). When the
- * tool is vertical (pitch +-90) yaw and roll describe the same turn; the reported yaw is
- * then the input yaw turned with the block, and roll takes the rest. in may equal out. */
+/* Mapping of whole locations for a 5-axis arm (waist, shoulder, elbow, wrist pitch, tool
+ * roll; docs/calibration.md has the model and a worked example). The arm cannot choose
+ * its heading: the waist points at the target, and the tool frame at a location is
+ * Rz(waist) * Ry(-pitch) * Rx(roll) (the convention of fbrl_calib_orient_to_matrix with yaw
+ * = waist); the location's yaw is not used (the controller ignores it), except as the
+ * waist of a location on the arm's base axis. The position moves with the block; the tool
+ * frame the arm has at the original location turns with the block and is then brought
+ * into the mapped position's waist plane by the smallest rotation: the tool axis follows
+ * the block as far as pitch can, the grip turns with the block about the tool axis.
+ *
+ * fbrl_calib_map_arm: out gets yaw = the waist direction at the mapped position (where
+ * the controller will point the arm), pitch in (-180, 180] (beyond -90 or 90 the tool
+ * leans back toward the base; no flip near straight down) and roll in (-180, 180]. *off
+ * (may be NULL) gets the angle, degrees, between the tool axis the block asks for and the
+ * one given: the tilt across the arm that a 5-axis arm cannot follow. axis = the arm's
+ * base axis (x, y) in the locations' frame, NULL for (0, 0). Positions within
+ * FBRL_CALIB_AXIS_R of the base axis have no waist direction: the original location's yaw
+ * is taken as its waist, turned with the block for the mapped one. in may equal out.
+ * fbrl_calib_unmap_arm: the same through the inverse motion (moved -> original). */
+fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
+                               fbrl_loc *out, double *off);
+fbrl_status fbrl_calib_unmap_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
+                                 fbrl_loc *out, double *off);
+
+/* (MAP) and UNMAP: fbrl_calib_map_arm / _unmap_arm with the base axis at (0, 0). map
+ * refuses (FBRL_ERANGE, out unchanged) a location whose tool axis the arm would miss by
+ * more than FBRL_CALIB_AXIS_MAX degrees; unmap (taught locations coming back) never
+ * refuses for that reason, so nothing taught is lost. */
 fbrl_status fbrl_calib_map(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out);
 fbrl_status fbrl_calib_unmap(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *out);
 

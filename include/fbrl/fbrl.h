@@ -15,6 +15,7 @@
 #include "fbrl/rapl_encode.h"
 #include "fbrl/rapl_reply.h"
 #include "fbrl/link.h"
+#include "fbrl/num.h"
 #include "fbrl/loc.h"
 #include "fbrl/units.h"
 #include "fbrl/matrix.h"

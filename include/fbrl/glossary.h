@@ -77,13 +77,17 @@ fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t s
 fbrl_status fbrl_glossary_finish(fbrl_glossary *g);
 
 /* Mapping for the robot words (DESIGN 7). With MAP-ON, map_out carries a location from the
- * original block frame to the moved block through the WITH-CAL structure (fbrl_calib_map)
- * and map_in carries a taught/read-back location back (fbrl_calib_unmap). With MAP-OFF both
- * leave loc unchanged and return FBRL_OK. Errors (loc unchanged): FBRL_EINVAL for NULL or
- * an uninstalled g, FBRL_ESTATE if mapping is on but the WITH-CAL structure is gone or was
- * overwritten, FBRL_ENONFINITE / FBRL_EOVERFLOW from the mapping. */
-fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc);
-fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc);
+ * original block frame to the moved block through the WITH-CAL structure
+ * (fbrl_calib_map_arm) and map_in carries a taught/read-back location back
+ * (fbrl_calib_unmap_arm). axis: the arm's base axis (x, y) in the user's frame (NULL:
+ * the origin); *off (may be NULL): the tool-axis tilt the arm cannot follow, degrees (0
+ * with MAP-OFF). With MAP-OFF both leave loc unchanged and return FBRL_OK. Errors (loc
+ * unchanged): FBRL_EINVAL for NULL or an uninstalled g, FBRL_ESTATE if mapping is on but
+ * the WITH-CAL structure is gone or was overwritten, FBRL_ERANGE from map_out when *off
+ * passes FBRL_CALIB_AXIS_MAX, FBRL_ENONFINITE / FBRL_EOVERFLOW from the mapping. */
+fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2],
+                                  double *off);
+fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2]);
 
 /* The location at VM address addr: 48 bytes wholly inside the VM's data space and aligned
  * to 8 bytes (as CREATE-LOC and ARRAY cells are). FBRL_EINVAL for NULL, FBRL_ERANGE for an

@@ -49,6 +49,10 @@ const char *fbrl_rapl_reader_line(const fbrl_rapl_reader *r, size_t *len, int *f
 
 /* The controller's text for an error code ("TRANSFORM ILLEGAL"), or NULL if unknown. */
 const char *fbrl_rapl_error_text(int code);
+/* What the error means for the user, in plain words, and what to do ("the position is
+ * out of the arm's reach ... - choose a point closer ..."), or NULL if unknown. Every
+ * code with a text has one. */
+const char *fbrl_rapl_error_help(int code);
 
 /* Parse "NNN-TEXT." (exactly three digits, '-', upper-case text, final '.').
  * FBRL_OK: *code and text (NUL-terminated, without the '.'; may be NULL) are set and the

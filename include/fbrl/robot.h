@@ -41,6 +41,12 @@ typedef struct fbrl_robot_device {
     uint32_t pulse_ms;  /* output: width of one DISPENSE pulse (and the gap after it) */
 } fbrl_robot_device;
 
+/* Progress of a long wait, for a person watching the console: text is one short line
+ * ("FINISH: waiting for the arm, 3 s"; "WAIT-UNTIL: 12 s left"), about once a second,
+ * from FBRL_ROBOT_PROGRESS_MS into the wait; NULL when the wait is over (erase it). */
+typedef void (*fbrl_robot_progress_fn)(void *ctx, const char *text);
+#define FBRL_ROBOT_PROGRESS_MS 1000u
+
 /* Room for one console line GET-CAL-POINTS reads. */
 #define FBRL_ROBOT_TIB 256
 
@@ -72,6 +78,13 @@ typedef struct fbrl_robot {
     uint64_t raw_link_mark;
     /* the controller's last error code seen by a robot word (-1 none) */
     int last_error;
+    /* a person at a terminal (fbrl_robot_set_console): progress of long waits, and
+     * (tell) what a motion started and when a wait for it ended */
+    fbrl_robot_progress_fn progress;
+    void *progress_ctx;
+    int tell;
+    fbrl_loc target;                /* tell: the location a motion word is sending the arm to */
+    int have_target;
     /* scratch storage in the VM's data space (made at install) */
     fbrl_cell tib;                  /* FBRL_ROBOT_TIB bytes */
 } fbrl_robot;
@@ -84,6 +97,12 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
 /* Connect (or, with NULL, disconnect) a controller later, e.g. after the monitor
  * opened a port. The link should already be connected (fbrl_link_connect). */
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+
+/* For a person at a terminal: progress (may be NULL) shows long waits as they go
+ * (motions, FINISH, timed waits, WAIT-INPUT); with tell != 0 a motion word also says
+ * what it started ("MOV: the arm is moving to X ... in") and a word that waited for the
+ * arm says when it stopped. Off by default (plans, pipes and programs get no chatter). */
+void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell);
 
 /* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
  * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */

@@ -39,10 +39,11 @@ typedef enum fbrl_status {
     FBRL_EOVERFLOW     = -27,  /* arithmetic result does not fit */
     FBRL_ETHROW        = -28,  /* language: uncaught THROW (code in the VM) */
     FBRL_ENOMEM        = -29,  /* language: dictionary or stack space exhausted */
-    FBRL_EOFFLINE      = -30   /* no controller connected */
+    FBRL_EOFFLINE      = -30,  /* no controller connected */
+    FBRL_ENOTFILE      = -31   /* not a regular file (a device, FIFO or directory) */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EOFFLINE
+#define FBRL_STATUS_MIN FBRL_ENOTFILE
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 const char *fbrl_status_str(fbrl_status st);

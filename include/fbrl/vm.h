@@ -60,7 +60,7 @@ typedef struct fbrl_vm_config {
 /* What went wrong in the last failed fbrl_vm_eval()/fbrl_vm_include(). */
 typedef struct fbrl_vm_error {
     int throw_code;            /* Forth THROW code (e.g. -13 undefined word), 0 if none */
-    char message[128];         /* e.g. "undefined word" */
+    char message[256];         /* e.g. "undefined word"; a controller error with its meaning */
     char word[64];             /* the word being interpreted when it failed */
     char file[256];            /* source file, "" for evaluated text */
     unsigned long line;        /* 1-based line in that source */

@@ -787,7 +787,8 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
     if (r) return r;
     memcpy(s->path, path, dl + n + 1);
     s->id = vm->nsrc;
-    if (vm->host.file_open(vm->host.user, path, &s->fh) != FBRL_OK) {
+    fbrl_status ost = vm->host.file_open(vm->host.user, path, &s->fh);
+    if (ost != FBRL_OK) {
         s->fh = NULL;
         vm->nsrc--;
         *vm->toin = s->saved_in;
@@ -796,6 +797,14 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
         memcpy(msg, "cannot open ", 12);
         memcpy(msg + 12, name, k);
         msg[12 + k] = 0;
+        if (ost != FBRL_ENOENT) { /* say why, e.g. a device or FIFO refused */
+            const char *why = fbrl_status_str(ost);
+            size_t at = 12 + k, w = strlen(why);
+            if (at + 2 + w < sizeof msg) {
+                memcpy(msg + at, ": ", 2);
+                memcpy(msg + at + 2, why, w + 1);
+            }
+        }
         return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, msg);
     }
     fbrl_cell state0 = *vm->state;

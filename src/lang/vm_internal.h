@@ -130,7 +130,7 @@ struct fbrl_vm {
     int pending_throw;
     const char *pending_msg;
     int pending_code;         /* the code pending_msg belongs to */
-    char throw_msg[128];      /* ABORT" text, or a C word's message */
+    char throw_msg[256];      /* ABORT" text, or a C word's message (a controller error with its meaning) */
     int err_captured;
     char cur_word[64];
     fbrl_vm_error err;

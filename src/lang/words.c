@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "fbrl/num.h"
 #include "words.h"
 
 #define U(x) ((fbrl_ucell)(x))
@@ -588,7 +589,8 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             double d;
             char b[40];
             memcpy(&d, (void *)pc, sizeof d);
-            snprintf(b, sizeof b, "%.17gE", d);
+            fbrl_num_general(b, sizeof b - 1, d, 17, NULL); /* locale-free %.17g */
+            strcat(b, "E");
             fbrl__puts(vm, b);
             pc += (fbrl_cell)((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell)) * CELL;
             break;
@@ -920,7 +922,12 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         see(vm, h);
         return 0;
     case OP_HELP:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)) == FBRL_THROW_NO_NAME) {  /* no name after HELP: say how */
+            fbrl__puts(vm, "HELP name shows what a word does and its stack effect, e.g. HELP MOV;\n"
+                           "WORDS lists every word (TAB at the prompt completes a name).\n");
+            return 0;
+        }
+        if (r) return r;
         put_name(vm, h);
         fbrl__puts(vm, " ");
         fbrl__puts(vm, h->stack);
@@ -1057,14 +1064,10 @@ static int represent(double r, char *out, int u, int *exp, int *neg)
         for (int i = 0; i < u; i++) out[i] = isnan(r) ? 'n' : 'i';
         return 0;
     }
-    int d = u < 1 ? 1 : u > 17 ? 17 : u;
-    snprintf(t, sizeof t, "%.*e", d - 1, fabs(r));
-    const char *e = strchr(t, 'e');
-    int k = 0;
-    for (const char *q = t; q < e && k < d; q++)
-        if (*q >= '0' && *q <= '9') out[k++] = *q;
-    for (int i = k; i < u; i++) out[i] = '0';
-    *exp = r == 0 ? 1 : atoi(e + 1) + 1;
+    int d = u < 1 ? 1 : u > 17 ? 17 : u, e10 = 0;
+    fbrl_num_digits(r, d, t, &e10); /* locale-free "%.*e" */
+    for (int i = 0; i < u; i++) out[i] = i < d ? t[i] : '0';
+    *exp = r == 0 ? 1 : e10 + 1;
     return 1;
 }
 
@@ -1143,10 +1146,9 @@ static int parse_float_text(const char *s, size_t n, int need_e, double *out)
         if (!ed) return 0;
     }
     if (i != n) return 0;
-    b[k] = 0;
-    char *end;
-    double v = strtod(b, &end);
-    if (*end || !isfinite(v)) return 0;
+    double v;
+    /* fbrl_num_parse, not strtod: a host's locale must not change what a number is */
+    if (fbrl_num_parse(b, k, &v) != FBRL_OK || !isfinite(v)) return 0;
     *out = v;
     return 1;
 }

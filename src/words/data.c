@@ -7,6 +7,7 @@
  * storage pointer the C module keeps (it must point just behind the structure) and
  * the extent of the storage (inside the data space). A corrupted structure throws
  * instead of letting the C module touch memory outside the VM. */
+#include <stdio.h>
 #include <string.h>
 #include "fbrl/matrix.h"
 #include "fbrl/ring.h"
@@ -389,11 +390,14 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
     return FBRL_OK;
 }
 
-/* GET-STRING ( str -- ): a line from the console (characters beyond the size are dropped) */
+/* GET-STRING ( str -- ): a line from the console. Characters beyond the string's size
+ * are dropped, and the user is told how many were kept (a cut name or path must not
+ * pass unseen). */
 static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
 {
     fbrl_cell s;
     unsigned size, len, k = 0;
+    unsigned long dropped = 0;
     fbrl_status st;
     (void)arg;
     unsigned char *c = pop_string(vm, &s, &size, &len, &st);
@@ -404,8 +408,15 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
         int ch = host->key(host->user);
         if (ch < 0 || ch == '\n' || ch == '\r') break;
         if (k < size) c[k++] = (unsigned char)ch;
+        else dropped++;
     }
     set_len(s, k);
+    if (dropped) {
+        char msg[128];
+        snprintf(msg, sizeof msg, "GET-STRING: the string holds %u characters: kept the first %u, dropped %lu\n",
+                 size, k, dropped);
+        fbrl_vmx_puts(vm, msg);
+    }
     return FBRL_OK;
 }
 

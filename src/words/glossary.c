@@ -49,5 +49,11 @@ void fbrl_glossary_set_port_writer(fbrl_glossary *g, void (*write)(void *ctx, co
     g->port_ctx = write ? ctx : NULL;
 }
 
-fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc) { return gl_map(g, loc, 1); }
-fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc) { return gl_map(g, loc, 0); }
+fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2], double *off)
+{
+    return gl_map(g, loc, 1, axis, off);
+}
+fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2])
+{
+    return gl_map(g, loc, 0, axis, NULL);
+}

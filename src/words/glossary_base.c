@@ -108,15 +108,19 @@ fbrl_status gl_out(fbrl_vm *vm, const fbrl_glossary *g, double inches, double *u
     return st == FBRL_OK ? st : gl_throw_st(vm, st, "length");
 }
 
-fbrl_status gl_map(const fbrl_glossary *g, fbrl_loc *loc, int out)
+fbrl_status gl_map(const fbrl_glossary *g, fbrl_loc *loc, int out, const double axis[2], double *off)
 {
     fbrl_loc res;
     fbrl_status st;
+    double dev = 0.0;
+    if (off) *off = 0.0;
     if (!g || g->magic != GL_INSTALLED || !g->vm || !loc) return FBRL_EINVAL;
     if (!g->map_on) return FBRL_OK;
     const fbrl_calib *c = fbrl_vmx_data(g->vm, g->with_cal, &gl_type_stru, sizeof(fbrl_calib));
     if (!c || !gl_rigid(c)) return FBRL_ESTATE;
-    st = out ? fbrl_calib_map(c, loc, &res) : fbrl_calib_unmap(c, loc, &res);
+    st = out ? fbrl_calib_map_arm(c, axis, loc, &res, &dev) : fbrl_calib_unmap_arm(c, axis, loc, &res, &dev);
+    if (off) *off = dev;
+    if (st == FBRL_OK && out && dev > FBRL_CALIB_AXIS_MAX) st = FBRL_ERANGE;
     if (st == FBRL_OK) *loc = res;
     return st;
 }

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "fbrl/calib.h"
+#include "fbrl/num.h"
 #include "glossary_internal.h"
 
 /* The three slots of a CREATE-CAL structure at a, or throw. */
@@ -212,7 +213,15 @@ static fbrl_status map_word(fbrl_vm *vm, int out)
     fbrl_status st;
     if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 1, word, &c)) || (st = gl_loc(vm, a[1], 1, word, &loc)))
         return st;
-    st = out ? fbrl_calib_map(c, loc, loc) : fbrl_calib_unmap(c, loc, loc);
+    double off = 0.0;
+    fbrl_loc res;
+    st = out ? fbrl_calib_map_arm(c, NULL, loc, &res, &off) : fbrl_calib_unmap(c, loc, &res);
+    if (st == FBRL_OK && off <= FBRL_CALIB_AXIS_MAX) *loc = res;
+    if (st == FBRL_OK && off > FBRL_CALIB_AXIS_MAX) {
+        char deg[32];
+        fbrl_num_fixed(deg, sizeof deg, off, 0, 2, 0, NULL);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: tool axis %s deg across the arm (a 5-axis arm cannot follow)", word, deg);
+    }
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
 static fbrl_status w_map(fbrl_vm *vm, void *arg) { (void)arg; return map_word(vm, 1); }
@@ -229,7 +238,7 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
     fbrl_calib *c;
     double res[FBRL_GLOSSARY_NPOINT_MAX], rms, v;
     size_t worst;
-    char line[96];
+    char line[160], num[40], num2[40]; /* numbers through fbrl_num: locale-free */
     fbrl_status st;
     if ((st = gl_pop(vm, 4, a))) return st;
     if (a[0] < 3 || a[0] > FBRL_GLOSSARY_NPOINT_MAX)
@@ -259,12 +268,15 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
     const char *unit = g->units.metric ? "cm" : "in";
     for (size_t i = 0; i < n; i++) {
         if ((st = gl_out(vm, g, res[i], &v))) return st;
-        snprintf(line, sizeof line, "point %3d residual %10.4f %s\n", (int)i, v, unit);
+        fbrl_num_fixed(num, sizeof num, v, 10, 4, 0, NULL);
+        snprintf(line, sizeof line, "point %3d residual %s %s\n", (int)i, num, unit);
         fbrl_vmx_puts(vm, line);
     }
     double wv;
     if ((st = gl_out(vm, g, rms, &v)) || (st = gl_out(vm, g, res[worst], &wv))) return st;
-    snprintf(line, sizeof line, "RMS %.4f %s, worst point %d (%.4f %s)\n", v, unit, (int)worst, wv, unit);
+    fbrl_num_fixed(num, sizeof num, v, 0, 4, 0, NULL);
+    fbrl_num_fixed(num2, sizeof num2, wv, 0, 4, 0, NULL);
+    snprintf(line, sizeof line, "RMS %s %s, worst point %d (%s %s)\n", num, unit, (int)worst, num2, unit);
     fbrl_vmx_puts(vm, line);
     if ((st = fbrl_vm_push(vm, (fbrl_cell)worst))) return st;
     return fbrl_vm_fpush(vm, v);

@@ -73,8 +73,8 @@ fbrl_status gl_in(fbrl_vm *vm, const fbrl_glossary *g, double user, double *inch
 fbrl_status gl_out(fbrl_vm *vm, const fbrl_glossary *g, double inches, double *user);
 
 /* MAP-ON mapping of loc through the WITH-CAL structure: out = 1 maps to the moved block,
- * 0 unmaps (fbrl_glossary_map_out / _map_in). */
-fbrl_status gl_map(const fbrl_glossary *g, fbrl_loc *loc, int out);
+ * 0 unmaps (fbrl_glossary_map_out / _map_in); axis and *off as there. */
+fbrl_status gl_map(const fbrl_glossary *g, fbrl_loc *loc, int out, const double axis[2], double *off);
 
 /* The word groups. */
 fbrl_status gl_install_loc(fbrl_vm *vm, fbrl_glossary *g);

@@ -102,7 +102,7 @@ static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, cha
     fbrl_status st;
     if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc))) return st;
     shown = *loc;
-    if ((st = gl_map(g, &shown, 1)) != FBRL_OK) {
+    if ((st = gl_map(g, &shown, 1, NULL, NULL)) != FBRL_OK) {
         if (st == FBRL_ESTATE)
             return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
                             word);

@@ -91,3 +91,11 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
 }
 
 int fbrl_robot_last_error(const fbrl_robot *r) { return r ? r->last_error : -1; }
+
+void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell)
+{
+    if (!r) return;
+    r->progress = progress;
+    r->progress_ctx = ctx;
+    r->tell = tell != 0;
+}

@@ -210,7 +210,7 @@ static fbrl_status w_get_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 /* Bring the link back in step after raw output: let the controller finish answering,
  * discard it all (at most 2 s: a stream started raw never goes quiet, the connect step's
  * probe ends it), then erase the controller's line and send NOHELP. */
-fbrl_status rb_resync(fbrl_robot *r)
+static fbrl_status resync_keep(fbrl_robot *r, char *keep, size_t cap, size_t *kept)
 {
     uint8_t buf[64];
     for (int quiet = 0, rounds = 0; quiet < 3 && rounds < 40; rounds++) {
@@ -218,8 +218,15 @@ fbrl_status rb_resync(fbrl_robot *r)
         fbrl_status st = fbrl_uart_read(r->link->u, buf, sizeof buf, &got, 50);
         if (st != FBRL_OK && st != FBRL_ETIMEOUT) return st;
         quiet = got ? 0 : quiet + 1;
+        for (size_t k = 0; keep && k < got && *kept + 1 < cap; k++) keep[(*kept)++] = (char)buf[k];
     }
+    if (keep) keep[*kept] = '\0';
     return fbrl_link_connect(r->link);
+}
+
+fbrl_status rb_resync(fbrl_robot *r)
+{
+    return resync_keep(r, NULL, 0, NULL);
 }
 
 /* RESET-COMM ( port -- ): drop what was received and not read, and resynchronise. */
@@ -232,17 +239,47 @@ static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_link_result(r, w, rb_resync(r));
 }
 
-/* PRINT-LOC's destination (the glossary's port writer): the text goes out on the
- * controller's line as it is, as the thesis's PRINT-LOC did. A controller takes the line
- * for a command and rejects it; its answer is discarded and the link resynchronised. */
+/* PRINT-LOC's destination unless the host gave it a printer (fbrlmon --printer): the
+ * text goes out on the controller's line as it is, as the thesis's PRINT-LOC did. A
+ * controller reads the line as a command and rejects it (050-AMBIGUOUS COMMAND: an "X"
+ * starts several commands), which it records as its last error: the user is told what
+ * it answered, then the link is resynchronised. */
 static void print_to_port(void *ctx, const char *s, size_t n)
 {
     fbrl_robot *r = ctx;
-    if (!r->link || raw_begin(r) != FBRL_OK) return;
-    if (fbrl_uart_write(r->link->u, s, n, NULL, COMM_TIMEOUT_MS) != FBRL_OK) return;
+    char answer[512], msg[256];
+    size_t kept = 0;
+    if (!r->link || raw_begin(r) != FBRL_OK) {
+        rb_puts(r, "PRINT-LOC: the controller's line is busy: nothing printed\n");
+        return;
+    }
+    if (fbrl_uart_write(r->link->u, s, n, NULL, COMM_TIMEOUT_MS) != FBRL_OK) {
+        rb_puts(r, "PRINT-LOC: could not write to the controller's line: nothing printed\n");
+        return;
+    }
     raw_end(r, s, n);
-    if (n && s[n - 1] == '\n')
-        rb_resync(r);
+    if (!n || s[n - 1] != '\n') return;
+    if (resync_keep(r, answer, sizeof answer, &kept) != FBRL_OK) {
+        rb_puts(r, "PRINT-LOC: printed on the controller's line; the controller did not answer in step again\n");
+        return;
+    }
+    /* the controller's answer: an error line "NNN-TEXT." somewhere after its echo */
+    for (size_t i = 0; i + 4 < kept; i++) {
+        int code;
+        char text[64];
+        size_t e = i;
+        while (e < kept && answer[e] != '\r' && answer[e] != '\n') e++;
+        if (fbrl_rapl_parse_error(answer + i, e - i, &code, text, sizeof text) == FBRL_OK) {
+            r->last_error = code;
+            snprintf(msg, sizeof msg,
+                     "PRINT-LOC: printed on the controller's line, which read it as a command and answered "
+                     "%03d-%s (nothing ran; fbrlmon --printer PATH prints elsewhere)\n", code, text);
+            rb_puts(r, msg);
+            return;
+        }
+        i = e;
+    }
+    rb_puts(r, "PRINT-LOC: printed on the controller's line (the controller answered no error)\n");
 }
 
 void rb_port_writer(fbrl_robot *r)

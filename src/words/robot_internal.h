@@ -52,6 +52,9 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight);
 /* Run a raw line; its output lines go to the console when print != 0. */
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* METRIC-ON: lengths the user sees are centimetres. */
+int rb_metric(const fbrl_robot *r);
+fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link_line_fn fn, void *ctx);
 /* Convert a finished link call's status (st) into an exception, or FBRL_OK. */
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st);
 
@@ -64,6 +67,7 @@ double rb_len_in(const fbrl_robot *r, double v);
 /* Host clock and sleep (throw when the host has none). */
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms);
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms);
+fbrl_status rb_wait_ms(fbrl_robot *r, const char *who, uint32_t ms);
 
 /* Any control character counts as blank (as the engine's parser has it). */
 static inline int rb_blank(char c) { return (unsigned char)c <= ' '; }

@@ -109,7 +109,7 @@ static fbrl_status pulse(fbrl_robot *r, const rb_word *w, const fbrl_robot_devic
 {
     fbrl_status st = set_output(r, w, d, 1);
     if (st != FBRL_OK) return st;
-    fbrl_status slept = rb_sleep_ms(r, ms);
+    fbrl_status slept = rb_wait_ms(r, w->name, ms);
     st = set_output(r, w, d, 0);
     return slept != FBRL_OK ? slept : st;
 }
@@ -182,15 +182,25 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st == FBRL_OK) st = ms_arg(r, w, v[2].i);
     if (st == FBRL_OK) st = rb_now_ms(r, &t0);
     if (st != FBRL_OK) return st;
+    uint64_t shown = 0;
+    int count_down = r->progress && v[2].i >= 2 * (fbrl_cell)FBRL_ROBOT_PROGRESS_MS;
     for (;;) {
-        if ((st = read_input(r, w, d, &on)) != FBRL_OK) return st;
+        if ((st = read_input(r, w, d, &on)) != FBRL_OK) break;
         if (on == want) break;
-        if ((st = rb_now_ms(r, &now)) != FBRL_OK) return st;
+        if ((st = rb_now_ms(r, &now)) != FBRL_OK) break;
         uint64_t left = t0 + (uint64_t)v[2].i > now ? t0 + (uint64_t)v[2].i - now : 0;
         if (left == 0) break;
-        if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK) return st;
-        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
+        if (count_down && (left + 999u) / 1000u != shown) {  /* at a terminal: the seconds left */
+            char line[96];
+            shown = (left + 999u) / 1000u;
+            snprintf(line, sizeof line, "%s: waiting for input %d, %lu s left", w->name, d->port, (unsigned long)shown);
+            r->progress(r->progress_ctx, line);
+        }
+        if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK) break;
+        if ((st = rb_interrupted(r)) != FBRL_OK) break;
     }
+    if (shown) r->progress(r->progress_ctx, NULL);
+    if (st != FBRL_OK) return st;
     return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
@@ -235,7 +245,7 @@ static fbrl_status w_wait_until(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = ms_arg(r, w, v[0].i);
     if (st == FBRL_OK) st = elapsed(r, w, &ms);
     if (st != FBRL_OK) return st;
-    return ms < (uint64_t)v[0].i ? rb_sleep_ms(r, (uint32_t)((uint64_t)v[0].i - ms)) : FBRL_OK;
+    return ms < (uint64_t)v[0].i ? rb_wait_ms(r, w->name, (uint32_t)((uint64_t)v[0].i - ms)) : FBRL_OK;
 }
 
 /* TIME-OF-DAY ( -- seconds ): seconds since local midnight */

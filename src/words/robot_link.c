@@ -12,17 +12,42 @@ static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim
 /* Run the link's current command to its end in slices, looking for Ctrl-C between
  * them. Interrupted, the command stays in the link (the controller cannot take a
  * line back): rb_online() finishes it before the next command. */
-static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+static fbrl_status rb_drive_for(fbrl_robot *r, const char *who, const char *what, fbrl_status *result)
 {
+    uint64_t t0 = 0, now = 0, shown = 0;
+    int timed = r->progress && fbrl_vmx_host(r->vm)->now_us && rb_now_ms(r, &t0) == FBRL_OK;
+    fbrl_status st, interrupted = FBRL_OK;
     for (;;) {
         int done = 0;
-        fbrl_status st = fbrl_link_poll(r->link, 100, &done);
+        st = fbrl_link_poll(r->link, 100, &done);
         if (done || st != FBRL_OK) {
             *result = st;
-            return FBRL_OK;
+            break;
         }
-        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
+        if ((interrupted = rb_interrupted(r)) != FBRL_OK) break;
+        /* a long wait shows how long it has been, about once a second */
+        if (timed && rb_now_ms(r, &now) == FBRL_OK && now - t0 >= FBRL_ROBOT_PROGRESS_MS &&
+            (now - t0) / 1000u != shown) {
+            char line[96];
+            shown = (now - t0) / 1000u;
+            snprintf(line, sizeof line, "%s: waiting for %s, %lu s", who, what, (unsigned long)shown);
+            r->progress(r->progress_ctx, line);
+        }
     }
+    if (shown) {
+        r->progress(r->progress_ctx, NULL);
+        if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
+            char line[96];
+            snprintf(line, sizeof line, "%s: waited %.1f s for %s\n", who, (double)(now - t0) / 1000.0, what);
+            rb_puts(r, line);
+        }
+    }
+    return interrupted;
+}
+
+static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
+{
+    return rb_drive_for(r, "the controller", "the last command", result);
 }
 
 fbrl_status rb_online(fbrl_robot *r)
@@ -38,19 +63,37 @@ fbrl_status rb_online(fbrl_robot *r)
 
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
-    char msg[128];
+    char msg[240];
     if (st == FBRL_OK) return FBRL_OK;
     if (st == FBRL_ECONTROLLER) {
         int code = FBRL_THROW_ABORT;
-        const char *text = "";
+        const char *text = "", *help;
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
-        snprintf(msg, sizeof msg, "%s: controller error %03d-%s", w->name, code, text);
+        help = fbrl_rapl_error_help(code);  /* its meaning and what to do, in plain words */
+        snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text, help ? " (" : "",
+                 help ? help : "", help ? ")" : "");
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
         return rb_fail_st(r, w, st, "cannot encode the command");
     return rb_fail_st(r, w, st, "link");
+}
+
+/* At a terminal: what the motion just started. The prompt comes back while the arm moves
+ * (the next motion or FINISH waits for it). */
+static void tell_motion(fbrl_robot *r, const rb_word *w, const char *text)
+{
+    char line[200];
+    if (r->have_target) {
+        int metric = rb_metric(r);
+        double k = metric ? FBRL_CM_PER_IN : 1.0;
+        snprintf(line, sizeof line, "%s: the arm is moving to X %+.4f Y %+.4f Z %+.4f %s (%s)\n", w->name,
+                 r->target.x * k, r->target.y * k, r->target.z * k, metric ? "cm" : "in", text);
+    } else {
+        snprintf(line, sizeof line, "%s: the arm is moving (%s)\n", w->name, text);
+    }
+    rb_puts(r, line);
 }
 
 fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
@@ -71,7 +114,13 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
     if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
     if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
-    if (res == FBRL_OK && (st = rb_drive(r, &res)) != FBRL_OK) return st;
+    if (res == FBRL_OK &&
+        (st = rb_drive_for(r, w->name, cmd == FBRL_RAPL_WAIT ? "the input" : "the arm", &res)) != FBRL_OK) {
+        r->have_target = 0;
+        return st;
+    }
+    if (res == FBRL_OK && r->tell && (ci->flags & FBRL_RAPL_F_MOTION)) tell_motion(r, w, text);
+    r->have_target = 0;
     return rb_link_result(r, w, res);
 }
 
@@ -94,10 +143,61 @@ static void return_lines(fbrl_robot *r, void (*fn)(void *, const char *, size_t,
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
 }
 
+typedef struct rb_show_ctx {
+    fbrl_robot *r;
+    fbrl_link_line_fn fn;
+    void *ctx;
+} rb_show_ctx;
+
+static void show_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    rb_show_ctx *c = ctx;
+    print_line(c->r, line, len, flawed);
+    if (c->fn) c->fn(c->ctx, line, len, flawed);
+}
+
+/* A display (W0 W2 W4, ROBOT-STATUS, SERIAL, a query typed with RAPL) shows what the
+ * controller printed, once: one reading, sent once. The link reads a value a program
+ * uses (STATUS, TYPEV, W2 for ARM-HERE) until two readings agree; a display needs no
+ * second reading (a damaged line is shown marked), and a position read while the arm
+ * moves could never agree. Each line also goes to fn (may be NULL). */
+fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link_line_fn fn, void *ctx)
+{
+    fbrl_link_line_fn old_fn = NULL;
+    void *old_ctx = NULL;
+    rb_show_ctx c = { r, fn, ctx };
+    fbrl_status res, st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    (void)fbrl_link_set_line_handler(r->link, show_line, &c, &old_fn, &old_ctx);
+    res = fbrl_link_start(r->link, line, FBRL_LINK_REPLY_LINES);
+    if (res == FBRL_OK) st = rb_drive(r, &res);
+    (void)fbrl_link_set_line_handler(r->link, old_fn, old_ctx, NULL, NULL);
+    if (st != FBRL_OK) return st;
+    return rb_link_result(r, w, res);
+}
+
+/* Is line a read-only query the link would read twice (W0 W2 W4 STATUS TYPEI TYPEV)? */
+static int display_query(const char *line)
+{
+    char word[12];
+    size_t k = 0;
+    fbrl_rapl_cmd c;
+    while (*line == ' ') line++;
+    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
+        word[k] = line[k];
+        k++;
+    }
+    word[k] = '\0';
+    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK) return 0;
+    return c == FBRL_RAPL_W0 || c == FBRL_RAPL_W2 || c == FBRL_RAPL_W4 || c == FBRL_RAPL_STATUS ||
+           c == FBRL_RAPL_TYPEI || c == FBRL_RAPL_TYPEV;
+}
+
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
 {
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
+    if (print && display_query(line)) return rb_show(r, w, line, NULL, NULL);
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     if (print) borrow_lines(r, &fn, &ctx);

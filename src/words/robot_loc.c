@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fbrl/num.h"
 #include "robot_internal.h"
 
 /* ---- the data glossary's side: locations, mapping, units ---- */
@@ -16,23 +17,32 @@ static fbrl_loc *gl_loc(fbrl_robot *r, fbrl_cell addr)
     return fbrl_glossary_loc(r->vm, addr, &p) == FBRL_OK ? p : NULL;
 }
 
-static int gl_metric(const fbrl_robot *r)
+static int gl_metric(const fbrl_robot *r) { return rb_metric(r); }
+
+/* MAP-ON mapping (identity without a glossary or with MAP-OFF). The waist turns about the
+ * arm's base axis: where BASE-OFFSET puts it in the user's frame. */
+static void gl_arm_axis(const fbrl_robot *r, double axis[2])
 {
-    int on = 0;
-    return r->g && fbrl_units_is_metric(fbrl_glossary_units(r->g), &on) == FBRL_OK && on;
+    double c = cos(FBRL_RAD(r->base[3])), s = sin(FBRL_RAD(r->base[3]));
+    axis[0] = -(c * r->base[0] + s * r->base[1]);
+    axis[1] = s * r->base[0] - c * r->base[1];
 }
 
-/* MAP-ON mapping (identity without a glossary or with MAP-OFF). */
-static fbrl_status gl_map_out(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out)
+static fbrl_status gl_map_out(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out, double *off)
 {
+    double axis[2];
     *out = *in;
-    return r->g ? fbrl_glossary_map_out(r->g, out) : FBRL_OK;
+    *off = 0.0;
+    gl_arm_axis(r, axis);
+    return r->g ? fbrl_glossary_map_out(r->g, out, axis, off) : FBRL_OK;
 }
 
 static fbrl_status gl_map_in(fbrl_robot *r, const fbrl_loc *in, fbrl_loc *out)
 {
+    double axis[2];
     *out = *in;
-    return r->g ? fbrl_glossary_map_in(r->g, out) : FBRL_OK;
+    gl_arm_axis(r, axis);
+    return r->g ? fbrl_glossary_map_in(r->g, out, axis) : FBRL_OK;
 }
 
 double rb_len_in(const fbrl_robot *r, double v) { return gl_metric(r) ? v / 2.54 : v; }
@@ -80,7 +90,16 @@ static double wrap180(double a)
 fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbrl_loc *arm)
 {
     fbrl_loc m;
-    fbrl_status st = gl_map_out(r, user, &m);
+    double off;
+    fbrl_status st = gl_map_out(r, user, &m, &off);
+    if (st == FBRL_ERANGE) {
+        char msg[200], deg[32], lim[32];
+        fbrl_num_fixed(deg, sizeof deg, off, 0, 2, 0, NULL);
+        fbrl_num_fixed(lim, sizeof lim, FBRL_CALIB_AXIS_MAX, 0, 1, 0, NULL);
+        snprintf(msg, sizeof msg, "%s: mapping: the block's tilt asks for the tool axis %s deg across the arm,"
+                 " which a 5-axis arm cannot follow (limit %s deg)", w->name, deg, lim);
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
+    }
     if (st != FBRL_OK) return rb_fail_st(r, w, st, "mapping");
     double c = cos(FBRL_RAD(r->base[3])), s = sin(FBRL_RAD(r->base[3]));
     arm->x = c * m.x - s * m.y + r->base[0];

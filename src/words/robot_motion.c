@@ -109,6 +109,7 @@ static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st == FBRL_OK) st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK) return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
+    r->target = user, r->have_target = 1;  /* what tell shows: the user's location */
     return rb_cmd(r, w, FBRL_RAPL_MOVE, &a, 1, (int)w->arg);
 }
 
@@ -124,7 +125,7 @@ static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st == FBRL_OK) st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK) return st;
     fbrl_rapl_arg a[2] = { fbrl_rapl_str(name), fbrl_rapl_real(rb_len_in(r, v[1].f)) };
-    return rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg);
+    return rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg);  /* above the location: no target shown */
 }
 
 /* ARM-HERE ( loc -- ): wait for the motion to end, read W2, store it unmapped */

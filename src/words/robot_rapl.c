@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fbrl/num.h"
 #include "robot_internal.h"
 
 static fbrl_status w_config(fbrl_robot *r, const rb_word *w, rb_val *v)
@@ -39,41 +40,33 @@ static fbrl_status w_config(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 
-typedef struct rb_block {
-    char text[2048];
-    size_t n;
-} rb_block;
-
-static void keep_block(void *ctx, const char *line, size_t len, int flawed)
+/* The WORLD numbers of a position block, read as it is shown. */
+static void parse_block(void *ctx, const char *line, size_t len, int flawed)
 {
-    rb_block *b = ctx;
-    fbrl_rapl_pos title;
-    fbrl_rapl_pos_init(&title);
-    if (!flawed && fbrl_rapl_pos_line(&title, line, len) == FBRL_OK) b->n = 0; /* only a title fits an empty block */
-    if (b->n + len + 1 > sizeof b->text) return;
-    memcpy(b->text + b->n, line, len);
-    b->n += len;
-    b->text[b->n++] = '\n';
+    fbrl_rapl_pos *p = ctx;
+    if (!flawed) (void)fbrl_rapl_pos_line(p, line, len);
 }
 
-/* W0 W2 W4 ROBOT-STATUS SERIAL: the controller's text on the console */
+/* W0 W2 W4 ROBOT-STATUS SERIAL: the controller's text on the console, once (rb_show).
+ * A position block is followed by its WORLD numbers with their names, in the user's
+ * units (cm with METRIC-ON); the yaw is marked as the arm's own: a 5-axis arm cannot
+ * choose it, it is the waist's direction (DESIGN 6). */
 static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     (void)v;
     fbrl_rapl_cmd cmd = (fbrl_rapl_cmd)w->cmd;
-    if (cmd != FBRL_RAPL_W0 && cmd != FBRL_RAPL_W2 && cmd != FBRL_RAPL_W4)
-        return rb_raw(r, w, fbrl_rapl_cmd_info(cmd)->keyword, 1);
-    rb_block b;
-    fbrl_link_line_fn fn = NULL;
-    void *ctx = NULL;
-    fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
-    b.n = 0;
-    (void)fbrl_link_set_line_handler(r->link, keep_block, &b, &fn, &ctx); /* for this command */
-    st = fbrl_link_where(r->link, cmd, NULL);
-    (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
-    if (st == FBRL_OK) fbrl_vmx_write(r->vm, b.text, b.n);
-    return rb_link_result(r, w, st);
+    int pos = cmd == FBRL_RAPL_W0 || cmd == FBRL_RAPL_W2 || cmd == FBRL_RAPL_W4;
+    fbrl_rapl_pos p;
+    fbrl_rapl_pos_init(&p);
+    fbrl_status st = rb_show(r, w, fbrl_rapl_cmd_info(cmd)->keyword, pos ? parse_block : NULL, &p);
+    if (st != FBRL_OK || !pos || p.nworld < 6) return st;
+    int metric = rb_metric(r);
+    double k = metric ? FBRL_CM_PER_IN : 1.0;
+    char out[160];
+    snprintf(out, sizeof out, "world: X %+.4f Y %+.4f Z %+.4f %s  yaw %+.3f (the arm's own)  pitch %+.3f  roll %+.3f deg\n",
+             p.world[0] * k, p.world[1] * k, p.world[2] * k, metric ? "cm" : "in", p.world[3], p.world[4], p.world[5]);
+    rb_puts(r, out);
+    return FBRL_OK;
 }
 
 /* W1 W3 W5 WE1 WE3 WE5: FBRL_ROBOT_STREAM_LINES readings, then the stream is stopped */
@@ -94,7 +87,8 @@ static fbrl_status w_typevar(fbrl_robot *r, const rb_word *w, rb_val *v)
         double d;
         if ((st = rb_link_result(r, w, fbrl_link_typev(r->link, name, &d))) != FBRL_OK) return st;
         if (w->arg == 2) return fbrl_vm_fpush(r->vm, d) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_FSTACK_OVERFLOW, NULL);
-        snprintf(out, sizeof out, "%.6f ", d);
+        fbrl_num_fixed(out, sizeof out - 1, d, 0, 6, 0, NULL); /* "%.6f", whatever the locale */
+        strcat(out, " ");
     } else {
         long i;
         if ((st = rb_link_result(r, w, fbrl_link_typei(r->link, name, &i))) != FBRL_OK) return st;

@@ -27,6 +27,12 @@ fbrl_status rb_interrupted(fbrl_robot *r)
 
 void rb_puts(fbrl_robot *r, const char *s) { fbrl_vmx_write(r->vm, s, strlen(s)); }
 
+int rb_metric(const fbrl_robot *r)
+{
+    int on = 0;
+    return r->g && fbrl_units_is_metric(fbrl_glossary_units(r->g), &on) == FBRL_OK && on;
+}
+
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms)
 {
     const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
@@ -41,4 +47,24 @@ fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms)
     if (!h->sleep_ms) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
     if (ms) h->sleep_ms(h->user, ms);
     return FBRL_OK;
+}
+
+/* A timed wait of a word; at a terminal (a progress callback) a long one counts down
+ * the seconds left, once a second, and is erased when it ends. Ctrl-C ends it at once,
+ * as it ends the host's sleep (the engine then throws). */
+fbrl_status rb_wait_ms(fbrl_robot *r, const char *who, uint32_t ms)
+{
+    if (!r->progress || ms < 2 * FBRL_ROBOT_PROGRESS_MS) return rb_sleep_ms(r, ms);
+    fbrl_status st = FBRL_OK;
+    uint32_t left = ms;
+    char line[96];
+    while (left > 0 && st == FBRL_OK && !fbrl_vm_interrupt_pending(r->vm)) {
+        uint32_t slice = left % 1000u ? left % 1000u : 1000u;  /* whole seconds left after it */
+        snprintf(line, sizeof line, "%s: %lu s left", who, (unsigned long)((left + 999u) / 1000u));
+        r->progress(r->progress_ctx, line);
+        st = rb_sleep_ms(r, slice);
+        left -= slice;
+    }
+    r->progress(r->progress_ctx, NULL);
+    return st;
 }

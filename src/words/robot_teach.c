@@ -11,7 +11,7 @@
  * it, console lines) are run as FBRL until an empty line takes the point. The points
  * are physical arm positions (never mapped: they define the mapping); SET-CAL stores
  * them, all three only when all were taken. */
-static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, size_t *len)
+static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, int *asked, size_t *len)
 {
     fbrl_vm *vm = r->vm;
     const fbrl_vm_host *host = fbrl_vmx_host(vm);
@@ -31,6 +31,14 @@ static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, size_t *
         snprintf(msg, sizeof msg, "%s: input ended before point %d was taken", w->name, slot);
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
+    /* Ask only a person: lines taken from a plan (file or text) need no prompt. */
+    if (!*asked) {
+        char ask[128];
+        snprintf(ask, sizeof ask, "Calibration point %d: move the arm there (robot words), then an empty line takes it.\n", slot);
+        rb_puts(r, ask);
+        *asked = 1;
+    }
+    n = 0;
     for (;;) {
         int c = host->key(host->user);
         if (c < 0) {
@@ -76,13 +84,11 @@ static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3])
 {
     fbrl_vm *vm = r->vm;
     fbrl_status st;
-    char msg[128];
     for (int slot = 1; slot <= 3; slot++) {
-        snprintf(msg, sizeof msg, "Calibration point %d: move the arm there (robot words), then an empty line takes it.\n", slot);
-        rb_puts(r, msg);
+        int asked = 0;
         for (;;) {
             size_t n = 0;
-            if ((st = next_line(r, w, slot, &n)) != FBRL_OK) return st;
+            if ((st = next_line(r, w, slot, &asked, &n)) != FBRL_OK) return st;
             size_t k = 0;
             while (k < n && rb_blank(((char *)r->tib)[k])) k++;
             if (k == n) break;

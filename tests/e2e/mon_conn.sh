@@ -97,6 +97,11 @@ if "$mon" --help | grep -q -- '--sim '; then
     expect "emulator is the default" 0 "7 " -e '7 .'
     expect "--sim-state keeps the emulator's memory" 0 "8 " --sim --sim-state "$tmp/sim.state" -e '8 .'
     [ -s "$tmp/sim.state" ] || fail "--sim-state: no state file written"
+    printf '# input 3 on from the start\n0 IN 3 1\n' >"$tmp/sim.inputs"
+    expect "--sim-inputs sets the emulator's inputs" 0 "-1 0 " --sim-inputs "$tmp/sim.inputs" \
+        -e '3 INPUT-DEVICE T3  4 INPUT-DEVICE T4  T3 INPUT? . T4 INPUT? .'
+    expect "--sim-inputs: a missing file stops fbrlmon" 3 "" --sim-inputs "$tmp/no-such.inputs" -e '1 .'
+    grep -q 'cannot start the emulator' err.txt || fail "--sim-inputs missing: want 'cannot start the emulator'"
 fi
 expect "--offline" 0 "9 " --offline -e '9 .'
 expect "robot words offline: one clear error" 1 "" --offline -e 'HOME'

@@ -57,7 +57,7 @@ t "error in -e text" 1 "" "~^error: .*\\(-e:1\\)$" "" -e '1 0 /'
 t "error on line 2 of -e text" 1 "" "~^error: undefined word oops \\(-e:2\\)$" "" -e "1 drop
 oops"
 t "missing file" 1 "4 " "~^error: .*/nonexistent\\.fbrl" '4 .\n' "$tmp/nonexistent.fbrl"
-t "a directory as FILE" 1 "" "error: file I/O exception ($tmp)\n" "" "$tmp"
+t "a directory as FILE" 1 "" "error: cannot open $tmp: not a regular file (a device, FIFO or directory) ($tmp)\n" "" "$tmp"
 printf ': half 1 2\n' >half.fbrl
 t "unterminated definition at end of a file" 1 "5 " \
     "error: unterminated definition at end of file ($tmp/half.fbrl:1)\n" '5 .\n' "$tmp/half.fbrl"

@@ -179,8 +179,10 @@ int main(int argc, char **argv)
             size_t before = s.mark;
             type(&s, "\033[5~"); /* PgUp until the arm cannot reach */
             expect(&s, "\033[K", "status line after PgUp");
-            /* (at 80 columns the message takes the step's place) */
-            if (strstr(s.buf + before, "Z+26.500 in  pitch+1.0 roll+0.0  ! JOG: 029-TRANSFORM ILLEGAL.") != NULL)
+            /* (with its meaning the message is longer than 80 columns leave: it is printed
+             * on its own line above the status line) */
+            if (strstr(s.buf + before, "! JOG: 029-TRANSFORM ILLEGAL. (the position is out of the arm's reach") != NULL &&
+                strstr(s.buf + before, "Z+26.500 in  pitch+1.0 roll+0.0") != NULL)
                 break;
         }
         if (!g_failed && k == 12) {

@@ -8,7 +8,7 @@ if(TARGET fbrlsim AND TARGET fbrlmon)
   set(_plan_tmp ${PROJECT_BINARY_DIR}/e2e-plan)
   # tubes arrive on the separation unit: its sensor (input 3) is on
   add_test(NAME plan_sample_prep COMMAND ${_plan_run} ${_plan_tmp}/full
-    ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_tube_present.inputs
+    ${_plan_ex}/tube_present.inputs
     ${_plan_ex}/sample_prep.expected ${_plan_ex}/sample_prep.out.expected
     $<TARGET_FILE:fbrlmon> -e "600 CONSTANT TIME-SCALE" --port @PORT@ ${_plan_ex}/sample_prep.fbrl)
   # the sensor never sees a tube: every WAIT-INPUT times out, no vacuum, no rinse
@@ -18,7 +18,7 @@ if(TARGET fbrlsim AND TARGET fbrlmon)
   set(_plan_tests plan_sample_prep plan_sample_prep_notube)
   if(TARGET example_sample_prep)
     add_test(NAME plan_sample_prep_c COMMAND ${_plan_run} ${_plan_tmp}/c
-      ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_tube_present.inputs
+      ${_plan_ex}/tube_present.inputs
       ${_plan_ex}/sample_prep_c.expected ${_plan_ex}/sample_prep_c.out.expected
       $<TARGET_FILE:example_sample_prep> @PORT@)
     list(APPEND _plan_tests plan_sample_prep_c)

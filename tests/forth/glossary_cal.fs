@@ -6,7 +6,7 @@ FVARIABLE INF-BITS  HEX 7FF0000000000000 DECIMAL INF-BITS !
 : ~0 ( F: r -- r' ) FDUP FABS 1E-9 F< IF FDROP 0E0 THEN ;
 : GETXYZ ( loc -- ) ( F: -- x y z ) DUP GETX ~0 DUP GETY ~0 GETZ ~0 ;
 : GETALL ( loc -- ) ( F: -- x y z o a t ) DUP GETXYZ DUP GETO ~0 DUP GETA ~0 GETT ~0 ;
-: XYZ ( loc -- ) ( F: x y z -- ) >R 0E0 0E0 0E0 R> DEFINE-LOC ;
+: XYZ ( loc -- ) ( F: x y z -- ) >R 0E0 -90E0 0E0 R> DEFINE-LOC ;   \ tool down
 
 \ II-1 calibration structures
 T{ CREATE-CAL C1 CREATE-CAL R1 CREATE-CAL-STRU S1 CREATE-CAL-STRU S2 -> }T
@@ -51,9 +51,17 @@ T{ 10E0 5E0 0E0 R1 1 TEACH 10E0 6E0 0E0 R1 2 TEACH 9E0 5E0 0E0 R1 3 TEACH -> }T
 T{ R1 C1 S1 CALIBRATE -> }T
 \ p_moved = Rz(90) p + (10, 5, 0):  [ 0 -1 0 10 ; 1 0 0 5 ; 0 0 1 0 ]
 T{ S1 STRU -> 0E0 -1E0 0E0 10E0 1E0 0E0 0E0 5E0 0E0 0E0 1E0 0E0 }T
-T{ 2E0 3E0 1E0 30E0 -45E0 10E0 L1 DEFINE-LOC S1 L1 (MAP) L1 GETALL -> 7E0 7E0 1E0 120E0 -45E0 10E0 }T
-T{ S1 L1 UNMAP L1 GETALL -> 2E0 3E0 1E0 30E0 -45E0 10E0 }T      \ round trip
-T{ 0E0 0E0 0E0 0E0 0E0 0E0 L1 DEFINE-LOC S1 L1 (MAP) L1 GETXYZ -> 10E0 5E0 0E0 }T  \ P1 -> R1
+\ (MAP) maps for a 5-axis arm (docs/calibration.md): yaw becomes the waist direction at the
+\ mapped place; the grip's heading (waist - roll + 90, tool down) turns with the block.
+\ At (2, 3) the waist is 56.3099, the grip heads 56.3099 - 10 + 90; turned 90, at (7, 7)
+\ the waist is 45, so roll = 45 + 90 - (56.3099... - 10 + 180).
+: W0 ( F: -- deg ) 3E0 2E0 FATAN2 180E0 F* PI F/ ;
+T{ 2E0 3E0 1E0 30E0 -90E0 10E0 L1 DEFINE-LOC S1 L1 (MAP) L1 GETALL
+   -> 7E0 7E0 1E0 45E0 -90E0 45E0 90E0 F+ W0 10E0 F- 180E0 F+ F- }T
+T{ S1 L1 UNMAP L1 GETALL -> 2E0 3E0 1E0 W0 -90E0 10E0 }T      \ round trip (yaw: the waist)
+\ tilted 45 degrees, the turned tool axis would lie 43.9 degrees across the arm: refused
+T{ 2E0 3E0 1E0 30E0 -45E0 10E0 L1 DEFINE-LOC S1 L1 ' (MAP) CATCH NIP NIP L1 GETA -> -302 -45E0 }T
+T{ 0E0 0E0 0E0 0E0 -90E0 0E0 L1 DEFINE-LOC S1 L1 (MAP) L1 GETXYZ -> 10E0 5E0 0E0 }T  \ P1 -> R1
 
 \ A block tilted up 90 degrees about x: y goes to z. Same original points, taught on S2.
 T{ 0E0 0E0 0E0 R1 1 TEACH 1E0 0E0 0E0 R1 2 TEACH 0E0 0E0 1E0 R1 3 TEACH R1 C1 S2 CALIBRATE -> }T
@@ -62,8 +70,10 @@ T{ 0E0 2E0 0E0 L1 XYZ S2 L1 (MAP) L1 GETXYZ -> 0E0 0E0 2E0 }T
 T{ S2 L1 UNMAP L1 GETXYZ -> 0E0 2E0 0E0 }T
 
 \ A general motion: map then unmap returns every component
-T{ 1E0 1E0 1E0 R1 1 TEACH 1.6E0 1.8E0 1E0 R1 2 TEACH 0.2E0 1.6E0 1.5E0 R1 3 TEACH R1 C1 S2 CALIBRATE -> }T
-T{ 3.5E0 -2E0 4E0 -60E0 20E0 33E0 L2 DEFINE-LOC L2 L1 SET-LOC S2 L1 (MAP) S2 L1 UNMAP L1 GETALL -> L2 GETALL }T
+\ (turned and shifted, not tilted: a 5-axis arm follows it exactly; tool down)
+T{ 1E0 1E0 1E0 R1 1 TEACH 1.6E0 1.8E0 1E0 R1 2 TEACH 0.2E0 1.6E0 1E0 R1 3 TEACH R1 C1 S2 CALIBRATE -> }T
+T{ 3.5E0 -2E0 4E0 -2E0 3.5E0 FATAN2 180E0 F* PI F/ -90E0 33E0 L2 DEFINE-LOC L1 L2 SET-LOC
+   S2 L1 (MAP) S2 L1 UNMAP L1 GETALL -> L2 GETALL }T
 T{ S2 L1 (MAP) L1 GETX L2 GETX F- FABS 0.1E0 F> -> TRUE }T         \ mapping moved it
 
 \ degenerate calibrations are refused and leave the structure unchanged

@@ -163,60 +163,108 @@ static void ang_from_origin_and_rotate(void **state)
     assert_near(x, 4, 1e-14); assert_near(y, -3, 1e-14);
 }
 
-/* ---- hand-computed 3-point cases ---- */
+/* ---- hand-computed 3-point cases (the 5-axis model, docs/calibration.md) ---- */
+
+static double rad_deg(double d) { return d * FBRL_PI / 180; }
 
 static void three_point_hand_cases(void **state)
 {
     fbrl_calpts cal, recal;
     fbrl_calib c;
     fbrl_loc l, out;
+    double off = -1;
     (void)state;
-    /* A block along +x, turned half a turn about the z axis: (x, y, z) -> (-x, -y, z).
+    /* A block along +x, turned half a turn about the base axis: (x, y, z) -> (-x, -y, z).
      * P2 then lies at smaller x than P1 (the case the thesis's atan gets wrong). */
     fbrl_loc c1 = {10, 0, 0, 0, 0, 0}, c2 = {15, 0, 0, 0, 0, 0}, c3 = {10, 3, 0, 0, 0, 0};
     fbrl_loc r1 = {-10, 0, 0, 0, 0, 0}, r2 = {-15, 0, 0, 0, 0, 0}, r3 = {-10, -3, 0, 0, 0, 0};
     fbrl_calpts_set(&cal, 1, &c1); fbrl_calpts_set(&cal, 2, &c2); fbrl_calpts_set(&cal, 3, &c3);
     fbrl_calpts_set(&recal, 1, &r1); fbrl_calpts_set(&recal, 2, &r2); fbrl_calpts_set(&recal, 3, &r3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
-    /* (12, 1, 2) yaw 10 pitch 0 roll 20 -> (-12, -1, 2) yaw 190 = -170, roll 20. */
+    /* The arm only turns its waist by 180: (12, 1, 2) pitch 0 roll 20 -> (-12, -1, 2), the
+     * waist (the reported yaw) atan2(-1, -12) = -175.236, pitch and roll as they were. */
     fbrl_loc p = {12, 1, 2, 10, 0, 20};
-    assert_int_equal(fbrl_calib_map(&c, &p, &out), FBRL_OK);
+    assert_int_equal(fbrl_calib_map_arm(&c, NULL, &p, &out, &off), FBRL_OK);
     assert_near(out.x, -12, 1e-12); assert_near(out.y, -1, 1e-12); assert_near(out.z, 2, 1e-12);
-    assert_near(out.o, -170, 1e-9); assert_near(out.a, 0, 1e-9); assert_near(out.t, 20, 1e-9);
-    /* Tool straight down, yaw 30 roll 0: the yaw turns with the block to -150. */
+    assert_near(out.o, atan2(-1, -12) * 180 / FBRL_PI, 1e-9);
+    assert_near(out.a, 0, 1e-9); assert_near(out.t, 20, 1e-9); assert_near(off, 0, 1e-9);
     fbrl_loc down = {12, 1, 2, 30, -90, 0};
     assert_int_equal(fbrl_calib_map(&c, &down, &out), FBRL_OK);
-    assert_near(out.o, -150, 1e-9); assert_near(out.a, -90, 1e-9); assert_near(out.t, 0, 1e-9);
+    assert_near(out.a, -90, 1e-9); assert_near(out.t, 0, 1e-9);
     assert_int_equal(fbrl_calib_unmap(&c, &out, &l), FBRL_OK);
     assert_near(l.x, 12, 1e-12); assert_near(l.y, 1, 1e-12); assert_near(l.z, 2, 1e-12);
-    assert_near(l.o, 30, 1e-9); assert_near(l.a, -90, 1e-9); assert_near(l.t, 0, 1e-9);
+    assert_near(l.o, atan2(1, 12) * 180 / FBRL_PI, 1e-9); assert_near(l.a, -90, 1e-9);
+    assert_near(l.t, 0, 1e-9);
 
-    /* A block tipped a quarter turn about the x axis: (x, y, z) -> (x, -z, y). */
+    /* A block turned +90 degrees about its own corner (10, 0): (x, y) -> (10 - y, x - 10).
+     * (12, 0, 2) straight down, roll 0: waist 0, so the grip's heading (waist - roll + 90,
+     * docs/calibration.md) is 90. Mapped to (10, 2, 2): the waist turns only to
+     * atan2(2, 10) = 11.3099, the grip must head 180, so roll = 11.3099 + 90 - 180. */
+    fbrl_loc k1 = {10, 0, 0, 0, 0, 0}, k2 = {14, 0, 0, 0, 0, 0}, k3 = {10, 3, 0, 0, 0, 0};
+    fbrl_loc m1 = {10, 0, 0, 0, 0, 0}, m2 = {10, 4, 0, 0, 0, 0}, m3 = {7, 0, 0, 0, 0, 0};
+    fbrl_calpts_set(&cal, 1, &k1); fbrl_calpts_set(&cal, 2, &k2); fbrl_calpts_set(&cal, 3, &k3);
+    fbrl_calpts_set(&recal, 1, &m1); fbrl_calpts_set(&recal, 2, &m2); fbrl_calpts_set(&recal, 3, &m3);
+    assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
+    fbrl_loc t1 = {12, 0, 2, 0, -90, 0};
+    assert_int_equal(fbrl_calib_map_arm(&c, NULL, &t1, &out, &off), FBRL_OK);
+    double w1 = atan2(2, 10) * 180 / FBRL_PI;
+    assert_near(out.x, 10, 1e-12); assert_near(out.y, 2, 1e-12); assert_near(out.z, 2, 1e-12);
+    assert_near(out.o, w1, 1e-9); assert_near(out.a, -90, 1e-9);
+    assert_near(out.t, w1 + 90 - 180, 1e-9); assert_near(off, 0, 1e-9);
+    /* The arm's base axis elsewhere (a BASE-OFFSET): the waist is measured from it. */
+    double axis[2] = {0, 10};
+    assert_int_equal(fbrl_calib_map_arm(&c, axis, &t1, &out, &off), FBRL_OK);
+    double w0b = atan2(0 - 10, 12 - 0) * 180 / FBRL_PI, w1b = atan2(2 - 10, 10 - 0) * 180 / FBRL_PI;
+    assert_near(out.o, w1b, 1e-9);
+    assert_near(out.t, w1b - (w0b - 0 + 90 + 90) + 90, 1e-9);
+
+    /* A block tipped a quarter turn about x: (x, y, z) -> (x, -z, y). A horizontal tool at
+     * (1, 2, 3) heading along its waist (63.43) would have to point (0.447, 0, 0.894) at
+     * (1, -3, 2), where the waist is -71.57: that tilts 25 degrees across the arm, which a
+     * 5-axis arm cannot do. map_arm reports it; map refuses. */
     fbrl_loc d1 = {0, 0, 0, 0, 0, 0}, d2 = {5, 0, 0, 0, 0, 0}, d3 = {0, 4, 0, 0, 0, 0};
     fbrl_loc e1 = {0, 0, 0, 0, 0, 0}, e2 = {5, 0, 0, 0, 0, 0}, e3 = {0, 0, 4, 0, 0, 0};
     fbrl_calpts_set(&cal, 1, &d1); fbrl_calpts_set(&cal, 2, &d2); fbrl_calpts_set(&cal, 3, &d3);
     fbrl_calpts_set(&recal, 1, &e1); fbrl_calpts_set(&recal, 2, &e2); fbrl_calpts_set(&recal, 3, &e3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     fbrl_loc q = {1, 2, 3, 0, 0, 0};
-    assert_int_equal(fbrl_calib_map(&c, &q, &out), FBRL_OK);
+    assert_int_equal(fbrl_calib_map_arm(&c, NULL, &q, &out, &off), FBRL_OK);
     assert_near(out.x, 1, 1e-12); assert_near(out.y, -3, 1e-12); assert_near(out.z, 2, 1e-12);
-    /* The tool along +x rolls a quarter turn with the block. */
-    assert_near(out.o, 0, 1e-9); assert_near(out.a, 0, 1e-9); assert_near(out.t, 90, 1e-9);
+    double dx = 1 / sqrt(5), dz = 2 / sqrt(5), wr = atan2(-3, 1);
+    double across = -sin(wr) * dx, along = cos(wr) * dx;
+    assert_near(off, asin(fabs(across)) * 180 / FBRL_PI, 1e-9);
+    assert_near(out.a, atan2(dz, along) * 180 / FBRL_PI, 1e-9);
+    assert_true(off > FBRL_CALIB_AXIS_MAX);
+    l = q;
+    assert_int_equal(fbrl_calib_map(&c, &q, &l), FBRL_ERANGE);
+    assert_memory_equal(&l, &q, sizeof q); /* unchanged */
 
-    /* A pure shift by (1, -2, 0.5): P1 maps to R1 and every point moves the same. */
-    fbrl_loc f1 = {1, -2, 0.5, 0, 0, 0}, f2 = {6, -2, 0.5, 0, 0, 0}, f3 = {1, 2, 0.5, 0, 0, 0};
+    /* A shift along the waist direction: (7, 7, 7) -> (8, 8, 7.5); a tilted tool keeps
+     * pitch and roll. A shift across it would turn the waist under a tilted tool: the
+     * tool axis (pitch -30, heading 45) then lies 11.2 degrees off the waist at (8, 5). */
+    fbrl_loc f1 = {1, 1, 0.5, 0, 0, 0}, f2 = {6, 1, 0.5, 0, 0, 0}, f3 = {1, 5, 0.5, 0, 0, 0};
     fbrl_calpts_set(&cal, 1, &d1); fbrl_calpts_set(&cal, 2, &d2); fbrl_calpts_set(&cal, 3, &d3);
     fbrl_calpts_set(&recal, 1, &f1); fbrl_calpts_set(&recal, 2, &f2); fbrl_calpts_set(&recal, 3, &f3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     fbrl_loc g = {7, 7, 7, 45, -30, 12};
     assert_int_equal(fbrl_calib_map(&c, &g, &out), FBRL_OK);
-    assert_near(out.x, 8, 1e-12); assert_near(out.y, 5, 1e-12); assert_near(out.z, 7.5, 1e-12);
+    assert_near(out.x, 8, 1e-12); assert_near(out.y, 8, 1e-12); assert_near(out.z, 7.5, 1e-12);
     assert_near(out.o, 45, 1e-9); assert_near(out.a, -30, 1e-9); assert_near(out.t, 12, 1e-9);
-    /* Identity calibration leaves locations alone. */
+    fbrl_loc f1b = {1, -2, 0.5, 0, 0, 0}, f2b = {6, -2, 0.5, 0, 0, 0}, f3b = {1, 2, 0.5, 0, 0, 0};
+    fbrl_calpts_set(&recal, 1, &f1b); fbrl_calpts_set(&recal, 2, &f2b); fbrl_calpts_set(&recal, 3, &f3b);
+    assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
+    assert_int_equal(fbrl_calib_map_arm(&c, NULL, &g, &out, &off), FBRL_OK);
+    assert_near(off, asin(cos(rad_deg(30)) * sin(rad_deg(45) - atan2(5, 8))) * 180 / FBRL_PI, 1e-9);
+    /* Identity: position, pitch and roll unchanged; yaw reported as the waist. */
+    fbrl_loc h = {7, 7, 7, 0, -30, 12};
     assert_int_equal(fbrl_calib_identity(&c), FBRL_OK);
-    assert_int_equal(fbrl_calib_map(&c, &g, &out), FBRL_OK);
-    assert_memory_equal(&out.x, &g.x, 3 * sizeof(double));
+    assert_int_equal(fbrl_calib_map(&c, &h, &out), FBRL_OK);
+    assert_memory_equal(&out.x, &h.x, 3 * sizeof(double));
     assert_near(out.o, 45, 1e-12); assert_near(out.a, -30, 1e-12); assert_near(out.t, 12, 1e-12);
+    /* On the base axis the location's own yaw stands for the waist. */
+    fbrl_loc on_axis = {0, 0, 20, 30, -90, 5};
+    assert_int_equal(fbrl_calib_map(&c, &on_axis, &out), FBRL_OK);
+    assert_near(out.o, 30, 1e-12); assert_near(out.t, 5, 1e-12);
 }
 
 /* ---- 10,000 random rigid motions ---- */
@@ -231,10 +279,37 @@ static void block_points(double local[3][3])
     local[2][2] = 0;
 }
 
+/* Rotation angle (degrees) of a rotation matrix. */
+static double rot_angle(double r[3][3])
+{
+    double c = (r[0][0] + r[1][1] + r[2][2] - 1) / 2;
+    double s = sqrt((r[2][1] - r[1][2]) * (r[2][1] - r[1][2]) + (r[0][2] - r[2][0]) * (r[0][2] - r[2][0]) +
+                    (r[1][0] - r[0][1]) * (r[1][0] - r[0][1])) / 2;
+    return atan2(s, c) * 180 / FBRL_PI;
+}
+
+/* The angle (degrees) between the tool frames a and b: that of a * b^T. */
+static double frame_angle(double a[3][3], double b[3][3])
+{
+    double bt[3][3], d[3][3];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            bt[i][j] = b[j][i];
+    matmul(a, bt, d);
+    return rot_angle(d);
+}
+
+/* Every rigid motion, any orientation: the position is the true motion's; the mapped
+ * tool frame F (the documented convention, with yaw = the waist at the mapped position)
+ * is the wanted frame W (true rotation times the frame the arm had) turned by the
+ * smallest rotation that brings W's axis into the waist's vertical plane. Checked from
+ * its definition: F's axis lies in that plane, the angle between F's and W's axes is
+ * the reported off and is the smallest possible (W's axis's angle to the plane), and F
+ * differs from W by a rotation of exactly that angle (only the smallest rotation does). */
 static void random_rigid_motions(void **state)
 {
-    int trials = 10000, kinds[4] = {0, 0, 0, 0};
-    double worst_map = 0, worst_round = 0, worst_orient = 0;
+    int trials = 10000, kinds[4] = {0, 0, 0, 0}, checked = 0;
+    double worst_map = 0, worst_round = 0, worst_orient = 0, worst_back = 0;
     (void)state;
     rng_state = 0x5EEDF00Dull;
     for (int trial = 0; trial < trials; trial++) {
@@ -252,8 +327,8 @@ static void random_rigid_motions(void **state)
             random_rotation(pose.r);
         for (int i = 0; i < 3; i++)
             pose.t[i] = uniform(-20, 20);
-        /* How it moved: half a turn about z (kind 0: P2 ends at smaller x than P1), a tilt
-         * out of the xy plane (kind 1), or any rotation (kinds 2, 3). */
+        /* How it moved: about the base axis (kind 0, half a turn: P2 ends at smaller x
+         * than P1), a tilt and turn (kind 1), or any rotation (kinds 2, 3). */
         if (kind == 0)
             rot_axis(2, FBRL_PI, truth.r);
         else if (kind == 1) {
@@ -264,7 +339,7 @@ static void random_rigid_motions(void **state)
         } else
             random_rotation(truth.r);
         for (int i = 0; i < 3; i++)
-            truth.t[i] = uniform(-15, 15);
+            truth.t[i] = kind == 0 ? 0 : uniform(-15, 15);
         for (int k = 0; k < 3; k++) {
             double w[3], m[3];
             apply(&pose, local[k], w);
@@ -275,30 +350,48 @@ static void random_rigid_motions(void **state)
         if (kind == 0) /* the case the thesis's atan mishandles really occurs */
             assert_true(recal.p[1].x < recal.p[0].x);
         assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
-        /* Points on and off the block, with orientations (a quarter straight down). */
         for (int k = 0; k < 4; k++) {
             double local_p[3] = {uniform(-5, 15), uniform(-10, 10), uniform(-3, 6)}, want[3];
-            double yaw = uniform(-180, 180), pitch = k == 0 ? -90 : uniform(-90, 90);
-            double roll = uniform(-180, 180);
+            double pitch = k == 0 ? -90 : uniform(-90, 90), roll = uniform(-180, 180), off;
             fbrl_loc in, mapped, back;
             apply(&pose, local_p, p);
             apply(&truth, p, want);
-            in = loc_at(p, yaw, pitch, roll);
-            assert_int_equal(fbrl_calib_map(&c, &in, &mapped), FBRL_OK);
+            if (hypot(p[0], p[1]) < 0.5 || hypot(want[0], want[1]) < 0.5)
+                continue; /* next to the base axis the waist has no direction */
+            in = loc_at(p, uniform(-180, 180), pitch, roll);
+            assert_int_equal(fbrl_calib_map_arm(&c, NULL, &in, &mapped, &off), FBRL_OK);
             double got[3] = {mapped.x, mapped.y, mapped.z};
             worst_map = fmax(worst_map, dist3(got, want));
-            /* The orientation turned by the true rotation. */
-            double t_in[3][3], t_want[3][3], t_got[3][3], t_back[3][3];
-            tool_matrix(yaw, pitch, roll, t_in);
+            double w0 = atan2(p[1], p[0]) * 180 / FBRL_PI, w1 = atan2(want[1], want[0]);
+            assert_near(mapped.o, w1 * 180 / FBRL_PI, 1e-9);
+            double t_in[3][3], t_want[3][3], t_got[3][3];
+            tool_matrix(w0, pitch, roll, t_in);
             matmul(truth.r, t_in, t_want);
             tool_matrix(mapped.o, mapped.a, mapped.t, t_got);
-            worst_orient = fmax(worst_orient, matdiff(t_got, t_want));
-            /* And back. */
+            /* W's axis's angle to the plane through the base axis and the target */
+            double across = -sin(w1) * t_want[0][0] + cos(w1) * t_want[1][0];
+            double to_plane = asin(fmin(1, fabs(across))) * 180 / FBRL_PI;
+            if (to_plane > 80)
+                continue; /* nearly square to the plane: no nearest axis to speak of */
+            checked++;
+            worst_orient = fmax(worst_orient, fabs(off - to_plane));
+            double ga[3] = {t_got[0][0], t_got[1][0], t_got[2][0]};
+            double wa[3] = {t_want[0][0], t_want[1][0], t_want[2][0]};
+            double cx = ga[1] * wa[2] - ga[2] * wa[1], cy = ga[2] * wa[0] - ga[0] * wa[2];
+            double cz = ga[0] * wa[1] - ga[1] * wa[0];
+            double axis_gap = atan2(sqrt(cx * cx + cy * cy + cz * cz),
+                                    ga[0] * wa[0] + ga[1] * wa[1] + ga[2] * wa[2]) * 180 / FBRL_PI;
+            worst_orient = fmax(worst_orient, fabs(axis_gap - off));
+            worst_orient = fmax(worst_orient, fabs(frame_angle(t_got, t_want) - off));
+            /* And back: the position exactly; the orientation too when nothing was lost. */
             assert_int_equal(fbrl_calib_unmap(&c, &mapped, &back), FBRL_OK);
             double round[3] = {back.x, back.y, back.z};
             worst_round = fmax(worst_round, dist3(round, p));
-            tool_matrix(back.o, back.a, back.t, t_back);
-            worst_orient = fmax(worst_orient, matdiff(t_back, t_in));
+            if (off < 1e-9) {
+                double t_back[3][3];
+                tool_matrix(back.o, back.a, back.t, t_back);
+                worst_back = fmax(worst_back, frame_angle(t_back, t_in));
+            }
         }
         /* The three calibration points themselves. */
         for (int k = 0; k < 3; k++) {
@@ -311,15 +404,16 @@ static void random_rigid_motions(void **state)
             worst_round = fmax(worst_round, dist3(q, orig));
         }
     }
-    print_message("      %d motions: worst map error %.3g in, map+unmap %.3g in, "
-                  "orientation %.3g\n", trials, worst_map, worst_round, worst_orient);
+    print_message("      %d motions, %d locations: worst map error %.3g in, map+unmap %.3g in, "
+                  "smallest-rotation error %.3g deg, unmap of a reachable map %.3g deg\n", trials,
+                  checked, worst_map, worst_round, worst_orient, worst_back);
     assert_int_equal(kinds[0] + kinds[1] + kinds[2] + kinds[3], 10000);
+    assert_true(checked > 30000);
     assert_true(worst_map < 1e-9);
     assert_true(worst_round < 1e-9);
-    assert_true(worst_orient < 1e-9);
+    assert_true(worst_orient < 1e-6);
+    assert_true(worst_back < 1e-6);
 }
-
-/* ---- degenerate point sets ---- */
 
 static void set3(fbrl_calpts *c, double ax, double ay, double az, double bx, double by,
                  double bz, double cx, double cy, double cz)

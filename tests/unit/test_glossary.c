@@ -179,8 +179,8 @@ static void install_checks_arguments(void **state)
     assert_int_equal(fbrl_glossary_install(f->vm, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_glossary_finish(NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_glossary_set_file_storage(NULL, f->files, 16), FBRL_EINVAL);
-    assert_int_equal(fbrl_glossary_map_out(NULL, &(fbrl_loc){ 0 }), FBRL_EINVAL);
-    assert_int_equal(fbrl_glossary_map_in(&f->g, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_glossary_map_out(NULL, &(fbrl_loc){ 0 }, NULL, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_glossary_map_in(&f->g, NULL, NULL), FBRL_EINVAL);
     assert_null(fbrl_glossary_units(NULL));
     assert_int_equal(fbrl_glossary_loc(NULL, 0, &loc), FBRL_EINVAL);
     assert_int_equal(fbrl_glossary_loc(f->vm, 0, &loc), FBRL_ERANGE);
@@ -219,7 +219,10 @@ static void display_loc_text(void **state)
           "1E0 S 5 CAL-STRU! 0E0 S 6 CAL-STRU! 5E0 S 8 CAL-STRU! S WITH-CAL MAP-ON");
     clear(f);
     ok(f, "P DISPLAY-LOC");
-    assert_string_equal(f->out.s, "X   +13.5000 Y   +17.0000 Z    +1.2500 in  O +180.000 A  -90.000 T   +0.000 deg\n");
+    /* the waist points at (13.5, 17): yaw atan2(17, 13.5) = 51.546; the grip heading
+     * (waist - roll + 90) was -16.260 + 90 = 73.740 and turns by 90 to 163.740, so roll =
+     * 51.546 + 90 - 163.740 = -22.194 (docs/calibration.md) */
+    assert_string_equal(f->out.s, "X   +13.5000 Y   +17.0000 Z    +1.2500 in  O  +51.546 A  -90.000 T  -22.194 deg\n");
     ok(f, "MAP-OFF P GETX"); /* the stored location is unchanged */
     double x;
     assert_int_equal(fbrl_vm_fpop(f->vm, &x), FBRL_OK);
@@ -315,9 +318,9 @@ static void mapping_interface(void **state)
     fbrl_loc l = { 2, 3, 1, 30, -45, 10 }, m;
     /* mapping off: unchanged */
     m = l;
-    assert_int_equal(fbrl_glossary_map_out(&f->g, &m), FBRL_OK);
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, NULL), FBRL_OK);
     assert_memory_equal(&m, &l, sizeof m);
-    assert_int_equal(fbrl_glossary_map_in(&f->g, &m), FBRL_OK);
+    assert_int_equal(fbrl_glossary_map_in(&f->g, &m, NULL), FBRL_OK);
     assert_memory_equal(&m, &l, sizeof m);
     /* a block taught, moved (turned 90 degrees, shifted (10, 5, 0)) and re-taught */
     ok(f, "CREATE-CAL C CREATE-CAL R CREATE-CAL-STRU S CREATE-LOC T "
@@ -325,30 +328,47 @@ static void mapping_interface(void **state)
           "0E0 0E0 0E0 C 1 TEACH 1E0 0E0 0E0 C 2 TEACH 0E0 1E0 0E0 C 3 TEACH "
           "10E0 5E0 0E0 R 1 TEACH 10E0 6E0 0E0 R 2 TEACH 9E0 5E0 0E0 R 3 TEACH R C S CALIBRATE S WITH-CAL");
     m = l;
-    assert_int_equal(fbrl_glossary_map_out(&f->g, &m), FBRL_OK); /* still off */
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, NULL), FBRL_OK); /* still off */
     assert_memory_equal(&m, &l, sizeof m);
     ok(f, "MAP-ON");
-    assert_int_equal(fbrl_glossary_map_out(&f->g, &m), FBRL_OK);
+    /* tilted 45 degrees: after the turn its axis heads 146.3 where the waist heads 45, so
+     * it would lie 43.9 degrees across the arm: refused, loc unchanged, the angle told */
+    double off = 0;
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, &off), FBRL_ERANGE);
+    assert_memory_equal(&m, &l, sizeof m);
+    assert_true(fabs(off - asin(cos(FBRL_PI / 4) * sin(atan2(3, 2) + FBRL_PI / 2 - FBRL_PI / 4)) * 180 / FBRL_PI) < 1e-9);
+    /* straight down: the grip (heading waist - roll + 90) turns by the block's 90 degrees */
+    m.a = -90;
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, &off), FBRL_OK);
+    double w0 = atan2(3, 2) * 180 / FBRL_PI;
     assert_true(fabs(m.x - 7) < 1e-12 && fabs(m.y - 7) < 1e-12 && fabs(m.z - 1) < 1e-12);
-    assert_true(fabs(m.o - 120) < 1e-9 && fabs(m.a + 45) < 1e-9 && fabs(m.t - 10) < 1e-9);
-    assert_int_equal(fbrl_glossary_map_in(&f->g, &m), FBRL_OK);
-    assert_true(fabs(m.x - 2) < 1e-12 && fabs(m.y - 3) < 1e-12 && fabs(m.o - 30) < 1e-9);
+    assert_true(fabs(m.o - 45) < 1e-9 && fabs(m.a + 90) < 1e-9 && fabs(off) < 1e-9);
+    assert_true(fabs(m.t - (45 + 90 - (w0 - 10 + 90 + 90))) < 1e-9);
+    assert_int_equal(fbrl_glossary_map_in(&f->g, &m, NULL), FBRL_OK);
+    assert_true(fabs(m.x - 2) < 1e-12 && fabs(m.y - 3) < 1e-12 && fabs(m.o - w0) < 1e-9);
+    assert_true(fabs(m.t - 10) < 1e-9);
+    /* the arm's base axis elsewhere (BASE-OFFSET): the waist is measured from there */
+    double axis[2] = { 7, 0 };
+    m = l;
+    m.a = -90;
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, axis, NULL), FBRL_OK);
+    assert_true(fabs(m.o - 90) < 1e-9);
     /* a taught location (moved frame) stored through map_in is the original-frame one */
     fbrl_loc taught = { 10, 5, 0, 90, -90, 0 };
-    assert_int_equal(fbrl_glossary_map_in(&f->g, &taught), FBRL_OK);
-    assert_true(fabs(taught.x) < 1e-12 && fabs(taught.y) < 1e-12 && fabs(taught.o) < 1e-9);
+    assert_int_equal(fbrl_glossary_map_in(&f->g, &taught, NULL), FBRL_OK);
+    assert_true(fabs(taught.x) < 1e-12 && fabs(taught.y) < 1e-12);
     /* non-finite input: error, loc unchanged */
     fbrl_loc bad = { 0, 0, 1.0 / 0.0, 0, 0, 0 }, bad0 = bad;
-    assert_int_equal(fbrl_glossary_map_out(&f->g, &bad), FBRL_ENONFINITE);
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &bad, NULL, NULL), FBRL_ENONFINITE);
     assert_memory_equal(&bad, &bad0, sizeof bad);
     /* the selected structure overwritten: ESTATE */
     ok(f, "0 S !");
     m = l;
-    assert_int_equal(fbrl_glossary_map_out(&f->g, &m), FBRL_ESTATE);
-    assert_int_equal(fbrl_glossary_map_in(&f->g, &m), FBRL_ESTATE);
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, NULL), FBRL_ESTATE);
+    assert_int_equal(fbrl_glossary_map_in(&f->g, &m, NULL), FBRL_ESTATE);
     assert_memory_equal(&m, &l, sizeof m);
     ok(f, "MAP-OFF");
-    assert_int_equal(fbrl_glossary_map_out(&f->g, &m), FBRL_OK);
+    assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, NULL), FBRL_OK);
     /* metric state */
     const fbrl_units *u = fbrl_glossary_units(&f->g);
     int on = 1;
@@ -503,7 +523,10 @@ static void example_plan(void **state)
     if (st != FBRL_OK) print_error("%s\n%s\n", fbrl_vm_last_error(f->vm)->message, f->out.s);
     assert_int_equal(st, FBRL_OK);
     /* tube (2, 3) = corner (10, -2) + (1.5, 2.25); the block turned 90 degrees about z and
-     * its P1 moved from (10, -2) to (12, 1): (1.5, 2.25) -> (-2.25, 1.5) -> (9.75, 2.5) */
+     * its P1 moved from (10, -2) to (12, 1): (1.5, 2.25) -> (-2.25, 1.5) -> (9.75, 2.5).
+     * Orientation for the 5-axis arm (docs/calibration.md): the waist turns from
+     * atan2(0.25, 11.5) = 1.245 to atan2(2.5, 9.75) = 14.381, the grip heading (waist -
+     * roll + 90) from 91.245 by the block's 90 to 181.245: roll 14.381 + 90 - 181.245. */
     assert_string_equal(f->out.s,
         "the rack as taught:\n"
         "RECTMAT base X   +10.0000 Y    -2.0000 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg  "
@@ -511,12 +534,12 @@ static void example_plan(void **state)
         "tube 2 3, stored:\n"
         "X   +11.5000 Y    +0.2500 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg\n"
         "tube 2 3, where the arm goes now:\n"
-        "X    +9.7500 Y    +2.5000 Z    +1.0000 in  O  +90.000 A  -90.000 T   +0.000 deg\n"
+        "X    +9.7500 Y    +2.5000 Z    +1.0000 in  O  +14.381 A  -90.000 T  -76.864 deg\n"
         "taught on the moved block, stored:\n"
-        "X   +11.5000 Y    +0.2500 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg\n"
+        "X   +11.5000 Y    +0.2500 Z    +1.0000 in  O   +1.245 A  -90.000 T  +76.864 deg\n"
         "saved, code 0 \n"
         "tube 2 3 through the loaded calibration, in cm:\n"
-        "X   +24.7650 Y    +6.3500 Z    +2.5400 cm  O  +90.000 A  -90.000 T   +0.000 deg\n");
+        "X   +24.7650 Y    +6.3500 Z    +2.5400 cm  O  +14.381 A  -90.000 T  -76.864 deg\n");
     free_vm(f);
 }
 

@@ -111,6 +111,27 @@ static void error_lines_are_checked_against_the_table(void **state)
     assert_null(fbrl_rapl_error_text(1000));
 }
 
+/* Every code the controller documents comes with its meaning and what to do; the ones it
+ * does not have none; 029 says "out of reach" (issue 10: 029-TRANSFORM ILLEGAL). */
+static void every_error_has_its_meaning(void **state)
+{
+    (void)state;
+    int with_text = 0;
+    for (int code = -1; code < 1000; code++) {
+        const char *t = fbrl_rapl_error_text(code), *h = fbrl_rapl_error_help(code);
+        if (t == NULL) {
+            assert_null(h);
+            continue;
+        }
+        with_text++;
+        assert_non_null(h);
+        assert_true(strlen(h) > 10);
+    }
+    assert_true(with_text >= 50);
+    assert_non_null(strstr(fbrl_rapl_error_help(29), "out of the arm's reach"));
+    assert_non_null(strstr(fbrl_rapl_error_help(41), "HOME"));
+}
+
 static void values_parse_without_locale(void **state)
 {
     (void)state;
@@ -327,6 +348,7 @@ int main(void)
         cmocka_unit_test(reader_cuts_lines_and_finds_prompts),
         cmocka_unit_test(reader_cuts_long_lines_safely),
         cmocka_unit_test(error_lines_are_checked_against_the_table),
+        cmocka_unit_test(every_error_has_its_meaning),
         cmocka_unit_test(values_parse_without_locale),
         cmocka_unit_test(position_blocks_parse),
         cmocka_unit_test(status_blocks_parse),

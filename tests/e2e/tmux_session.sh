@@ -1,0 +1,44 @@
+# tmux_session.sh - sourced by the e2e tests that drive fbrlmon on a real terminal: tmux
+# gives it a pty of a chosen size (session "said" on a private server), fbrlsim (started
+# here with --time-scale ${sim_scale:-20} and --log sim.log) is the controller on
+# $work/robot. Defines fail, screen, wait_for, type_line, count, logged; the caller sets
+# $name (part of the tmux socket name) and starts the session.
+sock=fbrl-$name-$$
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+simpid=
+cleanup() { tmux -L "$sock" kill-server 2>/dev/null; [ -n "$simpid" ] && kill "$simpid" 2>/dev/null; }
+trap cleanup EXIT
+trap 'exit 1' INT TERM
+
+"$sim" --time-scale "${sim_scale:-20}" --log sim.log --link "$work/robot" >sim.out 2>sim.err &
+simpid=$!
+i=0
+while [ ! -e robot ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
+
+screen() { tmux -L "$sock" capture-pane -p -J -S - -t said; }  # -J: wrapped lines joined
+# wait_for TEXT: until the screen (with its history) shows TEXT, at most 10 s
+wait_for() {
+    k=0
+    while ! screen | grep -qF -- "$1"; do
+        k=$((k + 1))
+        [ $k -lt 100 ] || { fail "no '$1' on the screen"; screen; return 1; }
+        sleep 0.1
+    done
+}
+# type LINE: the line and Enter, then wait until a new prompt follows it
+prompts() { screen | grep -c "^ok>"; }
+type_line() {
+    before=$(prompts)
+    tmux -L "$sock" send-keys -t said -l -- "$1"
+    tmux -L "$sock" send-keys -t said Enter
+    k=0
+    while [ "$(prompts)" -le "$before" ]; do
+        k=$((k + 1))
+        [ $k -lt 150 ] || { fail "no prompt after '$1'"; screen; return 1; }
+        sleep 0.1
+    done
+}
+count() { screen | grep -cF -- "$1"; }
+logged() { grep -cxF -- "$1" sim.log; }
+
