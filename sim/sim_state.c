@@ -430,12 +430,33 @@ static int load_item(loader *ld, sim_prog **prog)
     return 0;
 }
 
+/* The line fgets just read held a NUL byte (it read more bytes than the string
+ * has); *at is where the next line starts. Only where the file can tell. */
+static int has_nul(FILE *f, const char *line, long *at)
+{
+    long next = ftell(f);
+    int nul = *at >= 0 && next >= 0 && (size_t)(next - *at) != strlen(line);
+    *at = next;
+    return nul;
+}
+
+/* A program's END: the keyword in either case (as every keyword), alone on its line.
+ * Anything else is a program line, upper-cased: "end" must not be saved as "END". */
+static int is_end(const char *t)
+{
+    if (toupper((unsigned char)t[0]) != 'E' || toupper((unsigned char)t[1]) != 'N'
+        || toupper((unsigned char)t[2]) != 'D')
+        return 0;
+    return t[3 + strspn(t + 3, " \t")] == 0;
+}
+
 int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
 {
     FILE *f = fopen(s->state_path, "r");
     char line[512];
     sim_prog *prog = NULL;
     loader ld;
+    long at;
 
     if (!f) {
         if (errno == ENOENT)
@@ -449,7 +470,8 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
     ld.err = err;
     ld.errlen = errlen;
     ld.lineno = 1;
-    if (fgets(line, sizeof line, f))
+    at = ftell(f);
+    if (fgets(line, sizeof line, f) && !has_nul(f, line, &at))
         line[strcspn(line, "\r\n")] = 0;
     else
         line[0] = 0;
@@ -462,6 +484,11 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
         size_t n = strlen(line);
         int e = 0;
         ld.lineno++;
+        if (has_nul(f, line, &at)) {
+            bad(&ld, "a NUL byte in the line", NULL);
+            fclose(f);
+            return -1;
+        }
         if (n == sizeof line - 1 && line[n - 1] != '\n') {
             bad(&ld, "line too long", NULL);
             fclose(f);
@@ -472,7 +499,7 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
             char *t = line;
             while (*t == ' ' || *t == '\t')
                 t++;
-            if (!strcmp(t, "END"))
+            if (is_end(t))
                 prog = NULL;
             else
                 e = add_prog_line(&ld, prog, t);
