@@ -320,8 +320,13 @@ static int load_item(loader *ld, sim_prog **prog)
     int i;
 
     if (!strcmp(k, "SPEED")) {
-        if (want_fields(ld, 2) || real_field(ld, 1, 1e-9, 100.0, &s->arm.speed))
+        /* SPEED takes any percentage above 0 up to 100: so does the file (it once
+         * refused below 1e-9, so SPEED 50/111111111111 saved a file that did not load) */
+        if (want_fields(ld, 2) || real_field(ld, 1, 0.0, 100.0, &d[0]))
             return -1;
+        if (!(d[0] > 0.0))
+            return bad(ld, "SPEED must be above 0, not", ld->tok[1]);
+        s->arm.speed = d[0];
     } else if (!strcmp(k, "JOINTS")) {
         if (want_fields(ld, FBRL_SIM_ARM_AXES + 1))
             return -1;
