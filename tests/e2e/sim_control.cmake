@@ -1,4 +1,4 @@
-# sim_control_test (label unit): fbrlsim's control lines, --inputs file and long RUNs,
+# sim_control_test (label unit): fbrlsim's control lines, --inputs file, long RUNs and state file lines,
 # called in-process through fbrlsim_core (no pty, no client).
 if(TARGET fbrlsim_core)
   add_executable(sim_control_test ${CMAKE_CURRENT_SOURCE_DIR}/e2e/sim_control_test.c)

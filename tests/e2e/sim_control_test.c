@@ -1,11 +1,14 @@
-/* sim_control_test.c - fbrlsim's control lines, --inputs file and long RUNs
- * (issue 20: what the fuzz targets' regression inputs cannot judge alone).
+/* sim_control_test.c - fbrlsim's control lines, --inputs file, long RUNs and
+ * the state file lines the fuzz targets tripped over (issue 20: what their
+ * regression inputs cannot judge alone).
  *   - control lines are strict: each accepted and refused form of the table;
  *   - an --inputs file with a bad line (junk, hex, nan, no space after the time,
  *     a line too long to read whole) stops fbrlsim at start with FILE:LINE;
  *   - a FIFO line too long for the buffer is dropped whole, never run cut;
  *   - a long RUN yields to the event loop and still runs every line exactly
- *     once (the count of V1=V1+1 is exact across the yields). */
+ *     once (the count of V1=V1+1 is exact across the yields);
+ *   - state file: a NUL byte in a line is refused with FILE:LINE, "end" closes
+ *     a program, a SPEED below 1e-9 (which the SPEED command takes) loads. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -165,6 +168,35 @@ static void long_run_yields_and_counts(void **st)
     fbrl_sim_destroy(s);
 }
 
+static void state_file_lines(void **st)
+{
+    char err[512], want[300];
+    const char *path = path_in_dir("lines.state");
+    static const char nul[] = "FBRLSIM-STATE 1\nVAR X 1\0junk\n";
+    FILE *f;
+    fbrl_sim *s;
+    (void)st;
+    f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(nul, 1, sizeof nul - 1, f), sizeof nul - 1);
+    fclose(f);
+    assert_null(new_sim(path, NULL, err, sizeof err));
+    snprintf(want, sizeof want, "%s:2: a NUL byte", path);
+    if (strncmp(err, want, strlen(want)) != 0)
+        fail_msg("'%s' does not start with '%s'", err, want);
+
+    write_text(path, "FBRLSIM-STATE 1\nSPEED 4.5e-10\nPROGRAM P\n  home\nend\nVAR X 2\n");
+    s = new_sim(path, NULL, err, sizeof err);
+    if (!s)
+        fail_msg("refused: %s", err);
+    assert_int_equal(s->mem.nprogs, 1);
+    assert_int_equal(s->mem.progs[0].n, 1); /* "end" closed it: VAR X is memory, not a line */
+    assert_string_equal(s->mem.progs[0].lines[0], "HOME");
+    assert_non_null(sim_var_find(s, "X"));
+    assert_true(s->arm.speed == 4.5e-10);
+    fbrl_sim_destroy(s);
+}
+
 static int setup(void **st)
 {
     (void)st;
@@ -173,7 +205,7 @@ static int setup(void **st)
 
 static int teardown(void **st)
 {
-    const char *names[] = { "in.txt", "run.state" };
+    const char *names[] = { "in.txt", "run.state", "lines.state" };
     size_t i;
     (void)st;
     for (i = 0; i < sizeof names / sizeof names[0]; i++)
@@ -188,6 +220,7 @@ int main(void)
         cmocka_unit_test(inputs_file),
         cmocka_unit_test(fifo_long_line_dropped),
         cmocka_unit_test(long_run_yields_and_counts),
+        cmocka_unit_test(state_file_lines),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
