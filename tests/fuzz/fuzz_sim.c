@@ -32,6 +32,7 @@ fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, char *er
     fbrl_sim_options o;
     fbrl_sim *s = NULL;
     int ctl[2];
+    fuzz_sim_clock_reset(); /* every input the same run, at full precision */
     fbrl_sim_options_init(&o);
     o.tcp_port = 0;
     o.state_path = state_path;

@@ -12,6 +12,8 @@
 
 /* The harness's own clock (fuzz_sim_clock.c). */
 void fuzz_sim_advance(double seconds);
+/* Back to its start; only while no emulator exists (fuzz_sim_new does it). */
+void fuzz_sim_clock_reset(void);
 
 /* An emulator on a TCP listener nobody connects to, the control FIFO replaced by
  * a pipe the harness writes; NULL with err set when fbrl_sim_create refuses. */
