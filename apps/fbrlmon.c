@@ -14,6 +14,9 @@
 
 #include "mon.h"
 #include "mon_conn.h"
+#include "mon_relink.h"
+#include "mon_safe.h"
+#include "mon_ws.h"
 
 #ifndef FBRL_VERSION
 #define FBRL_VERSION "unknown"
@@ -33,6 +36,7 @@ typedef struct options {
     size_t dict_bytes;
     int list_ports;
     int conn_default;     /* no --port, --sim or --offline given */
+    const char *workspace; /* --workspace FILE */
     const char *printer;  /* --printer: PRINT-LOC's destination instead of the controller's line */
     mon_conn_options conn;
 } options;
@@ -51,15 +55,20 @@ static void usage(FILE *f)
           "  --parity P       none, even or odd (default none)\n"
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
+          "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
+          "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
+          "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
           "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
           "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
           "  --offline        no controller: robot words report an error\n"
           "  --printer PATH   PRINT-LOC appends to PATH (a file, a printer, a second\n"
           "                   serial line) instead of the controller's line\n"
+          "  --workspace FILE load the workspace FILE (if it exists) first; at exit offer\n"
+          "                   to save changes to it (docs/workspace.md)\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -92,7 +101,8 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--sim-state", "--sim-inputs", "--printer", NULL };
+                                         "--flow", "--low-latency", "--sim-state", "--sim-inputs", "--printer",
+                                         "--workspace", "--sim-model", "--axes", NULL };
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -100,59 +110,30 @@ static int is_valued(const char *a)
     return 0;
 }
 
-static int parse_uint(const char *s, unsigned long lo, unsigned long hi, unsigned long *out)
-{
-    char *end;
-    unsigned long v;
-    errno = 0;
-    v = strtoul(s, &end, 10);
-    if (errno != 0 || end == s || *end != '\0' || s[0] == '-' || v < lo || v > hi)
-        return -1;
-    *out = v;
-    return 0;
-}
-
 static int set_valued(options *o, const char *a, const char *v)
 {
-    unsigned long n;
-    fbrl_uart_config *l = &o->conn.line;
     if (strcmp(a, "--port") == 0) {
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
+    } else if (strcmp(a, "--workspace") == 0) {
+        o->workspace = v;
     } else if (strcmp(a, "--sim-state") == 0) {
         o->conn.sim_state = v;
+    } else if (strcmp(a, "--sim-model") == 0) {
+        o->conn.sim_model = v;
+    } else if (strcmp(a, "--axes") == 0) {
+        char *end;
+        unsigned long n = strtoul(v, &end, 10);
+        if (end == v || *end != '\0' || v[0] == '-' || n < 1 || n > FBRL_RAPL_MAX_AXES)
+            return -1;
+        o->conn.axes = (unsigned)n;
     } else if (strcmp(a, "--printer") == 0) {
         o->printer = v;
     } else if (strcmp(a, "--sim-inputs") == 0) {
         o->conn.sim_inputs = v;
-    } else if (strcmp(a, "--baud") == 0) {
-        if (parse_uint(v, 1, 4000000, &n) != 0)
-            return -1;
-        l->baud = (uint32_t)n;
-    } else if (strcmp(a, "--data-bits") == 0) {
-        if (parse_uint(v, 5, 8, &n) != 0)
-            return -1;
-        l->data_bits = (uint8_t)n;
-    } else if (strcmp(a, "--stop-bits") == 0) {
-        if (parse_uint(v, 1, 2, &n) != 0)
-            return -1;
-        l->stop_bits = (uint8_t)n;
-    } else if (strcmp(a, "--parity") == 0) {
-        if (strcmp(v, "none") == 0 || strcmp(v, "N") == 0 || strcmp(v, "n") == 0)
-            l->parity = FBRL_PARITY_NONE;
-        else if (strcmp(v, "even") == 0 || strcmp(v, "E") == 0 || strcmp(v, "e") == 0)
-            l->parity = FBRL_PARITY_EVEN;
-        else if (strcmp(v, "odd") == 0 || strcmp(v, "O") == 0 || strcmp(v, "o") == 0)
-            l->parity = FBRL_PARITY_ODD;
-        else
-            return -1;
-    } else if (strcmp(a, "--flow") == 0) {
-        if (strcmp(v, "none") == 0)
-            l->flow = FBRL_FLOW_NONE;
-        else if (strcmp(v, "xonxoff") == 0)
-            l->flow = FBRL_FLOW_XONXOFF;
-        else
-            return -1;
+    } else if (fbrl_port_set_option(&o->conn.line, a + 2, v) != FBRL_OK) {
+        /* --baud, --data-bits, --parity, --stop-bits, --flow, --low-latency: the library's option text */
+        return -1;
     }
     return 0;
 }
@@ -161,8 +142,7 @@ static int set_valued(options *o, const char *a, const char *v)
 static int parse_args(int argc, char **argv, options *o, int *status)
 {
     int i, only_files = 0, explicit_conn = 0;
-    fbrl_uart_config line = FBRL_UART_CONFIG_DEFAULT;
-    o->conn.line = line;
+    fbrl_port_options_init(&o->conn.line);
     o->actions = calloc((size_t)argc, sizeof *o->actions);
     o->dict_bytes = DICT_BYTES_DEFAULT;
     if (o->actions == NULL) {
@@ -255,7 +235,7 @@ int main(int argc, char **argv)
 {
     options opt;
     static mon m;  /* fixed address for the words; large */
-    int status = MON_EXIT_OK;
+    int status = MON_EXIT_OK, stopped = 0;
     size_t i;
     FILE *printer = NULL;
 
@@ -297,6 +277,15 @@ int main(int argc, char **argv)
         free(opt.actions);
         return MON_EXIT_CONNECT;
     }
+    m.conn = g_conn.open ? &g_conn : NULL;
+    if (mon_relink_install(&m) != FBRL_OK) {
+        fprintf(stderr, "fbrlmon: cannot define RECONNECT and RESUME\n");
+        mon_close(&m);
+        mon_conn_close(&g_conn);
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
+    mon_safe_install(&m);
 
     if (opt.printer != NULL) {
         printer = fopen(opt.printer, "a");
@@ -309,9 +298,20 @@ int main(int argc, char **argv)
         }
         fbrl_glossary_set_port_writer(&m.glossary, print_to_printer, printer);
     }
+    if (opt.workspace != NULL && mon_ws_start(&m, opt.workspace) != 0) {
+        if (printer != NULL)
+            fclose(printer);
+        mon_close(&m);
+        mon_conn_close(&g_conn);
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
+    }
 
-    for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm); i++) {
+    /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
+     * skipped (docs/fbrlmon.md "Ctrl-C") */
+    for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm) && !stopped; i++) {
         const action *a = &opt.actions[i];
+        mon_safe_begin(&m);
         if (a->is_text) {
             unsigned long lines = 1;
             const char *p;
@@ -322,9 +322,11 @@ int main(int argc, char **argv)
         } else {
             mon_include(&m, a->arg);
         }
+        stopped = mon_safe_end(&m, a->is_text ? "-e" : a->arg, a->is_text ? 1 : 0);
     }
 
-    if (!fbrl_vm_bye(m.vm)) {
+    /* after a Ctrl-C, only a terminal goes on (at the prompt); piped input ends */
+    if (!fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
         if (m.host.in_is_tty) {
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
@@ -337,22 +339,28 @@ int main(int argc, char **argv)
             unsigned long ln = 0;
             const char *line;
             size_t len;
-            while (!fbrl_vm_bye(m.vm) && (line = mon_host_read_line(&m.host, &len)) != NULL)
+            while (!fbrl_vm_bye(m.vm) && !stopped && (line = mon_host_read_line(&m.host, &len)) != NULL) {
+                mon_safe_begin(&m);
                 mon_eval(&m, line, len, "stdin", ++ln, 1);
+                stopped = mon_safe_end(&m, "stdin", ln);
+            }
             if (m.host.line_too_long) {
                 fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n", ln,
                         MON_HOST_LINE_MAX, ln);
                 m.errors++;
             }
-            if (!fbrl_vm_bye(m.vm))
+            if (!fbrl_vm_bye(m.vm) && !stopped)
                 mon_check_closed(&m, "input", "stdin", ln);
         }
     }
 
+    mon_ws_finish(&m);
     mon_close(&m);
     if (printer != NULL && fclose(printer) != 0)
         fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
+    if (mon_safe_quit() || (stopped && !m.host.in_is_tty))
+        status = MON_EXIT_INTERRUPT;
     mon_conn_close(&g_conn);
     free(opt.actions);
     return status;

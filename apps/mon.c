@@ -41,6 +41,12 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     if (st == FBRL_OK)
         st = fbrl_robot_install(m->vm, &m->robot, link, &m->glossary);
     if (st == FBRL_OK) {
+        m->ws_mem = calloc(1, MON_WORKSPACE_STORAGE);
+        st = m->ws_mem == NULL ? FBRL_ENOSPC
+                               : fbrl_workspace_install(m->vm, &m->ws, &m->glossary, &m->robot, m->ws_mem,
+                                                        MON_WORKSPACE_STORAGE);
+    }
+    if (st == FBRL_OK) {
         m->link = link;
         st = mon_teach_install(m);
     }
@@ -49,8 +55,10 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     if (st != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
         free(m->file_mem);
+        free(m->ws_mem);
         free(m->vm_mem);
         m->file_mem = NULL;
+        m->ws_mem = NULL;
         m->vm_mem = NULL;
         m->vm = NULL;
         return -1;
@@ -68,6 +76,8 @@ void mon_close(mon *m)
     }
     free(m->file_mem);
     m->file_mem = NULL;
+    free(m->ws_mem);
+    m->ws_mem = NULL;
     mon_host_free(&m->host);
     free(m->vm_mem);
     m->vm_mem = NULL;
@@ -99,6 +109,10 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     if (e != NULL && e->word[0] && e->throw_code != -39) {
         fputs(e->throw_code == -13 ? " " : " in ", stderr);
         put_clean(e->word);
+    }
+    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
+        strcpy(m->resume_file, e->file);  /* where RESUME goes on */
+        m->resume_line = e->line;
     }
     if (e != NULL && e->file[0]) {
         fputs(" (", stderr);

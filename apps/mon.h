@@ -8,6 +8,7 @@
 #include "fbrl/link.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
+#include "fbrl/workspace.h"
 #include "mon_host.h"
 
 /* Exit status (documented in docs/fbrlmon.md). */
@@ -19,6 +20,12 @@
 /* Storage for the typed data files the file words keep open (split among them). */
 #define MON_FILE_STORAGE (8u * 1024u * 1024u)
 
+/* File buffer of the workspace words (SAVE-WORKSPACE ...): FBRL_WORKSPACE_OBJECT_BYTES
+ * each, so about 20,000 named objects. */
+#define MON_WORKSPACE_STORAGE (4u * 1024u * 1024u)
+
+struct mon_conn;
+
 /* Keep at a fixed address while the VM runs (the words point into it). */
 typedef struct mon {
     fbrl_vm *vm;
@@ -27,8 +34,14 @@ typedef struct mon {
     mon_host host;
     fbrl_glossary glossary;  /* locations, matrices, calibration, metric, data files */
     fbrl_robot robot;        /* robot words; talk through the link, if any */
+    fbrl_workspace ws;       /* SAVE-WORKSPACE, LOAD-WORKSPACE (mon_ws.c: --workspace) */
+    void *ws_mem;
     fbrl_link *link;         /* the controller (NULL offline); TEACH talks through it too */
     unsigned long errors;    /* errors in files, -e text and piped input */
+    struct mon_conn *conn;   /* the connection RECONNECT opens again (NULL: none) */
+    int typed;               /* evaluating a line typed at the prompt */
+    char resume_file[256];   /* RESUME: the file and line of the last error in a file */
+    unsigned long resume_line;
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -1,4 +1,4 @@
-/* mon_conn.c - opening the controller connection for fbrlmon. */
+/* mon_conn.c - opening the controller connection for fbrlmon, through fbrl_port. */
 #include "mon_conn.h"
 
 #include <locale.h>
@@ -11,10 +11,11 @@
 #include "fbrl/uart_serialport.h"
 #endif
 
-static fbrl_status fail(char *err, size_t errlen, fbrl_status st, const char *what, const char *path)
+const char *mon_conn_hint(fbrl_status st)
 {
-    snprintf(err, errlen, "%s %s: %s", what, path, fbrl_status_str(st));
-    return st;
+    return st == FBRL_EPERM ? " (serial ports usually belong to the group dialout: "
+                              "sudo usermod -aG dialout $USER, then log in again)"
+                            : "";
 }
 
 #ifdef FBRLMON_HAVE_SIM
@@ -45,94 +46,125 @@ static void sim_destroy_c(fbrl_sim *sim)
     if (prev)
         uselocale(prev);
 }
+
+/* fbrl_port's "sim:" hook: fbrlsim's core on a pty in a thread of this process (the
+ * library itself never starts an emulator). arg (after "sim:") names a state file. */
+static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
+{
+    mon_conn *c = ctx;
+    fbrl_sim_options so;
+    fbrl_status st;
+    fbrl_sim_options_init(&so);
+    so.state_path = arg[0] ? arg : c->sim_state;
+    so.inputs_path = c->sim_inputs;
+    so.model = c->sim_model;
+    st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
+    if (st != FBRL_OK) {
+        c->sim = NULL;
+        return st;
+    }
+    {
+        /* The emulator's thread must not take the terminal's signals: the
+         * line editor (Ctrl-C, window size) handles them in the main thread. */
+        static const int sigs[] = { SIGINT, SIGQUIT, SIGTSTP, SIGCONT, SIGWINCH, SIGHUP, SIGTERM };
+        sigset_t block, old;
+        size_t i;
+        sigemptyset(&block);
+        for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
+            sigaddset(&block, sigs[i]);
+        pthread_sigmask(SIG_BLOCK, &block, &old);
+        st = fbrl_sim_start(c->sim);
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+    }
+    if (st != FBRL_OK)
+        return st;
+    snprintf(path, cap, "%s", fbrl_sim_path(c->sim));
+    return FBRL_OK;
+}
+
+static void sim_stop(void *ctx)
+{
+    mon_conn *c = ctx;
+    if (c->sim != NULL)
+        sim_destroy_c(c->sim);
+    c->sim = NULL;
+}
 #endif
 
 fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, size_t errlen)
 {
     fbrl_status st;
-    const char *path = o->port;
+    fbrl_port_options po = o->line;
+    const char *name = o->port;
 
     memset(c, 0, sizeof *c);
     c->kind = o->kind;
+    c->sim_state = o->sim_state;
+    c->sim_inputs = o->sim_inputs;
+    c->sim_model = o->sim_model;
     if (o->kind == MON_CONN_OFFLINE)
         return FBRL_OK;
     if (o->kind == MON_CONN_SIM) {
 #ifdef FBRLMON_HAVE_SIM
-        fbrl_sim_options so;
-        char serr[256] = "";
-        fbrl_sim_options_init(&so);
-        so.state_path = o->sim_state;
-        so.inputs_path = o->sim_inputs;
-        st = sim_create_c(&c->sim, &so, serr, sizeof serr);
-        if (st != FBRL_OK) {
-            snprintf(err, errlen, "cannot start the emulator: %s", serr[0] ? serr : fbrl_status_str(st));
-            return st;
-        }
-        {
-            /* The emulator's thread must not take the terminal's signals: the
-             * line editor (Ctrl-C, window size) handles them in the main thread. */
-            static const int sigs[] = { SIGINT, SIGQUIT, SIGTSTP, SIGCONT, SIGWINCH, SIGHUP, SIGTERM };
-            sigset_t block, old;
-            size_t i;
-            sigemptyset(&block);
-            for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
-                sigaddset(&block, sigs[i]);
-            pthread_sigmask(SIG_BLOCK, &block, &old);
-            st = fbrl_sim_start(c->sim);
-            pthread_sigmask(SIG_SETMASK, &old, NULL);
-        }
-        if (st != FBRL_OK) {
-            sim_destroy_c(c->sim);
-            c->sim = NULL;
-            snprintf(err, errlen, "cannot start the emulator: %s", fbrl_status_str(st));
-            return st;
-        }
-        path = fbrl_sim_path(c->sim);
+        po.sim_start = sim_start;
+        po.sim_stop = sim_stop;
+        po.sim_ctx = c;
+        name = "sim:";
 #else
         snprintf(err, errlen, "this fbrlmon was built without the emulator");
         return FBRL_EUNSUPPORTED;
 #endif
     }
-    snprintf(c->path, sizeof c->path, "%s", path);
-    st = fbrl_uart_posix_open(&c->port, &c->uart, path, &o->line, c->rx, sizeof c->rx, c->tx,
-                              sizeof c->tx, NULL);
+    st = fbrl_port_open(&c->port, name, &po);
     if (st != FBRL_OK) {
-        mon_conn_close(c);
-        return fail(err, errlen, st, "cannot open", path);
+        if (o->kind == MON_CONN_SIM)
+            snprintf(err, errlen, "cannot start the emulator: %s", c->sim_err[0] ? c->sim_err : fbrl_status_str(st));
+        else
+            snprintf(err, errlen, "cannot open %s: %s%s", name, fbrl_status_str(st), mon_conn_hint(st));
+        return st;
     }
     c->open = 1;
-    st = fbrl_link_init(&c->link, &c->uart, NULL);
+    c->url = name;
+    c->opts = po;
+    {
+        /* The link reads W2 and STATUS rows for as many axes as the arm has. */
+        fbrl_link_config lc;
+        fbrl_link_config_init(&lc);
+        if (o->axes)
+            lc.naxes = o->axes;
+#ifdef FBRLMON_HAVE_SIM
+        else if (c->sim != NULL)
+            lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
+#endif
+        c->lcfg = lc;  /* mon_conn_reopen uses it again */
+        st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
+    }
     if (st == FBRL_OK)
         st = fbrl_link_connect(&c->link);  /* NOHELP: a controller must answer */
     if (st != FBRL_OK) {
+        snprintf(err, errlen, "no controller answers on %s: %s", c->port.name, fbrl_status_str(st));
         mon_conn_close(c);
-        return fail(err, errlen, st, "no controller answers on", path);
+        return st;
     }
     return FBRL_OK;
 }
 
 void mon_conn_describe(const mon_conn *c, char *buf, size_t cap)
 {
-    fbrl_uart_config l;
-    if (c->kind == MON_CONN_OFFLINE || !c->open || fbrl_uart_get_config(&c->uart, &l) != FBRL_OK) {
+    char port[400];
+    if (c->kind == MON_CONN_OFFLINE || !c->open || fbrl_port_describe(&c->port, port, sizeof port) != FBRL_OK) {
         snprintf(buf, cap, "offline (no controller)");
         return;
     }
-    snprintf(buf, cap, "%s %s (%lu %u%c%u, %s)", c->kind == MON_CONN_SIM ? "emulator on" : "controller on",
-             c->path, (unsigned long)l.baud, (unsigned)l.data_bits, (char)l.parity, (unsigned)l.stop_bits,
-             l.flow == FBRL_FLOW_XONXOFF ? "XON/XOFF" : "no flow control");
+    snprintf(buf, cap, "%s %s", c->kind == MON_CONN_SIM ? "emulator on" : "controller on", port);
 }
 
 void mon_conn_close(mon_conn *c)
 {
-    if (c->open)
-        fbrl_uart_close(&c->uart);
+    /* the port stops an emulator it started (sim_stop), also after a failed open */
+    if (c->open || c->port.sim_running)
+        fbrl_port_close(&c->port);
     c->open = 0;
-#ifdef FBRLMON_HAVE_SIM
-    if (c->sim != NULL)
-        sim_destroy_c(c->sim);
-    c->sim = NULL;
-#endif
 }
 
 fbrl_status mon_conn_list_ports(FILE *out)
@@ -146,11 +178,19 @@ fbrl_status mon_conn_list_ports(FILE *out)
     if (n > sizeof ports / sizeof ports[0])
         n = sizeof ports / sizeof ports[0];
     for (i = 0; i < n; i++) {
+        fbrl_port_usb_info usb;
         fprintf(out, "%s", ports[i].name);
         if (ports[i].description[0])
             fprintf(out, "  %s", ports[i].description);
         if (ports[i].usb)
             fprintf(out, "  [USB %04x:%04x]", ports[i].vid, ports[i].pid);
+        /* what sysfs says (nothing is opened): the driver and its latency timer */
+        if (fbrl_port_usb_info_get(NULL, ports[i].name, &usb) == FBRL_OK && usb.driver[0]) {
+            fprintf(out, "  driver %s", usb.driver);
+            if (usb.latency_timer_ms >= 0)
+                fprintf(out, ", latency timer %d ms%s", usb.latency_timer_ms,
+                        usb.latency_timer_ms > 1 ? " (fbrlmon sets 1 ms when it opens the port)" : "");
+        }
         fputc('\n', out);
     }
     return FBRL_OK;
@@ -158,4 +198,28 @@ fbrl_status mon_conn_list_ports(FILE *out)
     (void)out;
     return FBRL_EUNSUPPORTED;
 #endif
+}
+
+fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen)
+{
+    fbrl_status st;
+    if (c->kind == MON_CONN_PORT) {
+        /* the old descriptor leads to a pty or device that is gone: a new open finds
+         * whatever the name stands for now */
+        if (c->open)
+            fbrl_port_close(&c->port);
+        c->open = 0;
+        st = fbrl_port_open(&c->port, c->url, &c->opts);
+        if (st != FBRL_OK) {
+            snprintf(err, errlen, "cannot open %s: %s%s", c->url, fbrl_status_str(st), mon_conn_hint(st));
+            return st;
+        }
+        c->open = 1;
+    }
+    st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &c->lcfg);
+    if (st == FBRL_OK)
+        st = fbrl_link_connect(&c->link); /* NOHELP, as at start */
+    if (st != FBRL_OK)
+        snprintf(err, errlen, "no controller answers on %s: %s", c->port.name, fbrl_status_str(st));
+    return st;
 }

@@ -1,15 +1,14 @@
 /* mon_conn.h - fbrlmon's connection to a controller: a serial port, a pty or a
- * TCP serial server through the POSIX uart backend, or the built-in emulator
- * (fbrlsim's core on a pty, reached through the very same termios path), with the
- * RAPL link's start-up handshake proving that a controller answers. */
+ * TCP serial server, or the built-in emulator (fbrlsim's core on a pty), all opened
+ * by name through the library's fbrl_port (so every program opens ports the same way),
+ * with the RAPL link's start-up handshake proving that a controller answers. */
 #ifndef FBRLMON_CONN_H
 #define FBRLMON_CONN_H
 
 #include <stddef.h>
 #include <stdio.h>
 #include "fbrl/link.h"
-#include "fbrl/uart.h"
-#include "fbrl/uart_posix.h"
+#include "fbrl/port.h"
 
 #ifdef FBRLMON_HAVE_SIM
 #include "fbrlsim.h"
@@ -19,10 +18,12 @@ typedef enum mon_conn_kind { MON_CONN_OFFLINE, MON_CONN_PORT, MON_CONN_SIM } mon
 
 typedef struct mon_conn_options {
     mon_conn_kind kind;
-    const char *port;        /* MON_CONN_PORT: path or tcp:HOST:PORT */
-    fbrl_uart_config line;   /* baud, data bits, parity, stop bits, flow */
-    const char *sim_state;   /* MON_CONN_SIM: emulator's persistent memory, or NULL */
-    const char *sim_inputs;  /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
+    const char *port;         /* MON_CONN_PORT: a name fbrl_port_open takes (path, tcp:HOST:PORT, ?options) */
+    fbrl_port_options line;   /* baud, data bits, parity, stop bits, flow, low latency */
+    const char *sim_state;    /* MON_CONN_SIM: emulator's persistent memory, or NULL */
+    const char *sim_inputs;   /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
+    const char *sim_model;    /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
+    unsigned axes;            /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
@@ -32,21 +33,32 @@ typedef struct mon_conn {
 #ifdef FBRLMON_HAVE_SIM
     fbrl_sim *sim;
 #endif
-    fbrl_uart_posix port;
-    fbrl_uart uart;
-    unsigned char rx[4096], tx[1024];
+    const char *sim_state, *sim_inputs, *sim_model;
+    char sim_err[256];
+    fbrl_port port;
     fbrl_link link;
-    char path[256];
+    const char *url;          /* what was opened, and how (for mon_conn_reopen) */
+    fbrl_port_options opts;
+    fbrl_link_config lcfg;
 } mon_conn;
 
 /* Connect as asked; on failure err says why (one line, no newline). */
 fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, size_t errlen);
-/* One-line description, e.g. "emulator on /dev/pts/4 (9600 8N1, XON/XOFF)". */
+/* One-line description, e.g. "emulator on /dev/pts/4 (9600 8N1, XON/XOFF; pty, low
+ * latency: not supported)". */
 void mon_conn_describe(const mon_conn *c, char *buf, size_t cap);
 void mon_conn_close(mon_conn *c);
+/* After the controller went away: open the port again by the same name and options (the
+ * built-in emulator is not restarted) and run the connect handshake; on failure err says
+ * why. */
+fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen);
+/* What to do about an open failure, as text to append to the message ("" if nothing
+ * useful): for FBRL_EPERM, the dialout group. */
+const char *mon_conn_hint(fbrl_status st);
 
-/* --list-ports: print the serial ports the system knows, one per line.
- * FBRL_EUNSUPPORTED when fbrlmon was built without libserialport. */
+/* --list-ports: print the serial ports the system knows, one per line, with a USB
+ * adapter's driver and latency timer. FBRL_EUNSUPPORTED when fbrlmon was built without
+ * libserialport. */
 fbrl_status mon_conn_list_ports(FILE *out);
 
 #endif

@@ -2,6 +2,7 @@
  * completion of word names with libedit (<histedit.h>), or a plain line loop
  * when fbrlmon was built without libedit. */
 #include "mon.h"
+#include "mon_safe.h"
 
 #include <ctype.h>
 #include <signal.h>
@@ -16,52 +17,29 @@ static const char *prompt_text(const mon *m)
     return fbrl_vm_compiling(m->vm) ? "compiling> " : "ok> ";
 }
 
-static mon *g_eval_mon;  /* the session whose line is being evaluated */
-
-/* Ctrl-C at the prompt (libedit): the handler stays installed from the prompt until
- * the line's own handler takes over, so a Ctrl-C just after Enter is never the
- * default action (which would end fbrlmon): it cancels the line before it runs. */
-static volatile sig_atomic_t g_sigint;
-
-/* Ctrl-C while a line runs: ask the engine to stop (it throws "user interrupt" at
- * its next call or loop step, and the session goes on). The request is repeated
- * by a second Ctrl-C (one that came just as the line started may be lost); a
- * third ends fbrlmon, in case a word never gets to a stop. */
-static void on_sigint_eval(int sig)
-{
-    if (g_eval_mon->host.interrupted >= 2) {
-        signal(sig, SIG_DFL);
-        raise(sig);
-        return;
-    }
-    g_eval_mon->host.interrupted++;
-    fbrl_vm_interrupt(g_eval_mon->vm);
-}
-
-/* Evaluate one typed line; errors print but do not count toward the exit status. */
+/* Evaluate one typed line; errors print but do not count toward the exit status.
+ * Ctrl-C (mon_safe.c) interrupts it and ends in the safe stop; one that came after
+ * Enter but before the line started cancels the line. */
 static void eval_line(mon *m, const char *line, size_t len)
 {
-    struct sigaction sa, old;
     while (len > 0 && (line[len - 1] == '\n' || line[len - 1] == '\r'))
         len--;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint_eval;  /* no SA_RESTART: waits in MS and KEY return */
-    sigemptyset(&sa.sa_mask);
-    g_eval_mon = m;
-    m->host.interrupted = 0;
-    sigaction(SIGINT, &sa, &old);
-    if (g_sigint) {
-        /* Ctrl-C came between Enter and now: the line has not started */
-        g_sigint = 0;
+    if (mon_safe_pending()) {
         mon_host_newline(&m->host);
         fputs("error: user interrupt (the line did not run)\n", stderr);
-    } else if (mon_eval(m, line, len, NULL, 0, 0) == 0 && m->host.interrupted) {
+        mon_safe_stop(m, NULL, 0);
+        return;
+    }
+    mon_safe_begin(m);
+    m->typed = 1;
+    if (mon_eval(m, line, len, NULL, 0, 0) == 0 && m->host.interrupted) {
         /* The engine stops at its next call or loop step; a line that ended
          * before one (e.g. a lone MS cut short) still says it was interrupted. */
         mon_host_newline(&m->host);
         fputs("error: user interrupt\n", stderr);
     }
-    sigaction(SIGINT, &old, NULL);
+    m->typed = 0;
+    mon_safe_end(m, "typed line", 0);
     m->host.interrupted = 0;
     mon_host_newline(&m->host);
 }
@@ -76,15 +54,6 @@ static void eval_line(mon *m, const char *line, size_t len)
 
 static mon *g_mon;  /* the session libedit's callbacks serve (one per process) */
 
-/* Ctrl-C at the prompt discards the line being typed (while a line is evaluated
- * it interrupts the evaluation, see eval_line); g_sigint is above. */
-
-static void on_sigint(int sig)
-{
-    (void)sig;
-    g_sigint = 1;
-}
-
 /* libedit's key reader, replaced so that Ctrl-C is never lost: libedit retries
  * a read() that a signal interrupted, so the flag is checked here instead (poll
  * wakes on the signal; the timeout covers a signal that came just before it). */
@@ -98,7 +67,7 @@ static int read_key(EditLine *el, wchar_t *wc)
         unsigned char b;
         ssize_t r;
         size_t k;
-        if (g_sigint) {
+        if (mon_safe_pending() || (g_mon != NULL && g_mon->host.interrupted)) {
             errno = EINTR;
             return -1;
         }
@@ -124,30 +93,62 @@ static int read_key(EditLine *el, wchar_t *wc)
     }
 }
 
-/* Read one line; NULL at end of input. */
+/* Read one line; NULL at end of input or when a second Ctrl-C ends fbrlmon. Ctrl-C at
+ * the prompt discards the line being typed and makes the safe stop (mon_safe.c: its
+ * handler stays installed; libedit passes the signal on to it). */
 static const char *read_line(EditLine *el, int *count)
 {
-    struct sigaction sa;
     const char *line;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;  /* no SA_RESTART: the read must return */
-    sigemptyset(&sa.sa_mask);
     for (;;) {
-        g_sigint = 0;
-        /* left installed after the line is read (eval_line takes over; see g_sigint) */
-        sigaction(SIGINT, &sa, NULL);
         line = el_gets(el, count);
-        if (!g_sigint)
+        if (!mon_safe_pending())
             return line;
         el_reset(el);  /* drop the half-typed line */
         fputs("\n", stdout);
+        mon_safe_stop(g_mon, NULL, 0);
+        if (mon_safe_quit())
+            return NULL;
     }
 }
+
+static const char *g_alt_prompt; /* a word's own prompt (GET-CAL-POINTS' "cal 1> ") */
+static History *g_hist;
 
 static char *el_prompt(EditLine *el)
 {
     (void)el;
-    return (char *)prompt_text(g_mon);
+    return (char *)(g_alt_prompt != NULL ? g_alt_prompt : prompt_text(g_mon));
+}
+
+/* A line for a word that reads the console while a typed line runs (mon_host's
+ * read_line): the same editor, history and completion as the prompt. NULL at the end of
+ * input or on Ctrl-C (the line's Ctrl-C handler has told the engine). */
+static const char *edit_line(void *ctx, const char *prompt, size_t *len)
+{
+    EditLine *el = ctx;
+    HistEvent ev;
+    const char *line;
+    size_t n, k;
+    int count = 0;
+    g_alt_prompt = prompt;
+    line = el_gets(el, &count);
+    g_alt_prompt = NULL;
+    if (line == NULL || count <= 0 || g_mon->host.interrupted) {
+        if (g_mon->host.interrupted) {
+            el_reset(el);
+            fputs("\n", stdout);
+        }
+        return NULL;
+    }
+    n = strlen(line);
+    for (k = n; k > 0 && isspace((unsigned char)line[k - 1]); k--)
+        ;
+    if (k > 0 && g_hist != NULL)
+        history(g_hist, &ev, H_ENTER, line);
+    while (n > 0 && (line[n - 1] == '\n' || line[n - 1] == '\r'))
+        n--;
+    *len = n;
+    return line;
 }
 
 /* Words whose name starts with a prefix, gathered from fbrl_vm_words(). */
@@ -304,10 +305,8 @@ void mon_interactive(mon *m)
     char *hpath = history_path();
     const char *line;
     int count;
-    struct sigaction saved;
 
     g_mon = m;
-    sigaction(SIGINT, NULL, &saved);
     hist = history_init();
     el = el_init("fbrlmon", stdin, stdout, stderr);
     if (hist == NULL || el == NULL) {
@@ -332,8 +331,11 @@ void mon_interactive(mon *m)
     el_set(el, EL_ADDFN, "fbrl-complete", "complete an FBRL word name", el_complete);
     el_set(el, EL_BIND, "^I", "fbrl-complete", NULL);
     el_source(el, NULL);  /* the user's ~/.editrc, if any */
+    g_hist = hist;
+    m->host.edit_line = edit_line;
+    m->host.edit_ctx = el;
 
-    while (!fbrl_vm_bye(m->vm) && (line = read_line(el, &count)) != NULL && count > 0) {
+    while (!fbrl_vm_bye(m->vm) && !mon_safe_quit() && (line = read_line(el, &count)) != NULL && count > 0) {
         size_t len = strlen(line);
         size_t k = len;
         while (k > 0 && isspace((unsigned char)line[k - 1]))
@@ -345,9 +347,11 @@ void mon_interactive(mon *m)
         }
         eval_line(m, line, len);
     }
-    if (!fbrl_vm_bye(m->vm))
+    if (!fbrl_vm_bye(m->vm) && !mon_safe_quit())
         fputc('\n', stdout);  /* end of input (Ctrl-D) leaves the cursor after the prompt */
-    sigaction(SIGINT, &saved, NULL);
+    m->host.edit_line = NULL;
+    m->host.edit_ctx = NULL;
+    g_hist = NULL;
     el_end(el);
     history_end(hist);
     free(hpath);
@@ -361,13 +365,17 @@ void mon_interactive(mon *m)
     const char *line;
     size_t len;
     for (;;) {
-        if (fbrl_vm_bye(m->vm))
+        if (fbrl_vm_bye(m->vm) || mon_safe_quit())
             break;
         fputs(prompt_text(m), stdout);
         fflush(stdout);
         line = mon_host_read_line(&m->host, &len);
         if (line == NULL)
             break;
+        if (mon_safe_pending()) {  /* Ctrl-C at the prompt: seen once Enter is pressed */
+            mon_safe_stop(m, NULL, 0);
+            continue;
+        }
         eval_line(m, line, len);
     }
 }

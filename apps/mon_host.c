@@ -21,7 +21,9 @@ static int in_fill(mon_host *h)
         return 0;
     do {
         n = read(h->in_fd, h->inbuf, sizeof h->inbuf);
-    } while (n < 0 && errno == EINTR);
+    } while (n < 0 && errno == EINTR && !h->interrupted);
+    if (n < 0 && errno == EINTR)
+        return 0;  /* Ctrl-C while a word reads a line: not the end of input */
     if (n <= 0) {
         h->in_eof = 1;
         return 0;
@@ -168,18 +170,20 @@ static int host_key_ready(void *user)
 typedef struct mon_file {
     FILE *f;
     unsigned long lines;
+    unsigned long skip;  /* RESUME: lines read as empty */
 } mon_file;
 
 static fbrl_status host_file_open(void *user, const char *path, void **handle)
 {
+    mon_host *h = user;
     mon_file *mf;
-    (void)user;
     if (path == NULL || handle == NULL)
         return FBRL_EINVAL;
     mf = malloc(sizeof *mf);
     if (mf == NULL)
         return FBRL_ENOSPC;
     mf->lines = 0;
+    mf->skip = 0;
     /* Only regular files: a device (/dev/zero) never ends, a FIFO with no writer would
      * block the open itself. O_NONBLOCK keeps that open from blocking; fstat on the open
      * descriptor then decides (no window between a check and the open). */
@@ -204,6 +208,11 @@ static fbrl_status host_file_open(void *user, const char *path, void **handle)
             return FBRL_EIO;
         }
     }
+    if (h->skip_lines > 0 && h->skip_path != NULL && strcmp(h->skip_path, path) == 0) {
+        mf->skip = h->skip_lines;
+        h->skip_lines = 0;
+    }
+    h->file_depth++;
     *handle = mf;
     return FBRL_OK;
 }
@@ -236,7 +245,12 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
         return FBRL_EIO;
     if (c == EOF && n == 0 && !too_long)
         return FBRL_EEOF;
-    if (++mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!') {
+    if (++mf->lines <= mf->skip) { /* RESUME: before the line to go on from */
+        while (too_long && (c = getc(mf->f)) != EOF && c != '\n')
+            ;
+        return FBRL_OK;
+    }
+    if (mf->lines == 1 && n >= 2 && buf[0] == '#' && buf[1] == '!') {
         while (too_long && (c = getc(mf->f)) != EOF && c != '\n')
             ; /* the rest of a long "#!" line (a regular file ends) */
         return FBRL_OK;
@@ -251,11 +265,12 @@ static fbrl_status host_file_read_line(void *user, void *handle, char *buf, size
 
 static void host_file_close(void *user, void *handle)
 {
+    mon_host *h = user;
     mon_file *mf = handle;
-    (void)user;
     if (mf != NULL) {
         fclose(mf->f);
         free(mf);
+        h->file_depth--;
     }
 }
 
@@ -282,6 +297,35 @@ static void host_sleep_ms(void *user, uint32_t ms)
             ;
         ms -= slice;
     }
+}
+
+/* A console line for the engine (GET-CAL-POINTS): the line editor when the interactive
+ * session runs, else a plain line (the prompt shown only on a terminal). */
+static fbrl_status host_read_line(void *user, const char *prompt, char *buf, size_t cap, size_t *len)
+{
+    mon_host *h = user;
+    const char *line;
+    size_t n = 0;
+    if (cap == 0)
+        return FBRL_EINVAL;
+    if (h->edit_line != NULL) {
+        fflush(h->out);
+        line = h->edit_line(h->edit_ctx, prompt, &n);
+    } else {
+        if (h->in_is_tty) {
+            fputs(prompt, h->out);
+            fflush(h->out);
+        }
+        line = h->interrupted ? NULL : mon_host_read_line(h, &n);
+    }
+    h->column = 0;
+    if (line == NULL)
+        return FBRL_EEOF;
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(buf, line, n);
+    *len = n;
+    return FBRL_OK;
 }
 
 static void host_time_date(void *user, int out[6])
@@ -319,6 +363,7 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->now_us = host_now_us;
     cb->sleep_ms = host_sleep_ms;
     cb->time_date = host_time_date;
+    cb->read_line = host_read_line;
 }
 
 void mon_host_progress(void *ctx, const char *text)

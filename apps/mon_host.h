@@ -24,6 +24,15 @@ typedef struct mon_host {
     int in_eof;
     char *line;         /* mon_host_read_line()'s growing buffer */
     size_t line_cap;
+    int file_depth;     /* source files open (INCLUDED nests) */
+    /* RESUME: the next open of skip_path reads its first skip_lines lines as empty
+     * (so line numbers stay right) */
+    const char *skip_path;
+    unsigned long skip_lines;
+    /* The line editor while the interactive session runs (mon_edit.c): the engine's
+     * read_line (GET-CAL-POINTS) edits console lines with it. NULL: plain lines. */
+    const char *(*edit_line)(void *ctx, const char *prompt, size_t *len);
+    void *edit_ctx;
     int progress_shown; /* a progress line is on the screen (mon_host_progress) */
     int line_too_long;  /* a line passed MON_HOST_LINE_MAX: input was stopped there */
 } mon_host;

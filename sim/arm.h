@@ -1,54 +1,75 @@
-/* arm.h - kinematic model of the emulated 5-axis arm (A255 geometry, DESIGN 6).
+/* arm.h - kinematic models of the emulated arms, as data (docs/fbrlsim.md).
  *
  * Pure computation: no OS, no allocation. Angles are degrees, lengths inches.
- * Joints q[0..4]: waist, shoulder (upper arm above horizontal), elbow (forearm
- * relative to the upper arm's line), wrist pitch (tool relative to the forearm),
- * tool roll. A pose p[0..5] is X Y Z yaw pitch roll of the tool point: the
- * flange (wrist pitch axis + 2.0 in along the tool) plus an optional tool
- * length. yaw = waist direction, pitch = tool axis above horizontal. */
+ * A model is a row of fbrl_sim_models: geometry, joint limits, speeds, pulses
+ * per degree and READY, plus which kinematic form its geometry fills:
+ *
+ *  - FBRL_SIM_KIN_5R (A255): waist, shoulder (upper arm above horizontal), elbow
+ *    (forearm relative to the upper arm's line), wrist pitch (tool relative to the
+ *    forearm), tool roll. Yaw is the waist's direction; the arm cannot choose it.
+ *  - FBRL_SIM_KIN_6R (A465): waist, shoulder (upper arm from vertical, forward
+ *    positive), elbow (forearm relative to the upper arm), forearm roll, wrist bend,
+ *    tool roll: a spherical wrist, so every pose in reach is a full 6-D pose.
+ *
+ * A pose p[0..5] is X Y Z yaw pitch roll of the tool point (the flange plus an
+ * optional tool length along the tool axis): the tool's orientation is
+ * Rz(yaw) * Ry(-pitch) * Rx(roll), its axis the rotated x axis, so pitch is the
+ * tool axis above horizontal (-90 = straight down) and roll is about the tool axis. */
 #ifndef FBRL_SIM_ARM_H
 #define FBRL_SIM_ARM_H
 
-#define FBRL_SIM_ARM_AXES 5
+#define FBRL_SIM_ARM_MAX_AXES 6
 
-#define FBRL_SIM_ARM_BASE_H   10.0  /* shoulder axis above the base, in */
-#define FBRL_SIM_ARM_UPPER    10.0  /* upper arm, in */
-#define FBRL_SIM_ARM_FORE     10.0  /* forearm, in */
-#define FBRL_SIM_ARM_FLANGE    2.0  /* wrist pitch axis to flange, in */
-#define FBRL_SIM_ARM_LINEAR   19.685 /* straight-line speed at 100 %, in/s (0.5 m/s) */
+typedef enum fbrl_sim_kin { FBRL_SIM_KIN_5R, FBRL_SIM_KIN_6R } fbrl_sim_kin;
 
-/* Per-joint constants, index 0..4. */
-extern const double fbrl_sim_arm_ppd[FBRL_SIM_ARM_AXES];    /* encoder pulses per degree */
-extern const double fbrl_sim_arm_min[FBRL_SIM_ARM_AXES];    /* joint limits, degrees */
-extern const double fbrl_sim_arm_max[FBRL_SIM_ARM_AXES];
-extern const double fbrl_sim_arm_speed[FBRL_SIM_ARM_AXES];  /* deg/s at 100 % */
-extern const double fbrl_sim_arm_ready[FBRL_SIM_ARM_AXES];  /* READY joint angles */
+typedef struct fbrl_sim_model {
+    const char *name;          /* "A255", as STATUS shows it and the state file keeps it */
+    int naxes;
+    fbrl_sim_kin kin;
+    double base_h;             /* shoulder axis above the base, in */
+    double upper;              /* shoulder to elbow, in */
+    double fore;               /* elbow to the wrist centre, in */
+    double flange;             /* wrist centre to flange, in */
+    double linear;             /* straight-line speed at 100 %, in/s */
+    double ppd[FBRL_SIM_ARM_MAX_AXES];   /* encoder pulses per degree */
+    double min[FBRL_SIM_ARM_MAX_AXES];   /* joint limits, degrees */
+    double max[FBRL_SIM_ARM_MAX_AXES];
+    double speed[FBRL_SIM_ARM_MAX_AXES]; /* deg/s at 100 % */
+    double ready[FBRL_SIM_ARM_MAX_AXES]; /* READY joint angles */
+} fbrl_sim_model;
+
+extern const fbrl_sim_model fbrl_sim_models[];
+extern const int fbrl_sim_nmodels;
+
+/* The model by name (case-insensitive), or NULL. */
+const fbrl_sim_model *fbrl_sim_model_find(const char *name);
 
 /* Forward kinematics. tool_len = tool length beyond the flange (0 = flange). */
-void fbrl_sim_arm_fk(const double q[FBRL_SIM_ARM_AXES], double tool_len, double pose[6]);
+void fbrl_sim_arm_fk(const fbrl_sim_model *m, const double *q, double tool_len, double pose[6]);
 
-/* Inverse kinematics of pose (yaw ignored): the first solution inside the
- * joint limits, reaching forward (waist pointing at the target) or else
- * backward over the shoulder (waist turned away). On the base axis the waist
- * keeps waist_hint. Returns 0 and fills q; 29 (RAPL "transform illegal") when
- * the forward reach has no solution at all, 42..46 when its solution passes a
- * joint limit (q then holds that solution). */
-int fbrl_sim_arm_ik(const double pose[6], double tool_len, double waist_hint,
-                    double q[FBRL_SIM_ARM_AXES]);
+/* Inverse kinematics of pose: the first configuration inside the joint limits,
+ * reaching forward (waist pointing at the target) before backward over the
+ * shoulder, elbow up before elbow down (6R), and of the two wrists the one nearer
+ * hint (the arm's joints now). Where a joint is free (on the base axis, a straight
+ * wrist) it keeps hint's value. A 5R arm ignores yaw. Returns 0 and fills q; 029
+ * when no configuration reaches the pose; 042.. when the preferred one passes a
+ * joint limit (q then holds it). */
+int fbrl_sim_arm_ik(const fbrl_sim_model *m, const double pose[6], double tool_len, const double *hint,
+                    double *q);
 
-/* 0 when every joint is inside its limits, else 42..46 for the first joint out. */
-int fbrl_sim_arm_check(const double q[FBRL_SIM_ARM_AXES]);
+/* 0 when every joint is inside its limits, else the joint's out-of-range code. */
+int fbrl_sim_arm_check(const fbrl_sim_model *m, const double *q);
 
 /* Pulses for joint angles (rounded) and back. */
-long fbrl_sim_arm_pulses(int axis, double deg);
-double fbrl_sim_arm_degrees(int axis, long pulses);
+long fbrl_sim_arm_pulses(const fbrl_sim_model *m, int axis, double deg);
+double fbrl_sim_arm_degrees(const fbrl_sim_model *m, int axis, long pulses);
 
-/* Checks the straight segment from pose a to pose b (position and pitch/roll
- * interpolated linearly), the arm's waist now being waist_hint: 0 when every
- * sample has a solution inside the limits and the waist turns continuously
- * from waist_hint on, else 68 (RAPL "straight line error"). */
-int fbrl_sim_arm_check_line(const double a[6], const double b[6], double tool_len,
-                            double waist_hint);
+/* Checks the straight segment from pose a to pose b (position and angles
+ * interpolated linearly), the arm's joints now being hint: 0 when every sample
+ * has a solution inside the limits and no joint jumps (next to the base axis, or
+ * from one configuration to another), else 068 (RAPL "straight line error"). */
+int fbrl_sim_arm_check_line(const fbrl_sim_model *m, const double a[6], const double b[6], double tool_len,
+                            const double *hint);
 
 /* Pose on the segment a->b at fraction f (0..1). */
 void fbrl_sim_arm_lerp(const double a[6], const double b[6], double f, double out[6]);

@@ -32,6 +32,7 @@ typedef struct fbrl_sim_options {
     const char *control_path; /* FIFO created for control lines "IN 3 1", or NULL */
     const char *faults;       /* "drop=P,corrupt=P,noise=P,stall=MS,seed=S" or NULL */
     int rx_buffer;            /* receive buffer size with baud pacing (128) */
+    const char *model;        /* the arm: "a255" or "a465"; NULL: the state file's, else A255 */
     double cmd_time_ms;       /* the controller's own time to read a command line before it
                                * acts, in simulated ms (0: none; docs/fbrlsim.md) */
     char parity;              /* 'N' 'E' 'O': the host channel's parity (CONFIG 0 sets it
@@ -52,6 +53,10 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms);
 
 /* Loops in the calling thread until fbrl_sim_stop(). */
 fbrl_status fbrl_sim_run(fbrl_sim *s);
+
+/* The emulated arm's axis count (5 for the A255, 6 for the A465): W2 and STATUS
+ * show that many. Fixed after fbrl_sim_create. */
+int fbrl_sim_axes(const fbrl_sim *s);
 
 /* Runs the loop in a new thread. */
 fbrl_status fbrl_sim_start(fbrl_sim *s);

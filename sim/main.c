@@ -19,7 +19,7 @@ static void on_signal(int sig)
 static void usage(FILE *f)
 {
     fputs("usage: fbrlsim [options]\n"
-          "  Emulates a CRS robot controller (RAPL-II, 5-axis A255 arm) on a pseudo-terminal\n"
+          "  Emulates a CRS robot controller (RAPL-II) with a CRS arm on a pseudo-terminal\n"
           "  and prints the device path (or tcp:127.0.0.1:PORT) as the first line.\n"
           "  --link PATH         also make PATH a symlink to the pseudo-terminal\n"
           "  --tcp PORT          listen on 127.0.0.1:PORT instead (0 = any free port)\n"
@@ -30,6 +30,7 @@ static void usage(FILE *f)
           "                      acts, in simulated ms (default 0)\n"
           "  --rx-buffer N       receive buffer size with --baud (default 128)\n"
           "  --time-scale N      run simulated time N times faster than real time\n"
+          "  --model a255|a465   the arm: 5-axis A255 (default) or 6-axis A465; kept in --state\n"
           "  --state FILE        keep locations, variables, outputs and settings in FILE\n"
           "  --log FILE          append one line per command executed\n"
           "  --inputs FILE       time-stamped control lines, e.g. '2.5 IN 3 1'\n"
@@ -86,6 +87,8 @@ int main(int argc, char **argv)
             if (number(a, v, 1e-3, 1e6, &d))
                 return 2;
             o.time_scale = d;
+        } else if (!strcmp(a, "--model") && v) {
+            o.model = v;
         } else if (!strcmp(a, "--cmd-time")) {
             if (number(a, v, 0, 10000, &d))
                 return 2;

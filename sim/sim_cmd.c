@@ -100,9 +100,9 @@ static const cmd cmds[] = {
     { "LISTL", 49, 0, "[LOC]", sim_h_listl },
     { "LISTV", 69, 0, "[VAR]", sim_h_listv },
     { "LOCK", 9, 0, "<JOINT#,...>", sim_h_lock },
-    { "MA", 132, F_MOTION, "<J1>,<J2>,<J3>,<J4>,<J5>[,S]", sim_h_ma },
+    { "MA", 132, F_MOTION, "<J1>,...,<JN>[,S]", sim_h_ma },
     { "MANUAL", 45, 0, "[JOI|CYL]", sim_h_manual },
-    { "MI", 131, F_MOTION, "<J1>,<J2>,<J3>,<J4>,<J5>[,S]", sim_h_mi },
+    { "MI", 131, F_MOTION, "<J1>,...,<JN>[,S]", sim_h_mi },
     { "MOTOR", 11, F_MOTION, "<MOTOR#>,<PULSES>", sim_h_motor },
     { "MOVE", 0, F_MOTION, "<LOC>[,S]", sim_h_move },
     { "NOFLASH", 0, 0, "", sim_h_noflash },
@@ -258,7 +258,7 @@ static int exec_line(fbrl_sim *s, const char *text, int top, int *block)
             return SIM_E_POWER_OFF;
         if (!s->arm.homed)
             return SIM_E_NOT_HOMED;
-        for (n = 0; n < NAXES; n++)
+        for (n = 0; n < (size_t)sim_naxes(s); n++)
             if (s->arm.limp[n])
                 return SIM_E_ILLEGAL_ARG;
     }

@@ -93,17 +93,17 @@ int sim_control(fbrl_sim *s, const char *line)
     if (!strcmp(w[0], "TEACH") && n == 1) {
         if (s && s->mem.teach && s->mem.teach_next <= 999) {
             char name[32];
-            double q[NAXES];
+            double q[FBRL_SIM_ARM_MAX_AXES];
             sim_loc *l;
             int i;
             snprintf(name, sizeof name, "%.5s%03d", s->mem.teach_name, s->mem.teach_next);
             if (sim_loc_new(s, name, s->mem.teach == 2, &l) == 0) {
                 sim_joints_now(s, q);
                 if (s->mem.teach == 2)
-                    for (i = 0; i < NAXES; i++)
-                        l->p[i] = fbrl_sim_arm_pulses(i, q[i]);
+                    for (i = 0; i < sim_naxes(s); i++)
+                        l->p[i] = fbrl_sim_arm_pulses(s->arm.model, i, q[i]);
                 else
-                    fbrl_sim_arm_fk(q, sim_tool_len(s), l->v);
+                    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), l->v);
                 s->mem.teach_next++;
                 if (s->state_path)
                     sim_state_save(s);

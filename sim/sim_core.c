@@ -26,29 +26,6 @@ static char *dupstr(const char *p)
     return d;
 }
 
-static void sim_defaults(fbrl_sim *s)
-{
-    int i;
-    s->term.last_error = -1;
-    s->arm.speed = 50.0;
-    s->arm.power = 1;
-    s->term.help = 1;
-    s->dev.grip = SIM_GRIP_MAX;
-    s->dev.grip_force = 50.0;
-    for (i = 0; i <= FBRL_SIM_ARM_AXES; i++)
-        s->arm.gain[i] = 1.0;
-    memcpy(s->arm.q, fbrl_sim_arm_ready, sizeof s->arm.q);
-    memcpy(s->arm.qt, s->arm.q, sizeof s->arm.q);
-    for (i = 0; i < 2; i++) {
-        s->dev.chan[i].baud = 9600;
-        s->dev.chan[i].parity = 'N';
-        s->dev.chan[i].data = 8;
-        s->dev.chan[i].stop = 1;
-        s->dev.chan[i].handshake = i == 0 ? 'X' : 'N';
-        s->dev.chan[i].echo = 1;
-    }
-}
-
 void fbrl_sim_options_init(fbrl_sim_options *o)
 {
     if (!o)
@@ -76,7 +53,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     if (!s)
         return FBRL_ENOMEM;
     s->opt = *o;
-    s->io.master = s->io.slave = s->io.lfd = s->io.conn = s->io.fd = s->events.ctl = -1;
+    s->io.master = s->io.slave = s->io.lfd = s->io.conn = s->io.fd = s->io.ino = s->events.ctl = -1;
     s->wake[0] = s->wake[1] = -1;
     s->state_path = dupstr(o->state_path);
     s->log_path = dupstr(o->log_path);
@@ -84,8 +61,17 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->io.link_path = o->tcp_port < 0 ? dupstr(o->link_path) : NULL;
     s->opt.state_path = s->opt.log_path = s->opt.control_path = s->opt.link_path = NULL;
     s->opt.inputs_path = s->opt.faults = NULL;
+    s->arm.model = o->model ? fbrl_sim_model_find(o->model) : &fbrl_sim_models[0];
+    s->model_given = o->model != NULL;
+    s->opt.model = NULL;
+    if (!s->arm.model) {
+        sim_seterr(err, errlen, "unknown arm model '%s' (a255 or a465)", o->model);
+        free(s->state_path);
+        s->state_path = NULL;
+        fbrl_sim_destroy(s);
+        return FBRL_EINVAL;
+    }
     sim_defaults(s);
-    s->term.help = 1;
     if (sim_line_init(&s->line, o->baud, o->rx_buffer) != 0)
         goto fail_mem;
     if (o->faults && sim_line_faults(&s->line, o->faults, err, errlen) != 0)
@@ -133,6 +119,11 @@ fail:
 const char *fbrl_sim_path(const fbrl_sim *s)
 {
     return s ? s->io.path : "";
+}
+
+int fbrl_sim_axes(const fbrl_sim *s)
+{
+    return s ? sim_naxes(s) : 0;
 }
 
 /* The client went away: what was on the line and half-typed is lost with it. */
@@ -187,9 +178,9 @@ static void work(fbrl_sim *s)
 
 fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
 {
-    struct pollfd p[4];
+    struct pollfd p[5];
     struct timespec ts;
-    int np = 0, iw, ictl = -1, iio = -1, ilfd = -1;
+    int np = 0, iw, ictl = -1, iio = -1, ilfd = -1, iino = -1;
     double now, wait;
 
     if (!s)
@@ -210,6 +201,11 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
     if (s->io.lfd >= 0) {
         ilfd = np;
         p[np].fd = s->io.lfd;
+        p[np++].events = POLLIN;
+    }
+    if (s->io.ino >= 0) {
+        iino = np;
+        p[np].fd = s->io.ino;
         p[np++].events = POLLIN;
     }
     if (s->io.fd >= 0) {
@@ -240,6 +236,8 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
          * so a user at nc or telnet knows the controller is there. */
         sim_term_greet(s);
     }
+    if (iino >= 0 && (p[iino].revents & POLLIN) && sim_io_pty_opened(&s->io) > 0)
+        sim_term_greet(s); /* before what the new client typed */
     if (iio >= 0 && s->io.fd >= 0 && (p[iio].revents & (POLLIN | POLLHUP | POLLERR)))
         do_read(s, now);
     work(s);

@@ -296,7 +296,7 @@ int sim_h_gain(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (e || (e = sim_arg_int(s, a, 0, &m)))
         return e;
-    if (m < 0 || m > NAXES)
+    if (m < 0 || m > sim_naxes(s))
         return SIM_E_BAD_AXIS;
     if (a->n == 1) {
         if (m == 0)
@@ -308,7 +308,7 @@ int sim_h_gain(fbrl_sim *s, args *a, int *b)
         return e;
     if (v < 0)
         return SIM_E_ILLEGAL_ARG;
-    for (i = 1; i <= NAXES; i++)
+    for (i = 1; i <= sim_naxes(s); i++)
         if (m == 0 || m == i)
             s->arm.gain[i] = v;
     s->dirty = 1;

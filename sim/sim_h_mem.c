@@ -11,7 +11,7 @@
 int sim_h_here(fbrl_sim *s, args *a, int *b)
 {
     char name[SIM_NAME_MAX + 1];
-    double q[NAXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
     int prec, e = sim_args_want(a, 1, 1), i;
     sim_loc *l;
     (void)b;
@@ -19,10 +19,10 @@ int sim_h_here(fbrl_sim *s, args *a, int *b)
         return e;
     sim_joints_now(s, q);
     if (prec)
-        for (i = 0; i < NAXES; i++)
-            l->p[i] = fbrl_sim_arm_pulses(i, q[i]);
+        for (i = 0; i < sim_naxes(s); i++)
+            l->p[i] = fbrl_sim_arm_pulses(s->arm.model, i, q[i]);
     else
-        fbrl_sim_arm_fk(q, sim_tool_len(s), l->v);
+        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), l->v);
     return 0;
 }
 
@@ -58,7 +58,7 @@ int sim_h_point(fbrl_sim *s, args *a, int *b)
         return SIM_E_ARG_MISSING;
     if ((e = sim_name_parse(a->v[0], &prec, name)))
         return e;
-    need = prec ? NAXES : 6;
+    need = prec ? sim_naxes(s) : 6;
     if ((e = sim_args_want(a, need + 1, need + 1)))
         return e;
     for (i = 0; i < need; i++) {
@@ -81,7 +81,7 @@ int sim_h_point(fbrl_sim *s, args *a, int *b)
 int sim_h_set(fbrl_sim *s, args *a, int *b)
 {
     char x[SIM_LINE_MAX + 1], y[SIM_LINE_MAX + 1], name[SIM_NAME_MAX + 1];
-    double pose[6], q[NAXES];
+    double pose[6], q[FBRL_SIM_ARM_MAX_AXES];
     int prec, sprec, e, i;
     sim_loc *l;
     (void)b;
@@ -89,14 +89,14 @@ int sim_h_set(fbrl_sim *s, args *a, int *b)
         || (e = sim_loc_value(s, y, pose, q, &sprec)))
         return e;
     if (prec && !sprec) {
-        if ((e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q)) || (e = fbrl_sim_arm_check(q)))
+        if ((e = fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q)) || (e = fbrl_sim_arm_check(s->arm.model, q)))
             return e;
     }
     if ((e = sim_loc_new(s, name, prec, &l)))
         return e;
     if (prec)
-        for (i = 0; i < NAXES; i++)
-            l->p[i] = fbrl_sim_arm_pulses(i, q[i]);
+        for (i = 0; i < sim_naxes(s); i++)
+            l->p[i] = fbrl_sim_arm_pulses(s->arm.model, i, q[i]);
     else
         memcpy(l->v, pose, sizeof pose);
     return 0;
@@ -167,14 +167,14 @@ static int cmp_loc(const void *x, const void *y)
     return c ? c : a->precision - b->precision;
 }
 
-static void print_loc(sim_out *o, const sim_loc *l)
+static void print_loc(fbrl_sim *s, sim_out *o, const sim_loc *l)
 {
     int i;
     if (l->precision) {
         char n[SIM_NAME_MAX + 2];
         snprintf(n, sizeof n, "#%s", l->name);
         sim_out_printf(o, "%-9s", n);
-        for (i = 0; i < NAXES; i++)
+        for (i = 0; i < sim_naxes(s); i++)
             sim_out_printf(o, " %+011ld", l->p[i]);
     } else {
         sim_out_printf(o, "%-9s", l->name);
@@ -198,12 +198,12 @@ int sim_h_listl(fbrl_sim *s, args *a, int *b)
             return e;
         if (!(l = sim_loc_find(s, name, prec)))
             return SIM_E_LOCATION_UNDEFINED;
-        print_loc(&s->term.out, l);
+        print_loc(s, &s->term.out, l);
         return 0;
     }
     qsort(s->mem.locs, (size_t)s->mem.nlocs, sizeof s->mem.locs[0], cmp_loc);
     for (i = 0; i < s->mem.nlocs; i++)
-        print_loc(&s->term.out, &s->mem.locs[i]);
+        print_loc(s, &s->term.out, &s->mem.locs[i]);
     return 0;
 }
 

@@ -24,7 +24,7 @@ int sim_h_align(fbrl_sim *s, args *a, int *b)
 
 int sim_h_appro(fbrl_sim *s, args *a, int *b)
 {
-    double pose[6], q[NAXES], t[6], d;
+    double pose[6], q[FBRL_SIM_ARM_MAX_AXES], t[6], d;
     int S = sim_args_take_s(a, 2), prec, e = sim_args_want(a, 2, 2);
     (void)b;
     if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)) || (e = sim_arg_num(s, a, 1, &d)))
@@ -47,7 +47,7 @@ int sim_h_depart(fbrl_sim *s, args *a, int *b)
 
 int sim_h_move(fbrl_sim *s, args *a, int *b)
 {
-    double pose[6], q[NAXES];
+    double pose[6], q[FBRL_SIM_ARM_MAX_AXES];
     int S = sim_args_take_s(a, 1), prec, e = sim_args_want(a, 1, 1);
     (void)b;
     if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)))
@@ -74,11 +74,11 @@ int sim_h_jog(fbrl_sim *s, args *a, int *b)
 
 int sim_h_joint(fbrl_sim *s, args *a, int *b)
 {
-    double q[NAXES], d;
+    double q[FBRL_SIM_ARM_MAX_AXES], d;
     long j;
     int e = sim_args_want(a, 2, 2);
     (void)b;
-    if (e || (e = sim_arg_axis(s, a, 0, NAXES, &j)) || (e = sim_arg_num(s, a, 1, &d)))
+    if (e || (e = sim_arg_axis(s, a, 0, sim_naxes(s), &j)) || (e = sim_arg_num(s, a, 1, &d)))
         return e;
     memcpy(q, s->arm.q, sizeof q);
     q[j - 1] += d;
@@ -92,9 +92,9 @@ int sim_h_motor(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (a->n > 2)
         return SIM_E_NOT_AVAILABLE;
-    if ((e = sim_args_want(a, 2, 2)) || (e = sim_arg_axis(s, a, 0, NAXES + 1, &m)) || (e = sim_arg_int(s, a, 1, &p)))
+    if ((e = sim_args_want(a, 2, 2)) || (e = sim_arg_axis(s, a, 0, sim_naxes(s) + 1, &m)) || (e = sim_arg_int(s, a, 1, &p)))
         return e;
-    if (m == NAXES + 1) {
+    if (m == sim_naxes(s) + 1) {
         s->arm.xtarget = s->arm.xpos + (double)p;
         s->arm.xt0 = sim_now(s);
         s->arm.xt1 = s->arm.xt0 + fabs((double)p) / (SIM_EXTRA_RATE * s->arm.speed / 100.0);
@@ -102,18 +102,18 @@ int sim_h_motor(fbrl_sim *s, args *a, int *b)
         s->dirty = 1;
         return 0;
     } else {
-        double q[NAXES];
+        double q[FBRL_SIM_ARM_MAX_AXES];
         memcpy(q, s->arm.q, sizeof q);
-        q[m - 1] += fbrl_sim_arm_degrees((int)m - 1, p);
+        q[m - 1] += fbrl_sim_arm_degrees(s->arm.model, (int)m - 1, p);
         return sim_move_joints(s, q);
     }
 }
 
 static int h_mi_ma(fbrl_sim *s, args *a, int rel)
 {
-    double q[NAXES], pose[6];
-    int S = sim_args_take_s(a, NAXES), e = sim_args_want(a, NAXES, NAXES), i;
-    for (i = 0; !e && i < NAXES; i++) {
+    double q[FBRL_SIM_ARM_MAX_AXES], pose[6];
+    int S = sim_args_take_s(a, sim_naxes(s)), e = sim_args_want(a, sim_naxes(s), sim_naxes(s)), i;
+    for (i = 0; !e && i < sim_naxes(s); i++) {
         double r;
         e = sim_arg_num(s, a, i, &r);
         q[i] = (rel ? s->arm.q[i] : 0.0) + r * 180.0 / PI;
@@ -122,9 +122,9 @@ static int h_mi_ma(fbrl_sim *s, args *a, int rel)
         return e;
     if (!S)
         return sim_move_joints(s, q);
-    if ((e = fbrl_sim_arm_check(q)))
+    if ((e = fbrl_sim_arm_check(s->arm.model, q)))
         return e;
-    fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
     return sim_move_line(s, pose, q);
 }
 
@@ -147,7 +147,7 @@ int sim_h_ready(fbrl_sim *s, args *a, int *b)
     if (e)
         return e;
     memset(s->arm.locked, 0, sizeof s->arm.locked);
-    return sim_move_joints(s, fbrl_sim_arm_ready);
+    return sim_move_joints(s, s->arm.model->ready);
 }
 
 int sim_h_finish(fbrl_sim *s, args *a, int *b)
@@ -198,21 +198,21 @@ int sim_h_home(fbrl_sim *s, args *a, int *b)
 /* Lists of axis numbers for LIMP, LOCK, UNLOCK: flags[i] = on. */
 static int axis_list(fbrl_sim *s, args *a, int *flags, int on, int empty_all)
 {
-    int i, sel[NAXES] = { 0 };
+    int i, sel[FBRL_SIM_ARM_MAX_AXES] = { 0 };
     if (a->n == 0) {
         if (!empty_all)
             return SIM_E_ARG_MISSING;
-        for (i = 0; i < NAXES; i++)
+        for (i = 0; i < sim_naxes(s); i++)
             sel[i] = 1;
     }
     for (i = 0; i < a->n; i++) {
         long ax;
-        int e = sim_arg_axis(s, a, i, NAXES, &ax);
+        int e = sim_arg_axis(s, a, i, sim_naxes(s), &ax);
         if (e)
             return e;
         sel[ax - 1] = 1;
     }
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         if (sel[i])
             flags[i] = on;
     return 0;
@@ -269,9 +269,9 @@ static int h_xaxis(fbrl_sim *s, args *a, int which, int *b)
     long ax;
     int e = sim_args_want(a, 1, 1);
     (void)b;
-    if (e || (e = sim_arg_axis(s, a, 0, NAXES + 1, &ax)))
+    if (e || (e = sim_arg_axis(s, a, 0, sim_naxes(s) + 1, &ax)))
         return e;
-    if (ax != NAXES + 1)
+    if (ax != sim_naxes(s) + 1)
         return SIM_E_BAD_AXIS;
     if (which == 0) { /* XCAL */
         s->arm.xhome = sim_extra_now(s);

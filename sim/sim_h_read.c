@@ -8,23 +8,23 @@
 
 #define PI 3.14159265358979323846
 
-static void print_position(fbrl_sim *s, const char *title, const double q[NAXES])
+static void print_position(fbrl_sim *s, const char *title, const double q[FBRL_SIM_ARM_MAX_AXES])
 {
     sim_out *o = &s->term.out;
     double pose[6];
     int i;
-    fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
     sim_out_printf(o, "\r\n%s\r\nNAME       ", title);
-    for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i < NAXES - 1 ? "AX#%d        " : "AX#%d", i + 1);
+    for (i = 0; i < sim_naxes(s); i++)
+        sim_out_printf(o, i < sim_naxes(s) - 1 ? "AX#%d        " : "AX#%d", i + 1);
     sim_out_printf(o, "\r\nPULSES   ");
-    for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(i, q[i]));
+    for (i = 0; i < sim_naxes(s); i++)
+        sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(s->arm.model, i, q[i]));
     sim_out_printf(o, "\r\nNAME       ");
-    for (i = 0; i < NAXES; i++)
-        sim_out_printf(o, i < NAXES - 1 ? "JT#%d      " : "JT#%d", i + 1);
+    for (i = 0; i < sim_naxes(s); i++)
+        sim_out_printf(o, i < sim_naxes(s) - 1 ? "JT#%d      " : "JT#%d", i + 1);
     sim_out_printf(o, "\r\nJOINTS   ");
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", q[i] + 0.0); /* no "-000.0000" */
     sim_out_printf(o, "\r\nWORLD     ");
     for (i = 0; i < 6; i++)
@@ -34,7 +34,7 @@ static void print_position(fbrl_sim *s, const char *title, const double q[NAXES]
 
 static int h_wonce(fbrl_sim *s, args *a, int which)
 {
-    double q[NAXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
     int e = sim_args_want(a, 0, 0);
     if (e)
         return e;
@@ -86,7 +86,7 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
     const double dt = 0.01; /* simulated seconds for the velocity difference */
     int i;
     if (s->term.stream_kind < 10) {
-        double q[NAXES], q2[NAXES];
+        double q[FBRL_SIM_ARM_MAX_AXES], q2[FBRL_SIM_ARM_MAX_AXES];
         sim_joints_now(s, q);
         if (s->term.stream_kind == 5) {
             /* the difference over the last dt of simulated time, from the segment's own formula */
@@ -94,12 +94,12 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
             s->t0 += dt / s->opt.time_scale;
             sim_joints_now(s, q2);
             s->t0 = save;
-            for (i = 0; i < NAXES; i++)
+            for (i = 0; i < sim_naxes(s); i++)
                 sim_out_printf(o, i ? " %+011ld" : "%+011ld",
-                               lround((q[i] - q2[i]) * fbrl_sim_arm_ppd[i] / dt));
+                               lround((q[i] - q2[i]) * s->arm.model->ppd[i] / dt));
         } else {
-            for (i = 0; i < NAXES; i++)
-                sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(i, q[i]));
+            for (i = 0; i < sim_naxes(s); i++)
+                sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(s->arm.model, i, q[i]));
         }
     } else if (s->term.stream_kind == 15) {
         double v = s->arm.xmoving && sim_now(s) < s->arm.xt1 ? (s->arm.xtarget - s->arm.xpos) / (s->arm.xt1 - s->arm.xt0) : 0.0;
@@ -113,21 +113,21 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
 int sim_h_status(fbrl_sim *s, args *a, int *b)
 {
     sim_out *o = &s->term.out;
-    double q[NAXES];
-    int e = sim_args_want(a, 0, 0), i, moving[NAXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
+    int e = sim_args_want(a, 0, 0), i, moving[FBRL_SIM_ARM_MAX_AXES];
     (void)b;
     if (e)
         return e;
     sim_joints_now(s, q);
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         moving[i] = s->arm.moving && fabs(s->arm.qt[i] - s->arm.q[i]) > 0 && sim_now(s) < s->arm.mt1;
-    sim_out_printf(o, "RAPL-II Version 2.60     A255 Robot (fbrlsim)\r\n");
+    sim_out_printf(o, "RAPL-II Version 2.60     %s Robot (fbrlsim)\r\n", s->arm.model->name);
     if (s->term.last_error < 0)
         sim_out_printf(o, "LAST ERROR CODE: NONE\r\n");
     else
         sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->term.last_error, sim_error_text(s->term.last_error));
     sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->arm.speed));
-    sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", FBRL_SIM_ARM_LINEAR);
+    sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", s->arm.model->linear);
     sim_out_printf(o, "CURRENT PROGRAM EXECUTING:%s%s\r\n", s->run.prog ? " " : "",
                    s->run.prog ? s->run.prog->name : "");
     sim_out_printf(o, "JOINT LIMIT CHECK IS ON\r\n");
@@ -136,25 +136,25 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
     for (i = 0; i < 6; i++)
         sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", s->mem.tool[i]);
     sim_out_printf(o, "\r\nGRIPPER TYPE:  SERVO\r\n%-13s", "AXIS#");
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %d" : "%d", i + 1);
     sim_out_printf(o, "\r\n%-13s", "LOCK");
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %c" : "%c", s->arm.locked[i] ? 'Y' : 'N');
     sim_out_printf(o, "\r\n%-13s", "DONE");
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %c" : "%c", moving[i] ? 'N' : 'Y');
     sim_out_printf(o, "\r\n%-13s", "LIMP");
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %c" : "%c", s->arm.limp[i] ? 'Y' : 'N');
     sim_out_printf(o, "\r\n%-13s", "HOMED");
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %c" : "%c", s->arm.homed ? 'Y' : 'N');
     sim_out_printf(o, "\r\nREQUESTED ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE\r\n");
     {
         /* backward when the tool point lies behind the base axis, seen along the waist */
         double pose[6], w = q[0] * 3.14159265358979323846 / 180.0;
-        fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
         sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH %s/ELBOW UP/WRIST FREE\r\n",
                        pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
     }

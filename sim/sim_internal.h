@@ -22,7 +22,7 @@ typedef struct sim_loc {
     char name[SIM_NAME_MAX + 1]; /* without '#' */
     int precision;               /* 1: pulses in p, 0: cartesian in v */
     double v[6];
-    long p[FBRL_SIM_ARM_AXES];
+    long p[FBRL_SIM_ARM_MAX_AXES];
 } sim_loc;
 
 typedef struct sim_var {
@@ -61,6 +61,11 @@ enum { PS_IDLE, PS_BUSY, PS_STREAM, PS_THINK };
 #define SIM_POLL_BUSY 0.005     /* s: how often WAIT and RUN look at their conditions */
 #define SIM_LISTEN_BACKLOG 4
 
+/* sim_line.c: how fast characters are handed over (a bucket of about 1 ms). */
+typedef struct sim_pace {
+    double tokens, t;
+} sim_pace;
+
 /* sim_line.c: the serial line, each direction a UART (pacing, faults, parity, XON/XOFF). */
 typedef struct sim_line {
     double byte_time;           /* 10 bit times with --baud; 0: unpaced */
@@ -87,6 +92,7 @@ typedef struct sim_line {
     double tx_free;             /* when the last byte sent is complete */
     double tx_resume;           /* the host's XON: nothing starts before it */
     double tx_hold_until;       /* stall fault */
+    sim_pace tx_pace, rx_pace;  /* hand-over pace in each direction */
 } sim_line;
 
 /* sim_io.c: the transport under the line. */
@@ -96,6 +102,7 @@ typedef struct sim_io {
     int master, slave;   /* pty (slave kept open so the master never hangs up) */
     int lfd, conn;       /* TCP listener and client */
     int fd;              /* fd the line uses: master or conn, -1 if none */
+    int ino;             /* inotify on the pty slave: a client opened it, -1 none */
 } sim_io;
 
 /* sim_term.c: terminal mode (line editor, reply framing, streams). */
@@ -143,17 +150,18 @@ typedef struct sim_mem {
 
 /* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
 typedef struct sim_arm {
-    double q[FBRL_SIM_ARM_AXES];      /* joints at the segment's start (or at rest) */
-    double qt[FBRL_SIM_ARM_AXES];     /* joints at its end */
+    double q[FBRL_SIM_ARM_MAX_AXES];      /* joints at the segment's start (or at rest) */
+    double qt[FBRL_SIM_ARM_MAX_AXES];     /* joints at its end */
     double pa[6], pb[6];              /* straight-line segment poses */
     int moving, straight;
     double mt0, mt1;                  /* simulated start and end */
     double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
     int xmoving, xhomed;
+    const fbrl_sim_model *model;      /* the arm: geometry, limits, speeds, axes */
     double speed;
     int homed, power;
-    int locked[FBRL_SIM_ARM_AXES], limp[FBRL_SIM_ARM_AXES];
-    double gain[FBRL_SIM_ARM_AXES + 1];
+    int locked[FBRL_SIM_ARM_MAX_AXES], limp[FBRL_SIM_ARM_MAX_AXES];
+    double gain[FBRL_SIM_ARM_MAX_AXES + 1];
 } sim_arm;
 
 /* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
@@ -189,9 +197,16 @@ struct fbrl_sim {
     sim_arm arm;
     sim_dev dev;
     sim_run run;
+    int model_given;   /* --model was given: the state file must be of that arm */
     int dirty;
     int save_warned;   /* told stderr once that the state file cannot be written */
 };
+
+/* The arm's axis count (its model's). */
+static inline int sim_naxes(const fbrl_sim *s)
+{
+    return s->arm.model->naxes;
+}
 
 /* sim_clock.c */
 double sim_mono(void);
@@ -227,6 +242,7 @@ int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
 int sim_io_accept(sim_io *io);        /* 1: a new client */
 int sim_io_close_client(sim_io *io);  /* 1: a client was closed */
+int sim_io_pty_opened(sim_io *io);    /* times the pty was opened since the last call */
 void sim_io_close(sim_io *io);
 
 /* sim_term.c */
@@ -258,7 +274,7 @@ void sim_out_printf(sim_out *o, const char *fmt, ...)
 
 /* sim_motion.c */
 void sim_arm_update(fbrl_sim *s);             /* finish motions whose time has come */
-void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_AXES]);
+void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES]);
 
 /* sim_h_read.c */
 void sim_stream_line(fbrl_sim *s, sim_out *o);  /* the next line of a W1/W3/W5 readout */
@@ -268,6 +284,9 @@ int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: on
 
 /* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);
+
+/* sim_defaults.c */
+void sim_defaults(fbrl_sim *s); /* power-up settings for the arm model in s->arm.model */
 
 /* sim_state.c */
 int sim_state_load(fbrl_sim *s, char *err, size_t errlen); /* 0 ok (missing file = ok) */

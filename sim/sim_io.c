@@ -9,6 +9,7 @@
 #include <netinet/in.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/inotify.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <termios.h>
@@ -33,6 +34,14 @@ int sim_io_open_pty(sim_io *io, char *err, size_t errlen)
     tcsetattr(io->slave, TCSANOW, &tio);
     fcntl(io->master, F_SETFL, fcntl(io->master, F_GETFL) | O_NONBLOCK);
     io->fd = io->master;
+    /* A terminal program opening the device is the pty's "connect": the kernel tells
+     * us through inotify (our own open above came before the watch). Without it the
+     * emulator still works, it just cannot greet. */
+    io->ino = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    if (io->ino >= 0 && inotify_add_watch(io->ino, io->path, IN_OPEN) < 0) {
+        close(io->ino);
+        io->ino = -1;
+    }
     if (io->link_path) {
         struct stat st;
         if (lstat(io->link_path, &st) == 0 && !S_ISLNK(st.st_mode)) {
@@ -107,6 +116,24 @@ int sim_io_accept(sim_io *io)
     return 1;
 }
 
+/* How many times the pty was opened since the last call. */
+int sim_io_pty_opened(sim_io *io)
+{
+    char buf[sizeof(struct inotify_event) * 16];
+    int opens = 0;
+    ssize_t n;
+    while ((n = read(io->ino, buf, sizeof buf)) > 0) {
+        ssize_t off = 0;
+        while (off + (ssize_t)sizeof(struct inotify_event) <= n) {
+            struct inotify_event e;
+            memcpy(&e, buf + off, sizeof e);
+            opens += (e.mask & IN_OPEN) != 0;
+            off += (ssize_t)sizeof e + (ssize_t)e.len;
+        }
+    }
+    return opens;
+}
+
 /* Only a TCP client can go away; a pty stays. */
 int sim_io_close_client(sim_io *io)
 {
@@ -128,7 +155,9 @@ void sim_io_close(sim_io *io)
         close(io->master);
     if (io->slave >= 0)
         close(io->slave);
-    io->conn = io->lfd = io->master = io->slave = io->fd = -1;
+    if (io->ino >= 0)
+        close(io->ino);
+    io->conn = io->lfd = io->master = io->slave = io->fd = io->ino = -1;
     if (io->link_path) {
         char target[sizeof io->path];
         ssize_t n = readlink(io->link_path, target, sizeof target - 1);

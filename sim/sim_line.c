@@ -26,11 +26,44 @@
 #define XOFF 0x13
 #define WIRE_AHEAD_MIN 0.001 /* s: how far ahead the host's bytes are taken off the OS (at least one) */
 #define TX_FIRST_CAP 4096
+#define BURST_MIN 2 /* characters handed over at once at least (see pace_cap) */
+
+/* The OS may wake the emulator late; characters whose time has come are then handed
+ * over together. So that lateness never turns into a burst faster than the line,
+ * handing over is paced too: a bucket that refills one character per character time
+ * and holds at most about a millisecond of characters (pace_cap). A late emulator
+ * thus delays characters (the line seems to have paused), it never compresses them. */
+static double pace_cap(double byte_time)
+{
+    double c = ceil(WIRE_AHEAD_MIN / byte_time);
+    return c > BURST_MIN ? c : BURST_MIN;
+}
+
+static double pace_tokens(const sim_pace *p, double byte_time, double now)
+{
+    double t = p->tokens + (now - p->t) / byte_time, cap = pace_cap(byte_time);
+    return t > cap ? cap : t;
+}
+
+static void pace_take(sim_pace *p, double byte_time, double now, double n)
+{
+    p->tokens = pace_tokens(p, byte_time, now) - n;
+    p->t = now;
+}
+
+/* When the next character may be handed over, given the bucket. */
+static double pace_ready_at(const sim_pace *p, double byte_time, double now)
+{
+    double t = pace_tokens(p, byte_time, now);
+    return t >= 1.0 ? now : now + (1.0 - t) * byte_time;
+}
 
 int sim_line_init(sim_line *l, long baud, int rx_buffer)
 {
     memset(l, 0, sizeof *l);
     l->byte_time = baud > 0 ? 10.0 / (double)baud : 0.0;
+    if (baud > 0)
+        l->tx_pace.tokens = l->rx_pace.tokens = pace_cap(l->byte_time);
     l->urgent = -1;
     l->rng = 1;
     /* Without a line model the buffer stands in for the kernel's: large, so that XON
@@ -226,7 +259,7 @@ static int tx_blocked(const sim_line *l, double now)
 }
 
 /* When the next character on the line (urgent first) would be complete, or HUGE_VAL. */
-static double tx_next_end(const sim_line *l, double now)
+static double tx_line_end(const sim_line *l, double now)
 {
     double start;
     if (l->urgent >= 0) {
@@ -250,6 +283,16 @@ static double tx_next_end(const sim_line *l, double now)
     return start + l->byte_time;
 }
 
+/* When the next character can be handed to the host: complete on the line, and paced. */
+static double tx_next_end(const sim_line *l, double now)
+{
+    double end = tx_line_end(l, now), ready;
+    if (end == HUGE_VAL)
+        return end;
+    ready = pace_ready_at(&l->tx_pace, l->byte_time, now);
+    return end > ready ? end : ready;
+}
+
 /* Writes what the line has carried by now; -1 when the connection broke. */
 int sim_line_write(fbrl_sim *s, int fd, double now)
 {
@@ -262,25 +305,28 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
         return 0;
     }
     if (l->urgent >= 0) {
-        double end = l->byte_time > 0 ? tx_next_end(l, now) : now;
+        double end = l->byte_time > 0 ? tx_line_end(l, now) : now;
         unsigned char b = (unsigned char)l->urgent;
-        if (end > now)
+        if (l->byte_time > 0 && tx_next_end(l, now) > now)
             return 0; /* the flow-control character goes first */
         if (write(fd, &b, 1) != 1)
             return errno == EAGAIN || errno == EINTR ? 0 : -1;
         l->urgent = -1;
-        if (l->byte_time > 0)
+        if (l->byte_time > 0) {
             l->tx_free = end;
+            pace_take(&l->tx_pace, l->byte_time, now, 1.0);
+        }
     }
     if (!sim_line_tx_pending(l) || tx_blocked(l, now))
         return 0;
     if (l->byte_time <= 0) {
         n = (size_t)sim_line_tx_pending(l);
     } else {
-        /* every character whose ten bit times have passed, one after another */
-        double free_at = l->tx_free;
-        size_t i = l->txoff;
-        while (i < l->txlen) {
+        /* every character whose ten bit times have passed, one after another, as
+         * many as the hand-over pace allows */
+        double free_at = l->tx_free, allow = floor(pace_tokens(&l->tx_pace, l->byte_time, now));
+        size_t i = l->txoff, count = 0;
+        while (i < l->txlen && (double)count < allow) {
             double start, end;
             size_t k = i;
             while (k < l->txlen && l->txq[k] == SIM_MARK)
@@ -299,15 +345,19 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
                 break;
             free_at = end;
             i = k + 1;
+            count++;
         }
         n = i - l->txoff;
         if (!n)
             return 0;
         w = write(fd, l->tx + l->txoff, n);
-        if (w > 0 && (size_t)w == n)
+        if (w > 0 && (size_t)w == n) {
             l->tx_free = free_at;
-        else if (w > 0)
+            pace_take(&l->tx_pace, l->byte_time, now, (double)count);
+        } else if (w > 0) {
             l->tx_free = now; /* a partial write: the rest goes when the OS takes it */
+            pace_take(&l->tx_pace, l->byte_time, now, (double)w);
+        }
         goto wrote;
     }
     w = write(fd, l->tx + l->txoff, n);
@@ -388,12 +438,17 @@ static void arrive(fbrl_sim *s, unsigned char b, double now)
 void sim_line_deliver(fbrl_sim *s, double now)
 {
     sim_line *l = &s->line;
-    while (l->wn > 0 && l->wire_end[l->whead] <= now) {
+    double allow = l->byte_time > 0 ? floor(pace_tokens(&l->rx_pace, l->byte_time, now)) : HUGE_VAL;
+    double count = 0;
+    while (l->wn > 0 && l->wire_end[l->whead] <= now && count < allow) {
         unsigned char b = l->wire[l->whead];
         l->whead = (l->whead + 1) % SIM_WIRE_MAX;
         l->wn--;
         arrive(s, b, now);
+        count++;
     }
+    if (l->byte_time > 0 && count > 0)
+        pace_take(&l->rx_pace, l->byte_time, now, count);
 }
 
 /* How many bytes may be taken off the OS now. Paced: those that will be complete
@@ -462,8 +517,13 @@ double sim_line_due(const sim_line *l, double now, double limit)
 {
     double r = limit, t;
     if (l->byte_time > 0) {
-        if (l->wn > 0 && l->wire_end[l->whead] - now < r)
-            r = l->wire_end[l->whead] - now;
+        if (l->wn > 0) {
+            double at = l->wire_end[l->whead], ready = pace_ready_at(&l->rx_pace, l->byte_time, now);
+            if (ready > at)
+                at = ready;
+            if (at - now < r)
+                r = at - now;
+        }
         t = tx_next_end(l, now);
         if (t != HUGE_VAL && t - now < r)
             r = t - now;

@@ -13,15 +13,15 @@ double sim_tool_len(fbrl_sim *s)
     return s->mem.tool_set ? s->mem.tool[2] : 0.0;
 }
 
-static void pulses_to_joints(const long p[NAXES], double q[NAXES])
+static void pulses_to_joints(const fbrl_sim *s, const long p[FBRL_SIM_ARM_MAX_AXES], double q[FBRL_SIM_ARM_MAX_AXES])
 {
     int i;
-    for (i = 0; i < NAXES; i++)
-        q[i] = fbrl_sim_arm_degrees(i, p[i]);
+    for (i = 0; i < sim_naxes(s); i++)
+        q[i] = fbrl_sim_arm_degrees(s->arm.model, i, p[i]);
 }
 
 /* Location by token: pose always; joints too for a precision point (*is_prec). */
-int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[NAXES], int *is_prec)
+int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SIM_ARM_MAX_AXES], int *is_prec)
 {
     char name[SIM_NAME_MAX + 1];
     int prec, e = sim_name_parse(tok, &prec, name);
@@ -33,8 +33,8 @@ int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[NAXES],
         return SIM_E_LOCATION_UNDEFINED;
     *is_prec = prec;
     if (prec) {
-        pulses_to_joints(l->p, q);
-        fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+        pulses_to_joints(s, l->p, q);
+        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
     } else {
         memcpy(pose, l->v, sizeof l->v);
     }
@@ -42,7 +42,7 @@ int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[NAXES],
 }
 
 
-void sim_joints_now(fbrl_sim *s, double q[NAXES])
+void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES])
 {
     double f, pose[6];
     if (!s->arm.moving) {
@@ -58,12 +58,12 @@ void sim_joints_now(fbrl_sim *s, double q[NAXES])
         f = 0;
     if (s->arm.straight) {
         fbrl_sim_arm_lerp(s->arm.pa, s->arm.pb, f, pose);
-        if (fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q) == 0)
+        if (fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q) == 0)
             return;
     }
     {
         int i;
-        for (i = 0; i < NAXES; i++)
+        for (i = 0; i < sim_naxes(s); i++)
             q[i] = s->arm.q[i] + (s->arm.qt[i] - s->arm.q[i]) * f;
     }
 }
@@ -94,7 +94,7 @@ void sim_arm_update(fbrl_sim *s)
 
 void sim_halt(fbrl_sim *s)
 {
-    double q[NAXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
     sim_joints_now(s, q);
     memcpy(s->arm.q, q, sizeof q);
     s->arm.moving = 0;
@@ -103,19 +103,19 @@ void sim_halt(fbrl_sim *s)
     s->dirty = 1;
 }
 
-static double joint_time(fbrl_sim *s, const double a[NAXES], const double b[NAXES])
+static double joint_time(fbrl_sim *s, const double a[FBRL_SIM_ARM_MAX_AXES], const double b[FBRL_SIM_ARM_MAX_AXES])
 {
     double t = 0;
     int i;
-    for (i = 0; i < NAXES; i++) {
-        double ti = fabs(b[i] - a[i]) / (fbrl_sim_arm_speed[i] * s->arm.speed / 100.0);
+    for (i = 0; i < sim_naxes(s); i++) {
+        double ti = fabs(b[i] - a[i]) / (s->arm.model->speed[i] * s->arm.speed / 100.0);
         if (ti > t)
             t = ti;
     }
     return t;
 }
 
-static void begin(fbrl_sim *s, const double qt[NAXES], double t, int straight)
+static void begin(fbrl_sim *s, const double qt[FBRL_SIM_ARM_MAX_AXES], double t, int straight)
 {
     memcpy(s->arm.qt, qt, sizeof s->arm.qt);
     s->arm.straight = straight;
@@ -128,29 +128,29 @@ static void begin(fbrl_sim *s, const double qt[NAXES], double t, int straight)
 }
 
 /* Joint-interpolated move to joint angles; locked joints stay. */
-int sim_move_joints(fbrl_sim *s, const double target[NAXES])
+int sim_move_joints(fbrl_sim *s, const double target[FBRL_SIM_ARM_MAX_AXES])
 {
-    double qt[NAXES];
+    double qt[FBRL_SIM_ARM_MAX_AXES];
     int i, e;
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         qt[i] = s->arm.locked[i] ? s->arm.q[i] : target[i];
-    e = fbrl_sim_arm_check(qt);
+    e = fbrl_sim_arm_check(s->arm.model, qt);
     if (e)
         return e;
     begin(s, qt, joint_time(s, s->arm.q, qt), 0);
     return 0;
 }
 
-int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[NAXES])
+int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[FBRL_SIM_ARM_MAX_AXES])
 {
-    int e = fbrl_sim_arm_ik(pose, sim_tool_len(s), s->arm.q[0], q);
-    return e ? e : fbrl_sim_arm_check(q);
+    int e = fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q);
+    return e ? e : fbrl_sim_arm_check(s->arm.model, q);
 }
 
 /* Joint-interpolated move to a cartesian pose. */
 int sim_move_pose(fbrl_sim *s, const double pose[6])
 {
-    double q[NAXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
     int e = sim_pose_joints(s, pose, q);
     return e ? e : sim_move_joints(s, q);
 }
@@ -158,35 +158,35 @@ int sim_move_pose(fbrl_sim *s, const double pose[6])
 /* Straight-line move to a pose (target joints qt if known, else from IK). */
 int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
 {
-    double qt[NAXES], from[6], t, d;
+    double qt[FBRL_SIM_ARM_MAX_AXES], from[6], t, d;
     int e, i;
     if (qknown) {
         memcpy(qt, qknown, sizeof qt);
-        e = fbrl_sim_arm_check(qt);
+        e = fbrl_sim_arm_check(s->arm.model, qt);
     } else {
         e = sim_pose_joints(s, pose, qt);
     }
     if (e)
         return e;
-    for (i = 0; i < NAXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         if (s->arm.locked[i] && fabs(qt[i] - s->arm.q[i]) > 1e-9)
             return SIM_E_STRAIGHT_LINE;
-    fbrl_sim_arm_fk(s->arm.q, sim_tool_len(s), from);
-    fbrl_sim_arm_fk(qt, sim_tool_len(s), s->arm.pb);
-    if (fbrl_sim_arm_check_line(from, s->arm.pb, sim_tool_len(s), s->arm.q[0]) != 0)
+    fbrl_sim_arm_fk(s->arm.model, s->arm.q, sim_tool_len(s), from);
+    fbrl_sim_arm_fk(s->arm.model, qt, sim_tool_len(s), s->arm.pb);
+    if (fbrl_sim_arm_check_line(s->arm.model, from, s->arm.pb, sim_tool_len(s), s->arm.q) != 0)
         return SIM_E_STRAIGHT_LINE;
     {
         /* the line must end in the target's own configuration (a precision point may
          * hold the other reach) */
-        double qe[NAXES];
-        if (fbrl_sim_arm_ik(s->arm.pb, sim_tool_len(s), s->arm.q[0], qe) != 0
+        double qe[FBRL_SIM_ARM_MAX_AXES];
+        if (fbrl_sim_arm_ik(s->arm.model, s->arm.pb, sim_tool_len(s), s->arm.q, qe) != 0
             || fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
             return SIM_E_STRAIGHT_LINE;
     }
     memcpy(s->arm.pa, from, sizeof from);
     d = sqrt((s->arm.pb[0] - from[0]) * (s->arm.pb[0] - from[0]) + (s->arm.pb[1] - from[1]) * (s->arm.pb[1] - from[1])
              + (s->arm.pb[2] - from[2]) * (s->arm.pb[2] - from[2]));
-    t = d / (FBRL_SIM_ARM_LINEAR * s->arm.speed / 100.0);
+    t = d / (s->arm.model->linear * s->arm.speed / 100.0);
     if (joint_time(s, s->arm.q, qt) > t)
         t = joint_time(s, s->arm.q, qt);
     begin(s, qt, t, 1);
@@ -195,9 +195,9 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
 
 void sim_current_pose(fbrl_sim *s, double pose[6])
 {
-    double q[NAXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
     sim_joints_now(s, q);
-    fbrl_sim_arm_fk(q, sim_tool_len(s), pose);
+    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
 }
 
 /* The point dist back along a pose's tool axis. */

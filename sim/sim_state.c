@@ -71,13 +71,14 @@ static void sync_dir(const char *path)
 static void write_state(fbrl_sim *s, FILE *f)
 {
     int i, j;
-    double q[FBRL_SIM_ARM_AXES];
+    double q[FBRL_SIM_ARM_MAX_AXES];
     /* A motion in progress is saved at its end point: the arm is on its way there. */
     memcpy(q, s->arm.moving ? s->arm.qt : s->arm.q, sizeof q);
     fprintf(f, "%s\n", MAGIC);
+    fprintf(f, "MODEL %s\n", s->arm.model->name);
     fprintf(f, "SPEED %.17g\n", s->arm.speed);
     fprintf(f, "JOINTS");
-    for (i = 0; i < FBRL_SIM_ARM_AXES; i++)
+    for (i = 0; i < sim_naxes(s); i++)
         fprintf(f, " %.17g", q[i]);
     fputc('\n', f);
     fprintf(f, "EXTRA %.17g %.17g\n", s->arm.xmoving ? s->arm.xtarget : s->arm.xpos, s->arm.xhome);
@@ -93,7 +94,7 @@ static void write_state(fbrl_sim *s, FILE *f)
     for (i = 0; i < 2; i++)
         fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity, s->dev.chan[i].data,
                 s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
-    for (i = 1; i <= FBRL_SIM_ARM_AXES; i++)
+    for (i = 1; i <= sim_naxes(s); i++)
         fprintf(f, "GAIN %d %.17g\n", i, s->arm.gain[i]);
     for (i = 0; i < s->mem.nvars; i++)
         fprintf(f, "VAR %s %.17g\n", s->mem.vars[i].name, s->mem.vars[i].v);
@@ -101,7 +102,7 @@ static void write_state(fbrl_sim *s, FILE *f)
         const sim_loc *l = &s->mem.locs[i];
         if (l->precision) {
             fprintf(f, "PLOC %s", l->name);
-            for (j = 0; j < FBRL_SIM_ARM_AXES; j++)
+            for (j = 0; j < sim_naxes(s); j++)
                 fprintf(f, " %ld", l->p[j]);
             fputc('\n', f);
         } else {
@@ -159,6 +160,7 @@ typedef struct loader {
     size_t errlen;
     char *tok[MAX_FIELDS];
     int ntok;
+    int items;           /* items read so far (MODEL must come first) */
 } loader;
 
 static int bad(loader *ld, const char *what, const char *tok)
@@ -316,10 +318,30 @@ static int load_item(loader *ld, sim_prog **prog)
     const char *k = ld->tok[0];
     char name[SIM_NAME_MAX + 1];
     double d[8];
-    long v[FBRL_SIM_ARM_AXES + 1];
+    long v[FBRL_SIM_ARM_MAX_AXES + 1];
     int i;
 
-    if (!strcmp(k, "SPEED")) {
+    if (!strcmp(k, "MODEL")) {
+        const fbrl_sim_model *m;
+        if (want_fields(ld, 2))
+            return -1;
+        if (ld->items > 0)
+            return bad(ld, "MODEL must be the first item", NULL);
+        if (!(m = fbrl_sim_model_find(ld->tok[1])))
+            return bad(ld, "unknown arm model", ld->tok[1]);
+        if (s->model_given && m != s->arm.model) {
+            sim_seterr(ld->err, ld->errlen, "%s:%d: this memory belongs to an %s, not the %s of --model", ld->path,
+                       ld->lineno, m->name, s->arm.model->name);
+            return -1;
+        }
+        s->arm.model = m;
+        sim_defaults(s); /* READY and gains of this arm */
+    } else if (ld->items == 0 && s->arm.model != &fbrl_sim_models[0]) {
+        /* files from before models were kept hold an A255's memory */
+        sim_seterr(ld->err, ld->errlen, "%s:%d: no MODEL line: this memory belongs to an A255, not the %s of --model",
+                   ld->path, ld->lineno, s->arm.model->name);
+        return -1;
+    } else if (!strcmp(k, "SPEED")) {
         /* SPEED takes any percentage above 0 up to 100: so does the file (it once
          * refused below 1e-9, so SPEED 50/111111111111 saved a file that did not load) */
         if (want_fields(ld, 2) || real_field(ld, 1, 0.0, 100.0, &d[0]))
@@ -328,12 +350,12 @@ static int load_item(loader *ld, sim_prog **prog)
             return bad(ld, "SPEED must be above 0, not", ld->tok[1]);
         s->arm.speed = d[0];
     } else if (!strcmp(k, "JOINTS")) {
-        if (want_fields(ld, FBRL_SIM_ARM_AXES + 1))
+        if (want_fields(ld, sim_naxes(s) + 1))
             return -1;
-        for (i = 0; i < FBRL_SIM_ARM_AXES; i++)
+        for (i = 0; i < sim_naxes(s); i++)
             if (real_field(ld, i + 1, -360.0, 360.0, &d[i]))
                 return -1;
-        if ((i = fbrl_sim_arm_check(d)) != 0) {
+        if ((i = fbrl_sim_arm_check(s->arm.model, d)) != 0) {
             sim_seterr(ld->err, ld->errlen, "%s:%d: joint %d outside its limits", ld->path, ld->lineno, i - 41);
             return -1;
         }
@@ -379,7 +401,7 @@ static int load_item(loader *ld, sim_prog **prog)
         c.echo = (int)v[3];
         s->dev.chan[v[0]] = c;
     } else if (!strcmp(k, "GAIN")) {
-        if (want_fields(ld, 3) || int_field(ld, 1, 1, FBRL_SIM_ARM_AXES, &v[0])
+        if (want_fields(ld, 3) || int_field(ld, 1, 1, sim_naxes(s), &v[0])
             || real_field(ld, 2, 0.0, HUGE_VAL, &d[0]))
             return -1;
         s->arm.gain[v[0]] = d[0];
@@ -393,7 +415,7 @@ static int load_item(loader *ld, sim_prog **prog)
         strcpy(s->mem.vars[s->mem.nvars].name, name);
         s->mem.vars[s->mem.nvars++].v = d[0];
     } else if (!strcmp(k, "PLOC") || !strcmp(k, "LOC")) {
-        int prec = k[0] == 'P', need = prec ? FBRL_SIM_ARM_AXES : 6;
+        int prec = k[0] == 'P', need = prec ? sim_naxes(s) : 6;
         sim_loc *l;
         if (want_fields(ld, need + 2) || name_field(ld, 1, name))
             return -1;
@@ -515,6 +537,7 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
             for (t = ld.tok[0]; *t; t++) /* keywords in either case, as commands */
                 *t = (char)toupper((unsigned char)*t);
             e = load_item(&ld, &prog);
+            ld.items++;
         }
         if (e) {
             fclose(f);

@@ -171,18 +171,32 @@ static fbrl_status check_real(double v)
     return FBRL_OK;
 }
 
-/* Fixed point in ten-thousandths, so the text never depends on the locale or printf. */
+/* The controller keeps four decimals (it prints %+09.4f, reference/rapl-research.md
+ * 1.4): a real is rounded to that precision in fixed point (ten-thousandths, so the
+ * text never depends on the locale or printf), then written as the shortest text with
+ * that value: trailing zeros and a bare dot dropped ("2.5", "90", "-0.0125"). The
+ * leading zero stays: no client shows a real controller reading ".5". */
+#define REAL_SCALE 10000LL
+typedef char real_scale_is_ten_to_the_decimals[REAL_SCALE == 10000LL && FBRL_RAPL_REAL_DECIMALS == 4 ? 1 : -1];
 static void put_real(out *o, double v)
 {
-    double scaled = v * 10000.0;
+    double scaled = v * (double)REAL_SCALE;
     long long q = (long long)(scaled < 0 ? scaled - 0.5 : scaled + 0.5);
     if (q < 0) {
         put(o, '-');
         q = -q;
     }
-    put_uint(o, (unsigned long long)(q / 10000), 1);
+    put_uint(o, (unsigned long long)(q / REAL_SCALE), 1);
+    long long frac = q % REAL_SCALE;
+    if (frac == 0)
+        return;
+    int digits = FBRL_RAPL_REAL_DECIMALS;
+    while (frac % 10 == 0) {
+        frac /= 10;
+        digits--;
+    }
     put(o, '.');
-    put_uint(o, (unsigned long long)(q % 10000), 4);
+    put_uint(o, (unsigned long long)frac, digits);
 }
 
 fbrl_status fbrl_rapl_format_real(char *buf, size_t cap, size_t *len, double v)

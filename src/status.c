@@ -34,6 +34,7 @@ static const struct { const char *name, *text; } entries[] = {
     {"FBRL_ENOMEM", "out of memory space"},
     {"FBRL_EOFFLINE", "no controller connected"},
     {"FBRL_ENOTFILE", "not a regular file (a device, FIFO or directory)"},
+    {"FBRL_EPERM", "permission denied"},
 };
 
 #define NENTRIES ((int)(sizeof entries / sizeof entries[0]))

@@ -116,6 +116,12 @@ static fbrl_status wait_step(fbrl_uart *u, wait *w)
     return st == FBRL_ETIMEOUT ? FBRL_OK : st;
 }
 
+/* A polled backend writes what is queued now. */
+static fbrl_status flush(fbrl_uart *u)
+{
+    return u->ops->flush != NULL ? u->ops->flush(u->ctx) : FBRL_OK;
+}
+
 fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
                             uint32_t timeout_ms)
 {
@@ -138,8 +144,11 @@ fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *
         if (done == len || (st = wait_step(u, &w)) != FBRL_OK)
             break;
     }
+    fbrl_status fst = done > 0 ? flush(u) : FBRL_OK;
     if (written != NULL)
         *written = done;
+    if (fst != FBRL_OK)
+        return fst; /* queued, but the line is gone: say so now */
     return done == len ? FBRL_OK : st;
 }
 
@@ -149,8 +158,10 @@ fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *
 static void after_rx_drain(fbrl_uart *u, bool was_full)
 {
     if (was_full || (fbrl_load_acq(&u->rx_stopped) &&
-                     (!fbrl_load_acq(&u->flow) || fbrl_ring_count(&u->rx) <= u->rx_low)))
+                     (!fbrl_load_acq(&u->flow) || fbrl_ring_count(&u->rx) <= u->rx_low))) {
         u->ops->tx_kick(u->ctx);
+        (void)flush(u); /* the XON the peer waits for leaves now; an error recurs at the next call */
+    }
 }
 
 fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
@@ -243,6 +254,47 @@ fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out)
     out->xoff_sent = u->total[C_XOFF_TX];
     out->held_off_us = held;
     return FBRL_OK;
+}
+
+/* Without a common wait_many: service each port without blocking, and if none has
+ * anything, nap on the first port for at most a slice (1 ms). */
+#define WAIT_SLICE_US 1000u
+
+static fbrl_status wait_one_by_one(fbrl_uart *const *ports, size_t n, uint32_t timeout_us, unsigned char *flags)
+{
+    int any = 0;
+    for (size_t k = 0; k < n; k++) {
+        fbrl_status st = ports[k]->ops->service(ports[k]->ctx, 0);
+        if ((st != FBRL_OK && st != FBRL_ETIMEOUT) || fbrl_ring_count(&ports[k]->rx) > 0) {
+            flags[k] |= FBRL_UART_WAIT_READY;
+            any |= flags[k] & FBRL_UART_WAIT_RX;
+        }
+    }
+    if (any || timeout_us == 0)
+        return FBRL_OK;
+    fbrl_status st = ports[0]->ops->service(ports[0]->ctx, timeout_us < WAIT_SLICE_US ? timeout_us : WAIT_SLICE_US);
+    if ((st != FBRL_OK && st != FBRL_ETIMEOUT) || fbrl_ring_count(&ports[0]->rx) > 0)
+        flags[0] |= FBRL_UART_WAIT_READY;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_uart_wait_any(fbrl_uart *const *ports, size_t n, uint32_t timeout_us, unsigned char *flags)
+{
+    if (ports == NULL || flags == NULL || n == 0)
+        return FBRL_EINVAL;
+    int same = 1;
+    for (size_t k = 0; k < n; k++) {
+        if (!is_open(ports[k]))
+            return FBRL_EINVAL;
+        flags[k] &= (unsigned char)FBRL_UART_WAIT_RX;
+        same = same && ports[k]->ops->wait_many != NULL && ports[k]->ops->wait_many == ports[0]->ops->wait_many;
+    }
+    if (same && n <= FBRL_UART_WAIT_MAX) {
+        fbrl_status st = ports[0]->ops->wait_many(ports, n, timeout_us, flags);
+        if (st != FBRL_EUNSUPPORTED)
+            return st;
+    }
+    return wait_one_by_one(ports, n, timeout_us, flags);
 }
 
 fbrl_status fbrl_uart_close(fbrl_uart *u)

@@ -316,7 +316,7 @@ static fbrl_status op_close(void *ctx)
     return FBRL_OK;
 }
 
-const fbrl_uart_ops fbrl_uart_8250_ops = {op_configure, op_tx_kick, op_service, op_now_us, op_close};
+const fbrl_uart_ops fbrl_uart_8250_ops = {op_configure, op_tx_kick, op_service, op_now_us, op_close, 0, 0};
 
 fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u)
 {

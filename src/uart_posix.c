@@ -5,6 +5,9 @@
  * transmitter from fbrl_uart_isr_tx(). The round runs inside the core's waits
  * (polled mode) or in a background thread (thread mode). */
 #define _DEFAULT_SOURCE 1 /* B57600.. speeds, flock, TIOCEXCL, major() */
+#ifdef __linux__
+#define _GNU_SOURCE 1 /* ppoll: waits in microseconds */
+#endif
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -276,7 +279,11 @@ static fbrl_status do_read(fbrl_uart_posix *p, short revents, size_t *moved)
 static size_t kernel_room(fbrl_uart_posix *p)
 {
     int q = 0;
-    if (!p->is_tty || p->outq_limit == 0 || ioctl(p->fd, TIOCOUTQ, &q) != 0 || q < 0)
+    if (!p->is_tty || p->outq_limit == 0)
+        return p->chunk;
+    if (p->is_pty) /* its TIOCOUTQ is always 0: the bound alone, without a syscall per write */
+        return p->outq_limit;
+    if (ioctl(p->fd, TIOCOUTQ, &q) != 0 || q < 0)
         return p->chunk;
     return (size_t)q >= p->outq_limit ? 0 : p->outq_limit - (size_t)q;
 }
@@ -286,6 +293,8 @@ static size_t kernel_room(fbrl_uart_posix *p)
 static fbrl_status do_write(fbrl_uart_posix *p, size_t *moved)
 {
     for (int chunks = 0; chunks < 4; chunks++) {
+        if (p->stage_off == p->stage_len && chunks > 0 && !fbrl_load_acq(&p->kick))
+            return FBRL_OK; /* all written, nothing more announced: no second look at the queue */
         if (p->stage_off == p->stage_len) {
             size_t limit = kernel_room(p);
             int c = 0;
@@ -351,6 +360,57 @@ static fbrl_status service_round(fbrl_uart_posix *p, int timeout_ms, size_t *mov
         (f[0].revents & POLLOUT || (rc > 0 && !deferred)))
         st = do_write(p, moved);
     return st;
+}
+
+/* poll() with a microsecond timeout where the system has one (ppoll), else rounded up to
+ * milliseconds. */
+static int poll_us(struct pollfd *f, nfds_t nf, uint32_t timeout_us)
+{
+#ifdef __linux__
+    struct timespec ts = {(time_t)(timeout_us / 1000000u), (long)(timeout_us % 1000000u) * 1000L};
+    return ppoll(f, nf, &ts, NULL);
+#else
+    uint32_t ms = timeout_us / 1000u + (timeout_us % 1000u != 0);
+    return poll(f, nf, ms > INT_MAX ? INT_MAX : (int)ms);
+#endif
+}
+
+/* Many polled ports in one poll(): what service_round does for one, for each that is
+ * ready. A port with a service thread belongs to its thread: FBRL_EUNSUPPORTED. */
+static fbrl_status px_wait_many(fbrl_uart *const *ports, size_t n, uint32_t timeout_us, unsigned char *flags)
+{
+    struct pollfd f[FBRL_UART_WAIT_MAX];
+    for (size_t k = 0; k < n; k++) {
+        fbrl_uart_posix *p = ports[k]->ctx;
+        if (p->threaded)
+            return FBRL_EUNSUPPORTED;
+        bool room = fbrl_uart_rx_room(p->u) > 0;
+        bool out = p->stage_off < p->stage_len || fbrl_load_acq(&p->kick);
+        bool deferred = out && p->stage_off == p->stage_len && kernel_room(p) == 0;
+        f[k].events = (short)((room && (flags[k] & FBRL_UART_WAIT_RX) ? POLLIN : 0) | (out && !deferred ? POLLOUT : 0));
+        f[k].fd = f[k].events ? p->fd : -1; /* poll() skips it: a port not watched costs nothing */
+        f[k].revents = 0;
+        /* a full ring or kernel queue frees up without an fd event: look again soon */
+        if ((!room || deferred) && timeout_us > 2000u)
+            timeout_us = 2000u;
+    }
+    int rc = poll_us(f, (nfds_t)n, timeout_us);
+    if (rc < 0)
+        return errno == EINTR ? FBRL_OK : FBRL_EIO;
+    for (size_t k = 0; k < n && rc > 0; k++) {
+        fbrl_uart_posix *p = ports[k]->ctx;
+        size_t moved = 0;
+        fbrl_status st = FBRL_OK;
+        if (f[k].revents == 0)
+            continue;
+        if (f[k].revents & (POLLIN | POLLHUP | POLLERR | POLLNVAL))
+            st = do_read(p, f[k].revents, &moved);
+        if (st == FBRL_OK && (f[k].revents & POLLOUT))
+            st = do_write(p, &moved);
+        if (st != FBRL_OK || fbrl_uart_rx_available(p->u) > 0)
+            flags[k] |= FBRL_UART_WAIT_READY;
+    }
+    return FBRL_OK;
 }
 
 static void *service_thread(void *arg)
@@ -464,7 +524,19 @@ static fbrl_status px_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops posix_ops = {px_configure, px_kick, px_service, px_now, px_close};
+/* Polled mode: the bytes just queued go to the kernel inside fbrl_uart_write, so a
+ * host that waits for the fd to become readable (an event loop) never waits for a CR
+ * still in our ring. Thread mode: the thread writes them once tx_kick woke it. */
+static fbrl_status px_flush(void *ctx)
+{
+    fbrl_uart_posix *p = ctx;
+    size_t moved = 0;
+    if (!p->threaded && (p->stage_off < p->stage_len || fbrl_load_acq(&p->kick)))
+        return do_write(p, &moved);
+    return FBRL_OK;
+}
+
+static const fbrl_uart_ops posix_ops = {px_configure, px_kick, px_service, px_now, px_close, px_flush, px_wait_many};
 
 /* ---- opening ---- */
 
@@ -645,7 +717,10 @@ fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *p
     }
     fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
-        return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : errno == EBUSY ? FBRL_EBUSY : FBRL_EIO;
+        return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT
+               : errno == EBUSY                  ? FBRL_EBUSY
+               : errno == EACCES || errno == EPERM ? FBRL_EPERM
+                                                  : FBRL_EIO;
     if (!isatty(fd)) {
         close(fd);
         return FBRL_ENOTTY;

@@ -80,6 +80,39 @@ static void sps_kick(void *ctx)
     fbrl_store_rel(&((fbrl_uart_serialport *)ctx)->kick, 1);
 }
 
+/* Transmit: refill the stage from isr_tx while the OS queue is short, and write it. */
+static fbrl_status sps_send(fbrl_uart_serialport *p, size_t *moved)
+{
+    struct sp_port *port = p->port;
+    if (p->stage_off == p->stage_len && fbrl_load_acq(&p->kick)) {
+        int waiting = sp_output_waiting(port);
+        size_t limit = waiting < 0 || (size_t)waiting >= p->outq_limit ? 0 : p->outq_limit - (size_t)waiting;
+        int c = 0;
+        if (limit > sizeof p->stage)
+            limit = sizeof p->stage;
+        p->stage_off = p->stage_len = 0;
+        while (p->stage_len < limit && (c = fbrl_uart_isr_tx(p->u)) >= 0)
+            p->stage[p->stage_len++] = (uint8_t)c;
+        if (c < 0)
+            fbrl_store_rel(&p->kick, 0);
+        *moved += p->stage_len;
+    }
+    if (p->stage_off < p->stage_len) {
+        int n = sp_nonblocking_write(port, p->stage + p->stage_off, p->stage_len - p->stage_off);
+        if (n < 0)
+            return FBRL_EDISCONNECTED;
+        p->stage_off += (size_t)n;
+    }
+    return FBRL_OK;
+}
+
+/* The bytes just queued leave within fbrl_uart_write (docs/serial.md 4). */
+static fbrl_status sps_flush(void *ctx)
+{
+    size_t moved = 0;
+    return sps_send(ctx, &moved);
+}
+
 static fbrl_status sps_service(void *ctx, uint32_t timeout_us)
 {
     fbrl_uart_serialport *p = ctx;
@@ -96,26 +129,9 @@ static fbrl_status sps_service(void *ctx, uint32_t timeout_us)
             fbrl_uart_isr_rx(p->u, buf[i]);
         moved += (size_t)n;
     }
-    /* Transmit: refill the stage from isr_tx while the OS queue is short. */
-    if (p->stage_off == p->stage_len && fbrl_load_acq(&p->kick)) {
-        int waiting = sp_output_waiting(port);
-        size_t limit = waiting < 0 || (size_t)waiting >= p->outq_limit ? 0 : p->outq_limit - (size_t)waiting;
-        int c = 0;
-        if (limit > sizeof p->stage)
-            limit = sizeof p->stage;
-        p->stage_off = p->stage_len = 0;
-        while (p->stage_len < limit && (c = fbrl_uart_isr_tx(p->u)) >= 0)
-            p->stage[p->stage_len++] = (uint8_t)c;
-        if (c < 0)
-            fbrl_store_rel(&p->kick, 0);
-        moved += p->stage_len;
-    }
-    if (p->stage_off < p->stage_len) {
-        int n = sp_nonblocking_write(port, p->stage + p->stage_off, p->stage_len - p->stage_off);
-        if (n < 0)
-            return FBRL_EDISCONNECTED;
-        p->stage_off += (size_t)n;
-    }
+    fbrl_status st = sps_send(p, &moved);
+    if (st != FBRL_OK)
+        return st;
     if (moved > 0 || timeout_us == 0)
         return moved > 0 ? FBRL_OK : FBRL_ETIMEOUT;
     /* Nothing happened: wait for the port, in short slices while output is pending
@@ -151,7 +167,7 @@ static fbrl_status sps_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops serialport_ops = {sps_configure, sps_kick, sps_service, sps_now, sps_close};
+static const fbrl_uart_ops serialport_ops = {sps_configure, sps_kick, sps_service, sps_now, sps_close, sps_flush, 0};
 
 fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, const char *name,
                                       const fbrl_uart_config *cfg,

@@ -1,4 +1,7 @@
-/* fbrl.h - all of libfbrl's public headers. Include this, or only the modules you use. */
+/* fbrl.h - libfbrl's portable public headers. Include this, or only the modules you use.
+ * It includes no OS header, so it compiles in a freestanding build (the test
+ * fbrl_h_freestanding checks that); the OS-specific backends have their own headers:
+ * fbrl/uart_posix.h (termios, ptys, TCP) and fbrl/uart_serialport.h (libserialport). */
 #ifndef FBRL_FBRL_H
 #define FBRL_FBRL_H
 
@@ -7,11 +10,8 @@
 #include "fbrl/ring.h"
 #include "fbrl/clock.h"
 #include "fbrl/uart.h"
-#include "fbrl/uart_posix.h"
 #include "fbrl/uart_8250.h"
-#ifdef FBRL_HAVE_SERIALPORT
-#include "fbrl/uart_serialport.h"
-#endif
+#include "fbrl/port.h"
 #include "fbrl/rapl_encode.h"
 #include "fbrl/rapl_reply.h"
 #include "fbrl/link.h"

@@ -105,6 +105,34 @@ fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out)
  * module); NULL for NULL g. */
 const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g);
 
+/* The glossary's named data, as a workspace keeps it (fbrl/workspace.h): what the word
+ * xt is and the C address of its contents in the VM. */
+typedef enum fbrl_glossary_kind {
+    FBRL_GLOSSARY_NONE = 0,  /* not one of the glossary's data words */
+    FBRL_GLOSSARY_LOC,       /* CREATE-LOC: fbrl_loc */
+    FBRL_GLOSSARY_RECTMAT,   /* RECTMAT / AUTOMAT: fbrl_rectmat */
+    FBRL_GLOSSARY_RADMAT,    /* RADMAT: fbrl_radmat */
+    FBRL_GLOSSARY_CAL,       /* CREATE-CAL: fbrl_calpts */
+    FBRL_GLOSSARY_CALSTRU    /* CREATE-CAL-STRU: fbrl_calib */
+} fbrl_glossary_kind;
+
+/* *kind (FBRL_GLOSSARY_NONE for any other word) and *obj its contents. FBRL_EINVAL for
+ * NULL or an uninstalled g. */
+fbrl_status fbrl_glossary_object(fbrl_glossary *g, fbrl_cell xt, fbrl_glossary_kind *kind, void **obj);
+
+/* Make a new named object of that kind, as its defining word would: name (1..31
+ * characters), contents zero (a location at 0, a matrix of zeros: fill it with
+ * fbrl_rectmat_init / fbrl_radmat_init), a calibration structure the identity. *obj gets
+ * the contents' C address. All or nothing: on failure (dictionary full, bad name) no word
+ * is left and the failure is thrown in the VM (FBRL_ETHROW). */
+fbrl_status fbrl_glossary_make(fbrl_glossary *g, fbrl_glossary_kind kind, const char *name, size_t len, void **obj);
+
+/* WITH-CAL's structure (VM address, 0 = none) and the MAP-ON switch; set_mapping takes a
+ * structure address 0 (none) or a CREATE-CAL-STRU's (FBRL_ETYPE otherwise) and map_on only
+ * with a rigid one (FBRL_ESTATE). */
+fbrl_status fbrl_glossary_mapping(const fbrl_glossary *g, fbrl_cell *with_cal, int *map_on);
+fbrl_status fbrl_glossary_set_mapping(fbrl_glossary *g, fbrl_cell with_cal, int map_on);
+
 /* PRINT-LOC's destination, the communication port: write(ctx, s, n) receives each line
  * (the DISPLAY-LOC text followed by CR LF). write = NULL removes it; PRINT-LOC then
  * throws "no communication port". */

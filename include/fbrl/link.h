@@ -159,10 +159,18 @@ fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lin
 /* Non-zero while a command runs. */
 int fbrl_link_busy(const fbrl_link *l);
 
-/* Serve several links from one thread for at most timeout_ms: polls every busy link in
- * turn (each in slices of at most 1 ms) and returns as soon as one has finished:
- * *index = that link, its result is returned. FBRL_ETIMEOUT (and *index = n) if none
- * finished in time, FBRL_EEMPTY if none was busy. */
+/* Most links one fbrl_link_poll_many() call serves. */
+#define FBRL_LINK_POLL_MANY_MAX FBRL_UART_WAIT_MAX
+
+/* Serve several links from one thread for at most timeout_ms and return as soon as one
+ * has finished: *index = that link, its result is returned. Fair: each pass serves
+ * every link that has bytes or a timer due, the one idle longest first, so no link
+ * starves whatever its place in the array (docs/link.md). It sleeps on all ports at
+ * once (fbrl_uart_wait_any), and looks at a port only once the bytes its link awaits can
+ * have crossed the line (the rest of an echo, the shortest reply), so the host wakes a
+ * few times per command, not per byte. FBRL_ETIMEOUT (and *index = n) if none finished
+ * in time, FBRL_EEMPTY if none was busy, FBRL_EINVAL for n > FBRL_LINK_POLL_MANY_MAX.
+ * NULL entries are skipped. */
 fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index);
 
 /* ---- blocking calls ---- */

@@ -1,15 +1,16 @@
 /* rapl_encode.h - RAPL-II command lines for the CRS controller, from one command table.
  *
  * fbrl_rapl_encode() writes one command line (without the CR) into a caller's buffer,
- * either with the command's keyword ("APPRO P1,2.0000,S") or its /NNN token
- * ("/002 P1,2.0000,S"). Keyword text is the default: no public client shows a real
+ * either with the command's keyword ("APPRO P1,2,S") or its /NNN token
+ * ("/002 P1,2,S"). Keyword text is the default: no public client shows a real
  * controller accepting tokens (DESIGN 5). Commands without a known token are written
  * as keywords in both forms.
  *
  * Arguments are checked against the command's signature before a byte is written:
  * names (locations, variables, programs) are 1-8 letters/digits/'_' starting with a letter,
- * a location name may carry a '#' prefix (precision point); reals are written with
- * exactly four decimals and never an exponent, independent of the C locale.
+ * a location name may carry a '#' prefix (precision point); reals are rounded to the
+ * controller's four decimals and written as the shortest text of that value ("2.5",
+ * "90", never an exponent), independent of the C locale.
  * The module includes no OS header. */
 #ifndef FBRL_RAPL_ENCODE_H
 #define FBRL_RAPL_ENCODE_H
@@ -86,7 +87,11 @@ static inline fbrl_rapl_arg fbrl_rapl_int(long v) { fbrl_rapl_arg a = {FBRL_RAPL
 static inline fbrl_rapl_arg fbrl_rapl_real(double v) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_REAL, 0, v, 0}; return a; }
 static inline fbrl_rapl_arg fbrl_rapl_str(const char *s) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_STR, 0, 0.0, s}; return a; }
 
-/* Largest magnitude of a real and an integer argument. A real is sent with four
+/* Decimals the controller keeps of a real (it prints them with %+09.4f): the encoder
+ * rounds to this precision, so the shorter text reads back to the same value. */
+#define FBRL_RAPL_REAL_DECIMALS 4
+
+/* Largest magnitude of a real and an integer argument. A real is sent with at most four
  * decimals; 999999.9999 keeps it exact as a fixed-point number and far beyond any
  * distance, angle or gain the controller handles. Integers cover 10-digit pulses
  * within 32 bits. */
@@ -110,7 +115,8 @@ fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form 
  * leading '#' (precision point) only when hash_ok. FBRL_ENAME otherwise. */
 fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok);
 
-/* Write a real as [-]digits.dddd (rounded to four decimals, "-0.0000" never appears).
+/* Write a real rounded to FBRL_RAPL_REAL_DECIMALS as the shortest text of that value:
+ * [-]digits[.d..d] without trailing zeros ("2.5", "-90", "0.0001"; "-0" never appears).
  * FBRL_ENONFINITE, FBRL_ERANGE (|v| > FBRL_RAPL_REAL_MAX), FBRL_ENOSPC. */
 fbrl_status fbrl_rapl_format_real(char *buf, size_t cap, size_t *len, double v);
 

@@ -78,6 +78,18 @@ typedef struct fbrl_robot {
     uint64_t raw_link_mark;
     /* the controller's last error code seen by a robot word (-1 none) */
     int last_error;
+    /* safety (docs/robot.md, "Stopping safely"): a motion was sent and not yet seen to
+     * end (the next motion or FINISH first waits for it, reading W5, so the controller
+     * never sits in a queued command that HALT could not reach), its line, and the
+     * outputs this context ever switched on (bit n-1 = output n) */
+    int moving;
+    char motion[FBRL_LINK_LINE_MAX + 1];
+    uint32_t outputs_on;
+    /* the controller went away (a word saw FBRL_EDISCONNECTED); relink, if set, brings
+     * it back before the next robot word (fbrl_robot_set_relink) */
+    int lost;
+    fbrl_status (*relink)(void *ctx, struct fbrl_robot *r);
+    void *relink_ctx;
     /* a person at a terminal (fbrl_robot_set_console): progress of long waits, and
      * (tell) what a motion started and when a wait for it ended */
     fbrl_robot_progress_fn progress;
@@ -98,6 +110,39 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
  * opened a port. The link should already be connected (fbrl_link_connect). */
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
 
+/* What fbrl_robot_safe_stop() found and did. Positions are the arm's (W2 WORLD). */
+typedef struct fbrl_robot_stop {
+    fbrl_status result;      /* FBRL_OK, or why the stop is incomplete (FBRL_EOFFLINE,
+                              * FBRL_EDISCONNECTED, FBRL_EBUSY: a command the controller
+                              * was still running did not end, so HALT could not be typed) */
+    int was_moving;          /* a motion had been sent and not seen to end */
+    char motion[FBRL_LINK_LINE_MAX + 1]; /* the last motion command sent ("" none) */
+    int halted;              /* HALT ran on the controller */
+    uint32_t switched_off;   /* outputs this stop switched off (bit n-1 = output n) */
+    uint32_t left_on;        /* outputs on after the stop (this stop left them: not switched
+                              * on by this context, or switching off failed) */
+    int have_status;         /* homed and the output bits come from STATUS after HALT */
+    int homed;
+    int have_where;          /* where[] holds the arm's position after HALT */
+    double where[6];         /* x y z yaw pitch roll, inches and degrees */
+} fbrl_robot_stop;
+
+/* Make the cell safe after an abort (Ctrl-C): let a command the controller already has
+ * end (at most FBRL_ROBOT_STOP_DRAIN_MS), HALT the arm, switch off every output this
+ * context switched on that is still on, and read STATUS and W2 for the report. Never
+ * throws; blocking, bounded by the link's timeouts. out must not be NULL. */
+#define FBRL_ROBOT_STOP_DRAIN_MS 5000u
+fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out);
+
+/* A function that reconnects the controller (reopens the port, fbrl_link_init,
+ * fbrl_link_connect, fbrl_robot_set_link) and tells the user its state. The next robot
+ * word calls it after the controller went away (FBRL_EDISCONNECTED); NULL (the default)
+ * = that word throws "controller disconnected" instead. */
+fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fbrl_robot *r), void *ctx);
+
+/* Non-zero after a robot word found the controller gone, until it is connected again
+ * (fbrl_robot_set_link). */
+int fbrl_robot_lost(const fbrl_robot *r);
 /* For a person at a terminal: progress (may be NULL) shows long waits as they go
  * (motions, FINISH, timed waits, WAIT-INPUT); with tell != 0 a motion word also says
  * what it started ("MOV: the arm is moving to X ... in") and a word that waited for the
@@ -107,6 +152,26 @@ void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void
 /* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
  * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */
 const char *fbrl_robot_word(size_t i);
+
+/* Limits of a device's DISPENSE pulse (PULSE-WIDTH), ms. */
+#define FBRL_ROBOT_PULSE_MIN 1u
+#define FBRL_ROBOT_PULSE_MAX 60000u
+
+/* Named devices, as a workspace keeps them (fbrl/workspace.h). device_of: the device the
+ * word xt names (its port, direction and pulse width in *d; d->addr its data address), or
+ * FBRL_ENOENT. define_device: make the word `name` a device as OUTPUT-DEVICE / INPUT-DEVICE
+ * would, or, when name already is a device word, change that device in place.
+ * FBRL_ERANGE for a port outside 1..FBRL_ROBOT_IO_MAX or a pulse width outside
+ * FBRL_ROBOT_PULSE_MIN..MAX, FBRL_EFULL when the table is full, FBRL_ETHROW (thrown in the
+ * VM, no word left) when the word cannot be made. devices_free: free table slots. */
+fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_device *d);
+fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
+                                     uint32_t pulse_ms);
+size_t fbrl_robot_devices_free(const fbrl_robot *r);
+
+/* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
+fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);
+fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4]);
 
 /* The controller error code of the last robot word that failed with a controller
  * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */

@@ -40,10 +40,11 @@ typedef enum fbrl_status {
     FBRL_ETHROW        = -28,  /* language: uncaught THROW (code in the VM) */
     FBRL_ENOMEM        = -29,  /* language: dictionary or stack space exhausted */
     FBRL_EOFFLINE      = -30,  /* no controller connected */
-    FBRL_ENOTFILE      = -31   /* not a regular file (a device, FIFO or directory) */
+    FBRL_ENOTFILE      = -31,  /* not a regular file (a device, FIFO or directory) */
+    FBRL_EPERM         = -32   /* the operating system refused access (e.g. a port's mode) */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_ENOTFILE
+#define FBRL_STATUS_MIN FBRL_EPERM
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 const char *fbrl_status_str(fbrl_status st);

@@ -64,6 +64,8 @@ typedef struct fbrl_uart_counters {
  *    transmitter is full); it need not call it again until the next tx_kick.
  *  - The backend calls the fbrl_uart_isr_*() entry points from one context at a time
  *    (its interrupt handler, service thread, or service() itself), never from two. */
+struct fbrl_uart;
+
 typedef struct fbrl_uart_ops {
     /* Program the line (baud, bits, parity, stop bits). Unsupported settings: FBRL_EUNSUPPORTED. */
     fbrl_status (*configure)(void *ctx, const fbrl_uart_config *cfg);
@@ -77,6 +79,21 @@ typedef struct fbrl_uart_ops {
     uint64_t (*now_us)(void *ctx);
     /* Release the port (restore previous settings). May be NULL. */
     fbrl_status (*close)(void *ctx);
+    /* Polled backends: hand the bytes tx_kick announced to the OS or the hardware now,
+     * without waiting (a full OS queue keeps them for the next service); FBRL_OK, or
+     * the error that stopped it (FBRL_EDISCONNECTED). Called by the main line at the
+     * end of fbrl_uart_write(), and after a read made an XON due, so that a written
+     * byte never waits for the next read. NULL when the transmitter runs by itself
+     * after tx_kick (an interrupt, a service thread). */
+    fbrl_status (*flush)(void *ctx);
+    /* Several ports of this backend at once (fbrl_uart_wait_any, which checks its
+     * arguments): wait up to timeout_us until a port whose flags[k] has
+     * FBRL_UART_WAIT_RX receives, then move the bytes of every port that is ready and
+     * set FBRL_UART_WAIT_READY in flags[k] of each port that received or hit an error.
+     * FBRL_EUNSUPPORTED when it cannot serve these ports together (the core then
+     * services them one by one). Main line only. NULL = never. */
+    fbrl_status (*wait_many)(struct fbrl_uart *const *ports, size_t n, uint32_t timeout_us,
+                             unsigned char *flags);
 } fbrl_uart_ops;
 
 /* Counter slots kept by the interrupt side (private; see fbrl_uart_counters). */
@@ -124,7 +141,9 @@ fbrl_status fbrl_uart_configure(fbrl_uart *u, const fbrl_uart_config *cfg);
 fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
 
 /* Queue len bytes for sending, waiting up to timeout_ms for room (0 = take what
- * fits now). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
+ * fits now), and hand them to the backend's transmitter before returning (a polled
+ * backend writes them to the OS within this call: ops->flush; an error it meets there,
+ * such as FBRL_EDISCONNECTED, is returned). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
  * first; *written (may be NULL) tells how many were queued either way. With XON/XOFF
  * the bytes 0x11 and 0x13 cannot be sent as data (the peer would obey them). */
 fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
@@ -158,6 +177,23 @@ int fbrl_uart_peer_stopped(const fbrl_uart *u);
  * on 32-bit targets call it at least once per 2^32 counted events or microseconds
  * held (71 minutes of continuous XOFF) so the 64-bit totals stay exact. */
 fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out);
+
+/* fbrl_uart_wait_any() flags, one byte per port. */
+#define FBRL_UART_WAIT_RX    0x1u /* in: wake up when this port receives */
+#define FBRL_UART_WAIT_READY 0x2u /* out: this port received bytes or hit an error */
+/* Most ports one fbrl_uart_wait_any() call serves together through the backend. */
+#define FBRL_UART_WAIT_MAX 256u
+
+/* Wait for several ports at once, as one thread serving many robots needs: sleep up to
+ * timeout_us until a port whose flags[k] has FBRL_UART_WAIT_RX receives, moving every
+ * port's bytes (a port without the flag only gets its pending output written: a caller
+ * that knows no reply can be complete yet leaves it out, and is not woken by it). On
+ * return FBRL_UART_WAIT_READY is set in flags[k] of each port that received bytes or hit
+ * an error (which that port's next read reports). Ports of one backend with wait_many
+ * (POSIX, polled, at most FBRL_UART_WAIT_MAX) are served by one poll(); otherwise each
+ * port is serviced in turn and the wait is cut into slices of at most 1 ms. FBRL_OK
+ * (also when the time passed with nothing), FBRL_EINVAL (NULL, n 0, a closed port). */
+fbrl_status fbrl_uart_wait_any(fbrl_uart *const *ports, size_t n, uint32_t timeout_us, unsigned char *flags);
 
 /* Release the port through ops->close (if any); the handle is unusable afterwards. */
 fbrl_status fbrl_uart_close(fbrl_uart *u);

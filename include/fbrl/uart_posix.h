@@ -27,8 +27,9 @@
  *    one reader thread plus one writer thread may use the port at the same time.
  *
  * Errors at open: no such path -> FBRL_ENOENT, not a terminal -> FBRL_ENOTTY, in use
- * -> FBRL_EBUSY, bad "tcp:" text -> FBRL_EINVAL, unknown host -> FBRL_ENOENT, no
- * answer within connect_timeout_ms -> FBRL_ETIMEOUT, refused -> FBRL_EIO. Later, a
+ * -> FBRL_EBUSY, no permission (EACCES, EPERM) -> FBRL_EPERM, bad "tcp:" text ->
+ * FBRL_EINVAL, unknown host -> FBRL_ENOENT, no answer within connect_timeout_ms ->
+ * FBRL_ETIMEOUT, refused -> FBRL_EIO. Later, a
  * peer that went away (pty master closed, TCP reset or EOF) gives FBRL_EDISCONNECTED
  * from read/write/drain. Over TCP the line settings are only recorded: the serial
  * server owns the real line. */

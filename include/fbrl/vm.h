@@ -38,6 +38,12 @@ typedef struct fbrl_vm_host {
     uint64_t (*now_us)(void *user);
     void (*sleep_ms)(void *user, uint32_t ms);
     void (*time_date)(void *user, int out[6]);
+    /* One edited console line (optional; words that read whole lines from the console,
+     * e.g. GET-CAL-POINTS, use it instead of key): show prompt, let the user type and
+     * edit the line as at the host's own prompt; FBRL_OK with buf[0..*len) (no line end,
+     * *len < cap), FBRL_EEOF at the end of input or when Ctrl-C ended the reading (the
+     * host then has called fbrl_vm_interrupt). */
+    fbrl_status (*read_line)(void *user, const char *prompt, char *buf, size_t cap, size_t *len);
 } fbrl_vm_host;
 
 typedef struct fbrl_vm_config {

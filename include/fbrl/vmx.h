@@ -72,8 +72,9 @@ typedef struct fbrl_vmx_type {
  * next name parsed from the input (a "( stack )" and "\ help" comment after it on its line
  * become its HELP, as for CREATE). With type, the data field is 16-aligned, starts with
  * type->magic and holds `bytes` zeroed payload bytes at FBRL_VMX_PAYLOAD; without, it is
- * `bytes` zeroed bytes, cell-aligned. With run NULL the word pushes its data field's address;
- * otherwise it runs run(vm, ctx, data field). *addr gets the data field's VM address, *payload
+ * `bytes` zeroed bytes, cell-aligned. With run NULL the word pushes its data field's address
+ * and ctx is its tag (fbrl_vmx_tag: how a word set knows its own plain data words, e.g.
+ * the glossary its locations); otherwise it runs run(vm, ctx, data field). *addr gets the data field's VM address, *payload
  * the payload's C address (either may be NULL).
  * All or nothing: on any failure (no name, name too long, dictionary full) no word and no
  * byte of data space is left behind, and the failure is thrown (e.g. -8 dictionary overflow):
@@ -91,6 +92,23 @@ void *fbrl_vmx_data(fbrl_vm *vm, fbrl_cell addr, const fbrl_vmx_type *type, size
  * NULL: if xt only pushes its data field's address, as VARIABLE and fbrl_vmx_create without
  * run make it): FBRL_OK, or FBRL_ETYPE (another word, or no word). */
 fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, fbrl_cell *addr);
+
+/* The tag fbrl_vmx_create gave the word xt (made without a run function; NULL for other
+ * data words: VARIABLE, CREATE) and its data field: FBRL_OK, or FBRL_ETYPE if xt is not a
+ * word that pushes its data field's address. */
+fbrl_status fbrl_vmx_tag(const fbrl_vm *vm, fbrl_cell xt, const void **tag, fbrl_cell *addr);
+
+/* A point in the dictionary's history, to take back every word (and data space) made
+ * after it: a word set that makes several words as one step (a workspace loaded) undoes
+ * the step when a later word fails. */
+typedef struct fbrl_vmx_mark {
+    fbrl_cell here;
+    uint32_t nwords;
+    size_t required;
+} fbrl_vmx_mark;
+fbrl_status fbrl_vmx_mark_here(const fbrl_vm *vm, fbrl_vmx_mark *m);
+/* Forget every word made since m (FBRL_ESTATE inside a definition or if m lies in the future). */
+fbrl_status fbrl_vmx_forget(fbrl_vm *vm, const fbrl_vmx_mark *m);
 
 /* ---- arguments: from the stacks or from the input after the word ---- */
 
@@ -159,6 +177,14 @@ fbrl_status fbrl_vmx_compile_string(fbrl_vm *vm, const char *s, size_t n);
  * from inside a C word; an exception inside is re-thrown to the caller's caller. */
 fbrl_status fbrl_vmx_execute(fbrl_vm *vm, fbrl_cell xt);
 fbrl_status fbrl_vmx_evaluate(fbrl_vm *vm, const char *text, size_t len);
+
+/* Interpret text as fbrl_vmx_evaluate, catching an exception inside (as CATCH would): the
+ * stacks are put back to their depth before, a definition the text left open is dropped,
+ * and the VM's error record stays as it was (the caller's own error, if any, is reported
+ * as usual). Returns 0, or the THROW code with its one-line message (the failing word
+ * named, e.g. "undefined word FOO") in msg[0..cap) (cap >= 1). BYE and QUIT are not
+ * caught: they return as from fbrl_vmx_evaluate, with *code 0. */
+fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, int *code, char *msg, size_t cap);
 
 /* ---- host services ---- */
 

@@ -625,6 +625,8 @@ static void discard_definition(fbrl_vm *vm)
     *vm->state = 0;
 }
 
+void fbrl__drop_definition(fbrl_vm *vm) { discard_definition(vm); }
+
 void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used)
 {
     vm->here = here;
@@ -733,6 +735,8 @@ static void pop_source(fbrl_vm *vm)
     *vm->toin = s->saved_in;
     vm->nsrc--;
 }
+
+void fbrl__pop_source(fbrl_vm *vm) { if (vm->nsrc > 0) pop_source(vm); }
 
 int fbrl__evaluate(fbrl_vm *vm, char *text, size_t len)
 {

@@ -68,7 +68,9 @@ fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbr
     }
     memset((void *)h->body, 0, head + bytes);
     if (type) memcpy((void *)h->body, &type->magic, sizeof type->magic);
-    if (run) {
+    if (!run) {
+        h->word = ctx; /* the word set's tag (fbrl_vmx_tag) */
+    } else {
         h->fn = never_called;
         h->xfn = run;
         h->arg = ctx;
@@ -95,6 +97,34 @@ fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, f
     const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
     if (!h || (run ? (h->kind != K_CFUNC || h->xfn != run) : h->kind != K_VAR)) return FBRL_ETYPE;
     *addr = h->body;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_vmx_tag(const fbrl_vm *vm, fbrl_cell xt, const void **tag, fbrl_cell *addr)
+{
+    if (!vm || !tag || !addr) return FBRL_EINVAL;
+    const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
+    if (!h || h->kind != K_VAR) return FBRL_ETYPE;
+    *tag = h->word;
+    *addr = h->body;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_vmx_mark_here(const fbrl_vm *vm, fbrl_vmx_mark *m)
+{
+    if (!vm || !m) return FBRL_EINVAL;
+    m->here = (fbrl_cell)vm->here;
+    m->nwords = vm->nwords;
+    m->required = vm->req_used;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_vmx_forget(fbrl_vm *vm, const fbrl_vmx_mark *m)
+{
+    if (!vm || !m) return FBRL_EINVAL;
+    if (vm->defining || m->nwords > vm->nwords || m->here > (fbrl_cell)vm->here || m->here < (fbrl_cell)vm->data_lo)
+        return FBRL_ESTATE;
+    fbrl__forget(vm, (unsigned char *)m->here, m->nwords, m->required);
     return FBRL_OK;
 }
 
@@ -355,6 +385,45 @@ fbrl_status fbrl_vmx_execute(fbrl_vm *vm, fbrl_cell xt) { return thrown(vm, fbrl
 fbrl_status fbrl_vmx_evaluate(fbrl_vm *vm, const char *text, size_t len)
 {
     return thrown(vm, fbrl__evaluate(vm, (char *)(uintptr_t)text, len));
+}
+
+fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, int *code, char *msg, size_t cap)
+{
+    if (!vm || !code || !msg || cap == 0 || (!text && len)) return FBRL_EINVAL;
+    fbrl_cell *sp = vm->sp, *rp = vm->rp;
+    double *fp = vm->fp;
+    fbrl_cell handler = vm->handler;
+    int nest = vm->nest, nsrc = vm->nsrc, captured = vm->err_captured;
+    int defining = vm->defining, compiling = *vm->state != 0;
+    char word[sizeof vm->cur_word];
+    memcpy(word, vm->cur_word, sizeof word);
+    *code = 0;
+    msg[0] = 0;
+    int r = fbrl__evaluate(vm, (char *)(uintptr_t)text, len);
+    if (r == 0) {
+        memcpy(vm->cur_word, word, sizeof word); /* an error after this is the caller's */
+        return FBRL_OK;
+    }
+    if (r == THROW_BYE || r == THROW_QUIT) return fbrl_vm_throw(vm, r, NULL);
+    const char *m = (vm->pending_msg && vm->pending_code == r) ? vm->pending_msg : fbrl__throw_text(r);
+    if (r == FBRL_THROW_UNDEFINED && vm->cur_word[0])
+        snprintf(msg, cap, "%s %s", m, vm->cur_word);
+    else
+        snprintf(msg, cap, "%s", m);
+    *code = r;
+    /* put the VM back as CATCH does, and drop what the failed text left half made */
+    vm->sp = sp;
+    vm->rp = rp;
+    vm->fp = fp;
+    vm->handler = handler;
+    vm->nest = nest;
+    while (vm->nsrc > nsrc) fbrl__pop_source(vm);
+    if ((!defining && vm->defining) || (!compiling && *vm->state)) fbrl__drop_definition(vm);
+    vm->err_captured = captured;
+    vm->pending_msg = NULL;
+    vm->pending_throw = 0;
+    memcpy(vm->cur_word, word, sizeof word);
+    return FBRL_OK;
 }
 
 /* ---- host services ---- */

@@ -12,6 +12,9 @@ int fbrl__align(fbrl_vm *vm);
 int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt);
 int fbrl__semicolon(fbrl_vm *vm);
 void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used);
+/* For fbrl_vmx_evaluate_catch: drop an open definition (STATE 0) / the newest input source. */
+void fbrl__drop_definition(fbrl_vm *vm);
+void fbrl__pop_source(fbrl_vm *vm);
 int fbrl__evaluate(fbrl_vm *vm, char *text, size_t len);
 int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require);
 fbrl_src *fbrl__src(fbrl_vm *vm);

@@ -65,8 +65,7 @@ static fbrl_status w_create_cal(fbrl_vm *vm, void *arg)
 {
     void *p;
     (void)arg;
-    return gl_make(vm, NULL, &gl_type_cal, sizeof(fbrl_calpts), "( -- cal )", "calibration: three location slots 1 2 3",
-                   &p);
+    return gl_make(vm, NULL, &gl_type_cal, sizeof(fbrl_calpts), GL_CAL_STACK, GL_CAL_HELP, &p);
 }
 
 static fbrl_status w_cal_addr(fbrl_vm *vm, void *arg)
@@ -109,8 +108,7 @@ static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg)
     void *p;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_make(vm, NULL, &gl_type_stru, sizeof(fbrl_calib), "( -- cal-stru )",
-                      "calibration structure: the block's motion (identity until CALIBRATE)", &p)))
+    if ((st = gl_make(vm, NULL, &gl_type_stru, sizeof(fbrl_calib), GL_STRU_STACK, GL_STRU_HELP, &p)))
         return st;
     return fbrl_calib_identity(p);
 }

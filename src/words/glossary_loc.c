@@ -9,11 +9,13 @@
 #include "glossary_internal.h"
 
 /* ---- III-1 location templates ---- */
+const char gl_loc_tag[] = "location";
+
 static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
 {
-    void *p;
     (void)arg;
-    return gl_make(vm, NULL, NULL, sizeof(fbrl_loc), "( -- loc )", "location template (X Y Z O A T)", &p);
+    return fbrl_vmx_create(vm, NULL, 0, NULL, sizeof(fbrl_loc), NULL, (void *)(uintptr_t)gl_loc_tag, GL_LOC_STACK, GL_LOC_HELP,
+                           NULL, NULL);
 }
 
 static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
@@ -139,8 +141,6 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
 }
 
 /* ---- III-2 location matrices ---- */
-static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body);
-static fbrl_status rad_run(fbrl_vm *vm, void *ctx, const void *body);
 
 static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **loc)
 {
@@ -155,7 +155,7 @@ static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **l
     return FBRL_OK;
 }
 
-static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body)
+fbrl_status gl_rect_run(fbrl_vm *vm, void *ctx, const void *body)
 {
     (void)ctx;
     long i[3];
@@ -169,7 +169,7 @@ static fbrl_status rect_run(fbrl_vm *vm, void *ctx, const void *body)
     return FBRL_OK;
 }
 
-static fbrl_status rad_run(fbrl_vm *vm, void *ctx, const void *body)
+fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body)
 {
     (void)ctx;
     long i[3];
@@ -205,8 +205,7 @@ static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
     fbrl_status st;
     if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v))) return st;
     if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
-    if ((st = gl_make(vm, rect_run, &gl_type_rect, sizeof m, "( i j k loc -- )",
-                      "store location (i, j, k) of this RECTMAT into loc", &p)))
+    if ((st = gl_make(vm, gl_rect_run, &gl_type_rect, sizeof m, GL_RECT_STACK, GL_RECT_HELP, &p)))
         return st;
     memcpy(p, &m, sizeof m);
     return FBRL_OK;
@@ -224,8 +223,7 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
     if (st == FBRL_ERANGE)
         return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "RADMAT: base location on the centre axis has no angle");
     if (st != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
-    if ((st = gl_make(vm, rad_run, &gl_type_rad, sizeof m, "( ring idx k loc -- )",
-                      "store location (ring, idx, k) of this RADMAT into loc", &p)))
+    if ((st = gl_make(vm, gl_rad_run, &gl_type_rad, sizeof m, GL_RAD_STACK, GL_RAD_HELP, &p)))
         return st;
     memcpy(p, &m, sizeof m);
     return FBRL_OK;
@@ -241,7 +239,7 @@ static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, int rad)
     fbrl_status st;
     if ((st = gl_pop(vm, 1, &xt))) return st;
     fbrl_cell body;
-    if (fbrl_vmx_created(vm, xt, rad ? rad_run : rect_run, &body) != FBRL_OK)
+    if (fbrl_vmx_created(vm, xt, rad ? gl_rad_run : gl_rect_run, &body) != FBRL_OK)
         return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a %s (pass its execution token: ' name)", word,
                         rad ? "RADMAT" : "RECTMAT");
     const void *m = fbrl_vmx_data(vm, body, rad ? &gl_type_rad : &gl_type_rect,

@@ -44,6 +44,7 @@ static const struct {
     { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords }, { rb_teach_words, &rb_teach_nwords },
     { rb_param_words, &rb_param_nwords },   { rb_line_words, &rb_line_nwords }, { rb_comm_words, &rb_comm_nwords },
     { &rb_comm_asc, &one },                 { rb_io_words, &rb_io_nwords },
+    { rb_import_words, &rb_import_nwords },
 };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
@@ -85,12 +86,42 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
 {
     if (!r) return FBRL_EINVAL;
     r->link = link;
+    r->lost = 0;
+    /* a controller we did not watch may be moving: the next motion asks it first */
+    r->moving = link != NULL;
+    r->motion[0] = 0;
     if (link && link->u) fbrl_uart_get_config(link->u, &r->comm);
     rb_port_writer(r);
     return FBRL_OK;
 }
 
+fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fbrl_robot *r), void *ctx)
+{
+    if (!r) return FBRL_EINVAL;
+    r->relink = fn;
+    r->relink_ctx = ctx;
+    return FBRL_OK;
+}
+
+int fbrl_robot_lost(const fbrl_robot *r) { return r ? r->lost : 0; }
+
 int fbrl_robot_last_error(const fbrl_robot *r) { return r ? r->last_error : -1; }
+
+fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4])
+{
+    if (!r || !base) return FBRL_EINVAL;
+    memcpy(base, r->base, sizeof r->base);
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4])
+{
+    if (!r || !base) return FBRL_EINVAL;
+    for (int k = 0; k < 4; k++)
+        if (!isfinite(base[k])) return FBRL_ENONFINITE;
+    memcpy(r->base, base, sizeof r->base);
+    return FBRL_OK;
+}
 
 void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell)
 {

@@ -4,7 +4,9 @@
  *   robot_link.c   commands to the controller through the link
  *   robot_param.c  parameters from the stacks or the input (I-6), their checks
  *   robot_loc.c    locations: mapping, base offset, scratch points, the arm's position
- *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c: the words
+ *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c
+ *   robot_import.c: the words
+ *   robot_safe.c   the safe stop after an abort (fbrl_robot_safe_stop)
  * Calls go downwards in that list (tables up to robot.c), never in a circle. */
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
@@ -52,6 +54,15 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight);
 /* Run a raw line; its output lines go to the console when print != 0. */
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* Wait until a motion this context sent has ended (the commanded velocity, W5, one line
+ * a round, a round every RB_STILL_POLL_MS or as fast as the line allows, until it reads
+ * zero; Ctrl-C throws), so that the next motion or FINISH never waits inside the
+ * controller, deaf to HALT. */
+#define RB_STILL_POLL_MS 50u
+fbrl_status rb_still(fbrl_robot *r, const rb_word *w);
+/* Run a raw line; its output lines go to fn(ctx, ...). */
+fbrl_status rb_raw_lines(fbrl_robot *r, const rb_word *w, const char *line,
+                         void (*fn)(void *, const char *, size_t, int), void *ctx);
 /* METRIC-ON: lengths the user sees are centimetres. */
 int rb_metric(const fbrl_robot *r);
 fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link_line_fn fn, void *ctx);
@@ -100,8 +111,8 @@ void rb_port_writer(fbrl_robot *r);
 
 /* The word tables, in the order robot.c defines them. */
 extern const rb_word rb_motion_words[], rb_rapl_words[], rb_teach_words[], rb_param_words[],
-    rb_line_words[], rb_comm_words[], rb_io_words[], rb_comm_asc;
+    rb_line_words[], rb_comm_words[], rb_io_words[], rb_comm_asc, rb_import_words[];
 extern const size_t rb_motion_nwords, rb_rapl_nwords, rb_teach_nwords, rb_param_nwords, rb_line_nwords,
-    rb_comm_nwords, rb_io_nwords;
+    rb_comm_nwords, rb_io_nwords, rb_import_nwords;
 
 #endif

@@ -22,10 +22,10 @@ static const fbrl_vmx_type device_type = { "device", (fbrl_cell)0x44455643 /* "D
 #define POLL_MS 20u
 #define MAX_WAIT_MS 86400000L /* one day */
 
-static fbrl_robot_device *device_at(fbrl_robot *r, fbrl_cell addr)
+static fbrl_robot_device *device_at(const fbrl_robot *r, fbrl_cell addr)
 {
     for (size_t k = 0; k < FBRL_ROBOT_MAX_DEVICES; k++) {
-        fbrl_robot_device *d = &r->dev[k];
+        fbrl_robot_device *d = (fbrl_robot_device *)&r->dev[k];
         if (d->addr && d->addr == addr && fbrl_vmx_data(r->vm, addr, &device_type, sizeof(fbrl_cell))) return d;
     }
     return NULL;
@@ -47,29 +47,78 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
     return FBRL_OK;
 }
 
+static const char *device_help(int output) { return output ? "output device" : "input device"; }
+
+/* A new device word (name NULL: parsed from the input) in a free slot of the table. */
+static fbrl_status make_device(fbrl_robot *r, const char *name, size_t len, int port, int output, uint32_t pulse_ms)
+{
+    size_t k;
+    fbrl_cell addr, cell = port;
+    void *p;
+    for (k = 0; k < FBRL_ROBOT_MAX_DEVICES && device_at(r, r->dev[k].addr); k++)
+        ;
+    if (k == FBRL_ROBOT_MAX_DEVICES) return FBRL_EFULL;
+    fbrl_status st = fbrl_vmx_create(r->vm, name, len, &device_type, sizeof(fbrl_cell), NULL, NULL, "( -- dev )",
+                                     device_help(output), &addr, &p);
+    if (st != FBRL_OK) return st;
+    memcpy(p, &cell, sizeof cell);
+    for (size_t j = 0; j < FBRL_ROBOT_MAX_DEVICES; j++) /* an entry left by forgotten words (fbrl_vmx_forget) */
+        if (r->dev[j].addr == addr) r->dev[j].addr = 0;
+    r->dev[k].addr = addr;
+    r->dev[k].port = port;
+    r->dev[k].output = output;
+    r->dev[k].pulse_ms = pulse_ms;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_device *d)
+{
+    fbrl_cell addr;
+    const void *tag;
+    if (!r || !r->vm || !d) return FBRL_EINVAL;
+    const fbrl_robot_device *dev = fbrl_vmx_tag(r->vm, xt, &tag, &addr) == FBRL_OK ? device_at(r, addr) : NULL;
+    if (!dev) return FBRL_ENOENT;
+    *d = *dev;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
+                                     uint32_t pulse_ms)
+{
+    fbrl_cell xt, cell = port;
+    fbrl_robot_device old;
+    if (!r || !r->vm || !name) return FBRL_EINVAL;
+    if (port < 1 || port > FBRL_ROBOT_IO_MAX || pulse_ms < FBRL_ROBOT_PULSE_MIN || pulse_ms > FBRL_ROBOT_PULSE_MAX)
+        return FBRL_ERANGE;
+    if (fbrl_vmx_find(r->vm, name, len, &xt) == FBRL_OK && fbrl_robot_device_of(r, xt, &old) == FBRL_OK) {
+        fbrl_robot_device *d = device_at(r, old.addr);
+        d->port = port;
+        d->output = output != 0;
+        d->pulse_ms = pulse_ms;
+        memcpy((unsigned char *)old.addr + FBRL_VMX_PAYLOAD, &cell, sizeof cell);
+        return FBRL_OK;
+    }
+    return make_device(r, name, len, port, output != 0, pulse_ms);
+}
+
+size_t fbrl_robot_devices_free(const fbrl_robot *r)
+{
+    size_t n = 0;
+    for (size_t k = 0; r && k < FBRL_ROBOT_MAX_DEVICES; k++) n += device_at(r, r->dev[k].addr) == NULL;
+    return n;
+}
+
 /* OUTPUT-DEVICE / INPUT-DEVICE ( port "name" -- ) */
 static fbrl_status w_make_device(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    size_t k;
-    fbrl_cell addr;
-    void *port;
     char msg[96];
     if (v[0].i < 1 || v[0].i > FBRL_ROBOT_IO_MAX) {
         snprintf(msg, sizeof msg, "%s: port %ld outside 1..%d", w->name, (long)v[0].i, FBRL_ROBOT_IO_MAX);
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
-    for (k = 0; k < FBRL_ROBOT_MAX_DEVICES && device_at(r, r->dev[k].addr); k++)
-        ;
-    if (k == FBRL_ROBOT_MAX_DEVICES) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "too many devices");
-    fbrl_status st = fbrl_vmx_create(r->vm, NULL, 0, &device_type, sizeof(fbrl_cell), NULL, NULL, "( -- dev )",
-                                     w->arg ? "output device" : "input device", &addr, &port);
-    if (st != FBRL_OK) return st;
-    memcpy(port, &v[0].i, sizeof v[0].i);
-    r->dev[k].addr = addr;
-    r->dev[k].port = (int)v[0].i;
-    r->dev[k].output = (int)w->arg;
-    r->dev[k].pulse_ms = DEFAULT_PULSE_MS;
-    return FBRL_OK;
+    fbrl_status st = make_device(r, NULL, 0, (int)v[0].i, (int)w->arg, DEFAULT_PULSE_MS);
+    if (st == FBRL_EFULL) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "too many devices");
+    return st;
 }
 
 static fbrl_status set_output(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d, int on)
@@ -130,7 +179,11 @@ static fbrl_status w_pulse_width(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_device *d = NULL;
     fbrl_status st = device(r, w, v[1].i, 1, &d);
     if (st != FBRL_OK) return st;
-    if (v[0].i < 1 || v[0].i > 60000) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "PULSE-WIDTH: 1..60000 ms");
+    if (v[0].i < (fbrl_cell)FBRL_ROBOT_PULSE_MIN || v[0].i > (fbrl_cell)FBRL_ROBOT_PULSE_MAX) {
+        char msg[64];
+        snprintf(msg, sizeof msg, "PULSE-WIDTH: %u..%u ms", FBRL_ROBOT_PULSE_MIN, FBRL_ROBOT_PULSE_MAX);
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
+    }
     d->pulse_ms = (uint32_t)v[0].i;
     return FBRL_OK;
 }

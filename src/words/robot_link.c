@@ -9,14 +9,53 @@
 
 static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim or --port";
 
+/* A wait a person may watch: at a terminal (r->progress) it shows how long it has been,
+ * about once a second, and (r->tell) how long it took. */
+typedef struct rb_wait {
+    uint64_t t0;
+    unsigned long shown;  /* seconds shown so far */
+    int timed;
+} rb_wait;
+
+static void wait_begin(fbrl_robot *r, rb_wait *wt)
+{
+    wt->t0 = 0;
+    wt->shown = 0;
+    wt->timed = r->progress && fbrl_vmx_host(r->vm)->now_us && rb_now_ms(r, &wt->t0) == FBRL_OK;
+}
+
+static void wait_tick(fbrl_robot *r, rb_wait *wt, const char *who, const char *what)
+{
+    uint64_t now = 0;
+    if (wt->timed && rb_now_ms(r, &now) == FBRL_OK && now - wt->t0 >= FBRL_ROBOT_PROGRESS_MS &&
+        (now - wt->t0) / 1000u != wt->shown) {
+        char line[96];
+        wt->shown = (unsigned long)((now - wt->t0) / 1000u);
+        snprintf(line, sizeof line, "%s: waiting for %s, %lu s", who, what, wt->shown);
+        r->progress(r->progress_ctx, line);
+    }
+}
+
+static void wait_end(fbrl_robot *r, rb_wait *wt, const char *who, const char *what)
+{
+    uint64_t now = 0;
+    if (!wt->shown) return;
+    r->progress(r->progress_ctx, NULL);
+    if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
+        char line[96];
+        snprintf(line, sizeof line, "%s: waited %.1f s for %s\n", who, (double)(now - wt->t0) / 1000.0, what);
+        rb_puts(r, line);
+    }
+}
+
 /* Run the link's current command to its end in slices, looking for Ctrl-C between
  * them. Interrupted, the command stays in the link (the controller cannot take a
  * line back): rb_online() finishes it before the next command. */
 static fbrl_status rb_drive_for(fbrl_robot *r, const char *who, const char *what, fbrl_status *result)
 {
-    uint64_t t0 = 0, now = 0, shown = 0;
-    int timed = r->progress && fbrl_vmx_host(r->vm)->now_us && rb_now_ms(r, &t0) == FBRL_OK;
+    rb_wait wt;
     fbrl_status st, interrupted = FBRL_OK;
+    wait_begin(r, &wt);
     for (;;) {
         int done = 0;
         st = fbrl_link_poll(r->link, 100, &done);
@@ -25,23 +64,9 @@ static fbrl_status rb_drive_for(fbrl_robot *r, const char *who, const char *what
             break;
         }
         if ((interrupted = rb_interrupted(r)) != FBRL_OK) break;
-        /* a long wait shows how long it has been, about once a second */
-        if (timed && rb_now_ms(r, &now) == FBRL_OK && now - t0 >= FBRL_ROBOT_PROGRESS_MS &&
-            (now - t0) / 1000u != shown) {
-            char line[96];
-            shown = (now - t0) / 1000u;
-            snprintf(line, sizeof line, "%s: waiting for %s, %lu s", who, what, (unsigned long)shown);
-            r->progress(r->progress_ctx, line);
-        }
+        wait_tick(r, &wt, who, what);
     }
-    if (shown) {
-        r->progress(r->progress_ctx, NULL);
-        if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
-            char line[96];
-            snprintf(line, sizeof line, "%s: waited %.1f s for %s\n", who, (double)(now - t0) / 1000.0, what);
-            rb_puts(r, line);
-        }
-    }
+    wait_end(r, &wt, who, what);
     return interrupted;
 }
 
@@ -53,10 +78,20 @@ static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
 fbrl_status rb_online(fbrl_robot *r)
 {
     if (!r->link) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), OFFLINE);
+    if (r->lost) { /* the controller went away: reconnect first, if the host can */
+        char msg[160];
+        fbrl_status st = r->relink ? r->relink(r->relink_ctx, r) : FBRL_EDISCONNECTED;
+        if (st != FBRL_OK || r->lost || !r->link) {
+            snprintf(msg, sizeof msg, "controller disconnected%s%s (RECONNECT when it is back)",
+                     r->relink ? ": reconnecting failed: " : "", r->relink ? fbrl_status_str(st) : "");
+            return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EDISCONNECTED), msg);
+        }
+    }
     if (fbrl_link_busy(r->link)) { /* left running by an interrupted word: end it first */
         fbrl_status res = FBRL_OK, st = rb_drive(r, &res);
         if (st != FBRL_OK) return st;
         if (res == FBRL_ECONTROLLER) fbrl_link_error(r->link, &r->last_error, NULL);
+        if (res == FBRL_EDISCONNECTED) r->lost = 1;
     }
     return FBRL_OK;
 }
@@ -65,6 +100,10 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
     char msg[240];
     if (st == FBRL_OK) return FBRL_OK;
+    if (st == FBRL_EDISCONNECTED) {
+        r->lost = 1;
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), "controller disconnected (RECONNECT when it is back)");
+    }
     if (st == FBRL_ECONTROLLER) {
         int code = FBRL_THROW_ABORT;
         const char *text = "", *help;
@@ -78,6 +117,69 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
         return rb_fail_st(r, w, st, "cannot encode the command");
     return rb_fail_st(r, w, st, "link");
+}
+
+/* rb_still reads the controller's commanded velocity (W5): the motion is over when a
+ * value line is all zero. Far shorter on the wire than STATUS (60 bytes a line against
+ * some 900), so the next motion follows the end of the last one closely even at 9600
+ * baud. A zero read just as a motion starts would only let the controller queue the
+ * next motion (as it did before this wait): nothing runs early or twice. */
+typedef struct still_read {
+    unsigned zeros;  /* consecutive all-zero value lines, up to the last one */
+} still_read;
+
+static void still_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    still_read *sr = ctx;
+    long v[FBRL_RAPL_MAX_AXES];
+    size_t n = 0, k;
+    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0) return; /* title */
+    for (k = 0; k < n && v[k] == 0; k++)
+        ;
+    sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
+}
+
+fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
+{
+    rb_wait wt;
+    fbrl_status st = rb_online(r);
+    wait_begin(r, &wt);
+    while (st == FBRL_OK && r->moving) {
+        still_read sr;
+        fbrl_link_line_fn fn;
+        void *ctx;
+        fbrl_status res = FBRL_OK;
+        memset(&sr, 0, sizeof sr);
+        (void)fbrl_link_set_line_handler(r->link, still_line, &sr, &fn, &ctx);
+        st = fbrl_link_start_stream(r->link, FBRL_RAPL_W5, 1);
+        if (st == FBRL_OK) st = rb_drive_for(r, w->name, "the arm", &res);
+        else res = st, st = FBRL_OK;
+        (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
+        if (st != FBRL_OK) break; /* interrupted: the stream ends in the link, unread */
+        if (res == FBRL_ECONTROLLER) { /* no W5 here: the controller's own queue decides */
+            r->moving = 0;
+            break;
+        }
+        if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
+        if (sr.zeros > 0) {
+            r->moving = 0;
+        } else {
+            const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+            if (h->sleep_ms) h->sleep_ms(h->user, RB_STILL_POLL_MS); /* none: W5 rounds pace it */
+            st = rb_interrupted(r);
+            wait_tick(r, &wt, w->name, "the arm");
+        }
+    }
+    wait_end(r, &wt, w->name, "the arm");
+    return st;
+}
+
+/* Outputs switched on by a command (OUTPUT n,-m,...): remembered for the safe stop. */
+static void note_outputs(fbrl_robot *r, const fbrl_rapl_arg *a, size_t n)
+{
+    for (size_t k = 0; k < n; k++)
+        if (a[k].kind == FBRL_RAPL_ARG_INT && a[k].i >= 1 && a[k].i <= FBRL_ROBOT_IO_MAX)
+            r->outputs_on |= 1u << (a[k].i - 1);
 }
 
 /* At a terminal: what the motion just started. The prompt comes back while the arm moves
@@ -102,9 +204,19 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
-    if (!ci || !((ci->flags & FBRL_RAPL_F_MOTION) || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT ||
-                 cmd == FBRL_RAPL_RUN))
-        return rb_link_result(r, w, fbrl_link_cmd(r->link, cmd, a, n, straight));
+    int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);
+    if (cmd == FBRL_RAPL_OUTPUT) note_outputs(r, a, n);
+    /* a motion or FINISH behind a running motion would make the controller wait, deaf
+     * to HALT: wait here instead, where Ctrl-C can stop the arm */
+    if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) {
+        r->have_target = 0;
+        return st;
+    }
+    if (!ci || !(motion || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT || cmd == FBRL_RAPL_RUN)) {
+        fbrl_status res = fbrl_link_cmd(r->link, cmd, a, n, straight);
+        if (res == FBRL_OK && cmd == FBRL_RAPL_HALT) r->moving = 0;
+        return rb_link_result(r, w, res);
+    }
     /* A command that may wait for the arm or an input (no reply but the prompt): run it
      * step by step so that Ctrl-C is noticed while it waits. */
     char text[FBRL_RAPL_LINE_MAX];
@@ -114,12 +226,19 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
     if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
     if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
+    if (res == FBRL_OK && motion) {
+        /* sent (its fate may stay unknown): count it as running until W5 says not */
+        r->moving = 1;
+        memcpy(r->motion, text, len + 1); /* len <= FBRL_LINK_LINE_MAX */
+    }
     if (res == FBRL_OK &&
         (st = rb_drive_for(r, w->name, cmd == FBRL_RAPL_WAIT ? "the input" : "the arm", &res)) != FBRL_OK) {
         r->have_target = 0;
-        return st;
+        return st; /* interrupted: the command stays with the link */
     }
-    if (res == FBRL_OK && r->tell && (ci->flags & FBRL_RAPL_F_MOTION)) tell_motion(r, w, text);
+    if (res == FBRL_ECONTROLLER && motion) r->moving = 0; /* refused: nothing started */
+    if (res == FBRL_OK && cmd == FBRL_RAPL_FINISH) r->moving = 0;
+    if (res == FBRL_OK && r->tell && motion) tell_motion(r, w, text);
     r->have_target = 0;
     return rb_link_result(r, w, res);
 }
@@ -193,13 +312,52 @@ static int display_query(const char *line)
            c == FBRL_RAPL_TYPEI || c == FBRL_RAPL_TYPEV;
 }
 
+/* What a raw line is, from its first word: a motion, FINISH, OUTPUT (its outputs are
+ * noted), or a command the host cannot name (which might move the arm). */
+static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
+{
+    char word[16];
+    size_t k = 0;
+    fbrl_rapl_cmd cmd;
+    while (*line == ' ') line++;
+    while (k + 1 < sizeof word && line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=') {
+        word[k] = line[k];
+        k++;
+    }
+    word[k] = 0;
+    *motion = *finish = 0;
+    if (line[k] == '=') return; /* an assignment */
+    if (fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK) {
+        *motion = 1;
+        return;
+    }
+    *motion = (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN;
+    *finish = cmd == FBRL_RAPL_FINISH;
+    if (cmd == FBRL_RAPL_OUTPUT)
+        for (const char *p = line + k; *p; p++)
+            if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
+                long v = 0;
+                while (*p >= '0' && *p <= '9') v = v * 10 + (*p++ - '0');
+                fbrl_rapl_arg a = fbrl_rapl_int(v);
+                note_outputs(r, &a, 1);
+                if (!*p) break;
+            }
+}
+
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
 {
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
+    int motion, finish;
     if (print && display_query(line)) return rb_show(r, w, line, NULL, NULL);
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK) return st;
+    raw_kind(r, line, &motion, &finish);
+    if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK) return st;
+    if (motion) {
+        r->moving = 1;
+        snprintf(r->motion, sizeof r->motion, "%s", line);
+    }
     if (print) borrow_lines(r, &fn, &ctx);
     st = fbrl_link_raw(r->link, line);
     if (print) return_lines(r, fn, ctx);
@@ -215,5 +373,18 @@ fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd)
     borrow_lines(r, &fn, &ctx);
     st = fbrl_link_stream(r->link, cmd, FBRL_ROBOT_STREAM_LINES);
     return_lines(r, fn, ctx);
+    return rb_link_result(r, w, st);
+}
+
+fbrl_status rb_raw_lines(fbrl_robot *r, const rb_word *w, const char *line,
+                         void (*fn)(void *, const char *, size_t, int), void *ctx)
+{
+    void (*old)(void *, const char *, size_t, int);
+    void *old_ctx;
+    fbrl_status st = rb_online(r);
+    if (st != FBRL_OK) return st;
+    (void)fbrl_link_set_line_handler(r->link, fn, ctx, &old, &old_ctx);
+    st = fbrl_link_raw(r->link, line);
+    return_lines(r, old, old_ctx);
     return rb_link_result(r, w, st);
 }

@@ -106,6 +106,7 @@ static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK) st = rb_online(r);
     if (st == FBRL_OK) st = rb_to_arm(r, w, &user, &arm);
+    if (st == FBRL_OK) st = rb_still(r, w); /* the step starts once the arm stands */
     if (st == FBRL_OK) st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK) return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
@@ -122,6 +123,7 @@ static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st == FBRL_OK) st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK) st = rb_online(r);
     if (st == FBRL_OK) st = rb_to_arm(r, w, &user, &arm);
+    if (st == FBRL_OK) st = rb_still(r, w); /* the step starts once the arm stands */
     if (st == FBRL_OK) st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK) return st;
     fbrl_rapl_arg a[2] = { fbrl_rapl_str(name), fbrl_rapl_real(rb_len_in(r, v[1].f)) };

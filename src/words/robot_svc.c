@@ -16,13 +16,14 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
 }
 
 /* Ctrl-C while a robot word waits on the controller: take the VM's interrupt request
- * here (the engine would deliver it only after the word returns) and throw -28 with
- * what it means for the controller. */
+ * here (the engine would deliver it only after the word returns) and throw -28. A
+ * command the controller already has stays with the link (the next robot word, or
+ * fbrl_robot_safe_stop, lets it end first); the arm keeps moving until the host stops
+ * it (fbrl_robot_safe_stop: fbrlmon does on every Ctrl-C). */
 fbrl_status rb_interrupted(fbrl_robot *r)
 {
     if (!fbrl_vmx_take_interrupt(r->vm)) return FBRL_OK;
-    return rb_fail(r, FBRL_THROW_INTERRUPT, "user interrupt (a command the controller already has still runs;"
-                           " the next robot word waits for it)");
+    return rb_fail(r, FBRL_THROW_INTERRUPT, "user interrupt");
 }
 
 void rb_puts(fbrl_robot *r, const char *s) { fbrl_vmx_write(r->vm, s, strlen(s)); }

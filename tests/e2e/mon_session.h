@@ -161,11 +161,10 @@ static inline void type(session *s, const char *text)
     type_now(s, text);
 }
 
-/* Start `mon arg1 arg2` (arg2 may be NULL) with a new 80x24 pty as its controlling
- * terminal (TEACH cuts its status line to that width), HOME and the history file in dir
- * (no ~/.editrc of the person running the tests) and TERM=vt100. */
-static inline int start_mon(session *s, long timeout_ms, const char *dir, const char *mon, const char *arg1,
-                            const char *arg2)
+/* Start `mon argv[1] ...` (argv NULL-terminated, argv[0] = mon) with a new 80x24 pty as
+ * its controlling terminal (TEACH cuts its status line to that width), HOME and the
+ * history file in dir (no ~/.editrc of the person running the tests) and TERM=vt100. */
+static inline int start_mon_argv(session *s, long timeout_ms, const char *dir, char *const argv[])
 {
     char hist[1024], *slave;
     struct winsize ws;
@@ -200,10 +199,22 @@ static inline int start_mon(session *s, long timeout_ms, const char *dir, const 
         setenv("HOME", dir, 1);
         setenv("FBRLMON_HISTORY", hist, 1);
         setenv("TERM", "vt100", 1);
-        execl(mon, mon, arg1, arg2, (char *)NULL);
+        execv(argv[0], argv);
         _exit(127);
     }
     return 0;
+}
+
+/* start_mon_argv() with `mon arg1 arg2` (arg2 may be NULL). */
+static inline int start_mon(session *s, long timeout_ms, const char *dir, const char *mon, const char *arg1,
+                            const char *arg2)
+{
+    char *argv[4];
+    argv[0] = (char *)mon;
+    argv[1] = (char *)arg1;
+    argv[2] = (char *)arg2;
+    argv[3] = NULL;
+    return start_mon_argv(s, timeout_ms, dir, argv);
 }
 
 /* Wait for the child to end; its exit status, or -1. */

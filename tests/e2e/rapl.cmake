@@ -1,7 +1,7 @@
 # RAPL encoder / reply parser / link end to end: the real fbrlsim binary on a pty,
 # driven by the link through the POSIX uart backend (label e2e).
 if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
-  foreach(prog rapl_e2e_commands link_e2e_faults link_e2e_multi)
+  foreach(prog rapl_e2e_commands link_e2e_faults link_e2e_multi link_e2e_fair)
     if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${prog}.c)
       add_executable(${prog} ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${prog}.c)
       target_include_directories(${prog} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/e2e)
@@ -26,5 +26,9 @@ if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
   if(TARGET link_e2e_multi)
     add_test(NAME link_e2e_multi COMMAND link_e2e_multi $<TARGET_FILE:fbrlsim>)
     set_tests_properties(link_e2e_multi PROPERTIES LABELS e2e TIMEOUT 120)
+  endif()
+  if(TARGET link_e2e_fair)
+    add_test(NAME link_e2e_fair COMMAND link_e2e_fair $<TARGET_FILE:fbrlsim>)
+    set_tests_properties(link_e2e_fair PROPERTIES LABELS e2e TIMEOUT 120)
   endif()
 endif()

@@ -120,6 +120,7 @@ static void spawn(simp *p, const char *const *extra)
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
         raw_fd(p->fd);
+        expect_greeting(p);
     }
 }
 
@@ -194,7 +195,7 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     return n;
 }
 
-/* A TCP client is greeted with the prompt as soon as it connects. */
+/* A client is greeted with the prompt as soon as it connects (TCP) or opens the pty. */
 static void expect_greeting(simp *p)
 {
     size_t n = read_until(p, g_buf, sizeof g_buf, ">>", TIMEOUT);
@@ -330,6 +331,13 @@ static void t_echo_prompt(void **st)
         strcat(want, "1,5\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>");
         assert_string_equal(raw(&p, "JOINT,1,5"), want);
     }
+    /* a terminal program that opens the pty again is greeted again */
+    close(p.fd);
+    p.fd = open(p.path, O_RDWR | O_NOCTTY);
+    assert_true(p.fd >= 0);
+    raw_fd(p.fd);
+    expect_greeting(&p);
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
     stop(&p);
 }
 
@@ -1323,6 +1331,14 @@ static void *late_probe(void *arg)
     return NULL;
 }
 
+/* fbrlsim hands over at most about 1 ms of characters at once (at least 2) when the OS
+ * woke it late (docs/fbrlsim.md): a fixed allowance, not one that grows with lateness. */
+static size_t burst(double rate)
+{
+    double c = ceil(0.001 * rate);
+    return c > 2 ? (size_t)c : 2;
+}
+
 static double lateness(void)
 {
     return 2.0 * g_probe_late > LATENESS ? 2.0 * g_probe_late : LATENESS;
@@ -1347,14 +1363,19 @@ static void arr_add(arrivals *a, double t, size_t n)
     a->n[a->k++] = n;
 }
 
-/* The most units that arrived in any window of length w (windows start at an arrival). */
+/* The most units that arrived in any window of length w that starts at a read, not
+ * counting that read's own units: a read takes everything waiting, so what it brought
+ * may have piled up while this test or the OS was late, but what the later reads
+ * bring cannot have arrived before it. */
 static size_t max_window(const arrivals *a, double w)
 {
     size_t i, j = 0, sum = 0, best = 0;
-    for (i = 0; i < a->k; i++) {
+    for (i = 1; i < a->k; i++) {
         sum += a->n[i];
-        while (a->t[i] - a->t[j] > w)
-            sum -= a->n[j++];
+        while (j + 1 <= i && a->t[i] - a->t[j] > w) {
+            j++;
+            sum -= a->n[j];
+        }
         if (sum > best)
             best = sum;
     }
@@ -1367,7 +1388,7 @@ static double g_flood_t0; /* just before flood()'s first write: no byte left ear
 
 static void flood(simp *p, const char *line, int count, arrivals *bytes, arrivals *prompts)
 {
-    char out[64];
+    char out[8192];
     size_t len = strlen(line), sent = 0, total = (size_t)count * (len + 1), got_prompts = 0;
     char *all = malloc(total);
     double end = now_s() + 60.0;
@@ -1451,7 +1472,7 @@ static void t_strict(void **st)
         /* controller -> host, saturated: the host sends without waiting for echoes */
         flood(&p, "TYPEI 1", cmds, &out, &prompts);
         most = max_window(&out, WINDOW);
-        allowed = (size_t)floor((WINDOW + lateness()) * rate) + 1;
+        allowed = (size_t)floor((WINDOW + lateness()) * rate) + 1 + burst(rate);
         print_message("%6ld baud, output: at most %zu bytes in a 100 ms window (N/10 per 100 ms = %.0f, "
                       "ratio %.3f; allowed with %.0f ms lateness %zu); fastest echo %.3f ms >= %.3f ms\n",
                       bauds[b], most, rate * WINDOW, most / (rate * WINDOW), lateness() * 1e3, allowed,
@@ -1473,10 +1494,10 @@ static void t_strict(void **st)
         cmds = (int)(rate * 0.6 / 9.0);
         flood(&p, "SPEED 50", cmds, &in, &inprompts);
         most = max_window(&inprompts, WINDOW);
-        allowed = (size_t)floor(((WINDOW + lateness()) * rate) / 9.0) + 1;
-        print_message("%6ld baud, input: at most %zu commands in a 100 ms window: %zu bytes between the first "
-                      "and the last (N/10 per 100 ms = %.0f, ratio %.3f; allowed %zu commands)\n",
-                      bauds[b], most, (most - 1) * 9, rate * WINDOW, (most - 1) * 9 / (rate * WINDOW), allowed);
+        allowed = (size_t)floor(((WINDOW + lateness()) * rate + (double)burst(rate)) / 9.0) + 1;
+        print_message("%6ld baud, input: at most %zu commands = %zu bytes taken in a 100 ms window (N/10 per 100 ms "
+                      "= %.0f, ratio %.3f; allowed with %.0f ms lateness %zu commands)\n",
+                      bauds[b], most, most * 9, rate * WINDOW, most * 9 / (rate * WINDOW), lateness() * 1e3, allowed);
         if (most > allowed)
             fail_msg("%ld baud: %zu commands of 9 bytes in 100 ms, the line carries %.0f bytes", bauds[b], most,
                      rate * WINDOW);
@@ -1825,6 +1846,7 @@ static void t_embed(void **st)
     p.fd = open(link, O_RDWR | O_NOCTTY);
     assert_true(p.fd >= 0);
     raw_fd(p.fd);
+    expect_greeting(&p); /* opening the pty is its connect */
     ok(&p, "NOHELP");
     ok(&p, "HOME");
     ok(&p, "JOINT 1,45");
@@ -1861,6 +1883,99 @@ static void t_embed(void **st)
     assert_non_null(strstr(e, "bogus"));
 }
 
+/* ---- arm models ------------------------------------------------------ */
+
+/* fbrlsim --model a465: six axes in every readout, the A465's limits, a yaw the arm
+ * chooses, precision points of six pulses, and the model kept in the state file. */
+static void t_model_a465(void **st)
+{
+    const char *state = tmp("a465.state");
+    const char *const opts[] = { "--time-scale", "200", "--model", "a465", "--state", state, NULL };
+    const char *const plain[] = { "--time-scale", "200", "--state", state, NULL };
+    simp p;
+    double w[6];
+    const char *r, *x;
+    long pl[6];
+    (void)st;
+    start(&p, opts);
+    assert_non_null(strstr(cmd(&p, "STATUS"), "A465 Robot"));
+    assert_string_equal(status_line(&p, "AXIS#"), "AXIS#        1 2 3 4 5 6");
+    ok(&p, "HOME");
+    ok(&p, "READY");
+    r = cmd(&p, "W2");
+    x = strstr(r, "PULSES   ");
+    assert_non_null(x);
+    assert_int_equal(sscanf(x + 6, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]), 6);
+    assert_non_null(strstr(r, "AX#6"));
+    assert_non_null(strstr(r, "JT#6"));
+    /* READY: upper arm upright, forearm and tool level: 406 mm out, 635 mm up */
+    at(&p, 406.0 / 25.4, 0, 635.0 / 25.4, 0, 0);
+    /* its limits: wrist bend 105, tool roll 180 (048 for the sixth joint) */
+    err(&p, "JOINT 5,106", 46);
+    err(&p, "JOINT 6,181", 48);
+    err(&p, "JOINT 7,1", 65);
+    ok(&p, "JOINT 5,-30");
+    ok(&p, "FINISH");
+    /* six joints for MA (radians); five are not enough */
+    err(&p, "MA 0,0,1.5,0,0", 13);
+    ok(&p, "MA 0.2,0.3,1.2,0.1,-0.5,0.4");
+    ok(&p, "FINISH");
+    ok(&p, "HERE #Q");
+    ok(&p, "HERE Q");
+    /* a yaw of its own: the waist points one way, the tool another */
+    ok(&p, "POINT T,16,4,14,10,-45,20");
+    ok(&p, "MOVE T");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[0] - 16) < 1e-3 && fabs(w[1] - 4) < 1e-3 && fabs(w[2] - 14) < 1e-3);
+    assert_true(fabs(w[3] - 10) < 1e-3 && fabs(w[4] + 45) < 1e-3 && fabs(w[5] - 20) < 1e-3);
+    ok(&p, "MOVE T,S");
+    ok(&p, "MOVE #Q");
+    ok(&p, "FINISH");
+    r = cmd(&p, "LISTL #Q");
+    assert_int_equal(sscanf(r + 9, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]), 6);
+    assert_true(labs(pl[5] - lround(0.4 * 180.0 / M_PI * 138.89)) <= 1);
+    stop(&p);
+    {
+        char text[4096];
+        size_t n;
+        FILE *f = fopen(state, "r");
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_int_equal(strncmp(text, "FBRLSIM-STATE 1\nMODEL A465\n", strlen("FBRLSIM-STATE 1\nMODEL A465\n")), 0);
+    }
+    /* without --model the state file's arm comes back */
+    start(&p, plain);
+    assert_non_null(strstr(cmd(&p, "STATUS"), "A465 Robot"));
+    ok(&p, "HOME");
+    ok(&p, "MOVE Q");
+    ok(&p, "FINISH");
+    stop(&p);
+    {
+        /* another arm's memory is refused: --model a255 on an A465 file, and an old
+         * file without MODEL (an A255's) under --model a465 */
+        const char *old = tmp("old.state");
+        FILE *f = fopen(old, "w");
+        int i;
+        fputs("FBRLSIM-STATE 1\nSPEED 40\nJOINTS 0 90 -90 0 0\n", f);
+        fclose(f);
+        for (i = 0; i < 2; i++) {
+            int pid = fork(), stt;
+            if (pid == 0) {
+                int dn = open("/dev/null", O_WRONLY);
+                dup2(dn, 1);
+                dup2(dn, 2);
+                execl(FBRLSIM_PATH, FBRLSIM_PATH, "--model", i ? "a465" : "a255", "--state", i ? old : state,
+                      (char *)NULL);
+                _exit(127);
+            }
+            waitpid(pid, &stt, 0);
+            assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+        }
+    }
+}
+
 static int cleanup(void)
 {
     char c[128];
@@ -1894,6 +2009,7 @@ int main(int argc, char **argv)
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
     GROUP("embed", cmocka_unit_test(t_embed))
+    GROUP("model", cmocka_unit_test(t_model_a465))
     cleanup();
     return rc;
 }

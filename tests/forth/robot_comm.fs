@@ -33,13 +33,13 @@ T{ OUT-CLEAR .COMM OUT" 38400 baud, 8 data bits, parity N, 1 stop bit" -> TRUE }
 T{ ASC a EMIT-COM GET-COM -> 65 }T
 T{ S" bc" SWAP TYPE-COM GET-COM GET-COM -> 66 67 }T
 T{ -123 .-COM GET-COM GET-COM GET-COM GET-COM -> 45 49 50 51 }T
-T{ 2.5E0 F.-COM GET-COM GET-COM GET-COM GET-COM GET-COM GET-COM -> 50 46 53 48 48 48 }T
+T{ 2.5E0 F.-COM GET-COM GET-COM GET-COM -> 50 46 53 }T
 T{ ASC Z DIRECT-WRITE-COM GET-COM -> 90 }T
 T{ 17 ' EMIT-COM CATCH NIP -> -24 }T
 \ RESET-COMM erases what was typed (the controller never executes it) and resyncs
 T{ 1 RESET-COMM -> }T  LOG: NOHELP
 T{ GET-COM -> -1 }T
-T{ LOG-COUNT" ABC-1232.5000Z" -> 0 }T
+T{ LOG-COUNT" ABC-1232.5Z" -> 0 }T
 \ a whole command typed raw: the controller runs it; RESET-COMM drops its reply
 T{ S" SPEED 20" SWAP TYPE-COM 13 EMIT-COM -> }T
 T{ 1 RESET-COMM -> }T  LOG: SPEED 20

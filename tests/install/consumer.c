@@ -3,6 +3,10 @@
 #include <stdio.h>
 #include <string.h>
 #include "fbrl/fbrl.h"
+#include "fbrl/uart_posix.h" /* the OS backends are not in fbrl.h (it stays freestanding) */
+#ifdef FBRL_HAVE_SERIALPORT
+#include "fbrl/uart_serialport.h"
+#endif
 
 static char out[256];
 static size_t used;

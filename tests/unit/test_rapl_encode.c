@@ -1,6 +1,9 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <math.h>
 #include <cmocka.h>
@@ -30,36 +33,36 @@ static golden goldens[] = {
     G(FBRL_RAPL_ACTUAL, 0, "ACTUAL P1", "/152 P1", S("p1")),
     G(FBRL_RAPL_ACTUAL, 0, "ACTUAL #PP", "/152 #PP", S("#pp")),
     G0(FBRL_RAPL_ALIGN, "ALIGN", "/001"),
-    G(FBRL_RAPL_APPRO, 0, "APPRO P1,2.5000", "/002 P1,2.5000", S("P1"), R(2.5)),
-    G(FBRL_RAPL_APPRO, 1, "APPRO P1,-1.0000,S", "/002 P1,-1.0000,S", S("P1"), R(-1.0)),
+    G(FBRL_RAPL_APPRO, 0, "APPRO P1,2.5", "/002 P1,2.5", S("P1"), R(2.5)),
+    G(FBRL_RAPL_APPRO, 1, "APPRO P1,-1,S", "/002 P1,-1,S", S("P1"), R(-1.0)),
     G(FBRL_RAPL_ARM, 0, "ARM OFF", "/142 OFF", S("off")),
     G0(FBRL_RAPL_CLOSE, "CLOSE", "/038"),
     G(FBRL_RAPL_CLOSE, 0, "CLOSE 30", "/038 30", I(30)),
     G(FBRL_RAPL_CONFIG, 0, "CONFIG 0,9600,N,8,1,X,1", "/110 0,9600,N,8,1,X,1",
       I(0), I(9600), S("n"), I(8), I(1), S("X"), I(1)),
-    G(FBRL_RAPL_DEPART, 0, "DEPART 1.2500", "/004 1.2500", R(1.25)),
-    G(FBRL_RAPL_DEPART, 1, "DEPART 1.2500,S", "/004 1.2500,S", R(1.25)),
+    G(FBRL_RAPL_DEPART, 0, "DEPART 1.25", "/004 1.25", R(1.25)),
+    G(FBRL_RAPL_DEPART, 1, "DEPART 1.25,S", "/004 1.25,S", R(1.25)),
     G0(FBRL_RAPL_FINISH, "FINISH", "/010"),
     G(FBRL_RAPL_FLASH, 0, "FLASH 5", "/084 5", I(5)),
-    G(FBRL_RAPL_GAIN, 0, "GAIN 0,1.5000", "/150 0,1.5000", I(0), R(1.5)),
+    G(FBRL_RAPL_GAIN, 0, "GAIN 0,1.5", "/150 0,1.5", I(0), R(1.5)),
     G(FBRL_RAPL_GAIN, 0, "GAIN 2", "/150 2", I(2)),
-    G(FBRL_RAPL_GRIP, 0, "GRIP 0.7500", "/039 0.7500", R(0.75)),
-    G(FBRL_RAPL_GRIP, 0, "GRIP 1.0000,40", "/039 1.0000,40", R(1.0), I(40)),
+    G(FBRL_RAPL_GRIP, 0, "GRIP 0.75", "/039 0.75", R(0.75)),
+    G(FBRL_RAPL_GRIP, 0, "GRIP 1,40", "/039 1,40", R(1.0), I(40)),
     G0(FBRL_RAPL_HALT, "HALT", "/154"),
     G(FBRL_RAPL_HERE, 0, "HERE HOLD", "/024 HOLD", S("Hold")),
     G0(FBRL_RAPL_HOME, "HOME", "/020"),
-    G(FBRL_RAPL_JOG, 0, "JOG 1.0000,-2.0000,0.0001", "/005 1.0000,-2.0000,0.0001", R(1), R(-2), R(0.0001)),
-    G(FBRL_RAPL_JOINT, 0, "JOINT 3,-45.0000", "/006 3,-45.0000", I(3), R(-45.0)),
+    G(FBRL_RAPL_JOG, 0, "JOG 1,-2,0.0001", "/005 1,-2,0.0001", R(1), R(-2), R(0.0001)),
+    G(FBRL_RAPL_JOINT, 0, "JOINT 3,-45", "/006 3,-45", I(3), R(-45.0)),
     G0(FBRL_RAPL_LIMP, "LIMP", "/007"),
     G(FBRL_RAPL_LIMP, 0, "LIMP 2,3", "/007 2,3", I(2), I(3)),
     G(FBRL_RAPL_LOCK, 0, "LOCK 1,4", "/009 1,4", I(1), I(4)),
-    G(FBRL_RAPL_MA, 1, "MA 0.0000,0.0000,0.0000,0.0000,0.0000,S", "/132 0.0000,0.0000,0.0000,0.0000,0.0000,S",
+    G(FBRL_RAPL_MA, 1, "MA 0,0,0,0,0,S", "/132 0,0,0,0,0,S",
       R(0), R(0), R(0), R(0), R(0)),
-    G(FBRL_RAPL_MA, 0, "MA 0.0000,1.5708,-1.5708,0.0000,0.1000", "/132 0.0000,1.5708,-1.5708,0.0000,0.1000",
+    G(FBRL_RAPL_MA, 0, "MA 0,1.5708,-1.5708,0,0.1", "/132 0,1.5708,-1.5708,0,0.1",
       R(0), R(1.5707963), R(-1.5707963), R(0), R(0.1)),
     G0(FBRL_RAPL_MANUAL, "MANUAL", "/045"),
     G(FBRL_RAPL_MANUAL, 0, "MANUAL CYL", "/045 CYL", S("cyl")),
-    G(FBRL_RAPL_MI, 1, "MI 0.0100,0.0000,0.0000,0.0000,0.0000,S", "/131 0.0100,0.0000,0.0000,0.0000,0.0000,S",
+    G(FBRL_RAPL_MI, 1, "MI 0.01,0,0,0,0,S", "/131 0.01,0,0,0,0,S",
       R(0.01), R(0), R(0), R(0), R(0)),
     G(FBRL_RAPL_MOTOR, 0, "MOTOR 1,-200", "/011 1,-200", I(1), I(-200)),
     G(FBRL_RAPL_MOVE, 0, "MOVE P2", "MOVE P2", S("P2")),
@@ -72,8 +75,8 @@ static golden goldens[] = {
     G0(FBRL_RAPL_OPEN, "OPEN", "/040"),
     G(FBRL_RAPL_OPEN, 0, "OPEN 50", "/040 50", I(50)),
     G(FBRL_RAPL_OUTPUT, 0, "OUTPUT -3,5", "/089 -3,5", I(-3), I(5)),
-    G(FBRL_RAPL_POINT, 0, "POINT A,10.0000,0.0000,5.0000,0.0000,-90.0000,0.0000",
-      "/050 A,10.0000,0.0000,5.0000,0.0000,-90.0000,0.0000", S("A"), R(10), R(0), R(5), R(0), R(-90), R(0)),
+    G(FBRL_RAPL_POINT, 0, "POINT A,10,0,5,0,-90,0",
+      "/050 A,10,0,5,0,-90,0", S("A"), R(10), R(0), R(5), R(0), R(-90), R(0)),
     G(FBRL_RAPL_POINT, 0, "POINT #B,100,-200,300,0,22", "/050 #B,100,-200,300,0,22",
       S("#b"), I(100), I(-200), I(300), I(0), I(22)),
     G0(FBRL_RAPL_READY, "READY", "/015"),
@@ -105,8 +108,8 @@ static golden goldens[] = {
     G(FBRL_RAPL_XCAL, 0, "XCAL 6", "/157 6", I(6)),
     G(FBRL_RAPL_XHOME, 0, "XHOME 6", "/158 6", I(6)),
     G(FBRL_RAPL_XZERO, 0, "XZERO 6", "/159 6", I(6)),
-    G(FBRL_RAPL_ASSIGN, 0, "V1=2.5000", "V1=2.5000", S("v1"), R(2.5)),
-    G(FBRL_RAPL_ASSIGN, 0, "N=7.0000", "N=7.0000", S("N"), I(7)),
+    G(FBRL_RAPL_ASSIGN, 0, "V1=2.5", "V1=2.5", S("v1"), R(2.5)),
+    G(FBRL_RAPL_ASSIGN, 0, "N=7", "N=7", S("N"), I(7)),
 };
 
 static void every_command_encodes_in_both_forms(void **state)
@@ -167,14 +170,15 @@ static void table_is_complete_and_lookups_work(void **state)
     assert_false(fbrl_rapl_cmd_info(FBRL_RAPL_W2)->flags & FBRL_RAPL_F_STREAM);
 }
 
-static void reals_have_four_decimals_and_no_exponent(void **state)
+static void reals_are_short_and_have_no_exponent(void **state)
 {
     (void)state;
     static const struct { double v; const char *txt; } cases[] = {
-        {0.0, "0.0000"}, {-0.0, "0.0000"}, {-0.00004, "0.0000"}, {0.00005, "0.0001"},
-        {-0.00005, "-0.0001"}, {1e-9, "0.0000"}, {123.45678, "123.4568"}, {-7.5, "-7.5000"},
-        {999999.9999, "999999.9999"}, {-999999.9999, "-999999.9999"}, {1e5, "100000.0000"},
-        {0.1, "0.1000"}, {2.675, "2.6750"},
+        {0.0, "0"}, {-0.0, "0"}, {-0.00004, "0"}, {0.00005, "0.0001"},
+        {-0.00005, "-0.0001"}, {1e-9, "0"}, {123.45678, "123.4568"}, {-7.5, "-7.5"},
+        {999999.9999, "999999.9999"}, {-999999.9999, "-999999.9999"}, {1e5, "100000"},
+        {0.1, "0.1"}, {2.675, "2.675"}, {-0.0125, "-0.0125"}, {10.0, "10"}, {0.99996, "1"},
+        {-90.0, "-90"}, {1.20004, "1.2"}, {0.0001, "0.0001"}, {0.001, "0.001"},
     };
     char buf[32];
     size_t len;
@@ -189,10 +193,67 @@ static void reals_have_four_decimals_and_no_exponent(void **state)
     assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, -INFINITY), FBRL_ENONFINITE);
     assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, 1e6), FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_format_real(buf, sizeof buf, &len, -1e300), FBRL_ERANGE);
-    assert_int_equal(fbrl_rapl_format_real(buf, 6, &len, 1.5), FBRL_ENOSPC);
-    assert_int_equal(fbrl_rapl_format_real(buf, 7, &len, 1.5), FBRL_OK);
+    assert_int_equal(fbrl_rapl_format_real(buf, 3, &len, 1.5), FBRL_ENOSPC);
+    assert_int_equal(fbrl_rapl_format_real(buf, 4, &len, 1.5), FBRL_OK);
     assert_int_equal(fbrl_rapl_format_real(NULL, 7, &len, 1.5), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_format_real(buf, 0, &len, 1.5), FBRL_EINVAL);
+}
+
+/* xorshift64*: a fixed sequence, so a failure repeats. */
+static uint64_t rng_next(uint64_t *s)
+{
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return *s * 2685821657736338717ull;
+}
+
+/* The controller reads a number as the emulator does (sim_cmd.c e_primary): the
+ * digits with strtod. For random values over every magnitude, the short text gives the
+ * very value the four-decimal text ("%.4f", the old encoding) gives, and it is that
+ * text with its trailing zeros (and a bare dot) cut off. */
+static void short_reals_read_back_as_four_decimals(void **state)
+{
+    (void)state;
+    uint64_t seed = 0x9e3779b97f4a7c15ull;
+    size_t saved = 0, total = 0;
+    for (int k = 0; k < 200000; k++) {
+        uint64_t r = rng_next(&seed);
+        double mag = pow(10.0, (double)(r % 11u) - 5.0); /* 1e-5 .. 1e5 */
+        double v = (double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 10.0 * mag;
+        switch (r >> 60) {
+        case 0: v = floor(v); break;                   /* whole numbers */
+        case 1: v = floor(v * 100.0) / 100.0; break;   /* two decimals */
+        case 2: v = floor(v * 10000.0) / 10000.0; break; /* exactly four */
+        default: break;
+        }
+        if ((r >> 59) & 1u)
+            v = -v;
+        if (v > FBRL_RAPL_REAL_MAX || v < -FBRL_RAPL_REAL_MAX)
+            continue;
+        char shortest[32], four[48];
+        size_t len;
+        assert_int_equal(fbrl_rapl_format_real(shortest, sizeof shortest, &len, v), FBRL_OK);
+        snprintf(four, sizeof four, "%.4f", v);
+        if (strcmp(four, "-0.0000") == 0)
+            memmove(four, four + 1, strlen(four));
+        if (strtod(shortest, NULL) != strtod(four, NULL)) {
+            print_error("%.17g: '%s' reads %.17g, '%s' reads %.17g\n", v, shortest, strtod(shortest, NULL), four,
+                        strtod(four, NULL));
+            fail();
+        }
+        /* shortest = four without trailing zeros */
+        size_t n4 = strlen(four);
+        while (four[n4 - 1] == '0')
+            n4--;
+        if (four[n4 - 1] == '.')
+            n4--;
+        assert_int_equal(len, n4);
+        assert_memory_equal(shortest, four, n4);
+        saved += strlen(four) - len;
+        total += strlen(four);
+    }
+    assert_true(saved > 0 && total > 0);
 }
 
 static void names_are_validated(void **state)
@@ -301,7 +362,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_command_encodes_in_both_forms),
         cmocka_unit_test(table_is_complete_and_lookups_work),
-        cmocka_unit_test(reals_have_four_decimals_and_no_exponent),
+        cmocka_unit_test(reals_are_short_and_have_no_exponent),
+        cmocka_unit_test(short_reals_read_back_as_four_decimals),
         cmocka_unit_test(names_are_validated),
         cmocka_unit_test(arguments_are_checked),
         cmocka_unit_test(longest_line_fits_line_max),

@@ -184,6 +184,23 @@ static void offline_words_throw_a_clear_error(void **state)
     }
 }
 
+/* The safe stop offline: nothing to halt, said so in the report, nothing thrown (a robot
+ * word that failed just before does not change that). */
+static void safe_stop_offline(void **state)
+{
+    fixture *f = *state;
+    fbrl_robot_stop so;
+    assert_int_equal(fbrl_robot_safe_stop(&f->r, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_safe_stop(NULL, &so), FBRL_EINVAL);
+    throws(f, "7 OUTPORT", OFFLINE_CODE);
+    assert_int_equal(fbrl_robot_safe_stop(&f->r, &so), FBRL_EOFFLINE);
+    assert_int_equal(so.result, FBRL_EOFFLINE);
+    assert_int_equal(so.halted, 0);
+    assert_int_equal(so.switched_off, 0);
+    assert_int_equal(fbrl_robot_lost(&f->r), 0);
+    assert_int_equal(fbrl_robot_set_relink(NULL, NULL, NULL), FBRL_EINVAL);
+}
+
 static void print_loc_needs_the_port(void **state)
 {
     fixture *f = *state;
@@ -323,9 +340,9 @@ static void send_words_build_a_line(void **state)
     fixture *f = *state;
     assert_int_equal(ev(f, "CREATE-LOC PS  1E0 -2.5E0 3E0 0E0 -90E0 45E0 PS DEFINE-LOC"), FBRL_OK);
     assert_int_equal(ev(f, "2 SEND-COM S\" PX\" SEND-TEXT SEND-COMMA 1.5E0 SEND-REAL SEND-STRT"), FBRL_OK);
-    assert_string_equal(f->r.line, "APPRO PX,1.5000,S");
+    assert_string_equal(f->r.line, "APPRO PX,1.5,S");
     assert_int_equal(ev(f, "50 SEND-COM S\" PY\" SEND-TEXT SEND-COMMA PS SEND-LOC"), FBRL_OK);
-    assert_string_equal(f->r.line, "POINT PY,1.0000,-2.5000,3.0000,0.0000,-90.0000,45.0000");
+    assert_string_equal(f->r.line, "POINT PY,1,-2.5,3,0,-90,45");
     assert_int_equal(ev(f, "6 SEND-COM 1 SEND-INT SEND-COMMA -30 SEND-INT"), FBRL_OK);
     assert_string_equal(f->r.line, "JOINT 1,-30");
     assert_int_equal(ev(f, "20 SEND-COM"), FBRL_OK);
@@ -468,6 +485,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(every_word_has_help, setup, teardown),
         cmocka_unit_test_setup_teardown(offline_words_throw_a_clear_error, setup, teardown),
         cmocka_unit_test_setup_teardown(print_loc_needs_the_port, setup, teardown),
+        cmocka_unit_test_setup_teardown(safe_stop_offline, setup, teardown),
         cmocka_unit_test_setup_teardown(arguments_are_checked_before_anything_is_sent, setup, teardown),
         cmocka_unit_test_setup_teardown(getreal_getint_getstring, setup, teardown),
         cmocka_unit_test_setup_teardown(parameters_come_from_the_stacks_or_the_line, setup, teardown),

@@ -23,7 +23,7 @@ struct end {
     uint8_t rxm[64], txm[64];
     end *peer;
     line *ln;
-    int kicks, services, closed;
+    int kicks, services, closed, flushes;
     fbrl_status configure_result, service_result;
     fbrl_uart_config applied;
 };
@@ -74,12 +74,24 @@ static fbrl_status lb_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops lb_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close};
+static const fbrl_uart_ops lb_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close, 0, 0};
+
+/* A polled backend's flush: the transmitter's bytes go onto the wire now, no waiting. */
+static fbrl_status lb_flush(void *ctx)
+{
+    end *e = ctx;
+    e->flushes++;
+    while (pump(e) > 0)
+        ;
+    return e->service_result;
+}
+
+static const fbrl_uart_ops lb_flush_ops = {lb_configure, lb_kick, lb_service, lb_now, lb_close, lb_flush, 0};
 
 static line the_line;
 static end A, B;
 
-static void open_pair(fbrl_flow flow)
+static void open_pair_ops(fbrl_flow flow, const fbrl_uart_ops *ops)
 {
     fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
     cfg.flow = flow;
@@ -90,8 +102,20 @@ static void open_pair(fbrl_flow flow)
     the_line.us_per_byte = 1000; /* about 9600 baud */
     A.peer = &B, B.peer = &A;
     A.ln = B.ln = &the_line;
-    assert_int_equal(fbrl_uart_init(&A.u, &lb_ops, &A, A.rxm, sizeof A.rxm, A.txm, sizeof A.txm, &cfg), FBRL_OK);
-    assert_int_equal(fbrl_uart_init(&B.u, &lb_ops, &B, B.rxm, sizeof B.rxm, B.txm, sizeof B.txm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_uart_init(&A.u, ops, &A, A.rxm, sizeof A.rxm, A.txm, sizeof A.txm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_uart_init(&B.u, ops, &B, B.rxm, sizeof B.rxm, B.txm, sizeof B.txm, &cfg), FBRL_OK);
+}
+
+static void open_pair(fbrl_flow flow)
+{
+    open_pair_ops(flow, &lb_ops);
+}
+
+static int setup_flush(void **state)
+{
+    (void)state;
+    open_pair_ops(FBRL_FLOW_XONXOFF, &lb_flush_ops);
+    return 0;
 }
 
 static int setup_xon(void **state)
@@ -429,6 +453,41 @@ static void reading_a_full_ring_kicks_the_backend(void **state)
     assert_int_equal(fbrl_uart_rx_room(NULL), 0);
 }
 
+/* A polled backend gets the bytes within the write call (ops->flush): no service call,
+ * no read needed, the peer has them when write returns; and the XON a read makes due
+ * leaves within that read, even when the read found its bytes in the ring. */
+static void write_hands_bytes_over_at_once(void **state)
+{
+    (void)state;
+    const char msg[] = "SPEED 50\r";
+    uint8_t buf[64];
+    size_t n;
+    assert_int_equal(fbrl_uart_write(&A.u, msg, sizeof msg - 1, &n, 0), FBRL_OK);
+    assert_int_equal(A.services, 0);
+    assert_int_equal(A.flushes, 1);
+    assert_int_equal(fbrl_uart_tx_pending(&A.u), 0);
+    assert_int_equal(fbrl_ring_read(&B.u.rx, buf, sizeof buf, &n), FBRL_OK);
+    assert_int_equal(n, sizeof msg - 1);
+    assert_memory_equal(buf, msg, n);
+    assert_int_equal(fbrl_uart_write(&A.u, msg, 0, &n, 0), FBRL_OK); /* nothing queued: no flush */
+    assert_int_equal(A.flushes, 1);
+    for (int i = 0; i < 48; i++) /* B passes its high-water mark: XOFF goes out */
+        fbrl_uart_isr_rx(&B.u, 'a');
+    assert_int_equal(fbrl_uart_isr_tx(&B.u), FBRL_XOFF);
+    assert_int_equal(fbrl_uart_read(&B.u, buf, 32, &n, 0), FBRL_OK); /* down to 1/4 */
+    assert_int_equal(n, 32);
+    assert_int_equal(B.services, 0);
+    assert_true(B.flushes >= 1);
+    assert_int_equal(fbrl_ring_get(&A.u.rx, buf), FBRL_EEMPTY); /* the XON was obeyed, not stored */
+    fbrl_uart_counters c;
+    assert_int_equal(fbrl_uart_get_counters(&B.u, &c), FBRL_OK);
+    assert_int_equal(c.xoff_sent, 1);
+    assert_int_equal(fbrl_uart_isr_tx(&B.u), -1); /* the XON is no longer due: it left */
+    A.service_result = FBRL_EDISCONNECTED; /* the line is gone: the write says so */
+    assert_int_equal(fbrl_uart_write(&A.u, msg, sizeof msg - 1, &n, 0), FBRL_EDISCONNECTED);
+    assert_int_equal(n, sizeof msg - 1);
+}
+
 /* Turning flow control off while we hold the peer off sends the XON it waits for. */
 static void flow_off_releases_the_peer(void **state)
 {
@@ -507,6 +566,7 @@ int main(void)
         cmocka_unit_test_setup(overrun_is_counted_and_xoff_resent, setup_xon),
         cmocka_unit_test_setup(no_flow_control_passes_everything, setup_none),
         cmocka_unit_test_setup(flow_off_releases_the_peer, setup_xon),
+        cmocka_unit_test_setup(write_hands_bytes_over_at_once, setup_flush),
         cmocka_unit_test_setup(reading_a_full_ring_kicks_the_backend, setup_none),
         cmocka_unit_test_setup(line_status_counts, setup_xon),
         cmocka_unit_test_setup(disconnect_after_buffered_bytes, setup_xon),

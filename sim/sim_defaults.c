@@ -1,0 +1,29 @@
+/* sim_defaults.c - the controller at power-up, before its state file is read:
+ * the settings of every part for the arm model already chosen. The state file
+ * (sim_state.c) calls it again when its MODEL line names another arm. */
+#include "sim_internal.h"
+
+#include <string.h>
+
+void sim_defaults(fbrl_sim *s)
+{
+    int i;
+    s->term.last_error = -1;
+    s->arm.speed = 50.0;
+    s->arm.power = 1;
+    s->term.help = 1;
+    s->dev.grip = SIM_GRIP_MAX;
+    s->dev.grip_force = 50.0;
+    for (i = 0; i <= sim_naxes(s); i++)
+        s->arm.gain[i] = 1.0;
+    memcpy(s->arm.q, s->arm.model->ready, (size_t)sim_naxes(s) * sizeof *s->arm.q);
+    memcpy(s->arm.qt, s->arm.q, sizeof s->arm.q);
+    for (i = 0; i < 2; i++) {
+        s->dev.chan[i].baud = 9600;
+        s->dev.chan[i].parity = 'N';
+        s->dev.chan[i].data = 8;
+        s->dev.chan[i].stop = 1;
+        s->dev.chan[i].handshake = i == 0 ? 'X' : 'N';
+        s->dev.chan[i].echo = 1;
+    }
+}
