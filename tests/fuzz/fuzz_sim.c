@@ -27,7 +27,8 @@
 static int serial[2] = { -1, -1 }; /* host -> controller */
 static int control_w = -1;         /* write end of the control "FIFO" */
 
-fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, char *err, size_t errlen)
+fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, const char *model, char *err,
+                       size_t errlen)
 {
     fbrl_sim_options o;
     fbrl_sim *s = NULL;
@@ -37,6 +38,7 @@ fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, char *er
     o.tcp_port = 0;
     o.state_path = state_path;
     o.inputs_path = inputs_path;
+    o.model = model;
     err[0] = 0;
     if (fbrl_sim_create(&s, &o, err, errlen) != FBRL_OK) {
         if (!err[0])
@@ -178,7 +180,7 @@ void fuzz_sim_reload_check(const char *state_path)
     fbrl_sim *s;
     if (!a)
         fuzz_fail("fbrlsim saved no state at %s", state_path);
-    s = fuzz_sim_new(state_path, NULL, err, sizeof err);
+    s = fuzz_sim_new(state_path, NULL, NULL, err, sizeof err);
     if (!s)
         fuzz_fail("the state fbrlsim saved does not load: %s\n---\n%.*s---", err, (int)n1, (const char *)a);
     fuzz_sim_free(s);

@@ -16,8 +16,10 @@ void fuzz_sim_advance(double seconds);
 void fuzz_sim_clock_reset(void);
 
 /* An emulator on a TCP listener nobody connects to, the control FIFO replaced by
- * a pipe the harness writes; NULL with err set when fbrl_sim_create refuses. */
-fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, char *err, size_t errlen);
+ * a pipe the harness writes; model as --model (NULL: the state file's); NULL
+ * with err set when fbrl_sim_create refuses. */
+fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, const char *model, char *err,
+                       size_t errlen);
 void fuzz_sim_free(fbrl_sim *s);
 
 /* Bytes onto the serial line, then the emulator runs (simulated time moving on)

@@ -27,7 +27,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_path(state, sizeof state, "inputs.state");
     fuzz_write_file(inputs, data, head);
     unlink(state);
-    s = fuzz_sim_new(state, inputs, err, sizeof err);
+    s = fuzz_sim_new(state, inputs, NULL, err, sizeof err);
     if (!s) {
         if (strncmp(err, inputs, strlen(inputs)) != 0)
             fuzz_fail("the message does not name the file: %s", err);

@@ -26,7 +26,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fuzz_split(data, size, &head, &typed, &typed_n);
     fuzz_path(state, sizeof state, "state.state");
     fuzz_write_file(state, data, head);
-    s = fuzz_sim_new(state, NULL, err, sizeof err);
+    s = fuzz_sim_new(state, NULL, NULL, err, sizeof err);
     if (!s) {
         after = fuzz_read_file(state, &n);
         if (!after || n != head || (head && memcmp(after, data, head) != 0))
