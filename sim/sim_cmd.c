@@ -3,6 +3,7 @@
  * common checks before a motion command, and RUN, which feeds a program's lines
  * back through the same dispatch. The handlers are in sim_h_*.c by group. */
 #include "sim_cmd.h"
+#include "fbrl/rapl_encode.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -69,77 +70,76 @@ int sim_h_run(fbrl_sim *s, args *a, int *b)
 
 
 typedef struct cmd {
-    const char *name;
-    int token; /* /NNN, or 0 */
+    const char *name; /* its /NNN token: libfbrl's command table (rapl_encode.c) */
     int flags;
     const char *hint;
     handler fn;
 } cmd;
 
 static const cmd cmds[] = {
-    { "ACTUAL", 152, 0, "<LOC>", sim_h_here },
-    { "ALIGN", 1, F_MOTION, "", sim_h_align },
-    { "APPRO", 2, F_MOTION, "<LOC>,<DIST>[,S]", sim_h_appro },
-    { "ARM", 142, 0, "<ON|OFF>", sim_h_arm },
-    { "CLOSE", 38, 0, "[FORCE]", sim_h_close },
-    { "CONFIG", 110, 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", sim_h_config },
-    { "DEPART", 4, F_MOTION, "<DIST>[,S]", sim_h_depart },
-    { "DLOCN", 48, 0, "<LOC>", sim_h_dlocn },
-    { "DVAR", 67, 0, "<VAR>", sim_h_dvar },
-    { "FINISH", 10, 0, "", sim_h_finish },
-    { "FLASH", 84, 0, "[INTERVAL]", sim_h_flash },
-    { "GAIN", 150, 0, "<MOTOR#>[,<VALUE>]", sim_h_gain },
-    { "GRIP", 39, 0, "<DIST>[,FORCE]", sim_h_grip },
-    { "HALT", 154, 0, "", sim_h_halt },
-    { "HELP", 95, 0, "", sim_h_help },
-    { "HERE", 24, 0, "<LOC>", sim_h_here },
-    { "HOME", 20, 0, "", sim_h_home },
-    { "JOG", 5, F_MOTION, "<DX>,<DY>,<DZ>", sim_h_jog },
-    { "JOINT", 6, F_MOTION, "<JOINT#>,<DEGREES>", sim_h_joint },
-    { "LIMP", 7, 0, "[AXIS#,...]", sim_h_limp },
-    { "LISTL", 49, 0, "[LOC]", sim_h_listl },
-    { "LISTV", 69, 0, "[VAR]", sim_h_listv },
-    { "LOCK", 9, 0, "<JOINT#,...>", sim_h_lock },
-    { "MA", 132, F_MOTION, "<J1>,...,<JN>[,S]", sim_h_ma },
-    { "MANUAL", 45, 0, "[JOI|CYL]", sim_h_manual },
-    { "MI", 131, F_MOTION, "<J1>,...,<JN>[,S]", sim_h_mi },
-    { "MOTOR", 11, F_MOTION, "<MOTOR#>,<PULSES>", sim_h_motor },
-    { "MOVE", 0, F_MOTION, "<LOC>[,S]", sim_h_move },
-    { "NOFLASH", 0, 0, "", sim_h_noflash },
-    { "NOHELP", 0, 0, "", sim_h_nohelp },
-    { "NOLIMP", 0, 0, "", sim_h_nolimp },
-    { "NOMANUAL", 0, 0, "", sim_h_nomanual },
-    { "NOTEACH", 0, 0, "", sim_h_noteach },
-    { "OPEN", 40, 0, "[FORCE]", sim_h_open },
-    { "OUTPUT", 89, 0, "<[-]OUT#,...>", sim_h_output },
-    { "POINT", 50, 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", sim_h_point },
-    { "READY", 15, F_MOTION, "", sim_h_ready },
-    { "RUN", 109, F_TOP, "<PROG>[,<COUNT>]", sim_h_run },
-    { "SERIAL", 111, 0, "", sim_h_serial },
-    { "SET", 51, F_RAW, "<LOC1>=<LOC2>", sim_h_set },
-    { "SHIFT", 52, 0, "<LOC>,<DX>,<DY>,<DZ>", sim_h_shift },
-    { "SHIFTA", 53, F_RAW, "<LOC1>,<LOC2>", sim_h_shifta },
-    { "SPEED", 16, 0, "<PERCENT>", sim_h_speed },
-    { "STATUS", 25, 0, "", sim_h_status },
-    { "TEACH", 44, 0, "<NAME>", sim_h_teach },
-    { "TOOL", 54, 0, "[LOC]", sim_h_tool },
-    { "TYPE", 58, F_RAW, "<TEXT>", sim_h_type },
-    { "TYPEI", 59, F_RAW, "<EXPR>", sim_h_typei },
-    { "TYPEV", 60, F_RAW, "<EXPR>", sim_h_typev },
-    { "UNLOCK", 17, 0, "[JOINT#,...]", sim_h_unlock },
-    { "W0", 27, 0, "", sim_h_w0 },
-    { "W1", 29, F_TOP, "", sim_h_w1 },
-    { "W2", 31, 0, "", sim_h_w2 },
-    { "W3", 33, F_TOP, "", sim_h_w3 },
-    { "W4", 35, 0, "", sim_h_w4 },
-    { "W5", 37, F_TOP, "", sim_h_w5 },
-    { "WAIT", 94, 0, "<[-]IN#,...>", sim_h_wait },
-    { "WE1", 28, F_TOP, "", sim_h_we1 },
-    { "WE3", 32, F_TOP, "", sim_h_we3 },
-    { "WE5", 36, F_TOP, "", sim_h_we5 },
-    { "XCAL", 157, 0, "<AXIS#>", sim_h_xcal },
-    { "XHOME", 158, 0, "<AXIS#>", sim_h_xhome },
-    { "XZERO", 159, 0, "<AXIS#>", sim_h_xzero },
+    { "ACTUAL", 0, "<LOC>", sim_h_here },
+    { "ALIGN", F_MOTION, "", sim_h_align },
+    { "APPRO", F_MOTION, "<LOC>,<DIST>[,S]", sim_h_appro },
+    { "ARM", 0, "<ON|OFF>", sim_h_arm },
+    { "CLOSE", 0, "[FORCE]", sim_h_close },
+    { "CONFIG", 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", sim_h_config },
+    { "DEPART", F_MOTION, "<DIST>[,S]", sim_h_depart },
+    { "DLOCN", 0, "<LOC>", sim_h_dlocn },
+    { "DVAR", 0, "<VAR>", sim_h_dvar },
+    { "FINISH", 0, "", sim_h_finish },
+    { "FLASH", 0, "[INTERVAL]", sim_h_flash },
+    { "GAIN", 0, "<MOTOR#>[,<VALUE>]", sim_h_gain },
+    { "GRIP", 0, "<DIST>[,FORCE]", sim_h_grip },
+    { "HALT", 0, "", sim_h_halt },
+    { "HELP", 0, "", sim_h_help },
+    { "HERE", 0, "<LOC>", sim_h_here },
+    { "HOME", 0, "", sim_h_home },
+    { "JOG", F_MOTION, "<DX>,<DY>,<DZ>", sim_h_jog },
+    { "JOINT", F_MOTION, "<JOINT#>,<DEGREES>", sim_h_joint },
+    { "LIMP", 0, "[AXIS#,...]", sim_h_limp },
+    { "LISTL", 0, "[LOC]", sim_h_listl },
+    { "LISTV", 0, "[VAR]", sim_h_listv },
+    { "LOCK", 0, "<JOINT#,...>", sim_h_lock },
+    { "MA", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_ma },
+    { "MANUAL", 0, "[JOI|CYL]", sim_h_manual },
+    { "MI", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_mi },
+    { "MOTOR", F_MOTION, "<MOTOR#>,<PULSES>", sim_h_motor },
+    { "MOVE", F_MOTION, "<LOC>[,S]", sim_h_move },
+    { "NOFLASH", 0, "", sim_h_noflash },
+    { "NOHELP", 0, "", sim_h_nohelp },
+    { "NOLIMP", 0, "", sim_h_nolimp },
+    { "NOMANUAL", 0, "", sim_h_nomanual },
+    { "NOTEACH", 0, "", sim_h_noteach },
+    { "OPEN", 0, "[FORCE]", sim_h_open },
+    { "OUTPUT", 0, "<[-]OUT#,...>", sim_h_output },
+    { "POINT", 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", sim_h_point },
+    { "READY", F_MOTION, "", sim_h_ready },
+    { "RUN", F_TOP, "<PROG>[,<COUNT>]", sim_h_run },
+    { "SERIAL", 0, "", sim_h_serial },
+    { "SET", F_RAW, "<LOC1>=<LOC2>", sim_h_set },
+    { "SHIFT", 0, "<LOC>,<DX>,<DY>,<DZ>", sim_h_shift },
+    { "SHIFTA", F_RAW, "<LOC1>,<LOC2>", sim_h_shifta },
+    { "SPEED", 0, "<PERCENT>", sim_h_speed },
+    { "STATUS", 0, "", sim_h_status },
+    { "TEACH", 0, "<NAME>", sim_h_teach },
+    { "TOOL", 0, "[LOC]", sim_h_tool },
+    { "TYPE", F_RAW, "<TEXT>", sim_h_type },
+    { "TYPEI", F_RAW, "<EXPR>", sim_h_typei },
+    { "TYPEV", F_RAW, "<EXPR>", sim_h_typev },
+    { "UNLOCK", 0, "[JOINT#,...]", sim_h_unlock },
+    { "W0", 0, "", sim_h_w0 },
+    { "W1", F_TOP, "", sim_h_w1 },
+    { "W2", 0, "", sim_h_w2 },
+    { "W3", F_TOP, "", sim_h_w3 },
+    { "W4", 0, "", sim_h_w4 },
+    { "W5", F_TOP, "", sim_h_w5 },
+    { "WAIT", 0, "<[-]IN#,...>", sim_h_wait },
+    { "WE1", F_TOP, "", sim_h_we1 },
+    { "WE3", F_TOP, "", sim_h_we3 },
+    { "WE5", F_TOP, "", sim_h_we5 },
+    { "XCAL", 0, "<AXIS#>", sim_h_xcal },
+    { "XHOME", 0, "<AXIS#>", sim_h_xhome },
+    { "XZERO", 0, "<AXIS#>", sim_h_xzero },
 };
 
 #define NCMDS ((int)(sizeof cmds / sizeof cmds[0]))
@@ -155,11 +155,18 @@ static int lookup(const char *word, const cmd **out)
             || !isdigit((unsigned char)word[3]))
             return SIM_E_COMMAND;
         t = atoi(word + 1);
-        for (i = 0; i < NCMDS; i++)
-            if (cmds[i].token == t) {
-                *out = &cmds[i];
-                return 0;
-            }
+        /* the numbers are the library's: one table for the host and the emulator */
+        for (i = 0; i < FBRL_RAPL_NCMDS; i++) {
+            const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)i);
+            int k;
+            if (!ci->token || ci->token != t)
+                continue;
+            for (k = 0; k < NCMDS; k++)
+                if (!strcmp(cmds[k].name, ci->keyword)) {
+                    *out = &cmds[k];
+                    return 0;
+                }
+        }
         return SIM_E_COMMAND;
     }
     if (!n)

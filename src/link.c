@@ -17,13 +17,22 @@
  * '-' (see docs/link.md): letters go out in lower case for that reason. */
 #include "fbrl/link.h"
 
+#include <math.h>
+
 #define CAN 0x18
 #define BS 0x08
 #define XON 0x11
 
-enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY };
+enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
 enum { ST_MAIN, ST_ERRQ };
 enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
+/* The verify probe's echo "? (k1 triples) ? BS SP BS m m m", parsed byte by byte. */
+enum { PE_START, PE_T1, PE_T2, PE_MARK, PE_DONE, PE_BAD = -1 };
+/* known_err: the controller's LAST ERROR is not known */
+#define ERR_UNKNOWN (-2)
+/* What the controller was last seen doing (fbrl_link_outcome.seen). */
+enum { SEEN_NONE, SEEN_SILENT, SEEN_AMBIGUOUS, SEEN_STARTED, SEEN_BUSY, SEEN_UNREADABLE, SEEN_UNSETTLED,
+       SEEN_SAME_ERROR };
 /* probe_out: what was sent after the CR and not yet answered */
 enum { PR_NONE, PR_IDLE, PR_VERIFY };
 
@@ -39,6 +48,7 @@ void fbrl_link_config_init(fbrl_link_config *c)
     c->max_attempts = 12;
     c->query_reads = 2;
     c->naxes = 5;
+    c->arm = 0;
     c->now_us = 0;
     c->clock_ctx = 0;
     c->on_exec = 0;
@@ -55,6 +65,8 @@ static uint64_t now_us(const fbrl_link *l)
 }
 
 static uint64_t ms(uint32_t v) { return (uint64_t)v * 1000u; }
+
+const fbrl_link_arm fbrl_link_arm_a255 = {5, {200.0, 200.0, 200.0, 44.44, 22.22}, 10.0, 10.0, 10.0, 2.0};
 
 fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg)
 {
@@ -83,6 +95,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     l->ctrl_len = -1;
     l->phase = PH_IDLE;
     l->err_code = -1;
+    l->known_err = ERR_UNKNOWN;
     return FBRL_OK;
 }
 
@@ -107,14 +120,83 @@ static fbrl_status gave_up(const fbrl_link *l)
     return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT;
 }
 
+/* The run log (cfg.on_exec) of one run of the current line. While STATUS settles a
+ * command's damaged reply, its runs are only counted: the command itself ran before
+ * them and is reported first, once its result is known (settle_end()). */
+static void journal(fbrl_link *l, fbrl_status result)
+{
+    l->cr_pending = 0;
+    if (l->stage == ST_ERRQ) {
+        if (result == FBRL_OK)
+            l->settle_ok++;
+        else if (result == FBRL_EMAYBE)
+            l->settle_maybe++;
+        else
+            l->settle_bad++;
+        return;
+    }
+    if (l->cfg.on_exec)
+        l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
+}
+
+static void report_n(fbrl_link *l, unsigned n, fbrl_status result)
+{
+    for (unsigned k = 0; k < n && l->cfg.on_exec; k++)
+        l->cfg.on_exec(l->cfg.exec_ctx, "STATUS", 6, result);
+}
+
+/* The settling STATUS reads are over: the command is reported first, then the reads,
+ * in the order the controller ran them; the link is back at the command. */
+static void settle_end(fbrl_link *l, fbrl_status result)
+{
+    for (size_t k = 0; k <= l->main_len; k++)
+        l->line[k] = l->main_line[k];
+    l->len = l->main_len;
+    l->kind = l->main_kind;
+    l->attempts = l->main_attempts;
+    l->stage = ST_MAIN;
+    l->cr_pending = 0;
+    if (l->cfg.on_exec)
+        l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
+    report_n(l, l->settle_bad, FBRL_EPROTOCOL);
+    report_n(l, l->settle_maybe, FBRL_EMAYBE);
+    report_n(l, l->settle_ok, FBRL_OK);
+}
+
+/* The command has ended. A failure after a CR that may have taken effect is never
+ * "did not run" (docs/link.md 3.9): it becomes FBRL_EMAYBE, whatever the later step
+ * that failed (a timeout, a lost port, a STATUS read that never got through), and the
+ * cause is kept for fbrl_link_outcome_get(). */
 static fbrl_status finish(fbrl_link *l, fbrl_status st)
 {
-    l->result = st;
+    fbrl_status res = st;
+    l->cause = st == FBRL_ECONTROLLER ? FBRL_OK : st;
+    if (st != FBRL_OK && st != FBRL_ECONTROLLER) {
+        if (l->stage == ST_ERRQ) {
+            /* the command ran; its damaged reply could not be settled */
+            if (l->cr_pending)
+                journal(l, FBRL_EMAYBE);
+            res = l->settle_shaped ? FBRL_ECONTROLLER : FBRL_EMAYBE;
+            l->err_code = -1;
+            l->err_text[0] = '\0';
+            l->seen = SEEN_UNSETTLED;
+            l->known_err = ERR_UNKNOWN;
+            settle_end(l, res);
+        } else if (l->ran || l->maybe || l->cr_pending) {
+            if (l->cr_pending)
+                journal(l, FBRL_EMAYBE);
+            res = FBRL_EMAYBE;
+            l->known_err = ERR_UNKNOWN;
+        }
+    }
+    if (res == FBRL_EMAYBE)
+        l->stats.may_have_run++;
+    l->result = res;
     l->busy = 0;
     l->phase = PH_IDLE;
-    if (st != FBRL_OK && st != FBRL_ECONTROLLER)
+    if (res != FBRL_OK && res != FBRL_ECONTROLLER)
         l->stats.failed++;
-    return st;
+    return res;
 }
 
 /* Marker characters: any two differ in at least two bits, so one flipped bit cannot turn
@@ -224,6 +306,16 @@ static void begin_reply(fbrl_link *l)
     fbrl_rapl_pos_init(&l->pos);
     fbrl_rapl_status_init(&l->st);
     l->t_deadline = now_us(l) + ms(l->timeout_ms);
+    /* the CR goes out now: until proof either way, this line may run */
+    l->cr_pending = 1;
+    l->first_probe = 0;
+    l->pe_state = PE_START;
+    l->rp_first = 1;
+    l->rp_bad = 0;
+    l->rp_eols = 0;
+    l->rp_lines = 0;
+    l->prompt_direct = 0;
+    l->seen = SEEN_SILENT;
 }
 
 /* ---- replies ---- */
@@ -238,6 +330,9 @@ static int error_shaped(const char *s, size_t n)
 static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
 {
     int code;
+    l->rp_lines++;
+    if (flawed)
+        l->rp_bad = 1;
     char text[sizeof l->err_text];
     fbrl_status est = fbrl_rapl_parse_error(s, n, &code, text, sizeof text);
     if (est == FBRL_OK && !flawed) {
@@ -301,6 +396,7 @@ static void feed_reply(fbrl_link *l, uint8_t b)
     fbrl_rapl_event ev = fbrl_rapl_reader_feed(&l->rd, b);
     if (ev == FBRL_RAPL_EV_PROMPT) {
         l->prompt_seen = 1;
+        l->prompt_direct = 1;
     } else if (ev == FBRL_RAPL_EV_LINE) {
         size_t n;
         int flawed;
@@ -343,12 +439,64 @@ static int same_status(const fbrl_rapl_status_info *a, const fbrl_rapl_status_in
     return 1;
 }
 
+#define DEG_TO_RAD 0.017453292519943295
+#define POS_TOL_IN 0.002   /* world x y z against the joints: print rounding is ~1e-4 */
+#define POS_TOL_DEG 0.0003 /* pitch = the sum of three joints, each rounded to 5e-5 */
+#define TOOL_MAX_IN 100.0  /* a longer tool along the tool axis is not believed */
+
+static double wrap180(double d)
+{
+    d = fmod(d, 360.0);
+    if (d > 180.0)
+        d -= 360.0;
+    else if (d <= -180.0)
+        d += 360.0;
+    return d;
+}
+
+/* A position block is self-checking (docs/link.md 3.5): its pulses, joint angles and
+ * world coordinates are printed from one sample of the arm, so they agree through the
+ * pulses per degree and the arm's kinematics. A damaged digit breaks that agreement
+ * (beyond the print resolution), so such a block is believed at once, even while the
+ * arm moves and no two reads are alike. The tool point may lie any distance along the
+ * tool axis (TOOL), so only the part of x y z across that axis is checked. */
+static int pos_consistent(const fbrl_link *l)
+{
+    const fbrl_link_arm *m = l->cfg.arm ? l->cfg.arm : &fbrl_link_arm_a255;
+    const fbrl_rapl_pos *p = &l->pos;
+    unsigned n = m->naxes;
+    if (n != 5 || l->cfg.naxes != n || p->npulses < n || p->njoints < n || p->nworld < 6)
+        return 0;
+    for (unsigned k = 0; k < n; k++) {
+        double want = p->joints[k] * m->ppd[k];
+        if (fabs((double)p->pulses[k] - want) > 0.5 + 5e-5 * m->ppd[k] + 1e-6)
+            return 0;
+    }
+    const double *q = p->joints, *w = p->world;
+    double a2 = q[1] * DEG_TO_RAD, a3 = (q[1] + q[2]) * DEG_TO_RAD, pitch = q[1] + q[2] + q[3];
+    double pr = pitch * DEG_TO_RAD, c0 = cos(q[0] * DEG_TO_RAD), s0 = sin(q[0] * DEG_TO_RAD);
+    double r = m->upper * cos(a2) + m->fore * cos(a3) + m->flange * cos(pr);
+    double z = m->base_h + m->upper * sin(a2) + m->fore * sin(a3) + m->flange * sin(pr);
+    double d[3] = {w[0] - r * c0, w[1] - r * s0, w[2] - z};
+    double axis[3] = {cos(pr) * c0, cos(pr) * s0, sin(pr)};
+    double t = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2], across = 0.0;
+    for (int k = 0; k < 3; k++)
+        across += (d[k] - t * axis[k]) * (d[k] - t * axis[k]);
+    return sqrt(across) <= POS_TOL_IN && t >= -POS_TOL_IN && t <= TOOL_MAX_IN &&
+           fabs(wrap180(w[3] - q[0])) <= POS_TOL_DEG && fabs(wrap180(w[4] - pitch)) <= POS_TOL_DEG &&
+           fabs(wrap180(w[5] - q[4])) <= POS_TOL_DEG;
+}
+
 /* Count agreeing reads: same values and the same number of reply bytes (a dropped
  * digit can leave a well-formed number; it cannot keep the length). A read that
  * disagrees becomes the new reference. True once query_reads reads agree. */
 static int confirmed(fbrl_link *l)
 {
     int same = 0;
+    if (l->kind == FBRL_LINK_REPLY_POS && pos_consistent(l)) {
+        l->stats.self_checked++;
+        return 1;
+    }
     if (l->have_prev && l->after_cr == l->prev_len) {
         switch (l->kind) {
         case FBRL_LINK_REPLY_POS: same = same_pos(&l->pos, &l->prev_pos); break;
@@ -370,86 +518,22 @@ static int confirmed(fbrl_link *l)
     return (unsigned)++l->have_prev >= l->cfg.query_reads;
 }
 
-/* The controller executed the line: judge the reply, repeat a damaged read-only query,
- * or read STATUS for a damaged error line. */
-static fbrl_status executed(fbrl_link *l)
+/* The reply arrived whole (docs/link.md 3.5): it began with the CR's CR LF, every line
+ * ended with CR LF and was undamaged, no byte was lost to a parity error, and the
+ * controller's own prompt ended it (not a probe's echo). A command that prints nothing
+ * else shows "CR LF >>", or "CR LF NNN-TEXT. CR LF >>" when refused: nothing else. */
+static int reply_complete(const fbrl_link *l)
 {
-    fbrl_status st = FBRL_OK;
-    int requery = 0;
-    l->stats.executed++;
-    if (!l->rd.done && l->rd.len > 0) {
-        /* the reply ended in an unfinished line (its CR LF was lost, and the prompt was
-         * found by a probe): an error line "011-LOCATION UNDEFINED.>>" must not pass as
-         * success. Only the error shape counts: the rest of such a line is the damaged
-         * echo of a probe. */
-        size_t n;
-        const char *s = fbrl_rapl_reader_line(&l->rd, &n, 0);
-        if (error_shaped(s, n))
-            l->err_state = ERR_GARBLED;
-    }
-    if (l->err_state == ERR_VALID) {
-        st = FBRL_ECONTROLLER;
-    } else if (l->err_state == ERR_GARBLED) {
-        st = FBRL_EPROTOCOL;
-        requery = l->kind != FBRL_LINK_REPLY_NONE && l->kind != FBRL_LINK_REPLY_LINES;
-    } else {
-        switch (l->kind) {
-        case FBRL_LINK_REPLY_POS:
-            requery = l->out_bad || !fbrl_rapl_pos_complete(&l->pos, l->cfg.naxes);
-            break;
-        case FBRL_LINK_REPLY_STATUS: {
-            unsigned need = FBRL_RAPL_ST_ERROR | FBRL_RAPL_ST_SPEED | FBRL_RAPL_ST_HOMED | FBRL_RAPL_ST_LOCK |
-                            FBRL_RAPL_ST_DONE | FBRL_RAPL_ST_LIMP | FBRL_RAPL_ST_AXHOMED;
-            if (l->stage == ST_ERRQ)
-                requery = !(l->st.have & FBRL_RAPL_ST_ERROR);
-            else
-                requery = l->out_bad || (l->st.have & need) != need || l->st.naxes != l->cfg.naxes;
-            break;
-        }
-        case FBRL_LINK_REPLY_INT:
-        case FBRL_LINK_REPLY_REAL:
-            requery = l->out_bad || l->nvalues != 1;
-            break;
-        default:
-            break;
-        }
-        if (requery) {
-            st = FBRL_EPROTOCOL;
-        } else if (l->kind >= FBRL_LINK_REPLY_POS && l->kind <= FBRL_LINK_REPLY_REAL && l->stage != ST_ERRQ &&
-                   !confirmed(l)) {
-            /* not yet query_reads agreeing replies (the error query needs only one: its
-             * line is checked against the code's text) */
-            requery = 1;
-        }
-    }
-    if (l->cfg.on_exec)
-        l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, l->err_state != ERR_NONE ? FBRL_ECONTROLLER : st);
-    if (requery) {
-        /* read-only: running it again cannot change anything */
-        l->stats.requeries++;
-        if (l->attempts >= l->cfg.max_attempts)
-            return finish(l, FBRL_EPROTOCOL);
-        return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
-    }
-    if (l->stage == ST_MAIN && l->err_state == ERR_GARBLED && st == FBRL_EPROTOCOL) {
-        l->stats.error_queries++;
-        return run_status_query(l);
-    }
-    if (l->stage == ST_ERRQ) {
-        /* the STATUS read for a damaged error line of the main command */
-        if (st == FBRL_OK && l->st.last_error >= 0) {
-            l->err_code = l->st.last_error;
-            const char *t = fbrl_rapl_error_text(l->err_code);
-            size_t k = 0;
-            for (; t && t[k] && k + 1 < sizeof l->err_text; k++)
-                l->err_text[k] = t[k];
-            l->err_text[k] = '\0';
-            return finish(l, FBRL_ECONTROLLER);
-        }
-        return finish(l, FBRL_EPROTOCOL);
-    }
-    return finish(l, st);
+    if (!l->prompt_direct || !l->rp_first || l->rp_bad || l->out_bad)
+        return 0;
+    if (l->kind == FBRL_LINK_REPLY_NONE)
+        return l->rp_eols == 1u + l->rp_lines && l->rp_lines <= 1 &&
+               (l->rp_lines == 0 || l->err_state == ERR_VALID);
+    return 1;
 }
+
+/* Type the line (again): straight away when the line's content is known. */
+static fbrl_status retype(fbrl_link *l) { return l->ctrl_len >= 0 ? begin_type(l) : begin_erase(l); }
 
 static fbrl_status run_status_query(fbrl_link *l)
 {
@@ -462,7 +546,139 @@ static fbrl_status run_status_query(fbrl_link *l)
     l->attempts = 0;
     l->have_prev = 0;
     l->timeout_ms = l->cfg.reply_timeout_ms;
-    return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
+    return retype(l);
+}
+
+/* A command's reply was damaged: read STATUS to settle it (docs/link.md 3.5). */
+static fbrl_status begin_settle(fbrl_link *l)
+{
+    for (size_t k = 0; k <= l->len; k++)
+        l->main_line[k] = l->line[k];
+    l->main_len = l->len;
+    l->main_kind = l->kind;
+    l->main_attempts = l->attempts;
+    l->settle_shaped = l->err_state == ERR_GARBLED;
+    l->settle_ok = l->settle_bad = l->settle_maybe = 0;
+    l->stats.settled++;
+    l->stats.error_queries++;
+    return run_status_query(l);
+}
+
+static void set_error(fbrl_link *l, int code)
+{
+    const char *t = fbrl_rapl_error_text(code);
+    size_t k = 0;
+    l->err_code = code;
+    for (; t && t[k] && k + 1 < sizeof l->err_text; k++)
+        l->err_text[k] = t[k];
+    l->err_text[k] = '\0';
+}
+
+/* STATUS's LAST ERROR settles a damaged reply: a code other than the one the link last
+ * proved is this command's refusal; NONE means no command ever failed, so it
+ * succeeded; the same code as before cannot tell success from the same refusal again,
+ * and the command is reported "may have run" rather than guessed. */
+static fbrl_status settle_read(fbrl_link *l)
+{
+    if (!(l->st.have & FBRL_RAPL_ST_ERROR)) {
+        journal(l, FBRL_EPROTOCOL);
+        l->stats.requeries++;
+        if (l->attempts >= l->cfg.max_attempts)
+            return finish(l, FBRL_EPROTOCOL);
+        return retype(l);
+    }
+    journal(l, FBRL_OK);
+    int last = l->st.last_error, before = l->known_err;
+    fbrl_status res;
+    if (l->settle_shaped)
+        res = last >= 0 ? FBRL_ECONTROLLER : FBRL_EMAYBE;
+    else if (last < 0)
+        res = FBRL_OK;
+    else if (before != ERR_UNKNOWN && last != before)
+        res = FBRL_ECONTROLLER;
+    else
+        res = FBRL_EMAYBE;
+    if (res == FBRL_ECONTROLLER)
+        set_error(l, last);
+    if (res == FBRL_EMAYBE)
+        l->seen = SEEN_SAME_ERROR;
+    settle_end(l, res);
+    l->known_err = last;
+    if (res == FBRL_EMAYBE && l->safe && !l->settle_shaped && l->attempts < l->cfg.max_attempts) {
+        /* safe to repeat: run it again, and its clean reply tells (3.5) */
+        l->stats.requeries++;
+        return retype(l);
+    }
+    res = finish(l, res == FBRL_EMAYBE ? FBRL_EPROTOCOL : res);
+    l->known_err = last;
+    return res;
+}
+
+/* The controller executed the line: judge the reply, repeat a damaged read-only query,
+ * or settle a damaged reply of any other command by reading STATUS. */
+static fbrl_status executed(fbrl_link *l)
+{
+    l->stats.executed++;
+    if (!l->rd.done && l->rd.len > 0) {
+        /* the reply ended in an unfinished line (its CR LF was lost, and the prompt was
+         * found by a probe): an error line "011-LOCATION UNDEFINED.>>" must not pass as
+         * success. Only the error shape counts: the rest of such a line is the damaged
+         * echo of a probe. */
+        size_t n;
+        const char *s = fbrl_rapl_reader_line(&l->rd, &n, 0);
+        if (error_shaped(s, n))
+            l->err_state = ERR_GARBLED;
+    }
+    if (l->stage == ST_ERRQ)
+        return settle_read(l);
+    l->ran = 1;
+    int complete = reply_complete(l);
+    if (l->err_state == ERR_VALID) {
+        /* its text matches its code: no damage can make one */
+        l->known_err = l->err_code;
+        journal(l, FBRL_ECONTROLLER);
+        return finish(l, FBRL_ECONTROLLER);
+    }
+    int query = l->kind >= FBRL_LINK_REPLY_POS && l->kind <= FBRL_LINK_REPLY_REAL;
+    if (!query) {
+        if (l->kind == FBRL_LINK_REPLY_STREAM || (complete && l->err_state == ERR_NONE)) {
+            journal(l, l->err_state == ERR_NONE ? FBRL_OK : FBRL_EMAYBE);
+            return finish(l, l->err_state == ERR_NONE ? FBRL_OK : FBRL_EPROTOCOL);
+        }
+        return begin_settle(l);
+    }
+    int damaged = l->err_state == ERR_GARBLED || !complete;
+    if (!damaged) {
+        switch (l->kind) {
+        case FBRL_LINK_REPLY_POS:
+            damaged = !fbrl_rapl_pos_complete(&l->pos, l->cfg.naxes);
+            break;
+        case FBRL_LINK_REPLY_STATUS: {
+            unsigned need = FBRL_RAPL_ST_ERROR | FBRL_RAPL_ST_SPEED | FBRL_RAPL_ST_HOMED | FBRL_RAPL_ST_LOCK |
+                            FBRL_RAPL_ST_DONE | FBRL_RAPL_ST_LIMP | FBRL_RAPL_ST_AXHOMED;
+            damaged = (l->st.have & need) != need || l->st.naxes != l->cfg.naxes;
+            break;
+        }
+        default:
+            damaged = l->nvalues != 1;
+            break;
+        }
+    }
+    /* not yet believed: damaged, or not yet query_reads agreeing replies */
+    int again = damaged || !confirmed(l);
+    journal(l, damaged ? FBRL_EPROTOCOL : FBRL_OK);
+    if (!again) {
+        if (l->kind == FBRL_LINK_REPLY_STATUS)
+            l->known_err = l->st.last_error;
+        return finish(l, FBRL_OK);
+    }
+    /* read-only: running it again cannot change anything */
+    l->stats.requeries++;
+    if (l->attempts >= l->cfg.max_attempts) {
+        l->seen = SEEN_UNREADABLE;
+        return finish(l, FBRL_EPROTOCOL);
+    }
+    return retype(l);
 }
 
 /* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR
@@ -477,25 +693,105 @@ static int cr_took_effect(const fbrl_link *l)
     return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= (l->parity ? 1u : 3u);
 }
 
-/* A probe has decided the command (ctrl_len: the characters now on the controller's
- * line, -1 unknown): 1 when the CR took effect and the command ran, 0 when it did not
- * and the command must be typed again. */
-static int probe_decides(fbrl_link *l, int ctrl_len)
+/* The verify probe's echo, byte by byte (PE_*): "?", k1 triples, "?", one triple, the
+ * three markers. Anything else makes it useless as evidence (PE_BAD). */
+static void pe_feed(fbrl_link *l, uint8_t b)
 {
+    static const char triple[] = "\b \b";
+    switch (l->pe_state) {
+    case PE_START:
+        l->pe_state = b == '?' ? PE_T1 : PE_BAD;
+        l->pe_k1 = l->pe_sub = 0;
+        break;
+    case PE_T1:
+        if (l->pe_sub == 0 && b == '?') {
+            l->pe_state = PE_T2;
+        } else if (b != (uint8_t)triple[l->pe_sub]) {
+            l->pe_state = PE_BAD;
+        } else if (++l->pe_sub == 3) {
+            l->pe_sub = 0;
+            l->pe_k1++;
+        }
+        break;
+    case PE_T2:
+        if (b != (uint8_t)triple[l->pe_sub])
+            l->pe_state = PE_BAD;
+        else if (++l->pe_sub == 3)
+            l->pe_state = PE_MARK, l->pe_sub = 0;
+        break;
+    case PE_MARK:
+        if (b != (uint8_t)l->marker[l->pe_sub])
+            l->pe_state = PE_BAD;
+        else if (++l->pe_sub == 3)
+            l->pe_state = PE_DONE;
+        break;
+    default:
+        l->pe_state = PE_BAD; /* bytes after the answer */
+        break;
+    }
+}
+
+/* Did the CR take effect? 1 ran, 0 did not, -1 cannot be proven (docs/link.md 3.2).
+ * Proof that it ran: cr_took_effect(). Besides, the FIRST probe after the CR shows what
+ * the line held when it arrived: its CAN erases k1 characters, 1 (its own '?') when the
+ * CR had emptied the line, len + 1 (len + 2 with a damaged CR echoed as a character)
+ * when the text was still there. Only the first: a later probe finds whatever an
+ * earlier one, partly lost on the way, left or erased. */
+static int verify_decides(const fbrl_link *l)
+{
+    if (cr_took_effect(l))
+        return 1;
+    if (l->first_probe && l->pe_state == PE_DONE) {
+        if (l->pe_k1 == 1)
+            return 1;
+        if (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)
+            return 0;
+    }
+    return -1;
+}
+
+/* A probe after the CR has been answered (ctrl_len 3) or its echo came damaged (-1):
+ * the command ran, or is typed again because it did not, or - when neither is proven -
+ * is typed again only if it is safe to repeat; otherwise it "may have run". */
+static fbrl_status verify_done(fbrl_link *l, int ctrl_len)
+{
+    int d = verify_decides(l);
     l->ctrl_len = ctrl_len;
     l->probe_out = PR_NONE;
-    if (cr_took_effect(l)) {
+    if (d > 0) {
         if (!l->prompt_seen)
             l->stats.prompt_lost++;
-        return 1;
+        return executed(l);
     }
     l->stats.cr_unconfirmed++;
-    return 0;
+    if (d == 0) {
+        l->cr_pending = 0;
+        return retype(l);
+    }
+    l->seen = SEEN_AMBIGUOUS;
+    if (l->safe) {
+        journal(l, FBRL_EMAYBE);
+        l->maybe = 1;
+        return retype(l);
+    }
+    l->stats.cr_unconfirmed--;
+    l->stats.not_retyped++;
+    return finish(l, FBRL_EPROTOCOL);
 }
 
 /* A byte of the command's reply (before any probe echo). */
 static void count_reply_byte(fbrl_link *l, uint8_t b)
 {
+    /* framing (reply_complete()): the reply starts with CR LF, every CR is followed by
+     * LF and every LF follows a CR */
+    if (l->after_cr < 2 && b != (l->after_cr == 0 ? '\r' : '\n'))
+        l->rp_first = 0;
+    if ((l->last_byte == '\r') != (b == '\n') && l->after_cr > 0)
+        l->rp_bad = 1;
+    if (b == '\n')
+        l->rp_eols++;
+    if (l->seen == SEEN_SILENT)
+        l->seen = SEEN_STARTED;
     if (l->after_cr++ == 0)
         l->first_byte = b;
     if (b == '\r' || b == '\n')
@@ -525,7 +821,46 @@ static fbrl_status stop_stream(fbrl_link *l)
     return send_probe(l);
 }
 
+/* A probe's markers stay on the controller's line. When a command's idle probe has
+ * been answered (it waited: FINISH, a motion, WAIT), the command erases them itself
+ * with one CAN and waits for its three triples, so the next command is typed onto an
+ * empty line, as fast as after any other command (docs/link.md 3.3). The controller is
+ * idle then and the CAN cannot run anything; if its echo is not exactly the triples the
+ * line counts as unknown and the next command starts with a probe, as before. */
+#define MARKER_LEN 3u
+static fbrl_status begin_clean(fbrl_link *l)
+{
+    static const uint8_t can = CAN;
+    l->phase = PH_CLEAN;
+    l->match = 0;
+    l->expect = 3u * MARKER_LEN;
+    l->ctrl_len = -1;
+    fbrl_status st = send(l, &can, 1);
+    if (st != FBRL_OK)
+        return st;
+    l->stats.cleans++;
+    return FBRL_OK;
+}
+
+/* The clean step ended: erased (ctrl_len 0) or not known (-1); the reply decides now. */
+static fbrl_status clean_done(fbrl_link *l, int ctrl_len)
+{
+    l->ctrl_len = ctrl_len;
+    l->phase = PH_REPLY;
+    return executed(l);
+}
+
 /* ---- the byte-driven state machine ---- */
+
+/* While no CR of ours is out (erasing, typing), a CR LF or a prompt from the controller
+ * means it ran something we did not send whole (a '-' turned into CR, 3.4): whatever
+ * that was may have set LAST ERROR, so STATUS no longer settles by comparison (3.5). */
+static void saw_foreign(fbrl_link *l, uint8_t b)
+{
+    if (b == '\r' || b == '\n' || (b == '>' && l->last_byte == '>'))
+        l->known_err = ERR_UNKNOWN;
+    l->last_byte = b;
+}
 
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
@@ -533,6 +868,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
+        saw_foreign(l, b);
         push_tail(l, b);
         if (probe_answered(l)) {
             l->ctrl_len = 3;
@@ -551,6 +887,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
          * the echo is a damaged byte */
         if (b != expected(l, l->match, l->triples)) {
             l->stats.echo_mismatch++;
+            saw_foreign(l, b);
             return begin_erase(l);
         }
         if (++l->match == l->expect) {
@@ -564,13 +901,24 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             /* the idle probe's echo: the controller reads input again, so it is idle */
             l->probe_seen = 1;
             push_tail(l, b);
+            if (l->first_probe)
+                pe_feed(l, b);
             if (probe_answered(l)) {
                 l->ctrl_len = 3;
+                if (l->first_probe && l->pe_state == PE_DONE && !l->prompt_seen &&
+                    (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)) {
+                    /* the "proof" was a damaged CR echoed back as CR or LF by a second flip
+                     * (3.6): the text is still on the line, the CR took no effect */
+                    l->stats.cr_unconfirmed++;
+                    l->cr_pending = 0;
+                    l->probe_out = PR_NONE;
+                    return retype(l);
+                }
                 if (!l->prompt_seen)
                     l->stats.prompt_lost++;
                 l->probe_out = PR_NONE;
                 l->prompt_seen = 1;
-                return executed(l);
+                return begin_clean(l);
             }
             return FBRL_OK;
         }
@@ -586,6 +934,10 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             return executed(l);
         }
         return FBRL_OK;
+    case PH_CLEAN:
+        if (b != expected(l, l->match, MARKER_LEN))
+            return clean_done(l, -1);
+        return ++l->match == l->expect ? clean_done(l, 0) : FBRL_OK;
     case PH_VERIFY:
         if (!l->probe_seen && b != '?' && b != BS) {
             /* still the command's reply (or its absence): bytes before the probe's echo */
@@ -595,11 +947,10 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         }
         l->probe_seen = 1;
         push_tail(l, b);
-        if (probe_answered(l)) {
-            if (probe_decides(l, 3))
-                return executed(l);
-            return begin_type(l);
-        }
+        if (l->first_probe)
+            pe_feed(l, b);
+        if (probe_answered(l))
+            return verify_done(l, 3);
         return FBRL_OK;
     default:
         return FBRL_OK; /* idle: stray bytes */
@@ -651,6 +1002,9 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         if (cr_took_effect(l)) {
             /* executed; the prompt is late (a waiting command) or was damaged: ask */
             if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
+                /* the first one also checks the proof (on_byte) */
+                l->first_probe = l->probes_here == 0 && l->kind != FBRL_LINK_REPLY_STREAM;
+                l->pe_state = PE_START;
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
                 return send_probe(l);
@@ -663,16 +1017,20 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->probe_out = PR_VERIFY;
         l->probe_seen = 0;
         l->probes_here = 0;
+        l->first_probe = 1;
+        l->pe_state = PE_START;
         return send_probe(l);
+    case PH_CLEAN:
+        return clean_done(l, -1);
     case PH_VERIFY:
         if (l->probe_seen) {
-            /* the probe's echo was damaged, but the bytes before it decide */
-            if (probe_decides(l, -1))
-                return executed(l);
-            return begin_erase(l);
+            /* the probe's echo was damaged, but the bytes before it may decide */
+            return verify_done(l, -1);
         }
-        if (t - l->t_probe >= probe_interval(l))
+        if (t - l->t_probe >= probe_interval(l)) {
+            l->first_probe = 0; /* its echo is lost: the next one proves less */
             return send_probe(l);
+        }
         l->t_last = t;
         return FBRL_OK;
     default:
@@ -695,6 +1053,8 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
         uint64_t quiet_end = l->t_last + ms(l->cfg.echo_timeout_ms);
         if ((l->phase == PH_REPLY || l->phase == PH_VERIFY) && t >= l->t_deadline) {
             l->ctrl_len = -1;
+            if (l->seen == SEEN_STARTED && l->probes_here > 0)
+                l->seen = SEEN_BUSY;
             *done = 1;
             return finish(l, FBRL_ETIMEOUT);
         }
@@ -735,8 +1095,10 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
                 got = 0;
             } else if (l->phase == PH_REPLY || l->phase == PH_VERIFY) {
                 l->out_bad = 1; /* a query is asked again; an error line is checked anyway */
-                if (l->phase == PH_REPLY && l->probe_out == PR_NONE)
+                if (l->phase == PH_REPLY && l->probe_out == PR_NONE) {
                     l->after_cr++; /* a byte came after the CR, before any probe */
+                    l->rp_bad = 1;
+                }
             }
         }
         size_t k = 0;
@@ -775,7 +1137,7 @@ static fbrl_status check_line(const char *line, size_t *len)
     return FBRL_OK;
 }
 
-static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms)
+static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms, int safe)
 {
     size_t n;
     if (!l || !l->u)
@@ -798,16 +1160,27 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->err_code = -1;
     l->err_text[0] = '\0';
     l->result = FBRL_OK;
+    l->safe = safe;
+    l->ran = l->maybe = l->cr_pending = 0;
+    l->seen = SEEN_NONE;
+    l->cause = FBRL_OK;
     l->busy = 1;
     l->stats.commands++;
     fbrl_uart_config uc;
     l->parity = fbrl_uart_get_config(l->u, &uc) == FBRL_OK && uc.parity != FBRL_PARITY_NONE;
-    return l->ctrl_len == 0 ? begin_type(l) : begin_erase(l);
+    /* a known line (a probe's markers) is erased by the CAN in front of the text, whose
+     * echo must show exactly its triples: no probe needed */
+    return l->ctrl_len >= 0 ? begin_type(l) : begin_erase(l);
+}
+
+static int is_name_char(char c)
+{
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
 }
 
 /* The command a line starts with: 1 = *cmd found (keyword or /NNN token), 2 = a
- * variable assignment, 0 = not known here. */
-static int line_cmd(const char *line, fbrl_rapl_cmd *cmd)
+ * variable assignment (*eq = the '='), 0 = not known here. */
+static int line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **eq)
 {
     char word[12];
     size_t k = 0;
@@ -821,8 +1194,10 @@ static int line_cmd(const char *line, fbrl_rapl_cmd *cmd)
     const char *rest = line + k;
     while (*rest == ' ')
         rest++;
-    if (*rest == '=')
+    if (*rest == '=') {
+        *eq = rest;
         return 2;
+    }
     if (word[0] == '/') {
         int tok = 0;
         for (size_t d = 1; d < k; d++)
@@ -837,27 +1212,55 @@ static int line_cmd(const char *line, fbrl_rapl_cmd *cmd)
     return fbrl_rapl_cmd_find(word, cmd) == FBRL_OK;
 }
 
+int fbrl_link_line_safe(const char *line)
+{
+    fbrl_rapl_cmd c;
+    const char *eq = 0;
+    if (!line)
+        return 0;
+    int known = line_cmd(line, &c, &eq);
+    if (known == 1)
+        return (fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_SAFE) != 0;
+    if (known != 2)
+        return 0;
+    /* NAME=value: safe unless the value names NAME (V1=V1+1 counts) */
+    const char *name = line;
+    while (*name == ' ')
+        name++;
+    size_t n = 0;
+    while (is_name_char(name[n]))
+        n++;
+    if (n == 0)
+        return 0;
+    for (const char *p = eq + 1; *p; p++) {
+        if (is_name_char(*p) && (p == eq + 1 || !is_name_char(p[-1]))) {
+            size_t k = 0;
+            while (k < n && is_name_char(p[k]) && upper(p[k]) == upper(name[k]))
+                k++;
+            if (k == n && !is_name_char(p[k]))
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* The deadline for the prompt: long for what the table says may wait, and for lines
+ * the link cannot classify. */
 static uint32_t timeout_for_line(const fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
-    int known = line_cmd(line, &c);
-    if (known == 2)
+    const char *eq;
+    int known = line_cmd(line, &c, &eq);
+    if (known == 2 || (known == 1 && !(fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_WAITS)))
         return l->cfg.reply_timeout_ms;
-    if (known == 1) {
-        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(c);
-        if (!(ci->flags & FBRL_RAPL_F_MOTION) && c != FBRL_RAPL_FINISH && c != FBRL_RAPL_WAIT && c != FBRL_RAPL_RUN)
-            return l->cfg.reply_timeout_ms;
-    }
     return l->cfg.wait_timeout_ms;
 }
-
-static fbrl_link_reply reply_of(fbrl_rapl_cmd cmd);
 
 fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind)
 {
     if (!l || !line || (int)kind < 0 || kind > FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL;
-    return start(l, line, kind, timeout_for_line(l, line));
+    return start(l, line, kind, timeout_for_line(l, line), fbrl_link_line_safe(line));
 }
 
 static fbrl_status run(fbrl_link *l)
@@ -875,29 +1278,8 @@ fbrl_status fbrl_link_connect(fbrl_link *l)
     if (!l || !l->u)
         return FBRL_EINVAL;
     l->ctrl_len = -1;
-    fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms);
+    fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms, 1);
     return st == FBRL_OK ? run(l) : st;
-}
-
-static fbrl_link_reply reply_of(fbrl_rapl_cmd cmd)
-{
-    switch (cmd) {
-    case FBRL_RAPL_W0: case FBRL_RAPL_W2: case FBRL_RAPL_W4:
-        return FBRL_LINK_REPLY_POS;
-    case FBRL_RAPL_STATUS:
-        return FBRL_LINK_REPLY_STATUS;
-    case FBRL_RAPL_TYPEI:
-        return FBRL_LINK_REPLY_INT;
-    case FBRL_RAPL_TYPEV:
-        return FBRL_LINK_REPLY_REAL;
-    case FBRL_RAPL_W1: case FBRL_RAPL_W3: case FBRL_RAPL_W5:
-    case FBRL_RAPL_WE1: case FBRL_RAPL_WE3: case FBRL_RAPL_WE5:
-        return FBRL_LINK_REPLY_STREAM;
-    case FBRL_RAPL_SERIAL: case FBRL_RAPL_GAIN:
-        return FBRL_LINK_REPLY_LINES;
-    default:
-        return FBRL_LINK_REPLY_NONE;
-    }
 }
 
 fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs, int straight)
@@ -911,29 +1293,26 @@ fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *
         return st;
     if (n > FBRL_LINK_LINE_MAX)
         return FBRL_ERANGE;
-    fbrl_link_reply kind = reply_of(cmd);
-    if (kind == FBRL_LINK_REPLY_STREAM)
-        return FBRL_EINVAL; /* fbrl_link_stream() */
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
-    uint32_t tmo = ((ci->flags & FBRL_RAPL_F_MOTION) || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT ||
-                    cmd == FBRL_RAPL_RUN)
-                       ? l->cfg.wait_timeout_ms
-                       : l->cfg.reply_timeout_ms;
-    st = start(l, text, kind, tmo);
+    if (ci->reply == FBRL_LINK_REPLY_STREAM)
+        return FBRL_EINVAL; /* fbrl_link_stream() */
+    st = start(l, text, ci->reply, (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
+               (ci->flags & FBRL_RAPL_F_SAFE) != 0);
     return st == FBRL_OK ? run(l) : st;
 }
 
 fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
+    const char *eq;
     fbrl_link_reply kind = FBRL_LINK_REPLY_LINES;
     if (!l || !line)
         return FBRL_EINVAL;
-    int known = line_cmd(line, &c);
+    int known = line_cmd(line, &c, &eq);
     if (known == 2)
         kind = FBRL_LINK_REPLY_NONE;
     else if (known == 1)
-        kind = reply_of(c);
+        kind = fbrl_rapl_cmd_info(c)->reply;
     if (kind == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
     fbrl_status st = fbrl_link_start(l, line, kind);
@@ -978,7 +1357,7 @@ static fbrl_status type_value(fbrl_link *l, const char *kw, const char *expr, fb
         text[n++] = *expr;
     }
     text[n] = '\0';
-    fbrl_status st = start(l, text, kind, l->cfg.reply_timeout_ms);
+    fbrl_status st = start(l, text, kind, l->cfg.reply_timeout_ms, 1); /* read-only */
     return st == FBRL_OK ? run(l) : st;
 }
 
@@ -1027,7 +1406,8 @@ fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lin
 {
     char text[FBRL_RAPL_LINE_MAX];
     size_t n;
-    if (!l || lines == 0 || reply_of(cmd) != FBRL_LINK_REPLY_STREAM)
+    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
+    if (!l || lines == 0 || !ci || ci->reply != FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL;
     if (l->busy)
         return FBRL_ESTATE;
@@ -1035,7 +1415,7 @@ fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lin
     if (st != FBRL_OK)
         return st;
     l->stream_lines = lines;
-    return start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u);
+    return start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u, 1);
 }
 
 fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
@@ -1181,7 +1561,46 @@ fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
     if (code)
         *code = have ? l->err_code : -1;
     if (text)
-        *text = have ? l->err_text : "";
+        *text = !have ? "" : l->err_code >= 0 ? l->err_text : "code unknown";
+    return FBRL_OK;
+}
+
+fbrl_link_fate fbrl_link_fate_of(fbrl_status result)
+{
+    switch (result) {
+    case FBRL_OK: return FBRL_LINK_RAN;
+    case FBRL_ECONTROLLER: return FBRL_LINK_REFUSED;
+    case FBRL_EMAYBE: return FBRL_LINK_MAY_HAVE_RUN;
+    default: return FBRL_LINK_NOT_RUN;
+    }
+}
+
+/* Short: fbrlmon puts it in a one-line message. */
+static const char *seen_text(int seen)
+{
+    switch (seen) {
+    case SEEN_SILENT: return "nothing came back after its CR";
+    case SEEN_AMBIGUOUS: return "its CR may not have arrived (reply and probe damaged)";
+    case SEEN_STARTED: return "it started; its reply stopped before the prompt";
+    case SEEN_BUSY: return "it started and was still busy";
+    case SEEN_UNREADABLE: return "it ran; no reply could be believed (damaged, or never twice the same)";
+    case SEEN_UNSETTLED: return "it ran; reply damaged, STATUS unreadable";
+    case SEEN_SAME_ERROR: return "it ran; reply damaged, STATUS shows the earlier error";
+    default: return "it was not sent";
+    }
+}
+
+fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out)
+{
+    if (!l || !out)
+        return FBRL_EINVAL;
+    if (l->busy)
+        return FBRL_ESTATE;
+    out->fate = l->stats.commands ? fbrl_link_fate_of(l->result) : FBRL_LINK_FATE_NONE;
+    out->status = l->result;
+    out->cause = l->cause;
+    out->code = l->result == FBRL_ECONTROLLER ? l->err_code : -1;
+    out->seen = seen_text(l->seen);
     return FBRL_OK;
 }
 

@@ -35,6 +35,7 @@ static const struct { const char *name, *text; } entries[] = {
     {"FBRL_EOFFLINE", "no controller connected"},
     {"FBRL_ENOTFILE", "not a regular file (a device, FIFO or directory)"},
     {"FBRL_EPERM", "permission denied"},
+    {"FBRL_EMAYBE", "the command may have run (the link cannot tell)"},
 };
 
 #define NENTRIES ((int)(sizeof entries / sizeof entries[0]))

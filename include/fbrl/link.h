@@ -29,16 +29,47 @@ extern "C" {
 /* The controller's line limit (longer lines fail with 025). */
 #define FBRL_LINK_LINE_MAX 80
 
-/* What a command prints and how the link reads it. */
-typedef enum fbrl_link_reply {
-    FBRL_LINK_REPLY_NONE = 0, /* nothing but an error line, if any */
-    FBRL_LINK_REPLY_POS,      /* W0 W2 W4 block */
-    FBRL_LINK_REPLY_STATUS,   /* STATUS block */
-    FBRL_LINK_REPLY_INT,      /* one integer line (TYPEI) */
-    FBRL_LINK_REPLY_REAL,     /* one real line (TYPEV) */
-    FBRL_LINK_REPLY_LINES,    /* any lines, handed to the line callback */
-    FBRL_LINK_REPLY_STREAM    /* W1 W3 W5 WE*: value lines until stopped */
-} fbrl_link_reply;
+/* What a command prints and how the link reads it: the encoder's table says it for
+ * every command (fbrl_rapl_cmdinfo.reply), so the type is the encoder's. */
+typedef fbrl_rapl_reply fbrl_link_reply;
+#define FBRL_LINK_REPLY_NONE FBRL_RAPL_REPLY_NONE
+#define FBRL_LINK_REPLY_POS FBRL_RAPL_REPLY_POS
+#define FBRL_LINK_REPLY_STATUS FBRL_RAPL_REPLY_STATUS
+#define FBRL_LINK_REPLY_INT FBRL_RAPL_REPLY_INT
+#define FBRL_LINK_REPLY_REAL FBRL_RAPL_REPLY_REAL
+#define FBRL_LINK_REPLY_LINES FBRL_RAPL_REPLY_LINES
+#define FBRL_LINK_REPLY_STREAM FBRL_RAPL_REPLY_STREAM
+
+/* What happened to a command (docs/link.md 3.9). Every result falls in exactly one:
+ *  RAN          it ran and succeeded                          (FBRL_OK)
+ *  REFUSED      it ran and the controller refused it: the code from fbrl_link_error(),
+ *               -1 "code unknown" when the error line was damaged and STATUS could not
+ *               be read                                         (FBRL_ECONTROLLER)
+ *  NOT_RUN      proven not to have run: typing failed before any CR took effect, or the
+ *               call was refused before anything was sent      (any other status)
+ *  MAY_HAVE_RUN the link cannot prove either way (or it ran and its end is unknown): do
+ *               not repeat it blindly; fbrl_link_outcome() says what the controller was
+ *               last seen doing                                 (FBRL_EMAYBE)
+ * The class follows from the status alone (fbrl_link_fate_of()). */
+typedef enum fbrl_link_fate {
+    FBRL_LINK_FATE_NONE = 0, /* no command has ended yet */
+    FBRL_LINK_RAN = 1,
+    FBRL_LINK_REFUSED = 2,
+    FBRL_LINK_NOT_RUN = 3,
+    FBRL_LINK_MAY_HAVE_RUN = 4
+} fbrl_link_fate;
+
+/* The arm behind the controller, for checking a position block read while the arm moves
+ * (docs/link.md 3.5): pulses per degree per axis and an A255-type geometry (shoulder
+ * height, upper arm, forearm, wrist pitch axis to flange, inches). */
+typedef struct fbrl_link_arm {
+    unsigned naxes;
+    double ppd[FBRL_RAPL_MAX_AXES];
+    double base_h, upper, fore, flange;
+} fbrl_link_arm;
+
+/* The CRS A255 (DESIGN 6): the default. */
+extern const fbrl_link_arm fbrl_link_arm_a255;
 
 typedef struct fbrl_link_config {
     fbrl_rapl_form form;       /* keyword (default) or /NNN token form */
@@ -52,13 +83,20 @@ typedef struct fbrl_link_config {
     unsigned query_reads;      /* identical consecutive replies a read-only query needs
                                 * (1..3, default 2; see docs/link.md for the odds) */
     unsigned naxes;            /* axes in W0/W2/W4 and STATUS rows (5) */
+    /* The arm model a position block is checked against (NULL = fbrl_link_arm_a255). A
+     * block whose pulses, joints and world agree is believed at once, even while the arm
+     * moves; one that does not (another arm, a tool with an offset) needs query_reads
+     * agreeing replies, as other queries do. */
+    const fbrl_link_arm *arm;
     /* Clock; NULL = the uart backend's now_us. */
     uint64_t (*now_us)(void *ctx);
     void *clock_ctx;
-    /* Called once for every line the link knows the controller executed (the user's
-     * commands and the link's own STATUS queries), with the command's result
-     * (FBRL_OK or FBRL_ECONTROLLER ...). Lines whose fate is unknown are not reported
-     * here; they end with FBRL_ETIMEOUT. May be NULL. */
+    /* The run log: called once for every line the link knows the controller executed
+     * (the user's commands and the link's own STATUS queries), with its result (FBRL_OK,
+     * FBRL_ECONTROLLER, or FBRL_EPROTOCOL for a query whose reply was damaged and is
+     * asked again), in the controller's order; and once for a command that may have run
+     * (FBRL_EMAYBE: it may or may not be in the controller's log). Lines that did not
+     * run are never reported. May be NULL. */
     void (*on_exec)(void *ctx, const char *line, size_t len, fbrl_status result);
     void *exec_ctx;
     /* Lines of FBRL_LINK_REPLY_LINES and STREAM replies (flawed = a byte was damaged).
@@ -83,7 +121,25 @@ typedef struct fbrl_link_stats {
     uint64_t failed;          /* commands that ended with an error other than ECONTROLLER */
     uint64_t parity_errors;   /* bytes the uart dropped with a parity error (line with E/O
                                * parity): in an echo a retype, in a reply a damaged reply */
+    uint64_t settled;         /* damaged replies of commands settled by reading STATUS */
+    uint64_t not_retyped;     /* commands not safe to repeat whose CR could not be proven
+                               * ineffective: reported "may have run" instead of retyped */
+    uint64_t may_have_run;    /* commands that ended FBRL_EMAYBE */
+    uint64_t self_checked;    /* position blocks believed on their own consistency */
+    uint64_t cleans;          /* probe markers erased by the command that left them (after
+                               * a wait), so the next command starts on an empty line */
 } fbrl_link_stats;
+
+/* The last command's outcome, for messages. */
+typedef struct fbrl_link_outcome {
+    fbrl_link_fate fate;
+    fbrl_status status;  /* the command's result */
+    fbrl_status cause;   /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
+                          * FBRL_EPROTOCOL ...); FBRL_OK when it did */
+    int code;            /* REFUSED: the controller's code, -1 unknown */
+    const char *seen;    /* what the controller was last seen doing, in plain words
+                          * ("it had started the line; its reply was cut off"); never NULL */
+} fbrl_link_outcome;
 
 /* A session. Caller-owned; every field is private. */
 typedef struct fbrl_link {
@@ -131,6 +187,26 @@ typedef struct fbrl_link {
     fbrl_status result;
     int busy;
     fbrl_link_stats stats;
+    /* fates (docs/link.md 3.9) */
+    int safe;                                /* the command may be typed again */
+    int ran;                                 /* a CR of it took effect (proven) */
+    int maybe;                               /* an earlier CR of it may have taken effect */
+    int cr_pending;                          /* this attempt's CR: neither reported nor disproven */
+    int first_probe;                         /* the verify probe is the first since the CR */
+    int pe_state;                            /* the verify probe's echo, parsed */
+    unsigned pe_k1, pe_sub;
+    int rp_first, rp_bad, prompt_direct;     /* the reply's framing: CR LF, lines, prompt */
+    unsigned rp_eols, rp_lines;
+    int known_err;                           /* the controller's LAST ERROR as last proven
+                                              * (-1 NONE), -2 unknown */
+    int settle_shaped;                       /* the reply being settled had an error shape */
+    unsigned settle_ok, settle_bad, settle_maybe; /* STATUS runs while settling */
+    int seen;                                /* what the controller was last seen doing */
+    fbrl_status cause;
+    char main_line[FBRL_LINK_LINE_MAX + 1];  /* the command while STATUS settles it */
+    size_t main_len;
+    fbrl_link_reply main_kind;
+    unsigned main_attempts;
 } fbrl_link;
 
 /* Bind a session to an open uart (its receive and transmit rings should hold at least
@@ -236,6 +312,18 @@ fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v);
 fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v);
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
 fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out);
+
+/* The class of a command's result (RAN for FBRL_OK, REFUSED for FBRL_ECONTROLLER,
+ * MAY_HAVE_RUN for FBRL_EMAYBE, NOT_RUN for anything else). */
+fbrl_link_fate fbrl_link_fate_of(fbrl_status result);
+
+/* The last command's outcome (FBRL_ESTATE while one runs). */
+fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out);
+
+/* Is this line safe to type twice (docs/link.md 3.9)? Table commands say it in the
+ * encoder's table; an assignment is safe unless its value reads its own target
+ * (V1=V1+1); anything the link cannot classify is not. */
+int fbrl_link_line_safe(const char *line);
 
 #ifdef __cplusplus
 }

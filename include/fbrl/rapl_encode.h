@@ -23,22 +23,75 @@
 extern "C" {
 #endif
 
-/* Every command the FBRL robot instruction set (thesis 5.3, appendix I-5) sends. */
+/* Every command the FBRL robot instruction set (thesis 5.3, appendix I-5) sends, and the
+ * controller's other commands fbrlsim knows (from DLOCN on). The values are part of the
+ * ABI (bindings store them): never renumber, append new commands before NCMDS. */
 typedef enum fbrl_rapl_cmd {
-    FBRL_RAPL_ACTUAL, FBRL_RAPL_ALIGN, FBRL_RAPL_APPRO, FBRL_RAPL_ARM, FBRL_RAPL_CLOSE,
-    FBRL_RAPL_CONFIG, FBRL_RAPL_DEPART, FBRL_RAPL_FINISH, FBRL_RAPL_FLASH, FBRL_RAPL_GAIN,
-    FBRL_RAPL_GRIP, FBRL_RAPL_HALT, FBRL_RAPL_HERE, FBRL_RAPL_HOME, FBRL_RAPL_JOG,
-    FBRL_RAPL_JOINT, FBRL_RAPL_LIMP, FBRL_RAPL_LOCK, FBRL_RAPL_MA, FBRL_RAPL_MANUAL,
-    FBRL_RAPL_MI, FBRL_RAPL_MOTOR, FBRL_RAPL_MOVE, FBRL_RAPL_NOFLASH, FBRL_RAPL_NOHELP,
-    FBRL_RAPL_NOLIMP, FBRL_RAPL_NOMANUAL, FBRL_RAPL_NOTEACH,
-    FBRL_RAPL_OPEN, FBRL_RAPL_OUTPUT, FBRL_RAPL_POINT, FBRL_RAPL_READY, FBRL_RAPL_RUN,
-    FBRL_RAPL_SERIAL, FBRL_RAPL_SET, FBRL_RAPL_SHIFTA, FBRL_RAPL_SPEED, FBRL_RAPL_STATUS,
-    FBRL_RAPL_TEACH, FBRL_RAPL_TOOL, FBRL_RAPL_TYPEI, FBRL_RAPL_TYPEV, FBRL_RAPL_UNLOCK,
-    FBRL_RAPL_W0, FBRL_RAPL_W1, FBRL_RAPL_W2, FBRL_RAPL_W3, FBRL_RAPL_W4, FBRL_RAPL_W5,
-    FBRL_RAPL_WAIT, FBRL_RAPL_WE1, FBRL_RAPL_WE3, FBRL_RAPL_WE5, FBRL_RAPL_XCAL,
-    FBRL_RAPL_XHOME, FBRL_RAPL_XZERO,
-    FBRL_RAPL_ASSIGN, /* variable assignment: NAME=value */
-    FBRL_RAPL_NCMDS
+    FBRL_RAPL_ACTUAL = 0,
+    FBRL_RAPL_ALIGN = 1,
+    FBRL_RAPL_APPRO = 2,
+    FBRL_RAPL_ARM = 3,
+    FBRL_RAPL_CLOSE = 4,
+    FBRL_RAPL_CONFIG = 5,
+    FBRL_RAPL_DEPART = 6,
+    FBRL_RAPL_FINISH = 7,
+    FBRL_RAPL_FLASH = 8,
+    FBRL_RAPL_GAIN = 9,
+    FBRL_RAPL_GRIP = 10,
+    FBRL_RAPL_HALT = 11,
+    FBRL_RAPL_HERE = 12,
+    FBRL_RAPL_HOME = 13,
+    FBRL_RAPL_JOG = 14,
+    FBRL_RAPL_JOINT = 15,
+    FBRL_RAPL_LIMP = 16,
+    FBRL_RAPL_LOCK = 17,
+    FBRL_RAPL_MA = 18,
+    FBRL_RAPL_MANUAL = 19,
+    FBRL_RAPL_MI = 20,
+    FBRL_RAPL_MOTOR = 21,
+    FBRL_RAPL_MOVE = 22,
+    FBRL_RAPL_NOFLASH = 23,
+    FBRL_RAPL_NOHELP = 24,
+    FBRL_RAPL_NOLIMP = 25,
+    FBRL_RAPL_NOMANUAL = 26,
+    FBRL_RAPL_NOTEACH = 27,
+    FBRL_RAPL_OPEN = 28,
+    FBRL_RAPL_OUTPUT = 29,
+    FBRL_RAPL_POINT = 30,
+    FBRL_RAPL_READY = 31,
+    FBRL_RAPL_RUN = 32,
+    FBRL_RAPL_SERIAL = 33,
+    FBRL_RAPL_SET = 34,
+    FBRL_RAPL_SHIFTA = 35,
+    FBRL_RAPL_SPEED = 36,
+    FBRL_RAPL_STATUS = 37,
+    FBRL_RAPL_TEACH = 38,
+    FBRL_RAPL_TOOL = 39,
+    FBRL_RAPL_TYPEI = 40,
+    FBRL_RAPL_TYPEV = 41,
+    FBRL_RAPL_UNLOCK = 42,
+    FBRL_RAPL_W0 = 43,
+    FBRL_RAPL_W1 = 44,
+    FBRL_RAPL_W2 = 45,
+    FBRL_RAPL_W3 = 46,
+    FBRL_RAPL_W4 = 47,
+    FBRL_RAPL_W5 = 48,
+    FBRL_RAPL_WAIT = 49,
+    FBRL_RAPL_WE1 = 50,
+    FBRL_RAPL_WE3 = 51,
+    FBRL_RAPL_WE5 = 52,
+    FBRL_RAPL_XCAL = 53,
+    FBRL_RAPL_XHOME = 54,
+    FBRL_RAPL_XZERO = 55,
+    FBRL_RAPL_ASSIGN = 56, /* variable assignment: NAME=value */
+    FBRL_RAPL_DLOCN = 57,
+    FBRL_RAPL_DVAR = 58,
+    FBRL_RAPL_HELP = 59,
+    FBRL_RAPL_LISTL = 60,
+    FBRL_RAPL_LISTV = 61,
+    FBRL_RAPL_SHIFT = 62,
+    FBRL_RAPL_TYPE = 63,
+    FBRL_RAPL_NCMDS = 64
 } fbrl_rapl_cmd;
 
 typedef enum fbrl_rapl_form {
@@ -46,25 +99,45 @@ typedef enum fbrl_rapl_form {
     FBRL_RAPL_TOKEN = 1    /* "/002 P1,2.0000" (the thesis's tokenised form) */
 } fbrl_rapl_form;
 
+/* What a command prints after its CR and how a client reads it (fbrl_rapl_cmdinfo.reply;
+ * the link's fbrl_link_reply is the same type). Values are stable. */
+typedef enum fbrl_rapl_reply {
+    FBRL_RAPL_REPLY_NONE = 0,   /* nothing but an error line, if any */
+    FBRL_RAPL_REPLY_POS = 1,    /* W0 W2 W4 block */
+    FBRL_RAPL_REPLY_STATUS = 2, /* STATUS block */
+    FBRL_RAPL_REPLY_INT = 3,    /* one integer line (TYPEI) */
+    FBRL_RAPL_REPLY_REAL = 4,   /* one real line (TYPEV) */
+    FBRL_RAPL_REPLY_LINES = 5,  /* any lines (SERIAL, GAIN, LISTL ...) */
+    FBRL_RAPL_REPLY_STREAM = 6  /* W1 W3 W5 WE*: value lines until stopped */
+} fbrl_rapl_reply;
+
 /* Command properties (fbrl_rapl_cmdinfo.flags). */
-#define FBRL_RAPL_F_STRAIGHT 0x1u /* accepts the ",S" straight-line suffix */
-#define FBRL_RAPL_F_MOTION   0x2u /* starts a motion: the prompt returns when it starts */
-#define FBRL_RAPL_F_STREAM   0x4u /* prints until the host sends a bare CR (W1 W3 W5 WE*) */
+#define FBRL_RAPL_F_STRAIGHT 0x1u  /* accepts the ",S" straight-line suffix */
+#define FBRL_RAPL_F_MOTION   0x2u  /* starts a motion: the prompt returns when it starts */
+#define FBRL_RAPL_F_STREAM   0x4u  /* prints until the host sends a bare CR (W1 W3 W5 WE*) */
+#define FBRL_RAPL_F_WAITS    0x8u  /* its prompt may come late: it waits for a motion, an
+                                    * input or a program (motions, FINISH, WAIT, RUN) */
+#define FBRL_RAPL_F_SAFE     0x10u /* safe to repeat: running it twice ends as running it
+                                    * once (absolute moves and settings, read-only queries).
+                                    * Relative motions, counters, deletions and program runs
+                                    * are not: the link never types those twice (docs/link.md) */
 
 /* One table entry. The signature has one character per argument:
  *   L location name ('#' prefix allowed)   V variable name   N program name
  *   I integer   R real (an integer argument is accepted)
  *   W one of `words` ('|'-separated; ';' starts the list of the next W slot)
+ *   T free text (printable, the rest of the line; TYPE)
  *   [ the arguments after it are optional   * the previous kind repeats (1..8 in all)
  *   = the next argument follows '=' instead of ',' (assignment)
  * POINT is special: after a cartesian name come 6 reals (x y z yaw pitch roll), after a
  * '#' name 5 integers (motor pulses). */
 typedef struct fbrl_rapl_cmdinfo {
-    const char *keyword; /* "APPRO"; "" for the assignment */
-    uint16_t token;      /* 2 for /002; 0 = no token (keyword in both forms) */
+    const char *keyword;   /* "APPRO"; "" for the assignment */
+    uint16_t token;        /* 2 for /002; 0 = no token (keyword in both forms) */
     const char *sig;
-    const char *words;   /* for 'W': allowed words separated by '|', else NULL */
+    const char *words;     /* for 'W': allowed words separated by '|', else NULL */
     unsigned flags;
+    fbrl_rapl_reply reply; /* what it prints */
 } fbrl_rapl_cmdinfo;
 
 /* The table entry of cmd, or NULL when cmd is out of range. */

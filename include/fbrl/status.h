@@ -41,10 +41,12 @@ typedef enum fbrl_status {
     FBRL_ENOMEM        = -29,  /* language: dictionary or stack space exhausted */
     FBRL_EOFFLINE      = -30,  /* no controller connected */
     FBRL_ENOTFILE      = -31,  /* not a regular file (a device, FIFO or directory) */
-    FBRL_EPERM         = -32   /* the operating system refused access (e.g. a port's mode) */
+    FBRL_EPERM         = -32,  /* the operating system refused access (e.g. a port's mode) */
+    FBRL_EMAYBE        = -33   /* link: the command may have run; the link cannot prove
+                                * either way (docs/link.md 3.9): do not repeat it blindly */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EPERM
+#define FBRL_STATUS_MIN FBRL_EMAYBE
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 const char *fbrl_status_str(fbrl_status st);

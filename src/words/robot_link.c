@@ -110,8 +110,22 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
         help = fbrl_rapl_error_help(code);  /* its meaning and what to do, in plain words */
-        snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text, help ? " (" : "",
-                 help ? help : "", help ? ")" : "");
+        if (code < 0) /* docs/link.md 3.9: refused all the same */
+            snprintf(msg, sizeof msg, "%s: controller error, code unknown (its error line came damaged)", w->name);
+        else
+            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text, help ? " (" : "",
+                     help ? help : "", help ? ")" : "");
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
+    }
+    if (st == FBRL_EMAYBE) {
+        /* docs/link.md 3.9: say it plainly, with what the controller was last seen doing */
+        fbrl_link_outcome o;
+        (void)fbrl_link_outcome_get(r->link, &o);
+        if (o.cause == FBRL_EPROTOCOL || o.cause == FBRL_OK)
+            snprintf(msg, sizeof msg, "%s: may have run: %s; check the robot before repeating it", w->name, o.seen);
+        else
+            snprintf(msg, sizeof msg, "%s: may have run: %s (%s); check the robot first", w->name, o.seen,
+                     fbrl_status_str(o.cause));
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EINVAL || st == FBRL_ENAME || st == FBRL_ERANGE || st == FBRL_ENONFINITE)
@@ -212,7 +226,7 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
         r->have_target = 0;
         return st;
     }
-    if (!ci || !(motion || cmd == FBRL_RAPL_FINISH || cmd == FBRL_RAPL_WAIT || cmd == FBRL_RAPL_RUN)) {
+    if (!ci || !(ci->flags & FBRL_RAPL_F_WAITS)) { /* the table: its prompt never comes late */
         fbrl_status res = fbrl_link_cmd(r->link, cmd, a, n, straight);
         if (res == FBRL_OK && cmd == FBRL_RAPL_HALT) r->moving = 0;
         return rb_link_result(r, w, res);
@@ -308,8 +322,8 @@ static int display_query(const char *line)
     }
     word[k] = '\0';
     if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK) return 0;
-    return c == FBRL_RAPL_W0 || c == FBRL_RAPL_W2 || c == FBRL_RAPL_W4 || c == FBRL_RAPL_STATUS ||
-           c == FBRL_RAPL_TYPEI || c == FBRL_RAPL_TYPEV;
+    fbrl_rapl_reply kind = fbrl_rapl_cmd_info(c)->reply; /* the table says what it prints */
+    return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
 }
 
 /* What a raw line is, from its first word: a motion, FINISH, OUTPUT (its outputs are

@@ -1,8 +1,10 @@
 /* link_e2e_faults: N commands through fbrlsim with 1% of the bytes dropped and 1% with a
  * bit flipped, in both directions. fbrlsim's --log (every line it executed) must equal,
- * line for line and in order, the lines the link reported as executed (cfg.on_exec),
- * and every command other than a read-only query ran exactly once if the link says it
- * ran (OK or a controller error) and never if it says it failed.
+ * line for line and in order, the lines the link reported as executed (cfg.on_exec; a
+ * line reported "may have run", FBRL_EMAYBE, may or may not be there), and every
+ * command other than a read-only query ran exactly once if the link says it ran (OK or
+ * a controller error), at most once if it says it may have run, and never if it says
+ * it did not run (docs/link.md 3.9).
  *
  * PARITY E (the default, as ctest runs it): both ends use even parity, so a flipped
  * bit is a parity error at the receiving UART (fbrlsim drops it inbound, marks it
@@ -23,13 +25,14 @@
 
 #define MAXLOG 40000
 static char *exec_lines[MAXLOG];
+static char exec_maybe[MAXLOG]; /* reported FBRL_EMAYBE: may or may not be in the log */
 static size_t nexec;
 
 static void on_exec(void *ctx, const char *line, size_t len, fbrl_status result)
 {
     (void)ctx;
-    (void)result;
     if (nexec < MAXLOG) {
+        exec_maybe[nexec] = result == FBRL_EMAYBE;
         exec_lines[nexec] = malloc(len + 1);
         memcpy(exec_lines[nexec], line, len);
         exec_lines[nexec][len] = '\0';
@@ -90,7 +93,7 @@ static size_t distance(const char *a, const char *b, size_t bn)
 static int cut_at_minus(const char *log, const char *line)
 {
     for (size_t p = 0; line[p]; p++)
-        if (line[p] == '-' && distance(log, line, p) <= 3)
+        if (line[p] == '-' && distance(log, line, p) <= 3 + p / 10) /* a long line meets more faults */
             return 1;
     return 0;
 }
@@ -143,7 +146,7 @@ int main(int argc, char **argv)
     }
     double vars[10] = {0};
     int defined[10] = {0};
-    long ok = 0, ctrl_err = 0, failed = 0, bad = 0, queries_ok = 0, twice = 0;
+    long ok = 0, ctrl_err = 0, failed = 0, bad = 0, queries_ok = 0, twice = 0, maybe = 0;
     /* Surprises are judged at the end: with 8N1 an invisible alteration may explain them. */
     struct { size_t from, to; int var; } ev[256];
     size_t nev = 0;
@@ -198,11 +201,16 @@ int main(int argc, char **argv)
                 vars[k] = v;
                 defined[k] = 1;
             }
-            /* exactly once if it ran, never if it failed */
-            size_t runs = 0;
-            for (size_t x = exec_before; x < nexec && x < MAXLOG; x++)
-                runs += strcmp(exec_lines[x], line) == 0;
-            if (runs != (st == FBRL_OK || st == FBRL_ECONTROLLER ? 1u : 0u)) {
+            /* exactly once if it ran, never if it did not; "may have run" is reported once */
+            size_t runs = 0, maybes = 0;
+            for (size_t x = exec_before; x < nexec && x < MAXLOG; x++) {
+                runs += strcmp(exec_lines[x], line) == 0 && !exec_maybe[x];
+                maybes += strcmp(exec_lines[x], line) == 0 && exec_maybe[x];
+            }
+            int safe = fbrl_link_line_safe(line);
+            if (st == FBRL_EMAYBE ? runs + maybes < 1 || runs > 1 || (!safe && runs + maybes != 1)
+                                  : runs != (st == FBRL_OK || st == FBRL_ECONTROLLER ? 1u : 0u) ||
+                                        (!safe && maybes)) {
                 fprintf(stderr, "%s: reported executed %zu times (%s)\n", line, runs, fbrl_status_name(st));
                 twice++;
             }
@@ -222,6 +230,10 @@ int main(int argc, char **argv)
                 fprintf(stderr, "%s: error %d %s\n", line, code, text);
                 ev[nev].from = exec_before, ev[nev].to = nexec, ev[nev++].var = -1;
             }
+        } else if (st == FBRL_EMAYBE) {
+            maybe++;
+            if (line[0] == 'V')
+                defined[k] = 0; /* its value is no longer known */
         } else {
             failed++;
             fprintf(stderr, "%s: %s (reported, not done)\n", line, fbrl_status_name(st));
@@ -236,6 +248,13 @@ int main(int argc, char **argv)
     fbrl_uart_get_counters(&r.uart, &uc);
     rig_stop(&r);
 
+    if (getenv("FAULTS_JOURNAL")) {
+        FILE *j = fopen(getenv("FAULTS_JOURNAL"), "w");
+        for (size_t k = 0; j && k < nexec; k++)
+            fprintf(j, "%s%s\n", exec_lines[k], exec_maybe[k] ? "  (may have run)" : "");
+        if (j)
+            fclose(j);
+    }
     /* the controller's log against the link's account */
     FILE *f = fopen(logp, "r");
     if (!f) {
@@ -245,6 +264,7 @@ int main(int argc, char **argv)
     char buf[256];
     size_t nlog = 0, x = 0, mismatch = 0, flips = 0, cuts = 0, par_in = 0, par_out = 0;
     static char flipped[MAXLOG];
+    static char *logl[MAXLOG];
     int flipped_var[10] = {0};
     while (fgets(buf, sizeof buf, f)) {
         buf[strcspn(buf, "\r\n")] = '\0';
@@ -256,30 +276,73 @@ int main(int argc, char **argv)
             par_out++;
             continue;
         }
-        nlog++;
-        if (x < nexec && strcmp(buf, exec_lines[x]) == 0) {
+        if (nlog < MAXLOG)
+            logl[nlog++] = strdup(buf);
+    }
+    for (size_t i = 0; i < nlog; i++) {
+        const char *line = logl[i];
+        /* the same line several times in a row (a query read again): the log must hold
+         * at least the runs the link proved and at most those plus the ones that may
+         * have run */
+        size_t jx = x, jd = 0, jm = 0, lc = 0;
+        while (jx < nexec && exec_maybe[jx] && strcmp(exec_lines[jx], line) != 0)
+            jx++;
+        for (; jx < nexec && !strcmp(exec_lines[jx], line); jx++)
+            exec_maybe[jx] ? jm++ : jd++;
+        while (i + lc < nlog && !strcmp(logl[i + lc], line))
+            lc++;
+        /* 8N1: a run the link counted may have run altered by an invisible double flip
+         * (3.6), right after the exact ones; only as many as the link's count needs */
+        size_t lf = 0;
+        while (parity == 'N' && lc + lf < jd && i + lc + lf < nlog && one_bit_apart(logl[i + lc + lf], line))
+            lf++;
+        if (jd + jm > 0 && jd <= lc + lf && lc + lf <= jd + jm) {
+            if (lf) {
+                fprintf(stderr, "log lines %zu+: %zu run(s) of '%s' altered by one bit flipped in and out again\n",
+                        i + 1, lf, line);
+                flips += lf;
+                for (size_t y = x; y < jx; y++)
+                    flipped[y] = 1;
+                if (line[0] == 'V' && line[2] == '=')
+                    flipped_var[line[1] - '0'] = 1;
+            }
+            x = jx;
+            i += lc + lf - 1;
+            continue;
+        }
+        /* a line that may have run and is not here did not run (unless it was cut) */
+        while (x < nexec && exec_maybe[x] && strcmp(line, exec_lines[x]) != 0 &&
+               !(parity == 'N' && (cut_at_minus(line, exec_lines[x]) || one_bit_apart(line, exec_lines[x]))))
+            x++;
+        if (x < nexec && strcmp(line, exec_lines[x]) == 0) {
             x++;
             continue;
         }
-        if (parity == 'N' && x < nexec && one_bit_apart(buf, exec_lines[x])) {
-            fprintf(stderr, "log line %zu: '%s' for '%s': one bit flipped in and out again\n", nlog, buf,
+        if (parity == 'N' && x < nexec && one_bit_apart(line, exec_lines[x])) {
+            fprintf(stderr, "log line %zu: '%s' for '%s': one bit flipped in and out again\n", i + 1, line,
                     exec_lines[x]);
             flips++;
             flipped[x] = 1;
             if (exec_lines[x][0] == 'V' && exec_lines[x][2] == '=')
                 flipped_var[exec_lines[x][1] - '0'] = 1;
             x++;
-        } else if (parity == 'N' && x < nexec && cut_at_minus(buf, exec_lines[x])) {
-            fprintf(stderr, "log line %zu: '%s' ran, cut from '%s' by a '-' turned into CR\n", nlog, buf,
+        } else if (parity == 'N' && x < nexec && cut_at_minus(line, exec_lines[x])) {
+            fprintf(stderr, "log line %zu: '%s' ran, cut from '%s' by a '-' turned into CR\n", i + 1, line,
                     exec_lines[x]);
             cuts++; /* not an executed line of the link's: the link's line follows */
+            if (x < nexec)
+                flipped[x] = 1; /* its error may stand in STATUS for the next command */
         } else {
             if (mismatch++ < 10)
-                fprintf(stderr, "log line %zu: '%s', link: '%s'\n", nlog, buf, x < nexec ? exec_lines[x] : "(none)");
+                fprintf(stderr, "log line %zu: '%s', link: '%s'\n", i + 1, line, x < nexec ? exec_lines[x] : "(none)");
             x++;
         }
     }
+    for (size_t i = 0; i < nlog; i++)
+        free(logl[i]);
     fclose(f);
+    while (x < nexec && exec_maybe[x])
+        x++;
     for (size_t e = 0; e < nev; e++) {
         int excused = parity == 'N' && ev[e].var >= 0 && flipped_var[ev[e].var];
         for (size_t y = ev[e].from; parity == 'N' && y < ev[e].to && y < MAXLOG && ev[e].var < 0; y++)
@@ -291,9 +354,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "log has %zu lines, link reported %zu executed\n", nlog, nexec);
         mismatch++;
     }
-    printf("parity %c%s: %ld commands in %.1f s: %ld ok, %ld controller errors (expected), %ld reported failed, "
-           "%ld wrong, %ld not run exactly once\n",
-           parity, xonxoff ? ", XON/XOFF" : "", n, secs, ok, ctrl_err, failed, bad, twice);
+    printf("parity %c%s: %ld commands in %.1f s: %ld ok, %ld controller errors (expected), %ld may have run, "
+           "%ld reported not run, %ld wrong, %ld not run exactly once\n",
+           parity, xonxoff ? ", XON/XOFF" : "", n, secs, ok, ctrl_err, maybe, failed, bad, twice);
     printf("executed lines: log %zu, link %zu, %zu unexplained differences; altered lines: %zu double flips, %zu "
            "cut by '-' -> CR; %ld TYPEV values checked\n",
            nlog, nexec, mismatch, flips, cuts, queries_ok);

@@ -341,6 +341,27 @@ static void run_all(void)
     CHECK(stt.failed == 0);
 }
 
+/* Token form: fbrlsim knows every /NNN number of the library's table (it reads the same
+ * table). Each command that needs arguments is sent as its bare token: the controller
+ * must refuse it for the arguments, never as an unknown command (012). */
+static void every_token_is_known(void)
+{
+    for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
+        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)c);
+        if (!ci->token || !ci->sig[0] || ci->sig[0] == '[')
+            continue;
+        char text[8];
+        snprintf(text, sizeof text, "/%03u", (unsigned)ci->token);
+        fbrl_status st = fbrl_link_raw(L, text);
+        int code = -1;
+        fbrl_link_error(L, &code, NULL);
+        if ((st != FBRL_OK && st != FBRL_ECONTROLLER) || code == 12) {
+            fprintf(stderr, "%s (%s): %s, code %d\n", text, ci->keyword, fbrl_status_name(st), code);
+            failures++;
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 3) {
@@ -367,6 +388,8 @@ int main(int argc, char **argv)
         return 1;
     L = &r.link;
     run_all();
+    if (cfg.form == FBRL_RAPL_TOKEN)
+        every_token_is_known();
     rig_stop(&r);
     remove(state);
     remove(inputs);

@@ -25,3 +25,15 @@ if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
     set_tests_properties(e2e_${name} PROPERTIES LABELS e2e TIMEOUT 120)
   endforeach()
 endif()
+
+# Readings while the arm moves: W2 W0 ACTUAL live, ARM-HERE final, against fbrlsim's own
+# trajectory (its arm model from fbrlsim_core), 200 motions.
+if(TARGET fbrlsim AND TARGET fbrlsim_core AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
+  add_executable(robot_e2e_live ${CMAKE_CURRENT_SOURCE_DIR}/e2e/robot_e2e_live.c)
+  target_include_directories(robot_e2e_live PRIVATE ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/e2e)
+  target_compile_definitions(robot_e2e_live PRIVATE _DEFAULT_SOURCE)
+  target_link_libraries(robot_e2e_live PRIVATE fbrlsim_core fbrl_static Threads::Threads m)
+  add_dependencies(robot_e2e_live fbrlsim)
+  add_test(NAME e2e_robot_live COMMAND robot_e2e_live $<TARGET_FILE:fbrlsim> 200 1)
+  set_tests_properties(e2e_robot_live PROPERTIES LABELS e2e TIMEOUT 120)
+endif()

@@ -21,9 +21,10 @@
 #include "fbrl/uart_posix.h"
 
 enum { IN = 0, OUT = 1 };
-enum { NONE, DROP, REPLACE, MARK };
+enum { NONE, DROP, REPLACE, MARK, BURST };
 
-/* Damage the (skip+1)-th byte equal to `match` going in direction dir. */
+/* Damage the (skip+1)-th byte equal to `match` going in direction dir (BURST: drop it
+ * and the `with` - 1 bytes after it, as a loose connector does). */
 typedef struct rule {
     int dir, action, skip;
     uint8_t match, with;
@@ -38,6 +39,8 @@ typedef struct ctl {
     rule rules[4];
     int nrules;
     int dead; /* reads nothing, answers nothing */
+    int burst[2]; /* bytes still to drop in each direction */
+    int last_error; /* STATUS's LAST ERROR CODE, 0 = NONE */
     const char *typev;
     /* W1: a value line every stream_ms until any byte arrives (consumed). The line
      * already in the controller's transmit FIFO when that byte comes still goes out,
@@ -66,6 +69,10 @@ static void ctl_rule(ctl *c, int dir, uint8_t match, int skip, int action, uint8
 /* Apply the rules to one byte: -1 = dropped. */
 static int fault(ctl *c, int dir, uint8_t b)
 {
+    if (c->burst[dir] > 0) {
+        c->burst[dir]--;
+        return -1;
+    }
     for (int k = 0; k < c->nrules; k++) {
         rule *r = &c->rules[k];
         if (r->dir != dir || r->action == NONE || r->match != b)
@@ -74,7 +81,9 @@ static int fault(ctl *c, int dir, uint8_t b)
             continue;
         int act = r->action;
         r->action = NONE;
-        return act == DROP ? -1 : act == MARK ? 0x100 | b : r->with;
+        if (act == BURST)
+            c->burst[dir] = r->with - 1;
+        return act == DROP || act == BURST ? -1 : act == MARK ? 0x100 | b : r->with;
     }
     return b;
 }
@@ -101,13 +110,15 @@ static void execute(ctl *c)
     if (c->len) {
         snprintf(c->log[c->nlog++ % 32], sizeof c->log[0], "%s", c->line);
         if (!strcmp(c->line, "BAD")) {
+            c->last_error = 29;
             outs(c, "029-TRANSFORM ILLEGAL.\r\n");
         } else if (!strncmp(c->line, "TYPEV", 5) || !strncmp(c->line, "TYPEI", 5)) {
             outs(c, c->typev ? c->typev : "+1.500000");
             outs(c, "\r\n");
         } else if (!strcmp(c->line, "STATUS")) {
-            outs(c, "RAPL-II Version 2.60     A255 Robot (test)\r\nLAST ERROR CODE: 029-TRANSFORM ILLEGAL.\r\n"
-                    "SPEED (% OF FULL) :    +50\r\nCONTROLLER IS HOMED\r\nAXIS#        1 2 3 4 5\r\n"
+            outs(c, "RAPL-II Version 2.60     A255 Robot (test)\r\n");
+            outs(c, c->last_error ? "LAST ERROR CODE: 029-TRANSFORM ILLEGAL.\r\n" : "LAST ERROR CODE: NONE\r\n");
+            outs(c, "SPEED (% OF FULL) :    +50\r\nCONTROLLER IS HOMED\r\nAXIS#        1 2 3 4 5\r\n"
                     "LOCK         N N N N N\r\nDONE         Y Y Y Y Y\r\nLIMP         N N N N N\r\n"
                     "HOMED        Y Y Y Y Y\r\n");
         } else if (!strcmp(c->line, "W1")) {
@@ -176,6 +187,20 @@ static void ctl_service(ctl *c)
     }
 }
 
+/* cfg.on_exec: the run log */
+static char journal_line[8][64];
+static fbrl_status journal_res[8];
+static int njournal;
+static void on_exec(void *ctx, const char *line, size_t len, fbrl_status result)
+{
+    (void)ctx;
+    if (njournal < 8) {
+        snprintf(journal_line[njournal], sizeof journal_line[0], "%.*s", (int)len, line);
+        journal_res[njournal] = result;
+    }
+    njournal++;
+}
+
 static int open_session_parity(session *s, fbrl_parity parity)
 {
     memset(s, 0, sizeof *s);
@@ -195,6 +220,7 @@ static int open_session_parity(session *s, fbrl_parity parity)
     cfg.reply_timeout_ms = 2000;
     cfg.wait_timeout_ms = 2000;
     cfg.max_attempts = 6;
+    cfg.on_exec = on_exec;
     return fbrl_link_init(&s->l, &s->u, &cfg) == FBRL_OK ? 0 : -1;
 }
 
@@ -328,7 +354,8 @@ static void damaged_character_never_runs(void **state)
 
 /* The prompt comes back damaged, or the CR LF before it is lost: the command ran (the
  * CR LF, or the intact prompt, proves it); a probe confirms the controller is idle and
- * nothing is sent again. */
+ * the command is not sent again. The reply is not whole, so whether it was refused is
+ * settled by STATUS (LAST ERROR NONE: it succeeded), never guessed. */
 static void damaged_prompt_is_not_a_failure(void **state)
 {
     session *s = *state;
@@ -343,8 +370,8 @@ static void damaged_prompt_is_not_a_failure(void **state)
     ctl_rule(&s->c, OUT, '\n', 0, DROP, 0);
     ctl_rule(&s->c, OUT, '>', 1, REPLACE, '.');
     assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK); /* "CR > ." came */
-    static const char *const want[] = {"HOME", "HOME", "HOME"};
-    assert_log(s, want, 3);
+    static const char *const want[] = {"HOME", "STATUS", "HOME", "STATUS", "HOME", "STATUS"};
+    assert_log(s, want, 6);
     s->c.nlog = 0;
     assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
     assert_int_equal(s->c.nlog, 1);
@@ -352,6 +379,7 @@ static void damaged_prompt_is_not_a_failure(void **state)
     fbrl_link_get_stats(&s->l, &st);
     assert_int_equal(st.prompt_lost, 2);
     assert_int_equal(st.cr_unconfirmed, 0);
+    assert_int_equal(st.settled, 3);
 }
 
 /* Errors carry the controller's code; a damaged error line is never guessed from: the
@@ -409,6 +437,7 @@ static void queries_are_confirmed(void **state)
     assert_int_equal(fbrl_link_last_int(&s->l, &iv), FBRL_OK);
     assert_int_equal(iv, -3);
     assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_ESTATE);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
 
     assert_int_equal(run(s, "W2", FBRL_LINK_REPLY_POS), FBRL_OK);
     const fbrl_rapl_pos *p = fbrl_link_last_pos(&s->l);
@@ -454,7 +483,13 @@ static void silence_is_an_error(void **state)
         ctl_service(&s->c);
     }
     assert_true(done);
-    assert_int_equal(r, FBRL_ETIMEOUT);
+    /* the CR went out after a verified echo and nothing came back: it may have run */
+    assert_int_equal(r, FBRL_EMAYBE);
+    fbrl_link_outcome o;
+    assert_int_equal(fbrl_link_outcome_get(&s->l, &o), FBRL_OK);
+    assert_int_equal(o.fate, FBRL_LINK_MAY_HAVE_RUN);
+    assert_int_equal(o.cause, FBRL_ETIMEOUT);
+    assert_non_null(strstr(o.seen, "nothing came back"));
     /* after a timeout the line state is unknown: the next command starts with a probe */
     s->c.dead = 0;
     s->c.len = 0;
@@ -548,8 +583,8 @@ static void parity_errors_are_damage(void **state)
     ctl_rule(&s->c, OUT, '\n', 0, DROP, 0);
     ctl_rule(&s->c, OUT, '>', 0, MARK, 0);
     assert_int_equal(run(s, "READY", FBRL_LINK_REPLY_NONE), FBRL_OK);
-    static const char *const want[] = {"HOME", "READY"};
-    assert_log(s, want, 2);
+    static const char *const want[] = {"HOME", "READY", "STATUS"};
+    assert_log(s, want, 3);
     fbrl_link_get_stats(&s->l, &st);
     assert_int_equal(st.parity_errors, 3);
     assert_int_equal(st.cr_unconfirmed, 0);
@@ -571,10 +606,12 @@ static void clear_line_before_raw_output(void **state)
 {
     session *s = *state;
     ctl_rule(&s->c, OUT, '>', 0, REPLACE, '<'); /* damaged prompt: a probe, markers left */
+    ctl_rule(&s->c, OUT, '>', 1, REPLACE, '<'); /* and of the STATUS that settles it */
     assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
     s->c.nrules = 0;
     s->c.nlog = 0;
-    assert_true(s->c.len == 3);
+    /* the command erased its idle probe's markers itself (docs/link.md 3.3) */
+    assert_true(s->c.len == 0);
     assert_int_equal(fbrl_link_clear_line(&s->l), FBRL_OK);
     size_t n = 0;
     assert_int_equal(fbrl_uart_write(&s->u, "READY\r", 6, &n, 1000), FBRL_OK);
@@ -588,6 +625,106 @@ static void clear_line_before_raw_output(void **state)
     static const char *const want[] = {"READY", "HOME"};
     assert_log(s, want, 2);
     assert_int_equal(fbrl_link_clear_line(NULL), FBRL_EINVAL);
+}
+
+/* Exactly once (docs/link.md 3.9). A line not safe to repeat whose CR is lost is typed
+ * again only when the first probe's echo proves the text was still on the line; when
+ * that echo is damaged too, nothing proves either way: it is reported "may have run"
+ * and never typed again. A safe line in the same spot is typed again. */
+static void unsafe_line_is_never_retyped_without_proof(void **state)
+{
+    session *s = *state;
+    assert_false(fbrl_link_line_safe("V1=V1+1"));
+    assert_false(fbrl_link_line_safe("v1 = 2*v1"));
+    assert_true(fbrl_link_line_safe("V1=V2+1"));
+    assert_true(fbrl_link_line_safe("V1=2.5"));
+    assert_true(fbrl_link_line_safe("MOVE P1"));
+    assert_false(fbrl_link_line_safe("JOG 1,0,0"));
+    assert_false(fbrl_link_line_safe("/005 1,0,0"));
+    assert_false(fbrl_link_line_safe("FROB 1"));
+    /* the CR is lost, the probe's echo is whole: proven not run, typed again */
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const once[] = {"V1=V1+1"};
+    assert_log(s, once, 1);
+    s->c.nrules = 0;
+    /* the CR is lost and so is the first byte of the probe's echo */
+    s->c.nlog = 0;
+    njournal = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    assert_int_equal(s->c.nlog, 0); /* it did not run, and it was not typed twice */
+    assert_int_equal(njournal, 1);
+    assert_int_equal(journal_res[0], FBRL_EMAYBE);
+    fbrl_link_outcome o;
+    assert_int_equal(fbrl_link_outcome_get(&s->l, &o), FBRL_OK);
+    assert_int_equal(o.fate, FBRL_LINK_MAY_HAVE_RUN);
+    assert_non_null(strstr(o.seen, "may not have arrived"));
+    fbrl_link_stats st;
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.not_retyped, 1);
+    s->c.nrules = 0;
+    /* the same damage to a line that is safe to repeat: typed again, runs once */
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=5", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const v5[] = {"V1=5"};
+    assert_log(s, v5, 1);
+    assert_int_equal(fbrl_link_fate_of(FBRL_OK), FBRL_LINK_RAN);
+    assert_int_equal(fbrl_link_fate_of(FBRL_ECONTROLLER), FBRL_LINK_REFUSED);
+    assert_int_equal(fbrl_link_fate_of(FBRL_EMAYBE), FBRL_LINK_MAY_HAVE_RUN);
+    assert_int_equal(fbrl_link_fate_of(FBRL_EECHO), FBRL_LINK_NOT_RUN);
+}
+
+/* The whole reply is lost in a burst: the first probe finds the line empty, so the CR
+ * took effect; the reply is not whole, so STATUS settles it. A refusal whose error line
+ * is cut is a refusal (LAST ERROR changed), never a success; the same refusal again
+ * cannot be told from success: "may have run". */
+static void lost_reply_is_settled_not_guessed(void **state)
+{
+    session *s = *state;
+    assert_int_equal(run(s, "STATUS", FBRL_LINK_REPLY_STATUS), FBRL_OK); /* LAST ERROR: NONE */
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 4); /* CR LF > > */
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"V1=V1+1", "STATUS"};
+    assert_log(s, want, 2);
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 10); /* "CR LF 029-TRAN" */
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    int code;
+    const char *text;
+    fbrl_link_error(&s->l, &code, &text);
+    assert_int_equal(code, 29);
+    /* a piece of text in the reply of a command that prints nothing else is a piece of
+     * an error line: refused, code from STATUS */
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 10);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    /* the whole error line lost, the prompt kept: STATUS shows the same error as before */
+    s->c.nrules = 0;
+    ctl_rule(&s->c, OUT, '\r', 0, BURST, 26);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    fbrl_link_outcome o;
+    fbrl_link_outcome_get(&s->l, &o);
+    assert_non_null(strstr(o.seen, "earlier error"));
+    static const char *const bad[] = {"BAD", "STATUS", "BAD", "STATUS", "BAD", "STATUS"};
+    assert_log(s, bad, 6);
+    /* a position block is believed on its own consistency: one read; a damaged digit
+     * breaks it (joint 2 reads 80 for 18000 pulses), and it is read again */
+    s->c.nrules = 0;
+    s->c.nlog = 0;
+    assert_int_equal(run(s, "W2", FBRL_LINK_REPLY_POS), FBRL_OK);
+    assert_int_equal(s->c.nlog, 1);
+    s->c.nlog = 0;
+    ctl_rule(&s->c, OUT, '9', 0, REPLACE, '8');
+    assert_int_equal(run(s, "W2", FBRL_LINK_REPLY_POS), FBRL_OK);
+    assert_int_equal(s->c.nlog, 2);
+    assert_true(fbrl_link_last_pos(&s->l)->joints[1] == 90.0);
 }
 
 static void bad_calls_are_refused(void **state)
@@ -684,6 +821,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
         cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
+        cmocka_unit_test_setup_teardown(unsafe_line_is_never_retyped_without_proof, setup, teardown),
+        cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
     };

@@ -110,6 +110,14 @@ static golden goldens[] = {
     G(FBRL_RAPL_XZERO, 0, "XZERO 6", "/159 6", I(6)),
     G(FBRL_RAPL_ASSIGN, 0, "V1=2.5", "V1=2.5", S("v1"), R(2.5)),
     G(FBRL_RAPL_ASSIGN, 0, "N=7", "N=7", S("N"), I(7)),
+    G(FBRL_RAPL_DLOCN, 0, "DLOCN P1", "/048 P1", S("p1")),
+    G(FBRL_RAPL_DVAR, 0, "DVAR V1", "/067 V1", S("V1")),
+    G0(FBRL_RAPL_HELP, "HELP", "/095"),
+    G0(FBRL_RAPL_LISTL, "LISTL", "/049"),
+    G(FBRL_RAPL_LISTL, 0, "LISTL P1", "/049 P1", S("P1")),
+    G0(FBRL_RAPL_LISTV, "LISTV", "/069"),
+    G(FBRL_RAPL_SHIFT, 0, "SHIFT P1,1,0,-2.25", "/052 P1,1,0,-2.25", S("P1"), R(1), R(0), R(-2.25)),
+    G(FBRL_RAPL_TYPE, 0, "TYPE HELLO, WORLD", "/058 HELLO, WORLD", S("Hello, world")),
 };
 
 static void every_command_encodes_in_both_forms(void **state)
@@ -168,6 +176,50 @@ static void table_is_complete_and_lookups_work(void **state)
     assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_MOVE)->flags & FBRL_RAPL_F_MOTION);
     assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_W1)->flags & FBRL_RAPL_F_STREAM);
     assert_false(fbrl_rapl_cmd_info(FBRL_RAPL_W2)->flags & FBRL_RAPL_F_STREAM);
+}
+
+/* One place for each fact: the table's flags agree with each other and with the reply
+ * kinds, and the enum values never move (bindings store them). */
+static void table_facts_agree(void **state)
+{
+    (void)state;
+    int waits = 0, unsafe = 0;
+    for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
+        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)c);
+        /* a motion may wait for the one before it; a straight line is a motion */
+        if (ci->flags & FBRL_RAPL_F_MOTION)
+            assert_true(ci->flags & FBRL_RAPL_F_WAITS);
+        if (ci->flags & FBRL_RAPL_F_STRAIGHT)
+            assert_true(ci->flags & FBRL_RAPL_F_MOTION);
+        /* streams, and only streams, have the stream reply */
+        assert_int_equal(!!(ci->flags & FBRL_RAPL_F_STREAM), ci->reply == FBRL_RAPL_REPLY_STREAM);
+        /* every query (a reply with values) is read-only, so safe to repeat */
+        if (ci->reply != FBRL_RAPL_REPLY_NONE && ci->reply != FBRL_RAPL_REPLY_LINES)
+            assert_true(ci->flags & FBRL_RAPL_F_SAFE);
+        waits += !!(ci->flags & FBRL_RAPL_F_WAITS);
+        unsafe += !(ci->flags & FBRL_RAPL_F_SAFE);
+    }
+    /* the commands the issue names as not safe to repeat */
+    static const fbrl_rapl_cmd never_twice[] = {FBRL_RAPL_JOG, FBRL_RAPL_DEPART, FBRL_RAPL_APPRO, FBRL_RAPL_MI,
+                                                FBRL_RAPL_JOINT, FBRL_RAPL_MOTOR, FBRL_RAPL_RUN, FBRL_RAPL_SHIFTA,
+                                                FBRL_RAPL_SHIFT, FBRL_RAPL_DLOCN, FBRL_RAPL_DVAR};
+    for (size_t k = 0; k < sizeof never_twice / sizeof never_twice[0]; k++)
+        assert_false(fbrl_rapl_cmd_info(never_twice[k])->flags & FBRL_RAPL_F_SAFE);
+    assert_int_equal(unsafe, (int)(sizeof never_twice / sizeof never_twice[0]));
+    assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_FINISH)->flags & FBRL_RAPL_F_WAITS);
+    assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_WAIT)->flags & FBRL_RAPL_F_WAITS);
+    assert_true(fbrl_rapl_cmd_info(FBRL_RAPL_RUN)->flags & FBRL_RAPL_F_WAITS);
+    assert_true(waits > 3);
+    assert_int_equal(fbrl_rapl_cmd_info(FBRL_RAPL_W2)->reply, FBRL_RAPL_REPLY_POS);
+    assert_int_equal(fbrl_rapl_cmd_info(FBRL_RAPL_STATUS)->reply, FBRL_RAPL_REPLY_STATUS);
+    assert_int_equal(fbrl_rapl_cmd_info(FBRL_RAPL_TYPEI)->reply, FBRL_RAPL_REPLY_INT);
+    assert_int_equal(fbrl_rapl_cmd_info(FBRL_RAPL_TYPEV)->reply, FBRL_RAPL_REPLY_REAL);
+    /* stable values: the first, one in the middle, the last of each release */
+    assert_int_equal(FBRL_RAPL_ACTUAL, 0);
+    assert_int_equal(FBRL_RAPL_MOVE, 22);
+    assert_int_equal(FBRL_RAPL_ASSIGN, 56);
+    assert_int_equal(FBRL_RAPL_TYPE, 63);
+    assert_int_equal(FBRL_RAPL_REPLY_STREAM, 6);
 }
 
 static void reals_are_short_and_have_no_exponent(void **state)
@@ -362,6 +414,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_command_encodes_in_both_forms),
         cmocka_unit_test(table_is_complete_and_lookups_work),
+        cmocka_unit_test(table_facts_agree),
         cmocka_unit_test(reals_are_short_and_have_no_exponent),
         cmocka_unit_test(short_reals_read_back_as_four_decimals),
         cmocka_unit_test(names_are_validated),
