@@ -25,6 +25,9 @@
 /* After ESC, the rest of an escape sequence arrives at once (the terminal sends it in
  * one write); a lone ESC is the user's cancel once this much silence follows it. */
 #define ESC_WAIT_MS 100
+/* The longest single wait for a key: a Ctrl-C whose handler ran between the check of
+ * the flag and poll() would not wake poll, so the flag is looked at again this often. */
+#define KEY_SLICE_MS 100
 
 /* The controller location TEACH points for pitch and roll moves. */
 #define TEACH_POINT "FBRLTP"
@@ -65,18 +68,25 @@ static int read_byte(teach *t, int timeout_ms)
         unsigned char c;
         ssize_t n;
         int r;
+        int slice = timeout_ms < 0 || timeout_ms > KEY_SLICE_MS ? KEY_SLICE_MS : timeout_ms;
         if (h->interrupted)
             return -3;
         p.fd = h->in_fd;
         p.events = POLLIN;
         p.revents = 0;
-        r = poll(&p, 1, timeout_ms);
+        r = poll(&p, 1, slice);
         if (r < 0 && errno == EINTR)
             continue;
         if (r < 0)
             return -2;
-        if (r == 0)
-            return -1;
+        if (r == 0) {
+            if (timeout_ms < 0)
+                continue;
+            timeout_ms -= slice;
+            if (timeout_ms <= 0)
+                return -1;
+            continue;
+        }
         n = read(h->in_fd, &c, 1);
         if (n == 1)
             return c;

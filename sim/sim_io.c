@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/inotify.h>
@@ -111,6 +112,12 @@ int sim_io_accept(sim_io *io)
     if (io->conn >= 0) {
         refuse(fd);
         return 0;
+    }
+    {
+        /* The line hands each character over when its last bit is through: Nagle's
+         * algorithm would hold small writes back and deliver them in bursts. */
+        int one = 1;
+        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     }
     io->conn = io->fd = fd;
     return 1;

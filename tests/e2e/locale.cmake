@@ -26,3 +26,5 @@ add_test(NAME locale_unit COMMAND ${_de} ${CMAKE_CTEST_COMMAND} --test-dir ${PRO
   --output-on-failure)
 list(APPEND _locale_tests locale_unit)
 set_tests_properties(${_locale_tests} PROPERTIES LABELS locale SKIP_RETURN_CODE 77)
+# (after the list's own: locale_plan keeps its 120 s) nothing may hang CI
+set_tests_properties(locale_host locale_unit PROPERTIES TIMEOUT 300)

@@ -23,11 +23,18 @@ type_line "HOME READY  CREATE-LOC FAR 40.0 0.0 3.0 0.0 -90.0 0.0 FAR DEFINE-LOC 
 wait_for "MOV: controller error 029-TRANSFORM ILLEGAL (the position is out of the arm's reach"
 
 # ---- a motion says what it started; FINISH shows its wait, then how long it waited
-type_line "20 SPEED  CREATE-LOC P 14.0 2.0 8.0 0.0 -90.0 0.0 P DEFINE-LOC"
+# (10 %: a motion of about 8 s, so that the progress line, erased when the motion ends,
+# stays on the screen for seconds even when the machine is loaded and tmux slow to show it)
+type_line "10 SPEED  CREATE-LOC P 14.0 2.0 8.0 0.0 -90.0 0.0 P DEFINE-LOC"
 tmux -L "$sock" send-keys -t said -l "P MOV FINISH"
 tmux -L "$sock" send-keys -t said Enter
 wait_for "MOV: the arm is moving to X +14.0000 Y +2.0000 Z +8.0000 in (MOVE FBRLT"
-wait_for "FINISH: waiting for the arm, 2 s"
+k=0  # the seconds it shows count up (2 s, 3 s, ...): any of them
+until screen | grep -qE -- "FINISH: waiting for the arm, [2-9] s"; do
+    k=$((k + 1))
+    [ $k -lt 100 ] || { fail "no 'FINISH: waiting for the arm, N s' on the screen"; screen; break; }
+    sleep 0.1
+done
 k=0
 while [ "$(count 'FINISH: waited ')" = 0 ] && [ $k -lt 300 ]; do sleep 0.1; k=$((k + 1)); done
 screen | grep -q '^FINISH: waited [0-9]*\.[0-9] s for the arm$' || { fail "FINISH does not say how long it waited"; screen; }
