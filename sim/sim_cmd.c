@@ -12,14 +12,25 @@
 #define F_MOTION 1 /* waits for the previous motion; needs power, HOME, no LIMP */
 #define F_RAW 2    /* takes the raw rest of the line */
 #define F_TOP 4    /* only typed, not inside RUN */
+#define RUN_STEPS_PER_SLICE 1000 /* program lines (and passes) RUN executes per event-loop slice */
 
 static int exec_line(fbrl_sim *s, const char *text, int top, int *block);
 
 static int run_continue(fbrl_sim *s, int *block)
 {
+    int budget = RUN_STEPS_PER_SLICE;
     while (s->run.left > 0) {
+        if (budget-- <= 0) { /* a long RUN yields, so the event loop goes on (I/O, stop) */
+            *block = 1;
+            return 0;
+        }
         while (s->run.pc < s->run.prog->n) {
-            int b = 0, e = exec_line(s, s->run.prog->lines[s->run.pc], 0, &b);
+            int b = 0, e;
+            if (budget-- <= 0) {
+                *block = 1;
+                return 0;
+            }
+            e = exec_line(s, s->run.prog->lines[s->run.pc], 0, &b);
             if (b) {
                 *block = 1;
                 return 0;

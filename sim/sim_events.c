@@ -47,11 +47,14 @@ void sim_events_read_fifo(fbrl_sim *s)
     for (i = 0; i < n; i++) {
         if (buf[i] == '\n' || buf[i] == '\r') {
             ev->ctlbuf[ev->ctllen] = 0;
-            if (ev->ctllen)
+            if (ev->ctllen && !ev->ctl_overlong)
                 sim_control(s, ev->ctlbuf);
             ev->ctllen = 0;
+            ev->ctl_overlong = 0;
         } else if (ev->ctllen < sizeof ev->ctlbuf - 1) {
             ev->ctlbuf[ev->ctllen++] = buf[i];
+        } else {
+            ev->ctl_overlong = 1; /* dropped whole: a cut line could mean something else */
         }
     }
 }
@@ -71,13 +74,21 @@ int sim_events_load(sim_events *ev, const char *path, char *err, size_t errlen)
         struct sim_event *e;
         int i;
         lineno++;
+        if (!strchr(line, '\n') && !feof(f)) {
+            sim_seterr(err, errlen, "%s:%d: line too long (at most %d characters)", path, lineno,
+                       (int)sizeof line - 2);
+            fclose(f);
+            return -1;
+        }
         line[strcspn(line, "\r\n")] = 0;
         while (*p == ' ' || *p == '\t')
             p++;
         if (!*p || *p == '#')
             continue;
+        /* a decimal time (strtod alone would take hex, nan, inf), then a space */
         t = strtod(p, &end);
-        if (end == p || !isfinite(t) || t < 0) {
+        if (end == p || strspn(p, "0123456789+-.eE") != (size_t)(end - p) || !isfinite(t) || t < 0
+            || (*end != ' ' && *end != '\t')) {
             sim_seterr(err, errlen, "%s:%d: expected a time in seconds", path, lineno);
             fclose(f);
             return -1;

@@ -127,6 +127,7 @@ typedef struct sim_events {
     int ctl;             /* control FIFO */
     char ctlbuf[256];
     size_t ctllen;
+    int ctl_overlong;    /* the FIFO line being read is longer than ctlbuf: dropped */
     struct sim_event *list;
     int n, next;
 } sim_events;

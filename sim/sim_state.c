@@ -342,8 +342,13 @@ static int load_item(loader *ld, sim_prog **prog)
                    ld->path, ld->lineno, s->arm.model->name);
         return -1;
     } else if (!strcmp(k, "SPEED")) {
-        if (want_fields(ld, 2) || real_field(ld, 1, 1e-9, 100.0, &s->arm.speed))
+        /* SPEED takes any percentage above 0 up to 100: so does the file (it once
+         * refused below 1e-9, so SPEED 50/111111111111 saved a file that did not load) */
+        if (want_fields(ld, 2) || real_field(ld, 1, 0.0, 100.0, &d[0]))
             return -1;
+        if (!(d[0] > 0.0))
+            return bad(ld, "SPEED must be above 0, not", ld->tok[1]);
+        s->arm.speed = d[0];
     } else if (!strcmp(k, "JOINTS")) {
         if (want_fields(ld, sim_naxes(s) + 1))
             return -1;
@@ -452,12 +457,33 @@ static int load_item(loader *ld, sim_prog **prog)
     return 0;
 }
 
+/* The line fgets just read held a NUL byte (it read more bytes than the string
+ * has); *at is where the next line starts. Only where the file can tell. */
+static int has_nul(FILE *f, const char *line, long *at)
+{
+    long next = ftell(f);
+    int nul = *at >= 0 && next >= 0 && (size_t)(next - *at) != strlen(line);
+    *at = next;
+    return nul;
+}
+
+/* A program's END: the keyword in either case (as every keyword), alone on its line.
+ * Anything else is a program line, upper-cased: "end" must not be saved as "END". */
+static int is_end(const char *t)
+{
+    if (toupper((unsigned char)t[0]) != 'E' || toupper((unsigned char)t[1]) != 'N'
+        || toupper((unsigned char)t[2]) != 'D')
+        return 0;
+    return t[3 + strspn(t + 3, " \t")] == 0;
+}
+
 int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
 {
     FILE *f = fopen(s->state_path, "r");
     char line[512];
     sim_prog *prog = NULL;
     loader ld;
+    long at;
 
     if (!f) {
         if (errno == ENOENT)
@@ -471,7 +497,8 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
     ld.err = err;
     ld.errlen = errlen;
     ld.lineno = 1;
-    if (fgets(line, sizeof line, f))
+    at = ftell(f);
+    if (fgets(line, sizeof line, f) && !has_nul(f, line, &at))
         line[strcspn(line, "\r\n")] = 0;
     else
         line[0] = 0;
@@ -484,6 +511,11 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
         size_t n = strlen(line);
         int e = 0;
         ld.lineno++;
+        if (has_nul(f, line, &at)) {
+            bad(&ld, "a NUL byte in the line", NULL);
+            fclose(f);
+            return -1;
+        }
         if (n == sizeof line - 1 && line[n - 1] != '\n') {
             bad(&ld, "line too long", NULL);
             fclose(f);
@@ -494,7 +526,7 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
             char *t = line;
             while (*t == ' ' || *t == '\t')
                 t++;
-            if (!strcmp(t, "END"))
+            if (is_end(t))
                 prog = NULL;
             else
                 e = add_prog_line(&ld, prog, t);

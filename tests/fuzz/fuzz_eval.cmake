@@ -9,26 +9,13 @@ if(_fuzz_engine)
   add_executable(fuzz_replay ${_fuzz_dir}/fuzz_replay.c ${_fuzz_dir}/fuzz_eval.c)
   target_compile_definitions(fuzz_replay PRIVATE _POSIX_C_SOURCE=200809L)
   target_link_libraries(fuzz_replay PRIVATE fbrl_static)
-  add_test(NAME fuzz_replay COMMAND fuzz_replay ${_fuzz_dir}/corpus)
+  add_test(NAME fuzz_replay COMMAND fuzz_replay ${_fuzz_dir}/corpus/eval)
   set_tests_properties(fuzz_replay PROPERTIES LABELS fuzz TIMEOUT 300)
+  add_dependencies(fuzz_targets fuzz_replay)
 
-  if(CMAKE_C_COMPILER_ID MATCHES "Clang")
-    include(CheckCSourceCompiles)
-    set(CMAKE_REQUIRED_FLAGS -fsanitize=fuzzer)
-    check_c_source_compiles("
-      #include <stddef.h>
-      #include <stdint.h>
-      int LLVMFuzzerTestOneInput(const uint8_t *d, size_t n) { (void)d; (void)n; return 0; }"
-      FBRL_HAVE_LIBFUZZER)
-    unset(CMAKE_REQUIRED_FLAGS)
-  endif()
   if(FBRL_HAVE_LIBFUZZER)
     # The engine is compiled into the target again with coverage instrumentation
     # (the library objects are not), and with ASan+UBSan unless the build has them.
-    set(_fuzz_san -fsanitize=fuzzer)
-    if(FBRL_SANITIZE STREQUAL "")
-      set(_fuzz_san -fsanitize=fuzzer,address,undefined)
-    endif()
     add_executable(fuzz_eval ${_fuzz_dir}/fuzz_eval.c ${FBRL_SOURCES} ${FBRL_WORD_SOURCES})
     target_include_directories(fuzz_eval PRIVATE ${PROJECT_SOURCE_DIR}/include ${PROJECT_SOURCE_DIR}/src)
     target_compile_definitions(fuzz_eval PRIVATE _POSIX_C_SOURCE=200809L)
@@ -41,9 +28,11 @@ if(_fuzz_engine)
     target_link_libraries(fuzz_eval PRIVATE ${FBRL_LINK_LIBS})
     # New inputs go to a corpus in the build tree; the seeds stay read-only.
     file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/fuzz/corpus ${PROJECT_BINARY_DIR}/fuzz/artifacts)
-    add_test(NAME fuzz_eval COMMAND fuzz_eval -max_total_time=20 -timeout=10 -rss_limit_mb=2048
+    add_test(NAME fuzz_eval COMMAND fuzz_eval -max_total_time=${FBRL_FUZZ_SECONDS} -timeout=10 -rss_limit_mb=2048
       -artifact_prefix=${PROJECT_BINARY_DIR}/fuzz/artifacts/
-      ${PROJECT_BINARY_DIR}/fuzz/corpus ${_fuzz_dir}/corpus)
-    set_tests_properties(fuzz_eval PROPERTIES LABELS fuzz TIMEOUT 120)
+      ${PROJECT_BINARY_DIR}/fuzz/corpus ${_fuzz_dir}/corpus/eval)
+    math(EXPR _fuzz_timeout "${FBRL_FUZZ_SECONDS} + 120")
+    set_tests_properties(fuzz_eval PROPERTIES LABELS fuzz TIMEOUT ${_fuzz_timeout})
+    add_dependencies(fuzz_targets fuzz_eval)
   endif()
 endif()

@@ -1,13 +1,33 @@
 /* fuzz_replay.c - runs files (a seed corpus, crash reproducers) through the fuzz
  * entry point without libFuzzer, so the normal (gcc, ASan) build always tests it.
  *
- *   fuzz_replay FILE_OR_DIR...      exit 0 when every input ran; 1 if none was read */
+ *   fuzz_replay FILE_OR_DIR...      exit 0 when every input ran; 1 if none was read
+ *
+ * An input that runs longer than REPLAY_INPUT_SECONDS is a hang: the replay
+ * names it and fails at once instead of waiting for ctest's timeout. */
 #include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <unistd.h>
+
+#define REPLAY_INPUT_SECONDS 60
+
+static const char *volatile current;
+
+static void on_alarm(int sig)
+{
+    const char *msg = "fuzz_replay: input runs too long (a hang): ";
+    const char *p = current;
+    (void)sig;
+    if (write(STDERR_FILENO, msg, strlen(msg)) < 0 || (p && write(STDERR_FILENO, p, strlen(p)) < 0)
+        || write(STDERR_FILENO, "\n", 1) < 0)
+        _exit(1);
+    _exit(1);
+}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -31,7 +51,10 @@ static int run_file(const char *path)
         return -1;
     }
     fclose(f);
+    current = path;
+    alarm(REPLAY_INPUT_SECONDS);
     LLVMFuzzerTestOneInput(buf, (size_t)n);
+    alarm(0);
     free(buf);
     return 0;
 }
@@ -71,6 +94,7 @@ int main(int argc, char **argv)
 {
     unsigned count = 0;
     int i, rc = 0;
+    signal(SIGALRM, on_alarm);
     for (i = 1; i < argc; i++)
         if (run_path(argv[i], &count) != 0)
             rc = 1;
