@@ -42,44 +42,6 @@ static void check(int ok, const char *what, const session *s)
     }
 }
 
-/* Start fbrlsim on a pty with a command log; its first output line is the pty's path. */
-static pid_t start_sim(const char *sim, const char *log, char *port, size_t cap)
-{
-    int pfd[2];
-    pid_t pid;
-    size_t n = 0;
-    remove(log);
-    if (pipe(pfd) != 0)
-        return -1;
-    pid = fork();
-    if (pid < 0)
-        return -1;
-    if (pid == 0) {
-        dup2(pfd[1], 1);
-        close(pfd[0]);
-        close(pfd[1]);
-        execl(sim, sim, "--log", log, (char *)NULL);
-        _exit(127);
-    }
-    close(pfd[1]);
-    while (n + 1 < cap) {
-        char c;
-        ssize_t r = read(pfd[0], &c, 1);
-        if (r <= 0 || c == '\n')
-            break;
-        port[n++] = c;
-    }
-    port[n] = '\0';
-    close(pfd[0]);
-    if (strncmp(port, "/dev/", 5) != 0) {
-        fprintf(stderr, "FAIL: fbrlsim printed no device path (\"%s\")\n", port);
-        kill(pid, SIGTERM);
-        waitpid(pid, NULL, 0);
-        return -1;
-    }
-    return pid;
-}
-
 int main(int argc, char **argv)
 {
     static session s;
@@ -95,7 +57,7 @@ int main(int argc, char **argv)
     mkdir(argv[3], 0777);
     signal(SIGPIPE, SIG_IGN);
     snprintf(log, sizeof log, "%s/sim.log", argv[3]);
-    sim = start_sim(argv[2], log, port, sizeof port);
+    sim = start_sim_pty(argv[2], log, port, sizeof port, TIMEOUT_MS);
     if (sim < 0)
         return 1;
     if (start_mon(&s, TIMEOUT_MS, argv[3], argv[1], "--port", port) != 0) {

@@ -141,6 +141,46 @@ static inline void settle(session *s, long ms)
             return;
 }
 
+/* Start fbrlsim on a pty with a command log (removed first); its first output line is the
+ * pty's path, read within timeout_ms. Returns the emulator's pid, or -1. */
+static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, size_t cap, long timeout_ms)
+{
+    int pfd[2];
+    pid_t pid;
+    size_t n = 0;
+    long deadline = now_ms() + timeout_ms;
+    remove(log);
+    if (pipe(pfd) != 0)
+        return -1;
+    pid = fork();
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        dup2(pfd[1], 1);
+        close(pfd[0]);
+        close(pfd[1]);
+        execl(sim, sim, "--log", log, (char *)NULL);
+        _exit(127);
+    }
+    close(pfd[1]);
+    while (n + 1 < cap && now_ms() < deadline) {
+        char c;
+        ssize_t r = read(pfd[0], &c, 1);
+        if (r <= 0 || c == '\n')
+            break;
+        port[n++] = c;
+    }
+    port[n] = '\0';
+    close(pfd[0]); /* fbrlsim prints nothing more on stdout */
+    if (strncmp(port, "/dev/", 5) != 0) {
+        fprintf(stderr, "FAIL: fbrlsim printed no device path (\"%s\")\n", port);
+        kill(pid, SIGTERM);
+        waitpid(pid, NULL, 0);
+        return -1;
+    }
+    return pid;
+}
+
 /* Write keys at once (for Ctrl-C while a line runs and the terminal is in line mode). */
 static inline void type_now(session *s, const char *text)
 {

@@ -73,46 +73,6 @@ static int file_count(const char *path, const char *text)
     return occurrences(buf, text);
 }
 
-/* Start fbrlsim on a pty with a command log; its first output line is the pty's path. */
-static pid_t start_sim(const char *sim, const char *dir, char *port, size_t cap, char *log, size_t logcap)
-{
-    int pfd[2];
-    pid_t pid;
-    size_t n = 0;
-    long deadline = now_ms() + TIMEOUT_MS;
-    snprintf(log, logcap, "%s/sim.log", dir);
-    remove(log);
-    if (pipe(pfd) != 0)
-        return -1;
-    pid = fork();
-    if (pid < 0)
-        return -1;
-    if (pid == 0) {
-        dup2(pfd[1], 1);
-        close(pfd[0]);
-        close(pfd[1]);
-        execl(sim, sim, "--log", log, (char *)NULL);
-        _exit(127);
-    }
-    close(pfd[1]);
-    while (n + 1 < cap && now_ms() < deadline) {
-        char c;
-        ssize_t r = read(pfd[0], &c, 1);
-        if (r <= 0 || c == '\n')
-            break;
-        port[n++] = c;
-    }
-    port[n] = '\0';
-    close(pfd[0]); /* fbrlsim prints nothing more on stdout */
-    if (strncmp(port, "/dev/", 5) != 0) {
-        fprintf(stderr, "FAIL: fbrlsim printed no device path (\"%s\")\n", port);
-        kill(pid, SIGTERM);
-        waitpid(pid, NULL, 0);
-        return -1;
-    }
-    return pid;
-}
-
 int main(int argc, char **argv)
 {
     static session s;
@@ -127,7 +87,8 @@ int main(int argc, char **argv)
     }
     mkdir(argv[3], 0777);
     signal(SIGPIPE, SIG_IGN);
-    sim = start_sim(argv[2], argv[3], port, sizeof port, log, sizeof log);
+    snprintf(log, sizeof log, "%s/sim.log", argv[3]);
+    sim = start_sim_pty(argv[2], log, port, sizeof port, TIMEOUT_MS);
     if (sim < 0)
         return 1;
     if (start_mon(&s, TIMEOUT_MS, argv[3], argv[1], "--port", port) != 0) {
