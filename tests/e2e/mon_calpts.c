@@ -16,23 +16,6 @@
 
 #define TIMEOUT_MS 60000 /* generous: the machine may be loaded, or ASan slow */
 
-static int file_count(const char *path, const char *text)
-{
-    static char buf[1 << 20];
-    size_t n;
-    int k = 0;
-    const char *p = buf;
-    FILE *f = fopen(path, "r");
-    if (f == NULL)
-        return -1;
-    n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    while ((p = strstr(p, text)) != NULL)
-        k++, p += strlen(text);
-    return k;
-}
-
 static void check(int ok, const char *what, const session *s)
 {
     if (!ok && !g_failed) {

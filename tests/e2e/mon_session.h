@@ -141,6 +141,31 @@ static inline void settle(session *s, long ms)
             return;
 }
 
+/* Occurrences of text in the string p. */
+static inline int occurrences(const char *p, const char *text)
+{
+    int n = 0;
+    while ((p = strstr(p, text)) != NULL) {
+        n++;
+        p += strlen(text);
+    }
+    return n;
+}
+
+/* Occurrences of text in a file (its first MiB), or -1 if it cannot be read. */
+static inline int file_count(const char *path, const char *text)
+{
+    static char buf[1 << 20];
+    size_t n;
+    FILE *f = fopen(path, "r");
+    if (f == NULL)
+        return -1;
+    n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    return occurrences(buf, text);
+}
+
 /* Start fbrlsim on a pty with a command log (removed first); its first output line is the
  * pty's path, read within timeout_ms. Returns the emulator's pid, or -1. */
 static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, size_t cap, long timeout_ms)

@@ -36,17 +36,6 @@ static int expect_within(session *s, const char *text, const char *what, long ms
     return expect(s, text, what);
 }
 
-/* Occurrences of text in the string p. */
-static int occurrences(const char *p, const char *text)
-{
-    int n = 0;
-    while ((p = strstr(p, text)) != NULL) {
-        n++;
-        p += strlen(text);
-    }
-    return n;
-}
-
 /* Occurrences of text in the output since `from`. */
 static int count(const session *s, size_t from, const char *text)
 {
@@ -58,19 +47,6 @@ static void key(session *s, const char *seq, const char *status_text, const char
 {
     type(s, seq);
     expect(s, status_text, what);
-}
-
-static int file_count(const char *path, const char *text)
-{
-    static char buf[1 << 20];
-    size_t n;
-    FILE *f = fopen(path, "r");
-    if (f == NULL)
-        return -1;
-    n = fread(buf, 1, sizeof buf - 1, f);
-    fclose(f);
-    buf[n] = '\0';
-    return occurrences(buf, text);
 }
 
 int main(int argc, char **argv)
