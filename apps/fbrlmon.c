@@ -35,9 +35,9 @@ typedef struct options {
     size_t n_actions;
     size_t dict_bytes;
     int list_ports;
-    int conn_default;     /* no --port, --sim or --offline given */
+    int conn_default;      /* no --port, --sim or --offline given */
     const char *workspace; /* --workspace FILE */
-    const char *printer;  /* --printer: PRINT-LOC's destination instead of the controller's line */
+    const char *printer;   /* --printer: PRINT-LOC's destination instead of the controller's line */
     mon_conn_options conn;
 } options;
 
@@ -100,9 +100,9 @@ static int parse_size(const char *s, size_t *out)
 /* Options that take a value (other than -e and --dict). */
 static int is_valued(const char *a)
 {
-    static const char *const names[] = { "--port", "--baud", "--data-bits", "--parity", "--stop-bits",
-                                         "--flow", "--low-latency", "--sim-state", "--sim-inputs", "--printer",
-                                         "--workspace", "--sim-model", "--axes", NULL };
+    static const char *const names[] = {
+        "--port",      "--baud",       "--data-bits", "--parity",    "--stop-bits", "--flow", "--low-latency",
+        "--sim-state", "--sim-inputs", "--printer",   "--workspace", "--sim-model", "--axes", NULL};
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -220,7 +220,7 @@ bad:
     return -1;
 }
 
-static mon_conn g_conn;  /* fixed address while open, as the uart backend needs */
+static mon_conn g_conn; /* fixed address while open, as the uart backend needs */
 
 /* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
  * (a printer or a second line shows it as it is printed). */
@@ -234,7 +234,7 @@ static void print_to_printer(void *ctx, const char *s, size_t n)
 int main(int argc, char **argv)
 {
     options opt;
-    static mon m;  /* fixed address for the words; large */
+    static mon m; /* fixed address for the words; large */
     int status = MON_EXIT_OK, stopped = 0;
     size_t i;
     FILE *printer = NULL;
@@ -252,7 +252,8 @@ int main(int argc, char **argv)
         free(opt.actions);
         if (st != FBRL_OK) {
             fprintf(stderr, "fbrlmon: --list-ports: %s\n",
-                    st == FBRL_EUNSUPPORTED ? "this fbrlmon was built without libserialport" : fbrl_status_str(st));
+                    st == FBRL_EUNSUPPORTED ? "this fbrlmon was built without libserialport"
+                                            : fbrl_status_str(st));
             return MON_EXIT_CONNECT;
         }
         return MON_EXIT_OK;
@@ -345,8 +346,8 @@ int main(int argc, char **argv)
                 stopped = mon_safe_end(&m, "stdin", ln);
             }
             if (m.host.line_too_long) {
-                fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n", ln,
-                        MON_HOST_LINE_MAX, ln);
+                fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n",
+                        ln, MON_HOST_LINE_MAX, ln);
                 m.errors++;
             }
             if (!fbrl_vm_bye(m.vm) && !stopped)

@@ -35,8 +35,9 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     if (st == FBRL_OK) {
         /* calloc: pages are only touched when a file really uses them. */
         m->file_mem = calloc(1, MON_FILE_STORAGE);
-        st = m->file_mem == NULL ? FBRL_ENOSPC
-                                 : fbrl_glossary_set_file_storage(&m->glossary, m->file_mem, MON_FILE_STORAGE);
+        st = m->file_mem == NULL
+                 ? FBRL_ENOSPC
+                 : fbrl_glossary_set_file_storage(&m->glossary, m->file_mem, MON_FILE_STORAGE);
     }
     if (st == FBRL_OK)
         st = fbrl_robot_install(m->vm, &m->robot, link, &m->glossary);
@@ -50,7 +51,7 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         m->link = link;
         st = mon_teach_install(m);
     }
-    if (st == FBRL_OK && m->host.out_is_tty)  /* long waits show their progress at a terminal */
+    if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
@@ -111,7 +112,7 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
         put_clean(e->word);
     }
     if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
-        strcpy(m->resume_file, e->file);  /* where RESUME goes on */
+        strcpy(m->resume_file, e->file); /* where RESUME goes on */
         m->resume_line = e->line;
     }
     if (e != NULL && e->file[0]) {
@@ -148,7 +149,7 @@ int mon_include(mon *m, const char *path)
 {
     fbrl_status st = fbrl_vm_include(m->vm, path);
     if (st == FBRL_OK)
-        return 0;  /* (the engine itself refuses a file that ends inside a definition) */
+        return 0; /* (the engine itself refuses a file that ends inside a definition) */
     report(m, st, path, 0);
     m->errors++;
     return -1;
@@ -166,6 +167,6 @@ int mon_check_closed(mon *m, const char *what, const char *where, unsigned long 
     fputs(")\n", stderr);
     fflush(stderr);
     m->errors++;
-    fbrl_vm_reset(m->vm);  /* as after any other error: the definition is dropped */
+    fbrl_vm_reset(m->vm); /* as after any other error: the definition is dropped */
     return -1;
 }

@@ -12,10 +12,10 @@
 #include "mon_host.h"
 
 /* Exit status (documented in docs/fbrlmon.md). */
-#define MON_EXIT_OK      0  /* everything evaluated without error */
-#define MON_EXIT_ERROR   1  /* an error aborted a file, -e text or a line of piped input */
-#define MON_EXIT_USAGE   2  /* bad command line */
-#define MON_EXIT_CONNECT 3  /* could not start: no memory for the VM, port would not open */
+#define MON_EXIT_OK      0 /* everything evaluated without error */
+#define MON_EXIT_ERROR   1 /* an error aborted a file, -e text or a line of piped input */
+#define MON_EXIT_USAGE   2 /* bad command line */
+#define MON_EXIT_CONNECT 3 /* could not start: no memory for the VM, port would not open */
 
 /* Storage for the typed data files the file words keep open (split among them). */
 #define MON_FILE_STORAGE (8u * 1024u * 1024u)
@@ -32,15 +32,15 @@ typedef struct mon {
     void *vm_mem;
     void *file_mem;
     mon_host host;
-    fbrl_glossary glossary;  /* locations, matrices, calibration, metric, data files */
-    fbrl_robot robot;        /* robot words; talk through the link, if any */
-    fbrl_workspace ws;       /* SAVE-WORKSPACE, LOAD-WORKSPACE (mon_ws.c: --workspace) */
+    fbrl_glossary glossary; /* locations, matrices, calibration, metric, data files */
+    fbrl_robot robot;       /* robot words; talk through the link, if any */
+    fbrl_workspace ws;      /* SAVE-WORKSPACE, LOAD-WORKSPACE (mon_ws.c: --workspace) */
     void *ws_mem;
-    fbrl_link *link;         /* the controller (NULL offline); TEACH talks through it too */
-    unsigned long errors;    /* errors in files, -e text and piped input */
-    struct mon_conn *conn;   /* the connection RECONNECT opens again (NULL: none) */
-    int typed;               /* evaluating a line typed at the prompt */
-    char resume_file[256];   /* RESUME: the file and line of the last error in a file */
+    fbrl_link *link;       /* the controller (NULL offline); TEACH talks through it too */
+    unsigned long errors;  /* errors in files, -e text and piped input */
+    struct mon_conn *conn; /* the connection RECONNECT opens again (NULL: none) */
+    int typed;             /* evaluating a line typed at the prompt */
+    char resume_file[256]; /* RESUME: the file and line of the last error in a file */
     unsigned long resume_line;
 } mon;
 

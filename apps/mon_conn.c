@@ -66,7 +66,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     {
         /* The emulator's thread must not take the terminal's signals: the
          * line editor (Ctrl-C, window size) handles them in the main thread. */
-        static const int sigs[] = { SIGINT, SIGQUIT, SIGTSTP, SIGCONT, SIGWINCH, SIGHUP, SIGTERM };
+        static const int sigs[] = {SIGINT, SIGQUIT, SIGTSTP, SIGCONT, SIGWINCH, SIGHUP, SIGTERM};
         sigset_t block, old;
         size_t i;
         sigemptyset(&block);
@@ -118,7 +118,8 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     st = fbrl_port_open(&c->port, name, &po);
     if (st != FBRL_OK) {
         if (o->kind == MON_CONN_SIM)
-            snprintf(err, errlen, "cannot start the emulator: %s", c->sim_err[0] ? c->sim_err : fbrl_status_str(st));
+            snprintf(err, errlen, "cannot start the emulator: %s",
+                     c->sim_err[0] ? c->sim_err : fbrl_status_str(st));
         else
             snprintf(err, errlen, "cannot open %s: %s%s", name, fbrl_status_str(st), mon_conn_hint(st));
         return st;
@@ -136,11 +137,11 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         else if (c->sim != NULL)
             lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
 #endif
-        c->lcfg = lc;  /* mon_conn_reopen uses it again */
+        c->lcfg = lc; /* mon_conn_reopen uses it again */
         st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
     }
     if (st == FBRL_OK)
-        st = fbrl_link_connect(&c->link);  /* NOHELP: a controller must answer */
+        st = fbrl_link_connect(&c->link); /* NOHELP: a controller must answer */
     if (st != FBRL_OK) {
         snprintf(err, errlen, "no controller answers on %s: %s", c->port.name, fbrl_status_str(st));
         mon_conn_close(c);
@@ -152,7 +153,8 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
 void mon_conn_describe(const mon_conn *c, char *buf, size_t cap)
 {
     char port[400];
-    if (c->kind == MON_CONN_OFFLINE || !c->open || fbrl_port_describe(&c->port, port, sizeof port) != FBRL_OK) {
+    if (c->kind == MON_CONN_OFFLINE || !c->open ||
+        fbrl_port_describe(&c->port, port, sizeof port) != FBRL_OK) {
         snprintf(buf, cap, "offline (no controller)");
         return;
     }

@@ -18,12 +18,12 @@ typedef enum mon_conn_kind { MON_CONN_OFFLINE, MON_CONN_PORT, MON_CONN_SIM } mon
 
 typedef struct mon_conn_options {
     mon_conn_kind kind;
-    const char *port;         /* MON_CONN_PORT: a name fbrl_port_open takes (path, tcp:HOST:PORT, ?options) */
-    fbrl_port_options line;   /* baud, data bits, parity, stop bits, flow, low latency */
-    const char *sim_state;    /* MON_CONN_SIM: emulator's persistent memory, or NULL */
-    const char *sim_inputs;   /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
-    const char *sim_model;    /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
-    unsigned axes;            /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
+    const char *port;       /* MON_CONN_PORT: a name fbrl_port_open takes (path, tcp:HOST:PORT, ?options) */
+    fbrl_port_options line; /* baud, data bits, parity, stop bits, flow, low latency */
+    const char *sim_state;  /* MON_CONN_SIM: emulator's persistent memory, or NULL */
+    const char *sim_inputs; /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
+    const char *sim_model;  /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
+    unsigned axes;          /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
@@ -37,7 +37,7 @@ typedef struct mon_conn {
     char sim_err[256];
     fbrl_port port;
     fbrl_link link;
-    const char *url;          /* what was opened, and how (for mon_conn_reopen) */
+    const char *url; /* what was opened, and how (for mon_conn_reopen) */
     fbrl_port_options opts;
     fbrl_link_config lcfg;
 } mon_conn;

@@ -12,10 +12,7 @@
 #include <strings.h>
 
 /* "ok" when interpreting, "compiling" while a definition is open. */
-static const char *prompt_text(const mon *m)
-{
-    return fbrl_vm_compiling(m->vm) ? "compiling> " : "ok> ";
-}
+static const char *prompt_text(const mon *m) { return fbrl_vm_compiling(m->vm) ? "compiling> " : "ok> "; }
 
 /* Evaluate one typed line; errors print but do not count toward the exit status.
  * Ctrl-C (mon_safe.c) interrupts it and ends in the safe stop; one that came after
@@ -52,7 +49,7 @@ static void eval_line(mon *m, const char *line, size_t len)
 #include <unistd.h>
 #include <wchar.h>
 
-static mon *g_mon;  /* the session libedit's callbacks serve (one per process) */
+static mon *g_mon; /* the session libedit's callbacks serve (one per process) */
 
 /* libedit's key reader, replaced so that Ctrl-C is never lost: libedit retries
  * a read() that a signal interrupted, so the flag is checked here instead (poll
@@ -86,9 +83,9 @@ static int read_key(EditLine *el, wchar_t *wc)
         }
         k = mbrtowc(wc, (const char *)&b, 1, &mb);
         if (k == (size_t)-2)
-            continue;  /* more bytes of a multibyte character to come */
+            continue; /* more bytes of a multibyte character to come */
         if (k == (size_t)-1)
-            *wc = (wchar_t)b;  /* not valid here: take the byte as it is */
+            *wc = (wchar_t)b; /* not valid here: take the byte as it is */
         return 1;
     }
 }
@@ -103,7 +100,7 @@ static const char *read_line(EditLine *el, int *count)
         line = el_gets(el, count);
         if (!mon_safe_pending())
             return line;
-        el_reset(el);  /* drop the half-typed line */
+        el_reset(el); /* drop the half-typed line */
         fputs("\n", stdout);
         mon_safe_stop(g_mon, NULL, 0);
         if (mon_safe_quit())
@@ -191,10 +188,7 @@ static int collect(void *ctx, const char *name, size_t len)
     return 0;
 }
 
-static int cmp_name(const void *a, const void *b)
-{
-    return strcasecmp(*(char *const *)a, *(char *const *)b);
-}
+static int cmp_name(const void *a, const void *b) { return strcasecmp(*(char *const *)a, *(char *const *)b); }
 
 /* Names are case-insensitive: a prefix typed in lower case completes in lower case. */
 static void insert_completion(EditLine *el, const char *text, size_t len, int lower)
@@ -321,7 +315,7 @@ void mon_interactive(mon *m)
     history(hist, &ev, H_SETSIZE, 1000);
     history(hist, &ev, H_SETUNIQUE, 1);
     if (hpath != NULL)
-        history(hist, &ev, H_LOAD, hpath);  /* a missing file is a fresh history */
+        history(hist, &ev, H_LOAD, hpath); /* a missing file is a fresh history */
 
     el_set(el, EL_EDITOR, "emacs");
     el_set(el, EL_SIGNAL, 1);
@@ -330,7 +324,7 @@ void mon_interactive(mon *m)
     el_set(el, EL_HIST, history, hist);
     el_set(el, EL_ADDFN, "fbrl-complete", "complete an FBRL word name", el_complete);
     el_set(el, EL_BIND, "^I", "fbrl-complete", NULL);
-    el_source(el, NULL);  /* the user's ~/.editrc, if any */
+    el_source(el, NULL); /* the user's ~/.editrc, if any */
     g_hist = hist;
     m->host.edit_line = edit_line;
     m->host.edit_ctx = el;
@@ -343,12 +337,12 @@ void mon_interactive(mon *m)
         if (k > 0) {
             history(hist, &ev, H_ENTER, line);
             if (hpath != NULL)
-                history(hist, &ev, H_SAVE, hpath);  /* saved at once: survives a crash */
+                history(hist, &ev, H_SAVE, hpath); /* saved at once: survives a crash */
         }
         eval_line(m, line, len);
     }
     if (!fbrl_vm_bye(m->vm) && !mon_safe_quit())
-        fputc('\n', stdout);  /* end of input (Ctrl-D) leaves the cursor after the prompt */
+        fputc('\n', stdout); /* end of input (Ctrl-D) leaves the cursor after the prompt */
     m->host.edit_line = NULL;
     m->host.edit_ctx = NULL;
     g_hist = NULL;
@@ -372,7 +366,7 @@ void mon_interactive(mon *m)
         line = mon_host_read_line(&m->host, &len);
         if (line == NULL)
             break;
-        if (mon_safe_pending()) {  /* Ctrl-C at the prompt: seen once Enter is pressed */
+        if (mon_safe_pending()) { /* Ctrl-C at the prompt: seen once Enter is pressed */
             mon_safe_stop(m, NULL, 0);
             continue;
         }

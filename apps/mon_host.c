@@ -23,7 +23,7 @@ static int in_fill(mon_host *h)
         n = read(h->in_fd, h->inbuf, sizeof h->inbuf);
     } while (n < 0 && errno == EINTR && !h->interrupted);
     if (n < 0 && errno == EINTR)
-        return 0;  /* Ctrl-C while a word reads a line: not the end of input */
+        return 0; /* Ctrl-C while a word reads a line: not the end of input */
     if (n <= 0) {
         h->in_eof = 1;
         return 0;
@@ -56,7 +56,7 @@ const char *mon_host_read_line(mon_host *h, size_t *len)
             size_t cap = h->line_cap ? h->line_cap * 2 : 256;
             char *p = realloc(h->line, cap);
             if (p == NULL)
-                break;  /* out of memory: hand over what fits */
+                break; /* out of memory: hand over what fits */
             h->line = p;
             h->line_cap = cap;
         }
@@ -66,7 +66,7 @@ const char *mon_host_read_line(mon_host *h, size_t *len)
         return NULL;
     if (n > 0 && h->line[n - 1] == '\r')
         n--;
-    if (h->line == NULL) {  /* an empty first line */
+    if (h->line == NULL) { /* an empty first line */
         h->line = malloc(1);
         if (h->line == NULL)
             return NULL;
@@ -100,8 +100,8 @@ static void host_write(void *user, const char *s, size_t n)
     const char *nl;
     if (n == 0)
         return;
-    if (h->width > 0 && h->column > 0 && h->column + (long)n >= h->width &&
-        memchr(s, '\n', n) == NULL && !only_blanks(s, n)) {
+    if (h->width > 0 && h->column > 0 && h->column + (long)n >= h->width && memchr(s, '\n', n) == NULL &&
+        !only_blanks(s, n)) {
         fputc('\n', h->out);
         h->column = 0;
     }
@@ -109,7 +109,7 @@ static void host_write(void *user, const char *s, size_t n)
     for (nl = s + n; nl > s && nl[-1] != '\n'; nl--)
         ;
     n = nl > s ? (size_t)(s + n - nl) : (size_t)h->column + n;
-    h->column = n > 65535 ? 65535 : (int)n;  /* only compared with the width */
+    h->column = n > 65535 ? 65535 : (int)n; /* only compared with the width */
     if (h->out_is_tty)
         fflush(h->out);
 }
@@ -170,7 +170,7 @@ static int host_key_ready(void *user)
 typedef struct mon_file {
     FILE *f;
     unsigned long lines;
-    unsigned long skip;  /* RESUME: lines read as empty */
+    unsigned long skip; /* RESUME: lines read as empty */
 } mon_file;
 
 static fbrl_status host_file_open(void *user, const char *path, void **handle)
@@ -373,10 +373,10 @@ void mon_host_progress(void *ctx, const char *text)
         return;
     if (text == NULL) {
         if (h->progress_shown)
-            fputs("\r\033[K", h->out);  /* erase it: the column is 0 again */
+            fputs("\r\033[K", h->out); /* erase it: the column is 0 again */
         h->progress_shown = 0;
     } else {
-        int room = h->width > 1 ? h->width - 1 : 79;  /* never wrap */
+        int room = h->width > 1 ? h->width - 1 : 79; /* never wrap */
         fprintf(h->out, "\r%.*s\033[K", room, text);
         h->progress_shown = 1;
     }
@@ -391,5 +391,5 @@ void mon_host_newline(mon_host *h)
         h->column = 0;
     }
     fflush(h->out);
-    update_width(h);  /* the window may have been resized */
+    update_width(h); /* the window may have been resized */
 }

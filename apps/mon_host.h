@@ -8,11 +8,11 @@
 #include "fbrl/vm.h"
 
 typedef struct mon_host {
-    FILE *out;          /* console output (stdout) */
-    int out_is_tty;     /* flush every write so output shows before long words */
-    int column;         /* bytes written since the last newline */
-    int width;          /* terminal columns (0: not a terminal) */
-    int in_fd;          /* keyboard for KEY / KEY? (stdin) */
+    FILE *out;      /* console output (stdout) */
+    int out_is_tty; /* flush every write so output shows before long words */
+    int column;     /* bytes written since the last newline */
+    int width;      /* terminal columns (0: not a terminal) */
+    int in_fd;      /* keyboard for KEY / KEY? (stdin) */
     int in_is_tty;
     /* Ctrl-C presses while a line is evaluated: waits in MS and KEY end early so
      * the engine sees its interrupt request (fbrl_vm_interrupt) at once. */
@@ -22,9 +22,9 @@ typedef struct mon_host {
     unsigned char inbuf[4096];
     size_t inpos, inlen;
     int in_eof;
-    char *line;         /* mon_host_read_line()'s growing buffer */
+    char *line; /* mon_host_read_line()'s growing buffer */
     size_t line_cap;
-    int file_depth;     /* source files open (INCLUDED nests) */
+    int file_depth; /* source files open (INCLUDED nests) */
     /* RESUME: the next open of skip_path reads its first skip_lines lines as empty
      * (so line numbers stay right) */
     const char *skip_path;

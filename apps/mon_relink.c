@@ -33,7 +33,7 @@ static void tell_state(mon *m)
         for (n = 0; n < (int)si.naxes && n < FBRL_RAPL_MAX_AXES; n++)
             moving |= (si.have & FBRL_RAPL_ST_DONE) && !si.done[n];
         if (!moving)
-            m->robot.moving = 0;  /* seen standing: the next motion need not ask */
+            m->robot.moving = 0; /* seen standing: the next motion need not ask */
         fprintf(o, ": controller %s, arm %s", si.homed ? "homed" : "NOT HOMED (HOME before moving)",
                 moving ? "MOVING (a motion from before the loss; HALT stops it)" : "standing");
         if (si.have & FBRL_RAPL_ST_OUTPUTS) {
@@ -46,7 +46,8 @@ static void tell_state(mon *m)
         }
         fputs(".\n", o);
         fputs("The command that failed may or may not have run: check before going on (RESUME runs the"
-              " failed plan line again).\n", o);
+              " failed plan line again).\n",
+              o);
     }
     fflush(o);
     m->host.column = 0;
@@ -131,11 +132,13 @@ fbrl_status mon_relink_install(mon *m)
         "CREATE (RESUME-FILE) 256 ALLOT\n"
         ": RESUME ( -- ) \\ run the plan file that failed last again, from the line that failed\n"
         "  (RESUME-FILE) (RESUME) INCLUDED ;\n";
-    fbrl_status st = fbrl_vm_define(m->vm, "RECONNECT", w_reconnect, m, "( -- )",
-                        "open the controller's port again, NOHELP, and report its state (STATUS)");
+    fbrl_status st =
+        fbrl_vm_define(m->vm, "RECONNECT", w_reconnect, m, "( -- )",
+                       "open the controller's port again, NOHELP, and report its state (STATUS)");
     if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "(RESUME)", w_resume, m, "( a -- a u )",
-                            "RESUME's helper: the failed file's name at a; its next open starts at the failed line");
+        st = fbrl_vm_define(
+            m->vm, "(RESUME)", w_resume, m, "( a -- a u )",
+            "RESUME's helper: the failed file's name at a; its next open starts at the failed line");
     if (st == FBRL_OK)
         st = fbrl_vm_eval(m->vm, def, sizeof def - 1);
     if (st == FBRL_OK)

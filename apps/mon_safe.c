@@ -27,7 +27,7 @@ static long g_last_ms;
 static long mono_ms(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);  /* async-signal-safe */
+    clock_gettime(CLOCK_MONOTONIC, &ts); /* async-signal-safe */
     return (long)ts.tv_sec * 1000L + ts.tv_nsec / 1000000L;
 }
 
@@ -49,7 +49,7 @@ static void on_sigint(int sig)
     g_armed = 1;
     g_pending = 1;
     if (g_mode == MODE_EVAL && g_m != NULL) {
-        g_m->host.interrupted++;  /* waits in MS and KEY end at once */
+        g_m->host.interrupted++; /* waits in MS and KEY end at once */
         fbrl_vm_interrupt(g_m->vm);
     }
 }
@@ -58,7 +58,7 @@ void mon_safe_install(mon *m)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_sigint;  /* no SA_RESTART: waits return */
+    sa.sa_handler = on_sigint; /* no SA_RESTART: waits return */
     sigemptyset(&sa.sa_mask);
     g_m = m;
     sigaction(SIGINT, &sa, NULL);
@@ -71,7 +71,7 @@ void mon_safe_begin(mon *m)
 {
     m->host.interrupted = 0;
     if (!g_pending)
-        g_armed = 0;  /* a new line: the next Ctrl-C is a first one again */
+        g_armed = 0; /* a new line: the next Ctrl-C is a first one again */
     g_mode = MODE_EVAL;
 }
 
@@ -100,7 +100,7 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
     if (word != NULL && word[0])
         snprintf(place + strlen(place), sizeof place - strlen(place), " in %s", word);
     if (m->link == NULL)
-        return;  /* offline: nothing to stop, and the error line said where */
+        return; /* offline: nothing to stop, and the error line said where */
     fbrl_robot_safe_stop(&m->robot, &so);
     fprintf(stderr, "stopped (%s): ", place);
     if (so.result == FBRL_EDISCONNECTED || so.result == FBRL_EOFFLINE) {
@@ -111,7 +111,8 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
     }
     if (so.result == FBRL_EBUSY) {
         fputs("the controller is still running a command that waits (WAIT or RUN) and reads nothing"
-              " else: HALT could not be sent; stop the arm at the controller\n", stderr);
+              " else: HALT could not be sent; stop the arm at the controller\n",
+              stderr);
         return;
     }
     if (so.halted)
@@ -121,7 +122,7 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
         fprintf(stderr, "HALT failed (%s)", fbrl_status_str(so.result));
     if (so.have_where) {
         /* fbrl_num: the same digits in every locale (fbrlmon runs in the user's) */
-        static const char *const label[6] = { "X", "Y", "Z", NULL, "pitch", "roll" };
+        static const char *const label[6] = {"X", "Y", "Z", NULL, "pitch", "roll"};
         char num[40];
         int k;
         fputs("; it stands at", stderr);
@@ -143,7 +144,7 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
 
 static void tail(mon *m)
 {
-    m->host.interrupted = 0;  /* handled: waits (KEY, the line editor) may wait again */
+    m->host.interrupted = 0; /* handled: waits (KEY, the line editor) may wait again */
     if (g_quit)
         fputs("fbrlmon: ended by a second Ctrl-C\n", stderr);
     else if (m->link != NULL)

@@ -33,25 +33,36 @@
 #define TEACH_POINT "FBRLTP"
 
 enum { NSTEP = 4 };
-static const double step_in[NSTEP] = { 0.01, 0.1, 0.5, 1.0 };     /* inches */
-static const double step_cm[NSTEP] = { 0.025, 0.25, 1.0, 2.5 };   /* METRIC-ON */
-static const double step_deg[NSTEP] = { 0.5, 1.0, 5.0, 10.0 };    /* pitch, roll */
+static const double step_in[NSTEP] = {0.01, 0.1, 0.5, 1.0};   /* inches */
+static const double step_cm[NSTEP] = {0.025, 0.25, 1.0, 2.5}; /* METRIC-ON */
+static const double step_deg[NSTEP] = {0.5, 1.0, 5.0, 10.0};  /* pitch, roll */
 
 typedef enum key {
-    K_NONE, K_CHAR, K_ENTER, K_ESC, K_UP, K_DOWN, K_RIGHT, K_LEFT, K_PGUP, K_PGDN, K_EOF, K_INTR
+    K_NONE,
+    K_CHAR,
+    K_ENTER,
+    K_ESC,
+    K_UP,
+    K_DOWN,
+    K_RIGHT,
+    K_LEFT,
+    K_PGUP,
+    K_PGDN,
+    K_EOF,
+    K_INTR
 } key;
 
 typedef struct teach {
     mon *m;
     fbrl_link *link;
-    int metric;          /* METRIC-ON when TEACH started: lengths shown and stepped in cm */
-    int level;           /* index into the step tables */
-    double pos[6];       /* the arm's WORLD position (W2): x y z (in), yaw pitch roll (deg) */
+    int metric;    /* METRIC-ON when TEACH started: lengths shown and stepped in cm */
+    int level;     /* index into the step tables */
+    double pos[6]; /* the arm's WORLD position (W2): x y z (in), yaw pitch roll (deg) */
     int have_pos;
-    double grip;         /* gripper opening (in) */
+    double grip; /* gripper opening (in) */
     int have_grip;
-    char msg[256];       /* the last error or note, shown on the status line */
-    char above[256];     /* the message already printed on its own line above it */
+    char msg[256];   /* the last error or note, shown on the status line */
+    char above[256]; /* the message already printed on its own line above it */
 } teach;
 
 /* ---- keys ---- */
@@ -119,7 +130,7 @@ static key get_key(teach *t, int *ch)
     if (c == -3)
         return K_INTR;
     if (c < 0 || c == 0x1b)
-        return K_ESC;  /* a lone Esc (or Esc pressed twice) */
+        return K_ESC; /* a lone Esc (or Esc pressed twice) */
     if (c != '[' && c != 'O')
         return K_NONE; /* Alt+key */
     intro = c;
@@ -146,17 +157,13 @@ static key get_key(teach *t, int *ch)
         if (intro == '[' && strcmp(par, "6") == 0)
             return K_PGDN;
         return K_NONE;
-    default:
-        return K_NONE;
+    default: return K_NONE;
     }
 }
 
 /* ---- screen ---- */
 
-static void out(teach *t, const char *s)
-{
-    fputs(s, t->m->host.out);
-}
+static void out(teach *t, const char *s) { fputs(s, t->m->host.out); }
 
 static double len_shown(const teach *t, double inches) { return t->metric ? inches * 2.54 : inches; }
 static const char *unit(const teach *t) { return t->metric ? "cm" : "in"; }
@@ -204,8 +211,9 @@ static void status(teach *t)
     else
         snprintf(pos, sizeof pos, "position unknown");
     snprintf(msg, sizeof msg, "! %s", t->msg);
-    snprintf(step, sizeof step, "step %s %s %s deg", gen(n[0], t->metric ? step_cm[t->level] : step_in[t->level]),
-             unit(t), gen(n[1], step_deg[t->level]));
+    snprintf(step, sizeof step, "step %s %s %s deg",
+             gen(n[0], t->metric ? step_cm[t->level] : step_in[t->level]), unit(t),
+             gen(n[1], step_deg[t->level]));
     snprintf(grip, sizeof grip, "grip %s", fix(n[5], len_shown(t, t->grip), 2, 0));
     snprintf(line, width, "%s", pos);
     if (!t->msg[0]) {
@@ -259,8 +267,8 @@ static int failed(teach *t, fbrl_status st, const char *what)
         const char *text = "";
         fbrl_link_error(t->link, &code, &text);
         const char *help = fbrl_rapl_error_help(code);
-        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.%s%s%s", what, code, text, help ? " (" : "", help ? help : "",
-                 help ? ")" : "");
+        snprintf(t->msg, sizeof t->msg, "%s: %03d-%s.%s%s%s", what, code, text, help ? " (" : "",
+                 help ? help : "", help ? ")" : "");
     } else {
         snprintf(t->msg, sizeof t->msg, "%s: %s", what, fbrl_status_str(st));
     }
@@ -284,7 +292,8 @@ static int idle(teach *t)
 static int read_pos(teach *t)
 {
     fbrl_rapl_pos p;
-    if (failed(t, fbrl_link_finish(t->link), "FINISH") || failed(t, fbrl_link_where(t->link, FBRL_RAPL_W2, &p), "W2")) {
+    if (failed(t, fbrl_link_finish(t->link), "FINISH") ||
+        failed(t, fbrl_link_where(t->link, FBRL_RAPL_W2, &p), "W2")) {
         t->have_pos = 0;
         return -1;
     }
@@ -298,15 +307,12 @@ static int read_pos(teach *t)
     return 0;
 }
 
-static void read_grip(teach *t)
-{
-    t->have_grip = fbrl_link_typev(t->link, "GRIPPER", &t->grip) == FBRL_OK;
-}
+static void read_grip(teach *t) { t->have_grip = fbrl_link_typev(t->link, "GRIPPER", &t->grip) == FBRL_OK; }
 
 /* X Y Z: a straight-line JOG by the step (in inches on the wire). */
 static void jog(teach *t, int axis, int sign)
 {
-    double d[3] = { 0, 0, 0 }, s = t->metric ? step_cm[t->level] / 2.54 : step_in[t->level];
+    double d[3] = {0, 0, 0}, s = t->metric ? step_cm[t->level] / 2.54 : step_in[t->level];
     fbrl_rapl_arg a[3];
     d[axis] = sign * s;
     a[0] = fbrl_rapl_real(d[0]);
@@ -373,23 +379,42 @@ static int pendant(teach *t)
         case K_PGDN: jog(t, 2, -1); break;
         case K_CHAR:
             switch (ch) {
-            case '1': case '2': case '3': case '4': t->level = ch - '1'; break;
-            case '+': case '=': if (t->level + 1 < NSTEP) t->level++; break;
-            case '-': case '_': if (t->level > 0) t->level--; break;
+            case '1':
+            case '2':
+            case '3':
+            case '4': t->level = ch - '1'; break;
+            case '+':
+            case '=':
+                if (t->level + 1 < NSTEP)
+                    t->level++;
+                break;
+            case '-':
+            case '_':
+                if (t->level > 0)
+                    t->level--;
+                break;
             case '[': turn(t, 4, -1); break;
             case ']': turn(t, 4, +1); break;
             case ',': turn(t, 5, -1); break;
             case '.': turn(t, 5, +1); break;
-            case 'o': case 'O': gripper(t, FBRL_RAPL_OPEN); break;
-            case 'c': case 'C': gripper(t, FBRL_RAPL_CLOSE); break;
-            case 'r': case 'R': t->msg[0] = '\0'; read_pos(t); read_grip(t); break;
-            case '?': case 'h': case 'H': help(t); break;
+            case 'o':
+            case 'O': gripper(t, FBRL_RAPL_OPEN); break;
+            case 'c':
+            case 'C': gripper(t, FBRL_RAPL_CLOSE); break;
+            case 'r':
+            case 'R':
+                t->msg[0] = '\0';
+                read_pos(t);
+                read_grip(t);
+                break;
+            case '?':
+            case 'h':
+            case 'H': help(t); break;
             case 0x03: return -1; /* Ctrl-C with ISIG off (it is on: belt and braces) */
             default: break;
             }
             break;
-        default:
-            break;
+        default: break;
         }
         status(t);
     }
@@ -416,7 +441,8 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     if (m->link == NULL)
         return fbrl_vm_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), offline);
     if (!m->host.in_is_tty || !isatty(m->host.in_fd))
-        return fbrl_vm_throw(vm, FBRL_THROW_UNSUPPORTED, "TEACH needs a terminal: it reads single keys (standard input is not one)");
+        return fbrl_vm_throw(vm, FBRL_THROW_UNSUPPORTED,
+                             "TEACH needs a terminal: it reads single keys (standard input is not one)");
     if (tcgetattr(m->host.in_fd, &saved) != 0)
         return fbrl_vm_throw(vm, FBRL_THROW_UNSUPPORTED, "TEACH: cannot read the terminal's settings");
 
@@ -427,7 +453,8 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     fbrl_units_is_metric(fbrl_glossary_units(&m->glossary), &metric);
     t.metric = metric;
     if (idle(&t) != 0)
-        return fbrl_vm_throw(vm, FBRL_THROW_INTERRUPT, "TEACH cancelled by Ctrl-C (the location is unchanged)");
+        return fbrl_vm_throw(vm, FBRL_THROW_INTERRUPT,
+                             "TEACH cancelled by Ctrl-C (the location is unchanged)");
 
     /* Single keys without echo; ISIG stays on, so Ctrl-C still reaches the monitor. */
     raw = saved;
@@ -448,10 +475,13 @@ static fbrl_status w_teach(fbrl_vm *vm, void *arg)
     fflush(m->host.out);
     m->host.column = 0;
     if (r == -1)
-        return fbrl_vm_throw(vm, FBRL_THROW_INTERRUPT, "TEACH cancelled by Ctrl-C (the location is unchanged)");
+        return fbrl_vm_throw(vm, FBRL_THROW_INTERRUPT,
+                             "TEACH cancelled by Ctrl-C (the location is unchanged)");
     if (r == -2)
-        return fbrl_vm_throw(vm, FBRL_THROW_CHAR_IO, "TEACH: the terminal closed (the location is unchanged)");
-    return fbrl_vm_push(vm, r == 1 ? -1 : 0) == FBRL_OK ? FBRL_OK : fbrl_vm_throw(vm, FBRL_THROW_STACK_OVERFLOW, NULL);
+        return fbrl_vm_throw(vm, FBRL_THROW_CHAR_IO,
+                             "TEACH: the terminal closed (the location is unchanged)");
+    return fbrl_vm_push(vm, r == 1 ? -1 : 0) == FBRL_OK ? FBRL_OK
+                                                        : fbrl_vm_throw(vm, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 fbrl_status mon_teach_install(mon *m)
@@ -461,7 +491,8 @@ fbrl_status mon_teach_install(mon *m)
      * own read-back (BASE-OFFSET, MAP-ON unmapping). */
     static const char def[] =
         ": TEACH ( loc -- ) \\ keyboard teach pendant: arrows X Y, PgUp PgDn Z, [ ] pitch, , . roll, "
-        "o c gripper, 1-4 + - step, ? keys; Enter stores the arm's position in loc (as ARM-HERE), Esc cancels\n"
+        "o c gripper, 1-4 + - step, ? keys; Enter stores the arm's position in loc (as ARM-HERE), Esc "
+        "cancels\n"
         "  DEPTH 0= IF ' >BODY THEN (TEACH) IF ARM-HERE ELSE DROP THEN ;\n";
     fbrl_status st = fbrl_vm_define(m->vm, "(TEACH)", w_teach, m, "( loc -- loc flag )",
                                     "TEACH's pendant; flag true when Enter took the position");

@@ -10,9 +10,9 @@ static const char *g_path; /* --workspace FILE (NULL: none) */
 
 static void counts_text(const fbrl_workspace_counts *n, char *buf, size_t cap)
 {
-    snprintf(buf, cap, "%u location%s, %u matri%s, %u calibration%s, %u device%s", n->locs, n->locs == 1 ? "" : "s",
-             n->matrices, n->matrices == 1 ? "x" : "ces", n->cals, n->cals == 1 ? "" : "s", n->devices,
-             n->devices == 1 ? "" : "s");
+    snprintf(buf, cap, "%u location%s, %u matri%s, %u calibration%s, %u device%s", n->locs,
+             n->locs == 1 ? "" : "s", n->matrices, n->matrices == 1 ? "x" : "ces", n->cals,
+             n->cals == 1 ? "" : "s", n->devices, n->devices == 1 ? "" : "s");
 }
 
 int mon_ws_start(mon *m, const char *path)
@@ -23,7 +23,8 @@ int mon_ws_start(mon *m, const char *path)
     g_path = path;
     if (stat(path, &sb) != 0 && errno == ENOENT) {
         if (m->host.in_is_tty)
-            printf("fbrlmon: %s does not exist yet: a new workspace (saved at exit or with SAVE-WORKSPACE)\n", path);
+            printf("fbrlmon: %s does not exist yet: a new workspace (saved at exit or with SAVE-WORKSPACE)\n",
+                   path);
         return 0;
     }
     if (fbrl_workspace_load(&m->ws, path, &n, why, sizeof why) != FBRL_OK) {
@@ -58,7 +59,8 @@ void mon_ws_finish(mon *m)
     counts_text(&n, what, sizeof what);
     if (!m->host.in_is_tty) {
         if (g_path)
-            fprintf(stderr, "fbrlmon: the workspace changed and was not saved to %s (SAVE-WORKSPACE %s)\n", g_path, g_path);
+            fprintf(stderr, "fbrlmon: the workspace changed and was not saved to %s (SAVE-WORKSPACE %s)\n",
+                    g_path, g_path);
         return;
     }
     mon_host_newline(&m->host);

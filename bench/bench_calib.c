@@ -33,13 +33,21 @@ int main(void)
         double p[3];
         fbrl_calib_orient_to_matrix(30, 0, 2, &turn);
         memcpy(truth.r, turn.m, sizeof truth.r);
-        truth.t[0] = 1; truth.t[1] = -0.5; truth.t[2] = 0.2;
-        cal.p[0] = c1; cal.p[1] = c2; cal.p[2] = c3;
+        truth.t[0] = 1;
+        truth.t[1] = -0.5;
+        truth.t[2] = 0.2;
+        cal.p[0] = c1;
+        cal.p[1] = c2;
+        cal.p[2] = c3;
         for (i = 0; i < 3; i++) {
-            p[0] = cal.p[i].x; p[1] = cal.p[i].y; p[2] = cal.p[i].z;
+            p[0] = cal.p[i].x;
+            p[1] = cal.p[i].y;
+            p[2] = cal.p[i].z;
             fbrl_calib_map_points(&truth, p, p, 1);
             recal.p[i] = cal.p[i];
-            recal.p[i].x = p[0]; recal.p[i].y = p[1]; recal.p[i].z = p[2];
+            recal.p[i].x = p[0];
+            recal.p[i].y = p[1];
+            recal.p[i].z = p[2];
         }
     }
     if (fbrl_calib_3point(&c, &cal, &recal) != FBRL_OK) {
@@ -50,8 +58,12 @@ int main(void)
         in[3 * i] = 10.0 + (double)(i % 64) * 0.25;
         in[3 * i + 1] = 2.0 + (double)(i / 64) * 0.25;
         in[3 * i + 2] = 0.5 + (double)(i % 7) * 0.1;
-        fbrl_loc l = {in[3 * i], in[3 * i + 1], in[3 * i + 2], (double)(i % 360) - 180.0,
-                      -90.0 + (double)(i % 91), (double)(i % 180)};
+        fbrl_loc l = {in[3 * i],
+                      in[3 * i + 1],
+                      in[3 * i + 2],
+                      (double)(i % 360) - 180.0,
+                      -90.0 + (double)(i % 91),
+                      (double)(i % 180)};
         locs[i] = l;
     }
 
@@ -115,8 +127,12 @@ int main(void)
         double res[8], rms;
         size_t worst;
         for (i = 0; i < 8; i++) {
-            fbrl_loc l = {10.0 + (double)(i & 1) * 6, 2.0 + (double)((i >> 1) & 1) * 5,
-                          0.5 + (double)(i >> 2) * 2, 0, 0, 0};
+            fbrl_loc l = {10.0 + (double)(i & 1) * 6,
+                          2.0 + (double)((i >> 1) & 1) * 5,
+                          0.5 + (double)(i >> 2) * 2,
+                          0,
+                          0,
+                          0};
             a[i] = l;
             fbrl_calib_map(&c, &a[i], &b[i]);
         }

@@ -11,7 +11,7 @@
 #include "bench_util.h"
 #include "fbrl/crc32.h"
 
-#define NLOCS 1000
+#define NLOCS   1000
 #define COMMITS 50
 
 static int check(fbrl_status st, const char *what)
@@ -55,8 +55,8 @@ int main(int argc, char **argv)
     }
     t0 = bench_now();
     check(fbrl_file_close(&f), "close");
-    printf("commit %d locations (%zu bytes): %.3f ms\n", NLOCS,
-           FBRL_FILE_HEADER_SIZE + sizeof buf, (bench_now() - t0) * 1e3);
+    printf("commit %d locations (%zu bytes): %.3f ms\n", NLOCS, FBRL_FILE_HEADER_SIZE + sizeof buf,
+           (bench_now() - t0) * 1e3);
 
     /* Open verifies everything: header, both CRCs, every record. */
     int opens = 200;
@@ -83,8 +83,8 @@ int main(int argc, char **argv)
         check(fbrl_file_write_long(&f, i), "write");
         check(fbrl_file_commit(&f), "commit");
     }
-    printf("commit (small change, %zu-byte file): %.3f ms each\n",
-           FBRL_FILE_HEADER_SIZE + sizeof buf - 44, (bench_now() - t0) / COMMITS * 1e3);
+    printf("commit (small change, %zu-byte file): %.3f ms each\n", FBRL_FILE_HEADER_SIZE + sizeof buf - 44,
+           (bench_now() - t0) / COMMITS * 1e3);
     check(fbrl_file_close(&f), "close");
 
     unlink(path);

@@ -42,14 +42,16 @@ int main(void)
        ": MAP-LOOP 1000000 0 DO S P (MAP) LOOP ; "
        ": UNMAP-LOOP 1000000 0 DO S P UNMAP LOOP ;");
     double base = bench_eval(vm, "EMPTY-LOOP");
-    struct { const char *what, *src; } w[] = {
-        { "GETX", "GETX-LOOP" },
-        { "SETX (float literal)", "SETX-LOOP" },
-        { "DEFINE-LOC (6 float literals)", "DEFINE-LOOP" },
-        { "RECTMAT run (i j k loc)", "MAT-LOOP" },
-        { "RADMAT run (ring idx k loc)", "RM-LOOP" },
-        { "(MAP) (position and orientation)", "MAP-LOOP" },
-        { "UNMAP", "UNMAP-LOOP" },
+    struct {
+        const char *what, *src;
+    } w[] = {
+        {"GETX", "GETX-LOOP"},
+        {"SETX (float literal)", "SETX-LOOP"},
+        {"DEFINE-LOC (6 float literals)", "DEFINE-LOOP"},
+        {"RECTMAT run (i j k loc)", "MAT-LOOP"},
+        {"RADMAT run (ring idx k loc)", "RM-LOOP"},
+        {"(MAP) (position and orientation)", "MAP-LOOP"},
+        {"UNMAP", "UNMAP-LOOP"},
     };
     printf("empty loop (loop + 1 literal): %.1f ns per iteration\n", base / N * 1e9);
     for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {
@@ -58,11 +60,12 @@ int main(void)
                t / N * 1e9);
     }
     ev("MAP-ON");
-    fbrl_loc l = { 1, 2, 3, 30, -45, 10 }, m;
+    fbrl_loc l = {1, 2, 3, 30, -45, 10}, m;
     double t0 = bench_now();
     for (long i = 0; i < N; i++) {
         m = l;
-        if (fbrl_glossary_map_out(&g, &m, NULL, NULL) != FBRL_OK) return 1;
+        if (fbrl_glossary_map_out(&g, &m, NULL, NULL) != FBRL_OK)
+            return 1;
     }
     printf("%-36s %8.1f ns per call\n", "fbrl_glossary_map_out (MAP-ON)", (bench_now() - t0) / N * 1e9);
     free(mem);

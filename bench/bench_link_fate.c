@@ -55,8 +55,8 @@ static void clean_line(const char *sim)
         size_t n = strlen(lines[k]);
         double cps = run_lines(&r.link, lines[k], 30, NULL), bound = 960.0 / (double)(n + 4);
         printf("9600 baud, clean: %-8s (%s) %5.1f cmd/s = %5.1f %% of its echo bound %.1f\n", lines[k],
-               fbrl_link_line_safe(lines[k]) ? "safe to repeat    " : "not safe to repeat", cps, 100.0 * cps / bound,
-               bound);
+               fbrl_link_line_safe(lines[k]) ? "safe to repeat    " : "not safe to repeat", cps,
+               100.0 * cps / bound, bound);
     }
     (void)fbrl_link_raw(&r.link, "HOME");
     (void)fbrl_link_finish(&r.link);
@@ -71,9 +71,10 @@ static void clean_line(const char *sim)
         exit(1);
     double two = run_w2(&r.link, 6);
     rig_stop(&r);
-    printf("9600 baud: W2 %.2f reads/s believed on its own consistency, %.2f reads/s with two agreeing replies "
-           "(%.2fx)\n",
-           one, two, two > 0 ? one / two : 0.0);
+    printf(
+        "9600 baud: W2 %.2f reads/s believed on its own consistency, %.2f reads/s with two agreeing replies "
+        "(%.2fx)\n",
+        one, two, two > 0 ? one / two : 0.0);
 }
 
 static void burst_line(const char *sim, const char *relay)
@@ -101,7 +102,8 @@ static void burst_line(const char *sim, const char *relay)
         if (rp == 0) {
             dup2(fd[1], 1);
             close(fd[0]);
-            execl(relay, relay, r.path, "0.002", "50", k < 2 ? "7" : "11", (char *)NULL); /* the same bursts for both */
+            execl(relay, relay, r.path, "0.002", "50", k < 2 ? "7" : "11",
+                  (char *)NULL); /* the same bursts for both */
             _exit(127);
         }
         close(fd[1]);
@@ -115,7 +117,8 @@ static void burst_line(const char *sim, const char *relay)
         fbrl_uart_config uc = FBRL_UART_CONFIG_DEFAULT;
         uc.baud = 115200;
         uc.flow = FBRL_FLOW_NONE;
-        if (fbrl_uart_posix_open(&r.port, &r.uart, path, &uc, r.rx, sizeof r.rx, r.tx, sizeof r.tx, NULL) != FBRL_OK ||
+        if (fbrl_uart_posix_open(&r.port, &r.uart, path, &uc, r.rx, sizeof r.rx, r.tx, sizeof r.tx, NULL) !=
+                FBRL_OK ||
             fbrl_link_init(&r.link, &r.uart, &cfg) != FBRL_OK || fbrl_link_connect(&r.link) != FBRL_OK)
             exit(1);
         long maybe = 0;
@@ -127,7 +130,8 @@ static void burst_line(const char *sim, const char *relay)
         kill(rp, SIGTERM);
         waitpid(rp, NULL, 0);
         rig_stop(&r);
-        printf("burst line (50-byte runs, 0.2 %%/byte): 1000 x %-8s %6.1f cmd/s, %4.1f %% may have run, %llu damaged "
+        printf("burst line (50-byte runs, 0.2 %%/byte): 1000 x %-8s %6.1f cmd/s, %4.1f %% may have run, %llu "
+               "damaged "
                "replies settled by STATUS, %llu typed again without proof, %llu not typed again\n",
                lines[k], cps, maybe / 10.0, (unsigned long long)s.settled,
                (unsigned long long)(s.cr_unconfirmed), (unsigned long long)s.not_retyped);
@@ -136,7 +140,8 @@ static void burst_line(const char *sim, const char *relay)
 
 int main(int argc, char **argv)
 {
-    const char *sim = argc > 1 ? argv[1] : "./sim/fbrlsim", *relay = argc > 2 ? argv[2] : "./tests/burst_relay";
+    const char *sim = argc > 1 ? argv[1] : "./sim/fbrlsim",
+               *relay = argc > 2 ? argv[2] : "./tests/burst_relay";
     clean_line(sim);
     burst_line(sim, relay);
     return 0;

@@ -51,7 +51,8 @@ int main(int argc, char **argv)
     }
     rig_stop(&r);
     double f = fresh / 1e3 / rounds, a = after / 1e3 / rounds;
-    printf("9600 baud, strict line: FINISH waited %.0f ms (%.1f probes per wait); SPEED 50 fresh %.1f ms, right after "
+    printf("9600 baud, strict line: FINISH waited %.0f ms (%.1f probes per wait); SPEED 50 fresh %.1f ms, "
+           "right after "
            "the FINISH %.1f ms: %.2fx (target <= 1.10x)\n",
            fin / 1e3 / rounds, (double)probes / rounds, f, a, a / f);
     return 0;

@@ -15,8 +15,8 @@
 
 static double encode_ns(void)
 {
-    const fbrl_rapl_arg args[] = {fbrl_rapl_str("P1"),   fbrl_rapl_real(14.25), fbrl_rapl_real(-2.5),
-                                  fbrl_rapl_real(8.125), fbrl_rapl_real(0.0),   fbrl_rapl_real(-90.0),
+    const fbrl_rapl_arg args[] = {fbrl_rapl_str("P1"),    fbrl_rapl_real(14.25), fbrl_rapl_real(-2.5),
+                                  fbrl_rapl_real(8.125),  fbrl_rapl_real(0.0),   fbrl_rapl_real(-90.0),
                                   fbrl_rapl_real(12.3456)};
     char buf[FBRL_RAPL_LINE_MAX];
     size_t len, total = 0;
@@ -32,7 +32,8 @@ static double encode_ns(void)
     uint64_t t1 = fbrl_clock_now_us();
     const fbrl_rapl_arg margs[] = {fbrl_rapl_str("P1")};
     for (long i = 0; i < n; i++)
-        if (fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_MOVE, margs, 1, 1) == FBRL_OK)
+        if (fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_MOVE, margs, 1, 1) ==
+            FBRL_OK)
             total += len;
     uint64_t t2 = fbrl_clock_now_us();
     printf("encode POINT (6 reals): %.0f ns/command; MOVE P1,S: %.0f ns/command (%zu bytes)\n",
@@ -58,7 +59,8 @@ int main(int argc, char **argv)
 {
     const char *sim = argc > 1 ? argv[1] : "./sim/fbrlsim";
     encode_ns();
-    static const char *const lines[] = {"SPEED 50", "V1=123.4567", "POINT P1,14.2500,2.5000,8.1250,0.0000,90.0000,12.3456"};
+    static const char *const lines[] = {"SPEED 50", "V1=123.4567",
+                                        "POINT P1,14.2500,2.5000,8.1250,0.0000,90.0000,12.3456"};
     static const long bauds[] = {9600, 38400, 0};
     for (size_t b = 0; b < sizeof bauds / sizeof bauds[0]; b++) {
         char baud[16];
@@ -80,7 +82,8 @@ int main(int argc, char **argv)
             int count = bauds[b] == 9600 ? 20 : bauds[b] == 38400 ? 60 : 500;
             double cps = run(&r.link, lines[k], count);
             if (bauds[b]) {
-                double limit = (bauds[b] / 10.0) / (double)(n + 1), bound = (bauds[b] / 10.0) / (double)(n + 4);
+                double limit = (bauds[b] / 10.0) / (double)(n + 1),
+                       bound = (bauds[b] / 10.0) / (double)(n + 4);
                 printf("%5ld baud  %-56s %3zu+1 bytes: %6.1f cmd/s = %5.1f %% of the line-rate limit %6.1f"
                        " (%5.1f %% of the echo bound %6.1f)\n",
                        bauds[b], lines[k], n, cps, 100.0 * cps / limit, limit, 100.0 * cps / bound, bound);
@@ -91,8 +94,8 @@ int main(int argc, char **argv)
         fbrl_link_stats s;
         fbrl_link_get_stats(&r.link, &s);
         if (s.attempts != s.commands)
-            printf("            (retypes: %llu of %llu commands)\n", (unsigned long long)(s.attempts - s.commands),
-                   (unsigned long long)s.commands);
+            printf("            (retypes: %llu of %llu commands)\n",
+                   (unsigned long long)(s.attempts - s.commands), (unsigned long long)s.commands);
         rig_stop(&r);
     }
     return 0;

@@ -225,7 +225,9 @@ static double run(int which, int bulk, int threads, uint64_t total)
         pthread_join(p, NULL);
         pthread_join(c, NULL);
     } else {
-        j.sum = which ? one_thread_naive(bulk, total) : bulk ? one_thread_fbrl_bulk(total) : one_thread_fbrl_byte(total);
+        j.sum = which  ? one_thread_naive(bulk, total)
+                : bulk ? one_thread_fbrl_bulk(total)
+                       : one_thread_fbrl_byte(total);
     }
     double dt = now_s(threads) - t0;
     if (j.sum == 0)
@@ -238,8 +240,8 @@ int main(int argc, char **argv)
     uint64_t total = (uint64_t)(argc > 1 ? atoi(argv[1]) : 64) * 1000000u;
     total -= total % 64;
     printf("ring %d bytes, %llu bytes per case, bytes/s (MB = 1e6 B); 1 thread: per CPU second, "
-           "2 threads: wall time\n", RING_SIZE,
-           (unsigned long long)total);
+           "2 threads: wall time\n",
+           RING_SIZE, (unsigned long long)total);
     printf("%-22s %16s %16s %8s\n", "case", "fbrl_ring", "naive+mutex", "ratio");
     const char *names[2][2] = {{"1 thread, 1 byte", "1 thread, 64 B bulk"},
                                {"2 threads, 1 byte", "2 threads, 64 B bulk"}};

@@ -31,17 +31,17 @@ int main(void)
         fbrl_robot_install(vm, &r, NULL, &g) != FBRL_OK)
         return 1;
     bench_eval(vm, ": EMPTY 0 DO LOOP ;\n"
-        ": STACK 0 DO 5 SHIFT-RIGHT 2DROP LOOP ;\n"
-        ": EMPTY-EVAL 0 DO S\" 5 DROP\" EVALUATE LOOP ;\n"
-        ": LINE-EVAL 0 DO S\" SHIFT-RIGHT 5 2DROP\" EVALUATE LOOP ;\n"
-        ": STACK-EVAL 0 DO S\" 5 SHIFT-RIGHT 2DROP\" EVALUATE LOOP ;\n"
-        "CREATE-LOC P  12E0 3E0 8E0 0E0 -90E0 0E0 P DEFINE-LOC "
-        ": BUILD 0 DO 50 SEND-COM S\" PX\" SEND-TEXT SEND-COMMA P SEND-LOC LOOP ;\n"
-        "CREATE-CAL C1 CREATE-CAL C2 CREATE-CAL-STRU S "
-        "CREATE-LOC Q 10E0 -2E0 6E0 0E0 -90E0 0E0 Q DEFINE-LOC C1 1 Q SET-CAL C2 1 Q SET-CAL "
-        "14E0 Q SETX C1 2 Q SET-CAL 13E0 Q SETX 1E0 Q SETY C2 2 Q SET-CAL "
-        "10E0 Q SETX 2E0 Q SETY C1 3 Q SET-CAL 9E0 Q SETX 3E0 Q SETY C2 3 Q SET-CAL "
-        "C2 C1 S CALIBRATE S WITH-CAL");
+                   ": STACK 0 DO 5 SHIFT-RIGHT 2DROP LOOP ;\n"
+                   ": EMPTY-EVAL 0 DO S\" 5 DROP\" EVALUATE LOOP ;\n"
+                   ": LINE-EVAL 0 DO S\" SHIFT-RIGHT 5 2DROP\" EVALUATE LOOP ;\n"
+                   ": STACK-EVAL 0 DO S\" 5 SHIFT-RIGHT 2DROP\" EVALUATE LOOP ;\n"
+                   "CREATE-LOC P  12E0 3E0 8E0 0E0 -90E0 0E0 P DEFINE-LOC "
+                   ": BUILD 0 DO 50 SEND-COM S\" PX\" SEND-TEXT SEND-COMMA P SEND-LOC LOOP ;\n"
+                   "CREATE-CAL C1 CREATE-CAL C2 CREATE-CAL-STRU S "
+                   "CREATE-LOC Q 10E0 -2E0 6E0 0E0 -90E0 0E0 Q DEFINE-LOC C1 1 Q SET-CAL C2 1 Q SET-CAL "
+                   "14E0 Q SETX C1 2 Q SET-CAL 13E0 Q SETX 1E0 Q SETY C2 2 Q SET-CAL "
+                   "10E0 Q SETX 2E0 Q SETY C1 3 Q SET-CAL 9E0 Q SETX 3E0 Q SETY C2 3 Q SET-CAL "
+                   "C2 C1 S CALIBRATE S WITH-CAL");
     snprintf(src, sizeof src, "%ld EMPTY", N);
     double empty = bench_eval(vm, src);
     snprintf(src, sizeof src, "%ld STACK", N);

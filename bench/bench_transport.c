@@ -24,16 +24,13 @@
 
 #include "../tests/e2e/rapl_harness.h"
 
-#define BAUD 9600u
+#define BAUD       9600u
 #define MAX_ROBOTS 32
-#define SHORT_CMD "SPEED 50"
+#define SHORT_CMD  "SPEED 50"
 
 static double seconds = 3.0;
 
-static double now_s(void)
-{
-    return (double)fbrl_clock_now_us() / 1e6;
-}
+static double now_s(void) { return (double)fbrl_clock_now_us() / 1e6; }
 
 static double cpu_s(void)
 {
@@ -86,7 +83,8 @@ static void point_text(const char *sim)
     fbrl_rapl_arg a[7] = {fbrl_rapl_str("P1")};
     for (int k = 0; k < 6; k++)
         a[k + 1] = fbrl_rapl_real(v[k]);
-    if (fbrl_rapl_encode(shortest, sizeof shortest, &n, FBRL_RAPL_KEYWORD, FBRL_RAPL_POINT, a, 7, 0) != FBRL_OK)
+    if (fbrl_rapl_encode(shortest, sizeof shortest, &n, FBRL_RAPL_KEYWORD, FBRL_RAPL_POINT, a, 7, 0) !=
+        FBRL_OK)
         return;
     rig r;
     if (start_rig(&r, sim) != 0)
@@ -98,7 +96,8 @@ static void point_text(const char *sim)
     for (int k = 0; k < 2; k++) {
         size_t len = strlen(lines[k]);
         cps[k] = run_raw(&r.link, lines[k]);
-        printf("   %-13s %-54s %2zu+1 bytes: %5.1f cmd/s = %5.1f %% of the line-rate limit %5.1f, %5.1f %% of the"
+        printf("   %-13s %-54s %2zu+1 bytes: %5.1f cmd/s = %5.1f %% of the line-rate limit %5.1f, %5.1f %% "
+               "of the"
                " echo bound %5.1f\n",
                names[k], lines[k], len, cps[k], 100 * cps[k] / line_limit(len), line_limit(len),
                100 * cps[k] / echo_bound(len), echo_bound(len));
@@ -225,9 +224,13 @@ static void many_robots(const char *sim, int with_old)
     for (; started < MAX_ROBOTS; started++)
         if (start_rig(&rigs[started], sim) != 0)
             break;
-    printf("3. robots from one thread at %u baud, '%s' repeated, %.0f s per run; echo bound %.1f cmd/s per robot\n",
+    printf("3. robots from one thread at %u baud, '%s' repeated, %.0f s per run; echo bound %.1f cmd/s per "
+           "robot\n",
            BAUD, SHORT_CMD, seconds, echo_bound(n));
-    static const struct { const char *name; poll_fn fn; } algs[] = {
+    static const struct {
+        const char *name;
+        poll_fn fn;
+    } algs[] = {
         {"fbrl_link_poll_many", fbrl_link_poll_many},
         {"old scan from link 0", scan_from_zero},
     };
@@ -246,11 +249,12 @@ static void many_robots(const char *sim, int with_old)
             qsort(sorted, robots, sizeof sorted[0], cmp_double);
             if (robots == 1)
                 alone = rate[0];
-            printf("   %-20s %2zu robots: per robot min %5.1f median %5.1f max %5.1f cmd/s (min = %5.1f %% of alone,"
+            printf("   %-20s %2zu robots: per robot min %5.1f median %5.1f max %5.1f cmd/s (min = %5.1f %% "
+                   "of alone,"
                    " %5.1f %% of the echo bound), total %6.1f cmd/s, host CPU %4.1f %% of one core%s\n",
                    algs[a].name, robots, sorted[0], sorted[robots / 2], sorted[robots - 1],
-                   alone > 0 ? 100 * sorted[0] / alone : 0.0, 100 * sorted[0] / echo_bound(n), total, 100 * cpu,
-                   failed ? ", FAILURES" : "");
+                   alone > 0 ? 100 * sorted[0] / alone : 0.0, 100 * sorted[0] / echo_bound(n), total,
+                   100 * cpu, failed ? ", FAILURES" : "");
             if (robots == MAX_ROBOTS) {
                 printf("      per robot:");
                 for (size_t k = 0; k < robots; k++)

@@ -89,22 +89,20 @@ int main(int argc, char **argv)
         check(fbrl_calib_load(&reloaded, saved, sizeof saved), "load"))
         return 1;
 
-    printf("libfbrl rack example: %d x %d tube rack, RECTMAT spacing 0.75 in x 0.75 in\n",
-           ROWS, COLS);
+    printf("libfbrl rack example: %d x %d tube rack, RECTMAT spacing 0.75 in x 0.75 in\n", ROWS, COLS);
     printf("units: %s (lengths), degrees (angles)\n\n", metric ? "centimetres" : "inches");
     printf("calibration points     original block                     moved block\n");
     for (i = 0; i < 3; i++) {
         fbrl_loc o, m;
         fbrl_units_loc_out(&units, &cal.p[i], &o);
         fbrl_units_loc_out(&units, &recal.p[i], &m);
-        printf("  P%d            (%8.4f, %8.4f, %8.4f) %s   (%8.4f, %8.4f, %8.4f) %s\n", i + 1,
-               o.x, o.y, o.z, unit, m.x, m.y, m.z, unit);
+        printf("  P%d            (%8.4f, %8.4f, %8.4f) %s   (%8.4f, %8.4f, %8.4f) %s\n", i + 1, o.x, o.y, o.z,
+               unit, m.x, m.y, m.z, unit);
     }
     printf("saved calibration: %d bytes, reloaded %s\n\n", FBRL_CALIB_BYTES,
            memcmp(&c, &reloaded, sizeof c) == 0 ? "identical" : "DIFFERENT");
 
-    printf("%-4s  %9s %9s %9s  |  %9s %9s %9s %8s\n", "tube", "orig x", "y", "z", "moved x", "y",
-           "z", "yaw");
+    printf("%-4s  %9s %9s %9s  |  %9s %9s %9s %8s\n", "tube", "orig x", "y", "z", "moved x", "y", "z", "yaw");
     printf("----  -----------------------------  |  --------------------------------------\n");
     for (row = 0; row < ROWS; row++)
         for (col = 0; col < COLS; col++) {
@@ -120,8 +118,8 @@ int main(int argc, char **argv)
                 worst_back = d;
             fbrl_units_loc_out(&units, &tube, &o);
             fbrl_units_loc_out(&units, &moved, &m);
-            printf("%c%-3ld  %9.4f %9.4f %9.4f  |  %9.4f %9.4f %9.4f %8.3f\n",
-                   (char)('A' + row), col + 1, o.x, o.y, o.z, m.x, m.y, m.z, m.o);
+            printf("%c%-3ld  %9.4f %9.4f %9.4f  |  %9.4f %9.4f %9.4f %8.3f\n", (char)('A' + row), col + 1,
+                   o.x, o.y, o.z, m.x, m.y, m.z, m.o);
         }
 
     /* One tube in full, the way DISPLAY-LOC shows it. */
@@ -142,7 +140,8 @@ int main(int argc, char **argv)
             check(fbrl_loc_distance(&truth, &moved, &err), "distance"))
             return 1;
         printf("\ncheck: D6 mapped vs the true move: %.2e in; map then unmap over all %d tubes: "
-               "worst %.2e in\n", err, ROWS * COLS, worst_back);
+               "worst %.2e in\n",
+               err, ROWS * COLS, worst_back);
     }
     return 0;
 }

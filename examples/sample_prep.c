@@ -80,8 +80,7 @@ static int failed(const char *what, fbrl_status st)
 }
 
 /* One command through the link, with the controller's own message on an error. */
-static int cmd(fbrl_link *link, fbrl_rapl_cmd c, const fbrl_rapl_arg *args, size_t nargs,
-               const char *what)
+static int cmd(fbrl_link *link, fbrl_rapl_cmd c, const fbrl_rapl_arg *args, size_t nargs, const char *what)
 {
     fbrl_status st = fbrl_link_cmd(link, c, args, nargs, 0);
     if (st == FBRL_ECONTROLLER) {
@@ -101,8 +100,8 @@ static int run_plan(fbrl_vm *vm)
         if (fbrl_vm_eval(vm, plan[i], strlen(plan[i])) != FBRL_OK) {
             const fbrl_vm_error *e = fbrl_vm_last_error(vm);
             fflush(stdout);
-            fprintf(stderr, "sample_prep: error %d: %s in %s (plan line %lu)\n", e->throw_code,
-                    e->message, e->word, (unsigned long)i + 1);
+            fprintf(stderr, "sample_prep: error %d: %s in %s (plan line %lu)\n", e->throw_code, e->message,
+                    e->word, (unsigned long)i + 1);
             return 1;
         }
     }

@@ -7,41 +7,55 @@
 #include <math.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
+#define PI     3.14159265358979323846
 #define RAD(d) ((d) * (PI / 180.0))
 #define DEG(r) ((r) * (180.0 / PI))
-#define MM(x) ((x) / 25.4)
+#define MM(x)  ((x) / 25.4)
 
 const fbrl_sim_model fbrl_sim_models[] = {
     /* CRS A255 (DESIGN 6; reference/rapl-research.md 3.1): 10 + 10 + 10 in, 2 in to the flange. */
-    { "A255", 5, FBRL_SIM_KIN_5R, 10.0, 10.0, 10.0, 2.0, 19.685,
-      { 200.0, 200.0, 200.0, 44.44, 22.22 },
-      { -175.0, 0.0, -130.0, -110.0, -180.0 },
-      { 175.0, 110.0, 0.0, 110.0, 180.0 },
-      { 60.0, 60.0, 60.0, 180.0, 180.0 },
-      { 0.0, 90.0, -90.0, 0.0, 0.0 } },
+    {"A255",
+     5,
+     FBRL_SIM_KIN_5R,
+     10.0,
+     10.0,
+     10.0,
+     2.0,
+     19.685,
+     {200.0, 200.0, 200.0, 44.44, 22.22},
+     {-175.0, 0.0, -130.0, -110.0, -180.0},
+     {175.0, 110.0, 0.0, 110.0, 180.0},
+     {60.0, 60.0, 60.0, 180.0, 180.0},
+     {0.0, 90.0, -90.0, 0.0, 0.0}},
     /* CRS A465: DH d1 330, a2 305, d4 330, d6 76 mm; limits and speeds as published
      * with the CRS A465 models of ReaK (rapl-research.md 3.3, S12). Pulses per degree
      * are not published: [D] 1000-count encoders behind 100:1 (J1-J3) and 50:1 (J4-J6). */
-    { "A465", 6, FBRL_SIM_KIN_6R, MM(330.0), MM(305.0), MM(330.0), MM(76.0), 19.685,
-      { 277.78, 277.78, 277.78, 138.89, 138.89, 138.89 },
-      { -175.0, -90.0, -110.0, -180.0, -105.0, -180.0 },
-      { 175.0, 90.0, 110.0, 180.0, 105.0, 180.0 },
-      { 180.0, 180.0, 180.0, 171.0, 173.0, 171.0 },
-      { 0.0, 0.0, 90.0, 0.0, 0.0, 0.0 } },
+    {"A465",
+     6,
+     FBRL_SIM_KIN_6R,
+     MM(330.0),
+     MM(305.0),
+     MM(330.0),
+     MM(76.0),
+     19.685,
+     {277.78, 277.78, 277.78, 138.89, 138.89, 138.89},
+     {-175.0, -90.0, -110.0, -180.0, -105.0, -180.0},
+     {175.0, 90.0, 110.0, 180.0, 105.0, 180.0},
+     {180.0, 180.0, 180.0, 171.0, 173.0, 171.0},
+     {0.0, 0.0, 90.0, 0.0, 0.0, 0.0}},
 };
 const int fbrl_sim_nmodels = (int)(sizeof fbrl_sim_models / sizeof fbrl_sim_models[0]);
 
 /* Joint angles a hair outside a limit (rounding of an exact target) count as inside. */
-#define LIMIT_EPS 1e-9
-#define AXIS_EPS 1e-9    /* in: closer to the base axis than this, the waist is free */
-#define WRIST_EPS 1e-9   /* sin of the wrist bend below which the two rolls are one */
-#define REACH_EPS 1e-12  /* a fully stretched arm is still reachable */
-#define LINE_STEP 0.05   /* in between the samples of a straight line */
+#define LIMIT_EPS  1e-9
+#define AXIS_EPS   1e-9  /* in: closer to the base axis than this, the waist is free */
+#define WRIST_EPS  1e-9  /* sin of the wrist bend below which the two rolls are one */
+#define REACH_EPS  1e-12 /* a fully stretched arm is still reachable */
+#define LINE_STEP  0.05  /* in between the samples of a straight line */
 #define LINE_ASTEP 0.5   /* degrees of orientation between the samples */
-#define LINE_MIN 20
-#define LINE_MAX 100000
-#define LINE_JUMP 20.0   /* degrees a joint may move between two samples */
+#define LINE_MIN   20
+#define LINE_MAX   100000
+#define LINE_JUMP  20.0 /* degrees a joint may move between two samples */
 
 const fbrl_sim_model *fbrl_sim_model_find(const char *name)
 {
@@ -340,10 +354,7 @@ int fbrl_sim_arm_check(const fbrl_sim_model *m, const double *q)
     return 0;
 }
 
-long fbrl_sim_arm_pulses(const fbrl_sim_model *m, int axis, double deg)
-{
-    return lround(deg * m->ppd[axis]);
-}
+long fbrl_sim_arm_pulses(const fbrl_sim_model *m, int axis, double deg) { return lround(deg * m->ppd[axis]); }
 
 double fbrl_sim_arm_degrees(const fbrl_sim_model *m, int axis, long pulses)
 {
@@ -360,8 +371,8 @@ void fbrl_sim_arm_lerp(const double a[6], const double b[6], double f, double ou
 int fbrl_sim_arm_check_line(const fbrl_sim_model *m, const double a[6], const double b[6], double tool_len,
                             const double *hint)
 {
-    double d = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1])
-                    + (b[2] - a[2]) * (b[2] - a[2]));
+    double d =
+        sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
     double ang = fabs(b[3] - a[3]) + fabs(b[4] - a[4]) + fabs(b[5] - a[5]);
     int n;
     double prev[FBRL_SIM_ARM_MAX_AXES], q[FBRL_SIM_ARM_MAX_AXES], pose[6];

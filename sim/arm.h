@@ -23,16 +23,16 @@
 typedef enum fbrl_sim_kin { FBRL_SIM_KIN_5R, FBRL_SIM_KIN_6R } fbrl_sim_kin;
 
 typedef struct fbrl_sim_model {
-    const char *name;          /* "A255", as STATUS shows it and the state file keeps it */
+    const char *name; /* "A255", as STATUS shows it and the state file keeps it */
     int naxes;
     fbrl_sim_kin kin;
-    double base_h;             /* shoulder axis above the base, in */
-    double upper;              /* shoulder to elbow, in */
-    double fore;               /* elbow to the wrist centre, in */
-    double flange;             /* wrist centre to flange, in */
-    double linear;             /* straight-line speed at 100 %, in/s */
-    double ppd[FBRL_SIM_ARM_MAX_AXES];   /* encoder pulses per degree */
-    double min[FBRL_SIM_ARM_MAX_AXES];   /* joint limits, degrees */
+    double base_h;                     /* shoulder axis above the base, in */
+    double upper;                      /* shoulder to elbow, in */
+    double fore;                       /* elbow to the wrist centre, in */
+    double flange;                     /* wrist centre to flange, in */
+    double linear;                     /* straight-line speed at 100 %, in/s */
+    double ppd[FBRL_SIM_ARM_MAX_AXES]; /* encoder pulses per degree */
+    double min[FBRL_SIM_ARM_MAX_AXES]; /* joint limits, degrees */
     double max[FBRL_SIM_ARM_MAX_AXES];
     double speed[FBRL_SIM_ARM_MAX_AXES]; /* deg/s at 100 % */
     double ready[FBRL_SIM_ARM_MAX_AXES]; /* READY joint angles */

@@ -62,7 +62,6 @@ int sim_args_take_s(args *a, int need)
     return 0;
 }
 
-
 int sim_arg_num(fbrl_sim *s, args *a, int i, double *v)
 {
     if (i >= a->n)
@@ -80,7 +79,6 @@ int sim_arg_int(fbrl_sim *s, args *a, int i, long *v)
         *v = lround(d);
     return e;
 }
-
 
 int sim_args_want(args *a, int lo, int hi)
 {
@@ -119,7 +117,9 @@ int sim_args_two_names(args *a, char *x, char *y)
     if (!*r)
         return SIM_E_ARG_MISSING;
     if (!sep)
-        return a->n < 2 ? SIM_E_ARG_MISSING : a->n > 2 ? SIM_E_BAD_SYNTAX : (strcpy(x, a->v[0]), strcpy(y, a->v[1]), 0);
+        return a->n < 2   ? SIM_E_ARG_MISSING
+               : a->n > 2 ? SIM_E_BAD_SYNTAX
+                          : (strcpy(x, a->v[0]), strcpy(y, a->v[1]), 0);
     n = (size_t)(sep - r);
     while (n && r[n - 1] == ' ')
         n--;

@@ -12,12 +12,6 @@ double sim_mono(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-double sim_real_now(const fbrl_sim *s)
-{
-    return sim_mono() - s->t0;
-}
+double sim_real_now(const fbrl_sim *s) { return sim_mono() - s->t0; }
 
-double sim_now(const fbrl_sim *s)
-{
-    return (sim_mono() - s->t0) * s->opt.time_scale;
-}
+double sim_now(const fbrl_sim *s) { return (sim_mono() - s->t0) * s->opt.time_scale; }

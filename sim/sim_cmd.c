@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define F_MOTION 1 /* waits for the previous motion; needs power, HOME, no LIMP */
-#define F_RAW 2    /* takes the raw rest of the line */
-#define F_TOP 4    /* only typed, not inside RUN */
+#define F_MOTION            1    /* waits for the previous motion; needs power, HOME, no LIMP */
+#define F_RAW               2    /* takes the raw rest of the line */
+#define F_TOP               4    /* only typed, not inside RUN */
 #define RUN_STEPS_PER_SLICE 1000 /* program lines (and passes) RUN executes per event-loop slice */
 
 static int exec_line(fbrl_sim *s, const char *text, int top, int *block);
@@ -68,7 +68,6 @@ int sim_h_run(fbrl_sim *s, args *a, int *b)
     return run_continue(s, b);
 }
 
-
 typedef struct cmd {
     const char *name; /* its /NNN token: libfbrl's command table (rapl_encode.c) */
     int flags;
@@ -77,69 +76,69 @@ typedef struct cmd {
 } cmd;
 
 static const cmd cmds[] = {
-    { "ACTUAL", 0, "<LOC>", sim_h_here },
-    { "ALIGN", F_MOTION, "", sim_h_align },
-    { "APPRO", F_MOTION, "<LOC>,<DIST>[,S]", sim_h_appro },
-    { "ARM", 0, "<ON|OFF>", sim_h_arm },
-    { "CLOSE", 0, "[FORCE]", sim_h_close },
-    { "CONFIG", 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", sim_h_config },
-    { "DEPART", F_MOTION, "<DIST>[,S]", sim_h_depart },
-    { "DLOCN", 0, "<LOC>", sim_h_dlocn },
-    { "DVAR", 0, "<VAR>", sim_h_dvar },
-    { "FINISH", 0, "", sim_h_finish },
-    { "FLASH", 0, "[INTERVAL]", sim_h_flash },
-    { "GAIN", 0, "<MOTOR#>[,<VALUE>]", sim_h_gain },
-    { "GRIP", 0, "<DIST>[,FORCE]", sim_h_grip },
-    { "HALT", 0, "", sim_h_halt },
-    { "HELP", 0, "", sim_h_help },
-    { "HERE", 0, "<LOC>", sim_h_here },
-    { "HOME", 0, "", sim_h_home },
-    { "JOG", F_MOTION, "<DX>,<DY>,<DZ>", sim_h_jog },
-    { "JOINT", F_MOTION, "<JOINT#>,<DEGREES>", sim_h_joint },
-    { "LIMP", 0, "[AXIS#,...]", sim_h_limp },
-    { "LISTL", 0, "[LOC]", sim_h_listl },
-    { "LISTV", 0, "[VAR]", sim_h_listv },
-    { "LOCK", 0, "<JOINT#,...>", sim_h_lock },
-    { "MA", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_ma },
-    { "MANUAL", 0, "[JOI|CYL]", sim_h_manual },
-    { "MI", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_mi },
-    { "MOTOR", F_MOTION, "<MOTOR#>,<PULSES>", sim_h_motor },
-    { "MOVE", F_MOTION, "<LOC>[,S]", sim_h_move },
-    { "NOFLASH", 0, "", sim_h_noflash },
-    { "NOHELP", 0, "", sim_h_nohelp },
-    { "NOLIMP", 0, "", sim_h_nolimp },
-    { "NOMANUAL", 0, "", sim_h_nomanual },
-    { "NOTEACH", 0, "", sim_h_noteach },
-    { "OPEN", 0, "[FORCE]", sim_h_open },
-    { "OUTPUT", 0, "<[-]OUT#,...>", sim_h_output },
-    { "POINT", 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", sim_h_point },
-    { "READY", F_MOTION, "", sim_h_ready },
-    { "RUN", F_TOP, "<PROG>[,<COUNT>]", sim_h_run },
-    { "SERIAL", 0, "", sim_h_serial },
-    { "SET", F_RAW, "<LOC1>=<LOC2>", sim_h_set },
-    { "SHIFT", 0, "<LOC>,<DX>,<DY>,<DZ>", sim_h_shift },
-    { "SHIFTA", F_RAW, "<LOC1>,<LOC2>", sim_h_shifta },
-    { "SPEED", 0, "<PERCENT>", sim_h_speed },
-    { "STATUS", 0, "", sim_h_status },
-    { "TEACH", 0, "<NAME>", sim_h_teach },
-    { "TOOL", 0, "[LOC]", sim_h_tool },
-    { "TYPE", F_RAW, "<TEXT>", sim_h_type },
-    { "TYPEI", F_RAW, "<EXPR>", sim_h_typei },
-    { "TYPEV", F_RAW, "<EXPR>", sim_h_typev },
-    { "UNLOCK", 0, "[JOINT#,...]", sim_h_unlock },
-    { "W0", 0, "", sim_h_w0 },
-    { "W1", F_TOP, "", sim_h_w1 },
-    { "W2", 0, "", sim_h_w2 },
-    { "W3", F_TOP, "", sim_h_w3 },
-    { "W4", 0, "", sim_h_w4 },
-    { "W5", F_TOP, "", sim_h_w5 },
-    { "WAIT", 0, "<[-]IN#,...>", sim_h_wait },
-    { "WE1", F_TOP, "", sim_h_we1 },
-    { "WE3", F_TOP, "", sim_h_we3 },
-    { "WE5", F_TOP, "", sim_h_we5 },
-    { "XCAL", 0, "<AXIS#>", sim_h_xcal },
-    { "XHOME", 0, "<AXIS#>", sim_h_xhome },
-    { "XZERO", 0, "<AXIS#>", sim_h_xzero },
+    {"ACTUAL", 0, "<LOC>", sim_h_here},
+    {"ALIGN", F_MOTION, "", sim_h_align},
+    {"APPRO", F_MOTION, "<LOC>,<DIST>[,S]", sim_h_appro},
+    {"ARM", 0, "<ON|OFF>", sim_h_arm},
+    {"CLOSE", 0, "[FORCE]", sim_h_close},
+    {"CONFIG", 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", sim_h_config},
+    {"DEPART", F_MOTION, "<DIST>[,S]", sim_h_depart},
+    {"DLOCN", 0, "<LOC>", sim_h_dlocn},
+    {"DVAR", 0, "<VAR>", sim_h_dvar},
+    {"FINISH", 0, "", sim_h_finish},
+    {"FLASH", 0, "[INTERVAL]", sim_h_flash},
+    {"GAIN", 0, "<MOTOR#>[,<VALUE>]", sim_h_gain},
+    {"GRIP", 0, "<DIST>[,FORCE]", sim_h_grip},
+    {"HALT", 0, "", sim_h_halt},
+    {"HELP", 0, "", sim_h_help},
+    {"HERE", 0, "<LOC>", sim_h_here},
+    {"HOME", 0, "", sim_h_home},
+    {"JOG", F_MOTION, "<DX>,<DY>,<DZ>", sim_h_jog},
+    {"JOINT", F_MOTION, "<JOINT#>,<DEGREES>", sim_h_joint},
+    {"LIMP", 0, "[AXIS#,...]", sim_h_limp},
+    {"LISTL", 0, "[LOC]", sim_h_listl},
+    {"LISTV", 0, "[VAR]", sim_h_listv},
+    {"LOCK", 0, "<JOINT#,...>", sim_h_lock},
+    {"MA", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_ma},
+    {"MANUAL", 0, "[JOI|CYL]", sim_h_manual},
+    {"MI", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_mi},
+    {"MOTOR", F_MOTION, "<MOTOR#>,<PULSES>", sim_h_motor},
+    {"MOVE", F_MOTION, "<LOC>[,S]", sim_h_move},
+    {"NOFLASH", 0, "", sim_h_noflash},
+    {"NOHELP", 0, "", sim_h_nohelp},
+    {"NOLIMP", 0, "", sim_h_nolimp},
+    {"NOMANUAL", 0, "", sim_h_nomanual},
+    {"NOTEACH", 0, "", sim_h_noteach},
+    {"OPEN", 0, "[FORCE]", sim_h_open},
+    {"OUTPUT", 0, "<[-]OUT#,...>", sim_h_output},
+    {"POINT", 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", sim_h_point},
+    {"READY", F_MOTION, "", sim_h_ready},
+    {"RUN", F_TOP, "<PROG>[,<COUNT>]", sim_h_run},
+    {"SERIAL", 0, "", sim_h_serial},
+    {"SET", F_RAW, "<LOC1>=<LOC2>", sim_h_set},
+    {"SHIFT", 0, "<LOC>,<DX>,<DY>,<DZ>", sim_h_shift},
+    {"SHIFTA", F_RAW, "<LOC1>,<LOC2>", sim_h_shifta},
+    {"SPEED", 0, "<PERCENT>", sim_h_speed},
+    {"STATUS", 0, "", sim_h_status},
+    {"TEACH", 0, "<NAME>", sim_h_teach},
+    {"TOOL", 0, "[LOC]", sim_h_tool},
+    {"TYPE", F_RAW, "<TEXT>", sim_h_type},
+    {"TYPEI", F_RAW, "<EXPR>", sim_h_typei},
+    {"TYPEV", F_RAW, "<EXPR>", sim_h_typev},
+    {"UNLOCK", 0, "[JOINT#,...]", sim_h_unlock},
+    {"W0", 0, "", sim_h_w0},
+    {"W1", F_TOP, "", sim_h_w1},
+    {"W2", 0, "", sim_h_w2},
+    {"W3", F_TOP, "", sim_h_w3},
+    {"W4", 0, "", sim_h_w4},
+    {"W5", F_TOP, "", sim_h_w5},
+    {"WAIT", 0, "<[-]IN#,...>", sim_h_wait},
+    {"WE1", F_TOP, "", sim_h_we1},
+    {"WE3", F_TOP, "", sim_h_we3},
+    {"WE5", F_TOP, "", sim_h_we5},
+    {"XCAL", 0, "<AXIS#>", sim_h_xcal},
+    {"XHOME", 0, "<AXIS#>", sim_h_xhome},
+    {"XZERO", 0, "<AXIS#>", sim_h_xzero},
 };
 
 #define NCMDS ((int)(sizeof cmds / sizeof cmds[0]))
@@ -151,8 +150,8 @@ static int lookup(const char *word, const cmd **out)
     size_t n = strlen(word);
     if (word[0] == '/') {
         int t;
-        if (n != 4 || !isdigit((unsigned char)word[1]) || !isdigit((unsigned char)word[2])
-            || !isdigit((unsigned char)word[3]))
+        if (n != 4 || !isdigit((unsigned char)word[1]) || !isdigit((unsigned char)word[2]) ||
+            !isdigit((unsigned char)word[3]))
             return SIM_E_COMMAND;
         t = atoi(word + 1);
         /* the numbers are the library's: one table for the host and the emulator */

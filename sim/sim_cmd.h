@@ -47,7 +47,8 @@ int sim_eval(fbrl_sim *s, const char *text, double *v);
 /* sim_motion.c */
 double sim_tool_len(fbrl_sim *s);
 /* Location by token: pose always; joints too for a precision point (*is_prec). */
-int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SIM_ARM_MAX_AXES], int *is_prec);
+int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SIM_ARM_MAX_AXES],
+                  int *is_prec);
 double sim_extra_now(fbrl_sim *s);
 void sim_halt(fbrl_sim *s);
 int sim_move_joints(fbrl_sim *s, const double target[FBRL_SIM_ARM_MAX_AXES]);

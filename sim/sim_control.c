@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define CTL_WORDS 3    /* the longest control line: keyword and two values */
-#define CTL_WORD_MAX 32
+#define CTL_WORDS     3 /* the longest control line: keyword and two values */
+#define CTL_WORD_MAX  32
 #define AIN_VOLTS_MAX 10.0 /* an A/D channel reads -10..+10 V */
 
 /* Splits on spaces and tabs; the number of words, or -1 when there are too many or one is too long. */
@@ -72,7 +72,8 @@ int sim_control(fbrl_sim *s, const char *line)
             s->dev.in[i1 - 1] = (int)i2;
         return 0;
     }
-    if (!strcmp(w[0], "AIN") && n == 3 && !ctl_int(w[1], 1, SIM_AIN, &i1) && !ctl_real(w[2], -AIN_VOLTS_MAX, AIN_VOLTS_MAX, &x)) {
+    if (!strcmp(w[0], "AIN") && n == 3 && !ctl_int(w[1], 1, SIM_AIN, &i1) &&
+        !ctl_real(w[2], -AIN_VOLTS_MAX, AIN_VOLTS_MAX, &x)) {
         if (s)
             s->dev.ain[i1 - 1] = x;
         return 0;

@@ -44,8 +44,8 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
         return FBRL_EINVAL;
     }
     *out = NULL;
-    if (!(o->time_scale > 0) || !isfinite(o->time_scale) || o->baud < 0 || o->rx_buffer < 0
-        || o->tcp_port > 65535 || !(o->cmd_time_ms >= 0) || o->cmd_time_ms > SIM_CMD_TIME_MAX_MS) {
+    if (!(o->time_scale > 0) || !isfinite(o->time_scale) || o->baud < 0 || o->rx_buffer < 0 ||
+        o->tcp_port > 65535 || !(o->cmd_time_ms >= 0) || o->cmd_time_ms > SIM_CMD_TIME_MAX_MS) {
         sim_seterr(err, errlen, "bad option value");
         return FBRL_EINVAL;
     }
@@ -116,15 +116,9 @@ fail:
     return FBRL_EIO;
 }
 
-const char *fbrl_sim_path(const fbrl_sim *s)
-{
-    return s ? s->io.path : "";
-}
+const char *fbrl_sim_path(const fbrl_sim *s) { return s ? s->io.path : ""; }
 
-int fbrl_sim_axes(const fbrl_sim *s)
-{
-    return s ? sim_naxes(s) : 0;
-}
+int fbrl_sim_axes(const fbrl_sim *s) { return s ? sim_naxes(s) : 0; }
 
 /* The client went away: what was on the line and half-typed is lost with it. */
 static void client_gone(fbrl_sim *s)
@@ -244,10 +238,7 @@ fbrl_status fbrl_sim_step(fbrl_sim *s, int timeout_ms)
     return FBRL_OK;
 }
 
-static int stopping(fbrl_sim *s)
-{
-    return __atomic_load_n(&s->stop, __ATOMIC_ACQUIRE);
-}
+static int stopping(fbrl_sim *s) { return __atomic_load_n(&s->stop, __ATOMIC_ACQUIRE); }
 
 fbrl_status fbrl_sim_run(fbrl_sim *s)
 {

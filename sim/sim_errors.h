@@ -11,7 +11,7 @@ enum sim_rapl_error {
     SIM_E_COMMAND = 12,
     SIM_E_ARG_MISSING = 13,
     SIM_E_BAD_SYNTAX = 14,
-    SIM_E_PRECISION_POINT = 15,   /* a precision point where a cartesian one is needed */
+    SIM_E_PRECISION_POINT = 15, /* a precision point where a cartesian one is needed */
     SIM_E_IO_ADDRESS = 16,
     SIM_E_PROGRAM_NOT_FOUND = 17,
     SIM_E_ILLEGAL_ARG = 18,
@@ -20,12 +20,12 @@ enum sim_rapl_error {
     SIM_E_TABLE_FULL = 22,
     SIM_E_AD_CHANNEL = 24,
     SIM_E_LINE_TOO_LONG = 25,
-    SIM_E_TRANSFORM = 29,         /* no arm configuration reaches the pose */
+    SIM_E_TRANSFORM = 29, /* no arm configuration reaches the pose */
     SIM_E_POWER_OFF = 40,
     SIM_E_NOT_HOMED = 41,
-    SIM_E_JOINT_RANGE = 42,       /* joint n = 1..5 out of range: SIM_E_JOINT_RANGE + n - 1 */
+    SIM_E_JOINT_RANGE = 42, /* joint n = 1..5 out of range: SIM_E_JOINT_RANGE + n - 1 */
     SIM_E_CHECKSUM = 47,
-    SIM_E_JOINT6_RANGE = 48,      /* [D] joint 6 (A465): 048, reserved in the A255 table */
+    SIM_E_JOINT6_RANGE = 48, /* [D] joint 6 (A465): 048, reserved in the A255 table */
     SIM_E_AMBIGUOUS = 50,
     SIM_E_ILLEGAL_CHANNEL = 61,
     SIM_E_BAD_AXIS = 65,

@@ -87,8 +87,8 @@ int sim_events_load(sim_events *ev, const char *path, char *err, size_t errlen)
             continue;
         /* a decimal time (strtod alone would take hex, nan, inf), then a space */
         t = strtod(p, &end);
-        if (end == p || strspn(p, "0123456789+-.eE") != (size_t)(end - p) || !isfinite(t) || t < 0
-            || (*end != ' ' && *end != '\t')) {
+        if (end == p || strspn(p, "0123456789+-.eE") != (size_t)(end - p) || !isfinite(t) || t < 0 ||
+            (*end != ' ' && *end != '\t')) {
             sim_seterr(err, errlen, "%s:%d: expected a time in seconds", path, lineno);
             fclose(f);
             return -1;

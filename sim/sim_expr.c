@@ -66,8 +66,8 @@ static double e_primary(expr *e)
             e->err = SIM_E_BAD_SYNTAX;
             return 0;
         }
-        if (*q == 'E' && (isdigit((unsigned char)q[1])
-                          || ((q[1] == '+' || q[1] == '-') && isdigit((unsigned char)q[2])))) {
+        if (*q == 'E' && (isdigit((unsigned char)q[1]) ||
+                          ((q[1] == '+' || q[1] == '-') && isdigit((unsigned char)q[2])))) {
             q += 2;
             while (isdigit((unsigned char)*q))
                 q++;
@@ -98,8 +98,8 @@ static double e_primary(expr *e)
     if (isalpha((unsigned char)*e->p)) {
         char id[32];
         size_t n = 0;
-        static const char *fn[] = { "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN",
-                                    "ABS", "SQRT", "INT", "SIG", "OSIG", "ADC" };
+        static const char *fn[] = {"SIN", "COS",  "TAN", "ASIN", "ACOS", "ATAN",
+                                   "ABS", "SQRT", "INT", "SIG",  "OSIG", "ADC"};
         size_t i;
         while ((isalnum((unsigned char)*e->p) || *e->p == '_') && n < sizeof id - 1)
             id[n++] = *e->p++;

@@ -219,14 +219,11 @@ int sim_h_wait(fbrl_sim *s, args *a, int *b)
     return 0;
 }
 
-static int word_is(const char *w, const char *a, const char *b)
-{
-    return !strcmp(w, a) || !strcmp(w, b);
-}
+static int word_is(const char *w, const char *a, const char *b) { return !strcmp(w, a) || !strcmp(w, b); }
 
 int sim_h_config(fbrl_sim *s, args *a, int *b)
 {
-    static const long bauds[] = { 300, 600, 1200, 2400, 4800, 9600, 19200, 38400 };
+    static const long bauds[] = {300, 600, 1200, 2400, 4800, 9600, 19200, 38400};
     sim_chan c;
     long dev, baud, data, stop;
     const char *w;
@@ -237,7 +234,8 @@ int sim_h_config(fbrl_sim *s, args *a, int *b)
         return e;
     if (dev != 0 && dev != 1)
         return SIM_E_ILLEGAL_CHANNEL;
-    if ((e = sim_arg_int(s, a, 1, &baud)) || (e = sim_arg_int(s, a, 3, &data)) || (e = sim_arg_int(s, a, 4, &stop)))
+    if ((e = sim_arg_int(s, a, 1, &baud)) || (e = sim_arg_int(s, a, 3, &data)) ||
+        (e = sim_arg_int(s, a, 4, &stop)))
         return e;
     for (i = 0; i < sizeof bauds / sizeof bauds[0]; i++)
         ok |= bauds[i] == baud;
@@ -282,8 +280,9 @@ int sim_h_serial(fbrl_sim *s, args *a, int *b)
         return e;
     for (i = 0; i < 2; i++) {
         const sim_chan *c = &s->dev.chan[i];
-        sim_out_printf(&s->term.out, "CHANNEL %d: BAUD %ld PARITY %c DATA %d STOP %d HANDSHAKE %c ECHO %d\r\n",
-                       i, c->baud, c->parity, c->data, c->stop, c->handshake, c->echo);
+        sim_out_printf(&s->term.out,
+                       "CHANNEL %d: BAUD %ld PARITY %c DATA %d STOP %d HANDSHAKE %c ECHO %d\r\n", i, c->baud,
+                       c->parity, c->data, c->stop, c->handshake, c->echo);
     }
     return 0;
 }

@@ -85,11 +85,12 @@ int sim_h_set(fbrl_sim *s, args *a, int *b)
     int prec, sprec, e, i;
     sim_loc *l;
     (void)b;
-    if ((e = sim_args_two_names(a, x, y)) || (e = sim_name_parse(x, &prec, name))
-        || (e = sim_loc_value(s, y, pose, q, &sprec)))
+    if ((e = sim_args_two_names(a, x, y)) || (e = sim_name_parse(x, &prec, name)) ||
+        (e = sim_loc_value(s, y, pose, q, &sprec)))
         return e;
     if (prec && !sprec) {
-        if ((e = fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q)) || (e = fbrl_sim_arm_check(s->arm.model, q)))
+        if ((e = fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q)) ||
+            (e = fbrl_sim_arm_check(s->arm.model, q)))
             return e;
     }
     if ((e = sim_loc_new(s, name, prec, &l)))

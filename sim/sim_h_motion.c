@@ -92,7 +92,8 @@ int sim_h_motor(fbrl_sim *s, args *a, int *b)
     (void)b;
     if (a->n > 2)
         return SIM_E_NOT_AVAILABLE;
-    if ((e = sim_args_want(a, 2, 2)) || (e = sim_arg_axis(s, a, 0, sim_naxes(s) + 1, &m)) || (e = sim_arg_int(s, a, 1, &p)))
+    if ((e = sim_args_want(a, 2, 2)) || (e = sim_arg_axis(s, a, 0, sim_naxes(s) + 1, &m)) ||
+        (e = sim_arg_int(s, a, 1, &p)))
         return e;
     if (m == sim_naxes(s) + 1) {
         s->arm.xtarget = s->arm.xpos + (double)p;
@@ -198,7 +199,7 @@ int sim_h_home(fbrl_sim *s, args *a, int *b)
 /* Lists of axis numbers for LIMP, LOCK, UNLOCK: flags[i] = on. */
 static int axis_list(fbrl_sim *s, args *a, int *flags, int on, int empty_all)
 {
-    int i, sel[FBRL_SIM_ARM_MAX_AXES] = { 0 };
+    int i, sel[FBRL_SIM_ARM_MAX_AXES] = {0};
     if (a->n == 0) {
         if (!empty_all)
             return SIM_E_ARG_MISSING;

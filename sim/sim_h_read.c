@@ -42,24 +42,40 @@ static int h_wonce(fbrl_sim *s, args *a, int which)
         memcpy(q, s->arm.qt, sizeof q);
     else
         sim_joints_now(s, q);
-    print_position(s, which == 0 ? "CURRENT COMMAND POSITION :"
-                      : which == 2 ? "CURRENT ACTUAL POSITION :" : "END OF PATH POSITION :", q);
+    print_position(s,
+                   which == 0   ? "CURRENT COMMAND POSITION :"
+                   : which == 2 ? "CURRENT ACTUAL POSITION :"
+                                : "END OF PATH POSITION :",
+                   q);
     return 0;
 }
 
-int sim_h_w0(fbrl_sim *s, args *a, int *b) { (void)b; return h_wonce(s, a, 0); }
+int sim_h_w0(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_wonce(s, a, 0);
+}
 
-int sim_h_w2(fbrl_sim *s, args *a, int *b) { (void)b; return h_wonce(s, a, 2); }
+int sim_h_w2(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_wonce(s, a, 2);
+}
 
-int sim_h_w4(fbrl_sim *s, args *a, int *b) { (void)b; return h_wonce(s, a, 4); }
+int sim_h_w4(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_wonce(s, a, 4);
+}
 
 static int h_stream(fbrl_sim *s, args *a, int kind)
 {
-    static const char *titles[] = {
-        "ACTUAL POSITION (MOTOR PULSES):", "COMMAND POSITION (MOTOR PULSES):", "VELOCITY (PULSES/SEC):",
-        "EXTRA AXIS ACTUAL (MOTOR PULSES):", "EXTRA AXIS COMMAND (MOTOR PULSES):",
-        "EXTRA AXIS VELOCITY (PULSES/SEC):"
-    };
+    static const char *titles[] = {"ACTUAL POSITION (MOTOR PULSES):",
+                                   "COMMAND POSITION (MOTOR PULSES):",
+                                   "VELOCITY (PULSES/SEC):",
+                                   "EXTRA AXIS ACTUAL (MOTOR PULSES):",
+                                   "EXTRA AXIS COMMAND (MOTOR PULSES):",
+                                   "EXTRA AXIS VELOCITY (PULSES/SEC):"};
     int e = sim_args_want(a, 0, 0);
     if (e)
         return e;
@@ -69,17 +85,41 @@ static int h_stream(fbrl_sim *s, args *a, int kind)
     return 0;
 }
 
-int sim_h_w1(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 1); }
+int sim_h_w1(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_stream(s, a, 1);
+}
 
-int sim_h_w3(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 3); }
+int sim_h_w3(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_stream(s, a, 3);
+}
 
-int sim_h_w5(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 5); }
+int sim_h_w5(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_stream(s, a, 5);
+}
 
-int sim_h_we1(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 11); }
+int sim_h_we1(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_stream(s, a, 11);
+}
 
-int sim_h_we3(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 13); }
+int sim_h_we3(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_stream(s, a, 13);
+}
 
-int sim_h_we5(fbrl_sim *s, args *a, int *b) { (void)b; return h_stream(s, a, 15); }
+int sim_h_we5(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_stream(s, a, 15);
+}
 
 void sim_stream_line(fbrl_sim *s, sim_out *o)
 {
@@ -102,7 +142,9 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
                 sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(s->arm.model, i, q[i]));
         }
     } else if (s->term.stream_kind == 15) {
-        double v = s->arm.xmoving && sim_now(s) < s->arm.xt1 ? (s->arm.xtarget - s->arm.xpos) / (s->arm.xt1 - s->arm.xt0) : 0.0;
+        double v = s->arm.xmoving && sim_now(s) < s->arm.xt1
+                       ? (s->arm.xtarget - s->arm.xpos) / (s->arm.xt1 - s->arm.xt0)
+                       : 0.0;
         sim_out_printf(o, "%+011ld", lround(v));
     } else {
         sim_out_printf(o, "%+011ld", lround(sim_extra_now(s)));
@@ -125,7 +167,8 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
     if (s->term.last_error < 0)
         sim_out_printf(o, "LAST ERROR CODE: NONE\r\n");
     else
-        sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->term.last_error, sim_error_text(s->term.last_error));
+        sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->term.last_error,
+                       sim_error_text(s->term.last_error));
     sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->arm.speed));
     sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", s->arm.model->linear);
     sim_out_printf(o, "CURRENT PROGRAM EXECUTING:%s%s\r\n", s->run.prog ? " " : "",

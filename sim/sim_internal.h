@@ -9,13 +9,13 @@
 #include "sim_errors.h"
 #include "fbrlsim.h"
 
-#define SIM_LINE_MAX 80   /* longest command line (error 025 beyond) */
-#define SIM_NAME_MAX 8
-#define SIM_MAX_LOCS 100
-#define SIM_MAX_VARS 100
-#define SIM_IO 16
-#define SIM_AIN 8      /* analog inputs (A/D channels), volts */
-#define SIM_GRIP_MAX 2.0  /* servo gripper fully open, in */
+#define SIM_LINE_MAX   80 /* longest command line (error 025 beyond) */
+#define SIM_NAME_MAX   8
+#define SIM_MAX_LOCS   100
+#define SIM_MAX_VARS   100
+#define SIM_IO         16
+#define SIM_AIN        8       /* analog inputs (A/D channels), volts */
+#define SIM_GRIP_MAX   2.0     /* servo gripper fully open, in */
 #define SIM_EXTRA_RATE 10000.0 /* extra axis, pulses/s at 100 % */
 
 typedef struct sim_loc {
@@ -38,7 +38,7 @@ typedef struct sim_prog {
 
 typedef struct sim_chan {
     long baud;
-    char parity;    /* N E O */
+    char parity; /* N E O */
     int data, stop;
     char handshake; /* N X */
     int echo;
@@ -52,14 +52,14 @@ typedef struct sim_out {
 
 enum { PS_IDLE, PS_BUSY, PS_STREAM, PS_THINK };
 
-#define SIM_RX_DEFAULT 128      /* the controller's receive buffer with --baud */
-#define SIM_RX_UNPACED 65536    /* without --baud: stands in for the kernel's buffer */
-#define SIM_WIRE_MAX 256        /* host bytes taken off the OS but still on the wire */
-#define SIM_MARK (-1.0)         /* queue time of a PARMRK mark: no line time of its own */
-#define SIM_STALL_MAX_MS 600000
+#define SIM_RX_DEFAULT      128    /* the controller's receive buffer with --baud */
+#define SIM_RX_UNPACED      65536  /* without --baud: stands in for the kernel's buffer */
+#define SIM_WIRE_MAX        256    /* host bytes taken off the OS but still on the wire */
+#define SIM_MARK            (-1.0) /* queue time of a PARMRK mark: no line time of its own */
+#define SIM_STALL_MAX_MS    600000
 #define SIM_CMD_TIME_MAX_MS 10000.0
-#define SIM_POLL_BUSY 0.005     /* s: how often WAIT and RUN look at their conditions */
-#define SIM_LISTEN_BACKLOG 4
+#define SIM_POLL_BUSY       0.005 /* s: how often WAIT and RUN look at their conditions */
+#define SIM_LISTEN_BACKLOG  4
 
 /* sim_line.c: how fast characters are handed over (a bucket of about 1 ms). */
 typedef struct sim_pace {
@@ -68,41 +68,41 @@ typedef struct sim_pace {
 
 /* sim_line.c: the serial line, each direction a UART (pacing, faults, parity, XON/XOFF). */
 typedef struct sim_line {
-    double byte_time;           /* 10 bit times with --baud; 0: unpaced */
+    double byte_time; /* 10 bit times with --baud; 0: unpaced */
     double f_drop, f_corrupt, f_noise;
-    int f_stall;                /* ms */
+    int f_stall; /* ms */
     unsigned long long rng;
     long parity_in, parity_out; /* parity errors: dropped by our UART / marked for the host */
     /* host -> controller: on the wire (end times), then the receive buffer */
     unsigned char wire[SIM_WIRE_MAX];
     double wire_end[SIM_WIRE_MAX];
     int whead, wn;
-    double rx_free;             /* when the last byte on the wire is complete */
-    int backlog;                /* bytes seen waiting in the OS at the last read */
+    double rx_free; /* when the last byte on the wire is complete */
+    int backlog;    /* bytes seen waiting in the OS at the last read */
     unsigned char *rx;
     int rxcap, rxhead, rxcount;
     long overruns;
     int xoff_sent, peer_xoff;
     /* controller -> host */
-    int urgent;                 /* XON/XOFF waiting to go out first, -1 none */
+    int urgent; /* XON/XOFF waiting to go out first, -1 none */
     double urgent_q;
     unsigned char *tx;
-    double *txq;                /* when each byte was queued (SIM_MARK for marks) */
+    double *txq; /* when each byte was queued (SIM_MARK for marks) */
     size_t txlen, txcap, txoff;
-    double tx_free;             /* when the last byte sent is complete */
-    double tx_resume;           /* the host's XON: nothing starts before it */
-    double tx_hold_until;       /* stall fault */
-    sim_pace tx_pace, rx_pace;  /* hand-over pace in each direction */
+    double tx_free;            /* when the last byte sent is complete */
+    double tx_resume;          /* the host's XON: nothing starts before it */
+    double tx_hold_until;      /* stall fault */
+    sim_pace tx_pace, rx_pace; /* hand-over pace in each direction */
 } sim_line;
 
 /* sim_io.c: the transport under the line. */
 typedef struct sim_io {
     char path[256];
     char *link_path;
-    int master, slave;   /* pty (slave kept open so the master never hangs up) */
-    int lfd, conn;       /* TCP listener and client */
-    int fd;              /* fd the line uses: master or conn, -1 if none */
-    int ino;             /* inotify on the pty slave: a client opened it, -1 none */
+    int master, slave; /* pty (slave kept open so the master never hangs up) */
+    int lfd, conn;     /* TCP listener and client */
+    int fd;            /* fd the line uses: master or conn, -1 if none */
+    int ino;           /* inotify on the pty slave: a client opened it, -1 none */
 } sim_io;
 
 /* sim_term.c: terminal mode (line editor, reply framing, streams). */
@@ -112,10 +112,10 @@ typedef struct sim_term {
     int ps;
     char cur[SIM_LINE_MAX + 1]; /* line being executed while PS_BUSY / PS_THINK */
     sim_out out;
-    int stream_kind;            /* W1 W3 W5 / WE1 WE3 WE5: 1,3,5, 11,13,15 */
+    int stream_kind; /* W1 W3 W5 / WE1 WE3 WE5: 1,3,5, 11,13,15 */
     double stream_next;
-    double think_until;         /* PS_THINK: the controller is still reading the line */
-    int last_error;             /* -1 none (STATUS shows it) */
+    double think_until; /* PS_THINK: the controller is still reading the line */
+    int last_error;     /* -1 none (STATUS shows it) */
 } sim_term;
 
 /* sim_events.c: control lines from the FIFO and the --inputs script. */
@@ -124,10 +124,10 @@ struct sim_event {
     char *cmd;
 };
 typedef struct sim_events {
-    int ctl;             /* control FIFO */
+    int ctl; /* control FIFO */
     char ctlbuf[256];
     size_t ctllen;
-    int ctl_overlong;    /* the FIFO line being read is longer than ctlbuf: dropped */
+    int ctl_overlong; /* the FIFO line being read is longer than ctlbuf: dropped */
     struct sim_event *list;
     int n, next;
 } sim_events;
@@ -143,21 +143,21 @@ typedef struct sim_mem {
     int tool_set;
     char tool_name[SIM_NAME_MAX + 1];
     double tool[6];
-    int teach;                  /* TEACH mode: 1 cartesian, 2 precision points */
+    int teach; /* TEACH mode: 1 cartesian, 2 precision points */
     char teach_name[SIM_NAME_MAX + 1];
     int teach_next;
 } sim_mem;
 
 /* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
 typedef struct sim_arm {
-    double q[FBRL_SIM_ARM_MAX_AXES];      /* joints at the segment's start (or at rest) */
-    double qt[FBRL_SIM_ARM_MAX_AXES];     /* joints at its end */
+    double q[FBRL_SIM_ARM_MAX_AXES];  /* joints at the segment's start (or at rest) */
+    double qt[FBRL_SIM_ARM_MAX_AXES]; /* joints at its end */
     double pa[6], pb[6];              /* straight-line segment poses */
     int moving, straight;
-    double mt0, mt1;                  /* simulated start and end */
+    double mt0, mt1;                       /* simulated start and end */
     double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
     int xmoving, xhomed;
-    const fbrl_sim_model *model;      /* the arm: geometry, limits, speeds, axes */
+    const fbrl_sim_model *model; /* the arm: geometry, limits, speeds, axes */
     double speed;
     int homed, power;
     int locked[FBRL_SIM_ARM_MAX_AXES], limp[FBRL_SIM_ARM_MAX_AXES];
@@ -167,7 +167,7 @@ typedef struct sim_arm {
 /* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
 typedef struct sim_dev {
     int in[SIM_IO], out_[SIM_IO];
-    double ain[SIM_AIN];      /* analog inputs: live signals, not kept in the state file */
+    double ain[SIM_AIN]; /* analog inputs: live signals, not kept in the state file */
     double grip, grip_force, object;
     sim_chan chan[2];
     int flash, manual;
@@ -185,10 +185,10 @@ struct fbrl_sim {
     char *state_path, *log_path, *control_path;
     FILE *log;
     int wake[2];
-    int stop;            /* set by fbrl_sim_stop (atomic builtins) */
+    int stop; /* set by fbrl_sim_stop (atomic builtins) */
     pthread_t thread;
     int thread_started;
-    double t0;           /* real monotonic start */
+    double t0; /* real monotonic start */
     sim_line line;
     sim_io io;
     sim_term term;
@@ -197,16 +197,13 @@ struct fbrl_sim {
     sim_arm arm;
     sim_dev dev;
     sim_run run;
-    int model_given;   /* --model was given: the state file must be of that arm */
+    int model_given; /* --model was given: the state file must be of that arm */
     int dirty;
-    int save_warned;   /* told stderr once that the state file cannot be written */
+    int save_warned; /* told stderr once that the state file cannot be written */
 };
 
 /* The arm's axis count (its model's). */
-static inline int sim_naxes(const fbrl_sim *s)
-{
-    return s->arm.model->naxes;
-}
+static inline int sim_naxes(const fbrl_sim *s) { return s->arm.model->naxes; }
 
 /* sim_clock.c */
 double sim_mono(void);
@@ -240,9 +237,9 @@ void sim_line_reset(sim_line *l);
 /* sim_io.c */
 int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
-int sim_io_accept(sim_io *io);        /* 1: a new client */
-int sim_io_close_client(sim_io *io);  /* 1: a client was closed */
-int sim_io_pty_opened(sim_io *io);    /* times the pty was opened since the last call */
+int sim_io_accept(sim_io *io);       /* 1: a new client */
+int sim_io_close_client(sim_io *io); /* 1: a client was closed */
+int sim_io_pty_opened(sim_io *io);   /* times the pty was opened since the last call */
 void sim_io_close(sim_io *io);
 
 /* sim_term.c */
@@ -262,8 +259,8 @@ void sim_events_free(sim_events *ev);
 /* sim_cmd.c */
 enum { EXEC_DONE, EXEC_BLOCK };
 int sim_exec(fbrl_sim *s, const char *line, int *err); /* EXEC_*; *err = RAPL code or -1 */
-int sim_exec_step(fbrl_sim *s, int *err);  /* continue a blocked or running command */
-const char *sim_help_hint(const char *word);  /* HELP-mode hint for a first word, or NULL */
+int sim_exec_step(fbrl_sim *s, int *err);              /* continue a blocked or running command */
+const char *sim_help_hint(const char *word);           /* HELP-mode hint for a first word, or NULL */
 
 /* sim_out.c */
 void sim_out_printf(sim_out *o, const char *fmt, ...)
@@ -273,11 +270,11 @@ void sim_out_printf(sim_out *o, const char *fmt, ...)
     ;
 
 /* sim_motion.c */
-void sim_arm_update(fbrl_sim *s);             /* finish motions whose time has come */
+void sim_arm_update(fbrl_sim *s); /* finish motions whose time has come */
 void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES]);
 
 /* sim_h_read.c */
-void sim_stream_line(fbrl_sim *s, sim_out *o);  /* the next line of a W1/W3/W5 readout */
+void sim_stream_line(fbrl_sim *s, sim_out *o); /* the next line of a W1/W3/W5 readout */
 
 /* sim_control.c */
 int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: only check */

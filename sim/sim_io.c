@@ -20,8 +20,8 @@ int sim_io_open_pty(sim_io *io, char *err, size_t errlen)
 {
     struct termios tio;
     io->master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
-    if (io->master < 0 || grantpt(io->master) != 0 || unlockpt(io->master) != 0
-        || ptsname_r(io->master, io->path, sizeof io->path) != 0) {
+    if (io->master < 0 || grantpt(io->master) != 0 || unlockpt(io->master) != 0 ||
+        ptsname_r(io->master, io->path, sizeof io->path) != 0) {
         sim_seterr(err, errlen, "pseudo-terminal: %s", strerror(errno));
         return -1;
     }
@@ -77,8 +77,8 @@ int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen)
     a.sin_family = AF_INET;
     a.sin_port = htons((unsigned short)port);
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (bind(io->lfd, (struct sockaddr *)&a, sizeof a) != 0 || listen(io->lfd, SIM_LISTEN_BACKLOG) != 0
-        || getsockname(io->lfd, (struct sockaddr *)&a, &alen) != 0) {
+    if (bind(io->lfd, (struct sockaddr *)&a, sizeof a) != 0 || listen(io->lfd, SIM_LISTEN_BACKLOG) != 0 ||
+        getsockname(io->lfd, (struct sockaddr *)&a, &alen) != 0) {
         sim_seterr(err, errlen, "tcp port %d: %s", port, strerror(errno));
         return -1;
     }

@@ -22,11 +22,11 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
-#define XON 0x11
-#define XOFF 0x13
+#define XON            0x11
+#define XOFF           0x13
 #define WIRE_AHEAD_MIN 0.001 /* s: how far ahead the host's bytes are taken off the OS (at least one) */
-#define TX_FIRST_CAP 4096
-#define BURST_MIN 2 /* characters handed over at once at least (see pace_cap) */
+#define TX_FIRST_CAP   4096
+#define BURST_MIN      2 /* characters handed over at once at least (see pace_cap) */
 
 /* The OS may wake the emulator late; characters whose time has come are then handed
  * over together. So that lateness never turns into a burst faster than the line,
@@ -95,10 +95,7 @@ static double rnd(sim_line *l)
     return (double)((x * 2685821657736338717ULL) >> 11) / 9007199254740992.0;
 }
 
-static unsigned char rnd_byte(sim_line *l)
-{
-    return (unsigned char)(rnd(l) * 256.0);
-}
+static unsigned char rnd_byte(sim_line *l) { return (unsigned char)(rnd(l) * 256.0); }
 
 int sim_line_faults(sim_line *l, const char *spec, char *err, size_t errlen)
 {
@@ -149,10 +146,7 @@ static int parity_on(const fbrl_sim *s)
     return s->dev.chan[0].parity == 'E' || s->dev.chan[0].parity == 'O';
 }
 
-static int flow_on(const fbrl_sim *s)
-{
-    return s->dev.chan[0].handshake == 'X';
-}
+static int flow_on(const fbrl_sim *s) { return s->dev.chan[0].handshake == 'X'; }
 
 /* Applies the line faults to one byte; returns how many bytes went to out (0..2).
  * bad[k] = the receiving UART sees a parity error on out[k] (only with parity on): a
@@ -241,10 +235,7 @@ void sim_emit(fbrl_sim *s, const char *bytes, size_t n)
     }
 }
 
-int sim_line_tx_pending(const sim_line *l)
-{
-    return (int)(l->txlen - l->txoff);
-}
+int sim_line_tx_pending(const sim_line *l) { return (int)(l->txlen - l->txoff); }
 
 void sim_line_hold(sim_line *l, double until)
 {
@@ -253,10 +244,7 @@ void sim_line_hold(sim_line *l, double until)
 }
 
 /* Output is held: the host sent XOFF, or a stall fault holds the reply. */
-static int tx_blocked(const sim_line *l, double now)
-{
-    return l->peer_xoff || now < l->tx_hold_until;
-}
+static int tx_blocked(const sim_line *l, double now) { return l->peer_xoff || now < l->tx_hold_until; }
 
 /* When the next character on the line (urgent first) would be complete, or HUGE_VAL. */
 static double tx_line_end(const sim_line *l, double now)

@@ -8,12 +8,10 @@
 
 #define PI 3.14159265358979323846
 
-double sim_tool_len(fbrl_sim *s)
-{
-    return s->mem.tool_set ? s->mem.tool[2] : 0.0;
-}
+double sim_tool_len(fbrl_sim *s) { return s->mem.tool_set ? s->mem.tool[2] : 0.0; }
 
-static void pulses_to_joints(const fbrl_sim *s, const long p[FBRL_SIM_ARM_MAX_AXES], double q[FBRL_SIM_ARM_MAX_AXES])
+static void pulses_to_joints(const fbrl_sim *s, const long p[FBRL_SIM_ARM_MAX_AXES],
+                             double q[FBRL_SIM_ARM_MAX_AXES])
 {
     int i;
     for (i = 0; i < sim_naxes(s); i++)
@@ -40,7 +38,6 @@ int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SI
     }
     return 0;
 }
-
 
 void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES])
 {
@@ -103,7 +100,8 @@ void sim_halt(fbrl_sim *s)
     s->dirty = 1;
 }
 
-static double joint_time(fbrl_sim *s, const double a[FBRL_SIM_ARM_MAX_AXES], const double b[FBRL_SIM_ARM_MAX_AXES])
+static double joint_time(fbrl_sim *s, const double a[FBRL_SIM_ARM_MAX_AXES],
+                         const double b[FBRL_SIM_ARM_MAX_AXES])
 {
     double t = 0;
     int i;
@@ -179,13 +177,14 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
         /* the line must end in the target's own configuration (a precision point may
          * hold the other reach) */
         double qe[FBRL_SIM_ARM_MAX_AXES];
-        if (fbrl_sim_arm_ik(s->arm.model, s->arm.pb, sim_tool_len(s), s->arm.q, qe) != 0
-            || fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
+        if (fbrl_sim_arm_ik(s->arm.model, s->arm.pb, sim_tool_len(s), s->arm.q, qe) != 0 ||
+            fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
             return SIM_E_STRAIGHT_LINE;
     }
     memcpy(s->arm.pa, from, sizeof from);
-    d = sqrt((s->arm.pb[0] - from[0]) * (s->arm.pb[0] - from[0]) + (s->arm.pb[1] - from[1]) * (s->arm.pb[1] - from[1])
-             + (s->arm.pb[2] - from[2]) * (s->arm.pb[2] - from[2]));
+    d = sqrt((s->arm.pb[0] - from[0]) * (s->arm.pb[0] - from[0]) +
+             (s->arm.pb[1] - from[1]) * (s->arm.pb[1] - from[1]) +
+             (s->arm.pb[2] - from[2]) * (s->arm.pb[2] - from[2]));
     t = d / (s->arm.model->linear * s->arm.speed / 100.0);
     if (joint_time(s, s->arm.q, qt) > t)
         t = joint_time(s, s->arm.q, qt);

@@ -19,11 +19,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#define MAGIC "FBRLSIM-STATE 1"
-#define TMP_TRIES 100        /* unique temporary names tried before giving up */
-#define MAX_FIELDS 16        /* tokens on one state line */
-#define PULSE_MAX 9999999999.0 /* a precision point's pulses: ten digits, as POINT takes them */
-#define BAUD_MAX 10000000L   /* --baud's range; CONFIG keeps to the controller's list */
+#define MAGIC      "FBRLSIM-STATE 1"
+#define TMP_TRIES  100          /* unique temporary names tried before giving up */
+#define MAX_FIELDS 16           /* tokens on one state line */
+#define PULSE_MAX  9999999999.0 /* a precision point's pulses: ten digits, as POINT takes them */
+#define BAUD_MAX   10000000L    /* --baud's range; CONFIG keeps to the controller's list */
 
 /* Opens a new, uniquely named file next to path: O_EXCL refuses anything that
  * exists (a planted file or symlink), O_NOFOLLOW any link in the last step. */
@@ -36,7 +36,8 @@ static int open_temp(const char *path, char *tmp, size_t cap)
         struct timespec ts;
         unsigned long r;
         clock_gettime(CLOCK_MONOTONIC, &ts);
-        r = (unsigned long)getpid() * 2654435761UL ^ (unsigned long)ts.tv_nsec ^ ((unsigned long)__atomic_fetch_add(&counter, 1u, __ATOMIC_RELAXED) << 20);
+        r = (unsigned long)getpid() * 2654435761UL ^ (unsigned long)ts.tv_nsec ^
+            ((unsigned long)__atomic_fetch_add(&counter, 1u, __ATOMIC_RELAXED) << 20);
         if (snprintf(tmp, cap, "%s.%lx.tmp", path, r & 0xffffffffUL) >= (int)cap) {
             errno = ENAMETOOLONG;
             return -1;
@@ -88,12 +89,12 @@ static void write_state(fbrl_sim *s, FILE *f)
         fputc(s->dev.out_[i] ? '1' : '0', f);
     fputc('\n', f);
     if (s->mem.tool_set)
-        fprintf(f, "TOOL %s %.17g %.17g %.17g %.17g %.17g %.17g\n", s->mem.tool_name, s->mem.tool[0], s->mem.tool[1],
-                s->mem.tool[2], s->mem.tool[3], s->mem.tool[4], s->mem.tool[5]);
+        fprintf(f, "TOOL %s %.17g %.17g %.17g %.17g %.17g %.17g\n", s->mem.tool_name, s->mem.tool[0],
+                s->mem.tool[1], s->mem.tool[2], s->mem.tool[3], s->mem.tool[4], s->mem.tool[5]);
     fprintf(f, "FLASH %d\n", s->dev.flash);
     for (i = 0; i < 2; i++)
-        fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity, s->dev.chan[i].data,
-                s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
+        fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity,
+                s->dev.chan[i].data, s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
     for (i = 1; i <= sim_naxes(s); i++)
         fprintf(f, "GAIN %d %.17g\n", i, s->arm.gain[i]);
     for (i = 0; i < s->mem.nvars; i++)
@@ -160,7 +161,7 @@ typedef struct loader {
     size_t errlen;
     char *tok[MAX_FIELDS];
     int ntok;
-    int items;           /* items read so far (MODEL must come first) */
+    int items; /* items read so far (MODEL must come first) */
 } loader;
 
 static int bad(loader *ld, const char *what, const char *tok)
@@ -180,11 +181,12 @@ static int real_field(loader *ld, int n, double lo, double hi, double *out)
     errno = 0;
     d = strtod(ld->tok[n], &end);
     /* decimal only: strtod would also take hex, "nan" and "inf" */
-    if (end == ld->tok[n] || *end || strspn(ld->tok[n], "0123456789+-.eE") != strlen(ld->tok[n]) || !isfinite(d)
-        || errno == ERANGE)
+    if (end == ld->tok[n] || *end || strspn(ld->tok[n], "0123456789+-.eE") != strlen(ld->tok[n]) ||
+        !isfinite(d) || errno == ERANGE)
         return bad(ld, "not a finite number:", ld->tok[n]);
     if (d < lo || d > hi) {
-        sim_seterr(ld->err, ld->errlen, "%s:%d: %s out of range %g..%g", ld->path, ld->lineno, ld->tok[n], lo, hi);
+        sim_seterr(ld->err, ld->errlen, "%s:%d: %s out of range %g..%g", ld->path, ld->lineno, ld->tok[n], lo,
+                   hi);
         return -1;
     }
     *out = d;
@@ -240,8 +242,8 @@ static int name_field(loader *ld, int n, char out[SIM_NAME_MAX + 1])
 static int want_fields(loader *ld, int n)
 {
     if (ld->ntok != n) {
-        sim_seterr(ld->err, ld->errlen, "%s:%d: %s takes %d value%s, found %d", ld->path, ld->lineno, ld->tok[0],
-                   n - 1, n == 2 ? "" : "s", ld->ntok - 1);
+        sim_seterr(ld->err, ld->errlen, "%s:%d: %s takes %d value%s, found %d", ld->path, ld->lineno,
+                   ld->tok[0], n - 1, n == 2 ? "" : "s", ld->ntok - 1);
         return -1;
     }
     return 0;
@@ -330,16 +332,17 @@ static int load_item(loader *ld, sim_prog **prog)
         if (!(m = fbrl_sim_model_find(ld->tok[1])))
             return bad(ld, "unknown arm model", ld->tok[1]);
         if (s->model_given && m != s->arm.model) {
-            sim_seterr(ld->err, ld->errlen, "%s:%d: this memory belongs to an %s, not the %s of --model", ld->path,
-                       ld->lineno, m->name, s->arm.model->name);
+            sim_seterr(ld->err, ld->errlen, "%s:%d: this memory belongs to an %s, not the %s of --model",
+                       ld->path, ld->lineno, m->name, s->arm.model->name);
             return -1;
         }
         s->arm.model = m;
         sim_defaults(s); /* READY and gains of this arm */
     } else if (ld->items == 0 && s->arm.model != &fbrl_sim_models[0]) {
         /* files from before models were kept hold an A255's memory */
-        sim_seterr(ld->err, ld->errlen, "%s:%d: no MODEL line: this memory belongs to an A255, not the %s of --model",
-                   ld->path, ld->lineno, s->arm.model->name);
+        sim_seterr(ld->err, ld->errlen,
+                   "%s:%d: no MODEL line: this memory belongs to an A255, not the %s of --model", ld->path,
+                   ld->lineno, s->arm.model->name);
         return -1;
     } else if (!strcmp(k, "SPEED")) {
         /* SPEED takes any percentage above 0 up to 100: so does the file (it once
@@ -356,18 +359,19 @@ static int load_item(loader *ld, sim_prog **prog)
             if (real_field(ld, i + 1, -360.0, 360.0, &d[i]))
                 return -1;
         if ((i = fbrl_sim_arm_check(s->arm.model, d)) != 0) {
-            sim_seterr(ld->err, ld->errlen, "%s:%d: joint %d outside its limits", ld->path, ld->lineno, i - 41);
+            sim_seterr(ld->err, ld->errlen, "%s:%d: joint %d outside its limits", ld->path, ld->lineno,
+                       i - 41);
             return -1;
         }
         memcpy(s->arm.q, d, sizeof s->arm.q);
         memcpy(s->arm.qt, d, sizeof s->arm.qt);
     } else if (!strcmp(k, "EXTRA")) {
-        if (want_fields(ld, 3) || real_field(ld, 1, -PULSE_MAX, PULSE_MAX, &s->arm.xpos)
-            || real_field(ld, 2, -PULSE_MAX, PULSE_MAX, &s->arm.xhome))
+        if (want_fields(ld, 3) || real_field(ld, 1, -PULSE_MAX, PULSE_MAX, &s->arm.xpos) ||
+            real_field(ld, 2, -PULSE_MAX, PULSE_MAX, &s->arm.xhome))
             return -1;
     } else if (!strcmp(k, "GRIPPER")) {
-        if (want_fields(ld, 3) || real_field(ld, 1, 0.0, SIM_GRIP_MAX, &s->dev.grip)
-            || real_field(ld, 2, 1.0, 100.0, &s->dev.grip_force))
+        if (want_fields(ld, 3) || real_field(ld, 1, 0.0, SIM_GRIP_MAX, &s->dev.grip) ||
+            real_field(ld, 2, 1.0, 100.0, &s->dev.grip_force))
             return -1;
     } else if (!strcmp(k, "OUTPUTS")) {
         if (want_fields(ld, 2))
@@ -391,18 +395,18 @@ static int load_item(loader *ld, sim_prog **prog)
         s->dev.flash = (int)v[0];
     } else if (!strcmp(k, "CONFIG")) {
         sim_chan c;
-        if (want_fields(ld, 8) || int_field(ld, 1, 0, 1, &v[0]) || int_field(ld, 2, 1, BAUD_MAX, &c.baud)
-            || char_field(ld, 3, "NEO", &c.parity) || int_field(ld, 4, 7, 8, &v[1])
-            || int_field(ld, 5, 1, 2, &v[2]) || char_field(ld, 6, "NX", &c.handshake)
-            || int_field(ld, 7, 0, 1, &v[3]))
+        if (want_fields(ld, 8) || int_field(ld, 1, 0, 1, &v[0]) || int_field(ld, 2, 1, BAUD_MAX, &c.baud) ||
+            char_field(ld, 3, "NEO", &c.parity) || int_field(ld, 4, 7, 8, &v[1]) ||
+            int_field(ld, 5, 1, 2, &v[2]) || char_field(ld, 6, "NX", &c.handshake) ||
+            int_field(ld, 7, 0, 1, &v[3]))
             return -1;
         c.data = (int)v[1];
         c.stop = (int)v[2];
         c.echo = (int)v[3];
         s->dev.chan[v[0]] = c;
     } else if (!strcmp(k, "GAIN")) {
-        if (want_fields(ld, 3) || int_field(ld, 1, 1, sim_naxes(s), &v[0])
-            || real_field(ld, 2, 0.0, HUGE_VAL, &d[0]))
+        if (want_fields(ld, 3) || int_field(ld, 1, 1, sim_naxes(s), &v[0]) ||
+            real_field(ld, 2, 0.0, HUGE_VAL, &d[0]))
             return -1;
         s->arm.gain[v[0]] = d[0];
     } else if (!strcmp(k, "VAR")) {
@@ -471,8 +475,8 @@ static int has_nul(FILE *f, const char *line, long *at)
  * Anything else is a program line, upper-cased: "end" must not be saved as "END". */
 static int is_end(const char *t)
 {
-    if (toupper((unsigned char)t[0]) != 'E' || toupper((unsigned char)t[1]) != 'N'
-        || toupper((unsigned char)t[2]) != 'D')
+    if (toupper((unsigned char)t[0]) != 'E' || toupper((unsigned char)t[1]) != 'N' ||
+        toupper((unsigned char)t[2]) != 'D')
         return 0;
     return t[3 + strspn(t + 3, " \t")] == 0;
 }
@@ -503,7 +507,8 @@ int sim_state_load(fbrl_sim *s, char *err, size_t errlen)
     else
         line[0] = 0;
     if (strcmp(line, MAGIC) != 0) {
-        sim_seterr(err, errlen, "%s:1: not an fbrlsim state file (first line must be '%s')", s->state_path, MAGIC);
+        sim_seterr(err, errlen, "%s:1: not an fbrlsim state file (first line must be '%s')", s->state_path,
+                   MAGIC);
         fclose(f);
         return -1;
     }

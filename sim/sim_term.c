@@ -8,13 +8,10 @@
 #include <errno.h>
 #include <string.h>
 
-#define TX_BUSY 512 /* pending output bytes at which the controller stops reading input */
+#define TX_BUSY       512 /* pending output bytes at which the controller stops reading input */
 #define STREAM_PERIOD 0.1 /* s between the lines of a W1/W3/W5 readout */
 
-static void emit_str(fbrl_sim *s, const char *str)
-{
-    sim_emit(s, str, strlen(str));
-}
+static void emit_str(fbrl_sim *s, const char *str) { sim_emit(s, str, strlen(str)); }
 
 void sim_term_reset(sim_term *t)
 {

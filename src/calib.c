@@ -30,10 +30,7 @@ static void cross3(const double a[3], const double b[3], double out[3])
     out[2] = z;
 }
 
-static double norm3(const double a[3])
-{
-    return hypot(hypot(a[0], a[1]), a[2]);
-}
+static double norm3(const double a[3]) { return hypot(hypot(a[0], a[1]), a[2]); }
 
 static void pos_of(const fbrl_loc *l, double p[3])
 {
@@ -42,10 +39,7 @@ static void pos_of(const fbrl_loc *l, double p[3])
     p[2] = l->z;
 }
 
-static int finite3(const double p[3])
-{
-    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-}
+static int finite3(const double p[3]) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 static int calib_finite(const fbrl_calib *c)
 {
@@ -59,7 +53,7 @@ static int calib_finite(const fbrl_calib *c)
 /* A finite motion whose r is a proper rotation to 1e-9: r r^T = I and det r = +1. */
 static int is_rigid(const fbrl_calib *c)
 {
-    const double (*r)[3] = c->r;
+    const double(*r)[3] = c->r;
     int i, j;
     double det;
     if (!calib_finite(c))
@@ -200,8 +194,7 @@ fbrl_status fbrl_calib_3point(fbrl_calib *c, const fbrl_calpts *cal, const fbrl_
     fbrl_status st;
     if (!c || !cal || !recal)
         return FBRL_EINVAL;
-    if ((st = fbrl_calib_frame(cal, &fc)) != FBRL_OK ||
-        (st = fbrl_calib_frame(recal, &fr)) != FBRL_OK)
+    if ((st = fbrl_calib_frame(cal, &fc)) != FBRL_OK || (st = fbrl_calib_frame(recal, &fr)) != FBRL_OK)
         return st;
     fbrl_calib_invert(&fc, &fc_inv);
     compose(&fr, &fc_inv, c);
@@ -305,8 +298,8 @@ static void jacobi4(double a[4][4], double v[4][4])
     }
 }
 
-fbrl_status fbrl_calib_npoint(fbrl_calib *c, const fbrl_loc *cal, const fbrl_loc *recal,
-                              size_t n, double *residuals, double *rms, size_t *worst)
+fbrl_status fbrl_calib_npoint(fbrl_calib *c, const fbrl_loc *cal, const fbrl_loc *recal, size_t n,
+                              double *residuals, double *rms, size_t *worst)
 {
     double ca[3], cb[3], s[3][3] = {{0}}, nm[4][4], v[4][4], q[4], a[3], b[3], qn;
     double sum2 = 0.0, big = -1.0;
@@ -401,10 +394,18 @@ fbrl_status fbrl_calib_map_points(const fbrl_calib *c, const double *in, double 
     size_t i;
     if (!c || !in || !out || !calib_finite(c))
         return FBRL_EINVAL;
-    r00 = c->r[0][0]; r01 = c->r[0][1]; r02 = c->r[0][2];
-    r10 = c->r[1][0]; r11 = c->r[1][1]; r12 = c->r[1][2];
-    r20 = c->r[2][0]; r21 = c->r[2][1]; r22 = c->r[2][2];
-    t0 = c->t[0]; t1 = c->t[1]; t2 = c->t[2];
+    r00 = c->r[0][0];
+    r01 = c->r[0][1];
+    r02 = c->r[0][2];
+    r10 = c->r[1][0];
+    r11 = c->r[1][1];
+    r12 = c->r[1][2];
+    r20 = c->r[2][0];
+    r21 = c->r[2][1];
+    r22 = c->r[2][2];
+    t0 = c->t[0];
+    t1 = c->t[1];
+    t2 = c->t[2];
     for (i = 0; i < n; i++) {
         double x = in[3 * i], y = in[3 * i + 1], z = in[3 * i + 2];
         double mx = r00 * x + r01 * y + r02 * z + t0;
@@ -421,8 +422,7 @@ fbrl_status fbrl_calib_map_points(const fbrl_calib *c, const double *in, double 
     return FBRL_OK;
 }
 
-fbrl_status fbrl_calib_unmap_points(const fbrl_calib *c, const double *in, double *out,
-                                    size_t n)
+fbrl_status fbrl_calib_unmap_points(const fbrl_calib *c, const double *in, double *out, size_t n)
 {
     fbrl_calib inv;
     fbrl_status st;
@@ -439,18 +439,27 @@ fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, f
     r = &rot->m[0][0];
     if (!isfinite(yaw) || !isfinite(pitch) || !isfinite(roll))
         return FBRL_ENONFINITE;
-    cy = cos(FBRL_RAD(yaw));   sy = sin(FBRL_RAD(yaw));
-    cp = cos(FBRL_RAD(pitch)); sp = sin(FBRL_RAD(pitch));
-    cr = cos(FBRL_RAD(roll));  sr = sin(FBRL_RAD(roll));
+    cy = cos(FBRL_RAD(yaw));
+    sy = sin(FBRL_RAD(yaw));
+    cp = cos(FBRL_RAD(pitch));
+    sp = sin(FBRL_RAD(pitch));
+    cr = cos(FBRL_RAD(roll));
+    sr = sin(FBRL_RAD(roll));
     /* Rz(yaw) * Ry(-pitch) * Rx(roll), multiplied out. */
-    r[0] = cy * cp; r[1] = -cy * sp * sr - sy * cr; r[2] = -cy * sp * cr + sy * sr;
-    r[3] = sy * cp; r[4] = -sy * sp * sr + cy * cr; r[5] = -sy * sp * cr - cy * sr;
-    r[6] = sp;      r[7] = cp * sr;                 r[8] = cp * cr;
+    r[0] = cy * cp;
+    r[1] = -cy * sp * sr - sy * cr;
+    r[2] = -cy * sp * cr + sy * sr;
+    r[3] = sy * cp;
+    r[4] = -sy * sp * sr + cy * cr;
+    r[5] = -sy * sp * cr - cy * sr;
+    r[6] = sp;
+    r[7] = cp * sr;
+    r[8] = cp * cr;
     return FBRL_OK;
 }
 
-fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint,
-                                        double *yaw, double *pitch, double *roll)
+fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint, double *yaw, double *pitch,
+                                        double *roll)
 {
     double horiz, p, y, cy, sy, cp, sp, u0, q11, q21;
     const double *r;
@@ -470,8 +479,10 @@ fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint,
     y = horiz > 1e-10 ? atan2(r[3], r[0]) : FBRL_RAD(wrap180(yaw_hint));
     /* Roll from Rx(roll) = Ry(pitch) Rz(-yaw) R, column 1: consistent with the yaw just
      * chosen, so the three angles rebuild R even close to the vertical. */
-    cy = cos(y); sy = sin(y);
-    cp = cos(p); sp = sin(p);
+    cy = cos(y);
+    sy = sin(y);
+    cp = cos(p);
+    sp = sin(p);
     u0 = cy * r[1] + sy * r[4];
     q11 = -sy * r[1] + cy * r[4];
     q21 = -sp * u0 + cp * r[7];
@@ -500,13 +511,10 @@ static double waist_of(const double p[3], const double axis[2], double fallback)
     return hypot(dx, dy) > FBRL_CALIB_AXIS_R ? FBRL_DEG(atan2(dy, dx)) : fallback;
 }
 
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
-                               fbrl_loc *out, double *off)
+fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in, fbrl_loc *out,
+                               double *off)
 {
     static const double origin[2] = {0.0, 0.0};
     double p[3], q[3], w0, w1, hx, hy, d[3], g[3], h[3], n[3], a[3], v[3], vg[3], vvg[3];
@@ -541,8 +549,12 @@ fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const 
     w1 = waist_of(q, axis, hypot(hx, hy) > 1e-9 ? FBRL_DEG(atan2(hy, hx)) : w0);
     cw = cos(FBRL_RAD(w1));
     sw = sin(FBRL_RAD(w1));
-    h[0] = cw; h[1] = sw; h[2] = 0.0;    /* along the arm, horizontal */
-    n[0] = -sw; n[1] = cw; n[2] = 0.0;   /* across the arm: what the arm cannot tilt to */
+    h[0] = cw;
+    h[1] = sw;
+    h[2] = 0.0; /* along the arm, horizontal */
+    n[0] = -sw;
+    n[1] = cw;
+    n[2] = 0.0; /* across the arm: what the arm cannot tilt to */
     /* The reachable axis nearest d: d without its part across the arm. Pitch may pass
      * -90 or 90 (tool leaning back toward the base), so a straight-down tool on a slightly
      * tilted block has no flip in it. */
@@ -569,8 +581,12 @@ fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const 
     for (i = 0; i < 3; i++)
         g[i] += vg[i] + vvg[i] / (1.0 + cs);
     /* Roll: g = cos(roll) f2 + sin(roll) f3 in the arm's frame Rz(w1) Ry(-pitch). */
-    f2[0] = -sw; f2[1] = cw; f2[2] = 0.0;
-    f3[0] = -cw * sp; f3[1] = -sw * sp; f3[2] = cp;
+    f2[0] = -sw;
+    f2[1] = cw;
+    f2[2] = 0.0;
+    f3[0] = -cw * sp;
+    f3[1] = -sw * sp;
+    f3[2] = cp;
     roll = atan2(dot3(g, f3), dot3(g, f2));
     if (!isfinite(roll) || !isfinite(pitch))
         return FBRL_EOVERFLOW;
@@ -586,8 +602,8 @@ fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const 
     return FBRL_OK;
 }
 
-fbrl_status fbrl_calib_unmap_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
-                                 fbrl_loc *out, double *off)
+fbrl_status fbrl_calib_unmap_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in, fbrl_loc *out,
+                                 double *off)
 {
     fbrl_calib inv;
     fbrl_status st;
@@ -652,8 +668,6 @@ fbrl_status fbrl_calib_rotate(double x, double y, double ang, double *xr, double
 }
 
 /* ---- save and load ---- */
-
-
 
 #define CAL_CRC_AT 104
 

@@ -98,8 +98,8 @@ static int value_finite(fbrl_ftype t, const void *value)
     if (t.code == FBRL_FT_LOCATION) {
         fbrl_loc l;
         memcpy(&l, value, sizeof l);
-        return isfinite(l.x) && isfinite(l.y) && isfinite(l.z) && isfinite(l.o) &&
-               isfinite(l.a) && isfinite(l.t);
+        return isfinite(l.x) && isfinite(l.y) && isfinite(l.z) && isfinite(l.o) && isfinite(l.a) &&
+               isfinite(l.t);
     }
     return 1;
 }
@@ -108,9 +108,7 @@ static int value_finite(fbrl_ftype t, const void *value)
 static void encode_value(fbrl_ftype t, const void *value, unsigned char *out)
 {
     switch (t.code) {
-    case FBRL_FT_CHR:
-        out[0] = *(const unsigned char *)value;
-        break;
+    case FBRL_FT_CHR: out[0] = *(const unsigned char *)value; break;
     case FBRL_FT_INTEGER: {
         int16_t v;
         memcpy(&v, value, sizeof v);
@@ -140,17 +138,12 @@ static void encode_value(fbrl_ftype t, const void *value, unsigned char *out)
         fbrl_le_put_double(out + 40, l.t);
         break;
     }
-    case FBRL_FT_USER:
-        memcpy(out, value, t.size);
-        break;
+    case FBRL_FT_USER: memcpy(out, value, t.size); break;
     }
 }
 
 /* Two's complement from the unsigned field without implementation-defined conversions. */
-static int16_t to_i16(uint16_t u)
-{
-    return u < 0x8000u ? (int16_t)u : (int16_t)((int32_t)u - 0x10000);
-}
+static int16_t to_i16(uint16_t u) { return u < 0x8000u ? (int16_t)u : (int16_t)((int32_t)u - 0x10000); }
 
 static int32_t to_i32(uint32_t u)
 {
@@ -160,9 +153,7 @@ static int32_t to_i32(uint32_t u)
 static void decode_value(fbrl_ftype t, const unsigned char *in, void *value)
 {
     switch (t.code) {
-    case FBRL_FT_CHR:
-        *(unsigned char *)value = in[0];
-        break;
+    case FBRL_FT_CHR: *(unsigned char *)value = in[0]; break;
     case FBRL_FT_INTEGER: {
         int16_t v = to_i16(fbrl_le_get16(in));
         memcpy(value, &v, sizeof v);
@@ -189,9 +180,7 @@ static void decode_value(fbrl_ftype t, const unsigned char *in, void *value)
         memcpy(value, &l, sizeof l);
         break;
     }
-    case FBRL_FT_USER:
-        memcpy(value, in, t.size);
-        break;
+    case FBRL_FT_USER: memcpy(value, in, t.size); break;
     }
 }
 
@@ -461,8 +450,8 @@ fbrl_status fbrl_file_create(const char *path)
 }
 
 /* Verify the header (as much of it as `got` bytes hold) and the file size. */
-static fbrl_status check_header(const unsigned char *h, size_t got, off_t file_size,
-                                uint32_t *len, uint32_t *count)
+static fbrl_status check_header(const unsigned char *h, size_t got, off_t file_size, uint32_t *len,
+                                uint32_t *count)
 {
     size_t m = got < sizeof magic ? got : sizeof magic;
     if (memcmp(h, magic, m) != 0)
@@ -555,10 +544,7 @@ fbrl_status fbrl_file_open(fbrl_file *f, const char *path, void *buf, size_t cap
     return FBRL_OK;
 }
 
-static int is_open(const fbrl_file *f)
-{
-    return f && f->state == OPEN_MARK;
-}
+static int is_open(const fbrl_file *f) { return f && f->state == OPEN_MARK; }
 
 static fbrl_status check_handle(const fbrl_file *f)
 {
@@ -721,15 +707,9 @@ fbrl_status fbrl_file_write_integer(fbrl_file *f, int16_t v)
     return fbrl_file_write(f, fbrl_ftype_integer, &v);
 }
 
-fbrl_status fbrl_file_write_long(fbrl_file *f, int32_t v)
-{
-    return fbrl_file_write(f, fbrl_ftype_long, &v);
-}
+fbrl_status fbrl_file_write_long(fbrl_file *f, int32_t v) { return fbrl_file_write(f, fbrl_ftype_long, &v); }
 
-fbrl_status fbrl_file_write_real(fbrl_file *f, double v)
-{
-    return fbrl_file_write(f, fbrl_ftype_real, &v);
-}
+fbrl_status fbrl_file_write_real(fbrl_file *f, double v) { return fbrl_file_write(f, fbrl_ftype_real, &v); }
 
 fbrl_status fbrl_file_write_loc(fbrl_file *f, const fbrl_loc *v)
 {
@@ -753,15 +733,9 @@ fbrl_status fbrl_file_read_integer(fbrl_file *f, int16_t *v)
     return fbrl_file_read(f, fbrl_ftype_integer, v);
 }
 
-fbrl_status fbrl_file_read_long(fbrl_file *f, int32_t *v)
-{
-    return fbrl_file_read(f, fbrl_ftype_long, v);
-}
+fbrl_status fbrl_file_read_long(fbrl_file *f, int32_t *v) { return fbrl_file_read(f, fbrl_ftype_long, v); }
 
-fbrl_status fbrl_file_read_real(fbrl_file *f, double *v)
-{
-    return fbrl_file_read(f, fbrl_ftype_real, v);
-}
+fbrl_status fbrl_file_read_real(fbrl_file *f, double *v) { return fbrl_file_read(f, fbrl_ftype_real, v); }
 
 fbrl_status fbrl_file_read_loc(fbrl_file *f, fbrl_loc *v)
 {

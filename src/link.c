@@ -20,7 +20,7 @@
 #include <math.h>
 
 #define CAN 0x18
-#define BS 0x08
+#define BS  0x08
 #define XON 0x11
 
 enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
@@ -31,8 +31,16 @@ enum { PE_START, PE_T1, PE_T2, PE_MARK, PE_DONE, PE_BAD = -1 };
 /* known_err: the controller's LAST ERROR is not known */
 #define ERR_UNKNOWN (-2)
 /* What the controller was last seen doing (fbrl_link_outcome.seen). */
-enum { SEEN_NONE, SEEN_SILENT, SEEN_AMBIGUOUS, SEEN_STARTED, SEEN_BUSY, SEEN_UNREADABLE, SEEN_UNSETTLED,
-       SEEN_SAME_ERROR };
+enum {
+    SEEN_NONE,
+    SEEN_SILENT,
+    SEEN_AMBIGUOUS,
+    SEEN_STARTED,
+    SEEN_BUSY,
+    SEEN_UNREADABLE,
+    SEEN_UNSETTLED,
+    SEEN_SAME_ERROR
+};
 /* probe_out: what was sent after the CR and not yet answered */
 enum { PR_NONE, PR_IDLE, PR_VERIFY };
 
@@ -78,8 +86,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     else
         fbrl_link_config_init(&c);
     if (c.echo_timeout_ms == 0 || c.reply_timeout_ms == 0 || c.wait_timeout_ms == 0 || c.max_attempts == 0 ||
-        c.query_reads == 0 || c.query_reads > 3 ||
-        c.naxes == 0 || c.naxes > FBRL_RAPL_MAX_AXES ||
+        c.query_reads == 0 || c.query_reads > 3 || c.naxes == 0 || c.naxes > FBRL_RAPL_MAX_AXES ||
         (c.form != FBRL_RAPL_KEYWORD && c.form != FBRL_RAPL_TOKEN))
         return FBRL_EINVAL;
     fbrl_uart_config uc;
@@ -115,10 +122,7 @@ static char lower(char c) { return (c >= 'A' && c <= 'Z') ? (char)(c - 'A' + 'a'
 static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A') : c; }
 
 /* Out of attempts: the echo never matched, or nothing at all came back. */
-static fbrl_status gave_up(const fbrl_link *l)
-{
-    return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT;
-}
+static fbrl_status gave_up(const fbrl_link *l) { return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT; }
 
 /* The run log (cfg.on_exec) of one run of the current line. While STATUS settles a
  * command's damaged reply, its runs are only counted: the command itself ran before
@@ -259,7 +263,7 @@ static fbrl_status begin_erase(fbrl_link *l)
 static uint8_t expected(const fbrl_link *l, size_t i, size_t triples)
 {
     if (i < 3 * triples)
-        return (uint8_t)"\b \b"[i % 3];
+        return (uint8_t) "\b \b"[i % 3];
     return (uint8_t)l->line[i - 3 * triples];
 }
 
@@ -386,8 +390,7 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
             l->cfg.on_line(l->cfg.line_ctx, s, n, flawed);
         break;
     }
-    case FBRL_LINK_REPLY_LINES:
-        break;
+    case FBRL_LINK_REPLY_LINES: break;
     }
 }
 
@@ -439,8 +442,8 @@ static int same_status(const fbrl_rapl_status_info *a, const fbrl_rapl_status_in
     return 1;
 }
 
-#define DEG_TO_RAD 0.017453292519943295
-#define POS_TOL_IN 0.002   /* world x y z against the joints: print rounding is ~1e-4 */
+#define DEG_TO_RAD  0.017453292519943295
+#define POS_TOL_IN  0.002  /* world x y z against the joints: print rounding is ~1e-4 */
 #define POS_TOL_DEG 0.0003 /* pitch = the sum of three joints, each rounded to 5e-5 */
 #define TOOL_MAX_IN 100.0  /* a longer tool along the tool axis is not believed */
 
@@ -650,18 +653,14 @@ static fbrl_status executed(fbrl_link *l)
     int damaged = l->err_state == ERR_GARBLED || !complete;
     if (!damaged) {
         switch (l->kind) {
-        case FBRL_LINK_REPLY_POS:
-            damaged = !fbrl_rapl_pos_complete(&l->pos, l->cfg.naxes);
-            break;
+        case FBRL_LINK_REPLY_POS: damaged = !fbrl_rapl_pos_complete(&l->pos, l->cfg.naxes); break;
         case FBRL_LINK_REPLY_STATUS: {
             unsigned need = FBRL_RAPL_ST_ERROR | FBRL_RAPL_ST_SPEED | FBRL_RAPL_ST_HOMED | FBRL_RAPL_ST_LOCK |
                             FBRL_RAPL_ST_DONE | FBRL_RAPL_ST_LIMP | FBRL_RAPL_ST_AXHOMED;
             damaged = (l->st.have & need) != need || l->st.naxes != l->cfg.naxes;
             break;
         }
-        default:
-            damaged = l->nvalues != 1;
-            break;
+        default: damaged = l->nvalues != 1; break;
         }
     }
     /* not yet believed: damaged, or not yet query_reads agreeing replies */
@@ -952,8 +951,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         if (probe_answered(l))
             return verify_done(l, 3);
         return FBRL_OK;
-    default:
-        return FBRL_OK; /* idle: stray bytes */
+    default: return FBRL_OK; /* idle: stray bytes */
     }
 }
 
@@ -988,9 +986,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
             return finish(l, gave_up(l));
         l->attempts++;
         return send_probe(l);
-    case PH_TYPE:
-        l->stats.echo_timeout++;
-        return begin_erase(l);
+    case PH_TYPE: l->stats.echo_timeout++; return begin_erase(l);
     case PH_REPLY:
         if (l->kind == FBRL_LINK_REPLY_STREAM && !l->stop_sent && !l->prompt_seen && cr_took_effect(l)) {
             /* a running stream may be slower than the echo timeout: a probe now would
@@ -1020,8 +1016,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->first_probe = 1;
         l->pe_state = PE_START;
         return send_probe(l);
-    case PH_CLEAN:
-        return clean_done(l, -1);
+    case PH_CLEAN: return clean_done(l, -1);
     case PH_VERIFY:
         if (l->probe_seen) {
             /* the probe's echo was damaged, but the bytes before it may decide */
@@ -1033,8 +1028,7 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         }
         l->t_last = t;
         return FBRL_OK;
-    default:
-        return FBRL_OK;
+    default: return FBRL_OK;
     }
 }
 
@@ -1282,7 +1276,8 @@ fbrl_status fbrl_link_connect(fbrl_link *l)
     return st == FBRL_OK ? run(l) : st;
 }
 
-fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs, int straight)
+fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                          int straight)
 {
     char text[FBRL_RAPL_LINE_MAX];
     size_t n;
@@ -1296,7 +1291,8 @@ fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     if (ci->reply == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() */
-    st = start(l, text, ci->reply, (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
+    st = start(l, text, ci->reply,
+               (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
                (ci->flags & FBRL_RAPL_F_SAFE) != 0);
     return st == FBRL_OK ? run(l) : st;
 }
@@ -1319,10 +1315,7 @@ fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
     return st == FBRL_OK ? run(l) : st;
 }
 
-fbrl_status fbrl_link_finish(fbrl_link *l)
-{
-    return fbrl_link_cmd(l, FBRL_RAPL_FINISH, 0, 0, 0);
-}
+fbrl_status fbrl_link_finish(fbrl_link *l) { return fbrl_link_cmd(l, FBRL_RAPL_FINISH, 0, 0, 0); }
 
 fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out)
 {
@@ -1537,7 +1530,8 @@ fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t time
             which[np++] = k;
         }
         uint64_t left = nw > 0 || wake <= t ? 0 : wake - t;
-        fbrl_status st = fbrl_uart_wait_any(ports, np, left > UINT32_MAX ? UINT32_MAX : (uint32_t)left, flags);
+        fbrl_status st =
+            fbrl_uart_wait_any(ports, np, left > UINT32_MAX ? UINT32_MAX : (uint32_t)left, flags);
         waited = 1;
         if (st != FBRL_OK) {
             /* the ports cannot be waited on together: let each link meet the error */
@@ -1616,8 +1610,8 @@ fbrl_status fbrl_link_clear_line(fbrl_link *l)
     return st;
 }
 
-fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx, fbrl_link_line_fn *old_fn,
-                                       void **old_ctx)
+fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
+                                       fbrl_link_line_fn *old_fn, void **old_ctx)
 {
     if (!l)
         return FBRL_EINVAL;

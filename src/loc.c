@@ -17,14 +17,11 @@ static double *comp(fbrl_loc *loc, int axis)
     case FBRL_LOC_Z: return &loc->z;
     case FBRL_LOC_O: return &loc->o;
     case FBRL_LOC_A: return &loc->a;
-    default:         return &loc->t;
+    default: return &loc->t;
     }
 }
 
-static int valid_axis(fbrl_loc_axis axis)
-{
-    return (int)axis >= FBRL_LOC_X && (int)axis < FBRL_LOC_NAXES;
-}
+static int valid_axis(fbrl_loc_axis axis) { return (int)axis >= FBRL_LOC_X && (int)axis < FBRL_LOC_NAXES; }
 
 fbrl_status fbrl_loc_check(const fbrl_loc *loc)
 {
@@ -58,14 +55,18 @@ fbrl_status fbrl_loc_set(fbrl_loc *loc, fbrl_loc_axis axis, double value)
     return FBRL_OK;
 }
 
-fbrl_status fbrl_loc_define(fbrl_loc *loc, double x, double y, double z,
-                            double o, double a, double t)
+fbrl_status fbrl_loc_define(fbrl_loc *loc, double x, double y, double z, double o, double a, double t)
 {
     fbrl_loc r;
     fbrl_status st;
     if (!loc)
         return FBRL_EINVAL;
-    r.x = x; r.y = y; r.z = z; r.o = o; r.a = a; r.t = t;
+    r.x = x;
+    r.y = y;
+    r.z = z;
+    r.o = o;
+    r.a = a;
+    r.t = t;
     if ((st = fbrl_loc_check(&r)) != FBRL_OK)
         return st;
     *loc = r;
@@ -118,10 +119,7 @@ fbrl_status fbrl_loc_distance(const fbrl_loc *a, const fbrl_loc *b, double *inch
 }
 
 /* A value that rounds to zero at the shown precision prints as +0, not -0. */
-static double tidy(double v, double half_step)
-{
-    return fabs(v) < half_step ? 0.0 : v;
-}
+static double tidy(double v, double half_step) { return fabs(v) < half_step ? 0.0 : v; }
 
 fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t size)
 {
@@ -144,8 +142,8 @@ fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t s
         char f[6][LOC_NUM_CHARS];
         int i;
         for (i = 0; i < 6; i++)
-            if (fbrl_num_fixed(f[i], sizeof f[i], v[i], i < 3 ? 10 : 8, i < 3 ? 4 : 3, FBRL_NUM_PLUS,
-                               NULL) != FBRL_OK) {
+            if (fbrl_num_fixed(f[i], sizeof f[i], v[i], i < 3 ? 10 : 8, i < 3 ? 4 : 3, FBRL_NUM_PLUS, NULL) !=
+                FBRL_OK) {
                 buf[0] = '\0';
                 return FBRL_ENOSPC;
             }

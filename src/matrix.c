@@ -16,8 +16,8 @@ fbrl_status fbrl_array_bytes(size_t cell_size, size_t rows, size_t cols, size_t 
     return FBRL_OK;
 }
 
-fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size,
-                             size_t cell_size, size_t rows, size_t cols)
+fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size, size_t rows,
+                             size_t cols)
 {
     size_t need;
     fbrl_status st;
@@ -34,8 +34,7 @@ fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size,
     return FBRL_OK;
 }
 
-fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size,
-                            size_t cell_size, size_t count)
+fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size, size_t count)
 {
     return fbrl_array2_init(a, storage, storage_size, cell_size, count, 1);
 }
@@ -70,8 +69,7 @@ fbrl_status fbrl_array2_cell(const fbrl_array *a, size_t row, size_t col, void *
 
 /* ---- RECTMAT ---- */
 
-fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base,
-                              double dx, double dy, double dz)
+fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base, double dx, double dy, double dz)
 {
     fbrl_status st;
     if (!m || !base)
@@ -109,8 +107,8 @@ fbrl_status fbrl_rectmat_loc(const fbrl_rectmat *m, long i, long j, long k, fbrl
 
 /* ---- RADMAT ---- */
 
-fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base,
-                             double inc_angle, double ring_dist, double z_off)
+fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base, double inc_angle, double ring_dist,
+                             double z_off)
 {
     fbrl_status st;
     double r0;
@@ -207,14 +205,15 @@ fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, si
     if (!m || !buf || size == 0)
         return FBRL_EINVAL;
     buf[0] = '\0';
-    len[0] = m->dx; len[1] = m->dy; len[2] = m->dz;
+    len[0] = m->dx;
+    len[1] = m->dy;
+    len[2] = m->dz;
     if ((st = format_head("RECTMAT", &m->base, metric, len, shown, buf, size, &used)) != FBRL_OK)
         return st;
     if (!num_text(f[0], shown[0], 10, 4) || !num_text(f[1], shown[1], 10, 4) ||
         !num_text(f[2], shown[2], 10, 4))
         return FBRL_ENOSPC;
-    n = snprintf(buf + used, size - used, "step X %s Y %s Z %s %s", f[0], f[1], f[2],
-                 metric ? "cm" : "in");
+    n = snprintf(buf + used, size - used, "step X %s Y %s Z %s %s", f[0], f[1], f[2], metric ? "cm" : "in");
     return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
 }
 
@@ -230,14 +229,15 @@ fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size
     buf[0] = '\0';
     if (!isfinite(m->inc_angle) || !isfinite(m->a0))
         return FBRL_ENONFINITE;
-    len[0] = m->ring_dist; len[1] = m->z_off; len[2] = m->r0;
+    len[0] = m->ring_dist;
+    len[1] = m->z_off;
+    len[2] = m->r0;
     if ((st = format_head("RADMAT", &m->base, metric, len, shown, buf, size, &used)) != FBRL_OK)
         return st;
     if (!num_text(f[0], m->inc_angle, 0, 6) || !num_text(f[1], shown[0], 10, 4) ||
-        !num_text(f[2], shown[1], 10, 4) || !num_text(f[3], shown[2], 10, 4) ||
-        !num_text(f[4], m->a0, 0, 6))
+        !num_text(f[2], shown[1], 10, 4) || !num_text(f[3], shown[2], 10, 4) || !num_text(f[4], m->a0, 0, 6))
         return FBRL_ENOSPC;
-    n = snprintf(buf + used, size - used, "inc %s rad  ring %s Z %s %s  radius %s %s  angle %s rad",
-                 f[0], f[1], f[2], metric ? "cm" : "in", f[3], metric ? "cm" : "in", f[4]);
+    n = snprintf(buf + used, size - used, "inc %s rad  ring %s Z %s %s  radius %s %s  angle %s rad", f[0],
+                 f[1], f[2], metric ? "cm" : "in", f[3], metric ? "cm" : "in", f[4]);
     return n >= 0 && (size_t)n < size - used ? FBRL_OK : FBRL_ENOSPC;
 }

@@ -217,13 +217,11 @@ static fbrl_status round_to_double(uint64_t hi, int exp2, int sticky, int neg, d
     return FBRL_OK;
 }
 
-static const double exact_pow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+static const double exact_pow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 
 /* D (nd digits, no leading zero) * 10^e10, correctly rounded. */
-static fbrl_status decimal_to_double(const char *dig, int nd, long e10, int sticky, int neg,
-                                     double *out)
+static fbrl_status decimal_to_double(const char *dig, int nd, long e10, int sticky, int neg, double *out)
 {
     bn x, y;
     int i, exp2 = 0;
@@ -463,8 +461,7 @@ static int fixed_body(double av, int decimals, char *out)
 }
 
 /* Sign, padding and body into o, as printf lays out a field of `width`. */
-static void field(sink *o, int neg, unsigned flags, int width, const char *body, int blen,
-                  int zero_ok)
+static void field(sink *o, int neg, unsigned flags, int width, const char *body, int blen, int zero_ok)
 {
     int signlen = neg || (flags & FBRL_NUM_PLUS), pad = width - blen - signlen, i;
     if (!(zero_ok && (flags & FBRL_NUM_ZERO)))
@@ -479,8 +476,8 @@ static void field(sink *o, int neg, unsigned flags, int width, const char *body,
         put(o, body[i]);
 }
 
-fbrl_status fbrl_num_fixed(char *buf, size_t size, double v, int width, int decimals,
-                           unsigned flags, size_t *len)
+fbrl_status fbrl_num_fixed(char *buf, size_t size, double v, int width, int decimals, unsigned flags,
+                           size_t *len)
 {
     char body[DBL_MAX_10_EXP + FBRL_NUM_DECIMALS_MAX + 4];
     sink o;

@@ -21,9 +21,9 @@
 
 typedef char backend_fits[sizeof(fbrl_uart_posix) <= FBRL_PORT_BACKEND_BYTES ? 1 : -1];
 
-#define DEFAULT_SYSFS "/sys"
+#define DEFAULT_SYSFS        "/sys"
 #define LATENCY_TIMER_MAX_MS 255u
-#define PATH_BYTES 512
+#define PATH_BYTES           512
 
 /* The quirk table: one row per kernel driver (the name sysfs gives the tty's driver). */
 static const struct {
@@ -265,7 +265,8 @@ static fbrl_port_low_latency set_low_latency(int fd)
         return FBRL_PORT_LL_SET;
     ss.flags |= ASYNC_LOW_LATENCY;
     if (ioctl(fd, TIOCSSERIAL, &ss) != 0)
-        return errno == ENOTTY || errno == EINVAL || errno == ENOSYS ? FBRL_PORT_LL_UNSUPPORTED : FBRL_PORT_LL_REFUSED;
+        return errno == ENOTTY || errno == EINVAL || errno == ENOSYS ? FBRL_PORT_LL_UNSUPPORTED
+                                                                     : FBRL_PORT_LL_REFUSED;
     if (ioctl(fd, TIOCGSERIAL, &ss) != 0 || !(ss.flags & ASYNC_LOW_LATENCY))
         return FBRL_PORT_LL_REFUSED;
     return FBRL_PORT_LL_SET;
@@ -359,8 +360,8 @@ fbrl_status fbrl_port_open(fbrl_port *p, const char *url, const fbrl_port_option
     fbrl_uart_posix_options po = FBRL_UART_POSIX_OPTIONS_DEFAULT;
     po.service_thread = o.service_thread;
     po.connect_timeout_ms = o.connect_timeout_ms;
-    fbrl_status st = fbrl_uart_posix_open((fbrl_uart_posix *)(void *)p->backend.bytes, &p->uart, path, &o.line,
-                                          p->rx, sizeof p->rx, p->tx, sizeof p->tx, &po);
+    fbrl_status st = fbrl_uart_posix_open((fbrl_uart_posix *)(void *)p->backend.bytes, &p->uart, path,
+                                          &o.line, p->rx, sizeof p->rx, p->tx, sizeof p->tx, &po);
     if (st != FBRL_OK) {
         fbrl_port_close(p);
         return st;
@@ -370,10 +371,7 @@ fbrl_status fbrl_port_open(fbrl_port *p, const char *url, const fbrl_port_option
     return FBRL_OK;
 }
 
-fbrl_uart *fbrl_port_uart(fbrl_port *p)
-{
-    return p != NULL && p->open ? &p->uart : NULL;
-}
+fbrl_uart *fbrl_port_uart(fbrl_port *p) { return p != NULL && p->open ? &p->uart : NULL; }
 
 static const char *low_latency_text(const fbrl_port *p, char *buf, size_t cap)
 {
@@ -404,7 +402,8 @@ fbrl_status fbrl_port_describe(const fbrl_port *p, char *buf, size_t cap)
         return FBRL_ESTATE;
     }
     int n = snprintf(buf, cap, "%s (%lu %u%c%u, %s", p->name, (unsigned long)l.baud, (unsigned)l.data_bits,
-                     (char)l.parity, (unsigned)l.stop_bits, l.flow == FBRL_FLOW_XONXOFF ? "XON/XOFF" : "no flow control");
+                     (char)l.parity, (unsigned)l.stop_bits,
+                     l.flow == FBRL_FLOW_XONXOFF ? "XON/XOFF" : "no flow control");
     if (n < 0 || (size_t)n >= cap)
         return FBRL_ENOSPC;
     if (p->kind == FBRL_PORT_TCP)

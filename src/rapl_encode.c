@@ -1,13 +1,13 @@
 /* rapl_encode.c - the RAPL command table and the line encoder (no OS header). */
 #include "fbrl/rapl_encode.h"
 
-#define MOT (FBRL_RAPL_F_MOTION | FBRL_RAPL_F_WAITS)
-#define STR FBRL_RAPL_F_STRAIGHT
-#define STM FBRL_RAPL_F_STREAM
-#define WTS FBRL_RAPL_F_WAITS
-#define SAF FBRL_RAPL_F_SAFE
-#define NONE FBRL_RAPL_REPLY_NONE
-#define POS FBRL_RAPL_REPLY_POS
+#define MOT   (FBRL_RAPL_F_MOTION | FBRL_RAPL_F_WAITS)
+#define STR   FBRL_RAPL_F_STRAIGHT
+#define STM   FBRL_RAPL_F_STREAM
+#define WTS   FBRL_RAPL_F_WAITS
+#define SAF   FBRL_RAPL_F_SAFE
+#define NONE  FBRL_RAPL_REPLY_NONE
+#define POS   FBRL_RAPL_REPLY_POS
 #define LINES FBRL_RAPL_REPLY_LINES
 
 /* The one command table, indexed by fbrl_rapl_cmd: every fact about a command lives
@@ -17,73 +17,73 @@
  * (adds to a location) and the deletions (a second one reports "undefined"). */
 static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_ACTUAL] = {"ACTUAL", 152, "L", 0, SAF, NONE},
-    [FBRL_RAPL_ALIGN]  = {"ALIGN", 1, "", 0, MOT | SAF, NONE},
-    [FBRL_RAPL_APPRO]  = {"APPRO", 2, "LR", 0, MOT | STR, NONE},
-    [FBRL_RAPL_ARM]    = {"ARM", 142, "W", "ON|OFF", SAF, NONE},
-    [FBRL_RAPL_CLOSE]  = {"CLOSE", 38, "[I", 0, SAF, NONE},
+    [FBRL_RAPL_ALIGN] = {"ALIGN", 1, "", 0, MOT | SAF, NONE},
+    [FBRL_RAPL_APPRO] = {"APPRO", 2, "LR", 0, MOT | STR, NONE},
+    [FBRL_RAPL_ARM] = {"ARM", 142, "W", "ON|OFF", SAF, NONE},
+    [FBRL_RAPL_CLOSE] = {"CLOSE", 38, "[I", 0, SAF, NONE},
     [FBRL_RAPL_CONFIG] = {"CONFIG", 110, "IIWIIWI", "N|E|O;N|X", SAF, NONE},
     [FBRL_RAPL_DEPART] = {"DEPART", 4, "R", 0, MOT | STR, NONE},
     [FBRL_RAPL_FINISH] = {"FINISH", 10, "", 0, WTS | SAF, NONE},
-    [FBRL_RAPL_FLASH]  = {"FLASH", 84, "[I", 0, SAF, NONE},
-    [FBRL_RAPL_GAIN]   = {"GAIN", 150, "I[R", 0, SAF, LINES},
-    [FBRL_RAPL_GRIP]   = {"GRIP", 39, "R[I", 0, SAF, NONE},
-    [FBRL_RAPL_HALT]   = {"HALT", 154, "", 0, SAF, NONE},
-    [FBRL_RAPL_HERE]   = {"HERE", 24, "L", 0, SAF, NONE},
-    [FBRL_RAPL_HOME]   = {"HOME", 20, "", 0, MOT | SAF, NONE},
-    [FBRL_RAPL_JOG]    = {"JOG", 5, "RRR", 0, MOT, NONE},
-    [FBRL_RAPL_JOINT]  = {"JOINT", 6, "IR", 0, MOT, NONE},
-    [FBRL_RAPL_LIMP]   = {"LIMP", 7, "[I*", 0, SAF, NONE},
-    [FBRL_RAPL_LOCK]   = {"LOCK", 9, "I*", 0, SAF, NONE},
-    [FBRL_RAPL_MA]     = {"MA", 132, "RRRRR", 0, MOT | STR | SAF, NONE},
+    [FBRL_RAPL_FLASH] = {"FLASH", 84, "[I", 0, SAF, NONE},
+    [FBRL_RAPL_GAIN] = {"GAIN", 150, "I[R", 0, SAF, LINES},
+    [FBRL_RAPL_GRIP] = {"GRIP", 39, "R[I", 0, SAF, NONE},
+    [FBRL_RAPL_HALT] = {"HALT", 154, "", 0, SAF, NONE},
+    [FBRL_RAPL_HERE] = {"HERE", 24, "L", 0, SAF, NONE},
+    [FBRL_RAPL_HOME] = {"HOME", 20, "", 0, MOT | SAF, NONE},
+    [FBRL_RAPL_JOG] = {"JOG", 5, "RRR", 0, MOT, NONE},
+    [FBRL_RAPL_JOINT] = {"JOINT", 6, "IR", 0, MOT, NONE},
+    [FBRL_RAPL_LIMP] = {"LIMP", 7, "[I*", 0, SAF, NONE},
+    [FBRL_RAPL_LOCK] = {"LOCK", 9, "I*", 0, SAF, NONE},
+    [FBRL_RAPL_MA] = {"MA", 132, "RRRRR", 0, MOT | STR | SAF, NONE},
     [FBRL_RAPL_MANUAL] = {"MANUAL", 45, "[W", "JOI|CYL", SAF, NONE},
-    [FBRL_RAPL_MI]     = {"MI", 131, "RRRRR", 0, MOT | STR, NONE},
-    [FBRL_RAPL_MOTOR]  = {"MOTOR", 11, "II", 0, MOT, NONE},
-    [FBRL_RAPL_MOVE]   = {"MOVE", 0, "L", 0, MOT | STR | SAF, NONE},
+    [FBRL_RAPL_MI] = {"MI", 131, "RRRRR", 0, MOT | STR, NONE},
+    [FBRL_RAPL_MOTOR] = {"MOTOR", 11, "II", 0, MOT, NONE},
+    [FBRL_RAPL_MOVE] = {"MOVE", 0, "L", 0, MOT | STR | SAF, NONE},
     [FBRL_RAPL_NOFLASH] = {"NOFLASH", 0, "", 0, SAF, NONE},
     [FBRL_RAPL_NOHELP] = {"NOHELP", 0, "", 0, SAF, NONE},
     [FBRL_RAPL_NOLIMP] = {"NOLIMP", 0, "", 0, SAF, NONE},
     [FBRL_RAPL_NOMANUAL] = {"NOMANUAL", 0, "", 0, SAF, NONE},
     [FBRL_RAPL_NOTEACH] = {"NOTEACH", 0, "", 0, SAF, NONE},
-    [FBRL_RAPL_OPEN]   = {"OPEN", 40, "[I", 0, SAF, NONE},
+    [FBRL_RAPL_OPEN] = {"OPEN", 40, "[I", 0, SAF, NONE},
     [FBRL_RAPL_OUTPUT] = {"OUTPUT", 89, "I*", 0, SAF, NONE},
-    [FBRL_RAPL_POINT]  = {"POINT", 50, "L", 0, SAF, NONE}, /* coordinates: see point_sig() */
-    [FBRL_RAPL_READY]  = {"READY", 15, "", 0, MOT | SAF, NONE},
-    [FBRL_RAPL_RUN]    = {"RUN", 109, "N[I", 0, WTS, NONE},
+    [FBRL_RAPL_POINT] = {"POINT", 50, "L", 0, SAF, NONE}, /* coordinates: see point_sig() */
+    [FBRL_RAPL_READY] = {"READY", 15, "", 0, MOT | SAF, NONE},
+    [FBRL_RAPL_RUN] = {"RUN", 109, "N[I", 0, WTS, NONE},
     [FBRL_RAPL_SERIAL] = {"SERIAL", 111, "", 0, SAF, LINES},
-    [FBRL_RAPL_SET]    = {"SET", 51, "L=L", 0, SAF, NONE},
+    [FBRL_RAPL_SET] = {"SET", 51, "L=L", 0, SAF, NONE},
     [FBRL_RAPL_SHIFTA] = {"SHIFTA", 53, "LL", 0, 0, NONE},
-    [FBRL_RAPL_SPEED]  = {"SPEED", 16, "I", 0, SAF, NONE},
+    [FBRL_RAPL_SPEED] = {"SPEED", 16, "I", 0, SAF, NONE},
     [FBRL_RAPL_STATUS] = {"STATUS", 25, "", 0, SAF, FBRL_RAPL_REPLY_STATUS},
-    [FBRL_RAPL_TEACH]  = {"TEACH", 44, "L", 0, SAF, NONE},
-    [FBRL_RAPL_TOOL]   = {"TOOL", 54, "[L", 0, SAF, NONE},
-    [FBRL_RAPL_TYPEI]  = {"TYPEI", 59, "V", 0, SAF, FBRL_RAPL_REPLY_INT},
-    [FBRL_RAPL_TYPEV]  = {"TYPEV", 60, "V", 0, SAF, FBRL_RAPL_REPLY_REAL},
+    [FBRL_RAPL_TEACH] = {"TEACH", 44, "L", 0, SAF, NONE},
+    [FBRL_RAPL_TOOL] = {"TOOL", 54, "[L", 0, SAF, NONE},
+    [FBRL_RAPL_TYPEI] = {"TYPEI", 59, "V", 0, SAF, FBRL_RAPL_REPLY_INT},
+    [FBRL_RAPL_TYPEV] = {"TYPEV", 60, "V", 0, SAF, FBRL_RAPL_REPLY_REAL},
     [FBRL_RAPL_UNLOCK] = {"UNLOCK", 17, "[I*", 0, SAF, NONE},
-    [FBRL_RAPL_W0]     = {"W0", 27, "", 0, SAF, POS},
-    [FBRL_RAPL_W1]     = {"W1", 29, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_W2]     = {"W2", 31, "", 0, SAF, POS},
-    [FBRL_RAPL_W3]     = {"W3", 33, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_W4]     = {"W4", 35, "", 0, SAF, POS},
-    [FBRL_RAPL_W5]     = {"W5", 37, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_WAIT]   = {"WAIT", 94, "I*", 0, WTS | SAF, NONE},
-    [FBRL_RAPL_WE1]    = {"WE1", 28, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_WE3]    = {"WE3", 32, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_WE5]    = {"WE5", 36, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_XCAL]   = {"XCAL", 157, "I", 0, SAF, NONE},
-    [FBRL_RAPL_XHOME]  = {"XHOME", 158, "I", 0, SAF, NONE},
-    [FBRL_RAPL_XZERO]  = {"XZERO", 159, "I", 0, SAF, NONE},
+    [FBRL_RAPL_W0] = {"W0", 27, "", 0, SAF, POS},
+    [FBRL_RAPL_W1] = {"W1", 29, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
+    [FBRL_RAPL_W2] = {"W2", 31, "", 0, SAF, POS},
+    [FBRL_RAPL_W3] = {"W3", 33, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
+    [FBRL_RAPL_W4] = {"W4", 35, "", 0, SAF, POS},
+    [FBRL_RAPL_W5] = {"W5", 37, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
+    [FBRL_RAPL_WAIT] = {"WAIT", 94, "I*", 0, WTS | SAF, NONE},
+    [FBRL_RAPL_WE1] = {"WE1", 28, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
+    [FBRL_RAPL_WE3] = {"WE3", 32, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
+    [FBRL_RAPL_WE5] = {"WE5", 36, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
+    [FBRL_RAPL_XCAL] = {"XCAL", 157, "I", 0, SAF, NONE},
+    [FBRL_RAPL_XHOME] = {"XHOME", 158, "I", 0, SAF, NONE},
+    [FBRL_RAPL_XZERO] = {"XZERO", 159, "I", 0, SAF, NONE},
     /* a constant value; a raw line whose value reads its own target (V1=V1+1) is not safe */
     [FBRL_RAPL_ASSIGN] = {"", 0, "V=R", 0, SAF, NONE}, /* RAPL-II /070; fbrlsim: no token */
-    [FBRL_RAPL_DLOCN]  = {"DLOCN", 48, "L", 0, 0, NONE},
-    [FBRL_RAPL_DVAR]   = {"DVAR", 67, "V", 0, 0, NONE},
-    [FBRL_RAPL_HELP]   = {"HELP", 95, "", 0, SAF, NONE},
-    [FBRL_RAPL_LISTL]  = {"LISTL", 49, "[L", 0, SAF, LINES},
-    [FBRL_RAPL_LISTV]  = {"LISTV", 69, "[V", 0, SAF, LINES},
-    [FBRL_RAPL_SHIFT]  = {"SHIFT", 52, "LRRR", 0, 0, NONE},
-    [FBRL_RAPL_TYPE]   = {"TYPE", 58, "T", 0, SAF, LINES},
+    [FBRL_RAPL_DLOCN] = {"DLOCN", 48, "L", 0, 0, NONE},
+    [FBRL_RAPL_DVAR] = {"DVAR", 67, "V", 0, 0, NONE},
+    [FBRL_RAPL_HELP] = {"HELP", 95, "", 0, SAF, NONE},
+    [FBRL_RAPL_LISTL] = {"LISTL", 49, "[L", 0, SAF, LINES},
+    [FBRL_RAPL_LISTV] = {"LISTV", 69, "[V", 0, SAF, LINES},
+    [FBRL_RAPL_SHIFT] = {"SHIFT", 52, "LRRR", 0, 0, NONE},
+    [FBRL_RAPL_TYPE] = {"TYPE", 58, "T", 0, SAF, LINES},
 };
 
-#define MAX_REPEAT 8 /* arguments a '*' list may hold in all */
+#define MAX_REPEAT     8 /* arguments a '*' list may hold in all */
 #define NAME_MAX_CHARS 8
 
 const fbrl_rapl_cmdinfo *fbrl_rapl_cmd_info(fbrl_rapl_cmd cmd)
@@ -105,7 +105,10 @@ fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd)
         const char *k = table[c].keyword, *s = keyword;
         if (!*k)
             continue;
-        while (*k && upper(*s) == *k) { k++; s++; }
+        while (*k && upper(*s) == *k) {
+            k++;
+            s++;
+        }
         if (!*k && !*s) {
             *cmd = (fbrl_rapl_cmd)c;
             return FBRL_OK;
@@ -193,7 +196,8 @@ static fbrl_status check_real(double v)
  * that value: trailing zeros and a bare dot dropped ("2.5", "90", "-0.0125"). The
  * leading zero stays: no client shows a real controller reading ".5". */
 #define REAL_SCALE 10000LL
-typedef char real_scale_is_ten_to_the_decimals[REAL_SCALE == 10000LL && FBRL_RAPL_REAL_DECIMALS == 4 ? 1 : -1];
+typedef char
+    real_scale_is_ten_to_the_decimals[REAL_SCALE == 10000LL && FBRL_RAPL_REAL_DECIMALS == 4 ? 1 : -1];
 static void put_real(out *o, double v)
 {
     double scaled = v * (double)REAL_SCALE;
@@ -237,7 +241,10 @@ static int word_allowed(const char *list, const char *word)
 {
     while (list && *list && *list != ';') {
         const char *w = word;
-        while (*list && *list != '|' && *list != ';' && *w && upper(*w) == *list) { list++; w++; }
+        while (*list && *list != '|' && *list != ';' && *w && upper(*w) == *list) {
+            list++;
+            w++;
+        }
         if (!*w && (!*list || *list == '|' || *list == ';'))
             return 1;
         while (*list && *list != '|' && *list != ';')
@@ -263,7 +270,9 @@ static int text_ok(const char *s)
 static fbrl_status check_arg(char kind, const fbrl_rapl_arg *a, const char *words)
 {
     switch (kind) {
-    case 'L': case 'V': case 'N':
+    case 'L':
+    case 'V':
+    case 'N':
         if (a->kind != FBRL_RAPL_ARG_STR)
             return FBRL_EINVAL;
         return fbrl_rapl_name_check(a->s, kind == 'L');
@@ -271,8 +280,7 @@ static fbrl_status check_arg(char kind, const fbrl_rapl_arg *a, const char *word
         if (a->kind != FBRL_RAPL_ARG_STR || !a->s)
             return FBRL_EINVAL;
         return word_allowed(words, a->s) ? FBRL_OK : FBRL_ERANGE;
-    case 'T':
-        return a->kind == FBRL_RAPL_ARG_STR && text_ok(a->s) ? FBRL_OK : FBRL_EINVAL;
+    case 'T': return a->kind == FBRL_RAPL_ARG_STR && text_ok(a->s) ? FBRL_OK : FBRL_EINVAL;
     case 'I':
         if (a->kind != FBRL_RAPL_ARG_INT)
             return FBRL_EINVAL;
@@ -283,8 +291,7 @@ static fbrl_status check_arg(char kind, const fbrl_rapl_arg *a, const char *word
         if (a->kind != FBRL_RAPL_ARG_REAL)
             return FBRL_EINVAL;
         return check_real(a->r);
-    default:
-        return FBRL_EINVAL;
+    default: return FBRL_EINVAL;
     }
 }
 
@@ -355,9 +362,8 @@ static fbrl_status point_sig(const fbrl_rapl_arg *args, size_t nargs, sigdesc *d
     return FBRL_OK;
 }
 
-fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form,
-                             fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                             int straight)
+fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form, fbrl_rapl_cmd cmd,
+                             const fbrl_rapl_arg *args, size_t nargs, int straight)
 {
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     if (!buf || !len || cap == 0 || !ci || (nargs && !args))

@@ -148,13 +148,21 @@ const char *fbrl_rapl_error_text(int code)
 
 /* What each error means for the user, in plain words, and what to do: the one table
  * every message uses (docs/rapl-commands.md shows it). */
-#define AXIS_RANGE "that axis would pass its limit - choose a point or a motion that keeps it in range"
+#define AXIS_RANGE  "that axis would pass its limit - choose a point or a motion that keeps it in range"
 #define HOME_FAILED "homing that joint failed - check that nothing blocks it, then HOME again"
-#define JOINT_RANGE "the move would take that joint past its limit - choose a point the arm reaches another way (closer, higher, another pitch)"
+#define JOINT_RANGE                                                                                        \
+    "the move would take that joint past its limit - choose a point the arm reaches another way (closer, " \
+    "higher, another pitch)"
 #define SERIAL_TIMEOUT "the controller's serial channel timed out - check the cable and the line settings"
 static const char *const error_help[] = {
-    [0] = AXIS_RANGE, [1] = AXIS_RANGE, [2] = AXIS_RANGE, [3] = AXIS_RANGE,
-    [4] = AXIS_RANGE, [5] = AXIS_RANGE, [6] = AXIS_RANGE, [7] = AXIS_RANGE,
+    [0] = AXIS_RANGE,
+    [1] = AXIS_RANGE,
+    [2] = AXIS_RANGE,
+    [3] = AXIS_RANGE,
+    [4] = AXIS_RANGE,
+    [5] = AXIS_RANGE,
+    [6] = AXIS_RANGE,
+    [7] = AXIS_RANGE,
     [8] = "a value the command cannot take - check the numbers given to the word",
     [9] = "the command line ended too early - complete the command",
     [10] = "the controller has no variable of that name - set it first (SET-RAPL-INT, SET-RAPL-REAL)",
@@ -176,16 +184,31 @@ static const char *const error_help[] = {
     [26] = "the end of the program was not found",
     [27] = "a program of that name exists already",
     [28] = "that program line exists already",
-    [29] = "the position is out of the arm's reach, or not with that orientation: the arm did not move - choose a point closer to the base, or another pitch",
-    [32] = HOME_FAILED, [33] = HOME_FAILED, [34] = HOME_FAILED, [35] = HOME_FAILED,
-    [36] = HOME_FAILED, [37] = HOME_FAILED, [38] = HOME_FAILED, [39] = HOME_FAILED,
+    [29] = "the position is out of the arm's reach, or not with that orientation: the arm did not move - "
+           "choose a point closer to the base, or another pitch",
+    [32] = HOME_FAILED,
+    [33] = HOME_FAILED,
+    [34] = HOME_FAILED,
+    [35] = HOME_FAILED,
+    [36] = HOME_FAILED,
+    [37] = HOME_FAILED,
+    [38] = HOME_FAILED,
+    [39] = HOME_FAILED,
     [40] = "the arm's power is off - switch it on at the controller, then HOME",
     [41] = "the arm must find its zero first - HOME, then try again",
-    [42] = JOINT_RANGE, [43] = JOINT_RANGE, [44] = JOINT_RANGE, [45] = JOINT_RANGE, [46] = JOINT_RANGE,
+    [42] = JOINT_RANGE,
+    [43] = JOINT_RANGE,
+    [44] = JOINT_RANGE,
+    [45] = JOINT_RANGE,
+    [46] = JOINT_RANGE,
     [47] = "the controller's memory failed its check - its stored programs and locations may be lost",
     [49] = "the controller has no memory set aside for that",
-    [50] = "the text is the beginning of several commands, so the controller ran none - write the command out in full",
-    [51] = SERIAL_TIMEOUT, [52] = SERIAL_TIMEOUT, [53] = SERIAL_TIMEOUT, [54] = SERIAL_TIMEOUT,
+    [50] = "the text is the beginning of several commands, so the controller ran none - write the command "
+           "out in full",
+    [51] = SERIAL_TIMEOUT,
+    [52] = SERIAL_TIMEOUT,
+    [53] = SERIAL_TIMEOUT,
+    [54] = SERIAL_TIMEOUT,
     [58] = "the arm's calibration data failed its check - calibrate the controller again (XCAL)",
     [60] = "that command is not allowed from this line",
     [61] = "no such serial channel - use 0 or 1",
@@ -194,7 +217,8 @@ static const char *const error_help[] = {
     [65] = "no such axis",
     [66] = "this controller does not have that",
     [67] = "that axis slot is taken already",
-    [68] = "the straight line passes outside the arm's reach - move in steps, or joint-interpolated (without -STRT)",
+    [68] = "the straight line passes outside the arm's reach - move in steps, or joint-interpolated (without "
+           "-STRT)",
 };
 
 const char *fbrl_rapl_error_help(int code)
@@ -242,11 +266,11 @@ fbrl_status fbrl_rapl_parse_error(const char *line, size_t len, int *code, char 
 /* One number at s[*i]: [+-]digits[.digits]. Shape reported so callers can insist on the
  * controller's exact layout. No exponent: the controller never prints one. */
 typedef struct num {
-    int sign;          /* '+', '-' or 0 when absent */
+    int sign; /* '+', '-' or 0 when absent */
     unsigned idig, fdig;
     int dot;
     double v;
-    long iv;           /* the value when it has no fraction and fits */
+    long iv; /* the value when it has no fraction and fits */
 } num;
 
 #define NUM_MAX_DIGITS 15 /* exact in a double */
@@ -346,10 +370,7 @@ static int pulse_num(const num *n)
 }
 
 /* Reals in the "%+09.4f" layout: sign, at least three digits, four decimals. */
-static int fixed_num(const num *n)
-{
-    return n->sign && n->dot && n->idig >= 3 && n->fdig == 4;
-}
+static int fixed_num(const num *n) { return n->sign && n->dot && n->idig >= 3 && n->fdig == 4; }
 
 fbrl_status fbrl_rapl_parse_ints(const char *line, size_t len, long *vals, size_t max, size_t *n)
 {

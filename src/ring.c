@@ -10,10 +10,7 @@
 #include "fbrl/ring.h"
 #include "atomic.h"
 
-static bool valid(const fbrl_ring *r)
-{
-    return r != NULL && r->buf != NULL;
-}
+static bool valid(const fbrl_ring *r) { return r != NULL && r->buf != NULL; }
 
 fbrl_status fbrl_ring_init(fbrl_ring *r, void *storage, size_t size)
 {
@@ -146,22 +143,10 @@ size_t fbrl_ring_count(const fbrl_ring *r)
     return n > r->mask + 1 ? r->mask + 1 : n;
 }
 
-size_t fbrl_ring_space(const fbrl_ring *r)
-{
-    return valid(r) ? r->mask + 1 - fbrl_ring_count(r) : 0;
-}
+size_t fbrl_ring_space(const fbrl_ring *r) { return valid(r) ? r->mask + 1 - fbrl_ring_count(r) : 0; }
 
-size_t fbrl_ring_capacity(const fbrl_ring *r)
-{
-    return valid(r) ? r->mask + 1 : 0;
-}
+size_t fbrl_ring_capacity(const fbrl_ring *r) { return valid(r) ? r->mask + 1 : 0; }
 
-bool fbrl_ring_empty(const fbrl_ring *r)
-{
-    return fbrl_ring_count(r) == 0;
-}
+bool fbrl_ring_empty(const fbrl_ring *r) { return fbrl_ring_count(r) == 0; }
 
-bool fbrl_ring_full(const fbrl_ring *r)
-{
-    return fbrl_ring_space(r) == 0;
-}
+bool fbrl_ring_full(const fbrl_ring *r) { return fbrl_ring_space(r) == 0; }

@@ -1,7 +1,9 @@
 /* status.c - texts for fbrl_status codes. */
 #include "fbrl/status.h"
 
-static const struct { const char *name, *text; } entries[] = {
+static const struct {
+    const char *name, *text;
+} entries[] = {
     {"FBRL_OK", "ok"},
     {"FBRL_EINVAL", "invalid argument"},
     {"FBRL_ERANGE", "value or index out of range"},

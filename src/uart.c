@@ -14,10 +14,7 @@
 enum { C_RX, C_TX, C_OVERRUN, C_FRAMING, C_PARITY, C_XOFF_RX, C_XOFF_TX, C_HELD_US };
 
 /* A counter written only by the interrupt side: no read-modify-write race. */
-static void bump(size_t *c, size_t n)
-{
-    fbrl_store_rel(c, fbrl_load_rlx(c) + n);
-}
+static void bump(size_t *c, size_t n) { fbrl_store_rel(c, fbrl_load_rlx(c) + n); }
 
 static bool is_open(const fbrl_uart *u)
 {
@@ -37,13 +34,11 @@ static fbrl_status check_config(const fbrl_uart_config *cfg)
     return FBRL_OK;
 }
 
-fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx,
-                           void *rx_storage, size_t rx_size,
-                           void *tx_storage, size_t tx_size,
-                           const fbrl_uart_config *cfg)
+fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx, void *rx_storage,
+                           size_t rx_size, void *tx_storage, size_t tx_size, const fbrl_uart_config *cfg)
 {
-    if (u == NULL || ops == NULL || ops->configure == NULL || ops->tx_kick == NULL ||
-        ops->service == NULL || ops->now_us == NULL)
+    if (u == NULL || ops == NULL || ops->configure == NULL || ops->tx_kick == NULL || ops->service == NULL ||
+        ops->now_us == NULL)
         return FBRL_EINVAL;
     fbrl_status st = check_config(cfg);
     if (st != FBRL_OK)
@@ -117,13 +112,9 @@ static fbrl_status wait_step(fbrl_uart *u, wait *w)
 }
 
 /* A polled backend writes what is queued now. */
-static fbrl_status flush(fbrl_uart *u)
-{
-    return u->ops->flush != NULL ? u->ops->flush(u->ctx) : FBRL_OK;
-}
+static fbrl_status flush(fbrl_uart *u) { return u->ops->flush != NULL ? u->ops->flush(u->ctx) : FBRL_OK; }
 
-fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
-                            uint32_t timeout_ms)
+fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written, uint32_t timeout_ms)
 {
     size_t done = 0;
     if (written != NULL)
@@ -164,8 +155,7 @@ static void after_rx_drain(fbrl_uart *u, bool was_full)
     }
 }
 
-fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
-                           uint32_t timeout_ms)
+fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got, uint32_t timeout_ms)
 {
     if (got != NULL)
         *got = 0;
@@ -210,25 +200,13 @@ fbrl_status fbrl_uart_drain(fbrl_uart *u, uint32_t timeout_ms)
     return fbrl_ring_empty(&u->tx) ? FBRL_OK : st;
 }
 
-size_t fbrl_uart_rx_available(const fbrl_uart *u)
-{
-    return is_open(u) ? fbrl_ring_count(&u->rx) : 0;
-}
+size_t fbrl_uart_rx_available(const fbrl_uart *u) { return is_open(u) ? fbrl_ring_count(&u->rx) : 0; }
 
-size_t fbrl_uart_tx_pending(const fbrl_uart *u)
-{
-    return is_open(u) ? fbrl_ring_count(&u->tx) : 0;
-}
+size_t fbrl_uart_tx_pending(const fbrl_uart *u) { return is_open(u) ? fbrl_ring_count(&u->tx) : 0; }
 
-size_t fbrl_uart_rx_room(const fbrl_uart *u)
-{
-    return is_open(u) ? fbrl_ring_space(&u->rx) : 0;
-}
+size_t fbrl_uart_rx_room(const fbrl_uart *u) { return is_open(u) ? fbrl_ring_space(&u->rx) : 0; }
 
-int fbrl_uart_peer_stopped(const fbrl_uart *u)
-{
-    return is_open(u) && fbrl_load_acq(&u->peer_xoff) ? 1 : 0;
-}
+int fbrl_uart_peer_stopped(const fbrl_uart *u) { return is_open(u) && fbrl_load_acq(&u->peer_xoff) ? 1 : 0; }
 
 fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out)
 {
@@ -260,7 +238,8 @@ fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out)
  * anything, nap on the first port for at most a slice (1 ms). */
 #define WAIT_SLICE_US 1000u
 
-static fbrl_status wait_one_by_one(fbrl_uart *const *ports, size_t n, uint32_t timeout_us, unsigned char *flags)
+static fbrl_status wait_one_by_one(fbrl_uart *const *ports, size_t n, uint32_t timeout_us,
+                                   unsigned char *flags)
 {
     int any = 0;
     for (size_t k = 0; k < n; k++) {
@@ -272,7 +251,8 @@ static fbrl_status wait_one_by_one(fbrl_uart *const *ports, size_t n, uint32_t t
     }
     if (any || timeout_us == 0)
         return FBRL_OK;
-    fbrl_status st = ports[0]->ops->service(ports[0]->ctx, timeout_us < WAIT_SLICE_US ? timeout_us : WAIT_SLICE_US);
+    fbrl_status st =
+        ports[0]->ops->service(ports[0]->ctx, timeout_us < WAIT_SLICE_US ? timeout_us : WAIT_SLICE_US);
     if ((st != FBRL_OK && st != FBRL_ETIMEOUT) || fbrl_ring_count(&ports[0]->rx) > 0)
         flags[0] |= FBRL_UART_WAIT_READY;
     return FBRL_OK;
@@ -287,7 +267,8 @@ fbrl_status fbrl_uart_wait_any(fbrl_uart *const *ports, size_t n, uint32_t timeo
         if (!is_open(ports[k]))
             return FBRL_EINVAL;
         flags[k] &= (unsigned char)FBRL_UART_WAIT_RX;
-        same = same && ports[k]->ops->wait_many != NULL && ports[k]->ops->wait_many == ports[0]->ops->wait_many;
+        same =
+            same && ports[k]->ops->wait_many != NULL && ports[k]->ops->wait_many == ports[0]->ops->wait_many;
     }
     if (same && n <= FBRL_UART_WAIT_MAX) {
         fbrl_status st = ports[0]->ops->wait_many(ports, n, timeout_us, flags);

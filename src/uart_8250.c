@@ -6,17 +6,11 @@
 #include "fbrl/uart_8250.h"
 
 #define REG(b, r) ((uint16_t)((b)->base + (r)))
-#define RX_BURST 64u /* most bytes taken from RBR per handler pass */
+#define RX_BURST  64u /* most bytes taken from RBR per handler pass */
 
-static uint8_t rd(fbrl_uart_8250 *b, unsigned reg)
-{
-    return b->io.inb(b->io.io_ctx, REG(b, reg));
-}
+static uint8_t rd(fbrl_uart_8250 *b, unsigned reg) { return b->io.inb(b->io.io_ctx, REG(b, reg)); }
 
-static void wr(fbrl_uart_8250 *b, unsigned reg, uint8_t v)
-{
-    b->io.outb(b->io.io_ctx, REG(b, reg), v);
-}
+static void wr(fbrl_uart_8250 *b, unsigned reg, uint8_t v) { b->io.outb(b->io.io_ctx, REG(b, reg), v); }
 
 static void set_ier(fbrl_uart_8250 *b, uint8_t ier)
 {
@@ -26,12 +20,11 @@ static void set_ier(fbrl_uart_8250 *b, uint8_t ier)
     }
 }
 
-fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, uint16_t base,
-                                uint8_t irq, fbrl_uart_8250_chip chip, uint8_t rx_trigger)
+fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, uint16_t base, uint8_t irq,
+                                fbrl_uart_8250_chip chip, uint8_t rx_trigger)
 {
     uint8_t fcr;
-    if (!b || !io || !io->inb || !io->outb || !io->irq_save || !io->irq_restore || !io->idle ||
-        !io->now_us)
+    if (!b || !io || !io->inb || !io->outb || !io->irq_save || !io->irq_restore || !io->idle || !io->now_us)
         return FBRL_EINVAL;
     if (irq > 7)
         return FBRL_ERANGE;
@@ -52,8 +45,7 @@ fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, 
         }
         fcr |= FBRL_8250_FCR_ENABLE | FBRL_8250_FCR_CLEAR_RX | FBRL_8250_FCR_CLEAR_TX;
         break;
-    default:
-        return FBRL_EINVAL;
+    default: return FBRL_EINVAL;
     }
     b->io = *io;
     b->uart = NULL;
@@ -100,8 +92,7 @@ static fbrl_status op_configure(void *ctx, const fbrl_uart_config *cfg)
     int lcr;
     if (!b || !cfg)
         return FBRL_EINVAL;
-    if (cfg->baud == 0 || cfg->baud > FBRL_UART_8250_BAUD_BASE ||
-        FBRL_UART_8250_BAUD_BASE % cfg->baud != 0)
+    if (cfg->baud == 0 || cfg->baud > FBRL_UART_8250_BAUD_BASE || FBRL_UART_8250_BAUD_BASE % cfg->baud != 0)
         return FBRL_EUNSUPPORTED;
     divisor = FBRL_UART_8250_BAUD_BASE / cfg->baud;
     if (divisor > 0xFFFFu)
@@ -135,10 +126,7 @@ static fbrl_status op_configure(void *ctx, const fbrl_uart_config *cfg)
 /* Free bytes in the core's receive ring. The core has no call for this (only the
  * count), so ask its ring directly; fbrl_ring_space() is exact for the producer,
  * which this handler is. */
-static size_t rx_room(const fbrl_uart_8250 *b)
-{
-    return fbrl_ring_space(&b->uart->rx);
-}
+static size_t rx_room(const fbrl_uart_8250 *b) { return fbrl_ring_space(&b->uart->rx); }
 
 /* Fill the empty transmitter with up to depth bytes from the core; keep THRE
  * interrupts on exactly while there is something in flight. Returns bytes written. */
@@ -222,21 +210,15 @@ void fbrl_uart_8250_isr(fbrl_uart_8250 *b)
             }
             b->stats.passes++;
             switch (iir & FBRL_8250_IIR_ID) {
-            case FBRL_8250_IIR_RLS:
-                line_status(b, rd(b, FBRL_8250_LSR));
-                break;
+            case FBRL_8250_IIR_RLS: line_status(b, rd(b, FBRL_8250_LSR)); break;
             case FBRL_8250_IIR_RDA:
             case FBRL_8250_IIR_CTI:
                 /* A received XON, or an XOFF the core must send, reaches the
                  * transmitter through the core's tx_kick. */
                 rx_drain(b);
                 break;
-            case FBRL_8250_IIR_THRE:
-                (void)tx_fill(b);
-                break;
-            default: /* modem status: reading MSR clears it */
-                (void)rd(b, FBRL_8250_MSR);
-                break;
+            case FBRL_8250_IIR_THRE: (void)tx_fill(b); break;
+            default: /* modem status: reading MSR clears it */ (void)rd(b, FBRL_8250_MSR); break;
             }
         }
     }

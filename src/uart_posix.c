@@ -30,11 +30,17 @@
 #include "fbrl/clock.h"
 #include "atomic.h"
 
-#define SPEED(n) { n##u, B##n }
-static const struct { uint32_t baud; speed_t speed; } speeds[] = {
-    SPEED(50), SPEED(75), SPEED(110), SPEED(134), SPEED(150), SPEED(200), SPEED(300),
-    SPEED(600), SPEED(1200), SPEED(1800), SPEED(2400), SPEED(4800), SPEED(9600),
-    SPEED(19200), SPEED(38400),
+#define SPEED(n)   \
+    {              \
+        n##u, B##n \
+    }
+static const struct {
+    uint32_t baud;
+    speed_t speed;
+} speeds[] = {
+    SPEED(50),      SPEED(75),   SPEED(110),  SPEED(134),   SPEED(150),
+    SPEED(200),     SPEED(300),  SPEED(600),  SPEED(1200),  SPEED(1800),
+    SPEED(2400),    SPEED(4800), SPEED(9600), SPEED(19200), SPEED(38400),
 #ifdef B57600
     SPEED(57600),
 #endif
@@ -95,10 +101,7 @@ fbrl_status fbrl_uart_posix_speed(uint32_t baud, speed_t *speed)
     return FBRL_EUNSUPPORTED;
 }
 
-int fbrl_uart_posix_fd(const fbrl_uart_posix *p)
-{
-    return p == NULL ? -1 : p->fd;
-}
+int fbrl_uart_posix_fd(const fbrl_uart_posix *p) { return p == NULL ? -1 : p->fd; }
 
 /* ---- the line: termios ---- */
 
@@ -111,8 +114,8 @@ int fbrl_uart_posix_fd(const fbrl_uart_posix *p)
  * the marked format itself, exactly as a real port's driver would deliver it. */
 static void make_raw(struct termios *t, const fbrl_uart_config *cfg, int is_pty)
 {
-    t->c_iflag &= ~(tcflag_t)(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF | IXANY | INPCK |
-                              IGNPAR);
+    t->c_iflag &= ~(tcflag_t)(IGNBRK | BRKINT | PARMRK | ISTRIP | INLCR | IGNCR | ICRNL | IXON | IXOFF |
+                              IXANY | INPCK | IGNPAR);
     if (cfg->parity != FBRL_PARITY_NONE)
         t->c_iflag |= INPCK | (is_pty ? 0 : PARMRK);
     t->c_oflag &= ~(tcflag_t)OPOST;
@@ -187,10 +190,14 @@ static void px_kick(void *ctx)
 static fbrl_status io_error(int e)
 {
     switch (e) {
-    case EIO: case EPIPE: case ECONNRESET: case ENXIO: case ENOTCONN: case ESHUTDOWN: case ETIMEDOUT:
-        return FBRL_EDISCONNECTED;
-    default:
-        return FBRL_EIO;
+    case EIO:
+    case EPIPE:
+    case ECONNRESET:
+    case ENXIO:
+    case ENOTCONN:
+    case ESHUTDOWN:
+    case ETIMEDOUT: return FBRL_EDISCONNECTED;
+    default: return FBRL_EIO;
     }
 }
 
@@ -387,7 +394,8 @@ static fbrl_status px_wait_many(fbrl_uart *const *ports, size_t n, uint32_t time
         bool room = fbrl_uart_rx_room(p->u) > 0;
         bool out = p->stage_off < p->stage_len || fbrl_load_acq(&p->kick);
         bool deferred = out && p->stage_off == p->stage_len && kernel_room(p) == 0;
-        f[k].events = (short)((room && (flags[k] & FBRL_UART_WAIT_RX) ? POLLIN : 0) | (out && !deferred ? POLLOUT : 0));
+        f[k].events =
+            (short)((room && (flags[k] & FBRL_UART_WAIT_RX) ? POLLIN : 0) | (out && !deferred ? POLLOUT : 0));
         f[k].fd = f[k].events ? p->fd : -1; /* poll() skips it: a port not watched costs nothing */
         f[k].revents = 0;
         /* a full ring or kernel queue frees up without an fd event: look again soon */
@@ -493,8 +501,9 @@ static void release(fbrl_uart_posix *p)
         struct pollfd f = {p->fd, POLLOUT, 0};
         if (poll(&f, 1, 2) < 0 || (f.revents & (POLLERR | POLLHUP)))
             break;
-        ssize_t n = p->is_socket ? send(p->fd, p->stage + p->stage_off, p->stage_len - p->stage_off, MSG_NOSIGNAL)
-                                 : write(p->fd, p->stage + p->stage_off, p->stage_len - p->stage_off);
+        ssize_t n = p->is_socket
+                        ? send(p->fd, p->stage + p->stage_off, p->stage_len - p->stage_off, MSG_NOSIGNAL)
+                        : write(p->fd, p->stage + p->stage_off, p->stage_len - p->stage_off);
         if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
             break;
         if (n > 0)
@@ -536,7 +545,8 @@ static fbrl_status px_flush(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops posix_ops = {px_configure, px_kick, px_service, px_now, px_close, px_flush, px_wait_many};
+static const fbrl_uart_ops posix_ops = {px_configure, px_kick,  px_service,  px_now,
+                                        px_close,     px_flush, px_wait_many};
 
 /* ---- opening ---- */
 
@@ -570,9 +580,9 @@ static fbrl_status init_thread_sync(fbrl_uart_posix *p)
 
 /* Common part of both opens: fd is ours (closed on failure); locked says whether
  * flock/TIOCEXCL were taken. */
-static fbrl_status start(fbrl_uart_posix *p, fbrl_uart *u, int fd, int locked,
-                         const fbrl_uart_config *cfg, void *rx, size_t rx_size,
-                         void *tx, size_t tx_size, const fbrl_uart_posix_options *opt)
+static fbrl_status start(fbrl_uart_posix *p, fbrl_uart *u, int fd, int locked, const fbrl_uart_config *cfg,
+                         void *rx, size_t rx_size, void *tx, size_t tx_size,
+                         const fbrl_uart_posix_options *opt)
 {
     static const fbrl_uart_posix_options defaults = FBRL_UART_POSIX_OPTIONS_DEFAULT;
     struct stat sb;
@@ -583,7 +593,9 @@ static fbrl_status start(fbrl_uart_posix *p, fbrl_uart *u, int fd, int locked,
     p->fd = fd;
     p->wake[0] = p->wake[1] = -1;
     p->locked = locked;
-    p->chunk = opt->tx_chunk == 0 ? 256 : opt->tx_chunk > FBRL_UART_POSIX_STAGE ? FBRL_UART_POSIX_STAGE : opt->tx_chunk;
+    p->chunk = opt->tx_chunk == 0                      ? 256
+               : opt->tx_chunk > FBRL_UART_POSIX_STAGE ? FBRL_UART_POSIX_STAGE
+                                                       : opt->tx_chunk;
     fbrl_status st = FBRL_OK;
     if (fstat(fd, &sb) != 0) {
         st = FBRL_EIO;
@@ -630,8 +642,7 @@ static fbrl_status start(fbrl_uart_posix *p, fbrl_uart *u, int fd, int locked,
     return FBRL_OK;
 }
 
-fbrl_status fbrl_uart_posix_open_fd(fbrl_uart_posix *p, fbrl_uart *u, int fd,
-                                    const fbrl_uart_config *cfg,
+fbrl_status fbrl_uart_posix_open_fd(fbrl_uart_posix *p, fbrl_uart *u, int fd, const fbrl_uart_config *cfg,
                                     void *rx, size_t rx_size, void *tx, size_t tx_size,
                                     const fbrl_uart_posix_options *opt)
 {
@@ -702,9 +713,8 @@ static fbrl_status tcp_connect(const char *spec, uint32_t timeout_ms, int *out)
 }
 
 fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *path,
-                                 const fbrl_uart_config *cfg,
-                                 void *rx, size_t rx_size, void *tx, size_t tx_size,
-                                 const fbrl_uart_posix_options *opt)
+                                 const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
+                                 size_t tx_size, const fbrl_uart_posix_options *opt)
 {
     if (p == NULL || u == NULL || path == NULL || path[0] == '\0')
         return FBRL_EINVAL;
@@ -718,9 +728,9 @@ fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *p
     fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
         return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT
-               : errno == EBUSY                  ? FBRL_EBUSY
+               : errno == EBUSY                    ? FBRL_EBUSY
                : errno == EACCES || errno == EPERM ? FBRL_EPERM
-                                                  : FBRL_EIO;
+                                                   : FBRL_EIO;
     if (!isatty(fd)) {
         close(fd);
         return FBRL_ENOTTY;

@@ -55,7 +55,8 @@ static fbrl_status sp_status(enum sp_return r)
 {
     switch (r) {
     case SP_OK: return FBRL_OK;
-    case SP_ERR_ARG: case SP_ERR_SUPP: return FBRL_EUNSUPPORTED;
+    case SP_ERR_ARG:
+    case SP_ERR_SUPP: return FBRL_EUNSUPPORTED;
     default: return FBRL_EIO;
     }
 }
@@ -65,20 +66,19 @@ static fbrl_status sps_configure(void *ctx, const fbrl_uart_config *cfg)
     fbrl_uart_serialport *p = ctx;
     struct sp_port *port = p->port;
     enum sp_return r;
-    enum sp_parity par = cfg->parity == FBRL_PARITY_EVEN ? SP_PARITY_EVEN
-                       : cfg->parity == FBRL_PARITY_ODD  ? SP_PARITY_ODD : SP_PARITY_NONE;
-    if ((r = sp_set_baudrate(port, (int)cfg->baud)) != SP_OK || (r = sp_set_bits(port, cfg->data_bits)) != SP_OK ||
-        (r = sp_set_parity(port, par)) != SP_OK || (r = sp_set_stopbits(port, cfg->stop_bits)) != SP_OK ||
+    enum sp_parity par = cfg->parity == FBRL_PARITY_EVEN  ? SP_PARITY_EVEN
+                         : cfg->parity == FBRL_PARITY_ODD ? SP_PARITY_ODD
+                                                          : SP_PARITY_NONE;
+    if ((r = sp_set_baudrate(port, (int)cfg->baud)) != SP_OK ||
+        (r = sp_set_bits(port, cfg->data_bits)) != SP_OK || (r = sp_set_parity(port, par)) != SP_OK ||
+        (r = sp_set_stopbits(port, cfg->stop_bits)) != SP_OK ||
         (r = sp_set_flowcontrol(port, SP_FLOWCONTROL_NONE)) != SP_OK)
         return sp_status(r);
     p->outq_limit = cfg->baud / 1000u < 16u ? 16u : cfg->baud / 1000u; /* ~10 ms of line */
     return FBRL_OK;
 }
 
-static void sps_kick(void *ctx)
-{
-    fbrl_store_rel(&((fbrl_uart_serialport *)ctx)->kick, 1);
-}
+static void sps_kick(void *ctx) { fbrl_store_rel(&((fbrl_uart_serialport *)ctx)->kick, 1); }
 
 /* Transmit: refill the stage from isr_tx while the OS queue is short, and write it. */
 static fbrl_status sps_send(fbrl_uart_serialport *p, size_t *moved)
@@ -167,11 +167,12 @@ static fbrl_status sps_close(void *ctx)
     return FBRL_OK;
 }
 
-static const fbrl_uart_ops serialport_ops = {sps_configure, sps_kick, sps_service, sps_now, sps_close, sps_flush, 0};
+static const fbrl_uart_ops serialport_ops = {sps_configure, sps_kick, sps_service, sps_now, sps_close,
+                                             sps_flush,     0};
 
 fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, const char *name,
-                                      const fbrl_uart_config *cfg,
-                                      void *rx, size_t rx_size, void *tx, size_t tx_size)
+                                      const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
+                                      size_t tx_size)
 {
     struct sp_port *port = NULL;
     struct sp_event_set *ev = NULL;
@@ -193,7 +194,8 @@ fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, con
         p->port = NULL;
         return e == EBUSY ? FBRL_EBUSY : e == ENOENT ? FBRL_ENOENT : FBRL_EIO;
     }
-    if (sp_new_event_set(&ev) != SP_OK || sp_add_port_events(ev, port, SP_EVENT_RX_READY | SP_EVENT_ERROR) != SP_OK) {
+    if (sp_new_event_set(&ev) != SP_OK ||
+        sp_add_port_events(ev, port, SP_EVENT_RX_READY | SP_EVENT_ERROR) != SP_OK) {
         if (ev != NULL)
             sp_free_event_set(ev);
         release(p);

@@ -16,10 +16,7 @@ static fbrl_status scale(double v, double factor, int divide, double *out)
     return FBRL_OK;
 }
 
-fbrl_status fbrl_units_init(fbrl_units *u)
-{
-    return fbrl_units_metric_off(u);
-}
+fbrl_status fbrl_units_init(fbrl_units *u) { return fbrl_units_metric_off(u); }
 
 fbrl_status fbrl_units_metric_on(fbrl_units *u)
 {
@@ -45,16 +42,10 @@ fbrl_status fbrl_units_is_metric(const fbrl_units *u, int *on)
     return FBRL_OK;
 }
 
-fbrl_status fbrl_units_in_to_cm(double in, double *cm)
-{
-    return scale(in, FBRL_CM_PER_IN, 0, cm);
-}
+fbrl_status fbrl_units_in_to_cm(double in, double *cm) { return scale(in, FBRL_CM_PER_IN, 0, cm); }
 
 /* Divide rather than multiply by 1/2.54: 2.54 cm then gives exactly 1 inch. */
-fbrl_status fbrl_units_cm_to_in(double cm, double *in)
-{
-    return scale(cm, FBRL_CM_PER_IN, 1, in);
-}
+fbrl_status fbrl_units_cm_to_in(double cm, double *in) { return scale(cm, FBRL_CM_PER_IN, 1, in); }
 
 fbrl_status fbrl_units_in(const fbrl_units *u, double user, double *inches)
 {

@@ -42,7 +42,7 @@ typedef struct fbrl_calpts {
 #define FBRL_CALIB_AXIS_R 1e-6
 
 /* Size of a saved calibration (see fbrl_calib_save). */
-#define FBRL_CALIB_BYTES 108
+#define FBRL_CALIB_BYTES   108
 #define FBRL_CALIB_VERSION 1
 
 /* SET-CAL / GET-CAL: slot index 1..3 (FBRL_ERANGE otherwise). */
@@ -67,8 +67,8 @@ fbrl_status fbrl_calib_3point(fbrl_calib *c, const fbrl_calpts *cal, const fbrl_
  * NULL) their root mean square, *worst (may be NULL) the index of the largest residual,
  * so a mistaught point stands out. FBRL_EINVAL for n < 3, FBRL_EDEGENERATE if either set
  * is coincident or collinear. On error *c, *rms and *worst are unchanged. */
-fbrl_status fbrl_calib_npoint(fbrl_calib *c, const fbrl_loc *cal, const fbrl_loc *recal,
-                              size_t n, double *residuals, double *rms, size_t *worst);
+fbrl_status fbrl_calib_npoint(fbrl_calib *c, const fbrl_loc *cal, const fbrl_loc *recal, size_t n,
+                              double *residuals, double *rms, size_t *worst);
 
 /* Mapping of whole locations for a 5-axis arm (waist, shoulder, elbow, wrist pitch, tool
  * roll; docs/calibration.md has the model and a worked example). The arm cannot choose
@@ -89,10 +89,10 @@ fbrl_status fbrl_calib_npoint(fbrl_calib *c, const fbrl_loc *cal, const fbrl_loc
  * FBRL_CALIB_AXIS_R of the base axis have no waist direction: the original location's yaw
  * is taken as its waist, turned with the block for the mapped one. in may equal out.
  * fbrl_calib_unmap_arm: the same through the inverse motion (moved -> original). */
-fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
-                               fbrl_loc *out, double *off);
-fbrl_status fbrl_calib_unmap_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in,
-                                 fbrl_loc *out, double *off);
+fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in, fbrl_loc *out,
+                               double *off);
+fbrl_status fbrl_calib_unmap_arm(const fbrl_calib *c, const double axis[2], const fbrl_loc *in, fbrl_loc *out,
+                                 double *off);
 
 /* (MAP) and UNMAP: fbrl_calib_map_arm / _unmap_arm with the base axis at (0, 0). map
  * refuses (FBRL_ERANGE, out unchanged) a location whose tool axis the arm would miss by
@@ -105,8 +105,7 @@ fbrl_status fbrl_calib_unmap(const fbrl_calib *c, const fbrl_loc *in, fbrl_loc *
  * out. On a non-finite input (FBRL_ENONFINITE) or result (FBRL_EOVERFLOW) the points
  * before it are mapped and the rest untouched. n == 0 is allowed. */
 fbrl_status fbrl_calib_map_points(const fbrl_calib *c, const double *in, double *out, size_t n);
-fbrl_status fbrl_calib_unmap_points(const fbrl_calib *c, const double *in, double *out,
-                                    size_t n);
+fbrl_status fbrl_calib_unmap_points(const fbrl_calib *c, const double *in, double *out, size_t n);
 
 /* The inverse motion (moved -> original). inv may equal c. */
 fbrl_status fbrl_calib_invert(const fbrl_calib *c, fbrl_calib *inv);
@@ -118,8 +117,8 @@ fbrl_status fbrl_calib_invert(const fbrl_calib *c, fbrl_calib *inv);
  * (-90 = straight down) and roll the turn about it. */
 fbrl_status fbrl_calib_orient_to_matrix(double yaw, double pitch, double roll, fbrl_rot *r);
 /* The inverse; yaw_hint (degrees) is the yaw reported when the tool axis is vertical. */
-fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *r, double yaw_hint,
-                                        double *yaw, double *pitch, double *roll);
+fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *r, double yaw_hint, double *yaw, double *pitch,
+                                        double *roll);
 
 /* Save as FBRL_CALIB_BYTES bytes, little-endian:
  *   0 "FBCL"  4 u16 version (1)  6 u16 reserved (0)  8 r, 9 IEEE-754 doubles row by row

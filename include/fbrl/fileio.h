@@ -29,10 +29,10 @@
 extern "C" {
 #endif
 
-#define FBRL_FILE_VERSION        1u   /* format version this library writes and reads */
-#define FBRL_FILE_HEADER_SIZE    32u  /* bytes of the file header */
-#define FBRL_FILE_RECORD_HEADER  8u   /* bytes in front of each record's payload */
-#define FBRL_FILE_PATH_MAX       256u /* longest path accepted, including the final NUL */
+#define FBRL_FILE_VERSION       1u   /* format version this library writes and reads */
+#define FBRL_FILE_HEADER_SIZE   32u  /* bytes of the file header */
+#define FBRL_FILE_RECORD_HEADER 8u   /* bytes in front of each record's payload */
+#define FBRL_FILE_PATH_MAX      256u /* longest path accepted, including the final NUL */
 
 /* Buffer bytes one record of `payload` bytes takes (header + payload). The buffer given to
  * fbrl_file_open() must hold the sum of this over every record the file will ever hold. */
@@ -40,24 +40,24 @@ extern "C" {
 
 /* Record type codes, as stored in the file. Never renumber. */
 typedef enum fbrl_ftype_code {
-    FBRL_FT_CHR      = 1, /* 1 byte, unsigned char */
-    FBRL_FT_INTEGER  = 2, /* 2 bytes, int16_t, two's complement */
-    FBRL_FT_LONG     = 3, /* 4 bytes, int32_t (the thesis's LONG-INTEGER) */
-    FBRL_FT_REAL     = 4, /* 8 bytes, IEEE-754 binary64 double, finite */
+    FBRL_FT_CHR = 1,      /* 1 byte, unsigned char */
+    FBRL_FT_INTEGER = 2,  /* 2 bytes, int16_t, two's complement */
+    FBRL_FT_LONG = 3,     /* 4 bytes, int32_t (the thesis's LONG-INTEGER) */
+    FBRL_FT_REAL = 4,     /* 8 bytes, IEEE-754 binary64 double, finite */
     FBRL_FT_LOCATION = 5, /* 48 bytes, struct fbrl_loc: six doubles x y z o a t, finite */
-    FBRL_FT_USER     = 6  /* user-defined: `size` opaque bytes, told apart by `tag` */
+    FBRL_FT_USER = 6      /* user-defined: `size` opaque bytes, told apart by `tag` */
 } fbrl_ftype_code;
 
 /* A data type. Built-in types have tag 0 and their fixed size; a user type is identified by
  * its tag AND its size (the thesis: "data types are constants holding the length"). */
 typedef struct fbrl_ftype {
     fbrl_ftype_code code;
-    uint16_t tag;   /* user types only; 0 for built-in types */
-    uint32_t size;  /* payload bytes: 1, 2, 4, 8, 48, or any size >= 1 for USER */
+    uint16_t tag;  /* user types only; 0 for built-in types */
+    uint32_t size; /* payload bytes: 1, 2, 4, 8, 48, or any size >= 1 for USER */
 } fbrl_ftype;
 
-extern const fbrl_ftype fbrl_ftype_chr, fbrl_ftype_integer, fbrl_ftype_long,
-    fbrl_ftype_real, fbrl_ftype_location;
+extern const fbrl_ftype fbrl_ftype_chr, fbrl_ftype_integer, fbrl_ftype_long, fbrl_ftype_real,
+    fbrl_ftype_location;
 
 /* A user-defined type of `size` bytes and caller-chosen `tag` (size is checked when used). */
 fbrl_ftype fbrl_ftype_user(uint16_t tag, uint32_t size);
@@ -68,15 +68,15 @@ fbrl_ftype fbrl_ftype_of_size(size_t size);
 
 /* An open data file. Caller-owned; treat the fields as private. */
 typedef struct fbrl_file {
-    unsigned char *buf;   /* caller's buffer: the records, encoded as on disk */
-    size_t cap;           /* its size */
-    size_t len;           /* bytes of records in use */
-    size_t pos;           /* byte offset of the current record */
-    uint32_t count;       /* records in the file */
-    uint32_t index;       /* number of the current record, 0-based */
-    uint32_t mode;        /* permission bits of the file when opened (kept on commit) */
-    uint32_t state;       /* open marker; anything else means closed */
-    int dirty;            /* changed since the last commit */
+    unsigned char *buf; /* caller's buffer: the records, encoded as on disk */
+    size_t cap;         /* its size */
+    size_t len;         /* bytes of records in use */
+    size_t pos;         /* byte offset of the current record */
+    uint32_t count;     /* records in the file */
+    uint32_t index;     /* number of the current record, 0-based */
+    uint32_t mode;      /* permission bits of the file when opened (kept on commit) */
+    uint32_t state;     /* open marker; anything else means closed */
+    int dirty;          /* changed since the last commit */
     char path[FBRL_FILE_PATH_MAX];
 } fbrl_file;
 

@@ -39,21 +39,21 @@ extern "C" {
 
 /* One slot of the file table. Private. */
 typedef struct fbrl_glossary_file {
-    fbrl_file file;        /* the open file (fileio handle) */
-    fbrl_cell owner;       /* VM address of the handle word's data field; 0 = slot free */
+    fbrl_file file;  /* the open file (fileio handle) */
+    fbrl_cell owner; /* VM address of the handle word's data field; 0 = slot free */
 } fbrl_glossary_file;
 
 /* Per-VM state. Caller-owned (static, heap or stack); fbrl_glossary_install() initialises
  * every field. All fields are private: use the functions below. */
 typedef struct fbrl_glossary {
-    uint32_t magic;                 /* set by install; marks an installed glossary */
-    fbrl_vm *vm;                    /* the VM the words were installed in */
-    fbrl_units units;               /* METRIC-ON / METRIC-OFF */
-    int map_on;                     /* MAP-ON / MAP-OFF */
-    fbrl_cell with_cal;             /* VM address of the WITH-CAL structure; 0 = none */
+    uint32_t magic;     /* set by install; marks an installed glossary */
+    fbrl_vm *vm;        /* the VM the words were installed in */
+    fbrl_units units;   /* METRIC-ON / METRIC-OFF */
+    int map_on;         /* MAP-ON / MAP-OFF */
+    fbrl_cell with_cal; /* VM address of the WITH-CAL structure; 0 = none */
     void (*port_write)(void *ctx, const char *s, size_t n); /* PRINT-LOC's destination */
     void *port_ctx;
-    unsigned char *file_mem;        /* fbrl_glossary_set_file_storage() */
+    unsigned char *file_mem; /* fbrl_glossary_set_file_storage() */
     size_t file_mem_size;
     fbrl_glossary_file files[FBRL_GLOSSARY_FILES];
 } fbrl_glossary;
@@ -85,8 +85,7 @@ fbrl_status fbrl_glossary_finish(fbrl_glossary *g);
  * unchanged): FBRL_EINVAL for NULL or an uninstalled g, FBRL_ESTATE if mapping is on but
  * the WITH-CAL structure is gone or was overwritten, FBRL_ERANGE from map_out when *off
  * passes FBRL_CALIB_AXIS_MAX, FBRL_ENONFINITE / FBRL_EOVERFLOW from the mapping. */
-fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2],
-                                  double *off);
+fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2], double *off);
 fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2]);
 
 /* The location at VM address addr: 48 bytes wholly inside the VM's data space and aligned
@@ -108,12 +107,12 @@ const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g);
 /* The glossary's named data, as a workspace keeps it (fbrl/workspace.h): what the word
  * xt is and the C address of its contents in the VM. */
 typedef enum fbrl_glossary_kind {
-    FBRL_GLOSSARY_NONE = 0,  /* not one of the glossary's data words */
-    FBRL_GLOSSARY_LOC,       /* CREATE-LOC: fbrl_loc */
-    FBRL_GLOSSARY_RECTMAT,   /* RECTMAT / AUTOMAT: fbrl_rectmat */
-    FBRL_GLOSSARY_RADMAT,    /* RADMAT: fbrl_radmat */
-    FBRL_GLOSSARY_CAL,       /* CREATE-CAL: fbrl_calpts */
-    FBRL_GLOSSARY_CALSTRU    /* CREATE-CAL-STRU: fbrl_calib */
+    FBRL_GLOSSARY_NONE = 0, /* not one of the glossary's data words */
+    FBRL_GLOSSARY_LOC,      /* CREATE-LOC: fbrl_loc */
+    FBRL_GLOSSARY_RECTMAT,  /* RECTMAT / AUTOMAT: fbrl_rectmat */
+    FBRL_GLOSSARY_RADMAT,   /* RADMAT: fbrl_radmat */
+    FBRL_GLOSSARY_CAL,      /* CREATE-CAL: fbrl_calpts */
+    FBRL_GLOSSARY_CALSTRU   /* CREATE-CAL-STRU: fbrl_calib */
 } fbrl_glossary_kind;
 
 /* *kind (FBRL_GLOSSARY_NONE for any other word) and *obj its contents. FBRL_EINVAL for
@@ -125,7 +124,8 @@ fbrl_status fbrl_glossary_object(fbrl_glossary *g, fbrl_cell xt, fbrl_glossary_k
  * fbrl_rectmat_init / fbrl_radmat_init), a calibration structure the identity. *obj gets
  * the contents' C address. All or nothing: on failure (dictionary full, bad name) no word
  * is left and the failure is thrown in the VM (FBRL_ETHROW). */
-fbrl_status fbrl_glossary_make(fbrl_glossary *g, fbrl_glossary_kind kind, const char *name, size_t len, void **obj);
+fbrl_status fbrl_glossary_make(fbrl_glossary *g, fbrl_glossary_kind kind, const char *name, size_t len,
+                               void **obj);
 
 /* WITH-CAL's structure (VM address, 0 = none) and the MAP-ON switch; set_mapping takes a
  * structure address 0 (none) or a CREATE-CAL-STRU's (FBRL_ETYPE otherwise) and map_on only
@@ -136,8 +136,8 @@ fbrl_status fbrl_glossary_set_mapping(fbrl_glossary *g, fbrl_cell with_cal, int 
 /* PRINT-LOC's destination, the communication port: write(ctx, s, n) receives each line
  * (the DISPLAY-LOC text followed by CR LF). write = NULL removes it; PRINT-LOC then
  * throws "no communication port". */
-void fbrl_glossary_set_port_writer(fbrl_glossary *g,
-                                   void (*write)(void *ctx, const char *s, size_t n), void *ctx);
+void fbrl_glossary_set_port_writer(fbrl_glossary *g, void (*write)(void *ctx, const char *s, size_t n),
+                                   void *ctx);
 
 #ifdef __cplusplus
 }

@@ -32,12 +32,12 @@ extern "C" {
 /* What a command prints and how the link reads it: the encoder's table says it for
  * every command (fbrl_rapl_cmdinfo.reply), so the type is the encoder's. */
 typedef fbrl_rapl_reply fbrl_link_reply;
-#define FBRL_LINK_REPLY_NONE FBRL_RAPL_REPLY_NONE
-#define FBRL_LINK_REPLY_POS FBRL_RAPL_REPLY_POS
+#define FBRL_LINK_REPLY_NONE   FBRL_RAPL_REPLY_NONE
+#define FBRL_LINK_REPLY_POS    FBRL_RAPL_REPLY_POS
 #define FBRL_LINK_REPLY_STATUS FBRL_RAPL_REPLY_STATUS
-#define FBRL_LINK_REPLY_INT FBRL_RAPL_REPLY_INT
-#define FBRL_LINK_REPLY_REAL FBRL_RAPL_REPLY_REAL
-#define FBRL_LINK_REPLY_LINES FBRL_RAPL_REPLY_LINES
+#define FBRL_LINK_REPLY_INT    FBRL_RAPL_REPLY_INT
+#define FBRL_LINK_REPLY_REAL   FBRL_RAPL_REPLY_REAL
+#define FBRL_LINK_REPLY_LINES  FBRL_RAPL_REPLY_LINES
 #define FBRL_LINK_REPLY_STREAM FBRL_RAPL_REPLY_STREAM
 
 /* What happened to a command (docs/link.md 3.9). Every result falls in exactly one:
@@ -108,36 +108,36 @@ typedef struct fbrl_link_config {
 void fbrl_link_config_init(fbrl_link_config *c);
 
 typedef struct fbrl_link_stats {
-    uint64_t commands;        /* commands started */
-    uint64_t executed;        /* lines the controller executed (incl. the link's queries) */
-    uint64_t attempts;        /* lines typed (first tries and retypes) */
-    uint64_t echo_mismatch;   /* an echoed byte differed */
-    uint64_t echo_timeout;    /* an echoed byte never came */
-    uint64_t probes;          /* erase/verify/idle probes sent */
-    uint64_t cr_unconfirmed;  /* CR sent but the line was found unexecuted: retyped */
-    uint64_t prompt_lost;     /* executed, prompt damaged: confirmed by a probe */
-    uint64_t requeries;       /* read-only queries repeated: damaged reply or confirmation */
-    uint64_t error_queries;   /* STATUS read to learn a damaged error line's code */
-    uint64_t failed;          /* commands that ended with an error other than ECONTROLLER */
-    uint64_t parity_errors;   /* bytes the uart dropped with a parity error (line with E/O
+    uint64_t commands;       /* commands started */
+    uint64_t executed;       /* lines the controller executed (incl. the link's queries) */
+    uint64_t attempts;       /* lines typed (first tries and retypes) */
+    uint64_t echo_mismatch;  /* an echoed byte differed */
+    uint64_t echo_timeout;   /* an echoed byte never came */
+    uint64_t probes;         /* erase/verify/idle probes sent */
+    uint64_t cr_unconfirmed; /* CR sent but the line was found unexecuted: retyped */
+    uint64_t prompt_lost;    /* executed, prompt damaged: confirmed by a probe */
+    uint64_t requeries;      /* read-only queries repeated: damaged reply or confirmation */
+    uint64_t error_queries;  /* STATUS read to learn a damaged error line's code */
+    uint64_t failed;         /* commands that ended with an error other than ECONTROLLER */
+    uint64_t parity_errors;  /* bytes the uart dropped with a parity error (line with E/O
                                * parity): in an echo a retype, in a reply a damaged reply */
-    uint64_t settled;         /* damaged replies of commands settled by reading STATUS */
-    uint64_t not_retyped;     /* commands not safe to repeat whose CR could not be proven
+    uint64_t settled;        /* damaged replies of commands settled by reading STATUS */
+    uint64_t not_retyped;    /* commands not safe to repeat whose CR could not be proven
                                * ineffective: reported "may have run" instead of retyped */
-    uint64_t may_have_run;    /* commands that ended FBRL_EMAYBE */
-    uint64_t self_checked;    /* position blocks believed on their own consistency */
-    uint64_t cleans;          /* probe markers erased by the command that left them (after
+    uint64_t may_have_run;   /* commands that ended FBRL_EMAYBE */
+    uint64_t self_checked;   /* position blocks believed on their own consistency */
+    uint64_t cleans;         /* probe markers erased by the command that left them (after
                                * a wait), so the next command starts on an empty line */
 } fbrl_link_stats;
 
 /* The last command's outcome, for messages. */
 typedef struct fbrl_link_outcome {
     fbrl_link_fate fate;
-    fbrl_status status;  /* the command's result */
-    fbrl_status cause;   /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
+    fbrl_status status; /* the command's result */
+    fbrl_status cause;  /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
                           * FBRL_EPROTOCOL ...); FBRL_OK when it did */
-    int code;            /* REFUSED: the controller's code, -1 unknown */
-    const char *seen;    /* what the controller was last seen doing, in plain words
+    int code;           /* REFUSED: the controller's code, -1 unknown */
+    const char *seen;   /* what the controller was last seen doing, in plain words
                           * ("it had started the line; its reply was cut off"); never NULL */
 } fbrl_link_outcome;
 
@@ -145,24 +145,24 @@ typedef struct fbrl_link_outcome {
 typedef struct fbrl_link {
     fbrl_uart *u;
     fbrl_link_config cfg;
-    int xon_ok;                              /* flow NONE: probes may carry an XON byte */
-    uint64_t parity_seen;                    /* the uart's parity error count, last looked at */
-    int parity;                              /* the line has parity: damaged bytes are dropped */
-    char marker[3];                          /* the latest probe's closing characters */
+    int xon_ok;           /* flow NONE: probes may carry an XON byte */
+    uint64_t parity_seen; /* the uart's parity error count, last looked at */
+    int parity;           /* the line has parity: damaged bytes are dropped */
+    char marker[3];       /* the latest probe's closing characters */
     unsigned marker_idx;
     /* the command */
-    char line[FBRL_LINK_LINE_MAX + 1];       /* canonical (upper-case) text */
+    char line[FBRL_LINK_LINE_MAX + 1]; /* canonical (upper-case) text */
     size_t len;
     fbrl_link_reply kind;
     uint32_t timeout_ms;
-    int stage;                               /* main command or error query */
-    unsigned stream_lines;                   /* STREAM: value lines wanted */
+    int stage;             /* main command or error query */
+    unsigned stream_lines; /* STREAM: value lines wanted */
     /* progress */
     int phase;
-    int ctrl_len;                            /* characters on the controller's line, -1 unknown */
+    int ctrl_len; /* characters on the controller's line, -1 unknown */
     size_t match, expect, triples;
     unsigned attempts, probes_here;
-    int heard;                               /* any byte from the controller this command */
+    int heard; /* any byte from the controller this command */
     uint64_t t_last, t_deadline, t_probe;
     /* reply analysis */
     fbrl_rapl_reader rd;
@@ -178,8 +178,8 @@ typedef struct fbrl_link {
     fbrl_rapl_status_info st;
     long ival;
     double rval;
-    int have_prev;                           /* reads that agreed so far (0 = none yet) */
-    size_t prev_len;                         /* reply bytes of those reads */
+    int have_prev;   /* reads that agreed so far (0 = none yet) */
+    size_t prev_len; /* reply bytes of those reads */
     fbrl_rapl_pos prev_pos;
     fbrl_rapl_status_info prev_st;
     long prev_i;
@@ -188,22 +188,22 @@ typedef struct fbrl_link {
     int busy;
     fbrl_link_stats stats;
     /* fates (docs/link.md 3.9) */
-    int safe;                                /* the command may be typed again */
-    int ran;                                 /* a CR of it took effect (proven) */
-    int maybe;                               /* an earlier CR of it may have taken effect */
-    int cr_pending;                          /* this attempt's CR: neither reported nor disproven */
-    int first_probe;                         /* the verify probe is the first since the CR */
-    int pe_state;                            /* the verify probe's echo, parsed */
+    int safe;        /* the command may be typed again */
+    int ran;         /* a CR of it took effect (proven) */
+    int maybe;       /* an earlier CR of it may have taken effect */
+    int cr_pending;  /* this attempt's CR: neither reported nor disproven */
+    int first_probe; /* the verify probe is the first since the CR */
+    int pe_state;    /* the verify probe's echo, parsed */
     unsigned pe_k1, pe_sub;
-    int rp_first, rp_bad, prompt_direct;     /* the reply's framing: CR LF, lines, prompt */
+    int rp_first, rp_bad, prompt_direct; /* the reply's framing: CR LF, lines, prompt */
     unsigned rp_eols, rp_lines;
-    int known_err;                           /* the controller's LAST ERROR as last proven
+    int known_err;                                /* the controller's LAST ERROR as last proven
                                               * (-1 NONE), -2 unknown */
-    int settle_shaped;                       /* the reply being settled had an error shape */
+    int settle_shaped;                            /* the reply being settled had an error shape */
     unsigned settle_ok, settle_bad, settle_maybe; /* STATUS runs while settling */
-    int seen;                                /* what the controller was last seen doing */
+    int seen;                                     /* what the controller was last seen doing */
     fbrl_status cause;
-    char main_line[FBRL_LINK_LINE_MAX + 1];  /* the command while STATUS settles it */
+    char main_line[FBRL_LINK_LINE_MAX + 1]; /* the command while STATUS settles it */
     size_t main_len;
     fbrl_link_reply main_kind;
     unsigned main_attempts;
@@ -294,8 +294,8 @@ typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int f
 /* Replace the handler of output lines (cfg.on_line, cfg.line_ctx; fn may be NULL).
  * The previous one goes to *old_fn / *old_ctx when those are not NULL, so a caller
  * can borrow the lines for one command and put the owner's handler back. */
-fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx, fbrl_link_line_fn *old_fn,
-                                       void **old_ctx);
+fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
+                                       fbrl_link_line_fn *old_fn, void **old_ctx);
 
 /* The command form the link sends (keyword or /NNN token, cfg.form). */
 fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form);

@@ -19,11 +19,17 @@ typedef struct fbrl_loc {
 
 /* Component index for get/set (X Y Z O A T). */
 typedef enum fbrl_loc_axis {
-    FBRL_LOC_X = 0, FBRL_LOC_Y, FBRL_LOC_Z, FBRL_LOC_O, FBRL_LOC_A, FBRL_LOC_T, FBRL_LOC_NAXES
+    FBRL_LOC_X = 0,
+    FBRL_LOC_Y,
+    FBRL_LOC_Z,
+    FBRL_LOC_O,
+    FBRL_LOC_A,
+    FBRL_LOC_T,
+    FBRL_LOC_NAXES
 } fbrl_loc_axis;
 
 /* Location angles are degrees; matrices and calibration compute in radians. */
-#define FBRL_PI 3.14159265358979323846
+#define FBRL_PI       3.14159265358979323846
 #define FBRL_DEG(rad) ((rad) * (180.0 / FBRL_PI))
 #define FBRL_RAD(deg) ((deg) * (FBRL_PI / 180.0))
 
@@ -42,8 +48,7 @@ fbrl_status fbrl_loc_get(const fbrl_loc *loc, fbrl_loc_axis axis, double *value)
 fbrl_status fbrl_loc_set(fbrl_loc *loc, fbrl_loc_axis axis, double value);
 
 /* DEFINE-LOC: set all six components. */
-fbrl_status fbrl_loc_define(fbrl_loc *loc, double x, double y, double z,
-                            double o, double a, double t);
+fbrl_status fbrl_loc_define(fbrl_loc *loc, double x, double y, double z, double o, double a, double t);
 
 /* SET-LOC: copy src into dst (dst may equal src). */
 fbrl_status fbrl_loc_copy(fbrl_loc *dst, const fbrl_loc *src);

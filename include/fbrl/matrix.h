@@ -27,11 +27,11 @@ fbrl_status fbrl_array_bytes(size_t cell_size, size_t rows, size_t cols, size_t 
 
 /* ARRAY: a 1-D array of `count` cells over storage of storage_size bytes.
  * FBRL_EINVAL for NULL or a zero size/count, FBRL_ENOSPC if the storage is too small. */
-fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size,
-                            size_t cell_size, size_t count);
+fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size,
+                            size_t count);
 /* 2ARRAY: a rows x cols array. */
-fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size,
-                             size_t cell_size, size_t rows, size_t cols);
+fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size, size_t rows,
+                             size_t cols);
 
 /* Address of cell `index` of a 1-D array (in a 2-D array, index counts cells row by row). */
 fbrl_status fbrl_array_cell(const fbrl_array *a, size_t index, void **cell);
@@ -47,8 +47,7 @@ typedef struct fbrl_rectmat {
     double dx, dy, dz; /* inches between neighbours along x, y, z (may be negative) */
 } fbrl_rectmat;
 
-fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base,
-                              double dx, double dy, double dz);
+fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base, double dx, double dy, double dz);
 fbrl_status fbrl_rectmat_loc(const fbrl_rectmat *m, long i, long j, long k, fbrl_loc *out);
 
 /* ---- Radial location matrix: RADMAT ----
@@ -68,8 +67,8 @@ typedef struct fbrl_radmat {
     double r0, a0;    /* base radius (inches) and angle (radians), derived at init */
 } fbrl_radmat;
 
-fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base,
-                             double inc_angle, double ring_dist, double z_off);
+fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base, double inc_angle, double ring_dist,
+                             double z_off);
 fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, fbrl_loc *out);
 
 /* SHOW-AUTOMAT and SHOW-RADMAT: one line describing the matrix, e.g.

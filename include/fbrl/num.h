@@ -24,7 +24,7 @@ extern "C" {
 /* Most digits after the point fbrl_num_fixed writes; most significant digits of
  * fbrl_num_digits / fbrl_num_general (17 round-trip every double). */
 #define FBRL_NUM_DECIMALS_MAX 40
-#define FBRL_NUM_DIGITS_MAX 40
+#define FBRL_NUM_DIGITS_MAX   40
 
 /* Parse all of s[0..len): [+|-] digits [. digits] [(e|E) [+|-] digits], at least one
  * digit in the mantissa, nothing else (no spaces, no "inf", no hex). Correctly rounded.
@@ -38,8 +38,8 @@ fbrl_status fbrl_num_parse(const char *s, size_t len, double *out);
  * "inf", "-inf" (padded with spaces). *len (may be NULL) gets the length without the NUL.
  * FBRL_ENOSPC when the text does not fit (buf then holds as much as fits),
  * FBRL_ERANGE for decimals outside 0..FBRL_NUM_DECIMALS_MAX or a negative width. */
-fbrl_status fbrl_num_fixed(char *buf, size_t size, double v, int width, int decimals,
-                           unsigned flags, size_t *len);
+fbrl_status fbrl_num_fixed(char *buf, size_t size, double v, int width, int decimals, unsigned flags,
+                           size_t *len);
 
 /* printf("%.<digits-1>e", v) split up: |v| rounded to ndig significant digits
  * (1..FBRL_NUM_DIGITS_MAX, half to even), digits[0..ndig) get '0'..'9' (no NUL) and *exp10

@@ -32,15 +32,18 @@ extern "C" {
 #endif
 
 /* Device quirks, as bits (the table in src/port.c, one row per kind of device). */
-#define FBRL_PORT_Q_PTY           0x01u /* pseudo-terminal: no wire, no parity (CS8 forced), TIOCOUTQ always 0,
+#define FBRL_PORT_Q_PTY \
+    0x01u                     /* pseudo-terminal: no wire, no parity (CS8 forced), TIOCOUTQ always 0,
                                          * PARMRK would double each 0xFF, no TIOCSSERIAL, no error counts */
-#define FBRL_PORT_Q_USB           0x02u /* USB adapter: input reaches the host in USB packets, not per byte */
-#define FBRL_PORT_Q_LATENCY_TIMER 0x04u /* holds input until its latency timer runs out (FTDI: 16 ms by
+#define FBRL_PORT_Q_USB 0x02u /* USB adapter: input reaches the host in USB packets, not per byte */
+#define FBRL_PORT_Q_LATENCY_TIMER \
+    0x04u                             /* holds input until its latency timer runs out (FTDI: 16 ms by
                                          * default; a 9-byte command then costs 2.6x), settable in sysfs */
-#define FBRL_PORT_Q_LOW_LATENCY   0x08u /* the driver takes ASYNC_LOW_LATENCY (TIOCSSERIAL) */
-#define FBRL_PORT_Q_COARSE_BAUD   0x10u /* baud from a prescaler/divisor pair: some rates approximated,
+#define FBRL_PORT_Q_LOW_LATENCY 0x08u /* the driver takes ASYNC_LOW_LATENCY (TIOCSSERIAL) */
+#define FBRL_PORT_Q_COARSE_BAUD \
+    0x10u                        /* baud from a prescaler/divisor pair: some rates approximated,
                                          * some chips cannot send a real break (CH340/CH341) */
-#define FBRL_PORT_Q_SOCKET        0x20u /* TCP: the settings are only recorded, the server owns the line */
+#define FBRL_PORT_Q_SOCKET 0x20u /* TCP: the settings are only recorded, the server owns the line */
 
 typedef enum fbrl_port_kind {
     FBRL_PORT_TTY = 0, /* a serial device */
@@ -51,10 +54,10 @@ typedef enum fbrl_port_kind {
 
 /* What became of the low-latency request. */
 typedef enum fbrl_port_low_latency {
-    FBRL_PORT_LL_OFF = 0,         /* not asked for (options.low_latency = 0), or no tty */
-    FBRL_PORT_LL_SET,             /* ASYNC_LOW_LATENCY is on (was, or was set now) */
-    FBRL_PORT_LL_UNSUPPORTED,     /* the driver has no TIOCSSERIAL (a pty, most USB drivers) */
-    FBRL_PORT_LL_REFUSED          /* the driver refused the flag */
+    FBRL_PORT_LL_OFF = 0,     /* not asked for (options.low_latency = 0), or no tty */
+    FBRL_PORT_LL_SET,         /* ASYNC_LOW_LATENCY is on (was, or was set now) */
+    FBRL_PORT_LL_UNSUPPORTED, /* the driver has no TIOCSSERIAL (a pty, most USB drivers) */
+    FBRL_PORT_LL_REFUSED      /* the driver refused the flag */
 } fbrl_port_low_latency;
 
 typedef struct fbrl_port_options {
@@ -81,7 +84,7 @@ fbrl_status fbrl_port_set_option(fbrl_port_options *o, const char *key, const ch
 
 /* Room for the backend's state (fbrl_uart_posix), checked at compile time in port.c. */
 #define FBRL_PORT_BACKEND_BYTES 8192
-#define FBRL_PORT_NAME_MAX 256
+#define FBRL_PORT_NAME_MAX      256
 
 /* An open port: caller-owned, every field private; keep it at a fixed address while open. */
 typedef struct fbrl_port {
@@ -93,13 +96,13 @@ typedef struct fbrl_port {
     } backend;
     fbrl_uart uart;
     unsigned char rx[4096], tx[1024];
-    char name[FBRL_PORT_NAME_MAX];  /* what was opened (the device, tcp:..., the emulator's pty) */
-    char driver[32];                /* kernel driver ("ftdi_sio", "ch341", "pty", ""), for messages */
+    char name[FBRL_PORT_NAME_MAX]; /* what was opened (the device, tcp:..., the emulator's pty) */
+    char driver[32];               /* kernel driver ("ftdi_sio", "ch341", "pty", ""), for messages */
     fbrl_port_kind kind;
-    unsigned quirks;                /* FBRL_PORT_Q_* */
+    unsigned quirks; /* FBRL_PORT_Q_* */
     fbrl_port_low_latency low_latency;
-    int latency_timer_ms;           /* the adapter's latency timer now, -1 when it has none */
-    int latency_timer_was_ms;       /* before the open changed it, -1 when unchanged or none */
+    int latency_timer_ms;     /* the adapter's latency timer now, -1 when it has none */
+    int latency_timer_was_ms; /* before the open changed it, -1 when unchanged or none */
     int open, sim_running;
     void (*sim_stop)(void *ctx);
     void *sim_ctx;

@@ -112,12 +112,14 @@ typedef enum fbrl_rapl_reply {
 } fbrl_rapl_reply;
 
 /* Command properties (fbrl_rapl_cmdinfo.flags). */
-#define FBRL_RAPL_F_STRAIGHT 0x1u  /* accepts the ",S" straight-line suffix */
-#define FBRL_RAPL_F_MOTION   0x2u  /* starts a motion: the prompt returns when it starts */
-#define FBRL_RAPL_F_STREAM   0x4u  /* prints until the host sends a bare CR (W1 W3 W5 WE*) */
-#define FBRL_RAPL_F_WAITS    0x8u  /* its prompt may come late: it waits for a motion, an
+#define FBRL_RAPL_F_STRAIGHT 0x1u /* accepts the ",S" straight-line suffix */
+#define FBRL_RAPL_F_MOTION   0x2u /* starts a motion: the prompt returns when it starts */
+#define FBRL_RAPL_F_STREAM   0x4u /* prints until the host sends a bare CR (W1 W3 W5 WE*) */
+#define FBRL_RAPL_F_WAITS \
+    0x8u /* its prompt may come late: it waits for a motion, an
                                     * input or a program (motions, FINISH, WAIT, RUN) */
-#define FBRL_RAPL_F_SAFE     0x10u /* safe to repeat: running it twice ends as running it
+#define FBRL_RAPL_F_SAFE \
+    0x10u /* safe to repeat: running it twice ends as running it
                                     * once (absolute moves and settings, read-only queries).
                                     * Relative motions, counters, deletions and program runs
                                     * are not: the link never types those twice (docs/link.md) */
@@ -132,10 +134,10 @@ typedef enum fbrl_rapl_reply {
  * POINT is special: after a cartesian name come 6 reals (x y z yaw pitch roll), after a
  * '#' name 5 integers (motor pulses). */
 typedef struct fbrl_rapl_cmdinfo {
-    const char *keyword;   /* "APPRO"; "" for the assignment */
-    uint16_t token;        /* 2 for /002; 0 = no token (keyword in both forms) */
+    const char *keyword; /* "APPRO"; "" for the assignment */
+    uint16_t token;      /* 2 for /002; 0 = no token (keyword in both forms) */
     const char *sig;
-    const char *words;     /* for 'W': allowed words separated by '|', else NULL */
+    const char *words; /* for 'W': allowed words separated by '|', else NULL */
     unsigned flags;
     fbrl_rapl_reply reply; /* what it prints */
 } fbrl_rapl_cmdinfo;
@@ -156,9 +158,21 @@ typedef struct fbrl_rapl_arg {
     const char *s; /* FBRL_RAPL_ARG_STR: a name or a word, NUL-terminated */
 } fbrl_rapl_arg;
 
-static inline fbrl_rapl_arg fbrl_rapl_int(long v) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_INT, v, 0.0, 0}; return a; }
-static inline fbrl_rapl_arg fbrl_rapl_real(double v) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_REAL, 0, v, 0}; return a; }
-static inline fbrl_rapl_arg fbrl_rapl_str(const char *s) { fbrl_rapl_arg a = {FBRL_RAPL_ARG_STR, 0, 0.0, s}; return a; }
+static inline fbrl_rapl_arg fbrl_rapl_int(long v)
+{
+    fbrl_rapl_arg a = {FBRL_RAPL_ARG_INT, v, 0.0, 0};
+    return a;
+}
+static inline fbrl_rapl_arg fbrl_rapl_real(double v)
+{
+    fbrl_rapl_arg a = {FBRL_RAPL_ARG_REAL, 0, v, 0};
+    return a;
+}
+static inline fbrl_rapl_arg fbrl_rapl_str(const char *s)
+{
+    fbrl_rapl_arg a = {FBRL_RAPL_ARG_STR, 0, 0.0, s};
+    return a;
+}
 
 /* Decimals the controller keeps of a real (it prints them with %+09.4f): the encoder
  * rounds to this precision, so the shorter text reads back to the same value. */
@@ -180,9 +194,8 @@ static inline fbrl_rapl_arg fbrl_rapl_str(const char *s) { fbrl_rapl_arg a = {FB
  * Errors: FBRL_EINVAL (null pointer, unknown cmd, wrong argument count or kind, ",S" not
  * allowed), FBRL_ENAME (bad name), FBRL_ENONFINITE, FBRL_ERANGE (magnitude too large or
  * word not allowed), FBRL_ENOSPC (buf too small; buf then holds ""). */
-fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form,
-                             fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                             int straight);
+fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form, fbrl_rapl_cmd cmd,
+                             const fbrl_rapl_arg *args, size_t nargs, int straight);
 
 /* Check a name: 1-8 characters, a letter then letters, digits or '_' (either case); a
  * leading '#' (precision point) only when hash_ok. FBRL_ENAME otherwise. */

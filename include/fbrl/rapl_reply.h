@@ -30,9 +30,9 @@ typedef enum fbrl_rapl_event {
 typedef struct fbrl_rapl_reader {
     char line[FBRL_RAPL_REPLY_LINE_MAX + 1]; /* NUL-terminated */
     size_t len;
-    unsigned char cr;       /* last byte was CR (a following LF is part of the same end) */
-    unsigned char flawed;   /* the line held a control byte or was cut: do not trust it */
-    unsigned char done;     /* the previous call completed a line: start a new one */
+    unsigned char cr;     /* last byte was CR (a following LF is part of the same end) */
+    unsigned char flawed; /* the line held a control byte or was cut: do not trust it */
+    unsigned char done;   /* the previous call completed a line: start a new one */
 } fbrl_rapl_reader;
 
 void fbrl_rapl_reader_init(fbrl_rapl_reader *r);
@@ -77,12 +77,12 @@ fbrl_status fbrl_rapl_parse_ints(const char *line, size_t len, long *vals, size_
 #define FBRL_RAPL_MAX_AXES 8
 
 typedef struct fbrl_rapl_pos {
-    char kind;                             /* 'A' actual (W2), 'C' command (W0), 'E' end of path (W4) */
+    char kind; /* 'A' actual (W2), 'C' command (W0), 'E' end of path (W4) */
     long pulses[FBRL_RAPL_MAX_AXES];
-    double joints[FBRL_RAPL_MAX_AXES];     /* degrees */
-    double world[6];                       /* x y z (in), yaw pitch roll (deg) */
+    double joints[FBRL_RAPL_MAX_AXES]; /* degrees */
+    double world[6];                   /* x y z (in), yaw pitch roll (deg) */
     unsigned char npulses, njoints, nworld;
-    unsigned char part;                    /* the section the last line belonged to */
+    unsigned char part; /* the section the last line belonged to */
 } fbrl_rapl_pos;
 
 void fbrl_rapl_pos_init(fbrl_rapl_pos *p);
@@ -98,14 +98,14 @@ int fbrl_rapl_pos_complete(const fbrl_rapl_pos *p, unsigned naxes);
 /* ---- STATUS block ---- */
 
 typedef struct fbrl_rapl_status_info {
-    int last_error;          /* -1 = NONE, else the code */
-    double speed;            /* percent */
-    int homed;               /* CONTROLLER IS HOMED */
+    int last_error; /* -1 = NONE, else the code */
+    double speed;   /* percent */
+    int homed;      /* CONTROLLER IS HOMED */
     unsigned naxes;
     char lock[FBRL_RAPL_MAX_AXES], done[FBRL_RAPL_MAX_AXES];
     char limp[FBRL_RAPL_MAX_AXES], axis_homed[FBRL_RAPL_MAX_AXES]; /* 1 = Y */
-    uint32_t inputs, outputs;  /* bit n-1 = input/output n */
-    unsigned have;             /* FBRL_RAPL_ST_* bits of the lines seen */
+    uint32_t inputs, outputs;                                      /* bit n-1 = input/output n */
+    unsigned have;                                                 /* FBRL_RAPL_ST_* bits of the lines seen */
 } fbrl_rapl_status_info;
 
 #define FBRL_RAPL_ST_ERROR   0x01u

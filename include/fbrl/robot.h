@@ -35,10 +35,10 @@ extern "C" {
 #define FBRL_ROBOT_STREAM_LINES 10
 
 typedef struct fbrl_robot_device {
-    fbrl_cell addr;     /* the device word's data address (what its name pushes); 0 = free */
-    int port;           /* 1..16 */
-    int output;         /* 1 = output device, 0 = input device */
-    uint32_t pulse_ms;  /* output: width of one DISPENSE pulse (and the gap after it) */
+    fbrl_cell addr;    /* the device word's data address (what its name pushes); 0 = free */
+    int port;          /* 1..16 */
+    int output;        /* 1 = output device, 0 = input device */
+    uint32_t pulse_ms; /* output: width of one DISPENSE pulse (and the gap after it) */
 } fbrl_robot_device;
 
 /* Progress of a long wait, for a person watching the console: text is one short line
@@ -54,22 +54,22 @@ typedef void (*fbrl_robot_progress_fn)(void *ctx, const char *text);
  * VM uses it (the words point at it). */
 typedef struct fbrl_robot {
     fbrl_vm *vm;
-    fbrl_link *link;                /* NULL = offline */
-    fbrl_glossary *g;               /* NULL = no mapping, no metric */
+    fbrl_link *link;  /* NULL = offline */
+    fbrl_glossary *g; /* NULL = no mapping, no metric */
     /* I-8: the command line being built by SEND-* (sent by SEND-CR) */
     char line[FBRL_LINK_LINE_MAX + 1];
     size_t len;
-    int line_bad;                   /* the line overflowed: SEND-CR refuses it */
+    int line_bad; /* the line overflowed: SEND-CR refuses it */
     /* I-4: settings collected by SETBAUDRATE ... and applied by SETUPUART */
     fbrl_uart_config comm;
     /* scratch controller points (alternating, so a running motion keeps its target) */
     unsigned scratch;
     /* BASE-OFFSET: the user's world frame as seen from the arm's base */
-    double base[4];                 /* dx dy dz (in), dO (deg) */
+    double base[4]; /* dx dy dz (in), dO (deg) */
     /* timers */
-    uint64_t mark_ms;               /* START-TIMER (host clock) */
+    uint64_t mark_ms; /* START-TIMER (host clock) */
     int mark_set;
-    int teaching;                   /* GET-CAL-POINTS is running */
+    int teaching; /* GET-CAL-POINTS is running */
     /* devices */
     fbrl_robot_device dev[FBRL_ROBOT_MAX_DEVICES];
     /* raw output (TYPE-COM, EMIT-COM, PRINT-LOC): an unfinished raw line is on the
@@ -95,10 +95,10 @@ typedef struct fbrl_robot {
     fbrl_robot_progress_fn progress;
     void *progress_ctx;
     int tell;
-    fbrl_loc target;                /* tell: the location a motion word is sending the arm to */
+    fbrl_loc target; /* tell: the location a motion word is sending the arm to */
     int have_target;
     /* scratch storage in the VM's data space (made at install) */
-    fbrl_cell tib;                  /* FBRL_ROBOT_TIB bytes */
+    fbrl_cell tib; /* FBRL_ROBOT_TIB bytes */
 } fbrl_robot;
 
 /* Bind every robot word into vm. link NULL = offline (the words exist and throw when
@@ -112,19 +112,19 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
 
 /* What fbrl_robot_safe_stop() found and did. Positions are the arm's (W2 WORLD). */
 typedef struct fbrl_robot_stop {
-    fbrl_status result;      /* FBRL_OK, or why the stop is incomplete (FBRL_EOFFLINE,
+    fbrl_status result;                  /* FBRL_OK, or why the stop is incomplete (FBRL_EOFFLINE,
                               * FBRL_EDISCONNECTED, FBRL_EBUSY: a command the controller
                               * was still running did not end, so HALT could not be typed) */
-    int was_moving;          /* a motion had been sent and not seen to end */
+    int was_moving;                      /* a motion had been sent and not seen to end */
     char motion[FBRL_LINK_LINE_MAX + 1]; /* the last motion command sent ("" none) */
-    int halted;              /* HALT ran on the controller */
-    uint32_t switched_off;   /* outputs this stop switched off (bit n-1 = output n) */
-    uint32_t left_on;        /* outputs on after the stop (this stop left them: not switched
+    int halted;                          /* HALT ran on the controller */
+    uint32_t switched_off;               /* outputs this stop switched off (bit n-1 = output n) */
+    uint32_t left_on;                    /* outputs on after the stop (this stop left them: not switched
                               * on by this context, or switching off failed) */
-    int have_status;         /* homed and the output bits come from STATUS after HALT */
+    int have_status;                     /* homed and the output bits come from STATUS after HALT */
     int homed;
-    int have_where;          /* where[] holds the arm's position after HALT */
-    double where[6];         /* x y z yaw pitch roll, inches and degrees */
+    int have_where;  /* where[] holds the arm's position after HALT */
+    double where[6]; /* x y z yaw pitch roll, inches and degrees */
 } fbrl_robot_stop;
 
 /* Make the cell safe after an abort (Ctrl-C): let a command the controller already has

@@ -9,40 +9,40 @@ extern "C" {
 /* 0 is success; every failure is negative so `if (st < 0)` works everywhere.
  * Codes are stable: never renumber, only append. */
 typedef enum fbrl_status {
-    FBRL_OK            =   0,
-    FBRL_EINVAL        =  -1,  /* null pointer, zero size or malformed argument */
-    FBRL_ERANGE        =  -2,  /* index or value outside its allowed range */
-    FBRL_ENONFINITE    =  -3,  /* NaN or infinity where a finite number is needed */
-    FBRL_ENOSPC        =  -4,  /* caller's storage is too small */
-    FBRL_EEMPTY        =  -5,  /* nothing to take (empty queue) */
-    FBRL_EFULL         =  -6,  /* no room to put (full queue or table) */
-    FBRL_EDEGENERATE   =  -7,  /* calibration points coincident or collinear */
-    FBRL_EIO           =  -8,  /* operating-system I/O error */
-    FBRL_ENOENT        =  -9,  /* no such file, port or name */
-    FBRL_EFORMAT       = -10,  /* not a libfbrl file / bad magic */
-    FBRL_EVERSION      = -11,  /* file version not supported */
-    FBRL_ECHECKSUM     = -12,  /* checksum mismatch: data corrupted */
-    FBRL_ETRUNCATED    = -13,  /* file or message ends early */
-    FBRL_ETYPE         = -14,  /* record type differs from the one asked for */
-    FBRL_EEOF          = -15,  /* no more records */
-    FBRL_ETIMEOUT      = -16,  /* deadline passed */
-    FBRL_EBUSY         = -17,  /* port already in use by another program */
-    FBRL_ENOTTY        = -18,  /* path is not a terminal device */
-    FBRL_EUNSUPPORTED  = -19,  /* setting (baud, parity, ...) not supported */
-    FBRL_EDISCONNECTED = -20,  /* peer went away (pty closed, TCP reset) */
-    FBRL_ECONTROLLER   = -21,  /* controller reported an error (code in the link) */
-    FBRL_EECHO         = -22,  /* echo never matched after all retries */
-    FBRL_EPROTOCOL     = -23,  /* reply not understood */
-    FBRL_ENAME         = -24,  /* name too long or has illegal characters */
-    FBRL_ESTATE        = -25,  /* call not valid in the object's current state */
-    FBRL_ESYNTAX       = -26,  /* text could not be parsed */
-    FBRL_EOVERFLOW     = -27,  /* arithmetic result does not fit */
-    FBRL_ETHROW        = -28,  /* language: uncaught THROW (code in the VM) */
-    FBRL_ENOMEM        = -29,  /* language: dictionary or stack space exhausted */
-    FBRL_EOFFLINE      = -30,  /* no controller connected */
-    FBRL_ENOTFILE      = -31,  /* not a regular file (a device, FIFO or directory) */
-    FBRL_EPERM         = -32,  /* the operating system refused access (e.g. a port's mode) */
-    FBRL_EMAYBE        = -33   /* link: the command may have run; the link cannot prove
+    FBRL_OK = 0,
+    FBRL_EINVAL = -1,         /* null pointer, zero size or malformed argument */
+    FBRL_ERANGE = -2,         /* index or value outside its allowed range */
+    FBRL_ENONFINITE = -3,     /* NaN or infinity where a finite number is needed */
+    FBRL_ENOSPC = -4,         /* caller's storage is too small */
+    FBRL_EEMPTY = -5,         /* nothing to take (empty queue) */
+    FBRL_EFULL = -6,          /* no room to put (full queue or table) */
+    FBRL_EDEGENERATE = -7,    /* calibration points coincident or collinear */
+    FBRL_EIO = -8,            /* operating-system I/O error */
+    FBRL_ENOENT = -9,         /* no such file, port or name */
+    FBRL_EFORMAT = -10,       /* not a libfbrl file / bad magic */
+    FBRL_EVERSION = -11,      /* file version not supported */
+    FBRL_ECHECKSUM = -12,     /* checksum mismatch: data corrupted */
+    FBRL_ETRUNCATED = -13,    /* file or message ends early */
+    FBRL_ETYPE = -14,         /* record type differs from the one asked for */
+    FBRL_EEOF = -15,          /* no more records */
+    FBRL_ETIMEOUT = -16,      /* deadline passed */
+    FBRL_EBUSY = -17,         /* port already in use by another program */
+    FBRL_ENOTTY = -18,        /* path is not a terminal device */
+    FBRL_EUNSUPPORTED = -19,  /* setting (baud, parity, ...) not supported */
+    FBRL_EDISCONNECTED = -20, /* peer went away (pty closed, TCP reset) */
+    FBRL_ECONTROLLER = -21,   /* controller reported an error (code in the link) */
+    FBRL_EECHO = -22,         /* echo never matched after all retries */
+    FBRL_EPROTOCOL = -23,     /* reply not understood */
+    FBRL_ENAME = -24,         /* name too long or has illegal characters */
+    FBRL_ESTATE = -25,        /* call not valid in the object's current state */
+    FBRL_ESYNTAX = -26,       /* text could not be parsed */
+    FBRL_EOVERFLOW = -27,     /* arithmetic result does not fit */
+    FBRL_ETHROW = -28,        /* language: uncaught THROW (code in the VM) */
+    FBRL_ENOMEM = -29,        /* language: dictionary or stack space exhausted */
+    FBRL_EOFFLINE = -30,      /* no controller connected */
+    FBRL_ENOTFILE = -31,      /* not a regular file (a device, FIFO or directory) */
+    FBRL_EPERM = -32,         /* the operating system refused access (e.g. a port's mode) */
+    FBRL_EMAYBE = -33         /* link: the command may have run; the link cannot prove
                                 * either way (docs/link.md 3.9): do not repeat it blindly */
 } fbrl_status;
 

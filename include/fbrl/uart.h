@@ -21,26 +21,33 @@ extern "C" {
 #define FBRL_XON  0x11
 #define FBRL_XOFF 0x13
 
-typedef enum fbrl_parity { FBRL_PARITY_NONE = 'N', FBRL_PARITY_EVEN = 'E', FBRL_PARITY_ODD = 'O' } fbrl_parity;
+typedef enum fbrl_parity {
+    FBRL_PARITY_NONE = 'N',
+    FBRL_PARITY_EVEN = 'E',
+    FBRL_PARITY_ODD = 'O'
+} fbrl_parity;
 typedef enum fbrl_flow { FBRL_FLOW_NONE = 0, FBRL_FLOW_XONXOFF = 1 } fbrl_flow;
 
 typedef struct fbrl_uart_config {
-    uint32_t baud;      /* bits per second, e.g. 9600 */
-    uint8_t data_bits;  /* 5..8 */
+    uint32_t baud;     /* bits per second, e.g. 9600 */
+    uint8_t data_bits; /* 5..8 */
     fbrl_parity parity;
-    uint8_t stop_bits;  /* 1 or 2 */
+    uint8_t stop_bits; /* 1 or 2 */
     fbrl_flow flow;
 } fbrl_uart_config;
 
 /* 9600 8N1 with XON/XOFF: what the thesis used with the CRS controller. */
-#define FBRL_UART_CONFIG_DEFAULT { 9600u, 8u, FBRL_PARITY_NONE, 1u, FBRL_FLOW_XONXOFF }
+#define FBRL_UART_CONFIG_DEFAULT                           \
+    {                                                      \
+        9600u, 8u, FBRL_PARITY_NONE, 1u, FBRL_FLOW_XONXOFF \
+    }
 
 typedef struct fbrl_uart_counters {
-    uint64_t rx_bytes, tx_bytes;   /* data bytes moved (flow-control bytes excluded) */
-    uint64_t overruns;             /* received bytes lost: ring full or hardware overrun */
+    uint64_t rx_bytes, tx_bytes; /* data bytes moved (flow-control bytes excluded) */
+    uint64_t overruns;           /* received bytes lost: ring full or hardware overrun */
     uint64_t framing_errors, parity_errors;
     uint64_t xoff_received, xoff_sent;
-    uint64_t held_off_us;          /* time the transmitter spent stopped by the peer's XOFF */
+    uint64_t held_off_us; /* time the transmitter spent stopped by the peer's XOFF */
 } fbrl_uart_counters;
 
 /* Line-status flags a backend reports through fbrl_uart_isr_line_status(). */
@@ -109,14 +116,14 @@ typedef struct fbrl_uart {
     const fbrl_uart_ops *ops;
     void *ctx;
     fbrl_uart_config cfg;
-    size_t open;                 /* 1 between init and close */
-    size_t flow;                 /* 1 = XON/XOFF (copy of cfg.flow for the interrupt side) */
-    size_t rx_high, rx_low;      /* send XOFF at >= rx_high stored bytes, XON at <= rx_low */
+    size_t open;            /* 1 between init and close */
+    size_t flow;            /* 1 = XON/XOFF (copy of cfg.flow for the interrupt side) */
+    size_t rx_high, rx_low; /* send XOFF at >= rx_high stored bytes, XON at <= rx_low */
     /* interrupt side */
-    size_t peer_xoff;            /* 1 while the peer's XOFF is in force */
-    size_t rx_stopped;           /* 1 from our XOFF until our XON */
-    size_t ctl_pending;          /* FBRL_XOFF waiting to jump the tx queue, or 0 */
-    size_t held_since;           /* now_us (low bits) when the peer's XOFF began */
+    size_t peer_xoff;   /* 1 while the peer's XOFF is in force */
+    size_t rx_stopped;  /* 1 from our XOFF until our XON */
+    size_t ctl_pending; /* FBRL_XOFF waiting to jump the tx queue, or 0 */
+    size_t held_since;  /* now_us (low bits) when the peer's XOFF began */
     size_t raw[FBRL_UART_NCOUNTERS];
     /* main line: 64-bit totals extended from raw (wrap-safe on 32-bit targets) */
     size_t seen[FBRL_UART_NCOUNTERS];
@@ -128,10 +135,8 @@ typedef struct fbrl_uart {
  * (baud > 0, data bits 5..8, parity N/E/O, stop bits 1..2, flow NONE/XONXOFF:
  * otherwise FBRL_EINVAL) and passed to ops->configure. ops->configure, tx_kick,
  * service and now_us must be non-NULL. */
-fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx,
-                           void *rx_storage, size_t rx_size,
-                           void *tx_storage, size_t tx_size,
-                           const fbrl_uart_config *cfg);
+fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx, void *rx_storage,
+                           size_t rx_size, void *tx_storage, size_t tx_size, const fbrl_uart_config *cfg);
 
 /* Change the line settings (same checks as init). Pending bytes are not drained:
  * call fbrl_uart_drain() first if they must leave at the old settings. */
@@ -146,16 +151,14 @@ fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
  * such as FBRL_EDISCONNECTED, is returned). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
  * first; *written (may be NULL) tells how many were queued either way. With XON/XOFF
  * the bytes 0x11 and 0x13 cannot be sent as data (the peer would obey them). */
-fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
-                            uint32_t timeout_ms);
+fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written, uint32_t timeout_ms);
 
 /* Take up to len received bytes, waiting up to timeout_ms for the first one (0 = do
  * not wait). Returns as soon as at least one byte is there: FBRL_OK with *got >= 1
  * (len 0: FBRL_OK, *got 0), FBRL_ETIMEOUT with *got 0 when none came in time. Bytes
  * already received are returned before a backend error such as FBRL_EDISCONNECTED.
  * got must not be NULL. */
-fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got,
-                           uint32_t timeout_ms);
+fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got, uint32_t timeout_ms);
 
 /* Wait until every queued byte has been handed to the backend (the tx ring is empty),
  * at most timeout_ms. A peer's XOFF can hold this up: FBRL_ETIMEOUT then. */

@@ -38,50 +38,50 @@ extern "C" {
 #define FBRL_UART_8250_BAUD_BASE 115200u
 
 /* Register offsets from the base port and their bits (16550 data sheet names). */
-#define FBRL_8250_RBR 0u  /* receive buffer (read, DLAB=0) */
-#define FBRL_8250_THR 0u  /* transmit holding (write, DLAB=0) */
-#define FBRL_8250_DLL 0u  /* divisor latch low (DLAB=1) */
-#define FBRL_8250_IER 1u  /* interrupt enable (DLAB=0) */
-#define FBRL_8250_DLM 1u  /* divisor latch high (DLAB=1) */
-#define FBRL_8250_IIR 2u  /* interrupt identification (read) */
-#define FBRL_8250_FCR 2u  /* FIFO control (write, 16550 only) */
+#define FBRL_8250_RBR 0u /* receive buffer (read, DLAB=0) */
+#define FBRL_8250_THR 0u /* transmit holding (write, DLAB=0) */
+#define FBRL_8250_DLL 0u /* divisor latch low (DLAB=1) */
+#define FBRL_8250_IER 1u /* interrupt enable (DLAB=0) */
+#define FBRL_8250_DLM 1u /* divisor latch high (DLAB=1) */
+#define FBRL_8250_IIR 2u /* interrupt identification (read) */
+#define FBRL_8250_FCR 2u /* FIFO control (write, 16550 only) */
 #define FBRL_8250_LCR 3u
 #define FBRL_8250_MCR 4u
 #define FBRL_8250_LSR 5u
 #define FBRL_8250_MSR 6u
 
-#define FBRL_8250_IER_RDI  0x01u  /* receive data available (and the 16550's timeout) */
-#define FBRL_8250_IER_THRI 0x02u  /* transmit holding register empty */
-#define FBRL_8250_IER_RLSI 0x04u  /* receiver line status */
-#define FBRL_8250_IER_MSI  0x08u  /* modem status */
+#define FBRL_8250_IER_RDI  0x01u /* receive data available (and the 16550's timeout) */
+#define FBRL_8250_IER_THRI 0x02u /* transmit holding register empty */
+#define FBRL_8250_IER_RLSI 0x04u /* receiver line status */
+#define FBRL_8250_IER_MSI  0x08u /* modem status */
 
-#define FBRL_8250_IIR_NONE  0x01u /* bit 0 set: no interrupt pending */
-#define FBRL_8250_IIR_ID    0x0Eu /* cause, highest priority first: */
-#define FBRL_8250_IIR_RLS   0x06u /*   line status (OE/PE/FE/BI) */
-#define FBRL_8250_IIR_RDA   0x04u /*   received data at the trigger level */
-#define FBRL_8250_IIR_CTI   0x0Cu /*   character timeout (16550) */
-#define FBRL_8250_IIR_THRE  0x02u /*   transmitter empty */
-#define FBRL_8250_IIR_MSR   0x00u /*   modem status */
+#define FBRL_8250_IIR_NONE 0x01u /* bit 0 set: no interrupt pending */
+#define FBRL_8250_IIR_ID   0x0Eu /* cause, highest priority first: */
+#define FBRL_8250_IIR_RLS  0x06u /*   line status (OE/PE/FE/BI) */
+#define FBRL_8250_IIR_RDA  0x04u /*   received data at the trigger level */
+#define FBRL_8250_IIR_CTI  0x0Cu /*   character timeout (16550) */
+#define FBRL_8250_IIR_THRE 0x02u /*   transmitter empty */
+#define FBRL_8250_IIR_MSR  0x00u /*   modem status */
 
 #define FBRL_8250_FCR_ENABLE   0x01u
 #define FBRL_8250_FCR_CLEAR_RX 0x02u
 #define FBRL_8250_FCR_CLEAR_TX 0x04u
 
-#define FBRL_8250_LCR_PARITY  0x08u /* parity enable */
-#define FBRL_8250_LCR_EVEN    0x10u /* even parity select */
-#define FBRL_8250_LCR_STOP2   0x04u /* 2 stop bits (1.5 with 5 data bits) */
-#define FBRL_8250_LCR_DLAB    0x80u /* divisor latch access */
+#define FBRL_8250_LCR_PARITY 0x08u /* parity enable */
+#define FBRL_8250_LCR_EVEN   0x10u /* even parity select */
+#define FBRL_8250_LCR_STOP2  0x04u /* 2 stop bits (1.5 with 5 data bits) */
+#define FBRL_8250_LCR_DLAB   0x80u /* divisor latch access */
 
 #define FBRL_8250_MCR_DTR  0x01u
 #define FBRL_8250_MCR_RTS  0x02u
 #define FBRL_8250_MCR_OUT2 0x08u
 
-#define FBRL_8250_LSR_DR   0x01u  /* data ready */
-#define FBRL_8250_LSR_OE   0x02u  /* overrun: a byte was lost */
-#define FBRL_8250_LSR_PE   0x04u  /* parity error (byte at the FIFO head) */
-#define FBRL_8250_LSR_FE   0x08u  /* framing error */
-#define FBRL_8250_LSR_BI   0x10u  /* break */
-#define FBRL_8250_LSR_THRE 0x20u  /* transmit holding register (16550: FIFO) empty */
+#define FBRL_8250_LSR_DR   0x01u /* data ready */
+#define FBRL_8250_LSR_OE   0x02u /* overrun: a byte was lost */
+#define FBRL_8250_LSR_PE   0x04u /* parity error (byte at the FIFO head) */
+#define FBRL_8250_LSR_FE   0x08u /* framing error */
+#define FBRL_8250_LSR_BI   0x10u /* break */
+#define FBRL_8250_LSR_THRE 0x20u /* transmit holding register (16550: FIFO) empty */
 
 /* 8259 interrupt controller (master): command port, data (mask) port, EOI. */
 #define FBRL_8259_CMD  0x20u
@@ -99,8 +99,8 @@ extern "C" {
 #define FBRL_UART_8250_RX_HEADROOM 16u
 
 typedef enum fbrl_uart_8250_chip {
-    FBRL_UART_8250_8250 = 1,    /* 8250/16450: one-byte holding registers, no FCR */
-    FBRL_UART_8250_16550 = 16   /* 16550A: 16-byte FIFOs */
+    FBRL_UART_8250_8250 = 1,  /* 8250/16450: one-byte holding registers, no FCR */
+    FBRL_UART_8250_16550 = 16 /* 16550A: 16-byte FIFOs */
 } fbrl_uart_8250_chip;
 
 /* The board's side. io_ctx is passed back to every hook. All hooks are required. */
@@ -131,23 +131,23 @@ typedef struct fbrl_uart_8250_stats {
 /* Caller-owned state; fields are private. */
 typedef struct fbrl_uart_8250 {
     fbrl_uart_8250_io io;
-    struct fbrl_uart *uart;     /* core fed by the handler; NULL until attached */
+    struct fbrl_uart *uart; /* core fed by the handler; NULL until attached */
     uint16_t base;
-    uint8_t irq;                /* 0..7, on the master 8259 */
-    uint8_t depth;              /* transmit bytes per THRE: 16 or 1 */
-    uint8_t fcr;                /* FIFO control value (0 on an 8250) */
-    uint16_t headroom;          /* receive pauses below this many free ring bytes */
-    volatile uint8_t ier;       /* shadow of IER, written with the register */
-    volatile uint32_t events;   /* bumped by the handler whenever it moved a byte */
-    uint32_t seen;              /* events as of the last service() return */
+    uint8_t irq;              /* 0..7, on the master 8259 */
+    uint8_t depth;            /* transmit bytes per THRE: 16 or 1 */
+    uint8_t fcr;              /* FIFO control value (0 on an 8250) */
+    uint16_t headroom;        /* receive pauses below this many free ring bytes */
+    volatile uint8_t ier;     /* shadow of IER, written with the register */
+    volatile uint32_t events; /* bumped by the handler whenever it moved a byte */
+    uint32_t seen;            /* events as of the last service() return */
     fbrl_uart_8250_stats stats;
 } fbrl_uart_8250;
 
 /* Set up the state; touches no register. rx_trigger is the 16550's receive FIFO
  * trigger level (1, 4, 8 or 14) and must be 1 on an 8250. EINVAL: b or io NULL or a
  * hook missing; ERANGE: irq > 7 (COM ports live on the master 8259), bad trigger. */
-fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, uint16_t base,
-                                uint8_t irq, fbrl_uart_8250_chip chip, uint8_t rx_trigger);
+fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, uint16_t base, uint8_t irq,
+                                fbrl_uart_8250_chip chip, uint8_t rx_trigger);
 
 /* The ops for fbrl_uart_init(); ctx is the fbrl_uart_8250. configure programs the
  * line (FBRL_EUNSUPPORTED when 115200 is not a whole multiple of the baud rate, or for

@@ -53,7 +53,10 @@ typedef struct fbrl_uart_posix_options {
     size_t tx_chunk;             /* most bytes handed to write() at once (0: 256, max 4096) */
 } fbrl_uart_posix_options;
 
-#define FBRL_UART_POSIX_OPTIONS_DEFAULT { 0, 5000u, 0 }
+#define FBRL_UART_POSIX_OPTIONS_DEFAULT \
+    {                                   \
+        0, 5000u, 0                     \
+    }
 
 #define FBRL_UART_POSIX_STAGE 4096
 
@@ -61,16 +64,16 @@ typedef struct fbrl_uart_posix_options {
  * while the port is open (the core and the service thread point at it). */
 typedef struct fbrl_uart_posix {
     fbrl_uart *u;
-    int fd, wake[2];             /* wake: self-pipe that tx_kick writes in thread mode */
+    int fd, wake[2]; /* wake: self-pipe that tx_kick writes in thread mode */
     int is_tty, is_pty, is_socket, locked, saved_valid;
-    int icount_ok;               /* the driver reports error counts (TIOCGICOUNT) */
+    int icount_ok; /* the driver reports error counts (TIOCGICOUNT) */
     uint32_t ic_frame, ic_parity, ic_overrun;
-    size_t marked;               /* parity on (tty): received bytes come in PARMRK format */
-    int mark_state;              /* service side: 0, 1 after 0xFF, 2 after 0xFF 0x00 */
+    size_t marked;  /* parity on (tty): received bytes come in PARMRK format */
+    int mark_state; /* service side: 0, 1 after 0xFF, 2 after 0xFF 0x00 */
     struct termios saved, raw;
     uint32_t baud;
     size_t chunk, outq_limit;
-    size_t kick;                 /* tx_kick happened (polled mode) */
+    size_t kick;                          /* tx_kick happened (polled mode) */
     uint8_t stage[FBRL_UART_POSIX_STAGE]; /* bytes taken from isr_tx, not yet written */
     size_t stage_len, stage_off;
     /* thread mode */
@@ -78,23 +81,21 @@ typedef struct fbrl_uart_posix {
     pthread_t thread;
     pthread_mutex_t mu;
     pthread_cond_t cv;
-    uint64_t seq, seen;          /* thread's progress count / last seen by service() */
-    fbrl_status thread_status;   /* first error the thread hit (e.g. EDISCONNECTED) */
+    uint64_t seq, seen;        /* thread's progress count / last seen by service() */
+    fbrl_status thread_status; /* first error the thread hit (e.g. EDISCONNECTED) */
     int stop;
 } fbrl_uart_posix;
 
 /* Open path (tty/pty device or "tcp:HOST:PORT") as u, using rx/tx storage for the
  * core's rings and cfg for the line (see fbrl_uart_init). opt may be NULL (defaults). */
 fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *path,
-                                 const fbrl_uart_config *cfg,
-                                 void *rx, size_t rx_size, void *tx, size_t tx_size,
-                                 const fbrl_uart_posix_options *opt);
+                                 const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
+                                 size_t tx_size, const fbrl_uart_posix_options *opt);
 
 /* The same over an fd the caller already opened (a pty master from posix_openpt, a
  * connected socket, a tty); the port takes ownership and closes it on close. No
  * exclusivity is claimed. FBRL_EINVAL for fd < 0. */
-fbrl_status fbrl_uart_posix_open_fd(fbrl_uart_posix *p, fbrl_uart *u, int fd,
-                                    const fbrl_uart_config *cfg,
+fbrl_status fbrl_uart_posix_open_fd(fbrl_uart_posix *p, fbrl_uart *u, int fd, const fbrl_uart_config *cfg,
                                     void *rx, size_t rx_size, void *tx, size_t tx_size,
                                     const fbrl_uart_posix_options *opt);
 

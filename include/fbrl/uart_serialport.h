@@ -40,7 +40,7 @@ fbrl_status fbrl_uart_serialport_list(fbrl_serial_port_info *out, size_t max, si
 /* Backend state: caller-owned, fields private, fixed address while open. */
 typedef struct fbrl_uart_serialport {
     fbrl_uart *u;
-    void *port, *events;   /* struct sp_port *, struct sp_event_set * */
+    void *port, *events; /* struct sp_port *, struct sp_event_set * */
     uint8_t stage[FBRL_UART_SERIALPORT_STAGE];
     size_t stage_len, stage_off, kick, outq_limit;
 } fbrl_uart_serialport;
@@ -49,8 +49,8 @@ typedef struct fbrl_uart_serialport {
  * FBRL_ENOENT (no such port), FBRL_EUNSUPPORTED (exists but libserialport cannot
  * drive it, e.g. a pty; or a setting it refuses), FBRL_EBUSY (in use), FBRL_EIO. */
 fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, const char *name,
-                                      const fbrl_uart_config *cfg,
-                                      void *rx, size_t rx_size, void *tx, size_t tx_size);
+                                      const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
+                                      size_t tx_size);
 
 #ifdef __cplusplus
 }

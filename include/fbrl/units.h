@@ -20,18 +20,21 @@ typedef struct fbrl_units {
     int metric; /* 0 = inches (the default), 1 = centimetres */
 } fbrl_units;
 
-#define FBRL_UNITS_INIT { 0 }
+#define FBRL_UNITS_INIT \
+    {                   \
+        0               \
+    }
 
 /* All functions: FBRL_EINVAL for NULL, FBRL_ENONFINITE for a NaN/infinite input,
  * FBRL_EOVERFLOW when a finite input converts to a non-finite value. */
 
-fbrl_status fbrl_units_init(fbrl_units *u);                   /* metric off */
-fbrl_status fbrl_units_metric_on(fbrl_units *u);              /* METRIC-ON */
-fbrl_status fbrl_units_metric_off(fbrl_units *u);             /* METRIC-OFF */
+fbrl_status fbrl_units_init(fbrl_units *u);                     /* metric off */
+fbrl_status fbrl_units_metric_on(fbrl_units *u);                /* METRIC-ON */
+fbrl_status fbrl_units_metric_off(fbrl_units *u);               /* METRIC-OFF */
 fbrl_status fbrl_units_is_metric(const fbrl_units *u, int *on); /* METRIC? (1 or 0) */
 
-fbrl_status fbrl_units_in_to_cm(double in, double *cm);       /* IN->CM */
-fbrl_status fbrl_units_cm_to_in(double cm, double *in);       /* CM->IN */
+fbrl_status fbrl_units_in_to_cm(double in, double *cm); /* IN->CM */
+fbrl_status fbrl_units_cm_to_in(double cm, double *in); /* CM->IN */
 
 /* METRIC-IN: a length the user typed (cm when metric is on) -> inches. */
 fbrl_status fbrl_units_in(const fbrl_units *u, double user, double *inches);

@@ -15,7 +15,7 @@
 extern "C" {
 #endif
 
-typedef intptr_t fbrl_cell;    /* 64-bit on 64-bit hosts */
+typedef intptr_t fbrl_cell; /* 64-bit on 64-bit hosts */
 typedef struct fbrl_vm fbrl_vm;
 
 /* Host services. Any callback may be NULL; the words that need a missing one
@@ -65,11 +65,11 @@ typedef struct fbrl_vm_config {
 
 /* What went wrong in the last failed fbrl_vm_eval()/fbrl_vm_include(). */
 typedef struct fbrl_vm_error {
-    int throw_code;            /* Forth THROW code (e.g. -13 undefined word), 0 if none */
-    char message[256];         /* e.g. "undefined word"; a controller error with its meaning */
-    char word[64];             /* the word being interpreted when it failed */
-    char file[256];            /* source file, "" for evaluated text */
-    unsigned long line;        /* 1-based line in that source */
+    int throw_code;     /* Forth THROW code (e.g. -13 undefined word), 0 if none */
+    char message[256];  /* e.g. "undefined word"; a controller error with its meaning */
+    char word[64];      /* the word being interpreted when it failed */
+    char file[256];     /* source file, "" for evaluated text */
+    unsigned long line; /* 1-based line in that source */
 } fbrl_vm_error;
 
 /* A C primitive: pops its arguments and pushes its results through the API below.
@@ -130,8 +130,7 @@ fbrl_status fbrl_vm_parse_name(fbrl_vm *vm, const char **name, size_t *len);
 void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n);
 
 /* Introspection for the monitor: help text and word iteration (for TAB completion). */
-fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect,
-                         const char **help);
+fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect, const char **help);
 /* Calls fn for every visible word name, newest first; stops early if fn returns non-zero. */
 void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, size_t len), void *ctx);
 

@@ -38,9 +38,9 @@ typedef uintptr_t fbrl_ucell;
 /* ---- defining words ---- */
 
 /* Word flags. */
-#define FBRL_VMX_IMMEDIATE 1u    /* runs while compiling too */
+#define FBRL_VMX_IMMEDIATE    1u /* runs while compiling too */
 #define FBRL_VMX_COMPILE_ONLY 2u /* refused while interpreting (THROW -14) */
-#define FBRL_VMX_STATE_SMART 4u  /* with IMMEDIATE: POSTPONE compiles a call that runs it compiling */
+#define FBRL_VMX_STATE_SMART  4u /* with IMMEDIATE: POSTPONE compiles a call that runs it compiling */
 
 /* A C word. ctx is the word set's state given to fbrl_vmx_define (per VM); word is the
  * word's own entry given there (e.g. its row of the word set's table), or for a word made
@@ -79,9 +79,9 @@ typedef struct fbrl_vmx_type {
  * All or nothing: on any failure (no name, name too long, dictionary full) no word and no
  * byte of data space is left behind, and the failure is thrown (e.g. -8 dictionary overflow):
  * the result is FBRL_ETHROW. */
-fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbrl_vmx_type *type, size_t bytes,
-                            fbrl_vmx_fn run, void *ctx, const char *stack_effect, const char *help,
-                            fbrl_cell *addr, void **payload);
+fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbrl_vmx_type *type,
+                            size_t bytes, fbrl_vmx_fn run, void *ctx, const char *stack_effect,
+                            const char *help, fbrl_cell *addr, void **payload);
 
 /* The payload of a structure of this type at VM address addr (a data field fbrl_vmx_create
  * made, or a copy of one), checked to lie wholly in data space with `bytes` payload bytes;
@@ -119,16 +119,17 @@ fbrl_status fbrl_vmx_forget(fbrl_vm *vm, const fbrl_vmx_mark *m);
  *   S  string (c-addr u); after the word: a word or a "quoted text"
  *   T  string (c-addr u); after the word: the rest of the line */
 typedef struct fbrl_vmx_val {
-    fbrl_cell i;       /* I C A N: the value (N given as a name: 0) */
-    double f;          /* R */
-    const char *s;     /* S T, N given as a name: the text (in the VM's data space) */
+    fbrl_cell i;   /* I C A N: the value (N given as a name: 0) */
+    double f;      /* R */
+    const char *s; /* S T, N given as a name: the text (in the VM's data space) */
     size_t n;
 } fbrl_vmx_val;
 #define FBRL_VMX_MAXARGS 8
 
 /* Where the values may come from. */
 #define FBRL_VMX_STACKS 0u /* the stacks only: too few is a stack underflow (-4, or -45 for reals) */
-#define FBRL_VMX_LINE 1u   /* the stacks when they hold every parameter; otherwise all of them are
+#define FBRL_VMX_LINE \
+    1u /* the stacks when they hold every parameter; otherwise all of them are
                             * parsed from the input after the word, in spec order (thesis I-6) */
 
 /* Fetch the parameters of `spec` into v[0..strlen(spec)) (at most FBRL_VMX_MAXARGS).
@@ -141,8 +142,8 @@ typedef struct fbrl_vmx_val {
  * (variable, CREATE, constant, value) for an address; code never runs.
  * word names the word in error messages; what[k], if what is not NULL and what[k] is not
  * NULL, describes parameter k there ("a location name"). Throws on error. */
-fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what, unsigned how,
-                          fbrl_vmx_val *v);
+fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what,
+                          unsigned how, fbrl_vmx_val *v);
 
 /* One parameter of the given kind parsed from the input after the word (GETREAL). */
 fbrl_status fbrl_vmx_arg_parse(fbrl_vm *vm, const char *word, char kind, const char *what, fbrl_vmx_val *v);
@@ -184,7 +185,8 @@ fbrl_status fbrl_vmx_evaluate(fbrl_vm *vm, const char *text, size_t len);
  * as usual). Returns 0, or the THROW code with its one-line message (the failing word
  * named, e.g. "undefined word FOO") in msg[0..cap) (cap >= 1). BYE and QUIT are not
  * caught: they return as from fbrl_vmx_evaluate, with *code 0. */
-fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, int *code, char *msg, size_t cap);
+fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, int *code, char *msg,
+                                    size_t cap);
 
 /* ---- host services ---- */
 

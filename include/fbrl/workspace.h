@@ -44,7 +44,7 @@ extern "C" {
 
 /* Largest record payload (a calibration: 1 + 31 + 18 doubles) and the buffer bytes one
  * object needs in the file buffer. */
-#define FBRL_WORKSPACE_RECORD_MAX (1u + 31u + 18u * 8u)
+#define FBRL_WORKSPACE_RECORD_MAX   (1u + 31u + 18u * 8u)
 #define FBRL_WORKSPACE_OBJECT_BYTES FBRL_FILE_RECORD_SIZE(FBRL_WORKSPACE_RECORD_MAX)
 
 /* What a save or load carried. */
@@ -57,10 +57,10 @@ typedef struct fbrl_workspace {
     uint32_t magic;
     fbrl_vm *vm;
     fbrl_glossary *g;
-    fbrl_robot *r;           /* NULL: no devices, no BASE-OFFSET */
-    unsigned char *buf;      /* the file buffer */
+    fbrl_robot *r;      /* NULL: no devices, no BASE-OFFSET */
+    unsigned char *buf; /* the file buffer */
     size_t cap;
-    uint32_t mark;           /* fingerprint of the session at the last save or load */
+    uint32_t mark;                 /* fingerprint of the session at the last save or load */
     char path[FBRL_FILE_PATH_MAX]; /* the file last saved or loaded ("" none) */
     fbrl_file file;
 } fbrl_workspace;
@@ -69,8 +69,8 @@ typedef struct fbrl_workspace {
  * as the file buffer (FBRL_WORKSPACE_OBJECT_BYTES per object a workspace may hold). The
  * session as it is now counts as unchanged. FBRL_EINVAL for NULLs, FBRL_ENOMEM when the
  * dictionary is full. */
-fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r, void *buf,
-                                   size_t cap);
+fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r,
+                                   void *buf, size_t cap);
 
 /* Save every named object to path (atomically; an existing file is replaced only if it
  * is a workspace or an empty data file: FBRL_EFORMAT otherwise). n (may be NULL) gets the

@@ -26,9 +26,9 @@
 #include "fbrl/uart.h"
 #include "fbrl/uart_8250.h"
 
-#define ENQ 0x05u
-#define EOT 0x04u
-#define ACK 0x06u
+#define ENQ           0x05u
+#define EOT           0x04u
+#define ACK           0x06u
 #define IDLE_LIMIT_US 60000000u
 
 static fbrl_uart_8250 com;
@@ -155,8 +155,8 @@ void kmain(uint32_t magic, void *mbi)
     }
     if (fbrl_uart_8250_init(&com, &pc_uart_io, FBRL_UART_8250_COM1_BASE, FBRL_UART_8250_COM1_IRQ, chip,
                             (uint8_t)fifo) != FBRL_OK ||
-        fbrl_uart_init(&uart, &fbrl_uart_8250_ops, &com, rx_mem, sizeof rx_mem, tx_mem,
-                       sizeof tx_mem, &cfg) != FBRL_OK ||
+        fbrl_uart_init(&uart, &fbrl_uart_8250_ops, &com, rx_mem, sizeof rx_mem, tx_mem, sizeof tx_mem,
+                       &cfg) != FBRL_OK ||
         fbrl_uart_8250_attach(&com, &uart) != FBRL_OK) {
         pc_debug("pc-bare: uart setup failed\n");
         pc_exit(PC_EXIT_FAIL);

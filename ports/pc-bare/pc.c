@@ -1,11 +1,11 @@
 /* pc.c - IDT, 8259 PIC, PIT clock, port-I/O hooks and exits for the bare PC image. */
 #include "pc.h"
 
-#define PIC1_CMD 0x20u
-#define PIC1_DATA 0x21u
-#define PIC2_CMD 0xA0u
-#define PIC2_DATA 0xA1u
-#define IRQ_BASE 0x20u /* vectors 0x20-0x2F: clear of the CPU's 0-31 */
+#define PIC1_CMD       0x20u
+#define PIC1_DATA      0x21u
+#define PIC2_CMD       0xA0u
+#define PIC2_DATA      0xA1u
+#define IRQ_BASE       0x20u /* vectors 0x20-0x2F: clear of the CPU's 0-31 */
 #define PIT_HZ_DIVISOR 1193u /* 1193182 Hz / 1193 = 1000.15 Hz: one tick per ms */
 
 struct idt_gate {
@@ -84,10 +84,7 @@ void pc_irq_timer(void)
     pc_outb(PIC1_CMD, 0x20);
 }
 
-void pc_irq_com(void)
-{
-    fbrl_uart_8250_isr(com_port); /* ends with the EOI */
-}
+void pc_irq_com(void) { fbrl_uart_8250_isr(com_port); /* ends with the EOI */ }
 
 void pc_irq_other(void)
 {
@@ -117,10 +114,7 @@ void pc_exception(uint32_t vector)
     pc_exit(PC_EXIT_CRASH);
 }
 
-uint64_t pc_now_us(void)
-{
-    return (uint64_t)ticks_ms * 1000u;
-}
+uint64_t pc_now_us(void) { return (uint64_t)ticks_ms * 1000u; }
 
 void pc_debug(const char *s)
 {
@@ -179,5 +173,4 @@ static uint64_t io_now_us(void *ctx)
     return pc_now_us();
 }
 
-const fbrl_uart_8250_io pc_uart_io = {io_inb, io_outb, io_irq_save, io_irq_restore, io_idle, io_now_us,
-                                      0};
+const fbrl_uart_8250_io pc_uart_io = {io_inb, io_outb, io_irq_save, io_irq_restore, io_idle, io_now_us, 0};

@@ -34,8 +34,8 @@ uint64_t pc_now_us(void);
 void pc_debug(const char *s);
 
 /* End QEMU through isa-debug-exit (iobase 0xf4): exit status (code << 1) | 1. */
-#define PC_EXIT_PASS 0x10u  /* QEMU exit status 33 */
-#define PC_EXIT_FAIL 0x11u  /* 35 */
+#define PC_EXIT_PASS  0x10u /* QEMU exit status 33 */
+#define PC_EXIT_FAIL  0x11u /* 35 */
 #define PC_EXIT_CRASH 0x12u /* 37: CPU exception */
 void pc_exit(uint8_t code) __attribute__((noreturn));
 

@@ -32,68 +32,155 @@
 #endif
 
 #define SAVE() (*sp = tos, vm->sp = sp + 1, *fp = ftos, vm->fp = fp + 1, vm->rp = rp)
-#define LOAD() (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp, \
-                data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo))
-#define THROW(c) do { code = (c); goto do_throw; } while (0)
+#define LOAD()                                                             \
+    (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp, \
+     data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo))
+#define THROW(c)       \
+    do {               \
+        code = (c);    \
+        goto do_throw; \
+    } while (0)
 /* depth checks: NEED(n) at least n cells, ROOM(n) space for n more */
 /* (each error has its own label, so the hot path does not set up a throw code) */
-#define NEED(n) if (sp < ds0 + ((n) - 1)) goto e_underflow
-#define ROOM(n) if (sp >= dse - (n)) goto e_overflow
-#define RNEED(n) if (rp < rs0 + (n)) goto e_r_underflow
-#define RROOM(n) if (rp > rse - (n)) goto e_r_overflow
-#define FNEED(n) if (fp < fs0 + ((n) - 1)) goto e_f_underflow
-#define FROOM(n) if (fp >= fse - (n)) goto e_f_overflow
-#define CHK(a, n) if (!fbrl__addr_ok(vm, (a), (n))) goto e_address
+#define NEED(n)             \
+    if (sp < ds0 + ((n)-1)) \
+    goto e_underflow
+#define ROOM(n)          \
+    if (sp >= dse - (n)) \
+    goto e_overflow
+#define RNEED(n)        \
+    if (rp < rs0 + (n)) \
+    goto e_r_underflow
+#define RROOM(n)        \
+    if (rp > rse - (n)) \
+    goto e_r_overflow
+#define FNEED(n)            \
+    if (fp < fs0 + ((n)-1)) \
+    goto e_f_underflow
+#define FROOM(n)         \
+    if (fp >= fse - (n)) \
+    goto e_f_overflow
+#define CHK(a, n)                     \
+    if (!fbrl__addr_ok(vm, (a), (n))) \
+    goto e_address
 /* the same for a small constant n, against the cached size of the data region */
-#define CHKC(a, n) if ((fbrl_ucell)(a) - code_lo > data_span - (fbrl_ucell)(n)) goto e_address
-#define CODE_OK(t) ((fbrl_ucell)(t) - code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
-#define JUMP(t) do { fbrl_cell t_ = (t); if (!CODE_OK(t_)) goto e_address; ip = (const fbrl_cell *)t_; } while (0)
-#define CALLC(expr) do { SAVE(); code = (expr); LOAD(); if (code) goto do_throw; } while (0)
+#define CHKC(a, n)                                             \
+    if ((fbrl_ucell)(a)-code_lo > data_span - (fbrl_ucell)(n)) \
+    goto e_address
+#define CODE_OK(t) ((fbrl_ucell)(t)-code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
+#define JUMP(t)                     \
+    do {                            \
+        fbrl_cell t_ = (t);         \
+        if (!CODE_OK(t_))           \
+            goto e_address;         \
+        ip = (const fbrl_cell *)t_; \
+    } while (0)
+#define CALLC(expr)        \
+    do {                   \
+        SAVE();            \
+        code = (expr);     \
+        LOAD();            \
+        if (code)          \
+            goto do_throw; \
+    } while (0)
 /* fbrl_vm_interrupt() is honoured wherever a program can loop or recurse */
-#define POLL() if (fbrl_load_rlx(&vm->interrupt)) { fbrl_store_rlx(&vm->interrupt, 0); THROW(FBRL_THROW_INTERRUPT); }
+#define POLL()                             \
+    if (fbrl_load_rlx(&vm->interrupt)) {   \
+        fbrl_store_rlx(&vm->interrupt, 0); \
+        THROW(FBRL_THROW_INTERRUPT);       \
+    }
 /* T is the top cell, S the second, S3 the third ... */
-#define T tos
-#define S sp[-1]
+#define T  tos
+#define S  sp[-1]
 #define S3 sp[-2]
 #define S4 sp[-3]
 #define S5 sp[-4]
 #define S6 sp[-5]
-#define PUSH(x) do { fbrl_cell v_ = (x); *sp++ = tos; tos = v_; } while (0)
+#define PUSH(x)             \
+    do {                    \
+        fbrl_cell v_ = (x); \
+        *sp++ = tos;        \
+        tos = v_;           \
+    } while (0)
 #define DROP1() (tos = *--sp)
-#define FPUSH(x) do { double f_ = (x); *fp++ = ftos; ftos = f_; } while (0)
+#define FPUSH(x)         \
+    do {                 \
+        double f_ = (x); \
+        *fp++ = ftos;    \
+        ftos = f_;       \
+    } while (0)
 #define FDROP1() (ftos = *--fp)
-#define U(x) ((fbrl_ucell)(x))
-#define FLAG(c) ((c) ? (fbrl_cell)-1 : 0)
-#define FCELLS ((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell))
+#define U(x)     ((fbrl_ucell)(x))
+#define FLAG(c)  ((c) ? (fbrl_cell)-1 : 0)
+#define FCELLS   ((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell))
 /* a float result must be finite when its inputs were (else -43 / -46) */
-#define FRES(r, bad) do { double r_ = (r); if (!isfinite(r_)) goto e_f##bad; ftos = r_; } while (0)
+#define FRES(r, bad)       \
+    do {                   \
+        double r_ = (r);   \
+        if (!isfinite(r_)) \
+            goto e_f##bad; \
+        ftos = r_;         \
+    } while (0)
 /* binary float op: r1 = second, r2 = top; the result replaces both */
-#define FBIN(expr, bad) do { double r1 = fp[-1], r2 = ftos; (void)r1; (void)r2; \
-                             FRES(expr, bad); fp--; } while (0)
+#define FBIN(expr, bad)                \
+    do {                               \
+        double r1 = fp[-1], r2 = ftos; \
+        (void)r1;                      \
+        (void)r2;                      \
+        FRES(expr, bad);               \
+        fp--;                          \
+    } while (0)
 
 #if FBRL_CGOTO
 #define CASE(id) L_##id:
 #define DEFAULT
-#define DISPATCH() do { if (U(w) < OP__END) goto *optab[w]; goto execute_xt; } while (0)
-#define NEXT do { w = *ip++; DISPATCH(); } while (0)
+#define DISPATCH()          \
+    do {                    \
+        if (U(w) < OP__END) \
+            goto *optab[w]; \
+        goto execute_xt;    \
+    } while (0)
+#define NEXT        \
+    do {            \
+        w = *ip++;  \
+        DISPATCH(); \
+    } while (0)
 #else
-#define CASE(id) case OP_##id:
-#define DEFAULT default:
+#define CASE(id)   case OP_##id:
+#define DEFAULT    default:
 #define DISPATCH() goto dispatch
-#define NEXT continue
+#define NEXT       continue
 #endif
 
-static fbrl_cell ld(fbrl_cell a) { fbrl_cell v; memcpy(&v, (const void *)a, sizeof v); return v; }
+static fbrl_cell ld(fbrl_cell a)
+{
+    fbrl_cell v;
+    memcpy(&v, (const void *)a, sizeof v);
+    return v;
+}
 static void st(fbrl_cell a, fbrl_cell v) { memcpy((void *)a, &v, sizeof v); }
-static double ldf(fbrl_cell a) { double v; memcpy(&v, (const void *)a, sizeof v); return v; }
+static double ldf(fbrl_cell a)
+{
+    double v;
+    memcpy(&v, (const void *)a, sizeof v);
+    return v;
+}
 static void stf(fbrl_cell a, double v) { memcpy((void *)a, &v, sizeof v); }
 
 static int floordiv(fbrl_cell a, fbrl_cell b, fbrl_cell *q, fbrl_cell *r)
 {
-    if (b == 0) return FBRL_THROW_DIV_ZERO;
-    if (b == -1) { *q = (fbrl_cell)(0 - U(a)); *r = 0; return 0; }
+    if (b == 0)
+        return FBRL_THROW_DIV_ZERO;
+    if (b == -1) {
+        *q = (fbrl_cell)(0 - U(a));
+        *r = 0;
+        return 0;
+    }
     fbrl_cell qq = a / b, rr = a % b;
-    if (rr != 0 && ((rr < 0) != (b < 0))) { qq--; rr += b; }
+    if (rr != 0 && ((rr < 0) != (b < 0))) {
+        qq--;
+        rr += b;
+    }
     *q = qq;
     *r = rr;
     return 0;
@@ -112,11 +199,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     double *const fs0 = vm->fs0, *const fse = vm->fs_end;
     const fbrl_ucell code_lo = (fbrl_ucell)vm->data_lo;
     const fbrl_ucell code_span = (fbrl_ucell)(vm->mem_end - vm->data_lo);
-    fbrl_ucell data_span;     /* addressable bytes (data_hi moves only in helpers: LOAD) */
+    fbrl_ucell data_span; /* addressable bytes (data_hi moves only in helpers: LOAD) */
     const fbrl_cell *ip = (const fbrl_cell *)vm->guard_addr; /* the HALT cell */
     fbrl_cell w = xt, entry, a, b;
     fbrl_ucell ua, ub;
-    fbrl_cell o1, o2;      /* out-parameters: a, b and ua, ub never have their address taken */
+    fbrl_cell o1, o2; /* out-parameters: a, b and ua, ub never have their address taken */
     fbrl_ucell uo1, uo2;
     double fa;
     int code = 0;
@@ -128,7 +215,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     };
 #endif
 
-    if (vm->nest >= 64) return FBRL_THROW_RSTACK_OVERFLOW;
+    if (vm->nest >= 64)
+        return FBRL_THROW_RSTACK_OVERFLOW;
     LOAD();
     entry = rp - rs0;
     vm->nest++;
@@ -143,575 +231,1399 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     dispatch:
         switch ((fbrl_ucell)w) {
 #endif
-        CASE(BAD) THROW(fbrl__throw_msg(vm, FBRL_THROW_BAD_ADDRESS, "invalid instruction (corrupted code?)"));
-        CASE(HALT) code = 0; goto out; /* (so code is dead in the hot path) */
-        CASE(CATCHEND)
-            if (vm->handler != rp - rs0 || rp - rs0 < 5) THROW(FBRL_THROW_RSTACK_IMBALANCE);
+            CASE(BAD)
+            THROW(fbrl__throw_msg(vm, FBRL_THROW_BAD_ADDRESS, "invalid instruction (corrupted code?)"));
+            CASE(HALT) code = 0;
+            goto out; /* (so code is dead in the hot path) */
+            CASE(CATCHEND)
+            if (vm->handler != rp - rs0 || rp - rs0 < 5)
+                THROW(FBRL_THROW_RSTACK_IMBALANCE);
             rp -= 5;
             vm->handler = (rp[3] >= 0 && rp[3] <= rp - rs0) ? rp[3] : 0;
             JUMP(rp[0]);
             ROOM(1);
             PUSH(0);
             NEXT;
-        CASE(LIT) ROOM(1); PUSH(*ip++); NEXT;
-        CASE(FLIT) FROOM(1); *fp++ = ftos; memcpy(fp, ip, sizeof(double)); ftos = *fp; ip += FCELLS; NEXT;
-        CASE(CALL) POLL(); RROOM(1); a = *ip++; *rp++ = (fbrl_cell)ip; JUMP(a); NEXT;
-        CASE(EXIT) RNEED(1); JUMP(*--rp); NEXT;
-        CASE(BRANCH) POLL(); JUMP(*ip); NEXT;
-        CASE(ZBRANCH)
-            NEED(1);
-            a = tos; DROP1();
-            if (a == 0) { POLL(); JUMP(*ip); } else ip++;
+            CASE(LIT) ROOM(1);
+            PUSH(*ip++);
             NEXT;
-        CASE(PQDO)
+            CASE(FLIT) FROOM(1);
+            *fp++ = ftos;
+            memcpy(fp, ip, sizeof(double));
+            ftos = *fp;
+            ip += FCELLS;
+            NEXT;
+            CASE(CALL) POLL();
+            RROOM(1);
+            a = *ip++;
+            *rp++ = (fbrl_cell)ip;
+            JUMP(a);
+            NEXT;
+            CASE(EXIT) RNEED(1);
+            JUMP(*--rp);
+            NEXT;
+            CASE(BRANCH) POLL();
+            JUMP(*ip);
+            NEXT;
+            CASE(ZBRANCH)
+            NEED(1);
+            a = tos;
+            DROP1();
+            if (a == 0) {
+                POLL();
+                JUMP(*ip);
+            } else
+                ip++;
+            NEXT;
+            CASE(PQDO)
             NEED(2);
-            if (S == T) { sp -= 2; tos = *sp; JUMP(*ip); NEXT; }
+            if (S == T) {
+                sp -= 2;
+                tos = *sp;
+                JUMP(*ip);
+                NEXT;
+            }
             goto pdo;
-        CASE(PDO)
+            CASE(PDO)
             NEED(2);
         pdo:
             RROOM(3);
-            rp[0] = *ip++; rp[1] = S; rp[2] = T;
-            rp += 3; sp -= 2; tos = *sp;
+            rp[0] = *ip++;
+            rp[1] = S;
+            rp[2] = T;
+            rp += 3;
+            sp -= 2;
+            tos = *sp;
             NEXT;
-        CASE(PLOOP)
+            CASE(PLOOP)
             RNEED(3);
             a = (fbrl_cell)(U(rp[-1]) + 1);
-            if (a == rp[-2]) { rp -= 3; ip++; } else { POLL(); rp[-1] = a; JUMP(*ip); }
-            NEXT;
-        CASE(PPLOOP) {
-            NEED(1); RNEED(3);
-            fbrl_ucell d = U(rp[-1]) - U(rp[-2]), n = U(tos), nd = d + n;
-            DROP1();
-            if ((fbrl_cell)((d ^ nd) & (d ^ n)) < 0) { rp -= 3; ip++; }
-            else { POLL(); rp[-1] = (fbrl_cell)(U(rp[-1]) + n); JUMP(*ip); }
-            NEXT;
-        }
-        CASE(I) RNEED(1); ROOM(1); PUSH(rp[-1]); NEXT;
-        CASE(J) RNEED(4); ROOM(1); PUSH(rp[-4]); NEXT;
-        CASE(LEAVE) RNEED(3); a = rp[-3]; rp -= 3; JUMP(a); NEXT;
-        CASE(UNLOOP) RNEED(3); rp -= 3; NEXT;
-        CASE(SLIT) CASE(CSLIT) CASE(PABORTQ) {
-            fbrl_ucell n = U(*ip++), skip = (n / U(CELL) + 1) * U(CELL);
-            fbrl_cell s = (fbrl_cell)ip;
-            if (n > 65536) THROW(FBRL_THROW_BAD_ADDRESS);
-            JUMP((fbrl_cell)(U(s) + skip));
-            if (w == OP_PABORTQ) {
-                NEED(1);
-                a = tos; DROP1();
-                if (a) {
-                    char m[sizeof vm->throw_msg];
-                    size_t k = n < sizeof m - 1 ? (size_t)n : sizeof m - 1;
-                    CHK(s, (fbrl_cell)k);
-                    memcpy(m, (const void *)s, k);
-                    m[k] = 0;
-                    THROW(fbrl__throw_msg(vm, FBRL_THROW_ABORTQ, m));
-                }
-            } else if (w == OP_CSLIT) {
-                ROOM(1); PUSH(s);
+            if (a == rp[-2]) {
+                rp -= 3;
+                ip++;
             } else {
-                ROOM(2); PUSH(s); PUSH((fbrl_cell)n);
+                POLL();
+                rp[-1] = a;
+                JUMP(*ip);
             }
             NEXT;
-        }
-        CASE(DOESSET) {
-            fbrl_hdr *h = vm->nwords ? HDR(vm, vm->nwords - 1) : NULL;
-            if (!h || h->kind != K_CREATE) THROW(fbrl__throw_msg(vm, FBRL_THROW_TO_BODY, "DOES> needs a CREATEd word"));
-            h->does = (fbrl_cell)ip;
-            RNEED(1);
-            JUMP(*--rp);
+            CASE(PPLOOP)
+            {
+                NEED(1);
+                RNEED(3);
+                fbrl_ucell d = U(rp[-1]) - U(rp[-2]), n = U(tos), nd = d + n;
+                DROP1();
+                if ((fbrl_cell)((d ^ nd) & (d ^ n)) < 0) {
+                    rp -= 3;
+                    ip++;
+                } else {
+                    POLL();
+                    rp[-1] = (fbrl_cell)(U(rp[-1]) + n);
+                    JUMP(*ip);
+                }
+                NEXT;
+            }
+            CASE(I) RNEED(1);
+            ROOM(1);
+            PUSH(rp[-1]);
             NEXT;
-        }
-        CASE(POF)
+            CASE(J) RNEED(4);
+            ROOM(1);
+            PUSH(rp[-4]);
+            NEXT;
+            CASE(LEAVE) RNEED(3);
+            a = rp[-3];
+            rp -= 3;
+            JUMP(a);
+            NEXT;
+            CASE(UNLOOP) RNEED(3);
+            rp -= 3;
+            NEXT;
+            CASE(SLIT) CASE(CSLIT) CASE(PABORTQ)
+            {
+                fbrl_ucell n = U(*ip++), skip = (n / U(CELL) + 1) * U(CELL);
+                fbrl_cell s = (fbrl_cell)ip;
+                if (n > 65536)
+                    THROW(FBRL_THROW_BAD_ADDRESS);
+                JUMP((fbrl_cell)(U(s) + skip));
+                if (w == OP_PABORTQ) {
+                    NEED(1);
+                    a = tos;
+                    DROP1();
+                    if (a) {
+                        char m[sizeof vm->throw_msg];
+                        size_t k = n < sizeof m - 1 ? (size_t)n : sizeof m - 1;
+                        CHK(s, (fbrl_cell)k);
+                        memcpy(m, (const void *)s, k);
+                        m[k] = 0;
+                        THROW(fbrl__throw_msg(vm, FBRL_THROW_ABORTQ, m));
+                    }
+                } else if (w == OP_CSLIT) {
+                    ROOM(1);
+                    PUSH(s);
+                } else {
+                    ROOM(2);
+                    PUSH(s);
+                    PUSH((fbrl_cell)n);
+                }
+                NEXT;
+            }
+            CASE(DOESSET)
+            {
+                fbrl_hdr *h = vm->nwords ? HDR(vm, vm->nwords - 1) : NULL;
+                if (!h || h->kind != K_CREATE)
+                    THROW(fbrl__throw_msg(vm, FBRL_THROW_TO_BODY, "DOES> needs a CREATEd word"));
+                h->does = (fbrl_cell)ip;
+                RNEED(1);
+                JUMP(*--rp);
+                NEXT;
+            }
+            CASE(POF)
             NEED(2);
-            if (S == T) { sp -= 2; tos = *sp; ip++; } else { DROP1(); JUMP(*ip); }
+            if (S == T) {
+                sp -= 2;
+                tos = *sp;
+                ip++;
+            } else {
+                DROP1();
+                JUMP(*ip);
+            }
             NEXT;
-        CASE(COMPSEM) { /* run a state-smart word as if compiling */
-            fbrl_cell saved = *vm->state;
+            CASE(COMPSEM)
+            { /* run a state-smart word as if compiling */
+                fbrl_cell saved = *vm->state;
+                NEED(1);
+                a = tos;
+                DROP1();
+                *vm->state = -1;
+                SAVE();
+                code = fbrl__run(vm, a);
+                LOAD();
+                if (*vm->state == -1)
+                    *vm->state = saved;
+                if (code)
+                    goto do_throw;
+                NEXT;
+            }
+            CASE(PTOVAL) NEED(1);
+            a = *ip++;
+            CHKC(a, CELL);
+            st(a, tos);
+            DROP1();
+            NEXT;
+            CASE(PTO2VAL) NEED(2);
+            a = *ip++;
+            CHKC(a, 2 * CELL);
+            st(a, T);
+            st(a + CELL, S);
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(PTOFVAL) FNEED(1);
+            a = *ip++;
+            CHKC(a, (fbrl_cell)sizeof(double));
+            stf(a, ftos);
+            FDROP1();
+            NEXT;
+
+            /* superinstructions (vm.c fuses them): a literal operand, or a branch target */
+            CASE(LITPLUS) NEED(1);
+            T = (fbrl_cell)(U(T) + U(*ip++));
+            NEXT;
+            CASE(LITMINUS) NEED(1);
+            T = (fbrl_cell)(U(T) - U(*ip++));
+            NEXT;
+            CASE(LITSTAR) NEED(1);
+            T = (fbrl_cell)(U(T) * U(*ip++));
+            NEXT;
+            CASE(LITAND) NEED(1);
+            T &= *ip++;
+            NEXT;
+            CASE(LITEQ) NEED(1);
+            T = FLAG(T == *ip);
+            ip++;
+            NEXT;
+            CASE(LITNE) NEED(1);
+            T = FLAG(T != *ip);
+            ip++;
+            NEXT;
+            CASE(LITLT) NEED(1);
+            T = FLAG(T < *ip);
+            ip++;
+            NEXT;
+            CASE(LITGT) NEED(1);
+            T = FLAG(T > *ip);
+            ip++;
+            NEXT;
+            CASE(LITFETCH) ROOM(1);
+            a = *ip++;
+            CHKC(a, CELL);
+            PUSH(ld(a));
+            NEXT;
+            CASE(PICK2) NEED(3);
+            ROOM(1);
+            PUSH(S3);
+            NEXT;
+            CASE(OVERPLUS) NEED(2);
+            T = (fbrl_cell)(U(T) + U(S));
+            NEXT;
+            CASE(IPLUS) RNEED(1);
             NEED(1);
-            a = tos; DROP1();
-            *vm->state = -1;
-            SAVE();
-            code = fbrl__run(vm, a);
-            LOAD();
-            if (*vm->state == -1) *vm->state = saved;
-            if (code) goto do_throw;
+            T = (fbrl_cell)(U(T) + U(rp[-1]));
             NEXT;
-        }
-        CASE(PTOVAL) NEED(1); a = *ip++; CHKC(a, CELL); st(a, tos); DROP1(); NEXT;
-        CASE(PTO2VAL) NEED(2); a = *ip++; CHKC(a, 2 * CELL); st(a, T); st(a + CELL, S); sp -= 2; tos = *sp; NEXT;
-        CASE(PTOFVAL) FNEED(1); a = *ip++; CHKC(a, (fbrl_cell)sizeof(double)); stf(a, ftos); FDROP1(); NEXT;
-
-        /* superinstructions (vm.c fuses them): a literal operand, or a branch target */
-        CASE(LITPLUS) NEED(1); T = (fbrl_cell)(U(T) + U(*ip++)); NEXT;
-        CASE(LITMINUS) NEED(1); T = (fbrl_cell)(U(T) - U(*ip++)); NEXT;
-        CASE(LITSTAR) NEED(1); T = (fbrl_cell)(U(T) * U(*ip++)); NEXT;
-        CASE(LITAND) NEED(1); T &= *ip++; NEXT;
-        CASE(LITEQ) NEED(1); T = FLAG(T == *ip); ip++; NEXT;
-        CASE(LITNE) NEED(1); T = FLAG(T != *ip); ip++; NEXT;
-        CASE(LITLT) NEED(1); T = FLAG(T < *ip); ip++; NEXT;
-        CASE(LITGT) NEED(1); T = FLAG(T > *ip); ip++; NEXT;
-        CASE(LITFETCH) ROOM(1); a = *ip++; CHKC(a, CELL); PUSH(ld(a)); NEXT;
-        CASE(PICK2) NEED(3); ROOM(1); PUSH(S3); NEXT;
-        CASE(OVERPLUS) NEED(2); T = (fbrl_cell)(U(T) + U(S)); NEXT;
-        CASE(IPLUS) RNEED(1); NEED(1); T = (fbrl_cell)(U(T) + U(rp[-1])); NEXT;
-        CASE(CELLPLUSFETCH) NEED(1); a = (fbrl_cell)(U(T) + U(CELL)); CHKC(a, CELL); T = ld(a); NEXT;
-        CASE(DUPFETCH) NEED(1); ROOM(1); CHKC(T, CELL); *sp++ = tos; T = ld(T); NEXT;
-        CASE(EQZBR) NEED(2); a = S == T; sp--; tos = *--sp; goto zbr_a;
-        CASE(NEZBR) NEED(2); a = S != T; sp--; tos = *--sp; goto zbr_a;
-        CASE(LTZBR) NEED(2); a = S < T; sp--; tos = *--sp; goto zbr_a;
-        CASE(GTZBR) NEED(2); a = S > T; sp--; tos = *--sp; goto zbr_a;
-        CASE(ZEQZBR) NEED(1); a = T == 0; DROP1(); goto zbr_a;
-        CASE(LITEQZBR) NEED(1); a = T == *ip++; DROP1(); goto zbr_a;
-        CASE(LITNEZBR) NEED(1); a = T != *ip++; DROP1(); goto zbr_a;
-        CASE(LITLTZBR) NEED(1); a = T < *ip++; DROP1(); goto zbr_a;
-        CASE(LITGTZBR) NEED(1); a = T > *ip++; DROP1();
+            CASE(CELLPLUSFETCH) NEED(1);
+            a = (fbrl_cell)(U(T) + U(CELL));
+            CHKC(a, CELL);
+            T = ld(a);
+            NEXT;
+            CASE(DUPFETCH) NEED(1);
+            ROOM(1);
+            CHKC(T, CELL);
+            *sp++ = tos;
+            T = ld(T);
+            NEXT;
+            CASE(EQZBR) NEED(2);
+            a = S == T;
+            sp--;
+            tos = *--sp;
+            goto zbr_a;
+            CASE(NEZBR) NEED(2);
+            a = S != T;
+            sp--;
+            tos = *--sp;
+            goto zbr_a;
+            CASE(LTZBR) NEED(2);
+            a = S < T;
+            sp--;
+            tos = *--sp;
+            goto zbr_a;
+            CASE(GTZBR) NEED(2);
+            a = S > T;
+            sp--;
+            tos = *--sp;
+            goto zbr_a;
+            CASE(ZEQZBR) NEED(1);
+            a = T == 0;
+            DROP1();
+            goto zbr_a;
+            CASE(LITEQZBR) NEED(1);
+            a = T == *ip++;
+            DROP1();
+            goto zbr_a;
+            CASE(LITNEZBR) NEED(1);
+            a = T != *ip++;
+            DROP1();
+            goto zbr_a;
+            CASE(LITLTZBR) NEED(1);
+            a = T < *ip++;
+            DROP1();
+            goto zbr_a;
+            CASE(LITGTZBR) NEED(1);
+            a = T > *ip++;
+            DROP1();
         zbr_a:
-            if (a == 0) { POLL(); JUMP(*ip); } else ip++;
+            if (a == 0) {
+                POLL();
+                JUMP(*ip);
+            } else
+                ip++;
             NEXT;
 
-        /* stack */
-        CASE(DUP) NEED(1); ROOM(1); *sp++ = tos; NEXT;
-        CASE(DROP) NEED(1); DROP1(); NEXT;
-        CASE(SWAP) NEED(2); a = T; T = S; S = a; NEXT;
-        CASE(OVER) NEED(2); ROOM(1); PUSH(S); NEXT;
-        CASE(ROT) NEED(3); a = S3; S3 = S; S = T; T = a; NEXT;
-        CASE(MROT) NEED(3); a = T; T = S; S = S3; S3 = a; NEXT;
-        CASE(NIP) NEED(2); sp--; NEXT;
-        CASE(TUCK) NEED(2); ROOM(1); a = S; S = T; *sp++ = a; NEXT;
-        CASE(PICK)
-            NEED(1); ua = U(T);
-            if (ua >= U(sp - ds0)) THROW(FBRL_THROW_STACK_UNDERFLOW);
+            /* stack */
+            CASE(DUP) NEED(1);
+            ROOM(1);
+            *sp++ = tos;
+            NEXT;
+            CASE(DROP) NEED(1);
+            DROP1();
+            NEXT;
+            CASE(SWAP) NEED(2);
+            a = T;
+            T = S;
+            S = a;
+            NEXT;
+            CASE(OVER) NEED(2);
+            ROOM(1);
+            PUSH(S);
+            NEXT;
+            CASE(ROT) NEED(3);
+            a = S3;
+            S3 = S;
+            S = T;
+            T = a;
+            NEXT;
+            CASE(MROT) NEED(3);
+            a = T;
+            T = S;
+            S = S3;
+            S3 = a;
+            NEXT;
+            CASE(NIP) NEED(2);
+            sp--;
+            NEXT;
+            CASE(TUCK) NEED(2);
+            ROOM(1);
+            a = S;
+            S = T;
+            *sp++ = a;
+            NEXT;
+            CASE(PICK)
+            NEED(1);
+            ua = U(T);
+            if (ua >= U(sp - ds0))
+                THROW(FBRL_THROW_STACK_UNDERFLOW);
             T = sp[-1 - (fbrl_cell)ua];
             NEXT;
-        CASE(ROLL)
-            NEED(1); ua = U(T);
-            if (ua >= U(sp - ds0)) THROW(FBRL_THROW_STACK_UNDERFLOW);
+            CASE(ROLL)
+            NEED(1);
+            ua = U(T);
+            if (ua >= U(sp - ds0))
+                THROW(FBRL_THROW_STACK_UNDERFLOW);
             a = sp[-1 - (fbrl_cell)ua];
             memmove(sp - 1 - ua, sp - ua, (size_t)ua * sizeof(fbrl_cell));
             sp--;
             T = a;
             NEXT;
-        CASE(QDUP) NEED(1); if (T) { ROOM(1); *sp++ = tos; } NEXT;
-        CASE(TWODUP) NEED(2); ROOM(2); a = S; sp[0] = T; sp[1] = a; sp += 2; NEXT;
-        CASE(TWODROP) NEED(2); sp -= 2; tos = *sp; NEXT;
-        CASE(TWOSWAP) NEED(4); a = S4; b = S3; S4 = S; S3 = T; S = a; T = b; NEXT;
-        CASE(TWOOVER) NEED(4); ROOM(2); a = S4; b = S3; sp[0] = T; sp[1] = a; sp += 2; T = b; NEXT;
-        CASE(TWOROT)
-            NEED(6); a = S6; b = S5;
+            CASE(QDUP) NEED(1);
+            if (T) {
+                ROOM(1);
+                *sp++ = tos;
+            }
+            NEXT;
+            CASE(TWODUP) NEED(2);
+            ROOM(2);
+            a = S;
+            sp[0] = T;
+            sp[1] = a;
+            sp += 2;
+            NEXT;
+            CASE(TWODROP) NEED(2);
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(TWOSWAP) NEED(4);
+            a = S4;
+            b = S3;
+            S4 = S;
+            S3 = T;
+            S = a;
+            T = b;
+            NEXT;
+            CASE(TWOOVER) NEED(4);
+            ROOM(2);
+            a = S4;
+            b = S3;
+            sp[0] = T;
+            sp[1] = a;
+            sp += 2;
+            T = b;
+            NEXT;
+            CASE(TWOROT)
+            NEED(6);
+            a = S6;
+            b = S5;
             memmove(sp - 5, sp - 3, 3 * sizeof(fbrl_cell));
             sp[-2] = tos;
-            S = a; T = b;
+            S = a;
+            T = b;
             NEXT;
-        CASE(TWONIP) NEED(4); S4 = S; sp -= 2; NEXT;
-        CASE(DEPTH) ROOM(1); a = sp - ds0 + 1; PUSH(a); NEXT;
-        CASE(TOR) NEED(1); RROOM(1); *rp++ = tos; DROP1(); NEXT;
-        CASE(RFROM) RNEED(1); ROOM(1); PUSH(*--rp); NEXT;
-        CASE(RFETCH) RNEED(1); ROOM(1); PUSH(rp[-1]); NEXT;
-        CASE(TWOTOR) NEED(2); RROOM(2); rp[0] = S; rp[1] = T; rp += 2; sp -= 2; tos = *sp; NEXT;
-        CASE(TWORFROM) RNEED(2); ROOM(2); PUSH(rp[-2]); PUSH(rp[-1]); rp -= 2; NEXT;
-        CASE(TWORFETCH) RNEED(2); ROOM(2); PUSH(rp[-2]); PUSH(rp[-1]); NEXT;
-        CASE(RDROP) RNEED(1); rp--; NEXT;
-
-        /* arithmetic */
-        CASE(PLUS) NEED(2); T = (fbrl_cell)(U(S) + U(T)); sp--; NEXT;
-        CASE(MINUS) NEED(2); T = (fbrl_cell)(U(S) - U(T)); sp--; NEXT;
-        CASE(STAR) NEED(2); T = (fbrl_cell)(U(S) * U(T)); sp--; NEXT;
-        CASE(SLASH) NEED(2); if ((code = floordiv(S, T, &o1, &o2))) goto do_throw; T = o1; sp--; NEXT;
-        CASE(MOD) NEED(2); if ((code = floordiv(S, T, &o1, &o2))) goto do_throw; T = o2; sp--; NEXT;
-        CASE(SLASHMOD) NEED(2); if ((code = floordiv(S, T, &o1, &o2))) goto do_throw; S = o2; T = o1; NEXT;
-        CASE(STARSLASH) CASE(STARSLASHMOD)
-            NEED(3);
-            if ((code = fbrl__starslash(S3, S, T, &o1, &o2))) goto do_throw;
-            if (w == OP_STARSLASH) { sp -= 2; T = o1; } else { sp--; S = o2; T = o1; }
-            NEXT;
-        CASE(ONEPLUS) NEED(1); T = (fbrl_cell)(U(T) + 1); NEXT;
-        CASE(ONEMINUS) NEED(1); T = (fbrl_cell)(U(T) - 1); NEXT;
-        CASE(TWOSTAR) NEED(1); T = (fbrl_cell)(U(T) << 1); NEXT;
-        CASE(TWOSLASH) NEED(1); T = T < 0 ? (fbrl_cell)~(~U(T) >> 1) : (fbrl_cell)(U(T) >> 1); NEXT;
-        CASE(NEGATE) NEED(1); T = (fbrl_cell)(0 - U(T)); NEXT;
-        CASE(ABS) NEED(1); if (T < 0) T = (fbrl_cell)(0 - U(T)); NEXT;
-        CASE(MIN) NEED(2); if (S < T) T = S; sp--; NEXT;
-        CASE(MAX) NEED(2); if (S > T) T = S; sp--; NEXT;
-        CASE(AND) NEED(2); T &= S; sp--; NEXT;
-        CASE(OR) NEED(2); T |= S; sp--; NEXT;
-        CASE(XOR) NEED(2); T ^= S; sp--; NEXT;
-        CASE(INVERT) NEED(1); T = ~T; NEXT;
-        CASE(LSHIFT) NEED(2); T = U(T) >= (fbrl_ucell)CELL_BITS ? 0 : (fbrl_cell)(U(S) << U(T)); sp--; NEXT;
-        CASE(RSHIFT) NEED(2); T = U(T) >= (fbrl_ucell)CELL_BITS ? 0 : (fbrl_cell)(U(S) >> U(T)); sp--; NEXT;
-        CASE(MSTAR) NEED(2); fbrl__mstar(S, T, &o1, &o2); S = o1; T = o2; NEXT;
-        CASE(UMSTAR) NEED(2); fbrl__umul(U(S), U(T), &uo1, &uo2); S = (fbrl_cell)uo2; T = (fbrl_cell)uo1; NEXT;
-        CASE(UMSLASHMOD)
-            NEED(3);
-            if (T == 0) THROW(FBRL_THROW_DIV_ZERO);
-            if (U(S) >= U(T)) THROW(FBRL_THROW_RESULT_RANGE);
-            fbrl__udiv(U(S), U(S3), U(T), &uo1, &uo2);
-            sp--; S = (fbrl_cell)uo2; T = (fbrl_cell)uo1;
-            NEXT;
-        CASE(FMSLASHMOD) CASE(SMSLASHREM)
-            NEED(3);
-            if ((code = fbrl__dsdiv(S3, S, T, w == OP_FMSLASHMOD, &o1, &o2))) goto do_throw;
-            sp--; S = o2; T = o1;
-            NEXT;
-        CASE(CELLPLUS) NEED(1); T = (fbrl_cell)(U(T) + U(CELL)); NEXT;
-        CASE(CELLS) NEED(1); T = (fbrl_cell)(U(T) * U(CELL)); NEXT;
-        CASE(CHARPLUS) NEED(1); T = (fbrl_cell)(U(T) + 1); NEXT;
-        CASE(CHARS) NEED(1); NEXT;
-        CASE(EQ) NEED(2); T = FLAG(S == T); sp--; NEXT;
-        CASE(NE) NEED(2); T = FLAG(S != T); sp--; NEXT;
-        CASE(LT) NEED(2); T = FLAG(S < T); sp--; NEXT;
-        CASE(GT) NEED(2); T = FLAG(S > T); sp--; NEXT;
-        CASE(ULT) NEED(2); T = FLAG(U(S) < U(T)); sp--; NEXT;
-        CASE(UGT) NEED(2); T = FLAG(U(S) > U(T)); sp--; NEXT;
-        CASE(ZEQ) NEED(1); T = FLAG(T == 0); NEXT;
-        CASE(ZNE) NEED(1); T = FLAG(T != 0); NEXT;
-        CASE(ZLT) NEED(1); T = FLAG(T < 0); NEXT;
-        CASE(ZGT) NEED(1); T = FLAG(T > 0); NEXT;
-        CASE(WITHIN) NEED(3); a = FLAG(U(S3) - U(S) < U(T) - U(S)); sp -= 2; T = a; NEXT;
-        CASE(TRUE) ROOM(1); PUSH(-1); NEXT;
-        CASE(FALSE) ROOM(1); PUSH(0); NEXT;
-        CASE(BL) ROOM(1); PUSH(' '); NEXT;
-
-        /* doubles: low cell below, high cell on top */
-        CASE(STOD) NEED(1); ROOM(1); PUSH(T < 0 ? -1 : 0); NEXT;
-        CASE(DTOS) NEED(2); DROP1(); NEXT;
-        CASE(DPLUS) CASE(DMINUS) {
-            NEED(4);
-            fbrl_ucell al = U(S4), ah = U(S3), bl = U(S), bh = U(T);
-            if (w == OP_DMINUS) { bl = ~bl + 1; bh = ~bh + (bl == 0); }
-            fbrl_ucell l = al + bl;
-            S4 = (fbrl_cell)l;
-            T = (fbrl_cell)(ah + bh + (l < al));
+            CASE(TWONIP) NEED(4);
+            S4 = S;
             sp -= 2;
             NEXT;
-        }
-        CASE(DNEGATE) NEED(2); S = (fbrl_cell)(~U(S) + 1); T = (fbrl_cell)(~U(T) + (S == 0)); NEXT;
-        CASE(DABS) NEED(2); if (T < 0) { S = (fbrl_cell)(~U(S) + 1); T = (fbrl_cell)(~U(T) + (S == 0)); } NEXT;
-        CASE(DEQ) NEED(4); a = FLAG(S4 == S && S3 == T); sp -= 3; T = a; NEXT;
-        CASE(DLT) NEED(4);
-            a = FLAG(S3 < T || (S3 == T && U(S4) < U(S))); sp -= 3; T = a; NEXT;
-        CASE(DULT) NEED(4);
-            a = FLAG(U(S3) < U(T) || (S3 == T && U(S4) < U(S))); sp -= 3; T = a; NEXT;
-        CASE(DZEQ) NEED(2); a = FLAG(S == 0 && T == 0); sp--; T = a; NEXT;
-        CASE(DZLT) NEED(2); a = FLAG(T < 0); sp--; T = a; NEXT;
-        CASE(DTWOSTAR) NEED(2);
-            T = (fbrl_cell)((U(T) << 1) | (U(S) >> (CELL_BITS - 1))); S = (fbrl_cell)(U(S) << 1); NEXT;
-        CASE(DTWOSLASH) NEED(2);
-            S = (fbrl_cell)((U(S) >> 1) | (U(T) << (CELL_BITS - 1)));
-            T = T < 0 ? (fbrl_cell)~(~U(T) >> 1) : (fbrl_cell)(U(T) >> 1);
+            CASE(DEPTH) ROOM(1);
+            a = sp - ds0 + 1;
+            PUSH(a);
             NEXT;
-        CASE(DMAX) CASE(DMIN) {
-            NEED(4);
-            int lt = S3 < T || (S3 == T && U(S4) < U(S));
-            if ((w == OP_DMAX) == lt) { S4 = S; S3 = T; }
-            sp -= 2; tos = *sp;
+            CASE(TOR) NEED(1);
+            RROOM(1);
+            *rp++ = tos;
+            DROP1();
             NEXT;
-        }
-        CASE(MPLUS) {
-            NEED(3);
-            fbrl_ucell l = U(S3) + U(T);
-            a = (fbrl_cell)(U(S) + (T < 0 ? ~(fbrl_ucell)0 : 0) + (l < U(S3)));
-            S3 = (fbrl_cell)l;
-            sp--; T = a;
+            CASE(RFROM) RNEED(1);
+            ROOM(1);
+            PUSH(*--rp);
             NEXT;
-        }
-        CASE(MSTARSLASH)
-            NEED(4);
-            if ((code = fbrl__mstarslash(&S4, &S3, S, T))) goto do_throw;
-            sp -= 2; tos = *sp;
+            CASE(RFETCH) RNEED(1);
+            ROOM(1);
+            PUSH(rp[-1]);
+            NEXT;
+            CASE(TWOTOR) NEED(2);
+            RROOM(2);
+            rp[0] = S;
+            rp[1] = T;
+            rp += 2;
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(TWORFROM) RNEED(2);
+            ROOM(2);
+            PUSH(rp[-2]);
+            PUSH(rp[-1]);
+            rp -= 2;
+            NEXT;
+            CASE(TWORFETCH) RNEED(2);
+            ROOM(2);
+            PUSH(rp[-2]);
+            PUSH(rp[-1]);
+            NEXT;
+            CASE(RDROP) RNEED(1);
+            rp--;
             NEXT;
 
-        /* memory */
-        CASE(FETCH) NEED(1); CHKC(T, CELL); T = ld(T); NEXT;
-        CASE(STORE) NEED(2); CHKC(T, CELL); st(T, S); sp -= 2; tos = *sp; NEXT;
-        CASE(CFETCH) NEED(1); CHKC(T, 1); T = *(unsigned char *)T; NEXT;
-        CASE(CSTORE) NEED(2); CHKC(T, 1); *(unsigned char *)T = (unsigned char)S; sp -= 2; tos = *sp; NEXT;
-        CASE(PLUSSTORE) NEED(2); CHKC(T, CELL); st(T, (fbrl_cell)(U(ld(T)) + U(S))); sp -= 2; tos = *sp; NEXT;
-        CASE(TWOFETCH) NEED(1); ROOM(1); CHKC(T, 2 * CELL); a = T; *sp++ = ld(a + CELL); T = ld(a); NEXT;
-        CASE(TWOSTORE) NEED(3); CHKC(T, 2 * CELL); st(T, S); st(T + CELL, S3); sp -= 3; tos = *sp; NEXT;
-        CASE(WFETCH) { uint16_t v; NEED(1); CHKC(T, 2); memcpy(&v, (void *)T, 2); T = v; NEXT; }
-        CASE(WSTORE) { uint16_t v; NEED(2); CHKC(T, 2); v = (uint16_t)S; memcpy((void *)T, &v, 2); sp -= 2; tos = *sp; NEXT; }
-        CASE(COMMA) NEED(1); if ((code = fbrl__emit(vm, T))) goto do_throw; DROP1(); NEXT;
-        CASE(CCOMMA)
-            NEED(1); if ((code = fbrl__allot(vm, 1))) goto do_throw;
-            vm->here[-1] = (unsigned char)tos; DROP1();
+            /* arithmetic */
+            CASE(PLUS) NEED(2);
+            T = (fbrl_cell)(U(S) + U(T));
+            sp--;
             NEXT;
-        CASE(ALLOT) NEED(1); if ((code = fbrl__allot(vm, T))) goto do_throw; DROP1(); NEXT;
-        CASE(HERE) ROOM(1); PUSH((fbrl_cell)vm->here); vm->peep_end = NULL; NEXT;
-        CASE(ALIGN) if ((code = fbrl__align(vm))) goto do_throw; NEXT;
-        CASE(ALIGNED) NEED(1); T = (fbrl_cell)((U(T) + U(CELL) - 1) & ~(U(CELL) - 1)); NEXT;
-        CASE(UNUSED)
-            ROOM(1); PUSH((fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here)); NEXT;
-        CASE(PAD) ROOM(1); PUSH((fbrl_cell)vm->pad); NEXT;
-        CASE(FILL) CASE(ERASE) CASE(BLANK)
-            if (w == OP_FILL) { NEED(3); b = T; DROP1(); }
-            else { NEED(2); b = w == OP_BLANK ? ' ' : 0; }
-            if (T > 0) { CHK(S, T); memset((void *)S, (int)(unsigned char)b, (size_t)T); }
-            sp -= 2; tos = *sp;
+            CASE(MINUS) NEED(2);
+            T = (fbrl_cell)(U(S) - U(T));
+            sp--;
             NEXT;
-        CASE(MOVE) CASE(CMOVE) CASE(CMOVEUP)
+            CASE(STAR) NEED(2);
+            T = (fbrl_cell)(U(S) * U(T));
+            sp--;
+            NEXT;
+            CASE(SLASH) NEED(2);
+            if ((code = floordiv(S, T, &o1, &o2)))
+                goto do_throw;
+            T = o1;
+            sp--;
+            NEXT;
+            CASE(MOD) NEED(2);
+            if ((code = floordiv(S, T, &o1, &o2)))
+                goto do_throw;
+            T = o2;
+            sp--;
+            NEXT;
+            CASE(SLASHMOD) NEED(2);
+            if ((code = floordiv(S, T, &o1, &o2)))
+                goto do_throw;
+            S = o2;
+            T = o1;
+            NEXT;
+            CASE(STARSLASH) CASE(STARSLASHMOD) NEED(3);
+            if ((code = fbrl__starslash(S3, S, T, &o1, &o2)))
+                goto do_throw;
+            if (w == OP_STARSLASH) {
+                sp -= 2;
+                T = o1;
+            } else {
+                sp--;
+                S = o2;
+                T = o1;
+            }
+            NEXT;
+            CASE(ONEPLUS) NEED(1);
+            T = (fbrl_cell)(U(T) + 1);
+            NEXT;
+            CASE(ONEMINUS) NEED(1);
+            T = (fbrl_cell)(U(T) - 1);
+            NEXT;
+            CASE(TWOSTAR) NEED(1);
+            T = (fbrl_cell)(U(T) << 1);
+            NEXT;
+            CASE(TWOSLASH) NEED(1);
+            T = T < 0 ? (fbrl_cell) ~(~U(T) >> 1) : (fbrl_cell)(U(T) >> 1);
+            NEXT;
+            CASE(NEGATE) NEED(1);
+            T = (fbrl_cell)(0 - U(T));
+            NEXT;
+            CASE(ABS) NEED(1);
+            if (T < 0)
+                T = (fbrl_cell)(0 - U(T));
+            NEXT;
+            CASE(MIN) NEED(2);
+            if (S < T)
+                T = S;
+            sp--;
+            NEXT;
+            CASE(MAX) NEED(2);
+            if (S > T)
+                T = S;
+            sp--;
+            NEXT;
+            CASE(AND) NEED(2);
+            T &= S;
+            sp--;
+            NEXT;
+            CASE(OR) NEED(2);
+            T |= S;
+            sp--;
+            NEXT;
+            CASE(XOR) NEED(2);
+            T ^= S;
+            sp--;
+            NEXT;
+            CASE(INVERT) NEED(1);
+            T = ~T;
+            NEXT;
+            CASE(LSHIFT) NEED(2);
+            T = U(T) >= (fbrl_ucell)CELL_BITS ? 0 : (fbrl_cell)(U(S) << U(T));
+            sp--;
+            NEXT;
+            CASE(RSHIFT) NEED(2);
+            T = U(T) >= (fbrl_ucell)CELL_BITS ? 0 : (fbrl_cell)(U(S) >> U(T));
+            sp--;
+            NEXT;
+            CASE(MSTAR) NEED(2);
+            fbrl__mstar(S, T, &o1, &o2);
+            S = o1;
+            T = o2;
+            NEXT;
+            CASE(UMSTAR) NEED(2);
+            fbrl__umul(U(S), U(T), &uo1, &uo2);
+            S = (fbrl_cell)uo2;
+            T = (fbrl_cell)uo1;
+            NEXT;
+            CASE(UMSLASHMOD)
             NEED(3);
+            if (T == 0)
+                THROW(FBRL_THROW_DIV_ZERO);
+            if (U(S) >= U(T))
+                THROW(FBRL_THROW_RESULT_RANGE);
+            fbrl__udiv(U(S), U(S3), U(T), &uo1, &uo2);
+            sp--;
+            S = (fbrl_cell)uo2;
+            T = (fbrl_cell)uo1;
+            NEXT;
+            CASE(FMSLASHMOD) CASE(SMSLASHREM) NEED(3);
+            if ((code = fbrl__dsdiv(S3, S, T, w == OP_FMSLASHMOD, &o1, &o2)))
+                goto do_throw;
+            sp--;
+            S = o2;
+            T = o1;
+            NEXT;
+            CASE(CELLPLUS) NEED(1);
+            T = (fbrl_cell)(U(T) + U(CELL));
+            NEXT;
+            CASE(CELLS) NEED(1);
+            T = (fbrl_cell)(U(T) * U(CELL));
+            NEXT;
+            CASE(CHARPLUS) NEED(1);
+            T = (fbrl_cell)(U(T) + 1);
+            NEXT;
+            CASE(CHARS) NEED(1);
+            NEXT;
+            CASE(EQ) NEED(2);
+            T = FLAG(S == T);
+            sp--;
+            NEXT;
+            CASE(NE) NEED(2);
+            T = FLAG(S != T);
+            sp--;
+            NEXT;
+            CASE(LT) NEED(2);
+            T = FLAG(S < T);
+            sp--;
+            NEXT;
+            CASE(GT) NEED(2);
+            T = FLAG(S > T);
+            sp--;
+            NEXT;
+            CASE(ULT) NEED(2);
+            T = FLAG(U(S) < U(T));
+            sp--;
+            NEXT;
+            CASE(UGT) NEED(2);
+            T = FLAG(U(S) > U(T));
+            sp--;
+            NEXT;
+            CASE(ZEQ) NEED(1);
+            T = FLAG(T == 0);
+            NEXT;
+            CASE(ZNE) NEED(1);
+            T = FLAG(T != 0);
+            NEXT;
+            CASE(ZLT) NEED(1);
+            T = FLAG(T < 0);
+            NEXT;
+            CASE(ZGT) NEED(1);
+            T = FLAG(T > 0);
+            NEXT;
+            CASE(WITHIN) NEED(3);
+            a = FLAG(U(S3) - U(S) < U(T) - U(S));
+            sp -= 2;
+            T = a;
+            NEXT;
+            CASE(TRUE) ROOM(1);
+            PUSH(-1);
+            NEXT;
+            CASE(FALSE) ROOM(1);
+            PUSH(0);
+            NEXT;
+            CASE(BL) ROOM(1);
+            PUSH(' ');
+            NEXT;
+
+            /* doubles: low cell below, high cell on top */
+            CASE(STOD) NEED(1);
+            ROOM(1);
+            PUSH(T < 0 ? -1 : 0);
+            NEXT;
+            CASE(DTOS) NEED(2);
+            DROP1();
+            NEXT;
+            CASE(DPLUS) CASE(DMINUS)
+            {
+                NEED(4);
+                fbrl_ucell al = U(S4), ah = U(S3), bl = U(S), bh = U(T);
+                if (w == OP_DMINUS) {
+                    bl = ~bl + 1;
+                    bh = ~bh + (bl == 0);
+                }
+                fbrl_ucell l = al + bl;
+                S4 = (fbrl_cell)l;
+                T = (fbrl_cell)(ah + bh + (l < al));
+                sp -= 2;
+                NEXT;
+            }
+            CASE(DNEGATE) NEED(2);
+            S = (fbrl_cell)(~U(S) + 1);
+            T = (fbrl_cell)(~U(T) + (S == 0));
+            NEXT;
+            CASE(DABS) NEED(2);
+            if (T < 0) {
+                S = (fbrl_cell)(~U(S) + 1);
+                T = (fbrl_cell)(~U(T) + (S == 0));
+            }
+            NEXT;
+            CASE(DEQ) NEED(4);
+            a = FLAG(S4 == S && S3 == T);
+            sp -= 3;
+            T = a;
+            NEXT;
+            CASE(DLT) NEED(4);
+            a = FLAG(S3 < T || (S3 == T && U(S4) < U(S)));
+            sp -= 3;
+            T = a;
+            NEXT;
+            CASE(DULT) NEED(4);
+            a = FLAG(U(S3) < U(T) || (S3 == T && U(S4) < U(S)));
+            sp -= 3;
+            T = a;
+            NEXT;
+            CASE(DZEQ) NEED(2);
+            a = FLAG(S == 0 && T == 0);
+            sp--;
+            T = a;
+            NEXT;
+            CASE(DZLT) NEED(2);
+            a = FLAG(T < 0);
+            sp--;
+            T = a;
+            NEXT;
+            CASE(DTWOSTAR) NEED(2);
+            T = (fbrl_cell)((U(T) << 1) | (U(S) >> (CELL_BITS - 1)));
+            S = (fbrl_cell)(U(S) << 1);
+            NEXT;
+            CASE(DTWOSLASH) NEED(2);
+            S = (fbrl_cell)((U(S) >> 1) | (U(T) << (CELL_BITS - 1)));
+            T = T < 0 ? (fbrl_cell) ~(~U(T) >> 1) : (fbrl_cell)(U(T) >> 1);
+            NEXT;
+            CASE(DMAX) CASE(DMIN)
+            {
+                NEED(4);
+                int lt = S3 < T || (S3 == T && U(S4) < U(S));
+                if ((w == OP_DMAX) == lt) {
+                    S4 = S;
+                    S3 = T;
+                }
+                sp -= 2;
+                tos = *sp;
+                NEXT;
+            }
+            CASE(MPLUS)
+            {
+                NEED(3);
+                fbrl_ucell l = U(S3) + U(T);
+                a = (fbrl_cell)(U(S) + (T < 0 ? ~(fbrl_ucell)0 : 0) + (l < U(S3)));
+                S3 = (fbrl_cell)l;
+                sp--;
+                T = a;
+                NEXT;
+            }
+            CASE(MSTARSLASH)
+            NEED(4);
+            if ((code = fbrl__mstarslash(&S4, &S3, S, T)))
+                goto do_throw;
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+
+            /* memory */
+            CASE(FETCH) NEED(1);
+            CHKC(T, CELL);
+            T = ld(T);
+            NEXT;
+            CASE(STORE) NEED(2);
+            CHKC(T, CELL);
+            st(T, S);
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(CFETCH) NEED(1);
+            CHKC(T, 1);
+            T = *(unsigned char *)T;
+            NEXT;
+            CASE(CSTORE) NEED(2);
+            CHKC(T, 1);
+            *(unsigned char *)T = (unsigned char)S;
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(PLUSSTORE) NEED(2);
+            CHKC(T, CELL);
+            st(T, (fbrl_cell)(U(ld(T)) + U(S)));
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(TWOFETCH) NEED(1);
+            ROOM(1);
+            CHKC(T, 2 * CELL);
+            a = T;
+            *sp++ = ld(a + CELL);
+            T = ld(a);
+            NEXT;
+            CASE(TWOSTORE) NEED(3);
+            CHKC(T, 2 * CELL);
+            st(T, S);
+            st(T + CELL, S3);
+            sp -= 3;
+            tos = *sp;
+            NEXT;
+            CASE(WFETCH)
+            {
+                uint16_t v;
+                NEED(1);
+                CHKC(T, 2);
+                memcpy(&v, (void *)T, 2);
+                T = v;
+                NEXT;
+            }
+            CASE(WSTORE)
+            {
+                uint16_t v;
+                NEED(2);
+                CHKC(T, 2);
+                v = (uint16_t)S;
+                memcpy((void *)T, &v, 2);
+                sp -= 2;
+                tos = *sp;
+                NEXT;
+            }
+            CASE(COMMA) NEED(1);
+            if ((code = fbrl__emit(vm, T)))
+                goto do_throw;
+            DROP1();
+            NEXT;
+            CASE(CCOMMA)
+            NEED(1);
+            if ((code = fbrl__allot(vm, 1)))
+                goto do_throw;
+            vm->here[-1] = (unsigned char)tos;
+            DROP1();
+            NEXT;
+            CASE(ALLOT) NEED(1);
+            if ((code = fbrl__allot(vm, T)))
+                goto do_throw;
+            DROP1();
+            NEXT;
+            CASE(HERE) ROOM(1);
+            PUSH((fbrl_cell)vm->here);
+            vm->peep_end = NULL;
+            NEXT;
+            CASE(ALIGN) if ((code = fbrl__align(vm))) goto do_throw;
+            NEXT;
+            CASE(ALIGNED) NEED(1);
+            T = (fbrl_cell)((U(T) + U(CELL) - 1) & ~(U(CELL) - 1));
+            NEXT;
+            CASE(UNUSED)
+            ROOM(1);
+            PUSH((fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here));
+            NEXT;
+            CASE(PAD) ROOM(1);
+            PUSH((fbrl_cell)vm->pad);
+            NEXT;
+            CASE(FILL) CASE(ERASE) CASE(BLANK) if (w == OP_FILL)
+            {
+                NEED(3);
+                b = T;
+                DROP1();
+            }
+            else
+            {
+                NEED(2);
+                b = w == OP_BLANK ? ' ' : 0;
+            }
             if (T > 0) {
-                CHK(S3, T); CHK(S, T);
-                if (w == OP_MOVE) memmove((void *)S, (void *)S3, (size_t)T);
+                CHK(S, T);
+                memset((void *)S, (int)(unsigned char)b, (size_t)T);
+            }
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(MOVE) CASE(CMOVE) CASE(CMOVEUP) NEED(3);
+            if (T > 0) {
+                CHK(S3, T);
+                CHK(S, T);
+                if (w == OP_MOVE)
+                    memmove((void *)S, (void *)S3, (size_t)T);
                 else if (w == OP_CMOVE) {
-                    unsigned char *d = (unsigned char *)S; const unsigned char *s = (const unsigned char *)S3;
-                    for (fbrl_cell i = 0; i < T; i++) d[i] = s[i];
+                    unsigned char *d = (unsigned char *)S;
+                    const unsigned char *s = (const unsigned char *)S3;
+                    for (fbrl_cell i = 0; i < T; i++)
+                        d[i] = s[i];
                 } else {
-                    unsigned char *d = (unsigned char *)S; const unsigned char *s = (const unsigned char *)S3;
-                    for (fbrl_cell i = T; i-- > 0;) d[i] = s[i];
+                    unsigned char *d = (unsigned char *)S;
+                    const unsigned char *s = (const unsigned char *)S3;
+                    for (fbrl_cell i = T; i-- > 0;)
+                        d[i] = s[i];
                 }
             }
-            sp -= 3; tos = *sp;
+            sp -= 3;
+            tos = *sp;
             NEXT;
-        CASE(COUNT) NEED(1); ROOM(1); CHKC(T, 1); a = T; *sp++ = a + 1; T = *(unsigned char *)a; NEXT;
-        CASE(COMPARE) CASE(SEARCH) CASE(SLASHSTRING) CASE(MTRAILING)
-            CALLC(fbrl__w_string(vm, (int)w));
+            CASE(COUNT) NEED(1);
+            ROOM(1);
+            CHKC(T, 1);
+            a = T;
+            *sp++ = a + 1;
+            T = *(unsigned char *)a;
+            NEXT;
+            CASE(COMPARE) CASE(SEARCH) CASE(SLASHSTRING) CASE(MTRAILING) CALLC(fbrl__w_string(vm, (int)w));
             NEXT;
 
-        /* compiling words */
-        CASE(IF) CASE(ELSE) CASE(THEN) CASE(BEGIN) CASE(UNTIL) CASE(AGAIN)
-        CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP)
-        CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE)
-        CASE(DOES)
-            CALLC(fbrl__w_control(vm, (int)w));
+            /* compiling words */
+            CASE(IF)
+            CASE(ELSE)
+            CASE(THEN) CASE(BEGIN) CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO)
+                CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF)
+                    CASE(ENDCASE) CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
-        CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL)); NEXT;
-        CASE(NONAME) ROOM(1); CALLC(fbrl__colon(vm, 1, &o1)); PUSH(o1); NEXT;
-        CASE(SEMI) CALLC(fbrl__semicolon(vm)); NEXT;
-        CASE(CREATE) CASE(VARIABLE) CASE(TWOVARIABLE) CASE(CONSTANT) CASE(TWOCONSTANT)
-        CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER)
-        CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE)
-            CALLC(fbrl__w_define(vm, (int)w));
+            CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
-        CASE(TO) CASE(IS) CASE(ACTIONOF) CASE(POSTPONE) CASE(BCOMPILE) CASE(BTICK)
-        CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN)
-        CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ)
-        CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL)
-        CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE) CASE(TONUMBER)
-        CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL) CASE(ENVQ)
-        CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE)
-        CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED) CASE(BUNDEFINED)
-        CASE(SAVEINPUT) CASE(RESTOREINPUT)
-            CALLC(fbrl__w_parse(vm, (int)w));
+            CASE(NONAME) ROOM(1);
+            CALLC(fbrl__colon(vm, 1, &o1));
+            PUSH(o1);
             NEXT;
-        CASE(LBRACKET) *vm->state = 0; NEXT;
-        CASE(RBRACKET) *vm->state = -1; NEXT;
-        CASE(EXECUTE) NEED(1); w = tos; DROP1(); goto execute_xt;
-        CASE(STATE) ROOM(1); PUSH((fbrl_cell)vm->state); NEXT;
-        CASE(BASE) ROOM(1); PUSH((fbrl_cell)vm->base); NEXT;
-        CASE(TOIN) ROOM(1); PUSH((fbrl_cell)vm->toin); NEXT;
-        CASE(DECIMAL) *vm->base = 10; NEXT;
-        CASE(HEX) *vm->base = 16; NEXT;
-        CASE(SOURCE) {
-            ROOM(2);
-            const fbrl_src *s = vm->nsrc ? &vm->src[vm->nsrc - 1] : NULL;
-            PUSH(s ? (fbrl_cell)s->buf : (fbrl_cell)vm->wordbuf);
-            PUSH(s ? (fbrl_cell)s->len : 0);
+            CASE(SEMI) CALLC(fbrl__semicolon(vm));
             NEXT;
-        }
-        CASE(SOURCEID) ROOM(1); PUSH(vm->nsrc ? vm->src[vm->nsrc - 1].id : 0); NEXT;
-        CASE(EVALUATE)
+            CASE(CREATE)
+            CASE(VARIABLE)
+            CASE(TWOVARIABLE) CASE(CONSTANT) CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER)
+                CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE)
+                    CALLC(fbrl__w_define(vm, (int)w));
+            NEXT;
+            CASE(TO)
+            CASE(IS)
+            CASE(ACTIONOF) CASE(POSTPONE) CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR)
+                CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE)
+                    CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND)
+                        CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA)
+                            CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE)
+                                CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH)
+                                    CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED)
+                                        CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
+                                            CALLC(fbrl__w_parse(vm, (int)w));
+            NEXT;
+            CASE(LBRACKET) *vm->state = 0;
+            NEXT;
+            CASE(RBRACKET) *vm->state = -1;
+            NEXT;
+            CASE(EXECUTE) NEED(1);
+            w = tos;
+            DROP1();
+            goto execute_xt;
+            CASE(STATE) ROOM(1);
+            PUSH((fbrl_cell)vm->state);
+            NEXT;
+            CASE(BASE) ROOM(1);
+            PUSH((fbrl_cell)vm->base);
+            NEXT;
+            CASE(TOIN) ROOM(1);
+            PUSH((fbrl_cell)vm->toin);
+            NEXT;
+            CASE(DECIMAL) *vm->base = 10;
+            NEXT;
+            CASE(HEX) *vm->base = 16;
+            NEXT;
+            CASE(SOURCE)
+            {
+                ROOM(2);
+                const fbrl_src *s = vm->nsrc ? &vm->src[vm->nsrc - 1] : NULL;
+                PUSH(s ? (fbrl_cell)s->buf : (fbrl_cell)vm->wordbuf);
+                PUSH(s ? (fbrl_cell)s->len : 0);
+                NEXT;
+            }
+            CASE(SOURCEID) ROOM(1);
+            PUSH(vm->nsrc ? vm->src[vm->nsrc - 1].id : 0);
+            NEXT;
+            CASE(EVALUATE)
             NEED(2);
-            a = S; b = T; sp -= 2; tos = *sp;
-            if (b < 0) THROW(FBRL_THROW_BAD_NUMBER);
+            a = S;
+            b = T;
+            sp -= 2;
+            tos = *sp;
+            if (b < 0)
+                THROW(FBRL_THROW_BAD_NUMBER);
             CHK(a, b);
             CALLC(fbrl__evaluate(vm, (char *)a, (size_t)b));
             NEXT;
-        CASE(INCLUDED) CASE(REQUIRED)
-            NEED(2);
-            a = S; b = T; sp -= 2; tos = *sp;
-            if (b < 0) THROW(FBRL_THROW_BAD_NUMBER);
+            CASE(INCLUDED) CASE(REQUIRED) NEED(2);
+            a = S;
+            b = T;
+            sp -= 2;
+            tos = *sp;
+            if (b < 0)
+                THROW(FBRL_THROW_BAD_NUMBER);
             CHK(a, b);
             CALLC(fbrl__included(vm, (const char *)a, (size_t)b, w == OP_REQUIRED));
             NEXT;
-        CASE(QUIT) THROW(THROW_QUIT);
-        CASE(ABORT) THROW(FBRL_THROW_ABORT);
-        CASE(BYE) vm->bye = 1; THROW(THROW_BYE);
-        CASE(CATCH)
-            NEED(1); RROOM(6);
-            w = tos; DROP1(); /* the cell below is in memory too (*sp) */
+            CASE(QUIT) THROW(THROW_QUIT);
+            CASE(ABORT) THROW(FBRL_THROW_ABORT);
+            CASE(BYE) vm->bye = 1;
+            THROW(THROW_BYE);
+            CASE(CATCH)
+            NEED(1);
+            RROOM(6);
+            w = tos;
+            DROP1(); /* the cell below is in memory too (*sp) */
             *fp = ftos;
-            rp[0] = (fbrl_cell)ip; rp[1] = sp + 1 - ds0; rp[2] = fp + 1 - fs0; rp[3] = vm->handler; rp[4] = 0;
+            rp[0] = (fbrl_cell)ip;
+            rp[1] = sp + 1 - ds0;
+            rp[2] = fp + 1 - fs0;
+            rp[3] = vm->handler;
+            rp[4] = 0;
             rp += 5;
             vm->handler = rp - rs0;
             ip = (const fbrl_cell *)vm->guard_addr + 1; /* the CATCHEND cell */
             goto execute_xt;
-        CASE(THROW)
+            CASE(THROW)
             NEED(1);
-            a = tos; DROP1();
-            if (a == 0) NEXT;
-            if (a == THROW_BYE) a = -1;
+            a = tos;
+            DROP1();
+            if (a == 0)
+                NEXT;
+            if (a == THROW_BYE)
+                a = -1;
             THROW((int)(a < -2000000000 || a > 2000000000 ? FBRL_THROW_BAD_NUMBER : a));
 
-        /* I/O, output, tools, facility: helpers */
-        CASE(EMIT) { char ch; NEED(1); ch = (char)tos; DROP1(); fbrl__write(vm, &ch, 1); NEXT; }
-        CASE(TYPE)
+            /* I/O, output, tools, facility: helpers */
+            CASE(EMIT)
+            {
+                char ch;
+                NEED(1);
+                ch = (char)tos;
+                DROP1();
+                fbrl__write(vm, &ch, 1);
+                NEXT;
+            }
+            CASE(TYPE)
             NEED(2);
-            if (T > 0) { CHK(S, T); fbrl__write(vm, (const char *)S, (size_t)T); }
-            sp -= 2; tos = *sp;
+            if (T > 0) {
+                CHK(S, T);
+                fbrl__write(vm, (const char *)S, (size_t)T);
+            }
+            sp -= 2;
+            tos = *sp;
             NEXT;
-        CASE(CR) fbrl__write(vm, "\n", 1); NEXT;
-        CASE(SPACE) fbrl__write(vm, " ", 1); NEXT;
-        CASE(SPACES) NEED(1); a = tos; DROP1(); CALLC(fbrl__spaces(vm, a)); NEXT;
-        CASE(KEY) CASE(KEYQ) CASE(ACCEPT) CASE(DOT) CASE(UDOT) CASE(DOTR) CASE(UDOTR)
-        CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM) CASE(NUM)
-        CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS)
-        CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS)
-        CASE(FDOT) CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT)
-            CALLC(fbrl__w_io(vm, (int)w));
+            CASE(CR) fbrl__write(vm, "\n", 1);
+            NEXT;
+            CASE(SPACE) fbrl__write(vm, " ", 1);
+            NEXT;
+            CASE(SPACES) NEED(1);
+            a = tos;
+            DROP1();
+            CALLC(fbrl__spaces(vm, a));
+            NEXT;
+            CASE(KEY)
+            CASE(KEYQ)
+            CASE(ACCEPT) CASE(DOT) CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT)
+                CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN)
+                    CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT)
+                        CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
-
-        /* floating point */
-        CASE(FPLUS) FNEED(2); FBIN(r1 + r2, 43); NEXT;
-        CASE(FMINUS) FNEED(2); FBIN(r1 - r2, 43); NEXT;
-        CASE(FSTAR) FNEED(2); FBIN(r1 * r2, 43); NEXT;
-        CASE(FSLASH) FNEED(2); if (ftos == 0) THROW(FBRL_THROW_FDIV_ZERO); FBIN(r1 / r2, 43); NEXT;
-        CASE(FNEGATE) FNEED(1); ftos = -ftos; NEXT;
-        CASE(FABS) FNEED(1); ftos = fabs(ftos); NEXT;
-        CASE(FMIN) FNEED(2); if (fp[-1] < ftos) ftos = fp[-1]; fp--; NEXT;
-        CASE(FMAX) FNEED(2); if (fp[-1] > ftos) ftos = fp[-1]; fp--; NEXT;
-        CASE(FSQRT) FNEED(1); FRES(sqrt(ftos), 46); NEXT;
-        CASE(FSIN) FNEED(1); FRES(sin(ftos), 46); NEXT;
-        CASE(FCOS) FNEED(1); FRES(cos(ftos), 46); NEXT;
-        CASE(FTAN) FNEED(1); FRES(tan(ftos), 46); NEXT;
-        CASE(FSINCOS) FNEED(1); FROOM(1); fa = ftos; *fp++ = sin(fa); ftos = cos(fa); NEXT;
-        CASE(FASIN) FNEED(1); FRES(asin(ftos), 46); NEXT;
-        CASE(FACOS) FNEED(1); FRES(acos(ftos), 46); NEXT;
-        CASE(FATAN) FNEED(1); FRES(atan(ftos), 46); NEXT;
-        CASE(FATAN2) FNEED(2); FBIN(atan2(r1, r2), 46); NEXT;
-        CASE(FSINH) FNEED(1); FRES(sinh(ftos), 43); NEXT;
-        CASE(FCOSH) FNEED(1); FRES(cosh(ftos), 43); NEXT;
-        CASE(FTANH) FNEED(1); FRES(tanh(ftos), 46); NEXT;
-        CASE(FASINH) FNEED(1); FRES(asinh(ftos), 46); NEXT;
-        CASE(FACOSH) FNEED(1); FRES(acosh(ftos), 46); NEXT;
-        CASE(FATANH) FNEED(1); FRES(atanh(ftos), 46); NEXT;
-        CASE(FEXP) FNEED(1); FRES(exp(ftos), 43); NEXT;
-        CASE(FEXPM1) FNEED(1); FRES(expm1(ftos), 43); NEXT;
-        CASE(FLN) FNEED(1); FRES(log(ftos), 46); NEXT;
-        CASE(FLNP1) FNEED(1); FRES(log1p(ftos), 46); NEXT;
-        CASE(FLOG) FNEED(1); FRES(log10(ftos), 46); NEXT;
-        CASE(FALOG) FNEED(1); FRES(pow(10.0, ftos), 43); NEXT;
-        CASE(FPOW) FNEED(2); FBIN(pow(r1, r2), 46); NEXT;
-        CASE(FLOOR) FNEED(1); ftos = floor(ftos); NEXT;
-        CASE(FROUND) FNEED(1); ftos = nearbyint(ftos); NEXT;
-        CASE(FTRUNC) FNEED(1); ftos = trunc(ftos); NEXT;
-        CASE(FZEQ) FNEED(1); ROOM(1); fa = ftos; FDROP1(); PUSH(FLAG(fa == 0)); NEXT;
-        CASE(FZLT) FNEED(1); ROOM(1); fa = ftos; FDROP1(); PUSH(FLAG(fa < 0)); NEXT;
-        CASE(FZGT) FNEED(1); ROOM(1); fa = ftos; FDROP1(); PUSH(FLAG(fa > 0)); NEXT;
-        CASE(FLT) FNEED(2); ROOM(1); a = FLAG(fp[-1] < ftos); fp -= 2; ftos = *fp; PUSH(a); NEXT;
-        CASE(FGT) FNEED(2); ROOM(1); a = FLAG(fp[-1] > ftos); fp -= 2; ftos = *fp; PUSH(a); NEXT;
-        CASE(FEQ) FNEED(2); ROOM(1); a = FLAG(fp[-1] == ftos); fp -= 2; ftos = *fp; PUSH(a); NEXT;
-        CASE(FPROX) {
-            FNEED(3); ROOM(1);
-            double x = fp[-2], y = fp[-1], e = ftos;
-            int r;
-            fp -= 3; ftos = *fp;
-            if (e > 0) r = fabs(x - y) < e;
-            else if (e == 0) r = memcmp(&x, &y, sizeof x) == 0;
-            else r = fabs(x - y) < -e * (fabs(x) + fabs(y));
-            PUSH(FLAG(r));
+            /* floating point */
+            CASE(FPLUS) FNEED(2);
+            FBIN(r1 + r2, 43);
             NEXT;
-        }
-        CASE(FFETCH) CASE(DFFETCH)
-            NEED(1); FROOM(1); CHKC(T, (fbrl_cell)sizeof(double)); FPUSH(ldf(T)); DROP1(); NEXT;
-        CASE(FSTORE) CASE(DFSTORE)
-            NEED(1); FNEED(1); CHKC(T, (fbrl_cell)sizeof(double)); stf(T, ftos); DROP1(); FDROP1(); NEXT;
-        CASE(SFFETCH) { float f; NEED(1); FROOM(1); CHKC(T, 4); memcpy(&f, (void *)T, 4); DROP1(); FPUSH(f); NEXT; }
-        CASE(SFSTORE) {
-            float f; NEED(1); FNEED(1); CHKC(T, 4);
-            if (fabs(ftos) > 3.4028234663852886e38) THROW(FBRL_THROW_FRESULT_RANGE);
-            f = (float)ftos; memcpy((void *)T, &f, 4); DROP1(); FDROP1(); NEXT;
-        }
-        CASE(FDUP) FNEED(1); FROOM(1); *fp++ = ftos; NEXT;
-        CASE(FDROP) FNEED(1); FDROP1(); NEXT;
-        CASE(FSWAP) FNEED(2); fa = ftos; ftos = fp[-1]; fp[-1] = fa; NEXT;
-        CASE(FOVER) FNEED(2); FROOM(1); FPUSH(fp[-1]); NEXT;
-        CASE(FROT) FNEED(3); fa = fp[-2]; fp[-2] = fp[-1]; fp[-1] = ftos; ftos = fa; NEXT;
-        CASE(FNIP) FNEED(2); fp--; NEXT;
-        CASE(FTUCK) FNEED(2); FROOM(1); fa = fp[-1]; fp[-1] = ftos; *fp++ = fa; NEXT;
-        CASE(FPICK)
-            NEED(1); ua = U(tos);
-            if (ua >= U(fp - fs0 + 1)) THROW(FBRL_THROW_FSTACK_UNDERFLOW);
-            FROOM(1); DROP1();
+            CASE(FMINUS) FNEED(2);
+            FBIN(r1 - r2, 43);
+            NEXT;
+            CASE(FSTAR) FNEED(2);
+            FBIN(r1 * r2, 43);
+            NEXT;
+            CASE(FSLASH) FNEED(2);
+            if (ftos == 0)
+                THROW(FBRL_THROW_FDIV_ZERO);
+            FBIN(r1 / r2, 43);
+            NEXT;
+            CASE(FNEGATE) FNEED(1);
+            ftos = -ftos;
+            NEXT;
+            CASE(FABS) FNEED(1);
+            ftos = fabs(ftos);
+            NEXT;
+            CASE(FMIN) FNEED(2);
+            if (fp[-1] < ftos)
+                ftos = fp[-1];
+            fp--;
+            NEXT;
+            CASE(FMAX) FNEED(2);
+            if (fp[-1] > ftos)
+                ftos = fp[-1];
+            fp--;
+            NEXT;
+            CASE(FSQRT) FNEED(1);
+            FRES(sqrt(ftos), 46);
+            NEXT;
+            CASE(FSIN) FNEED(1);
+            FRES(sin(ftos), 46);
+            NEXT;
+            CASE(FCOS) FNEED(1);
+            FRES(cos(ftos), 46);
+            NEXT;
+            CASE(FTAN) FNEED(1);
+            FRES(tan(ftos), 46);
+            NEXT;
+            CASE(FSINCOS) FNEED(1);
+            FROOM(1);
+            fa = ftos;
+            *fp++ = sin(fa);
+            ftos = cos(fa);
+            NEXT;
+            CASE(FASIN) FNEED(1);
+            FRES(asin(ftos), 46);
+            NEXT;
+            CASE(FACOS) FNEED(1);
+            FRES(acos(ftos), 46);
+            NEXT;
+            CASE(FATAN) FNEED(1);
+            FRES(atan(ftos), 46);
+            NEXT;
+            CASE(FATAN2) FNEED(2);
+            FBIN(atan2(r1, r2), 46);
+            NEXT;
+            CASE(FSINH) FNEED(1);
+            FRES(sinh(ftos), 43);
+            NEXT;
+            CASE(FCOSH) FNEED(1);
+            FRES(cosh(ftos), 43);
+            NEXT;
+            CASE(FTANH) FNEED(1);
+            FRES(tanh(ftos), 46);
+            NEXT;
+            CASE(FASINH) FNEED(1);
+            FRES(asinh(ftos), 46);
+            NEXT;
+            CASE(FACOSH) FNEED(1);
+            FRES(acosh(ftos), 46);
+            NEXT;
+            CASE(FATANH) FNEED(1);
+            FRES(atanh(ftos), 46);
+            NEXT;
+            CASE(FEXP) FNEED(1);
+            FRES(exp(ftos), 43);
+            NEXT;
+            CASE(FEXPM1) FNEED(1);
+            FRES(expm1(ftos), 43);
+            NEXT;
+            CASE(FLN) FNEED(1);
+            FRES(log(ftos), 46);
+            NEXT;
+            CASE(FLNP1) FNEED(1);
+            FRES(log1p(ftos), 46);
+            NEXT;
+            CASE(FLOG) FNEED(1);
+            FRES(log10(ftos), 46);
+            NEXT;
+            CASE(FALOG) FNEED(1);
+            FRES(pow(10.0, ftos), 43);
+            NEXT;
+            CASE(FPOW) FNEED(2);
+            FBIN(pow(r1, r2), 46);
+            NEXT;
+            CASE(FLOOR) FNEED(1);
+            ftos = floor(ftos);
+            NEXT;
+            CASE(FROUND) FNEED(1);
+            ftos = nearbyint(ftos);
+            NEXT;
+            CASE(FTRUNC) FNEED(1);
+            ftos = trunc(ftos);
+            NEXT;
+            CASE(FZEQ) FNEED(1);
+            ROOM(1);
+            fa = ftos;
+            FDROP1();
+            PUSH(FLAG(fa == 0));
+            NEXT;
+            CASE(FZLT) FNEED(1);
+            ROOM(1);
+            fa = ftos;
+            FDROP1();
+            PUSH(FLAG(fa < 0));
+            NEXT;
+            CASE(FZGT) FNEED(1);
+            ROOM(1);
+            fa = ftos;
+            FDROP1();
+            PUSH(FLAG(fa > 0));
+            NEXT;
+            CASE(FLT) FNEED(2);
+            ROOM(1);
+            a = FLAG(fp[-1] < ftos);
+            fp -= 2;
+            ftos = *fp;
+            PUSH(a);
+            NEXT;
+            CASE(FGT) FNEED(2);
+            ROOM(1);
+            a = FLAG(fp[-1] > ftos);
+            fp -= 2;
+            ftos = *fp;
+            PUSH(a);
+            NEXT;
+            CASE(FEQ) FNEED(2);
+            ROOM(1);
+            a = FLAG(fp[-1] == ftos);
+            fp -= 2;
+            ftos = *fp;
+            PUSH(a);
+            NEXT;
+            CASE(FPROX)
+            {
+                FNEED(3);
+                ROOM(1);
+                double x = fp[-2], y = fp[-1], e = ftos;
+                int r;
+                fp -= 3;
+                ftos = *fp;
+                if (e > 0)
+                    r = fabs(x - y) < e;
+                else if (e == 0)
+                    r = memcmp(&x, &y, sizeof x) == 0;
+                else
+                    r = fabs(x - y) < -e * (fabs(x) + fabs(y));
+                PUSH(FLAG(r));
+                NEXT;
+            }
+            CASE(FFETCH) CASE(DFFETCH) NEED(1);
+            FROOM(1);
+            CHKC(T, (fbrl_cell)sizeof(double));
+            FPUSH(ldf(T));
+            DROP1();
+            NEXT;
+            CASE(FSTORE) CASE(DFSTORE) NEED(1);
+            FNEED(1);
+            CHKC(T, (fbrl_cell)sizeof(double));
+            stf(T, ftos);
+            DROP1();
+            FDROP1();
+            NEXT;
+            CASE(SFFETCH)
+            {
+                float f;
+                NEED(1);
+                FROOM(1);
+                CHKC(T, 4);
+                memcpy(&f, (void *)T, 4);
+                DROP1();
+                FPUSH(f);
+                NEXT;
+            }
+            CASE(SFSTORE)
+            {
+                float f;
+                NEED(1);
+                FNEED(1);
+                CHKC(T, 4);
+                if (fabs(ftos) > 3.4028234663852886e38)
+                    THROW(FBRL_THROW_FRESULT_RANGE);
+                f = (float)ftos;
+                memcpy((void *)T, &f, 4);
+                DROP1();
+                FDROP1();
+                NEXT;
+            }
+            CASE(FDUP) FNEED(1);
+            FROOM(1);
+            *fp++ = ftos;
+            NEXT;
+            CASE(FDROP) FNEED(1);
+            FDROP1();
+            NEXT;
+            CASE(FSWAP) FNEED(2);
+            fa = ftos;
+            ftos = fp[-1];
+            fp[-1] = fa;
+            NEXT;
+            CASE(FOVER) FNEED(2);
+            FROOM(1);
+            FPUSH(fp[-1]);
+            NEXT;
+            CASE(FROT) FNEED(3);
+            fa = fp[-2];
+            fp[-2] = fp[-1];
+            fp[-1] = ftos;
+            ftos = fa;
+            NEXT;
+            CASE(FNIP) FNEED(2);
+            fp--;
+            NEXT;
+            CASE(FTUCK) FNEED(2);
+            FROOM(1);
+            fa = fp[-1];
+            fp[-1] = ftos;
+            *fp++ = fa;
+            NEXT;
+            CASE(FPICK)
+            NEED(1);
+            ua = U(tos);
+            if (ua >= U(fp - fs0 + 1))
+                THROW(FBRL_THROW_FSTACK_UNDERFLOW);
+            FROOM(1);
+            DROP1();
             FPUSH(ua == 0 ? ftos : fp[-(fbrl_cell)ua]);
             NEXT;
-        CASE(FDEPTH) ROOM(1); PUSH(fp - fs0 + 1); NEXT;
-        CASE(FTOS)
-            FNEED(1); ROOM(1);
+            CASE(FDEPTH) ROOM(1);
+            PUSH(fp - fs0 + 1);
+            NEXT;
+            CASE(FTOS)
+            FNEED(1);
+            ROOM(1);
             fa = trunc(ftos);
-            if (!(fa >= -9.2233720368547758e18 && fa < 9.2233720368547758e18)) THROW(FBRL_THROW_RESULT_RANGE);
+            if (!(fa >= -9.2233720368547758e18 && fa < 9.2233720368547758e18))
+                THROW(FBRL_THROW_RESULT_RANGE);
             FDROP1();
             PUSH((fbrl_cell)fa);
             NEXT;
-        CASE(STOF) NEED(1); FROOM(1); FPUSH((double)tos); DROP1(); NEXT;
-        CASE(DTOF) NEED(2); FROOM(1); FPUSH(fbrl__d_to_f(S, T)); sp -= 2; tos = *sp; NEXT;
-        CASE(FTOD)
-            FNEED(1); ROOM(2);
-            if ((code = fbrl__f_to_d(ftos, &o1, &o2))) goto do_throw;
-            FDROP1(); PUSH(o1); PUSH(o2);
+            CASE(STOF) NEED(1);
+            FROOM(1);
+            FPUSH((double)tos);
+            DROP1();
             NEXT;
-        CASE(FLOATS) CASE(DFLOATS) NEED(1); T = (fbrl_cell)(U(T) * sizeof(double)); NEXT;
-        CASE(FLOATPLUS) CASE(DFLOATPLUS) NEED(1); T = (fbrl_cell)(U(T) + sizeof(double)); NEXT;
-        CASE(SFLOATS) NEED(1); T = (fbrl_cell)(U(T) * 4); NEXT;
-        CASE(SFLOATPLUS) NEED(1); T = (fbrl_cell)(U(T) + 4); NEXT;
-        CASE(FALIGN) CASE(DFALIGN) CASE(SFALIGN)
-            ua = w == OP_SFALIGN ? 4 : sizeof(double);
+            CASE(DTOF) NEED(2);
+            FROOM(1);
+            FPUSH(fbrl__d_to_f(S, T));
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(FTOD)
+            FNEED(1);
+            ROOM(2);
+            if ((code = fbrl__f_to_d(ftos, &o1, &o2)))
+                goto do_throw;
+            FDROP1();
+            PUSH(o1);
+            PUSH(o2);
+            NEXT;
+            CASE(FLOATS) CASE(DFLOATS) NEED(1);
+            T = (fbrl_cell)(U(T) * sizeof(double));
+            NEXT;
+            CASE(FLOATPLUS) CASE(DFLOATPLUS) NEED(1);
+            T = (fbrl_cell)(U(T) + sizeof(double));
+            NEXT;
+            CASE(SFLOATS) NEED(1);
+            T = (fbrl_cell)(U(T) * 4);
+            NEXT;
+            CASE(SFLOATPLUS) NEED(1);
+            T = (fbrl_cell)(U(T) + 4);
+            NEXT;
+            CASE(FALIGN) CASE(DFALIGN) CASE(SFALIGN) ua = w == OP_SFALIGN ? 4 : sizeof(double);
             ub = U(vm->here);
-            if ((code = fbrl__allot(vm, (fbrl_cell)(((ub + ua - 1) & ~(ua - 1)) - ub)))) goto do_throw;
+            if ((code = fbrl__allot(vm, (fbrl_cell)(((ub + ua - 1) & ~(ua - 1)) - ub))))
+                goto do_throw;
             NEXT;
-        CASE(FALIGNED) CASE(DFALIGNED) CASE(SFALIGNED)
-            NEED(1);
+            CASE(FALIGNED) CASE(DFALIGNED) CASE(SFALIGNED) NEED(1);
             ua = w == OP_SFALIGNED ? 4 : sizeof(double);
             T = (fbrl_cell)((U(T) + ua - 1) & ~(ua - 1));
             NEXT;
-        CASE(PRECISION) ROOM(1); PUSH(vm->precision); NEXT;
-        CASE(SETPRECISION)
-            NEED(1); a = tos; DROP1();
+            CASE(PRECISION) ROOM(1);
+            PUSH(vm->precision);
+            NEXT;
+            CASE(SETPRECISION)
+            NEED(1);
+            a = tos;
+            DROP1();
             vm->precision = a < 1 ? 1 : a > 17 ? 17 : (int)a;
             NEXT;
-        CASE(FPI) FROOM(1); FPUSH(3.14159265358979323846); NEXT;
+            CASE(FPI) FROOM(1);
+            FPUSH(3.14159265358979323846);
+            NEXT;
 
-        DEFAULT
-        execute_xt: {
+            DEFAULT
+        execute_xt : {
             fbrl_hdr *h = fbrl__xt_hdr(vm, w);
-            if (!h) THROW(fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token"));
+            if (!h)
+                THROW(fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token"));
             switch (h->kind) {
             case K_PRIM: w = h->op; DISPATCH();
-            case K_COLON: POLL(); RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->body); NEXT;
-            case K_VAR: ROOM(1); PUSH(h->body); NEXT;
+            case K_COLON:
+                POLL();
+                RROOM(1);
+                *rp++ = (fbrl_cell)ip;
+                JUMP(h->body);
+                NEXT;
+            case K_VAR:
+                ROOM(1);
+                PUSH(h->body);
+                NEXT;
             case K_CREATE:
-                ROOM(1); PUSH(h->body);
-                if (h->does) { RROOM(1); *rp++ = (fbrl_cell)ip; JUMP(h->does); }
+                ROOM(1);
+                PUSH(h->body);
+                if (h->does) {
+                    RROOM(1);
+                    *rp++ = (fbrl_cell)ip;
+                    JUMP(h->does);
+                }
                 NEXT;
-            case K_CONST: case K_VALUE: ROOM(1); CHKC(h->body, CELL); PUSH(ld(h->body)); NEXT;
-            case K_2CONST: case K_2VALUE:
-                ROOM(2); CHKC(h->body, 2 * CELL);
-                PUSH(ld(h->body + CELL)); PUSH(ld(h->body));
+            case K_CONST:
+            case K_VALUE:
+                ROOM(1);
+                CHKC(h->body, CELL);
+                PUSH(ld(h->body));
                 NEXT;
-            case K_FCONST: case K_FVALUE:
-                FROOM(1); CHKC(h->body, (fbrl_cell)sizeof(double)); FPUSH(ldf(h->body)); NEXT;
+            case K_2CONST:
+            case K_2VALUE:
+                ROOM(2);
+                CHKC(h->body, 2 * CELL);
+                PUSH(ld(h->body + CELL));
+                PUSH(ld(h->body));
+                NEXT;
+            case K_FCONST:
+            case K_FVALUE:
+                FROOM(1);
+                CHKC(h->body, (fbrl_cell)sizeof(double));
+                FPUSH(ldf(h->body));
+                NEXT;
             case K_DEFER: {
                 int n = 0;
                 for (;;) {
                     CHKC(h->body, CELL);
                     w = ld(h->body);
-                    if (w == 0) THROW(fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "deferred word not set (use IS)"));
+                    if (w == 0)
+                        THROW(fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "deferred word not set (use IS)"));
                     h = fbrl__xt_hdr(vm, w);
-                    if (!h || h->kind != K_DEFER) break;
-                    if (++n > 1000) THROW(fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "deferred words loop"));
+                    if (!h || h->kind != K_DEFER)
+                        break;
+                    if (++n > 1000)
+                        THROW(fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "deferred words loop"));
                 }
                 goto execute_xt;
             }
             case K_CFUNC: {
                 fbrl_status st;
-                if (!h->fn && !h->xfn) THROW(FBRL_THROW_UNSUPPORTED);
+                if (!h->fn && !h->xfn)
+                    THROW(FBRL_THROW_UNSUPPORTED);
                 SAVE();
                 vm->pending_throw = 0;
                 st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
                 if (vm->sp < ds0 || vm->sp > dse || vm->fp < fs0 || vm->fp > fse) {
-                    vm->sp = ds0; vm->fp = fs0;
+                    vm->sp = ds0;
+                    vm->fp = fs0;
                     LOAD();
                     THROW(FBRL_THROW_STACK_UNDERFLOW);
                 }
@@ -723,7 +1635,9 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 NEXT;
             }
             case K_MARKER:
-                if (vm->defining) THROW(fbrl__throw_msg(vm, FBRL_THROW_COMPILER_NESTING, "a MARKER cannot run inside a definition"));
+                if (vm->defining)
+                    THROW(fbrl__throw_msg(vm, FBRL_THROW_COMPILER_NESTING,
+                                          "a MARKER cannot run inside a definition"));
                 fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)h->end, (size_t)h->does);
                 data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo);
                 NEXT;
@@ -735,18 +1649,38 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 
     /* The error exits store their code in memory: as plain assignments, the
      * compiler would load every exit's code into a register before each check. */
-    e_underflow: vm->run_code = -4; goto e_stored;
-    e_overflow: vm->run_code = -3; goto e_stored;
-    e_r_underflow: vm->run_code = -6; goto e_stored;
-    e_r_overflow: vm->run_code = -5; goto e_stored;
-    e_f_underflow: vm->run_code = -45; goto e_stored;
-    e_f_overflow: vm->run_code = -44; goto e_stored;
-    e_address: vm->run_code = -9; goto e_stored;
-    e_f43: vm->run_code = -43; goto e_stored;
-    e_f46: vm->run_code = -46; goto e_stored;
-    e_stored: code = vm->run_code;
+    e_underflow:
+        vm->run_code = -4;
+        goto e_stored;
+    e_overflow:
+        vm->run_code = -3;
+        goto e_stored;
+    e_r_underflow:
+        vm->run_code = -6;
+        goto e_stored;
+    e_r_overflow:
+        vm->run_code = -5;
+        goto e_stored;
+    e_f_underflow:
+        vm->run_code = -45;
+        goto e_stored;
+    e_f_overflow:
+        vm->run_code = -44;
+        goto e_stored;
+    e_address:
+        vm->run_code = -9;
+        goto e_stored;
+    e_f43:
+        vm->run_code = -43;
+        goto e_stored;
+    e_f46:
+        vm->run_code = -46;
+        goto e_stored;
+    e_stored:
+        code = vm->run_code;
     do_throw:
-        if (code == THROW_BYE || code == THROW_QUIT) goto out;
+        if (code == THROW_BYE || code == THROW_QUIT)
+            goto out;
         {
             fbrl_cell hd = vm->handler;
             if (hd > entry && hd >= 5 && hd <= rp - rs0) {
@@ -758,7 +1692,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 fp = fs0 + (U(f[2]) <= U(fse - fs0) ? f[2] : 0) - 1;
                 ftos = *fp;
                 vm->err_captured = 0;
-                if (!CODE_OK(f[0])) { code = FBRL_THROW_BAD_ADDRESS; goto do_throw; }
+                if (!CODE_OK(f[0])) {
+                    code = FBRL_THROW_BAD_ADDRESS;
+                    goto do_throw;
+                }
                 ip = (const fbrl_cell *)f[0];
                 PUSH(code);
                 code = 0;

@@ -19,25 +19,25 @@
 #include "fbrl/vm.h"
 #include "fbrl/vmx.h"
 
-#define CELL ((fbrl_cell)sizeof(fbrl_cell))
+#define CELL      ((fbrl_cell)sizeof(fbrl_cell))
 #define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
 
-#define FBRL_NAME_MAX FBRL_VMX_NAME_MAX /* longest word name (as F-PC) */
-#define FBRL_LINE_MAX 1024    /* longest source line */
-#define FBRL_SRC_MAX 10       /* nested input sources (files, texts, EVALUATE) */
-#define FBRL_CF_MAX 64        /* control-flow stack entries */
-#define FBRL_HASH 512         /* dictionary hash buckets (power of two) */
-#define FBRL_PATH_MAX 256
-#define FBRL_REQ_POOL 4096    /* bytes for REQUIRE's list of included files */
+#define FBRL_NAME_MAX    FBRL_VMX_NAME_MAX /* longest word name (as F-PC) */
+#define FBRL_LINE_MAX    1024              /* longest source line */
+#define FBRL_SRC_MAX     10                /* nested input sources (files, texts, EVALUATE) */
+#define FBRL_CF_MAX      64                /* control-flow stack entries */
+#define FBRL_HASH        512               /* dictionary hash buckets (power of two) */
+#define FBRL_PATH_MAX    256
+#define FBRL_REQ_POOL    4096 /* bytes for REQUIRE's list of included files */
 #define FBRL_GUARD_CELLS 8
-#define FBRL_XT_BASE 4096     /* execution tokens are FBRL_XT_BASE + header index */
+#define FBRL_XT_BASE     4096 /* execution tokens are FBRL_XT_BASE + header index */
 
 /* Sizes of the buffers at the start of the data region. */
-#define FBRL_WORDBUF 260
-#define FBRL_PADSIZE 256
+#define FBRL_WORDBUF  260
+#define FBRL_PADSIZE  256
 #define FBRL_HOLDSIZE 260
-#define FBRL_SBUF 256         /* each interpretation-state S" buffer */
-#define FBRL_NSBUF 8          /* S" buffers in rotation (the standard asks for 2) */
+#define FBRL_SBUF     256 /* each interpretation-state S" buffer */
+#define FBRL_NSBUF    8   /* S" buffers in rotation (the standard asks for 2) */
 
 enum {
 #define OP(id, name, flags, stack, help) OP_##id,
@@ -47,23 +47,36 @@ enum {
 };
 
 /* word kinds */
-enum { K_PRIM, K_COLON, K_VAR, K_CREATE, K_CONST, K_2CONST, K_FCONST, K_VALUE, K_2VALUE,
-       K_FVALUE, K_DEFER, K_CFUNC, K_MARKER };
+enum {
+    K_PRIM,
+    K_COLON,
+    K_VAR,
+    K_CREATE,
+    K_CONST,
+    K_2CONST,
+    K_FCONST,
+    K_VALUE,
+    K_2VALUE,
+    K_FVALUE,
+    K_DEFER,
+    K_CFUNC,
+    K_MARKER
+};
 /* header flags */
-#define FI 1u   /* immediate */
-#define FC 2u   /* compile-only */
-#define FH 4u   /* hidden (being defined, or :NONAME) */
-#define FS 8u   /* state-smart immediate word (POSTPONE runs it compiling) */
+#define FI 1u /* immediate */
+#define FC 2u /* compile-only */
+#define FH 4u /* hidden (being defined, or :NONAME) */
+#define FS 8u /* state-smart immediate word (POSTPONE runs it compiling) */
 
 typedef struct fbrl_hdr {
-    uint32_t next;            /* next header in the hash chain, as index+1 (0 = end) */
+    uint32_t next; /* next header in the hash chain, as index+1 (0 = end) */
     uint8_t kind, flags, len;
     char name[FBRL_NAME_MAX + 1];
-    uint16_t op;              /* K_PRIM: opcode */
-    fbrl_cell body;           /* data field / colon body (a data-region address) */
-    fbrl_cell end;            /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
-    fbrl_cell does;           /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
-    fbrl_vm_prim fn;          /* K_CFUNC */
+    uint16_t op;     /* K_PRIM: opcode */
+    fbrl_cell body;  /* data field / colon body (a data-region address) */
+    fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
+    fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
+    fbrl_vm_prim fn; /* K_CFUNC */
     void *arg;
     fbrl_vmx_fn xfn;          /* K_CFUNC defined through vmx.h: called instead of fn */
     const void *word;         /* its word pointer */
@@ -74,11 +87,11 @@ enum { SRC_TEXT, SRC_FILE, SRC_STRING };
 
 typedef struct fbrl_src {
     int kind;
-    char *buf;                /* current line (data region) */
+    char *buf; /* current line (data region) */
     size_t len;
-    char *linebuf;            /* SRC_TEXT/SRC_FILE: this level's line buffer */
+    char *linebuf;               /* SRC_TEXT/SRC_FILE: this level's line buffer */
     const char *text, *text_end; /* SRC_TEXT: text not yet read */
-    void *fh;                 /* SRC_FILE: host handle */
+    void *fh;                    /* SRC_FILE: host handle */
     unsigned long line;
     fbrl_cell id;             /* SOURCE-ID */
     fbrl_cell saved_in;       /* the parent's >IN */
@@ -87,10 +100,13 @@ typedef struct fbrl_src {
 
 enum { CF_COLON = 1, CF_ORIG, CF_DEST, CF_DO, CF_CASE, CF_OF, CF_ENDOF };
 
-typedef struct fbrl_cf { int tag; fbrl_cell a; } fbrl_cf;
+typedef struct fbrl_cf {
+    int tag;
+    fbrl_cell a;
+} fbrl_cf;
 
 /* THROW codes the engine uses internally to unwind without being catchable. */
-#define THROW_BYE (-100000)
+#define THROW_BYE  (-100000)
 #define THROW_QUIT (FBRL_THROW_QUIT)
 /* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
 #define FBRL_THROW_STATUS(st) FBRL_VM_THROW_OF_STATUS(st)
@@ -103,47 +119,47 @@ struct fbrl_vm {
     fbrl_cell *rs0, *rs_end, *rp;
     double *fs0, *fs_end, *fp;
     /* data region */
-    unsigned char *data_lo;   /* first addressable byte */
-    unsigned char *dict_lo;   /* first dictionary byte (MARKER cannot go below) */
+    unsigned char *data_lo; /* first addressable byte */
+    unsigned char *dict_lo; /* first dictionary byte (MARKER cannot go below) */
     unsigned char *here;
-    fbrl_hdr *hdr_top;        /* header i is hdr_top[-1 - i] */
-    unsigned char *data_hi;   /* end of the addressable region = lowest header */
+    fbrl_hdr *hdr_top;      /* header i is hdr_top[-1 - i] */
+    unsigned char *data_hi; /* end of the addressable region = lowest header */
     uint32_t nwords;
     uint32_t hash[FBRL_HASH];
-    fbrl_cell *base, *state, *toin;  /* system variables in the data region */
+    fbrl_cell *base, *state, *toin; /* system variables in the data region */
     char *wordbuf, *pad, *hold, *sbuf;
-    char *hld;                /* pictured output: next free position (moves down) */
+    char *hld; /* pictured output: next free position (moves down) */
     int sbuf_next;
     /* compilation */
     fbrl_cf cf[FBRL_CF_MAX];
     int ncf;
-    int defining;             /* a definition is open */
-    uint32_t def_word;        /* its header index */
-    unsigned char *def_here;  /* HERE before it started */
+    int defining;            /* a definition is open */
+    uint32_t def_word;       /* its header index */
+    unsigned char *def_here; /* HERE before it started */
     uint32_t def_nwords;
     /* input sources */
     fbrl_src src[FBRL_SRC_MAX];
     int nsrc;
-    int nest;                 /* nested run() calls */
-    fbrl_cell handler;        /* return-stack depth of the innermost CATCH frame, 0 = none */
+    int nest;          /* nested run() calls */
+    fbrl_cell handler; /* return-stack depth of the innermost CATCH frame, 0 = none */
     /* errors */
     int pending_throw;
     const char *pending_msg;
-    int pending_code;         /* the code pending_msg belongs to */
-    char throw_msg[256];      /* ABORT" text, or a C word's message (a controller error with its meaning) */
+    int pending_code;    /* the code pending_msg belongs to */
+    char throw_msg[256]; /* ABORT" text, or a C word's message (a controller error with its meaning) */
     int err_captured;
     char cur_word[64];
     fbrl_vm_error err;
     int bye;
-    size_t interrupt;         /* set by fbrl_vm_interrupt (atomic access only) */
-    int running;              /* inside fbrl_vm_eval/include */
+    size_t interrupt; /* set by fbrl_vm_interrupt (atomic access only) */
+    int running;      /* inside fbrl_vm_eval/include */
     int precision;
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
-    fbrl_cell guard_addr;     /* address of the guard cells (HALT, CATCHEND, BAD...) */
-    unsigned char *peep;      /* last instruction the compiler may fuse with (vm.c) */
-    unsigned char *peep_end;  /* HERE right after it; NULL: no fusion */
-    int run_code;             /* run.c: the code of an error exit */
+    fbrl_cell guard_addr;    /* address of the guard cells (HALT, CATCHEND, BAD...) */
+    unsigned char *peep;     /* last instruction the compiler may fuse with (vm.c) */
+    unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
+    int run_code;            /* run.c: the code of an error exit */
 };
 
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))

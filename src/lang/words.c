@@ -14,26 +14,30 @@
 /* ---- stack access for helpers ---- */
 static int pop(fbrl_vm *vm, fbrl_cell *v)
 {
-    if (vm->sp <= vm->ds0) return FBRL_THROW_STACK_UNDERFLOW;
+    if (vm->sp <= vm->ds0)
+        return FBRL_THROW_STACK_UNDERFLOW;
     *v = *--vm->sp;
     return 0;
 }
 static int push(fbrl_vm *vm, fbrl_cell v)
 {
-    if (vm->sp >= vm->ds_end) return FBRL_THROW_STACK_OVERFLOW;
+    if (vm->sp >= vm->ds_end)
+        return FBRL_THROW_STACK_OVERFLOW;
     *vm->sp++ = v;
     return 0;
 }
 static int need(fbrl_vm *vm, int n) { return vm->sp - vm->ds0 < n ? FBRL_THROW_STACK_UNDERFLOW : 0; }
 static int fpop(fbrl_vm *vm, double *v)
 {
-    if (vm->fp <= vm->fs0) return FBRL_THROW_FSTACK_UNDERFLOW;
+    if (vm->fp <= vm->fs0)
+        return FBRL_THROW_FSTACK_UNDERFLOW;
     *v = *--vm->fp;
     return 0;
 }
 static int fpush(fbrl_vm *vm, double v)
 {
-    if (vm->fp >= vm->fs_end) return FBRL_THROW_FSTACK_OVERFLOW;
+    if (vm->fp >= vm->fs_end)
+        return FBRL_THROW_FSTACK_OVERFLOW;
     *vm->fp++ = v;
     return 0;
 }
@@ -41,11 +45,14 @@ static int fpush(fbrl_vm *vm, double v)
 static int pop_str(fbrl_vm *vm, const char **s, size_t *n)
 {
     fbrl_cell a, u;
-    if (need(vm, 2)) return FBRL_THROW_STACK_UNDERFLOW;
+    if (need(vm, 2))
+        return FBRL_THROW_STACK_UNDERFLOW;
     u = *--vm->sp;
     a = *--vm->sp;
-    if (u < 0) return FBRL_THROW_BAD_NUMBER;
-    if (u > 0 && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
+    if (u < 0)
+        return FBRL_THROW_BAD_NUMBER;
+    if (u > 0 && !fbrl__addr_ok(vm, a, u))
+        return FBRL_THROW_BAD_ADDRESS;
     *s = u ? (const char *)a : "";
     *n = (size_t)u;
     return 0;
@@ -76,42 +83,51 @@ void fbrl__udiv(fbrl_ucell hi, fbrl_ucell lo, fbrl_ucell d, fbrl_ucell *q, fbrl_
         fbrl_ucell top = hi >> (CELL_BITS - 1);
         hi = (hi << 1) | (lo >> (CELL_BITS - 1));
         lo <<= 1;
-        if (top || hi >= d) { hi -= d; lo |= 1; }
+        if (top || hi >= d) {
+            hi -= d;
+            lo |= 1;
+        }
     }
     *q = lo;
     *r = hi;
 }
 
-
 void fbrl__mstar(fbrl_cell a, fbrl_cell b, fbrl_cell *lo, fbrl_cell *hi)
 {
     fbrl_ucell ua = a < 0 ? 0 - U(a) : U(a), ub = b < 0 ? 0 - U(b) : U(b), h, l;
     fbrl__umul(ua, ub, &h, &l);
-    if ((a < 0) != (b < 0)) dneg(&l, &h);
+    if ((a < 0) != (b < 0))
+        dneg(&l, &h);
     *lo = (fbrl_cell)l;
     *hi = (fbrl_cell)h;
 }
 
 int fbrl__dsdiv(fbrl_cell lo, fbrl_cell hi, fbrl_cell n, int floored, fbrl_cell *q, fbrl_cell *r)
 {
-    if (n == 0) return FBRL_THROW_DIV_ZERO;
+    if (n == 0)
+        return FBRL_THROW_DIV_ZERO;
     fbrl_ucell l = U(lo), h = U(hi), un = n < 0 ? 0 - U(n) : U(n), uq, ur;
     int nd = hi < 0, nn = n < 0;
-    if (nd) dneg(&l, &h);
-    if (h >= un) return FBRL_THROW_RESULT_RANGE;
+    if (nd)
+        dneg(&l, &h);
+    if (h >= un)
+        return FBRL_THROW_RESULT_RANGE;
     fbrl__udiv(h, l, un, &uq, &ur);
     const fbrl_ucell maxpos = (~(fbrl_ucell)0) >> 1;
     fbrl_cell qs, rs;
     if (nd != nn) {
-        if (uq > maxpos + 1) return FBRL_THROW_RESULT_RANGE;
+        if (uq > maxpos + 1)
+            return FBRL_THROW_RESULT_RANGE;
         qs = (fbrl_cell)(0 - uq);
     } else {
-        if (uq > maxpos) return FBRL_THROW_RESULT_RANGE;
+        if (uq > maxpos)
+            return FBRL_THROW_RESULT_RANGE;
         qs = (fbrl_cell)uq;
     }
     rs = nd ? (fbrl_cell)(0 - ur) : (fbrl_cell)ur;
     if (floored && rs != 0 && ((rs < 0) != (n < 0))) {
-        if (qs == (fbrl_cell)(maxpos + 1)) return FBRL_THROW_RESULT_RANGE;
+        if (qs == (fbrl_cell)(maxpos + 1))
+            return FBRL_THROW_RESULT_RANGE;
         qs--;
         rs = (fbrl_cell)(U(rs) + U(n));
     }
@@ -129,23 +145,32 @@ int fbrl__starslash(fbrl_cell a, fbrl_cell b, fbrl_cell c, fbrl_cell *q, fbrl_ce
 
 int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div)
 {
-    if (div == 0) return FBRL_THROW_DIV_ZERO;
-    if (div < 0) return FBRL_THROW_BAD_NUMBER;
+    if (div == 0)
+        return FBRL_THROW_DIV_ZERO;
+    if (div < 0)
+        return FBRL_THROW_BAD_NUMBER;
     fbrl_ucell l = U(*lo), h = U(*hi), un = n < 0 ? 0 - U(n) : U(n), ud = U(div);
     int neg = (*hi < 0) != (n < 0);
-    if (*hi < 0) dneg(&l, &h);
+    if (*hi < 0)
+        dneg(&l, &h);
     fbrl_ucell h1, l1, h2, l2, t0, t1, t2, q0, q1, r;
     fbrl__umul(l, un, &h1, &l1);
     fbrl__umul(h, un, &h2, &l2);
     t0 = l1;
     t1 = h1 + l2;
     t2 = h2 + (t1 < h1);
-    if (t2 >= ud) return FBRL_THROW_RESULT_RANGE;
+    if (t2 >= ud)
+        return FBRL_THROW_RESULT_RANGE;
     fbrl__udiv(t2, t1, ud, &q1, &r);
     fbrl__udiv(r, t0, ud, &q0, &r);
-    if (neg && r) { q0++; q1 += q0 == 0; }
-    if (q1 >> (CELL_BITS - 1)) return FBRL_THROW_RESULT_RANGE;
-    if (neg) dneg(&q0, &q1);
+    if (neg && r) {
+        q0++;
+        q1 += q0 == 0;
+    }
+    if (q1 >> (CELL_BITS - 1))
+        return FBRL_THROW_RESULT_RANGE;
+    if (neg)
+        dneg(&q0, &q1);
     *lo = (fbrl_cell)q0;
     *hi = (fbrl_cell)q1;
     return 0;
@@ -155,7 +180,8 @@ double fbrl__d_to_f(fbrl_cell lo, fbrl_cell hi)
 {
     fbrl_ucell l = U(lo), h = U(hi);
     int neg = hi < 0;
-    if (neg) dneg(&l, &h); /* magnitude first: a negative sum would cancel to 0 */
+    if (neg)
+        dneg(&l, &h); /* magnitude first: a negative sum would cancel to 0 */
     double r = (double)h * ldexp(1.0, CELL_BITS) + (double)l;
     return neg ? -r : r;
 }
@@ -163,10 +189,12 @@ double fbrl__d_to_f(fbrl_cell lo, fbrl_cell hi)
 int fbrl__f_to_d(double r, fbrl_cell *lo, fbrl_cell *hi)
 {
     double t = trunc(r), a = fabs(t), base = ldexp(1.0, CELL_BITS);
-    if (!(a < base * base / 2)) return FBRL_THROW_RESULT_RANGE;
+    if (!(a < base * base / 2))
+        return FBRL_THROW_RESULT_RANGE;
     fbrl_ucell h = (fbrl_ucell)floor(a / base);
     fbrl_ucell l = (fbrl_ucell)(a - (double)h * base);
-    if (t < 0) dneg(&l, &h);
+    if (t < 0)
+        dneg(&l, &h);
     *lo = (fbrl_cell)l;
     *hi = (fbrl_cell)h;
     return 0;
@@ -181,15 +209,18 @@ int fbrl__w_string(fbrl_vm *vm, int op)
     int r;
     switch (op) {
     case OP_COMPARE:
-        if ((r = need(vm, 4)) || (r = pop_str(vm, &s2, &n2)) || (r = pop_str(vm, &s1, &n1))) return r;
+        if ((r = need(vm, 4)) || (r = pop_str(vm, &s2, &n2)) || (r = pop_str(vm, &s1, &n1)))
+            return r;
         {
             size_t m = n1 < n2 ? n1 : n2;
             int c = m ? memcmp(s1, s2, m) : 0;
-            if (c == 0) c = n1 < n2 ? -1 : n1 > n2;
+            if (c == 0)
+                c = n1 < n2 ? -1 : n1 > n2;
             return push(vm, c < 0 ? -1 : c > 0);
         }
     case OP_SEARCH:
-        if ((r = need(vm, 4)) || (r = pop_str(vm, &s2, &n2)) || (r = pop_str(vm, &s1, &n1))) return r;
+        if ((r = need(vm, 4)) || (r = pop_str(vm, &s2, &n2)) || (r = pop_str(vm, &s1, &n1)))
+            return r;
         for (size_t i = 0; n2 <= n1 && i <= n1 - n2; i++) {
             if (n2 == 0 || memcmp(s1 + i, s2, n2) == 0) {
                 vm->sp += 2;
@@ -201,17 +232,22 @@ int fbrl__w_string(fbrl_vm *vm, int op)
         vm->sp += 2; /* the original a1 u1 are still in place below */
         return push(vm, 0);
     case OP_SLASHSTRING:
-        if ((r = need(vm, 3)) || (r = pop(vm, &n))) return r;
+        if ((r = need(vm, 3)) || (r = pop(vm, &n)))
+            return r;
         vm->sp[-2] = (fbrl_cell)(U(vm->sp[-2]) + U(n));
         vm->sp[-1] = (fbrl_cell)(U(vm->sp[-1]) - U(n));
         return 0;
     case OP_MTRAILING:
-        if ((r = need(vm, 2))) return r;
+        if ((r = need(vm, 2)))
+            return r;
         a = vm->sp[-2];
         u = vm->sp[-1];
-        if (u < 0) return FBRL_THROW_BAD_NUMBER;
-        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
-        while (u > 0 && ((const char *)a)[u - 1] == ' ') u--;
+        if (u < 0)
+            return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u))
+            return FBRL_THROW_BAD_ADDRESS;
+        while (u > 0 && ((const char *)a)[u - 1] == ' ')
+            u--;
         vm->sp[-1] = u;
         return 0;
     }
@@ -221,7 +257,8 @@ int fbrl__w_string(fbrl_vm *vm, int op)
 /* ---- control structures ---- */
 static int cf_push(fbrl_vm *vm, int tag, fbrl_cell a)
 {
-    if (vm->ncf >= FBRL_CF_MAX) return FBRL_THROW_CF_OVERFLOW;
+    if (vm->ncf >= FBRL_CF_MAX)
+        return FBRL_THROW_CF_OVERFLOW;
     vm->cf[vm->ncf].tag = tag;
     vm->cf[vm->ncf].a = a;
     vm->ncf++;
@@ -231,7 +268,8 @@ static int cf_push(fbrl_vm *vm, int tag, fbrl_cell a)
 static int cf_pop(fbrl_vm *vm, int tag, fbrl_cell *a)
 {
     if (vm->ncf == 0 || vm->cf[vm->ncf - 1].tag != tag)
-        return fbrl__throw_msg(vm, FBRL_THROW_CONTROL_MISMATCH, "control structure mismatch (unbalanced IF/DO/BEGIN/CASE?)");
+        return fbrl__throw_msg(vm, FBRL_THROW_CONTROL_MISMATCH,
+                               "control structure mismatch (unbalanced IF/DO/BEGIN/CASE?)");
     *a = vm->cf[--vm->ncf].a;
     return 0;
 }
@@ -245,7 +283,8 @@ static int branch_op(fbrl_vm *vm, int op)
 static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 {
     int r = branch_op(vm, op);
-    if (r) return r;
+    if (r)
+        return r;
     *orig = (fbrl_cell)vm->here;
     return fbrl__emit(vm, 0);
 }
@@ -253,7 +292,8 @@ static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 static int resolve(fbrl_vm *vm, fbrl_cell orig)
 {
     fbrl_cell t = (fbrl_cell)vm->here;
-    if (!fbrl__addr_ok(vm, orig, CELL)) return FBRL_THROW_BAD_ADDRESS;
+    if (!fbrl__addr_ok(vm, orig, CELL))
+        return FBRL_THROW_BAD_ADDRESS;
     memcpy((void *)orig, &t, sizeof t);
     return 0;
 }
@@ -269,48 +309,61 @@ static int control(fbrl_vm *vm, int op)
     fbrl_cell o = 0, d = 0;
     int r = 0;
     /* also valid between [ ] inside a definition (a POSTPONEd IF run there) */
-    if (*vm->state == 0 && !vm->defining) return FBRL_THROW_COMPILE_ONLY;
+    if (*vm->state == 0 && !vm->defining)
+        return FBRL_THROW_COMPILE_ONLY;
     switch (op) {
     case OP_IF: return (r = forward(vm, OP_ZBRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
     case OP_AHEAD: return (r = forward(vm, OP_BRANCH, &o)) ? r : cf_push(vm, CF_ORIG, o);
     case OP_ELSE:
-        if ((r = cf_pop(vm, CF_ORIG, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o))) return r;
+        if ((r = cf_pop(vm, CF_ORIG, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o)))
+            return r;
         return cf_push(vm, CF_ORIG, d);
     case OP_THEN: return (r = cf_pop(vm, CF_ORIG, &o)) ? r : resolve(vm, o);
     case OP_BEGIN: return cf_push(vm, CF_DEST, (fbrl_cell)vm->here);
     case OP_UNTIL: return (r = cf_pop(vm, CF_DEST, &d)) ? r : back(vm, OP_ZBRANCH, d);
     case OP_AGAIN: return (r = cf_pop(vm, CF_DEST, &d)) ? r : back(vm, OP_BRANCH, d);
     case OP_WHILE:
-        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = forward(vm, OP_ZBRANCH, &o)) || (r = cf_push(vm, CF_ORIG, o)))
+        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = forward(vm, OP_ZBRANCH, &o)) ||
+            (r = cf_push(vm, CF_ORIG, o)))
             return r;
         return cf_push(vm, CF_DEST, d);
     case OP_REPEAT:
         if ((r = cf_pop(vm, CF_DEST, &d)) || (r = back(vm, OP_BRANCH, d)) || (r = cf_pop(vm, CF_ORIG, &o)))
             return r;
         return resolve(vm, o);
-    case OP_DO: case OP_QDO:
-        if ((r = forward(vm, op == OP_DO ? OP_PDO : OP_PQDO, &o)) || (r = cf_push(vm, CF_DO, o))) return r;
+    case OP_DO:
+    case OP_QDO:
+        if ((r = forward(vm, op == OP_DO ? OP_PDO : OP_PQDO, &o)) || (r = cf_push(vm, CF_DO, o)))
+            return r;
         return cf_push(vm, CF_DEST, (fbrl_cell)vm->here);
-    case OP_LOOP: case OP_PLUSLOOP:
-        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = cf_pop(vm, CF_DO, &o))) return r;
-        if ((r = back(vm, op == OP_LOOP ? OP_PLOOP : OP_PPLOOP, d))) return r;
+    case OP_LOOP:
+    case OP_PLUSLOOP:
+        if ((r = cf_pop(vm, CF_DEST, &d)) || (r = cf_pop(vm, CF_DO, &o)))
+            return r;
+        if ((r = back(vm, op == OP_LOOP ? OP_PLOOP : OP_PPLOOP, d)))
+            return r;
         return resolve(vm, o);
     case OP_CASE: return cf_push(vm, CF_CASE, 0);
     case OP_OF: return (r = forward(vm, OP_POF, &o)) ? r : cf_push(vm, CF_OF, o);
     case OP_ENDOF:
-        if ((r = cf_pop(vm, CF_OF, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o))) return r;
+        if ((r = cf_pop(vm, CF_OF, &o)) || (r = forward(vm, OP_BRANCH, &d)) || (r = resolve(vm, o)))
+            return r;
         return cf_push(vm, CF_ENDOF, d);
     case OP_ENDCASE: /* the default path drops the selector; ENDOFs jump past that */
-        if ((r = fbrl__emit(vm, OP_DROP))) return r;
+        if ((r = fbrl__emit(vm, OP_DROP)))
+            return r;
         while (vm->ncf > 0 && vm->cf[vm->ncf - 1].tag == CF_ENDOF) {
-            if ((r = cf_pop(vm, CF_ENDOF, &o)) || (r = resolve(vm, o))) return r;
+            if ((r = cf_pop(vm, CF_ENDOF, &o)) || (r = resolve(vm, o)))
+                return r;
         }
         return cf_pop(vm, CF_CASE, &o);
     case OP_RECURSE:
-        if (!vm->defining) return FBRL_THROW_CONTROL_MISMATCH;
+        if (!vm->defining)
+            return FBRL_THROW_CONTROL_MISMATCH;
         return back(vm, OP_CALL, HDR(vm, vm->def_word)->body);
     case OP_DOES:
-        if (!vm->defining) return FBRL_THROW_CONTROL_MISMATCH;
+        if (!vm->defining)
+            return FBRL_THROW_CONTROL_MISMATCH;
         return fbrl__emit(vm, OP_DOESSET);
     }
     return FBRL_THROW_UNSUPPORTED;
@@ -339,21 +392,28 @@ int fbrl__w_define(fbrl_vm *vm, int op)
     double f = 0;
     int r;
     switch (op) {
-    case OP_CREATE: return fbrl__create(vm, K_CREATE, "( -- a )", "created word: pushes its data address", &h);
+    case OP_CREATE:
+        return fbrl__create(vm, K_CREATE, "( -- a )", "created word: pushes its data address", &h);
     case OP_VARIABLE:
-        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "variable", &h))) return r;
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "variable", &h)))
+            return r;
         return fbrl__emit(vm, 0);
     case OP_TWOVARIABLE:
-        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "double variable", &h)) || (r = fbrl__emit(vm, 0))) return r;
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "double variable", &h)) || (r = fbrl__emit(vm, 0)))
+            return r;
         return fbrl__emit(vm, 0);
-    case OP_CONSTANT: case OP_VALUE:
-        if ((r = pop(vm, &v))) return r;
+    case OP_CONSTANT:
+    case OP_VALUE:
+        if ((r = pop(vm, &v)))
+            return r;
         if ((r = fbrl__create(vm, op == OP_CONSTANT ? K_CONST : K_VALUE, "( -- x )",
                               op == OP_CONSTANT ? "constant" : "value (set with TO)", &h)))
             return r;
         return fbrl__emit(vm, v);
-    case OP_TWOCONSTANT: case OP_TWOVALUE:
-        if ((r = need(vm, 2))) return r;
+    case OP_TWOCONSTANT:
+    case OP_TWOVALUE:
+        if ((r = need(vm, 2)))
+            return r;
         pop(vm, &v2);
         pop(vm, &v);
         if ((r = fbrl__create(vm, op == OP_TWOCONSTANT ? K_2CONST : K_2VALUE, "( -- x1 x2 )",
@@ -362,12 +422,16 @@ int fbrl__w_define(fbrl_vm *vm, int op)
             return r;
         return fbrl__emit(vm, v);
     case OP_DEFER:
-        if ((r = fbrl__create(vm, K_DEFER, "( i*x -- j*x )", "deferred word (set with IS)", &h))) return r;
+        if ((r = fbrl__create(vm, K_DEFER, "( i*x -- j*x )", "deferred word (set with IS)", &h)))
+            return r;
         return fbrl__emit(vm, 0);
     case OP_BUFFERCOLON:
-        if ((r = pop(vm, &v))) return r;
-        if (v < 0) return FBRL_THROW_BAD_NUMBER;
-        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "buffer", &h))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
+        if (v < 0)
+            return FBRL_THROW_BAD_NUMBER;
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "buffer", &h)))
+            return r;
         return fbrl__allot(vm, v);
     case OP_MARKER: {
         unsigned char *here = vm->here;
@@ -380,12 +444,16 @@ int fbrl__w_define(fbrl_vm *vm, int op)
         return 0;
     }
     case OP_FVARIABLE:
-        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "float variable", &h)) || (r = falign_body(vm, h))) return r;
-        if ((r = fbrl__allot(vm, (fbrl_cell)sizeof(double)))) return r;
+        if ((r = fbrl__create(vm, K_VAR, "( -- a )", "float variable", &h)) || (r = falign_body(vm, h)))
+            return r;
+        if ((r = fbrl__allot(vm, (fbrl_cell)sizeof(double))))
+            return r;
         memset(vm->here - sizeof(double), 0, sizeof(double));
         return 0;
-    case OP_FCONSTANT: case OP_FVALUE:
-        if ((r = fpop(vm, &f))) return r;
+    case OP_FCONSTANT:
+    case OP_FVALUE:
+        if ((r = fpop(vm, &f)))
+            return r;
         if ((r = fbrl__create(vm, op == OP_FCONSTANT ? K_FCONST : K_FVALUE, "( F: -- r )",
                               op == OP_FCONSTANT ? "float constant" : "float value (set with TO)", &h)) ||
             (r = falign_body(vm, h)) || (r = fbrl__allot(vm, (fbrl_cell)sizeof(double))))
@@ -402,7 +470,8 @@ static int parse_word_xt(fbrl_vm *vm, fbrl_cell *xt, fbrl_hdr **h)
     const char *name;
     size_t len;
     fbrl__parse_name(vm, &name, &len);
-    if (len == 0) return FBRL_THROW_NO_NAME;
+    if (len == 0)
+        return FBRL_THROW_NO_NAME;
     int i = fbrl__find(vm, name, len);
     if (i < 0) {
         size_t n = len < 60 ? len : 60;
@@ -420,11 +489,14 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
 {
     fbrl_src *s = fbrl__src(vm);
     size_t i = (size_t)(*vm->toin < 0 ? 0 : *vm->toin), k = 0;
-    if (i > s->len) i = s->len;
+    if (i > s->len)
+        i = s->len;
     for (;;) {
-        if (i >= s->len) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
+        if (i >= s->len)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
         char c = s->buf[i++];
-        if (c == '"') break;
+        if (c == '"')
+            break;
         if (c == '\\' && i < s->len) {
             c = s->buf[i++];
             switch (c) {
@@ -432,14 +504,16 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
             case 'b': c = 8; break;
             case 'e': c = 27; break;
             case 'f': c = 12; break;
-            case 'l': case 'n': c = 10; break;
+            case 'l':
+            case 'n': c = 10; break;
             case 'q': c = '"'; break;
             case 'r': c = 13; break;
             case 't': c = 9; break;
             case 'v': c = 11; break;
             case 'z': c = 0; break;
             case 'm':
-                if (k >= cap) return FBRL_THROW_PARSED_OVERFLOW;
+                if (k >= cap)
+                    return FBRL_THROW_PARSED_OVERFLOW;
                 out[k++] = 13;
                 c = 10;
                 break;
@@ -449,10 +523,13 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
                     int d = -1;
                     if (i < s->len) {
                         char h = s->buf[i];
-                        d = h >= '0' && h <= '9' ? h - '0' : h >= 'a' && h <= 'f' ? h - 'a' + 10
-                          : h >= 'A' && h <= 'F' ? h - 'A' + 10 : -1;
+                        d = h >= '0' && h <= '9'   ? h - '0'
+                            : h >= 'a' && h <= 'f' ? h - 'a' + 10
+                            : h >= 'A' && h <= 'F' ? h - 'A' + 10
+                                                   : -1;
                     }
-                    if (d < 0) return fbrl__throw_msg(vm, FBRL_THROW_BAD_NUMBER, "bad \\x escape");
+                    if (d < 0)
+                        return fbrl__throw_msg(vm, FBRL_THROW_BAD_NUMBER, "bad \\x escape");
                     v = v * 16 + d;
                     i++;
                 }
@@ -462,7 +539,8 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
             default: break; /* \" \\ and anything else: the character itself */
             }
         }
-        if (k >= cap) return FBRL_THROW_PARSED_OVERFLOW;
+        if (k >= cap)
+            return FBRL_THROW_PARSED_OVERFLOW;
         out[k++] = c;
     }
     *vm->toin = (fbrl_cell)i;
@@ -472,8 +550,10 @@ static int parse_escaped(fbrl_vm *vm, char *out, size_t cap, size_t *n)
 
 static int string_literal(fbrl_vm *vm, const char *s, size_t n)
 {
-    if (*vm->state) return fbrl__compile_str(vm, OP_SLIT, s, n);
-    if (n > FBRL_SBUF) return FBRL_THROW_PARSED_OVERFLOW;
+    if (*vm->state)
+        return fbrl__compile_str(vm, OP_SLIT, s, n);
+    if (n > FBRL_SBUF)
+        return FBRL_THROW_PARSED_OVERFLOW;
     char *b = vm->sbuf + FBRL_SBUF * vm->sbuf_next;
     vm->sbuf_next = (vm->sbuf_next + 1) % FBRL_NSBUF;
     memmove(b, s, n);
@@ -485,7 +565,9 @@ static int parse_quoted(fbrl_vm *vm, char delim, const char **p, size_t *n)
 {
     int found;
     fbrl__parse(vm, delim, p, n, &found);
-    if (!found) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, delim == ')' ? "unterminated comment" : "unterminated string");
+    if (!found)
+        return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF,
+                               delim == ')' ? "unterminated comment" : "unterminated string");
     return 0;
 }
 
@@ -496,10 +578,14 @@ static int paren_comment(fbrl_vm *vm)
         size_t n;
         int found, r;
         fbrl__parse(vm, ')', &p, &n, &found);
-        if (found) return 0;
-        if (fbrl__src(vm)->kind == SRC_STRING) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated comment");
-        if ((r = fbrl__refill(vm)) < 0) return r;
-        if (r == 0) return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated comment");
+        if (found)
+            return 0;
+        if (fbrl__src(vm)->kind == SRC_STRING)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated comment");
+        if ((r = fbrl__refill(vm)) < 0)
+            return r;
+        if (r == 0)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated comment");
     }
 }
 
@@ -520,29 +606,50 @@ static fbrl_hdr *hdr_by_body(fbrl_vm *vm, fbrl_cell body)
 
 static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
 {
-    if (h && h->len) fbrl__write(vm, h->name, h->len);
-    else fbrl__puts(vm, ":NONAME");
+    if (h && h->len)
+        fbrl__write(vm, h->name, h->len);
+    else
+        fbrl__puts(vm, ":NONAME");
 }
 
 /* A superinstruction shows as the words it was compiled from. */
 static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 {
-    static const struct { int16_t op, lit, br; const char *words; } fused[] = {
-        { OP_LITPLUS, 1, 0, "+" }, { OP_LITMINUS, 1, 0, "-" }, { OP_LITSTAR, 1, 0, "*" },
-        { OP_LITAND, 1, 0, "AND" }, { OP_LITEQ, 1, 0, "=" }, { OP_LITNE, 1, 0, "<>" },
-        { OP_LITLT, 1, 0, "<" }, { OP_LITGT, 1, 0, ">" }, { OP_LITFETCH, 1, 0, "@" },
-        { OP_PICK2, 0, 0, "2 PICK" }, { OP_OVERPLUS, 0, 0, "OVER +" }, { OP_IPLUS, 0, 0, "I +" },
-        { OP_CELLPLUSFETCH, 0, 0, "CELL+ @" }, { OP_DUPFETCH, 0, 0, "DUP @" },
-        { OP_EQZBR, 0, 1, "=" }, { OP_NEZBR, 0, 1, "<>" }, { OP_LTZBR, 0, 1, "<" },
-        { OP_GTZBR, 0, 1, ">" }, { OP_ZEQZBR, 0, 1, "0=" },
-        { OP_LITEQZBR, 1, 1, "=" }, { OP_LITNEZBR, 1, 1, "<>" }, { OP_LITLTZBR, 1, 1, "<" },
-        { OP_LITGTZBR, 1, 1, ">" },
+    static const struct {
+        int16_t op, lit, br;
+        const char *words;
+    } fused[] = {
+        {OP_LITPLUS, 1, 0, "+"},
+        {OP_LITMINUS, 1, 0, "-"},
+        {OP_LITSTAR, 1, 0, "*"},
+        {OP_LITAND, 1, 0, "AND"},
+        {OP_LITEQ, 1, 0, "="},
+        {OP_LITNE, 1, 0, "<>"},
+        {OP_LITLT, 1, 0, "<"},
+        {OP_LITGT, 1, 0, ">"},
+        {OP_LITFETCH, 1, 0, "@"},
+        {OP_PICK2, 0, 0, "2 PICK"},
+        {OP_OVERPLUS, 0, 0, "OVER +"},
+        {OP_IPLUS, 0, 0, "I +"},
+        {OP_CELLPLUSFETCH, 0, 0, "CELL+ @"},
+        {OP_DUPFETCH, 0, 0, "DUP @"},
+        {OP_EQZBR, 0, 1, "="},
+        {OP_NEZBR, 0, 1, "<>"},
+        {OP_LTZBR, 0, 1, "<"},
+        {OP_GTZBR, 0, 1, ">"},
+        {OP_ZEQZBR, 0, 1, "0="},
+        {OP_LITEQZBR, 1, 1, "="},
+        {OP_LITNEZBR, 1, 1, "<>"},
+        {OP_LITLTZBR, 1, 1, "<"},
+        {OP_LITGTZBR, 1, 1, ">"},
     };
     for (size_t i = 0; i < sizeof fused / sizeof fused[0]; i++) {
         fbrl_cell a;
-        if (fused[i].op != w) continue;
+        if (fused[i].op != w)
+            continue;
         if (fused[i].lit) {
-            if (!fbrl__addr_ok(vm, *pc, CELL)) return 1;
+            if (!fbrl__addr_ok(vm, *pc, CELL))
+                return 1;
             memcpy(&a, (void *)*pc, sizeof a);
             *pc += CELL;
             put_num(vm, a);
@@ -550,7 +657,8 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
         }
         fbrl__puts(vm, fused[i].words);
         if (fused[i].br) {
-            if (!fbrl__addr_ok(vm, *pc, CELL)) return 1;
+            if (!fbrl__addr_ok(vm, *pc, CELL))
+                return 1;
             memcpy(&a, (void *)*pc, sizeof a);
             *pc += CELL;
             fbrl__puts(vm, " 0BRANCH(");
@@ -571,20 +679,32 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
         fbrl_cell w, a;
         memcpy(&w, (void *)pc, sizeof w);
         pc += CELL;
-        if (w == OP_EXIT && pc == end) break; /* the EXIT that ; compiled */
+        if (w == OP_EXIT && pc == end)
+            break; /* the EXIT that ; compiled */
         fbrl__puts(vm, " ");
         if (w >= FBRL_XT_BASE) {
             put_name(vm, fbrl__xt_hdr(vm, w));
             continue;
         }
-        if (w < 0 || w >= OP__END) { fbrl__puts(vm, "?"); continue; }
-        if (see_fused(vm, w, &pc)) continue;
+        if (w < 0 || w >= OP__END) {
+            fbrl__puts(vm, "?");
+            continue;
+        }
+        if (see_fused(vm, w, &pc))
+            continue;
         const char *nm = fbrl__op_name((int)w);
-        if (nm[0]) { fbrl__puts(vm, nm); continue; }
-        if (!fbrl__addr_ok(vm, pc, CELL)) break;
+        if (nm[0]) {
+            fbrl__puts(vm, nm);
+            continue;
+        }
+        if (!fbrl__addr_ok(vm, pc, CELL))
+            break;
         memcpy(&a, (void *)pc, sizeof a);
         switch (w) {
-        case OP_LIT: put_num(vm, a); pc += CELL; break;
+        case OP_LIT:
+            put_num(vm, a);
+            pc += CELL;
+            break;
         case OP_FLIT: {
             double d;
             char b[40];
@@ -595,26 +715,49 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             pc += (fbrl_cell)((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell)) * CELL;
             break;
         }
-        case OP_CALL: put_name(vm, hdr_by_body(vm, a)); pc += CELL; break;
-        case OP_BRANCH: case OP_ZBRANCH:
+        case OP_CALL:
+            put_name(vm, hdr_by_body(vm, a));
+            pc += CELL;
+            break;
+        case OP_BRANCH:
+        case OP_ZBRANCH:
             fbrl__puts(vm, w == OP_BRANCH ? "BRANCH(" : "0BRANCH(");
             put_num(vm, (fbrl_cell)(U(a) - U(pc) - U(CELL)) / CELL);
             fbrl__puts(vm, ")");
             pc += CELL;
             break;
-        case OP_PDO: fbrl__puts(vm, "DO"); pc += CELL; break;
-        case OP_PQDO: fbrl__puts(vm, "?DO"); pc += CELL; break;
-        case OP_PLOOP: fbrl__puts(vm, "LOOP"); pc += CELL; break;
-        case OP_PPLOOP: fbrl__puts(vm, "+LOOP"); pc += CELL; break;
-        case OP_POF: fbrl__puts(vm, "OF"); pc += CELL; break;
+        case OP_PDO:
+            fbrl__puts(vm, "DO");
+            pc += CELL;
+            break;
+        case OP_PQDO:
+            fbrl__puts(vm, "?DO");
+            pc += CELL;
+            break;
+        case OP_PLOOP:
+            fbrl__puts(vm, "LOOP");
+            pc += CELL;
+            break;
+        case OP_PPLOOP:
+            fbrl__puts(vm, "+LOOP");
+            pc += CELL;
+            break;
+        case OP_POF:
+            fbrl__puts(vm, "OF");
+            pc += CELL;
+            break;
         case OP_DOESSET: fbrl__puts(vm, "DOES>"); break;
         case OP_COMPSEM: fbrl__puts(vm, "(COMPILING-EXECUTE)"); break;
-        case OP_PTOVAL: case OP_PTO2VAL: case OP_PTOFVAL:
+        case OP_PTOVAL:
+        case OP_PTO2VAL:
+        case OP_PTOFVAL:
             fbrl__puts(vm, "TO ");
             put_name(vm, hdr_by_body(vm, a));
             pc += CELL;
             break;
-        case OP_SLIT: case OP_CSLIT: case OP_PABORTQ: {
+        case OP_SLIT:
+        case OP_CSLIT:
+        case OP_PABORTQ: {
             fbrl_cell s = pc + CELL;
             fbrl__puts(vm, w == OP_SLIT ? "S\" " : w == OP_CSLIT ? "C\" " : "ABORT\" ");
             if (a >= 0 && a <= 65536 && fbrl__addr_ok(vm, s, a)) {
@@ -629,16 +772,21 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
         }
     }
     fbrl__puts(vm, " ;");
-    if (h->flags & FI) fbrl__puts(vm, " IMMEDIATE");
+    if (h->flags & FI)
+        fbrl__puts(vm, " IMMEDIATE");
     fbrl__puts(vm, "\n");
 }
 
 static void see(fbrl_vm *vm, fbrl_hdr *h)
 {
-    static const char *const kinds[] = { "primitive", "", "variable", "created", "constant",
-                                         "double constant", "float constant", "value", "double value",
-                                         "float value", "deferred", "C word", "marker" };
-    if (h->kind == K_COLON) { see_colon(vm, h); return; }
+    static const char *const kinds[] = {
+        "primitive",      "",      "variable",     "created",     "constant", "double constant",
+        "float constant", "value", "double value", "float value", "deferred", "C word",
+        "marker"};
+    if (h->kind == K_COLON) {
+        see_colon(vm, h);
+        return;
+    }
     put_name(vm, h);
     fbrl__puts(vm, " is a ");
     fbrl__puts(vm, kinds[h->kind]);
@@ -646,35 +794,62 @@ static void see(fbrl_vm *vm, fbrl_hdr *h)
         fbrl_cell x;
         memcpy(&x, (void *)h->body, sizeof x);
         fbrl__puts(vm, " -> ");
-        if (fbrl__xt_hdr(vm, x)) put_name(vm, fbrl__xt_hdr(vm, x));
-        else fbrl__puts(vm, "(not set)");
+        if (fbrl__xt_hdr(vm, x))
+            put_name(vm, fbrl__xt_hdr(vm, x));
+        else
+            fbrl__puts(vm, "(not set)");
     } else if ((h->kind == K_CONST || h->kind == K_VALUE) && fbrl__addr_ok(vm, h->body, CELL)) {
         fbrl_cell x;
         memcpy(&x, (void *)h->body, sizeof x);
         fbrl__puts(vm, " = ");
         put_num(vm, x);
     }
-    if (h->flags & FI) fbrl__puts(vm, " (immediate)");
+    if (h->flags & FI)
+        fbrl__puts(vm, " (immediate)");
     fbrl__puts(vm, "\n");
 }
 
 static int env_query(fbrl_vm *vm, const char *s, size_t n)
 {
-    static const struct { const char *name; int kind; } q[] = {
-        { "/COUNTED-STRING", 1 }, { "/HOLD", 2 }, { "/PAD", 3 }, { "ADDRESS-UNIT-BITS", 4 },
-        { "FLOORED", 5 }, { "MAX-CHAR", 6 }, { "MAX-N", 7 }, { "MAX-U", 8 }, { "MAX-D", 9 },
-        { "MAX-UD", 10 }, { "RETURN-STACK-CELLS", 11 }, { "STACK-CELLS", 12 },
-        { "FLOATING-STACK", 13 }, { "MAX-FLOAT", 14 },
+    static const struct {
+        const char *name;
+        int kind;
+    } q[] = {
+        {"/COUNTED-STRING", 1},
+        {"/HOLD", 2},
+        {"/PAD", 3},
+        {"ADDRESS-UNIT-BITS", 4},
+        {"FLOORED", 5},
+        {"MAX-CHAR", 6},
+        {"MAX-N", 7},
+        {"MAX-U", 8},
+        {"MAX-D", 9},
+        {"MAX-UD", 10},
+        {"RETURN-STACK-CELLS", 11},
+        {"STACK-CELLS", 12},
+        {"FLOATING-STACK", 13},
+        {"MAX-FLOAT", 14},
         /* Forth-94 word-set queries (obsolescent, still asked by test suites) */
-        { "CORE", 15 }, { "CORE-EXT", 15 }, { "DOUBLE", 15 }, { "EXCEPTION", 15 }, { "EXCEPTION-EXT", 15 },
-        { "FACILITY", 15 }, { "FLOATING", 15 }, { "FLOATING-EXT", 15 }, { "STRING", 15 }, { "TOOLS", 15 },
+        {"CORE", 15},
+        {"CORE-EXT", 15},
+        {"DOUBLE", 15},
+        {"EXCEPTION", 15},
+        {"EXCEPTION-EXT", 15},
+        {"FACILITY", 15},
+        {"FLOATING", 15},
+        {"FLOATING-EXT", 15},
+        {"STRING", 15},
+        {"TOOLS", 15},
     };
     const fbrl_ucell umax = ~(fbrl_ucell)0;
     for (size_t i = 0; i < sizeof q / sizeof q[0]; i++) {
-        if (strlen(q[i].name) != n) continue;
+        if (strlen(q[i].name) != n)
+            continue;
         size_t j = 0;
-        while (j < n && (s[j] == q[i].name[j] || (s[j] >= 'a' && s[j] <= 'z' && s[j] - 32 == q[i].name[j]))) j++;
-        if (j != n) continue;
+        while (j < n && (s[j] == q[i].name[j] || (s[j] >= 'a' && s[j] <= 'z' && s[j] - 32 == q[i].name[j])))
+            j++;
+        if (j != n)
+            continue;
         int r = 0;
         switch (q[i].kind) {
         case 1: r = push(vm, 255); break;
@@ -685,8 +860,16 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         case 6: r = push(vm, 255); break;
         case 7: r = push(vm, (fbrl_cell)(umax >> 1)); break;
         case 8: r = push(vm, (fbrl_cell)umax); break;
-        case 9: r = push(vm, -1); if (!r) r = push(vm, (fbrl_cell)(umax >> 1)); break;
-        case 10: r = push(vm, -1); if (!r) r = push(vm, -1); break;
+        case 9:
+            r = push(vm, -1);
+            if (!r)
+                r = push(vm, (fbrl_cell)(umax >> 1));
+            break;
+        case 10:
+            r = push(vm, -1);
+            if (!r)
+                r = push(vm, -1);
+            break;
         case 11: r = push(vm, vm->rs_end - vm->rs0); break;
         case 12: r = push(vm, vm->ds_end - vm->ds0); break;
         case 13: r = push(vm, vm->fs_end - vm->fs0); break;
@@ -701,11 +884,14 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
 static int name_is(const char *p, size_t n, const char *w)
 {
     size_t k = strlen(w);
-    if (n != k) return 0;
+    if (n != k)
+        return 0;
     for (size_t i = 0; i < n; i++) {
         char c = p[i];
-        if (c >= 'a' && c <= 'z') c = (char)(c - 32);
-        if (c != w[i]) return 0;
+        if (c >= 'a' && c <= 'z')
+            c = (char)(c - 32);
+        if (c != w[i])
+            return 0;
     }
     return 1;
 }
@@ -720,14 +906,21 @@ static int skip_conditional(fbrl_vm *vm, int else_ok)
         fbrl__parse_name(vm, &p, &n);
         if (n == 0) {
             int r = fbrl__refill(vm);
-            if (r < 0) return r;
-            if (r == 0) return fbrl__throw_msg(vm, FBRL_THROW_BRACKET_IF, "[IF] without [THEN]");
+            if (r < 0)
+                return r;
+            if (r == 0)
+                return fbrl__throw_msg(vm, FBRL_THROW_BRACKET_IF, "[IF] without [THEN]");
             continue;
         }
-        if (name_is(p, n, "[IF]")) level++;
-        else if (name_is(p, n, "[THEN]")) { if (level-- == 0) return 0; }
-        else if (name_is(p, n, "[ELSE]") && level == 0 && else_ok) return 0;
-        else if (name_is(p, n, "\\")) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
+        if (name_is(p, n, "[IF]"))
+            level++;
+        else if (name_is(p, n, "[THEN]")) {
+            if (level-- == 0)
+                return 0;
+        } else if (name_is(p, n, "[ELSE]") && level == 0 && else_ok)
+            return 0;
+        else if (name_is(p, n, "\\"))
+            *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
     }
 }
 
@@ -740,176 +933,233 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     double f;
     int r, found;
     switch (op) {
-    case OP_TO: case OP_IS: case OP_ACTIONOF:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+    case OP_TO:
+    case OP_IS:
+    case OP_ACTIONOF:
+        if ((r = parse_word_xt(vm, &xt, &h)))
+            return r;
         if (op == OP_TO) {
             int k = h->kind;
             if (k != K_VALUE && k != K_2VALUE && k != K_FVALUE)
                 return fbrl__throw_msg(vm, FBRL_THROW_BAD_NAME_ARG, "TO needs a VALUE, 2VALUE or FVALUE");
             if (*vm->state)
                 return back(vm, k == K_VALUE ? OP_PTOVAL : k == K_2VALUE ? OP_PTO2VAL : OP_PTOFVAL, h->body);
-            if (!fbrl__addr_ok(vm, h->body, 2 * CELL)) return FBRL_THROW_BAD_ADDRESS;
+            if (!fbrl__addr_ok(vm, h->body, 2 * CELL))
+                return FBRL_THROW_BAD_ADDRESS;
             if (k == K_FVALUE) {
-                if ((r = fpop(vm, &f))) return r;
+                if ((r = fpop(vm, &f)))
+                    return r;
                 memcpy((void *)h->body, &f, sizeof f);
             } else if (k == K_VALUE) {
-                if ((r = pop(vm, &v))) return r;
+                if ((r = pop(vm, &v)))
+                    return r;
                 memcpy((void *)h->body, &v, sizeof v);
             } else {
-                if ((r = need(vm, 2))) return r;
+                if ((r = need(vm, 2)))
+                    return r;
                 memcpy((void *)h->body, vm->sp - 1, sizeof v);
                 memcpy((void *)(h->body + CELL), vm->sp - 2, sizeof v);
                 vm->sp -= 2;
             }
             return 0;
         }
-        if (h->kind != K_DEFER) return fbrl__throw_msg(vm, FBRL_THROW_BAD_NAME_ARG, "IS and ACTION-OF need a DEFERred word");
+        if (h->kind != K_DEFER)
+            return fbrl__throw_msg(vm, FBRL_THROW_BAD_NAME_ARG, "IS and ACTION-OF need a DEFERred word");
         if (*vm->state) {
-            if ((r = fbrl__compile_lit(vm, xt))) return r;
+            if ((r = fbrl__compile_lit(vm, xt)))
+                return r;
             return fbrl__emit(vm, op == OP_IS ? OP_DEFERSTORE : OP_DEFERFETCH);
         }
-        if (!fbrl__addr_ok(vm, h->body, CELL)) return FBRL_THROW_BAD_ADDRESS;
+        if (!fbrl__addr_ok(vm, h->body, CELL))
+            return FBRL_THROW_BAD_ADDRESS;
         if (op == OP_IS) {
-            if ((r = pop(vm, &v))) return r;
+            if ((r = pop(vm, &v)))
+                return r;
             memcpy((void *)h->body, &v, sizeof v);
             return 0;
         }
         memcpy(&v, (void *)h->body, sizeof v);
         return push(vm, v);
-    case OP_DEFERFETCH: case OP_DEFERSTORE:
-        if ((r = pop(vm, &xt))) return r;
+    case OP_DEFERFETCH:
+    case OP_DEFERSTORE:
+        if ((r = pop(vm, &xt)))
+            return r;
         h = fbrl__xt_hdr(vm, xt);
-        if (!h || h->kind != K_DEFER) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "not a DEFERred word");
-        if (!fbrl__addr_ok(vm, h->body, CELL)) return FBRL_THROW_BAD_ADDRESS;
+        if (!h || h->kind != K_DEFER)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "not a DEFERred word");
+        if (!fbrl__addr_ok(vm, h->body, CELL))
+            return FBRL_THROW_BAD_ADDRESS;
         if (op == OP_DEFERSTORE) {
-            if ((r = pop(vm, &v))) return r;
+            if ((r = pop(vm, &v)))
+                return r;
             memcpy((void *)h->body, &v, sizeof v);
             return 0;
         }
         memcpy(&v, (void *)h->body, sizeof v);
         return push(vm, v);
     case OP_POSTPONE:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)))
+            return r;
         if (h->flags & FS) { /* its compilation semantics, even if run between [ ] */
-            if ((r = fbrl__compile_lit(vm, xt))) return r;
+            if ((r = fbrl__compile_lit(vm, xt)))
+                return r;
             return fbrl__emit(vm, OP_COMPSEM);
         }
-        if (h->flags & FI) return fbrl__compile_xt(vm, xt);
-        if ((r = fbrl__compile_lit(vm, xt))) return r;
+        if (h->flags & FI)
+            return fbrl__compile_xt(vm, xt);
+        if ((r = fbrl__compile_lit(vm, xt)))
+            return r;
         return fbrl__emit(vm, OP_COMPILECOMMA);
     case OP_BCOMPILE:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)))
+            return r;
         return fbrl__compile_xt(vm, xt);
     case OP_BTICK:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)))
+            return r;
         return fbrl__compile_lit(vm, xt);
     case OP_TICK:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)))
+            return r;
         return push(vm, xt);
-    case OP_BCHAR: case OP_CHAR:
+    case OP_BCHAR:
+    case OP_CHAR:
         fbrl__parse_name(vm, &p, &n);
-        if (n == 0) return FBRL_THROW_NO_NAME;
+        if (n == 0)
+            return FBRL_THROW_NO_NAME;
         return op == OP_CHAR ? push(vm, (unsigned char)p[0]) : fbrl__compile_lit(vm, (unsigned char)p[0]);
     case OP_PAREN: return paren_comment(vm);
-    case OP_BACKSLASH: case OP_SHEBANG:
-        if (vm->nsrc) *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
+    case OP_BACKSLASH:
+    case OP_SHEBANG:
+        if (vm->nsrc)
+            *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
         return 0;
     case OP_DOTPAREN:
-        if ((r = parse_quoted(vm, ')', &p, &n))) return r;
+        if ((r = parse_quoted(vm, ')', &p, &n)))
+            return r;
         fbrl__write(vm, p, n);
         return 0;
     case OP_DOTQUOTE:
-        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        if ((r = parse_quoted(vm, '"', &p, &n)))
+            return r;
         if (*vm->state == 0) {
             fbrl__write(vm, p, n);
             return 0;
         }
-        if ((r = fbrl__compile_str(vm, OP_SLIT, p, n))) return r;
+        if ((r = fbrl__compile_str(vm, OP_SLIT, p, n)))
+            return r;
         return fbrl__emit(vm, OP_TYPE);
     case OP_SQUOTE:
-        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        if ((r = parse_quoted(vm, '"', &p, &n)))
+            return r;
         return string_literal(vm, p, n);
     case OP_SBQUOTE: {
         char b[FBRL_LINE_MAX];
-        if ((r = parse_escaped(vm, b, sizeof b, &n))) return r;
+        if ((r = parse_escaped(vm, b, sizeof b, &n)))
+            return r;
         return string_literal(vm, b, n);
     }
     case OP_CQUOTE: {
         char b[256];
-        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
-        if (n > 255) return FBRL_THROW_PARSED_OVERFLOW;
+        if ((r = parse_quoted(vm, '"', &p, &n)))
+            return r;
+        if (n > 255)
+            return FBRL_THROW_PARSED_OVERFLOW;
         b[0] = (char)n;
         memcpy(b + 1, p, n);
         return fbrl__compile_str(vm, OP_CSLIT, b, n + 1);
     }
     case OP_ABORTQ:
-        if ((r = parse_quoted(vm, '"', &p, &n))) return r;
+        if ((r = parse_quoted(vm, '"', &p, &n)))
+            return r;
         return fbrl__compile_str(vm, OP_PABORTQ, p, n);
     case OP_PARSE:
-        if ((r = pop(vm, &v))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
         fbrl__parse(vm, (char)v, &p, &n, &found);
-        if ((r = push(vm, (fbrl_cell)p))) return r;
+        if ((r = push(vm, (fbrl_cell)p)))
+            return r;
         return push(vm, (fbrl_cell)n);
     case OP_PARSENAME:
         fbrl__parse_name(vm, &p, &n);
-        if ((r = push(vm, (fbrl_cell)p))) return r;
+        if ((r = push(vm, (fbrl_cell)p)))
+            return r;
         return push(vm, (fbrl_cell)n);
     case OP_WORD: {
-        if ((r = pop(vm, &v))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
         char c = (char)v;
         if (vm->nsrc) {
             fbrl_src *s = fbrl__src(vm);
             size_t i = (size_t)(*vm->toin < 0 ? 0 : *vm->toin);
-            if (i > s->len) i = s->len;
-            while (i < s->len && (s->buf[i] == c || (c == ' ' && (unsigned char)s->buf[i] < ' '))) i++;
+            if (i > s->len)
+                i = s->len;
+            while (i < s->len && (s->buf[i] == c || (c == ' ' && (unsigned char)s->buf[i] < ' ')))
+                i++;
             *vm->toin = (fbrl_cell)i;
         }
         fbrl__parse(vm, c, &p, &n, &found);
-        if (n > 255) return FBRL_THROW_PARSED_OVERFLOW;
+        if (n > 255)
+            return FBRL_THROW_PARSED_OVERFLOW;
         vm->wordbuf[0] = (char)n;
         memmove(vm->wordbuf + 1, p, n);
         vm->wordbuf[n + 1] = ' ';
         return push(vm, (fbrl_cell)vm->wordbuf);
     }
     case OP_FIND: {
-        if ((r = need(vm, 1))) return r;
+        if ((r = need(vm, 1)))
+            return r;
         v = vm->sp[-1];
-        if (!fbrl__addr_ok(vm, v, 1)) return FBRL_THROW_BAD_ADDRESS;
+        if (!fbrl__addr_ok(vm, v, 1))
+            return FBRL_THROW_BAD_ADDRESS;
         n = *(unsigned char *)v;
-        if (!fbrl__addr_ok(vm, v, (fbrl_cell)n + 1)) return FBRL_THROW_BAD_ADDRESS;
+        if (!fbrl__addr_ok(vm, v, (fbrl_cell)n + 1))
+            return FBRL_THROW_BAD_ADDRESS;
         int i = fbrl__find(vm, (const char *)v + 1, n);
-        if (i < 0) return push(vm, 0);
+        if (i < 0)
+            return push(vm, 0);
         vm->sp[-1] = FBRL_XT_BASE + i;
         return push(vm, (HDR(vm, i)->flags & FI) ? 1 : -1);
     }
     case OP_LITERAL:
-        if ((r = pop(vm, &v))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
         return fbrl__compile_lit(vm, v);
     case OP_TWOLITERAL:
-        if ((r = need(vm, 2))) return r;
+        if ((r = need(vm, 2)))
+            return r;
         vm->sp -= 2;
-        if ((r = fbrl__compile_lit(vm, vm->sp[0]))) return r;
+        if ((r = fbrl__compile_lit(vm, vm->sp[0])))
+            return r;
         return fbrl__compile_lit(vm, vm->sp[1]);
     case OP_SLITERAL:
-        if ((r = pop_str(vm, &p, &n))) return r;
+        if ((r = pop_str(vm, &p, &n)))
+            return r;
         return fbrl__compile_str(vm, OP_SLIT, p, n);
     case OP_FLITERAL:
-        if ((r = fpop(vm, &f))) return r;
+        if ((r = fpop(vm, &f)))
+            return r;
         return fbrl__compile_flit(vm, f);
     case OP_COMPILECOMMA:
-        if ((r = pop(vm, &xt))) return r;
+        if ((r = pop(vm, &xt)))
+            return r;
         return fbrl__compile_xt(vm, xt);
     case OP_IMMEDIATE:
-        if (vm->nwords == 0) return FBRL_THROW_UNSUPPORTED;
+        if (vm->nwords == 0)
+            return FBRL_THROW_UNSUPPORTED;
         HDR(vm, vm->nwords - 1)->flags |= FI;
         return 0;
     case OP_TONUMBER: {
-        if ((r = need(vm, 4))) return r;
+        if ((r = need(vm, 4)))
+            return r;
         fbrl_cell a = vm->sp[-2], u = vm->sp[-1];
         fbrl_ucell lo = U(vm->sp[-4]), hi = U(vm->sp[-3]);
-        if (u < 0) return FBRL_THROW_BAD_NUMBER;
-        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
-        if (*vm->base < 2 || *vm->base > 36) return FBRL_THROW_BAD_NUMBER;
+        if (u < 0)
+            return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u))
+            return FBRL_THROW_BAD_ADDRESS;
+        if (*vm->base < 2 || *vm->base > 36)
+            return FBRL_THROW_BAD_NUMBER;
         size_t k = u ? fbrl__to_number((const char *)a, (size_t)u, *vm->base, &lo, &hi) : 0;
         vm->sp[-4] = (fbrl_cell)lo;
         vm->sp[-3] = (fbrl_cell)hi;
@@ -918,16 +1168,18 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return 0;
     }
     case OP_SEE:
-        if ((r = parse_word_xt(vm, &xt, &h))) return r;
+        if ((r = parse_word_xt(vm, &xt, &h)))
+            return r;
         see(vm, h);
         return 0;
     case OP_HELP:
-        if ((r = parse_word_xt(vm, &xt, &h)) == FBRL_THROW_NO_NAME) {  /* no name after HELP: say how */
+        if ((r = parse_word_xt(vm, &xt, &h)) == FBRL_THROW_NO_NAME) { /* no name after HELP: say how */
             fbrl__puts(vm, "HELP name shows what a word does and its stack effect, e.g. HELP MOV;\n"
                            "WORDS lists every word (TAB at the prompt completes a name).\n");
             return 0;
         }
-        if (r) return r;
+        if (r)
+            return r;
         put_name(vm, h);
         fbrl__puts(vm, " ");
         fbrl__puts(vm, h->stack);
@@ -935,34 +1187,42 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         fbrl__puts(vm, h->help);
         fbrl__puts(vm, "\n");
         return 0;
-    case OP_INCLUDE: case OP_REQUIRE:
+    case OP_INCLUDE:
+    case OP_REQUIRE:
         fbrl__parse_name(vm, &p, &n);
-        if (n == 0) return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, "file name expected");
+        if (n == 0)
+            return fbrl__throw_msg(vm, FBRL_THROW_NO_FILE, "file name expected");
         {
             char name[FBRL_PATH_MAX];
-            if (n >= sizeof name) return FBRL_THROW_NO_FILE;
+            if (n >= sizeof name)
+                return FBRL_THROW_NO_FILE;
             memcpy(name, p, n); /* the line buffer is reused by the nested source */
             return fbrl__included(vm, name, n, op == OP_REQUIRE);
         }
     case OP_REFILL:
         r = fbrl__refill(vm);
-        if (r < 0) return r;
+        if (r < 0)
+            return r;
         return push(vm, r ? -1 : 0);
     case OP_ENVQ:
-        if ((r = pop_str(vm, &p, &n))) return r;
+        if ((r = pop_str(vm, &p, &n)))
+            return r;
         return env_query(vm, p, n);
     case OP_BIF:
-        if ((r = pop(vm, &v))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
         return v ? 0 : skip_conditional(vm, 1);
     case OP_BELSE: return skip_conditional(vm, 0);
     case OP_BTHEN: return 0;
-    case OP_BDEFINED: case OP_BUNDEFINED:
+    case OP_BDEFINED:
+    case OP_BUNDEFINED:
         fbrl__parse_name(vm, &p, &n);
         found = fbrl__find(vm, p, n) >= 0;
         return push(vm, (op == OP_BDEFINED) == found ? -1 : 0);
     case OP_SAVEINPUT: {
         const fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
-        if (vm->ds_end - vm->sp < 4) return FBRL_THROW_STACK_OVERFLOW;
+        if (vm->ds_end - vm->sp < 4)
+            return FBRL_THROW_STACK_OVERFLOW;
         *vm->sp++ = *vm->toin;
         *vm->sp++ = s ? (fbrl_cell)s->line : 0;
         *vm->sp++ = s ? s->id : 0;
@@ -971,8 +1231,10 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     }
     case OP_RESTOREINPUT: {
         const fbrl_src *s = vm->nsrc ? fbrl__src(vm) : NULL;
-        if ((r = pop(vm, &v))) return r;
-        if (v < 0 || vm->sp - vm->ds0 < v) return FBRL_THROW_STACK_UNDERFLOW;
+        if ((r = pop(vm, &v)))
+            return r;
+        if (v < 0 || vm->sp - vm->ds0 < v)
+            return FBRL_THROW_STACK_UNDERFLOW;
         vm->sp -= v;
         if (v != 3 || !s || vm->sp[2] != s->id || vm->sp[1] != (fbrl_cell)s->line || vm->sp[0] < 0 ||
             (size_t)vm->sp[0] > s->len)
@@ -981,10 +1243,12 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         return push(vm, 0);
     }
     case OP_LATESTXT:
-        if (vm->nwords == 0) return FBRL_THROW_UNSUPPORTED;
+        if (vm->nwords == 0)
+            return FBRL_THROW_UNSUPPORTED;
         return push(vm, (fbrl_cell)(FBRL_XT_BASE + vm->nwords - 1));
     case OP_TOBODY:
-        if ((r = pop(vm, &xt))) return r;
+        if ((r = pop(vm, &xt)))
+            return r;
         h = fbrl__xt_hdr(vm, xt);
         if (!h || h->kind == K_PRIM || h->kind == K_COLON || h->kind == K_CFUNC || h->kind == K_MARKER)
             return FBRL_THROW_TO_BODY;
@@ -1023,7 +1287,8 @@ int fbrl__spaces(fbrl_vm *vm, fbrl_cell n)
     static const char blanks[64] = "                                                                ";
     while (n > 0) {
         size_t k = n > (fbrl_cell)sizeof blanks ? sizeof blanks : (size_t)n;
-        if (fbrl__take_interrupt(vm)) return FBRL_THROW_INTERRUPT;
+        if (fbrl__take_interrupt(vm))
+            return FBRL_THROW_INTERRUPT;
         fbrl__write(vm, blanks, k);
         n -= (fbrl_cell)k;
     }
@@ -1034,22 +1299,30 @@ static int print_d(fbrl_vm *vm, fbrl_cell lo, fbrl_cell hi, int is_signed, fbrl_
 {
     unsigned base = 10;
     int r = get_base(vm, &base);
-    if (r) return r;
+    if (r)
+        return r;
     char b[CELL_BITS * 2 + 4], *e = b + sizeof b, *p = e;
     fbrl_ucell l = U(lo), h = U(hi);
     int neg = is_signed && hi < 0;
-    if (neg) dneg(&l, &h);
-    do *--p = digit_char(ud_divsmall(&l, &h, base)); while (l || h);
-    if (neg) *--p = '-';
-    if ((r = fbrl__spaces(vm, width - (fbrl_cell)(e - p)))) return r;
+    if (neg)
+        dneg(&l, &h);
+    do
+        *--p = digit_char(ud_divsmall(&l, &h, base));
+    while (l || h);
+    if (neg)
+        *--p = '-';
+    if ((r = fbrl__spaces(vm, width - (fbrl_cell)(e - p))))
+        return r;
     fbrl__write(vm, p, (size_t)(e - p));
-    if (space) fbrl__write(vm, " ", 1);
+    if (space)
+        fbrl__write(vm, " ", 1);
     return 0;
 }
 
 static int hold_char(fbrl_vm *vm, char c)
 {
-    if (vm->hld <= vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE) return FBRL_THROW_PICTURED_OVERFLOW;
+    if (vm->hld <= vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE)
+        return FBRL_THROW_PICTURED_OVERFLOW;
     *--vm->hld = c;
     return 0;
 }
@@ -1061,12 +1334,14 @@ static int represent(double r, char *out, int u, int *exp, int *neg)
     *neg = signbit(r) != 0;
     *exp = 0;
     if (!isfinite(r)) {
-        for (int i = 0; i < u; i++) out[i] = isnan(r) ? 'n' : 'i';
+        for (int i = 0; i < u; i++)
+            out[i] = isnan(r) ? 'n' : 'i';
         return 0;
     }
     int d = u < 1 ? 1 : u > 17 ? 17 : u, e10 = 0;
     fbrl_num_digits(r, d, t, &e10); /* locale-free "%.*e" */
-    for (int i = 0; i < u; i++) out[i] = i < d ? t[i] : '0';
+    for (int i = 0; i < u; i++)
+        out[i] = i < d ? t[i] : '0';
     *exp = r == 0 ? 1 : e10 + 1;
     return 1;
 }
@@ -1079,19 +1354,25 @@ static int print_float(fbrl_vm *vm, double r, int mode)
         fbrl__puts(vm, isnan(r) ? "NaN " : neg ? "-Inf " : "Inf ");
         return 0;
     }
-    if (neg) b[k++] = '-';
+    if (neg)
+        b[k++] = '-';
     if (mode == 0) { /* F. fixed point, trailing zeros dropped */
         int last = prec;
-        while (last > 0 && dg[last - 1] == '0') last--;
+        while (last > 0 && dg[last - 1] == '0')
+            last--;
         if (exp <= 0) {
             b[k++] = '0';
             b[k++] = '.';
-            for (int i = 0; i < -exp && k < 350; i++) b[k++] = '0';
-            for (int i = 0; i < last; i++) b[k++] = dg[i];
+            for (int i = 0; i < -exp && k < 350; i++)
+                b[k++] = '0';
+            for (int i = 0; i < last; i++)
+                b[k++] = dg[i];
         } else {
-            for (int i = 0; i < exp && k < 350; i++) b[k++] = i < prec ? dg[i] : '0';
+            for (int i = 0; i < exp && k < 350; i++)
+                b[k++] = i < prec ? dg[i] : '0';
             b[k++] = '.';
-            for (int i = exp; i < last; i++) b[k++] = dg[i];
+            for (int i = exp; i < last; i++)
+                b[k++] = dg[i];
         }
     } else { /* FS. scientific, FE. engineering */
         int lead = 1, e = exp - 1;
@@ -1100,13 +1381,16 @@ static int print_float(fbrl_vm *vm, double r, int mode)
             lead += m;
             e -= m;
             if (lead > prec) { /* not enough digits: pad */
-                for (int i = prec; i < lead; i++) dg[i] = '0';
+                for (int i = prec; i < lead; i++)
+                    dg[i] = '0';
                 prec = lead;
             }
         }
-        for (int i = 0; i < lead; i++) b[k++] = dg[i];
+        for (int i = 0; i < lead; i++)
+            b[k++] = dg[i];
         b[k++] = '.';
-        for (int i = lead; i < prec; i++) b[k++] = dg[i];
+        for (int i = lead; i < prec; i++)
+            b[k++] = dg[i];
         k += snprintf(b + k, sizeof b - (size_t)k, "E%d", r == 0 ? 0 : e);
     }
     b[k++] = ' ';
@@ -1119,21 +1403,36 @@ static int parse_float_text(const char *s, size_t n, int need_e, double *out)
     char b[400];
     size_t i = 0, k = 0;
     int nd = 0, nfrac = 0;
-    if (n > 350) return 0;
-    if (i < n && (s[i] == '+' || s[i] == '-')) b[k++] = s[i++];
-    while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; }
+    if (n > 350)
+        return 0;
+    if (i < n && (s[i] == '+' || s[i] == '-'))
+        b[k++] = s[i++];
+    while (i < n && s[i] >= '0' && s[i] <= '9') {
+        b[k++] = s[i++];
+        nd++;
+    }
     if (i < n && s[i] == '.') {
         b[k++] = s[i++];
-        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; nd++; nfrac++; }
+        while (i < n && s[i] >= '0' && s[i] <= '9') {
+            b[k++] = s[i++];
+            nd++;
+            nfrac++;
+        }
     }
-    if (nd == 0) return 0;
+    if (nd == 0)
+        return 0;
     if (i < n && (s[i] == 'E' || s[i] == 'e' || s[i] == 'D' || s[i] == 'd')) {
         i++;
         b[k++] = 'e';
-        if (i < n && (s[i] == '+' || s[i] == '-')) b[k++] = s[i++];
+        if (i < n && (s[i] == '+' || s[i] == '-'))
+            b[k++] = s[i++];
         int ed = 0;
-        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; ed++; }
-        if (!ed) b[k++] = '0';
+        while (i < n && s[i] >= '0' && s[i] <= '9') {
+            b[k++] = s[i++];
+            ed++;
+        }
+        if (!ed)
+            b[k++] = '0';
     } else if (need_e && nfrac == 0) {
         /* FBRL (as the thesis writes `0.2 0.5 1.0 LOC RADMAT MAT`): digits after a
          * decimal point make a float; a trailing point alone still makes a double. */
@@ -1142,13 +1441,19 @@ static int parse_float_text(const char *s, size_t n, int need_e, double *out)
         b[k++] = 'e';
         b[k++] = s[i++];
         int ed = 0;
-        while (i < n && s[i] >= '0' && s[i] <= '9') { b[k++] = s[i++]; ed++; }
-        if (!ed) return 0;
+        while (i < n && s[i] >= '0' && s[i] <= '9') {
+            b[k++] = s[i++];
+            ed++;
+        }
+        if (!ed)
+            return 0;
     }
-    if (i != n) return 0;
+    if (i != n)
+        return 0;
     double v;
     /* fbrl_num_parse, not strtod: a host's locale must not change what a number is */
-    if (fbrl_num_parse(b, k, &v) != FBRL_OK || !isfinite(v)) return 0;
+    if (fbrl_num_parse(b, k, &v) != FBRL_OK || !isfinite(v))
+        return 0;
     *out = v;
     return 1;
 }
@@ -1171,108 +1476,140 @@ int fbrl__w_io(fbrl_vm *vm, int op)
     unsigned base = 10;
     switch (op) {
     case OP_KEY:
-        if (!vm->host.key) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
+        if (!vm->host.key)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         r = vm->host.key(vm->host.user);
-        if (r < 0) return FBRL_THROW_CHAR_IO;
+        if (r < 0)
+            return FBRL_THROW_CHAR_IO;
         return push(vm, (unsigned char)r);
     case OP_KEYQ:
-        if (!vm->host.key_ready) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
+        if (!vm->host.key_ready)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         return push(vm, vm->host.key_ready(vm->host.user) ? -1 : 0);
     case OP_ACCEPT: {
-        if ((r = need(vm, 2))) return r;
+        if ((r = need(vm, 2)))
+            return r;
         u = *--vm->sp;
         a = *--vm->sp;
-        if (u < 0) return FBRL_THROW_BAD_NUMBER;
-        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
-        if (!vm->host.key) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
+        if (u < 0)
+            return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u))
+            return FBRL_THROW_BAD_ADDRESS;
+        if (!vm->host.key)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         fbrl_cell k = 0;
         for (;;) {
             int c = vm->host.key(vm->host.user);
-            if (c < 0 || c == '\n' || c == '\r') break;
-            if (k < u) ((char *)a)[k++] = (char)c;
+            if (c < 0 || c == '\n' || c == '\r')
+                break;
+            if (k < u)
+                ((char *)a)[k++] = (char)c;
         }
         return push(vm, k);
     }
-    case OP_DOT: case OP_UDOT:
-        if ((r = pop(vm, &v))) return r;
+    case OP_DOT:
+    case OP_UDOT:
+        if ((r = pop(vm, &v)))
+            return r;
         return print_d(vm, v, op == OP_DOT && v < 0 ? -1 : 0, op == OP_DOT, 0, 1);
-    case OP_DOTR: case OP_UDOTR:
-        if ((r = need(vm, 2))) return r;
+    case OP_DOTR:
+    case OP_UDOTR:
+        if ((r = need(vm, 2)))
+            return r;
         w = *--vm->sp;
         v = *--vm->sp;
         return print_d(vm, v, op == OP_DOTR && v < 0 ? -1 : 0, op == OP_DOTR, w, 0);
-    case OP_DDOT: case OP_UDDOT:
-        if ((r = need(vm, 2))) return r;
+    case OP_DDOT:
+    case OP_UDDOT:
+        if ((r = need(vm, 2)))
+            return r;
         vm->sp -= 2;
         return print_d(vm, vm->sp[0], vm->sp[1], op == OP_DDOT, 0, 1);
     case OP_DDOTR:
-        if ((r = need(vm, 3))) return r;
+        if ((r = need(vm, 3)))
+            return r;
         vm->sp -= 3;
         return print_d(vm, vm->sp[0], vm->sp[1], 1, vm->sp[2], 0);
     case OP_QUESTION:
-        if ((r = pop(vm, &a))) return r;
-        if (!fbrl__addr_ok(vm, a, CELL)) return FBRL_THROW_BAD_ADDRESS;
+        if ((r = pop(vm, &a)))
+            return r;
+        if (!fbrl__addr_ok(vm, a, CELL))
+            return FBRL_THROW_BAD_ADDRESS;
         memcpy(&v, (void *)a, sizeof v);
         return print_d(vm, v, v < 0 ? -1 : 0, 1, 0, 1);
-    case OP_LTNUM:
-        vm->hld = vm->hold + FBRL_HOLDSIZE;
-        return 0;
-    case OP_NUM: case OP_NUMS: {
-        if ((r = need(vm, 2)) || (r = get_base(vm, &base))) return r;
+    case OP_LTNUM: vm->hld = vm->hold + FBRL_HOLDSIZE; return 0;
+    case OP_NUM:
+    case OP_NUMS: {
+        if ((r = need(vm, 2)) || (r = get_base(vm, &base)))
+            return r;
         fbrl_ucell lo = U(vm->sp[-2]), hi = U(vm->sp[-1]);
         do {
-            if ((r = hold_char(vm, digit_char(ud_divsmall(&lo, &hi, base))))) return r;
+            if ((r = hold_char(vm, digit_char(ud_divsmall(&lo, &hi, base)))))
+                return r;
         } while (op == OP_NUMS && (lo || hi));
         vm->sp[-2] = (fbrl_cell)lo;
         vm->sp[-1] = (fbrl_cell)hi;
         return 0;
     }
     case OP_NUMGT:
-        if ((r = need(vm, 2))) return r;
-        if (vm->hld < vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE) vm->hld = vm->hold + FBRL_HOLDSIZE;
+        if ((r = need(vm, 2)))
+            return r;
+        if (vm->hld < vm->hold || vm->hld > vm->hold + FBRL_HOLDSIZE)
+            vm->hld = vm->hold + FBRL_HOLDSIZE;
         vm->sp[-2] = (fbrl_cell)vm->hld;
         vm->sp[-1] = (fbrl_cell)(vm->hold + FBRL_HOLDSIZE - vm->hld);
         return 0;
     case OP_HOLD:
-        if ((r = pop(vm, &v))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
         return hold_char(vm, (char)v);
     case OP_HOLDS: {
         const char *s;
         size_t n;
-        if ((r = pop_str(vm, &s, &n))) return r;
+        if ((r = pop_str(vm, &s, &n)))
+            return r;
         while (n > 0)
-            if ((r = hold_char(vm, s[--n]))) return r;
+            if ((r = hold_char(vm, s[--n])))
+                return r;
         return 0;
     }
     case OP_SIGN:
-        if ((r = pop(vm, &v))) return r;
+        if ((r = pop(vm, &v)))
+            return r;
         return v < 0 ? hold_char(vm, '-') : 0;
     case OP_DOTS: {
         char b[24];
         int k = snprintf(b, sizeof b, "<%ld> ", (long)(vm->sp - vm->ds0));
         fbrl__write(vm, b, (size_t)k);
         for (fbrl_cell *p = vm->ds0; p < vm->sp; p++)
-            if ((r = print_d(vm, *p, *p < 0 ? -1 : 0, 1, 0, 1))) return r;
+            if ((r = print_d(vm, *p, *p < 0 ? -1 : 0, 1, 0, 1)))
+                return r;
         if (vm->fp > vm->fs0) {
             k = snprintf(b, sizeof b, "F: <%ld> ", (long)(vm->fp - vm->fs0));
             fbrl__write(vm, b, (size_t)k);
-            for (double *p = vm->fs0; p < vm->fp; p++) print_float(vm, *p, 1);
+            for (double *p = vm->fs0; p < vm->fp; p++)
+                print_float(vm, *p, 1);
         }
         fbrl__write(vm, "\n", 1);
         return 0;
     }
     case OP_DUMP: {
-        if ((r = need(vm, 2))) return r;
+        if ((r = need(vm, 2)))
+            return r;
         u = *--vm->sp;
         a = *--vm->sp;
-        if (u < 0) return FBRL_THROW_BAD_NUMBER;
-        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
+        if (u < 0)
+            return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u))
+            return FBRL_THROW_BAD_ADDRESS;
         for (fbrl_cell i = 0; i < u; i += 16) {
             char b[100];
             int k = snprintf(b, sizeof b, "%0*lx ", (int)(2 * sizeof(fbrl_cell)), (unsigned long)U(a + i));
             for (fbrl_cell j = 0; j < 16; j++) {
-                if (i + j < u) k += snprintf(b + k, sizeof b - (size_t)k, " %02x", ((unsigned char *)a)[i + j]);
-                else k += snprintf(b + k, sizeof b - (size_t)k, "   ");
+                if (i + j < u)
+                    k += snprintf(b + k, sizeof b - (size_t)k, " %02x", ((unsigned char *)a)[i + j]);
+                else
+                    k += snprintf(b + k, sizeof b - (size_t)k, "   ");
             }
             b[k++] = ' ';
             b[k++] = ' ';
@@ -1290,39 +1627,57 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         fbrl__write(vm, "\n", 1);
         return 0;
     case OP_MS:
-        if ((r = pop(vm, &v))) return r;
-        if (!vm->host.sleep_ms) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
-        if (v > 0) vm->host.sleep_ms(vm->host.user, (uint32_t)(v > 0x7fffffff ? 0x7fffffff : v));
-        return fbrl__take_interrupt(vm) ? FBRL_THROW_INTERRUPT : 0; /* a host may cut the sleep short on Ctrl-C */
+        if ((r = pop(vm, &v)))
+            return r;
+        if (!vm->host.sleep_ms)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+        if (v > 0)
+            vm->host.sleep_ms(vm->host.user, (uint32_t)(v > 0x7fffffff ? 0x7fffffff : v));
+        return fbrl__take_interrupt(vm) ? FBRL_THROW_INTERRUPT
+                                        : 0; /* a host may cut the sleep short on Ctrl-C */
     case OP_TIMEDATE: {
-        int t[6] = { 0 };
-        if (!vm->host.time_date) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
-        if (vm->ds_end - vm->sp < 6) return FBRL_THROW_STACK_OVERFLOW;
+        int t[6] = {0};
+        if (!vm->host.time_date)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+        if (vm->ds_end - vm->sp < 6)
+            return FBRL_THROW_STACK_OVERFLOW;
         vm->host.time_date(vm->host.user, t);
-        for (int i = 0; i < 6; i++) *vm->sp++ = t[i];
+        for (int i = 0; i < 6; i++)
+            *vm->sp++ = t[i];
         return 0;
     }
     case OP_USECS: {
-        if (!vm->host.now_us) return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+        if (!vm->host.now_us)
+            return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
         uint64_t t = vm->host.now_us(vm->host.user);
-        if ((r = push(vm, (fbrl_cell)t))) return r;
+        if ((r = push(vm, (fbrl_cell)t)))
+            return r;
         return push(vm, sizeof(fbrl_cell) >= 8 ? 0 : (fbrl_cell)(t >> 31 >> 1));
     }
-    case OP_FDOT: case OP_FSDOT: case OP_FEDOT:
-        if ((r = fpop(vm, &f))) return r;
+    case OP_FDOT:
+    case OP_FSDOT:
+    case OP_FEDOT:
+        if ((r = fpop(vm, &f)))
+            return r;
         return print_float(vm, f, op == OP_FDOT ? 0 : op == OP_FSDOT ? 1 : 2);
     case OP_REPRESENT: {
         int exp, neg, ok;
         char dg[64];
-        if ((r = need(vm, 2))) return r;
+        if ((r = need(vm, 2)))
+            return r;
         u = vm->sp[-1];
         a = vm->sp[-2];
-        if (u < 0) return FBRL_THROW_BAD_NUMBER;
-        if (u && !fbrl__addr_ok(vm, a, u)) return FBRL_THROW_BAD_ADDRESS;
-        if ((r = fpop(vm, &f))) return r;
+        if (u < 0)
+            return FBRL_THROW_BAD_NUMBER;
+        if (u && !fbrl__addr_ok(vm, a, u))
+            return FBRL_THROW_BAD_ADDRESS;
+        if ((r = fpop(vm, &f)))
+            return r;
         ok = represent(f, dg, u > 17 ? 17 : (int)u, &exp, &neg);
-        if (u) memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
-        if (u > 17) memset((char *)a + 17, '0', (size_t)(u - 17));
+        if (u)
+            memcpy((void *)a, dg, (size_t)(u > 17 ? 17 : u));
+        if (u > 17)
+            memset((char *)a + 17, '0', (size_t)(u - 17));
         vm->sp[-2] = exp;
         vm->sp[-1] = neg ? -1 : 0;
         return push(vm, ok ? -1 : 0);
@@ -1330,14 +1685,18 @@ int fbrl__w_io(fbrl_vm *vm, int op)
     case OP_TOFLOAT: {
         const char *s;
         size_t n, i = 0;
-        if ((r = pop_str(vm, &s, &n))) return r;
-        while (i < n && s[i] == ' ') i++;
+        if ((r = pop_str(vm, &s, &n)))
+            return r;
+        while (i < n && s[i] == ' ')
+            i++;
         if (i == n) {
-            if ((r = fpush(vm, 0.0))) return r;
+            if ((r = fpush(vm, 0.0)))
+                return r;
             return push(vm, -1);
         }
         if (parse_float_text(s, n, 0, &f)) {
-            if ((r = fpush(vm, f))) return r;
+            if ((r = fpush(vm, f)))
+                return r;
             return push(vm, -1);
         }
         return push(vm, 0);

@@ -28,8 +28,8 @@ int fbrl__compile_op(fbrl_vm *vm, int op);
 void fbrl__peep_reset(fbrl_vm *vm);
 int fbrl__compile_flit(fbrl_vm *vm, double d);
 int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n);
-int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack,
-                   const char *help, fbrl_hdr **out);
+int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack, const char *help,
+                   fbrl_hdr **out);
 int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, fbrl_hdr **out);
 int fbrl__parse_float(const char *s, size_t n, double *out);
 

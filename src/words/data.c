@@ -13,8 +13,8 @@
 #include "fbrl/ring.h"
 #include "fbrl/vmx.h"
 
-static const fbrl_vmx_type queue_type = { "queue", (fbrl_cell)0x51554555 /* "QUEU" */ };
-static const fbrl_vmx_type array_type = { "array", (fbrl_cell)0x41525259 /* "ARRY" */ };
+static const fbrl_vmx_type queue_type = {"queue", (fbrl_cell)0x51554555 /* "QUEU" */};
+static const fbrl_vmx_type array_type = {"array", (fbrl_cell)0x41525259 /* "ARRY" */};
 #define STR_MAX 65535
 
 static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) & ~(fbrl_ucell)15); }
@@ -30,13 +30,23 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
 {
     fbrl_cell magic;
     *st = FBRL_OK;
-    if (!fbrl_vm_addr(vm, q, sizeof(fbrl_cell))) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
+    if (!fbrl_vm_addr(vm, q, sizeof(fbrl_cell))) {
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
+        return NULL;
+    }
     memcpy(&magic, (void *)q, sizeof magic);
-    if (magic != queue_type.magic) { *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a queue (use a CREATE-Q name)"); return NULL; }
+    if (magic != queue_type.magic) {
+        *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a queue (use a CREATE-Q name)");
+        return NULL;
+    }
     fbrl_ring *r = fbrl_vmx_data(vm, q, &queue_type, sizeof(fbrl_ring));
-    if (!r) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
+    if (!r) {
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
+        return NULL;
+    }
     size_t cap = r->mask + 1;
-    if (r->buf != (uint8_t *)(r + 1) || cap == 0 || (cap & r->mask) || !fbrl_vm_addr(vm, (fbrl_cell)r->buf, cap)) {
+    if (r->buf != (uint8_t *)(r + 1) || cap == 0 || (cap & r->mask) ||
+        !fbrl_vm_addr(vm, (fbrl_cell)r->buf, cap)) {
         *st = fail(vm, FBRL_THROW_BAD_ADDRESS, "queue structure overwritten");
         return NULL;
     }
@@ -47,7 +57,8 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
 static fbrl_ring *pop_queue(fbrl_vm *vm, fbrl_status *st)
 {
     fbrl_cell q;
-    if ((*st = need(vm, 1))) return NULL;
+    if ((*st = need(vm, 1)))
+        return NULL;
     fbrl_vm_pop(vm, &q);
     return queue_at(vm, q, st);
 }
@@ -58,11 +69,13 @@ static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
     void *p;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 1))) return st;
+    if ((st = need(vm, 1)))
+        return st;
     fbrl_vm_pop(vm, &n);
-    if (n < 2 || n > (1 << 24)) return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
-    if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL, "( -- q-addr )",
-                              "queue", NULL, &p)))
+    if (n < 2 || n > (1 << 24))
+        return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
+    if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL,
+                              "( -- q-addr )", "queue", NULL, &p)))
         return st;
     return fbrl_ring_init((fbrl_ring *)p, (fbrl_ring *)p + 1, (size_t)n);
 }
@@ -72,12 +85,15 @@ static fbrl_status w_enq(fbrl_vm *vm, void *arg)
     fbrl_cell q, c;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 2))) return st;
+    if ((st = need(vm, 2)))
+        return st;
     fbrl_vm_pop(vm, &q);
     fbrl_vm_pop(vm, &c);
     fbrl_ring *r = queue_at(vm, q, &st);
-    if (!r) return st;
-    if (fbrl_ring_put(r, (uint8_t)c) != FBRL_OK) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "queue full");
+    if (!r)
+        return st;
+    if (fbrl_ring_put(r, (uint8_t)c) != FBRL_OK)
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "queue full");
     return FBRL_OK;
 }
 
@@ -87,8 +103,10 @@ static fbrl_status w_deq(fbrl_vm *vm, void *arg)
     fbrl_status st;
     (void)arg;
     fbrl_ring *r = pop_queue(vm, &st);
-    if (!r) return st;
-    if (fbrl_ring_get(r, &b) != FBRL_OK) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EEMPTY), "queue empty");
+    if (!r)
+        return st;
+    if (fbrl_ring_get(r, &b) != FBRL_OK)
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EEMPTY), "queue empty");
     return fbrl_vm_push(vm, b);
 }
 
@@ -96,7 +114,8 @@ static fbrl_status w_q_test(fbrl_vm *vm, void *arg)
 {
     fbrl_status st;
     fbrl_ring *r = pop_queue(vm, &st);
-    if (!r) return st;
+    if (!r)
+        return st;
     int yes = arg ? fbrl_ring_full(r) : fbrl_ring_empty(r);
     return fbrl_vm_push(vm, yes ? -1 : 0);
 }
@@ -106,7 +125,8 @@ static fbrl_status w_q_count(fbrl_vm *vm, void *arg)
     fbrl_status st;
     (void)arg;
     fbrl_ring *r = pop_queue(vm, &st);
-    if (!r) return st;
+    if (!r)
+        return st;
     return fbrl_vm_push(vm, (fbrl_cell)fbrl_ring_count(r));
 }
 
@@ -121,7 +141,8 @@ static fbrl_array *array_at(fbrl_vm *vm, fbrl_cell body, fbrl_status *st)
     }
     fbrl_array *a = fbrl_vmx_data(vm, body, &array_type, sizeof(fbrl_array));
     if (!a || a->data != (unsigned char *)align16((fbrl_cell)a + (fbrl_cell)sizeof(fbrl_array)) ||
-        fbrl_array_bytes(a->cell_size, a->rows, a->cols, &bytes) != FBRL_OK || !fbrl_vm_addr(vm, (fbrl_cell)a->data, bytes)) {
+        fbrl_array_bytes(a->cell_size, a->rows, a->cols, &bytes) != FBRL_OK ||
+        !fbrl_vm_addr(vm, (fbrl_cell)a->data, bytes)) {
         *st = fail(vm, FBRL_THROW_BAD_ADDRESS, "array structure overwritten");
         return NULL;
     }
@@ -134,13 +155,18 @@ static fbrl_status array_run(fbrl_vm *vm, const void *body, int two)
     fbrl_status st;
     void *cell;
     fbrl_array *a = array_at(vm, (fbrl_cell)body, &st);
-    if (!a) return st;
-    if ((st = need(vm, two ? 2 : 1))) return st;
-    if (two) fbrl_vm_pop(vm, &j);
+    if (!a)
+        return st;
+    if ((st = need(vm, two ? 2 : 1)))
+        return st;
+    if (two)
+        fbrl_vm_pop(vm, &j);
     fbrl_vm_pop(vm, &i);
-    if (i < 0 || j < 0) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "array index out of range");
+    if (i < 0 || j < 0)
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "array index out of range");
     st = two ? fbrl_array2_cell(a, (size_t)i, (size_t)j, &cell) : fbrl_array_cell(a, (size_t)i, &cell);
-    if (st != FBRL_OK) return fail(vm, FBRL_VM_THROW_OF_STATUS(st), "array index out of range");
+    if (st != FBRL_OK)
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(st), "array index out of range");
     return fbrl_vm_push(vm, (fbrl_cell)cell);
 }
 static fbrl_status w_array1_run(fbrl_vm *vm, void *ctx, const void *body)
@@ -161,16 +187,19 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
     fbrl_status st;
     if (rows < 1 || cols < 1 || size < 1 || rows > 65535 || cols > 65535 || size > 65535)
         return fail(vm, FBRL_THROW_BAD_NUMBER, "array sizes must be 1..65535");
-    if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK) return fail(vm, FBRL_THROW_BAD_NUMBER, NULL);
-    if ((st = fbrl_vmx_create(vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes, two ? w_array2_run : w_array1_run,
-                              NULL, two ? "( row col -- addr )" : "( index -- addr )",
-                              two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY",
-                              NULL, &p)))
+    if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK)
+        return fail(vm, FBRL_THROW_BAD_NUMBER, NULL);
+    if ((st = fbrl_vmx_create(
+             vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes, two ? w_array2_run : w_array1_run,
+             NULL, two ? "( row col -- addr )" : "( index -- addr )",
+             two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY", NULL,
+             &p)))
         return st;
     fbrl_cell aa = (fbrl_cell)p;
     fbrl_cell data = align16(aa + (fbrl_cell)sizeof(fbrl_array));
     if (two)
-        st = fbrl_array2_init((fbrl_array *)aa, (void *)data, bytes, (size_t)size, (size_t)rows, (size_t)cols);
+        st =
+            fbrl_array2_init((fbrl_array *)aa, (void *)data, bytes, (size_t)size, (size_t)rows, (size_t)cols);
     else
         st = fbrl_array_init((fbrl_array *)aa, (void *)data, bytes, (size_t)size, (size_t)rows);
     return st == FBRL_OK ? st : fail(vm, FBRL_VM_THROW_OF_STATUS(st), NULL);
@@ -181,7 +210,8 @@ static fbrl_status w_array(fbrl_vm *vm, void *arg)
     fbrl_cell n, size;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 2))) return st;
+    if ((st = need(vm, 2)))
+        return st;
     fbrl_vm_pop(vm, &size);
     fbrl_vm_pop(vm, &n);
     return make_array(vm, n, 1, size, 0);
@@ -192,7 +222,8 @@ static fbrl_status w_2array(fbrl_vm *vm, void *arg)
     fbrl_cell rows, cols, size;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 3))) return st;
+    if ((st = need(vm, 3)))
+        return st;
     fbrl_vm_pop(vm, &size);
     fbrl_vm_pop(vm, &cols);
     fbrl_vm_pop(vm, &rows);
@@ -204,7 +235,10 @@ static unsigned char *string_at(fbrl_vm *vm, fbrl_cell s, unsigned *size, unsign
 {
     uint16_t v[2];
     *st = FBRL_OK;
-    if (!fbrl_vm_addr(vm, s, 4)) { *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL); return NULL; }
+    if (!fbrl_vm_addr(vm, s, 4)) {
+        *st = fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
+        return NULL;
+    }
     memcpy(v, (void *)s, 4);
     if (v[0] == 0 || v[1] > v[0] || !fbrl_vm_addr(vm, s + 4, v[0])) {
         *st = fail(vm, FBRL_THROW_TYPE_MISMATCH, "not a string (use a STRING name)");
@@ -218,7 +252,8 @@ static unsigned char *string_at(fbrl_vm *vm, fbrl_cell s, unsigned *size, unsign
 /* Pops ( str -- ) and checks it is a string: its characters, *s its address. */
 static unsigned char *pop_string(fbrl_vm *vm, fbrl_cell *s, unsigned *size, unsigned *len, fbrl_status *st)
 {
-    if ((*st = need(vm, 1))) return NULL;
+    if ((*st = need(vm, 1)))
+        return NULL;
     fbrl_vm_pop(vm, s);
     return string_at(vm, *s, size, len, st);
 }
@@ -235,10 +270,14 @@ static fbrl_status w_string(fbrl_vm *vm, void *arg)
     void *p;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 1))) return st;
+    if ((st = need(vm, 1)))
+        return st;
     fbrl_vm_pop(vm, &n);
-    if (n < 1 || n > STR_MAX) return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
-    if ((st = fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, "( -- str )", "string", NULL, &p))) return st;
+    if (n < 1 || n > STR_MAX)
+        return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
+    if ((st =
+             fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, "( -- str )", "string", NULL, &p)))
+        return st;
     uint16_t v = (uint16_t)n;
     memcpy(p, &v, 2);
     return FBRL_OK;
@@ -252,19 +291,24 @@ static fbrl_status w_str1(fbrl_vm *vm, void *arg)
     unsigned size, len;
     fbrl_status st;
     unsigned char *c = pop_string(vm, &s, &size, &len, &st);
-    if (!c) return st;
+    if (!c)
+        return st;
     switch ((int)(intptr_t)arg) {
     case S_CNT: return fbrl_vm_push(vm, len);
     case S_SIZE: return fbrl_vm_push(vm, size);
     case S_TYPE: fbrl_vmx_write(vm, (const char *)c, len); return FBRL_OK;
     case S_NULL: set_len(s, 0); return FBRL_OK;
     default:
-        if ((st = fbrl_vm_push(vm, (fbrl_cell)c))) return st;
+        if ((st = fbrl_vm_push(vm, (fbrl_cell)c)))
+            return st;
         return fbrl_vm_push(vm, len);
     }
 }
 
-static fbrl_status overflow(fbrl_vm *vm) { return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "string overflow"); }
+static fbrl_status overflow(fbrl_vm *vm)
+{
+    return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "string overflow");
+}
 
 static fbrl_status w_append_chr(fbrl_vm *vm, void *arg)
 {
@@ -272,12 +316,15 @@ static fbrl_status w_append_chr(fbrl_vm *vm, void *arg)
     unsigned size, len;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 2))) return st;
+    if ((st = need(vm, 2)))
+        return st;
     fbrl_vm_pop(vm, &s);
     fbrl_vm_pop(vm, &ch);
     unsigned char *c = string_at(vm, s, &size, &len, &st);
-    if (!c) return st;
-    if (len >= size) return overflow(vm);
+    if (!c)
+        return st;
+    if (len >= size)
+        return overflow(vm);
     c[len] = (unsigned char)ch;
     set_len(s, len + 1);
     return FBRL_OK;
@@ -289,15 +336,19 @@ static fbrl_status w_append_copy(fbrl_vm *vm, void *arg)
     fbrl_cell t, s;
     unsigned tsize, tlen, ssize, slen;
     fbrl_status st;
-    if ((st = need(vm, 2))) return st;
+    if ((st = need(vm, 2)))
+        return st;
     fbrl_vm_pop(vm, &s);
     fbrl_vm_pop(vm, &t);
     unsigned char *tc = string_at(vm, t, &tsize, &tlen, &st);
-    if (!tc) return st;
+    if (!tc)
+        return st;
     unsigned char *sc = string_at(vm, s, &ssize, &slen, &st);
-    if (!sc) return st;
+    if (!sc)
+        return st;
     unsigned at = arg ? tlen : 0;
-    if (at + slen > tsize) return overflow(vm);
+    if (at + slen > tsize)
+        return overflow(vm);
     memmove(tc + at, sc, slen);
     set_len(t, at + slen);
     return FBRL_OK;
@@ -310,18 +361,22 @@ static fbrl_status w_sub_string(fbrl_vm *vm, void *arg)
     unsigned tsize, tlen, ssize, slen;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 4))) return st;
+    if ((st = need(vm, 4)))
+        return st;
     fbrl_vm_pop(vm, &n);
     fbrl_vm_pop(vm, &m);
     fbrl_vm_pop(vm, &s);
     fbrl_vm_pop(vm, &t);
     unsigned char *tc = string_at(vm, t, &tsize, &tlen, &st);
-    if (!tc) return st;
+    if (!tc)
+        return st;
     unsigned char *sc = string_at(vm, s, &ssize, &slen, &st);
-    if (!sc) return st;
+    if (!sc)
+        return st;
     if (m < 1 || n < m - 1 || n > (fbrl_cell)slen)
         return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "SUB-STRING positions out of range");
-    if (n - m + 1 > (fbrl_cell)tsize) return overflow(vm);
+    if (n - m + 1 > (fbrl_cell)tsize)
+        return overflow(vm);
     memmove(tc, sc + m - 1, (size_t)(n - m + 1));
     set_len(t, (unsigned)(n - m + 1));
     return FBRL_OK;
@@ -333,12 +388,15 @@ static fbrl_status w_string_chr(fbrl_vm *vm, void *arg)
     unsigned size, len;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 2))) return st;
+    if ((st = need(vm, 2)))
+        return st;
     fbrl_vm_pop(vm, &pos);
     fbrl_vm_pop(vm, &s);
     unsigned char *c = string_at(vm, s, &size, &len, &st);
-    if (!c) return st;
-    if (pos < 1 || pos > (fbrl_cell)len) return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "position out of range");
+    if (!c)
+        return st;
+    if (pos < 1 || pos > (fbrl_cell)len)
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "position out of range");
     return fbrl_vm_push(vm, c[pos - 1]);
 }
 
@@ -349,15 +407,20 @@ static fbrl_status w_string_put(fbrl_vm *vm, void *arg)
     unsigned size, len;
     fbrl_status st;
     (void)arg;
-    if ((st = need(vm, 3))) return st;
+    if ((st = need(vm, 3)))
+        return st;
     fbrl_vm_pop(vm, &u);
     fbrl_vm_pop(vm, &a);
     fbrl_vm_pop(vm, &s);
     unsigned char *c = string_at(vm, s, &size, &len, &st);
-    if (!c) return st;
-    if (u < 0 || (u && !fbrl_vm_addr(vm, a, (size_t)u))) return fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
-    if (u > (fbrl_cell)size) return overflow(vm);
-    if (u) memmove(c, (void *)a, (size_t)u);
+    if (!c)
+        return st;
+    if (u < 0 || (u && !fbrl_vm_addr(vm, a, (size_t)u)))
+        return fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
+    if (u > (fbrl_cell)size)
+        return overflow(vm);
+    if (u)
+        memmove(c, (void *)a, (size_t)u);
     set_len(s, (unsigned)u);
     return FBRL_OK;
 }
@@ -371,20 +434,26 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
     (void)ctx;
     (void)word;
     int found = fbrl_vmx_parse_quoted(vm, &p, &n);
-    if (found < 0) return fail(vm, FBRL_THROW_BAD_NUMBER, "STRING-LIT needs a \"quoted\" text");
-    if (!found) return fail(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
+    if (found < 0)
+        return fail(vm, FBRL_THROW_BAD_NUMBER, "STRING-LIT needs a \"quoted\" text");
+    if (!found)
+        return fail(vm, FBRL_THROW_UNEXPECTED_EOF, "unterminated string");
     if (fbrl_vmx_compiling(vm)) {
         fbrl_status st = fbrl_vmx_find(vm, "STRING-PUT", 10, &put);
-        if (st == FBRL_OK) st = fbrl_vmx_compile_string(vm, p, n);
-        if (st == FBRL_OK) st = fbrl_vmx_compile_xt(vm, put);
+        if (st == FBRL_OK)
+            st = fbrl_vmx_compile_string(vm, p, n);
+        if (st == FBRL_OK)
+            st = fbrl_vmx_compile_xt(vm, put);
         return st;
     }
     fbrl_cell s;
     unsigned size, len;
     fbrl_status st;
     unsigned char *c = pop_string(vm, &s, &size, &len, &st);
-    if (!c) return st;
-    if (n > size) return overflow(vm);
+    if (!c)
+        return st;
+    if (n > size)
+        return overflow(vm);
     memmove(c, p, n);
     set_len(s, (unsigned)n);
     return FBRL_OK;
@@ -401,20 +470,26 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
     fbrl_status st;
     (void)arg;
     unsigned char *c = pop_string(vm, &s, &size, &len, &st);
-    if (!c) return st;
+    if (!c)
+        return st;
     const fbrl_vm_host *host = fbrl_vmx_host(vm);
-    if (!host->key) return fail(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
+    if (!host->key)
+        return fail(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
     for (;;) {
         int ch = host->key(host->user);
-        if (ch < 0 || ch == '\n' || ch == '\r') break;
-        if (k < size) c[k++] = (unsigned char)ch;
-        else dropped++;
+        if (ch < 0 || ch == '\n' || ch == '\r')
+            break;
+        if (k < size)
+            c[k++] = (unsigned char)ch;
+        else
+            dropped++;
     }
     set_len(s, k);
     if (dropped) {
         char msg[128];
-        snprintf(msg, sizeof msg, "GET-STRING: the string holds %u characters: kept the first %u, dropped %lu\n",
-                 size, k, dropped);
+        snprintf(msg, sizeof msg,
+                 "GET-STRING: the string holds %u characters: kept the first %u, dropped %lu\n", size, k,
+                 dropped);
         fbrl_vmx_puts(vm, msg);
     }
     return FBRL_OK;
@@ -433,38 +508,47 @@ typedef struct word {
     unsigned flags;
 } word;
 static const word words[] = {
-    { "CREATE-Q", w_create_q, 0, "( n \"name\" -- )", "make a character queue named name; it holds n characters, rounded down to a power of two", NULL, 0 },
-    { "ENQ", w_enq, 0, "( c q-addr -- )", "add a character to the queue (throws when full)", NULL, 0 },
-    { "DEQ", w_deq, 0, "( q-addr -- c )", "take the oldest character from the queue (throws when empty)", NULL, 0 },
-    { "EMPTY-Q?", w_q_test, 0, "( q-addr -- flag )", "true if the queue is empty", NULL, 0 },
-    { "FULL-Q?", w_q_test, 1, "( q-addr -- flag )", "true if the queue is full", NULL, 0 },
-    { "ENQ-L", w_enq, 0, "( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)", NULL, 0 },
-    { "DEQ-L", w_deq, 0, "( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)", NULL, 0 },
-    { "EMPTY-Q?-L", w_q_test, 0, "( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)", NULL, 0 },
-    { "FULL-Q?-L", w_q_test, 1, "( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)", NULL, 0 },
-    { "Q-COUNT", w_q_count, 0, "( q-addr -- n )", "number of characters in the queue", NULL, 0 },
-    { "ARRAY", w_array, 0, "( n cell-size \"name\" -- ) ( run: index -- addr )", "make a one-dimensional array of n cells", NULL, 0 },
-    { "2ARRAY", w_2array, 0, "( rows cols cell-size \"name\" -- ) ( run: row col -- addr )", "make a two-dimensional array", NULL, 0 },
-    { "STRING", w_string, 0, "( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters", NULL, 0 },
-    { "STRING-CNT", w_str1, S_CNT, "( str -- cnt )", "number of characters in the string", NULL, 0 },
-    { "STRING-SIZE", w_str1, S_SIZE, "( str -- size )", "number of characters reserved for the string", NULL, 0 },
-    { "TYPE-STRING", w_str1, S_TYPE, "( str -- )", "print the string", NULL, 0 },
-    { "NULL-STRING", w_str1, S_NULL, "( str -- )", "make the string empty", NULL, 0 },
-    { "STRING-TEXT", w_str1, S_TEXT, "( str -- a u )", "address and length of the string's characters", NULL, 0 },
-    { "APPEND-CHR", w_append_chr, 0, "( c str -- )", "append a character to the string", NULL, 0 },
-    { "APPEND-STRING", w_append_copy, 1, "( targ src -- )", "append string src to string targ", NULL, 0 },
-    { "COPY-STRING", w_append_copy, 0, "( targ src -- )", "copy string src into string targ", NULL, 0 },
-    { "SUB-STRING", w_sub_string, 0, "( targ src m n -- )", "copy characters m..n (from 1) of src into targ", NULL, 0 },
-    { "STRING->CHR", w_string_chr, 0, "( str n -- c )", "the n-th character of the string (from 1)", NULL, 0 },
-    { "STRING-PUT", w_string_put, 0, "( str a u -- )", "store the text a u into the string", NULL, 0 },
-    { "STRING-LIT", NULL, 0, "( str \"\"text\"\" -- )", "store the quoted text into the string", w_string_lit,
-      FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART },
-    { "GET-STRING", w_get_string, 0, "( str -- )", "read a line from the console into the string", NULL, 0 },
-    { "CHR", w_const, 1, "( -- 1 )", "size in bytes of a character (for ARRAY)", NULL, 0 },
-    { "INTEGER", w_const, 2, "( -- 2 )", "size in bytes of an integer (for ARRAY)", NULL, 0 },
-    { "LONG-INTEGER", w_const, 4, "( -- 4 )", "size in bytes of a long integer (for ARRAY)", NULL, 0 },
-    { "REAL", w_const, 8, "( -- 8 )", "size in bytes of a real (a float, for ARRAY)", NULL, 0 },
-    { "LOCATION", w_const, 48, "( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)", NULL, 0 },
+    {"CREATE-Q", w_create_q, 0, "( n \"name\" -- )",
+     "make a character queue named name; it holds n characters, rounded down to a power of two", NULL, 0},
+    {"ENQ", w_enq, 0, "( c q-addr -- )", "add a character to the queue (throws when full)", NULL, 0},
+    {"DEQ", w_deq, 0, "( q-addr -- c )", "take the oldest character from the queue (throws when empty)", NULL,
+     0},
+    {"EMPTY-Q?", w_q_test, 0, "( q-addr -- flag )", "true if the queue is empty", NULL, 0},
+    {"FULL-Q?", w_q_test, 1, "( q-addr -- flag )", "true if the queue is full", NULL, 0},
+    {"ENQ-L", w_enq, 0, "( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)", NULL, 0},
+    {"DEQ-L", w_deq, 0, "( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)", NULL, 0},
+    {"EMPTY-Q?-L", w_q_test, 0, "( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)", NULL, 0},
+    {"FULL-Q?-L", w_q_test, 1, "( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)", NULL, 0},
+    {"Q-COUNT", w_q_count, 0, "( q-addr -- n )", "number of characters in the queue", NULL, 0},
+    {"ARRAY", w_array, 0, "( n cell-size \"name\" -- ) ( run: index -- addr )",
+     "make a one-dimensional array of n cells", NULL, 0},
+    {"2ARRAY", w_2array, 0, "( rows cols cell-size \"name\" -- ) ( run: row col -- addr )",
+     "make a two-dimensional array", NULL, 0},
+    {"STRING", w_string, 0, "( length \"name\" -- ) ( run: -- str )",
+     "make a string of up to length characters", NULL, 0},
+    {"STRING-CNT", w_str1, S_CNT, "( str -- cnt )", "number of characters in the string", NULL, 0},
+    {"STRING-SIZE", w_str1, S_SIZE, "( str -- size )", "number of characters reserved for the string", NULL,
+     0},
+    {"TYPE-STRING", w_str1, S_TYPE, "( str -- )", "print the string", NULL, 0},
+    {"NULL-STRING", w_str1, S_NULL, "( str -- )", "make the string empty", NULL, 0},
+    {"STRING-TEXT", w_str1, S_TEXT, "( str -- a u )", "address and length of the string's characters", NULL,
+     0},
+    {"APPEND-CHR", w_append_chr, 0, "( c str -- )", "append a character to the string", NULL, 0},
+    {"APPEND-STRING", w_append_copy, 1, "( targ src -- )", "append string src to string targ", NULL, 0},
+    {"COPY-STRING", w_append_copy, 0, "( targ src -- )", "copy string src into string targ", NULL, 0},
+    {"SUB-STRING", w_sub_string, 0, "( targ src m n -- )", "copy characters m..n (from 1) of src into targ",
+     NULL, 0},
+    {"STRING->CHR", w_string_chr, 0, "( str n -- c )", "the n-th character of the string (from 1)", NULL, 0},
+    {"STRING-PUT", w_string_put, 0, "( str a u -- )", "store the text a u into the string", NULL, 0},
+    {"STRING-LIT", NULL, 0, "( str \"\"text\"\" -- )", "store the quoted text into the string", w_string_lit,
+     FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART},
+    {"GET-STRING", w_get_string, 0, "( str -- )", "read a line from the console into the string", NULL, 0},
+    {"CHR", w_const, 1, "( -- 1 )", "size in bytes of a character (for ARRAY)", NULL, 0},
+    {"INTEGER", w_const, 2, "( -- 2 )", "size in bytes of an integer (for ARRAY)", NULL, 0},
+    {"LONG-INTEGER", w_const, 4, "( -- 4 )", "size in bytes of a long integer (for ARRAY)", NULL, 0},
+    {"REAL", w_const, 8, "( -- 8 )", "size in bytes of a real (a float, for ARRAY)", NULL, 0},
+    {"LOCATION", w_const, 48, "( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)", NULL,
+     0},
 };
 
 fbrl_status fbrl_vmx_data_words(fbrl_vm *vm)
@@ -474,7 +558,8 @@ fbrl_status fbrl_vmx_data_words(fbrl_vm *vm)
                                                       words[i].stack, words[i].help)
                                      : fbrl_vmx_define(vm, words[i].name, words[i].xfn, NULL, &words[i],
                                                        words[i].flags, words[i].stack, words[i].help);
-        if (st != FBRL_OK) return st;
+        if (st != FBRL_OK)
+            return st;
     }
     return FBRL_OK;
 }

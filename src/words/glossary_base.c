@@ -10,7 +10,8 @@ fbrl_status gl_define(fbrl_vm *vm, fbrl_glossary *g, const gl_word *w, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         fbrl_status st = fbrl_vm_define(vm, w[i].name, w[i].fn, g, w[i].stack, w[i].help);
-        if (st != FBRL_OK) return st;
+        if (st != FBRL_OK)
+            return st;
     }
     return FBRL_OK;
 }
@@ -32,8 +33,10 @@ fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what)
 
 fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v)
 {
-    if (fbrl_vm_depth(vm) < n) return fbrl_vm_throw(vm, GL_STACK_UNDERFLOW, NULL);
-    while (n--) fbrl_vm_pop(vm, &v[n]);
+    if (fbrl_vm_depth(vm) < n)
+        return fbrl_vm_throw(vm, GL_STACK_UNDERFLOW, NULL);
+    while (n--)
+        fbrl_vm_pop(vm, &v[n]);
     return FBRL_OK;
 }
 
@@ -43,9 +46,11 @@ fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v)
 {
     static const char reals[FBRL_VMX_MAXARGS + 1] = "RRRRRRRR";
     fbrl_vmx_val val[FBRL_VMX_MAXARGS];
-    if (n > FBRL_VMX_MAXARGS) return FBRL_EINVAL;
+    if (n > FBRL_VMX_MAXARGS)
+        return FBRL_EINVAL;
     fbrl_status st = fbrl_vmx_args(vm, NULL, reals + FBRL_VMX_MAXARGS - n, NULL, FBRL_VMX_STACKS, val);
-    for (size_t k = 0; st == FBRL_OK && k < n; k++) v[k] = val[k].f;
+    for (size_t k = 0; st == FBRL_OK && k < n; k++)
+        v[k] = val[k].f;
     return st;
 }
 
@@ -64,11 +69,11 @@ fbrl_status gl_loc(fbrl_vm *vm, fbrl_cell a, int finite, const char *word, fbrl_
     return FBRL_OK;
 }
 
-const fbrl_vmx_type gl_type_cal = { "calibration", (fbrl_cell)0x43414C33 /* "CAL3" */ };
-const fbrl_vmx_type gl_type_stru = { "calibration structure", (fbrl_cell)0x43414C53 /* "CALS" */ };
-const fbrl_vmx_type gl_type_rect = { "RECTMAT", (fbrl_cell)0x52454354 /* "RECT" */ };
-const fbrl_vmx_type gl_type_rad = { "RADMAT", (fbrl_cell)0x5241444D /* "RADM" */ };
-const fbrl_vmx_type gl_type_hndl = { "file handle", (fbrl_cell)0x484E444C /* "HNDL" */ };
+const fbrl_vmx_type gl_type_cal = {"calibration", (fbrl_cell)0x43414C33 /* "CAL3" */};
+const fbrl_vmx_type gl_type_stru = {"calibration structure", (fbrl_cell)0x43414C53 /* "CALS" */};
+const fbrl_vmx_type gl_type_rect = {"RECTMAT", (fbrl_cell)0x52454354 /* "RECT" */};
+const fbrl_vmx_type gl_type_rad = {"RADMAT", (fbrl_cell)0x5241444D /* "RADM" */};
+const fbrl_vmx_type gl_type_hndl = {"file handle", (fbrl_cell)0x484E444C /* "HNDL" */};
 
 fbrl_status gl_make(fbrl_vm *vm, fbrl_vmx_fn run, const fbrl_vmx_type *type, size_t bytes, const char *stack,
                     const char *help, void **payload)
@@ -113,14 +118,21 @@ fbrl_status gl_map(const fbrl_glossary *g, fbrl_loc *loc, int out, const double 
     fbrl_loc res;
     fbrl_status st;
     double dev = 0.0;
-    if (off) *off = 0.0;
-    if (!g || g->magic != GL_INSTALLED || !g->vm || !loc) return FBRL_EINVAL;
-    if (!g->map_on) return FBRL_OK;
+    if (off)
+        *off = 0.0;
+    if (!g || g->magic != GL_INSTALLED || !g->vm || !loc)
+        return FBRL_EINVAL;
+    if (!g->map_on)
+        return FBRL_OK;
     const fbrl_calib *c = fbrl_vmx_data(g->vm, g->with_cal, &gl_type_stru, sizeof(fbrl_calib));
-    if (!c || !gl_rigid(c)) return FBRL_ESTATE;
+    if (!c || !gl_rigid(c))
+        return FBRL_ESTATE;
     st = out ? fbrl_calib_map_arm(c, axis, loc, &res, &dev) : fbrl_calib_unmap_arm(c, axis, loc, &res, &dev);
-    if (off) *off = dev;
-    if (st == FBRL_OK && out && dev > FBRL_CALIB_AXIS_MAX) st = FBRL_ERANGE;
-    if (st == FBRL_OK) *loc = res;
+    if (off)
+        *off = dev;
+    if (st == FBRL_OK && out && dev > FBRL_CALIB_AXIS_MAX)
+        st = FBRL_ERANGE;
+    if (st == FBRL_OK)
+        *loc = res;
     return st;
 }

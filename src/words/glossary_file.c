@@ -14,16 +14,15 @@
 
 #define TYPE_MAX 65535 /* largest user type (bytes), as ARRAY's cells */
 
-static size_t share(const fbrl_glossary *g)
-{
-    return (g->file_mem_size / FBRL_GLOSSARY_FILES) & ~(size_t)15;
-}
+static size_t share(const fbrl_glossary *g) { return (g->file_mem_size / FBRL_GLOSSARY_FILES) & ~(size_t)15; }
 
 fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size)
 {
-    if (!g || g->magic != GL_INSTALLED || (!mem && size)) return FBRL_EINVAL;
+    if (!g || g->magic != GL_INSTALLED || (!mem && size))
+        return FBRL_EINVAL;
     for (int i = 0; i < FBRL_GLOSSARY_FILES; i++)
-        if (g->files[i].owner) return FBRL_ESTATE;
+        if (g->files[i].owner)
+            return FBRL_ESTATE;
     g->file_mem = mem;
     g->file_mem_size = mem ? size : 0;
     return FBRL_OK;
@@ -32,14 +31,17 @@ fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t s
 fbrl_status fbrl_glossary_finish(fbrl_glossary *g)
 {
     fbrl_status first = FBRL_OK;
-    if (!g || g->magic != GL_INSTALLED) return FBRL_EINVAL;
+    if (!g || g->magic != GL_INSTALLED)
+        return FBRL_EINVAL;
     for (int i = 0; i < FBRL_GLOSSARY_FILES; i++) {
         fbrl_glossary_file *s = &g->files[i];
-        if (!s->owner) continue;
+        if (!s->owner)
+            continue;
         fbrl_status st = fbrl_file_close(&s->file);
         if (st != FBRL_OK) {
             fbrl_file_discard(&s->file);
-            if (first == FBRL_OK) first = st;
+            if (first == FBRL_OK)
+                first = st;
         }
         s->owner = 0;
     }
@@ -47,10 +49,12 @@ fbrl_status fbrl_glossary_finish(fbrl_glossary *g)
 }
 
 /* The open file of handle a, or throw naming `word`. */
-static fbrl_status file_at(fbrl_vm *vm, fbrl_glossary *g, fbrl_cell a, const char *word, fbrl_glossary_file **s)
+static fbrl_status file_at(fbrl_vm *vm, fbrl_glossary *g, fbrl_cell a, const char *word,
+                           fbrl_glossary_file **s)
 {
     fbrl_cell *slot = fbrl_vmx_data(vm, a, &gl_type_hndl, sizeof(fbrl_cell));
-    if (!slot) return gl_throw(vm, GL_TYPE_MISMATCH, "%s: unknown file handle (OPEN-FILE makes one)", word);
+    if (!slot)
+        return gl_throw(vm, GL_TYPE_MISMATCH, "%s: unknown file handle (OPEN-FILE makes one)", word);
     if (*slot < 0 || *slot >= FBRL_GLOSSARY_FILES || g->files[*slot].owner != a)
         return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), "%s: file handle not open", word);
     *s = &g->files[*slot];
@@ -62,8 +66,10 @@ static fbrl_status parse_path(fbrl_vm *vm, const char *word, char *path)
     const char *p;
     size_t n;
     fbrl_vm_parse_name(vm, &p, &n);
-    if (n == 0) return gl_throw(vm, GL_NO_NAME, "%s: file name missing", word);
-    if (n >= FBRL_FILE_PATH_MAX) return gl_throw_st(vm, FBRL_ENAME, word);
+    if (n == 0)
+        return gl_throw(vm, GL_NO_NAME, "%s: file name missing", word);
+    if (n >= FBRL_FILE_PATH_MAX)
+        return gl_throw_st(vm, FBRL_ENAME, word);
     memcpy(path, p, n);
     path[n] = 0;
     return FBRL_OK;
@@ -79,8 +85,10 @@ static fbrl_status w_create_file(fbrl_vm *vm, void *arg)
     char path[FBRL_FILE_PATH_MAX];
     fbrl_status st;
     (void)arg;
-    if ((st = parse_path(vm, "CREATE-FILE", path))) return st;
-    if ((st = fbrl_file_create(path)) != FBRL_OK) return file_error(vm, st, "CREATE-FILE", path);
+    if ((st = parse_path(vm, "CREATE-FILE", path)))
+        return st;
+    if ((st = fbrl_file_create(path)) != FBRL_OK)
+        return file_error(vm, st, "CREATE-FILE", path);
     return FBRL_OK;
 }
 
@@ -95,24 +103,31 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
     fbrl_status st;
     int slot;
     fbrl_vm_parse_name(vm, &name, &len);
-    if (len == 0) return gl_throw(vm, GL_NO_NAME, "OPEN-FILE: handle name missing (OPEN-FILE hndl filename)");
-    if (len > FBRL_VMX_NAME_MAX) return gl_throw(vm, FBRL_THROW_NAME_TOO_LONG, "OPEN-FILE: handle name too long");
-    if ((st = parse_path(vm, "OPEN-FILE", path))) return st;
+    if (len == 0)
+        return gl_throw(vm, GL_NO_NAME, "OPEN-FILE: handle name missing (OPEN-FILE hndl filename)");
+    if (len > FBRL_VMX_NAME_MAX)
+        return gl_throw(vm, FBRL_THROW_NAME_TOO_LONG, "OPEN-FILE: handle name too long");
+    if ((st = parse_path(vm, "OPEN-FILE", path)))
+        return st;
     if (fbrl_vmx_find(vm, name, len, &xt) == FBRL_OK) { /* an existing handle word is reused */
         cells = fbrl_vmx_created(vm, xt, NULL, &owner) == FBRL_OK
-                    ? fbrl_vmx_data(vm, owner, &gl_type_hndl, sizeof(fbrl_cell)) : NULL;
+                    ? fbrl_vmx_data(vm, owner, &gl_type_hndl, sizeof(fbrl_cell))
+                    : NULL;
         if (!cells)
-            return gl_throw(vm, GL_TYPE_MISMATCH, "OPEN-FILE: %.*s is defined and is not a file handle", (int)len,
-                            name);
-        if (*cells >= 0 && *cells < FBRL_GLOSSARY_FILES && g->files[*cells].owner == owner)
-            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), "OPEN-FILE: %.*s is open; CLOSE-FILE it first",
+            return gl_throw(vm, GL_TYPE_MISMATCH, "OPEN-FILE: %.*s is defined and is not a file handle",
                             (int)len, name);
+        if (*cells >= 0 && *cells < FBRL_GLOSSARY_FILES && g->files[*cells].owner == owner)
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE),
+                            "OPEN-FILE: %.*s is open; CLOSE-FILE it first", (int)len, name);
     }
     if (share(g) == 0)
-        return gl_throw(vm, FBRL_THROW_UNSUPPORTED, "OPEN-FILE: no file storage (host: fbrl_glossary_set_file_storage)");
-    for (slot = 0; slot < FBRL_GLOSSARY_FILES && g->files[slot].owner; slot++) {}
+        return gl_throw(vm, FBRL_THROW_UNSUPPORTED,
+                        "OPEN-FILE: no file storage (host: fbrl_glossary_set_file_storage)");
+    for (slot = 0; slot < FBRL_GLOSSARY_FILES && g->files[slot].owner; slot++) {
+    }
     if (slot == FBRL_GLOSSARY_FILES)
-        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "OPEN-FILE: too many open files (%d)", FBRL_GLOSSARY_FILES);
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "OPEN-FILE: too many open files (%d)",
+                        FBRL_GLOSSARY_FILES);
     fbrl_file *f = &g->files[slot].file;
     if ((st = fbrl_file_open(f, path, g->file_mem + (size_t)slot * share(g), share(g))) != FBRL_OK)
         return file_error(vm, st, "OPEN-FILE", path);
@@ -138,7 +153,8 @@ static fbrl_status position(fbrl_vm *vm, fbrl_glossary *g, int end)
     fbrl_cell a;
     fbrl_glossary_file *s;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = file_at(vm, g, a, word, &s))) return st;
+    if ((st = gl_pop(vm, 1, &a)) || (st = file_at(vm, g, a, word, &s)))
+        return st;
     st = end ? fbrl_file_append(&s->file) : fbrl_file_reset(&s->file);
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
@@ -152,9 +168,11 @@ static fbrl_status w_close_file(fbrl_vm *vm, void *g)
     fbrl_cell a;
     fbrl_glossary_file *s;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = file_at(vm, g, a, "CLOSE-FILE", &s))) return st;
+    if ((st = gl_pop(vm, 1, &a)) || (st = file_at(vm, g, a, "CLOSE-FILE", &s)))
+        return st;
     st = fbrl_file_close(&s->file);
-    if (st == FBRL_OK) s->owner = 0;
+    if (st == FBRL_OK)
+        s->owner = 0;
     return fbrl_vm_push(vm, st);
 }
 
@@ -171,13 +189,17 @@ static const char *type_name(fbrl_ftype_code c)
 }
 
 /* A refused read says what the next record is, so the program can read it right. */
-static fbrl_status read_error(fbrl_vm *vm, const fbrl_file *f, fbrl_status st, fbrl_ftype want, const char *word)
+static fbrl_status read_error(fbrl_vm *vm, const fbrl_file *f, fbrl_status st, fbrl_ftype want,
+                              const char *word)
 {
     fbrl_ftype have;
-    if (st == FBRL_EEOF) return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: end of file", word);
-    if (st != FBRL_ETYPE || fbrl_file_peek(f, &have) != FBRL_OK) return gl_throw_st(vm, st, word);
-    return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: next record is %s (%lu bytes), not %s (%lu bytes); nothing read",
-                    word, type_name(have.code), (unsigned long)have.size, type_name(want.code),
+    if (st == FBRL_EEOF)
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: end of file", word);
+    if (st != FBRL_ETYPE || fbrl_file_peek(f, &have) != FBRL_OK)
+        return gl_throw_st(vm, st, word);
+    return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st),
+                    "%s: next record is %s (%lu bytes), not %s (%lu bytes); nothing read", word,
+                    type_name(have.code), (unsigned long)have.size, type_name(want.code),
                     (unsigned long)want.size);
 }
 
@@ -199,7 +221,8 @@ static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, int write)
     fbrl_glossary_file *s;
     value v;
     fbrl_status st;
-    if ((st = gl_pop(vm, 3, a)) || (st = file_at(vm, g, a[2], word, &s))) return st;
+    if ((st = gl_pop(vm, 3, a)) || (st = file_at(vm, g, a[2], word, &s)))
+        return st;
     if (a[1] < 1 || a[1] > TYPE_MAX)
         return gl_throw(vm, GL_BAD_NUMBER, "%s: type must be a size of 1..%d bytes", word, TYPE_MAX);
     if (!fbrl_vm_addr(vm, a[0], (size_t)(a[1])))
@@ -207,16 +230,20 @@ static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, int write)
     fbrl_ftype t = fbrl_ftype_of_size((size_t)a[1]);
     void *obj = t.code == FBRL_FT_USER ? (void *)a[0] : (void *)&v;
     if (write) {
-        if (obj == &v) memcpy(&v, (void *)a[0], t.size);
+        if (obj == &v)
+            memcpy(&v, (void *)a[0], t.size);
         st = fbrl_file_write(&s->file, t, obj);
         if (st == FBRL_ENOSPC)
-            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "WRITE-FILE: file full (%lu bytes of records per open file)",
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st),
+                            "WRITE-FILE: file full (%lu bytes of records per open file)",
                             (unsigned long)share(g));
         return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
     }
     st = fbrl_file_read(&s->file, t, obj);
-    if (st != FBRL_OK) return read_error(vm, &s->file, st, t, word);
-    if (obj == &v) memcpy((void *)a[0], &v, t.size);
+    if (st != FBRL_OK)
+        return read_error(vm, &s->file, st, t, word);
+    if (obj == &v)
+        memcpy((void *)a[0], &v, t.size);
     return FBRL_OK;
 }
 static fbrl_status w_write_file(fbrl_vm *vm, void *g) { return transfer(vm, g, 1); }
@@ -232,7 +259,8 @@ static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, int save)
     unsigned char buf[FBRL_CALIB_BYTES];
     fbrl_ftype t = fbrl_ftype_user(FBRL_GLOSSARY_CAL_TAG, FBRL_CALIB_BYTES);
     fbrl_status st;
-    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], save, word, &c)) || (st = file_at(vm, g, a[1], word, &s)))
+    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], save, word, &c)) ||
+        (st = file_at(vm, g, a[1], word, &s)))
         return st;
     if (save) {
         fbrl_calib_save(c, buf, sizeof buf);
@@ -241,30 +269,33 @@ static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, int save)
     }
     if ((st = fbrl_file_read(&s->file, t, buf)) != FBRL_OK) {
         if (st == FBRL_ETYPE)
-            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "LOAD-CAL: next record is not a calibration; nothing read");
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st),
+                            "LOAD-CAL: next record is not a calibration; nothing read");
         return read_error(vm, &s->file, st, t, word);
     }
-    if ((st = fbrl_calib_load(c, buf, sizeof buf)) != FBRL_OK) return gl_throw_st(vm, st, word);
+    if ((st = fbrl_calib_load(c, buf, sizeof buf)) != FBRL_OK)
+        return gl_throw_st(vm, st, word);
     return FBRL_OK;
 }
 static fbrl_status w_save_cal(fbrl_vm *vm, void *g) { return cal_record(vm, g, 1); }
 static fbrl_status w_load_cal(fbrl_vm *vm, void *g) { return cal_record(vm, g, 0); }
 
 static const gl_word file_words[] = {
-    { "CREATE-FILE", w_create_file, "( \"filename\" -- )",
-      "make filename an empty data file (an existing file of that name is replaced)" },
-    { "OPEN-FILE", w_open_file, "( \"hndl filename\" -- )",
-      "open a data file under handle hndl (made if not defined); reads and verifies it whole" },
-    { "RESET-FILE", w_reset_file, "( hndl -- )", "position at the first record" },
-    { "APPEND-FILE", w_append_file, "( hndl -- )", "position after the last record" },
-    { "CLOSE-FILE", w_close_file, "( hndl -- code )",
-      "save the file atomically and close it; code 0, or the error (file then stays open)" },
-    { "WRITE-FILE", w_write_file, "( addr type hndl -- )",
-      "write the variable at addr as one record of type (CHR INTEGER LONG-INTEGER REAL LOCATION or a size)" },
-    { "READ-FILE", w_read_file, "( addr type hndl -- )",
-      "read the next record into addr; a record of another type is refused and stays unread" },
-    { "SAVE-CAL", w_save_cal, "( cal-stru hndl -- )", "write the calibration structure as one record" },
-    { "LOAD-CAL", w_load_cal, "( cal-stru hndl -- )", "read a calibration record (written by SAVE-CAL) into cal-stru" },
+    {"CREATE-FILE", w_create_file, "( \"filename\" -- )",
+     "make filename an empty data file (an existing file of that name is replaced)"},
+    {"OPEN-FILE", w_open_file, "( \"hndl filename\" -- )",
+     "open a data file under handle hndl (made if not defined); reads and verifies it whole"},
+    {"RESET-FILE", w_reset_file, "( hndl -- )", "position at the first record"},
+    {"APPEND-FILE", w_append_file, "( hndl -- )", "position after the last record"},
+    {"CLOSE-FILE", w_close_file, "( hndl -- code )",
+     "save the file atomically and close it; code 0, or the error (file then stays open)"},
+    {"WRITE-FILE", w_write_file, "( addr type hndl -- )",
+     "write the variable at addr as one record of type (CHR INTEGER LONG-INTEGER REAL LOCATION or a size)"},
+    {"READ-FILE", w_read_file, "( addr type hndl -- )",
+     "read the next record into addr; a record of another type is refused and stays unread"},
+    {"SAVE-CAL", w_save_cal, "( cal-stru hndl -- )", "write the calibration structure as one record"},
+    {"LOAD-CAL", w_load_cal, "( cal-stru hndl -- )",
+     "read a calibration record (written by SAVE-CAL) into cal-stru"},
 };
 
 fbrl_status gl_install_file(fbrl_vm *vm, fbrl_glossary *g)

@@ -23,27 +23,27 @@ extern const fbrl_vmx_type gl_type_cal, gl_type_stru, gl_type_rect, gl_type_rad,
 extern const char gl_loc_tag[];
 /* The HELP of the words the defining words make (one text each, for the words made by
  * fbrl_glossary_make too). */
-#define GL_LOC_STACK "( -- loc )"
-#define GL_LOC_HELP "location template (X Y Z O A T)"
+#define GL_LOC_STACK  "( -- loc )"
+#define GL_LOC_HELP   "location template (X Y Z O A T)"
 #define GL_RECT_STACK "( i j k loc -- )"
-#define GL_RECT_HELP "store location (i, j, k) of this RECTMAT into loc"
-#define GL_RAD_STACK "( ring idx k loc -- )"
-#define GL_RAD_HELP "store location (ring, idx, k) of this RADMAT into loc"
-#define GL_CAL_STACK "( -- cal )"
-#define GL_CAL_HELP "calibration: three location slots 1 2 3"
+#define GL_RECT_HELP  "store location (i, j, k) of this RECTMAT into loc"
+#define GL_RAD_STACK  "( ring idx k loc -- )"
+#define GL_RAD_HELP   "store location (ring, idx, k) of this RADMAT into loc"
+#define GL_CAL_STACK  "( -- cal )"
+#define GL_CAL_HELP   "calibration: three location slots 1 2 3"
 #define GL_STRU_STACK "( -- cal-stru )"
-#define GL_STRU_HELP "calibration structure: the block's motion (identity until CALIBRATE)"
+#define GL_STRU_HELP  "calibration structure: the block's motion (identity until CALIBRATE)"
 /* The run functions of RECTMAT and RADMAT words (glossary_loc.c). */
 fbrl_status gl_rect_run(fbrl_vm *vm, void *ctx, const void *body);
 fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body);
 
 /* Forth THROW codes used besides FBRL_THROW_STATUS(st). */
-#define GL_STACK_UNDERFLOW (FBRL_THROW_STACK_UNDERFLOW)
-#define GL_BAD_ADDRESS     (FBRL_THROW_BAD_ADDRESS)
-#define GL_TYPE_MISMATCH   (FBRL_THROW_TYPE_MISMATCH)
-#define GL_NO_NAME         (FBRL_THROW_NO_NAME)
-#define GL_ALIGNMENT       (FBRL_THROW_ALIGNMENT)
-#define GL_BAD_NUMBER      (FBRL_THROW_BAD_NUMBER)
+#define GL_STACK_UNDERFLOW  (FBRL_THROW_STACK_UNDERFLOW)
+#define GL_BAD_ADDRESS      (FBRL_THROW_BAD_ADDRESS)
+#define GL_TYPE_MISMATCH    (FBRL_THROW_TYPE_MISMATCH)
+#define GL_NO_NAME          (FBRL_THROW_NO_NAME)
+#define GL_ALIGNMENT        (FBRL_THROW_ALIGNMENT)
+#define GL_BAD_NUMBER       (FBRL_THROW_BAD_NUMBER)
 #define GL_FSTACK_UNDERFLOW (FBRL_THROW_FSTACK_UNDERFLOW)
 
 typedef struct gl_word {

@@ -14,8 +14,8 @@ const char gl_loc_tag[] = "location";
 static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
 {
     (void)arg;
-    return fbrl_vmx_create(vm, NULL, 0, NULL, sizeof(fbrl_loc), NULL, (void *)(uintptr_t)gl_loc_tag, GL_LOC_STACK, GL_LOC_HELP,
-                           NULL, NULL);
+    return fbrl_vmx_create(vm, NULL, 0, NULL, sizeof(fbrl_loc), NULL, (void *)(uintptr_t)gl_loc_tag,
+                           GL_LOC_STACK, GL_LOC_HELP, NULL, NULL);
 }
 
 static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
@@ -24,9 +24,11 @@ static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, con
     fbrl_loc *loc;
     double v;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc))) return st;
+    if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc)))
+        return st;
     fbrl_loc_get(loc, ax, &v);
-    if (ax <= FBRL_LOC_Z && (st = gl_out(vm, g, v, &v))) return st;
+    if (ax <= FBRL_LOC_Z && (st = gl_out(vm, g, v, &v)))
+        return st;
     return fbrl_vm_fpush(vm, v);
 }
 
@@ -36,14 +38,17 @@ static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, con
     fbrl_loc *loc;
     double v;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 1, &v)) || (st = gl_loc(vm, a, 0, word, &loc))) return st;
-    if (ax <= FBRL_LOC_Z && (st = gl_in(vm, g, v, &v))) return st;
-    if ((st = fbrl_loc_set(loc, ax, v)) != FBRL_OK) return gl_throw_st(vm, st, word);
+    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 1, &v)) || (st = gl_loc(vm, a, 0, word, &loc)))
+        return st;
+    if (ax <= FBRL_LOC_Z && (st = gl_in(vm, g, v, &v)))
+        return st;
+    if ((st = fbrl_loc_set(loc, ax, v)) != FBRL_OK)
+        return gl_throw_st(vm, st, word);
     return FBRL_OK;
 }
 
-#define AXIS(L, AX)                                                                                    \
-    static fbrl_status w_get##L(fbrl_vm *vm, void *g) { return get_axis(vm, g, AX, "GET" #L); }     \
+#define AXIS(L, AX)                                                                             \
+    static fbrl_status w_get##L(fbrl_vm *vm, void *g) { return get_axis(vm, g, AX, "GET" #L); } \
     static fbrl_status w_set##L(fbrl_vm *vm, void *g) { return set_axis(vm, g, AX, "SET" #L); }
 AXIS(X, FBRL_LOC_X)
 AXIS(Y, FBRL_LOC_Y)
@@ -76,7 +81,8 @@ static fbrl_status w_define_loc(fbrl_vm *vm, void *g)
     if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 6, v)) || (st = gl_loc(vm, a, 0, "DEFINE-LOC", &loc)))
         return st;
     for (int i = 0; i < 3; i++)
-        if ((st = gl_in(vm, g, v[i], &v[i]))) return st;
+        if ((st = gl_in(vm, g, v[i], &v[i])))
+            return st;
     if ((st = fbrl_loc_define(loc, v[0], v[1], v[2], v[3], v[4], v[5])) != FBRL_OK)
         return gl_throw_st(vm, st, "DEFINE-LOC");
     return FBRL_OK;
@@ -91,7 +97,8 @@ static fbrl_status w_shifta(fbrl_vm *vm, void *arg)
     if ((st = gl_pop(vm, 2, a)) || (st = gl_loc(vm, a[0], 1, "SHIFTA", &loc)) ||
         (st = gl_loc(vm, a[1], 1, "SHIFTA", &by)))
         return st;
-    if ((st = fbrl_loc_shift(loc, by)) != FBRL_OK) return gl_throw_st(vm, st, "SHIFTA");
+    if ((st = fbrl_loc_shift(loc, by)) != FBRL_OK)
+        return gl_throw_st(vm, st, "SHIFTA");
     return FBRL_OK;
 }
 
@@ -102,15 +109,17 @@ static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, cha
     fbrl_cell a;
     fbrl_loc *loc, shown;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc))) return st;
+    if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc)))
+        return st;
     shown = *loc;
     if ((st = gl_map(g, &shown, 1, NULL, NULL)) != FBRL_OK) {
         if (st == FBRL_ESTATE)
-            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: mapping on but the WITH-CAL structure is unusable",
-                            word);
+            return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st),
+                            "%s: mapping on but the WITH-CAL structure is unusable", word);
         return gl_throw_st(vm, st, word);
     }
-    if ((st = fbrl_loc_format(&shown, g->units.metric, buf, size)) != FBRL_OK) return gl_throw_st(vm, st, word);
+    if ((st = fbrl_loc_format(&shown, g->units.metric, buf, size)) != FBRL_OK)
+        return gl_throw_st(vm, st, word);
     return FBRL_OK;
 }
 
@@ -118,7 +127,8 @@ static fbrl_status w_display_loc(fbrl_vm *vm, void *g)
 {
     char buf[FBRL_LOC_TEXT_SIZE * 2];
     fbrl_status st = loc_text(vm, g, "DISPLAY-LOC", buf, sizeof buf - 1);
-    if (st) return st;
+    if (st)
+        return st;
     strcat(buf, "\n");
     fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
@@ -131,10 +141,12 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
     fbrl_status st;
     if (!g->port_write) {
         fbrl_cell a;
-        if ((st = gl_pop(vm, 1, &a))) return st;
+        if ((st = gl_pop(vm, 1, &a)))
+            return st;
         return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), "PRINT-LOC: no communication port");
     }
-    if ((st = loc_text(vm, g, "PRINT-LOC", buf, sizeof buf - 2))) return st;
+    if ((st = loc_text(vm, g, "PRINT-LOC", buf, sizeof buf - 2)))
+        return st;
     strcat(buf, "\r\n");
     g->port_write(g->port_ctx, buf, strlen(buf));
     return FBRL_OK;
@@ -146,7 +158,8 @@ static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **l
 {
     fbrl_cell a[4];
     fbrl_status st;
-    if ((st = gl_pop(vm, 4, a)) || (st = gl_loc(vm, a[3], 0, word, loc))) return st;
+    if ((st = gl_pop(vm, 4, a)) || (st = gl_loc(vm, a[3], 0, word, loc)))
+        return st;
     for (int i = 0; i < 3; i++) {
         if (a[i] < -1000000 || a[i] > 1000000)
             return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: matrix index out of range", word);
@@ -162,9 +175,12 @@ fbrl_status gl_rect_run(fbrl_vm *vm, void *ctx, const void *body)
     fbrl_loc *loc, out;
     fbrl_status st;
     const fbrl_rectmat *m = fbrl_vmx_data(vm, (fbrl_cell)body, &gl_type_rect, sizeof(fbrl_rectmat));
-    if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RECTMAT: matrix structure overwritten");
-    if ((st = index3(vm, "RECTMAT", i, &loc))) return st;
-    if ((st = fbrl_rectmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
+    if (!m)
+        return gl_throw(vm, GL_BAD_ADDRESS, "RECTMAT: matrix structure overwritten");
+    if ((st = index3(vm, "RECTMAT", i, &loc)))
+        return st;
+    if ((st = fbrl_rectmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK)
+        return gl_throw_st(vm, st, "RECTMAT");
     *loc = out; /* through a copy: loc could lie over the matrix itself */
     return FBRL_OK;
 }
@@ -176,9 +192,12 @@ fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body)
     fbrl_loc *loc, out;
     fbrl_status st;
     const fbrl_radmat *m = fbrl_vmx_data(vm, (fbrl_cell)body, &gl_type_rad, sizeof(fbrl_radmat));
-    if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "RADMAT: matrix structure overwritten");
-    if ((st = index3(vm, "RADMAT", i, &loc))) return st;
-    if ((st = fbrl_radmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
+    if (!m)
+        return gl_throw(vm, GL_BAD_ADDRESS, "RADMAT: matrix structure overwritten");
+    if ((st = index3(vm, "RADMAT", i, &loc)))
+        return st;
+    if ((st = fbrl_radmat_loc(m, i[0], i[1], i[2], &out)) != FBRL_OK)
+        return gl_throw_st(vm, st, "RADMAT");
     *loc = out;
     return FBRL_OK;
 }
@@ -190,9 +209,11 @@ static fbrl_status mat_args(fbrl_vm *vm, fbrl_glossary *g, const char *word, int
 {
     fbrl_cell a;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 3, v)) || (st = gl_loc(vm, a, 1, word, base))) return st;
+    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 3, v)) || (st = gl_loc(vm, a, 1, word, base)))
+        return st;
     for (int i = first_len; i < 3; i++)
-        if ((st = gl_in(vm, g, v[i], &v[i]))) return st;
+        if ((st = gl_in(vm, g, v[i], &v[i])))
+            return st;
     return FBRL_OK;
 }
 
@@ -203,8 +224,10 @@ static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
     fbrl_rectmat m;
     void *p;
     fbrl_status st;
-    if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v))) return st;
-    if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK) return gl_throw_st(vm, st, "RECTMAT");
+    if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v)))
+        return st;
+    if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK)
+        return gl_throw_st(vm, st, "RECTMAT");
     if ((st = gl_make(vm, gl_rect_run, &gl_type_rect, sizeof m, GL_RECT_STACK, GL_RECT_HELP, &p)))
         return st;
     memcpy(p, &m, sizeof m);
@@ -218,11 +241,14 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
     fbrl_radmat m;
     void *p;
     fbrl_status st;
-    if ((st = mat_args(vm, g, "RADMAT", 1, &base, v))) return st;
+    if ((st = mat_args(vm, g, "RADMAT", 1, &base, v)))
+        return st;
     st = fbrl_radmat_init(&m, base, v[0], v[1], v[2]);
     if (st == FBRL_ERANGE)
-        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "RADMAT: base location on the centre axis has no angle");
-    if (st != FBRL_OK) return gl_throw_st(vm, st, "RADMAT");
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st),
+                        "RADMAT: base location on the centre axis has no angle");
+    if (st != FBRL_OK)
+        return gl_throw_st(vm, st, "RADMAT");
     if ((st = gl_make(vm, gl_rad_run, &gl_type_rad, sizeof m, GL_RAD_STACK, GL_RAD_HELP, &p)))
         return st;
     memcpy(p, &m, sizeof m);
@@ -237,17 +263,20 @@ static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, int rad)
     char buf[FBRL_MATRIX_TEXT_SIZE * 2];
     fbrl_cell xt;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &xt))) return st;
+    if ((st = gl_pop(vm, 1, &xt)))
+        return st;
     fbrl_cell body;
     if (fbrl_vmx_created(vm, xt, rad ? gl_rad_run : gl_rect_run, &body) != FBRL_OK)
         return gl_throw(vm, GL_TYPE_MISMATCH, "%s: not a %s (pass its execution token: ' name)", word,
                         rad ? "RADMAT" : "RECTMAT");
     const void *m = fbrl_vmx_data(vm, body, rad ? &gl_type_rad : &gl_type_rect,
-                              rad ? sizeof(fbrl_radmat) : sizeof(fbrl_rectmat));
-    if (!m) return gl_throw(vm, GL_BAD_ADDRESS, "%s: matrix structure overwritten", word);
+                                  rad ? sizeof(fbrl_radmat) : sizeof(fbrl_rectmat));
+    if (!m)
+        return gl_throw(vm, GL_BAD_ADDRESS, "%s: matrix structure overwritten", word);
     st = rad ? fbrl_radmat_format(m, g->units.metric, buf, sizeof buf - 1)
              : fbrl_rectmat_format(m, g->units.metric, buf, sizeof buf - 1);
-    if (st != FBRL_OK) return gl_throw_st(vm, st, word);
+    if (st != FBRL_OK)
+        return gl_throw_st(vm, st, word);
     strcat(buf, "\n");
     fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
@@ -276,14 +305,16 @@ static fbrl_status convert(fbrl_vm *vm, fbrl_glossary *g, int how, const char *w
 {
     double v;
     fbrl_status st;
-    if ((st = gl_fpop(vm, 1, &v))) return st;
+    if ((st = gl_fpop(vm, 1, &v)))
+        return st;
     switch (how) {
     case CONV_CM_IN: st = fbrl_units_cm_to_in(v, &v); break;
     case CONV_IN_CM: st = fbrl_units_in_to_cm(v, &v); break;
     case CONV_IN: st = fbrl_units_in(&g->units, v, &v); break;
     default: st = fbrl_units_out(&g->units, v, &v); break;
     }
-    if (st != FBRL_OK) return gl_throw_st(vm, st, word);
+    if (st != FBRL_OK)
+        return gl_throw_st(vm, st, word);
     return fbrl_vm_fpush(vm, v);
 }
 static fbrl_status w_cm_in(fbrl_vm *vm, void *g) { return convert(vm, g, CONV_CM_IN, "CM->IN"); }
@@ -292,43 +323,44 @@ static fbrl_status w_metric_in(fbrl_vm *vm, void *g) { return convert(vm, g, CON
 static fbrl_status w_metric_out(fbrl_vm *vm, void *g) { return convert(vm, g, CONV_OUT, "METRIC-OUT"); }
 
 static const gl_word loc_words[] = {
-    { "CREATE-LOC", w_create_loc, "( \"name\" -- ) ( run: -- loc )",
-      "make a location template (6 floats X Y Z O A T, 48 bytes, zeroed); name pushes its address" },
-    { "GETX", w_getX, "( loc -- ) ( F: -- x )", "x of the location (cm when METRIC-ON)" },
-    { "GETY", w_getY, "( loc -- ) ( F: -- y )", "y of the location (cm when METRIC-ON)" },
-    { "GETZ", w_getZ, "( loc -- ) ( F: -- z )", "z of the location (cm when METRIC-ON)" },
-    { "GETO", w_getO, "( loc -- ) ( F: -- o )", "yaw (O) of the location, degrees" },
-    { "GETA", w_getA, "( loc -- ) ( F: -- a )", "pitch (A) of the location, degrees" },
-    { "GETT", w_getT, "( loc -- ) ( F: -- t )", "roll (T) of the location, degrees" },
-    { "SETX", w_setX, "( loc -- ) ( F: x -- )", "set x of the location (cm when METRIC-ON)" },
-    { "SETY", w_setY, "( loc -- ) ( F: y -- )", "set y of the location (cm when METRIC-ON)" },
-    { "SETZ", w_setZ, "( loc -- ) ( F: z -- )", "set z of the location (cm when METRIC-ON)" },
-    { "SETO", w_setO, "( loc -- ) ( F: o -- )", "set yaw (O) of the location, degrees" },
-    { "SETA", w_setA, "( loc -- ) ( F: a -- )", "set pitch (A) of the location, degrees" },
-    { "SETT", w_setT, "( loc -- ) ( F: t -- )", "set roll (T) of the location, degrees" },
-    { "SET-LOC", w_set_loc, "( loc1 loc2 -- )", "copy location loc2 into loc1" },
-    { "DEFINE-LOC", w_define_loc, "( loc -- ) ( F: x y z o a t -- )",
-      "set all six components (x y z in cm when METRIC-ON; angles in degrees)" },
-    { "SHIFTA", w_shifta, "( loc1 loc2 -- )", "add every component of loc2 to loc1" },
-    { "DISPLAY-LOC", w_display_loc, "( loc -- )",
-      "print the location on the console (mapped when MAP-ON, cm when METRIC-ON)" },
-    { "PRINT-LOC", w_print_loc, "( loc -- )",
-      "send DISPLAY-LOC's text (and CR LF) to the communication port" },
-    { "RECTMAT", w_rectmat, "( base-loc \"name\" -- ) ( F: dx dy dz -- ) ( run: i j k loc -- )",
-      "make a rectangular matrix: name stores base + (i*dx, j*dy, k*dz) into loc" },
-    { "AUTOMAT", w_rectmat, "( base-loc \"name\" -- ) ( F: dx dy dz -- ) ( run: i j k loc -- )",
-      "RECTMAT (the thesis's other name for it)" },
-    { "RADMAT", w_radmat, "( base-loc \"name\" -- ) ( F: inc-angle ring-dist z-off -- ) ( run: ring idx k loc -- )",
-      "make a radial matrix about the arm's axis (inc-angle in radians)" },
-    { "SHOW-AUTOMAT", w_show_automat, "( xt -- )", "print a RECTMAT's base and steps (' name SHOW-AUTOMAT)" },
-    { "SHOW-RADMAT", w_show_radmat, "( xt -- )", "print a RADMAT's base, steps, radius and angle (' name SHOW-RADMAT)" },
-    { "METRIC-ON", w_metric_on, "( -- )", "location lengths in centimetres at the user side" },
-    { "METRIC-OFF", w_metric_off, "( -- )", "location lengths in inches at the user side (the default)" },
-    { "METRIC?", w_metric_q, "( -- flag )", "true if METRIC-ON" },
-    { "CM->IN", w_cm_in, "( F: cm -- in )", "centimetres to inches" },
-    { "IN->CM", w_in_cm, "( F: in -- cm )", "inches to centimetres" },
-    { "METRIC-IN", w_metric_in, "( F: user -- in )", "a length the user gave (cm if METRIC-ON) to inches" },
-    { "METRIC-OUT", w_metric_out, "( F: in -- user )", "inches to the user's unit (cm if METRIC-ON)" },
+    {"CREATE-LOC", w_create_loc, "( \"name\" -- ) ( run: -- loc )",
+     "make a location template (6 floats X Y Z O A T, 48 bytes, zeroed); name pushes its address"},
+    {"GETX", w_getX, "( loc -- ) ( F: -- x )", "x of the location (cm when METRIC-ON)"},
+    {"GETY", w_getY, "( loc -- ) ( F: -- y )", "y of the location (cm when METRIC-ON)"},
+    {"GETZ", w_getZ, "( loc -- ) ( F: -- z )", "z of the location (cm when METRIC-ON)"},
+    {"GETO", w_getO, "( loc -- ) ( F: -- o )", "yaw (O) of the location, degrees"},
+    {"GETA", w_getA, "( loc -- ) ( F: -- a )", "pitch (A) of the location, degrees"},
+    {"GETT", w_getT, "( loc -- ) ( F: -- t )", "roll (T) of the location, degrees"},
+    {"SETX", w_setX, "( loc -- ) ( F: x -- )", "set x of the location (cm when METRIC-ON)"},
+    {"SETY", w_setY, "( loc -- ) ( F: y -- )", "set y of the location (cm when METRIC-ON)"},
+    {"SETZ", w_setZ, "( loc -- ) ( F: z -- )", "set z of the location (cm when METRIC-ON)"},
+    {"SETO", w_setO, "( loc -- ) ( F: o -- )", "set yaw (O) of the location, degrees"},
+    {"SETA", w_setA, "( loc -- ) ( F: a -- )", "set pitch (A) of the location, degrees"},
+    {"SETT", w_setT, "( loc -- ) ( F: t -- )", "set roll (T) of the location, degrees"},
+    {"SET-LOC", w_set_loc, "( loc1 loc2 -- )", "copy location loc2 into loc1"},
+    {"DEFINE-LOC", w_define_loc, "( loc -- ) ( F: x y z o a t -- )",
+     "set all six components (x y z in cm when METRIC-ON; angles in degrees)"},
+    {"SHIFTA", w_shifta, "( loc1 loc2 -- )", "add every component of loc2 to loc1"},
+    {"DISPLAY-LOC", w_display_loc, "( loc -- )",
+     "print the location on the console (mapped when MAP-ON, cm when METRIC-ON)"},
+    {"PRINT-LOC", w_print_loc, "( loc -- )", "send DISPLAY-LOC's text (and CR LF) to the communication port"},
+    {"RECTMAT", w_rectmat, "( base-loc \"name\" -- ) ( F: dx dy dz -- ) ( run: i j k loc -- )",
+     "make a rectangular matrix: name stores base + (i*dx, j*dy, k*dz) into loc"},
+    {"AUTOMAT", w_rectmat, "( base-loc \"name\" -- ) ( F: dx dy dz -- ) ( run: i j k loc -- )",
+     "RECTMAT (the thesis's other name for it)"},
+    {"RADMAT", w_radmat,
+     "( base-loc \"name\" -- ) ( F: inc-angle ring-dist z-off -- ) ( run: ring idx k loc -- )",
+     "make a radial matrix about the arm's axis (inc-angle in radians)"},
+    {"SHOW-AUTOMAT", w_show_automat, "( xt -- )", "print a RECTMAT's base and steps (' name SHOW-AUTOMAT)"},
+    {"SHOW-RADMAT", w_show_radmat, "( xt -- )",
+     "print a RADMAT's base, steps, radius and angle (' name SHOW-RADMAT)"},
+    {"METRIC-ON", w_metric_on, "( -- )", "location lengths in centimetres at the user side"},
+    {"METRIC-OFF", w_metric_off, "( -- )", "location lengths in inches at the user side (the default)"},
+    {"METRIC?", w_metric_q, "( -- flag )", "true if METRIC-ON"},
+    {"CM->IN", w_cm_in, "( F: cm -- in )", "centimetres to inches"},
+    {"IN->CM", w_in_cm, "( F: in -- cm )", "inches to centimetres"},
+    {"METRIC-IN", w_metric_in, "( F: user -- in )", "a length the user gave (cm if METRIC-ON) to inches"},
+    {"METRIC-OUT", w_metric_out, "( F: in -- user )", "inches to the user's unit (cm if METRIC-ON)"},
 };
 
 fbrl_status gl_install_loc(fbrl_vm *vm, fbrl_glossary *g)

@@ -22,15 +22,18 @@ static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
     (void)vm;
     memset(v, 0, sizeof v);
     fbrl_status st = rb_params(r, w, v);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     return w->fn(r, w, v);
 }
 
 static fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
-        fbrl_status st = fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, t[i].stack, t[i].help);
-        if (st != FBRL_OK) return st;
+        fbrl_status st =
+            fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, t[i].stack, t[i].help);
+        if (st != FBRL_OK)
+            return st;
     }
     return FBRL_OK;
 }
@@ -41,17 +44,23 @@ static const struct {
     const rb_word *t;
     const size_t *n;
 } tables[] = {
-    { rb_motion_words, &rb_motion_nwords }, { rb_rapl_words, &rb_rapl_nwords }, { rb_teach_words, &rb_teach_nwords },
-    { rb_param_words, &rb_param_nwords },   { rb_line_words, &rb_line_nwords }, { rb_comm_words, &rb_comm_nwords },
-    { &rb_comm_asc, &one },                 { rb_io_words, &rb_io_nwords },
-    { rb_import_words, &rb_import_nwords },
+    {rb_motion_words, &rb_motion_nwords},
+    {rb_rapl_words, &rb_rapl_nwords},
+    {rb_teach_words, &rb_teach_nwords},
+    {rb_param_words, &rb_param_nwords},
+    {rb_line_words, &rb_line_nwords},
+    {rb_comm_words, &rb_comm_nwords},
+    {&rb_comm_asc, &one},
+    {rb_io_words, &rb_io_nwords},
+    {rb_import_words, &rb_import_nwords},
 };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
 const char *fbrl_robot_word(size_t i)
 {
     for (size_t k = 0; k < NTABLES; k++) {
-        if (i < *tables[k].n) return tables[k].t[i].name;
+        if (i < *tables[k].n)
+            return tables[k].t[i].name;
         i -= *tables[k].n;
     }
     return NULL;
@@ -60,14 +69,16 @@ const char *fbrl_robot_word(size_t i)
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g)
 {
     fbrl_cell xt;
-    if (!vm || !r) return FBRL_EINVAL;
+    if (!vm || !r)
+        return FBRL_EINVAL;
     memset(r, 0, sizeof *r);
     r->vm = vm;
     r->g = g;
     r->last_error = -1;
     fbrl_uart_config def = FBRL_UART_CONFIG_DEFAULT;
     r->comm = def;
-    if (fbrl_vm_compiling(vm)) return FBRL_ESTATE;
+    if (fbrl_vm_compiling(vm))
+        return FBRL_ESTATE;
     /* GET-CAL-POINTS' line buffer lives in the data space: the words it runs parse it */
     if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, "( -- a )",
                         "robot words' line buffer", &r->tib, NULL) != FBRL_OK)
@@ -75,29 +86,34 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     fbrl_status st = FBRL_OK;
     for (size_t k = 0; st == FBRL_OK && k < NTABLES; k++) {
         /* ASC is F-PC's: a VM that has one keeps it */
-        if (tables[k].t == &rb_comm_asc && fbrl_vmx_find(vm, "ASC", 3, &xt) == FBRL_OK) continue;
+        if (tables[k].t == &rb_comm_asc && fbrl_vmx_find(vm, "ASC", 3, &xt) == FBRL_OK)
+            continue;
         st = rb_define(r, tables[k].t, *tables[k].n);
     }
-    if (st == FBRL_OK) st = fbrl_robot_set_link(r, link);
+    if (st == FBRL_OK)
+        st = fbrl_robot_set_link(r, link);
     return st;
 }
 
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
 {
-    if (!r) return FBRL_EINVAL;
+    if (!r)
+        return FBRL_EINVAL;
     r->link = link;
     r->lost = 0;
     /* a controller we did not watch may be moving: the next motion asks it first */
     r->moving = link != NULL;
     r->motion[0] = 0;
-    if (link && link->u) fbrl_uart_get_config(link->u, &r->comm);
+    if (link && link->u)
+        fbrl_uart_get_config(link->u, &r->comm);
     rb_port_writer(r);
     return FBRL_OK;
 }
 
 fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fbrl_robot *r), void *ctx)
 {
-    if (!r) return FBRL_EINVAL;
+    if (!r)
+        return FBRL_EINVAL;
     r->relink = fn;
     r->relink_ctx = ctx;
     return FBRL_OK;
@@ -109,23 +125,27 @@ int fbrl_robot_last_error(const fbrl_robot *r) { return r ? r->last_error : -1; 
 
 fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4])
 {
-    if (!r || !base) return FBRL_EINVAL;
+    if (!r || !base)
+        return FBRL_EINVAL;
     memcpy(base, r->base, sizeof r->base);
     return FBRL_OK;
 }
 
 fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4])
 {
-    if (!r || !base) return FBRL_EINVAL;
+    if (!r || !base)
+        return FBRL_EINVAL;
     for (int k = 0; k < 4; k++)
-        if (!isfinite(base[k])) return FBRL_ENONFINITE;
+        if (!isfinite(base[k]))
+            return FBRL_ENONFINITE;
     memcpy(r->base, base, sizeof r->base);
     return FBRL_OK;
 }
 
 void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell)
 {
-    if (!r) return;
+    if (!r)
+        return;
     r->progress = progress;
     r->progress_ctx = ctx;
     r->tell = tell != 0;

@@ -18,16 +18,19 @@
 static fbrl_status uart_of(fbrl_robot *r, fbrl_uart **u)
 {
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     *u = r->link->u;
     return FBRL_OK;
 }
 
 static fbrl_status check_port(fbrl_robot *r, const rb_word *w, fbrl_cell port)
 {
-    if (port == 1) return FBRL_OK;
+    if (port == 1)
+        return FBRL_OK;
     char msg[96];
-    snprintf(msg, sizeof msg, "%s: port %ld: only port 1 (the controller's line) exists here", w->name, (long)port);
+    snprintf(msg, sizeof msg, "%s: port %ld: only port 1 (the controller's line) exists here", w->name,
+             (long)port);
     return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
@@ -40,14 +43,16 @@ static fbrl_status bad_setting(fbrl_robot *r, const rb_word *w, const char *what
 
 static fbrl_status set_word_length(fbrl_robot *r, const rb_word *w, fbrl_cell n)
 {
-    if (n < 5 || n > 8) return bad_setting(r, w, "word length 5..8 bits");
+    if (n < 5 || n > 8)
+        return bad_setting(r, w, "word length 5..8 bits");
     r->comm.data_bits = (uint8_t)n;
     return FBRL_OK;
 }
 
 static fbrl_status set_stop_bits(fbrl_robot *r, const rb_word *w, fbrl_cell n)
 {
-    if (n < 1 || n > 2) return bad_setting(r, w, "1 or 2 stop bits");
+    if (n < 1 || n > 2)
+        return bad_setting(r, w, "1 or 2 stop bits");
     r->comm.stop_bits = (uint8_t)n;
     return FBRL_OK;
 }
@@ -55,16 +60,20 @@ static fbrl_status set_stop_bits(fbrl_robot *r, const rb_word *w, fbrl_cell n)
 static fbrl_status set_parity(fbrl_robot *r, const rb_word *w, fbrl_cell c)
 {
     switch (c) {
-    case 'N': case 'n': r->comm.parity = FBRL_PARITY_NONE; return FBRL_OK;
-    case 'E': case 'e': r->comm.parity = FBRL_PARITY_EVEN; return FBRL_OK;
-    case 'O': case 'o': r->comm.parity = FBRL_PARITY_ODD; return FBRL_OK;
+    case 'N':
+    case 'n': r->comm.parity = FBRL_PARITY_NONE; return FBRL_OK;
+    case 'E':
+    case 'e': r->comm.parity = FBRL_PARITY_EVEN; return FBRL_OK;
+    case 'O':
+    case 'o': r->comm.parity = FBRL_PARITY_ODD; return FBRL_OK;
     default: return bad_setting(r, w, "parity is the character N, E or O (ASC E)");
     }
 }
 
 static fbrl_status set_baud(fbrl_robot *r, const rb_word *w, fbrl_cell b)
 {
-    if (b < 50 || b > 4000000) return bad_setting(r, w, "baud rate 50..4000000");
+    if (b < 50 || b > 4000000)
+        return bad_setting(r, w, "baud rate 50..4000000");
     r->comm.baud = (uint32_t)b;
     return FBRL_OK;
 }
@@ -84,10 +93,14 @@ static fbrl_status w_commset(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_uart_config keep = r->comm;
     fbrl_status st = set_baud(r, w, v[0].i);
-    if (st == FBRL_OK) st = set_parity(r, w, v[1].i);
-    if (st == FBRL_OK) st = set_stop_bits(r, w, v[2].i);
-    if (st == FBRL_OK) st = set_word_length(r, w, v[3].i);
-    if (st != FBRL_OK) r->comm = keep;
+    if (st == FBRL_OK)
+        st = set_parity(r, w, v[1].i);
+    if (st == FBRL_OK)
+        st = set_stop_bits(r, w, v[2].i);
+    if (st == FBRL_OK)
+        st = set_word_length(r, w, v[3].i);
+    if (st != FBRL_OK)
+        r->comm = keep;
     return st;
 }
 
@@ -95,7 +108,8 @@ static fbrl_status apply(fbrl_robot *r, const rb_word *w)
 {
     fbrl_uart *u;
     fbrl_status st = uart_of(r, &u);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     /* bytes already queued leave at the old settings */
     fbrl_uart_drain(u, COMM_TIMEOUT_MS);
     st = fbrl_uart_configure(u, &r->comm);
@@ -117,7 +131,8 @@ static fbrl_status w_setupuart(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_comm_setup(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = check_port(r, w, v[0].i);
-    if (st == FBRL_OK) st = w_commset(r, w, v + 1);
+    if (st == FBRL_OK)
+        st = w_commset(r, w, v + 1);
     return st == FBRL_OK ? apply(r, w) : st;
 }
 
@@ -129,14 +144,16 @@ static uint64_t link_mark(const fbrl_link *l) { return l->stats.attempts + l->st
  * CR in the raw text runs only the raw text. */
 static fbrl_status raw_begin(fbrl_robot *r)
 {
-    if (!r->link || (r->raw_open && r->raw_link_mark == link_mark(r->link))) return FBRL_OK;
+    if (!r->link || (r->raw_open && r->raw_link_mark == link_mark(r->link)))
+        return FBRL_OK;
     return fbrl_link_clear_line(r->link);
 }
 
 /* After raw bytes: a CR or LF ends the raw line (the controller ran it). */
 static void raw_end(fbrl_robot *r, const void *p, size_t n)
 {
-    if (!r->link || n == 0) return;
+    if (!r->link || n == 0)
+        return;
     uint8_t last = ((const uint8_t *)p)[n - 1];
     r->raw_open = last != '\r' && last != '\n';
     r->raw_link_mark = link_mark(r->link);
@@ -147,23 +164,29 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
 {
     fbrl_uart *u;
     fbrl_status st = uart_of(r, &u);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_uart_config c;
     if (fbrl_uart_get_config(u, &c) == FBRL_OK && c.flow == FBRL_FLOW_XONXOFF)
         for (size_t k = 0; k < n; k++)
             if (((const uint8_t *)p)[k] == FBRL_XON || ((const uint8_t *)p)[k] == FBRL_XOFF)
-                return rb_fail(r, FBRL_THROW_BAD_NUMBER, "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
-    if ((st = raw_begin(r)) != FBRL_OK) return rb_fail_st(r, w, st, "port");
+                return rb_fail(r, FBRL_THROW_BAD_NUMBER,
+                               "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
+    if ((st = raw_begin(r)) != FBRL_OK)
+        return rb_fail_st(r, w, st, "port");
     st = fbrl_uart_write(u, p, n, NULL, COMM_TIMEOUT_MS);
-    if (st == FBRL_OK) raw_end(r, p, n);
-    if (st == FBRL_OK && w->arg) st = fbrl_uart_drain(u, COMM_TIMEOUT_MS);
+    if (st == FBRL_OK)
+        raw_end(r, p, n);
+    if (st == FBRL_OK && w->arg)
+        st = fbrl_uart_drain(u, COMM_TIMEOUT_MS);
     return st == FBRL_OK ? FBRL_OK : rb_fail_st(r, w, st, "port");
 }
 
 /* EMIT-COM ( char -- ), DIRECT-WRITE-COM ( c -- ) */
 static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    if (v[0].i < 0 || v[0].i > 255) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "EMIT-COM: a byte 0..255");
+    if (v[0].i < 0 || v[0].i > 255)
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, "EMIT-COM: a byte 0..255");
     uint8_t b = (uint8_t)v[0].i;
     return send_raw(r, w, &b, 1);
 }
@@ -171,7 +194,8 @@ static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 /* TYPE-COM ( chrs addr -- ) - the thesis's order: count first */
 static fbrl_status w_type_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    if (v[0].i < 0 || (v[0].i > 0 && !fbrl_vm_addr(r->vm, v[1].i, (size_t)v[0].i))) return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
+    if (v[0].i < 0 || (v[0].i > 0 && !fbrl_vm_addr(r->vm, v[1].i, (size_t)v[0].i)))
+        return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
     return send_raw(r, w, (const void *)v[1].i, (size_t)v[0].i);
 }
 
@@ -189,7 +213,8 @@ static fbrl_status w_fdot_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     char buf[32];
     size_t n;
     fbrl_status st = fbrl_rapl_format_real(buf, sizeof buf, &n, v[0].f);
-    if (st != FBRL_OK) return rb_fail_st(r, w, st, NULL);
+    if (st != FBRL_OK)
+        return rb_fail_st(r, w, st, NULL);
     return send_raw(r, w, buf, n);
 }
 
@@ -201,10 +226,14 @@ static fbrl_status w_get_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     size_t got = 0;
     (void)v;
     fbrl_status st = uart_of(r, &u);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     st = fbrl_uart_read(u, &b, 1, &got, COMM_TIMEOUT_MS);
-    if (st != FBRL_OK && st != FBRL_ETIMEOUT) return rb_fail_st(r, w, st, "port");
-    return fbrl_vm_push(r->vm, got ? (fbrl_cell)b : -1) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    if (st != FBRL_OK && st != FBRL_ETIMEOUT)
+        return rb_fail_st(r, w, st, "port");
+    return fbrl_vm_push(r->vm, got ? (fbrl_cell)b : -1) == FBRL_OK
+               ? FBRL_OK
+               : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* Bring the link back in step after raw output: let the controller finish answering,
@@ -216,26 +245,28 @@ static fbrl_status resync_keep(fbrl_robot *r, char *keep, size_t cap, size_t *ke
     for (int quiet = 0, rounds = 0; quiet < 3 && rounds < 40; rounds++) {
         size_t got = 0;
         fbrl_status st = fbrl_uart_read(r->link->u, buf, sizeof buf, &got, 50);
-        if (st != FBRL_OK && st != FBRL_ETIMEOUT) return st;
+        if (st != FBRL_OK && st != FBRL_ETIMEOUT)
+            return st;
         quiet = got ? 0 : quiet + 1;
-        for (size_t k = 0; keep && k < got && *kept + 1 < cap; k++) keep[(*kept)++] = (char)buf[k];
+        for (size_t k = 0; keep && k < got && *kept + 1 < cap; k++)
+            keep[(*kept)++] = (char)buf[k];
     }
-    if (keep) keep[*kept] = '\0';
+    if (keep)
+        keep[*kept] = '\0';
     return fbrl_link_connect(r->link);
 }
 
-fbrl_status rb_resync(fbrl_robot *r)
-{
-    return resync_keep(r, NULL, 0, NULL);
-}
+fbrl_status rb_resync(fbrl_robot *r) { return resync_keep(r, NULL, 0, NULL); }
 
 /* RESET-COMM ( port -- ): drop what was received and not read, and resynchronise. */
 static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_uart *u;
     fbrl_status st = check_port(r, w, v[0].i);
-    if (st == FBRL_OK) st = uart_of(r, &u);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK)
+        st = uart_of(r, &u);
+    if (st != FBRL_OK)
+        return st;
     return rb_link_result(r, w, rb_resync(r));
 }
 
@@ -258,9 +289,11 @@ static void print_to_port(void *ctx, const char *s, size_t n)
         return;
     }
     raw_end(r, s, n);
-    if (!n || s[n - 1] != '\n') return;
+    if (!n || s[n - 1] != '\n')
+        return;
     if (resync_keep(r, answer, sizeof answer, &kept) != FBRL_OK) {
-        rb_puts(r, "PRINT-LOC: printed on the controller's line; the controller did not answer in step again\n");
+        rb_puts(r,
+                "PRINT-LOC: printed on the controller's line; the controller did not answer in step again\n");
         return;
     }
     /* the controller's answer: an error line "NNN-TEXT." somewhere after its echo */
@@ -268,12 +301,14 @@ static void print_to_port(void *ctx, const char *s, size_t n)
         int code;
         char text[64];
         size_t e = i;
-        while (e < kept && answer[e] != '\r' && answer[e] != '\n') e++;
+        while (e < kept && answer[e] != '\r' && answer[e] != '\n')
+            e++;
         if (fbrl_rapl_parse_error(answer + i, e - i, &code, text, sizeof text) == FBRL_OK) {
             r->last_error = code;
             snprintf(msg, sizeof msg,
                      "PRINT-LOC: printed on the controller's line, which read it as a command and answered "
-                     "%03d-%s (nothing ran; fbrlmon --printer PATH prints elsewhere)\n", code, text);
+                     "%03d-%s (nothing ran; fbrlmon --printer PATH prints elsewhere)\n",
+                     code, text);
             rb_puts(r, msg);
             return;
         }
@@ -284,7 +319,8 @@ static void print_to_port(void *ctx, const char *s, size_t n)
 
 void rb_port_writer(fbrl_robot *r)
 {
-    if (r->g) fbrl_glossary_set_port_writer(r->g, r->link ? print_to_port : NULL, r);
+    if (r->g)
+        fbrl_glossary_set_port_writer(r->g, r->link ? print_to_port : NULL, r);
 }
 
 /* .COMM ( -- ): the port's settings as the uart has them now */
@@ -296,7 +332,8 @@ static fbrl_status w_dot_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)w;
     (void)v;
     fbrl_status st = uart_of(r, &u);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_uart_get_config(u, &c);
     snprintf(buf, sizeof buf, "%lu baud, %u data bits, parity %c, %u stop bit%s, %s\n", (unsigned long)c.baud,
              (unsigned)c.data_bits, (char)c.parity, (unsigned)c.stop_bits, c.stop_bits > 1 ? "s" : "",
@@ -314,30 +351,48 @@ static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)w;
     (void)v;
     fbrl_vm_parse_name(r->vm, &s, &n);
-    if (n == 0) return rb_fail(r, FBRL_THROW_NO_NAME, "ASC needs a character after it");
-    if (fbrl_vmx_compiling(r->vm)) return fbrl_vmx_compile_lit(r->vm, (unsigned char)s[0]);
-    return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    if (n == 0)
+        return rb_fail(r, FBRL_THROW_NO_NAME, "ASC needs a character after it");
+    if (fbrl_vmx_compiling(r->vm))
+        return fbrl_vmx_compile_lit(r->vm, (unsigned char)s[0]);
+    return fbrl_vm_push(r->vm, (unsigned char)s[0]) == FBRL_OK ? FBRL_OK
+                                                               : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 const rb_word rb_comm_words[] = {
-    { "SETWORDLENGTH", w_setting, "I", 0, -1, 0, "( num-bits -- )", "word length for the next SETUPUART (5..8)" },
-    { "SETSTOPBITS", w_setting, "I", 0, -1, 1, "( numbits -- )", "stop bits for the next SETUPUART (1..2)" },
-    { "SETPARITY", w_setting, "C", 0, -1, 2, "( parity-char -- )", "parity for the next SETUPUART: ASC N, ASC E or ASC O" },
-    { "SETBAUDRATE", w_setting, "I", 0, -1, 3, "( baud-rate -- )", "baud rate for the next SETUPUART" },
-    { "COMMSET", w_commset, "ICII", 0, -1, 0, "( baud parity stopbits wordlen -- )", "all four settings for the next SETUPUART" },
-    { "SETUPUART", w_setupuart, "I", 0, -1, 0, "( comm-port -- )", "apply the settings to the port (1 = the controller's line)" },
-    { "COMM-SETUP", w_comm_setup, "IICII", 0, -1, 0, "( pt# bd prty stop-bit wrdlen -- )", "set and apply all port settings" },
-    { "EMIT-COM", w_emit_com, "I", 0, -1, 0, "( char -- )", "send a byte to the port (raw, no echo check)" },
-    { "DIRECT-WRITE-COM", w_emit_com, "I", 0, -1, 1, "( c -- )", "send a byte and wait until it has left the queue" },
-    { "TYPE-COM", w_type_com, "II", 0, -1, 0, "( chrs addr -- )", "send a string to the port (raw)" },
-    { ".-COM", w_dot_com, "I", 0, -1, 0, "( n -- )", "send a number as decimal text (raw)" },
-    { "F.-COM", w_fdot_com, "R", 0, -1, 0, "( F: r -- )", "send a real as RAPL text, four decimals (raw)" },
-    { "GET-COM", w_get_com, "", 0, -1, 0, "( -- char )", "next received byte; -1 if none came within a second" },
-    { ".COMM", w_dot_comm, "", 0, -1, 0, "( -- )", "show the port's settings in use" },
-    { "RESET-COMM", w_reset_comm, "I", 0, -1, 0, "( port -- )", "discard received bytes and resynchronise the controller line" },
+    {"SETWORDLENGTH", w_setting, "I", 0, -1, 0, "( num-bits -- )",
+     "word length for the next SETUPUART (5..8)"},
+    {"SETSTOPBITS", w_setting, "I", 0, -1, 1, "( numbits -- )", "stop bits for the next SETUPUART (1..2)"},
+    {"SETPARITY", w_setting, "C", 0, -1, 2, "( parity-char -- )",
+     "parity for the next SETUPUART: ASC N, ASC E or ASC O"},
+    {"SETBAUDRATE", w_setting, "I", 0, -1, 3, "( baud-rate -- )", "baud rate for the next SETUPUART"},
+    {"COMMSET", w_commset, "ICII", 0, -1, 0, "( baud parity stopbits wordlen -- )",
+     "all four settings for the next SETUPUART"},
+    {"SETUPUART", w_setupuart, "I", 0, -1, 0, "( comm-port -- )",
+     "apply the settings to the port (1 = the controller's line)"},
+    {"COMM-SETUP", w_comm_setup, "IICII", 0, -1, 0, "( pt# bd prty stop-bit wrdlen -- )",
+     "set and apply all port settings"},
+    {"EMIT-COM", w_emit_com, "I", 0, -1, 0, "( char -- )", "send a byte to the port (raw, no echo check)"},
+    {"DIRECT-WRITE-COM", w_emit_com, "I", 0, -1, 1, "( c -- )",
+     "send a byte and wait until it has left the queue"},
+    {"TYPE-COM", w_type_com, "II", 0, -1, 0, "( chrs addr -- )", "send a string to the port (raw)"},
+    {".-COM", w_dot_com, "I", 0, -1, 0, "( n -- )", "send a number as decimal text (raw)"},
+    {"F.-COM", w_fdot_com, "R", 0, -1, 0, "( F: r -- )", "send a real as RAPL text, four decimals (raw)"},
+    {"GET-COM", w_get_com, "", 0, -1, 0, "( -- char )",
+     "next received byte; -1 if none came within a second"},
+    {".COMM", w_dot_comm, "", 0, -1, 0, "( -- )", "show the port's settings in use"},
+    {"RESET-COMM", w_reset_comm, "I", 0, -1, 0, "( port -- )",
+     "discard received bytes and resynchronise the controller line"},
 };
 
 const size_t rb_comm_nwords = sizeof rb_comm_words / sizeof rb_comm_words[0];
 
 /* ASC is F-PC's; a VM that has one keeps it. Immediate. */
-const rb_word rb_comm_asc = { "ASC", w_asc, "", FBRL_VMX_IMMEDIATE, -1, 0, "( \"c\" -- char )", "the character code of the next word's first character" };
+const rb_word rb_comm_asc = {"ASC",
+                             w_asc,
+                             "",
+                             FBRL_VMX_IMMEDIATE,
+                             -1,
+                             0,
+                             "( \"c\" -- char )",
+                             "the character code of the next word's first character"};

@@ -32,8 +32,8 @@ typedef struct rb_word {
     rb_fn fn;
     const char *spec;
     unsigned flags;
-    int cmd;           /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
-    intptr_t arg;      /* word-specific */
+    int cmd;      /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
+    intptr_t arg; /* word-specific */
     const char *stack, *help;
 } rb_word;
 
@@ -92,7 +92,8 @@ fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd);
 fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v);
 fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v);
 fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *buf, size_t cap);
-fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo, fbrl_cell hi);
+fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo,
+                     fbrl_cell hi);
 fbrl_status rb_finite(fbrl_robot *r, const rb_word *w, const rb_val *v, size_t n);
 
 /* robot_loc.c: a host location read (finite) or written, naming the word; the user's frame
@@ -110,8 +111,8 @@ fbrl_status rb_resync(fbrl_robot *r);
 void rb_port_writer(fbrl_robot *r);
 
 /* The word tables, in the order robot.c defines them. */
-extern const rb_word rb_motion_words[], rb_rapl_words[], rb_teach_words[], rb_param_words[],
-    rb_line_words[], rb_comm_words[], rb_io_words[], rb_comm_asc, rb_import_words[];
+extern const rb_word rb_motion_words[], rb_rapl_words[], rb_teach_words[], rb_param_words[], rb_line_words[],
+    rb_comm_words[], rb_io_words[], rb_comm_asc, rb_import_words[];
 extern const size_t rb_motion_nwords, rb_rapl_nwords, rb_teach_nwords, rb_param_nwords, rb_line_nwords,
     rb_comm_nwords, rb_io_nwords, rb_import_nwords;
 

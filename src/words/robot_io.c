@@ -17,21 +17,23 @@
 
 /* A device word's data: this magic, then its port number (the table in the robot is what
  * counts; the data only marks the word as a device). */
-static const fbrl_vmx_type device_type = { "device", (fbrl_cell)0x44455643 /* "DEVC" */ };
+static const fbrl_vmx_type device_type = {"device", (fbrl_cell)0x44455643 /* "DEVC" */};
 #define DEFAULT_PULSE_MS 100u
-#define POLL_MS 20u
-#define MAX_WAIT_MS 86400000L /* one day */
+#define POLL_MS          20u
+#define MAX_WAIT_MS      86400000L /* one day */
 
 static fbrl_robot_device *device_at(const fbrl_robot *r, fbrl_cell addr)
 {
     for (size_t k = 0; k < FBRL_ROBOT_MAX_DEVICES; k++) {
         fbrl_robot_device *d = (fbrl_robot_device *)&r->dev[k];
-        if (d->addr && d->addr == addr && fbrl_vmx_data(r->vm, addr, &device_type, sizeof(fbrl_cell))) return d;
+        if (d->addr && d->addr == addr && fbrl_vmx_data(r->vm, addr, &device_type, sizeof(fbrl_cell)))
+            return d;
     }
     return NULL;
 }
 
-static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int output, fbrl_robot_device **out)
+static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int output,
+                          fbrl_robot_device **out)
 {
     char msg[96];
     fbrl_robot_device *d = device_at(r, addr);
@@ -40,7 +42,8 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     if (output >= 0 && d->output != output) {
-        snprintf(msg, sizeof msg, "%s: that is an %s device (port %d)", w->name, d->output ? "output" : "input", d->port);
+        snprintf(msg, sizeof msg, "%s: that is an %s device (port %d)", w->name,
+                 d->output ? "output" : "input", d->port);
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     *out = d;
@@ -50,20 +53,25 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
 static const char *device_help(int output) { return output ? "output device" : "input device"; }
 
 /* A new device word (name NULL: parsed from the input) in a free slot of the table. */
-static fbrl_status make_device(fbrl_robot *r, const char *name, size_t len, int port, int output, uint32_t pulse_ms)
+static fbrl_status make_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
+                               uint32_t pulse_ms)
 {
     size_t k;
     fbrl_cell addr, cell = port;
     void *p;
     for (k = 0; k < FBRL_ROBOT_MAX_DEVICES && device_at(r, r->dev[k].addr); k++)
         ;
-    if (k == FBRL_ROBOT_MAX_DEVICES) return FBRL_EFULL;
-    fbrl_status st = fbrl_vmx_create(r->vm, name, len, &device_type, sizeof(fbrl_cell), NULL, NULL, "( -- dev )",
-                                     device_help(output), &addr, &p);
-    if (st != FBRL_OK) return st;
+    if (k == FBRL_ROBOT_MAX_DEVICES)
+        return FBRL_EFULL;
+    fbrl_status st = fbrl_vmx_create(r->vm, name, len, &device_type, sizeof(fbrl_cell), NULL, NULL,
+                                     "( -- dev )", device_help(output), &addr, &p);
+    if (st != FBRL_OK)
+        return st;
     memcpy(p, &cell, sizeof cell);
-    for (size_t j = 0; j < FBRL_ROBOT_MAX_DEVICES; j++) /* an entry left by forgotten words (fbrl_vmx_forget) */
-        if (r->dev[j].addr == addr) r->dev[j].addr = 0;
+    for (size_t j = 0; j < FBRL_ROBOT_MAX_DEVICES;
+         j++) /* an entry left by forgotten words (fbrl_vmx_forget) */
+        if (r->dev[j].addr == addr)
+            r->dev[j].addr = 0;
     r->dev[k].addr = addr;
     r->dev[k].port = port;
     r->dev[k].output = output;
@@ -75,9 +83,12 @@ fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_d
 {
     fbrl_cell addr;
     const void *tag;
-    if (!r || !r->vm || !d) return FBRL_EINVAL;
-    const fbrl_robot_device *dev = fbrl_vmx_tag(r->vm, xt, &tag, &addr) == FBRL_OK ? device_at(r, addr) : NULL;
-    if (!dev) return FBRL_ENOENT;
+    if (!r || !r->vm || !d)
+        return FBRL_EINVAL;
+    const fbrl_robot_device *dev =
+        fbrl_vmx_tag(r->vm, xt, &tag, &addr) == FBRL_OK ? device_at(r, addr) : NULL;
+    if (!dev)
+        return FBRL_ENOENT;
     *d = *dev;
     return FBRL_OK;
 }
@@ -87,8 +98,10 @@ fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len
 {
     fbrl_cell xt, cell = port;
     fbrl_robot_device old;
-    if (!r || !r->vm || !name) return FBRL_EINVAL;
-    if (port < 1 || port > FBRL_ROBOT_IO_MAX || pulse_ms < FBRL_ROBOT_PULSE_MIN || pulse_ms > FBRL_ROBOT_PULSE_MAX)
+    if (!r || !r->vm || !name)
+        return FBRL_EINVAL;
+    if (port < 1 || port > FBRL_ROBOT_IO_MAX || pulse_ms < FBRL_ROBOT_PULSE_MIN ||
+        pulse_ms > FBRL_ROBOT_PULSE_MAX)
         return FBRL_ERANGE;
     if (fbrl_vmx_find(r->vm, name, len, &xt) == FBRL_OK && fbrl_robot_device_of(r, xt, &old) == FBRL_OK) {
         fbrl_robot_device *d = device_at(r, old.addr);
@@ -104,7 +117,8 @@ fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len
 size_t fbrl_robot_devices_free(const fbrl_robot *r)
 {
     size_t n = 0;
-    for (size_t k = 0; r && k < FBRL_ROBOT_MAX_DEVICES; k++) n += device_at(r, r->dev[k].addr) == NULL;
+    for (size_t k = 0; r && k < FBRL_ROBOT_MAX_DEVICES; k++)
+        n += device_at(r, r->dev[k].addr) == NULL;
     return n;
 }
 
@@ -117,7 +131,8 @@ static fbrl_status w_make_device(fbrl_robot *r, const rb_word *w, rb_val *v)
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     fbrl_status st = make_device(r, NULL, 0, (int)v[0].i, (int)w->arg, DEFAULT_PULSE_MS);
-    if (st == FBRL_EFULL) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "too many devices");
+    if (st == FBRL_EFULL)
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "too many devices");
     return st;
 }
 
@@ -133,7 +148,8 @@ static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_device *d = device_at(r, v[0].i);
     if (!d) {
         fbrl_cell flag = w->arg ? -1 : 0;
-        if (!fbrl_vm_addr(r->vm, v[0].i, sizeof(fbrl_cell))) return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
+        if (!fbrl_vm_addr(r->vm, v[0].i, sizeof(fbrl_cell)))
+            return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
         memcpy((void *)v[0].i, &flag, sizeof flag);
         return FBRL_OK;
     }
@@ -147,7 +163,8 @@ static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
 
 static fbrl_status ms_arg(fbrl_robot *r, const rb_word *w, fbrl_cell ms)
 {
-    if (ms >= 0 && ms <= MAX_WAIT_MS) return FBRL_OK;
+    if (ms >= 0 && ms <= MAX_WAIT_MS)
+        return FBRL_OK;
     char msg[96];
     snprintf(msg, sizeof msg, "%s: time %ld ms outside 0..%ld", w->name, (long)ms, MAX_WAIT_MS);
     return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
@@ -157,7 +174,8 @@ static fbrl_status ms_arg(fbrl_robot *r, const rb_word *w, fbrl_cell ms)
 static fbrl_status pulse(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d, uint32_t ms)
 {
     fbrl_status st = set_output(r, w, d, 1);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_status slept = rb_wait_ms(r, w->name, ms);
     st = set_output(r, w, d, 0);
     return slept != FBRL_OK ? slept : st;
@@ -168,8 +186,10 @@ static fbrl_status w_pulse(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_robot_device *d = NULL;
     fbrl_status st = ms_arg(r, w, v[0].i);
-    if (st == FBRL_OK) st = device(r, w, v[1].i, 1, &d);
-    if (st == FBRL_OK) st = rb_online(r);
+    if (st == FBRL_OK)
+        st = device(r, w, v[1].i, 1, &d);
+    if (st == FBRL_OK)
+        st = rb_online(r);
     return st == FBRL_OK ? pulse(r, w, d, (uint32_t)v[0].i) : st;
 }
 
@@ -178,7 +198,8 @@ static fbrl_status w_pulse_width(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_robot_device *d = NULL;
     fbrl_status st = device(r, w, v[1].i, 1, &d);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     if (v[0].i < (fbrl_cell)FBRL_ROBOT_PULSE_MIN || v[0].i > (fbrl_cell)FBRL_ROBOT_PULSE_MAX) {
         char msg[64];
         snprintf(msg, sizeof msg, "PULSE-WIDTH: %u..%u ms", FBRL_ROBOT_PULSE_MIN, FBRL_ROBOT_PULSE_MAX);
@@ -193,15 +214,21 @@ static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_robot_device *d = NULL;
     fbrl_status st = device(r, w, v[0].i, 1, &d);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     double ml = v[1].f, n = floor(ml + 0.5);
     if (!isfinite(ml) || ml < 0 || ml > 10000 || fabs(ml - n) > 1e-6)
-        return rb_fail(r, FBRL_THROW_BAD_NUMBER, "DISPENSE: a whole number of ml, 0..10000 (one pulse per ml)");
-    if ((st = rb_online(r)) != FBRL_OK) return st;
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER,
+                       "DISPENSE: a whole number of ml, 0..10000 (one pulse per ml)");
+    if ((st = rb_online(r)) != FBRL_OK)
+        return st;
     for (long k = 0; k < (long)n; k++) {
-        if ((st = pulse(r, w, d, d->pulse_ms)) != FBRL_OK) return st;
-        if (k + 1 < (long)n && (st = rb_sleep_ms(r, d->pulse_ms)) != FBRL_OK) return st;
-        if ((st = rb_interrupted(r)) != FBRL_OK) return st;
+        if ((st = pulse(r, w, d, d->pulse_ms)) != FBRL_OK)
+            return st;
+        if (k + 1 < (long)n && (st = rb_sleep_ms(r, d->pulse_ms)) != FBRL_OK)
+            return st;
+        if ((st = rb_interrupted(r)) != FBRL_OK)
+            return st;
     }
     return FBRL_OK;
 }
@@ -209,7 +236,8 @@ static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status read_input(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d, int *on)
 {
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     return rb_link_result(r, w, fbrl_link_input(r->link, d->port, on));
 }
 
@@ -219,9 +247,12 @@ static fbrl_status w_input_q(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_device *d = NULL;
     int on = 0;
     fbrl_status st = device(r, w, v[0].i, 0, &d);
-    if (st == FBRL_OK) st = read_input(r, w, d, &on);
-    if (st != FBRL_OK) return st;
-    return fbrl_vm_push(r->vm, on ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    if (st == FBRL_OK)
+        st = read_input(r, w, d, &on);
+    if (st != FBRL_OK)
+        return st;
+    return fbrl_vm_push(r->vm, on ? -1 : 0) == FBRL_OK ? FBRL_OK
+                                                       : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* WAIT-INPUT ( dev state ms -- flag ): true once the input has the state (a flag),
@@ -232,29 +263,42 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
     uint64_t t0, now;
     int on = 0, want = v[1].i != 0;
     fbrl_status st = device(r, w, v[0].i, 0, &d);
-    if (st == FBRL_OK) st = ms_arg(r, w, v[2].i);
-    if (st == FBRL_OK) st = rb_now_ms(r, &t0);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK)
+        st = ms_arg(r, w, v[2].i);
+    if (st == FBRL_OK)
+        st = rb_now_ms(r, &t0);
+    if (st != FBRL_OK)
+        return st;
     uint64_t shown = 0;
     int count_down = r->progress && v[2].i >= 2 * (fbrl_cell)FBRL_ROBOT_PROGRESS_MS;
     for (;;) {
-        if ((st = read_input(r, w, d, &on)) != FBRL_OK) break;
-        if (on == want) break;
-        if ((st = rb_now_ms(r, &now)) != FBRL_OK) break;
+        if ((st = read_input(r, w, d, &on)) != FBRL_OK)
+            break;
+        if (on == want)
+            break;
+        if ((st = rb_now_ms(r, &now)) != FBRL_OK)
+            break;
         uint64_t left = t0 + (uint64_t)v[2].i > now ? t0 + (uint64_t)v[2].i - now : 0;
-        if (left == 0) break;
-        if (count_down && (left + 999u) / 1000u != shown) {  /* at a terminal: the seconds left */
+        if (left == 0)
+            break;
+        if (count_down && (left + 999u) / 1000u != shown) { /* at a terminal: the seconds left */
             char line[96];
             shown = (left + 999u) / 1000u;
-            snprintf(line, sizeof line, "%s: waiting for input %d, %lu s left", w->name, d->port, (unsigned long)shown);
+            snprintf(line, sizeof line, "%s: waiting for input %d, %lu s left", w->name, d->port,
+                     (unsigned long)shown);
             r->progress(r->progress_ctx, line);
         }
-        if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK) break;
-        if ((st = rb_interrupted(r)) != FBRL_OK) break;
+        if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK)
+            break;
+        if ((st = rb_interrupted(r)) != FBRL_OK)
+            break;
     }
-    if (shown) r->progress(r->progress_ctx, NULL);
-    if (st != FBRL_OK) return st;
-    return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    if (shown)
+        r->progress(r->progress_ctx, NULL);
+    if (st != FBRL_OK)
+        return st;
+    return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK
+                                                               : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* START-TIMER ( -- ) */
@@ -276,7 +320,8 @@ static fbrl_status elapsed(fbrl_robot *r, const rb_word *w, uint64_t *ms)
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     fbrl_status st = rb_now_ms(r, &now);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     *ms = now - r->mark_ms;
     return FBRL_OK;
 }
@@ -287,8 +332,10 @@ static fbrl_status w_elapsed(fbrl_robot *r, const rb_word *w, rb_val *v)
     uint64_t ms = 0;
     (void)v;
     fbrl_status st = elapsed(r, w, &ms);
-    if (st != FBRL_OK) return st;
-    return fbrl_vm_push(r->vm, (fbrl_cell)ms) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    if (st != FBRL_OK)
+        return st;
+    return fbrl_vm_push(r->vm, (fbrl_cell)ms) == FBRL_OK ? FBRL_OK
+                                                         : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 /* WAIT-UNTIL ( ms -- ): until ms after START-TIMER (at once if that has passed) */
@@ -296,8 +343,10 @@ static fbrl_status w_wait_until(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     uint64_t ms = 0;
     fbrl_status st = ms_arg(r, w, v[0].i);
-    if (st == FBRL_OK) st = elapsed(r, w, &ms);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK)
+        st = elapsed(r, w, &ms);
+    if (st != FBRL_OK)
+        return st;
     return ms < (uint64_t)v[0].i ? rb_wait_ms(r, w->name, (uint32_t)((uint64_t)v[0].i - ms)) : FBRL_OK;
 }
 
@@ -308,25 +357,35 @@ static fbrl_status w_time_of_day(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)w;
     (void)v;
     const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
-    if (!h->time_date) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    if (!h->time_date)
+        return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
     h->time_date(h->user, t);
-    return fbrl_vm_push(r->vm, (fbrl_cell)t[2] * 3600 + t[1] * 60 + t[0]) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    return fbrl_vm_push(r->vm, (fbrl_cell)t[2] * 3600 + t[1] * 60 + t[0]) == FBRL_OK
+               ? FBRL_OK
+               : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 const rb_word rb_io_words[] = {
-    { "OUTPUT-DEVICE", w_make_device, "I", 0, -1, 1, "( port \"name\" -- )", "name a controller output (1..16); name pushes the device" },
-    { "INPUT-DEVICE", w_make_device, "I", 0, -1, 0, "( port \"name\" -- )", "name a controller input (1..16); name pushes the device" },
-    { "ON", w_on_off, "A", 0, -1, 1, "( dev -- ) or ( a -- )", "switch an output device on (OUTPUT n); at a variable, store true" },
-    { "OFF", w_on_off, "A", 0, -1, 0, "( dev -- ) or ( a -- )", "switch an output device off (OUTPUT -n); at a variable, store false" },
-    { "PULSE", w_pulse, "IA", 0, -1, 0, "( ms dev -- )", "switch an output device on for ms milliseconds" },
-    { "PULSE-WIDTH", w_pulse_width, "IA", 0, -1, 0, "( ms dev -- )", "length of one DISPENSE pulse and of the gap after it (100 ms)" },
-    { "DISPENSE", w_dispense, "AR", 0, -1, 0, "( dev -- ) ( F: ml -- )", "dispense ml millilitres: one pulse per ml" },
-    { "INPUT?", w_input_q, "A", 0, -1, 0, "( dev -- flag )", "true if the input device is on" },
-    { "WAIT-INPUT", w_wait_input, "AII", 0, -1, 0, "( dev state ms -- flag )", "wait up to ms for the input to reach state; false on timeout" },
-    { "START-TIMER", w_start_timer, "", 0, -1, 0, "( -- )", "mark the start of a timed step" },
-    { "ELAPSED", w_elapsed, "", 0, -1, 0, "( -- ms )", "milliseconds since START-TIMER" },
-    { "WAIT-UNTIL", w_wait_until, "I", 0, -1, 0, "( ms -- )", "wait until ms after START-TIMER" },
-    { "TIME-OF-DAY", w_time_of_day, "", 0, -1, 0, "( -- seconds )", "seconds since local midnight" },
+    {"OUTPUT-DEVICE", w_make_device, "I", 0, -1, 1, "( port \"name\" -- )",
+     "name a controller output (1..16); name pushes the device"},
+    {"INPUT-DEVICE", w_make_device, "I", 0, -1, 0, "( port \"name\" -- )",
+     "name a controller input (1..16); name pushes the device"},
+    {"ON", w_on_off, "A", 0, -1, 1, "( dev -- ) or ( a -- )",
+     "switch an output device on (OUTPUT n); at a variable, store true"},
+    {"OFF", w_on_off, "A", 0, -1, 0, "( dev -- ) or ( a -- )",
+     "switch an output device off (OUTPUT -n); at a variable, store false"},
+    {"PULSE", w_pulse, "IA", 0, -1, 0, "( ms dev -- )", "switch an output device on for ms milliseconds"},
+    {"PULSE-WIDTH", w_pulse_width, "IA", 0, -1, 0, "( ms dev -- )",
+     "length of one DISPENSE pulse and of the gap after it (100 ms)"},
+    {"DISPENSE", w_dispense, "AR", 0, -1, 0, "( dev -- ) ( F: ml -- )",
+     "dispense ml millilitres: one pulse per ml"},
+    {"INPUT?", w_input_q, "A", 0, -1, 0, "( dev -- flag )", "true if the input device is on"},
+    {"WAIT-INPUT", w_wait_input, "AII", 0, -1, 0, "( dev state ms -- flag )",
+     "wait up to ms for the input to reach state; false on timeout"},
+    {"START-TIMER", w_start_timer, "", 0, -1, 0, "( -- )", "mark the start of a timed step"},
+    {"ELAPSED", w_elapsed, "", 0, -1, 0, "( -- ms )", "milliseconds since START-TIMER"},
+    {"WAIT-UNTIL", w_wait_until, "I", 0, -1, 0, "( ms -- )", "wait until ms after START-TIMER"},
+    {"TIME-OF-DAY", w_time_of_day, "", 0, -1, 0, "( -- seconds )", "seconds since local midnight"},
 };
 
 const size_t rb_io_nwords = sizeof rb_io_words / sizeof rb_io_words[0];

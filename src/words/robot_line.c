@@ -23,7 +23,8 @@ static fbrl_status put(fbrl_robot *r, const char *s, size_t n)
 /* A parameter right after the command word is separated from it by a space. */
 static void sep(fbrl_robot *r)
 {
-    if (r->len > 0 && r->line[r->len - 1] != ' ' && r->line[r->len - 1] != ',' && !memchr(r->line, ' ', r->len))
+    if (r->len > 0 && r->line[r->len - 1] != ' ' && r->line[r->len - 1] != ',' &&
+        !memchr(r->line, ' ', r->len))
         put(r, " ", 1);
 }
 
@@ -62,7 +63,8 @@ static fbrl_status w_send_real(fbrl_robot *r, const rb_word *w, rb_val *v)
     char buf[32];
     size_t n;
     fbrl_status st = fbrl_rapl_format_real(buf, sizeof buf, &n, v[0].f);
-    if (st != FBRL_OK) return rb_fail_st(r, w, st, NULL);
+    if (st != FBRL_OK)
+        return rb_fail_st(r, w, st, NULL);
     sep(r);
     return put(r, buf, n);
 }
@@ -97,15 +99,19 @@ static fbrl_status w_send_loc(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_loc user, arm;
     fbrl_status st = rb_loc_read(r, w, v[0].i, &user);
-    if (st == FBRL_OK) st = rb_to_arm(r, w, &user, &arm);
-    if (st != FBRL_OK) return st;
-    const double c[6] = { arm.x, arm.y, arm.z, arm.o, arm.a, arm.t };
+    if (st == FBRL_OK)
+        st = rb_to_arm(r, w, &user, &arm);
+    if (st != FBRL_OK)
+        return st;
+    const double c[6] = {arm.x, arm.y, arm.z, arm.o, arm.a, arm.t};
     sep(r);
     for (int k = 0; k < 6; k++) {
         char buf[32];
         size_t n;
-        if ((st = fbrl_rapl_format_real(buf, sizeof buf, &n, c[k])) != FBRL_OK) return rb_fail_st(r, w, st, NULL);
-        if (k) put(r, ",", 1);
+        if ((st = fbrl_rapl_format_real(buf, sizeof buf, &n, c[k])) != FBRL_OK)
+            return rb_fail_st(r, w, st, NULL);
+        if (k)
+            put(r, ",", 1);
         put(r, buf, n);
     }
     return FBRL_OK;
@@ -121,20 +127,24 @@ static fbrl_status w_send_cr(fbrl_robot *r, const rb_word *w, rb_val *v)
     r->len = 0;
     r->line[0] = '\0';
     r->line_bad = 0;
-    if (bad) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "SEND-CR: the line grew past 80 characters");
-    if (n == 0) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "SEND-CR: nothing to send (start with SEND-COM)");
+    if (bad)
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "SEND-CR: the line grew past 80 characters");
+    if (n == 0)
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, "SEND-CR: nothing to send (start with SEND-COM)");
     return rb_raw(r, w, line, 1);
 }
 
 const rb_word rb_line_words[] = {
     /* I-8 */
-    { "SEND-COM", w_send_com, "I", 0, -1, 0, "( command# -- )", "start a command line with the RAPL command of that number" },
-    { "SEND-REAL", w_send_real, "R", 0, -1, 0, "( F: r -- )", "add a real to the command line" },
-    { "SEND-INT", w_send_int, "I", 0, -1, 0, "( n -- )", "add an integer to the command line" },
-    { "SEND-TEXT", w_send_text, "S", 0, -1, 1, "( c-addr u -- )", "add a name or text to the command line" },
-    { "SEND-COMMA", w_send_const, "", 0, -1, (intptr_t)",", "( -- )", "add a comma to the command line" },
-    { "SEND-STRT", w_send_const, "", 0, -1, (intptr_t)",S", "( -- )", "add the straight-line suffix ,S" },
-    { "SEND-LOC", w_send_loc, "L", 0, -1, 0, "( loc -- )", "add a location's six components (mapped)" },
-    { "SEND-CR", w_send_cr, "", 0, -1, 0, "( -- )", "send the command line (echo-verified) and show its output" },
+    {"SEND-COM", w_send_com, "I", 0, -1, 0, "( command# -- )",
+     "start a command line with the RAPL command of that number"},
+    {"SEND-REAL", w_send_real, "R", 0, -1, 0, "( F: r -- )", "add a real to the command line"},
+    {"SEND-INT", w_send_int, "I", 0, -1, 0, "( n -- )", "add an integer to the command line"},
+    {"SEND-TEXT", w_send_text, "S", 0, -1, 1, "( c-addr u -- )", "add a name or text to the command line"},
+    {"SEND-COMMA", w_send_const, "", 0, -1, (intptr_t) ",", "( -- )", "add a comma to the command line"},
+    {"SEND-STRT", w_send_const, "", 0, -1, (intptr_t) ",S", "( -- )", "add the straight-line suffix ,S"},
+    {"SEND-LOC", w_send_loc, "L", 0, -1, 0, "( loc -- )", "add a location's six components (mapped)"},
+    {"SEND-CR", w_send_cr, "", 0, -1, 0, "( -- )",
+     "send the command line (echo-verified) and show its output"},
 };
 const size_t rb_line_nwords = sizeof rb_line_words / sizeof rb_line_words[0];

@@ -13,7 +13,7 @@ static const char OFFLINE[] = "no controller connected: start fbrlmon with --sim
  * about once a second, and (r->tell) how long it took. */
 typedef struct rb_wait {
     uint64_t t0;
-    unsigned long shown;  /* seconds shown so far */
+    unsigned long shown; /* seconds shown so far */
     int timed;
 } rb_wait;
 
@@ -39,7 +39,8 @@ static void wait_tick(fbrl_robot *r, rb_wait *wt, const char *who, const char *w
 static void wait_end(fbrl_robot *r, rb_wait *wt, const char *who, const char *what)
 {
     uint64_t now = 0;
-    if (!wt->shown) return;
+    if (!wt->shown)
+        return;
     r->progress(r->progress_ctx, NULL);
     if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
         char line[96];
@@ -63,7 +64,8 @@ static fbrl_status rb_drive_for(fbrl_robot *r, const char *who, const char *what
             *result = st;
             break;
         }
-        if ((interrupted = rb_interrupted(r)) != FBRL_OK) break;
+        if ((interrupted = rb_interrupted(r)) != FBRL_OK)
+            break;
         wait_tick(r, &wt, who, what);
     }
     wait_end(r, &wt, who, what);
@@ -77,7 +79,8 @@ static fbrl_status rb_drive(fbrl_robot *r, fbrl_status *result)
 
 fbrl_status rb_online(fbrl_robot *r)
 {
-    if (!r->link) return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), OFFLINE);
+    if (!r->link)
+        return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), OFFLINE);
     if (r->lost) { /* the controller went away: reconnect first, if the host can */
         char msg[160];
         fbrl_status st = r->relink ? r->relink(r->relink_ctx, r) : FBRL_EDISCONNECTED;
@@ -89,9 +92,12 @@ fbrl_status rb_online(fbrl_robot *r)
     }
     if (fbrl_link_busy(r->link)) { /* left running by an interrupted word: end it first */
         fbrl_status res = FBRL_OK, st = rb_drive(r, &res);
-        if (st != FBRL_OK) return st;
-        if (res == FBRL_ECONTROLLER) fbrl_link_error(r->link, &r->last_error, NULL);
-        if (res == FBRL_EDISCONNECTED) r->lost = 1;
+        if (st != FBRL_OK)
+            return st;
+        if (res == FBRL_ECONTROLLER)
+            fbrl_link_error(r->link, &r->last_error, NULL);
+        if (res == FBRL_EDISCONNECTED)
+            r->lost = 1;
     }
     return FBRL_OK;
 }
@@ -99,7 +105,8 @@ fbrl_status rb_online(fbrl_robot *r)
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
     char msg[240];
-    if (st == FBRL_OK) return FBRL_OK;
+    if (st == FBRL_OK)
+        return FBRL_OK;
     if (st == FBRL_EDISCONNECTED) {
         r->lost = 1;
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), "controller disconnected (RECONNECT when it is back)");
@@ -109,12 +116,13 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
         const char *text = "", *help;
         fbrl_link_error(r->link, &code, &text);
         r->last_error = code;
-        help = fbrl_rapl_error_help(code);  /* its meaning and what to do, in plain words */
-        if (code < 0) /* docs/link.md 3.9: refused all the same */
-            snprintf(msg, sizeof msg, "%s: controller error, code unknown (its error line came damaged)", w->name);
+        help = fbrl_rapl_error_help(code); /* its meaning and what to do, in plain words */
+        if (code < 0)                      /* docs/link.md 3.9: refused all the same */
+            snprintf(msg, sizeof msg, "%s: controller error, code unknown (its error line came damaged)",
+                     w->name);
         else
-            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text, help ? " (" : "",
-                     help ? help : "", help ? ")" : "");
+            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text,
+                     help ? " (" : "", help ? help : "", help ? ")" : "");
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EMAYBE) {
@@ -122,7 +130,8 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
         fbrl_link_outcome o;
         (void)fbrl_link_outcome_get(r->link, &o);
         if (o.cause == FBRL_EPROTOCOL || o.cause == FBRL_OK)
-            snprintf(msg, sizeof msg, "%s: may have run: %s; check the robot before repeating it", w->name, o.seen);
+            snprintf(msg, sizeof msg, "%s: may have run: %s; check the robot before repeating it", w->name,
+                     o.seen);
         else
             snprintf(msg, sizeof msg, "%s: may have run: %s (%s); check the robot first", w->name, o.seen,
                      fbrl_status_str(o.cause));
@@ -139,7 +148,7 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
  * baud. A zero read just as a motion starts would only let the controller queue the
  * next motion (as it did before this wait): nothing runs early or twice. */
 typedef struct still_read {
-    unsigned zeros;  /* consecutive all-zero value lines, up to the last one */
+    unsigned zeros; /* consecutive all-zero value lines, up to the last one */
 } still_read;
 
 static void still_line(void *ctx, const char *line, size_t len, int flawed)
@@ -147,7 +156,8 @@ static void still_line(void *ctx, const char *line, size_t len, int flawed)
     still_read *sr = ctx;
     long v[FBRL_RAPL_MAX_AXES];
     size_t n = 0, k;
-    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0) return; /* title */
+    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
+        return; /* title */
     for (k = 0; k < n && v[k] == 0; k++)
         ;
     sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
@@ -166,20 +176,25 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
         memset(&sr, 0, sizeof sr);
         (void)fbrl_link_set_line_handler(r->link, still_line, &sr, &fn, &ctx);
         st = fbrl_link_start_stream(r->link, FBRL_RAPL_W5, 1);
-        if (st == FBRL_OK) st = rb_drive_for(r, w->name, "the arm", &res);
-        else res = st, st = FBRL_OK;
+        if (st == FBRL_OK)
+            st = rb_drive_for(r, w->name, "the arm", &res);
+        else
+            res = st, st = FBRL_OK;
         (void)fbrl_link_set_line_handler(r->link, fn, ctx, NULL, NULL);
-        if (st != FBRL_OK) break; /* interrupted: the stream ends in the link, unread */
+        if (st != FBRL_OK)
+            break;                     /* interrupted: the stream ends in the link, unread */
         if (res == FBRL_ECONTROLLER) { /* no W5 here: the controller's own queue decides */
             r->moving = 0;
             break;
         }
-        if ((st = rb_link_result(r, w, res)) != FBRL_OK) break;
+        if ((st = rb_link_result(r, w, res)) != FBRL_OK)
+            break;
         if (sr.zeros > 0) {
             r->moving = 0;
         } else {
             const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
-            if (h->sleep_ms) h->sleep_ms(h->user, RB_STILL_POLL_MS); /* none: W5 rounds pace it */
+            if (h->sleep_ms)
+                h->sleep_ms(h->user, RB_STILL_POLL_MS); /* none: W5 rounds pace it */
             st = rb_interrupted(r);
             wait_tick(r, &wt, w->name, "the arm");
         }
@@ -216,10 +231,12 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
                    int straight)
 {
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);
-    if (cmd == FBRL_RAPL_OUTPUT) note_outputs(r, a, n);
+    if (cmd == FBRL_RAPL_OUTPUT)
+        note_outputs(r, a, n);
     /* a motion or FINISH behind a running motion would make the controller wait, deaf
      * to HALT: wait here instead, where Ctrl-C can stop the arm */
     if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) {
@@ -228,7 +245,8 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     }
     if (!ci || !(ci->flags & FBRL_RAPL_F_WAITS)) { /* the table: its prompt never comes late */
         fbrl_status res = fbrl_link_cmd(r->link, cmd, a, n, straight);
-        if (res == FBRL_OK && cmd == FBRL_RAPL_HALT) r->moving = 0;
+        if (res == FBRL_OK && cmd == FBRL_RAPL_HALT)
+            r->moving = 0;
         return rb_link_result(r, w, res);
     }
     /* A command that may wait for the arm or an input (no reply but the prompt): run it
@@ -238,8 +256,10 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_rapl_form form = FBRL_RAPL_KEYWORD;
     (void)fbrl_link_get_form(r->link, &form);
     fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
-    if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX) res = FBRL_ERANGE;
-    if (res == FBRL_OK) res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
+    if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX)
+        res = FBRL_ERANGE;
+    if (res == FBRL_OK)
+        res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
     if (res == FBRL_OK && motion) {
         /* sent (its fate may stay unknown): count it as running until W5 says not */
         r->moving = 1;
@@ -250,9 +270,12 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
         r->have_target = 0;
         return st; /* interrupted: the command stays with the link */
     }
-    if (res == FBRL_ECONTROLLER && motion) r->moving = 0; /* refused: nothing started */
-    if (res == FBRL_OK && cmd == FBRL_RAPL_FINISH) r->moving = 0;
-    if (res == FBRL_OK && r->tell && motion) tell_motion(r, w, text);
+    if (res == FBRL_ECONTROLLER && motion)
+        r->moving = 0; /* refused: nothing started */
+    if (res == FBRL_OK && cmd == FBRL_RAPL_FINISH)
+        r->moving = 0;
+    if (res == FBRL_OK && r->tell && motion)
+        tell_motion(r, w, text);
     r->have_target = 0;
     return rb_link_result(r, w, res);
 }
@@ -286,7 +309,8 @@ static void show_line(void *ctx, const char *line, size_t len, int flawed)
 {
     rb_show_ctx *c = ctx;
     print_line(c->r, line, len, flawed);
-    if (c->fn) c->fn(c->ctx, line, len, flawed);
+    if (c->fn)
+        c->fn(c->ctx, line, len, flawed);
 }
 
 /* A display (W0 W2 W4, ROBOT-STATUS, SERIAL, a query typed with RAPL) shows what the
@@ -298,14 +322,17 @@ fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link
 {
     fbrl_link_line_fn old_fn = NULL;
     void *old_ctx = NULL;
-    rb_show_ctx c = { r, fn, ctx };
+    rb_show_ctx c = {r, fn, ctx};
     fbrl_status res, st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     (void)fbrl_link_set_line_handler(r->link, show_line, &c, &old_fn, &old_ctx);
     res = fbrl_link_start(r->link, line, FBRL_LINK_REPLY_LINES);
-    if (res == FBRL_OK) st = rb_drive(r, &res);
+    if (res == FBRL_OK)
+        st = rb_drive(r, &res);
     (void)fbrl_link_set_line_handler(r->link, old_fn, old_ctx, NULL, NULL);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     return rb_link_result(r, w, res);
 }
 
@@ -315,13 +342,15 @@ static int display_query(const char *line)
     char word[12];
     size_t k = 0;
     fbrl_rapl_cmd c;
-    while (*line == ' ') line++;
+    while (*line == ' ')
+        line++;
     while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
         word[k] = line[k];
         k++;
     }
     word[k] = '\0';
-    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK) return 0;
+    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK)
+        return 0;
     fbrl_rapl_reply kind = fbrl_rapl_cmd_info(c)->reply; /* the table says what it prints */
     return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
 }
@@ -333,14 +362,16 @@ static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
     char word[16];
     size_t k = 0;
     fbrl_rapl_cmd cmd;
-    while (*line == ' ') line++;
+    while (*line == ' ')
+        line++;
     while (k + 1 < sizeof word && line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=') {
         word[k] = line[k];
         k++;
     }
     word[k] = 0;
     *motion = *finish = 0;
-    if (line[k] == '=') return; /* an assignment */
+    if (line[k] == '=')
+        return; /* an assignment */
     if (fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK) {
         *motion = 1;
         return;
@@ -351,10 +382,12 @@ static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
         for (const char *p = line + k; *p; p++)
             if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
                 long v = 0;
-                while (*p >= '0' && *p <= '9') v = v * 10 + (*p++ - '0');
+                while (*p >= '0' && *p <= '9')
+                    v = v * 10 + (*p++ - '0');
                 fbrl_rapl_arg a = fbrl_rapl_int(v);
                 note_outputs(r, &a, 1);
-                if (!*p) break;
+                if (!*p)
+                    break;
             }
 }
 
@@ -363,18 +396,23 @@ fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
     int motion, finish;
-    if (print && display_query(line)) return rb_show(r, w, line, NULL, NULL);
+    if (print && display_query(line))
+        return rb_show(r, w, line, NULL, NULL);
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     raw_kind(r, line, &motion, &finish);
-    if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK) return st;
+    if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK)
+        return st;
     if (motion) {
         r->moving = 1;
         snprintf(r->motion, sizeof r->motion, "%s", line);
     }
-    if (print) borrow_lines(r, &fn, &ctx);
+    if (print)
+        borrow_lines(r, &fn, &ctx);
     st = fbrl_link_raw(r->link, line);
-    if (print) return_lines(r, fn, ctx);
+    if (print)
+        return_lines(r, fn, ctx);
     return rb_link_result(r, w, st);
 }
 
@@ -383,7 +421,8 @@ fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd)
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     borrow_lines(r, &fn, &ctx);
     st = fbrl_link_stream(r->link, cmd, FBRL_ROBOT_STREAM_LINES);
     return_lines(r, fn, ctx);
@@ -396,7 +435,8 @@ fbrl_status rb_raw_lines(fbrl_robot *r, const rb_word *w, const char *line,
     void (*old)(void *, const char *, size_t, int);
     void *old_ctx;
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     (void)fbrl_link_set_line_handler(r->link, fn, ctx, &old, &old_ctx);
     st = fbrl_link_raw(r->link, line);
     return_lines(r, old, old_ctx);

@@ -73,15 +73,18 @@ fbrl_status rb_loc_write(fbrl_robot *r, const rb_word *w, fbrl_cell addr, const 
         snprintf(msg, sizeof msg, "%s: not a location (use a CREATE-LOC name)", w->name);
         return rb_fail(r, FBRL_THROW_BAD_ADDRESS, msg);
     }
-    if (in) *p = *in; /* in NULL: only check that addr is a location */
+    if (in)
+        *p = *in; /* in NULL: only check that addr is a location */
     return FBRL_OK;
 }
 
 static double wrap180(double a)
 {
     a = fmod(a, 360.0);
-    if (a > 180.0) a -= 360.0;
-    if (a <= -180.0) a += 360.0;
+    if (a > 180.0)
+        a -= 360.0;
+    if (a <= -180.0)
+        a += 360.0;
     return a;
 }
 
@@ -96,11 +99,14 @@ fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbr
         char msg[200], deg[32], lim[32];
         fbrl_num_fixed(deg, sizeof deg, off, 0, 2, 0, NULL);
         fbrl_num_fixed(lim, sizeof lim, FBRL_CALIB_AXIS_MAX, 0, 1, 0, NULL);
-        snprintf(msg, sizeof msg, "%s: mapping: the block's tilt asks for the tool axis %s deg across the arm,"
-                 " which a 5-axis arm cannot follow (limit %s deg)", w->name, deg, lim);
+        snprintf(msg, sizeof msg,
+                 "%s: mapping: the block's tilt asks for the tool axis %s deg across the arm,"
+                 " which a 5-axis arm cannot follow (limit %s deg)",
+                 w->name, deg, lim);
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
-    if (st != FBRL_OK) return rb_fail_st(r, w, st, "mapping");
+    if (st != FBRL_OK)
+        return rb_fail_st(r, w, st, "mapping");
     double c = cos(FBRL_RAD(r->base[3])), s = sin(FBRL_RAD(r->base[3]));
     arm->x = c * m.x - s * m.y + r->base[0];
     arm->y = s * m.x + c * m.y + r->base[1];
@@ -134,11 +140,11 @@ fbrl_status rb_from_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, fb
 /* POINT a scratch controller location at arm coordinates; its name goes to name[]. */
 fbrl_status rb_scratch_point(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, const char **name)
 {
-    static const char *const names[2] = { "FBRLT1", "FBRLT2" };
+    static const char *const names[2] = {"FBRLT1", "FBRLT2"};
     *name = names[r->scratch++ & 1u];
-    fbrl_rapl_arg a[7] = { fbrl_rapl_str(*name), fbrl_rapl_real(arm->x), fbrl_rapl_real(arm->y),
-                           fbrl_rapl_real(arm->z), fbrl_rapl_real(arm->o), fbrl_rapl_real(arm->a),
-                           fbrl_rapl_real(arm->t) };
+    fbrl_rapl_arg a[7] = {fbrl_rapl_str(*name),   fbrl_rapl_real(arm->x), fbrl_rapl_real(arm->y),
+                          fbrl_rapl_real(arm->z), fbrl_rapl_real(arm->o), fbrl_rapl_real(arm->a),
+                          fbrl_rapl_real(arm->t)};
     return rb_cmd(r, w, FBRL_RAPL_POINT, a, 7, 0);
 }
 
@@ -147,10 +153,14 @@ fbrl_status rb_arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_loc *
 {
     fbrl_rapl_pos p;
     fbrl_status st = rb_online(r);
-    if (st != FBRL_OK) return st;
-    if (finish && (st = rb_cmd(r, w, FBRL_RAPL_FINISH, NULL, 0, 0)) != FBRL_OK) return st;
-    if ((st = rb_link_result(r, w, fbrl_link_where(r->link, FBRL_RAPL_W2, &p))) != FBRL_OK) return st;
-    if (p.nworld < 6) return rb_fail_st(r, w, FBRL_EPROTOCOL, "W2 had no WORLD line");
+    if (st != FBRL_OK)
+        return st;
+    if (finish && (st = rb_cmd(r, w, FBRL_RAPL_FINISH, NULL, 0, 0)) != FBRL_OK)
+        return st;
+    if ((st = rb_link_result(r, w, fbrl_link_where(r->link, FBRL_RAPL_W2, &p))) != FBRL_OK)
+        return st;
+    if (p.nworld < 6)
+        return rb_fail_st(r, w, FBRL_EPROTOCOL, "W2 had no WORLD line");
     arm->x = p.world[0];
     arm->y = p.world[1];
     arm->z = p.world[2];

@@ -29,7 +29,8 @@ static fbrl_status w_int1(fbrl_robot *r, const rb_word *w, rb_val *v)
     case 5: st = rb_range(r, w, "interval", v[0].i, 0, 32767); break;
     default: break;
     }
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a = fbrl_rapl_int((long)v[0].i);
     return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, &a, (w->arg == 1 && v[0].i == 0) ? 0 : 1, 0);
 }
@@ -38,11 +39,15 @@ static fbrl_status w_int1(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "motor" : "joint", v[0].i, 1,
-                           w->cmd == FBRL_RAPL_MOTOR ? 6 : 5);
-    if (st == FBRL_OK) st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "pulses" : "degrees", v[1].i, -2000000000L, 2000000000L);
-    if (st != FBRL_OK) return st;
-    fbrl_rapl_arg a[2] = { fbrl_rapl_int((long)v[0].i),
-                           w->cmd == FBRL_RAPL_MOTOR ? fbrl_rapl_int((long)v[1].i) : fbrl_rapl_real((double)v[1].i) };
+                              w->cmd == FBRL_RAPL_MOTOR ? 6 : 5);
+    if (st == FBRL_OK)
+        st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "pulses" : "degrees", v[1].i, -2000000000L,
+                      2000000000L);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_rapl_arg a[2] = {fbrl_rapl_int((long)v[0].i), w->cmd == FBRL_RAPL_MOTOR
+                                                           ? fbrl_rapl_int((long)v[1].i)
+                                                           : fbrl_rapl_real((double)v[1].i)};
     return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 2, 0);
 }
 
@@ -50,10 +55,13 @@ static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_gain(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_range(r, w, "motor", v[0].i, 0, 8);
-    if (st == FBRL_OK) st = rb_finite(r, w, &v[1], 1);
-    if (st == FBRL_OK && v[1].f < 0) st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "GAIN: value must not be negative");
-    if (st != FBRL_OK) return st;
-    fbrl_rapl_arg a[2] = { fbrl_rapl_int((long)v[0].i), fbrl_rapl_real(v[1].f) };
+    if (st == FBRL_OK)
+        st = rb_finite(r, w, &v[1], 1);
+    if (st == FBRL_OK && v[1].f < 0)
+        st = rb_fail(r, FBRL_THROW_BAD_NUMBER, "GAIN: value must not be negative");
+    if (st != FBRL_OK)
+        return st;
+    fbrl_rapl_arg a[2] = {fbrl_rapl_int((long)v[0].i), fbrl_rapl_real(v[1].f)};
     return rb_cmd(r, w, FBRL_RAPL_GAIN, a, 2, 0);
 }
 
@@ -61,11 +69,14 @@ static fbrl_status w_gain(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_grip(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_range(r, w, "torque (% of full)", v[0].i, 1, 100);
-    if (st == FBRL_OK) st = rb_finite(r, w, &v[1], 1);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK)
+        st = rb_finite(r, w, &v[1], 1);
+    if (st != FBRL_OK)
+        return st;
     double d = rb_len_in(r, v[1].f);
-    if (d < 0) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "GRIP: distance must not be negative");
-    fbrl_rapl_arg a[2] = { fbrl_rapl_real(d), fbrl_rapl_int((long)v[0].i) };
+    if (d < 0)
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER, "GRIP: distance must not be negative");
+    fbrl_rapl_arg a[2] = {fbrl_rapl_real(d), fbrl_rapl_int((long)v[0].i)};
     return rb_cmd(r, w, FBRL_RAPL_GRIP, a, 2, 0);
 }
 
@@ -73,9 +84,10 @@ static fbrl_status w_grip(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_finite(r, w, v, 3);
-    if (st != FBRL_OK) return st;
-    fbrl_rapl_arg a[3] = { fbrl_rapl_real(rb_len_in(r, v[0].f)), fbrl_rapl_real(rb_len_in(r, v[1].f)),
-                           fbrl_rapl_real(rb_len_in(r, v[2].f)) };
+    if (st != FBRL_OK)
+        return st;
+    fbrl_rapl_arg a[3] = {fbrl_rapl_real(rb_len_in(r, v[0].f)), fbrl_rapl_real(rb_len_in(r, v[1].f)),
+                          fbrl_rapl_real(rb_len_in(r, v[2].f))};
     return rb_cmd(r, w, FBRL_RAPL_JOG, a, 3, 0);
 }
 
@@ -83,9 +95,11 @@ static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_finite(r, w, v, 5);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a[5];
-    for (int k = 0; k < 5; k++) a[k] = fbrl_rapl_real(v[k].f);
+    for (int k = 0; k < 5; k++)
+        a[k] = fbrl_rapl_real(v[k].f);
     return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 5, (int)w->arg);
 }
 
@@ -93,7 +107,8 @@ static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_depart(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_finite(r, w, v, 1);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a = fbrl_rapl_real(rb_len_in(r, v[0].f));
     return rb_cmd(r, w, FBRL_RAPL_DEPART, &a, 1, (int)w->arg);
 }
@@ -104,13 +119,18 @@ static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_loc user, arm;
     const char *name;
     fbrl_status st = rb_loc_read(r, w, v[0].i, &user);
-    if (st == FBRL_OK) st = rb_online(r);
-    if (st == FBRL_OK) st = rb_to_arm(r, w, &user, &arm);
-    if (st == FBRL_OK) st = rb_still(r, w); /* the step starts once the arm stands */
-    if (st == FBRL_OK) st = rb_scratch_point(r, w, &arm, &name);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK)
+        st = rb_online(r);
+    if (st == FBRL_OK)
+        st = rb_to_arm(r, w, &user, &arm);
+    if (st == FBRL_OK)
+        st = rb_still(r, w); /* the step starts once the arm stands */
+    if (st == FBRL_OK)
+        st = rb_scratch_point(r, w, &arm, &name);
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
-    r->target = user, r->have_target = 1;  /* what tell shows: the user's location */
+    r->target = user, r->have_target = 1; /* what tell shows: the user's location */
     return rb_cmd(r, w, FBRL_RAPL_MOVE, &a, 1, (int)w->arg);
 }
 
@@ -120,14 +140,20 @@ static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_loc user, arm;
     const char *name;
     fbrl_status st = rb_finite(r, w, &v[1], 1);
-    if (st == FBRL_OK) st = rb_loc_read(r, w, v[0].i, &user);
-    if (st == FBRL_OK) st = rb_online(r);
-    if (st == FBRL_OK) st = rb_to_arm(r, w, &user, &arm);
-    if (st == FBRL_OK) st = rb_still(r, w); /* the step starts once the arm stands */
-    if (st == FBRL_OK) st = rb_scratch_point(r, w, &arm, &name);
-    if (st != FBRL_OK) return st;
-    fbrl_rapl_arg a[2] = { fbrl_rapl_str(name), fbrl_rapl_real(rb_len_in(r, v[1].f)) };
-    return rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg);  /* above the location: no target shown */
+    if (st == FBRL_OK)
+        st = rb_loc_read(r, w, v[0].i, &user);
+    if (st == FBRL_OK)
+        st = rb_online(r);
+    if (st == FBRL_OK)
+        st = rb_to_arm(r, w, &user, &arm);
+    if (st == FBRL_OK)
+        st = rb_still(r, w); /* the step starts once the arm stands */
+    if (st == FBRL_OK)
+        st = rb_scratch_point(r, w, &arm, &name);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_rapl_arg a[2] = {fbrl_rapl_str(name), fbrl_rapl_real(rb_len_in(r, v[1].f))};
+    return rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg); /* above the location: no target shown */
 }
 
 /* ARM-HERE ( loc -- ): wait for the motion to end, read W2, store it unmapped */
@@ -135,10 +161,14 @@ static fbrl_status w_arm_here(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_loc arm, user;
     fbrl_status st = rb_loc_write(r, w, v[0].i, NULL);
-    if (st == FBRL_OK) st = rb_online(r);
-    if (st == FBRL_OK) st = rb_arm_where(r, w, 1, &arm);
-    if (st == FBRL_OK) st = rb_from_arm(r, w, &arm, &user, 1);
-    if (st == FBRL_OK) st = rb_loc_write(r, w, v[0].i, &user);
+    if (st == FBRL_OK)
+        st = rb_online(r);
+    if (st == FBRL_OK)
+        st = rb_arm_where(r, w, 1, &arm);
+    if (st == FBRL_OK)
+        st = rb_from_arm(r, w, &arm, &user, 1);
+    if (st == FBRL_OK)
+        st = rb_loc_write(r, w, v[0].i, &user);
     return st;
 }
 
@@ -149,16 +179,21 @@ static fbrl_status w_actual(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (v[0].s) {
         char name[16];
         fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
-        if (st != FBRL_OK) return st;
+        if (st != FBRL_OK)
+            return st;
         fbrl_rapl_arg a = fbrl_rapl_str(name);
         return rb_cmd(r, w, FBRL_RAPL_ACTUAL, &a, 1, 0);
     }
     fbrl_loc arm, user;
     fbrl_status st = rb_loc_write(r, w, v[0].i, NULL);
-    if (st == FBRL_OK) st = rb_online(r);
-    if (st == FBRL_OK) st = rb_arm_where(r, w, 0, &arm);
-    if (st == FBRL_OK) st = rb_from_arm(r, w, &arm, &user, 1);
-    if (st == FBRL_OK) st = rb_loc_write(r, w, v[0].i, &user);
+    if (st == FBRL_OK)
+        st = rb_online(r);
+    if (st == FBRL_OK)
+        st = rb_arm_where(r, w, 0, &arm);
+    if (st == FBRL_OK)
+        st = rb_from_arm(r, w, &arm, &user, 1);
+    if (st == FBRL_OK)
+        st = rb_loc_write(r, w, v[0].i, &user);
     return st;
 }
 
@@ -168,8 +203,10 @@ static fbrl_status w_tool(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_loc t;
     const char *name;
     fbrl_status st = rb_loc_read(r, w, v[0].i, &t);
-    if (st == FBRL_OK) st = rb_scratch_point(r, w, &t, &name);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK)
+        st = rb_scratch_point(r, w, &t, &name);
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
     return rb_cmd(r, w, FBRL_RAPL_TOOL, &a, 1, 0);
 }
@@ -187,7 +224,8 @@ static fbrl_status w_arm(fbrl_robot *r, const rb_word *w, rb_val *v)
 static fbrl_status w_base_offset(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_finite(r, w, v, 4);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     r->base[0] = rb_len_in(r, v[0].f);
     r->base[1] = rb_len_in(r, v[1].f);
     r->base[2] = rb_len_in(r, v[2].f);
@@ -201,7 +239,8 @@ static fbrl_status w_shift_right(fbrl_robot *r, const rb_word *w, rb_val *v)
     (void)w;
     fbrl_ucell u = (fbrl_ucell)v[0].i;
     fbrl_status st = fbrl_vm_push(r->vm, (fbrl_cell)(u >> 1));
-    if (st == FBRL_OK) st = fbrl_vm_push(r->vm, (fbrl_cell)(u & 1u));
+    if (st == FBRL_OK)
+        st = fbrl_vm_push(r->vm, (fbrl_cell)(u & 1u));
     return st == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
@@ -210,7 +249,8 @@ static fbrl_status w_outport(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_cell n = v[0].i < 0 ? -v[0].i : v[0].i;
     fbrl_status st = rb_range(r, w, "output", n, 1, FBRL_ROBOT_IO_MAX);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a = fbrl_rapl_int((long)v[0].i);
     return rb_cmd(r, w, FBRL_RAPL_OUTPUT, &a, 1, 0);
 }
@@ -235,7 +275,8 @@ static fbrl_status w_waitport(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_cell n = v[0].i < 0 ? -v[0].i : v[0].i;
     fbrl_status st = rb_range(r, w, "input", n, 1, FBRL_ROBOT_IO_MAX);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     fbrl_rapl_arg a = fbrl_rapl_int((long)v[0].i);
     return rb_cmd(r, w, FBRL_RAPL_WAIT, &a, 1, 0);
 }
@@ -249,8 +290,10 @@ static fbrl_status w_wgrip(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     char name[16], line[40];
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
-    if (st == FBRL_OK && fbrl_rapl_name_check(name, 0) != FBRL_OK) st = rb_fail_st(r, w, FBRL_ENAME, name);
-    if (st != FBRL_OK) return st;
+    if (st == FBRL_OK && fbrl_rapl_name_check(name, 0) != FBRL_OK)
+        st = rb_fail_st(r, w, FBRL_ENAME, name);
+    if (st != FBRL_OK)
+        return st;
     snprintf(line, sizeof line, "%s=GRIPPER", name);
     return rb_raw(r, w, line, 0);
 }
@@ -258,52 +301,66 @@ static fbrl_status w_wgrip(fbrl_robot *r, const rb_word *w, rb_val *v)
 #define CMD(x) FBRL_RAPL_##x
 const rb_word rb_motion_words[] = {
     /* I-5 motion */
-    { "APPROACH", w_approach, "LR", 0, -1, 0, "( loc -- ) ( F: distance -- )", "joint-interpolated move to distance back from loc along the tool axis (APPRO)" },
-    { "APPROACH-STRT", w_approach, "LR", 0, -1, 1, "( loc -- ) ( F: distance -- )", "straight-line approach (APPRO ...,S)" },
-    { "DEPART", w_depart, "R", 0, -1, 0, "( F: distance -- )", "joint-interpolated move back along the tool axis" },
-    { "DEPART-STRT", w_depart, "R", 0, -1, 1, "( F: distance -- )", "straight-line depart (DEPART ...,S)" },
-    { "MOV", w_mov, "L", 0, -1, 0, "( loc -- )", "joint-interpolated move to a location (POINT scratch, MOVE scratch)" },
-    { "MOV-STRT", w_mov, "L", 0, -1, 1, "( loc -- )", "straight-line move to a location (MOVE scratch,S)" },
-    { "JOG", w_jog, "RRR", 0, -1, 0, "( F: dX dY dZ -- )", "move the tool by the displacements (straight line)" },
-    { "JOINT", w_joint, "II", 0, CMD(JOINT), 0, "( joint degrees -- )", "drive one joint by degrees" },
-    { "MOTOR", w_joint, "II", 0, CMD(MOTOR), 0, "( axis# #pulses -- )", "drive one motor by encoder pulses" },
-    { "MA", w_joints, "RRRRR", 0, CMD(MA), 0, "( F: j1 j2 j3 j4 j5 -- )", "joint-interpolated move to absolute joint angles (radians)" },
-    { "MI", w_joints, "RRRRR", 0, CMD(MI), 0, "( F: j1 j2 j3 j4 j5 -- )", "joint-interpolated move by joint increments (radians)" },
-    { "READY", w_plain, "", 0, CMD(READY), 0, "( -- )", "move the arm to the READY position" },
-    { "HOME", w_plain, "", 0, CMD(HOME), 0, "( -- )", "initialise the robot position registers" },
-    { "ALIGNTOOL", w_plain, "", 0, CMD(ALIGN), 0, "( -- )", "align the tool with the nearest major axis" },
-    { "FINISH", w_plain, "", 0, CMD(FINISH), 0, "( -- )", "wait until the current motion is done" },
-    { "HALT", w_plain, "", 0, CMD(HALT), 0, "( -- )", "stop the motion in progress" },
+    {"APPROACH", w_approach, "LR", 0, -1, 0, "( loc -- ) ( F: distance -- )",
+     "joint-interpolated move to distance back from loc along the tool axis (APPRO)"},
+    {"APPROACH-STRT", w_approach, "LR", 0, -1, 1, "( loc -- ) ( F: distance -- )",
+     "straight-line approach (APPRO ...,S)"},
+    {"DEPART", w_depart, "R", 0, -1, 0, "( F: distance -- )",
+     "joint-interpolated move back along the tool axis"},
+    {"DEPART-STRT", w_depart, "R", 0, -1, 1, "( F: distance -- )", "straight-line depart (DEPART ...,S)"},
+    {"MOV", w_mov, "L", 0, -1, 0, "( loc -- )",
+     "joint-interpolated move to a location (POINT scratch, MOVE scratch)"},
+    {"MOV-STRT", w_mov, "L", 0, -1, 1, "( loc -- )", "straight-line move to a location (MOVE scratch,S)"},
+    {"JOG", w_jog, "RRR", 0, -1, 0, "( F: dX dY dZ -- )",
+     "move the tool by the displacements (straight line)"},
+    {"JOINT", w_joint, "II", 0, CMD(JOINT), 0, "( joint degrees -- )", "drive one joint by degrees"},
+    {"MOTOR", w_joint, "II", 0, CMD(MOTOR), 0, "( axis# #pulses -- )", "drive one motor by encoder pulses"},
+    {"MA", w_joints, "RRRRR", 0, CMD(MA), 0, "( F: j1 j2 j3 j4 j5 -- )",
+     "joint-interpolated move to absolute joint angles (radians)"},
+    {"MI", w_joints, "RRRRR", 0, CMD(MI), 0, "( F: j1 j2 j3 j4 j5 -- )",
+     "joint-interpolated move by joint increments (radians)"},
+    {"READY", w_plain, "", 0, CMD(READY), 0, "( -- )", "move the arm to the READY position"},
+    {"HOME", w_plain, "", 0, CMD(HOME), 0, "( -- )", "initialise the robot position registers"},
+    {"ALIGNTOOL", w_plain, "", 0, CMD(ALIGN), 0, "( -- )", "align the tool with the nearest major axis"},
+    {"FINISH", w_plain, "", 0, CMD(FINISH), 0, "( -- )", "wait until the current motion is done"},
+    {"HALT", w_plain, "", 0, CMD(HALT), 0, "( -- )", "stop the motion in progress"},
     /* I-5 positions */
-    { "ARM-HERE", w_arm_here, "L", 0, -1, 0, "( loc -- )", "store the arm's position (after the motion ends) in loc, unmapped" },
-    { "ACTUAL", w_actual, "X", 0, -1, 0, "( loc -- ) or ( PAR: name )", "actual position now into a host location, or into a controller location" },
-    { "TOOL", w_tool, "L", 0, -1, 0, "( loc -- )", "set the tool transform from a location" },
-    { "BASE-OFFSET", w_base_offset, "RRRR", 0, -1, 0, "( F: dX dY dZ dO -- )", "where the user's world frame sits on the arm's base" },
+    {"ARM-HERE", w_arm_here, "L", 0, -1, 0, "( loc -- )",
+     "store the arm's position (after the motion ends) in loc, unmapped"},
+    {"ACTUAL", w_actual, "X", 0, -1, 0, "( loc -- ) or ( PAR: name )",
+     "actual position now into a host location, or into a controller location"},
+    {"TOOL", w_tool, "L", 0, -1, 0, "( loc -- )", "set the tool transform from a location"},
+    {"BASE-OFFSET", w_base_offset, "RRRR", 0, -1, 0, "( F: dX dY dZ dO -- )",
+     "where the user's world frame sits on the arm's base"},
     /* I-5 arm state */
-    { "ARM", w_arm, "I", 0, -1, 0, "( flag -- )", "arm power relay on (true) or off" },
-    { "LIMP", w_int1, "I", 0, CMD(LIMP), 1, "( axis# -- )", "limp one axis (0 = all)" },
-    { "NOLIMP", w_plain, "", 0, CMD(NOLIMP), 0, "( -- )", "servo control on again after LIMP" },
-    { "LOCK", w_int1, "I", 0, CMD(LOCK), 2, "( axis# -- )", "lock one axis" },
-    { "UNLOCK", w_int1, "I", 0, CMD(UNLOCK), 1, "( axis# -- )", "unlock one axis (0 = all)" },
-    { "SPEED", w_int1, "I", 0, CMD(SPEED), 4, "( speed -- )", "speed of later moves, percent of full" },
-    { "GAIN", w_gain, "IR", 0, -1, 0, "( motor# -- ) ( F: value -- )", "position gain of a motor (0 = all)" },
-    { "MANUAL", w_plain, "", 0, CMD(MANUAL), 0, "( -- )", "teach-pendant manual mode on" },
-    { "NOMANUAL", w_plain, "", 0, CMD(NOMANUAL), 0, "( -- )", "manual mode off" },
-    { "NOTEACH", w_plain, "", 0, CMD(NOTEACH), 0, "( -- )", "teach mode off" },
-    { "NOHELP", w_plain, "", 0, CMD(NOHELP), 0, "( -- )", "controller syntax help off" },
-    { "FLASH", w_int1, "I", 0, CMD(FLASH), 5, "( interval -- )", "flash the teach-pendant lamp" },
-    { "NOFLASH", w_plain, "", 0, CMD(NOFLASH), 0, "( -- )", "pendant lamp off" },
-    { "XCAL", w_int1, "I", 0, CMD(XCAL), 3, "( axis# -- )", "store the home position of an extra axis" },
-    { "XHOME", w_int1, "I", 0, CMD(XHOME), 3, "( axis# -- )", "home an extra axis" },
-    { "XZERO", w_int1, "I", 0, CMD(XZERO), 3, "( axis# -- )", "zero an extra axis's position register" },
+    {"ARM", w_arm, "I", 0, -1, 0, "( flag -- )", "arm power relay on (true) or off"},
+    {"LIMP", w_int1, "I", 0, CMD(LIMP), 1, "( axis# -- )", "limp one axis (0 = all)"},
+    {"NOLIMP", w_plain, "", 0, CMD(NOLIMP), 0, "( -- )", "servo control on again after LIMP"},
+    {"LOCK", w_int1, "I", 0, CMD(LOCK), 2, "( axis# -- )", "lock one axis"},
+    {"UNLOCK", w_int1, "I", 0, CMD(UNLOCK), 1, "( axis# -- )", "unlock one axis (0 = all)"},
+    {"SPEED", w_int1, "I", 0, CMD(SPEED), 4, "( speed -- )", "speed of later moves, percent of full"},
+    {"GAIN", w_gain, "IR", 0, -1, 0, "( motor# -- ) ( F: value -- )", "position gain of a motor (0 = all)"},
+    {"MANUAL", w_plain, "", 0, CMD(MANUAL), 0, "( -- )", "teach-pendant manual mode on"},
+    {"NOMANUAL", w_plain, "", 0, CMD(NOMANUAL), 0, "( -- )", "manual mode off"},
+    {"NOTEACH", w_plain, "", 0, CMD(NOTEACH), 0, "( -- )", "teach mode off"},
+    {"NOHELP", w_plain, "", 0, CMD(NOHELP), 0, "( -- )", "controller syntax help off"},
+    {"FLASH", w_int1, "I", 0, CMD(FLASH), 5, "( interval -- )", "flash the teach-pendant lamp"},
+    {"NOFLASH", w_plain, "", 0, CMD(NOFLASH), 0, "( -- )", "pendant lamp off"},
+    {"XCAL", w_int1, "I", 0, CMD(XCAL), 3, "( axis# -- )", "store the home position of an extra axis"},
+    {"XHOME", w_int1, "I", 0, CMD(XHOME), 3, "( axis# -- )", "home an extra axis"},
+    {"XZERO", w_int1, "I", 0, CMD(XZERO), 3, "( axis# -- )", "zero an extra axis's position register"},
     /* I-5 gripper */
-    { "GRIP", w_grip, "IR", 0, -1, 0, "( torque -- ) ( F: distance -- )", "servo gripper to an opening with a force" },
-    { "CLOSE-GRIP", w_plain, "", 0, CMD(CLOSE), 0, "( -- )", "close the gripper" },
-    { "WGRIP", w_wgrip, "S", 0, -1, 0, "( c-addr u -- ) or ( PAR: variable )", "gripper opening into a controller variable" },
+    {"GRIP", w_grip, "IR", 0, -1, 0, "( torque -- ) ( F: distance -- )",
+     "servo gripper to an opening with a force"},
+    {"CLOSE-GRIP", w_plain, "", 0, CMD(CLOSE), 0, "( -- )", "close the gripper"},
+    {"WGRIP", w_wgrip, "S", 0, -1, 0, "( c-addr u -- ) or ( PAR: variable )",
+     "gripper opening into a controller variable"},
     /* I-5 I/O */
-    { "OUTPORT", w_outport, "I", 0, -1, 0, "( output# -- )", "set output n on (-n: off)" },
-    { "OUT2BYTE", w_out2byte, "I", 0, -1, 0, "( n -- )", "set outputs 1..16 from the 16 bits of n" },
-    { "SHIFT-RIGHT", w_shift_right, "I", 0, -1, 0, "( n -- n' b )", "n shifted right one bit, and the bit shifted out" },
-    { "WAITPORT", w_waitport, "I", 0, -1, 0, "( input# -- )", "controller waits until input n is on (-n: off)" },
+    {"OUTPORT", w_outport, "I", 0, -1, 0, "( output# -- )", "set output n on (-n: off)"},
+    {"OUT2BYTE", w_out2byte, "I", 0, -1, 0, "( n -- )", "set outputs 1..16 from the 16 bits of n"},
+    {"SHIFT-RIGHT", w_shift_right, "I", 0, -1, 0, "( n -- n' b )",
+     "n shifted right one bit, and the bit shifted out"},
+    {"WAITPORT", w_waitport, "I", 0, -1, 0, "( input# -- )",
+     "controller waits until input n is on (-n: off)"},
 };
 const size_t rb_motion_nwords = sizeof rb_motion_words / sizeof rb_motion_words[0];

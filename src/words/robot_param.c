@@ -36,8 +36,10 @@ fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v)
     char spec[RB_MAXP + 1];
     const char *what[RB_MAXP];
     size_t np = strlen(w->spec);
-    if (np > RB_MAXP) return FBRL_EINVAL;
-    for (size_t k = 0; k < np; k++) spec[k] = vmx_kind(w->spec[k], &what[k]);
+    if (np > RB_MAXP)
+        return FBRL_EINVAL;
+    for (size_t k = 0; k < np; k++)
+        spec[k] = vmx_kind(w->spec[k], &what[k]);
     spec[np] = '\0';
     return fbrl_vmx_args(r->vm, w->name, spec, what, FBRL_VMX_LINE, v);
 }
@@ -47,7 +49,8 @@ fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *
 {
     if (v->n == 0 || v->n >= cap) {
         char msg[96];
-        snprintf(msg, sizeof msg, "%s: controller name must be 1..%u characters", w->name, (unsigned)(cap - 2));
+        snprintf(msg, sizeof msg, "%s: controller name must be 1..%u characters", w->name,
+                 (unsigned)(cap - 2));
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ENAME), msg);
     }
     memcpy(buf, v->s, v->n);
@@ -55,9 +58,11 @@ fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *
     return FBRL_OK;
 }
 
-fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo, fbrl_cell hi)
+fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo,
+                     fbrl_cell hi)
 {
-    if (v >= lo && v <= hi) return FBRL_OK;
+    if (v >= lo && v <= hi)
+        return FBRL_OK;
     char msg[96];
     snprintf(msg, sizeof msg, "%s: %s %ld outside %ld..%ld", w->name, what, (long)v, (long)lo, (long)hi);
     return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
@@ -79,28 +84,35 @@ fbrl_status rb_finite(fbrl_robot *r, const rb_word *w, const rb_val *v, size_t n
 static fbrl_status w_getreal(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_parse_param(r, w, 'R', v);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     return fbrl_vm_fpush(r->vm, v[0].f) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_FSTACK_OVERFLOW, NULL);
 }
 
 static fbrl_status w_getint(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_parse_param(r, w, 'I', v);
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     return fbrl_vm_push(r->vm, v[0].i) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
 static fbrl_status w_getstring(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = rb_parse_param(r, w, 'S', v);
-    if (st != FBRL_OK) return st;
-    if (fbrl_vm_push(r->vm, (fbrl_cell)v[0].s) || fbrl_vm_push(r->vm, (fbrl_cell)v[0].n)) return rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
+    if (st != FBRL_OK)
+        return st;
+    if (fbrl_vm_push(r->vm, (fbrl_cell)v[0].s) || fbrl_vm_push(r->vm, (fbrl_cell)v[0].n))
+        return rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
     return FBRL_OK;
 }
 
 const rb_word rb_param_words[] = {
-    { "GETREAL", w_getreal, "", 0, -1, 0, "( \"number\" -- ) ( F: -- r )", "read a real (literal or constant) from the input" },
-    { "GETINT", w_getint, "", 0, -1, 0, "( \"number\" -- n )", "read an integer (literal or constant) from the input" },
-    { "GETSTRING", w_getstring, "", 0, -1, 0, "( \"text\" -- c-addr u )", "read a word or a \"quoted text\" from the input" },
+    {"GETREAL", w_getreal, "", 0, -1, 0, "( \"number\" -- ) ( F: -- r )",
+     "read a real (literal or constant) from the input"},
+    {"GETINT", w_getint, "", 0, -1, 0, "( \"number\" -- n )",
+     "read an integer (literal or constant) from the input"},
+    {"GETSTRING", w_getstring, "", 0, -1, 0, "( \"text\" -- c-addr u )",
+     "read a word or a \"quoted text\" from the input"},
 };
 const size_t rb_param_nwords = sizeof rb_param_words / sizeof rb_param_words[0];

@@ -22,7 +22,8 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
  * it (fbrl_robot_safe_stop: fbrlmon does on every Ctrl-C). */
 fbrl_status rb_interrupted(fbrl_robot *r)
 {
-    if (!fbrl_vmx_take_interrupt(r->vm)) return FBRL_OK;
+    if (!fbrl_vmx_take_interrupt(r->vm))
+        return FBRL_OK;
     return rb_fail(r, FBRL_THROW_INTERRUPT, "user interrupt");
 }
 
@@ -37,7 +38,8 @@ int rb_metric(const fbrl_robot *r)
 fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms)
 {
     const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
-    if (!h->now_us) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    if (!h->now_us)
+        return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
     *ms = h->now_us(h->user) / 1000u;
     return FBRL_OK;
 }
@@ -45,8 +47,10 @@ fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms)
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms)
 {
     const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
-    if (!h->sleep_ms) return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
-    if (ms) h->sleep_ms(h->user, ms);
+    if (!h->sleep_ms)
+        return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    if (ms)
+        h->sleep_ms(h->user, ms);
     return FBRL_OK;
 }
 
@@ -55,12 +59,13 @@ fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms)
  * as it ends the host's sleep (the engine then throws). */
 fbrl_status rb_wait_ms(fbrl_robot *r, const char *who, uint32_t ms)
 {
-    if (!r->progress || ms < 2 * FBRL_ROBOT_PROGRESS_MS) return rb_sleep_ms(r, ms);
+    if (!r->progress || ms < 2 * FBRL_ROBOT_PROGRESS_MS)
+        return rb_sleep_ms(r, ms);
     fbrl_status st = FBRL_OK;
     uint32_t left = ms;
     char line[96];
     while (left > 0 && st == FBRL_OK && !fbrl_vm_interrupt_pending(r->vm)) {
-        uint32_t slice = left % 1000u ? left % 1000u : 1000u;  /* whole seconds left after it */
+        uint32_t slice = left % 1000u ? left % 1000u : 1000u; /* whole seconds left after it */
         snprintf(line, sizeof line, "%s: %lu s left", who, (unsigned long)((left + 999u) / 1000u));
         r->progress(r->progress_ctx, line);
         st = rb_sleep_ms(r, slice);

@@ -22,16 +22,16 @@
  * buffer (the line itself is not needed any more then). */
 #define TEACH_TEXT_AT 64
 
-static const char *const slot_what[3] = { "P1, the block's origin", "P2, on the block's x axis",
-                                          "P3, in the block's plane off that axis" };
+static const char *const slot_what[3] = {"P1, the block's origin", "P2, on the block's x axis",
+                                         "P3, in the block's plane off that axis"};
 
 enum { FROM_INPUT = 1, FROM_CONSOLE = 2 };
 
 static fbrl_status ended(fbrl_robot *r, const rb_word *w, int slot)
 {
     char msg[128];
-    snprintf(msg, sizeof msg, "%s: input ended before point %d was taken (the calibration is unchanged)", w->name,
-             slot);
+    snprintf(msg, sizeof msg, "%s: input ended before point %d was taken (the calibration is unchanged)",
+             w->name, slot);
     return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
@@ -53,21 +53,25 @@ static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, int *ask
     size_t n = 0;
     fbrl_status st = fbrl_vmx_refill(vm, &line, &n);
     if (st == FBRL_OK) {
-        if (n > FBRL_ROBOT_TIB) n = FBRL_ROBOT_TIB;
+        if (n > FBRL_ROBOT_TIB)
+            n = FBRL_ROBOT_TIB;
         memcpy(buf, line, n);
         *len = n;
         *from = FROM_INPUT;
         return FBRL_OK;
     }
-    if (st != FBRL_EEOF) return st;
-    if (!host->read_line && !host->key) return ended(r, w, slot);
+    if (st != FBRL_EEOF)
+        return st;
+    if (!host->read_line && !host->key)
+        return ended(r, w, slot);
     *from = FROM_CONSOLE;
     if (!*asked) {
         char ask[200];
         snprintf(ask, sizeof ask,
                  "Calibration point %d of 3 (%s): move the arm there with robot words or TEACH, "
                  "then an empty line takes it.%s\n",
-                 slot, slot_what[slot - 1], slot == 1 ? " BACK redoes the point before; CANCEL or Ctrl-C leaves." : "");
+                 slot, slot_what[slot - 1],
+                 slot == 1 ? " BACK redoes the point before; CANCEL or Ctrl-C leaves." : "");
         rb_puts(r, ask);
         *asked = 1;
     }
@@ -75,17 +79,23 @@ static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, int *ask
         char prompt[16];
         snprintf(prompt, sizeof prompt, "cal %d> ", slot);
         st = host->read_line(host->user, prompt, buf, FBRL_ROBOT_TIB, &n);
-        if (fbrl_vmx_take_interrupt(vm)) return cancelled(r, w, " by Ctrl-C");
-        if (st != FBRL_OK) return ended(r, w, slot);
+        if (fbrl_vmx_take_interrupt(vm))
+            return cancelled(r, w, " by Ctrl-C");
+        if (st != FBRL_OK)
+            return ended(r, w, slot);
         *len = n < FBRL_ROBOT_TIB ? n : FBRL_ROBOT_TIB;
         return FBRL_OK;
     }
     for (;;) {
         int c = host->key(host->user);
-        if (fbrl_vmx_take_interrupt(vm)) return cancelled(r, w, " by Ctrl-C");
-        if (c < 0) return ended(r, w, slot);
-        if (c == '\n' || c == '\r') break;
-        if (n < FBRL_ROBOT_TIB) buf[n++] = (char)c;
+        if (fbrl_vmx_take_interrupt(vm))
+            return cancelled(r, w, " by Ctrl-C");
+        if (c < 0)
+            return ended(r, w, slot);
+        if (c == '\n' || c == '\r')
+            break;
+        if (n < FBRL_ROBOT_TIB)
+            buf[n++] = (char)c;
     }
     *len = n;
     return FBRL_OK;
@@ -95,13 +105,18 @@ static fbrl_status next_line(fbrl_robot *r, const rb_word *w, int slot, int *ask
 static int is_cmd(const char *s, size_t n, const char *word)
 {
     size_t k = strlen(word);
-    while (n && rb_blank(*s)) s++, n--;
-    while (n && rb_blank(s[n - 1])) n--;
-    if (n != k) return 0;
+    while (n && rb_blank(*s))
+        s++, n--;
+    while (n && rb_blank(s[n - 1]))
+        n--;
+    if (n != k)
+        return 0;
     for (size_t i = 0; i < n; i++) {
         char c = s[i];
-        if (c >= 'a' && c <= 'z') c = (char)(c - 'a' + 'A');
-        if (c != word[i]) return 0;
+        if (c >= 'a' && c <= 'z')
+            c = (char)(c - 'a' + 'A');
+        if (c != word[i])
+            return 0;
     }
     return 1;
 }
@@ -125,13 +140,16 @@ static fbrl_status pendant(fbrl_robot *r, const rb_word *w, int slot, int *took)
     size_t n = (size_t)snprintf(text, FBRL_ROBOT_TIB - TEACH_TEXT_AT, "#%ld (TEACH)", (long)r->tib);
     fbrl_status st = fbrl_vmx_evaluate_catch(vm, text, n, &code, msg, sizeof msg);
     *took = 0;
-    if (st != FBRL_OK) return st;
-    if (code == FBRL_THROW_INTERRUPT) return cancelled(r, w, " by Ctrl-C");
+    if (st != FBRL_OK)
+        return st;
+    if (code == FBRL_THROW_INTERRUPT)
+        return cancelled(r, w, " by Ctrl-C");
     if (code) {
         failed_line(r, slot, msg);
         return FBRL_OK;
     }
-    if (fbrl_vm_pop(vm, &flag) != FBRL_OK || fbrl_vm_pop(vm, &loc) != FBRL_OK) return rb_fail(r, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    if (fbrl_vm_pop(vm, &flag) != FBRL_OK || fbrl_vm_pop(vm, &loc) != FBRL_OK)
+        return rb_fail(r, FBRL_THROW_STACK_UNDERFLOW, NULL);
     *took = flag != 0;
     return FBRL_OK;
 }
@@ -141,11 +159,14 @@ static fbrl_status take(fbrl_robot *r, const rb_word *w, int slot, int from, fbr
 {
     fbrl_loc arm;
     fbrl_status st;
-    if ((st = rb_arm_where(r, w, 1, &arm)) != FBRL_OK) return st;
-    if ((st = rb_from_arm(r, w, &arm, pt, 0)) != FBRL_OK) return st;
+    if ((st = rb_arm_where(r, w, 1, &arm)) != FBRL_OK)
+        return st;
+    if ((st = rb_from_arm(r, w, &arm, pt, 0)) != FBRL_OK)
+        return st;
     if (from == FROM_CONSOLE) {
         char line[160];
-        snprintf(line, sizeof line, "point %d taken: X %+.4f Y %+.4f Z %+.4f in\n", slot, pt->x, pt->y, pt->z);
+        snprintf(line, sizeof line, "point %d taken: X %+.4f Y %+.4f Z %+.4f in\n", slot, pt->x, pt->y,
+                 pt->z);
         rb_puts(r, line);
     }
     return FBRL_OK;
@@ -161,36 +182,47 @@ static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3])
     while (slot <= 3) {
         size_t n = 0;
         int from = 0, code = 0, took = 0;
-        if ((st = next_line(r, w, slot, &asked, &n, &from)) != FBRL_OK) return st;
+        if ((st = next_line(r, w, slot, &asked, &n, &from)) != FBRL_OK)
+            return st;
         const char *line = (const char *)r->tib;
         size_t k = 0;
-        while (k < n && rb_blank(line[k])) k++;
+        while (k < n && rb_blank(line[k]))
+            k++;
         if (k == n) { /* an empty line takes the point */
-            if ((st = take(r, w, slot, from, &pts[slot - 1])) != FBRL_OK) return st;
+            if ((st = take(r, w, slot, from, &pts[slot - 1])) != FBRL_OK)
+                return st;
             slot++, asked = 0;
             continue;
         }
         if (from == FROM_INPUT) { /* a plan's line: an error ends the plan, as anywhere in it */
-            if ((st = fbrl_vmx_evaluate(vm, line, n)) != FBRL_OK) return st;
+            if ((st = fbrl_vmx_evaluate(vm, line, n)) != FBRL_OK)
+                return st;
             continue;
         }
-        if (is_cmd(line, n, "CANCEL")) return cancelled(r, w, "");
+        if (is_cmd(line, n, "CANCEL"))
+            return cancelled(r, w, "");
         if (is_cmd(line, n, "BACK")) {
-            if (slot > 1) slot--;
+            if (slot > 1)
+                slot--;
             asked = 0;
             continue;
         }
-        if (is_cmd(line, n, "TEACH") && fbrl_vmx_find(vm, "(TEACH)", 7, &(fbrl_cell){ 0 }) == FBRL_OK) {
-            if ((st = pendant(r, w, slot, &took)) != FBRL_OK) return st;
+        if (is_cmd(line, n, "TEACH") && fbrl_vmx_find(vm, "(TEACH)", 7, &(fbrl_cell){0}) == FBRL_OK) {
+            if ((st = pendant(r, w, slot, &took)) != FBRL_OK)
+                return st;
             if (took) {
-                if ((st = take(r, w, slot, from, &pts[slot - 1])) != FBRL_OK) return st;
+                if ((st = take(r, w, slot, from, &pts[slot - 1])) != FBRL_OK)
+                    return st;
                 slot++, asked = 0;
             }
             continue;
         }
-        if ((st = fbrl_vmx_evaluate_catch(vm, line, n, &code, msg, sizeof msg)) != FBRL_OK) return st;
-        if (code == FBRL_THROW_INTERRUPT) return cancelled(r, w, " by Ctrl-C");
-        if (code) failed_line(r, slot, msg);
+        if ((st = fbrl_vmx_evaluate_catch(vm, line, n, &code, msg, sizeof msg)) != FBRL_OK)
+            return st;
+        if (code == FBRL_THROW_INTERRUPT)
+            return cancelled(r, w, " by Ctrl-C");
+        if (code)
+            failed_line(r, slot, msg);
     }
     return FBRL_OK;
 }
@@ -206,21 +238,28 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
         snprintf(msg, sizeof msg, "%s: not a calibration (use a CREATE-CAL name)", w->name);
         return rb_fail(r, st == FBRL_ETYPE ? FBRL_THROW_TYPE_MISMATCH : -9, msg);
     }
-    if ((st = rb_online(r)) != FBRL_OK) return st;
-    if (r->teaching) return rb_fail(r, FBRL_THROW_BAD_NUMBER, "GET-CAL-POINTS: already teaching (not inside its own lines)");
+    if ((st = rb_online(r)) != FBRL_OK)
+        return st;
+    if (r->teaching)
+        return rb_fail(r, FBRL_THROW_BAD_NUMBER,
+                       "GET-CAL-POINTS: already teaching (not inside its own lines)");
     r->teaching = 1;
     st = teach3(r, w, pts);
     r->teaching = 0;
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     /* the lines run while teaching may have changed the dictionary: look the structure up again */
-    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK) return rb_fail(r, FBRL_THROW_BAD_ADDRESS, "GET-CAL-POINTS: calibration gone");
+    if (fbrl_glossary_calpts(vm, v[0].i, &cal) != FBRL_OK)
+        return rb_fail(r, FBRL_THROW_BAD_ADDRESS, "GET-CAL-POINTS: calibration gone");
     for (int slot = 1; slot <= 3; slot++)
-        if ((st = fbrl_calpts_set(cal, slot, &pts[slot - 1])) != FBRL_OK) return rb_fail_st(r, w, st, NULL);
+        if ((st = fbrl_calpts_set(cal, slot, &pts[slot - 1])) != FBRL_OK)
+            return rb_fail_st(r, w, st, NULL);
     return FBRL_OK;
 }
 
 const rb_word rb_teach_words[] = {
-    { "GET-CAL-POINTS", w_get_cal_points, "I", 0, -1, 0, "( cal -- )",
-      "teach the 3 calibration points from the arm's positions (at the console: TEACH, BACK, CANCEL; docs/robot.md)" },
+    {"GET-CAL-POINTS", w_get_cal_points, "I", 0, -1, 0, "( cal -- )",
+     "teach the 3 calibration points from the arm's positions (at the console: TEACH, BACK, CANCEL; "
+     "docs/robot.md)"},
 };
 const size_t rb_teach_nwords = sizeof rb_teach_words / sizeof rb_teach_words[0];

@@ -18,9 +18,9 @@
 #include "fbrl/workspace.h"
 
 #define WS_INSTALLED 0x57535043u /* "WSPC" */
-#define HEAD_NAME "FBRL-WORKSPACE"
+#define HEAD_NAME    "FBRL-WORKSPACE"
 #define NAME_MAX_LEN 31
-#define VALS_MAX 18
+#define VALS_MAX     18
 
 /* One record, decoded. */
 typedef struct rec {
@@ -69,16 +69,19 @@ static size_t encode(const rec *r, unsigned char *out)
     for (size_t i = 0; i < n; i++) {
         uint64_t bits;
         memcpy(&bits, &r->v[i], sizeof bits);
-        for (int b = 0; b < 8; b++) out[k++] = (unsigned char)(bits >> (8 * b));
+        for (int b = 0; b < 8; b++)
+            out[k++] = (unsigned char)(bits >> (8 * b));
     }
     return k;
 }
 
 static int name_ok(const char *s, size_t n)
 {
-    if (n < 1 || n > NAME_MAX_LEN) return 0;
+    if (n < 1 || n > NAME_MAX_LEN)
+        return 0;
     for (size_t i = 0; i < n; i++)
-        if ((unsigned char)s[i] <= ' ' || (unsigned char)s[i] >= 0x7f) return 0;
+        if ((unsigned char)s[i] <= ' ' || (unsigned char)s[i] >= 0x7f)
+            return 0;
     return 1;
 }
 
@@ -86,8 +89,10 @@ static int name_ok(const char *s, size_t n)
 static const char *decode(const unsigned char *b, size_t size, uint16_t tag, rec *r)
 {
     size_t n = nvals(tag), k = 1;
-    if (n == 0) return "unknown record";
-    if (size < 1 || size != 1u + b[0] + 8u * n) return "wrong length";
+    if (n == 0)
+        return "unknown record";
+    if (size < 1 || size != 1u + b[0] + 8u * n)
+        return "wrong length";
     r->tag = tag;
     r->nlen = b[0];
     memcpy(r->name, b + 1, r->nlen);
@@ -97,9 +102,11 @@ static const char *decode(const unsigned char *b, size_t size, uint16_t tag, rec
         return "bad name";
     for (size_t i = 0; i < n; i++, k += 8) {
         uint64_t bits = 0;
-        for (int j = 0; j < 8; j++) bits |= (uint64_t)b[k + (size_t)j] << (8 * j);
+        for (int j = 0; j < 8; j++)
+            bits |= (uint64_t)b[k + (size_t)j] << (8 * j);
         memcpy(&r->v[i], &bits, sizeof bits);
-        if (!isfinite(r->v[i])) return "a number is not finite";
+        if (!isfinite(r->v[i]))
+            return "a number is not finite";
     }
     return NULL;
 }
@@ -129,15 +136,18 @@ static const char *values_ok(const rec *r)
     case FBRL_WORKSPACE_TAG_RECTMAT:
         return fbrl_rectmat_init(&rm, &base, v[6], v[7], v[8]) == FBRL_OK ? NULL : "not a RECTMAT";
     case FBRL_WORKSPACE_TAG_RADMAT:
-        return fbrl_radmat_init(&dm, &base, v[6], v[7], v[8]) == FBRL_OK ? NULL
-                                                                         : "not a RADMAT (base on the centre axis?)";
+        return fbrl_radmat_init(&dm, &base, v[6], v[7], v[8]) == FBRL_OK
+                   ? NULL
+                   : "not a RADMAT (base on the centre axis?)";
     case FBRL_WORKSPACE_TAG_DEVICE:
-        if (!is_int(v[0], 1, FBRL_ROBOT_IO_MAX)) return "device port outside 1..16";
-        if (v[1] != 0.0 && v[1] != 1.0) return "device neither input nor output";
-        if (!is_int(v[2], FBRL_ROBOT_PULSE_MIN, FBRL_ROBOT_PULSE_MAX)) return "pulse width out of range";
+        if (!is_int(v[0], 1, FBRL_ROBOT_IO_MAX))
+            return "device port outside 1..16";
+        if (v[1] != 0.0 && v[1] != 1.0)
+            return "device neither input nor output";
+        if (!is_int(v[2], FBRL_ROBOT_PULSE_MIN, FBRL_ROBOT_PULSE_MAX))
+            return "pulse width out of range";
         return NULL;
-    case FBRL_WORKSPACE_TAG_SET:
-        return v[0] == 0.0 || v[0] == 1.0 ? NULL : "MAP-ON neither on nor off";
+    case FBRL_WORKSPACE_TAG_SET: return v[0] == 0.0 || v[0] == 1.0 ? NULL : "MAP-ON neither on nor off";
     default: return NULL;
     }
 }
@@ -154,8 +164,8 @@ static int rigid(const double *v)
 /* ---- what a word is ---- */
 
 typedef struct obj {
-    uint16_t tag;   /* 0: none of ours */
-    void *p;        /* glossary object */
+    uint16_t tag; /* 0: none of ours */
+    void *p;      /* glossary object */
     fbrl_robot_device dev;
 } obj;
 
@@ -164,7 +174,8 @@ static obj classify(fbrl_workspace *ws, fbrl_cell xt)
     obj o;
     fbrl_glossary_kind k = FBRL_GLOSSARY_NONE;
     memset(&o, 0, sizeof o);
-    if (fbrl_glossary_object(ws->g, xt, &k, &o.p) != FBRL_OK) k = FBRL_GLOSSARY_NONE;
+    if (fbrl_glossary_object(ws->g, xt, &k, &o.p) != FBRL_OK)
+        k = FBRL_GLOSSARY_NONE;
     switch (k) {
     case FBRL_GLOSSARY_LOC: o.tag = FBRL_WORKSPACE_TAG_LOC; break;
     case FBRL_GLOSSARY_RECTMAT: o.tag = FBRL_WORKSPACE_TAG_RECTMAT; break;
@@ -172,7 +183,8 @@ static obj classify(fbrl_workspace *ws, fbrl_cell xt)
     case FBRL_GLOSSARY_CAL: o.tag = FBRL_WORKSPACE_TAG_CAL; break;
     case FBRL_GLOSSARY_CALSTRU: o.tag = FBRL_WORKSPACE_TAG_CALSTRU; break;
     default:
-        if (ws->r && fbrl_robot_device_of(ws->r, xt, &o.dev) == FBRL_OK) o.tag = FBRL_WORKSPACE_TAG_DEVICE;
+        if (ws->r && fbrl_robot_device_of(ws->r, xt, &o.dev) == FBRL_OK)
+            o.tag = FBRL_WORKSPACE_TAG_DEVICE;
         break;
     }
     return o;
@@ -205,7 +217,8 @@ static void object_values(const obj *o, rec *r)
     }
     case FBRL_WORKSPACE_TAG_CAL: {
         const fbrl_calpts *c = o->p;
-        for (int k = 0; k < 3; k++) put_loc(v + 6 * k, &c->p[k]);
+        for (int k = 0; k < 3; k++)
+            put_loc(v + 6 * k, &c->p[k]);
         break;
     }
     case FBRL_WORKSPACE_TAG_CALSTRU: {
@@ -239,7 +252,8 @@ static void set_values(fbrl_workspace *ws, const obj *o, const rec *r)
     }
     case FBRL_WORKSPACE_TAG_CAL: {
         fbrl_calpts *c = o->p;
-        for (int k = 0; k < 3; k++) c->p[k] = get_loc(v + 6 * k);
+        for (int k = 0; k < 3; k++)
+            c->p[k] = get_loc(v + 6 * k);
         break;
     }
     case FBRL_WORKSPACE_TAG_CALSTRU: {
@@ -259,8 +273,10 @@ static void count(fbrl_workspace_counts *n, uint16_t tag)
 {
     switch (tag) {
     case FBRL_WORKSPACE_TAG_LOC: n->locs++; break;
-    case FBRL_WORKSPACE_TAG_RECTMAT: case FBRL_WORKSPACE_TAG_RADMAT: n->matrices++; break;
-    case FBRL_WORKSPACE_TAG_CAL: case FBRL_WORKSPACE_TAG_CALSTRU: n->cals++; break;
+    case FBRL_WORKSPACE_TAG_RECTMAT:
+    case FBRL_WORKSPACE_TAG_RADMAT: n->matrices++; break;
+    case FBRL_WORKSPACE_TAG_CAL:
+    case FBRL_WORKSPACE_TAG_CALSTRU: n->cals++; break;
     case FBRL_WORKSPACE_TAG_DEVICE: n->devices++; break;
     default: break;
     }
@@ -276,17 +292,19 @@ typedef struct walk {
     uint32_t crc;
     fbrl_status st;
     fbrl_workspace_counts n;
-    fbrl_cell with_cal;   /* WITH-CAL's data field */
-    rec set;              /* the settings record; its name found on the way */
+    fbrl_cell with_cal; /* WITH-CAL's data field */
+    rec set;            /* the settings record; its name found on the way */
 } walk;
 
 static void emit(walk *w, const rec *r)
 {
     unsigned char b[FBRL_WORKSPACE_RECORD_MAX];
     size_t size = encode(r, b);
-    unsigned char tag[2] = { (unsigned char)(r->tag & 0xff), (unsigned char)(r->tag >> 8) };
-    if (r->tag != FBRL_WORKSPACE_TAG_HEAD) w->crc = fbrl_crc32(fbrl_crc32(w->crc, tag, 2), b, size);
-    if (w->to == TO_FILE && w->st == FBRL_OK) w->st = fbrl_file_write_user(&w->ws->file, r->tag, b, size);
+    unsigned char tag[2] = {(unsigned char)(r->tag & 0xff), (unsigned char)(r->tag >> 8)};
+    if (r->tag != FBRL_WORKSPACE_TAG_HEAD)
+        w->crc = fbrl_crc32(fbrl_crc32(w->crc, tag, 2), b, size);
+    if (w->to == TO_FILE && w->st == FBRL_OK)
+        w->st = fbrl_file_write_user(&w->ws->file, r->tag, b, size);
 }
 
 static void show(walk *w, const rec *r)
@@ -295,12 +313,12 @@ static void show(walk *w, const rec *r)
     const double *v = r->v;
     switch (r->tag) {
     case FBRL_WORKSPACE_TAG_LOC:
-        snprintf(line, sizeof line, "  %-16s location     %.4f %.4f %.4f  %.2f %.2f %.2f\n", r->name, v[0], v[1], v[2],
-                 v[3], v[4], v[5]);
+        snprintf(line, sizeof line, "  %-16s location     %.4f %.4f %.4f  %.2f %.2f %.2f\n", r->name, v[0],
+                 v[1], v[2], v[3], v[4], v[5]);
         break;
     case FBRL_WORKSPACE_TAG_DEVICE:
-        snprintf(line, sizeof line, "  %-16s %s device  port %d\n", r->name, v[1] != 0.0 ? "output" : "input ",
-                 (int)v[0]);
+        snprintf(line, sizeof line, "  %-16s %s device  port %d\n", r->name,
+                 v[1] != 0.0 ? "output" : "input ", (int)v[0]);
         break;
     default: snprintf(line, sizeof line, "  %-16s %s\n", r->name, kind_name(r->tag) + 2); break;
     }
@@ -312,9 +330,11 @@ static int visit(void *ctx, const char *name, size_t len)
     walk *w = ctx;
     fbrl_cell xt;
     rec r;
-    if (fbrl_vmx_find(w->ws->vm, name, len, &xt) != FBRL_OK) return 0;
+    if (fbrl_vmx_find(w->ws->vm, name, len, &xt) != FBRL_OK)
+        return 0;
     obj o = classify(w->ws, xt);
-    if (!o.tag || !name_ok(name, len)) return 0;
+    if (!o.tag || !name_ok(name, len))
+        return 0;
     memset(&r, 0, sizeof r);
     r.nlen = len;
     memcpy(r.name, name, len);
@@ -325,20 +345,23 @@ static int visit(void *ctx, const char *name, size_t len)
         memcpy(w->set.name, name, len);
     }
     count(&w->n, o.tag);
-    if (w->to == TO_CONSOLE) show(w, &r);
-    else emit(w, &r);
+    if (w->to == TO_CONSOLE)
+        show(w, &r);
+    else
+        emit(w, &r);
     return w->st != FBRL_OK;
 }
 
 static fbrl_status walk_all(fbrl_workspace *ws, int to, walk *w)
 {
     int map_on = 0;
-    double base[4] = { 0, 0, 0, 0 };
+    double base[4] = {0, 0, 0, 0};
     memset(w, 0, sizeof *w);
     w->ws = ws;
     w->to = to;
     fbrl_glossary_mapping(ws->g, &w->with_cal, &map_on);
-    if (ws->r) fbrl_robot_base_offset(ws->r, base);
+    if (ws->r)
+        fbrl_robot_base_offset(ws->r, base);
     if (to == TO_FILE) {
         rec h;
         memset(&h, 0, sizeof h);
@@ -352,7 +375,8 @@ static fbrl_status walk_all(fbrl_workspace *ws, int to, walk *w)
     w->set.tag = FBRL_WORKSPACE_TAG_SET;
     w->set.v[0] = map_on ? 1.0 : 0.0;
     memcpy(w->set.v + 1, base, sizeof base);
-    if (to != TO_CONSOLE) emit(w, &w->set);
+    if (to != TO_CONSOLE)
+        emit(w, &w->set);
     return w->st;
 }
 
@@ -360,7 +384,8 @@ static uint32_t fingerprint(fbrl_workspace *ws, fbrl_workspace_counts *n)
 {
     walk w;
     walk_all(ws, TO_CRC, &w);
-    if (n) *n = w.n;
+    if (n)
+        *n = w.n;
     return w.crc;
 }
 
@@ -371,7 +396,8 @@ static int installed(const fbrl_workspace *ws) { return ws && ws->magic == WS_IN
 static void set_path(fbrl_workspace *ws, const char *path)
 {
     size_t n = strlen(path);
-    if (n >= sizeof ws->path) n = sizeof ws->path - 1;
+    if (n >= sizeof ws->path)
+        n = sizeof ws->path - 1;
     memcpy(ws->path, path, n);
     ws->path[n] = 0;
 }
@@ -380,28 +406,36 @@ fbrl_status fbrl_workspace_save(fbrl_workspace *ws, const char *path, fbrl_works
 {
     fbrl_ftype t;
     walk w;
-    if (!installed(ws) || !path) return FBRL_EINVAL;
-    if (strlen(path) >= FBRL_FILE_PATH_MAX) return FBRL_ENAME;
+    if (!installed(ws) || !path)
+        return FBRL_EINVAL;
+    if (strlen(path) >= FBRL_FILE_PATH_MAX)
+        return FBRL_ENAME;
     fbrl_status st = fbrl_file_open(&ws->file, path, ws->buf, ws->cap);
     if (st == FBRL_ENOENT) { /* a new file (nothing to lose by creating it first) */
-        if ((st = fbrl_file_create(path)) != FBRL_OK) return st;
+        if ((st = fbrl_file_create(path)) != FBRL_OK)
+            return st;
         st = fbrl_file_open(&ws->file, path, ws->buf, ws->cap);
     }
-    if (st != FBRL_OK) return st;
+    if (st != FBRL_OK)
+        return st;
     /* replace only a workspace (or an empty data file): never a user's other data */
-    if (fbrl_file_peek(&ws->file, &t) == FBRL_OK && (t.code != FBRL_FT_USER || t.tag != FBRL_WORKSPACE_TAG_HEAD)) {
+    if (fbrl_file_peek(&ws->file, &t) == FBRL_OK &&
+        (t.code != FBRL_FT_USER || t.tag != FBRL_WORKSPACE_TAG_HEAD)) {
         fbrl_file_discard(&ws->file);
         return FBRL_EFORMAT;
     }
-    if ((st = fbrl_file_truncate(&ws->file)) == FBRL_OK) st = walk_all(ws, TO_FILE, &w);
-    if (st == FBRL_OK) st = fbrl_file_close(&ws->file);
+    if ((st = fbrl_file_truncate(&ws->file)) == FBRL_OK)
+        st = walk_all(ws, TO_FILE, &w);
+    if (st == FBRL_OK)
+        st = fbrl_file_close(&ws->file);
     if (st != FBRL_OK) {
         fbrl_file_discard(&ws->file);
         return st;
     }
     ws->mark = w.crc;
     set_path(ws, path);
-    if (n) *n = w.n;
+    if (n)
+        *n = w.n;
     return FBRL_OK;
 }
 
@@ -411,7 +445,8 @@ static int next_rec(fbrl_workspace *ws, unsigned index, rec *r, char *why, size_
     fbrl_ftype t;
     unsigned char b[FBRL_WORKSPACE_RECORD_MAX];
     const char *bad;
-    if (fbrl_file_peek(&ws->file, &t) != FBRL_OK) return 0;
+    if (fbrl_file_peek(&ws->file, &t) != FBRL_OK)
+        return 0;
     if (t.code != FBRL_FT_USER || nvals(t.tag) == 0 || t.size > sizeof b) {
         snprintf(why, cap, "record %u is not a workspace record", index);
         return -1;
@@ -443,13 +478,16 @@ static const char *with_cal_ok(fbrl_workspace *ws, const rec *set)
     fbrl_cell xt;
     fbrl_file_reset(&ws->file);
     while (next_rec(ws, i++, &r, why, sizeof why) == 1)
-        if (r.tag == FBRL_WORKSPACE_TAG_CALSTRU && r.nlen == set->nlen && memcmp(r.name, set->name, r.nlen) == 0)
-            return set->v[0] == 0.0 || rigid(r.v) ? NULL : "MAP-ON with a calibration structure that is not rigid";
+        if (r.tag == FBRL_WORKSPACE_TAG_CALSTRU && r.nlen == set->nlen &&
+            memcmp(r.name, set->name, r.nlen) == 0)
+            return set->v[0] == 0.0 || rigid(r.v) ? NULL
+                                                  : "MAP-ON with a calibration structure that is not rigid";
     if (fbrl_vmx_find(ws->vm, set->name, set->nlen, &xt) == FBRL_OK) {
         obj o = classify(ws, xt);
         if (o.tag == FBRL_WORKSPACE_TAG_CALSTRU) {
             object_values(&o, &r);
-            return set->v[0] == 0.0 || rigid(r.v) ? NULL : "MAP-ON with a calibration structure that is not rigid";
+            return set->v[0] == 0.0 || rigid(r.v) ? NULL
+                                                  : "MAP-ON with a calibration structure that is not rigid";
         }
     }
     return "WITH-CAL names no calibration structure of the file or the session";
@@ -466,17 +504,21 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
     size_t new_devices = 0;
     unsigned i;
     int got, have_set = 0;
-    if (!why || cap == 0) why = scratch, cap = sizeof scratch;
+    if (!why || cap == 0)
+        why = scratch, cap = sizeof scratch;
     why[0] = 0;
-    if (!installed(ws) || !path) return FBRL_EINVAL;
-    if (strlen(path) >= FBRL_FILE_PATH_MAX) return FBRL_ENAME;
+    if (!installed(ws) || !path)
+        return FBRL_EINVAL;
+    if (strlen(path) >= FBRL_FILE_PATH_MAX)
+        return FBRL_ENAME;
     fbrl_status st = fbrl_file_open(&ws->file, path, ws->buf, ws->cap);
     if (st != FBRL_OK) {
         snprintf(why, cap, "%s", fbrl_status_str(st));
         return st;
     }
     /* 1. every record checked against the file's rules and the session's words */
-    if (next_rec(ws, 0, &r, why, cap) != 1 || r.tag != FBRL_WORKSPACE_TAG_HEAD || strcmp(r.name, HEAD_NAME) != 0) {
+    if (next_rec(ws, 0, &r, why, cap) != 1 || r.tag != FBRL_WORKSPACE_TAG_HEAD ||
+        strcmp(r.name, HEAD_NAME) != 0) {
         snprintf(why, cap, "not a workspace (a data file without the workspace header)");
         return fail(ws, FBRL_EFORMAT);
     }
@@ -494,7 +536,8 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
     for (i = 1; (got = next_rec(ws, i, &r, why, cap)) == 1; i++) {
         const char *bad;
         if (r.tag == FBRL_WORKSPACE_TAG_HEAD || (r.tag == FBRL_WORKSPACE_TAG_SET && have_set)) {
-            snprintf(why, cap, "record %u: a second %s record", i, r.tag == FBRL_WORKSPACE_TAG_HEAD ? "header" : "settings");
+            snprintf(why, cap, "record %u: a second %s record", i,
+                     r.tag == FBRL_WORKSPACE_TAG_HEAD ? "header" : "settings");
             return fail(ws, FBRL_EFORMAT);
         }
         if ((bad = values_ok(&r)) != NULL) {
@@ -521,7 +564,8 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
         }
         count(&cnt, r.tag);
     }
-    if (got < 0) return fail(ws, FBRL_EFORMAT);
+    if (got < 0)
+        return fail(ws, FBRL_EFORMAT);
     if (ws->r && new_devices > fbrl_robot_devices_free(ws->r)) {
         snprintf(why, cap, "%u new devices, room for %u", (unsigned)new_devices,
                  (unsigned)fbrl_robot_devices_free(ws->r));
@@ -542,14 +586,17 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
     fbrl_file_reset(&ws->file);
     for (i = 1; next_rec(ws, i, &r, why, cap) == 1; i++) {
         void *p;
-        if (r.tag == FBRL_WORKSPACE_TAG_HEAD || r.tag == FBRL_WORKSPACE_TAG_SET) continue;
+        if (r.tag == FBRL_WORKSPACE_TAG_HEAD || r.tag == FBRL_WORKSPACE_TAG_SET)
+            continue;
         if (fbrl_vmx_find(ws->vm, r.name, r.nlen, &xt) == FBRL_OK) {
-            if (classify(ws, xt).tag == r.tag) continue;
-            snprintf(why, cap, "record %u: %s is in the file twice, as %s and as %s", i, r.name, word_kind(ws, xt),
-                     kind_name(r.tag));
+            if (classify(ws, xt).tag == r.tag)
+                continue;
+            snprintf(why, cap, "record %u: %s is in the file twice, as %s and as %s", i, r.name,
+                     word_kind(ws, xt), kind_name(r.tag));
             st = FBRL_ETYPE;
         } else if (r.tag == FBRL_WORKSPACE_TAG_DEVICE) {
-            st = fbrl_robot_define_device(ws->r, r.name, r.nlen, (int)r.v[0], r.v[1] != 0.0, (uint32_t)r.v[2]);
+            st =
+                fbrl_robot_define_device(ws->r, r.name, r.nlen, (int)r.v[0], r.v[1] != 0.0, (uint32_t)r.v[2]);
         } else {
             fbrl_glossary_kind k = r.tag == FBRL_WORKSPACE_TAG_LOC       ? FBRL_GLOSSARY_LOC
                                    : r.tag == FBRL_WORKSPACE_TAG_RECTMAT ? FBRL_GLOSSARY_RECTMAT
@@ -559,7 +606,8 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
             st = fbrl_glossary_make(ws->g, k, r.name, r.nlen, &p);
         }
         if (st != FBRL_OK) {
-            if (!why[0] || st != FBRL_ETYPE) snprintf(why, cap, "the dictionary is full (record %u, %s)", i, r.name);
+            if (!why[0] || st != FBRL_ETYPE)
+                snprintf(why, cap, "the dictionary is full (record %u, %s)", i, r.name);
             fbrl_vmx_forget(ws->vm, &mark);
             return fail(ws, st == FBRL_ETYPE ? st : FBRL_ENOMEM);
         }
@@ -567,8 +615,10 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
     /* 3. the values (every one checked above: nothing here can fail) */
     fbrl_file_reset(&ws->file);
     for (i = 1; next_rec(ws, i, &r, why, cap) == 1; i++) {
-        if (r.tag == FBRL_WORKSPACE_TAG_HEAD || r.tag == FBRL_WORKSPACE_TAG_SET) continue;
-        if (fbrl_vmx_find(ws->vm, r.name, r.nlen, &xt) != FBRL_OK) continue;
+        if (r.tag == FBRL_WORKSPACE_TAG_HEAD || r.tag == FBRL_WORKSPACE_TAG_SET)
+            continue;
+        if (fbrl_vmx_find(ws->vm, r.name, r.nlen, &xt) != FBRL_OK)
+            continue;
         obj o = classify(ws, xt);
         set_values(ws, &o, &r);
     }
@@ -579,19 +629,22 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
             with_cal = (fbrl_cell)((unsigned char *)o.p - FBRL_VMX_PAYLOAD);
         }
         fbrl_glossary_set_mapping(ws->g, with_cal, set.v[0] != 0.0);
-        if (ws->r) fbrl_robot_set_base_offset(ws->r, set.v + 1);
+        if (ws->r)
+            fbrl_robot_set_base_offset(ws->r, set.v + 1);
     }
     fbrl_file_discard(&ws->file);
     why[0] = 0;
     ws->mark = fingerprint(ws, NULL);
     set_path(ws, path);
-    if (n) *n = cnt;
+    if (n)
+        *n = cnt;
     return FBRL_OK;
 }
 
 fbrl_status fbrl_workspace_changed(fbrl_workspace *ws, int *changed, fbrl_workspace_counts *n)
 {
-    if (!installed(ws) || !changed) return FBRL_EINVAL;
+    if (!installed(ws) || !changed)
+        return FBRL_EINVAL;
     *changed = fingerprint(ws, n) != ws->mark;
     return FBRL_OK;
 }
@@ -605,10 +658,14 @@ static fbrl_status parse_path(fbrl_vm *vm, const char *word, char *path)
     const char *p;
     size_t n;
     int q = fbrl_vmx_parse_quoted(vm, &p, &n);
-    if (q == 0) return fbrl_vmx_throwf(vm, FBRL_THROW_BAD_NUMBER, "%s: the file name has no closing \"", word);
-    if (q < 0) fbrl_vm_parse_name(vm, &p, &n);
-    if (n == 0) return fbrl_vmx_throwf(vm, FBRL_THROW_NO_NAME, "%s: file name missing (%s FILE)", word, word);
-    if (n >= FBRL_FILE_PATH_MAX) return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENAME), "%s: file name too long", word);
+    if (q == 0)
+        return fbrl_vmx_throwf(vm, FBRL_THROW_BAD_NUMBER, "%s: the file name has no closing \"", word);
+    if (q < 0)
+        fbrl_vm_parse_name(vm, &p, &n);
+    if (n == 0)
+        return fbrl_vmx_throwf(vm, FBRL_THROW_NO_NAME, "%s: file name missing (%s FILE)", word, word);
+    if (n >= FBRL_FILE_PATH_MAX)
+        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENAME), "%s: file name too long", word);
     memcpy(path, p, n);
     path[n] = 0;
     return FBRL_OK;
@@ -616,9 +673,9 @@ static fbrl_status parse_path(fbrl_vm *vm, const char *word, char *path)
 
 static void counts_text(const fbrl_workspace_counts *n, char *buf, size_t cap)
 {
-    snprintf(buf, cap, "%u location%s, %u matri%s, %u calibration%s, %u device%s", n->locs, n->locs == 1 ? "" : "s",
-             n->matrices, n->matrices == 1 ? "x" : "ces", n->cals, n->cals == 1 ? "" : "s", n->devices,
-             n->devices == 1 ? "" : "s");
+    snprintf(buf, cap, "%u location%s, %u matri%s, %u calibration%s, %u device%s", n->locs,
+             n->locs == 1 ? "" : "s", n->matrices, n->matrices == 1 ? "x" : "ces", n->cals,
+             n->cals == 1 ? "" : "s", n->devices, n->devices == 1 ? "" : "s");
 }
 
 static fbrl_status w_save(fbrl_vm *vm, void *ctx, const void *word)
@@ -628,17 +685,21 @@ static fbrl_status w_save(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_workspace_counts n;
     fbrl_status st;
     (void)word;
-    if ((st = parse_path(vm, "SAVE-WORKSPACE", path)) != FBRL_OK) return st;
+    if ((st = parse_path(vm, "SAVE-WORKSPACE", path)) != FBRL_OK)
+        return st;
     st = fbrl_workspace_save(ws, path, &n);
     if (st == FBRL_EFORMAT)
-        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(st),
-                               "SAVE-WORKSPACE %.60s: the file is another kind of data, not a workspace: not replaced", path);
+        return fbrl_vmx_throwf(
+            vm, FBRL_VM_THROW_OF_STATUS(st),
+            "SAVE-WORKSPACE %.60s: the file is another kind of data, not a workspace: not replaced", path);
     if (st == FBRL_ENOSPC)
-        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(st), "SAVE-WORKSPACE %.60s: more objects than the buffer holds (%lu bytes); nothing written",
-                               path, (unsigned long)ws->cap);
+        return fbrl_vmx_throwf(
+            vm, FBRL_VM_THROW_OF_STATUS(st),
+            "SAVE-WORKSPACE %.60s: more objects than the buffer holds (%lu bytes); nothing written", path,
+            (unsigned long)ws->cap);
     if (st != FBRL_OK)
-        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(st), "SAVE-WORKSPACE %.60s: %s; the file is unchanged", path,
-                               fbrl_status_str(st));
+        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(st),
+                               "SAVE-WORKSPACE %.60s: %s; the file is unchanged", path, fbrl_status_str(st));
     counts_text(&n, what, sizeof what);
     snprintf(line, sizeof line, "saved %s to %s\n", what, path);
     fbrl_vmx_puts(vm, line);
@@ -652,9 +713,11 @@ static fbrl_status w_load(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_workspace_counts n;
     fbrl_status st;
     (void)word;
-    if ((st = parse_path(vm, "LOAD-WORKSPACE", path)) != FBRL_OK) return st;
+    if ((st = parse_path(vm, "LOAD-WORKSPACE", path)) != FBRL_OK)
+        return st;
     if ((st = fbrl_workspace_load(ws, path, &n, why, sizeof why)) != FBRL_OK)
-        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(st), "LOAD-WORKSPACE %.40s: %s; nothing loaded", path, why);
+        return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(st), "LOAD-WORKSPACE %.40s: %s; nothing loaded",
+                               path, why);
     counts_text(&n, what, sizeof what);
     snprintf(line, sizeof line, "loaded %s from %s\n", what, path);
     fbrl_vmx_puts(vm, line);
@@ -687,22 +750,25 @@ static fbrl_status w_changed_q(fbrl_vm *vm, void *ctx, const void *word)
     return fbrl_vmx_push(vm, changed ? -1 : 0);
 }
 
-fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r, void *buf,
-                                   size_t cap)
+fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r,
+                                   void *buf, size_t cap)
 {
     static const struct {
         const char *name;
         fbrl_vmx_fn fn;
         const char *stack, *help;
     } words[] = {
-        { "SAVE-WORKSPACE", w_save, "( \"file\" -- )",
-          "save every named location, matrix, calibration and device (and WITH-CAL, MAP-ON, BASE-OFFSET) to file" },
-        { "LOAD-WORKSPACE", w_load, "( \"file\" -- )",
-          "load a saved workspace: its objects made or overwritten by name; a bad file changes nothing" },
-        { "WORKSPACE", w_workspace, "( -- )", "list what SAVE-WORKSPACE would save, and whether it changed" },
-        { "WORKSPACE-CHANGED?", w_changed_q, "( -- flag )", "true if the workspace changed since the last save or load" },
+        {"SAVE-WORKSPACE", w_save, "( \"file\" -- )",
+         "save every named location, matrix, calibration and device (and WITH-CAL, MAP-ON, BASE-OFFSET) to "
+         "file"},
+        {"LOAD-WORKSPACE", w_load, "( \"file\" -- )",
+         "load a saved workspace: its objects made or overwritten by name; a bad file changes nothing"},
+        {"WORKSPACE", w_workspace, "( -- )", "list what SAVE-WORKSPACE would save, and whether it changed"},
+        {"WORKSPACE-CHANGED?", w_changed_q, "( -- flag )",
+         "true if the workspace changed since the last save or load"},
     };
-    if (!vm || !ws || !g || !buf || cap == 0) return FBRL_EINVAL;
+    if (!vm || !ws || !g || !buf || cap == 0)
+        return FBRL_EINVAL;
     memset(ws, 0, sizeof *ws);
     ws->vm = vm;
     ws->g = g;
@@ -710,8 +776,10 @@ fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossar
     ws->buf = buf;
     ws->cap = cap;
     for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
-        fbrl_status st = fbrl_vmx_define(vm, words[k].name, words[k].fn, ws, NULL, 0, words[k].stack, words[k].help);
-        if (st != FBRL_OK) return st;
+        fbrl_status st =
+            fbrl_vmx_define(vm, words[k].name, words[k].fn, ws, NULL, 0, words[k].stack, words[k].help);
+        if (st != FBRL_OK)
+            return st;
     }
     ws->magic = WS_INSTALLED;
     ws->mark = fingerprint(ws, NULL);

@@ -18,7 +18,7 @@
 
 typedef struct dir {
     uint64_t rng;
-    long left;                    /* bytes of the current run still to drop */
+    long left; /* bytes of the current run still to drop */
     unsigned long bytes, lost, runs;
 } dir;
 
@@ -96,7 +96,8 @@ int main(int argc, char **argv)
     if (argc > 3)
         run_len = atol(argv[3]);
     unsigned long seed = argc > 4 ? strtoul(argv[4], NULL, 10) : 1;
-    dir up = {0x9E3779B97F4A7C15ull ^ seed, 0, 0, 0, 0}, down = {0xD1B54A32D192ED03ull ^ (seed * 7919u), 0, 0, 0, 0};
+    dir up = {0x9E3779B97F4A7C15ull ^ seed, 0, 0, 0, 0},
+        down = {0xD1B54A32D192ED03ull ^ (seed * 7919u), 0, 0, 0, 0};
     int peer = open(argv[1], O_RDWR | O_NOCTTY | O_NONBLOCK);
     int master = posix_openpt(O_RDWR | O_NOCTTY);
     if (peer < 0 || master < 0 || grantpt(master) || unlockpt(master) || raw(peer) != 0) {
@@ -123,7 +124,8 @@ int main(int argc, char **argv)
         if ((p[1].revents & (POLLIN | POLLHUP)) && !pass(peer, master, &down))
             break;
     }
-    fprintf(stderr, "relay: host->peer %lu bytes, %lu lost in %lu runs; peer->host %lu bytes, %lu lost in %lu runs\n",
+    fprintf(stderr,
+            "relay: host->peer %lu bytes, %lu lost in %lu runs; peer->host %lu bytes, %lu lost in %lu runs\n",
             up.bytes, up.lost, up.runs, down.bytes, down.lost, down.runs);
     return 0;
 }

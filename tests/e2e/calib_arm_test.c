@@ -21,14 +21,14 @@
 #include "arm.h"
 #include "fbrl/calib.h"
 
-#define PI 3.14159265358979323846
+#define PI     3.14159265358979323846
 #define RAD(d) ((d) * (PI / 180.0))
 #define DEG(r) ((r) * (180.0 / PI))
 
-#define MOTIONS 1000
-#define LOCS 8
-#define JOG 1e-4          /* the largest teaching error, inches */
-#define STABLE_DEG 0.05   /* the most a mapped orientation may change for it */
+#define MOTIONS    1000
+#define LOCS       8
+#define JOG        1e-4 /* the largest teaching error, inches */
+#define STABLE_DEG 0.05 /* the most a mapped orientation may change for it */
 
 static uint64_t rng_state;
 static uint64_t rng_next(void)
@@ -46,8 +46,10 @@ static double uniform(double lo, double hi)
 static double wrap(double d)
 {
     d = fmod(d, 360.0);
-    if (d > 180.0) d -= 360.0;
-    if (d <= -180.0) d += 360.0;
+    if (d > 180.0)
+        d -= 360.0;
+    if (d <= -180.0)
+        d += 360.0;
     return d;
 }
 
@@ -60,8 +62,10 @@ static void rot(int axis, double rad, mat r)
     int a = (axis + 1) % 3, b = (axis + 2) % 3;
     memset(r, 0, sizeof(mat));
     r[axis][axis] = 1;
-    r[a][a] = c; r[a][b] = -s;
-    r[b][a] = s; r[b][b] = c;
+    r[a][a] = c;
+    r[a][b] = -s;
+    r[b][a] = s;
+    r[b][b] = c;
 }
 
 static void mul(mat a, mat b, mat out)
@@ -77,9 +81,15 @@ static void mul(mat a, mat b, mat out)
 static void rot_about(const double u[3], double rad, mat r)
 {
     double c = cos(rad), s = sin(rad), t = 1 - c;
-    r[0][0] = c + u[0] * u[0] * t; r[0][1] = u[0] * u[1] * t - u[2] * s; r[0][2] = u[0] * u[2] * t + u[1] * s;
-    r[1][0] = u[1] * u[0] * t + u[2] * s; r[1][1] = c + u[1] * u[1] * t; r[1][2] = u[1] * u[2] * t - u[0] * s;
-    r[2][0] = u[2] * u[0] * t - u[1] * s; r[2][1] = u[2] * u[1] * t + u[0] * s; r[2][2] = c + u[2] * u[2] * t;
+    r[0][0] = c + u[0] * u[0] * t;
+    r[0][1] = u[0] * u[1] * t - u[2] * s;
+    r[0][2] = u[0] * u[2] * t + u[1] * s;
+    r[1][0] = u[1] * u[0] * t + u[2] * s;
+    r[1][1] = c + u[1] * u[1] * t;
+    r[1][2] = u[1] * u[2] * t - u[0] * s;
+    r[2][0] = u[2] * u[0] * t - u[1] * s;
+    r[2][1] = u[2] * u[1] * t + u[0] * s;
+    r[2][2] = c + u[2] * u[2] * t;
 }
 
 /* A location's tool frame as the arm holds it: waist about z, then the pitch joints about
@@ -104,7 +114,8 @@ static double frame_angle(mat a, mat b)
     mul(a, bt, d);
     double c = (d[0][0] + d[1][1] + d[2][2] - 1) / 2;
     double s = sqrt((d[2][1] - d[1][2]) * (d[2][1] - d[1][2]) + (d[0][2] - d[2][0]) * (d[0][2] - d[2][0]) +
-                    (d[1][0] - d[0][1]) * (d[1][0] - d[0][1])) / 2;
+                    (d[1][0] - d[0][1]) * (d[1][0] - d[0][1])) /
+               2;
     return DEG(atan2(s, c));
 }
 
@@ -158,8 +169,8 @@ static void random_block(block *b, double max_tilt)
     moved_mid[1] = r1 * sin(at1);
     moved_mid[2] = mid[2] + uniform(-1, 1);
     for (int i = 0; i < 3; i++)
-        b->truth.t[i] = moved_mid[i] - (b->truth.r[i][0] * mid[0] + b->truth.r[i][1] * mid[1] +
-                                        b->truth.r[i][2] * mid[2]);
+        b->truth.t[i] = moved_mid[i] -
+                        (b->truth.r[i][0] * mid[0] + b->truth.r[i][1] * mid[1] + b->truth.r[i][2] * mid[2]);
 }
 
 static void teach(const block *b, fbrl_calpts *cal, fbrl_calpts *recal)
@@ -180,8 +191,8 @@ static fbrl_loc random_loc(const block *b, int k)
 {
     double local[3] = {uniform(0, b->size[0]), uniform(0, 1) * b->size[1], uniform(0.5, 3)}, p[3];
     apply(&b->pose, local, p);
-    fbrl_loc l = {p[0], p[1], p[2], uniform(-180, 180), k < LOCS / 2 ? -90 : uniform(-90, -30),
-                  uniform(-180, 180)};
+    fbrl_loc l = {
+        p[0], p[1], p[2], uniform(-180, 180), k < LOCS / 2 ? -90 : uniform(-90, -30), uniform(-180, 180)};
     return l;
 }
 
@@ -276,7 +287,8 @@ static void heading_turns_with_the_block(void **state)
             tried++;
             const fbrl_sim_model *a255 = fbrl_sim_model_find("a255");
             const double zero[FBRL_SIM_ARM_MAX_AXES] = {0};
-            if (fbrl_sim_arm_ik(a255, p0, 0.0, zero, q0) != 0 || fbrl_sim_arm_ik(a255, p1, 0.0, zero, q1) != 0)
+            if (fbrl_sim_arm_ik(a255, p0, 0.0, zero, q0) != 0 ||
+                fbrl_sim_arm_ik(a255, p1, 0.0, zero, q1) != 0)
                 continue;
             /* the emulator reaches forward: its waist points at the target */
             if (fabs(wrap(q0[0] - DEG(atan2(in.y, in.x)))) > 1e-9 ||

@@ -20,8 +20,8 @@
 
 #include "rapl_harness.h"
 
-static pid_t spawn(const char *const *argv, char *path, size_t cap, int keep_stdin, const char *in, const char *out,
-                   const char *err)
+static pid_t spawn(const char *const *argv, char *path, size_t cap, int keep_stdin, const char *in,
+                   const char *out, const char *err)
 {
     int fd[2];
     if (pipe(fd) != 0)
@@ -135,7 +135,8 @@ int main(int argc, char **argv)
     rig_tmpdir(dir, sizeof dir, "burst");
     snprintf(logp, sizeof logp, "%s/log", dir);
     snprintf(faults, sizeof faults, "drop=0.05,corrupt=0.05,seed=%ld", seed);
-    const char *sim_argv[16] = {argv[1], "--time-scale", "200", "--log", logp, "--parity", parity ? "E" : "N"};
+    const char *sim_argv[16] = {argv[1],    "--time-scale",    "200", "--log", logp,
+                                "--parity", parity ? "E" : "N"};
     int na = 7;
     if (!burst) {
         sim_argv[na++] = "--faults";
@@ -212,8 +213,9 @@ int main(int argc, char **argv)
             fprintf(f, "RAPL %s\n", line);
         }
         fclose(f);
-        const char *mon_argv[] = {mon, "--port", path, "--flow", "none", "--parity", parity ? "even" : "none",
-                                  "-e", "RAPL V3=0", NULL};
+        const char *mon_argv[] = {
+            mon,  "--port",    path, "--flow", "none", "--parity", parity ? "even" : "none",
+            "-e", "RAPL V3=0", NULL};
         pid_t m = spawn(mon_argv, NULL, 0, 0, script, outp, errp);
         int wst = 0;
         waitpid(m, &wst, 0);
@@ -249,8 +251,8 @@ int main(int argc, char **argv)
             continue;
         long i = 0;
         char tail;
-        if ((sscanf(buf, "V3=V3+%ld%c", &i, &tail) == 1 || sscanf(buf, "V3=V3+Q%ld%c", &i, &tail) == 1) && i >= 1 &&
-            i <= n) {
+        if ((sscanf(buf, "V3=V3+%ld%c", &i, &tail) == 1 || sscanf(buf, "V3=V3+Q%ld%c", &i, &tail) == 1) &&
+            i >= 1 && i <= n) {
             char want[32];
             command(i, want, sizeof want);
             if (!strcmp(want, buf)) {
@@ -272,7 +274,8 @@ int main(int argc, char **argv)
             }
         }
         invisible += found && !parity && !burst;
-        fprintf(stderr, "log: '%s' was never sent%s\n", buf, found ? " (one bit flipped in and back in the echo)" : "");
+        fprintf(stderr, "log: '%s' was never sent%s\n", buf,
+                found ? " (one bit flipped in and back in the echo)" : "");
         if (sscanf(buf, "V3=V3+%ld%c", &i, &tail) == 1)
             sum += (double)i;
     }
@@ -307,20 +310,25 @@ int main(int argc, char **argv)
         normal += refused ? st == FBRL_ECONTROLLER : st == FBRL_OK;
     }
     double share = 100.0 * (double)normal / (double)n;
-    printf("%s line, %s: %ld commands not safe to repeat (every 25th refused) in %.1f s: %ld completed normally "
-           "(%.2f %%), %ld may have run, %ld reported not run\n",
-           burst ? "burst-loss (0.2 %/byte, 50-byte runs, 8N1)" : parity ? "5 %+5 % parity E" : "5 %+5 % 8N1",
-           mon ? "through fbrlmon" : "C API", n, secs, normal, share, maybe, notrun);
-    printf("truth (fbrlsim's log): %ld ran twice, %ld refusals reported as success, %ld ran but reported not run, "
+    printf(
+        "%s line, %s: %ld commands not safe to repeat (every 25th refused) in %.1f s: %ld completed normally "
+        "(%.2f %%), %ld may have run, %ld reported not run\n",
+        burst    ? "burst-loss (0.2 %/byte, 50-byte runs, 8N1)"
+        : parity ? "5 %+5 % parity E"
+                 : "5 %+5 % 8N1",
+        mon ? "through fbrlmon" : "C API", n, secs, normal, share, maybe, notrun);
+    printf("truth (fbrlsim's log): %ld ran twice, %ld refusals reported as success, %ld ran but reported not "
+           "run, "
            "%ld reported ran but absent, %ld wrongly refused, %ld altered lines (%ld invisible to any echo "
            "protocol on 8N1)\n",
            twice, refusal_ok, ran_not_run, ok_missing, refused_ok, altered, invisible);
     if (!mon)
-        printf("link: attempts %llu probes %llu cr unconfirmed %llu not retyped %llu settled %llu may have run %llu; "
+        printf("link: attempts %llu probes %llu cr unconfirmed %llu not retyped %llu settled %llu may have "
+               "run %llu; "
                "V3 = %.4f, the log's increments sum to %.4f\n",
-               (unsigned long long)s.attempts, (unsigned long long)s.probes, (unsigned long long)s.cr_unconfirmed,
-               (unsigned long long)s.not_retyped, (unsigned long long)s.settled, (unsigned long long)s.may_have_run,
-               v3, sum);
+               (unsigned long long)s.attempts, (unsigned long long)s.probes,
+               (unsigned long long)s.cr_unconfirmed, (unsigned long long)s.not_retyped,
+               (unsigned long long)s.settled, (unsigned long long)s.may_have_run, v3, sum);
     int pass = twice == 0 && refusal_ok == 0 && ran_not_run == 0 && ok_missing == 0 && refused_ok == 0 &&
                altered == invisible;
     if (burst)

@@ -5,9 +5,9 @@
  * speed: the rates are in bench_transport. Usage: link_e2e_fair FBRLSIM */
 #include "rapl_harness.h"
 
-#define ROBOTS 16
+#define ROBOTS    16
 #define PER_ROBOT 40 /* mean commands per robot before the run stops */
-#define CMD "SPEED 50"
+#define CMD       "SPEED 50"
 
 static rig rigs[ROBOTS];
 static char logs[ROBOTS][160];
@@ -70,7 +70,8 @@ int main(int argc, char **argv)
             done[idx]++;
             total++;
         }
-        if (total < (long)ROBOTS * PER_ROBOT && fbrl_link_start(links[idx], CMD, FBRL_LINK_REPLY_NONE) != FBRL_OK)
+        if (total < (long)ROBOTS * PER_ROBOT &&
+            fbrl_link_start(links[idx], CMD, FBRL_LINK_REPLY_NONE) != FBRL_OK)
             failures++;
     }
     /* the commands still running finish, so the logs are complete */
@@ -91,7 +92,8 @@ int main(int argc, char **argv)
     for (int k = 0; k < ROBOTS; k++) {
         long in_log = count_in_log(logs[k]);
         if (in_log != done[k]) {
-            fprintf(stderr, "robot %d: link reported %ld done, the emulator's log holds %ld\n", k, done[k], in_log);
+            fprintf(stderr, "robot %d: link reported %ld done, the emulator's log holds %ld\n", k, done[k],
+                    in_log);
             failures++;
         }
         if (done[k] * 2 < PER_ROBOT) {

@@ -133,8 +133,8 @@ int main(int argc, char **argv)
     cfg.max_attempts = 60;
     cfg.query_reads = 3;
     rig r;
-    if (rig_start_parity(&r, argv[1], args, 115200, xonxoff ? FBRL_FLOW_XONXOFF : FBRL_FLOW_NONE, parity == 'E' ? FBRL_PARITY_EVEN : FBRL_PARITY_NONE,
-                  &cfg) != 0)
+    if (rig_start_parity(&r, argv[1], args, 115200, xonxoff ? FBRL_FLOW_XONXOFF : FBRL_FLOW_NONE,
+                         parity == 'E' ? FBRL_PARITY_EVEN : FBRL_PARITY_NONE, &cfg) != 0)
         return 1;
     fbrl_link *L = &r.link;
     uint64_t t0 = fbrl_clock_now_us();
@@ -148,7 +148,10 @@ int main(int argc, char **argv)
     int defined[10] = {0};
     long ok = 0, ctrl_err = 0, failed = 0, bad = 0, queries_ok = 0, twice = 0, maybe = 0;
     /* Surprises are judged at the end: with 8N1 an invisible alteration may explain them. */
-    struct { size_t from, to; int var; } ev[256];
+    struct {
+        size_t from, to;
+        int var;
+    } ev[256];
     size_t nev = 0;
     for (long i = 0; i < n; i++) {
         char line[FBRL_LINK_LINE_MAX + 1];
@@ -171,8 +174,9 @@ int main(int argc, char **argv)
                 is_typev = 1;
             }
         } else if (kind < 65) {
-            snprintf(line, sizeof line, "POINT Q%d,%.4f,%.4f,%.4f,0.0000,%.4f,0.0000", k, 10 + rnd(40000) / 10000.0,
-                     signed_val(40000, 10000.0), 5 + rnd(50000) / 10000.0, signed_val(900000, 10000.0));
+            snprintf(line, sizeof line, "POINT Q%d,%.4f,%.4f,%.4f,0.0000,%.4f,0.0000", k,
+                     10 + rnd(40000) / 10000.0, signed_val(40000, 10000.0), 5 + rnd(50000) / 10000.0,
+                     signed_val(900000, 10000.0));
         } else if (kind < 72) {
             snprintf(line, sizeof line, "SPEED %d", 10 + (int)rnd(91));
         } else if (kind < 80) {
@@ -208,9 +212,9 @@ int main(int argc, char **argv)
                 maybes += strcmp(exec_lines[x], line) == 0 && exec_maybe[x];
             }
             int safe = fbrl_link_line_safe(line);
-            if (st == FBRL_EMAYBE ? runs + maybes < 1 || runs > 1 || (!safe && runs + maybes != 1)
-                                  : runs != (st == FBRL_OK || st == FBRL_ECONTROLLER ? 1u : 0u) ||
-                                        (!safe && maybes)) {
+            if (st == FBRL_EMAYBE
+                    ? runs + maybes < 1 || runs > 1 || (!safe && runs + maybes != 1)
+                    : runs != (st == FBRL_OK || st == FBRL_ECONTROLLER ? 1u : 0u) || (!safe && maybes)) {
                 fprintf(stderr, "%s: reported executed %zu times (%s)\n", line, runs, fbrl_status_name(st));
                 twice++;
             }
@@ -298,7 +302,8 @@ int main(int argc, char **argv)
             lf++;
         if (jd + jm > 0 && jd <= lc + lf && lc + lf <= jd + jm) {
             if (lf) {
-                fprintf(stderr, "log lines %zu+: %zu run(s) of '%s' altered by one bit flipped in and out again\n",
+                fprintf(stderr,
+                        "log lines %zu+: %zu run(s) of '%s' altered by one bit flipped in and out again\n",
                         i + 1, lf, line);
                 flips += lf;
                 for (size_t y = x; y < jx; y++)
@@ -334,7 +339,8 @@ int main(int argc, char **argv)
                 flipped[x] = 1; /* its error may stand in STATUS for the next command */
         } else {
             if (mismatch++ < 10)
-                fprintf(stderr, "log line %zu: '%s', link: '%s'\n", i + 1, line, x < nexec ? exec_lines[x] : "(none)");
+                fprintf(stderr, "log line %zu: '%s', link: '%s'\n", i + 1, line,
+                        x < nexec ? exec_lines[x] : "(none)");
             x++;
         }
     }
@@ -357,10 +363,12 @@ int main(int argc, char **argv)
     printf("parity %c%s: %ld commands in %.1f s: %ld ok, %ld controller errors (expected), %ld may have run, "
            "%ld reported not run, %ld wrong, %ld not run exactly once\n",
            parity, xonxoff ? ", XON/XOFF" : "", n, secs, ok, ctrl_err, maybe, failed, bad, twice);
-    printf("executed lines: log %zu, link %zu, %zu unexplained differences; altered lines: %zu double flips, %zu "
+    printf("executed lines: log %zu, link %zu, %zu unexplained differences; altered lines: %zu double flips, "
+           "%zu "
            "cut by '-' -> CR; %ld TYPEV values checked\n",
            nlog, nexec, mismatch, flips, cuts, queries_ok);
-    printf("parity errors: host -> controller %zu (dropped by fbrlsim), controller -> host %zu (marked by fbrlsim), "
+    printf("parity errors: host -> controller %zu (dropped by fbrlsim), controller -> host %zu (marked by "
+           "fbrlsim), "
            "%llu seen by the uart, %llu by the link\n",
            par_in, par_out, (unsigned long long)uc.parity_errors, (unsigned long long)s.parity_errors);
     if (xonxoff)
@@ -368,8 +376,9 @@ int main(int argc, char **argv)
                (unsigned long long)uc.xoff_received);
     printf("link: attempts %llu echo mismatches %llu echo timeouts %llu probes %llu cr unconfirmed %llu "
            "prompt lost %llu requeries %llu error queries %llu\n",
-           (unsigned long long)s.attempts, (unsigned long long)s.echo_mismatch, (unsigned long long)s.echo_timeout,
-           (unsigned long long)s.probes, (unsigned long long)s.cr_unconfirmed, (unsigned long long)s.prompt_lost,
+           (unsigned long long)s.attempts, (unsigned long long)s.echo_mismatch,
+           (unsigned long long)s.echo_timeout, (unsigned long long)s.probes,
+           (unsigned long long)s.cr_unconfirmed, (unsigned long long)s.prompt_lost,
            (unsigned long long)s.requeries, (unsigned long long)s.error_queries);
     for (size_t k = 0; k < nexec; k++)
         free(exec_lines[k]);

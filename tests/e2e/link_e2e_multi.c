@@ -12,16 +12,23 @@ typedef struct step {
 } step;
 
 static const step plan_a[] = {
-    {"HOME", FBRL_LINK_REPLY_NONE},   {"SPEED 80", FBRL_LINK_REPLY_NONE},
+    {"HOME", FBRL_LINK_REPLY_NONE},
+    {"SPEED 80", FBRL_LINK_REPLY_NONE},
     {"POINT A1,14.0000,2.0000,8.0000,0.0000,-90.0000,0.0000", FBRL_LINK_REPLY_NONE},
-    {"MOVE A1", FBRL_LINK_REPLY_NONE}, {"DEPART 2.0000", FBRL_LINK_REPLY_NONE},
-    {"FINISH", FBRL_LINK_REPLY_NONE}, {"W2", FBRL_LINK_REPLY_POS},
+    {"MOVE A1", FBRL_LINK_REPLY_NONE},
+    {"DEPART 2.0000", FBRL_LINK_REPLY_NONE},
+    {"FINISH", FBRL_LINK_REPLY_NONE},
+    {"W2", FBRL_LINK_REPLY_POS},
 };
 static const step plan_b[] = {
-    {"HOME", FBRL_LINK_REPLY_NONE},    {"READY", FBRL_LINK_REPLY_NONE},
-    {"JOINT 1,30.0000", FBRL_LINK_REPLY_NONE}, {"V1=4.5000", FBRL_LINK_REPLY_NONE},
-    {"TYPEV V1", FBRL_LINK_REPLY_REAL}, {"MOVE NOWHERE", FBRL_LINK_REPLY_NONE},
-    {"FINISH", FBRL_LINK_REPLY_NONE},  {"W2", FBRL_LINK_REPLY_POS},
+    {"HOME", FBRL_LINK_REPLY_NONE},
+    {"READY", FBRL_LINK_REPLY_NONE},
+    {"JOINT 1,30.0000", FBRL_LINK_REPLY_NONE},
+    {"V1=4.5000", FBRL_LINK_REPLY_NONE},
+    {"TYPEV V1", FBRL_LINK_REPLY_REAL},
+    {"MOVE NOWHERE", FBRL_LINK_REPLY_NONE},
+    {"FINISH", FBRL_LINK_REPLY_NONE},
+    {"W2", FBRL_LINK_REPLY_POS},
 };
 
 int main(int argc, char **argv)
@@ -85,7 +92,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "plans not finished\n");
         failures++;
     }
-    if (fabs(pa->world[0] - 14) > 0.001 || fabs(pa->world[1] - 2) > 0.001 || fabs(pa->world[2] - 10) > 0.001) {
+    if (fabs(pa->world[0] - 14) > 0.001 || fabs(pa->world[1] - 2) > 0.001 ||
+        fabs(pa->world[2] - 10) > 0.001) {
         fprintf(stderr, "robot A at %.4f %.4f %.4f\n", pa->world[0], pa->world[1], pa->world[2]);
         failures++;
     }

@@ -8,12 +8,12 @@
 
 #include "rapl_harness.h"
 
-#define CHECK(c)                                                                                                       \
-    do {                                                                                                               \
-        if (!(c)) {                                                                                                    \
-            fprintf(stderr, "FAIL %s:%d: %s\n", __FILE__, __LINE__, #c);                                               \
-            return 1;                                                                                                  \
-        }                                                                                                              \
+#define CHECK(c)                                                         \
+    do {                                                                 \
+        if (!(c)) {                                                      \
+            fprintf(stderr, "FAIL %s:%d: %s\n", __FILE__, __LINE__, #c); \
+            return 1;                                                    \
+        }                                                                \
     } while (0)
 
 int main(int argc, char **argv)
@@ -37,11 +37,11 @@ int main(int argc, char **argv)
     fbrl_link_get_stats(&r.link, &s0);
     CHECK(fbrl_link_raw(&r.link, "FINISH") == FBRL_OK);
     fbrl_link_get_stats(&r.link, &s1);
-    CHECK(s1.probes > s0.probes);       /* it waited: probes went out, markers were left */
-    CHECK(s1.cleans == s0.cleans + 1);  /* and the FINISH erased them */
+    CHECK(s1.probes > s0.probes);      /* it waited: probes went out, markers were left */
+    CHECK(s1.cleans == s0.cleans + 1); /* and the FINISH erased them */
     CHECK(fbrl_link_raw(&r.link, "SPEED 50") == FBRL_OK);
     fbrl_link_get_stats(&r.link, &s2);
-    CHECK(s2.probes == s1.probes);      /* no erase probe before the next command */
+    CHECK(s2.probes == s1.probes); /* no erase probe before the next command */
     CHECK(s2.attempts == s1.attempts + 1);
     CHECK(s2.echo_mismatch == s1.echo_mismatch && s2.echo_timeout == s1.echo_timeout);
     rig_stop(&r);
@@ -60,7 +60,8 @@ int main(int argc, char **argv)
     remove(log);
     rmdir(dir);
     CHECK(speed == 1 && n >= 5);
-    printf("link_e2e_wait: %llu probes while waiting, markers erased by the FINISH, next command typed once\n",
-           (unsigned long long)(s1.probes - s0.probes));
+    printf(
+        "link_e2e_wait: %llu probes while waiting, markers erased by the FINISH, next command typed once\n",
+        (unsigned long long)(s1.probes - s0.probes));
     return 0;
 }

@@ -15,7 +15,14 @@
 #include "support/vm_host.h"
 
 static int fails;
-#define CHECK(cond, ...) do { if (!(cond)) { printf("FAIL: " __VA_ARGS__); printf("\n"); fails++; } } while (0)
+#define CHECK(cond, ...)                  \
+    do {                                  \
+        if (!(cond)) {                    \
+            printf("FAIL: " __VA_ARGS__); \
+            printf("\n");                 \
+            fails++;                      \
+        }                                 \
+    } while (0)
 
 /* What an FBRL session prints: float literals, F. FS. FE., >FLOAT, REPRESENT, SEE of a
  * float literal, locations (DISPLAY-LOC, mapped too), matrices, the CALIBRATE-N report. */
@@ -73,8 +80,8 @@ int main(void)
     /* the C library really follows it: this is what broke libfbrl */
     snprintf(buf, sizeof buf, "%+.4f", 14.5);
     CHECK(strcmp(buf, "+14,5000") == 0, "printf under %s gives '%s'", setlocale(LC_NUMERIC, NULL), buf);
-    printf("locale %s: printf(\"%%+.4f\", 14.5) = \"%s\", strtod(\"1.5\") = %g\n", setlocale(LC_NUMERIC, NULL),
-           buf, strtod("1.5", NULL));
+    printf("locale %s: printf(\"%%+.4f\", 14.5) = \"%s\", strtod(\"1.5\") = %g\n",
+           setlocale(LC_NUMERIC, NULL), buf, strtod("1.5", NULL));
 
     /* the library's own conversions */
     double v = 0;
@@ -84,17 +91,21 @@ int main(void)
     CHECK(strcmp(buf, "  +14.5000") == 0, "fbrl_num_fixed gives '%s'", buf);
     fbrl_loc l = {14.5, -2, 1, 0, -90, 0};
     char text[FBRL_LOC_TEXT_SIZE];
-    CHECK(fbrl_loc_format(&l, 0, text, sizeof text) == FBRL_OK &&
-              strstr(text, "+14.5000") && !strchr(text, ','), "fbrl_loc_format gives '%s'", text);
+    CHECK(fbrl_loc_format(&l, 0, text, sizeof text) == FBRL_OK && strstr(text, "+14.5000") &&
+              !strchr(text, ','),
+          "fbrl_loc_format gives '%s'", text);
     printf("fbrl_loc_format: %s\n", text);
     /* 17 significant digits read back bit for bit, over many doubles */
     uint64_t x = 88172645463325252ull;
     int trips = 0;
     for (int i = 0; i < 100000; i++) {
-        x ^= x << 13; x ^= x >> 7; x ^= x << 17;
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
         double d, back;
         memcpy(&d, &x, sizeof d);
-        if (!isfinite(d)) continue;
+        if (!isfinite(d))
+            continue;
         fbrl_num_general(buf, sizeof buf, d, 17, NULL);
         if (fbrl_num_parse(buf, strlen(buf), &back) != FBRL_OK || memcmp(&back, &d, sizeof d) != 0) {
             printf("FAIL: %s does not read back\n", buf);
@@ -113,11 +124,13 @@ int main(void)
           de_run.out.s, c_run.out.s);
     CHECK(strstr(c_run.out.s, "1.5 14.5 -0.125 2.50000E-3 1.23450E3 0.3 \n-1 3.75 0 \n-1 0 15000000") != NULL,
           "unexpected numbers:\n%s", c_run.out.s);
-    CHECK(strstr(c_run.out.s, "X   +14.5000 Y    -2.0000 Z    +1.0000 in  O   +0.000 A  -90.000 T  +12.250 deg") != NULL,
+    CHECK(strstr(c_run.out.s,
+                 "X   +14.5000 Y    -2.0000 Z    +1.0000 in  O   +0.000 A  -90.000 T  +12.250 deg") != NULL,
           "unexpected DISPLAY-LOC:\n%s", c_run.out.s);
     CHECK(strchr(c_run.out.s, ',') == NULL, "a comma in the output:\n%s", c_run.out.s);
     printf("FBRL output, identical under de_DE.UTF-8 and C:\n%s\n", de_run.out.s);
-    if (fails) return 1;
+    if (fails)
+        return 1;
     printf("ok: libfbrl parses and prints numbers the same under de_DE.UTF-8 and C\n");
     return 0;
 }

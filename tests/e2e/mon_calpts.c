@@ -116,7 +116,8 @@ int main(int argc, char **argv)
     type(&s, "C 1 T GET-CAL T DISPLAY-LOC\r");
     expect(&s, "X   +12.0000 Y    +3.0000 Z   +18.0000 in", "slot 1 unchanged after the cancel");
     expect(&s, "ok> ", "prompt");
-    check(strstr(s.buf + from, "unchanged in JOG") == NULL, "the cancel is GET-CAL-POINTS', not the last line's word", &s);
+    check(strstr(s.buf + from, "unchanged in JOG") == NULL,
+          "the cancel is GET-CAL-POINTS', not the last line's word", &s);
     /* leaving with unsaved changes to a saved workspace: fbrlmon offers to save them */
     {
         char cmd[1200];

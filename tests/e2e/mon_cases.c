@@ -28,7 +28,7 @@
 
 #define TIMEOUT_MS 60000
 #define CHECK_LINE "depth . fdepth . 7 6 * . cr\n"
-#define CHECK_OUT "0 0 42 \n"
+#define CHECK_OUT  "0 0 42 \n"
 
 typedef struct buf {
     char *p;
@@ -168,7 +168,7 @@ static int run(char *const argv[], const buf *in, buf *out, buf *err)
             if (w > 0)
                 off += (size_t)w;
             if (w < 0 && errno != EAGAIN && errno != EINTR)
-                off = in->len;  /* the child stopped reading (EPIPE): fine */
+                off = in->len; /* the child stopped reading (EPIPE): fine */
             if (off == in->len)
                 close(pin[1]), pin[1] = -1;
         }
@@ -226,7 +226,7 @@ int main(int argc, char **argv)
     ssize_t n;
     unsigned long lineno = 0, total = 0, failed = 0;
 
-    signal(SIGPIPE, SIG_IGN);  /* a child that exits early must not kill the driver */
+    signal(SIGPIPE, SIG_IGN); /* a child that exits early must not kill the driver */
     if (argc != 4) {
         fprintf(stderr, "usage: mon_cases FBRLMON CASES TMPDIR\n");
         return 2;

@@ -3,19 +3,16 @@
  * completion of a word name, KEY in raw mode, and history kept between sessions.
  *
  *   mon_pty FBRLMON TMPDIR      exit 0 on success; the transcript is printed on failure */
-#define _XOPEN_SOURCE 600  /* posix_openpt, grantpt, unlockpt, ptsname */
+#define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
 #include <sys/stat.h>
 
 #include "mon_session.h"
 
-#define TIMEOUT_MS 30000  /* generous: the machine may be loaded, or ASan slow */
+#define TIMEOUT_MS 30000 /* generous: the machine may be loaded, or ASan slow */
 
 static const char *g_mon, *g_dir;
 
-static int start(session *s)
-{
-    return start_mon(s, TIMEOUT_MS, g_dir, g_mon, "--offline", NULL);
-}
+static int start(session *s) { return start_mon(s, TIMEOUT_MS, g_dir, g_mon, "--offline", NULL); }
 
 /* Longest line (printable bytes between newlines; escape sequences skipped)
  * in buf[from, to). */
@@ -26,7 +23,7 @@ static size_t longest_line(const char *buf, size_t from, size_t to)
         unsigned char c = (unsigned char)buf[i];
         if (c == '\n' || c == '\r') {
             col = 0;
-        } else if (c == 0x1b) {  /* ESC [ ... final byte */
+        } else if (c == 0x1b) { /* ESC [ ... final byte */
             if (i + 1 < to && buf[i + 1] == '[') {
                 i += 2;
                 while (i < to && !((unsigned char)buf[i] >= 0x40 && (unsigned char)buf[i] <= 0x7e))
@@ -103,7 +100,8 @@ static void silent_controller(void)
         waitpid(pid, &st, 0);
     close(master);
     if (!WIFEXITED(st) || WEXITSTATUS(st) != 3 || !file_contains(errpath, "no controller answers")) {
-        fprintf(stderr, "FAIL: fbrlmon --port on a silent pty: status %d, want 3 and 'no controller answers'\n",
+        fprintf(stderr,
+                "FAIL: fbrlmon --port on a silent pty: status %d, want 3 and 'no controller answers'\n",
                 WIFEXITED(st) ? WEXITSTATUS(st) : -1);
         g_failed = 1;
     }
@@ -222,10 +220,11 @@ int main(int argc, char **argv)
         type(&s, "1000 7 + .\r");
         expect(&s, "1007 ", "last line of session 1");
         expect(&s, "ok> ", "prompt before end");
-        type(&s, "\004");  /* Ctrl-D: end of input */
+        type(&s, "\004"); /* Ctrl-D: end of input */
         st = finish(&s);
         if (st != 0 && st != -1) {
-            fprintf(stderr, "FAIL: session 1 exit status %d (errors typed at the terminal must not count)\n", st);
+            fprintf(stderr, "FAIL: session 1 exit status %d (errors typed at the terminal must not count)\n",
+                    st);
             transcript(&s);
             g_failed = 1;
         }

@@ -24,10 +24,10 @@
 
 #include "mon_session.h"
 
-#define TIMEOUT_MS 60000     /* generous: the machine may be loaded, or ASan slow */
-#define NOBODY 65534         /* uid and gid of the unprivileged user */
-#define MAX_LOG 4096
-#define LINE 160
+#define TIMEOUT_MS 60000 /* generous: the machine may be loaded, or ASan slow */
+#define NOBODY     65534 /* uid and gid of the unprivileged user */
+#define MAX_LOG    4096
+#define LINE       160
 
 static const char *g_mon, *g_simbin, *g_dir;
 static char g_link[1024], g_log[1024];
@@ -110,8 +110,8 @@ static int wait_log(session *s, size_t from, const char *prefix)
 
 static int is_motion(const char *l)
 {
-    static const char *const m[] = { "MOVE", "APPRO", "DEPART", "JOG", "JOINT", "MOTOR", "MA ", "MI ",
-                                     "READY", "HOME", "ALIGN", NULL };
+    static const char *const m[] = {"MOVE", "APPRO", "DEPART", "JOG",  "JOINT", "MOTOR",
+                                    "MA ",  "MI ",   "READY",  "HOME", "ALIGN", NULL};
     int k;
     for (k = 0; m[k] != NULL; k++)
         if (strncmp(l, m[k], strlen(m[k])) == 0)
@@ -362,7 +362,7 @@ static void ctrl_c_tests(void)
 static void reconnect_tests(pid_t *sim)
 {
     static session s;
-    static const double step_y[3] = { 2.0, 0.0, -2.0 }; /* C1 C2 C3: x 13, z 8 */
+    static const double step_y[3] = {2.0, 0.0, -2.0}; /* C1 C2 C3: x 13, z 8 */
     char *argv[6];
     size_t from, i;
     int k;
@@ -420,7 +420,8 @@ static void reconnect_tests(pid_t *sim)
                 n++;
         }
         if (n != 1 && !g_failed) {
-            fprintf(stderr, "FAIL: step %d (POINT to 13 %g 8) ran %d times, want once\n", k + 1, step_y[k], n);
+            fprintf(stderr, "FAIL: step %d (POINT to 13 %g 8) ran %d times, want once\n", k + 1, step_y[k],
+                    n);
             transcript(&s);
             g_failed = 1;
         }
@@ -450,7 +451,8 @@ static void reconnect_tests(pid_t *sim)
     if (k != 1 && !g_failed) /* 1: the plan file failed (the loss) */
         failf(&s, "%s: fbrlmon's exit status %.0f after the reconnects, want 1", "BYE", (double)k);
     if (!g_failed)
-        printf("mon_safe: killed and restarted fbrlsim: reported, reconnected, resumed; each step ran once\n");
+        printf(
+            "mon_safe: killed and restarted fbrlsim: reported, reconnected, resumed; each step ran once\n");
 }
 
 /* 3. A port without permission. */
@@ -493,8 +495,9 @@ static void permission_test(void)
     }
     if (!WIFEXITED(ws) || WEXITSTATUS(ws) != 3 || strstr(buf, "permission denied") == NULL ||
         strstr(buf, "dialout") == NULL) {
-        fprintf(stderr, "FAIL: a port without permission: status %d, message \"%s\"; want 3, "
-                        "\"permission denied\" and the dialout group\n",
+        fprintf(stderr,
+                "FAIL: a port without permission: status %d, message \"%s\"; want 3, "
+                "\"permission denied\" and the dialout group\n",
                 WIFEXITED(ws) ? WEXITSTATUS(ws) : -1, buf);
         g_failed = 1;
         return;

@@ -23,13 +23,13 @@
 typedef struct session {
     int master;
     pid_t pid;
-    long timeout_ms;  /* for each wait */
-    char buf[1 << 18];  /* everything fbrlmon wrote */
+    long timeout_ms;   /* for each wait */
+    char buf[1 << 18]; /* everything fbrlmon wrote */
     size_t len;
-    size_t mark;      /* expect() searches from here */
+    size_t mark; /* expect() searches from here */
 } session;
 
-static int g_failed;  /* the first failure; later waits return at once */
+static int g_failed; /* the first failure; later waits return at once */
 
 static inline long now_ms(void)
 {
@@ -65,7 +65,7 @@ static inline int pump(session *s, int ms)
         return 0;
     n = read(s->master, s->buf + s->len, sizeof s->buf - s->len - 1);
     if (n <= 0)
-        return 0;  /* EIO once the child closed the terminal */
+        return 0; /* EIO once the child closed the terminal */
     {
         /* Drop NUL padding (vt100 delays), so the text can be searched as a string. */
         size_t i, k = s->len;
@@ -83,7 +83,7 @@ static inline int expect(session *s, const char *text, const char *what)
 {
     long deadline = now_ms() + s->timeout_ms;
     if (g_failed)
-        return 0;  /* after the first failure the rest would only wait and repeat it */
+        return 0; /* after the first failure the rest would only wait and repeat it */
     for (;;) {
         char *hit;
         s->buf[s->len] = '\0';
@@ -252,7 +252,7 @@ static inline int start_mon_argv(session *s, long timeout_ms, const char *dir, c
     if (s->pid == 0) {
         int fd;
         setsid();
-        fd = open(slave, O_RDWR);  /* becomes the controlling terminal */
+        fd = open(slave, O_RDWR); /* becomes the controlling terminal */
         if (fd < 0)
             _exit(127);
         dup2(fd, 0);

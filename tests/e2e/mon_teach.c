@@ -37,10 +37,7 @@ static int expect_within(session *s, const char *text, const char *what, long ms
 }
 
 /* Occurrences of text in the output since `from`. */
-static int count(const session *s, size_t from, const char *text)
-{
-    return occurrences(s->buf + from, text);
-}
+static int count(const session *s, size_t from, const char *text) { return occurrences(s->buf + from, text); }
 
 /* A key inside TEACH, then its status line (the arm has moved and been read back). */
 static void key(session *s, const char *seq, const char *status_text, const char *what)
@@ -79,7 +76,8 @@ int main(int argc, char **argv)
     type(&s, "TEACH P\r");
     expect(&s, "TEACH keys", "TEACH shows its keys");
     expect(&s, "Enter  store the position", "the key list");
-    expect(&s, "X+12.000 Y+0.000 Z+20.000 in  pitch+0.0 roll+0.0  step 0.1 in 1 deg  grip 2.00", "status line at READY");
+    expect(&s, "X+12.000 Y+0.000 Z+20.000 in  pitch+0.0 roll+0.0  step 0.1 in 1 deg  grip 2.00",
+           "status line at READY");
     key(&s, "3", "step 0.5 in 5 deg", "3 chooses 0.5 in");
     key(&s, "\033[C", "X+12.500 Y+0.000 Z+20.000", "Right jogs X+");
     key(&s, "\033[A", "X+12.500 Y+0.500 Z+20.000", "Up jogs Y+");
@@ -92,7 +90,8 @@ int main(int argc, char **argv)
     expect(&s, "ok> ", "back at the prompt");
     type(&s, "P DISPLAY-LOC\r");
     /* (yaw O is the waist's direction, atan2(0.5, 12.5) = 2.291 deg: reported, not chosen) */
-    expect(&s, "X   +12.5000 Y    +0.5000 Z   +19.5000 in  O   +2.291 A   +1.000 T   +0.000 deg", "P holds the taught position");
+    expect(&s, "X   +12.5000 Y    +0.5000 Z   +19.5000 in  O   +2.291 A   +1.000 T   +0.000 deg",
+           "P holds the taught position");
     expect(&s, "ok> ", "prompt");
     /* W2 read independently: the same position, printed once (not once per confirming read) */
     from = s.mark;
@@ -118,7 +117,8 @@ int main(int argc, char **argv)
             expect(&s, "\033[K", "status line after PgUp");
             /* (with its meaning the message is longer than 80 columns leave: it is printed
              * on its own line above the status line) */
-            if (strstr(s.buf + before, "! JOG: 029-TRANSFORM ILLEGAL. (the position is out of the arm's reach") != NULL &&
+            if (strstr(s.buf + before,
+                       "! JOG: 029-TRANSFORM ILLEGAL. (the position is out of the arm's reach") != NULL &&
                 strstr(s.buf + before, "Z+26.500 in  pitch+1.0 roll+0.0") != NULL)
                 break;
         }
@@ -143,7 +143,8 @@ int main(int argc, char **argv)
     expect(&s, "ok> ", "PT");
     type(&s, "10E0 -2E0 1E0 C0 1 PT 14E0 -2E0 1E0 C0 2 PT 10E0 2E0 1E0 C0 3 PT\r");
     expect(&s, "ok> ", "C0");
-    type(&s, "11E0 0E0 1E0 C1 1 PT 15E0 0E0 1E0 C1 2 PT 11E0 4E0 1E0 C1 3 PT C1 C0 B CALIBRATE B WITH-CAL MAP-ON\r");
+    type(&s, "11E0 0E0 1E0 C1 1 PT 15E0 0E0 1E0 C1 2 PT 11E0 4E0 1E0 C1 3 PT C1 C0 B CALIBRATE B WITH-CAL "
+             "MAP-ON\r");
     expect(&s, "ok> ", "MAP-ON");
     type(&s, "TEACH Q\r");
     expect(&s, "X+11.500 Y-0.500 Z+", "TEACH under MAP-ON shows the arm's position");
@@ -188,7 +189,8 @@ int main(int argc, char **argv)
     {
         double j1 = -1;
         if (!g_failed && (sscanf(s.buf + s.mark, "%lf", &j1) != 1 || !(j1 > 0.0 && j1 < 5.9))) {
-            fprintf(stderr, "FAIL: joint 1 after the halt is %.4f, want between 0 and 6 (stopped on the way)\n", j1);
+            fprintf(stderr,
+                    "FAIL: joint 1 after the halt is %.4f, want between 0 and 6 (stopped on the way)\n", j1);
             transcript(&s);
             g_failed = 1;
         }

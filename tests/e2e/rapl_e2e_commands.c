@@ -28,11 +28,13 @@ static void on_line(void *ctx, const char *line, size_t len, int flawed)
     }
 }
 
-#define ARGS(...) ((const fbrl_rapl_arg[]){__VA_ARGS__}), (sizeof((const fbrl_rapl_arg[]){__VA_ARGS__}) / sizeof(fbrl_rapl_arg))
+#define ARGS(...)                           \
+    ((const fbrl_rapl_arg[]){__VA_ARGS__}), \
+        (sizeof((const fbrl_rapl_arg[]){__VA_ARGS__}) / sizeof(fbrl_rapl_arg))
 #define NOARGS NULL, 0
-#define I(v) fbrl_rapl_int(v)
-#define R(v) fbrl_rapl_real(v)
-#define S(v) fbrl_rapl_str(v)
+#define I(v)   fbrl_rapl_int(v)
+#define R(v)   fbrl_rapl_real(v)
+#define S(v)   fbrl_rapl_str(v)
 
 /* Run a command expecting success. */
 static void ok_(int line, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n, int straight)
@@ -43,12 +45,12 @@ static void ok_(int line, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n, i
         int code;
         const char *text;
         fbrl_link_error(L, &code, &text);
-        fprintf(stderr, "line %d: %s failed: %s (controller %d %s)\n", line, L->line, fbrl_status_name(st), code,
-                text);
+        fprintf(stderr, "line %d: %s failed: %s (controller %d %s)\n", line, L->line, fbrl_status_name(st),
+                code, text);
         failures++;
     }
 }
-#define OK(cmd, args) ok_(__LINE__, cmd, args, 0)
+#define OK(cmd, args)  ok_(__LINE__, cmd, args, 0)
 #define OKS(cmd, args) ok_(__LINE__, cmd, args, 1)
 
 /* Run a command expecting controller error `code`. */
@@ -67,7 +69,7 @@ static void err_(int line, int code, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, 
         failures++;
     }
 }
-#define ERR(code, cmd, args) err_(__LINE__, code, cmd, args, 0)
+#define ERR(code, cmd, args)  err_(__LINE__, code, cmd, args, 0)
 #define ERRS(code, cmd, args) err_(__LINE__, code, cmd, args, 1)
 
 static fbrl_rapl_pos where(void)
@@ -320,12 +322,13 @@ static void run_all(void)
     fbrl_rapl_pos p;
     CHECK(fbrl_link_where(L, FBRL_RAPL_W0, &p) == FBRL_OK && p.kind == 'C' && near(p.joints[2], -90));
     CHECK(fbrl_link_where(L, FBRL_RAPL_W4, &p) == FBRL_OK && p.kind == 'E' && near(p.joints[1], 90));
-    static const fbrl_rapl_cmd streams[] = {FBRL_RAPL_W1, FBRL_RAPL_W3, FBRL_RAPL_W5,
+    static const fbrl_rapl_cmd streams[] = {FBRL_RAPL_W1,  FBRL_RAPL_W3,  FBRL_RAPL_W5,
                                             FBRL_RAPL_WE1, FBRL_RAPL_WE3, FBRL_RAPL_WE5};
     for (size_t k = 0; k < 6; k++) {
         lines[0] = '\0';
         CHECK(fbrl_link_stream(L, streams[k], 2) == FBRL_OK);
-        CHECK(strstr(lines, k < 3 ? "(MOTOR PULSES):" : "EXTRA AXIS") != NULL || strstr(lines, "VELOCITY") != NULL);
+        CHECK(strstr(lines, k < 3 ? "(MOTOR PULSES):" : "EXTRA AXIS") != NULL ||
+              strstr(lines, "VELOCITY") != NULL);
     }
     lines[0] = '\0';
     CHECK(fbrl_link_stream(L, FBRL_RAPL_W1, 3) == FBRL_OK);
@@ -336,8 +339,9 @@ static void run_all(void)
     fbrl_link_stats stt;
     fbrl_link_get_stats(L, &stt);
     fprintf(stderr, "commands %llu executed %llu attempts %llu mismatches %llu probes %llu failed %llu\n",
-            (unsigned long long)stt.commands, (unsigned long long)stt.executed, (unsigned long long)stt.attempts,
-            (unsigned long long)stt.echo_mismatch, (unsigned long long)stt.probes, (unsigned long long)stt.failed);
+            (unsigned long long)stt.commands, (unsigned long long)stt.executed,
+            (unsigned long long)stt.attempts, (unsigned long long)stt.echo_mismatch,
+            (unsigned long long)stt.probes, (unsigned long long)stt.failed);
     CHECK(stt.failed == 0);
 }
 

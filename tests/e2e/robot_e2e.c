@@ -44,7 +44,8 @@ static void h_write(void *user, const char *s, size_t n)
 {
     (void)user;
     fwrite(s, 1, n, stdout);
-    if (outlen + n >= sizeof outbuf) outlen = 0;
+    if (outlen + n >= sizeof outbuf)
+        outlen = 0;
     memcpy(outbuf + outlen, s, n);
     outlen += n;
     outbuf[outlen] = 0;
@@ -72,9 +73,12 @@ static void rest_of_line(char *buf, size_t cap)
     /* the rest of the line, word by word, single spaces */
     for (;;) {
         fbrl_vm_parse_name(vm, &s, &n);
-        if (n == 0) break;
-        if (k && k + 1 < cap) buf[k++] = ' ';
-        for (size_t i = 0; i < n && k + 1 < cap; i++) buf[k++] = s[i];
+        if (n == 0)
+            break;
+        if (k && k + 1 < cap)
+            buf[k++] = ' ';
+        for (size_t i = 0; i < n && k + 1 < cap; i++)
+            buf[k++] = s[i];
     }
     buf[k] = 0;
 }
@@ -98,9 +102,11 @@ static fbrl_status t_log(fbrl_vm *v, void *arg)
     (void)arg;
     rest_of_line(want, sizeof want);
     do {
-        if (!next_log_line(got, sizeof got)) return fail("LOG:", want, "(nothing)");
+        if (!next_log_line(got, sizeof got))
+            return fail("LOG:", want, "(nothing)");
     } while (strcmp(got, "W5") == 0 && fnmatch(want, got, 0) != 0);
-    if (fnmatch(want, got, 0) != 0) return fail("LOG:", want, got);
+    if (fnmatch(want, got, 0) != 0)
+        return fail("LOG:", want, got);
     return FBRL_OK;
 }
 
@@ -129,7 +135,8 @@ static fbrl_status t_log_count(fbrl_vm *v, void *arg)
     long pos = ftell(logf_);
     fbrl_cell count = 0;
     while (next_log_line(got, sizeof got))
-        if (strcmp(got, want) == 0) count++;
+        if (strcmp(got, want) == 0)
+            count++;
     fseek(logf_, pos, SEEK_SET);
     return fbrl_vm_push(v, count);
 }
@@ -146,7 +153,8 @@ static fbrl_status t_sim(fbrl_vm *v, void *arg)
         fprintf(stderr, "SIM: cannot write control FIFO %s\n", ctl_path);
         c_failures++;
     }
-    if (fd >= 0) close(fd);
+    if (fd >= 0)
+        close(fd);
     fbrl_clock_sleep_us(100000); /* let the emulator read it */
     return FBRL_OK;
 }
@@ -177,7 +185,8 @@ static fbrl_status t_world(fbrl_vm *v, void *arg)
     (void)arg;
     if (fbrl_link_finish(&R.link) != FBRL_OK || fbrl_link_where(&R.link, FBRL_RAPL_W2, &p) != FBRL_OK)
         return fbrl_vm_throw(v, -300, "WORLD@: W2 failed");
-    for (int k = 0; k < 6; k++) fbrl_vm_fpush(v, p.world[k]);
+    for (int k = 0; k < 6; k++)
+        fbrl_vm_fpush(v, p.world[k]);
     return t_log_skip(v, NULL); /* its own FINISH and W2 are no test's business */
 }
 
@@ -190,7 +199,8 @@ static fbrl_status t_keys(fbrl_vm *v, void *arg)
     fbrl_vm_pop(v, &a);
     snprintf(buf, sizeof buf, "%.*s", (int)u, (const char *)a);
     for (char *p = buf; *p; p++)
-        if (*p == '|') *p = '\n';
+        if (*p == '|')
+            *p = '\n';
     keys = buf;
     return FBRL_OK;
 }
@@ -207,7 +217,7 @@ int main(int argc, char **argv)
     snprintf(ctl_path, sizeof ctl_path, "%s/ctl", dir);
     char state[512];
     snprintf(state, sizeof state, "%s/state", dir);
-    const char *args[16] = { "--time-scale", "20", "--log", log_path, "--control", ctl_path, "--state", state };
+    const char *args[16] = {"--time-scale", "20", "--log", log_path, "--control", ctl_path, "--state", state};
     int na = 8;
     if (argc > 3 && strcmp(argv[3], "-") != 0) {
         args[na++] = "--inputs";
@@ -220,7 +230,8 @@ int main(int argc, char **argv)
             fprintf(stderr, "cannot copy %s to %s\n", argv[4], state);
             return 1;
         }
-        while ((c = fgetc(in)) != EOF) fputc(c, out);
+        while ((c = fgetc(in)) != EOF)
+            fputc(c, out);
         fclose(in);
         fclose(out);
     }
@@ -234,7 +245,8 @@ int main(int argc, char **argv)
      * probes, which is correct but shows up in the log (and a stream's stop can meet a
      * probe: reported to the link's owner). The robot words are what is tested here. */
     lc.echo_timeout_ms = 500;
-    if (rig_start(&R, argv[1], args, 38400, FBRL_FLOW_XONXOFF, &lc) != 0) return 1;
+    if (rig_start(&R, argv[1], args, 38400, FBRL_FLOW_XONXOFF, &lc) != 0)
+        return 1;
     if (fbrl_link_connect(&R.link) != FBRL_OK) {
         fprintf(stderr, "connect failed\n");
         rig_stop(&R);
@@ -273,13 +285,15 @@ int main(int argc, char **argv)
     const char *defs = ": LOG-COUNT\" [CHAR] \" PARSE (LOG-COUNT) ;\n"
                        ": OUT\" [CHAR] \" PARSE (OUT-HAS) ;\n";
     fbrl_status st = fbrl_vm_eval(vm, defs, strlen(defs));
-    if (st == FBRL_OK) st = fbrl_vm_include(vm, FBRL_TEST_SRCDIR "/tests/forth/tester.fs");
-    if (st == FBRL_OK) st = fbrl_vm_include(vm, argv[2]);
+    if (st == FBRL_OK)
+        st = fbrl_vm_include(vm, FBRL_TEST_SRCDIR "/tests/forth/tester.fs");
+    if (st == FBRL_OK)
+        st = fbrl_vm_include(vm, argv[2]);
     int rc = 0;
     if (st != FBRL_OK) {
         const fbrl_vm_error *e = fbrl_vm_last_error(vm);
-        fprintf(stderr, "\n%s: error %d (%s) at word '%s' %s:%lu\n", argv[2], e->throw_code, e->message, e->word,
-                e->file, e->line);
+        fprintf(stderr, "\n%s: error %d (%s) at word '%s' %s:%lu\n", argv[2], e->throw_code, e->message,
+                e->word, e->file, e->line);
         rc = 1;
     } else {
         fbrl_cell tests = 0, errors = 0;
@@ -288,16 +302,19 @@ int main(int argc, char **argv)
         fbrl_vm_pop(vm, &errors);
         printf("\n%s: %ld tests, %ld failures, %d log/harness failures\n", argv[2], (long)tests, (long)errors,
                c_failures);
-        if (errors || c_failures || tests < 1) rc = 1;
+        if (errors || c_failures || tests < 1)
+            rc = 1;
     }
     if (rc) {
         fbrl_link_stats ls;
         fbrl_link_get_stats(&R.link, &ls);
-        fprintf(stderr, "link: %llu commands, %llu attempts, %llu echo mismatches, %llu echo timeouts, "
-                "%llu probes, %llu prompts lost, %llu requeries\n", (unsigned long long)ls.commands,
-                (unsigned long long)ls.attempts, (unsigned long long)ls.echo_mismatch,
-                (unsigned long long)ls.echo_timeout, (unsigned long long)ls.probes,
-                (unsigned long long)ls.prompt_lost, (unsigned long long)ls.requeries);
+        fprintf(stderr,
+                "link: %llu commands, %llu attempts, %llu echo mismatches, %llu echo timeouts, "
+                "%llu probes, %llu prompts lost, %llu requeries\n",
+                (unsigned long long)ls.commands, (unsigned long long)ls.attempts,
+                (unsigned long long)ls.echo_mismatch, (unsigned long long)ls.echo_timeout,
+                (unsigned long long)ls.probes, (unsigned long long)ls.prompt_lost,
+                (unsigned long long)ls.requeries);
     }
     fbrl_glossary_finish(&G);
     fclose(logf_);

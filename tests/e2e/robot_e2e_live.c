@@ -19,11 +19,11 @@
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
-#define AXES 5 /* the A255, fbrlsim's default model */
-#define SPEED_PCT 50.0
+#define AXES          5 /* the A255, fbrlsim's default model */
+#define SPEED_PCT     50.0
 #define MOTION_REAL_S 0.08 /* each motion lasts this long on the host's clock */
-#define TOL_IN 0.01
-#define SLACK_S 0.003      /* host scheduling around a reading's bracket */
+#define TOL_IN        0.01
+#define SLACK_S       0.003 /* host scheduling around a reading's bracket */
 
 static vmh_text out;
 static const fbrl_sim_model *arm; /* fbrlsim's own A255 */
@@ -93,7 +93,8 @@ static double off_path(const motion *m, const double xyz[3], double f0, double f
         fbrl_sim_arm_fk(arm, q, 0.0, pose);
         double d = sqrt((pose[0] - xyz[0]) * (pose[0] - xyz[0]) + (pose[1] - xyz[1]) * (pose[1] - xyz[1]) +
                         (pose[2] - xyz[2]) * (pose[2] - xyz[2]));
-        if (d < best) best = d;
+        if (d < best)
+            best = d;
     }
     return best;
 }
@@ -113,8 +114,8 @@ static void live(const motion *m, const char *word, const char *loc, long *movin
     if (f0 > 0 && f1 < 1)
         (*moving_reads)++;
     if (d > TOL_IN) {
-        fprintf(stderr, "%s at f %.3f..%.3f: %.4f %.4f %.4f is %.4f in off the emulator's path\n", word, f0, f1,
-                xyz[0], xyz[1], xyz[2], d);
+        fprintf(stderr, "%s at f %.3f..%.3f: %.4f %.4f %.4f is %.4f in off the emulator's path\n", word, f0,
+                f1, xyz[0], xyz[1], xyz[2], d);
         failures++;
     }
 }
@@ -128,18 +129,21 @@ int main(int argc, char **argv)
     long rounds = argc > 2 ? atol(argv[2]) : 200;
     rng = argc > 3 ? (uint32_t)atol(argv[3]) : 1;
     /* two cartesian points, pitch straight down, far enough apart for a long motion */
-    static const double pa[6] = {14.0, -6.0, 6.0, 0.0, -90.0, 0.0}, pb[6] = {9.0, 8.0, 12.0, 0.0, -90.0, 30.0};
+    static const double pa[6] = {14.0, -6.0, 6.0, 0.0, -90.0, 0.0},
+                        pb[6] = {9.0, 8.0, 12.0, 0.0, -90.0, 30.0};
     double qa[AXES], qb[AXES];
     static const double zero[AXES] = {0};
     arm = fbrl_sim_model_find("A255");
-    if (!arm || arm->naxes != AXES || fbrl_sim_arm_ik(arm, pa, 0.0, zero, qa) || fbrl_sim_arm_ik(arm, pb, 0.0, qa, qb)) {
+    if (!arm || arm->naxes != AXES || fbrl_sim_arm_ik(arm, pa, 0.0, zero, qa) ||
+        fbrl_sim_arm_ik(arm, pb, 0.0, qa, qb)) {
         fprintf(stderr, "test points unreachable\n");
         return 1;
     }
     double t_sim = 0;
     for (int j = 0; j < AXES; j++) {
         double t = fabs(qb[j] - qa[j]) / (arm->speed[j] * SPEED_PCT / 100.0);
-        if (t > t_sim) t_sim = t;
+        if (t > t_sim)
+            t_sim = t;
     }
     char scale[32];
     snprintf(scale, sizeof scale, "%.6f", t_sim / MOTION_REAL_S);
@@ -147,9 +151,11 @@ int main(int argc, char **argv)
     fbrl_link_config lc;
     fbrl_link_config_init(&lc);
     static const fbrl_link_arm bogus = {5, {1, 1, 1, 1, 1}, 10, 10, 10, 2};
-    if (getenv("LIVE_NO_SELFCHECK")) lc.arm = &bogus; /* the older rule: two equal replies */
+    if (getenv("LIVE_NO_SELFCHECK"))
+        lc.arm = &bogus; /* the older rule: two equal replies */
     rig r;
-    if (rig_start(&r, argv[1], args, 115200, FBRL_FLOW_NONE, &lc) != 0 || fbrl_link_connect(&r.link) != FBRL_OK)
+    if (rig_start(&r, argv[1], args, 115200, FBRL_FLOW_NONE, &lc) != 0 ||
+        fbrl_link_connect(&r.link) != FBRL_OK)
         return 1;
     static unsigned char mem[1 << 20] __attribute__((aligned(16)));
     static fbrl_glossary g;
@@ -167,16 +173,18 @@ int main(int argc, char **argv)
         return 1;
     }
     char setup[1024]; /* room for any %g: a Debug build's -Wformat-truncation counts the worst case */
-    int setup_len = snprintf(setup, sizeof setup,
-             "CREATE-LOC L1 CREATE-LOC L2 RAPL HOME\nRAPL SPEED %d\nRAPL POINT PA,%g,%g,%g,%g,%g,%g\n"
-             "RAPL POINT PB,%g,%g,%g,%g,%g,%g\nRAPL MOVE PA\nRAPL FINISH",
-             (int)SPEED_PCT, pa[0], pa[1], pa[2], pa[3], pa[4], pa[5], pb[0], pb[1], pb[2], pb[3], pb[4], pb[5]);
+    int setup_len = snprintf(
+        setup, sizeof setup,
+        "CREATE-LOC L1 CREATE-LOC L2 RAPL HOME\nRAPL SPEED %d\nRAPL POINT PA,%g,%g,%g,%g,%g,%g\n"
+        "RAPL POINT PB,%g,%g,%g,%g,%g,%g\nRAPL MOVE PA\nRAPL FINISH",
+        (int)SPEED_PCT, pa[0], pa[1], pa[2], pa[3], pa[4], pa[5], pb[0], pb[1], pb[2], pb[3], pb[4], pb[5]);
     if (setup_len < 0 || (size_t)setup_len >= sizeof setup) {
         fprintf(stderr, "setup text too long\n");
         return 1;
     }
     for (char *line = strtok(setup, "\n"); line; line = strtok(NULL, "\n"))
-        if (eval(line) != 0) return 1;
+        if (eval(line) != 0)
+            return 1;
     long moving_reads = 0, finals = 0;
     double t_start = now_s();
     for (long k = 0; k < rounds; k++) {
@@ -187,7 +195,8 @@ int main(int argc, char **argv)
         memcpy(m.pb, to_b ? pb : pa, sizeof m.pb);
         m.dur = MOTION_REAL_S;
         m.t_lo = now_s();
-        if (fbrl_link_raw(&r.link, to_b ? "MOVE PB" : "MOVE PA") != FBRL_OK) { /* the prompt: the motion began */
+        if (fbrl_link_raw(&r.link, to_b ? "MOVE PB" : "MOVE PA") !=
+            FBRL_OK) { /* the prompt: the motion began */
             fprintf(stderr, "MOVE failed\n");
             failures++;
             continue;
@@ -199,11 +208,13 @@ int main(int argc, char **argv)
         live(&m, "L1 ACTUAL", "L1", &moving_reads);
         double xyz[3];
         if (eval("L2 ARM-HERE") == 0 && loc_xyz("L2", xyz) == 0) {
-            double d = sqrt((xyz[0] - m.pb[0]) * (xyz[0] - m.pb[0]) + (xyz[1] - m.pb[1]) * (xyz[1] - m.pb[1]) +
-                            (xyz[2] - m.pb[2]) * (xyz[2] - m.pb[2]));
+            double d =
+                sqrt((xyz[0] - m.pb[0]) * (xyz[0] - m.pb[0]) + (xyz[1] - m.pb[1]) * (xyz[1] - m.pb[1]) +
+                     (xyz[2] - m.pb[2]) * (xyz[2] - m.pb[2]));
             finals++;
             if (d > 0.001) {
-                fprintf(stderr, "ARM-HERE: %.4f %.4f %.4f, the target is %.4f in away\n", xyz[0], xyz[1], xyz[2], d);
+                fprintf(stderr, "ARM-HERE: %.4f %.4f %.4f, the target is %.4f in away\n", xyz[0], xyz[1],
+                        xyz[2], d);
                 failures++;
             }
         }

@@ -16,7 +16,7 @@
 #include "arm.h"
 
 #define ROUND_TRIPS 10000
-#define TOL_IN 1e-6 /* in: the round trip's bound */
+#define TOL_IN      1e-6 /* in: the round trip's bound */
 
 static void near(double a, double b, double eps)
 {
@@ -46,7 +46,7 @@ static void f_ident(frame *f)
 /* f = f * (rotation about local axis by deg) */
 static void f_rot(frame *f, int axis, double deg)
 {
-    double c = cos(deg * M_PI / 180.0), s = sin(deg * M_PI / 180.0), m[3][3] = { { 0 } }, o[3][3];
+    double c = cos(deg * M_PI / 180.0), s = sin(deg * M_PI / 180.0), m[3][3] = {{0}}, o[3][3];
     int i, j, k;
     int a = (axis + 1) % 3, b = (axis + 2) % 3;
     m[axis][axis] = 1.0;
@@ -202,8 +202,8 @@ static void round_trip(void **st)
             memcpy(hint, done % 2 ? m->ready : q, sizeof hint);
             e = fbrl_sim_arm_ik(m, p, tool, hint, back);
             if (e != 0)
-                fail_msg("%s: IK of a reachable pose gave %d (q %g %g %g %g %g %g)", m->name, e, q[0], q[1], q[2],
-                         q[3], q[4], q[5]);
+                fail_msg("%s: IK of a reachable pose gave %d (q %g %g %g %g %g %g)", m->name, e, q[0], q[1],
+                         q[2], q[3], q[4], q[5]);
             assert_int_equal(fbrl_sim_arm_check(m, back), 0);
             fbrl_sim_arm_fk(m, back, tool, r);
             if (m->kin == FBRL_SIM_KIN_5R) {
@@ -230,8 +230,8 @@ static void round_trip(void **st)
             same += i == m->naxes;
             done++;
         }
-        print_message("%s: %d round trips, worst %.3g in, %d in the same configuration\n", m->name, done, worst,
-                      same);
+        print_message("%s: %d round trips, worst %.3g in, %d in the same configuration\n", m->name, done,
+                      worst, same);
         assert_true(same > ROUND_TRIPS / 4);
     }
 }
@@ -298,9 +298,9 @@ static void unreachable(void **st)
     for (k = 0; k < fbrl_sim_nmodels; k++) {
         const fbrl_sim_model *m = &fbrl_sim_models[k];
         double reach = m->upper + m->fore + m->flange, q[FBRL_SIM_ARM_MAX_AXES];
-        double far[6] = { reach + 5.0, 0.0, m->base_h, 0.0, 0.0, 0.0 };
-        double nan_pose[6] = { NAN, 0, 0, 0, 0, 0 };
-        double stretched[6] = { reach, 0.0, m->base_h, 0.0, 0.0, 0.0 };
+        double far[6] = {reach + 5.0, 0.0, m->base_h, 0.0, 0.0, 0.0};
+        double nan_pose[6] = {NAN, 0, 0, 0, 0, 0};
+        double stretched[6] = {reach, 0.0, m->base_h, 0.0, 0.0, 0.0};
         assert_int_equal(fbrl_sim_arm_ik(m, far, 0.0, m->ready, q), 29);
         assert_int_equal(fbrl_sim_arm_ik(m, nan_pose, 0.0, m->ready, q), 29);
         /* full stretch, horizontal at shoulder height, is still reachable for the A255;
@@ -339,7 +339,7 @@ static void a255_ready(void **st)
 static void a255_pointing_down(void **st)
 {
     const fbrl_sim_model *m = model("A255");
-    double q[5] = { 90.0, 45.0, -90.0, -45.0, 30.0 }, p[6];
+    double q[5] = {90.0, 45.0, -90.0, -45.0, 30.0}, p[6];
     (void)st;
     fbrl_sim_arm_fk(m, q, 0.0, p);
     /* pitch = 45 - 90 - 45 = -90: tool straight down, flange 2 in below the wrist */
@@ -391,8 +391,8 @@ static void a255_pulses(void **st)
 static void a255_straight_lines(void **st)
 {
     const fbrl_sim_model *m = model("a255");
-    double a[6] = { 14.0, 0.0, 10.0, 0.0, -90.0, 0.0 }, b[6] = { 10.0, 8.0, 4.0, 0.0, -90.0, 0.0 };
-    double c[6] = { -14.0, 0.0, 10.0, 0.0, -90.0, 0.0 }, far[6] = { 14.0, 0.0, 30.0, 0.0, -90.0, 0.0 };
+    double a[6] = {14.0, 0.0, 10.0, 0.0, -90.0, 0.0}, b[6] = {10.0, 8.0, 4.0, 0.0, -90.0, 0.0};
+    double c[6] = {-14.0, 0.0, 10.0, 0.0, -90.0, 0.0}, far[6] = {14.0, 0.0, 30.0, 0.0, -90.0, 0.0};
     double mid[6], q[5];
     (void)st;
     assert_int_equal(fbrl_sim_arm_ik(m, a, 0.0, m->ready, q), 0);
@@ -442,8 +442,8 @@ static void a465_ready(void **st)
 static void a465_straight_lines(void **st)
 {
     const fbrl_sim_model *m = model("a465");
-    double a[6] = { 16.0, 0.0, 10.0, 0.0, -90.0, 0.0 }, b[6] = { 15.0, 5.0, 9.0, 20.0, -80.0, 10.0 };
-    double far[6] = { 16.0, 0.0, 60.0, 0.0, -90.0, 0.0 }, q[6];
+    double a[6] = {16.0, 0.0, 10.0, 0.0, -90.0, 0.0}, b[6] = {15.0, 5.0, 9.0, 20.0, -80.0, 10.0};
+    double far[6] = {16.0, 0.0, 60.0, 0.0, -90.0, 0.0}, q[6];
     (void)st;
     assert_int_equal(fbrl_sim_arm_ik(m, a, 0.0, m->ready, q), 0);
     assert_int_equal(fbrl_sim_arm_check_line(m, a, b, 0.0, q), 0);
@@ -453,12 +453,18 @@ static void a465_straight_lines(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(fk_matches_chain), cmocka_unit_test(round_trip),
-        cmocka_unit_test(limits),           cmocka_unit_test(ik_respects_limits),
-        cmocka_unit_test(unreachable),      cmocka_unit_test(a255_ready),
-        cmocka_unit_test(a255_pointing_down), cmocka_unit_test(a255_configurations),
-        cmocka_unit_test(a255_pulses),      cmocka_unit_test(a255_straight_lines),
-        cmocka_unit_test(a465_ready),       cmocka_unit_test(a465_straight_lines),
+        cmocka_unit_test(fk_matches_chain),
+        cmocka_unit_test(round_trip),
+        cmocka_unit_test(limits),
+        cmocka_unit_test(ik_respects_limits),
+        cmocka_unit_test(unreachable),
+        cmocka_unit_test(a255_ready),
+        cmocka_unit_test(a255_pointing_down),
+        cmocka_unit_test(a255_configurations),
+        cmocka_unit_test(a255_pulses),
+        cmocka_unit_test(a255_straight_lines),
+        cmocka_unit_test(a465_ready),
+        cmocka_unit_test(a465_straight_lines),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

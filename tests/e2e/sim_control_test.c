@@ -20,7 +20,7 @@
 
 #include "sim_cmd.h"
 
-#define RUN_COUNT 5000
+#define RUN_COUNT      5000
 #define EXEC_STEPS_MAX 100000
 
 static char dir[] = "/tmp/fbrl-simctl-XXXXXX";
@@ -55,14 +55,34 @@ static fbrl_sim *new_sim(const char *state, const char *inputs, char *err, size_
 
 static void control_lines(void **st)
 {
-    static const char *const good[] = { "IN 3 1", "IN 16 0", " IN\t1\t1 ", "AIN 8 -10", "AIN 1 2.5",
-                                         "AIN 2 +1e-3", "POWER 0", "POWER 1", "OBJECT 0.75", "OBJECT 2",
-                                         "TEACH" };
-    static const char *const bad[] = { "IN 3 1 junk", "IN 3.5 1", "IN 0x3 1", "IN 17 1", "IN 0 1",
-                                       "IN 3 2", "IN 3", "IN 3 1.0", "AIN 1 nan", "AIN 1 inf",
-                                       "AIN 1 1e999", "AIN 1 5volts", "AIN 9 0", "AIN 1 10.5", "POWER 1.0",
-                                       "POWER 2", "OBJECT -0.1", "OBJECT 3", "OBJECT", "TEACH 1",
-                                       "in 3 1", "", "   ", "FOO", "IN 99999999999999999999 1" };
+    static const char *const good[] = {"IN 3 1",      "IN 16 0",     " IN\t1\t1 ", "AIN 8 -10",
+                                       "AIN 1 2.5",   "AIN 2 +1e-3", "POWER 0",    "POWER 1",
+                                       "OBJECT 0.75", "OBJECT 2",    "TEACH"};
+    static const char *const bad[] = {"IN 3 1 junk",
+                                      "IN 3.5 1",
+                                      "IN 0x3 1",
+                                      "IN 17 1",
+                                      "IN 0 1",
+                                      "IN 3 2",
+                                      "IN 3",
+                                      "IN 3 1.0",
+                                      "AIN 1 nan",
+                                      "AIN 1 inf",
+                                      "AIN 1 1e999",
+                                      "AIN 1 5volts",
+                                      "AIN 9 0",
+                                      "AIN 1 10.5",
+                                      "POWER 1.0",
+                                      "POWER 2",
+                                      "OBJECT -0.1",
+                                      "OBJECT 3",
+                                      "OBJECT",
+                                      "TEACH 1",
+                                      "in 3 1",
+                                      "",
+                                      "   ",
+                                      "FOO",
+                                      "IN 99999999999999999999 1"};
     size_t i;
     (void)st;
     for (i = 0; i < sizeof good / sizeof good[0]; i++)
@@ -79,15 +99,15 @@ static void inputs_file(void **st)
         const char *text;
         int line; /* 0: accepted; else the line named in the message */
     } cases[] = {
-        { "# ok\n0 IN 3 1\n1.5 AIN 2 -4.5\n2\tPOWER 0\n", 0 },
-        { "0 IN 3 1\n1 IN 3 1 junk\n", 2 },
-        { "-1 IN 3 1\n", 1 },
-        { "nan IN 3 1\n", 1 },
-        { "inf IN 3 1\n", 1 },
-        { "0x10 IN 3 1\n", 1 },
-        { "1.5IN 3 1\n", 1 },
-        { "1 IN 3.5 1\n", 1 },
-        { "1 AIN 1 nan\n", 1 },
+        {"# ok\n0 IN 3 1\n1.5 AIN 2 -4.5\n2\tPOWER 0\n", 0},
+        {"0 IN 3 1\n1 IN 3 1 junk\n", 2},
+        {"-1 IN 3 1\n", 1},
+        {"nan IN 3 1\n", 1},
+        {"inf IN 3 1\n", 1},
+        {"0x10 IN 3 1\n", 1},
+        {"1.5IN 3 1\n", 1},
+        {"1 IN 3.5 1\n", 1},
+        {"1 AIN 1 nan\n", 1},
     };
     char err[512], want[300], longline[400];
     size_t i;
@@ -149,7 +169,8 @@ static void long_run_yields_and_counts(void **st)
     sim_var *v;
     fbrl_sim *s;
     (void)st;
-    write_text(path_in_dir("run.state"), "FBRLSIM-STATE 1\nVAR V1 0\nPROGRAM P\n  V1=V1+1\nEND\nPROGRAM E\nEND\n");
+    write_text(path_in_dir("run.state"),
+               "FBRLSIM-STATE 1\nVAR V1 0\nPROGRAM P\n  V1=V1+1\nEND\nPROGRAM E\nEND\n");
     s = new_sim(path_in_dir("run.state"), NULL, err, sizeof err);
     assert_non_null(s);
     snprintf(cmd, sizeof cmd, "RUN P,%d", RUN_COUNT);
@@ -205,7 +226,7 @@ static int setup(void **st)
 
 static int teardown(void **st)
 {
-    const char *names[] = { "in.txt", "run.state", "lines.state" };
+    const char *names[] = {"in.txt", "run.state", "lines.state"};
     size_t i;
     (void)st;
     for (i = 0; i < sizeof names / sizeof names[0]; i++)
@@ -216,10 +237,8 @@ static int teardown(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(control_lines),
-        cmocka_unit_test(inputs_file),
-        cmocka_unit_test(fifo_long_line_dropped),
-        cmocka_unit_test(long_run_yields_and_counts),
+        cmocka_unit_test(control_lines),          cmocka_unit_test(inputs_file),
+        cmocka_unit_test(fifo_long_line_dropped), cmocka_unit_test(long_run_yields_and_counts),
         cmocka_unit_test(state_file_lines),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

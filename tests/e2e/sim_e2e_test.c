@@ -36,7 +36,7 @@ typedef struct simp {
     char path[256];
 } simp;
 
-static char g_dir[64]; /* per-run scratch directory */
+static char g_dir[64];   /* per-run scratch directory */
 static pid_t g_pids[64]; /* emulators started, killed by the group teardown if a test failed */
 static int g_npids;
 static char g_buf[1 << 16];
@@ -93,7 +93,7 @@ static void spawn(simp *p, const char *const *extra)
     if (g_npids < 64)
         g_pids[g_npids++] = p->pid;
     while (now_s() < end) {
-        struct pollfd pf = { pipefd[0], POLLIN, 0 };
+        struct pollfd pf = {pipefd[0], POLLIN, 0};
         char c;
         if (poll(&pf, 1, 100) > 0) {
             if (read(pipefd[0], &c, 1) != 1)
@@ -171,10 +171,7 @@ static void put(simp *p, const char *b, size_t n)
     }
 }
 
-static void puts_(simp *p, const char *s)
-{
-    put(p, s, strlen(s));
-}
+static void puts_(simp *p, const char *s) { put(p, s, strlen(s)); }
 
 static int ends_with(const char *b, size_t n, const char *suf)
 {
@@ -188,7 +185,7 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     size_t n = 0;
     double end = now_s() + timeout;
     while (n < cap - 1 && !(suf && ends_with(buf, n, suf)) && now_s() < end) {
-        struct pollfd pf = { p->fd, POLLIN, 0 };
+        struct pollfd pf = {p->fd, POLLIN, 0};
         if (poll(&pf, 1, 20) > 0) {
             ssize_t r = read(p->fd, buf + n, cap - 1 - n);
             if (r <= 0)
@@ -258,7 +255,7 @@ static void start(simp *p, const char *const *extra)
     ok(p, "NOHELP");
 }
 
-static const char *const FAST[] = { "--time-scale", "200", NULL };
+static const char *const FAST[] = {"--time-scale", "200", NULL};
 
 /* Position from W2: six WORLD numbers and five JOINTS. */
 static void where(simp *p, double w[6], double j[5], long pulses[5])
@@ -274,8 +271,9 @@ static void where(simp *p, double w[6], double j[5], long pulses[5])
     x = strstr(r, "PULSES   ");
     assert_non_null(x);
     if (pulses)
-        assert_int_equal(sscanf(x + 6, "%ld %ld %ld %ld %ld", &pulses[0], &pulses[1], &pulses[2],
-                                &pulses[3], &pulses[4]), 5);
+        assert_int_equal(
+            sscanf(x + 6, "%ld %ld %ld %ld %ld", &pulses[0], &pulses[1], &pulses[2], &pulses[3], &pulses[4]),
+            5);
 }
 
 static void at(simp *p, double x, double y, double z, double pitch, double roll)
@@ -283,9 +281,10 @@ static void at(simp *p, double x, double y, double z, double pitch, double roll)
     double w[6];
     ok(p, "FINISH");
     where(p, w, NULL, NULL);
-    if (fabs(w[0] - x) > 0.001 || fabs(w[1] - y) > 0.001 || fabs(w[2] - z) > 0.001
-        || fabs(w[4] - pitch) > 0.001 || fabs(w[5] - roll) > 0.001)
-        fail_msg("at %f %f %f %f %f, want %f %f %f %f %f", w[0], w[1], w[2], w[4], w[5], x, y, z, pitch, roll);
+    if (fabs(w[0] - x) > 0.001 || fabs(w[1] - y) > 0.001 || fabs(w[2] - z) > 0.001 ||
+        fabs(w[4] - pitch) > 0.001 || fabs(w[5] - roll) > 0.001)
+        fail_msg("at %f %f %f %f %f, want %f %f %f %f %f", w[0], w[1], w[2], w[4], w[5], x, y, z, pitch,
+                 roll);
 }
 
 static const char *status_line(simp *p, const char *prefix)
@@ -308,7 +307,8 @@ static void t_echo_prompt(void **st)
     (void)st;
     spawn(&p, FAST);
     /* HELP mode is on at power-up: the hint is written and erased again */
-    assert_string_equal(raw(&p, "SPEED 40"), "SPEED <PERCENT>\b \b\b \b\b \b\b \b\b \b\b \b\b \b\b \b\b \b40\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 40"),
+                        "SPEED <PERCENT>\b \b\b \b\b \b\b \b\b \b\b \b\b \b\b \b\b \b40\r\n>>");
     assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
     assert_string_equal(raw(&p, "SPEED 40"), "SPEED 40\r\n>>");
     assert_string_equal(raw(&p, "speed 41"), "SPEED 41\r\n>>");
@@ -351,12 +351,16 @@ static void t_editing(void **st)
     simp p;
     (void)st;
     start(&p, FAST);
-    assert_string_equal(raw(&p, "SPEEX\bD 3\x7f""44"), "SPEEX\b \bD 3\b \b44\r\n>>");
+    assert_string_equal(raw(&p, "SPEEX\bD 3\x7f"
+                                "44"),
+                        "SPEEX\b \bD 3\b \b44\r\n>>");
     assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +44");
     /* BS on an empty line echoes nothing; Ctrl-X erases the whole line */
     assert_string_equal(raw(&p, "\b\bFOO\x18SPEED 45"), "FOO\b \b\b \b\b \bSPEED 45\r\n>>");
     /* control characters are ignored */
-    assert_string_equal(raw(&p, "SPE\x01\x02""ED 46"), "SPEED 46\r\n>>");
+    assert_string_equal(raw(&p, "SPE\x01\x02"
+                                "ED 46"),
+                        "SPEED 46\r\n>>");
     assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +46");
     /* XOFF from the host holds all output, XON releases it */
     {
@@ -390,9 +394,9 @@ static void t_errors(void **st)
     assert_string_equal(status_line(&p, "LAST ERROR"), "LAST ERROR CODE: NONE");
     err(&p, "FOO", 12);
     assert_string_equal(status_line(&p, "LAST ERROR"), "LAST ERROR CODE: 012-COMMAND ERROR.");
-    err(&p, "S 1", 50);            /* SPEED, SET, SERIAL, ... */
-    ok(&p, "SP 30");               /* unique prefix */
-    ok(&p, "/016 20");             /* token form */
+    err(&p, "S 1", 50); /* SPEED, SET, SERIAL, ... */
+    ok(&p, "SP 30");    /* unique prefix */
+    ok(&p, "/016 20");  /* token form */
     assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +20");
     err(&p, "/999", 12);
     {
@@ -403,14 +407,14 @@ static void t_errors(void **st)
         assert_string_equal(cmd(&p, "/031"), a);
         snprintf(a, sizeof a, "%s", cmd(&p, "SERIAL"));
         assert_string_equal(cmd(&p, "/111"), a);
-        ok(&p, "/089 5");     /* OUTPUT */
+        ok(&p, "/089 5");                                      /* OUTPUT */
         assert_string_equal(cmd(&p, "/059 OSIG(5)"), "1\r\n"); /* TYPEI */
-        ok(&p, "/020");       /* HOME */
-        ok(&p, "/015");       /* READY */
-        ok(&p, "/010");       /* FINISH */
-        ok(&p, "/050 TP,12,0,20,0,0,0"); /* POINT */
-        ok(&p, "/006 1,10");  /* JOINT */
-        ok(&p, "/002 TP,0");  /* APPRO */
+        ok(&p, "/020");                                        /* HOME */
+        ok(&p, "/015");                                        /* READY */
+        ok(&p, "/010");                                        /* FINISH */
+        ok(&p, "/050 TP,12,0,20,0,0,0");                       /* POINT */
+        ok(&p, "/006 1,10");                                   /* JOINT */
+        ok(&p, "/002 TP,0");                                   /* APPRO */
         ok(&p, "/010");
         assert_non_null(strstr(cmd(&p, "W2"), "WORLD     +012.0000 +000.0000 +020.0000"));
     }
@@ -525,7 +529,8 @@ static void t_moves(void **st)
         a[1] = '3';
         assert_string_equal(cmd(&p, "LISTL H3"), a);
     }
-    assert_string_equal(cmd(&p, "LISTL #H1"), "#H1       +0000001000 +0000016000 -0000020000 +0000000444 -0000000222\r\n");
+    assert_string_equal(cmd(&p, "LISTL #H1"),
+                        "#H1       +0000001000 +0000016000 -0000020000 +0000000444 -0000000222\r\n");
     ok(&p, "READY");
     ok(&p, "MOVE H2,S");
     ok(&p, "FINISH");
@@ -617,12 +622,14 @@ static void t_motion_errors(void **st)
     ok(&p, "LOCK 5");
     ok(&p, "READY"); /* READY clears LOCK */
     assert_string_equal(status_line(&p, "LOCK "), "LOCK         N N N N N");
-    assert_string_equal(status_line(&p, "CURRENT ROBOT"), "CURRENT ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE");
+    assert_string_equal(status_line(&p, "CURRENT ROBOT"),
+                        "CURRENT ROBOT CONFIG : UPRIGHT/REACH FORWARD/ELBOW UP/WRIST FREE");
     /* a target whose forward reach passes the waist limit is reached backward, over the shoulder */
     ok(&p, "POINT BACK,-2.5,-0.1,30.5,0,30,0");
     ok(&p, "MOVE BACK");
     at(&p, -2.5, -0.1, 30.5, 30, 0);
-    assert_string_equal(status_line(&p, "CURRENT ROBOT"), "CURRENT ROBOT CONFIG : UPRIGHT/REACH BACKWARD/ELBOW UP/WRIST FREE");
+    assert_string_equal(status_line(&p, "CURRENT ROBOT"),
+                        "CURRENT ROBOT CONFIG : UPRIGHT/REACH BACKWARD/ELBOW UP/WRIST FREE");
     ok(&p, "READY");
     ok(&p, "ARM OFF");
     err(&p, "READY", 40);
@@ -633,15 +640,12 @@ static void t_motion_errors(void **st)
 }
 
 /* The DONE flag of axis 1 in STATUS. */
-static char done1(simp *p)
-{
-    return status_line(p, "DONE ")[13];
-}
+static char done1(simp *p) { return status_line(p, "DONE ")[13]; }
 
 /* A motion command returns at the start; the next waits until it is done. */
 static void t_motion_timing(void **st)
 {
-    static const char *const rt[] = { "--time-scale", "1", NULL };
+    static const char *const rt[] = {"--time-scale", "1", NULL};
     simp p;
     double t0, t1, w[6];
     (void)st;
@@ -697,9 +701,11 @@ static void t_locations(void **st)
     ok(&p, "POINT FAR,30,0,0,0,0,0");
     err(&p, "SET #F=FAR", 29);
     ok(&p, "SHIFT C,1,-1,0.5");
-    assert_string_equal(cmd(&p, "LISTL C"), "C         +011.0000 -001.0000 +005.5000 +000.0000 -090.0000 +000.0000\r\n");
+    assert_string_equal(cmd(&p, "LISTL C"),
+                        "C         +011.0000 -001.0000 +005.5000 +000.0000 -090.0000 +000.0000\r\n");
     ok(&p, "SHIFTA C,B");
-    assert_string_equal(cmd(&p, "LISTL C"), "C         +012.0000 +001.0000 +008.5000 +004.0000 -085.0000 +006.0000\r\n");
+    assert_string_equal(cmd(&p, "LISTL C"),
+                        "C         +012.0000 +001.0000 +008.5000 +004.0000 -085.0000 +006.0000\r\n");
     err(&p, "SHIFTA C,#D", 15);
     err(&p, "SHIFT #D,1,1,1", 15);
     ok(&p, "DLOCN B");
@@ -712,7 +718,8 @@ static void t_locations(void **st)
     ok(&p, "READY");
     ok(&p, "TOOL T");
     at(&p, 15, 0, 20, 0, 0);
-    assert_string_equal(status_line(&p, "TOOL  "), "TOOL      +000.0000 +000.0000 +003.0000 +000.0000 +000.0000 +000.0000");
+    assert_string_equal(status_line(&p, "TOOL  "),
+                        "TOOL      +000.0000 +000.0000 +003.0000 +000.0000 +000.0000 +000.0000");
     ok(&p, "MOVE A");
     at(&p, 10, 0, 5, -90, 0);
     ok(&p, "TOOL");
@@ -739,7 +746,7 @@ static void t_teach(void **st)
 {
     simp p;
     const char *ctl = tmp("ctl-teach");
-    const char *const opts[] = { "--time-scale", "200", "--control", ctl, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--control", ctl, NULL};
     int fd;
     (void)st;
     start(&p, opts);
@@ -769,7 +776,7 @@ static void t_io(void **st)
 {
     simp p;
     const char *ctl = tmp("ctl-io");
-    const char *const opts[] = { "--time-scale", "200", "--control", ctl, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--control", ctl, NULL};
     int fd;
     double t0;
     (void)st;
@@ -806,7 +813,7 @@ static void t_inputs_script(void **st)
 {
     simp p;
     const char *script = tmp("inputs.txt");
-    const char *const opts[] = { "--time-scale", "10", "--inputs", script, NULL };
+    const char *const opts[] = {"--time-scale", "10", "--inputs", script, NULL};
     FILE *f = fopen(script, "w");
     (void)st;
     assert_non_null(f);
@@ -838,13 +845,15 @@ static void t_gripper(void **st)
 {
     simp p;
     const char *ctl = tmp("ctl-grip");
-    const char *const opts[] = { "--time-scale", "200", "--control", ctl, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--control", ctl, NULL};
     int fd;
     (void)st;
     start(&p, opts);
-    assert_string_equal(status_line(&p, "GRIPPER OPENING"), "GRIPPER OPENING: +002.0000 FORCE (% OF FULL):    +50");
+    assert_string_equal(status_line(&p, "GRIPPER OPENING"),
+                        "GRIPPER OPENING: +002.0000 FORCE (% OF FULL):    +50");
     ok(&p, "CLOSE 80");
-    assert_string_equal(status_line(&p, "GRIPPER OPENING"), "GRIPPER OPENING: +000.0000 FORCE (% OF FULL):    +80");
+    assert_string_equal(status_line(&p, "GRIPPER OPENING"),
+                        "GRIPPER OPENING: +000.0000 FORCE (% OF FULL):    +80");
     ok(&p, "GRIP 1.25");
     assert_string_equal(cmd(&p, "TYPEV GRIPPER"), "+1.250000\r\n");
     ok(&p, "OPEN");
@@ -858,7 +867,8 @@ static void t_gripper(void **st)
     ok(&p, "CLOSE");
     assert_string_equal(cmd(&p, "TYPEV GRIPPER"), "+0.750000\r\n");
     ok(&p, "GRIP 0.5,30");
-    assert_string_equal(status_line(&p, "GRIPPER OPENING"), "GRIPPER OPENING: +000.7500 FORCE (% OF FULL):    +30");
+    assert_string_equal(status_line(&p, "GRIPPER OPENING"),
+                        "GRIPPER OPENING: +000.7500 FORCE (% OF FULL):    +30");
     close(fd);
     stop(&p);
 }
@@ -876,7 +886,8 @@ static void t_variables(void **st)
     assert_string_equal(cmd(&p, "TYPEV SIN(30)+COS(60)+ABS(GRIP)+SQRT(16)+INT(-2.7)"), "+5.500000\r\n");
     assert_string_equal(cmd(&p, "TYPEI ATAN(1)"), "45\r\n");
     assert_string_equal(cmd(&p, "TYPE \"HELLO, WORLD\""), "HELLO, WORLD\r\n");
-    assert_string_equal(cmd(&p, "LISTV"), "GRIP     = -2.500000\r\nX        = +13.000000\r\nY        = +3.000000\r\n");
+    assert_string_equal(cmd(&p, "LISTV"),
+                        "GRIP     = -2.500000\r\nX        = +13.000000\r\nY        = +3.000000\r\n");
     assert_string_equal(cmd(&p, "LISTV X"), "X        = +13.000000\r\n");
     err(&p, "TYPEV Z", 10);
     err(&p, "TYPEV 1/0", 18);
@@ -898,15 +909,17 @@ static void t_settings(void **st)
     simp p;
     (void)st;
     start(&p, FAST);
-    assert_string_equal(cmd(&p, "SERIAL"), "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
-                                           "CHANNEL 1: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE N ECHO 1\r\n");
+    assert_string_equal(cmd(&p, "SERIAL"),
+                        "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
+                        "CHANNEL 1: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE N ECHO 1\r\n");
     ok(&p, "CONFIG 1,2400,E,7,2,N,1");
     err(&p, "CONFIG 2,2400,E,7,2,N,1", 61);
     err(&p, "CONFIG 1,2401,E,7,2,N,1", 18);
     err(&p, "CONFIG 1,2400,Q,7,2,N,1", 18);
     err(&p, "CONFIG 1,2400,E,7,2,N", 13);
-    assert_string_equal(cmd(&p, "SERIAL"), "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
-                                           "CHANNEL 1: BAUD 2400 PARITY E DATA 7 STOP 2 HANDSHAKE N ECHO 1\r\n");
+    assert_string_equal(cmd(&p, "SERIAL"),
+                        "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
+                        "CHANNEL 1: BAUD 2400 PARITY E DATA 7 STOP 2 HANDSHAKE N ECHO 1\r\n");
     /* echo off on channel 0: only the reply comes back */
     assert_string_equal(raw(&p, "CONFIG 0,9600,N,8,1,X,OFF"), "CONFIG 0,9600,N,8,1,X,OFF\r\n>>");
     assert_string_equal(raw(&p, "SPEED 20"), "\r\n>>");
@@ -961,7 +974,11 @@ static void t_streams_extra(void **st)
     puts_(&p, "W1\r");
     n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.35);
     assert_true(n > 0);
-    assert_int_equal(strncmp(g_buf, "W1\r\nACTUAL POSITION (MOTOR PULSES):\r\n+0000000000 +0000018000 -0000018000 +0000000000 +0000000000\r", 4 + 33 + 60), 0);
+    assert_int_equal(strncmp(g_buf,
+                             "W1\r\nACTUAL POSITION (MOTOR PULSES):\r\n+0000000000 +0000018000 -0000018000 "
+                             "+0000000000 +0000000000\r",
+                             4 + 33 + 60),
+                     0);
     puts_(&p, "\r");
     n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
     assert_true(ends_with(g_buf, n, "\r\n>>"));
@@ -990,7 +1007,7 @@ static void t_run(void **st)
 {
     simp p;
     const char *state = tmp("prog.state");
-    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--state", state, NULL};
     FILE *f = fopen(state, "w");
     (void)st;
     assert_non_null(f);
@@ -1033,7 +1050,7 @@ static void t_persist(void **st)
 {
     simp p;
     const char *state = tmp("persist.state");
-    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--state", state, NULL};
     struct stat sb;
     double w[6];
     (void)st;
@@ -1059,8 +1076,9 @@ static void t_persist(void **st)
     assert_string_equal(status_line(&p, "OUTPUTS"), "OUTPUTS 1-16: 0100000000000010");
     assert_string_equal(status_line(&p, "SPEED"), "SPEED (% OF FULL) :    +33");
     assert_string_equal(cmd(&p, "TYPEV GRIPPER"), "+1.500000\r\n");
-    assert_string_equal(cmd(&p, "SERIAL"), "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
-                                           "CHANNEL 1: BAUD 4800 PARITY O DATA 7 STOP 1 HANDSHAKE N ECHO 0\r\n");
+    assert_string_equal(cmd(&p, "SERIAL"),
+                        "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
+                        "CHANNEL 1: BAUD 4800 PARITY O DATA 7 STOP 1 HANDSHAKE N ECHO 0\r\n");
     /* the arm is where it stopped */
     where(&p, w, NULL, NULL);
     assert_true(fabs(w[0] - 10) < 0.001 && fabs(w[1] - 5) < 0.001 && fabs(w[2] - 4) < 0.001);
@@ -1125,17 +1143,58 @@ static void refused_state(const char *state, const char *where)
 static void t_state_junk(void **st)
 {
     static const char *const junk[] = {
-        "SPEED nan", "SPEED inf", "SPEED -inf", "SPEED 101", "SPEED 0", "SPEED 50x", "SPEED 50 7", "SPEED 1e999",
-        "SPEED", "JOINTS 0 90 -90 0 nan", "JOINTS 0 90 -90 0", "JOINTS 0 90 -90 0 0 0", "JOINTS 0 200 -90 0 0",
-        "CONFIG 0 -9223372036854775808 N 8 1 X 1", "CONFIG 0 99999999999999999999 N 8 1 X 1",
-        "CONFIG 0 9600 N 8 1 X 1 junk", "CONFIG 2 9600 N 8 1 X 1", "CONFIG 0 9600.5 N 8 1 X 1",
-        "CONFIG 0 9600 Q 8 1 X 1", "CONFIG 0 9600 N 9 1 X 1", "CONFIG 0 9600 N 8 1 X 7", "GAIN 1 1e999",
-        "GAIN 9 1", "GAIN 1 -1", "GAIN 1 0x10", "VAR V1 -inf", "VAR V1 nan", "VAR 1X 3", "VAR TOOLONGNAME 1",
-        "VAR V1 1 2", "PLOC P 1 2 3 4 99999999999", "PLOC P 1 2 3 4 5.5", "PLOC P 1 2 3 4",
-        "LOC P 1 2 3 4 5 nan", "LOC P 1 2 3 4 5", "LOC P 1 2 3 4 5 6 7", "EXTRA 1e300 0", "EXTRA 0 inf",
-        "GRIPPER 3 50", "GRIPPER 1 0", "GRIPPER 1 50 x", "OUTPUTS 01", "OUTPUTS 000000000000000x",
-        "FLASH 2", "FLASH -1", "FLASH 1 1", "TOOL T 0 0 1 0 0 0 x", "TOOL T 0 0 nan 0 0 0", "PROGRAM P junk",
-        "PROGRAM", "FOO 1", "SPEED\t50\tjunk",
+        "SPEED nan",
+        "SPEED inf",
+        "SPEED -inf",
+        "SPEED 101",
+        "SPEED 0",
+        "SPEED 50x",
+        "SPEED 50 7",
+        "SPEED 1e999",
+        "SPEED",
+        "JOINTS 0 90 -90 0 nan",
+        "JOINTS 0 90 -90 0",
+        "JOINTS 0 90 -90 0 0 0",
+        "JOINTS 0 200 -90 0 0",
+        "CONFIG 0 -9223372036854775808 N 8 1 X 1",
+        "CONFIG 0 99999999999999999999 N 8 1 X 1",
+        "CONFIG 0 9600 N 8 1 X 1 junk",
+        "CONFIG 2 9600 N 8 1 X 1",
+        "CONFIG 0 9600.5 N 8 1 X 1",
+        "CONFIG 0 9600 Q 8 1 X 1",
+        "CONFIG 0 9600 N 9 1 X 1",
+        "CONFIG 0 9600 N 8 1 X 7",
+        "GAIN 1 1e999",
+        "GAIN 9 1",
+        "GAIN 1 -1",
+        "GAIN 1 0x10",
+        "VAR V1 -inf",
+        "VAR V1 nan",
+        "VAR 1X 3",
+        "VAR TOOLONGNAME 1",
+        "VAR V1 1 2",
+        "PLOC P 1 2 3 4 99999999999",
+        "PLOC P 1 2 3 4 5.5",
+        "PLOC P 1 2 3 4",
+        "LOC P 1 2 3 4 5 nan",
+        "LOC P 1 2 3 4 5",
+        "LOC P 1 2 3 4 5 6 7",
+        "EXTRA 1e300 0",
+        "EXTRA 0 inf",
+        "GRIPPER 3 50",
+        "GRIPPER 1 0",
+        "GRIPPER 1 50 x",
+        "OUTPUTS 01",
+        "OUTPUTS 000000000000000x",
+        "FLASH 2",
+        "FLASH -1",
+        "FLASH 1 1",
+        "TOOL T 0 0 1 0 0 0 x",
+        "TOOL T 0 0 nan 0 0 0",
+        "PROGRAM P junk",
+        "PROGRAM",
+        "FOO 1",
+        "SPEED\t50\tjunk",
     };
     const char *state = tmp("junk.state");
     size_t i;
@@ -1157,8 +1216,8 @@ static void t_state_junk(void **st)
     }
     {
         /* a duplicate name, a program without END and a program line too long, too */
-        static const char *const late[] = { "VAR A 1\nVAR A 2\n", "LOC P 1 2 3 4 5 6\nLOC P 1 2 3 4 5 6\n",
-                                            "PROGRAM P\n  HOME\n" };
+        static const char *const late[] = {"VAR A 1\nVAR A 2\n", "LOC P 1 2 3 4 5 6\nLOC P 1 2 3 4 5 6\n",
+                                           "PROGRAM P\n  HOME\n"};
         for (i = 0; i < sizeof late / sizeof late[0]; i++) {
             FILE *f = fopen(state, "w");
             int pid, stt;
@@ -1183,7 +1242,7 @@ static void t_state_junk(void **st)
 static void t_state_symlink(void **st)
 {
     const char *state = tmp("sym.state"), *victim = tmp("victim"), *planted = tmp("sym.state.tmp");
-    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--state", state, NULL};
     simp p;
     FILE *f = fopen(victim, "w");
     char back[64];
@@ -1226,19 +1285,21 @@ static void t_state_symlink(void **st)
 static void t_state_lowercase(void **st)
 {
     const char *state = tmp("lower.state");
-    const char *const opts[] = { "--time-scale", "200", "--state", state, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--state", state, NULL};
     simp p;
     FILE *f = fopen(state, "w");
     int i;
     (void)st;
     fputs("FBRLSIM-STATE 1\nvar count 0\nPROGRAM teach\n  here p1\n  point #q2,1,2,3,4,5\n"
-          "  set p3=p1\n  count=count+1\n  type done\nEND\n", f);
+          "  set p3=p1\n  count=count+1\n  type done\nEND\n",
+          f);
     fclose(f);
     for (i = 0; i < 2; i++) {
         start(&p, opts);
         ok(&p, "HOME");
         assert_string_equal(cmd(&p, "RUN TEACH"), "DONE\r\n");
-        assert_string_equal(cmd(&p, "LISTL #Q2"), "#Q2       +0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r\n");
+        assert_string_equal(cmd(&p, "LISTL #Q2"),
+                            "#Q2       +0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r\n");
         assert_non_null(strstr(cmd(&p, "LISTL"), "P1 "));
         assert_non_null(strstr(cmd(&p, "LISTL P3"), "P3 "));
         assert_string_equal(cmd(&p, "TYPEI COUNT"), i ? "2\r\n" : "1\r\n");
@@ -1261,7 +1322,7 @@ static void t_state_lowercase(void **st)
 
 static void t_baud(void **st)
 {
-    static const char *const opts[] = { "--time-scale", "1", "--baud", "9600", NULL };
+    static const char *const opts[] = {"--time-scale", "1", "--baud", "9600", NULL};
     simp p;
     double t0, dt;
     size_t n, i, k, bytes;
@@ -1314,7 +1375,7 @@ static void t_baud(void **st)
  * check allows. The cumulative checks allow nothing: lateness can only make them
  * hold more easily, earliness breaks them. */
 #define LATENESS 0.010 /* s: the least allowance, also on an idle machine */
-#define WINDOW 0.100
+#define WINDOW   0.100
 
 /* How late the OS wakes a thread of this process while the flood runs: a thread sleeps
  * 1 ms at a time and records its worst oversleep. The emulator competes for the same
@@ -1344,14 +1405,11 @@ static size_t burst(double rate)
     return c > 2 ? (size_t)c : 2;
 }
 
-static double lateness(void)
-{
-    return 2.0 * g_probe_late > LATENESS ? 2.0 * g_probe_late : LATENESS;
-}
+static double lateness(void) { return 2.0 * g_probe_late > LATENESS ? 2.0 * g_probe_late : LATENESS; }
 
 typedef struct arrivals {
-    double *t;   /* when each read returned */
-    size_t *n;   /* how many bytes (or prompts) it brought */
+    double *t; /* when each read returned */
+    size_t *n; /* how many bytes (or prompts) it brought */
     size_t k, cap;
 } arrivals;
 
@@ -1409,7 +1467,7 @@ static void flood(simp *p, const char *line, int count, arrivals *bytes, arrival
     assert_int_equal(pthread_create(&probe, NULL, late_probe, NULL), 0);
     g_flood_t0 = now_s();
     while (got_prompts < (size_t)count && now_s() < end) {
-        struct pollfd pf = { p->fd, (short)(POLLIN | (sent < total ? POLLOUT : 0)), 0 };
+        struct pollfd pf = {p->fd, (short)(POLLIN | (sent < total ? POLLOUT : 0)), 0};
         if (poll(&pf, 1, 100) <= 0)
             continue;
         if ((pf.revents & POLLOUT) && sent < total) {
@@ -1446,7 +1504,7 @@ static void flood(simp *p, const char *line, int count, arrivals *bytes, arrival
  * its start plus ten bit times, not even after the line was idle. */
 static void t_strict(void **st)
 {
-    static const long bauds[] = { 9600, 38400, 115200 };
+    static const long bauds[] = {9600, 38400, 115200};
     size_t b;
     (void)st;
     for (b = 0; b < sizeof bauds / sizeof bauds[0]; b++) {
@@ -1455,10 +1513,10 @@ static void t_strict(void **st)
          * delivers to this socket itself, while a pty's data waits for a kernel worker
          * thread, seen holding back 10 ms of a loaded line (40 bytes at once at 38400)
          * with no CPU pressure to show for it */
-        const char *const opts[] = { "--tcp", "0", "--time-scale", "200", "--baud", baud, "--rx-buffer", "65536",
-                                     NULL };
+        const char *const opts[] = {"--tcp", "0",           "--time-scale", "200", "--baud",
+                                    baud,    "--rx-buffer", "65536",        NULL};
         double rate = (double)bauds[b] / 10.0, bit10 = 1.0 / rate, fastest = 1e9;
-        arrivals out = { 0 }, prompts = { 0 }, in = { 0 }, inprompts = { 0 };
+        arrivals out = {0}, prompts = {0}, in = {0}, inprompts = {0};
         size_t most, allowed, k;
         int i, cmds = (int)(rate * 0.6 / 14.0); /* 0.6 s of output: "TYPEI 1" -> 14 bytes back */
         simp p;
@@ -1505,18 +1563,20 @@ static void t_strict(void **st)
         flood(&p, "SPEED 50", cmds, &in, &inprompts);
         most = max_window(&inprompts, WINDOW);
         allowed = (size_t)floor(((WINDOW + lateness()) * rate + (double)burst(rate)) / 9.0) + 1;
-        print_message("%6ld baud, input: at most %zu commands = %zu bytes taken in a 100 ms window (N/10 per 100 ms "
-                      "= %.0f, ratio %.3f; allowed with %.0f ms lateness %zu commands)\n",
-                      bauds[b], most, most * 9, rate * WINDOW, most * 9 / (rate * WINDOW), lateness() * 1e3, allowed);
+        print_message(
+            "%6ld baud, input: at most %zu commands = %zu bytes taken in a 100 ms window (N/10 per 100 ms "
+            "= %.0f, ratio %.3f; allowed with %.0f ms lateness %zu commands)\n",
+            bauds[b], most, most * 9, rate * WINDOW, most * 9 / (rate * WINDOW), lateness() * 1e3, allowed);
         if (most > allowed)
-            fail_msg("%ld baud: %zu commands of 9 bytes in 100 ms, the line carries %.0f bytes", bauds[b], most,
-                     rate * WINDOW);
+            fail_msg("%ld baud: %zu commands of 9 bytes in 100 ms, the line carries %.0f bytes", bauds[b],
+                     most, rate * WINDOW);
         /* strict: command m's CR is byte 9(m+1) sent; its CR LF >> takes four more */
         for (k = 0, i = 0; i < (int)inprompts.k; i++) {
             k += inprompts.n[i];
             if (inprompts.t[i] - g_flood_t0 < (9.0 * (double)k + 4.0) * bit10)
-                fail_msg("%ld baud: %zu commands done %.3f ms after the first byte was sent: faster than the line",
-                         bauds[b], k, (inprompts.t[i] - g_flood_t0) * 1e3);
+                fail_msg(
+                    "%ld baud: %zu commands done %.3f ms after the first byte was sent: faster than the line",
+                    bauds[b], k, (inprompts.t[i] - g_flood_t0) * 1e3);
         }
         free(out.t);
         free(out.n);
@@ -1534,7 +1594,7 @@ static void t_strict(void **st)
  * reply starts. */
 static void t_cmd_time(void **st)
 {
-    static const char *const opts[] = { "--time-scale", "2", "--cmd-time", "200", NULL };
+    static const char *const opts[] = {"--time-scale", "2", "--cmd-time", "200", NULL};
     simp p;
     double t0, dt;
     (void)st;
@@ -1558,10 +1618,12 @@ static size_t exchange(simp *p, const char *line, double wait)
 
 static void t_faults(void **st)
 {
-    static const char *const clean[] = { "--time-scale", "200", "--faults", "drop=0,corrupt=0,noise=0,seed=3", NULL };
-    static const char *const noisy[] = { "--time-scale", "200", "--faults", "corrupt=0.05,seed=7", NULL };
-    static const char *const drops[] = { "--time-scale", "200", "--faults", "drop=0.05,noise=0.05,seed=9", NULL };
-    static const char *const stall[] = { "--time-scale", "200", "--faults", "stall=400", NULL };
+    static const char *const clean[] = {"--time-scale", "200", "--faults", "drop=0,corrupt=0,noise=0,seed=3",
+                                        NULL};
+    static const char *const noisy[] = {"--time-scale", "200", "--faults", "corrupt=0.05,seed=7", NULL};
+    static const char *const drops[] = {"--time-scale", "200", "--faults", "drop=0.05,noise=0.05,seed=9",
+                                        NULL};
+    static const char *const stall[] = {"--time-scale", "200", "--faults", "stall=400", NULL};
     simp p;
     int i, bad = 0;
     double t0;
@@ -1570,8 +1632,9 @@ static void t_faults(void **st)
     spawn(&p, clean);
     assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
     for (i = 0; i < 50; i++)
-        assert_string_equal(raw(&p, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"),
-                            "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789\r\nABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789\r\n>>");
+        assert_string_equal(
+            raw(&p, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"),
+            "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789\r\nABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789\r\n>>");
     stop(&p);
     /* corrupted bytes: some exchanges differ from the clean text */
     for (i = 0; i < 2; i++) {
@@ -1580,8 +1643,8 @@ static void t_faults(void **st)
         bad = 0;
         for (k = 0; k < 30; k++) {
             exchange(&p, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ", 0.3);
-            if (strcmp(g_buf, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ\r\nABCDEFGHIJKLMNOPQRSTUVWXYZ\r\n>>") != 0
-                && strstr(g_buf, "HELP") == NULL)
+            if (strcmp(g_buf, "TYPE ABCDEFGHIJKLMNOPQRSTUVWXYZ\r\nABCDEFGHIJKLMNOPQRSTUVWXYZ\r\n>>") != 0 &&
+                strstr(g_buf, "HELP") == NULL)
                 bad++;
         }
         assert_true(bad > 0);
@@ -1614,9 +1677,10 @@ static int one_bit_from(unsigned char x, const char *set)
 static void t_parity(void **st)
 {
     const char *log = tmp("parity.log");
-    const char *const opts[] = { "--time-scale", "200", "--log", log, "--parity", "E", "--faults", "corrupt=0.05,seed=5",
-                                 NULL };
-    const char *const opts_n[] = { "--time-scale", "200", "--parity", "N", "--faults", "corrupt=0.05,seed=5", NULL };
+    const char *const opts[] = {"--time-scale",        "200", "--log", log, "--parity", "E", "--faults",
+                                "corrupt=0.05,seed=5", NULL};
+    const char *const opts_n[] = {"--time-scale",        "200", "--parity", "N", "--faults",
+                                  "corrupt=0.05,seed=5", NULL};
     /* no space: no HELP-mode hint; a line cut by a lost byte may give an error line */
     static const char sent[] = "V1=1234567890";
     static const char meant[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789=-. \r\n>";
@@ -1683,7 +1747,8 @@ static void t_parity(void **st)
  * and still answers afterwards. Runs under the sanitizers in CI. */
 static void t_garbage(void **st)
 {
-    static const char alphabet[] = "ABCDEFGHIJKLMNOPQSTUVXYZ0123456789 ,.-+*/()=#\"\r\r\r\b\x18\x7f\x01\x13\x11";
+    static const char alphabet[] =
+        "ABCDEFGHIJKLMNOPQSTUVXYZ0123456789 ,.-+*/()=#\"\r\r\r\b\x18\x7f\x01\x13\x11";
     simp p;
     unsigned long x = 99;
     char chunk[256];
@@ -1718,10 +1783,11 @@ static void t_log(void **st)
 {
     simp p;
     const char *log = tmp("commands.log");
-    const char *const opts[] = { "--time-scale", "200", "--log", log, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--log", log, NULL};
     char line[256];
     FILE *f;
-    static const char *want[] = { "NOHELP", "SPEED 25", "FOO", "POINT P1,10,0,5,0,-90,0", "HOME", "MOVE P1", "W2" };
+    static const char *want[] = {"NOHELP", "SPEED 25", "FOO", "POINT P1,10,0,5,0,-90,0",
+                                 "HOME",   "MOVE P1",  "W2"};
     int i = 0;
     (void)st;
     start(&p, opts);
@@ -1749,7 +1815,7 @@ static void t_log(void **st)
 
 static void t_tcp(void **st)
 {
-    static const char *const opts[] = { "--tcp", "0", "--time-scale", "200", NULL };
+    static const char *const opts[] = {"--tcp", "0", "--time-scale", "200", NULL};
     simp p;
     (void)st;
     start(&p, opts);
@@ -1793,7 +1859,7 @@ static int tcp_connect(const char *path)
 static void t_tcp_busy(void **st)
 {
     const char *log = tmp("busy.log");
-    const char *const opts[] = { "--tcp", "0", "--time-scale", "200", "--log", log, NULL };
+    const char *const opts[] = {"--tcp", "0", "--time-scale", "200", "--log", log, NULL};
     simp p, q;
     size_t n;
     double t0;
@@ -1900,8 +1966,8 @@ static void t_embed(void **st)
 static void t_model_a465(void **st)
 {
     const char *state = tmp("a465.state");
-    const char *const opts[] = { "--time-scale", "200", "--model", "a465", "--state", state, NULL };
-    const char *const plain[] = { "--time-scale", "200", "--state", state, NULL };
+    const char *const opts[] = {"--time-scale", "200", "--model", "a465", "--state", state, NULL};
+    const char *const plain[] = {"--time-scale", "200", "--state", state, NULL};
     simp p;
     double w[6];
     const char *r, *x;
@@ -1915,7 +1981,8 @@ static void t_model_a465(void **st)
     r = cmd(&p, "W2");
     x = strstr(r, "PULSES   ");
     assert_non_null(x);
-    assert_int_equal(sscanf(x + 6, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]), 6);
+    assert_int_equal(sscanf(x + 6, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]),
+                     6);
     assert_non_null(strstr(r, "AX#6"));
     assert_non_null(strstr(r, "JT#6"));
     /* READY: upper arm upright, forearm and tool level: 406 mm out, 635 mm up */
@@ -1943,7 +2010,8 @@ static void t_model_a465(void **st)
     ok(&p, "MOVE #Q");
     ok(&p, "FINISH");
     r = cmd(&p, "LISTL #Q");
-    assert_int_equal(sscanf(r + 9, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]), 6);
+    assert_int_equal(sscanf(r + 9, "%ld %ld %ld %ld %ld %ld", &pl[0], &pl[1], &pl[2], &pl[3], &pl[4], &pl[5]),
+                     6);
     assert_true(labs(pl[5] - lround(0.4 * 180.0 / M_PI * 138.89)) <= 1);
     stop(&p);
     {
@@ -1953,7 +2021,8 @@ static void t_model_a465(void **st)
         n = fread(text, 1, sizeof text - 1, f);
         text[n] = 0;
         fclose(f);
-        assert_int_equal(strncmp(text, "FBRLSIM-STATE 1\nMODEL A465\n", strlen("FBRLSIM-STATE 1\nMODEL A465\n")), 0);
+        assert_int_equal(
+            strncmp(text, "FBRLSIM-STATE 1\nMODEL A465\n", strlen("FBRLSIM-STATE 1\nMODEL A465\n")), 0);
     }
     /* without --model the state file's arm comes back */
     start(&p, plain);
@@ -2001,19 +2070,20 @@ int main(int argc, char **argv)
     if (!mkdtemp(g_dir))
         return 1;
     signal(SIGPIPE, SIG_IGN);
-#define GROUP(name, ...)                                                            \
-    if (!strcmp(g, name) || !*g) {                                              \
-        const struct CMUnitTest t[] = { __VA_ARGS__ };                          \
+#define GROUP(name, ...)                                                                \
+    if (!strcmp(g, name) || !*g) {                                                      \
+        const struct CMUnitTest t[] = {__VA_ARGS__};                                    \
         rc |= _cmocka_run_group_tests(name, t, sizeof t / sizeof t[0], NULL, kill_all); \
     }
     GROUP("line", cmocka_unit_test(t_echo_prompt), cmocka_unit_test(t_editing), cmocka_unit_test(t_errors))
-    GROUP("motion", cmocka_unit_test(t_home_ready), cmocka_unit_test(t_moves), cmocka_unit_test(t_motion_errors),
-          cmocka_unit_test(t_motion_timing), cmocka_unit_test(t_locations), cmocka_unit_test(t_teach))
+    GROUP("motion", cmocka_unit_test(t_home_ready), cmocka_unit_test(t_moves),
+          cmocka_unit_test(t_motion_errors), cmocka_unit_test(t_motion_timing), cmocka_unit_test(t_locations),
+          cmocka_unit_test(t_teach))
     GROUP("io", cmocka_unit_test(t_io), cmocka_unit_test(t_inputs_script), cmocka_unit_test(t_gripper),
           cmocka_unit_test(t_variables), cmocka_unit_test(t_settings), cmocka_unit_test(t_streams_extra),
           cmocka_unit_test(t_run))
-    GROUP("persist", cmocka_unit_test(t_persist), cmocka_unit_test(t_state_junk), cmocka_unit_test(t_state_symlink),
-          cmocka_unit_test(t_state_lowercase))
+    GROUP("persist", cmocka_unit_test(t_persist), cmocka_unit_test(t_state_junk),
+          cmocka_unit_test(t_state_symlink), cmocka_unit_test(t_state_lowercase))
     GROUP("baud", cmocka_unit_test(t_baud), cmocka_unit_test(t_strict), cmocka_unit_test(t_cmd_time))
     GROUP("faults", cmocka_unit_test(t_faults), cmocka_unit_test(t_parity), cmocka_unit_test(t_garbage))
     GROUP("log", cmocka_unit_test(t_log))

@@ -19,7 +19,7 @@
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
 
-#define FUZZ_MEM_BYTES (512u * 1024u)
+#define FUZZ_MEM_BYTES    (512u * 1024u)
 #define FUZZ_CPU_LIMIT_US 200000
 
 /* long double makes the buffer 16-byte aligned, as fbrl_vm_config asks (C99 has no _Alignas). */
@@ -52,7 +52,7 @@ static void arm_timer(long us)
     memset(&it, 0, sizeof it);
     it.it_value.tv_sec = us / 1000000;
     it.it_value.tv_usec = us % 1000000;
-    it.it_interval = it.it_value;  /* repeat: one request may land between two evaluations */
+    it.it_interval = it.it_value; /* repeat: one request may land between two evaluations */
     setitimer(ITIMER_VIRTUAL, &it, NULL);
 }
 

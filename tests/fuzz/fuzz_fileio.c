@@ -19,8 +19,8 @@
 #include "fbrl/fileio.h"
 
 #define FUZZ_BUF_MAX 65536u
-#define FUZZ_REAL 1.5
-#define FUZZ_CHR 0x5a
+#define FUZZ_REAL    1.5
+#define FUZZ_CHR     0x5a
 
 static unsigned char file[FUZZ_BUF_MAX], buf[FUZZ_BUF_MAX], buf2[FUZZ_BUF_MAX], val[FUZZ_BUF_MAX];
 
@@ -34,8 +34,8 @@ static void put32(unsigned char *p, uint32_t v)
 
 static int refusal(fbrl_status st)
 {
-    return st == FBRL_EFORMAT || st == FBRL_EVERSION || st == FBRL_ECHECKSUM || st == FBRL_ETRUNCATED
-           || st == FBRL_ENOSPC;
+    return st == FBRL_EFORMAT || st == FBRL_EVERSION || st == FBRL_ECHECKSUM || st == FBRL_ETRUNCATED ||
+           st == FBRL_ENOSPC;
 }
 
 /* A type other than t with a valid shape, to check that a wrong read is refused. */
@@ -83,7 +83,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static const size_t caps[4] = { 64, 256, 4096, FUZZ_BUF_MAX };
+    static const size_t caps[4] = {64, 256, 4096, FUZZ_BUF_MAX};
     char path[512];
     size_t n, cap;
     int replaced;

@@ -23,8 +23,8 @@ static void on_alarm(int sig)
     const char *msg = "fuzz_replay: input runs too long (a hang): ";
     const char *p = current;
     (void)sig;
-    if (write(STDERR_FILENO, msg, strlen(msg)) < 0 || (p && write(STDERR_FILENO, p, strlen(p)) < 0)
-        || write(STDERR_FILENO, "\n", 1) < 0)
+    if (write(STDERR_FILENO, msg, strlen(msg)) < 0 || (p && write(STDERR_FILENO, p, strlen(p)) < 0) ||
+        write(STDERR_FILENO, "\n", 1) < 0)
         _exit(1);
     _exit(1);
 }

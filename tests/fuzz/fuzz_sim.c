@@ -18,14 +18,14 @@
 #include <sys/ioctl.h>
 #include <unistd.h>
 
-#define FUZZ_SLICES 300        /* event-loop slices at most per typed chunk */
-#define FUZZ_DT_MIN 0.001      /* s: the first step of the clock while the controller works */
-#define FUZZ_DT_MAX 30.0       /* s: the longest step (a slow motion ends in a few) */
-#define FUZZ_STREAM_LINES 3    /* readout lines let out before the harness stops waiting */
-#define FUZZ_EVENT_ROUNDS 8    /* settles per scripted line at most */
+#define FUZZ_SLICES       300   /* event-loop slices at most per typed chunk */
+#define FUZZ_DT_MIN       0.001 /* s: the first step of the clock while the controller works */
+#define FUZZ_DT_MAX       30.0  /* s: the longest step (a slow motion ends in a few) */
+#define FUZZ_STREAM_LINES 3     /* readout lines let out before the harness stops waiting */
+#define FUZZ_EVENT_ROUNDS 8     /* settles per scripted line at most */
 
-static int serial[2] = { -1, -1 }; /* host -> controller */
-static int control_w = -1;         /* write end of the control "FIFO" */
+static int serial[2] = {-1, -1}; /* host -> controller */
+static int control_w = -1;       /* write end of the control "FIFO" */
 
 fbrl_sim *fuzz_sim_new(const char *state_path, const char *inputs_path, const char *model, char *err,
                        size_t errlen)
@@ -92,14 +92,14 @@ static void slice(fbrl_sim *s)
     sim_term_process(s);
     if (show_output())
         sim_line_write(s, STDERR_FILENO, HUGE_VAL); /* FBRL_FUZZ_SHOW=1: what a client would read */
-    sim_line_write(s, -1, sim_real_now(s)); /* no client: the output falls off the line */
+    sim_line_write(s, -1, sim_real_now(s));         /* no client: the output falls off the line */
 }
 
 /* The controller waits for the host: nothing typed is left, no motion runs. */
 static int waiting_for_host(const fbrl_sim *s)
 {
-    return (s->term.ps == PS_IDLE || s->term.ps == PS_STREAM) && s->line.rxcount == 0 && s->line.wn == 0
-           && serial_waiting() == 0 && !s->arm.moving && !s->arm.xmoving;
+    return (s->term.ps == PS_IDLE || s->term.ps == PS_STREAM) && s->line.rxcount == 0 && s->line.wn == 0 &&
+           serial_waiting() == 0 && !s->arm.moving && !s->arm.xmoving;
 }
 
 static void settle(fbrl_sim *s)

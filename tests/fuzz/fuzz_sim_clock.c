@@ -12,20 +12,11 @@
 
 static double fuzz_clock = FUZZ_CLOCK_START;
 
-double sim_mono(void)
-{
-    return fuzz_clock;
-}
+double sim_mono(void) { return fuzz_clock; }
 
-double sim_real_now(const fbrl_sim *s)
-{
-    return sim_mono() - s->t0;
-}
+double sim_real_now(const fbrl_sim *s) { return sim_mono() - s->t0; }
 
-double sim_now(const fbrl_sim *s)
-{
-    return (sim_mono() - s->t0) * s->opt.time_scale;
-}
+double sim_now(const fbrl_sim *s) { return (sim_mono() - s->t0) * s->opt.time_scale; }
 
 void fuzz_sim_advance(double seconds)
 {
@@ -33,7 +24,4 @@ void fuzz_sim_advance(double seconds)
         fuzz_clock += seconds;
 }
 
-void fuzz_sim_clock_reset(void)
-{
-    fuzz_clock = FUZZ_CLOCK_START;
-}
+void fuzz_sim_clock_reset(void) { fuzz_clock = FUZZ_CLOCK_START; }

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#define MODEL_LINE "@MODEL "
+#define MODEL_LINE     "@MODEL "
 #define MODEL_NAME_MAX 15
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

@@ -99,7 +99,8 @@ void fuzz_split(const uint8_t *d, size_t n, size_t *head, const uint8_t **tail, 
 {
     size_t i;
     for (i = 0; i + 2 <= n; i++) {
-        if ((i == 0 || d[i - 1] == '\n') && d[i] == '%' && d[i + 1] == '%' && (i + 2 == n || d[i + 2] == '\n')) {
+        if ((i == 0 || d[i - 1] == '\n') && d[i] == '%' && d[i + 1] == '%' &&
+            (i + 2 == n || d[i + 2] == '\n')) {
             *head = i;
             *tail = d + (i + 2 < n ? i + 3 : n);
             *tail_n = n - (i + 2 < n ? i + 3 : n);

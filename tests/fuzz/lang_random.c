@@ -9,18 +9,23 @@
 #include <string.h>
 #include "fbrl/vm.h"
 
-typedef struct names { char list[800][40]; int n; } names;
+typedef struct names {
+    char list[800][40];
+    int n;
+} names;
 
 /* words that could wait or loop for ever on random input (legitimately) */
-static const char *const skip[] = { "BYE", "MS", "SPACES", ".R", "U.R", "D.R", "QUIT", "DUMP", "WORDS",
-                                    "KEY", "ACCEPT", "GET-STRING", ">IN", "SAVE-INPUT", "RESTORE-INPUT",
-                                    "BEGIN", "AGAIN", "UNTIL", "WHILE", "REPEAT", "DO", "?DO", "LOOP", "+LOOP" };
+static const char *const skip[] = {
+    "BYE",   "MS",    "SPACES", ".R",         "U.R", "D.R",        "QUIT",          "DUMP",
+    "WORDS", "KEY",   "ACCEPT", "GET-STRING", ">IN", "SAVE-INPUT", "RESTORE-INPUT", "BEGIN",
+    "AGAIN", "UNTIL", "WHILE",  "REPEAT",     "DO",  "?DO",        "LOOP",          "+LOOP"};
 
 static int collect(void *ctx, const char *name, size_t len)
 {
     names *nm = ctx;
     for (size_t i = 0; i < sizeof skip / sizeof skip[0]; i++)
-        if (strlen(skip[i]) == len && memcmp(skip[i], name, len) == 0) return 0;
+        if (strlen(skip[i]) == len && memcmp(skip[i], name, len) == 0)
+            return 0;
     if (nm->n < 800 && len < 39) {
         memcpy(nm->list[nm->n], name, len);
         nm->list[nm->n][len] = 0;
@@ -38,16 +43,18 @@ static void discard(void *user, const char *s, size_t n)
 
 int main(int argc, char **argv)
 {
-    static const char *const extra[] = { "0", "1", "-1", "3", "100", "65535", "-9999999999", "PAD", "HERE",
-                                         "1E0", "0E0", "-2.5E3", "S\" x\"", ":", ";", "IF", "THEN", "ELSE",
-                                         "CASE", "OF", "ENDOF", "'", "[']", "RECURSE", "EXECUTE", "DUP", "5" };
+    static const char *const extra[] = {
+        "0",    "1",   "-1",     "3",       "100", "65535",   "-9999999999", "PAD",  "HERE",
+        "1E0",  "0E0", "-2.5E3", "S\" x\"", ":",   ";",       "IF",          "THEN", "ELSE",
+        "CASE", "OF",  "ENDOF",  "'",       "[']", "RECURSE", "EXECUTE",     "DUP",  "5"};
     unsigned first = argc > 1 ? (unsigned)atoi(argv[1]) : 1;
     unsigned seeds = argc > 2 ? (unsigned)atoi(argv[2]) : 8;
     int lines = argc > 3 ? atoi(argv[3]) : 4000;
     size_t size = 1 << 20;
     void *mem = malloc(size);
     static names nm;
-    if (!mem) return 2;
+    if (!mem)
+        return 2;
     for (unsigned seed = first; seed < first + seeds; seed++) {
         fbrl_vm_config cfg;
         fbrl_vm *vm;
@@ -55,10 +62,12 @@ int main(int argc, char **argv)
         cfg.mem = mem;
         cfg.mem_size = size;
         cfg.host.write = discard;
-        if (fbrl_vm_create(&vm, &cfg) != FBRL_OK) return 2;
+        if (fbrl_vm_create(&vm, &cfg) != FBRL_OK)
+            return 2;
         nm.n = 0;
         fbrl_vm_words(vm, collect, &nm);
-        if (fbrl_vm_eval(vm, "MARKER FUZZ-START", 17) != FBRL_OK) return 2;
+        if (fbrl_vm_eval(vm, "MARKER FUZZ-START", 17) != FBRL_OK)
+            return 2;
         uint32_t r = seed * 2654435761u + 1;
         int errors = 0;
         for (int line = 0; line < lines; line++) {
@@ -72,16 +81,22 @@ int main(int argc, char **argv)
                                         : extra[(x >> 1) % (sizeof extra / sizeof extra[0])];
                 n += (size_t)snprintf(src + n, sizeof src - n, "%s ", w);
             }
-            if (fbrl_vm_eval(vm, src, n) != FBRL_OK) { errors++; if (getenv("LANG_RANDOM_VERBOSE")) printf("%d %s\n", fbrl_vm_last_error(vm)->throw_code, fbrl_vm_last_error(vm)->word); }
+            if (fbrl_vm_eval(vm, src, n) != FBRL_OK) {
+                errors++;
+                if (getenv("LANG_RANDOM_VERBOSE"))
+                    printf("%d %s\n", fbrl_vm_last_error(vm)->throw_code, fbrl_vm_last_error(vm)->word);
+            }
             if (fbrl_vm_depth(vm) > 256 || fbrl_vm_fdepth(vm) > 64) {
                 printf("seed %u line %d: stack out of bounds after: %s\n", seed, line, src);
                 return 1;
             }
-            if (line % 50 == 49) fbrl_vm_reset(vm);
+            if (line % 50 == 49)
+                fbrl_vm_reset(vm);
         }
         fbrl_vm_reset(vm);
         fbrl_cell v = 0;
-        if (fbrl_vm_eval(vm, "FUZZ-START DECIMAL 6 7 *", 24) != FBRL_OK || fbrl_vm_pop(vm, &v) != FBRL_OK || v != 42) {
+        if (fbrl_vm_eval(vm, "FUZZ-START DECIMAL 6 7 *", 24) != FBRL_OK || fbrl_vm_pop(vm, &v) != FBRL_OK ||
+            v != 42) {
             printf("seed %u: VM unusable after the run\n", seed);
             return 1;
         }

@@ -13,7 +13,10 @@ static size_t used;
 static void collect(void *user, const char *s, size_t n)
 {
     (void)user;
-    if (used + n < sizeof out) { memcpy(out + used, s, n); used += n; }
+    if (used + n < sizeof out) {
+        memcpy(out + used, s, n);
+        used += n;
+    }
 }
 
 int main(void)
@@ -25,8 +28,10 @@ int main(void)
     cfg.mem = mem;
     cfg.mem_size = sizeof mem;
     cfg.host.write = collect;
-    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK) return 1;
-    if (fbrl_vm_eval(vm, "6 7 * .", 7) != FBRL_OK || strcmp(out, "42 ") != 0) return 2;
+    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK)
+        return 1;
+    if (fbrl_vm_eval(vm, "6 7 * .", 7) != FBRL_OK || strcmp(out, "42 ") != 0)
+        return 2;
     printf("%s: %s\n", fbrl_status_name(FBRL_EDEGENERATE), fbrl_status_str(FBRL_EDEGENERATE));
     printf("consumer ok: %s\n", out);
     return 0;

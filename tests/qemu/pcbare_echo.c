@@ -34,12 +34,12 @@
 #include "fbrl/uart.h"
 #include "fbrl/uart_posix.h"
 
-#define ENQ 0x05
-#define EOT 0x04
-#define ACK 0x06
-#define WINDOW 2048u        /* bytes written but not yet echoed back, at most */
-#define CHUNK 256u
-#define DEADLINE_S 100u      /* the whole run; ctest allows 120 */
+#define ENQ        0x05
+#define EOT        0x04
+#define ACK        0x06
+#define WINDOW     2048u /* bytes written but not yet echoed back, at most */
+#define CHUNK      256u
+#define DEADLINE_S 100u /* the whole run; ctest allows 120 */
 
 static pid_t qemu_pid = -1;
 
@@ -150,10 +150,7 @@ static uint8_t payload_byte(uint32_t *s)
     }
 }
 
-static uint8_t transform(uint8_t c)
-{
-    return (c >= 'a' && c <= 'z') ? (uint8_t)(c - 'a' + 'A') : c;
-}
+static uint8_t transform(uint8_t c) { return (c >= 'a' && c <= 'z') ? (uint8_t)(c - 'a' + 'A') : c; }
 
 static fbrl_uart_posix port;
 static fbrl_uart uart;
@@ -322,8 +319,7 @@ int main(int argc, char **argv)
     printf("host: %zu bytes echoed in %.3f s (%.1f kB/s each way), window %u, xoff_sent=%llu "
            "xoff_recv=%llu held_off=%.3f s\n",
            total, (double)(t1 - t0) / 1e6, (double)total / ((double)(t1 - t0) / 1e6) / 1000.0, WINDOW,
-           (unsigned long long)c.xoff_sent, (unsigned long long)c.xoff_received,
-           (double)c.held_off_us / 1e6);
+           (unsigned long long)c.xoff_sent, (unsigned long long)c.xoff_received, (double)c.held_off_us / 1e6);
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 33) {
         fprintf(stderr, "QEMU status %d\n", WIFEXITED(status) ? WEXITSTATUS(status) : -1);
         die("QEMU did not end with the image's PASS (status 33)");

@@ -22,7 +22,8 @@ typedef struct vmh_text {
 static inline void vmh_put(vmh_text *t, const char *s, size_t n)
 {
     size_t room = sizeof t->s - 1 - t->n;
-    if (n > room) n = room;
+    if (n > room)
+        n = room;
     memcpy(t->s + t->n, s, n);
     t->n += n;
     t->s[t->n] = 0;
@@ -36,7 +37,8 @@ static inline fbrl_status vmh_file_open(void *user, const char *path, void **han
 {
     (void)user;
     FILE *f = fopen(path, "r");
-    if (!f) return FBRL_ENOENT;
+    if (!f)
+        return FBRL_ENOENT;
     *handle = f;
     return FBRL_OK;
 }
@@ -47,10 +49,12 @@ static inline fbrl_status vmh_file_read_line(void *user, void *handle, char *buf
     size_t n = 0;
     int c;
     while ((c = fgetc((FILE *)handle)) != EOF && c != '\n') {
-        if (n >= cap) return FBRL_ENOSPC;
+        if (n >= cap)
+            return FBRL_ENOSPC;
         buf[n++] = (char)c;
     }
-    if (c == EOF && n == 0) return FBRL_EEOF;
+    if (c == EOF && n == 0)
+        return FBRL_EEOF;
     *len = n;
     return FBRL_OK;
 }

@@ -34,7 +34,9 @@ static double uniform(double lo, double hi)
 }
 
 /* ---- the test's own rigid-motion algebra (independent of calib.c) ---- */
-typedef struct { double r[3][3], t[3]; } motion;
+typedef struct {
+    double r[3][3], t[3];
+} motion;
 
 static void rot_axis(int axis, double rad, double r[3][3])
 {
@@ -42,8 +44,10 @@ static void rot_axis(int axis, double rad, double r[3][3])
     memset(r, 0, 9 * sizeof(double));
     r[axis][axis] = 1.0;
     int a = (axis + 1) % 3, b = (axis + 2) % 3;
-    r[a][a] = c; r[a][b] = -s;
-    r[b][a] = s; r[b][b] = c;
+    r[a][a] = c;
+    r[a][b] = -s;
+    r[b][a] = s;
+    r[b][b] = c;
 }
 
 static void matmul(double a[3][3], double b[3][3], double out[3][3])
@@ -61,9 +65,15 @@ static void random_rotation(double r[3][3])
     double u1 = uniform(0, 1), u2 = uniform(0, 2 * FBRL_PI), u3 = uniform(0, 2 * FBRL_PI);
     double w = sqrt(1 - u1) * sin(u2), x = sqrt(1 - u1) * cos(u2);
     double y = sqrt(u1) * sin(u3), z = sqrt(u1) * cos(u3);
-    r[0][0] = 1 - 2 * (y * y + z * z); r[0][1] = 2 * (x * y - w * z); r[0][2] = 2 * (x * z + w * y);
-    r[1][0] = 2 * (x * y + w * z); r[1][1] = 1 - 2 * (x * x + z * z); r[1][2] = 2 * (y * z - w * x);
-    r[2][0] = 2 * (x * z - w * y); r[2][1] = 2 * (y * z + w * x); r[2][2] = 1 - 2 * (x * x + y * y);
+    r[0][0] = 1 - 2 * (y * y + z * z);
+    r[0][1] = 2 * (x * y - w * z);
+    r[0][2] = 2 * (x * z + w * y);
+    r[1][0] = 2 * (x * y + w * z);
+    r[1][1] = 1 - 2 * (x * x + z * z);
+    r[1][2] = 2 * (y * z - w * x);
+    r[2][0] = 2 * (x * z - w * y);
+    r[2][1] = 2 * (y * z + w * x);
+    r[2][2] = 1 - 2 * (x * x + y * y);
 }
 
 static void apply(const motion *m, const double p[3], double out[3])
@@ -116,12 +126,17 @@ static void orientation_convention(void **state)
     (void)state;
     /* Tool straight down: axis (0, 0, -1). */
     assert_int_equal(fbrl_calib_orient_to_matrix(0, -90, 0, &rot), FBRL_OK);
-    assert_near(r[0], 0, 1e-15); assert_near(r[3], 0, 1e-15); assert_near(r[6], -1, 1e-15);
+    assert_near(r[0], 0, 1e-15);
+    assert_near(r[3], 0, 1e-15);
+    assert_near(r[6], -1, 1e-15);
     /* Yaw 90, pitch 0: tool axis along +y. Pitch 30 at yaw 0: (cos 30, 0, sin 30). */
     assert_int_equal(fbrl_calib_orient_to_matrix(90, 0, 0, &rot), FBRL_OK);
-    assert_near(r[0], 0, 1e-15); assert_near(r[3], 1, 1e-15); assert_near(r[6], 0, 1e-15);
+    assert_near(r[0], 0, 1e-15);
+    assert_near(r[3], 1, 1e-15);
+    assert_near(r[6], 0, 1e-15);
     assert_int_equal(fbrl_calib_orient_to_matrix(0, 30, 0, &rot), FBRL_OK);
-    assert_near(r[0], 0.86602540378443865, 1e-15); assert_near(r[6], 0.5, 1e-15);
+    assert_near(r[0], 0.86602540378443865, 1e-15);
+    assert_near(r[6], 0.5, 1e-15);
     rng_state = 42;
     for (int i = 0; i < 2000; i++) {
         double y0 = uniform(-179.9, 180), p0 = uniform(-89.9, 89.9), t0 = uniform(-179.9, 180);
@@ -129,15 +144,20 @@ static void orientation_convention(void **state)
         tool_matrix(y0, p0, t0, m);
         assert_true(matdiff(rot.m, m) < 1e-14);
         assert_int_equal(fbrl_calib_matrix_to_orient(&rot, 0, &yaw, &pitch, &roll), FBRL_OK);
-        assert_near(yaw, y0, 1e-9); assert_near(pitch, p0, 1e-9); assert_near(roll, t0, 1e-9);
+        assert_near(yaw, y0, 1e-9);
+        assert_near(pitch, p0, 1e-9);
+        assert_near(roll, t0, 1e-9);
     }
     /* Vertical tool: yaw comes from the hint and roll carries the turn. For pitch -90 the
      * matrix depends on roll - yaw only: (yaw 30, roll 50) = (yaw 100, roll 120). */
     assert_int_equal(fbrl_calib_orient_to_matrix(30, -90, 50, &rot), FBRL_OK);
     assert_int_equal(fbrl_calib_matrix_to_orient(&rot, 100, &yaw, &pitch, &roll), FBRL_OK);
-    assert_near(yaw, 100, 1e-9); assert_near(pitch, -90, 1e-9); assert_near(roll, 120, 1e-9);
+    assert_near(yaw, 100, 1e-9);
+    assert_near(pitch, -90, 1e-9);
+    assert_near(roll, 120, 1e-9);
     assert_int_equal(fbrl_calib_matrix_to_orient(&rot, 30, &yaw, &pitch, &roll), FBRL_OK);
-    assert_near(yaw, 30, 1e-9); assert_near(roll, 50, 1e-9);
+    assert_near(yaw, 30, 1e-9);
+    assert_near(roll, 50, 1e-9);
 }
 
 /* ---- the thesis's planar helpers ---- */
@@ -157,10 +177,12 @@ static void ang_from_origin_and_rotate(void **state)
     assert_near(a, FBRL_PI / 2, 1e-15);
     assert_int_equal(fbrl_calib_ang_from_origin(3, 3, 3, 3, &a), FBRL_EDEGENERATE);
     assert_int_equal(fbrl_calib_rotate(1, 0, FBRL_PI / 2, &x, &y), FBRL_OK);
-    assert_near(x, 0, 1e-15); assert_near(y, 1, 1e-15);
+    assert_near(x, 0, 1e-15);
+    assert_near(y, 1, 1e-15);
     /* (3, 4) by -90 degrees: (4, -3). */
     assert_int_equal(fbrl_calib_rotate(3, 4, -FBRL_PI / 2, &x, &y), FBRL_OK);
-    assert_near(x, 4, 1e-14); assert_near(y, -3, 1e-14);
+    assert_near(x, 4, 1e-14);
+    assert_near(y, -3, 1e-14);
 }
 
 /* ---- hand-computed 3-point cases (the 5-axis model, docs/calibration.md) ---- */
@@ -178,22 +200,34 @@ static void three_point_hand_cases(void **state)
      * P2 then lies at smaller x than P1 (the case the thesis's atan gets wrong). */
     fbrl_loc c1 = {10, 0, 0, 0, 0, 0}, c2 = {15, 0, 0, 0, 0, 0}, c3 = {10, 3, 0, 0, 0, 0};
     fbrl_loc r1 = {-10, 0, 0, 0, 0, 0}, r2 = {-15, 0, 0, 0, 0, 0}, r3 = {-10, -3, 0, 0, 0, 0};
-    fbrl_calpts_set(&cal, 1, &c1); fbrl_calpts_set(&cal, 2, &c2); fbrl_calpts_set(&cal, 3, &c3);
-    fbrl_calpts_set(&recal, 1, &r1); fbrl_calpts_set(&recal, 2, &r2); fbrl_calpts_set(&recal, 3, &r3);
+    fbrl_calpts_set(&cal, 1, &c1);
+    fbrl_calpts_set(&cal, 2, &c2);
+    fbrl_calpts_set(&cal, 3, &c3);
+    fbrl_calpts_set(&recal, 1, &r1);
+    fbrl_calpts_set(&recal, 2, &r2);
+    fbrl_calpts_set(&recal, 3, &r3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     /* The arm only turns its waist by 180: (12, 1, 2) pitch 0 roll 20 -> (-12, -1, 2), the
      * waist (the reported yaw) atan2(-1, -12) = -175.236, pitch and roll as they were. */
     fbrl_loc p = {12, 1, 2, 10, 0, 20};
     assert_int_equal(fbrl_calib_map_arm(&c, NULL, &p, &out, &off), FBRL_OK);
-    assert_near(out.x, -12, 1e-12); assert_near(out.y, -1, 1e-12); assert_near(out.z, 2, 1e-12);
+    assert_near(out.x, -12, 1e-12);
+    assert_near(out.y, -1, 1e-12);
+    assert_near(out.z, 2, 1e-12);
     assert_near(out.o, atan2(-1, -12) * 180 / FBRL_PI, 1e-9);
-    assert_near(out.a, 0, 1e-9); assert_near(out.t, 20, 1e-9); assert_near(off, 0, 1e-9);
+    assert_near(out.a, 0, 1e-9);
+    assert_near(out.t, 20, 1e-9);
+    assert_near(off, 0, 1e-9);
     fbrl_loc down = {12, 1, 2, 30, -90, 0};
     assert_int_equal(fbrl_calib_map(&c, &down, &out), FBRL_OK);
-    assert_near(out.a, -90, 1e-9); assert_near(out.t, 0, 1e-9);
+    assert_near(out.a, -90, 1e-9);
+    assert_near(out.t, 0, 1e-9);
     assert_int_equal(fbrl_calib_unmap(&c, &out, &l), FBRL_OK);
-    assert_near(l.x, 12, 1e-12); assert_near(l.y, 1, 1e-12); assert_near(l.z, 2, 1e-12);
-    assert_near(l.o, atan2(1, 12) * 180 / FBRL_PI, 1e-9); assert_near(l.a, -90, 1e-9);
+    assert_near(l.x, 12, 1e-12);
+    assert_near(l.y, 1, 1e-12);
+    assert_near(l.z, 2, 1e-12);
+    assert_near(l.o, atan2(1, 12) * 180 / FBRL_PI, 1e-9);
+    assert_near(l.a, -90, 1e-9);
     assert_near(l.t, 0, 1e-9);
 
     /* A block turned +90 degrees about its own corner (10, 0): (x, y) -> (10 - y, x - 10).
@@ -202,15 +236,23 @@ static void three_point_hand_cases(void **state)
      * atan2(2, 10) = 11.3099, the grip must head 180, so roll = 11.3099 + 90 - 180. */
     fbrl_loc k1 = {10, 0, 0, 0, 0, 0}, k2 = {14, 0, 0, 0, 0, 0}, k3 = {10, 3, 0, 0, 0, 0};
     fbrl_loc m1 = {10, 0, 0, 0, 0, 0}, m2 = {10, 4, 0, 0, 0, 0}, m3 = {7, 0, 0, 0, 0, 0};
-    fbrl_calpts_set(&cal, 1, &k1); fbrl_calpts_set(&cal, 2, &k2); fbrl_calpts_set(&cal, 3, &k3);
-    fbrl_calpts_set(&recal, 1, &m1); fbrl_calpts_set(&recal, 2, &m2); fbrl_calpts_set(&recal, 3, &m3);
+    fbrl_calpts_set(&cal, 1, &k1);
+    fbrl_calpts_set(&cal, 2, &k2);
+    fbrl_calpts_set(&cal, 3, &k3);
+    fbrl_calpts_set(&recal, 1, &m1);
+    fbrl_calpts_set(&recal, 2, &m2);
+    fbrl_calpts_set(&recal, 3, &m3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     fbrl_loc t1 = {12, 0, 2, 0, -90, 0};
     assert_int_equal(fbrl_calib_map_arm(&c, NULL, &t1, &out, &off), FBRL_OK);
     double w1 = atan2(2, 10) * 180 / FBRL_PI;
-    assert_near(out.x, 10, 1e-12); assert_near(out.y, 2, 1e-12); assert_near(out.z, 2, 1e-12);
-    assert_near(out.o, w1, 1e-9); assert_near(out.a, -90, 1e-9);
-    assert_near(out.t, w1 + 90 - 180, 1e-9); assert_near(off, 0, 1e-9);
+    assert_near(out.x, 10, 1e-12);
+    assert_near(out.y, 2, 1e-12);
+    assert_near(out.z, 2, 1e-12);
+    assert_near(out.o, w1, 1e-9);
+    assert_near(out.a, -90, 1e-9);
+    assert_near(out.t, w1 + 90 - 180, 1e-9);
+    assert_near(off, 0, 1e-9);
     /* The arm's base axis elsewhere (a BASE-OFFSET): the waist is measured from it. */
     double axis[2] = {0, 10};
     assert_int_equal(fbrl_calib_map_arm(&c, axis, &t1, &out, &off), FBRL_OK);
@@ -224,12 +266,18 @@ static void three_point_hand_cases(void **state)
      * 5-axis arm cannot do. map_arm reports it; map refuses. */
     fbrl_loc d1 = {0, 0, 0, 0, 0, 0}, d2 = {5, 0, 0, 0, 0, 0}, d3 = {0, 4, 0, 0, 0, 0};
     fbrl_loc e1 = {0, 0, 0, 0, 0, 0}, e2 = {5, 0, 0, 0, 0, 0}, e3 = {0, 0, 4, 0, 0, 0};
-    fbrl_calpts_set(&cal, 1, &d1); fbrl_calpts_set(&cal, 2, &d2); fbrl_calpts_set(&cal, 3, &d3);
-    fbrl_calpts_set(&recal, 1, &e1); fbrl_calpts_set(&recal, 2, &e2); fbrl_calpts_set(&recal, 3, &e3);
+    fbrl_calpts_set(&cal, 1, &d1);
+    fbrl_calpts_set(&cal, 2, &d2);
+    fbrl_calpts_set(&cal, 3, &d3);
+    fbrl_calpts_set(&recal, 1, &e1);
+    fbrl_calpts_set(&recal, 2, &e2);
+    fbrl_calpts_set(&recal, 3, &e3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     fbrl_loc q = {1, 2, 3, 0, 0, 0};
     assert_int_equal(fbrl_calib_map_arm(&c, NULL, &q, &out, &off), FBRL_OK);
-    assert_near(out.x, 1, 1e-12); assert_near(out.y, -3, 1e-12); assert_near(out.z, 2, 1e-12);
+    assert_near(out.x, 1, 1e-12);
+    assert_near(out.y, -3, 1e-12);
+    assert_near(out.z, 2, 1e-12);
     double dx = 1 / sqrt(5), dz = 2 / sqrt(5), wr = atan2(-3, 1);
     double across = -sin(wr) * dx, along = cos(wr) * dx;
     assert_near(off, asin(fabs(across)) * 180 / FBRL_PI, 1e-9);
@@ -243,15 +291,25 @@ static void three_point_hand_cases(void **state)
      * pitch and roll. A shift across it would turn the waist under a tilted tool: the
      * tool axis (pitch -30, heading 45) then lies 11.2 degrees off the waist at (8, 5). */
     fbrl_loc f1 = {1, 1, 0.5, 0, 0, 0}, f2 = {6, 1, 0.5, 0, 0, 0}, f3 = {1, 5, 0.5, 0, 0, 0};
-    fbrl_calpts_set(&cal, 1, &d1); fbrl_calpts_set(&cal, 2, &d2); fbrl_calpts_set(&cal, 3, &d3);
-    fbrl_calpts_set(&recal, 1, &f1); fbrl_calpts_set(&recal, 2, &f2); fbrl_calpts_set(&recal, 3, &f3);
+    fbrl_calpts_set(&cal, 1, &d1);
+    fbrl_calpts_set(&cal, 2, &d2);
+    fbrl_calpts_set(&cal, 3, &d3);
+    fbrl_calpts_set(&recal, 1, &f1);
+    fbrl_calpts_set(&recal, 2, &f2);
+    fbrl_calpts_set(&recal, 3, &f3);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     fbrl_loc g = {7, 7, 7, 45, -30, 12};
     assert_int_equal(fbrl_calib_map(&c, &g, &out), FBRL_OK);
-    assert_near(out.x, 8, 1e-12); assert_near(out.y, 8, 1e-12); assert_near(out.z, 7.5, 1e-12);
-    assert_near(out.o, 45, 1e-9); assert_near(out.a, -30, 1e-9); assert_near(out.t, 12, 1e-9);
+    assert_near(out.x, 8, 1e-12);
+    assert_near(out.y, 8, 1e-12);
+    assert_near(out.z, 7.5, 1e-12);
+    assert_near(out.o, 45, 1e-9);
+    assert_near(out.a, -30, 1e-9);
+    assert_near(out.t, 12, 1e-9);
     fbrl_loc f1b = {1, -2, 0.5, 0, 0, 0}, f2b = {6, -2, 0.5, 0, 0, 0}, f3b = {1, 2, 0.5, 0, 0, 0};
-    fbrl_calpts_set(&recal, 1, &f1b); fbrl_calpts_set(&recal, 2, &f2b); fbrl_calpts_set(&recal, 3, &f3b);
+    fbrl_calpts_set(&recal, 1, &f1b);
+    fbrl_calpts_set(&recal, 2, &f2b);
+    fbrl_calpts_set(&recal, 3, &f3b);
     assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
     assert_int_equal(fbrl_calib_map_arm(&c, NULL, &g, &out, &off), FBRL_OK);
     assert_near(off, asin(cos(rad_deg(30)) * sin(rad_deg(45) - atan2(5, 8))) * 180 / FBRL_PI, 1e-9);
@@ -260,11 +318,14 @@ static void three_point_hand_cases(void **state)
     assert_int_equal(fbrl_calib_identity(&c), FBRL_OK);
     assert_int_equal(fbrl_calib_map(&c, &h, &out), FBRL_OK);
     assert_memory_equal(&out.x, &h.x, 3 * sizeof(double));
-    assert_near(out.o, 45, 1e-12); assert_near(out.a, -30, 1e-12); assert_near(out.t, 12, 1e-12);
+    assert_near(out.o, 45, 1e-12);
+    assert_near(out.a, -30, 1e-12);
+    assert_near(out.t, 12, 1e-12);
     /* On the base axis the location's own yaw stands for the waist. */
     fbrl_loc on_axis = {0, 0, 20, 30, -90, 5};
     assert_int_equal(fbrl_calib_map(&c, &on_axis, &out), FBRL_OK);
-    assert_near(out.o, 30, 1e-12); assert_near(out.t, 5, 1e-12);
+    assert_near(out.o, 30, 1e-12);
+    assert_near(out.t, 5, 1e-12);
 }
 
 /* ---- 10,000 random rigid motions ---- */
@@ -272,8 +333,12 @@ static void three_point_hand_cases(void **state)
 static void block_points(double local[3][3])
 {
     /* P1 at the block origin, P2 on its x axis, P3 in its xy plane, well off the axis. */
-    local[0][0] = 0; local[0][1] = 0; local[0][2] = 0;
-    local[1][0] = uniform(2, 10); local[1][1] = 0; local[1][2] = 0;
+    local[0][0] = 0;
+    local[0][1] = 0;
+    local[0][2] = 0;
+    local[1][0] = uniform(2, 10);
+    local[1][1] = 0;
+    local[1][2] = 0;
     local[2][0] = uniform(-5, 5);
     local[2][1] = (rng_next() & 1 ? 1 : -1) * uniform(1, 8);
     local[2][2] = 0;
@@ -284,7 +349,8 @@ static double rot_angle(double r[3][3])
 {
     double c = (r[0][0] + r[1][1] + r[2][2] - 1) / 2;
     double s = sqrt((r[2][1] - r[1][2]) * (r[2][1] - r[1][2]) + (r[0][2] - r[2][0]) * (r[0][2] - r[2][0]) +
-                    (r[1][0] - r[0][1]) * (r[1][0] - r[0][1])) / 2;
+                    (r[1][0] - r[0][1]) * (r[1][0] - r[0][1])) /
+               2;
     return atan2(s, c) * 180 / FBRL_PI;
 }
 
@@ -379,8 +445,9 @@ static void random_rigid_motions(void **state)
             double wa[3] = {t_want[0][0], t_want[1][0], t_want[2][0]};
             double cx = ga[1] * wa[2] - ga[2] * wa[1], cy = ga[2] * wa[0] - ga[0] * wa[2];
             double cz = ga[0] * wa[1] - ga[1] * wa[0];
-            double axis_gap = atan2(sqrt(cx * cx + cy * cy + cz * cz),
-                                    ga[0] * wa[0] + ga[1] * wa[1] + ga[2] * wa[2]) * 180 / FBRL_PI;
+            double axis_gap =
+                atan2(sqrt(cx * cx + cy * cy + cz * cz), ga[0] * wa[0] + ga[1] * wa[1] + ga[2] * wa[2]) *
+                180 / FBRL_PI;
             worst_orient = fmax(worst_orient, fabs(axis_gap - off));
             worst_orient = fmax(worst_orient, fabs(frame_angle(t_got, t_want) - off));
             /* And back: the position exactly; the orientation too when nothing was lost. */
@@ -395,8 +462,8 @@ static void random_rigid_motions(void **state)
         }
         /* The three calibration points themselves. */
         for (int k = 0; k < 3; k++) {
-            double q[3] = {cal.p[k].x, cal.p[k].y, cal.p[k].z}, want[3] = {recal.p[k].x,
-                           recal.p[k].y, recal.p[k].z};
+            double q[3] = {cal.p[k].x, cal.p[k].y, cal.p[k].z},
+                   want[3] = {recal.p[k].x, recal.p[k].y, recal.p[k].z};
             assert_int_equal(fbrl_calib_map_points(&c, q, q, 1), FBRL_OK);
             worst_map = fmax(worst_map, dist3(q, want));
             assert_int_equal(fbrl_calib_unmap_points(&c, q, q, 1), FBRL_OK);
@@ -405,8 +472,8 @@ static void random_rigid_motions(void **state)
         }
     }
     print_message("      %d motions, %d locations: worst map error %.3g in, map+unmap %.3g in, "
-                  "smallest-rotation error %.3g deg, unmap of a reachable map %.3g deg\n", trials,
-                  checked, worst_map, worst_round, worst_orient, worst_back);
+                  "smallest-rotation error %.3g deg, unmap of a reachable map %.3g deg\n",
+                  trials, checked, worst_map, worst_round, worst_orient, worst_back);
     assert_int_equal(kinds[0] + kinds[1] + kinds[2] + kinds[3], 10000);
     assert_true(checked > 30000);
     assert_true(worst_map < 1e-9);
@@ -415,8 +482,8 @@ static void random_rigid_motions(void **state)
     assert_true(worst_back < 1e-6);
 }
 
-static void set3(fbrl_calpts *c, double ax, double ay, double az, double bx, double by,
-                 double bz, double cx, double cy, double cz)
+static void set3(fbrl_calpts *c, double ax, double ay, double az, double bx, double by, double bz, double cx,
+                 double cy, double cz)
 {
     fbrl_loc a = {ax, ay, az, 0, 0, 0}, b = {bx, by, bz, 0, 0, 0}, d = {cx, cy, cz, 0, 0, 0};
     fbrl_calpts_set(c, 1, &a);
@@ -459,8 +526,8 @@ static void degenerate_sets_refused(void **state)
     assert_int_equal(fbrl_calib_3point(&c, &bad, &bad), FBRL_OK);
 
     /* N points: all on one line, or all on one spot. */
-    fbrl_loc line[6], spot[4], ok[4] = {{0, 0, 0, 0, 0, 0}, {5, 0, 0, 0, 0, 0},
-                                        {0, 4, 0, 0, 0, 0}, {5, 4, 1, 0, 0, 0}};
+    fbrl_loc line[6], spot[4],
+        ok[4] = {{0, 0, 0, 0, 0, 0}, {5, 0, 0, 0, 0, 0}, {0, 4, 0, 0, 0, 0}, {5, 4, 1, 0, 0, 0}};
     for (int i = 0; i < 6; i++) {
         fbrl_loc l = {1 + 2.0 * i, -1 - 1.0 * i, 0.5 * i, 0, 0, 0};
         line[i] = l;
@@ -555,16 +622,18 @@ static void save_and_load(void **state)
     assert_int_equal(fbrl_calib_save(&c, buf, sizeof buf), FBRL_OK);
     /* The documented layout. */
     assert_memory_equal(buf, "FBCL", 4);
-    assert_int_equal(buf[4], 1); assert_int_equal(buf[5], 0);
-    assert_int_equal(buf[6], 0); assert_int_equal(buf[7], 0);
+    assert_int_equal(buf[4], 1);
+    assert_int_equal(buf[5], 0);
+    assert_int_equal(buf[6], 0);
+    assert_int_equal(buf[7], 0);
     uint64_t bits = 0;
     for (int i = 0; i < 8; i++)
         bits |= (uint64_t)buf[80 + i] << (8 * i);
     double t0;
     memcpy(&t0, &bits, 8);
     assert_true(t0 == c.t[0]);
-    uint32_t crc = (uint32_t)buf[104] | (uint32_t)buf[105] << 8 | (uint32_t)buf[106] << 16 |
-                   (uint32_t)buf[107] << 24;
+    uint32_t crc =
+        (uint32_t)buf[104] | (uint32_t)buf[105] << 8 | (uint32_t)buf[106] << 16 | (uint32_t)buf[107] << 24;
     assert_int_equal(crc, fbrl_crc32(0, buf, 104));
     /* Round trip is exact. */
     assert_int_equal(fbrl_calib_load(&d, buf, FBRL_CALIB_BYTES), FBRL_OK);
@@ -664,7 +733,9 @@ static void bad_input(void **state)
     fbrl_calib_identity(&c);
     for (int i = 0; i < 4; i++)
         pts4[i] = l;
-    pts4[1].x = 5; pts4[2].y = 7; pts4[3].z = 9;
+    pts4[1].x = 5;
+    pts4[2].y = 7;
+    pts4[3].z = 9;
     assert_int_equal(fbrl_calib_npoint(&c, pts4, pts4, 2, NULL, NULL, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_npoint(&c, pts4, pts4, 0, NULL, NULL, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_calib_npoint(NULL, pts4, pts4, 4, NULL, NULL, NULL), FBRL_EINVAL);

@@ -31,10 +31,7 @@ static char dir[512];
 #define PATH_LEN 800
 
 /* A path in the scratch directory, into the caller's storage. */
-static void path_in(char *out, const char *name)
-{
-    snprintf(out, PATH_LEN, "%s/%s", dir, name);
-}
+static void path_in(char *out, const char *name) { snprintf(out, PATH_LEN, "%s/%s", dir, name); }
 
 /* The same, for use within one expression (a few rotating buffers). */
 static const char *in_dir(const char *name)
@@ -114,10 +111,7 @@ static int count_temporaries(void)
     return n;
 }
 
-static int same_bits(double a, double b)
-{
-    return memcmp(&a, &b, sizeof a) == 0;
-}
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
 
 /* ---- a sample file holding every type ---- */
 
@@ -125,9 +119,8 @@ static const unsigned char chrs[] = {0, 'A', 255};
 static const int16_t ints[] = {INT16_MIN, -1, 0, 1, 0x1234, INT16_MAX};
 static const int32_t longs[] = {INT32_MIN, -123456789, -1, 0, 0x12345678, INT32_MAX};
 static double reals[] = {0.0, -0.0, 1.0, -3.141592653589793, 1e-300, 4.9e-324, DBL_MAX, -DBL_MAX};
-static const fbrl_loc locs[] = {{10.5, -3.25, 7.0, 45.0, -90.0, 180.0},
-                                {0, 0, 0, 0, 0, 0},
-                                {-22.0, 22.0, 1e-9, -175.0, 110.0, -180.0}};
+static const fbrl_loc locs[] = {
+    {10.5, -3.25, 7.0, 45.0, -90.0, 180.0}, {0, 0, 0, 0, 0, 0}, {-22.0, 22.0, 1e-9, -175.0, 110.0, -180.0}};
 
 /* User types: told apart by tag and size, including one sized like a REAL. */
 static void user_bytes(unsigned char *b, size_t n, unsigned seed)
@@ -136,8 +129,10 @@ static void user_bytes(unsigned char *b, size_t n, unsigned seed)
         b[i] = (unsigned char)(seed * 31u + i * 7u);
 }
 
-static const struct { uint16_t tag; uint32_t size; } users[] = {
-    {0, 1}, {7, 3}, {7, 100}, {65535, 8}, {42, 300}};
+static const struct {
+    uint16_t tag;
+    uint32_t size;
+} users[] = {{0, 1}, {7, 3}, {7, 100}, {65535, 8}, {42, 300}};
 
 #define N_ALL (3 + 6 + 6 + 8 + 3 + 5)
 
@@ -156,8 +151,7 @@ static void write_all(fbrl_file *f)
         assert_int_equal(fbrl_file_write_loc(f, &locs[i]), FBRL_OK);
     for (size_t i = 0; i < 5; i++) {
         user_bytes(ub, users[i].size, (unsigned)i);
-        assert_int_equal(fbrl_file_write(f, fbrl_ftype_user(users[i].tag, users[i].size), ub),
-                         FBRL_OK);
+        assert_int_equal(fbrl_file_write(f, fbrl_ftype_user(users[i].tag, users[i].size), ub), FBRL_OK);
     }
 }
 
@@ -274,8 +268,7 @@ static void format_is_little_endian_byte_by_byte(void **state)
     path_in(p, "golden.fbd");
     assert_int_equal(fbrl_file_create(p), FBRL_OK);
     unsigned char got[256];
-    static const unsigned char empty_hdr[12] = {0x89, 'F', 'B', 'R', 'L', 'D', '\r', '\n',
-                                                1, 0, 32, 0};
+    static const unsigned char empty_hdr[12] = {0x89, 'F', 'B', 'R', 'L', 'D', '\r', '\n', 1, 0, 32, 0};
     assert_int_equal(get_raw(p, got, sizeof got), 32);
     assert_memory_equal(got, empty_hdr, 12);
 
@@ -286,11 +279,11 @@ static void format_is_little_endian_byte_by_byte(void **state)
     assert_int_equal(fbrl_file_write_user(&f, 0x0102, "xyz", 3), FBRL_OK);
     assert_int_equal(fbrl_file_close(&f), FBRL_OK);
 
-    static const unsigned char body[] = {
-        2, 0, 0, 0, 2, 0, 0, 0, 0x34, 0x12,                              /* INTEGER */
-        3, 0, 0, 0, 4, 0, 0, 0, 0xfe, 0xff, 0xff, 0xff,                  /* LONG -2 */
-        4, 0, 0, 0, 8, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0xf0, 0x3f,            /* REAL 1.0 */
-        6, 0, 0x02, 0x01, 3, 0, 0, 0, 'x', 'y', 'z'};                    /* USER */
+    static const unsigned char body[] = {2, 0, 0,    0,    2, 0, 0, 0, 0x34, 0x12,             /* INTEGER */
+                                         3, 0, 0,    0,    4, 0, 0, 0, 0xfe, 0xff, 0xff, 0xff, /* LONG -2 */
+                                         4, 0, 0,    0,    8, 0, 0, 0, 0,    0,    0,    0,
+                                         0, 0, 0xf0, 0x3f,                               /* REAL 1.0 */
+                                         6, 0, 0x02, 0x01, 3, 0, 0, 0, 'x',  'y',  'z'}; /* USER */
     size_t n = get_raw(p, got, sizeof got);
     assert_int_equal(n, 32 + sizeof body);
     assert_memory_equal(got, empty_hdr, 12);
@@ -561,8 +554,8 @@ static void every_bit_flip_is_refused(void **state)
             fbrl_status want = byte < 8 ? FBRL_EFORMAT : byte < 10 ? FBRL_EVERSION : FBRL_ECHECKSUM;
             fbrl_status st = fbrl_file_open(&f, p, buf, sizeof buf);
             if (st != want)
-                fail_msg("bit %d of byte %zu: %s, expected %s", bit, byte,
-                         fbrl_status_name(st), fbrl_status_name(want));
+                fail_msg("bit %d of byte %zu: %s, expected %s", bit, byte, fbrl_status_name(st),
+                         fbrl_status_name(want));
             whole[byte] ^= (unsigned char)(1u << bit);
             flips++;
         }
@@ -585,7 +578,10 @@ static void reseal(unsigned char *b, size_t n)
 }
 
 /* Open a copy of orig with bytes changed ({offset, value} pairs) and both CRCs recomputed. */
-struct edit { size_t at; unsigned char v; };
+struct edit {
+    size_t at;
+    unsigned char v;
+};
 
 static fbrl_status open_edited(const unsigned char *orig, size_t n, const struct edit *e, int k)
 {
@@ -602,8 +598,9 @@ static fbrl_status open_edited(const unsigned char *orig, size_t n, const struct
     return st;
 }
 
-#define EDIT(...) open_edited(b, n, (const struct edit[]){__VA_ARGS__}, \
-                              (int)(sizeof((const struct edit[]){__VA_ARGS__}) / sizeof(struct edit)))
+#define EDIT(...)                                         \
+    open_edited(b, n, (const struct edit[]){__VA_ARGS__}, \
+                (int)(sizeof((const struct edit[]){__VA_ARGS__}) / sizeof(struct edit)))
 
 /* Files with valid checksums but impossible contents are refused too. */
 static void well_sealed_nonsense_is_refused(void **state)
@@ -620,25 +617,25 @@ static void well_sealed_nonsense_is_refused(void **state)
     assert_int_equal(fbrl_file_close(&f), FBRL_OK);
     size_t n = get_raw(p, b, sizeof b);
     assert_int_equal(n, 32 + 16 + 9);
-    assert_int_equal(EDIT({8, 1}), FBRL_OK);                /* unchanged, resealed */
-    assert_int_equal(EDIT({48, 6}), FBRL_OK);               /* CHR -> USER tag 0 size 1 */
-    assert_int_equal(EDIT({8, 2}), FBRL_EVERSION);          /* a future version */
-    assert_int_equal(EDIT({10, 33}), FBRL_EFORMAT);         /* header size */
-    assert_int_equal(EDIT({12, 58}), FBRL_ETRUNCATED);      /* file length one more */
-    assert_int_equal(EDIT({12, 56}), FBRL_EFORMAT);         /* file length one less */
-    assert_int_equal(EDIT({12, 0}, {13, 0}), FBRL_EFORMAT); /* file length 0 */
-    assert_int_equal(EDIT({16, 3}), FBRL_EFORMAT);          /* count says 3 records */
-    assert_int_equal(EDIT({16, 1}), FBRL_EFORMAT);          /* count says 1 */
-    assert_int_equal(EDIT({24, 1}), FBRL_EFORMAT);          /* reserved field */
-    assert_int_equal(EDIT({32, 0}), FBRL_EFORMAT);          /* type code 0 */
-    assert_int_equal(EDIT({32, 7}), FBRL_EFORMAT);          /* type code 7 */
-    assert_int_equal(EDIT({33, 1}), FBRL_EFORMAT);          /* reserved byte */
-    assert_int_equal(EDIT({34, 1}), FBRL_EFORMAT);          /* tag on a built-in type */
-    assert_int_equal(EDIT({36, 4}), FBRL_EFORMAT);          /* REAL of 4 bytes */
-    assert_int_equal(EDIT({47, 0x7f}), FBRL_EFORMAT);       /* REAL is now NaN */
+    assert_int_equal(EDIT({8, 1}), FBRL_OK);                      /* unchanged, resealed */
+    assert_int_equal(EDIT({48, 6}), FBRL_OK);                     /* CHR -> USER tag 0 size 1 */
+    assert_int_equal(EDIT({8, 2}), FBRL_EVERSION);                /* a future version */
+    assert_int_equal(EDIT({10, 33}), FBRL_EFORMAT);               /* header size */
+    assert_int_equal(EDIT({12, 58}), FBRL_ETRUNCATED);            /* file length one more */
+    assert_int_equal(EDIT({12, 56}), FBRL_EFORMAT);               /* file length one less */
+    assert_int_equal(EDIT({12, 0}, {13, 0}), FBRL_EFORMAT);       /* file length 0 */
+    assert_int_equal(EDIT({16, 3}), FBRL_EFORMAT);                /* count says 3 records */
+    assert_int_equal(EDIT({16, 1}), FBRL_EFORMAT);                /* count says 1 */
+    assert_int_equal(EDIT({24, 1}), FBRL_EFORMAT);                /* reserved field */
+    assert_int_equal(EDIT({32, 0}), FBRL_EFORMAT);                /* type code 0 */
+    assert_int_equal(EDIT({32, 7}), FBRL_EFORMAT);                /* type code 7 */
+    assert_int_equal(EDIT({33, 1}), FBRL_EFORMAT);                /* reserved byte */
+    assert_int_equal(EDIT({34, 1}), FBRL_EFORMAT);                /* tag on a built-in type */
+    assert_int_equal(EDIT({36, 4}), FBRL_EFORMAT);                /* REAL of 4 bytes */
+    assert_int_equal(EDIT({47, 0x7f}), FBRL_EFORMAT);             /* REAL is now NaN */
     assert_int_equal(EDIT({46, 0xf0}, {47, 0x7f}), FBRL_EFORMAT); /* REAL is +inf */
-    assert_int_equal(EDIT({48, 6}, {52, 2}), FBRL_EFORMAT); /* USER runs past the end */
-    assert_int_equal(EDIT({48, 6}, {52, 0}), FBRL_EFORMAT); /* USER of 0 bytes */
+    assert_int_equal(EDIT({48, 6}, {52, 2}), FBRL_EFORMAT);       /* USER runs past the end */
+    assert_int_equal(EDIT({48, 6}, {52, 0}), FBRL_EFORMAT);       /* USER of 0 bytes */
 }
 
 /* Any file open accepts reads completely, record by record, with the types peek reports. */
@@ -679,8 +676,15 @@ static void random_damage_is_refused(void **state)
             size_t at = 32 + rng() % (m - 32);
             switch (rng() % 3) {
             case 0: b[at] = (unsigned char)rng(); break;
-            case 1: memmove(b + at + 1, b + at, m - at); b[at] = (unsigned char)rng(); m++; break;
-            default: memmove(b + at, b + at + 1, m - at - 1); m--; break;
+            case 1:
+                memmove(b + at + 1, b + at, m - at);
+                b[at] = (unsigned char)rng();
+                m++;
+                break;
+            default:
+                memmove(b + at, b + at + 1, m - at - 1);
+                m--;
+                break;
             }
         }
         int same = m == n && memcmp(b, whole, n) == 0;
@@ -703,8 +707,7 @@ static void random_damage_is_refused(void **state)
             refused++;
         }
     }
-    print_message("random damage: %d refused, %d accepted (resealed or unchanged)\n", refused,
-                  accepted);
+    print_message("random damage: %d refused, %d accepted (resealed or unchanged)\n", refused, accepted);
 }
 
 /* ---- writers killed with SIGKILL in the middle of commits ---- */
@@ -723,10 +726,7 @@ static uint32_t rng(void)
 
 /* Generation g: LONG g, then 1 + g % 37 records of every type derived from g, so files of
  * different generations differ in length, types and contents. */
-static uint32_t gen_records(uint32_t g)
-{
-    return 1 + g % 37;
-}
+static uint32_t gen_records(uint32_t g) { return 1 + g % 37; }
 
 static void gen_user(unsigned char *b, uint32_t g, uint32_t i, uint16_t *tag, uint32_t *size)
 {
@@ -755,9 +755,7 @@ static fbrl_status gen_write(fbrl_file *f, uint32_t g)
         case 1: st = fbrl_file_write_integer(f, (int16_t)(g * 3 + i)); break;
         case 2: st = fbrl_file_write_real(f, g + i / 4.0); break;
         case 3: st = fbrl_file_write_loc(f, &l); break;
-        default:
-            gen_user(ub, g, i, &tag, &size);
-            st = fbrl_file_write_user(f, tag, ub, size);
+        default: gen_user(ub, g, i, &tag, &size); st = fbrl_file_write_user(f, tag, ub, size);
         }
     }
     return st;
@@ -817,9 +815,8 @@ static void writer_child(const char *path, uint32_t g, int done)
     fbrl_file f;
     for (;;) {
         g++;
-        if (fbrl_file_open(&f, path, buf, sizeof buf) != FBRL_OK ||
-            fbrl_file_truncate(&f) != FBRL_OK || gen_write(&f, g) != FBRL_OK ||
-            fbrl_file_close(&f) != FBRL_OK || write(done, "c", 1) != 1)
+        if (fbrl_file_open(&f, path, buf, sizeof buf) != FBRL_OK || fbrl_file_truncate(&f) != FBRL_OK ||
+            gen_write(&f, g) != FBRL_OK || fbrl_file_close(&f) != FBRL_OK || write(done, "c", 1) != 1)
             _exit(3);
     }
 }
@@ -927,9 +924,8 @@ static void leftover_temporaries_do_not_block_writes(void **state)
 
     /* Removing them takes exactly the temporaries of this file, nothing that only looks
      * like one. */
-    static const char *const keep[] = {".left.fbd.12-3.tmpx", ".left.fbd.12.tmp",
-                                       ".left.fbd.-3.tmp", "left.fbd.12-3.tmp",
-                                       ".left.fbdx.12-3.tmp", ".other.fbd.12-3.tmp",
+    static const char *const keep[] = {".left.fbd.12-3.tmpx", ".left.fbd.12.tmp",    ".left.fbd.-3.tmp",
+                                       "left.fbd.12-3.tmp",   ".left.fbdx.12-3.tmp", ".other.fbd.12-3.tmp",
                                        ".left.fbd.12-3x.tmp"};
     for (size_t i = 0; i < sizeof keep / sizeof keep[0]; i++)
         put_raw(in_dir(keep[i]), junk, sizeof junk);
@@ -1005,8 +1001,7 @@ static void bad_input_is_refused(void **state)
     longpath[sizeof longpath - 1] = '\0';
     assert_int_equal(fbrl_file_create(longpath), FBRL_ENAME);
     assert_int_equal(fbrl_file_open(&f, longpath, buf, sizeof buf), FBRL_ENAME);
-    assert_int_equal(fbrl_file_open(&f, in_dir("no-such-dir/x.fbd"), buf, sizeof buf),
-                     FBRL_ENOENT);
+    assert_int_equal(fbrl_file_open(&f, in_dir("no-such-dir/x.fbd"), buf, sizeof buf), FBRL_ENOENT);
     assert_int_equal(fbrl_file_open(&f, in_dir("missing.fbd"), buf, sizeof buf), FBRL_ENOENT);
     assert_int_equal(count_temporaries(), temps); /* failed creates leave nothing behind */
 
@@ -1061,9 +1056,8 @@ static void bad_input_is_refused(void **state)
 
     /* Bad types, NULL values, zero sizes, non-finite numbers, full buffer. */
     assert_int_equal(fbrl_file_open(&f, p, buf, 40), FBRL_OK);
-    const fbrl_ftype bad[] = {{(fbrl_ftype_code)0, 0, 1}, {(fbrl_ftype_code)99, 0, 4},
-                              {FBRL_FT_REAL, 0, 4}, {FBRL_FT_CHR, 1, 1},
-                              {FBRL_FT_LOCATION, 0, 47}, {FBRL_FT_USER, 5, 0}};
+    const fbrl_ftype bad[] = {{(fbrl_ftype_code)0, 0, 1}, {(fbrl_ftype_code)99, 0, 4}, {FBRL_FT_REAL, 0, 4},
+                              {FBRL_FT_CHR, 1, 1},        {FBRL_FT_LOCATION, 0, 47},   {FBRL_FT_USER, 5, 0}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         assert_int_equal(fbrl_file_write(&f, bad[i], buf), FBRL_EINVAL);
         assert_int_equal(fbrl_file_read(&f, bad[i], buf), FBRL_EINVAL);
@@ -1096,7 +1090,7 @@ static void bad_input_is_refused(void **state)
     assert_int_equal(fbrl_file_read_long(&f, &v), FBRL_OK);
     assert_int_equal(fbrl_file_write_user(&f, 0, buf, 9), FBRL_ENOSPC);
     assert_int_equal(fbrl_file_tell(&f, &idx, &cnt), FBRL_OK);
-    assert_int_equal(idx, 1); /* nothing moved */
+    assert_int_equal(idx, 1);                                       /* nothing moved */
     assert_int_equal(fbrl_file_write_user(&f, 0, buf, 5), FBRL_OK); /* 13 bytes: fits */
     assert_int_equal(fbrl_file_tell(&f, &idx, &cnt), FBRL_OK);
     assert_int_equal(idx, 2);

@@ -19,7 +19,7 @@
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
-#define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
+#define FORTH_DIR    FBRL_TEST_SRCDIR "/tests/forth/"
 #define FILE_STORAGE (8 * 8192) /* 8 KB of records per open file */
 
 /* ---- a host: console and port output into texts, source files through stdio
@@ -129,27 +129,89 @@ static void run_forth_file(const char *name)
     assert_int_equal(st, FBRL_OK);
     ok(f, "#ERRORS @ #TESTS @");
     fbrl_cell tests = pop1(f), errors = pop1(f);
-    if (errors) print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->out.s);
+    if (errors)
+        print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->out.s);
     assert_int_equal(errors, 0);
     assert_true(tests > 10);
     print_message("%s: %ld tests passed\n", name, (long)tests);
     free_vm(f);
 }
 
-static void forth_loc(void **state) { (void)state; run_forth_file("glossary_loc.fs"); }
-static void forth_cal(void **state) { (void)state; run_forth_file("glossary_cal.fs"); }
-static void forth_file(void **state) { (void)state; run_forth_file("glossary_file.fs"); }
-
+static void forth_loc(void **state)
+{
+    (void)state;
+    run_forth_file("glossary_loc.fs");
+}
+static void forth_cal(void **state)
+{
+    (void)state;
+    run_forth_file("glossary_cal.fs");
+}
+static void forth_file(void **state)
+{
+    (void)state;
+    run_forth_file("glossary_file.fs");
+}
 
 /* ---- every word has HELP text ---- */
 static const char *const all_words[] = {
-    "CREATE-LOC", "GETX", "GETY", "GETZ", "GETO", "GETA", "GETT", "SETX", "SETY", "SETZ", "SETO", "SETA",
-    "SETT", "SET-LOC", "DEFINE-LOC", "SHIFTA", "DISPLAY-LOC", "PRINT-LOC", "RECTMAT", "AUTOMAT", "RADMAT",
-    "SHOW-AUTOMAT", "SHOW-RADMAT", "METRIC-ON", "METRIC-OFF", "METRIC?", "CM->IN", "IN->CM", "METRIC-IN",
-    "METRIC-OUT", "MAP-ON", "MAP-OFF", "MAPPING?", "WITH-CAL", "CREATE-CAL", "CAL-ADDR", "SET-CAL", "GET-CAL",
-    "CREATE-CAL-STRU", "CAL-STRU@", "CAL-STRU!", "NUM-CAL-CELLS", "ANG-FROM-ORIGIN", "ROTATE", "CALIBRATE",
-    "(MAP)", "UNMAP", "CALIBRATE-N", "CREATE-FILE", "OPEN-FILE", "RESET-FILE", "APPEND-FILE", "CLOSE-FILE",
-    "WRITE-FILE", "READ-FILE", "SAVE-CAL", "LOAD-CAL",
+    "CREATE-LOC",
+    "GETX",
+    "GETY",
+    "GETZ",
+    "GETO",
+    "GETA",
+    "GETT",
+    "SETX",
+    "SETY",
+    "SETZ",
+    "SETO",
+    "SETA",
+    "SETT",
+    "SET-LOC",
+    "DEFINE-LOC",
+    "SHIFTA",
+    "DISPLAY-LOC",
+    "PRINT-LOC",
+    "RECTMAT",
+    "AUTOMAT",
+    "RADMAT",
+    "SHOW-AUTOMAT",
+    "SHOW-RADMAT",
+    "METRIC-ON",
+    "METRIC-OFF",
+    "METRIC?",
+    "CM->IN",
+    "IN->CM",
+    "METRIC-IN",
+    "METRIC-OUT",
+    "MAP-ON",
+    "MAP-OFF",
+    "MAPPING?",
+    "WITH-CAL",
+    "CREATE-CAL",
+    "CAL-ADDR",
+    "SET-CAL",
+    "GET-CAL",
+    "CREATE-CAL-STRU",
+    "CAL-STRU@",
+    "CAL-STRU!",
+    "NUM-CAL-CELLS",
+    "ANG-FROM-ORIGIN",
+    "ROTATE",
+    "CALIBRATE",
+    "(MAP)",
+    "UNMAP",
+    "CALIBRATE-N",
+    "CREATE-FILE",
+    "OPEN-FILE",
+    "RESET-FILE",
+    "APPEND-FILE",
+    "CLOSE-FILE",
+    "WRITE-FILE",
+    "READ-FILE",
+    "SAVE-CAL",
+    "LOAD-CAL",
 };
 
 static void every_word_has_help(void **state)
@@ -179,7 +241,7 @@ static void install_checks_arguments(void **state)
     assert_int_equal(fbrl_glossary_install(f->vm, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_glossary_finish(NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_glossary_set_file_storage(NULL, f->files, 16), FBRL_EINVAL);
-    assert_int_equal(fbrl_glossary_map_out(NULL, &(fbrl_loc){ 0 }, NULL, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_glossary_map_out(NULL, &(fbrl_loc){0}, NULL, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_glossary_map_in(&f->g, NULL, NULL), FBRL_EINVAL);
     assert_null(fbrl_glossary_units(NULL));
     assert_int_equal(fbrl_glossary_loc(NULL, 0, &loc), FBRL_EINVAL);
@@ -210,10 +272,12 @@ static void display_loc_text(void **state)
     ok(f, "CREATE-LOC P 12E0 -3.5E0 1.25E0 90E0 -90E0 0E0 P DEFINE-LOC");
     clear(f);
     ok(f, "P DISPLAY-LOC");
-    assert_string_equal(f->out.s, "X   +12.0000 Y    -3.5000 Z    +1.2500 in  O  +90.000 A  -90.000 T   +0.000 deg\n");
+    assert_string_equal(f->out.s,
+                        "X   +12.0000 Y    -3.5000 Z    +1.2500 in  O  +90.000 A  -90.000 T   +0.000 deg\n");
     clear(f);
     ok(f, "METRIC-ON P DISPLAY-LOC METRIC-OFF");
-    assert_string_equal(f->out.s, "X   +30.4800 Y    -8.8900 Z    +3.1750 cm  O  +90.000 A  -90.000 T   +0.000 deg\n");
+    assert_string_equal(f->out.s,
+                        "X   +30.4800 Y    -8.8900 Z    +3.1750 cm  O  +90.000 A  -90.000 T   +0.000 deg\n");
     /* with mapping on, the location the arm is sent to: block turned 90 deg about z, moved (10,5,0) */
     ok(f, "CREATE-CAL-STRU S 0E0 S 1 CAL-STRU! -1E0 S 2 CAL-STRU! 10E0 S 4 CAL-STRU! "
           "1E0 S 5 CAL-STRU! 0E0 S 6 CAL-STRU! 5E0 S 8 CAL-STRU! S WITH-CAL MAP-ON");
@@ -222,7 +286,8 @@ static void display_loc_text(void **state)
     /* the waist points at (13.5, 17): yaw atan2(17, 13.5) = 51.546; the grip heading
      * (waist - roll + 90) was -16.260 + 90 = 73.740 and turns by 90 to 163.740, so roll =
      * 51.546 + 90 - 163.740 = -22.194 (docs/calibration.md) */
-    assert_string_equal(f->out.s, "X   +13.5000 Y   +17.0000 Z    +1.2500 in  O  +51.546 A  -90.000 T  -22.194 deg\n");
+    assert_string_equal(f->out.s,
+                        "X   +13.5000 Y   +17.0000 Z    +1.2500 in  O  +51.546 A  -90.000 T  -22.194 deg\n");
     ok(f, "MAP-OFF P GETX"); /* the stored location is unchanged */
     double x;
     assert_int_equal(fbrl_vm_fpop(f->vm, &x), FBRL_OK);
@@ -244,7 +309,8 @@ static void print_loc_port(void **state)
     fbrl_glossary_set_port_writer(&f->g, port_writer, &f->port);
     clear(f);
     ok(f, "P PRINT-LOC P DISPLAY-LOC");
-    assert_string_equal(f->port.s, "X    +1.0000 Y    +2.0000 Z    +3.0000 in  O   +4.000 A   +5.000 T   +6.000 deg\r\n");
+    assert_string_equal(
+        f->port.s, "X    +1.0000 Y    +2.0000 Z    +3.0000 in  O   +4.000 A   +5.000 T   +6.000 deg\r\n");
     assert_int_equal(strncmp(f->port.s, f->out.s, strlen(f->out.s) - 1), 0); /* the same text */
     throws(f, "0 PRINT-LOC", -9, "PRINT-LOC: address is not a location");
     fbrl_glossary_set_port_writer(&f->g, NULL, NULL);
@@ -260,13 +326,15 @@ static void show_matrices(void **state)
     ok(f, "10E0 0E0 2E0 0E0 -90E0 0E0 B DEFINE-LOC B 0.2E0 0.5E0 1E0 RADMAT RM");
     clear(f);
     ok(f, "' MAT SHOW-AUTOMAT");
-    assert_string_equal(f->out.s, "RECTMAT base X    +1.0000 Y    +2.0000 Z    +3.0000 in  O   +0.000 A  -90.000 "
-                                  "T   +0.000 deg  step X    +0.7500 Y    -1.2500 Z    +0.5000 in\n");
+    assert_string_equal(f->out.s,
+                        "RECTMAT base X    +1.0000 Y    +2.0000 Z    +3.0000 in  O   +0.000 A  -90.000 "
+                        "T   +0.000 deg  step X    +0.7500 Y    -1.2500 Z    +0.5000 in\n");
     clear(f);
     ok(f, "METRIC-ON ' RM SHOW-RADMAT");
-    assert_string_equal(f->out.s, "RADMAT base X   +25.4000 Y    +0.0000 Z    +5.0800 cm  O   +0.000 A  -90.000 "
-                                  "T   +0.000 deg  inc +0.200000 rad  ring    +1.2700 Z    +2.5400 cm  "
-                                  "radius   +25.4000 cm  angle +0.000000 rad\n");
+    assert_string_equal(f->out.s,
+                        "RADMAT base X   +25.4000 Y    +0.0000 Z    +5.0800 cm  O   +0.000 A  -90.000 "
+                        "T   +0.000 deg  inc +0.200000 rad  ring    +1.2700 Z    +2.5400 cm  "
+                        "radius   +25.4000 cm  angle +0.000000 rad\n");
     throws(f, "' DUP SHOW-RADMAT", -12, "SHOW-RADMAT: not a RADMAT");
     free_vm(f);
 }
@@ -315,7 +383,7 @@ static void mapping_interface(void **state)
 {
     (void)state;
     fixture *f = new_vm();
-    fbrl_loc l = { 2, 3, 1, 30, -45, 10 }, m;
+    fbrl_loc l = {2, 3, 1, 30, -45, 10}, m;
     /* mapping off: unchanged */
     m = l;
     assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, NULL), FBRL_OK);
@@ -336,7 +404,8 @@ static void mapping_interface(void **state)
     double off = 0;
     assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, &off), FBRL_ERANGE);
     assert_memory_equal(&m, &l, sizeof m);
-    assert_true(fabs(off - asin(cos(FBRL_PI / 4) * sin(atan2(3, 2) + FBRL_PI / 2 - FBRL_PI / 4)) * 180 / FBRL_PI) < 1e-9);
+    assert_true(fabs(off - asin(cos(FBRL_PI / 4) * sin(atan2(3, 2) + FBRL_PI / 2 - FBRL_PI / 4)) * 180 /
+                               FBRL_PI) < 1e-9);
     /* straight down: the grip (heading waist - roll + 90) turns by the block's 90 degrees */
     m.a = -90;
     assert_int_equal(fbrl_glossary_map_out(&f->g, &m, NULL, &off), FBRL_OK);
@@ -348,17 +417,17 @@ static void mapping_interface(void **state)
     assert_true(fabs(m.x - 2) < 1e-12 && fabs(m.y - 3) < 1e-12 && fabs(m.o - w0) < 1e-9);
     assert_true(fabs(m.t - 10) < 1e-9);
     /* the arm's base axis elsewhere (BASE-OFFSET): the waist is measured from there */
-    double axis[2] = { 7, 0 };
+    double axis[2] = {7, 0};
     m = l;
     m.a = -90;
     assert_int_equal(fbrl_glossary_map_out(&f->g, &m, axis, NULL), FBRL_OK);
     assert_true(fabs(m.o - 90) < 1e-9);
     /* a taught location (moved frame) stored through map_in is the original-frame one */
-    fbrl_loc taught = { 10, 5, 0, 90, -90, 0 };
+    fbrl_loc taught = {10, 5, 0, 90, -90, 0};
     assert_int_equal(fbrl_glossary_map_in(&f->g, &taught, NULL), FBRL_OK);
     assert_true(fabs(taught.x) < 1e-12 && fabs(taught.y) < 1e-12);
     /* non-finite input: error, loc unchanged */
-    fbrl_loc bad = { 0, 0, 1.0 / 0.0, 0, 0, 0 }, bad0 = bad;
+    fbrl_loc bad = {0, 0, 1.0 / 0.0, 0, 0, 0}, bad0 = bad;
     assert_int_equal(fbrl_glossary_map_out(&f->g, &bad, NULL, NULL), FBRL_ENONFINITE);
     assert_memory_equal(&bad, &bad0, sizeof bad);
     /* the selected structure overwritten: ESTATE */
@@ -440,7 +509,8 @@ static void file_table(void **state)
     memset(longname + 12, 'a', 300);
     throws(f, longname, -324, "CREATE-FILE");
     /* a file fills its share of the storage: 8 KB holds 146 location records of 56 bytes */
-    ok(f, "CREATE-FILE full.fbd OPEN-FILE HF full.fbd : FILL-UP ( -- ) BEGIN P LOCATION HF WRITE-FILE AGAIN ;");
+    ok(f,
+       "CREATE-FILE full.fbd OPEN-FILE HF full.fbd : FILL-UP ( -- ) BEGIN P LOCATION HF WRITE-FILE AGAIN ;");
     throws(f, "FILL-UP", -304, "WRITE-FILE: file full (8192 bytes of records per open file)");
     ok(f, "HF CLOSE-FILE");
     assert_int_equal(pop1(f), 0);
@@ -467,7 +537,7 @@ static void close_failure_keeps_file_open(void **state)
     assert_int_equal(rmdir("sub"), 0);
     ok(f, "H CLOSE-FILE");
     fbrl_cell code = pop1(f);
-    assert_true(code < 0); /* the commit failed: the code, not a throw */
+    assert_true(code < 0);                                  /* the commit failed: the code, not a throw */
     ok(f, "H RESET-FILE PAD 1+ CHR H READ-FILE PAD 1+ C@"); /* still open, the record still there */
     assert_int_equal(pop1(f), 65);
     assert_int_equal(mkdir("sub", 0700), 0);
@@ -490,8 +560,8 @@ static void dictionary_full(void **state)
     (void)state;
     fixture *f = new_vm();
     ok(f, "CREATE-LOC P 1E0 2E0 3E0 0E0 0E0 0E0 P DEFINE-LOC CREATE-FILE d.fbd UNUSED 3000 - ALLOT");
-    const char *makers[] = { "P 1E0 1E0 1E0 RECTMAT", "P 0.1E0 1E0 1E0 RADMAT", "CREATE-LOC", "CREATE-CAL",
-                             "CREATE-CAL-STRU" };
+    const char *makers[] = {"P 1E0 1E0 1E0 RECTMAT", "P 0.1E0 1E0 1E0 RADMAT", "CREATE-LOC", "CREATE-CAL",
+                            "CREATE-CAL-STRU"};
     char src[96];
     int made = 0;
     for (int m = 0; m < 5; m++) {
@@ -520,14 +590,16 @@ static void example_plan(void **state)
     (void)state;
     fixture *f = new_vm();
     fbrl_status st = fbrl_vm_include(f->vm, FBRL_TEST_SRCDIR "/examples/heater_block.fbrl");
-    if (st != FBRL_OK) print_error("%s\n%s\n", fbrl_vm_last_error(f->vm)->message, f->out.s);
+    if (st != FBRL_OK)
+        print_error("%s\n%s\n", fbrl_vm_last_error(f->vm)->message, f->out.s);
     assert_int_equal(st, FBRL_OK);
     /* tube (2, 3) = corner (10, -2) + (1.5, 2.25); the block turned 90 degrees about z and
      * its P1 moved from (10, -2) to (12, 1): (1.5, 2.25) -> (-2.25, 1.5) -> (9.75, 2.5).
      * Orientation for the 5-axis arm (docs/calibration.md): the waist turns from
      * atan2(0.25, 11.5) = 1.245 to atan2(2.5, 9.75) = 14.381, the grip heading (waist -
      * roll + 90) from 91.245 by the block's 90 to 181.245: roll 14.381 + 90 - 181.245. */
-    assert_string_equal(f->out.s,
+    assert_string_equal(
+        f->out.s,
         "the rack as taught:\n"
         "RECTMAT base X   +10.0000 Y    -2.0000 Z    +1.0000 in  O   +0.000 A  -90.000 T   +0.000 deg  "
         "step X    +0.7500 Y    +0.7500 Z    +0.0000 in\n"
@@ -568,19 +640,23 @@ static void hostile_arguments(void **state)
           "CREATE-FILE fz.fbd OPEN-FILE H fz.fbd");
     ok(f, "P Q C S ' MAT ' RM 0 LS H HERE");
     fbrl_cell addr[9];
-    for (int i = 8; i >= 0; i--) addr[i] = pop1(f);
-    const double fl[] = { 0.0, 1.0, -1.0, 0.5, 3.0, 1e308, -1e308, 1e-310, 12345.678 };
+    for (int i = 8; i >= 0; i--)
+        addr[i] = pop1(f);
+    const double fl[] = {0.0, 1.0, -1.0, 0.5, 3.0, 1e308, -1e308, 1e-310, 12345.678};
     /* the API refuses to push non-finite floats; Forth code can make them from bits */
     ok(f, "FVARIABLE NANV HEX 7FF8000000000000 NANV ! FVARIABLE INFV 7FF0000000000000 INFV ! "
           "FVARIABLE -INFV FFF0000000000000 -INFV ! DECIMAL");
-    static const char *const nonfinite[] = { "NANV F@ ", "INFV F@ ", "-INFV F@ " };
+    static const char *const nonfinite[] = {"NANV F@ ", "INFV F@ ", "-INFV F@ "};
     /* every word that takes arguments from the stacks (the parsing ones take names) */
     static const char *const words[] = {
-        "GETX", "GETO", "SETY", "SETT", "SET-LOC", "DEFINE-LOC", "SHIFTA", "DISPLAY-LOC", "PRINT-LOC",
-        "MAT", "RM", "SHOW-AUTOMAT", "SHOW-RADMAT", "METRIC-IN", "METRIC-OUT", "CM->IN", "IN->CM",
-        "WITH-CAL", "MAP-ON", "CAL-ADDR", "SET-CAL", "GET-CAL", "CAL-STRU@", "CAL-STRU!", "ANG-FROM-ORIGIN",
-        "ROTATE", "CALIBRATE", "(MAP)", "UNMAP", "CALIBRATE-N", "RESET-FILE", "APPEND-FILE", "WRITE-FILE",
-        "READ-FILE", "SAVE-CAL", "LOAD-CAL", "DISPLAY-LOC", "METRIC-ON", "METRIC-OFF", "MAP-OFF",
+        "GETX",       "GETO",         "SETY",        "SETT",       "SET-LOC",
+        "DEFINE-LOC", "SHIFTA",       "DISPLAY-LOC", "PRINT-LOC",  "MAT",
+        "RM",         "SHOW-AUTOMAT", "SHOW-RADMAT", "METRIC-IN",  "METRIC-OUT",
+        "CM->IN",     "IN->CM",       "WITH-CAL",    "MAP-ON",     "CAL-ADDR",
+        "SET-CAL",    "GET-CAL",      "CAL-STRU@",   "CAL-STRU!",  "ANG-FROM-ORIGIN",
+        "ROTATE",     "CALIBRATE",    "(MAP)",       "UNMAP",      "CALIBRATE-N",
+        "RESET-FILE", "APPEND-FILE",  "WRITE-FILE",  "READ-FILE",  "SAVE-CAL",
+        "LOAD-CAL",   "DISPLAY-LOC",  "METRIC-ON",   "METRIC-OFF", "MAP-OFF",
     };
     fbrl_glossary_set_port_writer(&f->g, port_writer, &f->port);
     int thrown = 0, done = 0;
@@ -601,16 +677,23 @@ static void hostile_arguments(void **state)
         }
         char src[128] = "";
         for (int k = 0; k < nfl; k++) {
-            if (rnd() % 4 == 0) strcat(src, nonfinite[rnd() % 3]);
-            else assert_int_equal(fbrl_vm_fpush(f->vm, fl[rnd() % (sizeof fl / sizeof fl[0])]), FBRL_OK);
+            if (rnd() % 4 == 0)
+                strcat(src, nonfinite[rnd() % 3]);
+            else
+                assert_int_equal(fbrl_vm_fpush(f->vm, fl[rnd() % (sizeof fl / sizeof fl[0])]), FBRL_OK);
         }
         strcat(src, w);
-        if (ev(f, src) == FBRL_OK) done++;
-        else thrown++;
-        while (fbrl_vm_depth(f->vm)) pop1(f);
+        if (ev(f, src) == FBRL_OK)
+            done++;
+        else
+            thrown++;
+        while (fbrl_vm_depth(f->vm))
+            pop1(f);
         double d;
-        while (fbrl_vm_fdepth(f->vm)) fbrl_vm_fpop(f->vm, &d);
-        if (f->out.n > sizeof f->out.s / 2) clear(f);
+        while (fbrl_vm_fdepth(f->vm))
+            fbrl_vm_fpop(f->vm, &d);
+        if (f->out.n > sizeof f->out.s / 2)
+            clear(f);
     }
     assert_true(thrown > 1000 && done > 1000);
     ok(f, "MAP-OFF METRIC-OFF 2 3 +");

@@ -26,7 +26,7 @@
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
-#define GLOSSARY FBRL_TEST_SRCDIR "/docs/glossary.md"
+#define GLOSSARY  FBRL_TEST_SRCDIR "/docs/glossary.md"
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
 
 /* ---- an offline VM: console into a text, source files through stdio (support/vm_host.h) ---- */
@@ -81,22 +81,28 @@ static void split_row(const char *line, row *r)
 {
     r->n = 0;
     const char *p = strchr(line, '|');
-    if (!p) return;
+    if (!p)
+        return;
     p++;
     while (*p && *p != '\n' && r->n < MAX_CELLS) {
         char *o = r->cell[r->n];
         size_t k = 0;
         while (*p && *p != '\n' && *p != '|') {
-            if (p[0] == '\\' && p[1] == '|') p++;
-            if (k < LINE_MAX_ - 1) o[k++] = *p;
+            if (p[0] == '\\' && p[1] == '|')
+                p++;
+            if (k < LINE_MAX_ - 1)
+                o[k++] = *p;
             p++;
         }
-        if (*p != '|') break; /* text after the last '|' is not a cell */
+        if (*p != '|')
+            break; /* text after the last '|' is not a cell */
         p++;
-        while (k && isspace((unsigned char)o[k - 1])) k--;
+        while (k && isspace((unsigned char)o[k - 1]))
+            k--;
         o[k] = 0;
         size_t lead = 0;
-        while (isspace((unsigned char)o[lead])) lead++;
+        while (isspace((unsigned char)o[lead]))
+            lead++;
         memmove(o, o + lead, k - lead + 1);
         r->n++;
     }
@@ -107,12 +113,15 @@ static int backticked(const char *s, int n, char *out, size_t cap)
 {
     for (;;) {
         const char *a = strchr(s, '`');
-        if (!a) return 0;
+        if (!a)
+            return 0;
         const char *b = strchr(a + 1, '`');
-        if (!b) return 0;
+        if (!b)
+            return 0;
         if (n-- == 0) {
             size_t len = (size_t)(b - a - 1);
-            if (len >= cap) len = cap - 1;
+            if (len >= cap)
+                len = cap - 1;
             memcpy(out, a + 1, len);
             out[len] = 0;
             return 1;
@@ -130,7 +139,8 @@ static void normalise(const char *s, char *out, size_t cap)
             space = k > 0;
             continue;
         }
-        if (space && k < cap - 1) out[k++] = ' ';
+        if (space && k < cap - 1)
+            out[k++] = ' ';
         space = 0;
         out[k++] = *s;
     }
@@ -142,11 +152,15 @@ static int has_token(const char *text, size_t len, const char *word, const char 
 {
     size_t wl = strlen(word);
     for (size_t i = 0; i + wl <= len; i++) {
-        if (i > 0 && !strchr(delims, text[i - 1])) continue;
-        if (i + wl < len && !strchr(delims, text[i + wl])) continue;
+        if (i > 0 && !strchr(delims, text[i - 1]))
+            continue;
+        if (i + wl < len && !strchr(delims, text[i + wl]))
+            continue;
         size_t j = 0;
-        while (j < wl && toupper((unsigned char)text[i + j]) == toupper((unsigned char)word[j])) j++;
-        if (j == wl) return 1;
+        while (j < wl && toupper((unsigned char)text[i + j]) == toupper((unsigned char)word[j]))
+            j++;
+        if (j == wl)
+            return 1;
     }
     return 0;
 }
@@ -170,11 +184,15 @@ static int c_line_uses(const char *line, const char *word)
     const char *p = line;
     for (;;) {
         const char *a = strchr(p, '"');
-        if (!a) return 0;
+        if (!a)
+            return 0;
         const char *b = a + 1;
-        while (*b && *b != '"') b += (b[0] == '\\' && b[1]) ? 2 : 1;
-        if (!*b) return 0;
-        if (has_token(a + 1, (size_t)(b - a - 1), word, " \t\\\"")) return 1;
+        while (*b && *b != '"')
+            b += (b[0] == '\\' && b[1]) ? 2 : 1;
+        if (!*b)
+            return 0;
+        if (has_token(a + 1, (size_t)(b - a - 1), word, " \t\\\""))
+            return 1;
         p = b + 1;
     }
 }
@@ -214,7 +232,8 @@ static int citation_ok(const char *cite, const char *word, char *why, size_t cap
                 found = c_line_uses(line, word);
             }
         }
-        if (!found) snprintf(why, cap, "%s: function %s() does not use %s in a string", path, spec, word);
+        if (!found)
+            snprintf(why, cap, "%s: function %s() does not use %s in a string", path, spec, word);
     } else {
         char *end;
         long want = strtol(spec, &end, 10);
@@ -229,7 +248,8 @@ static int citation_ok(const char *cite, const char *word, char *why, size_t cap
                 found = forth_line_uses(line, word);
                 break;
             }
-        if (!found) snprintf(why, cap, "%s:%ld does not use %s (outside a comment)", path, want, word);
+        if (!found)
+            snprintf(why, cap, "%s:%ld does not use %s (outside a comment)", path, want, word);
     }
     fclose(fp);
     return found;
@@ -246,10 +266,12 @@ static int ndocumented;
 /* The next line of text (up to '\n') into line; 0 at the end. */
 static int next_line(const char **p, char *line, size_t cap)
 {
-    if (!**p) return 0;
+    if (!**p)
+        return 0;
     const char *e = strchr(*p, '\n');
     size_t len = e ? (size_t)(e - *p) : strlen(*p);
-    if (len >= cap) len = cap - 1;
+    if (len >= cap)
+        len = cap - 1;
     memcpy(line, *p, len);
     line[len] = 0;
     *p = e ? e + 1 : *p + strlen(*p);
@@ -277,12 +299,17 @@ static int check_text(fixture *f, const char *doc, tally *t)
             split_row(line, &hdr);
             c_word = c_stack = c_test = c_absent = -1;
             for (int k = 0; k < hdr.n; k++) {
-                if (strcmp(hdr.cell[k], "word") == 0) c_word = k;
-                if (strcmp(hdr.cell[k], "stack effect") == 0) c_stack = k;
-                if (strcmp(hdr.cell[k], "test") == 0) c_test = k;
-                if (strcmp(hdr.cell[k], "absent word") == 0) c_absent = k;
+                if (strcmp(hdr.cell[k], "word") == 0)
+                    c_word = k;
+                if (strcmp(hdr.cell[k], "stack effect") == 0)
+                    c_stack = k;
+                if (strcmp(hdr.cell[k], "test") == 0)
+                    c_test = k;
+                if (strcmp(hdr.cell[k], "absent word") == 0)
+                    c_absent = k;
             }
-            if (c_stack < 0 || c_test < 0) c_word = -1; /* not a glossary table */
+            if (c_stack < 0 || c_test < 0)
+                c_word = -1; /* not a glossary table */
             next_line(&p, line, sizeof line);
             ln++;
             continue;
@@ -305,8 +332,10 @@ static int check_text(fixture *f, const char *doc, tally *t)
                     print_error("glossary.md:%ld: %s is listed twice\n", ln, name);
                     failures++;
                 }
-            if (nseen < 512) strcpy(seen[nseen++], name);
-            if (ndocumented < 1024) strcpy(documented[ndocumented++], name);
+            if (nseen < 512)
+                strcpy(seen[nseen++], name);
+            if (ndocumented < 1024)
+                strcpy(documented[ndocumented++], name);
             const char *stack = NULL, *help = NULL;
             if (fbrl_vm_help(f->vm, name, &stack, &help) != FBRL_OK) {
                 print_error("glossary.md:%ld: %s is listed as implemented but is not defined\n", ln, name);
@@ -321,7 +350,8 @@ static int check_text(fixture *f, const char *doc, tally *t)
                     failures++;
                 }
                 if (strcmp(want, got) != 0) {
-                    print_error("glossary.md:%ld: %s: the table says '%s', HELP says '%s'\n", ln, name, want, got);
+                    print_error("glossary.md:%ld: %s: the table says '%s', HELP says '%s'\n", ln, name, want,
+                                got);
                     failures++;
                 }
             }
@@ -397,7 +427,8 @@ static int collect(void *ctx, const char *name, size_t len)
 static int has(const names *s, const char *name)
 {
     for (int k = 0; k < s->n; k++)
-        if (strcmp(s->name[k], name) == 0) return 1;
+        if (strcmp(s->name[k], name) == 0)
+            return 1;
     return 0;
 }
 
@@ -406,7 +437,7 @@ static int has(const names *s, const char *name)
 static int undocumented(fixture *f, int print)
 {
     static char all_buf[2048][64], bare_buf[2048][64];
-    names all = { all_buf, 0, 2048 }, bare = { bare_buf, 0, 2048 };
+    names all = {all_buf, 0, 2048}, bare = {bare_buf, 0, 2048};
     size_t size = 1 << 20;
     unsigned char *mem = malloc(size);
     assert_non_null(mem);
@@ -423,11 +454,14 @@ static int undocumented(fixture *f, int print)
     int missing = 0;
     for (int k = 0; k < all.n; k++) {
         const char *w = all.name[k];
-        if (w[0] == '(' || has(&bare, w)) continue;
+        if (w[0] == '(' || has(&bare, w))
+            continue;
         int listed = 0;
-        for (int d = 0; d < ndocumented && !listed; d++) listed = strcmp(documented[d], w) == 0;
+        for (int d = 0; d < ndocumented && !listed; d++)
+            listed = strcmp(documented[d], w) == 0;
         if (!listed) {
-            if (print) print_error("docs/glossary.md has no row for %s\n", w);
+            if (print)
+                print_error("docs/glossary.md has no row for %s\n", w);
             missing++;
         }
     }
@@ -469,20 +503,27 @@ static void checks_catch_drift(void **state)
     assert_int_equal(t.absent, 2);
     static const char *const bad[] = {
         /* HELP says ( q-addr -- c ) */
-        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q -- c )` | `tests/forth/glossary_audit.fs:9` |\n",
+        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q -- c )` | "
+        "`tests/forth/glossary_audit.fs:9` |\n",
         /* not defined */
-        "| word | stack effect | test |\n|---|---|---|\n| `RAPL-ANALOG` | `( -- )` | `tests/forth/glossary_audit.fs:9` |\n",
+        "| word | stack effect | test |\n|---|---|---|\n| `RAPL-ANALOG` | `( -- )` | "
+        "`tests/forth/glossary_audit.fs:9` |\n",
         /* defined */
         "| absent word | why |\n|---|---|\n| `COM` `DEQ-L` | |\n",
         /* no citation */
         "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | none |\n",
         /* the line does not use the word; only its comment does (line 12); no such file; no such function */
-        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:8` |\n",
-        "| word | stack effect | test |\n|---|---|---|\n| `DEQ` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:12` |\n",
-        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | `tests/forth/no-such.fs:1` |\n",
-        "| word | stack effect | test |\n|---|---|---|\n| `TYPE-STRING` | `( str -- )` | `tests/unit/test_glossary_words.c:no_such()` |\n",
+        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | "
+        "`tests/forth/glossary_audit.fs:8` |\n",
+        "| word | stack effect | test |\n|---|---|---|\n| `DEQ` | `( q-addr -- c )` | "
+        "`tests/forth/glossary_audit.fs:12` |\n",
+        "| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | "
+        "`tests/forth/no-such.fs:1` |\n",
+        "| word | stack effect | test |\n|---|---|---|\n| `TYPE-STRING` | `( str -- )` | "
+        "`tests/unit/test_glossary_words.c:no_such()` |\n",
         /* listed twice */
-        ("| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n"
+        ("| word | stack effect | test |\n|---|---|---|\n| `DEQ-L` | `( q-addr -- c )` | "
+         "`tests/forth/glossary_audit.fs:9` |\n"
          "| `DEQ-L` | `( q-addr -- c )` | `tests/forth/glossary_audit.fs:9` |\n"),
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
@@ -512,8 +553,8 @@ static void forth_glossary_audit(void **state)
     fbrl_status st = fbrl_vm_include(f->vm, FORTH_DIR "glossary_audit.fs");
     if (st != FBRL_OK) {
         const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
-        print_error("glossary_audit.fs: error %d (%s) at '%s' %s:%lu\n%s\n", e->throw_code, e->message, e->word,
-                    e->file, e->line, f->out.s);
+        print_error("glossary_audit.fs: error %d (%s) at '%s' %s:%lu\n%s\n", e->throw_code, e->message,
+                    e->word, e->file, e->line, f->out.s);
     }
     assert_int_equal(st, FBRL_OK);
     const char *q = "#ERRORS @ #TESTS @";
@@ -521,7 +562,8 @@ static void forth_glossary_audit(void **state)
     fbrl_cell tests = 0, errors = 0;
     assert_int_equal(fbrl_vm_pop(f->vm, &tests), FBRL_OK);
     assert_int_equal(fbrl_vm_pop(f->vm, &errors), FBRL_OK);
-    if (errors) print_error("glossary_audit.fs: %ld failures:\n%s\n", (long)errors, f->out.s);
+    if (errors)
+        print_error("glossary_audit.fs: %ld failures:\n%s\n", (long)errors, f->out.s);
     assert_int_equal(errors, 0);
     assert_true(tests >= 5);
 }

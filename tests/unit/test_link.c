@@ -38,8 +38,8 @@ typedef struct ctl {
     int nlog;
     rule rules[4];
     int nrules;
-    int dead; /* reads nothing, answers nothing */
-    int burst[2]; /* bytes still to drop in each direction */
+    int dead;       /* reads nothing, answers nothing */
+    int burst[2];   /* bytes still to drop in each direction */
     int last_error; /* STATUS's LAST ERROR CODE, 0 = NONE */
     const char *typev;
     /* W1: a value line every stream_ms until any byte arrives (consumed). The line
@@ -117,7 +117,8 @@ static void execute(ctl *c)
             outs(c, "\r\n");
         } else if (!strcmp(c->line, "STATUS")) {
             outs(c, "RAPL-II Version 2.60     A255 Robot (test)\r\n");
-            outs(c, c->last_error ? "LAST ERROR CODE: 029-TRANSFORM ILLEGAL.\r\n" : "LAST ERROR CODE: NONE\r\n");
+            outs(c,
+                 c->last_error ? "LAST ERROR CODE: 029-TRANSFORM ILLEGAL.\r\n" : "LAST ERROR CODE: NONE\r\n");
             outs(c, "SPEED (% OF FULL) :    +50\r\nCONTROLLER IS HOMED\r\nAXIS#        1 2 3 4 5\r\n"
                     "LOCK         N N N N N\r\nDONE         Y Y Y Y Y\r\nLIMP         N N N N N\r\n"
                     "HOMED        Y Y Y Y Y\r\n");
@@ -143,10 +144,7 @@ static void execute(ctl *c)
     }
 }
 
-static void stream_line(ctl *c)
-{
-    outs(c, "+0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r");
-}
+static void stream_line(ctl *c) { outs(c, "+0000000001 +0000000002 +0000000003 +0000000004 +0000000005\r"); }
 
 /* Serve whatever the host sent. */
 static void ctl_service(ctl *c)
@@ -224,10 +222,7 @@ static int open_session_parity(session *s, fbrl_parity parity)
     return fbrl_link_init(&s->l, &s->u, &cfg) == FBRL_OK ? 0 : -1;
 }
 
-static int open_session(session *s)
-{
-    return open_session_parity(s, FBRL_PARITY_NONE);
-}
+static int open_session(session *s) { return open_session_parity(s, FBRL_PARITY_NONE); }
 
 static void close_session(session *s)
 {
@@ -754,7 +749,8 @@ static void bad_calls_are_refused(void **state)
     cfg.query_reads = 4;
     fbrl_link other;
     assert_int_equal(fbrl_link_init(&other, &s->u, &cfg), FBRL_EINVAL);
-    assert_int_equal(fbrl_link_cmd(&s->l, FBRL_RAPL_W1, NULL, 0, 0), FBRL_EINVAL); /* streams: fbrl_link_stream */
+    assert_int_equal(fbrl_link_cmd(&s->l, FBRL_RAPL_W1, NULL, 0, 0),
+                     FBRL_EINVAL); /* streams: fbrl_link_stream */
     assert_int_equal(fbrl_link_raw(&s->l, "W1"), FBRL_EINVAL);
     int on;
     assert_int_equal(fbrl_link_input(&s->l, 0, &on), FBRL_ERANGE);

@@ -14,12 +14,18 @@ static void get_and_set_each_axis(void **state)
     fbrl_loc l = sample;
     double v;
     (void)state;
-    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_X, &v), FBRL_OK); assert_true(v == 12.0);
-    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_Y, &v), FBRL_OK); assert_true(v == -3.5);
-    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_Z, &v), FBRL_OK); assert_true(v == 1.25);
-    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_O, &v), FBRL_OK); assert_true(v == 90.0);
-    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_A, &v), FBRL_OK); assert_true(v == -90.0);
-    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_T, &v), FBRL_OK); assert_true(v == 0.0);
+    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_X, &v), FBRL_OK);
+    assert_true(v == 12.0);
+    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_Y, &v), FBRL_OK);
+    assert_true(v == -3.5);
+    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_Z, &v), FBRL_OK);
+    assert_true(v == 1.25);
+    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_O, &v), FBRL_OK);
+    assert_true(v == 90.0);
+    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_A, &v), FBRL_OK);
+    assert_true(v == -90.0);
+    assert_int_equal(fbrl_loc_get(&l, FBRL_LOC_T, &v), FBRL_OK);
+    assert_true(v == 0.0);
     /* Setting one axis changes that field only. */
     for (int ax = FBRL_LOC_X; ax < FBRL_LOC_NAXES; ax++) {
         fbrl_loc m = sample;
@@ -77,11 +83,11 @@ static void format_fixed_and_metric(void **state)
     (void)state;
     assert_int_equal(fbrl_loc_format(&sample, 0, buf, sizeof buf), FBRL_OK);
     assert_string_equal(buf,
-        "X   +12.0000 Y    -3.5000 Z    +1.2500 in  O  +90.000 A  -90.000 T   +0.000 deg");
+                        "X   +12.0000 Y    -3.5000 Z    +1.2500 in  O  +90.000 A  -90.000 T   +0.000 deg");
     /* Metric: lengths * 2.54, angles unchanged. */
     assert_int_equal(fbrl_loc_format(&sample, 1, buf, sizeof buf), FBRL_OK);
     assert_string_equal(buf,
-        "X   +30.4800 Y    -8.8900 Z    +3.1750 cm  O  +90.000 A  -90.000 T   +0.000 deg");
+                        "X   +30.4800 Y    -8.8900 Z    +3.1750 cm  O  +90.000 A  -90.000 T   +0.000 deg");
     /* Fixed width: a different location has the same length. */
     fbrl_loc other = {-0.0001, 999.5, -17, -179.5, 12.25, 1};
     char buf2[FBRL_LOC_TEXT_SIZE];
@@ -91,10 +97,9 @@ static void format_fixed_and_metric(void **state)
     fbrl_loc tiny = {-1e-9, -0.0, -0.00004, -1e-12, -0.0004, -0.0};
     assert_int_equal(fbrl_loc_format(&tiny, 0, buf2, sizeof buf2), FBRL_OK);
     assert_string_equal(buf2,
-        "X    +0.0000 Y    +0.0000 Z    +0.0000 in  O   +0.000 A   +0.000 T   +0.000 deg");
+                        "X    +0.0000 Y    +0.0000 Z    +0.0000 in  O   +0.000 A   +0.000 T   +0.000 deg");
     /* Largest documented values fit. */
-    fbrl_loc wide = {-999999999.0, -999999999.0, -999999999.0, -999999999.0, -999999999.0,
-                     -999999999.0};
+    fbrl_loc wide = {-999999999.0, -999999999.0, -999999999.0, -999999999.0, -999999999.0, -999999999.0};
     assert_int_equal(fbrl_loc_format(&wide, 0, buf2, sizeof buf2), FBRL_OK);
     /* Too small a buffer: ENOSPC and a terminated prefix. */
     char small[10];

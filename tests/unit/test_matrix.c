@@ -18,10 +18,14 @@ static void assert_near_(double a, double b, double tol, const char *file, int l
     }
 }
 
-#define assert_loc(l, X, Y, Z, O, A, T, tol) do {                                          \
-        assert_near((l).x, (X), (tol)); assert_near((l).y, (Y), (tol));                     \
-        assert_near((l).z, (Z), (tol)); assert_near((l).o, (O), (tol));                     \
-        assert_near((l).a, (A), (tol)); assert_near((l).t, (T), (tol));                     \
+#define assert_loc(l, X, Y, Z, O, A, T, tol) \
+    do {                                     \
+        assert_near((l).x, (X), (tol));      \
+        assert_near((l).y, (Y), (tol));      \
+        assert_near((l).z, (Z), (tol));      \
+        assert_near((l).o, (O), (tol));      \
+        assert_near((l).a, (A), (tol));      \
+        assert_near((l).t, (T), (tol));      \
     } while (0)
 
 static void one_d_array_cells(void **state)

@@ -103,12 +103,37 @@ static void parse_matches_strtod(void **state)
     }
     /* Hand cases: subnormals, the largest double and past it, zeros, long inputs. */
     static const char *const hand[] = {
-        "0", "-0", "0.0", ".5", "5.", "1E0", "1.5E0", "1.5e+3", "-2.5E-3", "4.9406564584124654e-324",
-        "2.4703282292062327e-324", "2.4703282292062328e-324", "2.2250738585072011e-308",
-        "2.2250738585072014e-308", "1.7976931348623157e308", "1.7976931348623158e308",
-        "1.7976931348623159e308", "1e309", "1e-400", "123456789012345678901234567890",
-        "0.000000000000000000000000000000000000000000001", "9007199254740993", "9007199254740992.5",
-        "1e22", "1e23", "8.98846567431158e307", "0.1", "0.2", "0.3", "14.5", "+14.5000",
+        "0",
+        "-0",
+        "0.0",
+        ".5",
+        "5.",
+        "1E0",
+        "1.5E0",
+        "1.5e+3",
+        "-2.5E-3",
+        "4.9406564584124654e-324",
+        "2.4703282292062327e-324",
+        "2.4703282292062328e-324",
+        "2.2250738585072011e-308",
+        "2.2250738585072014e-308",
+        "1.7976931348623157e308",
+        "1.7976931348623158e308",
+        "1.7976931348623159e308",
+        "1e309",
+        "1e-400",
+        "123456789012345678901234567890",
+        "0.000000000000000000000000000000000000000000001",
+        "9007199254740993",
+        "9007199254740992.5",
+        "1e22",
+        "1e23",
+        "8.98846567431158e307",
+        "0.1",
+        "0.2",
+        "0.3",
+        "14.5",
+        "+14.5000",
     };
     for (i = 0; i < (int)(sizeof hand / sizeof hand[0]); i++)
         check_parse(hand[i]);
@@ -123,9 +148,9 @@ static void parse_matches_strtod(void **state)
 
 static void parse_refuses_non_numbers(void **state)
 {
-    static const char *const bad[] = {"", "+", "-", ".", "e5", "1e", "1e+", "1.5E", "1,5",
-                                      "14,5000", " 1", "1 ", "inf", "nan", "0x10", "1..2",
-                                      "1e5.5", "--1", "1.5F0", "1d0"};
+    static const char *const bad[] = {"",     "+",    "-",       ".",   "e5",    "1e",  "1e+",
+                                      "1.5E", "1,5",  "14,5000", " 1",  "1 ",    "inf", "nan",
+                                      "0x10", "1..2", "1e5.5",   "--1", "1.5F0", "1d0"};
     double v = 42.0;
     size_t i;
     (void)state;
@@ -173,12 +198,13 @@ static void fixed_matches_printf(void **state)
         if (fabs(v) > 1e30 && i % 8)
             v = random_everyday();
         check_fixed(v, width, dec, flags);
-        check_fixed(v, 10, 4, FBRL_NUM_PLUS); /* fbrl_loc_format's layout */
+        check_fixed(v, 10, 4, FBRL_NUM_PLUS);                /* fbrl_loc_format's layout */
         check_fixed(v, 9, 4, FBRL_NUM_PLUS | FBRL_NUM_ZERO); /* the wire's %+09.4f */
     }
     /* Exact ties round to even, as printf does; values printed whole. */
-    static const double ties[] = {0.125, 0.375, 2.5, 3.5, -0.5, 0.5, 1.5, 1e22, DBL_MAX,
-                                  DBL_MIN, 4.9406564584124654e-324, -0.0, 0.0, 9.99995, 0.00005};
+    static const double ties[] = {
+        0.125, 0.375, 2.5,     3.5,    -0.5, 0.5, 1.5, 1e22, DBL_MAX, DBL_MIN, 4.9406564584124654e-324,
+        -0.0,  0.0,   9.99995, 0.00005};
     for (i = 0; i < (int)(sizeof ties / sizeof ties[0]); i++) {
         check_fixed(ties[i], 0, 0, 0);
         check_fixed(ties[i], 0, 2, 0);
@@ -199,8 +225,7 @@ static void fixed_matches_printf(void **state)
     assert_int_equal(fbrl_num_fixed(b, 5, 123.456, 0, 3, 0, &len), FBRL_ENOSPC);
     assert_string_equal(b, "123.");
     assert_int_equal(len, 4);
-    assert_int_equal(fbrl_num_fixed(b, sizeof b, 1.0, 0, FBRL_NUM_DECIMALS_MAX + 1, 0, NULL),
-                     FBRL_ERANGE);
+    assert_int_equal(fbrl_num_fixed(b, sizeof b, 1.0, 0, FBRL_NUM_DECIMALS_MAX + 1, 0, NULL), FBRL_ERANGE);
     assert_int_equal(fbrl_num_fixed(b, sizeof b, 1.0, -1, 2, 0, NULL), FBRL_ERANGE);
     assert_int_equal(fbrl_num_fixed(NULL, 4, 1.0, 0, 2, 0, NULL), FBRL_EINVAL);
 }

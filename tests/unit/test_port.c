@@ -59,10 +59,11 @@ static void options_from_text(void **state)
     assert_int_equal(o.latency_timer_ms, 4);
     /* bad text: an error, nothing changed */
     fbrl_port_options before = o;
-    static const char *const bad[][2] = {{"baud", "0"}, {"baud", "96OO"}, {"baud", ""}, {"baud", "-9600"},
-                                         {"data-bits", "9"}, {"stop-bits", "3"}, {"parity", "mark"},
-                                         {"flow", "rtscts"}, {"latency-timer", "256"}, {"speed", "9600"},
-                                         {"low-latency", "maybe"}};
+    static const char *const bad[][2] = {
+        {"baud", "0"},      {"baud", "96OO"},        {"baud", ""},
+        {"baud", "-9600"},  {"data-bits", "9"},      {"stop-bits", "3"},
+        {"parity", "mark"}, {"flow", "rtscts"},      {"latency-timer", "256"},
+        {"speed", "9600"},  {"low-latency", "maybe"}};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         assert_int_equal(fbrl_port_set_option(&o, bad[k][0], bad[k][1]), FBRL_EINVAL);
     assert_memory_equal(&o, &before, sizeof o);
@@ -314,12 +315,9 @@ static void latency_timer_in_fake_sysfs(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(options_from_text),
-        cmocka_unit_test(pty_by_path_with_options),
-        cmocka_unit_test(bad_names),
-        cmocka_unit_test(sim_through_the_hook),
-        cmocka_unit_test(tcp_server_by_name),
-        cmocka_unit_test(latency_timer_in_fake_sysfs),
+        cmocka_unit_test(options_from_text),  cmocka_unit_test(pty_by_path_with_options),
+        cmocka_unit_test(bad_names),          cmocka_unit_test(sim_through_the_hook),
+        cmocka_unit_test(tcp_server_by_name), cmocka_unit_test(latency_timer_in_fake_sysfs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -10,12 +10,21 @@
 
 #include "fbrl/rapl_encode.h"
 
-#define A(...) ((const fbrl_rapl_arg[]){__VA_ARGS__})
+#define A(...)  ((const fbrl_rapl_arg[]){__VA_ARGS__})
 #define NA(...) (sizeof((const fbrl_rapl_arg[]){__VA_ARGS__}) / sizeof(fbrl_rapl_arg))
 /* constant-expression argument builders, usable in static tables */
-#define I(v) {FBRL_RAPL_ARG_INT, (v), 0.0, 0}
-#define R(v) {FBRL_RAPL_ARG_REAL, 0, (v), 0}
-#define S(v) {FBRL_RAPL_ARG_STR, 0, 0.0, (v)}
+#define I(v)                           \
+    {                                  \
+        FBRL_RAPL_ARG_INT, (v), 0.0, 0 \
+    }
+#define R(v)                          \
+    {                                 \
+        FBRL_RAPL_ARG_REAL, 0, (v), 0 \
+    }
+#define S(v)                           \
+    {                                  \
+        FBRL_RAPL_ARG_STR, 0, 0.0, (v) \
+    }
 
 /* One expected encoding per command, in keyword and token form. */
 typedef struct golden {
@@ -26,8 +35,14 @@ typedef struct golden {
     const char *keyword, *token;
 } golden;
 
-#define G(cmd, st, kw, tok, ...) {cmd, {__VA_ARGS__}, NA(__VA_ARGS__), st, kw, tok}
-#define G0(cmd, kw, tok) {cmd, {{FBRL_RAPL_ARG_INT, 0, 0.0, 0}}, 0, 0, kw, tok}
+#define G(cmd, st, kw, tok, ...)                         \
+    {                                                    \
+        cmd, {__VA_ARGS__}, NA(__VA_ARGS__), st, kw, tok \
+    }
+#define G0(cmd, kw, tok)                                     \
+    {                                                        \
+        cmd, {{FBRL_RAPL_ARG_INT, 0, 0.0, 0}}, 0, 0, kw, tok \
+    }
 
 static golden goldens[] = {
     G(FBRL_RAPL_ACTUAL, 0, "ACTUAL P1", "/152 P1", S("p1")),
@@ -38,8 +53,8 @@ static golden goldens[] = {
     G(FBRL_RAPL_ARM, 0, "ARM OFF", "/142 OFF", S("off")),
     G0(FBRL_RAPL_CLOSE, "CLOSE", "/038"),
     G(FBRL_RAPL_CLOSE, 0, "CLOSE 30", "/038 30", I(30)),
-    G(FBRL_RAPL_CONFIG, 0, "CONFIG 0,9600,N,8,1,X,1", "/110 0,9600,N,8,1,X,1",
-      I(0), I(9600), S("n"), I(8), I(1), S("X"), I(1)),
+    G(FBRL_RAPL_CONFIG, 0, "CONFIG 0,9600,N,8,1,X,1", "/110 0,9600,N,8,1,X,1", I(0), I(9600), S("n"), I(8),
+      I(1), S("X"), I(1)),
     G(FBRL_RAPL_DEPART, 0, "DEPART 1.25", "/004 1.25", R(1.25)),
     G(FBRL_RAPL_DEPART, 1, "DEPART 1.25,S", "/004 1.25,S", R(1.25)),
     G0(FBRL_RAPL_FINISH, "FINISH", "/010"),
@@ -56,14 +71,12 @@ static golden goldens[] = {
     G0(FBRL_RAPL_LIMP, "LIMP", "/007"),
     G(FBRL_RAPL_LIMP, 0, "LIMP 2,3", "/007 2,3", I(2), I(3)),
     G(FBRL_RAPL_LOCK, 0, "LOCK 1,4", "/009 1,4", I(1), I(4)),
-    G(FBRL_RAPL_MA, 1, "MA 0,0,0,0,0,S", "/132 0,0,0,0,0,S",
-      R(0), R(0), R(0), R(0), R(0)),
-    G(FBRL_RAPL_MA, 0, "MA 0,1.5708,-1.5708,0,0.1", "/132 0,1.5708,-1.5708,0,0.1",
-      R(0), R(1.5707963), R(-1.5707963), R(0), R(0.1)),
+    G(FBRL_RAPL_MA, 1, "MA 0,0,0,0,0,S", "/132 0,0,0,0,0,S", R(0), R(0), R(0), R(0), R(0)),
+    G(FBRL_RAPL_MA, 0, "MA 0,1.5708,-1.5708,0,0.1", "/132 0,1.5708,-1.5708,0,0.1", R(0), R(1.5707963),
+      R(-1.5707963), R(0), R(0.1)),
     G0(FBRL_RAPL_MANUAL, "MANUAL", "/045"),
     G(FBRL_RAPL_MANUAL, 0, "MANUAL CYL", "/045 CYL", S("cyl")),
-    G(FBRL_RAPL_MI, 1, "MI 0.01,0,0,0,0,S", "/131 0.01,0,0,0,0,S",
-      R(0.01), R(0), R(0), R(0), R(0)),
+    G(FBRL_RAPL_MI, 1, "MI 0.01,0,0,0,0,S", "/131 0.01,0,0,0,0,S", R(0.01), R(0), R(0), R(0), R(0)),
     G(FBRL_RAPL_MOTOR, 0, "MOTOR 1,-200", "/011 1,-200", I(1), I(-200)),
     G(FBRL_RAPL_MOVE, 0, "MOVE P2", "MOVE P2", S("P2")),
     G(FBRL_RAPL_MOVE, 1, "MOVE #P2,S", "MOVE #P2,S", S("#P2")),
@@ -75,10 +88,10 @@ static golden goldens[] = {
     G0(FBRL_RAPL_OPEN, "OPEN", "/040"),
     G(FBRL_RAPL_OPEN, 0, "OPEN 50", "/040 50", I(50)),
     G(FBRL_RAPL_OUTPUT, 0, "OUTPUT -3,5", "/089 -3,5", I(-3), I(5)),
-    G(FBRL_RAPL_POINT, 0, "POINT A,10,0,5,0,-90,0",
-      "/050 A,10,0,5,0,-90,0", S("A"), R(10), R(0), R(5), R(0), R(-90), R(0)),
-    G(FBRL_RAPL_POINT, 0, "POINT #B,100,-200,300,0,22", "/050 #B,100,-200,300,0,22",
-      S("#b"), I(100), I(-200), I(300), I(0), I(22)),
+    G(FBRL_RAPL_POINT, 0, "POINT A,10,0,5,0,-90,0", "/050 A,10,0,5,0,-90,0", S("A"), R(10), R(0), R(5), R(0),
+      R(-90), R(0)),
+    G(FBRL_RAPL_POINT, 0, "POINT #B,100,-200,300,0,22", "/050 #B,100,-200,300,0,22", S("#b"), I(100), I(-200),
+      I(300), I(0), I(22)),
     G0(FBRL_RAPL_READY, "READY", "/015"),
     G(FBRL_RAPL_RUN, 0, "RUN CAL", "/109 CAL", S("CAL")),
     G(FBRL_RAPL_RUN, 0, "RUN CAL,3", "/109 CAL,3", S("CAL"), I(3)),
@@ -128,17 +141,20 @@ static void every_command_encodes_in_both_forms(void **state)
         const golden *e = &goldens[g];
         char buf[FBRL_RAPL_LINE_MAX];
         size_t len = 99;
-        assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, e->cmd, e->args,
-                                          e->nargs, e->straight), FBRL_OK);
+        assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, e->cmd, e->args, e->nargs,
+                                          e->straight),
+                         FBRL_OK);
         assert_string_equal(buf, e->keyword);
         assert_int_equal(len, strlen(e->keyword));
-        assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_TOKEN, e->cmd, e->args,
-                                          e->nargs, e->straight), FBRL_OK);
+        assert_int_equal(
+            fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_TOKEN, e->cmd, e->args, e->nargs, e->straight),
+            FBRL_OK);
         assert_string_equal(buf, e->token);
         assert_int_equal(len, strlen(e->token));
         /* exactly one byte too few for the line and its NUL gives ENOSPC and an empty buffer */
-        assert_int_equal(fbrl_rapl_encode(buf, strlen(e->keyword), &len, FBRL_RAPL_KEYWORD, e->cmd,
-                                          e->args, e->nargs, e->straight), FBRL_ENOSPC);
+        assert_int_equal(fbrl_rapl_encode(buf, strlen(e->keyword), &len, FBRL_RAPL_KEYWORD, e->cmd, e->args,
+                                          e->nargs, e->straight),
+                         FBRL_ENOSPC);
         assert_string_equal(buf, "");
         seen[e->cmd] = 1;
     }
@@ -200,9 +216,9 @@ static void table_facts_agree(void **state)
         unsafe += !(ci->flags & FBRL_RAPL_F_SAFE);
     }
     /* the commands the issue names as not safe to repeat */
-    static const fbrl_rapl_cmd never_twice[] = {FBRL_RAPL_JOG, FBRL_RAPL_DEPART, FBRL_RAPL_APPRO, FBRL_RAPL_MI,
-                                                FBRL_RAPL_JOINT, FBRL_RAPL_MOTOR, FBRL_RAPL_RUN, FBRL_RAPL_SHIFTA,
-                                                FBRL_RAPL_SHIFT, FBRL_RAPL_DLOCN, FBRL_RAPL_DVAR};
+    static const fbrl_rapl_cmd never_twice[] = {
+        FBRL_RAPL_JOG, FBRL_RAPL_DEPART, FBRL_RAPL_APPRO, FBRL_RAPL_MI,    FBRL_RAPL_JOINT, FBRL_RAPL_MOTOR,
+        FBRL_RAPL_RUN, FBRL_RAPL_SHIFTA, FBRL_RAPL_SHIFT, FBRL_RAPL_DLOCN, FBRL_RAPL_DVAR};
     for (size_t k = 0; k < sizeof never_twice / sizeof never_twice[0]; k++)
         assert_false(fbrl_rapl_cmd_info(never_twice[k])->flags & FBRL_RAPL_F_SAFE);
     assert_int_equal(unsafe, (int)(sizeof never_twice / sizeof never_twice[0]));
@@ -225,12 +241,30 @@ static void table_facts_agree(void **state)
 static void reals_are_short_and_have_no_exponent(void **state)
 {
     (void)state;
-    static const struct { double v; const char *txt; } cases[] = {
-        {0.0, "0"}, {-0.0, "0"}, {-0.00004, "0"}, {0.00005, "0.0001"},
-        {-0.00005, "-0.0001"}, {1e-9, "0"}, {123.45678, "123.4568"}, {-7.5, "-7.5"},
-        {999999.9999, "999999.9999"}, {-999999.9999, "-999999.9999"}, {1e5, "100000"},
-        {0.1, "0.1"}, {2.675, "2.675"}, {-0.0125, "-0.0125"}, {10.0, "10"}, {0.99996, "1"},
-        {-90.0, "-90"}, {1.20004, "1.2"}, {0.0001, "0.0001"}, {0.001, "0.001"},
+    static const struct {
+        double v;
+        const char *txt;
+    } cases[] = {
+        {0.0, "0"},
+        {-0.0, "0"},
+        {-0.00004, "0"},
+        {0.00005, "0.0001"},
+        {-0.00005, "-0.0001"},
+        {1e-9, "0"},
+        {123.45678, "123.4568"},
+        {-7.5, "-7.5"},
+        {999999.9999, "999999.9999"},
+        {-999999.9999, "-999999.9999"},
+        {1e5, "100000"},
+        {0.1, "0.1"},
+        {2.675, "2.675"},
+        {-0.0125, "-0.0125"},
+        {10.0, "10"},
+        {0.99996, "1"},
+        {-90.0, "-90"},
+        {1.20004, "1.2"},
+        {0.0001, "0.0001"},
+        {0.001, "0.001"},
     };
     char buf[32];
     size_t len;
@@ -274,8 +308,8 @@ static void short_reals_read_back_as_four_decimals(void **state)
         double mag = pow(10.0, (double)(r % 11u) - 5.0); /* 1e-5 .. 1e5 */
         double v = (double)(rng_next(&seed) >> 11) / 9007199254740992.0 * 10.0 * mag;
         switch (r >> 60) {
-        case 0: v = floor(v); break;                   /* whole numbers */
-        case 1: v = floor(v * 100.0) / 100.0; break;   /* two decimals */
+        case 0: v = floor(v); break;                     /* whole numbers */
+        case 1: v = floor(v * 100.0) / 100.0; break;     /* two decimals */
         case 2: v = floor(v * 10000.0) / 10000.0; break; /* exactly four */
         default: break;
         }
@@ -290,8 +324,8 @@ static void short_reals_read_back_as_four_decimals(void **state)
         if (strcmp(four, "-0.0000") == 0)
             memmove(four, four + 1, strlen(four));
         if (strtod(shortest, NULL) != strtod(four, NULL)) {
-            print_error("%.17g: '%s' reads %.17g, '%s' reads %.17g\n", v, shortest, strtod(shortest, NULL), four,
-                        strtod(four, NULL));
+            print_error("%.17g: '%s' reads %.17g, '%s' reads %.17g\n", v, shortest, strtod(shortest, NULL),
+                        four, strtod(four, NULL));
             fail();
         }
         /* shortest = four without trailing zeros */
@@ -331,14 +365,18 @@ static void names_are_validated(void **state)
 
     char buf[FBRL_RAPL_LINE_MAX];
     size_t len;
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_MOVE,
-                                      A(S("TOOLONGNM")), 1, 0), FBRL_ENAME);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_TYPEI,
-                                      A(S("#V")), 1, 0), FBRL_ENAME); /* variables have no '#' */
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_HERE,
-                                      A(S("P;1")), 1, 0), FBRL_ENAME);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_SET,
-                                      A(S("A"), S("B C")), 2, 0), FBRL_ENAME);
+    assert_int_equal(
+        fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_MOVE, A(S("TOOLONGNM")), 1, 0),
+        FBRL_ENAME);
+    assert_int_equal(
+        fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_TYPEI, A(S("#V")), 1, 0),
+        FBRL_ENAME); /* variables have no '#' */
+    assert_int_equal(
+        fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_HERE, A(S("P;1")), 1, 0),
+        FBRL_ENAME);
+    assert_int_equal(
+        fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_SET, A(S("A"), S("B C")), 2, 0),
+        FBRL_ENAME);
 }
 
 static void arguments_are_checked(void **state)
@@ -348,30 +386,42 @@ static void arguments_are_checked(void **state)
     size_t len;
     fbrl_rapl_form kw = FBRL_RAPL_KEYWORD;
     /* wrong counts */
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_APPRO, A(S("P1")), 1, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_APPRO, A(S("P1")), 1, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_HOME, A(I(1)), 1, 0), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_LOCK, NULL, 0, 0), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_LOCK,
-                                      A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8), I(1)), 9, 0), FBRL_EINVAL);
+                                      A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8), I(1)), 9, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_LOCK,
-                                      A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8)), 8, 0), FBRL_OK);
+                                      A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8)), 8, 0),
+                     FBRL_OK);
     assert_string_equal(buf, "LOCK 1,2,3,4,5,6,7,8");
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
-                                      A(S("#B"), I(1), I(2), I(3), I(4), I(5), I(6)), 7, 0), FBRL_EINVAL);
+                                      A(S("#B"), I(1), I(2), I(3), I(4), I(5), I(6)), 7, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
-                                      A(S("#B"), R(1), I(2), I(3), I(4), I(5)), 6, 0), FBRL_EINVAL);
+                                      A(S("#B"), R(1), I(2), I(3), I(4), I(5)), 6, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT, NULL, 0, 0), FBRL_EINVAL);
     /* wrong kinds */
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOINT, A(R(1), R(2)), 2, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOINT, A(R(1), R(2)), 2, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOVE, A(I(1)), 1, 0), FBRL_EINVAL);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOVE, A(S(NULL)), 1, 0), FBRL_EINVAL);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("MAYBE")), 1, 0), FBRL_ERANGE);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("O")), 1, 0), FBRL_ERANGE);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("ONN")), 1, 0), FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOVE, A(S(NULL)), 1, 0),
+                     FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("MAYBE")), 1, 0),
+                     FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("O")), 1, 0),
+                     FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("ONN")), 1, 0),
+                     FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_CONFIG,
-                                      A(I(0), I(9600), S("X"), I(8), I(1), S("N"), I(1)), 7, 0), FBRL_ERANGE);
+                                      A(I(0), I(9600), S("X"), I(8), I(1), S("N"), I(1)), 7, 0),
+                     FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_CONFIG,
-                                      A(I(0), I(9600), S("E"), I(8), I(1), S("E"), I(1)), 7, 0), FBRL_ERANGE);
+                                      A(I(0), I(9600), S("E"), I(8), I(1), S("E"), I(1)), 7, 0),
+                     FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_ARM, A(S("on")), 1, 0), FBRL_OK);
     assert_string_equal(buf, "ARM ON");
     /* numbers */
@@ -379,19 +429,24 @@ static void arguments_are_checked(void **state)
                      FBRL_ENONFINITE);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(R(-INFINITY)), 1, 0),
                      FBRL_ENONFINITE);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(R(2e6)), 1, 0), FBRL_ERANGE);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(I(2000000)), 1, 0), FBRL_ERANGE);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOTOR, A(I(1), I(-2147483647L)), 2, 0),
-                     FBRL_OK);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(R(2e6)), 1, 0),
+                     FBRL_ERANGE);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_DEPART, A(I(2000000)), 1, 0),
+                     FBRL_ERANGE);
+    assert_int_equal(
+        fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MOTOR, A(I(1), I(-2147483647L)), 2, 0),
+        FBRL_OK);
     assert_string_equal(buf, "MOTOR 1,-2147483647");
     /* ",S" only where allowed */
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOG, A(R(1), R(1), R(0)), 3, 1), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_JOG, A(R(1), R(1), R(0)), 3, 1),
+                     FBRL_EINVAL);
     /* bad parameters */
     assert_int_equal(fbrl_rapl_encode(NULL, 10, &len, kw, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, 0, &len, kw, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, NULL, kw, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_NCMDS, NULL, 0, 0), FBRL_EINVAL);
-    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, (fbrl_rapl_form)7, FBRL_RAPL_HOME, NULL, 0, 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, (fbrl_rapl_form)7, FBRL_RAPL_HOME, NULL, 0, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_SPEED, NULL, 1, 0), FBRL_EINVAL);
 }
 
@@ -402,10 +457,12 @@ static void longest_line_fits_line_max(void **state)
     size_t len;
     double m = -FBRL_RAPL_REAL_MAX;
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_TOKEN, FBRL_RAPL_POINT,
-                                      A(S("ABCDEFGH"), R(m), R(m), R(m), R(m), R(m), R(m)), 7, 0), FBRL_OK);
+                                      A(S("ABCDEFGH"), R(m), R(m), R(m), R(m), R(m), R(m)), 7, 0),
+                     FBRL_OK);
     assert_true(len < FBRL_RAPL_LINE_MAX);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, FBRL_RAPL_KEYWORD, FBRL_RAPL_POINT,
-                                      A(S("ABCDEFGH"), R(m), R(m), R(m), R(m), R(m), R(m)), 7, 0), FBRL_OK);
+                                      A(S("ABCDEFGH"), R(m), R(m), R(m), R(m), R(m), R(m)), 7, 0),
+                     FBRL_OK);
     assert_true(len < FBRL_RAPL_LINE_MAX);
 }
 

@@ -38,7 +38,8 @@ static void reader_cuts_lines_and_finds_prompts(void **state)
     fbrl_rapl_reader r;
     collected c = {"", 0, 0};
     fbrl_rapl_reader_init(&r);
-    static const char in[] = "SPEED 50\r\n>>HOME\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>W2\r\n\r\nA\rB\nC\n\rD\r\n>>";
+    static const char in[] =
+        "SPEED 50\r\n>>HOME\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>W2\r\n\r\nA\rB\nC\n\rD\r\n>>";
     feed(&r, in, sizeof in - 1, &c);
     assert_string_equal(c.lines, "SPEED 50|>>|HOME|041-ROBOT HAS NOT BEEN HOMED.|>>|W2|A|B|C|D|>>|");
     assert_int_equal(c.prompts, 3);
@@ -95,11 +96,18 @@ static void error_lines_are_checked_against_the_table(void **state)
     l = "999-NO SUCH ERROR.";
     assert_int_equal(fbrl_rapl_parse_error(l, strlen(l), &code, text, sizeof text), FBRL_ECHECKSUM);
     /* not error lines */
-    static const char *const bad[] = {"29-TRANSFORM ILLEGAL.", "029-TRANSFORM ILLEGAL", "029 TRANSFORM ILLEGAL.",
-                                      "029-transform illegal.", "029-.", "", "+0000000100", "LAST ERROR CODE: NONE",
+    static const char *const bad[] = {"29-TRANSFORM ILLEGAL.",
+                                      "029-TRANSFORM ILLEGAL",
+                                      "029 TRANSFORM ILLEGAL.",
+                                      "029-transform illegal.",
+                                      "029-.",
+                                      "",
+                                      "+0000000100",
+                                      "LAST ERROR CODE: NONE",
                                       "029-TRANSFORM,ILLEGAL."};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
-        assert_int_equal(fbrl_rapl_parse_error(bad[k], strlen(bad[k]), &code, text, sizeof text), FBRL_ESYNTAX);
+        assert_int_equal(fbrl_rapl_parse_error(bad[k], strlen(bad[k]), &code, text, sizeof text),
+                         FBRL_ESYNTAX);
     l = "029-TRANSFORM ILLEGAL.";
     assert_int_equal(fbrl_rapl_parse_error(l, strlen(l), &code, text, 17), FBRL_ENOSPC);
     assert_int_equal(fbrl_rapl_parse_error(l, strlen(l), &code, text, 18), FBRL_OK);
@@ -149,8 +157,8 @@ static void values_parse_without_locale(void **state)
     assert_int_equal(i, 2147483647L);
     assert_int_equal(fbrl_rapl_parse_int("2147483648", 10, &i), FBRL_ERANGE);
     assert_int_equal(fbrl_rapl_parse_int("1.5", 3, &i), FBRL_ESYNTAX);
-    static const char *const bad[] = {"", " ", "+", "-.5", "1.", "1e3", "1,5", "12a", "--1", "1 2",
-                                      "1234567890123456"};
+    static const char *const bad[] = {
+        "", " ", "+", "-.5", "1.", "1e3", "1,5", "12a", "--1", "1 2", "1234567890123456"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         assert_int_equal(fbrl_rapl_parse_real(bad[k], strlen(bad[k]), &v), FBRL_ESYNTAX);
     /* length is respected: the digits after len are not read */
@@ -199,12 +207,9 @@ static void position_blocks_parse(void **state)
 
     /* six axes wrap as in the research sample (continuation lines) */
     static const char *const w0[] = {
-        "CURRENT COMMAND POSITION :",
-        "PULSES   -0000000001 -0000000001 -0000000001 -0000000001 -0000000001",
-        "         -0000000114",
-        "JOINTS   +000.0150 +000.0150 +000.0150 +000.0071 +000.0036",
-        "         +000.8126",
-        "WORLD     +000.0198 +000.0149 -076.1849 +000.0000 +089.9964 +000.8198",
+        "CURRENT COMMAND POSITION :", "PULSES   -0000000001 -0000000001 -0000000001 -0000000001 -0000000001",
+        "         -0000000114",       "JOINTS   +000.0150 +000.0150 +000.0150 +000.0071 +000.0036",
+        "         +000.8126",         "WORLD     +000.0198 +000.0149 -076.1849 +000.0000 +089.9964 +000.8198",
     };
     fbrl_rapl_pos_init(&p);
     for (size_t k = 0; k < 6; k++)
@@ -288,9 +293,9 @@ static void status_blocks_parse(void **state)
     l = "CONTROLLER IS NOT HOMED";
     assert_int_equal(fbrl_rapl_status_line(&s, l, strlen(l)), FBRL_OK);
     assert_int_equal(s.homed, 0);
-    static const char *const bad[] = {"LAST ERROR CODE: 029-TRANSFORM ILLEGAK.", "LOCK         N Y N N",
-                                      "DONE         Y X Y Y Y", "INPUTS  1-16: 100000000000000",
-                                      "SPEED (% OF FULL) :    50x", "LIMP         NN N N N N"};
+    static const char *const bad[] = {
+        "LAST ERROR CODE: 029-TRANSFORM ILLEGAK.", "LOCK         N Y N N",       "DONE         Y X Y Y Y",
+        "INPUTS  1-16: 100000000000000",           "SPEED (% OF FULL) :    50x", "LIMP         NN N N N N"};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++)
         assert_int_equal(fbrl_rapl_status_line(&s, bad[k], strlen(bad[k])), FBRL_ESYNTAX);
 }
@@ -315,7 +320,8 @@ static void garbage_is_survived(void **state)
         for (size_t k = 0; k < len; k++) {
             x = x * 1664525u + 1013904223u;
             /* mostly real text with a few random bytes */
-            line[k] = (x >> 24) < 20 ? (char)(x >> 16) : (k < strlen(base) ? base[k] : (char)(' ' + (x >> 16) % 64));
+            line[k] = (x >> 24) < 20 ? (char)(x >> 16)
+                                     : (k < strlen(base) ? base[k] : (char)(' ' + (x >> 16) % 64));
         }
         int code;
         char text[80];

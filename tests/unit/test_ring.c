@@ -86,8 +86,8 @@ static void capacity_is_largest_power_of_two(void **state)
 {
     (void)state;
     static uint8_t mem[5000];
-    const size_t sizes[][2] = {{2, 2}, {3, 2}, {4, 4}, {5, 4}, {7, 4}, {8, 8}, {1000, 512},
-                               {1023, 512}, {1024, 1024}, {4096, 4096}, {5000, 4096}};
+    const size_t sizes[][2] = {{2, 2},      {3, 2},      {4, 4},       {5, 4},       {7, 4},      {8, 8},
+                               {1000, 512}, {1023, 512}, {1024, 1024}, {4096, 4096}, {5000, 4096}};
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         fbrl_ring r;
         assert_int_equal(fbrl_ring_init(&r, mem, sizes[i][0]), FBRL_OK);
@@ -223,9 +223,7 @@ static void random_ops_match_model(void **state)
             assert_int_equal(fbrl_ring_skip(&r, n / 2), FBRL_OK);
             mt += n / 2;
             break;
-        default:
-            assert_int_equal(fbrl_ring_skip(&r, cnt + 1), FBRL_ERANGE);
-            break;
+        default: assert_int_equal(fbrl_ring_skip(&r, cnt + 1), FBRL_ERANGE); break;
         }
         assert_int_equal(fbrl_ring_count(&r), mh - mt);
         assert_int_equal(fbrl_ring_space(&r), SIZE - (mh - mt));
@@ -259,7 +257,7 @@ static int64_t mono_ns(void)
 
 struct stress {
     fbrl_ring ring;
-    uint64_t total;       /* producer's target; lowered (atomically) at the deadline */
+    uint64_t total; /* producer's target; lowered (atomically) at the deadline */
     uint32_t data_seed, chunk_seed;
     uint64_t mismatch_at; /* UINT64_MAX when none */
 };
@@ -324,9 +322,7 @@ static void *consumer(void *arg)
             if (n > 0 && fbrl_ring_skip(&s->ring, n) != FBRL_OK)
                 n = 0, s->mismatch_at = got; /* skip must accept what peek saw */
             break;
-        default:
-            fbrl_ring_read(&s->ring, buf, len, &n);
-            break;
+        default: fbrl_ring_read(&s->ring, buf, len, &n); break;
         }
         if (n == 0) {
             sched_yield();
@@ -398,12 +394,9 @@ static void two_threads_tiny_ring(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(bad_input_gives_errors),
-        cmocka_unit_test(capacity_is_largest_power_of_two),
-        cmocka_unit_test(queue_words_and_full_capacity),
-        cmocka_unit_test(bulk_wraps_at_every_offset),
-        cmocka_unit_test(random_ops_match_model),
-        cmocka_unit_test(two_threads_move_100mb_intact),
+        cmocka_unit_test(bad_input_gives_errors),        cmocka_unit_test(capacity_is_largest_power_of_two),
+        cmocka_unit_test(queue_words_and_full_capacity), cmocka_unit_test(bulk_wraps_at_every_offset),
+        cmocka_unit_test(random_ops_match_model),        cmocka_unit_test(two_threads_move_100mb_intact),
         cmocka_unit_test(two_threads_tiny_ring),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -34,7 +34,8 @@ typedef struct fixture {
 static void h_write(void *user, const char *s, size_t n)
 {
     fixture *f = user;
-    if (f->n + n >= sizeof f->out) f->n = 0;
+    if (f->n + n >= sizeof f->out)
+        f->n = 0;
     memcpy(f->out + f->n, s, n);
     f->n += n;
     f->out[f->n] = 0;
@@ -151,7 +152,8 @@ static void every_word_has_help(void **state)
     size_t k;
     for (k = 0; fbrl_robot_word(k); k++) {
         const char *name = fbrl_robot_word(k), *stack = NULL, *help = NULL;
-        if (fbrl_vm_help(f->vm, name, &stack, &help) != FBRL_OK) print_error("no word %s\n", name);
+        if (fbrl_vm_help(f->vm, name, &stack, &help) != FBRL_OK)
+            print_error("no word %s\n", name);
         assert_int_equal(fbrl_vm_help(f->vm, name, &stack, &help), FBRL_OK);
         assert_true(stack[0] == '(' && strlen(help) > 10);
     }
@@ -167,16 +169,66 @@ static void offline_words_throw_a_clear_error(void **state)
 {
     fixture *f = *state;
     static const char *const lines[] = {
-        "HOME", "READY", "50 SPEED", "SPEED 50", "1 30 JOINT", "JOG 1 0 0", "1E0 DEPART", "HALT", "FINISH",
-        "CREATE-LOC P1 P1 MOV", "P1 MOV-STRT", "P1 2E0 APPROACH", "P1 ARM-HERE", "P1 ACTUAL", "ACTUAL CTL1",
-        "P1 TOOL", "TRUE ARM", "3 LIMP", "NOLIMP", "2 LOCK", "0 UNLOCK", "1 2E0 GAIN", "50 1E0 GRIP",
-        "CLOSE-GRIP", "W2", "W1", "ROBOT-STATUS", "SERIAL", "5 OUTPORT", "255 OUT2BYTE", "3 WAITPORT",
-        "TYPEINT V1", "TYPEREAL V1", "WGRIP V1", "RAPL SPEED 5", "SET-RAPL-INT V1 3", "RAPL-HERE L1",
-        "RAPL-RUN PROG", "RAPL-SET A B", "RAPL-SHIFTA A B", "RAPL-POINT L1 P1", "6 XHOME",
-        "0 9600 ASC N 8 1 ASC X 1 CONFIG", "MANUAL", "5 FLASH", "CREATE-CAL K1 K1 GET-CAL-POINTS",
-        "1 SETUPUART", "65 EMIT-COM", "GET-COM", "1 RESET-COMM", "16 SEND-COM 5 SEND-INT SEND-CR",
-        "5 OUTPUT-DEVICE V1 V1 ON", "100 V1 PULSE", "3 INPUT-DEVICE S1 S1 INPUT?", ".COMM",
-        "CONFIG 1 9600 E 7 2 X 1", "S1 TRUE 100 WAIT-INPUT", "V1 OFF", "ALIGNTOOL", "NOTEACH",
+        "HOME",
+        "READY",
+        "50 SPEED",
+        "SPEED 50",
+        "1 30 JOINT",
+        "JOG 1 0 0",
+        "1E0 DEPART",
+        "HALT",
+        "FINISH",
+        "CREATE-LOC P1 P1 MOV",
+        "P1 MOV-STRT",
+        "P1 2E0 APPROACH",
+        "P1 ARM-HERE",
+        "P1 ACTUAL",
+        "ACTUAL CTL1",
+        "P1 TOOL",
+        "TRUE ARM",
+        "3 LIMP",
+        "NOLIMP",
+        "2 LOCK",
+        "0 UNLOCK",
+        "1 2E0 GAIN",
+        "50 1E0 GRIP",
+        "CLOSE-GRIP",
+        "W2",
+        "W1",
+        "ROBOT-STATUS",
+        "SERIAL",
+        "5 OUTPORT",
+        "255 OUT2BYTE",
+        "3 WAITPORT",
+        "TYPEINT V1",
+        "TYPEREAL V1",
+        "WGRIP V1",
+        "RAPL SPEED 5",
+        "SET-RAPL-INT V1 3",
+        "RAPL-HERE L1",
+        "RAPL-RUN PROG",
+        "RAPL-SET A B",
+        "RAPL-SHIFTA A B",
+        "RAPL-POINT L1 P1",
+        "6 XHOME",
+        "0 9600 ASC N 8 1 ASC X 1 CONFIG",
+        "MANUAL",
+        "5 FLASH",
+        "CREATE-CAL K1 K1 GET-CAL-POINTS",
+        "1 SETUPUART",
+        "65 EMIT-COM",
+        "GET-COM",
+        "1 RESET-COMM",
+        "16 SEND-COM 5 SEND-INT SEND-CR",
+        "5 OUTPUT-DEVICE V1 V1 ON",
+        "100 V1 PULSE",
+        "3 INPUT-DEVICE S1 S1 INPUT?",
+        ".COMM",
+        "CONFIG 1 9600 E 7 2 X 1",
+        "S1 TRUE 100 WAIT-INPUT",
+        "V1 OFF",
+        "ALIGNTOOL",
+        "NOTEACH",
     };
     for (size_t k = 0; k < sizeof lines / sizeof lines[0]; k++) {
         const char *msg = throws(f, lines[k], OFFLINE_CODE);
@@ -300,7 +352,7 @@ static void parameters_come_from_the_stacks_or_the_line(void **state)
     throws(f, "50 SPEED", OFFLINE_CODE);
     throws(f, "SPEED 50", OFFLINE_CODE);
     throws(f, "SPEED 500", -24); /* parsed from the line, then checked */
-    throws(f, "SPEED", -16);      /* nothing anywhere */
+    throws(f, "SPEED", -16);     /* nothing anywhere */
     assert_non_null(strstr(fbrl_vm_last_error(f->vm)->message, "SPEED needs an integer"));
     /* the stacks are used when they can supply everything: the line stays untouched */
     assert_int_equal(ev(f, "5 SHIFT-RIGHT 7"), FBRL_OK);
@@ -319,7 +371,8 @@ static void parameters_come_from_the_stacks_or_the_line(void **state)
     /* a location parameter must name a data word; code is never run to get one */
     throws(f, "MOV HOME", -24);
     throws(f, "MOV 12", -24);
-    assert_int_equal(ev(f, "VARIABLE RAN  0 RAN !  : MAKER CREATE 48 ALLOT DOES> 1 RAN +! ;  MAKER DL"), FBRL_OK);
+    assert_int_equal(ev(f, "VARIABLE RAN  0 RAN !  : MAKER CREATE 48 ALLOT DOES> 1 RAN +! ;  MAKER DL"),
+                     FBRL_OK);
     throws(f, "MOV DL", -24);
     assert_int_equal(ev(f, "RAN @"), FBRL_OK);
     assert_int_equal(pop(f), 0); /* DL's DOES> code never ran */
@@ -450,30 +503,86 @@ static void random_lines_never_break_the_vm(void **state)
 {
     fixture *f = *state;
     static const char *const tok[] = {
-        "MOV", "APPROACH", "JOG", "SPEED", "GRIP", "CONFIG", "RAPL", "SEND-COM", "SEND-LOC", "SEND-CR",
-        "SEND-TEXT", "GETREAL", "GETINT", "GETSTRING", "TYPEINT", "SET-RAPL-REAL", "RAPL-POINT", "ACTUAL",
-        "ON", "OFF", "PULSE", "DISPENSE", "WAIT-INPUT", "SETPARITY", "COMMSET", "TYPE-COM", "ASC",
-        "GET-CAL-POINTS", "BASE-OFFSET", "OUT2BYTE", "SHIFT-RIGHT", "ELAPSED", "P", "CAL", "VALVE", "SENSOR",
-        "1", "-7", "0", "65535", "2.5", "1E300", "-1E-300", "$FF", "'E'", "\"", "\"a b\"", "E", "X",
-        "HERE", "DUP", "S\" P\"", "12345678901234567890", "#", "-", ".", ",", "\\",
+        "MOV",
+        "APPROACH",
+        "JOG",
+        "SPEED",
+        "GRIP",
+        "CONFIG",
+        "RAPL",
+        "SEND-COM",
+        "SEND-LOC",
+        "SEND-CR",
+        "SEND-TEXT",
+        "GETREAL",
+        "GETINT",
+        "GETSTRING",
+        "TYPEINT",
+        "SET-RAPL-REAL",
+        "RAPL-POINT",
+        "ACTUAL",
+        "ON",
+        "OFF",
+        "PULSE",
+        "DISPENSE",
+        "WAIT-INPUT",
+        "SETPARITY",
+        "COMMSET",
+        "TYPE-COM",
+        "ASC",
+        "GET-CAL-POINTS",
+        "BASE-OFFSET",
+        "OUT2BYTE",
+        "SHIFT-RIGHT",
+        "ELAPSED",
+        "P",
+        "CAL",
+        "VALVE",
+        "SENSOR",
+        "1",
+        "-7",
+        "0",
+        "65535",
+        "2.5",
+        "1E300",
+        "-1E-300",
+        "$FF",
+        "'E'",
+        "\"",
+        "\"a b\"",
+        "E",
+        "X",
+        "HERE",
+        "DUP",
+        "S\" P\"",
+        "12345678901234567890",
+        "#",
+        "-",
+        ".",
+        ",",
+        "\\",
     };
     char line[256];
     unsigned seed = 12345;
-    assert_int_equal(ev(f, "CREATE-LOC P CREATE-CAL CAL 5 OUTPUT-DEVICE VALVE 3 INPUT-DEVICE SENSOR"), FBRL_OK);
+    assert_int_equal(ev(f, "CREATE-LOC P CREATE-CAL CAL 5 OUTPUT-DEVICE VALVE 3 INPUT-DEVICE SENSOR"),
+                     FBRL_OK);
     for (int k = 0; k < 3000; k++) {
         size_t n = 0;
         int words = 1 + (int)((seed = seed * 1103515245u + 12345u) >> 16) % 6;
         for (int w = 0; w < words; w++) {
             seed = seed * 1103515245u + 12345u;
             const char *t = tok[(seed >> 16) % (sizeof tok / sizeof tok[0])];
-            if (n + strlen(t) + 2 >= sizeof line) break;
+            if (n + strlen(t) + 2 >= sizeof line)
+                break;
             n += (size_t)snprintf(line + n, sizeof line - n, "%s ", t);
         }
         ev(f, line); /* any result but a crash */
         assert_int_equal(ev(f, "1 2 +"), FBRL_OK);
         assert_int_equal(pop(f), 3);
-        while (fbrl_vm_depth(f->vm)) pop(f);
-        while (fbrl_vm_fdepth(f->vm)) fpop(f);
+        while (fbrl_vm_depth(f->vm))
+            pop(f);
+        while (fbrl_vm_fdepth(f->vm))
+            fpop(f);
     }
 }
 

@@ -48,10 +48,7 @@ static fbrl_status lb_configure(void *ctx, const fbrl_uart_config *cfg)
     return e->configure_result;
 }
 
-static void lb_kick(void *ctx)
-{
-    ((end *)ctx)->kicks++;
-}
+static void lb_kick(void *ctx) { ((end *)ctx)->kicks++; }
 
 static fbrl_status lb_service(void *ctx, uint32_t timeout_us)
 {
@@ -63,10 +60,7 @@ static fbrl_status lb_service(void *ctx, uint32_t timeout_us)
     return e->service_result;
 }
 
-static uint64_t lb_now(void *ctx)
-{
-    return ((end *)ctx)->ln->now;
-}
+static uint64_t lb_now(void *ctx) { return ((end *)ctx)->ln->now; }
 
 static fbrl_status lb_close(void *ctx)
 {
@@ -106,10 +100,7 @@ static void open_pair_ops(fbrl_flow flow, const fbrl_uart_ops *ops)
     assert_int_equal(fbrl_uart_init(&B.u, ops, &B, B.rxm, sizeof B.rxm, B.txm, sizeof B.txm, &cfg), FBRL_OK);
 }
 
-static void open_pair(fbrl_flow flow)
-{
-    open_pair_ops(flow, &lb_ops);
-}
+static void open_pair(fbrl_flow flow) { open_pair_ops(flow, &lb_ops); }
 
 static int setup_flush(void **state)
 {
@@ -151,21 +142,32 @@ static void bad_input_gives_errors(void **state)
     assert_int_equal(fbrl_uart_init(&u, &lb_ops, &e, rx, 16, tx, 0, &good), FBRL_EINVAL);
     for (int member = 0; member < 4; member++) { /* every op but close is required */
         ops = lb_ops;
-        if (member == 0) ops.configure = NULL;
-        if (member == 1) ops.tx_kick = NULL;
-        if (member == 2) ops.service = NULL;
-        if (member == 3) ops.now_us = NULL;
+        if (member == 0)
+            ops.configure = NULL;
+        if (member == 1)
+            ops.tx_kick = NULL;
+        if (member == 2)
+            ops.service = NULL;
+        if (member == 3)
+            ops.now_us = NULL;
         assert_int_equal(fbrl_uart_init(&u, &ops, &e, rx, 16, tx, 16, &good), FBRL_EINVAL);
     }
     for (int field = 0; field < 7; field++) {
         bad = good;
-        if (field == 0) bad.baud = 0;
-        if (field == 1) bad.data_bits = 4;
-        if (field == 2) bad.data_bits = 9;
-        if (field == 3) bad.parity = (fbrl_parity)'X';
-        if (field == 4) bad.stop_bits = 0;
-        if (field == 5) bad.stop_bits = 3;
-        if (field == 6) bad.flow = (fbrl_flow)7;
+        if (field == 0)
+            bad.baud = 0;
+        if (field == 1)
+            bad.data_bits = 4;
+        if (field == 2)
+            bad.data_bits = 9;
+        if (field == 3)
+            bad.parity = (fbrl_parity)'X';
+        if (field == 4)
+            bad.stop_bits = 0;
+        if (field == 5)
+            bad.stop_bits = 3;
+        if (field == 6)
+            bad.flow = (fbrl_flow)7;
         assert_int_equal(fbrl_uart_init(&u, &lb_ops, &e, rx, 16, tx, 16, &bad), FBRL_EINVAL);
     }
     /* The backend refuses a setting: the error comes back and the port stays closed. */
@@ -483,7 +485,7 @@ static void write_hands_bytes_over_at_once(void **state)
     assert_int_equal(fbrl_uart_get_counters(&B.u, &c), FBRL_OK);
     assert_int_equal(c.xoff_sent, 1);
     assert_int_equal(fbrl_uart_isr_tx(&B.u), -1); /* the XON is no longer due: it left */
-    A.service_result = FBRL_EDISCONNECTED; /* the line is gone: the write says so */
+    A.service_result = FBRL_EDISCONNECTED;        /* the line is gone: the write says so */
     assert_int_equal(fbrl_uart_write(&A.u, msg, sizeof msg - 1, &n, 0), FBRL_EDISCONNECTED);
     assert_int_equal(n, sizeof msg - 1);
 }

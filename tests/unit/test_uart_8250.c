@@ -20,22 +20,22 @@
 /* ---------------------------------------------------------------- the model */
 
 typedef struct access {
-    char dir;       /* 'r' or 'w' */
+    char dir; /* 'r' or 'w' */
     uint16_t port;
     uint8_t val;
 } access;
 
 typedef struct model {
-    unsigned depth;             /* 16 (16550) or 1 (8250) */
-    int absent;                 /* nothing at BASE: every read gives 0xFF */
-    int early_16550;            /* the first 16550: IIR bits 7:6 read 10 with FIFO on */
+    unsigned depth;  /* 16 (16550) or 1 (8250) */
+    int absent;      /* nothing at BASE: every read gives 0xFF */
+    int early_16550; /* the first 16550: IIR bits 7:6 read 10 with FIFO on */
     /* chip */
     uint8_t ier, lcr, mcr, fcr, dll, dlm;
     uint8_t rx[256];
     unsigned rx_head, rx_n;
-    uint8_t lsr_err;            /* OE/PE/FE/BI latched until LSR is read */
-    unsigned tx_fifo;           /* bytes written since the transmitter was last empty */
-    unsigned tx_overflow;       /* THR writes while the FIFO was already full */
+    uint8_t lsr_err;      /* OE/PE/FE/BI latched until LSR is read */
+    unsigned tx_fifo;     /* bytes written since the transmitter was last empty */
+    unsigned tx_overflow; /* THR writes while the FIFO was already full */
     int thre_pending;
     int msr_delta, msr_stuck;
     uint8_t tx[70000];
@@ -48,7 +48,7 @@ typedef struct model {
     unsigned iir_reads;
     void (*on_iir)(struct model *m, unsigned nth);
     void (*on_idle)(struct model *m);
-    unsigned saved_depth;       /* irq_save nesting */
+    unsigned saved_depth; /* irq_save nesting */
     unsigned ier_writes_while_open;
     /* log */
     access log[8192];
@@ -217,10 +217,7 @@ static void io_idle(void *ctx)
         m->on_idle(m);
 }
 
-static uint64_t io_now(void *ctx)
-{
-    return ((model *)ctx)->now;
-}
+static uint64_t io_now(void *ctx) { return ((model *)ctx)->now; }
 
 static const fbrl_uart_8250_io IO = {io_inb, io_outb, io_irq_save, io_irq_restore, io_idle, io_now, &M};
 
@@ -236,8 +233,8 @@ static void expect_log(size_t mark, const access *want, size_t n)
     for (i = 0; i < n; i++) {
         const access *got = &M.log[mark + i];
         if (got->dir != want[i].dir || got->port != want[i].port || got->val != want[i].val)
-            fail_msg("access %zu: got %c 0x%x=0x%02x, want %c 0x%x=0x%02x", i, got->dir, got->port,
-                     got->val, want[i].dir, want[i].port, want[i].val);
+            fail_msg("access %zu: got %c 0x%x=0x%02x, want %c 0x%x=0x%02x", i, got->dir, got->port, got->val,
+                     want[i].dir, want[i].port, want[i].val);
     }
 }
 
@@ -282,8 +279,8 @@ static fbrl_uart_counters counters(void)
 
 /* ------------------------------------------------------ line programming */
 
-static const uint32_t standard_bauds[] = {50, 75, 150, 300, 600, 1200, 1800, 2400, 3600, 4800,
-                                          7200, 9600, 14400, 19200, 38400, 57600, 115200};
+static const uint32_t standard_bauds[] = {50,   75,   150,  300,   600,   1200,  1800,  2400,  3600,
+                                          4800, 7200, 9600, 14400, 19200, 38400, 57600, 115200};
 
 /* LCR from the 16550 data sheet: bits 1:0 word length - 5, bit 2 two stop bits,
  * bit 3 parity enable, bit 4 even parity. */
@@ -314,7 +311,8 @@ static void test_configure_every_setting(void **state)
                     uint32_t div = 115200u / baud;
                     size_t mark;
                     model_reset(16);
-                    assert_int_equal(fbrl_uart_8250_init(&B, &IO, BASE, 4, FBRL_UART_8250_16550, 14), FBRL_OK);
+                    assert_int_equal(fbrl_uart_8250_init(&B, &IO, BASE, 4, FBRL_UART_8250_16550, 14),
+                                     FBRL_OK);
                     mark = log_mark();
                     if (bits == 5 && stop == 2) {
                         assert_int_equal(fbrl_uart_8250_ops.configure(&B, &c), FBRL_EUNSUPPORTED);
@@ -324,13 +322,13 @@ static void test_configure_every_setting(void **state)
                     assert_int_equal(fbrl_uart_8250_ops.configure(&B, &c), FBRL_OK);
                     {
                         const access want[] = {
-                            {'w', BASE + 1, 0x00},                        /* IER off */
-                            {'w', BASE + 3, 0x80},                        /* DLAB */
-                            {'w', BASE + 0, (uint8_t)(div & 0xFF)},       /* DLL */
-                            {'w', BASE + 1, (uint8_t)(div >> 8)},         /* DLM */
+                            {'w', BASE + 1, 0x00},                  /* IER off */
+                            {'w', BASE + 3, 0x80},                  /* DLAB */
+                            {'w', BASE + 0, (uint8_t)(div & 0xFF)}, /* DLL */
+                            {'w', BASE + 1, (uint8_t)(div >> 8)},   /* DLM */
                             {'w', BASE + 3, sheet_lcr((uint8_t)bits, pars[pi], (uint8_t)stop)},
-                            {'w', BASE + 2, 0xC7},                        /* FIFO on, clear, trigger 14 */
-                            {'w', BASE + 4, 0x0B},                        /* DTR RTS OUT2 */
+                            {'w', BASE + 2, 0xC7}, /* FIFO on, clear, trigger 14 */
+                            {'w', BASE + 4, 0x0B}, /* DTR RTS OUT2 */
                             {'r', BASE + 5, 0x60},
                             {'r', BASE + 6, 0xB0},
                             {'r', BASE + 2, 0xC1},
@@ -355,12 +353,9 @@ static void test_configure_datasheet_values(void **state)
         fbrl_parity par;
         uint8_t dll, dlm, lcr;
     } t[] = {
-        {9600, 8, 1, FBRL_PARITY_NONE, 0x0C, 0x00, 0x03},
-        {115200, 8, 1, FBRL_PARITY_NONE, 0x01, 0x00, 0x03},
-        {2400, 7, 1, FBRL_PARITY_EVEN, 0x30, 0x00, 0x1A},
-        {1200, 7, 2, FBRL_PARITY_ODD, 0x60, 0x00, 0x0E},
-        {300, 8, 2, FBRL_PARITY_EVEN, 0x80, 0x01, 0x1F},
-        {50, 5, 1, FBRL_PARITY_NONE, 0x00, 0x09, 0x00},
+        {9600, 8, 1, FBRL_PARITY_NONE, 0x0C, 0x00, 0x03}, {115200, 8, 1, FBRL_PARITY_NONE, 0x01, 0x00, 0x03},
+        {2400, 7, 1, FBRL_PARITY_EVEN, 0x30, 0x00, 0x1A}, {1200, 7, 2, FBRL_PARITY_ODD, 0x60, 0x00, 0x0E},
+        {300, 8, 2, FBRL_PARITY_EVEN, 0x80, 0x01, 0x1F},  {50, 5, 1, FBRL_PARITY_NONE, 0x00, 0x09, 0x00},
         {19200, 6, 1, FBRL_PARITY_ODD, 0x06, 0x00, 0x09},
     };
     size_t i;
@@ -381,7 +376,9 @@ static void test_configure_datasheet_values(void **state)
 static void test_configure_unsupported(void **state)
 {
     static const uint32_t bad_bauds[] = {0, 110, 134, 7, 230400, 1, 56000, 921600};
-    static const struct { uint8_t bits, stop; } bad_frames[] = {{4, 1}, {9, 1}, {8, 0}, {8, 3}, {5, 2}};
+    static const struct {
+        uint8_t bits, stop;
+    } bad_frames[] = {{4, 1}, {9, 1}, {8, 0}, {8, 3}, {5, 2}};
     size_t i;
     (void)state;
     model_reset(16);
@@ -476,13 +473,15 @@ static void test_attach_and_close(void **state)
     model_reset(16);
     M.pic_mask = 0xFE; /* timer already on */
     assert_int_equal(fbrl_uart_8250_init(&B, &IO, BASE, 4, FBRL_UART_8250_16550, 14), FBRL_OK);
-    assert_int_equal(fbrl_uart_init(&U, &fbrl_uart_8250_ops, &B, rx_mem, sizeof rx_mem, tx_mem, sizeof tx_mem, &c),
-                     FBRL_OK);
+    assert_int_equal(
+        fbrl_uart_init(&U, &fbrl_uart_8250_ops, &B, rx_mem, sizeof rx_mem, tx_mem, sizeof tx_mem, &c),
+        FBRL_OK);
     assert_int_equal(M.dll, 12); /* the core programmed the line through configure */
     mark = log_mark();
     assert_int_equal(fbrl_uart_8250_attach(&B, &U), FBRL_OK);
     {
-        const access want[] = {{'w', BASE + 1, 0x05}, {'r', FBRL_8259_DATA, 0xFE}, {'w', FBRL_8259_DATA, 0xEE}};
+        const access want[] = {
+            {'w', BASE + 1, 0x05}, {'r', FBRL_8259_DATA, 0xFE}, {'w', FBRL_8259_DATA, 0xEE}};
         expect_log(mark, want, 3);
     }
     /* Reprogramming an attached port keeps its interrupts: IER comes back last. */
@@ -496,8 +495,10 @@ static void test_attach_and_close(void **state)
     mark = log_mark();
     assert_int_equal(fbrl_uart_8250_ops.close(&B), FBRL_OK);
     {
-        const access want[] = {{'r', FBRL_8259_DATA, 0xEE}, {'w', FBRL_8259_DATA, 0xFE},
-                               {'w', BASE + 1, 0x00}, {'w', BASE + 4, 0x00}};
+        const access want[] = {{'r', FBRL_8259_DATA, 0xEE},
+                               {'w', FBRL_8259_DATA, 0xFE},
+                               {'w', BASE + 1, 0x00},
+                               {'w', BASE + 4, 0x00}};
         expect_log(mark, want, 4);
     }
 

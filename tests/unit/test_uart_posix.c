@@ -44,7 +44,8 @@ static uint8_t rxa[4096], txa[4096], rxb[4096], txb[4096];
 
 /* A pty and the port on its slave end with rings of ring bytes, polled or with the
  * service thread; the master's fd. */
-static int open_on_pty(fbrl_uart_posix *p, fbrl_uart *u, const fbrl_uart_config *cfg, size_t ring, int threaded)
+static int open_on_pty(fbrl_uart_posix *p, fbrl_uart *u, const fbrl_uart_config *cfg, size_t ring,
+                       int threaded)
 {
     char name[64];
     int m = make_pty(name, sizeof name);
@@ -62,8 +63,10 @@ static void open_errors(void **state)
     fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
     char name[64], file[] = "/tmp/fbrl_not_a_ttyXXXXXX";
 
-    assert_int_equal(fbrl_uart_posix_open(&p, &u, "/dev/fbrl-no-such-port", &cfg, rxa, 64, txa, 64, NULL), FBRL_ENOENT);
-    assert_int_equal(fbrl_uart_posix_open(&p, &u, "/no/such/dir/tty", &cfg, rxa, 64, txa, 64, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_uart_posix_open(&p, &u, "/dev/fbrl-no-such-port", &cfg, rxa, 64, txa, 64, NULL),
+                     FBRL_ENOENT);
+    assert_int_equal(fbrl_uart_posix_open(&p, &u, "/no/such/dir/tty", &cfg, rxa, 64, txa, 64, NULL),
+                     FBRL_ENOENT);
     assert_int_equal(fbrl_uart_posix_open(&p, &u, "/dev/null", &cfg, rxa, 64, txa, 64, NULL), FBRL_ENOTTY);
     int fd = mkstemp(file);
     assert_true(fd >= 0);
@@ -151,10 +154,10 @@ static void busy_across_processes(void **state)
 static void every_setting_is_applied(void **state)
 {
     (void)state;
-    static const uint32_t rates[] = {50, 75, 110, 134, 150, 200, 300, 600, 1200, 1800, 2400, 4800,
-                                     9600, 19200, 38400, 57600, 115200, 230400, 460800, 500000,
-                                     576000, 921600, 1000000, 1152000, 1500000, 2000000, 2500000,
-                                     3000000, 3500000, 4000000};
+    static const uint32_t rates[] = {50,      75,      110,     134,     150,     200,    300,     600,
+                                     1200,    1800,    2400,    4800,    9600,    19200,  38400,   57600,
+                                     115200,  230400,  460800,  500000,  576000,  921600, 1000000, 1152000,
+                                     1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
     char name[64];
     int m = make_pty(name, sizeof name);
     fbrl_uart_posix p;
@@ -187,7 +190,7 @@ static void every_setting_is_applied(void **state)
                 assert_int_equal(!!(t.c_cflag & CSTOPB), stop == 2);
                 if (par != 0)
                     assert_int_equal(!!(t.c_cflag & PARODD), par == 2);
-                assert_int_equal(t.c_cflag & CSIZE, CS8);  /* the pty's own rule */
+                assert_int_equal(t.c_cflag & CSIZE, CS8); /* the pty's own rule */
                 assert_int_equal(t.c_cflag & PARENB, 0);
                 /* raw mode, whatever the framing */
                 assert_int_equal(t.c_lflag & (ICANON | ECHO | ISIG | IEXTEN), 0);
@@ -249,9 +252,9 @@ struct flow {
     fbrl_uart *u;
     uint64_t total;
     unsigned seed;
-    int slow;            /* reader: pause 2 ms after every 'slow' KiB */
+    int slow; /* reader: pause 2 ms after every 'slow' KiB */
     uint64_t done;
-    uint64_t bad_at;     /* first wrong byte, UINT64_MAX if none */
+    uint64_t bad_at; /* first wrong byte, UINT64_MAX if none */
     fbrl_status err;
 };
 
@@ -334,12 +337,16 @@ static void sixteen_mib_both_ways_with_xonxoff(void **state)
     fbrl_uart_config cfg = {115200, 8, FBRL_PARITY_NONE, 1, FBRL_FLOW_XONXOFF};
     fbrl_uart_posix_options opt = FBRL_UART_POSIX_OPTIONS_DEFAULT;
     opt.service_thread = 1;
-    assert_int_equal(fbrl_uart_posix_open(&pa, &ua, name, &cfg, rxa, sizeof rxa, txa, sizeof txa, &opt), FBRL_OK);
-    assert_int_equal(fbrl_uart_posix_open_fd(&pb, &ub, m, &cfg, rxb, sizeof rxb, txb, sizeof txb, &opt), FBRL_OK);
+    assert_int_equal(fbrl_uart_posix_open(&pa, &ua, name, &cfg, rxa, sizeof rxa, txa, sizeof txa, &opt),
+                     FBRL_OK);
+    assert_int_equal(fbrl_uart_posix_open_fd(&pb, &ub, m, &cfg, rxb, sizeof rxb, txb, sizeof txb, &opt),
+                     FBRL_OK);
 
     uint64_t total = flow_bytes();
-    struct flow wa = {&ua, total, 1, 0, 0, UINT64_MAX, FBRL_OK}, rb = {&ub, total, 1, 64, 0, UINT64_MAX, FBRL_OK};
-    struct flow wb = {&ub, total, 2, 0, 0, UINT64_MAX, FBRL_OK}, ra = {&ua, total, 2, 64, 0, UINT64_MAX, FBRL_OK};
+    struct flow wa = {&ua, total, 1, 0, 0, UINT64_MAX, FBRL_OK},
+                rb = {&ub, total, 1, 64, 0, UINT64_MAX, FBRL_OK};
+    struct flow wb = {&ub, total, 2, 0, 0, UINT64_MAX, FBRL_OK},
+                ra = {&ua, total, 2, 64, 0, UINT64_MAX, FBRL_OK};
     pthread_t t[4];
     uint64_t t0 = fbrl_clock_now_us();
     pthread_create(&t[0], NULL, writer, &wa);
@@ -668,7 +675,8 @@ static void tcp_serial_server(void **state)
     fbrl_uart_posix p;
     fbrl_uart u;
     fbrl_uart_config cfg = FBRL_UART_CONFIG_DEFAULT;
-    assert_int_equal(fbrl_uart_posix_open(&p, &u, path, &cfg, rxa, sizeof rxa, txa, sizeof txa, NULL), FBRL_OK);
+    assert_int_equal(fbrl_uart_posix_open(&p, &u, path, &cfg, rxa, sizeof rxa, txa, sizeof txa, NULL),
+                     FBRL_OK);
     int s = accept(l, NULL, NULL);
     assert_true(s >= 0);
 

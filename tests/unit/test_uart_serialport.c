@@ -52,7 +52,8 @@ static void unopenable_names_give_errors(void **state)
     /* A real pty: libserialport has no sysfs entry for it. */
     assert_int_equal(fbrl_uart_serialport_open(&p, &u, ptsname(m), &cfg, rx, 64, tx, 64), FBRL_EUNSUPPORTED);
     close(m);
-    assert_int_equal(fbrl_uart_serialport_open(&p, &u, "/dev/fbrl-no-such-port", &cfg, rx, 64, tx, 64), FBRL_ENOENT);
+    assert_int_equal(fbrl_uart_serialport_open(&p, &u, "/dev/fbrl-no-such-port", &cfg, rx, 64, tx, 64),
+                     FBRL_ENOENT);
     assert_int_equal(fbrl_uart_serialport_open(&p, &u, "", &cfg, rx, 64, tx, 64), FBRL_EINVAL);
     assert_int_equal(fbrl_uart_serialport_open(NULL, &u, "/dev/ttyS0", &cfg, rx, 64, tx, 64), FBRL_EINVAL);
     assert_int_equal(fbrl_uart_serialport_open(&p, NULL, "/dev/ttyS0", &cfg, rx, 64, tx, 64), FBRL_EINVAL);

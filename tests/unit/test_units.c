@@ -39,14 +39,20 @@ static void conversions_use_2_54_exactly(void **state)
 {
     double v;
     (void)state;
-    assert_int_equal(fbrl_units_in_to_cm(1.0, &v), FBRL_OK); assert_true(v == 2.54);
-    assert_int_equal(fbrl_units_in_to_cm(10.0, &v), FBRL_OK); assert_true(v == 25.4);
-    assert_int_equal(fbrl_units_in_to_cm(-4.0, &v), FBRL_OK); assert_true(v == -10.16);
-    assert_int_equal(fbrl_units_cm_to_in(2.54, &v), FBRL_OK); assert_true(v == 1.0);
-    assert_int_equal(fbrl_units_cm_to_in(25.4, &v), FBRL_OK); assert_true(v == 10.0);
+    assert_int_equal(fbrl_units_in_to_cm(1.0, &v), FBRL_OK);
+    assert_true(v == 2.54);
+    assert_int_equal(fbrl_units_in_to_cm(10.0, &v), FBRL_OK);
+    assert_true(v == 25.4);
+    assert_int_equal(fbrl_units_in_to_cm(-4.0, &v), FBRL_OK);
+    assert_true(v == -10.16);
+    assert_int_equal(fbrl_units_cm_to_in(2.54, &v), FBRL_OK);
+    assert_true(v == 1.0);
+    assert_int_equal(fbrl_units_cm_to_in(25.4, &v), FBRL_OK);
+    assert_true(v == 10.0);
     assert_int_equal(fbrl_units_cm_to_in(100.0, &v), FBRL_OK);
     assert_near(v, 39.37007874015748, 1e-13);
-    assert_int_equal(fbrl_units_cm_to_in(0.0, &v), FBRL_OK); assert_true(v == 0.0);
+    assert_int_equal(fbrl_units_cm_to_in(0.0, &v), FBRL_OK);
+    assert_true(v == 0.0);
 }
 
 static void metric_in_and_out(void **state)
@@ -55,11 +61,15 @@ static void metric_in_and_out(void **state)
     double v;
     (void)state;
     /* Metric off: identity both ways. */
-    assert_int_equal(fbrl_units_in(&u, 3.5, &v), FBRL_OK); assert_true(v == 3.5);
-    assert_int_equal(fbrl_units_out(&u, 3.5, &v), FBRL_OK); assert_true(v == 3.5);
+    assert_int_equal(fbrl_units_in(&u, 3.5, &v), FBRL_OK);
+    assert_true(v == 3.5);
+    assert_int_equal(fbrl_units_out(&u, 3.5, &v), FBRL_OK);
+    assert_true(v == 3.5);
     fbrl_units_metric_on(&u);
-    assert_int_equal(fbrl_units_in(&u, 25.4, &v), FBRL_OK); assert_true(v == 10.0);
-    assert_int_equal(fbrl_units_out(&u, 10.0, &v), FBRL_OK); assert_true(v == 25.4);
+    assert_int_equal(fbrl_units_in(&u, 25.4, &v), FBRL_OK);
+    assert_true(v == 10.0);
+    assert_int_equal(fbrl_units_out(&u, 10.0, &v), FBRL_OK);
+    assert_true(v == 25.4);
 
     /* Locations: lengths convert, angles never. */
     fbrl_loc in = {10.0, -2.0, 0.5, 45.0, -90.0, 30.0}, out, back;

@@ -21,7 +21,7 @@
 /* ---- a host: output into a buffer, keys from a string, files and clock (support/vm_host.h) ---- */
 typedef struct host {
     vmh_text out;
-    const char *keys;  /* input for KEY/ACCEPT */
+    const char *keys; /* input for KEY/ACCEPT */
 } host;
 
 static void h_write(void *user, const char *s, size_t n)
@@ -33,7 +33,8 @@ static void h_write(void *user, const char *s, size_t n)
 static int h_key(void *user)
 {
     host *h = user;
-    if (!h->keys || !*h->keys) return -1;
+    if (!h->keys || !*h->keys)
+        return -1;
     return (unsigned char)*h->keys++;
 }
 
@@ -101,14 +102,20 @@ static void run_forth_file(const char *name)
     assert_int_equal(st, FBRL_OK);
     assert_int_equal(ev(f, "#ERRORS @ #TESTS @"), FBRL_OK);
     fbrl_cell tests = pop1(f), errors = pop1(f);
-    if (errors) print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->h.out.s);
+    if (errors)
+        print_error("%s: %ld failures:\n%s\n", name, (long)errors, f->h.out.s);
     assert_int_equal(errors, 0);
     assert_true(tests > 10);
     print_message("%s: %ld tests passed\n", name, (long)tests);
     free_vm(f);
 }
 
-#define FORTH_TEST(fn, file) static void fn(void **state) { (void)state; run_forth_file(file); }
+#define FORTH_TEST(fn, file)     \
+    static void fn(void **state) \
+    {                            \
+        (void)state;             \
+        run_forth_file(file);    \
+    }
 FORTH_TEST(forth_core, "core.fs")
 FORTH_TEST(forth_coreext, "coreext.fs")
 FORTH_TEST(forth_exception, "exception.fs")
@@ -258,7 +265,8 @@ static fbrl_status c_add(fbrl_vm *vm, void *arg)
 {
     fbrl_cell x, y;
     fbrl_status st;
-    if ((st = fbrl_vm_pop(vm, &y)) || (st = fbrl_vm_pop(vm, &x))) return fbrl_vm_throw(vm, -4, NULL);
+    if ((st = fbrl_vm_pop(vm, &y)) || (st = fbrl_vm_pop(vm, &x)))
+        return fbrl_vm_throw(vm, -4, NULL);
     return fbrl_vm_push(vm, x + y + *(fbrl_cell *)arg);
 }
 
@@ -293,7 +301,8 @@ static void c_words(void **state)
                      FBRL_OK);
     assert_int_equal(fbrl_vm_define(f->vm, "C-FAIL", c_fail, NULL, "( -- )", "always fails"), FBRL_OK);
     assert_int_equal(fbrl_vm_define(f->vm, "C-OFF", c_offline, NULL, "( -- )", "offline"), FBRL_OK);
-    assert_int_equal(fbrl_vm_define(f->vm, "C-PARSE", c_parse, NULL, "( \"name\" -- len )", "parses"), FBRL_OK);
+    assert_int_equal(fbrl_vm_define(f->vm, "C-PARSE", c_parse, NULL, "( \"name\" -- len )", "parses"),
+                     FBRL_OK);
     assert_int_equal(fbrl_vm_define(f->vm, "BAD NAME", c_add, NULL, "", ""), FBRL_ENAME);
     assert_int_equal(fbrl_vm_define(f->vm, "", c_add, NULL, "", ""), FBRL_ENAME);
     assert_int_equal(fbrl_vm_define(f->vm, "X", NULL, NULL, "", ""), FBRL_EINVAL);
@@ -338,7 +347,8 @@ static void api_stacks(void **state)
     assert_int_equal(fbrl_vm_depth(f->vm), 1);
     assert_int_equal(fbrl_vm_fdepth(f->vm), 0);
     assert_int_equal(pop1(f), 7);
-    for (int i = 0; i < 256; i++) assert_int_equal(fbrl_vm_push(f->vm, i), FBRL_OK);
+    for (int i = 0; i < 256; i++)
+        assert_int_equal(fbrl_vm_push(f->vm, i), FBRL_OK);
     assert_int_equal(fbrl_vm_push(f->vm, 0), FBRL_ENOMEM);
     assert_int_equal(ev(f, "1"), FBRL_ETHROW);
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -3);
@@ -431,7 +441,8 @@ static void multi_line_definitions_and_bye(void **state)
     assert_string_equal(help, "square a number");
     f->h.out.n = 0;
     assert_int_equal(ev(f, "HELP SQ HELP DUP"), FBRL_OK);
-    assert_string_equal(f->h.out.s, "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
+    assert_string_equal(f->h.out.s,
+                        "SQ ( n -- n*n ) square a number\nDUP ( x -- x x ) duplicate the top cell\n");
     /* a definition abandoned in interpretation state */
     assert_int_equal(ev(f, ": HALF 1 ["), FBRL_OK);
     assert_true(fbrl_vm_compiling(f->vm));
@@ -462,7 +473,8 @@ static int check_help(void *ctx, const char *name, size_t len)
     memcpy(n, name, len);
     n[len] = 0;
     assert_int_equal(fbrl_vm_help(f->vm, n, &se, &help), FBRL_OK);
-    if (!se[0] || strlen(help) < 4) print_error("word %s lacks help\n", n);
+    if (!se[0] || strlen(help) < 4)
+        print_error("word %s lacks help\n", n);
     assert_true(se[0] == '(');
     assert_true(strlen(help) >= 4);
     return 0;
@@ -485,9 +497,11 @@ static void expect_output(fixture *f, const char *src, const char *want)
     f->h.out.n = 0;
     f->h.out.s[0] = 0;
     fbrl_status st = ev(f, src);
-    if (st != FBRL_OK) print_error("'%s': %s\n", src, fbrl_vm_last_error(f->vm)->message);
+    if (st != FBRL_OK)
+        print_error("'%s': %s\n", src, fbrl_vm_last_error(f->vm)->message);
     assert_int_equal(st, FBRL_OK);
-    if (strcmp(f->h.out.s, want) != 0) print_error("'%s' printed '%s', expected '%s'\n", src, f->h.out.s, want);
+    if (strcmp(f->h.out.s, want) != 0)
+        print_error("'%s' printed '%s', expected '%s'\n", src, f->h.out.s, want);
     assert_string_equal(f->h.out.s, want);
 }
 
@@ -505,12 +519,15 @@ static void output_formats(void **state)
     expect_output(f, "VARIABLE V 77 V ! V ?", "77 ");
     expect_output(f, "65 EMIT 3 SPACES 66 EMIT CR S\" ok\" TYPE SPACE .( paren) .\" x\"", "A   B\nok parenx");
     expect_output(f, ": DQ .\" in def\" ; DQ", "in def");
-    expect_output(f, "1.5E0 F. 2E0 F. 0.125E0 F. 1234.5E0 F. -3.25E0 F. 0E0 F.", "1.5 2. 0.125 1234.5 -3.25 0. ");
-    expect_output(f, "1234.5E0 FS. 1234.5E0 FE. 0.5E0 FE. -2E0 FS.", "1.23450E3 1.23450E3 500.000E-3 -2.00000E0 ");
+    expect_output(f, "1.5E0 F. 2E0 F. 0.125E0 F. 1234.5E0 F. -3.25E0 F. 0E0 F.",
+                  "1.5 2. 0.125 1234.5 -3.25 0. ");
+    expect_output(f, "1234.5E0 FS. 1234.5E0 FE. 0.5E0 FE. -2E0 FS.",
+                  "1.23450E3 1.23450E3 500.000E-3 -2.00000E0 ");
     expect_output(f, "3 SET-PRECISION 3.14159E0 F. 2E0 FSQRT FS. 6 SET-PRECISION", "3.14 1.41E0 ");
     expect_output(f, "1E0 2E0 .S FDROP FDROP", "<0> F: <2> 1.00000E0 2.00000E0 \n");
     expect_output(f, ": SQ ( n -- n*n ) DUP * ; SEE SQ", ": SQ DUP * ;\n");
-    expect_output(f, ": SW 1 IF 2 ELSE 3 THEN S\" s\" ; SEE SW", ": SW 1 0BRANCH(4) 2 BRANCH(2) 3 S\" s\" ;\n");
+    expect_output(f, ": SW 1 IF 2 ELSE 3 THEN S\" s\" ; SEE SW",
+                  ": SW 1 0BRANCH(4) 2 BRANCH(2) 3 S\" s\" ;\n");
     expect_output(f, "5 CONSTANT FIVE SEE FIVE", "FIVE is a constant = 5\n");
     expect_output(f, "HELP SQ", "SQ ( n -- n*n ) colon definition\n");
     expect_output(f, "HELP ENQ", "ENQ ( c q-addr -- ) add a character to the queue (throws when full)\n");
@@ -543,7 +560,7 @@ static void console_input(void **state)
     assert_memory_equal((void *)a, "Hello arm", 9);
     assert_int_equal(ev(f, "PAD 2 ACCEPT"), FBRL_OK); /* keeps 2 of "rest" */
     assert_int_equal(pop1(f), 2);
-    assert_int_equal(ev(f, "KEY"), FBRL_ETHROW);      /* end of input */
+    assert_int_equal(ev(f, "KEY"), FBRL_ETHROW); /* end of input */
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -57);
     free_vm(f);
 }
@@ -555,16 +572,16 @@ static void console_input(void **state)
 static void fused_code_keeps_meaning(void **state)
 {
     (void)state;
-    static const char *const binops[] = { "+", "-", "*", "AND", "=", "<>", "<", ">" };
-    static const fbrl_cell vals[] = { 0, 1, -1, 2, 7, -9, 1000000007, INTPTR_MAX, INTPTR_MIN };
+    static const char *const binops[] = {"+", "-", "*", "AND", "=", "<>", "<", ">"};
+    static const fbrl_cell vals[] = {0, 1, -1, 2, 7, -9, 1000000007, INTPTR_MAX, INTPTR_MIN};
     fixture *f = new_vm(1 << 20);
     char src[256];
     for (size_t o = 0; o < sizeof binops / sizeof binops[0]; o++) {
         for (size_t i = 0; i < sizeof vals / sizeof vals[0]; i++) {
             /* x LIT op  and  x y op IF ... THEN */
             snprintf(src, sizeof src,
-                     ": F1 %ld %s ; : F2 %ld %s IF 1 ELSE 2 THEN ; : F3 %s IF 1 ELSE 2 THEN ;",
-                     (long)vals[i], binops[o], (long)vals[i], binops[o], binops[o]);
+                     ": F1 %ld %s ; : F2 %ld %s IF 1 ELSE 2 THEN ; : F3 %s IF 1 ELSE 2 THEN ;", (long)vals[i],
+                     binops[o], (long)vals[i], binops[o], binops[o]);
             assert_int_equal(ev(f, src), FBRL_OK);
             for (size_t j = 0; j < sizeof vals / sizeof vals[0]; j++) {
                 snprintf(src, sizeof src, "%ld F1  %ld %ld ' %s EXECUTE", (long)vals[j], (long)vals[j],
@@ -584,10 +601,12 @@ static void fused_code_keeps_meaning(void **state)
         }
     }
     /* folded literals and PICK with a literal */
-    assert_int_equal(eval_pop(f->vm, ": G1 3 CELLS 1+ 2* NEGATE ; G1"), -2 * (3 * (fbrl_cell)sizeof(fbrl_cell) + 1));
+    assert_int_equal(eval_pop(f->vm, ": G1 3 CELLS 1+ 2* NEGATE ; G1"),
+                     -2 * (3 * (fbrl_cell)sizeof(fbrl_cell) + 1));
     assert_int_equal(eval_pop(f->vm, ": G2 10 20 30 2 PICK 1 PICK 0 PICK ; G2"), 30);
-    static const fbrl_cell picked[] = { 30, 10, 30, 20, 10 };
-    for (size_t i = 0; i < sizeof picked / sizeof picked[0]; i++) assert_int_equal(pop1(f), picked[i]);
+    static const fbrl_cell picked[] = {30, 10, 30, 20, 10};
+    for (size_t i = 0; i < sizeof picked / sizeof picked[0]; i++)
+        assert_int_equal(pop1(f), picked[i]);
     assert_int_equal(ev(f, ": G3 2 PICK ; 1 2 G3"), FBRL_ETHROW);
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -4);
     assert_int_equal(eval_pop(f->vm, "VARIABLE V 41 V ! : G4 V @ 1+ DUP V ! ; G4"), 42);
@@ -599,53 +618,119 @@ static void fused_code_keeps_meaning(void **state)
     /* fusion where C, left HERE unaligned (compiled only: such code is garbage) */
     assert_int_equal(ev(f, ": G9 [ 1 C, ] 5 + 2 PICK ;"), FBRL_OK);
     /* SEE shows fused code as the words it came from */
-    expect_output(f, ": G8 DUP 2 < IF 1 - THEN OVER + ; SEE G8",
-                  ": G8 DUP 2 < 0BRANCH(2) 1 - OVER + ;\n");
+    expect_output(f, ": G8 DUP 2 < IF 1 - THEN OVER + ; SEE G8", ": G8 DUP 2 < 0BRANCH(2) 1 - OVER + ;\n");
     free_vm(f);
 }
 
 static void hostile_programs_fail_cleanly(void **state)
 {
     (void)state;
-    static const struct { const char *src; int code; } cases[] = {
-        { "0 @", -9 }, { "-1 @", -9 }, { "HERE 1000000000 + C@", -9 }, { "1 0 !", -9 },
-        { "0 100 ERASE", -9 }, { "HERE 0 1000000 MOVE", -9 },
-        { "0 10 TYPE", -9 }, { "DROP", -4 }, { "1 2 3 2ROT", -4 }, { "5 PICK", -4 }, { "F+", -45 },
-        { ": R1 RECURSE ; R1", -5 }, { ": D1 1 1 RECURSE ; D1", -3 }, { ": F1 1E0 RECURSE ; F1", -44 },
-        { ": B1 BEGIN 1 AGAIN ; B1", -3 }, { "1 0 /", -10 }, { "1 0 MOD", -10 }, { "1 0 0 UM/MOD", -10 },
-        { "1E0 0E0 F/", -42 }, { "-1E0 FSQRT", -46 }, { "0E0 FLN", -46 }, { "1E300 1E300 F*", -43 },
-        { "1E30 F>S", -11 }, { "R>", -14 }, { ": X1 R> R> R> R> ; X1", -6 },
-        { ": X2 12345 >R ; X2", -9 }, { ": X3 HERE >R ; X3", -9 }, { ": X4 -8 >R ; X4", -9 },
-        { "THEN", -14 }, { ": X5 THEN ;", -22 }, { ": X6 IF ;", -22 }, { ": X7 BEGIN UNTIL UNTIL ;", -22 },
-        { ": X8 DO IF LOOP ;", -22 }, { ": X9 ELSE ;", -22 }, { ": XA 1 ; ;", -14 }, { ": XB [ : Y ;", 0 },
-        { ": ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ;", -19 }, { "CREATE", -16 }, { "S\" abc", -39 },
-        { "( abc", -39 }, { ".( abc", -39 }, { "12X3", -13 }, { "--5", -13 }, { "1.2.3", -13 },
-        { "$", -13 }, { "'ab'", -13 }, { "1E", 0 }, { "' DUP 99999 + EXECUTE", -13 }, { "0 EXECUTE", -13 },
-        { "-1 EXECUTE", -13 }, { "123 THROW", 123 }, { "ABORT", -1 }, { "DEFER DF DF", -21 },
-        { "1 2 3 4 5 6 7 8 9 10 2 ROLL 100 ROLL", -4 }, { ": X10 0 >R EXIT ; X10", -9 },
-        { "10 0 BASE ! .", -24 }, { "1 BASE ! 10", -13 }, { "S\" foo\" 2DROP 0 -1 EVALUATE", -24 },
-        { "PAD 0 EVALUATE", 0 }, { "-1 ALLOT", 0 }, { "-1000000000 ALLOT", -9 },
-        { "1000000000000 ALLOT", -8 }, { "0 1 1 FM/MOD", -11 }, { "1 1 1 SM/REM", -11 },
-        { "MAX-D", -13 }, { "' + >BODY", -31 }, { "1 TO DUP", -32 }, { "5 IS DUP", -32 },
-        { "DOES>", -14 }, { "-5 SPACES 0 0 D. : HO <# 300 0 DO 65 HOLD LOOP ; HO", -17 }, { "<# #S", -4 },
-        { "INCLUDE", -38 }, { "S\" \" INCLUDED", -38 }, { "KEY KEY", -57 }, { "1 RDROP", -14 },
-        { "CATCH", -4 }, { "5 CATCH -13 <> THROW", 0 }, { "' DROP CATCH", 0 },
-        { "MARKER M1 : X11 ; M1 X11", -13 },
-        { "' EXIT EXECUTE", -6 }, { "MARKER MM : XM [ MM ] ;", -29 }, { "XM", -13 },
-        { "8 CREATE-Q QQ 0 QQ ! 1 QQ ENQ", -12 }, { "8 CREATE-Q QR QR CELL+ 3 CELLS 0 FILL 1 QR ENQ", -9 },
-        { "4 CHR ARRAY AR 0 ' AR >BODY", -31 }, { "HERE 4 ALLOT 1 SWAP STRING-CNT", -12 },
+    static const struct {
+        const char *src;
+        int code;
+    } cases[] = {
+        {"0 @", -9},
+        {"-1 @", -9},
+        {"HERE 1000000000 + C@", -9},
+        {"1 0 !", -9},
+        {"0 100 ERASE", -9},
+        {"HERE 0 1000000 MOVE", -9},
+        {"0 10 TYPE", -9},
+        {"DROP", -4},
+        {"1 2 3 2ROT", -4},
+        {"5 PICK", -4},
+        {"F+", -45},
+        {": R1 RECURSE ; R1", -5},
+        {": D1 1 1 RECURSE ; D1", -3},
+        {": F1 1E0 RECURSE ; F1", -44},
+        {": B1 BEGIN 1 AGAIN ; B1", -3},
+        {"1 0 /", -10},
+        {"1 0 MOD", -10},
+        {"1 0 0 UM/MOD", -10},
+        {"1E0 0E0 F/", -42},
+        {"-1E0 FSQRT", -46},
+        {"0E0 FLN", -46},
+        {"1E300 1E300 F*", -43},
+        {"1E30 F>S", -11},
+        {"R>", -14},
+        {": X1 R> R> R> R> ; X1", -6},
+        {": X2 12345 >R ; X2", -9},
+        {": X3 HERE >R ; X3", -9},
+        {": X4 -8 >R ; X4", -9},
+        {"THEN", -14},
+        {": X5 THEN ;", -22},
+        {": X6 IF ;", -22},
+        {": X7 BEGIN UNTIL UNTIL ;", -22},
+        {": X8 DO IF LOOP ;", -22},
+        {": X9 ELSE ;", -22},
+        {": XA 1 ; ;", -14},
+        {": XB [ : Y ;", 0},
+        {": ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ;", -19},
+        {"CREATE", -16},
+        {"S\" abc", -39},
+        {"( abc", -39},
+        {".( abc", -39},
+        {"12X3", -13},
+        {"--5", -13},
+        {"1.2.3", -13},
+        {"$", -13},
+        {"'ab'", -13},
+        {"1E", 0},
+        {"' DUP 99999 + EXECUTE", -13},
+        {"0 EXECUTE", -13},
+        {"-1 EXECUTE", -13},
+        {"123 THROW", 123},
+        {"ABORT", -1},
+        {"DEFER DF DF", -21},
+        {"1 2 3 4 5 6 7 8 9 10 2 ROLL 100 ROLL", -4},
+        {": X10 0 >R EXIT ; X10", -9},
+        {"10 0 BASE ! .", -24},
+        {"1 BASE ! 10", -13},
+        {"S\" foo\" 2DROP 0 -1 EVALUATE", -24},
+        {"PAD 0 EVALUATE", 0},
+        {"-1 ALLOT", 0},
+        {"-1000000000 ALLOT", -9},
+        {"1000000000000 ALLOT", -8},
+        {"0 1 1 FM/MOD", -11},
+        {"1 1 1 SM/REM", -11},
+        {"MAX-D", -13},
+        {"' + >BODY", -31},
+        {"1 TO DUP", -32},
+        {"5 IS DUP", -32},
+        {"DOES>", -14},
+        {"-5 SPACES 0 0 D. : HO <# 300 0 DO 65 HOLD LOOP ; HO", -17},
+        {"<# #S", -4},
+        {"INCLUDE", -38},
+        {"S\" \" INCLUDED", -38},
+        {"KEY KEY", -57},
+        {"1 RDROP", -14},
+        {"CATCH", -4},
+        {"5 CATCH -13 <> THROW", 0},
+        {"' DROP CATCH", 0},
+        {"MARKER M1 : X11 ; M1 X11", -13},
+        {"' EXIT EXECUTE", -6},
+        {"MARKER MM : XM [ MM ] ;", -29},
+        {"XM", -13},
+        {"8 CREATE-Q QQ 0 QQ ! 1 QQ ENQ", -12},
+        {"8 CREATE-Q QR QR CELL+ 3 CELLS 0 FILL 1 QR ENQ", -9},
+        {"4 CHR ARRAY AR 0 ' AR >BODY", -31},
+        {"HERE 4 ALLOT 1 SWAP STRING-CNT", -12},
     };
     fixture *f = new_vm(1 << 20);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         fbrl_status st = ev(f, cases[i].src);
         int code = st == FBRL_OK ? 0 : fbrl_vm_last_error(f->vm)->throw_code;
-        if (code != cases[i].code) print_error("'%s' gave %d, expected %d\n", cases[i].src, code, cases[i].code);
+        if (code != cases[i].code)
+            print_error("'%s' gave %d, expected %d\n", cases[i].src, code, cases[i].code);
         assert_int_equal(code, cases[i].code);
-        if (code) assert_int_equal(fbrl_vm_depth(f->vm), 0);
+        if (code)
+            assert_int_equal(fbrl_vm_depth(f->vm), 0);
         fbrl_vm_eval(f->vm, "DECIMAL", 7);
-        while (fbrl_vm_depth(f->vm)) pop1(f);
+        while (fbrl_vm_depth(f->vm))
+            pop1(f);
         double d;
-        while (fbrl_vm_fdepth(f->vm)) fbrl_vm_fpop(f->vm, &d);
+        while (fbrl_vm_fdepth(f->vm))
+            fbrl_vm_fpop(f->vm, &d);
         /* the VM keeps working */
         assert_int_equal(ev(f, "2 3 *"), FBRL_OK);
         assert_int_equal(pop1(f), 6);
@@ -665,7 +750,8 @@ static void hostile_programs_fail_cleanly(void **state)
 static fixture *mixer_vm(void)
 {
     fixture *f = new_vm(1 << 20);
-    assert_int_equal(ev(f, "VARIABLE SEED : RND SEED @ 1103515245 * 12345 + DUP SEED ! 16 RSHIFT ;"), FBRL_OK);
+    assert_int_equal(ev(f, "VARIABLE SEED : RND SEED @ 1103515245 * 12345 + DUP SEED ! 16 RSHIFT ;"),
+                     FBRL_OK);
     assert_int_equal(ev(f, ": MIX ( a n -- ) 0 DO RND 3 AND CASE 0 OF RND 400 MOD ENDOF 1 OF RND ENDOF "
                            "2 OF RND 50 MOD 4096 + ENDOF DUP OF HERE RND 64 MOD CELLS - ENDOF ENDCASE "
                            "OVER I CELLS + ! LOOP DROP ;"),
@@ -681,10 +767,13 @@ static void corrupted_code_is_contained(void **state)
     for (int seed = 1; seed <= 300; seed++) {
         char src[256];
         snprintf(src, sizeof src,
-                 "MARKER GONE : VICTIM 1 2 3 4 5 6 7 8 9 10 11 12 ; %d SEED ! HERE 13 CELLS - 13 MIX VICTIM", seed);
+                 "MARKER GONE : VICTIM 1 2 3 4 5 6 7 8 9 10 11 12 ; %d SEED ! HERE 13 CELLS - 13 MIX VICTIM",
+                 seed);
         fbrl_status st = ev(f, src);
-        if (st == FBRL_OK) ok++;
-        else thrown++;
+        if (st == FBRL_OK)
+            ok++;
+        else
+            thrown++;
         if (fbrl_vm_bye(f->vm)) { /* a random BYE opcode: that VM is finished */
             free_vm(f);
             f = mixer_vm();
@@ -703,7 +792,10 @@ static void corrupted_code_is_contained(void **state)
 /* fbrl_vm_interrupt from another thread stops an endless loop with -28. The
  * interrupter repeats its request until the evaluation has returned, so a slow
  * start of the evaluation cannot make the test hang. */
-typedef struct stopper { fbrl_vm *vm; int done; } stopper;
+typedef struct stopper {
+    fbrl_vm *vm;
+    int done;
+} stopper;
 
 static void *interrupter(void *arg)
 {
@@ -717,7 +809,7 @@ static void *interrupter(void *arg)
 
 static fbrl_status eval_interrupted(fixture *f, const char *src)
 {
-    stopper s = { f->vm, 0 };
+    stopper s = {f->vm, 0};
     pthread_t t;
     assert_int_equal(pthread_create(&t, NULL, interrupter, &s), 0);
     fbrl_status st = ev(f, src);
@@ -734,7 +826,8 @@ static void interrupt_stops_endless_loops(void **state)
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
     assert_string_equal(fbrl_vm_last_error(f->vm)->message, "user interrupt");
     assert_string_equal(fbrl_vm_last_error(f->vm)->word, "SPIN");
-    assert_int_equal(eval_interrupted(f, ": R RECURSE ; : LOOPS 0 BEGIN 1+ DUP 0< UNTIL ; LOOPS"), FBRL_ETHROW);
+    assert_int_equal(eval_interrupted(f, ": R RECURSE ; : LOOPS 0 BEGIN 1+ DUP 0< UNTIL ; LOOPS"),
+                     FBRL_ETHROW);
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
     assert_int_equal(eval_interrupted(f, ": DL -1 0 DO LOOP ; DL"), FBRL_ETHROW);
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
@@ -764,8 +857,8 @@ static void interrupt_stops_padding_and_waiting_c_words(void **state)
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
     assert_int_equal(eval_interrupted(f, "1 100000000000 U.R"), FBRL_ETHROW);
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
-    assert_int_equal(fbrl_vm_define(f->vm, "C-WAIT", c_wait_for_interrupt, NULL, "( -- )", "waits for Ctrl-C"),
-                     FBRL_OK);
+    assert_int_equal(
+        fbrl_vm_define(f->vm, "C-WAIT", c_wait_for_interrupt, NULL, "( -- )", "waits for Ctrl-C"), FBRL_OK);
     assert_int_equal(ev(f, "VARIABLE RAN 0 RAN ! : P C-WAIT 1 RAN ! ;"), FBRL_OK);
     assert_int_equal(eval_interrupted(f, "P"), FBRL_ETHROW);
     assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
@@ -777,17 +870,22 @@ static void interrupt_stops_padding_and_waiting_c_words(void **state)
 
 /* Random token streams built from the dictionary's own words: whatever they do,
  * the VM must answer with OK or an error and stay usable. */
-typedef struct names { char list[700][40]; int n; } names;
+typedef struct names {
+    char list[700][40];
+    int n;
+} names;
 
 static int collect(void *ctx, const char *name, size_t len)
 {
     names *nm = ctx;
     /* words that could wait or loop for ever on random input (legitimately) */
-    static const char *const skip[] = { "BYE", "MS", "SPACES", ".R", "U.R", "D.R", "QUIT", "DUMP", "WORDS",
-                                        "KEY", "ACCEPT", "GET-STRING", ">IN", "SAVE-INPUT", "RESTORE-INPUT",
-                                        "BEGIN", "AGAIN", "UNTIL", "WHILE", "REPEAT", "DO", "?DO", "LOOP", "+LOOP" };
+    static const char *const skip[] = {
+        "BYE",   "MS",    "SPACES", ".R",         "U.R", "D.R",        "QUIT",          "DUMP",
+        "WORDS", "KEY",   "ACCEPT", "GET-STRING", ">IN", "SAVE-INPUT", "RESTORE-INPUT", "BEGIN",
+        "AGAIN", "UNTIL", "WHILE",  "REPEAT",     "DO",  "?DO",        "LOOP",          "+LOOP"};
     for (size_t i = 0; i < sizeof skip / sizeof skip[0]; i++)
-        if (strlen(skip[i]) == len && memcmp(skip[i], name, len) == 0) return 0;
+        if (strlen(skip[i]) == len && memcmp(skip[i], name, len) == 0)
+            return 0;
     if (nm->n < 700 && len < 39) {
         memcpy(nm->list[nm->n], name, len);
         nm->list[nm->n][len] = 0;
@@ -801,9 +899,10 @@ static void random_programs_are_contained(void **state)
     (void)state;
     fixture *f = new_vm(1 << 20);
     static names nm;
-    static const char *const extra[] = { "0", "1", "-1", "3", "100", "65535", "-9999999999", "PAD", "HERE",
-                                         "1E0", "0E0", "-2.5E3", "S\" x\"", ":", ";", "IF", "THEN", "ELSE",
-                                         "CASE", "OF", "ENDOF", "'", "[']", "X", "Y" };
+    static const char *const extra[] = {"0",   "1",    "-1",   "3",    "100",    "65535",   "-9999999999",
+                                        "PAD", "HERE", "1E0",  "0E0",  "-2.5E3", "S\" x\"", ":",
+                                        ";",   "IF",   "THEN", "ELSE", "CASE",   "OF",      "ENDOF",
+                                        "'",   "[']",  "X",    "Y"};
     nm.n = 0;
     fbrl_vm_words(f->vm, collect, &nm);
     assert_true(nm.n > 300);
@@ -820,15 +919,18 @@ static void random_programs_are_contained(void **state)
             n += (size_t)snprintf(src + n, sizeof src - n, "%s ", w);
         }
         f->h.out.n = 0;
-        if (ev(f, src) != FBRL_OK) errors++;
+        if (ev(f, src) != FBRL_OK)
+            errors++;
         if (line % 100 == 99) {
-            while (fbrl_vm_depth(f->vm)) pop1(f);
+            while (fbrl_vm_depth(f->vm))
+                pop1(f);
             ev(f, "; DECIMAL");
         }
     }
     assert_true(errors > 0);
     assert_int_equal(ev(f, "; DECIMAL"), fbrl_vm_compiling(f->vm) ? FBRL_OK : FBRL_ETHROW);
-    while (fbrl_vm_depth(f->vm)) pop1(f);
+    while (fbrl_vm_depth(f->vm))
+        pop1(f);
     assert_int_equal(ev(f, "DECIMAL 6 7 *"), FBRL_OK);
     assert_int_equal(pop1(f), 42);
     free_vm(f);

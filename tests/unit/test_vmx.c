@@ -17,7 +17,7 @@
 #include "fbrl/vmx.h"
 
 #define OFFLINE_CODE FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE)
-#define MEM_SIZE (2u << 20)
+#define MEM_SIZE     (2u << 20)
 
 typedef struct fixture {
     unsigned char *mem;
@@ -115,7 +115,7 @@ static void failed_creation_leaves_no_word(void **state)
     drop(f);
 }
 
-static const fbrl_vmx_type thing = { "thing", (fbrl_cell)0x54484E47 };
+static const fbrl_vmx_type thing = {"thing", (fbrl_cell)0x54484E47};
 
 static fbrl_status w_make_thing(fbrl_vm *vm, void *ctx, const void *word)
 {
@@ -124,7 +124,8 @@ static fbrl_status w_make_thing(fbrl_vm *vm, void *ctx, const void *word)
     (void)ctx;
     (void)word;
     fbrl_status st = fbrl_vmx_create(vm, NULL, 0, &thing, 64, NULL, NULL, "( -- t )", "a thing", &addr, &p);
-    if (st == FBRL_OK) memset(p, 7, 64);
+    if (st == FBRL_OK)
+        memset(p, 7, 64);
     return st;
 }
 
@@ -133,7 +134,8 @@ static fbrl_status w_thing_q(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_cell a;
     (void)ctx;
     (void)word;
-    if (fbrl_vm_pop(vm, &a) != FBRL_OK) return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    if (fbrl_vm_pop(vm, &a) != FBRL_OK)
+        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
     const unsigned char *p = fbrl_vmx_data(vm, a, &thing, 64);
     return fbrl_vmx_push(vm, p && p[63] == 7 ? -1 : 0);
 }
@@ -141,8 +143,10 @@ static fbrl_status w_thing_q(fbrl_vm *vm, void *ctx, const void *word)
 static void typed_data_is_checked(void **state)
 {
     fixture *f = *state;
-    assert_int_equal(fbrl_vmx_define(f->vm, "THING", w_make_thing, NULL, NULL, 0, "( \"name\" -- )", "make"), FBRL_OK);
-    assert_int_equal(fbrl_vmx_define(f->vm, "THING?", w_thing_q, NULL, NULL, 0, "( a -- f )", "check"), FBRL_OK);
+    assert_int_equal(fbrl_vmx_define(f->vm, "THING", w_make_thing, NULL, NULL, 0, "( \"name\" -- )", "make"),
+                     FBRL_OK);
+    assert_int_equal(fbrl_vmx_define(f->vm, "THING?", w_thing_q, NULL, NULL, 0, "( a -- f )", "check"),
+                     FBRL_OK);
     assert_int_equal(ev(f, "THING T1  T1 THING?  HERE THING?  0 THING?  T1 1+ THING?"), 0);
     assert_int_equal(pop(f), 0);
     assert_int_equal(pop(f), 0);
@@ -177,21 +181,22 @@ static fbrl_status w_lit99(fbrl_vm *vm, void *ctx, const void *word)
 static void words_have_flags_and_two_contexts(void **state)
 {
     fixture *f = *state;
-    static const entry table[] = { { "E-ONE", 1 }, { "E-TWO", 2 } };
+    static const entry table[] = {{"E-ONE", 1}, {"E-TWO", 2}};
     fbrl_cell base = 100;
     for (size_t k = 0; k < 2; k++)
-        assert_int_equal(fbrl_vmx_define(f->vm, table[k].name, w_entry, &base, &table[k], 0, "( -- n )", "entry"),
-                         FBRL_OK);
+        assert_int_equal(
+            fbrl_vmx_define(f->vm, table[k].name, w_entry, &base, &table[k], 0, "( -- n )", "entry"),
+            FBRL_OK);
     assert_int_equal(ev(f, "E-ONE E-TWO"), 0);
     assert_int_equal(pop(f), 102);
     assert_int_equal(pop(f), 101);
-    assert_int_equal(fbrl_vmx_define(f->vm, "LIT99", w_lit99, NULL, NULL, FBRL_VMX_IMMEDIATE, "( -- 99 )", "x"),
-                     FBRL_OK);
+    assert_int_equal(
+        fbrl_vmx_define(f->vm, "LIT99", w_lit99, NULL, NULL, FBRL_VMX_IMMEDIATE, "( -- 99 )", "x"), FBRL_OK);
     assert_int_equal(ev(f, ": T99 LIT99 1+ ; T99 LIT99"), 0);
     assert_int_equal(pop(f), 99);
     assert_int_equal(pop(f), 100);
-    assert_int_equal(fbrl_vmx_define(f->vm, "C99", w_lit99, NULL, NULL, FBRL_VMX_IMMEDIATE | FBRL_VMX_COMPILE_ONLY,
-                                     "( -- )", "x"),
+    assert_int_equal(fbrl_vmx_define(f->vm, "C99", w_lit99, NULL, NULL,
+                                     FBRL_VMX_IMMEDIATE | FBRL_VMX_COMPILE_ONLY, "( -- )", "x"),
                      FBRL_OK);
     assert_int_equal(ev(f, "C99"), FBRL_THROW_COMPILE_ONLY);
     assert_int_equal(ev(f, ": TC C99 ; TC"), 0);
@@ -244,37 +249,38 @@ typedef struct form {
 #define LOC "CREATE-LOC P 14E0 2E0 8E0 0E0 -90E0 0E0 P DEFINE-LOC CREATE-LOC Q "
 #define XYZ " Q GETX Q GETY Q GETZ Q GETO Q GETA Q GETT"
 static const form forms[] = {
-    { "DEFINE-LOC", "CREATE-LOC Q", "14E0 2E0 8E0 0E0 -90E0 0E0 Q DEFINE-LOC", "14 2 8 0 -90 0 Q DEFINE-LOC", XYZ, 0 },
-    { "SETX", LOC, "5E0 Q SETX", "5 Q SETX", XYZ, 0 },
-    { "SETY", LOC, "-5E0 Q SETY", "-5 Q SETY", XYZ, 0 },
-    { "SETZ", LOC, "3E0 Q SETZ", "3 Q SETZ", XYZ, 0 },
-    { "SETO", LOC, "45E0 Q SETO", "45 Q SETO", XYZ, 0 },
-    { "SETA", LOC, "-90E0 Q SETA", "-90 Q SETA", XYZ, 0 },
-    { "SETT", LOC, "30E0 Q SETT", "30 Q SETT", XYZ, 0 },
-    { "RECTMAT", LOC, "P 1E0 2E0 0E0 RECTMAT M", "1 2 0 P RECTMAT M", " 2 1 0 Q M" XYZ, 0 },
-    { "AUTOMAT", LOC, "P 1E0 2E0 0E0 AUTOMAT M", "1 2 0 P AUTOMAT M", " 2 1 0 Q M" XYZ, 0 },
-    { "RADMAT", LOC, "P 1E0 2E0 3E0 RADMAT M", "1 2 3 P RADMAT M", " 1 1 1 Q M" XYZ, 0 },
-    { "CM->IN", "", "254E0 CM->IN", "254 CM->IN", "", 0 },
-    { "IN->CM", "", "3E0 IN->CM", "3 IN->CM", "", 0 },
-    { "METRIC-IN", "METRIC-ON", "254E0 METRIC-IN", "254 METRIC-IN", "", 0 },
-    { "METRIC-OUT", "METRIC-ON", "2E0 METRIC-OUT", "2 METRIC-OUT", "", 0 },
-    { "CAL-STRU!", "CREATE-CAL-STRU S", "2E0 S 1 CAL-STRU!", "2 S 1 CAL-STRU!", " S 1 CAL-STRU@", 0 },
-    { "ROTATE", "", "1E0 2E0 3E0 ROTATE", "1 2 3 ROTATE", "", 0 },
-    { "ANG-FROM-ORIGIN", "", "0E0 0E0 1E0 1E0 ANG-FROM-ORIGIN", "0 0 1 1 ANG-FROM-ORIGIN", "", 0 },
-    { "JOG", "", "0E0 0E0 -1E0 JOG", "0 0 -1 JOG", "", OFFLINE_CODE },
-    { "DEPART", "", "2E0 DEPART", "2 DEPART", "", OFFLINE_CODE },
-    { "DEPART-STRT", "", "2E0 DEPART-STRT", "2 DEPART-STRT", "", OFFLINE_CODE },
-    { "APPROACH", LOC, "P 2E0 APPROACH", "2 P APPROACH", "", OFFLINE_CODE },
-    { "APPROACH-STRT", LOC, "P 2E0 APPROACH-STRT", "2 P APPROACH-STRT", "", OFFLINE_CODE },
-    { "MA", "", "0E0 1E0 -1E0 0E0 0E0 MA", "0 1 -1 0 0 MA", "", OFFLINE_CODE },
-    { "MI", "", "0E0 1E0 -1E0 0E0 0E0 MI", "0 1 -1 0 0 MI", "", OFFLINE_CODE },
-    { "GAIN", "", "1 2E0 GAIN", "2 1 GAIN", "", OFFLINE_CODE },
-    { "GRIP", "", "50 1E0 GRIP", "1 50 GRIP", "", OFFLINE_CODE },
-    { "BASE-OFFSET", "", "1E0 2E0 3E0 90E0 BASE-OFFSET", "1 2 3 90 BASE-OFFSET", "", 0 },
-    { "SET-RAPL-REAL", "", "S\" V1\" 2E0 SET-RAPL-REAL", "2 S\" V1\" SET-RAPL-REAL", "", OFFLINE_CODE },
-    { "F.-COM", "", "2E0 F.-COM", "2 F.-COM", "", OFFLINE_CODE },
-    { "SEND-REAL", "16 SEND-COM", "2E0 SEND-REAL", "2 SEND-REAL", "", 0 },
-    { "DISPENSE", "5 OUTPUT-DEVICE PUMP", "PUMP 2E0 DISPENSE", "2 PUMP DISPENSE", "", OFFLINE_CODE },
+    {"DEFINE-LOC", "CREATE-LOC Q", "14E0 2E0 8E0 0E0 -90E0 0E0 Q DEFINE-LOC", "14 2 8 0 -90 0 Q DEFINE-LOC",
+     XYZ, 0},
+    {"SETX", LOC, "5E0 Q SETX", "5 Q SETX", XYZ, 0},
+    {"SETY", LOC, "-5E0 Q SETY", "-5 Q SETY", XYZ, 0},
+    {"SETZ", LOC, "3E0 Q SETZ", "3 Q SETZ", XYZ, 0},
+    {"SETO", LOC, "45E0 Q SETO", "45 Q SETO", XYZ, 0},
+    {"SETA", LOC, "-90E0 Q SETA", "-90 Q SETA", XYZ, 0},
+    {"SETT", LOC, "30E0 Q SETT", "30 Q SETT", XYZ, 0},
+    {"RECTMAT", LOC, "P 1E0 2E0 0E0 RECTMAT M", "1 2 0 P RECTMAT M", " 2 1 0 Q M" XYZ, 0},
+    {"AUTOMAT", LOC, "P 1E0 2E0 0E0 AUTOMAT M", "1 2 0 P AUTOMAT M", " 2 1 0 Q M" XYZ, 0},
+    {"RADMAT", LOC, "P 1E0 2E0 3E0 RADMAT M", "1 2 3 P RADMAT M", " 1 1 1 Q M" XYZ, 0},
+    {"CM->IN", "", "254E0 CM->IN", "254 CM->IN", "", 0},
+    {"IN->CM", "", "3E0 IN->CM", "3 IN->CM", "", 0},
+    {"METRIC-IN", "METRIC-ON", "254E0 METRIC-IN", "254 METRIC-IN", "", 0},
+    {"METRIC-OUT", "METRIC-ON", "2E0 METRIC-OUT", "2 METRIC-OUT", "", 0},
+    {"CAL-STRU!", "CREATE-CAL-STRU S", "2E0 S 1 CAL-STRU!", "2 S 1 CAL-STRU!", " S 1 CAL-STRU@", 0},
+    {"ROTATE", "", "1E0 2E0 3E0 ROTATE", "1 2 3 ROTATE", "", 0},
+    {"ANG-FROM-ORIGIN", "", "0E0 0E0 1E0 1E0 ANG-FROM-ORIGIN", "0 0 1 1 ANG-FROM-ORIGIN", "", 0},
+    {"JOG", "", "0E0 0E0 -1E0 JOG", "0 0 -1 JOG", "", OFFLINE_CODE},
+    {"DEPART", "", "2E0 DEPART", "2 DEPART", "", OFFLINE_CODE},
+    {"DEPART-STRT", "", "2E0 DEPART-STRT", "2 DEPART-STRT", "", OFFLINE_CODE},
+    {"APPROACH", LOC, "P 2E0 APPROACH", "2 P APPROACH", "", OFFLINE_CODE},
+    {"APPROACH-STRT", LOC, "P 2E0 APPROACH-STRT", "2 P APPROACH-STRT", "", OFFLINE_CODE},
+    {"MA", "", "0E0 1E0 -1E0 0E0 0E0 MA", "0 1 -1 0 0 MA", "", OFFLINE_CODE},
+    {"MI", "", "0E0 1E0 -1E0 0E0 0E0 MI", "0 1 -1 0 0 MI", "", OFFLINE_CODE},
+    {"GAIN", "", "1 2E0 GAIN", "2 1 GAIN", "", OFFLINE_CODE},
+    {"GRIP", "", "50 1E0 GRIP", "1 50 GRIP", "", OFFLINE_CODE},
+    {"BASE-OFFSET", "", "1E0 2E0 3E0 90E0 BASE-OFFSET", "1 2 3 90 BASE-OFFSET", "", 0},
+    {"SET-RAPL-REAL", "", "S\" V1\" 2E0 SET-RAPL-REAL", "2 S\" V1\" SET-RAPL-REAL", "", OFFLINE_CODE},
+    {"F.-COM", "", "2E0 F.-COM", "2 F.-COM", "", OFFLINE_CODE},
+    {"SEND-REAL", "16 SEND-COM", "2E0 SEND-REAL", "2 SEND-REAL", "", 0},
+    {"DISPENSE", "5 OUTPUT-DEVICE PUMP", "PUMP 2E0 DISPENSE", "2 PUMP DISPENSE", "", OFFLINE_CODE},
 };
 
 typedef struct outcome {
@@ -297,8 +303,10 @@ static void run_form(const form *fm, const char *body, outcome *o)
     o->depth = fbrl_vm_depth(f->vm);
     o->fdepth = fbrl_vm_fdepth(f->vm);
     assert_true(o->depth <= 16 && o->fdepth <= 16);
-    for (size_t k = 0; k < o->depth; k++) fbrl_vm_pop(f->vm, &o->cells[k]);
-    for (size_t k = 0; k < o->fdepth; k++) fbrl_vm_fpop(f->vm, &o->reals[k]);
+    for (size_t k = 0; k < o->depth; k++)
+        fbrl_vm_pop(f->vm, &o->cells[k]);
+    for (size_t k = 0; k < o->fdepth; k++)
+        fbrl_vm_fpop(f->vm, &o->reals[k]);
     memcpy(o->line, f->r.line, sizeof o->line < sizeof f->r.line ? sizeof o->line : sizeof f->r.line);
     memcpy(o->base, f->r.base, sizeof o->base);
     drop(f);
@@ -308,8 +316,10 @@ static void run_form(const form *fm, const char *body, outcome *o)
 static int takes_reals(const char *stack)
 {
     const char *p = strstr(stack, "F:");
-    if (!p) return 0;
-    for (p += 2; *p == ' '; p++) {}
+    if (!p)
+        return 0;
+    for (p += 2; *p == ' '; p++) {
+    }
     return strncmp(p, "--", 2) != 0;
 }
 
@@ -318,13 +328,16 @@ static int collect(void *ctx, const char *name, size_t len)
     fixture *f = ctx;
     char w[64];
     const char *stack = NULL;
-    if (len >= sizeof w) return 0;
+    if (len >= sizeof w)
+        return 0;
     memcpy(w, name, len);
     w[len] = 0;
-    if (fbrl_vm_help(f->vm, w, &stack, NULL) != FBRL_OK || !takes_reals(stack)) return 0;
+    if (fbrl_vm_help(f->vm, w, &stack, NULL) != FBRL_OK || !takes_reals(stack))
+        return 0;
     size_t k;
     for (k = 0; k < sizeof forms / sizeof forms[0]; k++)
-        if (strcmp(forms[k].word, w) == 0) break;
+        if (strcmp(forms[k].word, w) == 0)
+            break;
     if (k == sizeof forms / sizeof forms[0]) {
         /* a word set word that takes reals and has no row: the bare engine lacks it */
         fbrl_cell xt;
@@ -355,7 +368,8 @@ static void integers_stand_for_reals(void **state)
         run_form(&forms[k], forms[k].floats, &a);
         run_form(&forms[k], forms[k].ints, &b);
         if (a.code != forms[k].code || b.code != forms[k].code)
-            print_error("%s: floats gave %d, integers %d, want %d\n", forms[k].word, a.code, b.code, forms[k].code);
+            print_error("%s: floats gave %d, integers %d, want %d\n", forms[k].word, a.code, b.code,
+                        forms[k].code);
         assert_int_equal(a.code, forms[k].code);
         assert_int_equal(b.code, forms[k].code);
         assert_int_equal(a.depth, b.depth);
@@ -384,8 +398,10 @@ static fbrl_status w_twice(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_cell xt;
     (void)ctx;
     (void)word;
-    if (fbrl_vm_parse_name(vm, &name, &n) != FBRL_OK || n == 0) return fbrl_vm_throw(vm, FBRL_THROW_NO_NAME, NULL);
-    if (fbrl_vmx_find(vm, name, n, &xt) != FBRL_OK) return fbrl_vm_throw(vm, FBRL_THROW_UNDEFINED, NULL);
+    if (fbrl_vm_parse_name(vm, &name, &n) != FBRL_OK || n == 0)
+        return fbrl_vm_throw(vm, FBRL_THROW_NO_NAME, NULL);
+    if (fbrl_vmx_find(vm, name, n, &xt) != FBRL_OK)
+        return fbrl_vm_throw(vm, FBRL_THROW_UNDEFINED, NULL);
     fbrl_status st = fbrl_vmx_execute(vm, xt);
     return st == FBRL_OK ? fbrl_vmx_execute(vm, xt) : st;
 }
@@ -397,15 +413,18 @@ static fbrl_status w_quoted(fbrl_vm *vm, void *ctx, const void *word)
     (void)ctx;
     (void)word;
     int q = fbrl_vmx_parse_quoted(vm, &s, &n);
-    if (q <= 0) return fbrl_vm_throw(vm, q ? FBRL_THROW_BAD_NUMBER : FBRL_THROW_UNEXPECTED_EOF, NULL);
+    if (q <= 0)
+        return fbrl_vm_throw(vm, q ? FBRL_THROW_BAD_NUMBER : FBRL_THROW_UNEXPECTED_EOF, NULL);
     return fbrl_vmx_evaluate(vm, s, n);
 }
 
 static void parse_execute_evaluate(void **state)
 {
     fixture *f = *state;
-    assert_int_equal(fbrl_vmx_define(f->vm, "TWICE", w_twice, NULL, NULL, 0, "( \"name\" -- )", "x"), FBRL_OK);
-    assert_int_equal(fbrl_vmx_define(f->vm, "EVAL-Q", w_quoted, NULL, NULL, 0, "( \"text\" -- )", "x"), FBRL_OK);
+    assert_int_equal(fbrl_vmx_define(f->vm, "TWICE", w_twice, NULL, NULL, 0, "( \"name\" -- )", "x"),
+                     FBRL_OK);
+    assert_int_equal(fbrl_vmx_define(f->vm, "EVAL-Q", w_quoted, NULL, NULL, 0, "( \"text\" -- )", "x"),
+                     FBRL_OK);
     assert_int_equal(ev(f, "VARIABLE N 0 N ! : BUMP 1 N +! ; TWICE BUMP N @"), 0);
     assert_int_equal(pop(f), 2);
     assert_int_equal(ev(f, "EVAL-Q   \"3 4 +\" 10 *"), 0);
