@@ -87,17 +87,72 @@ void mon_close(mon *m)
 
 /* Write s to stderr with control characters shown as '?', so a report is
  * always exactly one line whatever bytes the input held. */
+#define MON_BT_FRAMES FBRL_VM_BACKTRACE_MAX
+#define MON_BT_OUTER  FBRL_VM_BACKTRACE_OUTER
+#define MON_BT_STACK  FBRL_VM_BACKTRACE_STACK
+
 static void put_clean(const char *s)
 {
     for (; *s; s++)
         fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, stderr);
 }
 
-/* One line: "error: MESSAGE [WORD] (FILE:LINE)". Errors inside an included file
- * carry that file's name and line; otherwise `where` and the line we counted. */
+/* " (FILE:LINE)" of a backtrace frame; words typed at the prompt say so (the error
+ * line gives a typed word the place of the text that failed instead). */
+static void put_frame_place(const fbrl_vm_frame *f)
+{
+    if (!f->file[0]) {
+        fputs(" (defined at the prompt)", stderr);
+        return;
+    }
+    fputs(" (", stderr);
+    put_clean(f->file);
+    if (f->line > 0)
+        fprintf(stderr, ":%lu", f->line);
+    fputc(')', stderr);
+}
+
+/* After the error line, the chain of calls that led to it (innermost first; the error
+ * line names the innermost), where the failing text was, and the data stack then. */
+static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame *bt, size_t n,
+                             size_t omitted)
+{
+    for (size_t i = 1; i < n; i++) {
+        if (omitted && i == n - MON_BT_OUTER)
+            fprintf(stderr, "  ... %zu more calls ...\n", omitted);
+        fputs("  called by ", stderr);
+        put_clean(bt[i].word);
+        put_frame_place(&bt[i]);
+        fputc('\n', stderr);
+    }
+    if (e->file[0] && e->line > 0) {
+        fputs("  called from ", stderr);
+        put_clean(e->file);
+        fprintf(stderr, ":%lu\n", e->line);
+    }
+    fbrl_cell cells[MON_BT_STACK];
+    size_t depth = fbrl_vm_error_stack(m->vm, cells, MON_BT_STACK);
+    if (depth > 0) {
+        size_t shown = depth < MON_BT_STACK ? depth : MON_BT_STACK;
+        fprintf(stderr, "  data stack <%zu>:%s", depth, depth > shown ? " ..." : "");
+        for (size_t i = 0; i < shown; i++)
+            fprintf(stderr, " %ld", (long)cells[i]);
+        fputc('\n', stderr);
+    }
+}
+
+/* "error: MESSAGE [in WORD] (FILE:LINE)". Errors inside an included file carry that
+ * file's name and line; otherwise `where` and the line we counted. An error inside a
+ * colon definition names that word and its place, and the lines after it show the
+ * calls that led there (report_backtrace). */
 static void report(mon *m, fbrl_status st, const char *where, unsigned long line)
 {
     const fbrl_vm_error *e = fbrl_vm_last_error(m->vm);
+    fbrl_vm_frame bt[MON_BT_FRAMES];
+    size_t omitted = 0;
+    size_t nbt = e != NULL ? fbrl_vm_backtrace(m->vm, bt, MON_BT_FRAMES, &omitted) : 0;
+    if (nbt > MON_BT_FRAMES)
+        nbt = MON_BT_FRAMES;
     const char *msg = e != NULL && e->message[0] ? e->message : fbrl_status_str(st);
 
     mon_host_newline(&m->host);
@@ -115,7 +170,9 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
         strcpy(m->resume_file, e->file); /* where RESUME goes on */
         m->resume_line = e->line;
     }
-    if (e != NULL && e->file[0]) {
+    if (nbt > 0 && bt[0].file[0]) {
+        put_frame_place(&bt[0]);
+    } else if (e != NULL && e->file[0]) {
         fputs(" (", stderr);
         put_clean(e->file);
         if (e->line > 0)
@@ -131,6 +188,8 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
         fputc(')', stderr);
     }
     fputc('\n', stderr);
+    if (nbt > 0)
+        report_backtrace(m, e, bt, nbt, omitted);
     fflush(stderr);
 }
 

@@ -93,6 +93,29 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 /* INCLUDED: interpret a file through the host's file callbacks. */
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
+
+/* A backtrace keeps at most FBRL_VM_BACKTRACE_MAX frames: of a deeper chain, the
+ * innermost ones and the outermost FBRL_VM_BACKTRACE_OUTER (the gap is before those). */
+#define FBRL_VM_BACKTRACE_MAX   16
+#define FBRL_VM_BACKTRACE_OUTER 4
+#define FBRL_VM_BACKTRACE_STACK 8 /* data stack cells kept at an error */
+
+/* One word of the last error's chain of calls. */
+typedef struct fbrl_vm_frame {
+    const char *word;   /* the colon definition (valid until the next evaluation) */
+    const char *file;   /* the file it is in; "" when it was typed or evaluated text */
+    unsigned long line; /* the line of the failing or calling code (that of the definition
+                           when finer lines are not known); 0: unknown */
+} fbrl_vm_frame;
+/* The chain of colon definitions the last error happened in, innermost first: the
+ * word that failed, then its callers. Fills up to cap frames and returns how many
+ * there are; a chain deeper than the engine keeps loses its middle, and *omitted
+ * (if not NULL) says how many frames that dropped. 0 when the error happened outside
+ * any colon definition (e.g. an undefined word typed). */
+size_t fbrl_vm_backtrace(const fbrl_vm *vm, fbrl_vm_frame *out, size_t cap, size_t *omitted);
+/* The data stack when the last error happened: returns its depth and copies up to cap
+ * of its top cells (deepest first; at most FBRL_VM_BACKTRACE_STACK are kept). */
+size_t fbrl_vm_error_stack(const fbrl_vm *vm, fbrl_cell *out, size_t cap);
 /* Ask the running evaluation to stop: it throws -28 ("user interrupt") at its next
  * call, loop iteration, backward branch, C word's return, MS or output padding. Safe from a signal handler or another
  * thread (e.g. the monitor's Ctrl-C). A request is dropped when it is delivered and

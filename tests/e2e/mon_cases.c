@@ -1,6 +1,7 @@
 /* mon_cases.c - the bad-input test: every case of a data file is fed to a fresh
  * fbrlmon, followed by a line that must work. Each case must give exactly one
- * error line (naming a place: "(FILE:LINE)"), leave both stacks empty, let the
+ * error line (naming a place: "(FILE:LINE)"; an error inside a colon definition
+ * may be followed by indented lines: its backtrace), leave both stacks empty, let the
  * next line run, exit with status 1, and not crash.
  *
  *   mon_cases FBRLMON CASES TMPDIR
@@ -179,23 +180,24 @@ static int run(char *const argv[], const buf *in, buf *out, buf *err)
     return st;
 }
 
+/* Lines that are not a backtrace's indented continuation lines. */
 static size_t count_lines(const buf *b)
 {
     size_t i, n = 0;
     for (i = 0; i < b->len; i++)
-        n += b->p[i] == '\n';
+        n += b->p[i] == '\n' && !(i + 2 < b->len && b->p[i + 1] == ' ' && b->p[i + 2] == ' ');
     if (b->len > 0 && b->p[b->len - 1] != '\n')
         n++;
     return n;
 }
 
-/* "error: ... (SOMEWHERE:NUMBER)\n" */
+/* "error: ... (SOMEWHERE:NUMBER)\n" (the first line) */
 static int good_error_line(const buf *e)
 {
     const char *end, *colon;
     if (e->len < 8 || strncmp(e->p, "error: ", 7) != 0 || e->p[e->len - 1] != '\n')
         return 0;
-    end = e->p + e->len - 1;
+    end = memchr(e->p, '\n', e->len);
     if (end[-1] != ')')
         return 0;
     colon = end - 2;
