@@ -1,5 +1,6 @@
 /* mon.c - the monitor's session: VM setup and one-line error reports. */
 #include "mon.h"
+#include "mon_debug.h"
 #include "mon_teach.h"
 
 #include <stdio.h>
@@ -51,6 +52,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         m->link = link;
         st = mon_teach_install(m);
     }
+    if (st == FBRL_OK)
+        st = mon_debug_install(m);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
@@ -83,6 +86,9 @@ void mon_close(mon *m)
     free(m->vm_mem);
     m->vm_mem = NULL;
     m->vm = NULL;
+    free(m->typed_src);
+    m->typed_src = NULL;
+    m->typed_len = m->typed_cap = 0;
 }
 
 /* Write s to stderr with control characters shown as '?', so a report is
@@ -195,7 +201,13 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
 
 int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts)
 {
+    size_t words = fbrl_vm_word_count(m->vm);
+    int compiling = fbrl_vm_compiling(m->vm);
     fbrl_status st = fbrl_vm_eval(m->vm, text, len);
+    /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS. */
+    if (st == FBRL_OK && (where == NULL || strcmp(where, "stdin") == 0) &&
+        (compiling || fbrl_vm_compiling(m->vm) || fbrl_vm_word_count(m->vm) > words))
+        mon_debug_typed(m, text, len);
     if (st == FBRL_OK)
         return 0;
     report(m, st, where, line);

@@ -42,6 +42,9 @@ typedef struct mon {
     int typed;             /* evaluating a line typed at the prompt */
     char resume_file[256]; /* RESUME: the file and line of the last error in a file */
     unsigned long resume_line;
+    char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
+    size_t typed_len, typed_cap;
+    char edit_ws[256]; /* EDIT: where the session's work waits while the file loads */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

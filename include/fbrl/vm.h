@@ -100,6 +100,13 @@ const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 #define FBRL_VM_BACKTRACE_OUTER 4
 #define FBRL_VM_BACKTRACE_STACK 8 /* data stack cells kept at an error */
 
+/* Where the word name was defined: *file is its file ("" when it was typed or evaluated
+ * text) and *line the line its definition starts on; a built-in word (a primitive, a C
+ * word, the engine's own Forth) has *file "" and *line 0. FBRL_ENOENT if there is none. */
+fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file, unsigned long *line);
+/* How many words the dictionary holds (it grows with each definition). */
+size_t fbrl_vm_word_count(const fbrl_vm *vm);
+
 /* One word of the last error's chain of calls. */
 typedef struct fbrl_vm_frame {
     const char *word;   /* the colon definition (valid until the next evaluation) */

@@ -578,3 +578,19 @@ int fbrl__install_prims(fbrl_vm *vm)
     }
     return 0;
 }
+
+fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file, unsigned long *line)
+{
+    if (!vm || !name || !file || !line)
+        return FBRL_EINVAL;
+    int i = fbrl__find(vm, name, strlen(name));
+    if (i < 0)
+        return FBRL_ENOENT;
+    const fbrl_hdr *h = HDR(vm, i);
+    int built_in = h->kind == K_PRIM || h->line == 0 || (h->kind == K_COLON && h->body < (fbrl_cell)vm->dict_lo);
+    *file = built_in ? "" : fbrl__file_name(vm, h->file);
+    *line = built_in ? 0 : h->line;
+    return FBRL_OK;
+}
+
+size_t fbrl_vm_word_count(const fbrl_vm *vm) { return vm ? vm->nwords : 0; }
