@@ -103,8 +103,7 @@ static void put_clean(const char *s)
         fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, stderr);
 }
 
-/* " (FILE:LINE)" of a backtrace frame; words typed at the prompt say so (the error
- * line gives a typed word the place of the text that failed instead). */
+/* " (FILE:LINE)" of a backtrace frame; words typed at the prompt say so. */
 static void put_frame_place(const fbrl_vm_frame *f)
 {
     if (!f->file[0]) {
@@ -119,7 +118,8 @@ static void put_frame_place(const fbrl_vm_frame *f)
 }
 
 /* After the error line, the chain of calls that led to it (innermost first; the error
- * line names the innermost), where the failing text was, and the data stack then. */
+ * line names the innermost), where the failing text was, and the data stack then: each
+ * indented, so the error itself stays the one line an editor parses. */
 static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame *bt, size_t n,
                              size_t omitted)
 {
@@ -131,7 +131,7 @@ static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame
         put_frame_place(&bt[i]);
         fputc('\n', stderr);
     }
-    if (e->file[0] && e->line > 0) {
+    if (e->file[0] && e->line > 0 && (n == 0 || strcmp(bt[0].file, e->file) != 0 || bt[0].line != e->line)) {
         fputs("  called from ", stderr);
         put_clean(e->file);
         fprintf(stderr, ":%lu\n", e->line);
@@ -147,10 +147,11 @@ static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame
     }
 }
 
-/* "error: MESSAGE [in WORD] (FILE:LINE)". Errors inside an included file carry that
- * file's name and line; otherwise `where` and the line we counted. An error inside a
- * colon definition names that word and its place, and the lines after it show the
- * calls that led there (report_backtrace). */
+/* "FILE:LINE: error: MESSAGE [in WORD]", the form editors and compilers use
+ * (docs/fbrlmon.md). Errors inside an included file carry that file's name and line;
+ * otherwise `where` and the line we counted; a typed line has no place: "error: ...".
+ * An error inside a colon definition of a file names that word and its place, and the
+ * indented lines after it show the calls that led there (report_backtrace). */
 static void report(mon *m, fbrl_status st, const char *where, unsigned long line)
 {
     const fbrl_vm_error *e = fbrl_vm_last_error(m->vm);
@@ -162,6 +163,27 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     const char *msg = e != NULL && e->message[0] ? e->message : fbrl_status_str(st);
 
     mon_host_newline(&m->host);
+    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
+        strcpy(m->resume_file, e->file); /* where RESUME goes on */
+        m->resume_line = e->line;
+    }
+    if (nbt > 0 && bt[0].file[0]) {
+        put_clean(bt[0].file);
+        if (bt[0].line > 0)
+            fprintf(stderr, ":%lu", bt[0].line);
+        fputs(": ", stderr);
+    } else if (e != NULL && e->file[0]) {
+        put_clean(e->file);
+        if (e->line > 0)
+            fprintf(stderr, ":%lu", e->line);
+        fputs(": ", stderr);
+    } else if (where != NULL && line > 0) {
+        put_clean(where);
+        fprintf(stderr, ":%lu: ", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
+    } else if (where != NULL) {
+        put_clean(where);
+        fputs(": ", stderr);
+    }
     fputs("error: ", stderr);
     put_clean(msg);
     /* Codes outside the system's ranges are the program's own: show the number. */
@@ -171,27 +193,6 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     if (e != NULL && e->word[0] && e->throw_code != -39) {
         fputs(e->throw_code == -13 ? " " : " in ", stderr);
         put_clean(e->word);
-    }
-    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
-        strcpy(m->resume_file, e->file); /* where RESUME goes on */
-        m->resume_line = e->line;
-    }
-    if (nbt > 0 && bt[0].file[0]) {
-        put_frame_place(&bt[0]);
-    } else if (e != NULL && e->file[0]) {
-        fputs(" (", stderr);
-        put_clean(e->file);
-        if (e->line > 0)
-            fprintf(stderr, ":%lu", e->line);
-        fputc(')', stderr);
-    } else if (where != NULL && line > 0) {
-        fputs(" (", stderr);
-        put_clean(where);
-        fprintf(stderr, ":%lu)", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
-    } else if (where != NULL) {
-        fputs(" (", stderr);
-        put_clean(where);
-        fputc(')', stderr);
     }
     fputc('\n', stderr);
     if (nbt > 0)
@@ -231,11 +232,10 @@ int mon_check_closed(mon *m, const char *what, const char *where, unsigned long 
     if (!fbrl_vm_compiling(m->vm))
         return 0;
     mon_host_newline(&m->host);
-    fprintf(stderr, "error: unterminated definition at end of %s (", what);
     put_clean(where);
     if (line > 0)
         fprintf(stderr, ":%lu", line);
-    fputs(")\n", stderr);
+    fprintf(stderr, ": error: unterminated definition at end of %s\n", what);
     fflush(stderr);
     m->errors++;
     fbrl_vm_reset(m->vm); /* as after any other error: the definition is dropped */
