@@ -54,6 +54,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     }
     if (st == FBRL_OK)
         st = mon_debug_install(m);
+    if (st == FBRL_OK)
+        st = mon_step_install(m);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {

@@ -10,6 +10,7 @@
 #include "fbrl/vm.h"
 #include "fbrl/workspace.h"
 #include "mon_host.h"
+#include "mon_step.h"
 
 /* Exit status (documented in docs/fbrlmon.md). */
 #define MON_EXIT_OK      0 /* everything evaluated without error */
@@ -45,6 +46,7 @@ typedef struct mon {
     char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
     size_t typed_len, typed_cap;
     char edit_ws[256]; /* EDIT: where the session's work waits while the file loads */
+    mon_step step;     /* the debugger (mon_step.c) */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -26,8 +26,8 @@
  * definitions (and saved, EDIT would run the editor again). */
 static int loads_source(const char *text, size_t len)
 {
-    static const char *const loaders[] = {"INCLUDE", "INCLUDED", "REQUIRE", "REQUIRED", "EDIT",
-                                          "LOAD-WORKSPACE", "RESUME", NULL};
+    static const char *const loaders[] = {"INCLUDE", "INCLUDED",       "REQUIRE", "REQUIRED",
+                                          "EDIT",    "LOAD-WORKSPACE", "RESUME",  NULL};
     size_t i = 0, n;
     while (i < len && isspace((unsigned char)text[i]))
         i++;
@@ -116,9 +116,7 @@ static fbrl_status word_name(fbrl_vm *vm, const char *who, char *buf, size_t cap
     return FBRL_OK;
 }
 
-/* The definition in the file: from its first line until a line with ';' (at most
- * LOCATE_MAX_LINES lines), each with its number. */
-static int show_file_lines(FILE *out, const char *path, unsigned long first)
+int mon_debug_show_lines(FILE *out, const char *path, unsigned long first, int max)
 {
     FILE *f = fopen(path, "r");
     char line[1024];
@@ -132,7 +130,7 @@ static int show_file_lines(FILE *out, const char *path, unsigned long first)
         fprintf(out, "%5lu  %s", n, line);
         if (!strchr(line, '\n'))
             fputc('\n', out);
-        if (++shown >= LOCATE_MAX_LINES || strchr(line, ';'))
+        if (++shown >= max || strchr(line, ';'))
             break;
     }
     fclose(f);
@@ -156,7 +154,7 @@ static fbrl_status w_locate(fbrl_vm *vm, void *arg)
     mon_host_newline(&m->host);
     if (file[0]) {
         fprintf(out, "%s is defined in %s:%lu\n", name, file, line);
-        if (show_file_lines(out, file, line) != 0)
+        if (mon_debug_show_lines(out, file, line, LOCATE_MAX_LINES) != 0)
             fprintf(out, "  (%s cannot be read now)\n", file);
     } else {
         size_t n;

@@ -104,6 +104,25 @@ const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
  * text) and *line the line its definition starts on; a built-in word (a primitive, a C
  * word, the engine's own Forth) has *file "" and *line 0. FBRL_ENOENT if there is none. */
 fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file, unsigned long *line);
+/* A colon definition about to run, as a step hook sees it. */
+typedef struct fbrl_vm_stop {
+    const char *word;        /* the definition ("" for :NONAME code) */
+    const char *file;        /* where it is defined ("" typed or evaluated) */
+    unsigned long line;      /* its first line */
+    const char *caller;      /* the definition calling it ("" when typed or run from C) */
+    const char *call_file;   /* where the call is */
+    unsigned long call_line; /* 0: not known (typed, or C) */
+    size_t depth;            /* return stack cells in use: deeper calls have more */
+} fbrl_vm_stop;
+/* Called before each colon definition runs while set: return 0 to let it run, or a THROW
+ * code to throw there (e.g. -1 to abort the evaluation). It may evaluate text with
+ * fbrl_vmx_evaluate_catch (what that runs is not stepped) and must leave the stacks as
+ * it found them. */
+typedef int (*fbrl_vm_step_fn)(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *stop);
+/* Set (fn) or clear (NULL) the step hook: the base of a debugger. A program runs slower
+ * while one is set. FBRL_EINVAL for a NULL vm. */
+fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
+
 /* How many words the dictionary holds (it grows with each definition). */
 size_t fbrl_vm_word_count(const fbrl_vm *vm);
 

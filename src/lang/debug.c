@@ -90,13 +90,18 @@ static void line_at(const fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr, fbrl_b
     }
 }
 
+static void add_name(const fbrl_hdr *h, fbrl_bt *f)
+{
+    memcpy(f->word, h->name, h->len);
+    f->word[h->len] = 0;
+    if (!h->len)
+        memcpy(f->word, ":NONAME", sizeof ":NONAME");
+}
+
 static void add_frame(fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr)
 {
     fbrl_bt f;
-    memcpy(f.word, h->name, h->len);
-    f.word[h->len] = 0;
-    if (!h->len)
-        memcpy(f.word, ":NONAME", sizeof ":NONAME");
+    add_name(h, &f);
     line_at(vm, h, addr, &f);
     if (vm->nbt < FBRL_BT_MAX) {
         vm->bt[vm->nbt++] = f;
@@ -166,4 +171,41 @@ size_t fbrl_vm_error_stack(const fbrl_vm *vm, fbrl_cell *out, size_t cap)
     if (out && n)
         memcpy(out, vm->bt_stack + (kept - n), n * sizeof(fbrl_cell));
     return vm->bt_depth;
+}
+
+fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx)
+{
+    if (!vm)
+        return FBRL_EINVAL;
+    vm->step_fn = fn;
+    vm->step_ctx = ctx;
+    size_t v = fbrl_load_rlx(&vm->interrupt);
+    fbrl_store_rlx(&vm->interrupt, fn ? v | FBRL_ATTN_STEP : v & ~(size_t)FBRL_ATTN_STEP);
+    return FBRL_OK;
+}
+
+int fbrl__step(fbrl_vm *vm, fbrl_cell body)
+{
+    const fbrl_hdr *h = word_at(vm, body);
+    fbrl_bt callee = {"", 0, 0}, caller = {"", 0, 0};
+    fbrl_vm_stop st;
+    if (h)
+        add_name(h, &callee);
+    st.word = callee.word;
+    st.file = h ? fbrl__file_name(vm, h->file) : "";
+    st.line = h ? h->line : 0;
+    /* vm->ip: just after the call (OP_CALL body, or EXECUTE's cell) */
+    const fbrl_hdr *c = word_at(vm, (fbrl_cell)vm->ip - CELL);
+    if (c) {
+        add_name(c, &caller);
+        line_at(vm, c, (fbrl_cell)vm->ip - CELL, &caller);
+    }
+    st.caller = caller.word;
+    st.call_file = fbrl__file_name(vm, caller.file);
+    st.call_line = caller.line;
+    st.depth = (size_t)(vm->rp - vm->rs0);
+    vm->in_step = 1;
+    int r = vm->step_fn(vm->step_ctx, vm, &st);
+    vm->in_step = 0;
+    return r;
 }

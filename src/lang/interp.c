@@ -211,7 +211,7 @@ static void reset_after_error(fbrl_vm *vm)
 
 static void begin_top(fbrl_vm *vm)
 {
-    fbrl_store_rlx(&vm->interrupt, 0);
+    fbrl_store_rlx(&vm->interrupt, fbrl_load_rlx(&vm->interrupt) & FBRL_ATTN_STEP);
     vm->running = 1;
     vm->err_captured = 0;
     vm->pending_msg = NULL;

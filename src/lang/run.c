@@ -84,10 +84,22 @@
             goto do_throw; \
     } while (0)
 /* fbrl_vm_interrupt() is honoured wherever a program can loop or recurse */
-#define POLL()                             \
-    if (fbrl_load_rlx(&vm->interrupt)) {   \
-        fbrl_store_rlx(&vm->interrupt, 0); \
-        THROW(FBRL_THROW_INTERRUPT);       \
+#define POLL()                                                     \
+    if (fbrl_load_rlx(&vm->interrupt) && fbrl__take_interrupt(vm)) \
+        THROW(FBRL_THROW_INTERRUPT);
+/* A colon definition starts: POLL, and a step hook (debug.c) may stop it there. */
+#define ENTER(body)                             \
+    if (fbrl_load_rlx(&vm->interrupt)) {        \
+        if (fbrl__take_interrupt(vm))           \
+            THROW(FBRL_THROW_INTERRUPT);        \
+        if (vm->step_fn && !vm->in_step) {      \
+            SAVE();                             \
+            vm->ip = ip;                        \
+            int stop_ = fbrl__step(vm, (body)); \
+            LOAD();                             \
+            if (stop_)                          \
+                THROW(stop_);                   \
+        }                                       \
     }
 /* T is the top cell, S the second, S3 the third ... */
 #define T  tos
@@ -253,7 +265,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             ftos = *fp;
             ip += FCELLS;
             NEXT;
-            CASE(CALL) POLL();
+            CASE(CALL) ENTER(*ip);
             RROOM(1);
             a = *ip++;
             *rp++ = (fbrl_cell)ip;
@@ -1099,8 +1111,9 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(ELSE)
             CASE(THEN)
             CASE(BEGIN)
-            CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP)
-                CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES)
+            CASE(UNTIL)
+            CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP) CASE(PLUSLOOP)
+                CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES)
                     CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
@@ -1115,21 +1128,23 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(VARIABLE)
             CASE(TWOVARIABLE)
             CASE(CONSTANT)
-            CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER)
-                CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
+            CASE(TWOCONSTANT)
+            CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE)
+                CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
             NEXT;
             CASE(TO)
             CASE(IS)
             CASE(ACTIONOF)
             CASE(POSTPONE)
-            CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH)
-                CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE)
-                    CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
-                        CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE)
-                            CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL)
-                                CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE)
-                                    CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED) CASE(BUNDEFINED)
-                                        CASE(SAVEINPUT) CASE(RESTOREINPUT) CALLC(fbrl__w_parse(vm, (int)w));
+            CASE(BCOMPILE)
+            CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG)
+                CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE)
+                    CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL)
+                        CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP)
+                            CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY)
+                                CASE(DEFERFETCH) CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN)
+                                    CASE(BDEFINED) CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
+                                        CALLC(fbrl__w_parse(vm, (int)w));
             NEXT;
             CASE(LBRACKET) *vm->state = 0;
             NEXT;
@@ -1245,10 +1260,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(KEYQ)
             CASE(ACCEPT)
             CASE(DOT)
-            CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM)
-                CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP)
-                    CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT)
-                        CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
+            CASE(UDOT)
+            CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM) CASE(NUM)
+                CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP) CASE(WORDS)
+                    CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT)
+                        CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */
@@ -1568,7 +1584,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             switch (h->kind) {
             case K_PRIM: w = h->op; DISPATCH();
             case K_COLON:
-                POLL();
+                ENTER(h->body);
                 RROOM(1);
                 *rp++ = (fbrl_cell)ip;
                 JUMP(h->body);

@@ -172,7 +172,7 @@ struct fbrl_vm {
     char cur_word[64];
     fbrl_vm_error err;
     int bye;
-    size_t interrupt; /* set by fbrl_vm_interrupt (atomic access only) */
+    size_t interrupt; /* attention bits FBRL_ATTN_* (atomic access only) */
     int running;      /* inside fbrl_vm_eval/include */
     int precision;
     char req_pool[FBRL_REQ_POOL];
@@ -181,7 +181,10 @@ struct fbrl_vm {
     unsigned char *peep;     /* last instruction the compiler may fuse with (dict.c) */
     unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
     int run_code;            /* run.c: the code of an error exit */
-    const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word runs */
+    const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word or step hook runs */
+    fbrl_vm_step_fn step_fn; /* fbrl_vm_step_hook (debug.c) */
+    void *step_ctx;
+    int in_step; /* inside step_fn: what it evaluates runs without stops */
     fbrl_line lines[FBRL_LINE_TABLE];
     uint32_t nlines;
     fbrl_bt bt[FBRL_BT_MAX]; /* the last error's chain of words, innermost first */
@@ -209,12 +212,17 @@ static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
 /* run.c: execute one xt (the inner interpreter) */
 int fbrl__run(fbrl_vm *vm, fbrl_cell xt);
 
+/* vm->interrupt: the inner interpreter's one check at calls and loops (nonzero: look). */
+#define FBRL_ATTN_INTERRUPT 1u /* fbrl_vm_interrupt() was called */
+#define FBRL_ATTN_STEP      2u /* a step hook wants each colon definition's start */
+
 /* 1 (and cleared) if fbrl_vm_interrupt() was called */
 static inline int fbrl__take_interrupt(fbrl_vm *vm)
 {
-    if (!fbrl_load_rlx(&vm->interrupt))
+    size_t v = fbrl_load_rlx(&vm->interrupt);
+    if (!(v & FBRL_ATTN_INTERRUPT))
         return 0;
-    fbrl_store_rlx(&vm->interrupt, 0);
+    fbrl_store_rlx(&vm->interrupt, v & ~(size_t)FBRL_ATTN_INTERRUPT);
     return 1;
 }
 
@@ -235,6 +243,7 @@ void fbrl__note_line(fbrl_vm *vm);                      /* before compiling from
 void fbrl__note_header(fbrl_vm *vm, fbrl_hdr *h);       /* a new word: its file and line */
 void fbrl__lines_forget(fbrl_vm *vm);                   /* code above HERE is gone */
 void fbrl__backtrace(fbrl_vm *vm, const fbrl_cell *ip); /* at a throw: keep the chain of words */
+int fbrl__step(fbrl_vm *vm, fbrl_cell body); /* a colon definition starts: the step hook (vm->ip: the call) */
 const char *fbrl__file_name(const fbrl_vm *vm, uint32_t file);
 
 /* number.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
