@@ -123,7 +123,7 @@ static void put_frame_place(const fbrl_vm_frame *f)
  * line names the innermost), where the failing text was, and the data stack then: each
  * indented, so the error itself stays the one line an editor parses. */
 static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame *bt, size_t n,
-                             size_t omitted)
+                             size_t omitted, const char *where, unsigned long line)
 {
     for (size_t i = 1; i < n; i++) {
         if (omitted && i == n - MON_BT_OUTER)
@@ -137,6 +137,10 @@ static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame
         fputs("  called from ", stderr);
         put_clean(e->file);
         fprintf(stderr, ":%lu\n", e->line);
+    } else if (!e->file[0] && where != NULL && line > 0) {
+        fputs("  called from ", stderr);
+        put_clean(where);
+        fprintf(stderr, ":%lu\n", line + (e->line > 1 ? e->line - 1 : 0));
     }
     fbrl_cell cells[MON_BT_STACK];
     size_t depth = fbrl_vm_error_stack(m->vm, cells, MON_BT_STACK);
@@ -198,7 +202,7 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     }
     fputc('\n', stderr);
     if (nbt > 0)
-        report_backtrace(m, e, bt, nbt, omitted);
+        report_backtrace(m, e, bt, nbt, omitted, where, line);
     fflush(stderr);
 }
 

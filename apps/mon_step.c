@@ -112,9 +112,14 @@ static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
         return 0;
     put_stop(m, s);
     put_stacks(m, vm);
-    for (;;) {
-        fputs("debug [s]tep into [n]ext [f]inish [c]ontinue [q]uit debugging [a]bort, or Forth> ",
+    if (!d->hinted) {
+        fputs("at a stop: s step into, n next, f finish, c continue, q quit debugging, a abort;\n"
+              "other text runs as Forth on a copy of the stacks (W2 .S TEACH ...)\n",
               m->host.out);
+        d->hinted = 1;
+    }
+    for (;;) {
+        fputs("debug> ", m->host.out);
         fflush(m->host.out);
         size_t len;
         const char *line = mon_host_read_line(&m->host, &len);
@@ -125,6 +130,8 @@ static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
             update_hook(m);
             return 0;
         }
+        if (!m->host.in_is_tty) /* piped: show what was read, so the transcript reads as a session */
+            fprintf(m->host.out, "%.*s\n", (int)len, line);
         while (len > 0 && isspace((unsigned char)line[len - 1]))
             len--;
         while (len > 0 && isspace((unsigned char)*line))
