@@ -56,6 +56,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         st = mon_debug_install(m);
     if (st == FBRL_OK)
         st = mon_step_install(m);
+    if (st == FBRL_OK)
+        st = mon_trace_install(m);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
@@ -88,6 +90,7 @@ void mon_close(mon *m)
     free(m->vm_mem);
     m->vm_mem = NULL;
     m->vm = NULL;
+    mon_trace_close(m);
     free(m->typed_src);
     m->typed_src = NULL;
     m->typed_len = m->typed_cap = 0;

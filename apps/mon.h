@@ -11,6 +11,7 @@
 #include "fbrl/workspace.h"
 #include "mon_host.h"
 #include "mon_step.h"
+#include "mon_trace.h"
 
 /* Exit status (documented in docs/fbrlmon.md). */
 #define MON_EXIT_OK      0 /* everything evaluated without error */
@@ -47,6 +48,7 @@ typedef struct mon {
     size_t typed_len, typed_cap;
     char edit_ws[256]; /* EDIT: where the session's work waits while the file loads */
     mon_step step;     /* the debugger (mon_step.c) */
+    mon_trace trace;   /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -15,6 +15,7 @@
 #include "mon.h"
 #include "mon_debug.h"
 #include "mon_step.h"
+#include "mon_trace.h"
 
 /* What to stop at next, besides breakpoints. */
 enum { STEP_RUN, STEP_INTO, STEP_OVER, STEP_FINISH };
@@ -100,10 +101,34 @@ static int matches(const mon_break *b, const fbrl_vm_stop *s)
 
 static void update_hook(mon *m);
 
+/* TRACE-WORDS: "trace: > WORD (file:line) <depth> top cells" for each word entered. */
+static void trace_word(mon *m, fbrl_vm *vm, const fbrl_vm_stop *s)
+{
+    FILE *out = mon_trace_out(m);
+    fbrl_cell cells[MON_STEP_TRACE_CELLS];
+    size_t depth = fbrl_vm_depth(vm), k = depth < MON_STEP_TRACE_CELLS ? depth : MON_STEP_TRACE_CELLS, i;
+    for (i = 0; i < k; i++)
+        fbrl_vm_pop(vm, &cells[k - 1 - i]);
+    for (i = 0; i < k; i++)
+        fbrl_vm_push(vm, cells[i]);
+    if (out == m->host.out)
+        mon_host_newline(&m->host);
+    fprintf(out, "trace: > %s", s->word[0] ? s->word : ":NONAME");
+    if (s->call_file[0] && s->call_line)
+        fprintf(out, " (%s:%lu)", s->call_file, s->call_line);
+    fprintf(out, " <%zu>%s", depth, depth > k ? " ..." : "");
+    for (i = 0; i < k; i++)
+        fprintf(out, " %ld", (long)cells[i]);
+    fputc('\n', out);
+    fflush(out);
+}
+
 static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
 {
     mon *m = ctx;
     mon_step *d = &m->step;
+    if (m->trace.words)
+        trace_word(m, vm, s);
     int stop = d->mode == STEP_INTO || (d->mode == STEP_OVER && s->depth <= d->depth) ||
                (d->mode == STEP_FINISH && s->depth < d->depth);
     for (size_t i = 0; !stop && i < d->nbreaks; i++)
@@ -165,7 +190,7 @@ static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
 /* The hook only while there is a breakpoint or a step pending. */
 static void update_hook(mon *m)
 {
-    int want = m->step.nbreaks > 0 || m->step.mode != STEP_RUN;
+    int want = m->step.nbreaks > 0 || m->step.mode != STEP_RUN || m->trace.words;
     fbrl_vm_step_hook(m->vm, want ? on_step : NULL, want ? m : NULL);
 }
 
@@ -263,6 +288,27 @@ static fbrl_status w_breaks(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
+/* TRACE-WORDS ( -- ) */
+static fbrl_status w_trace_words(fbrl_vm *vm, void *arg)
+{
+    mon *m = arg;
+    (void)vm;
+    m->trace.words = 1;
+    update_hook(m);
+    return FBRL_OK;
+}
+
+/* TRACE-OFF ( -- ): words and commands; a trace file is closed */
+static fbrl_status w_trace_off(fbrl_vm *vm, void *arg)
+{
+    mon *m = arg;
+    (void)vm;
+    m->trace.words = 0;
+    update_hook(m);
+    mon_trace_stop(m);
+    return FBRL_OK;
+}
+
 fbrl_status mon_step_install(mon *m)
 {
     fbrl_status st =
@@ -273,5 +319,11 @@ fbrl_status mon_step_install(mon *m)
                             "remove a breakpoint (ALL: every one)");
     if (st == FBRL_OK)
         st = fbrl_vm_define(m->vm, "BREAKS", w_breaks, m, "( -- )", "list the breakpoints");
+    if (st == FBRL_OK)
+        st = fbrl_vm_define(m->vm, "TRACE-WORDS", w_trace_words, m, "( -- )",
+                            "trace each word entered, with the line of the call and the data stack");
+    if (st == FBRL_OK)
+        st = fbrl_vm_define(m->vm, "TRACE-OFF", w_trace_off, m, "( -- )",
+                            "stop tracing words and commands (and close TRACE-TO's file)");
     return st;
 }

@@ -4,8 +4,9 @@
 
 #include "fbrl/vm.h"
 
-#define MON_STEP_BREAKS     16  /* breakpoints at once */
-#define MON_STEP_STACK_COPY 256 /* stack cells a stop keeps while Forth runs there */
+#define MON_STEP_BREAKS      16  /* breakpoints at once */
+#define MON_STEP_STACK_COPY  256 /* stack cells a stop keeps while Forth runs there */
+#define MON_STEP_TRACE_CELLS 8   /* top cells TRACE-WORDS shows */
 
 typedef struct mon_break {
     char where[128];    /* a word's name, or a file (its path or the end of it) */

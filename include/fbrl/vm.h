@@ -123,6 +123,12 @@ typedef int (*fbrl_vm_step_fn)(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *stop)
  * while one is set. FBRL_EINVAL for a NULL vm. */
 fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
 
+/* Where the running program is, for a C word (e.g. a robot word telling which line sent
+ * a command): the colon definition that called it and the file and line of that call; or,
+ * called from interpreted text, *word "" and the text's file and line. Outside an
+ * evaluation all are "" and 0. */
+fbrl_status fbrl_vm_where(fbrl_vm *vm, const char **word, const char **file, unsigned long *line);
+
 /* How many words the dictionary holds (it grows with each definition). */
 size_t fbrl_vm_word_count(const fbrl_vm *vm);
 

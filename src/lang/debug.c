@@ -209,3 +209,26 @@ int fbrl__step(fbrl_vm *vm, fbrl_cell body)
     vm->in_step = 0;
     return r;
 }
+
+fbrl_status fbrl_vm_where(fbrl_vm *vm, const char **word, const char **file, unsigned long *line)
+{
+    if (!vm || !word || !file || !line)
+        return FBRL_EINVAL;
+    fbrl_bt here; /* copied to vm->where: the name outlives the call */
+    uint32_t f = 0, l = 0;
+    here.word[0] = 0;
+    const fbrl_hdr *h = vm->running && vm->ip ? word_at(vm, (fbrl_cell)vm->ip - CELL) : NULL;
+    if (h) {
+        add_name(h, &here);
+        line_at(vm, h, (fbrl_cell)vm->ip - CELL, &here);
+        f = here.file;
+        l = here.line;
+    } else if (vm->running) {
+        position(vm, &f, &l);
+    }
+    vm->where = here;
+    *word = vm->where.word;
+    *file = fbrl__file_name(vm, f);
+    *line = l;
+    return FBRL_OK;
+}

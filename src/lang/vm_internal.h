@@ -184,7 +184,8 @@ struct fbrl_vm {
     const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word or step hook runs */
     fbrl_vm_step_fn step_fn; /* fbrl_vm_step_hook (debug.c) */
     void *step_ctx;
-    int in_step; /* inside step_fn: what it evaluates runs without stops */
+    int in_step;   /* inside step_fn: what it evaluates runs without stops */
+    fbrl_bt where; /* fbrl_vm_where's answer */
     fbrl_line lines[FBRL_LINE_TABLE];
     uint32_t nlines;
     fbrl_bt bt[FBRL_BT_MAX]; /* the last error's chain of words, innermost first */

@@ -82,6 +82,17 @@ grep -q '^ *10 *TO-T2 ;' stepped.out || fail "the source line of the call is not
 grep -v '^W2$' stepped.log >stepped.nolog
 cmp -s plain.log stepped.nolog || fail "the stepped run's command log differs: $(diff plain.log stepped.nolog)"
 
+# 2b. the trace's commands are the controller's command log, each with the line that sent it
+start_sim traced.log
+printf 'TRACE-TO trace.txt\nTRACE-ON\nHOME READY\nSHUTTLE\nTRACE-OFF\n' |
+    "$mon" --port "$port" plan.fbrl >traced.out 2>traced.err || fail "traced run failed: $(cat traced.err)"
+stop_sim
+sed -n 's/^trace: \(.*\)  (.*)$/\1/p' trace.txt >trace.cmds
+n=$(wc -l <trace.cmds)
+tail -n "$n" traced.log >traced.tail
+[ "$n" -gt 4 ] && cmp -s trace.cmds traced.tail || fail "the trace's commands differ from the log: $(diff trace.cmds traced.tail)"
+grep -q '^trace: MOVE .*(ran; plan.fbrl:5 in GO)$' trace.txt || fail "a MOVE is not traced to GO at plan.fbrl:5: $(cat trace.txt)"
+
 # 3. EDIT: the new definition runs; a taught location survives the file's reload
 cat >edit.fbrl <<'PLAN'
 \ edit.fbrl
