@@ -1,6 +1,7 @@
 /* mon.c - the monitor's session: VM setup and one-line error reports. */
 #include "mon.h"
 #include "mon_debug.h"
+#include "mon_recover.h"
 #include "mon_teach.h"
 
 #include <stdio.h>
@@ -58,6 +59,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         st = mon_step_install(m);
     if (st == FBRL_OK)
         st = mon_trace_install(m);
+    if (st == FBRL_OK)
+        st = mon_recover_install(m);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {

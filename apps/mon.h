@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
+#include "fbrl/recover.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
 #include "fbrl/workspace.h"
@@ -46,9 +47,10 @@ typedef struct mon {
     unsigned long resume_line;
     char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
     size_t typed_len, typed_cap;
-    char edit_ws[256]; /* EDIT: where the session's work waits while the file loads */
-    mon_step step;     /* the debugger (mon_step.c) */
-    mon_trace trace;   /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */
+    char edit_ws[256];    /* EDIT: where the session's work waits while the file loads */
+    mon_step step;        /* the debugger (mon_step.c) */
+    mon_trace trace;      /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */
+    fbrl_recover recover; /* ON-FAILURE, ATTEMPT (mon_recover.c) */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,
