@@ -78,7 +78,8 @@ typedef struct fbrl_recover {
     fbrl_robot *robot; /* controller errors, the safe stop; may be NULL */
     fbrl_recover_rule rules[FBRL_RECOVER_RULES];
     size_t nrules;
-    long sample; /* RUN-SAMPLE's count: which sample a note is about */
+    long sample;   /* RUN-SAMPLE's count: which sample a note is about */
+    char step[32]; /* the step that failed last (for the notes and messages) */
     fbrl_recover_ask_fn ask;
     void *ask_ctx;
     fbrl_recover_note_fn note;

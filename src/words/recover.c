@@ -165,12 +165,10 @@ static fbrl_status w_attempt_start(fbrl_vm *vm, void *ctx, const void *word)
     return FBRL_OK;
 }
 
-static void note(fbrl_recover *rc, const fbrl_recover_rule *r, fbrl_recover_kind k, const char *what,
-                 const char *action)
+static void note(fbrl_recover *rc, fbrl_recover_kind k, const char *what, const char *action)
 {
     if (rc->note)
-        rc->note(rc->note_ctx, r->step ? r->step_name : "step", fbrl_recover_kind_name(k), what, action,
-                 rc->sample);
+        rc->note(rc->note_ctx, rc->step, fbrl_recover_kind_name(k), what, action, rc->sample);
 }
 
 /* The failure in plain words: the kind's, and the controller's advice when it said one. */
@@ -183,8 +181,7 @@ static void describe(const fbrl_recover *rc, fbrl_recover_kind k, char *buf, siz
     snprintf(buf, cap, "%s%s%s", fbrl_recover_kind_text(k), help ? ": " : "", help ? help : "");
 }
 
-static fbrl_status stop_safely(fbrl_vm *vm, fbrl_recover *rc, const fbrl_recover_rule *r, fbrl_recover_kind k,
-                               const char *what)
+static fbrl_status stop_safely(fbrl_vm *vm, fbrl_recover *rc, fbrl_recover_kind k, const char *what)
 {
     fbrl_robot_stop s;
     const char *how = "";
@@ -197,8 +194,8 @@ static fbrl_status stop_safely(fbrl_vm *vm, fbrl_recover *rc, const fbrl_recover
     if (rc->sample > 0)
         snprintf(where, sizeof where, " at sample %ld", rc->sample);
     (void)what; /* told in the note before */
-    return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_STOPPED, "stopped safely: %.31s failed%s: %s%s",
-                           r->step ? r->step_name : "a step", where, fbrl_recover_kind_name(k), how);
+    return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_STOPPED, "stopped safely: %.31s failed%s: %s%s", rc->step,
+                           where, fbrl_recover_kind_name(k), how);
 }
 
 /* (RECOVER) ( code xt -- 0 | code ): after the step xt threw code: 0 to run it again (a
@@ -213,6 +210,11 @@ static fbrl_status w_recover(fbrl_vm *vm, void *ctx, const void *word)
         return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
     fbrl_recover_kind k = fbrl_recover_classify(rc, (int)code);
     fbrl_recover_rule *r = NULL;
+    const char *nm;
+    size_t nl;
+    if (fbrl_vmx_name(vm, xt, &nm, &nl) != FBRL_OK || nl == 0)
+        nm = "a step", nl = 6;
+    snprintf(rc->step, sizeof rc->step, "%.*s", (int)(nl < sizeof rc->step ? nl : sizeof rc->step - 1), nm);
     for (size_t i = 0; k != FBRL_RECOVER_NONE && i < rc->nrules && !r; i++) {
         fbrl_recover_rule *c = &rc->rules[i];
         if ((c->step == xt || c->step == 0) && c->kind == k &&
@@ -232,7 +234,7 @@ static fbrl_status w_recover(fbrl_vm *vm, void *ctx, const void *word)
                      (unsigned)r->limit);
         else
             snprintf(action, sizeof action, "retry %u of %u", (unsigned)r->used, (unsigned)r->limit);
-        note(rc, r, k, what, action);
+        note(rc, k, what, action);
         if (r->action == FBRL_RECOVER_RUN) {
             fbrl_status st = fbrl_vmx_execute(vm, r->word);
             if (st != FBRL_OK)
@@ -240,33 +242,33 @@ static fbrl_status w_recover(fbrl_vm *vm, void *ctx, const void *word)
         }
         return fbrl_vm_push(vm, 0);
     case FBRL_RECOVER_SKIP:
-        note(rc, r, k, what, "skip the sample");
-        return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP, "%s failed (%s): sample skipped",
-                               r->step ? r->step_name : "a step", fbrl_recover_kind_name(k));
+        note(rc, k, what, "skip the sample");
+        return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP, "%s failed (%s): sample skipped", rc->step,
+                               fbrl_recover_kind_name(k));
     case FBRL_RECOVER_ASK:
         if (rc->ask) {
             char q[400];
             char at[32] = "";
             if (rc->sample > 0)
                 snprintf(at, sizeof at, " (sample %ld)", rc->sample);
-            snprintf(q, sizeof q, "%s failed%s: %s.", r->step ? r->step_name : "a step", at, what);
+            snprintf(q, sizeof q, "%s failed%s: %s.", rc->step, at, what);
             int answer = rc->ask(rc->ask_ctx, q);
             if (answer == 'R') {
-                note(rc, r, k, what, "ask: retry");
+                note(rc, k, what, "ask: retry");
                 return fbrl_vm_push(vm, 0);
             }
             if (answer == 'S') {
-                note(rc, r, k, what, "ask: skip the sample");
+                note(rc, k, what, "ask: skip the sample");
                 return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP,
-                                       "%s failed (%s): the operator skipped the sample",
-                                       r->step ? r->step_name : "a step", fbrl_recover_kind_name(k));
+                                       "%s failed (%s): the operator skipped the sample", rc->step,
+                                       fbrl_recover_kind_name(k));
             }
-            note(rc, r, k, what, "ask: abort");
+            note(rc, k, what, "ask: abort");
         } else {
-            note(rc, r, k, what, "ask: no operator, stop");
+            note(rc, k, what, "ask: no operator, stop");
         }
-        return stop_safely(vm, rc, r, k, what);
-    case FBRL_RECOVER_STOP: note(rc, r, k, what, "stop"); return stop_safely(vm, rc, r, k, what);
+        return stop_safely(vm, rc, k, what);
+    case FBRL_RECOVER_STOP: note(rc, k, what, "stop"); return stop_safely(vm, rc, k, what);
     }
     return fbrl_vm_push(vm, code);
 }
