@@ -12,7 +12,7 @@ sim=$2
 tmp=$3
 mkdir -p "$tmp" || exit 2
 cd "$tmp" || exit 2
-rm -f ./*.log ./*.out ./*.err
+rm -f ./*.log ./*.out ./*.err trace.txt
 fails=0
 fail() { fails=$((fails + 1)); echo "FAIL: $*"; }
 
@@ -79,8 +79,10 @@ grep -q '^stop: GO (plan.fbrl:5), called by TO-T1 at plan.fbrl:6' stepped.out ||
 grep -q '^stop: TO-T2 (plan.fbrl:7), called by SHUTTLE at plan.fbrl:10' stepped.out || fail "second step missing"
 grep -q '^ *10 *TO-T2 ;' stepped.out || fail "the source line of the call is not shown"
 [ "$(grep -c '^W2' stepped.log)" = 1 ] || fail "the W2 typed at the stop did not reach the controller once"
-grep -v '^W2$' stepped.log >stepped.nolog
-cmp -s plain.log stepped.nolog || fail "the stepped run's command log differs: $(diff plain.log stepped.nolog)"
+# W5 (is the motion over?) is asked as often as the motion takes: not part of what ran
+grep -v '^W[25]$' stepped.log >stepped.cmds
+grep -v '^W5$' plain.log >plain.cmds
+cmp -s plain.cmds stepped.cmds || fail "the stepped run's command log differs: $(diff plain.cmds stepped.cmds)"
 
 # 2b. the trace's commands are the controller's command log, each with the line that sent it
 start_sim traced.log
