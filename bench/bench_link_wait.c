@@ -55,5 +55,9 @@ int main(int argc, char **argv)
            "right after "
            "the FINISH %.1f ms: %.2fx (target <= 1.10x)\n",
            fin / 1e3 / rounds, (double)probes / rounds, f, a, a / f);
+    printf("| next command after a FINISH that waited %.0f ms, 9600 baud | %.1f ms (fresh: %.1f ms) | %.2fx "
+           "a fresh "
+           "one |\n",
+           fin / 1e3 / rounds, a, f, a / f);
     return 0;
 }

@@ -15,7 +15,8 @@
  * Bounds for an n-character command on an 8N1 line at B baud: the line-rate limit
  * (B/10)/(n+1) (the host sends n+1 bytes) and the echo bound (B/10)/(n+4) (the
  * controller sends the echo, CR LF and ">>"). Only public calls of libfbrl are used, so
- * the same file builds against an older tree for "before" figures. */
+ * the same file builds against an older tree for "before" figures. Lines starting with
+ * "| " are rows of scripts/bench.sh's summary. */
 #include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -104,6 +105,16 @@ static void point_text(const char *sim)
     }
     if (cps[0] > 0)
         printf("   encoder / four decimals: %.2fx POINT commands per second\n", cps[1] / cps[0]);
+    for (int k = 0; k < 2; k++) {
+        size_t len = strlen(lines[k]);
+        printf("| POINT at %u baud, %s (%zu+1 bytes) | %.1f cmd/s | %.1f %% of the line rate, %.1f %% of the "
+               "echo "
+               "bound |\n",
+               BAUD, k ? "shortest text (encoder)" : "four decimals (before)", len, cps[k],
+               100 * cps[k] / line_limit(len), 100 * cps[k] / echo_bound(len));
+    }
+    if (cps[0] > 0)
+        printf("| POINT commands per second, shortest text / four decimals | %.2fx | |\n", cps[1] / cps[0]);
     rig_stop(&r);
 }
 
@@ -144,6 +155,10 @@ static void event_driven(const char *sim)
            100 * blocking / echo_bound(n), echo_bound(n));
     printf("   event loop:     %5.1f cmd/s (%5.1f %% of the echo bound), %d waits of 100 ms ran out\n", ev,
            100 * ev / echo_bound(n), stalls);
+    printf(
+        "| event-driven host at %u baud (`poll()`, then `fbrl_link_poll(l, 0)`), `%s` | %.1f cmd/s | %.1f %% "
+        "of the echo bound (blocking calls %.1f %%) |\n",
+        BAUD, SHORT_CMD, ev, 100 * ev / echo_bound(n), 100 * blocking / echo_bound(n));
     rig_stop(&r);
 }
 
@@ -255,6 +270,14 @@ static void many_robots(const char *sim, int with_old)
                    algs[a].name, robots, sorted[0], sorted[robots / 2], sorted[robots - 1],
                    alone > 0 ? 100 * sorted[0] / alone : 0.0, 100 * sorted[0] / echo_bound(n), total,
                    100 * cpu, failed ? ", FAILURES" : "");
+            if (a == 0)
+                printf(
+                    "| %zu robot%s at %u baud, `fbrl_link_poll_many` | per robot %.1f .. %.1f cmd/s, total "
+                    "%.1f, "
+                    "host CPU %.1f %% of one core | min = %.1f %% of alone, %.1f %% of the echo bound%s |\n",
+                    robots, robots > 1 ? "s" : "", BAUD, sorted[0], sorted[robots - 1], total, 100 * cpu,
+                    alone > 0 ? 100 * sorted[0] / alone : 0.0, 100 * sorted[0] / echo_bound(n),
+                    failed ? ", FAILURES" : "");
             if (robots == MAX_ROBOTS) {
                 printf("      per robot:");
                 for (size_t k = 0; k < robots; k++)

@@ -1,20 +1,66 @@
 #!/bin/sh
-# Builds an optimised tree and runs every benchmark, printing their figures.
-# Benchmarks never run inside the test suite: speed is reported, not asserted.
+# Builds an optimised tree and runs every benchmark, printing their figures, then one
+# summary table (issue 11: the link on fbrlsim's strict line, the POINT text, the next
+# command after a wait, many robots, the Forth engine beside gforth-fast, gforth and
+# pforth). Benchmarks never run inside the test suite: speed is reported, not asserted.
+# The whole run takes about 4 minutes. Benches that print rows of the summary print
+# them as lines starting with "| ".
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 "$here/scripts/deps.sh" gforth pforth
 "$here/scripts/build.sh" "$here/build-bench" -DCMAKE_BUILD_TYPE=Release -DFBRL_TESTS=OFF >/dev/null
-echo "machine: $(nproc) cores, $(uname -m), load $(cut -d' ' -f1-3 /proc/loadavg)"
+log=$(mktemp "${TMPDIR:-/tmp}/fbrlbench.XXXXXX")
+trap 'rm -f "$log"' EXIT INT TERM
+machine="$(nproc) cores, $(uname -m), $(uname -sr)"
+echo "machine: $machine, load $(cut -d' ' -f1-3 /proc/loadavg)"
 status=0
+# bench args...: runs one bench from the build directory (benches that need fbrlsim
+# find it at ./sim/fbrlsim), its output on the terminal and in the log
+bench() {
+    name=$1
+    shift
+    echo "== $name $*" | tee -a "$log"
+    if ! (cd "$here/build-bench" && "./bench/$name" "$@") >"$log.one" 2>&1; then
+        echo "$name failed" | tee -a "$log"
+        status=1
+    fi
+    tee -a "$log" <"$log.one"
+    rm -f "$log.one"
+}
 for b in "$here"/build-bench/bench/bench_*; do
     [ -x "$b" ] || continue
-    echo "== $(basename "$b")"
-    # from the build directory: benches that need fbrlsim find it at ./sim/fbrlsim
-    (cd "$here/build-bench" && "$b") || { echo "$(basename "$b") failed"; status=1; }
+    name=$(basename "$b")
+    case $name in
+    bench_link_rate | bench_transport | bench_link_wait) ;; # below, with their summary rows
+    *) bench "$name" ;;
+    esac
 done
+bench bench_link_rate
+bench bench_link_wait ./sim/fbrlsim 5
+# POINT text, the event-driven host, 1/8/32 robots with fbrl_link_poll_many (3 s per figure)
+bench bench_transport ./sim/fbrlsim 3 123n
+forth=
 if [ -x "$here/bench/run_forth.sh" ]; then
-    echo "== Forth engine: start-up, peak memory and benchmarks (fbrlmon vs gforth-fast, gforth, pforth)"
-    "$here/bench/run_forth.sh" "$here/build-bench" || status=1
+    echo "== Forth engine: start-up, peak memory and benchmarks (fbrlmon vs gforth-fast, gforth, pforth)" | tee -a "$log"
+    forth=$("$here/bench/run_forth.sh" "$here/build-bench") || status=1
+    printf '%s\n' "$forth" | tee -a "$log"
 fi
+
+echo
+echo "== Summary, $(date -u '+%Y-%m-%d %H:%M UTC'), $machine, load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo
+echo "| what | figure | share of the bound |"
+echo "|---|---|---|"
+grep '^| ' "$log" || true
+# run_forth.sh's start-up lines ("  NAME  MS  MB") and its geometric means
+printf '%s\n' "$forth" | awk '
+    /^start-up/ { s = 1; next }
+    s && /^  system/ { next }
+    s && /^  / { n = NF; name = $1; for (i = 2; i <= n - 2; i++) name = name " " $i
+                 printf "| start-up and peak memory, empty program: %s | %s ms | %s MB |\n", name, $(n-1), $n; next }
+    s && !/^  / { s = 0 }
+    /^benchmark/ { for (i = 1; i <= NF; i++) if ($i ~ /^\//) cols[++nc] = $i; next }
+    /^geomean/ { for (i = 1; i <= nc; i++) printf "| Forth compute, geometric mean fbrlmon %s (bench/forth) | %s | below 1: fbrlmon faster |\n", cols[i], $(i + 1) }
+'
+printf '%s\n' "$forth" | grep -q pforth || echo "| pforth | not installed: skipped | |"
 exit $status

@@ -80,7 +80,11 @@ typedef struct sim_line {
     double rx_free; /* when the last byte on the wire is complete */
     int backlog;    /* bytes seen waiting in the OS at the last read */
     unsigned char *rx;
+    double *rx_t; /* when each byte in the receive buffer arrived (its last bit) */
     int rxcap, rxhead, rxcount;
+    int rx_stale; /* bytes that were in the buffer before this round's deliveries */
+    double pop_t; /* when the controller took the byte it is acting on (sim_emit) */
+    int pop_valid;
     long overruns;
     int xoff_sent, peer_xoff;
     /* controller -> host */

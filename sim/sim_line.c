@@ -8,7 +8,10 @@
  * and no character is handed over before its start plus ten bit times. The
  * emulator only ever hands bytes over late (when the OS wakes it late), never
  * early. Idle time earns no credit: a character that finds the line idle starts
- * when it is queued, not in the past.
+ * when it is queued, not in the past. What the controller sends in answer to a
+ * character (its echo, and a command's reply to its CR) is queued at the time that
+ * character arrived, as a UART interrupt would see it, not when the OS got round to
+ * waking the emulator: the emulator's lateness does not lengthen the line's turnaround.
  *
  * Faults (drop, corrupt, noise, stall), parity and XON/XOFF are modelled here
  * too, because they happen on the line, not in the controller. */
@@ -70,12 +73,15 @@ int sim_line_init(sim_line *l, long baud, int rx_buffer)
      * from the host is still read while the controller waits for output to drain. */
     l->rxcap = baud > 0 ? (rx_buffer > 0 ? rx_buffer : SIM_RX_DEFAULT) : SIM_RX_UNPACED;
     l->rx = malloc((size_t)l->rxcap);
-    return l->rx ? 0 : -1;
+    l->rx_t = malloc((size_t)l->rxcap * sizeof *l->rx_t);
+    return l->rx && l->rx_t ? 0 : -1;
 }
 
 void sim_line_free(sim_line *l)
 {
     free(l->rx);
+    free(l->rx_t);
+    l->rx_t = NULL;
     free(l->tx);
     free(l->txq);
     l->rx = l->tx = NULL;
@@ -216,6 +222,8 @@ static void tx_push(sim_line *l, unsigned char b, double queued)
 void sim_emit(fbrl_sim *s, const char *bytes, size_t n)
 {
     double now = sim_real_now(s);
+    if (s->line.pop_valid && s->line.pop_t < now)
+        now = s->line.pop_t; /* an answer to the character taken: queued when it arrived */
     size_t i;
     for (i = 0; i < n; i++) {
         unsigned char o[2];
@@ -287,6 +295,7 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
     sim_line *l = &s->line;
     size_t n = 0;
     ssize_t w;
+    l->pop_valid = 0; /* the controller's answers to this round's characters are queued */
     if (fd < 0) {
         l->txoff = l->txlen = 0; /* nobody listening: the bytes fall off the line */
         l->urgent = -1;
@@ -380,6 +389,7 @@ static void rx_byte(fbrl_sim *s, unsigned char b, double now)
         return;
     }
     l->rx[(l->rxhead + l->rxcount) % l->rxcap] = b;
+    l->rx_t[(l->rxhead + l->rxcount) % l->rxcap] = now;
     l->rxcount++;
     if (l->byte_time > 0 && flow_on(s) && !l->xoff_sent && l->rxcount >= l->rxcap * 3 / 4) {
         l->urgent = XOFF;
@@ -395,6 +405,14 @@ int sim_line_rx_pop(fbrl_sim *s)
     if (!l->rxcount)
         return -1;
     b = l->rx[l->rxhead];
+    /* A character that arrived this round is taken at its arrival; one that waited in the
+     * buffer (the controller was busy) when the controller takes it, now. */
+    l->pop_t = l->rx_t[l->rxhead];
+    if (l->rx_stale > 0) {
+        l->rx_stale--;
+        l->pop_t = sim_real_now(s);
+    }
+    l->pop_valid = l->byte_time > 0;
     l->rxhead = (l->rxhead + 1) % l->rxcap;
     l->rxcount--;
     if (l->xoff_sent && l->rxcount <= l->rxcap / 4) {
@@ -428,11 +446,14 @@ void sim_line_deliver(fbrl_sim *s, double now)
     sim_line *l = &s->line;
     double allow = l->byte_time > 0 ? floor(pace_tokens(&l->rx_pace, l->byte_time, now)) : HUGE_VAL;
     double count = 0;
+    l->pop_valid = 0;
+    l->rx_stale = l->rxcount;
     while (l->wn > 0 && l->wire_end[l->whead] <= now && count < allow) {
         unsigned char b = l->wire[l->whead];
+        double at = l->wire_end[l->whead];
         l->whead = (l->whead + 1) % SIM_WIRE_MAX;
         l->wn--;
-        arrive(s, b, now);
+        arrive(s, b, l->byte_time > 0 ? at : now);
         count++;
     }
     if (l->byte_time > 0 && count > 0)

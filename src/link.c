@@ -254,14 +254,21 @@ static int probe_answered(const fbrl_link *l)
 
 static fbrl_status begin_erase(fbrl_link *l)
 {
+    l->lead = 0;
     l->phase = PH_ERASE;
     l->ctrl_len = -1;
     return send_probe(l);
 }
 
-/* The byte the controller should echo next: ctrl_len triples, then the text. */
+/* The byte the controller should echo next: the previous prompt's second '>' when it is
+ * owed (3.10), ctrl_len triples, then the text. */
 static uint8_t expected(const fbrl_link *l, size_t i, size_t triples)
 {
+    if (l->lead) {
+        if (i == 0)
+            return '>';
+        i--;
+    }
     if (i < 3 * triples)
         return (uint8_t) "\b \b"[i % 3];
     return (uint8_t)l->line[i - 3 * triples];
@@ -283,7 +290,9 @@ static fbrl_status begin_type(fbrl_link *l)
         out[n++] = (uint8_t)(l->cfg.lower_case ? lower(l->line[k]) : l->line[k]);
     l->match = 0;
     l->triples = triples;
-    l->expect = 3 * triples + l->len;
+    l->lead = l->owed;
+    l->owed = 0;
+    l->expect = (size_t)l->lead + 3 * triples + l->len;
     l->phase = PH_TYPE;
     l->ctrl_len = -1; /* unknown until the echo is complete */
     return send(l, out, n);
@@ -292,6 +301,7 @@ static fbrl_status begin_type(fbrl_link *l)
 static void begin_reply(fbrl_link *l)
 {
     fbrl_rapl_reader_init(&l->rd);
+    l->lead = 0;
     l->phase = PH_REPLY;
     l->after_cr = 0;
     l->eol_seen = 0;
@@ -867,6 +877,12 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
+        if (l->owed) {
+            /* the last prompt's second '>' (3.10), or the first byte after its loss */
+            l->owed = 0;
+            if (b == '>')
+                return FBRL_OK;
+        }
         saw_foreign(l, b);
         push_tail(l, b);
         if (probe_answered(l)) {
@@ -953,6 +969,32 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         return FBRL_OK;
     default: return FBRL_OK; /* idle: stray bytes */
     }
+}
+
+/* The prompt has begun and nothing has come after its first '>' yet (docs/link.md 3.10):
+ * the reply so far began with CR LF (so the line ran) and the '>' starts a line. No
+ * reply line starts with a byte one bit flip away from '>' (error lines start with '0';
+ * a query whose value line lost its first digit this way lacks a value and is read
+ * again), so this '>' is the prompt as surely as ">>" would be. */
+static int prompt_begun(const fbrl_link *l)
+{
+    return l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
+           l->rp_first && l->eol_seen && !l->rd.done && l->rd.len == 1 && l->rd.line[0] == '>' &&
+           !l->rd.flawed;
+}
+
+/* Finish on the prompt's first '>': its second is owed, and the next echo the link
+ * awaits must start with it (expected(), or PH_ERASE). The next command's first byte
+ * then reaches the controller while it sends that '>', so its output line never idles
+ * between one command's prompt and the next one's echo. */
+static fbrl_status early_prompt(fbrl_link *l)
+{
+    count_reply_byte(l, '>');
+    feed_reply(l, '>');
+    l->owed = 1;
+    l->ctrl_len = 0;
+    l->stats.early_prompts++;
+    return executed(l);
 }
 
 /* The uart dropped a byte with a parity error since the last look (the marks of
@@ -1100,6 +1142,14 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             fbrl_status s2 = on_byte(l, buf[k]);
             if (s2 != FBRL_OK && l->busy) {
                 l->ctrl_len = -1; /* a byte may not have gone out */
+                *done = 1;
+                return finish(l, s2);
+            }
+        }
+        if (l->busy && k == got && prompt_begun(l) && fbrl_uart_rx_available(l->u) == 0) {
+            fbrl_status s2 = early_prompt(l);
+            if (s2 != FBRL_OK && l->busy) {
+                l->ctrl_len = -1;
                 *done = 1;
                 return finish(l, s2);
             }
@@ -1432,15 +1482,17 @@ static uint64_t due_at(const fbrl_link *l)
 /* Byte times that must pass, counted from t_last, before all l waits for can be in on
  * a line that carries one character per byte time:
  *  - typing, nothing back yet (t_last = the send): the first character must reach the
- *    controller before its echo starts, then the whole echo crosses: expect + 1;
- *  - after the CR, nothing back yet: the CR, then the shortest reply ("CR LF >>");
+ *    controller before its echo starts, then the whole echo crosses: expect + 1 (expect
+ *    when it starts with an owed '>', already on its way);
+ *  - after the CR, nothing back yet: the CR, then the shortest reply the link can finish
+ *    on ("CR LF >", 3.10);
  *  - part of either in: the rest, less one (the next byte may be on its way already).
  * 0 otherwise: any byte may be the one l waits for. */
-#define MIN_REPLY_BYTES 4u
+#define MIN_REPLY_BYTES 3u
 static size_t awaited(const fbrl_link *l)
 {
     if (l->phase == PH_TYPE && l->expect > l->match)
-        return l->match == 0 ? l->expect + 1 : l->expect - l->match - 1;
+        return l->match == 0 ? l->expect + 1 - (size_t)l->lead : l->expect - l->match - 1;
     if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
         l->after_cr < MIN_REPLY_BYTES)
         return l->after_cr == 0 ? 1 + MIN_REPLY_BYTES : MIN_REPLY_BYTES - l->after_cr - 1;
@@ -1605,6 +1657,16 @@ fbrl_status fbrl_link_clear_line(fbrl_link *l)
         return FBRL_EINVAL;
     if (l->busy)
         return FBRL_ESTATE;
+    if (l->owed) {
+        /* the last prompt's second '>' is still on its way: take it off the line, so raw
+         * reads after this start with the answer to the raw bytes */
+        uint8_t b = 0;
+        size_t got = 0;
+        (void)fbrl_uart_read(l->u, &b, 1, &got, l->cfg.echo_timeout_ms);
+        l->owed = 0;
+        if (got != 1 || b != '>')
+            l->ctrl_len = -1;
+    }
     fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : send(l, &can, 1);
     l->ctrl_len = -1;
     return st;

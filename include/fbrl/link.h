@@ -128,6 +128,8 @@ typedef struct fbrl_link_stats {
     uint64_t self_checked;   /* position blocks believed on their own consistency */
     uint64_t cleans;         /* probe markers erased by the command that left them (after
                                * a wait), so the next command starts on an empty line */
+    uint64_t early_prompts;  /* commands finished on the first '>' of their prompt; the
+                               * second is checked in front of the next echo (docs/link.md 3.10) */
 } fbrl_link_stats;
 
 /* The last command's outcome, for messages. */
@@ -161,6 +163,8 @@ typedef struct fbrl_link {
     int phase;
     int ctrl_len; /* characters on the controller's line, -1 unknown */
     size_t match, expect, triples;
+    int owed; /* the last prompt's second '>' is still to come (docs/link.md 3.10) */
+    int lead; /* this typing's echo starts with that '>' */
     unsigned attempts, probes_here;
     int heard; /* any byte from the controller this command */
     uint64_t t_last, t_deadline, t_probe;

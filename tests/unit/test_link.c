@@ -45,7 +45,9 @@ typedef struct ctl {
     /* W1: a value line every stream_ms until any byte arrives (consumed). The line
      * already in the controller's transmit FIFO when that byte comes still goes out,
      * as on a real UART: the host may read a stream line after its byte has landed. */
-    char stray; /* a noise byte that arrives right behind the next CR */
+    char stray;  /* a noise byte that arrives right behind the next CR */
+    int hold_gt; /* send a prompt's second '>' only when the next byte comes in */
+    int held;    /* that '>' is being held */
     int streaming;
     unsigned stream_ms;
     uint64_t stream_next;
@@ -136,7 +138,8 @@ static void execute(ctl *c)
         }
     }
     c->len = 0;
-    outs(c, ">>");
+    outs(c, c->hold_gt ? ">" : ">>");
+    c->held = c->hold_gt;
     if (c->stray) {
         c->line[c->len++] = c->stray;
         out(c, &c->stray, 1);
@@ -159,6 +162,11 @@ static void ctl_service(ctl *c)
     ssize_t n = read(c->fd, buf, sizeof buf);
     for (ssize_t k = 0; k < n; k++) {
         int b = fault(c, IN, buf[k]);
+        if (c->held) {
+            /* the host answered the first '>' before the second went out (docs/link.md 3.10) */
+            c->held = 0;
+            outs(c, ">");
+        }
         if (b < 0)
             continue;
         if (c->streaming) {
@@ -558,6 +566,60 @@ static void noise_after_prompt_is_erased(void **state)
     assert_log(s, want, 2);
 }
 
+/* Prompt lead (docs/link.md 3.10): a command finishes on its prompt's first '>', and the
+ * next command is typed while the second is still on its way; here the controller
+ * sends the second '>' only once the next command's first byte has arrived, so a link
+ * that waited for ">>" would stall on every command. The owed '>' is checked in front
+ * of the next echo: lost, the next command is erased and typed again, never run twice
+ * or altered. fbrl_link_clear_line() takes it off the line before raw bytes. */
+static void next_command_overlaps_the_prompt(void **state)
+{
+    session *s = *state;
+    fbrl_link_stats st, st0;
+    fbrl_link_get_stats(&s->l, &st0);
+    s->c.nlog = 0;
+    s->c.hold_gt = 1;
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_true(s->c.held); /* done before the second '>' was sent */
+    assert_int_equal(run(s, "READY", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_true(s->c.held);
+    assert_int_equal(run(s, "BAD", FBRL_LINK_REPLY_NONE), FBRL_ECONTROLLER);
+    /* a query read twice: its second typing also starts behind an owed '>' */
+    s->c.typev = "+2.500000";
+    assert_int_equal(run(s, "TYPEV V1", FBRL_LINK_REPLY_REAL), FBRL_OK);
+    double v = 0;
+    assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_OK);
+    assert_true(v == 2.5);
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.echo_mismatch, 0);
+    assert_int_equal(st.probes, st0.probes);
+    assert_true(st.early_prompts >= st0.early_prompts + 4);
+    /* the owed '>' is lost: the next command's echo does not start with it */
+    ctl_rule(&s->c, OUT, '>', 0, DROP, 0);
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.echo_mismatch, 1);
+    s->c.nrules = 0;
+    static const char *const want[] = {"HOME", "READY", "BAD", "TYPEV V1", "TYPEV V1", "HOME"};
+    assert_log(s, want, 6);
+    /* raw bytes after clear_line: the owed '>' is gone first */
+    assert_true(s->c.held);
+    s->c.held = 0;
+    s->c.hold_gt = 0;
+    outs(&s->c, ">");
+    assert_int_equal(fbrl_link_clear_line(&s->l), FBRL_OK);
+    size_t n = 0;
+    assert_int_equal(fbrl_uart_write(&s->u, "R", 1, &n, 1000), FBRL_OK);
+    uint8_t b = 0;
+    size_t got = 0;
+    for (int k = 0; k < 50 && got == 0; k++) {
+        ctl_service(&s->c);
+        fbrl_uart_read(&s->u, &b, 1, &got, 2);
+    }
+    assert_int_equal(got, 1);
+    assert_int_equal(b, 'R');
+}
+
 /* Even parity: a damaged byte reaches the link only as a parity error (the uart drops
  * it). In an echo it means: erase and type again, without waiting, and no CR. After
  * the CR, "CR LF >>" that lost CR (parity), LF and one '>' still proves the line ran
@@ -815,6 +877,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(silence_is_an_error, setup, teardown),
         cmocka_unit_test_setup_teardown(stream_stop_runs_nothing, setup, teardown),
         cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
+        cmocka_unit_test_setup_teardown(next_command_overlaps_the_prompt, setup, teardown),
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
         cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
         cmocka_unit_test_setup_teardown(unsafe_line_is_never_retyped_without_proof, setup, teardown),
