@@ -7,6 +7,24 @@
 #include <string.h>
 #include <unistd.h>
 
+/* CELL-SVG's file: written whole through a temporary and renamed, so a reader never sees
+ * half a picture. */
+fbrl_status mon_save_text(void *ctx, const char *path, const char *text, size_t n)
+{
+    char tmp[1100];
+    FILE *f;
+    (void)ctx;
+    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
+        return FBRL_ENAME;
+    if ((f = fopen(tmp, "w")) == NULL)
+        return FBRL_EIO;
+    if (fwrite(text, 1, n, f) != n || fclose(f) != 0) {
+        remove(tmp);
+        return FBRL_EIO;
+    }
+    return rename(tmp, path) == 0 ? FBRL_OK : (remove(tmp), FBRL_EIO);
+}
+
 int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
 {
     fbrl_vm_config cfg;
@@ -48,6 +66,12 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
                                                         MON_WORKSPACE_STORAGE);
     }
     if (st == FBRL_OK) {
+        m->cell = calloc(1, sizeof *m->cell);
+        st = m->cell == NULL ? FBRL_ENOSPC : fbrl_cell_install(m->vm, m->cell, &m->robot, &m->glossary);
+        if (st == FBRL_OK)
+            fbrl_cell_set_save(m->cell, mon_save_text, NULL);
+    }
+    if (st == FBRL_OK) {
         m->link = link;
         st = mon_teach_install(m);
     }
@@ -57,6 +81,7 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
         free(m->file_mem);
         free(m->ws_mem);
+        free(m->cell);
         free(m->vm_mem);
         m->file_mem = NULL;
         m->ws_mem = NULL;
@@ -78,6 +103,7 @@ void mon_close(mon *m)
     free(m->file_mem);
     m->file_mem = NULL;
     free(m->ws_mem);
+    free(m->cell);
     m->ws_mem = NULL;
     mon_host_free(&m->host);
     free(m->vm_mem);

@@ -115,7 +115,7 @@ fbrl_status fbrl_cell_set_block(fbrl_cell_model *c, int index, const fbrl_calib 
 fbrl_status fbrl_cell_add(fbrl_cell_model *c, const fbrl_cell_obj *o);
 /* The obstacle of that name (case-insensitive): FBRL_OK and *index, or FBRL_ENOENT. */
 fbrl_status fbrl_cell_find(const fbrl_cell_model *c, const char *name, size_t len, size_t *index);
-/* Obstacle i (NULL past the end); its corners where its block stands now. */
+/* Obstacle i (NULL past the end), as described (where its block was taught). */
 const fbrl_cell_obj *fbrl_cell_get(const fbrl_cell_model *c, size_t i);
 /* The name of obstacle index i, "the table" or "nothing". */
 const char *fbrl_cell_obj_name(const fbrl_cell_model *c, size_t i);
@@ -144,6 +144,69 @@ fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBR
                                    const double q1[FBRL_CELL_AXES], fbrl_cell_hit *h);
 fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
                                  const double pose1[6], fbrl_cell_hit *h);
+
+/* ---- the FBRL words (src/words/robot_cell.c) ---- */
+
+#include "fbrl/vm.h"
+#include "fbrl/robot.h"
+#include "fbrl/glossary.h"
+
+#define FBRL_CELL_MAX_OBJ  64  /* obstacles the words' cell holds */
+#define FBRL_CELL_PATH_MAX 512 /* tool points of the path kept for the picture */
+#define FBRL_CELL_LOG_MAX  16  /* refused motions kept for the report */
+/* What a refused motion throws (catchable): the code of FBRL_ERANGE. */
+#define FBRL_CELL_THROW_COLLISION FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE)
+
+/* A text sink (the SVG picture). */
+typedef void (*fbrl_cell_write_fn)(void *ctx, const char *s, size_t n);
+/* Saves text as a file (the host's: CELL-SVG); FBRL_OK or why not. */
+typedef fbrl_status (*fbrl_cell_save_fn)(void *ctx, const char *path, const char *text, size_t n);
+
+/* What the guard saw since install or CELL-CLEAR, for a report. */
+typedef struct fbrl_cell_stats {
+    unsigned long moves;   /* motions checked and sent */
+    unsigned long refused; /* motions refused */
+    double clearance;      /* smallest clearance of any motion (INFINITY: none) */
+    size_t near_obj;
+    double near[3];
+    char near_word[FBRL_CELL_NAME_MAX + 1]; /* the word whose motion came closest */
+    char refusals[FBRL_CELL_LOG_MAX][160];  /* their messages */
+    unsigned nrefusals;
+} fbrl_cell_stats;
+
+/* The words' state: caller-owned, fields private; keep it at a fixed address. */
+typedef struct fbrl_cell_words {
+    fbrl_cell_model model;
+    fbrl_cell_obj obj[FBRL_CELL_MAX_OBJ];
+    char block_cal[FBRL_CELL_BLOCKS][FBRL_CELL_NAME_MAX + 1]; /* the CREATE-CAL-STRU of each block */
+    fbrl_vm *vm;
+    fbrl_robot *r;
+    fbrl_glossary *g;
+    int guard; /* CELL-GUARD-ON (the default) / CELL-GUARD-OFF */
+    int block; /* CELL-BLOCK: the block later obstacles belong to, -1 none */
+    int known; /* the arm's joints q are known (as of epoch) */
+    unsigned long epoch;
+    double q[FBRL_CELL_AXES];
+    double pending[FBRL_CELL_AXES]; /* where the motion being sent ends */
+    fbrl_cell_hit last;
+    fbrl_cell_stats stats;
+    double path[FBRL_CELL_PATH_MAX][3];
+    size_t npath;
+    fbrl_cell_save_fn save;
+    void *save_ctx;
+} fbrl_cell_words;
+
+/* Define the words in vm, guarding robot r's motions (fbrl_robot_set_guard); g (may be NULL)
+ * gives the calibrations that carry blocks and the named locations a new obstacle must not
+ * hold. FBRL_EINVAL for NULLs, FBRL_ENOMEM when the dictionary is full. */
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
+/* Where CELL-SVG saves its picture (NULL: it throws "no file output"). */
+void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx);
+/* The guard's record. */
+const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw);
+/* The SVG picture (top and side views to scale, obstacles, the named locations, the tool
+ * path, the closest approach) written through fn. */
+fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx);
 
 #ifdef __cplusplus
 }

@@ -7,6 +7,7 @@
  *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c
  *   robot_import.c: the words
  *   robot_safe.c   the safe stop after an abort (fbrl_robot_safe_stop)
+ *   robot_guard.c  the motion guard's hook (fbrl_robot_set_guard)
  * Calls go downwards in that list (tables up to robot.c), never in a circle. */
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
@@ -105,6 +106,12 @@ fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbr
 fbrl_status rb_from_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, fbrl_loc *user, int map);
 fbrl_status rb_scratch_point(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, const char **name);
 fbrl_status rb_arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_loc *arm);
+
+/* robot_guard.c: the guard's check before a motion sends anything (m->word is set), and
+ * its notice after the motion command (returns result); the arm's position became unknown. */
+fbrl_status rb_guard(fbrl_robot *r, const rb_word *w, fbrl_robot_move *m);
+fbrl_status rb_guard_done(fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result);
+void rb_where_lost(fbrl_robot *r);
 
 /* robot_comm.c: resynchronise the link after raw output; point PRINT-LOC at the port */
 fbrl_status rb_resync(fbrl_robot *r);
