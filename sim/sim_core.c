@@ -87,6 +87,8 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
         }
         s->dev.chan[0].parity = o->parity;
     }
+    if (o->cell_path && sim_cell_load(s, o->cell_path, err, errlen) != 0)
+        goto fail;
     if (o->inputs_path && sim_events_load(&s->events, o->inputs_path, err, errlen) != 0)
         goto fail;
     if (s->log_path && !(s->log = fopen(s->log_path, "ae"))) {
@@ -314,6 +316,7 @@ void fbrl_sim_destroy(fbrl_sim *s)
     sim_line_free(&s->line);
     free(s->state_path);
     free(s->log_path);
+    free(s->cell_obj);
     free(s->control_path);
     free(s);
 }

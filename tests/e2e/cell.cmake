@@ -1,0 +1,11 @@
+# The work cell's guard against a real fbrlsim that knows the same cell (docs/workcell.md):
+# a move into the table, into a box, through a keep-out zone in a straight line, and a joint
+# move whose ends are clear but whose path is not: refused before any byte of the motion is
+# sent (fbrlsim's command log), and with the guard off stopped by fbrlsim's 190-COLLISION at
+# the point of contact (label e2e).
+if(TARGET fbrlmon AND TARGET fbrlsim)
+  add_test(NAME cell_guard_e2e COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/cell_test.sh $<TARGET_FILE:fbrlmon>
+    $<TARGET_FILE:fbrlsim> ${CMAKE_CURRENT_SOURCE_DIR}/e2e/cell ${PROJECT_BINARY_DIR}/e2e-cell)
+  set_tests_properties(cell_guard_e2e PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()

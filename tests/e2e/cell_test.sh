@@ -1,0 +1,47 @@
+#!/bin/sh
+# cell_test.sh FBRLMON FBRLSIM CELLDIR WORKDIR - see cell.cmake.
+mon=$1 sim=$2 dir=$3 work=$4
+rm -rf "$work" && mkdir -p "$work" || exit 2
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+
+"$sim" --time-scale 50 --cell "$dir/cell.fbrl" --log "$work/sim.log" >"$work/sim.out" 2>"$work/sim.err" &
+simpid=$!
+trap 'kill $simpid 2>/dev/null' EXIT
+i=0
+while [ ! -s "$work/sim.out" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
+port=$(head -n 1 "$work/sim.out")
+case $port in /dev/*) ;; *) echo "FAIL: no fbrlsim: $(cat "$work/sim.err")"; exit 1 ;; esac
+
+# guard on: every move refused, nothing of it sent
+"$mon" --port "$port" -e "INCLUDE $dir/cell.fbrl" "$dir/moves.fbrl" >"$work/on.out" 2>"$work/on.err" || fail "guard on: fbrlmon failed: $(cat "$work/on.err")"
+n=$(grep -c ': refused -302 ' "$work/on.out")
+[ "$n" = 4 ] || fail "guard on: $n of 4 moves refused: $(cat "$work/on.out")"
+# the log holds only the two moves to the start points (NEAR-NG, RIGHT): no motion of the four
+moves=$(grep -cE '^(MOVE|APPRO|DEPART|JOG)' "$work/sim.log")
+[ "$moves" = 2 ] || fail "guard on: $moves motions reached fbrlsim, want 2: $(grep -E '^(MOVE|POINT)' "$work/sim.log")"
+grep -q '^POINT FBRLT.,8,-8,-0.5' "$work/sim.log" && fail "guard on: the point below the table was sent"
+
+# guard off: fbrlsim stops each at the contact with 190
+: >"$work/sim.log"
+"$mon" --port "$port" -e "INCLUDE $dir/cell.fbrl CELL-GUARD-OFF" "$dir/moves.fbrl" >"$work/off.out" 2>"$work/off.err" || fail "guard off: fbrlmon failed: $(cat "$work/off.err")"
+n=$(grep -c 'controller 190' "$work/off.out")
+[ "$n" = 4 ] || fail "guard off: $n of 4 moves ended in 190-COLLISION: $(cat "$work/off.out")"
+moves=$(grep -cE '^(MOVE|APPRO|DEPART|JOG)' "$work/sim.log")
+[ "$moves" = 6 ] || fail "guard off: $moves motions sent, want 6"
+# where each stopped (the line after it: "at X Y Z"): the envelope (0.5 in past the tool point,
+# 0.25 in thick) touching (a path is sampled at most FBRL_CELL_THIN / 2 past the contact): the table (z = 0.75), the keep-out zone (y = 5 - 0.25), the post (y = -1 - 0.25)
+awk -v f="$work/off.check" '
+  /^table:/ { w = "table"; next } /^box:/ { w = "box"; next } /^keep-out:/ { w = "keep"; next } /^arc:/ { w = "arc"; next }
+  /^at / { x = $2 + 0; y = $3 + 0; z = $4 + 0
+    if (w == "table" && (z < 0.70 || z > 0.80)) print "table: stopped at z " z
+    if (w == "keep" && (y < 4.70 || y > 4.80)) print "keep-out: stopped at y " y
+    if (w == "arc" && (y < -1.26 || y > -1.15)) print "arc: stopped at y " y
+    if (w == "box" && (x < 12.7 || x > 15.3 || z < 6.0 || z > 6.8)) print "box: stopped at " x " " z }' "$work/off.out" >"$work/off.check"
+[ -s "$work/off.check" ] && fail "guard off: wrong place: $(cat "$work/off.check")"
+
+kill $simpid 2>/dev/null
+wait $simpid 2>/dev/null
+trap - EXIT
+[ $fails = 0 ] && echo "cell guard: 4 refused before sending, 4 stopped by fbrlsim at the contact"
+exit $fails
