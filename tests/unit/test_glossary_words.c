@@ -553,12 +553,12 @@ static void run_forth(fixture *f, const char *file);
 
 static void forth_glossary_audit(void **state) { run_forth(*state, "glossary_audit.fs"); }
 
-/* The work-cell words (tests/forth/robot_cell.fs), and the one clear message each bad
+/* The work-cell words (tests/forth/cell_words.fs), and the one clear message each bad
  * description gets. */
 static void forth_robot_cell(void **state)
 {
     fixture *f = *state;
-    run_forth(f, "robot_cell.fs");
+    run_forth(f, "cell_words.fs");
     static const struct {
         const char *text, *says;
     } bad[] = {

@@ -1,4 +1,4 @@
-\ robot_cell.fs - the work-cell words offline (docs/workcell.md): describing the cell, and
+\ cell_words.fs - the work-cell words offline (docs/workcell.md): describing the cell, and
 \ the bad descriptions each refused with its own error; run by tests/unit/test_glossary_words.c.
 DECIMAL
 T{ 0E0 CELL-TABLE -> }T
