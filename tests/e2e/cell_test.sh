@@ -40,8 +40,16 @@ awk -v f="$work/off.check" '
     if (w == "box" && (x < 12.7 || x > 15.3 || z < 6.0 || z > 6.8)) print "box: stopped at " x " " z }' "$work/off.out" >"$work/off.check"
 [ -s "$work/off.check" ] && fail "guard off: wrong place: $(cat "$work/off.check")"
 
+# a recalibrated block carries its box: clear before, refused after, nothing of it sent
+: >"$work/sim.log"
+"$mon" --port "$port" "$dir/block.fbrl" >"$work/block.out" 2>"$work/block.err" || fail "block: fbrlmon failed: $(cat "$work/block.err")"
+grep -q '^as taught: moved$' "$work/block.out" || fail "block: the move beside the block as taught did not run: $(cat "$work/block.out")"
+grep -q '^moved block: refused -302 $' "$work/block.out" || fail "block: the move into the moved block was not refused: $(cat "$work/block.out")"
+n=$(grep -c '^POINT FBRLT.,12,3.5,1,' "$work/sim.log")
+[ "$n" = 1 ] || fail "block: the location beside the block was sent $n times, want once (before the block moved)"
+
 kill $simpid 2>/dev/null
 wait $simpid 2>/dev/null
 trap - EXIT
-[ $fails = 0 ] && echo "cell guard: 4 refused before sending, 4 stopped by fbrlsim at the contact"
+[ $fails = 0 ] && echo "cell guard: 4 refused before sending, 4 stopped by fbrlsim at the contact, a moved block's box followed"
 exit $fails
