@@ -43,6 +43,9 @@ typedef struct fbrl_sim_options {
     /* The simulated clock (s), instead of real time x time_scale: a dry run's virtual clock;
      * NULL: real time */
     double (*clock)(void *ctx);
+    /* With clock: moves that clock forward by s when the controller itself waits for the
+     * arm or a scripted input (a command blocked in it): the dry run skips that wait too */
+    void (*skip)(void *ctx, double s);
     void *clock_ctx;
 } fbrl_sim_options;
 

@@ -162,9 +162,31 @@ static double due_in(fbrl_sim *s, double limit)
     return r < 0 ? 0 : r;
 }
 
+/* On a given clock with skip: a command waiting in the controller for the arm or a scripted
+ * input makes the clock jump to when that comes (a dry run waits for nothing). */
+static void skip_wait(fbrl_sim *s)
+{
+    double now, next = INFINITY;
+    if (!s->opt.skip || !s->opt.clock || s->term.ps != PS_BUSY)
+        return;
+    now = sim_now(s);
+    if (s->arm.moving)
+        next = s->arm.mt1;
+    if (s->arm.xmoving && s->arm.xt1 < next)
+        next = s->arm.xt1;
+    if (!isfinite(next)) {
+        double r = sim_events_due(s, INFINITY);
+        if (isfinite(r) && r > 0)
+            next = now + r;
+    }
+    if (isfinite(next) && next > now)
+        s->opt.skip(s->opt.clock_ctx, next - now);
+}
+
 static void work(fbrl_sim *s)
 {
     double now = sim_real_now(s);
+    skip_wait(s);
     sim_arm_update(s);
     sim_events_run(s);
     sim_line_deliver(s, now);

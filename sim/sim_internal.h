@@ -191,7 +191,8 @@ struct fbrl_sim {
     int stop; /* set by fbrl_sim_stop (atomic builtins) */
     pthread_t thread;
     int thread_started;
-    double t0; /* real monotonic start */
+    double t0;         /* real monotonic start */
+    double clock_back; /* with opt.clock: sim_now reads this much earlier (W5's difference) */
     sim_line line;
     sim_io io;
     sim_term term;
