@@ -9,3 +9,16 @@ if(TARGET fbrlmon AND TARGET fbrlsim)
   set_tests_properties(cell_guard_e2e PROPERTIES LABELS e2e TIMEOUT 120
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+
+# fbrlmon --dry-run of the sample-preparation plan: under 10 s, its report and picture
+# (label e2e); against a real-time run of the same plan within 2 % (label slow, a minute).
+if(TARGET fbrlmon AND TARGET fbrlsim)
+  add_test(NAME dry_run_e2e COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/dry_run.sh $<TARGET_FILE:fbrlmon>
+    ${PROJECT_SOURCE_DIR}/examples ${PROJECT_BINARY_DIR}/e2e-dry)
+  add_test(NAME dry_run_vs_real COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/dry_run.sh $<TARGET_FILE:fbrlmon>
+    ${PROJECT_SOURCE_DIR}/examples ${PROJECT_BINARY_DIR}/e2e-dry-real real)
+  set_tests_properties(dry_run_e2e PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+  set_tests_properties(dry_run_vs_real PROPERTIES LABELS "e2e;slow" TIMEOUT 300
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()
