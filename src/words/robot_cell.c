@@ -533,8 +533,10 @@ const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw) { return c
 
 /* ---- the picture ---- */
 
-#define SVG_SCALE 20.0 /* px per inch */
-#define SVG_HALF  24.0 /* in: each view shows the arm's reach around its base */
+#define SVG_SCALE 20.0   /* px per inch */
+#define SVG_HALF  24.0   /* in: each view shows the arm's reach around its base */
+#define SVG_Z_LO  (-3.5) /* in: the side view's height range */
+#define SVG_Z_HI  27.5
 
 typedef struct svg_ctx {
     fbrl_cell_write_fn fn;
@@ -660,6 +662,12 @@ static void draw_view(svg_ctx *s, fbrl_cell_words *cw, const view *v)
         const fbrl_cell_obj *o = &cw->model.obj[k];
         double lo[3], hi[3];
         obj_extent(cw, o, lo, hi);
+        /* what lies outside the view is cut off at its edge */
+        for (int i = 0; i < 3; i++) {
+            double vlo = i == 2 ? SVG_Z_LO : -SVG_HALF, vhi = i == 2 ? SVG_Z_HI : SVG_HALF;
+            lo[i] = fmax(vlo, fmin(vhi, lo[i]));
+            hi[i] = fmax(vlo, fmin(vhi, hi[i]));
+        }
         rect(s, v, lo, hi,
              o->kind == FBRL_CELL_KEEPOUT    ? "keepout"
              : o->kind == FBRL_CELL_CYLINDER ? "cylinder"
