@@ -9,13 +9,17 @@
 #define RAD(d)     ((d) * (PI / 180.0))
 #define DEG(r)     ((r) * (180.0 / PI))
 
-#define LIMIT_EPS   1e-9                   /* degrees: a joint this far past a limit (rounding) is inside */
-#define AXIS_EPS    1e-9                   /* in: closer to the base axis than this, the waist is free */
-#define REACH_EPS   1e-12                  /* a fully stretched arm still reaches */
-#define GOLDEN_IT   48                     /* golden-section steps for a segment against a cylinder */
-#define MIN_STEP    (FBRL_CELL_THIN / 2.0) /* in: the step near an obstacle */
-#define MAX_SAMPLES 100000u                /* a path check gives up (FBRL_ERANGE) beyond this */
-#define LINE_HALVE  30                     /* step halvings on a straight line before it counts as a jump */
+#define LIMIT_EPS 1e-9  /* degrees: a joint this far past a limit (rounding) is inside */
+#define AXIS_EPS  1e-9  /* in: closer to the base axis than this, the waist is free */
+#define REACH_EPS 1e-12 /* a fully stretched arm still reaches */
+#define GOLDEN_IT 48    /* golden-section steps for a segment against a cylinder */
+/* in: the step near an obstacle. A point that moves at most this far per step cannot pass
+ * through a slab at least this thick without a sample inside it (and the bound on the
+ * motion is generous: the envelope moves less). */
+#define MIN_STEP    (FBRL_CELL_THIN * 0.9)
+#define MAX_SAMPLES 100000u /* a path check gives up (FBRL_ERANGE) beyond this */
+#define LINE_HALVE  30      /* step halvings on a straight line before it counts as a jump */
+#define LINE_SLACK  1.25    /* margin for the bend of a straight line's joint path between samples */
 
 const fbrl_cell_arm fbrl_cell_arm_a255 = {
     10.0, 10.0, 10.0, 2.0, {-175.0, 0.0, -130.0, -110.0, -180.0}, {175.0, 110.0, 0.0, 110.0, 180.0}};
@@ -489,11 +493,37 @@ static void envelope(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], d
     b[0] = (rw + reach * cos(p)) * cw, b[1] = (rw + reach * cos(p)) * sw, b[2] = zw + reach * sin(p);
 }
 
-/* Clearance of the envelope at q: the least over the table and every obstacle. */
-static double clearance(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], size_t *which,
+/* What a path check remembers between samples: for each obstacle a lower bound of its
+ * clearance (its distance when last measured, less how far the envelope may have moved
+ * since). An obstacle far from the envelope is measured again only when its bound comes
+ * near the smallest one: on a path past one obstacle the others cost nothing. */
+#define TRACK_MAX    64  /* obstacles tracked (beyond: measured at every sample) */
+#define TRACK_NEAR   1.0 /* in: obstacles bounded closer than this are always measured */
+#define TRACK_FACTOR 2.0 /* ... and those within this factor of the nearest bound */
+typedef struct track {
+    double lb[TRACK_MAX];
+    int fresh; /* no sample yet: measure everything */
+} track;
+
+static double measure(const fbrl_cell_model *c, size_t k, const double a[3], const double b[3],
+                      double near[3])
+{
+    const fbrl_cell_obj *o = &c->obj[k];
+    double oa[3], ob[3], nb[3], d;
+    to_obj(c, o, a, oa);
+    to_obj(c, o, b, ob);
+    d = (o->kind == FBRL_CELL_CYLINDER ? seg_cyl(o, oa, ob, nb) : seg_box(o->lo, o->hi, oa, ob, nb)) -
+        c->tool_r;
+    from_obj(c, o, nb, near);
+    return d;
+}
+
+/* Clearance of the envelope at q: the least over the table and every obstacle (a lower
+ * bound for obstacles t says are far; exact for the nearest). */
+static double clearance(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], track *t, size_t *which,
                         double near[3])
 {
-    double a[3], b[3], best = INFINITY, nb[3];
+    double a[3], b[3], best = INFINITY, nb[3], floor_lb = INFINITY;
     envelope(c, q, a, b);
     *which = FBRL_CELL_NONE;
     if (c->have_table) {
@@ -503,20 +533,35 @@ static double clearance(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES]
         near[2] = c->table_z;
         *which = FBRL_CELL_TABLE;
     }
+    if (t && !t->fresh)
+        for (size_t k = 0; k < c->n && k < TRACK_MAX; k++)
+            if (t->lb[k] < floor_lb)
+                floor_lb = t->lb[k];
     for (size_t k = 0; k < c->n; k++) {
-        const fbrl_cell_obj *o = &c->obj[k];
-        double oa[3], ob[3], d;
-        to_obj(c, o, a, oa);
-        to_obj(c, o, b, ob);
-        d = (o->kind == FBRL_CELL_CYLINDER ? seg_cyl(o, oa, ob, nb) : seg_box(o->lo, o->hi, oa, ob, nb)) -
-            c->tool_r;
+        double d;
+        if (t && !t->fresh && k < TRACK_MAX && t->lb[k] > TRACK_NEAR && t->lb[k] > TRACK_FACTOR * floor_lb &&
+            t->lb[k] > best) {
+            continue; /* far: its bound stands for it, and it cannot be the least */
+        }
+        d = measure(c, k, a, b, nb);
+        if (t && k < TRACK_MAX)
+            t->lb[k] = d;
         if (d < best) {
             best = d;
             *which = k;
-            from_obj(c, o, nb, near);
+            memcpy(near, nb, sizeof nb);
         }
     }
+    if (t)
+        t->fresh = 0;
     return best;
+}
+
+/* The envelope moved at most dist since the bounds were taken. */
+static void track_moved(track *t, size_t n, double dist)
+{
+    for (size_t k = 0; t && k < n && k < TRACK_MAX; k++)
+        t->lb[k] -= dist;
 }
 
 /* How far (in) any point of the envelope can move per degree of each joint: its largest
@@ -549,11 +594,11 @@ static void begin(fbrl_cell_hit *h)
 
 /* One sample: note the clearance; 1 if it hits. */
 static int sample(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], double f, fbrl_cell_hit *h,
-                  double *d)
+                  double *d, track *t)
 {
     size_t which;
     double near[3];
-    *d = clearance(c, q, &which, near);
+    *d = clearance(c, q, t, &which, near);
     h->samples++;
     if (*d < h->clearance) {
         h->clearance = *d;
@@ -580,7 +625,7 @@ fbrl_status fbrl_cell_check_pose(const fbrl_cell_model *c, const double q[FBRL_C
         return FBRL_EINVAL;
     begin(h);
     memcpy(h->q_end, q, sizeof h->q_end);
-    (void)sample(c, q, 0.0, h, &d);
+    (void)sample(c, q, 0.0, h, &d, NULL);
     return FBRL_OK;
 }
 
@@ -588,43 +633,65 @@ fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBR
                                    const double q1[FBRL_CELL_AXES], fbrl_cell_hit *h)
 {
     double k[FBRL_CELL_AXES], len, f = 0.0, d, q[FBRL_CELL_AXES];
+    track t;
     if (!ok(c) || !q0 || !q1 || !h)
         return FBRL_EINVAL;
     begin(h);
+    t.fresh = 1;
     lever(c, k);
     len = moved(k, q0, q1); /* in of motion of the fastest envelope point over the whole move */
     for (;;) {
         for (int i = 0; i < FBRL_CELL_AXES; i++)
             q[i] = q0[i] + (q1[i] - q0[i]) * f;
-        if (sample(c, q, f, h, &d))
+        if (sample(c, q, f, h, &d, &t))
             return FBRL_OK;
         if (f >= 1.0 || len <= 0.0)
             break;
         if (h->samples >= MAX_SAMPLES)
             return FBRL_ERANGE;
-        f += step_for(d) / len;
-        if (f > 1.0)
-            f = 1.0;
+        double nf = f + step_for(d) / len;
+        if (nf > 1.0)
+            nf = 1.0;
+        track_moved(&t, c->n, (nf - f) * len);
+        f = nf;
     }
     memcpy(h->q_end, q1, sizeof h->q_end);
     return FBRL_OK;
 }
 
+/* How far any point of the envelope moves between two nearby poses of a straight line: its
+ * axis' ends move that far, its surface as much more as the axis turns (waist, pitch), and
+ * LINE_SLACK for the bend of the path between the two samples. */
+static double env_moved(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES],
+                        const double qn[FBRL_CELL_AXES])
+{
+    double a[3], b[3], an[3], bn[3], da = 0.0, db = 0.0;
+    envelope(c, q, a, b);
+    envelope(c, qn, an, bn);
+    for (int i = 0; i < 3; i++) {
+        da += (an[i] - a[i]) * (an[i] - a[i]);
+        db += (bn[i] - b[i]) * (bn[i] - b[i]);
+    }
+    double turn = fabs(qn[0] - q[0]) + fabs((qn[1] + qn[2] + qn[3]) - (q[1] + q[2] + q[3]));
+    return LINE_SLACK * (sqrt(da > db ? da : db) + c->tool_r * RAD(turn));
+}
+
 fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
                                  const double pose1[6], fbrl_cell_hit *h)
 {
-    double k[FBRL_CELL_AXES], p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], dist;
+    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], dist;
+    track t;
     if (!ok(c) || !q0 || !pose1 || !h)
         return FBRL_EINVAL;
     begin(h);
-    lever(c, k);
+    t.fresh = 1;
     fbrl_cell_fk(&c->arm, q0, p0);
     memcpy(q, q0, sizeof q);
     dist = sqrt((pose1[0] - p0[0]) * (pose1[0] - p0[0]) + (pose1[1] - p0[1]) * (pose1[1] - p0[1]) +
                 (pose1[2] - p0[2]) * (pose1[2] - p0[2])) +
            RAD(fabs(pose1[4] - p0[4])) * (c->arm.flange + c->tool_len + c->tool_r);
     for (;;) {
-        if (sample(c, q, f, h, &d))
+        if (sample(c, q, f, h, &d, &t))
             return FBRL_OK;
         if (f >= 1.0)
             break;
@@ -642,7 +709,7 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_
                 h->fraction = f;
                 return FBRL_ERANGE; /* the controller refuses such a line (068) */
             }
-            if (moved(k, q, qn) <= allow * 1.5)
+            if (env_moved(c, q, qn) <= allow)
                 break;
         }
         if (tries == LINE_HALVE) {
@@ -650,6 +717,7 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_
             h->fraction = f;
             return FBRL_ERANGE; /* a joint jumps: not a line the arm can follow */
         }
+        track_moved(&t, c->n, env_moved(c, q, qn));
         memcpy(q, qn, sizeof q);
         f = nf;
     }
