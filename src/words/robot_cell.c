@@ -409,10 +409,12 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         unsigned n = 0;
         if ((st = fbrl_robot_joints(r, m->word, q, &n)) != FBRL_OK)
             return st;
-        if (n < FBRL_CELL_AXES)
-            return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EPROTOCOL),
-                                   "%s: the guard needs %d joint angles, W2 gave %u", m->word, FBRL_CELL_AXES,
-                                   n);
+        if (n != FBRL_CELL_AXES) /* the guard's kinematics are the A255's (DESIGN 6) */
+            return fbrl_vmx_throwf(
+                cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED),
+                "%s: the guard knows 5-axis arms (A255); this arm has %u axes (CELL-GUARD-OFF "
+                "sends the motion unchecked)",
+                m->word, n);
         memcpy(cw->q, q, sizeof cw->q);
         cw->known = 1;
         cw->epoch = fbrl_robot_where_epoch(r);
