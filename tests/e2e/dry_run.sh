@@ -10,6 +10,7 @@ fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 now() { date +%s.%N; }
 
+touch "$work/.start"
 t0=$(now)
 "$mon" --dry-run --svg "$work/plan.svg" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" \
     "$ex/sample_prep.fbrl" >"$work/dry.out" 2>"$work/dry.err" || fail "the dry run failed: $(cat "$work/dry.err")"
@@ -29,6 +30,8 @@ n=$(grep -c ' wait 0.150 s$' "$work/dry.out")
 [ "$n" = 6 ] || fail "$n waits of the syringe's 150 ms, want 6"
 grep -q '^run time 5[0-9] s$' "$work/dry.out" || fail "the plan's own run time (TIME-OF-DAY) is not the simulated one"
 [ -z "$(ls "$work" | grep -v -e '^dry\.' -e '^plan\.svg$')" ] || fail "the dry run left files: $(ls "$work")"
+ls -d "${TMPDIR:-/tmp}"/fbrlmon-dry-* 2>/dev/null | while read -r d; do [ "$d" -nt "$work/.start" ] && echo "$d"; done >"$work/left"
+[ -s "$work/left" ] && fail "the scratch directory was left: $(cat "$work/left")"
 
 # the picture
 svg=$work/plan.svg
@@ -44,6 +47,13 @@ if command -v rsvg-convert >/dev/null 2>&1; then
 else
     echo "rsvg-convert is not installed (librsvg2-bin): rendering not checked"
 fi
+
+# the plan's own files: written in a scratch directory and removed, unless --keep-files
+echo 'CREATE-FILE made.dat' >"$work/files.fbrl"
+"$mon" --dry-run --svg "$work/files.svg" "$work/files.fbrl" >"$work/files.out" 2>&1 || fail "files: $(cat "$work/files.out")"
+[ -e "$work/made.dat" ] && fail "the dry run wrote the plan's file made.dat"
+"$mon" --dry-run --keep-files --svg "$work/files.svg" "$work/files.fbrl" >"$work/files.out" 2>&1 || fail "files: $(cat "$work/files.out")"
+[ -e "$work/made.dat" ] || fail "--keep-files: the plan's file made.dat was not written"
 
 if [ "$real" = real ]; then
     t0=$(now)
