@@ -42,9 +42,10 @@ awk -v f="$work/off.check" '
 
 # a recalibrated block carries its box: clear before, refused after, nothing of it sent
 : >"$work/sim.log"
-"$mon" --port "$port" "$dir/block.fbrl" >"$work/block.out" 2>"$work/block.err" || fail "block: fbrlmon failed: $(cat "$work/block.err")"
+"$mon" --port "$port" "$dir/block.fbrl" -e "CELL-SVG $work/block.svg" >"$work/block.out" 2>"$work/block.err" || fail "block: fbrlmon failed: $(cat "$work/block.err")"
 grep -q '^as taught: moved$' "$work/block.out" || fail "block: the move beside the block as taught did not run: $(cat "$work/block.out")"
 grep -q '^moved block: refused -302 $' "$work/block.out" || fail "block: the move into the moved block was not refused: $(cat "$work/block.out")"
+grep -q '<title>HEATER</title>' "$work/block.svg" 2>/dev/null || fail "CELL-SVG at the prompt drew no HEATER"
 n=$(grep -c '^POINT FBRLT.,12,3.5,1,' "$work/sim.log")
 [ "$n" = 1 ] || fail "block: the location beside the block was sent $n times, want once (before the block moved)"
 
