@@ -520,11 +520,10 @@ static double measure(const fbrl_cell_model *c, size_t k, const double a[3], con
 
 /* Clearance of the envelope at q: the least over the table and every obstacle (a lower
  * bound for obstacles t says are far; exact for the nearest). */
-static double clearance(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], track *t, size_t *which,
-                        double near[3])
+static double clearance(const fbrl_cell_model *c, const double a[3], const double b[3], track *t,
+                        size_t *which, double near[3])
 {
-    double a[3], b[3], best = INFINITY, nb[3], floor_lb = INFINITY;
-    envelope(c, q, a, b);
+    double best = INFINITY, nb[3], floor_lb = INFINITY;
     *which = FBRL_CELL_NONE;
     if (c->have_table) {
         int lower = a[2] < b[2];
@@ -593,12 +592,17 @@ static void begin(fbrl_cell_hit *h)
 }
 
 /* One sample: note the clearance; 1 if it hits. */
+/* ab: the envelope's axis at q (a then b), or NULL to compute it. */
 static int sample(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], double f, fbrl_cell_hit *h,
-                  double *d, track *t)
+                  double *d, track *t, const double *ab)
 {
     size_t which;
-    double near[3];
-    *d = clearance(c, q, t, &which, near);
+    double near[3], e[6];
+    if (!ab) {
+        envelope(c, q, e, e + 3);
+        ab = e;
+    }
+    *d = clearance(c, ab, ab + 3, t, &which, near);
     h->samples++;
     if (*d < h->clearance) {
         h->clearance = *d;
@@ -625,7 +629,7 @@ fbrl_status fbrl_cell_check_pose(const fbrl_cell_model *c, const double q[FBRL_C
         return FBRL_EINVAL;
     begin(h);
     memcpy(h->q_end, q, sizeof h->q_end);
-    (void)sample(c, q, 0.0, h, &d, NULL);
+    (void)sample(c, q, 0.0, h, &d, NULL, NULL);
     return FBRL_OK;
 }
 
@@ -643,7 +647,7 @@ fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBR
     for (;;) {
         for (int i = 0; i < FBRL_CELL_AXES; i++)
             q[i] = q0[i] + (q1[i] - q0[i]) * f;
-        if (sample(c, q, f, h, &d, &t))
+        if (sample(c, q, f, h, &d, &t, NULL))
             return FBRL_OK;
         if (f >= 1.0 || len <= 0.0)
             break;
@@ -662,11 +666,11 @@ fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBR
 /* How far any point of the envelope moves between two nearby poses of a straight line: its
  * axis' ends move that far, its surface as much more as the axis turns (waist, pitch), and
  * LINE_SLACK for the bend of the path between the two samples. */
-static double env_moved(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES],
-                        const double qn[FBRL_CELL_AXES])
+static double env_moved(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], const double ab[6],
+                        const double qn[FBRL_CELL_AXES], double abn[6])
 {
-    double a[3], b[3], an[3], bn[3], da = 0.0, db = 0.0;
-    envelope(c, q, a, b);
+    const double *a = ab, *b = ab + 3;
+    double *an = abn, *bn = abn + 3, da = 0.0, db = 0.0;
     envelope(c, qn, an, bn);
     for (int i = 0; i < 3; i++) {
         da += (an[i] - a[i]) * (an[i] - a[i]);
@@ -679,7 +683,7 @@ static double env_moved(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES]
 fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
                                  const double pose1[6], fbrl_cell_hit *h)
 {
-    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], dist;
+    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], dist, ab[6], abn[6], step = 0.0;
     track t;
     if (!ok(c) || !q0 || !pose1 || !h)
         return FBRL_EINVAL;
@@ -687,18 +691,19 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_
     t.fresh = 1;
     fbrl_cell_fk(&c->arm, q0, p0);
     memcpy(q, q0, sizeof q);
+    envelope(c, q, ab, ab + 3);
     dist = sqrt((pose1[0] - p0[0]) * (pose1[0] - p0[0]) + (pose1[1] - p0[1]) * (pose1[1] - p0[1]) +
                 (pose1[2] - p0[2]) * (pose1[2] - p0[2])) +
            RAD(fabs(pose1[4] - p0[4])) * (c->arm.flange + c->tool_len + c->tool_r);
     for (;;) {
-        if (sample(c, q, f, h, &d, &t))
+        if (sample(c, q, f, h, &d, &t, ab))
             return FBRL_OK;
         if (f >= 1.0)
             break;
         if (h->samples >= MAX_SAMPLES)
             return FBRL_ERANGE;
         /* the step the clearance allows, halved until the joints' motion keeps to it */
-        double allow = step_for(d), df = dist > 0 ? allow / dist : 1.0, nf = 0.0;
+        double allow = step_for(d), df = dist > 0 ? allow / (dist * LINE_SLACK * LINE_SLACK) : 1.0, nf = 0.0;
         int tries;
         for (tries = 0; tries < LINE_HALVE; tries++, df *= 0.5) {
             nf = f + df > 1.0 ? 1.0 : f + df;
@@ -709,7 +714,7 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_
                 h->fraction = f;
                 return FBRL_ERANGE; /* the controller refuses such a line (068) */
             }
-            if (env_moved(c, q, qn) <= allow)
+            if ((step = env_moved(c, q, ab, qn, abn)) <= allow)
                 break;
         }
         if (tries == LINE_HALVE) {
@@ -717,8 +722,9 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_
             h->fraction = f;
             return FBRL_ERANGE; /* a joint jumps: not a line the arm can follow */
         }
-        track_moved(&t, c->n, env_moved(c, q, qn));
+        track_moved(&t, c->n, step);
         memcpy(q, qn, sizeof q);
+        memcpy(ab, abn, sizeof ab);
         f = nf;
     }
     memcpy(h->q_end, q, sizeof h->q_end);
