@@ -49,6 +49,16 @@ grep -q '<title>HEATER</title>' "$work/block.svg" 2>/dev/null || fail "CELL-SVG 
 n=$(grep -c '^POINT FBRLT.,12,3.5,1,' "$work/sim.log")
 [ "$n" = 1 ] || fail "block: the location beside the block was sent $n times, want once (before the block moved)"
 
+# fbrlsim refuses a bad description, naming the line
+printf '0E0 CELL-TABLE\n0 0 0 1 1 1 CELL-BOX A\n0 0 0 1 1 1 CELL-BOX a\n' >"$work/bad1.fbrl"
+printf '0E0 CELL-TABLE\n0 0 0 -1 1 1 CELL-BOX A\n' >"$work/bad2.fbrl"
+printf '0E0 CELL-TABLE\nCREATE-LOC P\n' >"$work/bad3.fbrl"
+for b in "bad1:3: CELL-BOX: a name used twice" "bad2:2: CELL-BOX: a size that is not positive" "bad3:2: CREATE-LOC is not a work-cell word"; do
+    f=${b%%:*} want=${b#*:}
+    "$sim" --cell "$work/$f.fbrl" >"$work/$f.out" 2>&1 && fail "fbrlsim took $f.fbrl"
+    grep -qF "$f.fbrl:$want" "$work/$f.out" || fail "fbrlsim on $f.fbrl: $(cat "$work/$f.out"), want $want"
+done
+
 kill $simpid 2>/dev/null
 wait $simpid 2>/dev/null
 trap - EXIT
