@@ -49,6 +49,10 @@ grep -q '<title>HEATER</title>' "$work/block.svg" 2>/dev/null || fail "CELL-SVG 
 n=$(grep -c '^POINT FBRLT.,12,3.5,1,' "$work/sim.log")
 [ "$n" = 1 ] || fail "block: the location beside the block was sent $n times, want once (before the block moved)"
 
+# a 6-axis arm: the guard knows the A255's kinematics only and says so instead of guessing
+"$mon" --sim --sim-model a465 -e "0E0 CELL-TABLE HOME READY" >"$work/a465.out" 2>&1 && fail "a465: READY went unchecked"
+grep -q 'READY: the guard knows 5-axis arms (A255); this arm has 6 axes' "$work/a465.out" || fail "a465: $(cat "$work/a465.out")"
+
 # fbrlsim refuses a bad description, naming the line
 printf '0E0 CELL-TABLE\n0 0 0 1 1 1 CELL-BOX A\n0 0 0 1 1 1 CELL-BOX a\n' >"$work/bad1.fbrl"
 printf '0E0 CELL-TABLE\n0 0 0 -1 1 1 CELL-BOX A\n' >"$work/bad2.fbrl"
