@@ -7,18 +7,24 @@
 #include <string.h>
 #include <unistd.h>
 
-/* CELL-SVG's file: written whole through a temporary and renamed, so a reader never sees
- * half a picture. */
-fbrl_status mon_save_text(void *ctx, const char *path, const char *text, size_t n)
+/* A failed write leaves the stream's error flag set: mon_save_svg checks it at the end. */
+static void write_file(void *ctx, const char *s, size_t n) { (void)fwrite(s, 1, n, (FILE *)ctx); }
+
+/* CELL-SVG's file (and the dry run's picture): written whole through a temporary and
+ * renamed, so a reader never sees half a picture. */
+fbrl_status mon_save_svg(void *ctx, const char *path, fbrl_cell_words *cw)
 {
     char tmp[1100];
     FILE *f;
+    int bad;
     (void)ctx;
     if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
         return FBRL_ENAME;
     if ((f = fopen(tmp, "w")) == NULL)
         return FBRL_EIO;
-    if (fwrite(text, 1, n, f) != n || fclose(f) != 0) {
+    fbrl_cell_svg(cw, write_file, f);
+    bad = ferror(f);
+    if (fclose(f) != 0 || bad) {
         remove(tmp);
         return FBRL_EIO;
     }
@@ -69,7 +75,7 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         m->cell = calloc(1, sizeof *m->cell);
         st = m->cell == NULL ? FBRL_ENOSPC : fbrl_cell_install(m->vm, m->cell, &m->robot, &m->glossary);
         if (st == FBRL_OK)
-            fbrl_cell_set_save(m->cell, mon_save_text, NULL);
+            fbrl_cell_set_save(m->cell, mon_save_svg, NULL);
     }
     if (st == FBRL_OK) {
         m->link = link;

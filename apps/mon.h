@@ -50,8 +50,8 @@ typedef struct mon {
  * and the thesis's glossary and robot words; link is the connected controller or
  * NULL (offline: the robot words say so when used). */
 int mon_open(mon *m, size_t dict_bytes, fbrl_link *link);
-/* Write text to path whole (CELL-SVG, the dry run's picture). */
-fbrl_status mon_save_text(void *ctx, const char *path, const char *text, size_t n);
+/* The picture of the cell written to path whole (CELL-SVG, the dry run's picture). */
+fbrl_status mon_save_svg(void *ctx, const char *path, fbrl_cell_words *cw);
 /* Close the data files (committing them; a failure counts as an error) and free. */
 void mon_close(mon *m);
 

@@ -213,8 +213,6 @@ static int rm_one(const char *path, const struct stat *sb, int flag, struct FTW 
     return remove(path);
 }
 
-static void svg_to_file(void *ctx, const char *s, size_t n) { fwrite(s, 1, n, (FILE *)ctx); }
-
 static void fmt_s(char *buf, size_t cap, double s)
 {
     if (fbrl_num_fixed(buf, cap, s, 0, 3, 0, NULL) != FBRL_OK)
@@ -276,9 +274,9 @@ int mon_dry_finish(mon *m, mon_dry_report *r, FILE *out, const char *svg)
         g_scratch[0] = '\0';
     }
     if (svg && m->cell) {
-        FILE *f = fopen(svg, "w");
-        if (f == NULL || (fbrl_cell_svg(m->cell, svg_to_file, f), fclose(f)) != 0) {
-            fprintf(stderr, "fbrlmon: --svg %s: %s\n", svg, strerror(errno));
+        fbrl_status ws = mon_save_svg(NULL, svg, m->cell);
+        if (ws != FBRL_OK) {
+            fprintf(stderr, "fbrlmon: --svg %s: %s\n", svg, fbrl_status_str(ws));
             st = -1;
         } else {
             fprintf(out, "picture: %s\n", svg);

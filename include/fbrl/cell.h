@@ -159,8 +159,10 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_
 
 /* A text sink (the SVG picture). */
 typedef void (*fbrl_cell_write_fn)(void *ctx, const char *s, size_t n);
-/* Saves text as a file (the host's: CELL-SVG); FBRL_OK or why not. */
-typedef fbrl_status (*fbrl_cell_save_fn)(void *ctx, const char *path, const char *text, size_t n);
+struct fbrl_cell_words;
+/* Writes the picture of cw to the file path (the host's, for CELL-SVG: it opens the file and
+ * calls fbrl_cell_svg with a writer into it); FBRL_OK or why not. */
+typedef fbrl_status (*fbrl_cell_save_fn)(void *ctx, const char *path, struct fbrl_cell_words *cw);
 
 /* What the guard saw since install or CELL-CLEAR, for a report. */
 typedef struct fbrl_cell_stats {

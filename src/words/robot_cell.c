@@ -278,27 +278,7 @@ static fbrl_status w_show(fbrl_cell_words *cw, const cw_word *w)
     return FBRL_OK;
 }
 
-/* CELL-SVG ( c-addr u -- ) or ( PAR: file ): the picture */
-typedef struct svg_buf {
-    char *p;
-    size_t n, cap;
-    int over;
-} svg_buf;
-
-static void svg_put(void *ctx, const char *s, size_t n)
-{
-    svg_buf *b = ctx;
-    if (b->n + n > b->cap) {
-        b->over = 1;
-        return;
-    }
-    memcpy(b->p + b->n, s, n);
-    b->n += n;
-}
-
-#define SVG_MAX (256u * 1024u)
-static char svg_text[SVG_MAX]; /* one picture at a time: the words are not reentrant */
-
+/* CELL-SVG ( c-addr u -- ) or ( PAR: file ): the picture, through the host's file */
 static fbrl_status w_svg(fbrl_cell_words *cw, const cw_word *w)
 {
     fbrl_vmx_val v[1];
@@ -312,12 +292,7 @@ static fbrl_status w_svg(fbrl_cell_words *cw, const cw_word *w)
         return fbrl_vmx_throwf(cw->vm, FBRL_THROW_BAD_NUMBER, "%s: a file name must follow", w->name);
     memcpy(path, v[0].s, v[0].n);
     path[v[0].n] = '\0';
-    svg_buf b = {svg_text, 0, SVG_MAX, 0};
-    fbrl_cell_svg(cw, svg_put, &b);
-    if (b.over)
-        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENOSPC), "%s: the picture is too large",
-                               w->name);
-    st = cw->save(cw->save_ctx, path, b.p, b.n);
+    st = cw->save(cw->save_ctx, path, cw);
     if (st != FBRL_OK)
         return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(st), "%s: %s: %s", w->name, path,
                                fbrl_status_str(st));
