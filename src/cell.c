@@ -542,6 +542,22 @@ static double clearance(const fbrl_cell_model *c, const double a[3], const doubl
             t->lb[k] > best) {
             continue; /* far: its bound stands for it, and it cannot be the least */
         }
+        if (c->obj[k].kind == FBRL_CELL_CYLINDER) {
+            /* the box around the cylinder is nearer than the cylinder: if even that is further
+             * than the least so far, its distance is bound enough (the exact one costs more) */
+            const fbrl_cell_obj *o = &c->obj[k];
+            double lo[3] = {o->c[0] - o->r, o->c[1] - o->r, o->lo[2]},
+                   hi[3] = {o->c[0] + o->r, o->c[1] + o->r, o->hi[2]};
+            double oa[3], ob[3], bd;
+            to_obj(c, o, a, oa);
+            to_obj(c, o, b, ob);
+            bd = seg_box(lo, hi, oa, ob, nb) - c->tool_r;
+            if (bd > best) {
+                if (t && k < TRACK_MAX)
+                    t->lb[k] = bd;
+                continue;
+            }
+        }
         d = measure(c, k, a, b, nb);
         if (t && k < TRACK_MAX)
             t->lb[k] = d;
