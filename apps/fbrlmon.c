@@ -6,6 +6,7 @@
  * is a terminal, an interactive session (line editing, history, completion);
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
+#include <limits.h>
 #include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +15,7 @@
 
 #include "mon.h"
 #include "mon_conn.h"
+#include "mon_dry.h"
 #include "mon_relink.h"
 #include "mon_safe.h"
 #include "mon_ws.h"
@@ -39,6 +41,9 @@ typedef struct options {
     const char *workspace; /* --workspace FILE */
     const char *printer;   /* --printer: PRINT-LOC's destination instead of the controller's line */
     mon_conn_options conn;
+    int dry_run;     /* --dry-run (apps/mon_dry.c) */
+    const char *svg; /* --svg FILE */
+    mon_dry_options dry;
 } options;
 
 static void usage(FILE *f)
@@ -69,6 +74,11 @@ static void usage(FILE *f)
           "                   serial line) instead of the controller's line\n"
           "  --workspace FILE load the workspace FILE (if it exists) first; at exit offer\n"
           "                   to save changes to it (docs/workspace.md)\n"
+          "  --dry-run        run the FILEs against the built-in emulator with every wait\n"
+          "                   skipped, then report duration, moves, clearance, errors,\n"
+          "                   pulses and waits, and draw the cell (docs/workcell.md)\n"
+          "  --svg FILE       the dry run's picture (default: the last FILE's name .svg)\n"
+          "  --keep-files     the dry run writes the plan's files (default: a scratch dir)\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -101,8 +111,9 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = {
-        "--port",      "--baud",       "--data-bits", "--parity",    "--stop-bits", "--flow", "--low-latency",
-        "--sim-state", "--sim-inputs", "--printer",   "--workspace", "--sim-model", "--axes", NULL};
+        "--port",      "--baud",        "--data-bits", "--parity",     "--stop-bits",
+        "--flow",      "--low-latency", "--sim-state", "--sim-inputs", "--printer",
+        "--workspace", "--sim-model",   "--axes",      "--svg",        NULL};
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -115,6 +126,8 @@ static int set_valued(options *o, const char *a, const char *v)
     if (strcmp(a, "--port") == 0) {
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
+    } else if (strcmp(a, "--svg") == 0) {
+        o->svg = v;
     } else if (strcmp(a, "--workspace") == 0) {
         o->workspace = v;
     } else if (strcmp(a, "--sim-state") == 0) {
@@ -168,6 +181,10 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             o->conn.kind = MON_CONN_OFFLINE;
             explicit_conn = 1;
 #ifdef FBRLMON_HAVE_SIM
+        } else if (strcmp(a, "--dry-run") == 0) {
+            o->dry_run = 1;
+        } else if (strcmp(a, "--keep-files") == 0) {
+            o->dry.keep_files = 1;
         } else if (strcmp(a, "--sim") == 0) {
             o->conn.kind = MON_CONN_SIM;
             explicit_conn = 1;
@@ -231,6 +248,48 @@ static void print_to_printer(void *ctx, const char *s, size_t n)
         fprintf(stderr, "fbrlmon: --printer: write failed: %s\n", strerror(errno));
 }
 
+/* --dry-run: file names absolute (the plan runs in a scratch directory), the picture's
+ * name, the shared clock. */
+static int dry_prepare(options *o)
+{
+    static char paths[64][PATH_MAX], svg[PATH_MAX];
+    size_t n = 0;
+    for (size_t i = 0; i < o->n_actions; i++) {
+        if (o->actions[i].is_text)
+            continue;
+        if (n == 64 || realpath(o->actions[i].arg, paths[n]) == NULL) {
+            fprintf(stderr, "fbrlmon: --dry-run: %s: %s\n", o->actions[i].arg,
+                    n == 64 ? "too many files" : strerror(errno));
+            return -1;
+        }
+        o->actions[i].arg = paths[n++];
+    }
+    if (o->svg == NULL && n > 0) {
+        const char *base = strrchr(paths[n - 1], '/') ? strrchr(paths[n - 1], '/') + 1 : paths[n - 1];
+        size_t len = strlen(base);
+        if (len > 5 && strcmp(base + len - 5, ".fbrl") == 0)
+            len -= 5;
+        snprintf(svg, sizeof svg, "%.*s.svg", (int)len, base);
+        o->svg = svg;
+    }
+    if (o->svg != NULL && o->svg[0] != '/') { /* where the user is, not the scratch directory */
+        static char abs_svg[PATH_MAX];
+        char cwd[PATH_MAX];
+        if (getcwd(cwd, sizeof cwd) == NULL)
+            return -1;
+        if (strlen(cwd) + 1 + strlen(o->svg) >= sizeof abs_svg) {
+            fprintf(stderr, "fbrlmon: --svg %s: the path is too long\n", o->svg);
+            return -1;
+        }
+        memcpy(abs_svg, cwd, strlen(cwd));
+        abs_svg[strlen(cwd)] = '/';
+        memcpy(abs_svg + strlen(cwd) + 1, o->svg, strlen(o->svg) + 1);
+        o->svg = abs_svg;
+    }
+    o->conn_default = 0;
+    return mon_dry_setup(&o->dry, &o->conn);
+}
+
 int main(int argc, char **argv)
 {
     options opt;
@@ -257,6 +316,10 @@ int main(int argc, char **argv)
             return MON_EXIT_CONNECT;
         }
         return MON_EXIT_OK;
+    }
+    if (opt.dry_run && dry_prepare(&opt) != 0) {
+        free(opt.actions);
+        return MON_EXIT_CONNECT;
     }
     {
         char err[512];
@@ -308,6 +371,8 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
 
+    if (opt.dry_run)
+        mon_dry_start(&m);
     /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
      * skipped (docs/fbrlmon.md "Ctrl-C") */
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm) && !stopped; i++) {
@@ -326,8 +391,10 @@ int main(int argc, char **argv)
         stopped = mon_safe_end(&m, a->is_text ? "-e" : a->arg, a->is_text ? 1 : 0);
     }
 
+    if (opt.dry_run && mon_dry_finish(&m, NULL, stdout, opt.svg) != 0)
+        m.errors++;
     /* after a Ctrl-C, only a terminal goes on (at the prompt); piped input ends */
-    if (!fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
+    if (!opt.dry_run && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
         if (m.host.in_is_tty) {
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
@@ -355,7 +422,8 @@ int main(int argc, char **argv)
         }
     }
 
-    mon_ws_finish(&m);
+    if (!opt.dry_run) /* a dry run changes no file it was not asked to */
+        mon_ws_finish(&m);
     mon_close(&m);
     if (printer != NULL && fclose(printer) != 0)
         fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));

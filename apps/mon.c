@@ -9,6 +9,30 @@
 #include <string.h>
 #include <unistd.h>
 
+/* A failed write leaves the stream's error flag set: mon_save_svg checks it at the end. */
+static void write_file(void *ctx, const char *s, size_t n) { (void)fwrite(s, 1, n, (FILE *)ctx); }
+
+/* CELL-SVG's file (and the dry run's picture): written whole through a temporary and
+ * renamed, so a reader never sees half a picture. */
+fbrl_status mon_save_svg(void *ctx, const char *path, fbrl_cell_words *cw)
+{
+    char tmp[1100];
+    FILE *f;
+    int bad;
+    (void)ctx;
+    if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
+        return FBRL_ENAME;
+    if ((f = fopen(tmp, "w")) == NULL)
+        return FBRL_EIO;
+    fbrl_cell_svg(cw, write_file, f);
+    bad = ferror(f);
+    if (fclose(f) != 0 || bad) {
+        remove(tmp);
+        return FBRL_EIO;
+    }
+    return rename(tmp, path) == 0 ? FBRL_OK : (remove(tmp), FBRL_EIO);
+}
+
 int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
 {
     fbrl_vm_config cfg;
@@ -50,6 +74,12 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
                                                         MON_WORKSPACE_STORAGE);
     }
     if (st == FBRL_OK) {
+        m->cell = calloc(1, sizeof *m->cell);
+        st = m->cell == NULL ? FBRL_ENOSPC : fbrl_cell_install(m->vm, m->cell, &m->robot, &m->glossary);
+        if (st == FBRL_OK)
+            fbrl_cell_set_save(m->cell, mon_save_svg, NULL);
+    }
+    if (st == FBRL_OK) {
         m->link = link;
         st = mon_teach_install(m);
     }
@@ -67,6 +97,7 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         fprintf(stderr, "fbrlmon: cannot create the VM: %s\n", fbrl_status_str(st));
         free(m->file_mem);
         free(m->ws_mem);
+        free(m->cell);
         free(m->vm_mem);
         m->file_mem = NULL;
         m->ws_mem = NULL;
@@ -88,6 +119,7 @@ void mon_close(mon *m)
     free(m->file_mem);
     m->file_mem = NULL;
     free(m->ws_mem);
+    free(m->cell);
     m->ws_mem = NULL;
     mon_host_free(&m->host);
     free(m->vm_mem);

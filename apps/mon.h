@@ -4,6 +4,7 @@
 #define FBRLMON_MON_H
 
 #include <stddef.h>
+#include "fbrl/cell.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
 #include "fbrl/recover.h"
@@ -39,6 +40,7 @@ typedef struct mon {
     fbrl_robot robot;       /* robot words; talk through the link, if any */
     fbrl_workspace ws;      /* SAVE-WORKSPACE, LOAD-WORKSPACE (mon_ws.c: --workspace) */
     void *ws_mem;
+    fbrl_cell_words *cell; /* the work cell and the motion guard (CELL-BOX ...) */
     fbrl_link *link;       /* the controller (NULL offline); TEACH talks through it too */
     unsigned long errors;  /* errors in files, -e text and piped input */
     struct mon_conn *conn; /* the connection RECONNECT opens again (NULL: none) */
@@ -57,6 +59,8 @@ typedef struct mon {
  * and the thesis's glossary and robot words; link is the connected controller or
  * NULL (offline: the robot words say so when used). */
 int mon_open(mon *m, size_t dict_bytes, fbrl_link *link);
+/* The picture of the cell written to path whole (CELL-SVG, the dry run's picture). */
+fbrl_status mon_save_svg(void *ctx, const char *path, fbrl_cell_words *cw);
 /* Close the data files (committing them; a failure counts as an error) and free. */
 void mon_close(mon *m);
 

@@ -58,6 +58,9 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     so.state_path = arg[0] ? arg : c->sim_state;
     so.inputs_path = c->sim_inputs;
     so.model = c->sim_model;
+    so.clock = c->sim_clock;
+    so.skip = c->sim_skip;
+    so.clock_ctx = c->sim_clock_ctx;
     st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;
@@ -102,6 +105,9 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     c->sim_state = o->sim_state;
     c->sim_inputs = o->sim_inputs;
     c->sim_model = o->sim_model;
+    c->sim_clock = o->sim_clock;
+    c->sim_skip = o->sim_skip;
+    c->sim_clock_ctx = o->sim_clock_ctx;
     if (o->kind == MON_CONN_OFFLINE)
         return FBRL_OK;
     if (o->kind == MON_CONN_SIM) {
@@ -131,6 +137,8 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         /* The link reads W2 and STATUS rows for as many axes as the arm has. */
         fbrl_link_config lc;
         fbrl_link_config_init(&lc);
+        lc.on_exec = o->on_exec;
+        lc.exec_ctx = o->on_exec_ctx;
         if (o->axes)
             lc.naxes = o->axes;
 #ifdef FBRLMON_HAVE_SIM

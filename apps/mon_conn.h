@@ -24,6 +24,12 @@ typedef struct mon_conn_options {
     const char *sim_inputs; /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
     const char *sim_model;  /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
     unsigned axes;          /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
+    double (*sim_clock)(void *ctx); /* MON_CONN_SIM: the emulator's clock (the dry run's), or NULL */
+    void (*sim_skip)(void *ctx, double s);
+    void *sim_clock_ctx;
+    /* the link's run log (fbrl_link_config on_exec), or NULL */
+    void (*on_exec)(void *ctx, const char *line, size_t len, fbrl_status result);
+    void *on_exec_ctx;
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
@@ -34,6 +40,9 @@ typedef struct mon_conn {
     fbrl_sim *sim;
 #endif
     const char *sim_state, *sim_inputs, *sim_model;
+    double (*sim_clock)(void *ctx);
+    void (*sim_skip)(void *ctx, double s);
+    void *sim_clock_ctx;
     char sim_err[256];
     fbrl_port port;
     fbrl_link link;

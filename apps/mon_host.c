@@ -343,6 +343,19 @@ static void host_time_date(void *user, int out[6])
     out[5] = tm.tm_year + 1900;
 }
 
+/* The dry run's clock (mon_host_use_clock), or NULL. */
+static uint64_t (*g_now_us)(void *user);
+static void (*g_sleep_ms)(void *user, uint32_t ms);
+static void (*g_time_date)(void *user, int out[6]);
+
+void mon_host_use_clock(uint64_t (*now_us)(void *user), void (*sleep_ms)(void *user, uint32_t ms),
+                        void (*time_date)(void *user, int out[6]))
+{
+    g_now_us = now_us;
+    g_sleep_ms = sleep_ms;
+    g_time_date = time_date;
+}
+
 void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
 {
     memset(h, 0, sizeof *h);
@@ -360,9 +373,9 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->file_open = host_file_open;
     cb->file_read_line = host_file_read_line;
     cb->file_close = host_file_close;
-    cb->now_us = host_now_us;
-    cb->sleep_ms = host_sleep_ms;
-    cb->time_date = host_time_date;
+    cb->now_us = g_now_us ? g_now_us : host_now_us;
+    cb->sleep_ms = g_sleep_ms ? g_sleep_ms : host_sleep_ms;
+    cb->time_date = g_time_date ? g_time_date : host_time_date;
     cb->read_line = host_read_line;
 }
 

@@ -44,6 +44,9 @@ typedef struct mon_host {
 /* Fill h (output to `out`, keys from file descriptor `in_fd`) and the engine's
  * callback table that points at it. */
 void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb);
+/* Before mon_host_init: the clock the engine gets instead of the real one (the dry run's). */
+void mon_host_use_clock(uint64_t (*now_us)(void *user), void (*sleep_ms)(void *user, uint32_t ms),
+                        void (*time_date)(void *user, int out[6]));
 
 /* Next line of input from in_fd without its end (LF or CRLF); NULL at end of
  * input. The line stays valid until the next call. A line reaching MON_HOST_LINE_MAX

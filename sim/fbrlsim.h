@@ -38,6 +38,15 @@ typedef struct fbrl_sim_options {
     char parity;              /* 'N' 'E' 'O': the host channel's parity (CONFIG 0 sets it
                                * too); 0 = from the state file, else N. With E or O a
                                * corrupted byte is a parity error (docs/fbrlsim.md) */
+    const char *cell_path;    /* the work cell (docs/workcell.md): motions stop where they meet
+                               * it and answer 190-COLLISION; NULL: none */
+    /* The simulated clock (s), instead of real time x time_scale: a dry run's virtual clock;
+     * NULL: real time */
+    double (*clock)(void *ctx);
+    /* With clock: moves that clock forward by s when the controller itself waits for the
+     * arm or a scripted input (a command blocked in it): the dry run skips that wait too */
+    void (*skip)(void *ctx, double s);
+    void *clock_ctx;
 } fbrl_sim_options;
 
 void fbrl_sim_options_init(fbrl_sim_options *o);

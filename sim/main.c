@@ -33,6 +33,8 @@ static void usage(FILE *f)
           "  --model a255|a465   the arm: 5-axis A255 (default) or 6-axis A465; kept in --state\n"
           "  --state FILE        keep locations, variables, outputs and settings in FILE\n"
           "  --log FILE          append one line per command executed\n"
+          "  --cell FILE         the work cell (CELL-* words): a motion into it stops\n"
+          "                      there with 190-COLLISION\n"
           "  --inputs FILE       time-stamped control lines, e.g. '2.5 IN 3 1'\n"
           "  --control PATH      FIFO for control lines: IN n 0|1, POWER 0|1, OBJECT w, TEACH\n"
           "  --faults SPEC       drop=P,corrupt=P,noise=P,stall=MS,seed=S (both directions)\n"
@@ -97,6 +99,8 @@ int main(int argc, char **argv)
             o.state_path = v;
         } else if (!strcmp(a, "--log") && v) {
             o.log_path = v;
+        } else if (!strcmp(a, "--cell") && v) {
+            o.cell_path = v;
         } else if (!strcmp(a, "--inputs") && v) {
             o.inputs_path = v;
         } else if (!strcmp(a, "--control") && v) {

@@ -14,4 +14,9 @@ double sim_mono(void)
 
 double sim_real_now(const fbrl_sim *s) { return sim_mono() - s->t0; }
 
-double sim_now(const fbrl_sim *s) { return (sim_mono() - s->t0) * s->opt.time_scale; }
+double sim_now(const fbrl_sim *s)
+{
+    if (s->opt.clock)
+        return s->opt.clock(s->opt.clock_ctx) - s->clock_back;
+    return (sim_mono() - s->t0) * s->opt.time_scale;
+}

@@ -283,7 +283,20 @@ int sim_exec_step(fbrl_sim *s, int *err)
 {
     int block = 0, e;
     sim_arm_update(s);
+    if (s->arm.collide) { /* a motion met the cell: it answers when the arm stands */
+        if (s->arm.moving)
+            return EXEC_BLOCK;
+        s->arm.collide = 0;
+        *err = SIM_E_COLLISION;
+        return EXEC_DONE;
+    }
     e = s->run.prog ? run_continue(s, &block) : exec_line(s, s->term.cur, 1, &block);
+    if (!e && !block && s->arm.collide && s->arm.moving)
+        return EXEC_BLOCK;
+    if (!e && !block && s->arm.collide) { /* met at once: stopped where it stood */
+        s->arm.collide = 0;
+        e = SIM_E_COLLISION;
+    }
     if (block)
         return EXEC_BLOCK;
     *err = e ? e : -1;

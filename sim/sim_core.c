@@ -87,6 +87,8 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
         }
         s->dev.chan[0].parity = o->parity;
     }
+    if (o->cell_path && sim_cell_load(s, o->cell_path, err, errlen) != 0)
+        goto fail;
     if (o->inputs_path && sim_events_load(&s->events, o->inputs_path, err, errlen) != 0)
         goto fail;
     if (s->log_path && !(s->log = fopen(s->log_path, "ae"))) {
@@ -160,9 +162,31 @@ static double due_in(fbrl_sim *s, double limit)
     return r < 0 ? 0 : r;
 }
 
+/* On a given clock with skip: a command waiting in the controller for the arm or a scripted
+ * input makes the clock jump to when that comes (a dry run waits for nothing). */
+static void skip_wait(fbrl_sim *s)
+{
+    double now, next = INFINITY;
+    if (!s->opt.skip || !s->opt.clock || s->term.ps != PS_BUSY)
+        return;
+    now = sim_now(s);
+    if (s->arm.moving)
+        next = s->arm.mt1;
+    if (s->arm.xmoving && s->arm.xt1 < next)
+        next = s->arm.xt1;
+    if (!isfinite(next)) {
+        double r = sim_events_due(s, INFINITY);
+        if (isfinite(r) && r > 0)
+            next = now + r;
+    }
+    if (isfinite(next) && next > now)
+        s->opt.skip(s->opt.clock_ctx, next - now);
+}
+
 static void work(fbrl_sim *s)
 {
     double now = sim_real_now(s);
+    skip_wait(s);
     sim_arm_update(s);
     sim_events_run(s);
     sim_line_deliver(s, now);
@@ -314,6 +338,7 @@ void fbrl_sim_destroy(fbrl_sim *s)
     sim_line_free(&s->line);
     free(s->state_path);
     free(s->log_path);
+    free(s->cell_obj);
     free(s->control_path);
     free(s);
 }

@@ -45,6 +45,7 @@ const char *sim_error_text(int code)
         {SIM_E_BAD_AXIS, "BAD AXIS NUMBER"},
         {SIM_E_NOT_AVAILABLE, "NOT AVAILABLE"},
         {SIM_E_STRAIGHT_LINE, "STRAIGHT LINE ERROR"},
+        {SIM_E_COLLISION, "COLLISION"},
     };
     size_t i;
     for (i = 0; i < sizeof t / sizeof t[0]; i++)

@@ -30,7 +30,10 @@ enum sim_rapl_error {
     SIM_E_ILLEGAL_CHANNEL = 61,
     SIM_E_BAD_AXIS = 65,
     SIM_E_NOT_AVAILABLE = 66,
-    SIM_E_STRAIGHT_LINE = 68
+    SIM_E_STRAIGHT_LINE = 68,
+    /* [D] fbrlsim's own: the arm met the work cell (--cell). RAPL-II's table ends before 100
+     * (75 entries, reference/rapl-research.md), so no real code is taken. */
+    SIM_E_COLLISION = 190
 };
 
 /* The code for joint index i (0-based) out of range. */

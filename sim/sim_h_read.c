@@ -132,8 +132,10 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
             /* the difference over the last dt of simulated time, from the segment's own formula */
             double save = s->t0;
             s->t0 += dt / s->opt.time_scale;
+            s->clock_back += dt; /* the same, on a given clock */
             sim_joints_now(s, q2);
             s->t0 = save;
+            s->clock_back -= dt;
             for (i = 0; i < sim_naxes(s); i++)
                 sim_out_printf(o, i ? " %+011ld" : "%+011ld",
                                lround((q[i] - q2[i]) * s->arm.model->ppd[i] / dt));

@@ -8,6 +8,7 @@
 #include "arm.h"
 #include "sim_errors.h"
 #include "fbrlsim.h"
+#include "fbrl/cell.h"
 
 #define SIM_LINE_MAX   80 /* longest command line (error 025 beyond) */
 #define SIM_NAME_MAX   8
@@ -157,6 +158,8 @@ typedef struct sim_arm {
     double q[FBRL_SIM_ARM_MAX_AXES];  /* joints at the segment's start (or at rest) */
     double qt[FBRL_SIM_ARM_MAX_AXES]; /* joints at its end */
     double pa[6], pb[6];              /* straight-line segment poses */
+    int collide;                      /* this segment ends at a collision: its command answers
+                                       * SIM_E_COLLISION once the arm stands */
     int moving, straight;
     double mt0, mt1;                       /* simulated start and end */
     double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
@@ -192,7 +195,8 @@ struct fbrl_sim {
     int stop; /* set by fbrl_sim_stop (atomic builtins) */
     pthread_t thread;
     int thread_started;
-    double t0; /* real monotonic start */
+    double t0;         /* real monotonic start */
+    double clock_back; /* with opt.clock: sim_now reads this much earlier (W5's difference) */
     sim_line line;
     sim_io io;
     sim_term term;
@@ -201,6 +205,9 @@ struct fbrl_sim {
     sim_arm arm;
     sim_dev dev;
     sim_run run;
+    fbrl_cell_model cell; /* --cell: the work cell (sim_cell.c) */
+    fbrl_cell_obj *cell_obj;
+    int cell_on;
     int model_given; /* --model was given: the state file must be of that arm */
     int dirty;
     int save_warned; /* told stderr once that the state file cannot be written */
@@ -208,6 +215,12 @@ struct fbrl_sim {
 
 /* The arm's axis count (its model's). */
 static inline int sim_naxes(const fbrl_sim *s) { return s->arm.model->naxes; }
+
+/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb) meets
+ * it: the fraction of the way and the joints there (1.0: clear). */
+#define SIM_CELL_MAX 256
+int sim_cell_load(fbrl_sim *s, const char *path, char *err, size_t errlen);
+double sim_cell_stop(fbrl_sim *s, const double *qt, const double *pb, double *qstop);
 
 /* sim_clock.c */
 double sim_mono(void);

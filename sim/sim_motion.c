@@ -135,7 +135,14 @@ int sim_move_joints(fbrl_sim *s, const double target[FBRL_SIM_ARM_MAX_AXES])
     e = fbrl_sim_arm_check(s->arm.model, qt);
     if (e)
         return e;
-    begin(s, qt, joint_time(s, s->arm.q, qt), 0);
+    {
+        /* the work cell: the arm goes as far as the contact and stops there */
+        double qs[FBRL_SIM_ARM_MAX_AXES], f;
+        memcpy(qs, qt, sizeof qs);
+        f = sim_cell_stop(s, qt, NULL, qs);
+        begin(s, qs, joint_time(s, s->arm.q, qt) * (f < 1.0 ? f : 1.0), 0);
+        s->arm.collide = f < 1.0;
+    }
     return 0;
 }
 
@@ -188,7 +195,22 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
     t = d / (s->arm.model->linear * s->arm.speed / 100.0);
     if (joint_time(s, s->arm.q, qt) > t)
         t = joint_time(s, s->arm.q, qt);
+    {
+        /* the work cell: the line ends at the contact */
+        double qs[FBRL_SIM_ARM_MAX_AXES], f;
+        memcpy(qs, qt, sizeof qs);
+        f = sim_cell_stop(s, qt, s->arm.pb, qs);
+        if (f < 1.0) {
+            double end[6];
+            fbrl_sim_arm_lerp(from, s->arm.pb, f, end);
+            memcpy(s->arm.pb, end, sizeof end);
+            begin(s, qs, t * f, 1);
+            s->arm.collide = 1;
+            return 0;
+        }
+    }
     begin(s, qt, t, 1);
+    s->arm.collide = 0;
     return 0;
 }
 

@@ -137,6 +137,8 @@ static const char *const error_texts[] = {
     [66] = "NOT AVAILABLE",
     [67] = "AXIS SLOT ALREADY USED",
     [68] = "STRAIGHT LINE ERROR",
+    /* fbrlsim's own (docs/workcell.md): outside RAPL-II's table, which ends before 100 */
+    [190] = "COLLISION",
 };
 
 const char *fbrl_rapl_error_text(int code)
@@ -235,6 +237,9 @@ static const char *const error_help[] = {
     [67] = "that axis slot is taken already",
     [68] = "the straight line passes outside the arm's reach - move in steps, or joint-interpolated (without "
            "-STRT)",
+    [190] =
+        "the arm met the work cell and stopped there (fbrlsim --cell) - describe the cell on the host too "
+        "(CELL-BOX ...) so that the guard refuses such a move before it is sent",
 };
 
 const char *fbrl_rapl_error_help(int code)

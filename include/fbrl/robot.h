@@ -50,6 +50,40 @@ typedef void (*fbrl_robot_progress_fn)(void *ctx, const char *text);
 /* Room for one console line GET-CAL-POINTS reads. */
 #define FBRL_ROBOT_TIB 256
 
+struct fbrl_robot;
+
+/* A motion as a robot word is about to send it, for a guard (fbrl_robot_set_guard).
+ * Poses are in the arm's frame (after MAP-ON mapping and BASE-OFFSET), inches and degrees. */
+typedef enum fbrl_robot_move_kind {
+    FBRL_ROBOT_MOVE_POSE = 1, /* to pose v[0..5], or dist back from it along the tool axis (APPRO) */
+    FBRL_ROBOT_MOVE_DEPART,   /* dist back along the tool axis from where the arm stands */
+    FBRL_ROBOT_MOVE_JOG,      /* by v[0..2] (always straight) */
+    FBRL_ROBOT_MOVE_JOINTS,   /* to joint angles v[0..4], degrees (MA) */
+    FBRL_ROBOT_MOVE_DJOINTS,  /* by joint increments v[0..4], degrees (MI, JOINT) */
+    FBRL_ROBOT_MOVE_MOTOR,    /* motor v[0] (1..) by v[1] encoder pulses */
+    FBRL_ROBOT_MOVE_READY,    /* to the arm's READY position */
+    FBRL_ROBOT_MOVE_HOME,     /* HOME: the position registers are set, the arm does not move */
+    FBRL_ROBOT_MOVE_OTHER     /* a motion the host cannot follow (ALIGNTOOL, a raw RAPL line) */
+} fbrl_robot_move_kind;
+
+typedef struct fbrl_robot_move {
+    fbrl_robot_move_kind kind;
+    int straight; /* a straight-line motion (,S) */
+    double v[6];
+    double dist;      /* POSE: the approach distance (0: the pose itself); DEPART: the distance */
+    const char *word; /* the FBRL word sending it */
+} fbrl_robot_move;
+
+/* A guard on every motion: check runs before the first byte of the motion leaves the host
+ * (FBRL_OK lets it go; anything else is the word's result: the guard throws with its own
+ * message, fbrl_vmx_throwf); done runs after the motion command, with its result
+ * (FBRL_OK: the controller took it). */
+typedef struct fbrl_robot_guard {
+    fbrl_status (*check)(void *ctx, struct fbrl_robot *r, const fbrl_robot_move *m);
+    void (*done)(void *ctx, struct fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result);
+    void *ctx;
+} fbrl_robot_guard;
+
 /* A robot context: caller-owned, fields private. Keep it at a fixed address while the
  * VM uses it (the words point at it). */
 typedef struct fbrl_robot {
@@ -97,6 +131,10 @@ typedef struct fbrl_robot {
     int tell;
     fbrl_loc target; /* tell: the location a motion word is sending the arm to */
     int have_target;
+    /* the guard on every motion (fbrl_robot_set_guard), and a count that changes whenever
+     * the arm may have gone where the host cannot tell (a link set, HALT, a safe stop) */
+    fbrl_robot_guard guard;
+    unsigned long where_epoch;
     /* scratch storage in the VM's data space (made at install) */
     fbrl_cell tib; /* FBRL_ROBOT_TIB bytes */
 } fbrl_robot;
@@ -168,6 +206,15 @@ fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_d
 fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
                                      uint32_t pulse_ms);
 size_t fbrl_robot_devices_free(const fbrl_robot *r);
+
+/* Set (or with NULL remove) the guard every motion word consults (fbrl/cell.h installs one). */
+fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g);
+/* Changes whenever the arm may have moved where the host cannot follow it. */
+unsigned long fbrl_robot_where_epoch(const fbrl_robot *r);
+/* The arm's joint angles (degrees) read from the controller (W2) once the motion in progress
+ * has ended; *n gets how many (up to FBRL_RAPL_MAX_AXES). Throws in the VM on error
+ * (FBRL_ETHROW-like statuses as the robot words return them), naming word. */
+fbrl_status fbrl_robot_joints(fbrl_robot *r, const char *word, double *q, unsigned *n);
 
 /* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
 fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);

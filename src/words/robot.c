@@ -104,6 +104,7 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
     /* a controller we did not watch may be moving: the next motion asks it first */
     r->moving = link != NULL;
     r->motion[0] = 0;
+    rb_where_lost(r);
     if (link && link->u)
         fbrl_uart_get_config(link->u, &r->comm);
     rb_port_writer(r);

@@ -402,6 +402,11 @@ fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
     if (st != FBRL_OK)
         return st;
     raw_kind(r, line, &motion, &finish);
+    fbrl_robot_move m;
+    memset(&m, 0, sizeof m);
+    m.kind = FBRL_ROBOT_MOVE_OTHER; /* the host cannot tell where a raw line takes the arm */
+    if (motion && (st = rb_guard(r, w, &m)) != FBRL_OK)
+        return st;
     if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK)
         return st;
     if (motion) {
@@ -413,6 +418,8 @@ fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
     st = fbrl_link_raw(r->link, line);
     if (print)
         return_lines(r, fn, ctx);
+    if (motion)
+        (void)rb_guard_done(r, &m, st);
     return rb_link_result(r, w, st);
 }
 

@@ -12,8 +12,20 @@
 /* Commands without parameters (HOME, READY, HALT, FINISH ...). */
 static fbrl_status w_plain(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
+    fbrl_robot_move m;
+    fbrl_status st;
     (void)v;
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0);
+    memset(&m, 0, sizeof m);
+    m.kind = w->cmd == FBRL_RAPL_READY  ? FBRL_ROBOT_MOVE_READY
+             : w->cmd == FBRL_RAPL_HOME ? FBRL_ROBOT_MOVE_HOME
+                                        : FBRL_ROBOT_MOVE_OTHER;
+    int motion = w->cmd == FBRL_RAPL_READY || w->cmd == FBRL_RAPL_HOME || w->cmd == FBRL_RAPL_ALIGN;
+    if (motion && (st = rb_guard(r, w, &m)) != FBRL_OK)
+        return st;
+    st = rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0);
+    if (w->cmd == FBRL_RAPL_HALT)
+        rb_where_lost(r); /* stopped somewhere on the way */
+    return motion ? rb_guard_done(r, &m, st) : st;
 }
 
 /* One axis / number. arg: 0 plain; 1 axis 1..n with 0 = all (no argument sent);
@@ -47,10 +59,22 @@ static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
                       2000000000L);
     if (st != FBRL_OK)
         return st;
+    fbrl_robot_move m;
+    memset(&m, 0, sizeof m);
+    if (w->cmd == FBRL_RAPL_MOTOR) {
+        m.kind = FBRL_ROBOT_MOVE_MOTOR;
+        m.v[0] = (double)v[0].i;
+        m.v[1] = (double)v[1].i;
+    } else {
+        m.kind = FBRL_ROBOT_MOVE_DJOINTS;
+        m.v[v[0].i - 1] = (double)v[1].i;
+    }
+    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
+        return st;
     fbrl_rapl_arg a[2] = {fbrl_rapl_int((long)v[0].i), w->cmd == FBRL_RAPL_MOTOR
                                                            ? fbrl_rapl_int((long)v[1].i)
                                                            : fbrl_rapl_real((double)v[1].i)};
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 2, 0);
+    return rb_guard_done(r, &m, rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 2, 0));
 }
 
 /* GAIN ( motor# -- | F: value ) */
@@ -88,9 +112,16 @@ static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = rb_finite(r, w, v, 3);
     if (st != FBRL_OK)
         return st;
-    fbrl_rapl_arg a[3] = {fbrl_rapl_real(rb_len_in(r, v[0].f)), fbrl_rapl_real(rb_len_in(r, v[1].f)),
-                          fbrl_rapl_real(rb_len_in(r, v[2].f))};
-    return rb_cmd(r, w, FBRL_RAPL_JOG, a, 3, 0);
+    fbrl_robot_move m;
+    memset(&m, 0, sizeof m);
+    m.kind = FBRL_ROBOT_MOVE_JOG;
+    m.straight = 1;
+    for (int k = 0; k < 3; k++)
+        m.v[k] = rb_len_in(r, v[k].f);
+    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
+        return st;
+    fbrl_rapl_arg a[3] = {fbrl_rapl_real(m.v[0]), fbrl_rapl_real(m.v[1]), fbrl_rapl_real(m.v[2])};
+    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_JOG, a, 3, 0));
 }
 
 /* MA / MI ( F: j1 .. jn -- ), one per axis of the arm; arg 1 = straight */
@@ -100,10 +131,18 @@ static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = n <= FBRL_RAPL_ARM_AXES_MAX ? rb_finite(r, w, v, n) : FBRL_EINVAL;
     if (st != FBRL_OK)
         return st;
+    fbrl_robot_move m;
+    memset(&m, 0, sizeof m);
+    m.kind = w->cmd == FBRL_RAPL_MA ? FBRL_ROBOT_MOVE_JOINTS : FBRL_ROBOT_MOVE_DJOINTS;
+    m.straight = (int)w->arg;
+    for (size_t k = 0; k < n && k < 6; k++)
+        m.v[k] = v[k].f * (180.0 / 3.14159265358979323846);
+    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
+        return st;
     fbrl_rapl_arg a[FBRL_RAPL_ARM_AXES_MAX];
     for (size_t k = 0; k < n; k++)
         a[k] = fbrl_rapl_real(v[k].f);
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, n, (int)w->arg);
+    return rb_guard_done(r, &m, rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, n, (int)w->arg));
 }
 
 /* DEPART / DEPART-STRT ( F: distance -- ) */
@@ -112,8 +151,27 @@ static fbrl_status w_depart(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = rb_finite(r, w, v, 1);
     if (st != FBRL_OK)
         return st;
-    fbrl_rapl_arg a = fbrl_rapl_real(rb_len_in(r, v[0].f));
-    return rb_cmd(r, w, FBRL_RAPL_DEPART, &a, 1, (int)w->arg);
+    fbrl_robot_move m;
+    memset(&m, 0, sizeof m);
+    m.kind = FBRL_ROBOT_MOVE_DEPART;
+    m.straight = (int)w->arg;
+    m.dist = rb_len_in(r, v[0].f);
+    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
+        return st;
+    fbrl_rapl_arg a = fbrl_rapl_real(m.dist);
+    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_DEPART, &a, 1, (int)w->arg));
+}
+
+/* The guard's view of a move to a location (at arm coordinates). */
+static fbrl_robot_move *pose_move(fbrl_robot_move *m, const fbrl_loc *arm, double dist, int straight)
+{
+    memset(m, 0, sizeof *m);
+    m->kind = FBRL_ROBOT_MOVE_POSE;
+    m->straight = straight;
+    m->v[0] = arm->x, m->v[1] = arm->y, m->v[2] = arm->z;
+    m->v[3] = arm->o, m->v[4] = arm->a, m->v[5] = arm->t;
+    m->dist = dist;
+    return m;
 }
 
 /* MOV / MOV-STRT ( loc -- ): POINT scratch, then MOVE scratch[,S] */
@@ -124,8 +182,11 @@ static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_status st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK)
         st = rb_online(r);
+    fbrl_robot_move m;
     if (st == FBRL_OK)
         st = rb_to_arm(r, w, &user, &arm);
+    if (st == FBRL_OK)
+        st = rb_guard(r, w, pose_move(&m, &arm, 0.0, (int)w->arg));
     if (st == FBRL_OK)
         st = rb_still(r, w); /* the step starts once the arm stands */
     if (st == FBRL_OK)
@@ -134,7 +195,7 @@ static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
         return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
     r->target = user, r->have_target = 1; /* what tell shows: the user's location */
-    return rb_cmd(r, w, FBRL_RAPL_MOVE, &a, 1, (int)w->arg);
+    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_MOVE, &a, 1, (int)w->arg));
 }
 
 /* APPROACH / APPROACH-STRT ( loc -- | F: distance -- ) */
@@ -147,16 +208,20 @@ static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
         st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK)
         st = rb_online(r);
+    fbrl_robot_move m;
     if (st == FBRL_OK)
         st = rb_to_arm(r, w, &user, &arm);
+    if (st == FBRL_OK)
+        st = rb_guard(r, w, pose_move(&m, &arm, rb_len_in(r, v[1].f), (int)w->arg));
     if (st == FBRL_OK)
         st = rb_still(r, w); /* the step starts once the arm stands */
     if (st == FBRL_OK)
         st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK)
         return st;
-    fbrl_rapl_arg a[2] = {fbrl_rapl_str(name), fbrl_rapl_real(rb_len_in(r, v[1].f))};
-    return rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg); /* above the location: no target shown */
+    fbrl_rapl_arg a[2] = {fbrl_rapl_str(name), fbrl_rapl_real(m.dist)};
+    /* above the location: no target shown */
+    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg));
 }
 
 /* ARM-HERE ( loc -- ): wait for the motion to end, read W2, store it unmapped */
@@ -319,7 +384,8 @@ const rb_word rb_motion_words[] = {
     {"JOINT", w_joint, "II", 0, CMD(JOINT), 0, "( joint degrees -- )", "drive one joint by degrees"},
     {"MOTOR", w_joint, "II", 0, CMD(MOTOR), 0, "( axis# #pulses -- )", "drive one motor by encoder pulses"},
     {"MA", w_joints, "J", 0, CMD(MA), 0, "( F: j1 .. jn -- )",
-     "joint-interpolated move to absolute joint angles, radians, one per axis (5 on the A255, 6 on the A465)"},
+     "joint-interpolated move to absolute joint angles, radians, one per axis (5 on the A255, 6 on the "
+     "A465)"},
     {"MI", w_joints, "J", 0, CMD(MI), 0, "( F: j1 .. jn -- )",
      "joint-interpolated move by joint increments, radians, one per axis (5 on the A255, 6 on the A465)"},
     {"READY", w_plain, "", 0, CMD(READY), 0, "( -- )", "move the arm to the READY position"},

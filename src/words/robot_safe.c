@@ -36,6 +36,7 @@ fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out)
     if (!r)
         return out->result = FBRL_EINVAL;
     out->was_moving = r->moving;
+    rb_where_lost(r); /* wherever the arm stops, the host did not choose it */
     memcpy(out->motion, r->motion, sizeof out->motion);
     if (!r->link)
         return out->result = FBRL_EOFFLINE;

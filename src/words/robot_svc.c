@@ -1,5 +1,6 @@
 /* robot_svc.c - what every robot word uses from the VM: throwing an error (with the
- * word's name), Ctrl-C while a word waits, console output and the host's clock. */
+ * word's name), Ctrl-C while a word waits, console output and the host's clock; and the
+ * motion guard's hook every motion word passes before it sends a byte. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -73,4 +74,34 @@ fbrl_status rb_wait_ms(fbrl_robot *r, const char *who, uint32_t ms)
     }
     r->progress(r->progress_ctx, NULL);
     return st;
+}
+
+/* ---- the motion guard's hook ---- */
+
+fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g)
+{
+    if (!r)
+        return FBRL_EINVAL;
+    if (g)
+        r->guard = *g;
+    else
+        memset(&r->guard, 0, sizeof r->guard);
+    return FBRL_OK;
+}
+
+unsigned long fbrl_robot_where_epoch(const fbrl_robot *r) { return r ? r->where_epoch : 0; }
+
+void rb_where_lost(fbrl_robot *r) { r->where_epoch++; }
+
+fbrl_status rb_guard(fbrl_robot *r, const rb_word *w, fbrl_robot_move *m)
+{
+    m->word = w->name;
+    return r->guard.check ? r->guard.check(r->guard.ctx, r, m) : FBRL_OK;
+}
+
+fbrl_status rb_guard_done(fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result)
+{
+    if (r->guard.done)
+        r->guard.done(r->guard.ctx, r, m, result);
+    return result;
 }

@@ -17,7 +17,7 @@ for case in "a -0.4499 -0.4501 -0.4500" "b -0.4500 -0.4499 -0.4502" "c -0.4497 -
     name=$1 z1=$2 z2=$3 z3=$4
     dir=$work/$name
     mkdir -p "$dir"
-    cp "$ex/asps_cell.fbrl" "$dir/"
+    cp "$ex/asps_cell.fbrl" "$ex/asps_cell_objects.fbrl" "$dir/"
     awk -v z1="$z1" -v z2="$z2" -v z3="$z3" '
         /^JOG / { n++; $4 = (n == 1 ? z1 : n == 2 ? z2 : z3) }
         { print }' "$ex/sample_prep.fbrl" >"$dir/sample_prep.fbrl"

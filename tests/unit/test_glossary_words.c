@@ -21,6 +21,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "fbrl/cell.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
@@ -35,6 +36,7 @@ typedef struct fixture {
     fbrl_vm *vm;
     fbrl_glossary g;
     fbrl_robot r;
+    fbrl_cell_words cell;
     vmh_text out;
 } fixture;
 
@@ -54,6 +56,7 @@ static int setup(void **state)
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     assert_int_equal(fbrl_glossary_install(f->vm, &f->g), FBRL_OK);
     assert_int_equal(fbrl_robot_install(f->vm, &f->r, NULL, &f->g), FBRL_OK);
+    assert_int_equal(fbrl_cell_install(f->vm, &f->cell, &f->r, &f->g), FBRL_OK);
     *state = f;
     return 0;
 }
@@ -546,15 +549,46 @@ static void type_string_prints(void **state)
     assert_string_equal(f->out.s, "ROBOT");
 }
 
-static void forth_glossary_audit(void **state)
+static void run_forth(fixture *f, const char *file);
+
+static void forth_glossary_audit(void **state) { run_forth(*state, "glossary_audit.fs"); }
+
+/* The work-cell words (tests/forth/cell_words.fs), and the one clear message each bad
+ * description gets. */
+static void forth_robot_cell(void **state)
 {
     fixture *f = *state;
+    run_forth(f, "cell_words.fs");
+    static const struct {
+        const char *text, *says;
+    } bad[] = {
+        {"CELL-CLEAR 0E0 0E0 0E0 1E0 1E0 1E0 CELL-BOX B 0E0 0E0 0E0 1E0 1E0 1E0 CELL-BOX b",
+         "CELL-BOX: B is already an obstacle of the cell"},
+        {"0E0 0E0 0E0 -1E0 1E0 1E0 CELL-BOX NEG", "CELL-BOX: NEG: every size must be positive"},
+        {"0E0 0E0 0E0 0E0 1E0 CELL-CYLINDER THIN", "CELL-CYLINDER: THIN: every size must be positive"},
+        {"CREATE-LOC IN-IT 5E0 5E0 1E0 0E0 -90E0 0E0 IN-IT DEFINE-LOC 4E0 4E0 0E0 6E0 6E0 2E0 CELL-BOX HULL",
+         "CELL-BOX: location IN-IT (X 5.0000 Y 5.0000 Z 1.0000) lies inside HULL"},
+        {"-1E0 1E0 CELL-TOOL", "CELL-TOOL: the tool's length and radius must not be negative"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        assert_int_not_equal(fbrl_vm_eval(f->vm, bad[k].text, strlen(bad[k].text)), FBRL_OK);
+        const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
+        if (strstr(e->message, bad[k].says) == NULL)
+            print_error("%s\n  says '%s'\n  want '%s'\n", bad[k].text, e->message, bad[k].says);
+        assert_non_null(strstr(e->message, bad[k].says));
+    }
+}
+
+static void run_forth(fixture *f, const char *file)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s%s", FORTH_DIR, file);
     assert_int_equal(fbrl_vm_include(f->vm, FORTH_DIR "tester.fs"), FBRL_OK);
-    fbrl_status st = fbrl_vm_include(f->vm, FORTH_DIR "glossary_audit.fs");
+    fbrl_status st = fbrl_vm_include(f->vm, path);
     if (st != FBRL_OK) {
         const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
-        print_error("glossary_audit.fs: error %d (%s) at '%s' %s:%lu\n%s\n", e->throw_code, e->message,
-                    e->word, e->file, e->line, f->out.s);
+        print_error("%s: error %d (%s) at '%s' %s:%lu\n%s\n", file, e->throw_code, e->message, e->word,
+                    e->file, e->line, f->out.s);
     }
     assert_int_equal(st, FBRL_OK);
     const char *q = "#ERRORS @ #TESTS @";
@@ -563,7 +597,7 @@ static void forth_glossary_audit(void **state)
     assert_int_equal(fbrl_vm_pop(f->vm, &tests), FBRL_OK);
     assert_int_equal(fbrl_vm_pop(f->vm, &errors), FBRL_OK);
     if (errors)
-        print_error("glossary_audit.fs: %ld failures:\n%s\n", (long)errors, f->out.s);
+        print_error("%s: %ld failures:\n%s\n", file, (long)errors, f->out.s);
     assert_int_equal(errors, 0);
     assert_true(tests >= 5);
 }
@@ -576,6 +610,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(every_word_is_in_the_glossary, setup, teardown),
         cmocka_unit_test_setup_teardown(type_string_prints, setup, teardown),
         cmocka_unit_test_setup_teardown(forth_glossary_audit, setup, teardown),
+        cmocka_unit_test_setup_teardown(forth_robot_cell, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,707 @@
+/* robot_cell.c - the work cell's FBRL words (docs/workcell.md) and the guard they put on
+ * every robot motion: before a motion word sends its first byte, the path the arm will take
+ * (from where it stands, known from the last guarded motion or read with W2) is checked
+ * against the cell; a motion that would hit is refused, naming the obstacle and the point. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fbrl/cell.h"
+#include "fbrl/num.h"
+#include "fbrl/vmx.h"
+
+/* Encoder pulses per degree of the A255 (DESIGN 6), for MOTOR. */
+static const double a255_ppd[FBRL_CELL_AXES] = {200.0, 200.0, 200.0, 44.44, 22.22};
+/* READY (DESIGN 6). */
+static const double a255_ready[FBRL_CELL_AXES] = {0.0, 90.0, -90.0, 0.0, 0.0};
+
+typedef struct cw_word {
+    const char *name;
+    fbrl_status (*fn)(fbrl_cell_words *cw, const struct cw_word *w);
+    int arg;
+    const char *stack, *help;
+} cw_word;
+
+/* "12.3456" locale-free. */
+static const char *num(char *buf, size_t cap, double v)
+{
+    if (fbrl_num_fixed(buf, cap, v, 0, 4, 0, NULL) != FBRL_OK)
+        snprintf(buf, cap, "?");
+    return buf;
+}
+
+static fbrl_status pop_reals(fbrl_cell_words *cw, const cw_word *w, const char *spec, double *out)
+{
+    fbrl_vmx_val v[FBRL_VMX_MAXARGS];
+    size_t n = strlen(spec);
+    memset(v, 0, sizeof v);
+    fbrl_status st = fbrl_vmx_args(cw->vm, w->name, spec, NULL, FBRL_VMX_STACKS, v);
+    if (st != FBRL_OK)
+        return st;
+    for (size_t k = 0; k < n; k++) {
+        if (!isfinite(v[k].f))
+            return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENONFINITE),
+                                   "%s: a size or position is NaN or infinite", w->name);
+        out[k] = v[k].f;
+    }
+    return FBRL_OK;
+}
+
+static fbrl_status parse_name(fbrl_cell_words *cw, const cw_word *w, char *name)
+{
+    const char *t;
+    size_t len;
+    int found;
+    fbrl_status st = fbrl_vmx_parse(cw->vm, ' ', &t, &len, &found);
+    if (st != FBRL_OK)
+        return st;
+    if (len == 0)
+        return fbrl_vmx_throwf(cw->vm, FBRL_THROW_NO_NAME, "%s: a name must follow", w->name);
+    if (len > FBRL_CELL_NAME_MAX)
+        return fbrl_vmx_throwf(cw->vm, FBRL_THROW_NAME_TOO_LONG, "%s: name longer than %d characters",
+                               w->name, FBRL_CELL_NAME_MAX);
+    for (size_t k = 0; k < len; k++)
+        name[k] = (char)(t[k] >= 'a' && t[k] <= 'z' ? t[k] - 'a' + 'A' : t[k]);
+    name[len] = '\0';
+    return FBRL_OK;
+}
+
+/* ---- named locations inside an obstacle ---- */
+
+typedef struct loc_scan {
+    fbrl_cell_words *cw;
+    const fbrl_cell_obj *o;
+    char bad[FBRL_CELL_NAME_MAX + 1];
+} loc_scan;
+
+static int scan_one(void *ctx, const char *name, size_t len)
+{
+    loc_scan *s = ctx;
+    fbrl_cell xt;
+    fbrl_glossary_kind kind;
+    void *obj;
+    fbrl_cell_model one;
+    fbrl_cell_obj slot;
+    double d;
+    if (fbrl_vmx_find(s->cw->vm, name, len, &xt) != FBRL_OK ||
+        fbrl_glossary_object(s->cw->g, xt, &kind, &obj) != FBRL_OK || kind != FBRL_GLOSSARY_LOC)
+        return 0;
+    const fbrl_loc *l = obj;
+    double p[3] = {l->x, l->y, l->z};
+    fbrl_cell_obj copy = *s->o;
+    copy.block = -1; /* as taught: a block's locations and obstacles share its original frame */
+    if (fbrl_cell_init(&one, &slot, 1) != FBRL_OK || fbrl_cell_add(&one, &copy) != FBRL_OK ||
+        fbrl_cell_point_clearance(&one, p, -2, &d, NULL) != FBRL_OK)
+        return 0;
+    if (d < 0) {
+        size_t n = len < FBRL_CELL_NAME_MAX ? len : FBRL_CELL_NAME_MAX;
+        memcpy(s->bad, name, n);
+        s->bad[n] = '\0';
+        return 1;
+    }
+    return 0;
+}
+
+static fbrl_status add_obstacle(fbrl_cell_words *cw, const cw_word *w, fbrl_cell_obj *o)
+{
+    size_t dup;
+    char a[24], b[24], c[24];
+    o->block = cw->block;
+    if (fbrl_cell_find(&cw->model, o->name, strlen(o->name), &dup) == FBRL_OK)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENAME),
+                               "%s: %s is already an obstacle of the cell", w->name, o->name);
+    if (cw->g) {
+        loc_scan s;
+        memset(&s, 0, sizeof s);
+        s.cw = cw;
+        s.o = o;
+        fbrl_vm_words(cw->vm, scan_one, &s);
+        if (s.bad[0]) {
+            const fbrl_loc *l = NULL;
+            fbrl_cell xt;
+            fbrl_glossary_kind kind;
+            void *obj = NULL;
+            if (fbrl_vmx_find(cw->vm, s.bad, strlen(s.bad), &xt) == FBRL_OK &&
+                fbrl_glossary_object(cw->g, xt, &kind, &obj) == FBRL_OK)
+                l = obj;
+            return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE),
+                                   "%s: location %s (X %s Y %s Z %s) lies inside %s", w->name, s.bad,
+                                   num(a, sizeof a, l ? l->x : NAN), num(b, sizeof b, l ? l->y : NAN),
+                                   num(c, sizeof c, l ? l->z : NAN), o->name);
+        }
+    }
+    fbrl_status st = fbrl_cell_add(&cw->model, o);
+    if (st == FBRL_ERANGE)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(st),
+                               "%s: %s: every size must be positive (a corner beyond the other, a "
+                               "radius or height above zero)",
+                               w->name, o->name);
+    if (st == FBRL_EFULL)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(st), "%s: the cell is full (%d obstacles)",
+                               w->name, FBRL_CELL_MAX_OBJ);
+    if (st != FBRL_OK)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(st), "%s: %s: %s", w->name, o->name,
+                               fbrl_status_str(st));
+    return FBRL_OK;
+}
+
+/* CELL-BOX / CELL-KEEPOUT ( F: x0 y0 z0 x1 y1 z1 -- ) name */
+static fbrl_status w_box(fbrl_cell_words *cw, const cw_word *w)
+{
+    double v[6];
+    fbrl_cell_obj o;
+    memset(&o, 0, sizeof o);
+    fbrl_status st = pop_reals(cw, w, "RRRRRR", v);
+    if (st == FBRL_OK)
+        st = parse_name(cw, w, o.name);
+    if (st != FBRL_OK)
+        return st;
+    o.kind = w->arg;
+    for (int k = 0; k < 3; k++)
+        o.lo[k] = v[k], o.hi[k] = v[k + 3];
+    return add_obstacle(cw, w, &o);
+}
+
+/* CELL-CYLINDER ( F: x y z radius height -- ) name: upright, its base centred at x y z */
+static fbrl_status w_cylinder(fbrl_cell_words *cw, const cw_word *w)
+{
+    double v[5];
+    fbrl_cell_obj o;
+    memset(&o, 0, sizeof o);
+    fbrl_status st = pop_reals(cw, w, "RRRRR", v);
+    if (st == FBRL_OK)
+        st = parse_name(cw, w, o.name);
+    if (st != FBRL_OK)
+        return st;
+    o.kind = FBRL_CELL_CYLINDER;
+    o.c[0] = v[0], o.c[1] = v[1], o.lo[2] = v[2], o.r = v[3], o.hi[2] = v[2] + v[4];
+    if (!(v[4] > 0)) /* a negative height would still give hi > lo after the sum: refuse it here */
+        o.hi[2] = o.lo[2];
+    return add_obstacle(cw, w, &o);
+}
+
+/* CELL-TABLE ( F: z -- ) */
+static fbrl_status w_table(fbrl_cell_words *cw, const cw_word *w)
+{
+    double z;
+    fbrl_status st = pop_reals(cw, w, "R", &z);
+    return st == FBRL_OK ? fbrl_cell_set_table(&cw->model, z) : st;
+}
+
+/* CELL-TOOL ( F: length radius -- ) */
+static fbrl_status w_tool(fbrl_cell_words *cw, const cw_word *w)
+{
+    double v[2];
+    fbrl_status st = pop_reals(cw, w, "RR", v);
+    if (st != FBRL_OK)
+        return st;
+    if (fbrl_cell_set_tool(&cw->model, v[0], v[1]) != FBRL_OK)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE),
+                               "%s: the tool's length and radius must not be negative", w->name);
+    return FBRL_OK;
+}
+
+/* CELL-BLOCK name: later obstacles ride on the CREATE-CAL-STRU name (its calibration). */
+static fbrl_status w_block(fbrl_cell_words *cw, const cw_word *w)
+{
+    char name[FBRL_CELL_NAME_MAX + 1];
+    int index;
+    fbrl_status st = parse_name(cw, w, name);
+    if (st != FBRL_OK)
+        return st;
+    st = fbrl_cell_block(&cw->model, name, strlen(name), &index);
+    if (st != FBRL_OK)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(st), "%s: %s: at most %d blocks", w->name,
+                               name, FBRL_CELL_BLOCKS);
+    memcpy(cw->block_cal[index], name, sizeof name);
+    cw->block = index;
+    return FBRL_OK;
+}
+
+static fbrl_status w_world(fbrl_cell_words *cw, const cw_word *w)
+{
+    (void)w;
+    cw->block = -1;
+    return FBRL_OK;
+}
+
+static fbrl_status w_guard(fbrl_cell_words *cw, const cw_word *w)
+{
+    cw->guard = w->arg;
+    cw->known = 0; /* switched back on: where the arm is gets read afresh */
+    return FBRL_OK;
+}
+
+static fbrl_status w_clear(fbrl_cell_words *cw, const cw_word *w)
+{
+    (void)w;
+    fbrl_cell_clear(&cw->model);
+    cw->block = -1;
+    memset(&cw->stats, 0, sizeof cw->stats);
+    cw->stats.clearance = INFINITY;
+    cw->stats.near_obj = FBRL_CELL_NONE;
+    cw->npath = 0;
+    return FBRL_OK;
+}
+
+static void say(fbrl_cell_words *cw, const char *s) { fbrl_vmx_puts(cw->vm, s); }
+
+/* .CELL: the cell, and what the guard saw */
+static fbrl_status w_show(fbrl_cell_words *cw, const cw_word *w)
+{
+    char line[256], a[24], b[24], c[24], d[24], e[24], f[24];
+    (void)w;
+    snprintf(line, sizeof line, "cell: guard %s, table %s, tool length %s radius %s in, %zu obstacles\n",
+             cw->guard ? "on" : "OFF", cw->model.have_table ? num(a, sizeof a, cw->model.table_z) : "none",
+             num(b, sizeof b, cw->model.tool_len), num(c, sizeof c, cw->model.tool_r), cw->model.n);
+    say(cw, line);
+    for (size_t k = 0; k < cw->model.n; k++) {
+        const fbrl_cell_obj *o = &cw->model.obj[k];
+        if (o->kind == FBRL_CELL_CYLINDER)
+            snprintf(line, sizeof line, "  %-16s cylinder x %s y %s z %s..%s radius %s%s%s\n", o->name,
+                     num(a, sizeof a, o->c[0]), num(b, sizeof b, o->c[1]), num(c, sizeof c, o->lo[2]),
+                     num(d, sizeof d, o->hi[2]), num(e, sizeof e, o->r), o->block >= 0 ? " on " : "",
+                     o->block >= 0 ? cw->block_cal[o->block] : "");
+        else
+            snprintf(line, sizeof line, "  %-16s %s %s %s %s .. %s %s %s%s%s\n", o->name,
+                     o->kind == FBRL_CELL_KEEPOUT ? "keep-out" : "box", num(a, sizeof a, o->lo[0]),
+                     num(b, sizeof b, o->lo[1]), num(c, sizeof c, o->lo[2]), num(d, sizeof d, o->hi[0]),
+                     num(e, sizeof e, o->hi[1]), num(f, sizeof f, o->hi[2]), o->block >= 0 ? " on " : "",
+                     o->block >= 0 ? cw->block_cal[o->block] : "");
+        say(cw, line);
+    }
+    if (isfinite(cw->stats.clearance)) {
+        snprintf(line, sizeof line, "closest: %s in to %s (%s)\n", num(a, sizeof a, cw->stats.clearance),
+                 fbrl_cell_obj_name(&cw->model, cw->stats.near_obj), cw->stats.near_word);
+        say(cw, line);
+    }
+    return FBRL_OK;
+}
+
+/* CELL-SVG ( c-addr u -- ) or ( PAR: file ): the picture, through the host's file */
+static fbrl_status w_svg(fbrl_cell_words *cw, const cw_word *w)
+{
+    fbrl_vmx_val v[1];
+    char path[256];
+    fbrl_status st = fbrl_vmx_args(cw->vm, w->name, "S", NULL, FBRL_VMX_LINE, v);
+    if (st != FBRL_OK)
+        return st;
+    if (!cw->save)
+        return fbrl_vmx_throwf(cw->vm, FBRL_THROW_UNSUPPORTED, "%s: no file output in this host", w->name);
+    if (v[0].n == 0 || v[0].n >= sizeof path)
+        return fbrl_vmx_throwf(cw->vm, FBRL_THROW_BAD_NUMBER, "%s: a file name must follow", w->name);
+    memcpy(path, v[0].s, v[0].n);
+    path[v[0].n] = '\0';
+    st = cw->save(cw->save_ctx, path, cw);
+    if (st != FBRL_OK)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(st), "%s: %s: %s", w->name, path,
+                               fbrl_status_str(st));
+    return FBRL_OK;
+}
+
+static const cw_word words[] = {
+    {"CELL-TABLE", w_table, 0, "( F: z -- )", "the work cell's table top is at height z (in)"},
+    {"CELL-TOOL", w_tool, 0, "( F: length radius -- )",
+     "the tool envelope: reaches length (in) past the tool point, this thick"},
+    {"CELL-BOX", w_box, FBRL_CELL_BOX, "( F: x0 y0 z0 x1 y1 z1 -- ) ( PAR: name )",
+     "a solid box obstacle between two corners (in)"},
+    {"CELL-KEEPOUT", w_box, FBRL_CELL_KEEPOUT, "( F: x0 y0 z0 x1 y1 z1 -- ) ( PAR: name )",
+     "a keep-out zone: a box of space the tool must not enter"},
+    {"CELL-CYLINDER", w_cylinder, 0, "( F: x y z radius height -- ) ( PAR: name )",
+     "an upright cylinder obstacle standing at x y z"},
+    {"CELL-BLOCK", w_block, 0, "( PAR: cal-stru )",
+     "later obstacles move with that CREATE-CAL-STRU's calibration"},
+    {"CELL-WORLD", w_world, 0, "( -- )", "later obstacles stand fixed in the cell"},
+    {"CELL-GUARD-ON", w_guard, 1, "( -- )", "check every motion against the cell (the default)"},
+    {"CELL-GUARD-OFF", w_guard, 0, "( -- )", "send motions unchecked (the guard is off until CELL-GUARD-ON)"},
+    {"CELL-CLEAR", w_clear, 0, "( -- )", "forget the cell's table, obstacles and blocks"},
+    {".CELL", w_show, 0, "( -- )", "list the cell and the closest approach so far"},
+    {"CELL-SVG", w_svg, 0, "( c-addr u -- ) or ( PAR: file )",
+     "write an SVG picture of the cell and the tool's path"},
+};
+
+static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
+{
+    (void)vm;
+    const cw_word *w = word;
+    return w->fn(ctx, w);
+}
+
+/* ---- the guard ---- */
+
+/* Carry every block's obstacles to where its calibration puts the block now. */
+static void place_blocks(fbrl_cell_words *cw)
+{
+    for (size_t k = 0; cw->g && k < cw->model.nblocks; k++) {
+        fbrl_cell xt;
+        fbrl_glossary_kind kind;
+        void *obj;
+        const char *n = cw->block_cal[k];
+        if (fbrl_vmx_find(cw->vm, n, strlen(n), &xt) == FBRL_OK &&
+            fbrl_glossary_object(cw->g, xt, &kind, &obj) == FBRL_OK && kind == FBRL_GLOSSARY_CALSTRU)
+            (void)fbrl_cell_set_block(&cw->model, (int)k, obj);
+    }
+}
+
+static int active(const fbrl_cell_words *cw)
+{
+    return cw->guard && (cw->model.have_table || cw->model.n > 0);
+}
+
+static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what)
+{
+    char msg[160];
+    snprintf(msg, sizeof msg, "%s: %s; nothing was sent", m->word, what);
+    if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX)
+        memcpy(cw->stats.refusals[cw->stats.nrefusals++], msg, sizeof msg);
+    cw->stats.refused++;
+    return fbrl_vmx_throwf(cw->vm, FBRL_CELL_THROW_COLLISION, "%s", msg);
+}
+
+static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
+{
+    double pose[6];
+    if (cw->npath >= FBRL_CELL_PATH_MAX)
+        return;
+    fbrl_cell_fk(&cw->model.arm, q, pose);
+    memcpy(cw->path[cw->npath++], pose, 3 * sizeof(double));
+}
+
+static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *m)
+{
+    fbrl_cell_words *cw = ctx;
+    double q0[FBRL_CELL_AXES], q1[FBRL_CELL_AXES], p0[6], target[6];
+    fbrl_cell_hit *h = &cw->last;
+    fbrl_status st;
+    int line = m->straight;
+    char what[128], a[24], b[24], c[24];
+    if (!active(cw) || m->kind == FBRL_ROBOT_MOVE_HOME)
+        return FBRL_OK;
+    if (m->kind == FBRL_ROBOT_MOVE_OTHER)
+        return refuse(cw, m, "the guard cannot follow this motion (CELL-GUARD-OFF sends it unchecked)");
+    if (!cw->known || cw->epoch != fbrl_robot_where_epoch(r)) {
+        double q[16];
+        unsigned n = 0;
+        if ((st = fbrl_robot_joints(r, m->word, q, &n)) != FBRL_OK)
+            return st;
+        if (n != FBRL_CELL_AXES) /* the guard's kinematics are the A255's (DESIGN 6) */
+            return fbrl_vmx_throwf(
+                cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED),
+                "%s: the guard knows 5-axis arms (A255); this arm has %u axes (CELL-GUARD-OFF "
+                "sends the motion unchecked)",
+                m->word, n);
+        memcpy(cw->q, q, sizeof cw->q);
+        cw->known = 1;
+        cw->epoch = fbrl_robot_where_epoch(r);
+    }
+    place_blocks(cw);
+    memcpy(q0, cw->q, sizeof q0);
+    memcpy(q1, q0, sizeof q1);
+    fbrl_cell_fk(&cw->model.arm, q0, p0);
+    memcpy(target, p0, sizeof target);
+    switch (m->kind) {
+    case FBRL_ROBOT_MOVE_POSE:
+        memcpy(target, m->v, sizeof target);
+        if (m->dist != 0.0)
+            fbrl_cell_back_off(m->v, q0[0], m->dist, target);
+        break;
+    case FBRL_ROBOT_MOVE_DEPART: fbrl_cell_back_off(p0, q0[0], m->dist, target); break;
+    case FBRL_ROBOT_MOVE_JOG:
+        for (int k = 0; k < 3; k++)
+            target[k] += m->v[k];
+        line = 1;
+        break;
+    case FBRL_ROBOT_MOVE_JOINTS: memcpy(q1, m->v, sizeof q1); break;
+    case FBRL_ROBOT_MOVE_DJOINTS:
+        for (int k = 0; k < FBRL_CELL_AXES; k++)
+            q1[k] += m->v[k];
+        break;
+    case FBRL_ROBOT_MOVE_MOTOR:
+        if (m->v[0] >= 1 && m->v[0] <= FBRL_CELL_AXES)
+            q1[(int)m->v[0] - 1] += m->v[1] / a255_ppd[(int)m->v[0] - 1];
+        break;
+    case FBRL_ROBOT_MOVE_READY: memcpy(q1, a255_ready, sizeof q1); break;
+    default: break;
+    }
+    int to_pose = m->kind == FBRL_ROBOT_MOVE_POSE || m->kind == FBRL_ROBOT_MOVE_DEPART ||
+                  m->kind == FBRL_ROBOT_MOVE_JOG;
+    if (to_pose && !line && fbrl_cell_ik(&cw->model.arm, target, q0, q1) != FBRL_OK) {
+        cw->known = 0; /* out of reach: the controller says so (029, 04x) and stays put */
+        return FBRL_OK;
+    }
+    if (!to_pose && line)
+        fbrl_cell_fk(&cw->model.arm, q1, target);
+    st = line ? fbrl_cell_check_line(&cw->model, q0, target, h)
+              : fbrl_cell_check_joints(&cw->model, q0, q1, h);
+    if (st != FBRL_OK) {
+        cw->known = 0; /* a line the arm cannot follow: the controller refuses it (068) */
+        return FBRL_OK;
+    }
+    if (h->hit) {
+        snprintf(what, sizeof what, "would hit %s at X %s Y %s Z %s in (%d%% of the way)",
+                 fbrl_cell_obj_name(&cw->model, h->obj), num(a, sizeof a, h->at[0]),
+                 num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]), (int)(h->fraction * 100.0 + 0.5));
+        return refuse(cw, m, what);
+    }
+    memcpy(cw->pending, h->q_end, sizeof cw->pending);
+    return FBRL_OK;
+}
+
+static void guard_done(void *ctx, fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result)
+{
+    fbrl_cell_words *cw = ctx;
+    (void)r;
+    if (!active(cw) || result != FBRL_OK || m->kind == FBRL_ROBOT_MOVE_HOME || !cw->known) {
+        cw->known = 0;
+        return;
+    }
+    cw->stats.moves++;
+    if (cw->last.clearance < cw->stats.clearance) {
+        cw->stats.clearance = cw->last.clearance;
+        cw->stats.near_obj = cw->last.near_obj;
+        memcpy(cw->stats.near, cw->last.near, sizeof cw->stats.near);
+        snprintf(cw->stats.near_word, sizeof cw->stats.near_word, "%s", m->word);
+    }
+    /* the path for the picture: a few points along a joint move, its ends */
+    for (int k = 1; k <= 8; k++) {
+        double q[FBRL_CELL_AXES];
+        for (int i = 0; i < FBRL_CELL_AXES; i++)
+            q[i] = cw->q[i] + (cw->pending[i] - cw->q[i]) * k / 8.0;
+        note_path(cw, q);
+    }
+    memcpy(cw->q, cw->pending, sizeof cw->q);
+}
+
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g)
+{
+    fbrl_robot_guard gd;
+    if (!vm || !cw || !r)
+        return FBRL_EINVAL;
+    memset(cw, 0, sizeof *cw);
+    fbrl_cell_init(&cw->model, cw->obj, FBRL_CELL_MAX_OBJ);
+    cw->vm = vm;
+    cw->r = r;
+    cw->g = g;
+    cw->guard = 1;
+    cw->block = -1;
+    cw->stats.clearance = INFINITY;
+    cw->stats.near_obj = FBRL_CELL_NONE;
+    for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
+        fbrl_status st =
+            fbrl_vmx_define(vm, words[k].name, tramp, cw, &words[k], 0, words[k].stack, words[k].help);
+        if (st != FBRL_OK)
+            return st;
+    }
+    gd.check = guard_check;
+    gd.done = guard_done;
+    gd.ctx = cw;
+    return fbrl_robot_set_guard(r, &gd);
+}
+
+void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx)
+{
+    if (!cw)
+        return;
+    cw->save = fn;
+    cw->save_ctx = ctx;
+}
+
+const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw) { return cw ? &cw->stats : NULL; }
+
+/* ---- the picture ---- */
+
+#define SVG_SCALE 20.0   /* px per inch */
+#define SVG_HALF  24.0   /* in: each view shows the arm's reach around its base */
+#define SVG_Z_LO  (-3.5) /* in: the side view's height range */
+#define SVG_Z_HI  27.5
+
+typedef struct svg_ctx {
+    fbrl_cell_write_fn fn;
+    void *ctx;
+} svg_ctx;
+
+static void out(svg_ctx *s, const char *t) { s->fn(s->ctx, t, strlen(t)); }
+
+/* A view: x across; up = y (top view) or z (side view). Its origin on the page. */
+typedef struct view {
+    double ox, oy;
+    int side;
+} view;
+
+static double px(const view *v, double x) { return v->ox + x * SVG_SCALE; }
+static double py(const view *v, const double p[3]) { return v->oy - (v->side ? p[2] : p[1]) * SVG_SCALE; }
+
+static void rect(svg_ctx *s, const view *v, const double a[3], const double b[3], const char *cls,
+                 const char *name)
+{
+    char line[400], x[24], y[24], w[24], h[24];
+    double x0 = px(v, fmin(a[0], b[0])), x1 = px(v, fmax(a[0], b[0]));
+    double y0 = fmin(py(v, a), py(v, b)), y1 = fmax(py(v, a), py(v, b));
+    snprintf(line, sizeof line,
+             "<rect class=\"%s\" x=\"%s\" y=\"%s\" width=\"%s\" height=\"%s\"><title>%s</title></rect>\n",
+             cls, num(x, sizeof x, x0), num(y, sizeof y, y0), num(w, sizeof w, x1 - x0),
+             num(h, sizeof h, y1 - y0), name);
+    out(s, line);
+}
+
+static void label(svg_ctx *s, double x, double y, const char *cls, const char *text)
+{
+    char line[300], a[24], b[24];
+    snprintf(line, sizeof line, "<text class=\"%s\" x=\"%s\" y=\"%s\">%s</text>\n", cls, num(a, sizeof a, x),
+             num(b, sizeof b, y), text);
+    out(s, line);
+}
+
+/* An obstacle's corners where its block stands now: the box's eight corners carried along,
+ * drawn by their extent (a turned block shows its bounding box). */
+static void obj_extent(const fbrl_cell_words *cw, const fbrl_cell_obj *o, double lo[3], double hi[3])
+{
+    double l[3], h[3];
+    if (o->kind == FBRL_CELL_CYLINDER) {
+        l[0] = o->c[0] - o->r, l[1] = o->c[1] - o->r, h[0] = o->c[0] + o->r, h[1] = o->c[1] + o->r;
+        l[2] = o->lo[2], h[2] = o->hi[2];
+    } else {
+        memcpy(l, o->lo, sizeof l);
+        memcpy(h, o->hi, sizeof h);
+    }
+    for (int i = 0; i < 3; i++)
+        lo[i] = INFINITY, hi[i] = -INFINITY;
+    for (int k = 0; k < 8; k++) {
+        double p[3] = {k & 1 ? h[0] : l[0], k & 2 ? h[1] : l[1], k & 4 ? h[2] : l[2]}, q[3];
+        if (o->block >= 0) {
+            const fbrl_calib *m = &cw->model.block[o->block];
+            for (int i = 0; i < 3; i++)
+                q[i] = m->r[i][0] * p[0] + m->r[i][1] * p[1] + m->r[i][2] * p[2] + m->t[i];
+        } else {
+            memcpy(q, p, sizeof q);
+        }
+        for (int i = 0; i < 3; i++)
+            lo[i] = fmin(lo[i], q[i]), hi[i] = fmax(hi[i], q[i]);
+    }
+}
+
+typedef struct loc_draw {
+    svg_ctx *s;
+    fbrl_cell_words *cw;
+    const view *v;
+    unsigned n;
+} loc_draw;
+
+static int draw_loc(void *ctx, const char *name, size_t len)
+{
+    loc_draw *d = ctx;
+    fbrl_cell xt;
+    fbrl_glossary_kind kind;
+    void *obj;
+    char line[300], a[24], b[24], nm[FBRL_CELL_NAME_MAX + 1];
+    if (d->n >= 200 || fbrl_vmx_find(d->cw->vm, name, len, &xt) != FBRL_OK ||
+        fbrl_glossary_object(d->cw->g, xt, &kind, &obj) != FBRL_OK ||
+        (kind != FBRL_GLOSSARY_LOC && kind != FBRL_GLOSSARY_RECTMAT && kind != FBRL_GLOSSARY_RADMAT))
+        return 0;
+    const fbrl_loc *l = obj; /* a matrix starts with its base location */
+    double p[3] = {l->x, l->y, l->z};
+    size_t n = len < FBRL_CELL_NAME_MAX ? len : FBRL_CELL_NAME_MAX;
+    for (size_t k = 0; k < n; k++) /* names are plain words; keep the SVG text well formed */
+        nm[k] = name[k] == '<' || name[k] == '>' || name[k] == '&' || name[k] == '"' ? '_' : name[k];
+    nm[n] = '\0';
+    if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
+        return 0;
+    snprintf(line, sizeof line,
+             "<circle class=\"%s\" cx=\"%s\" cy=\"%s\" r=\"3\"><title>%s</title></circle>\n",
+             kind == FBRL_GLOSSARY_LOC ? "loc" : "matrix", num(a, sizeof a, px(d->v, p[0])),
+             num(b, sizeof b, py(d->v, p)), nm);
+    out(d->s, line);
+    label(d->s, px(d->v, p[0]) + 4, py(d->v, p) - 4, kind == FBRL_GLOSSARY_LOC ? "loclabel" : "matlabel", nm);
+    d->n++;
+    return 0;
+}
+
+static void draw_view(svg_ctx *s, fbrl_cell_words *cw, const view *v)
+{
+    char line[400], a[24], b[24];
+    label(s, v->ox - SVG_HALF * SVG_SCALE + 6, v->oy - (v->side ? 28 : SVG_HALF) * SVG_SCALE + 16, "title",
+          v->side ? "side view (x across, z up)" : "top view (x across, y up)");
+    if (v->side && cw->model.have_table) {
+        double p[3] = {0, 0, cw->model.table_z};
+        snprintf(line, sizeof line, "<line class=\"table\" x1=\"%s\" y1=\"%s\" x2=\"%s\" y2=\"%s\"/>\n",
+                 num(a, sizeof a, v->ox - SVG_HALF * SVG_SCALE), num(b, sizeof b, py(v, p)),
+                 num(a + 12, sizeof a - 12, v->ox + SVG_HALF * SVG_SCALE),
+                 num(b + 12, sizeof b - 12, py(v, p)));
+        out(s, line);
+    }
+    /* the arm's base */
+    double base[3] = {0, 0, 0};
+    snprintf(line, sizeof line,
+             "<circle class=\"base\" cx=\"%s\" cy=\"%s\" r=\"8\"><title>arm base</title></circle>\n",
+             num(a, sizeof a, px(v, 0)), num(b, sizeof b, py(v, base)));
+    out(s, line);
+    for (size_t k = 0; k < cw->model.n; k++) {
+        const fbrl_cell_obj *o = &cw->model.obj[k];
+        double lo[3], hi[3];
+        obj_extent(cw, o, lo, hi);
+        /* what lies outside the view is cut off at its edge */
+        for (int i = 0; i < 3; i++) {
+            double vlo = i == 2 ? SVG_Z_LO : -SVG_HALF, vhi = i == 2 ? SVG_Z_HI : SVG_HALF;
+            lo[i] = fmax(vlo, fmin(vhi, lo[i]));
+            hi[i] = fmax(vlo, fmin(vhi, hi[i]));
+        }
+        rect(s, v, lo, hi,
+             o->kind == FBRL_CELL_KEEPOUT    ? "keepout"
+             : o->kind == FBRL_CELL_CYLINDER ? "cylinder"
+                                             : "box",
+             o->name);
+        label(s, px(v, lo[0]) + 2, fmin(py(v, lo), py(v, hi)) - 3, "objlabel", o->name);
+    }
+    if (cw->g) {
+        loc_draw d = {s, cw, v, 0};
+        fbrl_vm_words(cw->vm, draw_loc, &d);
+    }
+    if (cw->npath > 1) {
+        out(s, "<polyline class=\"path\" points=\"");
+        for (size_t k = 0; k < cw->npath; k++) {
+            snprintf(line, sizeof line, "%s,%s ", num(a, sizeof a, px(v, cw->path[k][0])),
+                     num(b, sizeof b, py(v, cw->path[k])));
+            out(s, line);
+        }
+        out(s, "\"/>\n");
+    }
+    if (isfinite(cw->stats.clearance)) {
+        char t[120], c[24];
+        snprintf(line, sizeof line, "<circle class=\"closest\" cx=\"%s\" cy=\"%s\" r=\"6\"/>\n",
+                 num(a, sizeof a, px(v, cw->stats.near[0])), num(b, sizeof b, py(v, cw->stats.near)));
+        out(s, line);
+        snprintf(t, sizeof t, "closest %s in (%s)", num(c, sizeof c, cw->stats.clearance),
+                 fbrl_cell_obj_name(&cw->model, cw->stats.near_obj));
+        label(s, px(v, cw->stats.near[0]) + 8, py(v, cw->stats.near) + 14, "closestlabel", t);
+    }
+}
+
+fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx)
+{
+    char line[300], w[24], h[24];
+    svg_ctx s = {fn, ctx};
+    if (!cw || !fn)
+        return FBRL_EINVAL;
+    place_blocks(cw);
+    double width = 2 * SVG_HALF * SVG_SCALE, top_h = 2 * SVG_HALF * SVG_SCALE, side_h = 32 * SVG_SCALE;
+    snprintf(line, sizeof line,
+             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+             "width=\"%s\" height=\"%s\" viewBox=\"0 0 %s %s\">\n",
+             num(w, sizeof w, width), num(h, sizeof h, top_h + side_h), num(w + 12, sizeof w - 12, width),
+             num(h + 12, sizeof h - 12, top_h + side_h));
+    out(&s, line);
+    out(&s, "<style>rect.box{fill:#c8c8c8;stroke:#333}rect.cylinder{fill:#d8c8a8;stroke:#333}"
+            "rect.keepout{fill:#f4b0b0;fill-opacity:0.5;stroke:#c00;stroke-dasharray:4 2}"
+            ".table{stroke:#630;stroke-width:3}.base{fill:#333}.loc{fill:#06c}.matrix{fill:#0a0}"
+            ".path{fill:none;stroke:#f80;stroke-width:1.5}.closest{fill:none;stroke:#d00;stroke-width:2}"
+            "text{font:10px sans-serif}.title{font-weight:bold}</style>\n");
+    out(&s, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
+    out(&s, "<g id=\"top\">\n");
+    view top = {SVG_HALF * SVG_SCALE, SVG_HALF * SVG_SCALE, 0};
+    draw_view(&s, cw, &top);
+    out(&s, "</g>\n<g id=\"side\">\n");
+    view side = {SVG_HALF * SVG_SCALE, top_h + 28 * SVG_SCALE, 1};
+    draw_view(&s, cw, &side);
+    out(&s, "</g>\n</svg>\n");
+    return FBRL_OK;
+}

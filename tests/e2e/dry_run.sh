@@ -1,0 +1,70 @@
+#!/bin/sh
+# dry_run.sh FBRLMON EXAMPLES WORKDIR [real] - fbrlmon --dry-run of examples/sample_prep.fbrl
+# (docs/workcell.md): it finishes in under 10 s of wall time, reports what the plan did, and
+# its picture renders (rsvg-convert) with the expected elements. With "real", the same plan
+# also runs in real time on the built-in emulator and the dry run's simulated duration must
+# be within 2 % of that run's wall time (label slow: about a minute).
+mon=$1 ex=$2 work=$3 real=${4:-}
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 2
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+now() { date +%s.%N; }
+
+touch "$work/.start"
+t0=$(now)
+"$mon" --dry-run --svg "$work/plan.svg" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" \
+    "$ex/sample_prep.fbrl" >"$work/dry.out" 2>"$work/dry.err" || fail "the dry run failed: $(cat "$work/dry.err")"
+t1=$(now)
+wall=$(echo "$t1 $t0" | awk '{ printf "%.3f", $1 - $2 }')
+awk -v w="$wall" 'BEGIN { exit !(w < 10) }' || fail "the dry run took $wall s (at most 10)"
+dur=$(sed -n 's/^simulated duration \([0-9.]*\) s.*/\1/p' "$work/dry.out")
+[ -n "$dur" ] || fail "no simulated duration: $(cat "$work/dry.out")"
+grep -q '^commands [0-9]*, moves 89, errors 0$' "$work/dry.out" || fail "moves/errors: $(grep '^commands' "$work/dry.out")"
+grep -q '^smallest clearance [0-9.]* in to [A-Z-]* at X ' "$work/dry.out" || fail "no smallest clearance"
+# the plan's pulses: buffer pump (output 1) 2 per tube, syringe (6) 2 per tube, ...
+n=$(grep -c ' output 1 pulse 0.05' "$work/dry.out")
+[ "$n" = 6 ] || fail "$n buffer pump pulses, want 6"
+n=$(grep -c ' output 6 pulse 0.15' "$work/dry.out")
+[ "$n" = 6 ] || fail "$n syringe pulses, want 6"
+n=$(grep -c ' wait 0.150 s$' "$work/dry.out")
+[ "$n" = 6 ] || fail "$n waits of the syringe's 150 ms, want 6"
+grep -q '^run time 5[0-9] s$' "$work/dry.out" || fail "the plan's own run time (TIME-OF-DAY) is not the simulated one"
+[ -z "$(ls "$work" | grep -v -e '^dry\.' -e '^plan\.svg$')" ] || fail "the dry run left files: $(ls "$work")"
+ls -d "${TMPDIR:-/tmp}"/fbrlmon-dry-* 2>/dev/null | while read -r d; do [ "$d" -nt "$work/.start" ] && echo "$d"; done >"$work/left"
+[ -s "$work/left" ] && fail "the scratch directory was left: $(cat "$work/left")"
+
+# the picture
+svg=$work/plan.svg
+[ -s "$svg" ] || fail "no picture"
+for want in '<g id="top">' '<g id="side">' '<title>HEATING-BLOCK-BODY</title>' '<title>SEPARATION-UNIT</title>' \
+    'class="keepout"' 'class="cylinder"' 'class="table"' '<title>A1</title>' '<title>SEPARATOR</title>' \
+    'class="matrix"' '<polyline class="path"' 'class="closest"' '>closest 0.5500 in (HEATING-BLOCK-BODY)<'; do
+    grep -qF "$want" "$svg" || fail "the picture lacks $want"
+done
+if command -v rsvg-convert >/dev/null 2>&1; then
+    rsvg-convert -o "$work/plan.png" "$svg" 2>"$work/rsvg.err" || fail "rsvg-convert: $(cat "$work/rsvg.err")"
+    [ -s "$work/plan.png" ] || fail "rsvg-convert made no picture"
+else
+    echo "rsvg-convert is not installed (librsvg2-bin): rendering not checked"
+fi
+
+# the plan's own files: written in a scratch directory and removed, unless --keep-files
+echo 'CREATE-FILE made.dat' >"$work/files.fbrl"
+"$mon" --dry-run --svg "$work/files.svg" "$work/files.fbrl" >"$work/files.out" 2>&1 || fail "files: $(cat "$work/files.out")"
+[ -e "$work/made.dat" ] && fail "the dry run wrote the plan's file made.dat"
+"$mon" --dry-run --keep-files --svg "$work/files.svg" "$work/files.fbrl" >"$work/files.out" 2>&1 || fail "files: $(cat "$work/files.out")"
+[ -e "$work/made.dat" ] || fail "--keep-files: the plan's file made.dat was not written"
+
+if [ "$real" = real ]; then
+    t0=$(now)
+    "$mon" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" "$ex/sample_prep.fbrl" \
+        >"$work/real.out" 2>"$work/real.err" || fail "the real-time run failed: $(cat "$work/real.err")"
+    t1=$(now)
+    realwall=$(echo "$t1 $t0" | awk '{ printf "%.3f", $1 - $2 }')
+    ratio=$(echo "$dur $realwall" | awk '{ printf "%.4f", $1 / $2 }')
+    echo "dry run: simulated $dur s in $wall s; real-time run: $realwall s; ratio $ratio"
+    awk -v r="$ratio" 'BEGIN { exit !(r >= 0.98 && r <= 1.02) }' || fail "simulated $dur s, real $realwall s: not within 2 %"
+else
+    echo "dry run: simulated $dur s in $wall s"
+fi
+exit $fails
