@@ -58,6 +58,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     so.state_path = arg[0] ? arg : c->sim_state;
     so.inputs_path = c->sim_inputs;
     so.model = c->sim_model;
+    so.status_extra = 1; /* the robot words read outputs from fbrlsim's own STATUS lines */
     st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;

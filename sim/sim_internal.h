@@ -116,6 +116,14 @@ typedef struct sim_term {
     double stream_next;
     double think_until; /* PS_THINK: the controller is still reading the line */
     int last_error;     /* -1 none (STATUS shows it) */
+    int aci;            /* 1: ACI (binary host protocol) mode, not terminal mode */
+    int aci_st, aci_n;  /* sim_aci.c: where the host is in the switch handshake */
+    unsigned char aci_pkt[16];
+    int ctrl_z;                       /* the previous byte was Ctrl-Z (two of them: back to ACI mode) */
+    double cmd_t;                     /* simulated time the running line was submitted (stamped log) */
+    int cmd_logged;                   /* the running line is to be logged when it ends (stamped log) */
+    char last_prog[SIM_NAME_MAX + 1]; /* STATUS's program line: the last program RUN */
+    int last_prog_line, last_prog_err;
 } sim_term;
 
 /* sim_events.c: control lines from the FIFO and the --inputs script. */
@@ -171,6 +179,7 @@ typedef struct sim_dev {
     double grip, grip_force, object;
     sim_chan chan[2];
     int flash, manual;
+    int metric; /* METRIC: lengths typed and shown in mm (kept in the state file) */
 } sim_dev;
 
 /* sim_cmd.c: the program being RUN. */
@@ -184,6 +193,7 @@ struct fbrl_sim {
     fbrl_sim_options opt;
     char *state_path, *log_path, *control_path;
     FILE *log;
+    FILE *ctl_out; /* control-line answers and refusals, or NULL */
     int wake[2];
     int stop; /* set by fbrl_sim_stop (atomic builtins) */
     pthread_t thread;
@@ -248,6 +258,10 @@ void sim_term_greet(fbrl_sim *s);
 void sim_term_process(fbrl_sim *s);
 double sim_term_due(const sim_term *t, const sim_line *l, double now, double limit);
 
+/* sim_aci.c: ACI mode, the binary host protocol a controller may power up in */
+int sim_aci_byte(fbrl_sim *s, unsigned char b); /* 1: the byte is terminal mode's now */
+void sim_aci_enter(fbrl_sim *s);                /* Ctrl-Z Ctrl-Z from terminal mode */
+
 /* sim_events.c */
 int sim_events_open_fifo(sim_events *ev, const char *path, char *err, size_t errlen);
 void sim_events_read_fifo(fbrl_sim *s);
@@ -278,6 +292,14 @@ void sim_stream_line(fbrl_sim *s, sim_out *o); /* the next line of a W1/W3/W5 re
 
 /* sim_control.c */
 int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: only check */
+/* The same, with the reason for a refusal in why[whylen]; answers queries to s->ctl_out. */
+int sim_control_why(fbrl_sim *s, const char *line, char *why, size_t whylen);
+/* Writes a control answer or refusal line to s->ctl_out (if any). */
+void sim_control_say(fbrl_sim *s, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 
 /* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);

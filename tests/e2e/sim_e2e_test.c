@@ -77,6 +77,7 @@ static void spawn(simp *p, const char *const *extra)
     double end = now_s() + TIMEOUT;
 
     argv[n++] = FBRLSIM_PATH;
+    argv[n++] = "--status-extra"; /* these tests read fbrlsim's own STATUS lines */
     for (i = 0; extra && extra[i]; i++)
         argv[n++] = extra[i];
     argv[n] = NULL;
