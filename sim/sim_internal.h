@@ -83,6 +83,13 @@ typedef struct sim_line {
     int rxcap, rxhead, rxcount;
     long overruns;
     int xoff_sent, peer_xoff;
+    /* After our XOFF has reached the host, its bytes stay where they are (in the kernel,
+     * as in a real host's UART) until our XON, unless the host goes on sending: */
+    int holding;       /* our XOFF is out: nothing more is taken off the OS */
+    double hold_from;  /* when the host had our XOFF (real s) */
+    int hold_base;     /* bytes the host had sent by then plus a grace; -1 not yet measured */
+    int host_ignores;  /* the host sent more after our XOFF: its bytes flow (and overrun) */
+    long ignored_xoff; /* times a host was seen ignoring our XOFF */
     /* controller -> host */
     int urgent; /* XON/XOFF waiting to go out first, -1 none */
     double urgent_q;
@@ -240,6 +247,7 @@ int sim_line_read(fbrl_sim *s, int fd, double now);
 void sim_line_deliver(fbrl_sim *s, double now);
 int sim_line_rx_pop(fbrl_sim *s);
 int sim_line_rx_allow(const sim_line *l, double now);
+void sim_line_hold_check(sim_line *l, int fd, double now); /* does the host honour our XOFF? */
 double sim_line_due(const sim_line *l, double now, double limit);
 int sim_line_wants_write(const sim_line *l, double now);
 void sim_line_reset(sim_line *l);

@@ -27,6 +27,11 @@
 #define WIRE_AHEAD_MIN 0.001 /* s: how far ahead the host's bytes are taken off the OS (at least one) */
 #define TX_FIRST_CAP   4096
 #define BURST_MIN      2 /* characters handed over at once at least (see pace_cap) */
+/* A host that honours XOFF stops within this time after it has our XOFF (what it sent
+ * by then was already on its way, as in a real UART's FIFO); more bytes after it mean
+ * it ignores XOFF. Generous, because a host on a loaded machine reacts late. */
+#define HOLD_GRACE 0.05
+#define HOLD_POLL  0.002 /* s: how often the bytes a holding host has queued are counted */
 
 /* The OS may wake the emulator late; characters whose time has come are then handed
  * over together. So that lateness never turns into a burst faster than the line,
@@ -300,6 +305,15 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
         if (write(fd, &b, 1) != 1)
             return errno == EAGAIN || errno == EINTR ? 0 : -1;
         l->urgent = -1;
+        if (b == XOFF) {
+            /* from when the host has it, its bytes stay with it (sim_line_rx_allow) */
+            l->holding = 1;
+            l->hold_from = l->byte_time > 0 ? end : now;
+            l->hold_base = -1;
+            l->host_ignores = 0;
+        } else {
+            l->holding = l->host_ignores = 0;
+        }
         if (l->byte_time > 0) {
             l->tx_free = end;
             pace_take(&l->tx_pace, l->byte_time, now, 1.0);
@@ -444,6 +458,8 @@ void sim_line_deliver(fbrl_sim *s, double now)
  * host still holds after our XOFF stay with it, as they would in its UART. */
 int sim_line_rx_allow(const sim_line *l, double now)
 {
+    if (l->holding && !l->host_ignores)
+        return 0; /* our XOFF is out: what the host queued stays with it */
     if (l->byte_time > 0) {
         double start = l->backlog > 0 || l->rx_free > now ? l->rx_free : now;
         double ahead = l->byte_time > WIRE_AHEAD_MIN ? l->byte_time : WIRE_AHEAD_MIN;
@@ -455,6 +471,24 @@ int sim_line_rx_allow(const sim_line *l, double now)
         return k < 0 ? 0 : k;
     }
     return l->rxcap - l->rxcount; /* no line model: the kernel buffer holds the rest */
+}
+
+/* While our XOFF holds the host: after the grace, count what it has queued; if that
+ * grows, the host ignores XOFF and its bytes flow again (into an overrun). */
+void sim_line_hold_check(sim_line *l, int fd, double now)
+{
+    int waiting = 0;
+    if (!l->holding || l->host_ignores || fd < 0 || now < l->hold_from + HOLD_GRACE)
+        return;
+    if (ioctl(fd, FIONREAD, &waiting) != 0 || waiting < 0)
+        return;
+    if (l->hold_base < 0) {
+        l->hold_base = waiting;
+    } else if (waiting > l->hold_base) {
+        l->host_ignores = 1;
+        l->ignored_xoff++;
+        l->backlog = 0; /* what it sends now starts now */
+    }
 }
 
 /* Reads from the host; 1 at end of file, -1 on a broken connection, else 0. */
@@ -518,6 +552,13 @@ double sim_line_due(const sim_line *l, double now, double limit)
     } else if (l->urgent >= 0) {
         r = 0;
     }
+    if (l->holding && !l->host_ignores) {
+        t = l->hold_from + HOLD_GRACE - now;
+        if (t < HOLD_POLL)
+            t = HOLD_POLL;
+        if (t < r)
+            r = t;
+    }
     if (sim_line_tx_pending(l) && !l->peer_xoff && l->tx_hold_until > now && l->tx_hold_until - now < r)
         r = l->tx_hold_until - now;
     return r;
@@ -539,5 +580,6 @@ void sim_line_reset(sim_line *l)
     l->backlog = 0;
     l->txoff = l->txlen = 0;
     l->peer_xoff = l->xoff_sent = 0;
+    l->holding = l->host_ignores = 0;
     l->urgent = -1;
 }
