@@ -90,7 +90,8 @@ static int query(fbrl_sim *s, const char *item, char *why, size_t whylen)
         if (!strcmp(item, items[k]))
             break;
     if (k == sizeof items / sizeof items[0])
-        return refuse(why, whylen, "GET: unknown item '%s' (POSITION, OUTPUTS, INPUTS, ERROR, MOTION, LINE)", item);
+        return refuse(why, whylen, "GET: unknown item '%s' (POSITION, OUTPUTS, INPUTS, ERROR, MOTION, LINE)",
+                      item);
     if (!s)
         return 0;
     sim_arm_update(s);
@@ -119,8 +120,8 @@ static int query(fbrl_sim *s, const char *item, char *why, size_t whylen)
         else
             sim_control_say(s, "ERROR %03d-%s.", s->term.last_error, sim_error_text(s->term.last_error));
     } else if (k == 5) {
-        sim_control_say(s, "LINE OVERRUNS %ld IGNORED-XOFF %ld PARITY-IN %ld PARITY-OUT %ld", s->line.overruns,
-                        s->line.ignored_xoff, s->line.parity_in, s->line.parity_out);
+        sim_control_say(s, "LINE OVERRUNS %ld IGNORED-XOFF %ld PARITY-IN %ld PARITY-OUT %ld",
+                        s->line.overruns, s->line.ignored_xoff, s->line.parity_in, s->line.parity_out);
     } else {
         static const char *const cmd[] = {"IDLE", "BUSY", "STREAMING", "READING"}; /* by PS_* */
         sim_control_say(s, "MOTION %s EXTRA %s POWER %s HOMED %s COMMAND %s",

@@ -172,7 +172,8 @@ static void work(fbrl_sim *s)
     double now = sim_real_now(s);
     sim_arm_update(s);
     sim_events_run(s);
-    sim_line_hold_check(&s->line, s->io.fd, now);
+    sim_line_hold_check(&s->line, s->io.fd, now, s->dev.chan[0].handshake == 'X',
+                        s->line.byte_time > 0 ? sim_io_host_ixon(&s->io) : -1);
     sim_line_deliver(s, now);
     sim_term_process(s);
     do_write(s, sim_real_now(s));

@@ -90,6 +90,8 @@ typedef struct sim_line {
     int hold_base;     /* bytes the host had sent by then plus a grace; -1 not yet measured */
     int host_ignores;  /* the host sent more after our XOFF: its bytes flow (and overrun) */
     long ignored_xoff; /* times a host was seen ignoring our XOFF */
+    int flow;          /* XON/XOFF on (channel 0), as last seen */
+    int host_ixon;     /* the host's tty has IXON (1), not (0), unknown: TCP (-1) */
     /* controller -> host */
     int urgent; /* XON/XOFF waiting to go out first, -1 none */
     double urgent_q;
@@ -247,7 +249,8 @@ int sim_line_read(fbrl_sim *s, int fd, double now);
 void sim_line_deliver(fbrl_sim *s, double now);
 int sim_line_rx_pop(fbrl_sim *s);
 int sim_line_rx_allow(const sim_line *l, double now);
-void sim_line_hold_check(sim_line *l, int fd, double now); /* does the host honour our XOFF? */
+/* Does the host honour our XOFF? flow: XON/XOFF is on (channel 0's handshake). */
+void sim_line_hold_check(sim_line *l, int fd, double now, int flow, int host_ixon);
 double sim_line_due(const sim_line *l, double now, double limit);
 int sim_line_wants_write(const sim_line *l, double now);
 void sim_line_reset(sim_line *l);
@@ -255,9 +258,10 @@ void sim_line_reset(sim_line *l);
 /* sim_io.c */
 int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
-int sim_io_accept(sim_io *io);       /* 1: a new client */
-int sim_io_close_client(sim_io *io); /* 1: a client was closed */
-int sim_io_pty_opened(sim_io *io);   /* times the pty was opened since the last call */
+int sim_io_accept(sim_io *io);          /* 1: a new client */
+int sim_io_close_client(sim_io *io);    /* 1: a client was closed */
+int sim_io_pty_opened(sim_io *io);      /* times the pty was opened since the last call */
+int sim_io_host_ixon(const sim_io *io); /* the host's tty has IXON: 1, 0; -1 not a pty */
 void sim_io_close(sim_io *io);
 
 /* sim_term.c */

@@ -153,6 +153,9 @@ static int parity_on(const fbrl_sim *s)
 
 static int flow_on(const fbrl_sim *s) { return s->dev.chan[0].handshake == 'X'; }
 
+/* The receive buffer's fill at which the controller sends XOFF (three quarters). */
+static int xoff_mark(const sim_line *l) { return l->rxcap * 3 / 4; }
+
 /* Applies the line faults to one byte; returns how many bytes went to out (0..2).
  * bad[k] = the receiving UART sees a parity error on out[k] (only with parity on): a
  * corrupted byte always (one bit flipped: an odd number), a noise byte half the time
@@ -312,6 +315,10 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
             l->hold_base = -1;
             l->host_ignores = 0;
         } else {
+            /* the host's UART starts again when it has our XON, not in the past */
+            double resume = l->byte_time > 0 ? end : now;
+            if (l->holding && l->rx_free < resume)
+                l->rx_free = resume;
             l->holding = l->host_ignores = 0;
         }
         if (l->byte_time > 0) {
@@ -395,7 +402,7 @@ static void rx_byte(fbrl_sim *s, unsigned char b, double now)
     }
     l->rx[(l->rxhead + l->rxcount) % l->rxcap] = b;
     l->rxcount++;
-    if (l->byte_time > 0 && flow_on(s) && !l->xoff_sent && l->rxcount >= l->rxcap * 3 / 4) {
+    if (l->byte_time > 0 && flow_on(s) && !l->xoff_sent && l->rxcount >= xoff_mark(l)) {
         l->urgent = XOFF;
         l->urgent_q = now;
         l->xoff_sent = 1;
@@ -456,9 +463,16 @@ void sim_line_deliver(fbrl_sim *s, double now)
 /* How many bytes may be taken off the OS now. Paced: those that will be complete
  * within a short look-ahead (at least one when the wire is empty), so that bytes a
  * host still holds after our XOFF stay with it, as they would in its UART. */
+/* Whether the host's port stops sending on our XOFF: its tty has IXON (a pty), or, over
+ * TCP, it has not been seen sending on after our XOFF. */
+static int host_honours(const sim_line *l)
+{
+    return l->host_ixon == 1 || (l->host_ixon < 0 && !l->host_ignores);
+}
+
 int sim_line_rx_allow(const sim_line *l, double now)
 {
-    if (l->holding && !l->host_ignores)
+    if (l->flow && l->holding && host_honours(l))
         return 0; /* our XOFF is out: what the host queued stays with it */
     if (l->byte_time > 0) {
         double start = l->backlog > 0 || l->rx_free > now ? l->rx_free : now;
@@ -468,16 +482,30 @@ int sim_line_rx_allow(const sim_line *l, double now)
             k = 1;
         if (k > SIM_WIRE_MAX - l->wn)
             k = SIM_WIRE_MAX - l->wn;
+        if (l->flow && host_honours(l)) {
+            /* A real controller's XOFF leaves the moment its buffer reaches the mark, even
+             * when this process runs late: so a host that honours it never sends more than
+             * fills the buffer to the mark (plus what it still had on the wire). */
+            int room = xoff_mark(l) - l->rxcount - l->wn;
+            if (k > room)
+                k = room;
+        }
         return k < 0 ? 0 : k;
     }
     return l->rxcap - l->rxcount; /* no line model: the kernel buffer holds the rest */
 }
 
-/* While our XOFF holds the host: after the grace, count what it has queued; if that
- * grows, the host ignores XOFF and its bytes flow again (into an overrun). */
-void sim_line_hold_check(sim_line *l, int fd, double now)
+/* Does the host honour our XOFF? On a pty its tty's IXON says (host_ixon 0 or 1: the
+ * kernel then stops its writes, as a real port's driver would stop its UART). Over TCP
+ * (host_ixon -1) its behaviour says: after the grace, count what it has queued; if
+ * that grows, it ignores XOFF and its bytes flow again (into an overrun). */
+void sim_line_hold_check(sim_line *l, int fd, double now, int flow, int host_ixon)
 {
     int waiting = 0;
+    l->flow = flow;
+    l->host_ixon = host_ixon;
+    if (host_ixon >= 0)
+        return; /* the host's own port says whether it honours XOFF */
     if (!l->holding || l->host_ignores || fd < 0 || now < l->hold_from + HOLD_GRACE)
         return;
     if (ioctl(fd, FIONREAD, &waiting) != 0 || waiting < 0)
@@ -485,9 +513,11 @@ void sim_line_hold_check(sim_line *l, int fd, double now)
     if (l->hold_base < 0) {
         l->hold_base = waiting;
     } else if (waiting > l->hold_base) {
-        l->host_ignores = 1;
+        l->host_ignores = 1; /* counted in ignored_xoff below */
         l->ignored_xoff++;
         l->backlog = 0; /* what it sends now starts now */
+        if (l->rx_free < now)
+            l->rx_free = now;
     }
 }
 
