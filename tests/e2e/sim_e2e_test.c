@@ -2467,6 +2467,50 @@ static int burst_run(int honour, long *overruns, long *ignored)
     return good;
 }
 
+/* Over TCP there is no tty to ask: a host that stops after the controller's XOFF (all it
+ * sent before is held) loses nothing; one that sends on is seen ignoring it, and overruns. */
+static void t_flow_tcp(void **st)
+{
+    const char *ctl = tmp("ctl-ftcp"), *out = tmp("ctl-ftcp.out");
+    const char *const opts[] = {"--tcp", "0", "--baud", "9600", "--control", ctl, "--control-out", out, NULL};
+    simp p;
+    char big[301], *text;
+    long over = -1, ign = -1;
+    size_t n;
+    int fd;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "HOME");
+    ok(&p, "SPEED 10");
+    ok(&p, "JOINT 1,10"); /* 1.7 s: the next motion waits, input piles up */
+    puts_(&p, "JOINT 1,-10\r");
+    usleep(50000);
+    memset(big, 'A', 300);
+    big[300] = 0;
+    puts_(&p, big); /* all sent before the XOFF: it waits with the host */
+    n = read_until(&p, g_buf, sizeof g_buf, "\x13", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\x13"));
+    usleep(300000);
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "GET LINE\n", 9), 9);
+    usleep(200000);
+    puts_(&p, big); /* sent after the XOFF: ignored it */
+    usleep(500000);
+    assert_int_equal(write(fd, "GET LINE\n", 9), 9);
+    usleep(200000);
+    close(fd);
+    text = slurp(out);
+    assert_int_equal(sscanf(text, "LINE OVERRUNS %ld IGNORED-XOFF %ld", &over, &ign), 2);
+    assert_int_equal(over, 0);
+    assert_int_equal(ign, 0);
+    assert_int_equal(sscanf(strchr(text, '\n') + 1, "LINE OVERRUNS %ld IGNORED-XOFF %ld", &over, &ign), 2);
+    assert_true(over > 0);
+    assert_int_equal(ign, 1);
+    free(text);
+    stop(&p);
+}
+
 static void t_flow_burst(void **st)
 {
     long over = -1, ign = -1;
@@ -2626,7 +2670,7 @@ int main(int argc, char **argv)
     GROUP("embed", cmocka_unit_test(t_embed))
     GROUP("clients", cmocka_unit_test(t_aci), cmocka_unit_test(t_units), cmocka_unit_test(t_client_commands),
           cmocka_unit_test(t_replies))
-    GROUP("flow", cmocka_unit_test(t_flow_burst))
+    GROUP("flow", cmocka_unit_test(t_flow_tcp), cmocka_unit_test(t_flow_burst))
     GROUP("ctlq", cmocka_unit_test(t_control_queries))
     GROUP("model", cmocka_unit_test(t_model_a465))
     cleanup();
