@@ -2189,6 +2189,123 @@ static void t_aci(void **st)
     stop(&p);
 }
 
+/* The clients' own start-up sequences after the switch (research notes section 4), each
+ * checked the way that client checks it. */
+static void t_client_startups(void **st)
+{
+    simp p;
+    const char *state = tmp("startup.state");
+    const char *const s2[] = {"--aci", "--model", "a465", "--state", state, "--time-scale", "200", NULL};
+    const char *const s3[] = {"--nak", "--model", "a465", "--state", state, "--time-scale", "200", NULL};
+    const char *const a255[] = {"--time-scale", "200", NULL};
+    const char *r, *x;
+    size_t n, lines;
+    int i;
+    FILE *f;
+    (void)st;
+    f = fopen(state, "w");
+    fputs("FBRLSIM-STATE 1\nMODEL A465\nPROGRAM HOME\n  HOME\nEND\nPROGRAM QPOOL\n  MOVE #QPOOL\n  "
+          "FINISH\nEND\n"
+          "PROGRAM CAL\n  HOME\nEND\nPROGRAM INIT_SYS\n  READY\n  FINISH\nEND\n",
+          f);
+    fclose(f);
+    /* S2 (G3000 driver): ACI switch, NOHELP, ENABLE ARM, RUN HOME, POINT #QPOOL, SPEED,
+     * RUN QPOOL, JOINT 6 +90; every command done when the buffer ends "\r\n>>"; W2 read
+     * after "JOINTS", STATUS after AXIS#, LIMP and HOMED */
+    g_real = 2;
+    spawn(&p, s2);
+    put(&p, "R\x21\x05", 3);
+    expect_bytes(&p, "R\x21\x06", 3);
+    put(&p, S2_PKT, 13);
+    expect_bytes(&p, "\x06\x02\x03\x00", 4);
+    put(&p, "\x06", 1);
+    expect_bytes(&p, "\x04", 1);
+    put(&p, "\x04", 1);
+    assert_int_equal(read_n(&p, g_buf, 1, TIMEOUT), 1);
+    usleep(50000); /* S2 sleeps 500 ms here */
+    static const char *const s2_cmds[] = {
+        "NOHELP",   "ENABLE ARM", "RUN HOME",   "POINT #QPOOL 1000, 2000, 3000, 400, 500, 600",
+        "SPEED 50", "RUN QPOOL",  "JOINT 6 +90"};
+    for (i = 0; i < (int)(sizeof s2_cmds / sizeof s2_cmds[0]); i++) {
+        r = raw(&p, s2_cmds[i]); /* expect(command), then "\r\n>>" */
+        assert_int_equal(strncmp(r, s2_cmds[i], strlen(s2_cmds[i])), 0);
+        assert_string_equal(r + strlen(s2_cmds[i]), "\r\n>>");
+    }
+    ok(&p, "FINISH");
+    r = raw(&p, "W2");
+    x = strstr(r, "JOINTS");
+    assert_non_null(x);
+    {
+        double j[6];
+        assert_int_equal(sscanf(x + 6, "%lf %lf %lf %lf %lf %lf", &j[0], &j[1], &j[2], &j[3], &j[4], &j[5]),
+                         6);
+        assert_true(fabs(j[0] - 1000 / 277.78) < 1e-3 && fabs(j[5] - (600 / 138.89 + 90)) < 1e-2);
+    }
+    r = raw(&p, "STATUS");
+    assert_non_null(strstr(r, "\r\nAXIS#        1 2 3 4 5 6\r\n"));
+    assert_non_null(strstr(r, "\r\nLIMP         N N N N N N\r\n"));
+    assert_non_null(strstr(r, "\r\nHOMED        Y Y Y Y Y Y\r\n"));
+    put(&p, "\x1a\x1a", 2); /* S2 disconnect */
+    usleep(100000);
+    stop(&p);
+    /* S3 (gantry, Python): NOHELP, ONPOWER, STATUS read as 21 lines looking for NOT
+     * HOMED, RUN CAL, @ZERO, RUN INIT_SYS, SPEED 40.00, MI ...,S; a line with NAK is
+     * its error, lines with ACK are skipped */
+    g_real = 1;
+    spawn(&p, s3);
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    assert_string_equal(raw(&p, "ONPOWER"), "ONPOWER\r\n>>");
+    puts_(&p, "STATUS\r");
+    n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    for (lines = 0, x = g_buf; (x = strstr(x, "\r\n")); x += 2)
+        lines++;
+    assert_int_equal(lines, 21);
+    assert_non_null(strstr(g_buf, "CONTROLLER IS NOT HOMED"));
+    assert_null(strchr(g_buf, 0x15));
+    assert_string_equal(raw(&p, "RUN CAL"), "RUN CAL\r\n>>");
+    r = raw(&p, "@ZERO");
+    assert_non_null(strstr(r, "\r\n\x15"
+                              "012-COMMAND ERROR.\r\n")); /* S3: NAK, an error line */
+    assert_string_equal(raw(&p, "RUN INIT_SYS"), "RUN INIT_SYS\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 40.00"), "SPEED 40.00\r\n>>");
+    ok(&p, "JOINT 5,30"); /* off the straight wrist, where a straight line cannot start */
+    ok(&p, "FINISH");
+    assert_string_equal(raw(&p, "MI 0.1,0,0.05,0,0,0,S"), "MI 0.1,0,0.05,0,0,0,S\r\n>>");
+    /* its W1 thread: the header, lines of six numbers ended by CR, a bare CR stops it */
+    puts_(&p, "W1\r");
+    n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.5);
+    assert_non_null(strstr(g_buf, "\r\nACTUAL POSITION (MOTOR PULSES):\r"));
+    puts_(&p, "\r");
+    n += read_until(&p, g_buf + n, sizeof g_buf - n, "\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\r\n>>"));
+    stop(&p);
+    g_real = 0;
+    /* S5 (A255, C#): after its blind ACI switch (t_aci) it sends commands with sleeps and
+     * reads nothing; every one must run */
+    start(&p, a255);
+    static const char *const s5_cmds[] = {"HOME",       "HERE START", "SPEED 20",  "JOINT 1, 5", "FINISH",
+                                          "OPEN 50",    "CLOSE 50",   "JOG 1,0,0", "FINISH",     "JOG 0,0,0",
+                                          "MOVE START", "READY",      "FINISH",    "HALT"};
+    for (i = 0; i < (int)(sizeof s5_cmds / sizeof s5_cmds[0]); i++)
+        ok(&p, s5_cmds[i]);
+    /* S4 (York, CRSPLUS 250): lines end in LF; the reply is good when the character after
+     * the first LF is '>' (compare_resp) */
+    static const char *const s4_cmds[] = {"NOHELP", "SPEED 30", "JOG 0.5,0,0", "FINISH", "DEPART 1"};
+    for (i = 0; i < (int)(sizeof s4_cmds / sizeof s4_cmds[0]); i++) {
+        puts_(&p, s4_cmds[i]);
+        puts_(&p, "\n");
+        n = read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+        x = strchr(g_buf, '\n');
+        assert_non_null(x);
+        assert_int_equal(x[1], '>');
+        assert_int_equal(strncmp(g_buf, s4_cmds[i], strlen(s4_cmds[i])), 0); /* its echo check */
+    }
+    puts_(&p, "FOO\n");
+    read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    assert_int_not_equal(strchr(g_buf, '\n')[1], '>'); /* S4 sees the error */
+    stop(&p);
+}
+
 /* A client working in millimetres (S2 STATUS "METRIC UNITS.", S3 MI in mm, S4). */
 static void t_units(void **st)
 {
@@ -2723,8 +2840,8 @@ int main(int argc, char **argv)
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
     GROUP("embed", cmocka_unit_test(t_embed))
-    GROUP("clients", cmocka_unit_test(t_aci), cmocka_unit_test(t_units), cmocka_unit_test(t_client_commands),
-          cmocka_unit_test(t_replies))
+    GROUP("clients", cmocka_unit_test(t_aci), cmocka_unit_test(t_client_startups), cmocka_unit_test(t_units),
+          cmocka_unit_test(t_client_commands), cmocka_unit_test(t_replies))
     GROUP("flow", cmocka_unit_test(t_flow_tcp), cmocka_unit_test(t_flow_burst))
     GROUP("ctlq", cmocka_unit_test(t_control_queries))
     GROUP("model", cmocka_unit_test(t_model_a465))
