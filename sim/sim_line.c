@@ -582,7 +582,7 @@ double sim_line_due(const sim_line *l, double now, double limit)
     } else if (l->urgent >= 0) {
         r = 0;
     }
-    if (l->holding && !l->host_ignores) {
+    if (l->holding && l->host_ixon < 0 && !l->host_ignores) { /* TCP: watch what the host queues */
         t = l->hold_from + HOLD_GRACE - now;
         if (t < HOLD_POLL)
             t = HOLD_POLL;
