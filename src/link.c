@@ -1305,22 +1305,37 @@ static int aci_step(fbrl_link *l, const uint8_t *out, size_t n, const uint8_t *w
 }
 
 /* Switches a controller in ACI mode to terminal mode. One in terminal mode echoes the
- * selection 'R' '!' (its ENQ is not echoed) instead of acknowledging: both are erased. */
+ * selection 'R' '!' (not its ENQ) instead of acknowledging it: the two are erased. */
 static fbrl_status aci_to_terminal(fbrl_link *l)
 {
-    static const uint8_t sel[] = {'R', ACI_SLAVE, 0x05}, sel_ack[] = {'R', ACI_SLAVE, 0x06};
+    static const uint8_t sel[] = {'R', ACI_SLAVE, 0x05};
     static const uint8_t pkt_ack[] = {0x06, 0x02, 0x03, 0x00}, ack[] = {0x06}, eot[] = {0x04};
     static const uint8_t erase[] = {0x08, 0x08};
     uint8_t pkt[ACI_PKT_LEN] = {0x01, ACI_SLAVE, ACI_SLAVE, 0x00, ACI_TO_TERM, 0, 0, 0, 0, 0, 0, 0x03, 0};
-    uint8_t got[3], last;
+    uint8_t junk[16], b, last;
     unsigned sum = 0;
+    int seen = 0, heard = 0, acked = 0; /* seen: 1 after 'R', 2 after 'R' '!' */
+    size_t k;
+    while (fbrl_uart_read(l->u, junk, sizeof junk, &k, 0) == FBRL_OK && k)
+        ; /* what came before (a greeting, old output) is not the answer */
     if (send(l, sel, sizeof sel) != FBRL_OK)
         return FBRL_EIO;
-    size_t n = aci_read(l, got, sizeof got, l->cfg.reply_timeout_ms);
-    if (n != sizeof sel_ack || got[0] != sel_ack[0] || got[1] != sel_ack[1] || got[2] != sel_ack[2]) {
-        uint8_t junk[16];
-        size_t k;
-        if (n == 0)
+    uint64_t end = now_us(l) + (uint64_t)l->cfg.reply_timeout_ms * 1000u;
+    for (;;) {
+        uint64_t t = now_us(l);
+        /* after "R!" the ACK comes at once or never (a terminal-mode echo) */
+        uint32_t wait = seen == 2 ? l->cfg.echo_timeout_ms : t < end ? (uint32_t)((end - t + 999) / 1000) : 0;
+        if (!wait || aci_read(l, &b, 1, wait) != 1)
+            break;
+        heard = 1;
+        if (seen == 2 && b == 0x06) {
+            acked = 1;
+            break;
+        }
+        seen = b == 'R' ? 1 : seen == 1 && b == ACI_SLAVE ? 2 : 0;
+    }
+    if (!acked) {
+        if (!heard)
             return FBRL_ETIMEOUT; /* nothing answers */
         /* terminal mode: "R!" was typed; erase it and let its echo pass */
         if (send(l, erase, sizeof erase) != FBRL_OK)
