@@ -37,14 +37,16 @@ static void finish(fbrl_sim *s, int err)
     t->out.len = 0;
     if (err >= 0) {
         char e[96];
-        snprintf(e, sizeof e, "%s%03d-%s.\r\n", s->opt.nak ? "\x15" : "", err, sim_error_text(err));
+        static const char nak[] = {NAK, 0};
+        snprintf(e, sizeof e, "%s%03d-%s.\r\n", s->opt.nak ? nak : "", err, sim_error_text(err));
         emit_str(s, e);
         s->term.last_error = err;
     }
     if (t->cmd_logged && s->log) {
         /* the stamped log: when the line was taken, how it ended, the line */
-        char st[8];
-        snprintf(st, sizeof st, err >= 0 ? "%03d" : "OK", err);
+        char st[12] = "OK";
+        if (err >= 0)
+            snprintf(st, sizeof st, "%03d", err);
         fprintf(s->log, "%.3f %s %s\n", t->cmd_t, st, t->cur);
         fflush(s->log);
     }
