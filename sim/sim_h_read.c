@@ -167,7 +167,9 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
         moving[i] = s->arm.moving && fabs(s->arm.qt[i] - s->arm.q[i]) > 0 && sim_now(s) < s->arm.mt1;
     /* The RAPL-II 2.60 sample's 20 lines (research notes 1.4, S2; S3 reads them as a fixed
      * count); fbrlsim's own lines only with --status-extra, before the units line. */
-    sim_out_printf(o, "RAPL-II Version 2.60     %s Robot\r\n", s->arm.model->name);
+    /* --status-extra is fbrlsim's own layout: the header names it, no program line */
+    sim_out_printf(o, "RAPL-II Version 2.60     %s Robot%s\r\n", s->arm.model->name,
+                   s->opt.status_extra ? " (fbrlsim)" : "");
     if (s->term.last_error < 0)
         sim_out_printf(o, "LAST ERROR CODE: NONE\r\n");
     else
@@ -176,7 +178,9 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
     sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->arm.speed));
     sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", sim_len_out(s, s->arm.model->linear));
     sim_out_printf(o, "CURRENT PROGRAM EXECUTING:\r\n");
-    if (s->run.prog)
+    if (s->opt.status_extra) {
+        /* no program line in fbrlsim's own layout */
+    } else if (s->run.prog)
         sim_out_printf(o, "[00]%s#%05d :\r\n", s->run.prog->name, s->run.pc + 1);
     else if (s->term.last_prog[0] && s->term.last_prog_err >= 0)
         sim_out_printf(o, "[00]%s#%05d :%03d-%s.\r\n", s->term.last_prog, s->term.last_prog_line,

@@ -2558,6 +2558,8 @@ static void t_replies(void **st)
     start(&p, extra);
     r = cmd(&p, "STATUS");
     assert_non_null(strstr(r, "MANUAL MODE STATUS IS OFF\r\nARM POWER IS ON\r\n"));
+    assert_int_equal(strncmp(r, "RAPL-II Version 2.60     A255 Robot (fbrlsim)\r\n", 47), 0);
+    assert_null(strstr(r, "[00]"));
     assert_true(ends_with(r, strlen(r), "OUTPUTS 1-16: 0000000000000000\r\nINCH UNITS.\r\n"));
     stop(&p);
     g_real = 0;
