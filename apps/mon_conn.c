@@ -61,6 +61,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     so.clock = c->sim_clock;
     so.skip = c->sim_skip;
     so.clock_ctx = c->sim_clock_ctx;
+    so.status_extra = 1; /* the robot words read outputs from fbrlsim's own STATUS lines */
     st = sim_create_c(&c->sim, &so, c->sim_err, sizeof c->sim_err);
     if (st != FBRL_OK) {
         c->sim = NULL;

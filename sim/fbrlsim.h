@@ -47,6 +47,16 @@ typedef struct fbrl_sim_options {
      * arm or a scripted input (a command blocked in it): the dry run skips that wait too */
     void (*skip)(void *ctx, double s);
     void *clock_ctx;
+    /* What real clients see (docs/fbrlsim.md "Behaviours and their evidence"): */
+    int aci;                 /* start in ACI (binary host protocol) mode; Ctrl-Z Ctrl-Z
+                                 * returns to it from terminal mode */
+    int nak;                 /* send NAK (0x15) before every error line */
+    int status_extra;        /* STATUS adds fbrlsim's own lines after the 2.60 sample's */
+    int echo_as_typed;       /* echo lower case as typed (the line still runs upper-cased) */
+    int log_stamped;         /* --log lines: "T STATUS LINE" (simulated s, OK/NNN) */
+    const char *control_out; /* file that control-line answers and refusals are appended
+                                 * to; NULL: stdout for the program, nowhere embedded */
+    int control_out_stdout;  /* answer control lines on stdout (the program's default) */
 } fbrl_sim_options;
 
 void fbrl_sim_options_init(fbrl_sim_options *o);

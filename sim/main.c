@@ -8,6 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifndef FBRL_VERSION
+#define FBRL_VERSION "unknown"
+#endif
+
 static fbrl_sim *g_sim;
 
 static void on_signal(int sig)
@@ -36,10 +40,20 @@ static void usage(FILE *f)
           "  --cell FILE         the work cell (CELL-* words): a motion into it stops\n"
           "                      there with 190-COLLISION\n"
           "  --inputs FILE       time-stamped control lines, e.g. '2.5 IN 3 1'\n"
-          "  --control PATH      FIFO for control lines: IN n 0|1, POWER 0|1, OBJECT w, TEACH\n"
+          "  --control PATH      FIFO for control lines: IN n 0|1, POWER 0|1, OBJECT w, TEACH,\n"
+          "                      GET POSITION|OUTPUTS|INPUTS|ERROR|MOTION|LINE\n"
           "  --faults SPEC       drop=P,corrupt=P,noise=P,stall=MS,seed=S (both directions)\n"
           "  --parity N|E|O      the line's parity (default N): with E or O a corrupted byte\n"
           "                      is a parity error, dropped inbound, marked 0xFF 0x00 outbound\n"
+          "  --aci               start in ACI mode (clients switch it to terminal mode);\n"
+          "                      Ctrl-Z Ctrl-Z returns to ACI mode\n"
+          "  --nak               send NAK (0x15) before every error line\n"
+          "  --status-extra      STATUS adds fbrlsim's own lines (power, I/O, gripper ...)\n"
+          "  --echo-as-typed     echo lower case as typed (default: echo upper-cased)\n"
+          "  --log-format F      plain (default): the line; stamped: 'T STATUS LINE'\n"
+          "  --control-out FILE  append control-line answers and refusals to FILE\n"
+          "                      (default: stdout)\n"
+          "  --version           the version\n"
           "  --help              this text\n",
           f);
 }
@@ -65,12 +79,32 @@ int main(int argc, char **argv)
     int i;
 
     fbrl_sim_options_init(&o);
+    o.control_out_stdout = 1;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int used = 1;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             usage(stdout);
             return 0;
+        } else if (!strcmp(a, "--version")) {
+            printf("fbrlsim (libfbrl) %s\n", FBRL_VERSION);
+            return 0;
+        } else if (!strcmp(a, "--aci")) {
+            o.aci = 1;
+            used = 0;
+        } else if (!strcmp(a, "--nak")) {
+            o.nak = 1;
+            used = 0;
+        } else if (!strcmp(a, "--status-extra")) {
+            o.status_extra = 1;
+            used = 0;
+        } else if (!strcmp(a, "--echo-as-typed")) {
+            o.echo_as_typed = 1;
+            used = 0;
+        } else if (!strcmp(a, "--log-format") && v && (!strcmp(v, "plain") || !strcmp(v, "stamped"))) {
+            o.log_stamped = !strcmp(v, "stamped");
+        } else if (!strcmp(a, "--control-out") && v) {
+            o.control_out = v;
         } else if (!strcmp(a, "--link") && v) {
             o.link_path = v;
         } else if (!strcmp(a, "--tcp")) {

@@ -2,8 +2,12 @@
  * and read as numbers through the expression evaluator, as RAPL-II takes them. */
 #include "sim_cmd.h"
 
+#include "fbrl/units.h"
+
 #include <math.h>
 #include <string.h>
+
+#define MM_PER_IN (FBRL_CM_PER_IN * 10.0) /* METRIC: the controller's lengths are millimetres */
 
 /* Splits rest on commas and spaces; 0 or 14 (empty or too many arguments). */
 int sim_args_split(const char *rest, args *a)
@@ -137,4 +141,18 @@ int sim_args_two_names(args *a, char *x, char *y)
     if (strpbrk(x, " =,") || strpbrk(y, " =,"))
         return SIM_E_BAD_SYNTAX;
     return 0;
+}
+
+/* Lengths: kept in inches inside; typed and shown in the controller's units (METRIC). */
+double sim_len_out(const fbrl_sim *s, double inches) { return s->dev.metric ? inches * MM_PER_IN : inches; }
+
+double sim_len_in(const fbrl_sim *s, double user) { return s->dev.metric ? user / MM_PER_IN : user; }
+
+int sim_arg_len(fbrl_sim *s, args *a, int i, double *inches)
+{
+    double v;
+    int e = sim_arg_num(s, a, i, &v);
+    if (!e)
+        *inches = sim_len_in(s, v);
+    return e;
 }

@@ -37,10 +37,13 @@ static int run_continue(fbrl_sim *s, int *block)
             }
             s->run.pc++;
             if (e) {
+                s->term.last_prog_line = s->run.pc; /* STATUS: where the program stopped, why */
+                s->term.last_prog_err = e;
                 s->run.prog = NULL;
                 return e;
             }
         }
+        s->term.last_prog_line = s->run.pc;
         s->run.pc = 0;
         s->run.left--;
     }
@@ -63,6 +66,9 @@ int sim_h_run(fbrl_sim *s, args *a, int *b)
     if (i == s->mem.nprogs)
         return SIM_E_PROGRAM_NOT_FOUND;
     s->run.prog = &s->mem.progs[i];
+    snprintf(s->term.last_prog, sizeof s->term.last_prog, "%s", name);
+    s->term.last_prog_line = 0;
+    s->term.last_prog_err = -1;
     s->run.pc = 0;
     s->run.left = count;
     return run_continue(s, b);
@@ -83,8 +89,10 @@ static const cmd cmds[] = {
     {"CLOSE", 0, "[FORCE]", sim_h_close},
     {"CONFIG", 0, "<DEV#>,<BAUD>,<PARITY>,<#DATA>,<#STOP>,<HANDSHAKE>,<ECHO>", sim_h_config},
     {"DEPART", F_MOTION, "<DIST>[,S]", sim_h_depart},
+    {"DISABLE", 0, "<ARM>", sim_h_disable},
     {"DLOCN", 0, "<LOC>", sim_h_dlocn},
     {"DVAR", 0, "<VAR>", sim_h_dvar},
+    {"ENABLE", 0, "<ARM>", sim_h_enable},
     {"FINISH", 0, "", sim_h_finish},
     {"FLASH", 0, "[INTERVAL]", sim_h_flash},
     {"GAIN", 0, "<MOTOR#>[,<VALUE>]", sim_h_gain},
@@ -101,6 +109,7 @@ static const cmd cmds[] = {
     {"LOCK", 0, "<JOINT#,...>", sim_h_lock},
     {"MA", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_ma},
     {"MANUAL", 0, "[JOI|CYL]", sim_h_manual},
+    {"METRIC", 0, "", sim_h_metric},
     {"MI", F_MOTION, "<J1>,...,<JN>[,S]", sim_h_mi},
     {"MOTOR", F_MOTION, "<MOTOR#>,<PULSES>", sim_h_motor},
     {"MOVE", F_MOTION, "<LOC>[,S]", sim_h_move},
@@ -108,7 +117,9 @@ static const cmd cmds[] = {
     {"NOHELP", 0, "", sim_h_nohelp},
     {"NOLIMP", 0, "", sim_h_nolimp},
     {"NOMANUAL", 0, "", sim_h_nomanual},
+    {"NOMETRIC", 0, "", sim_h_nometric},
     {"NOTEACH", 0, "", sim_h_noteach},
+    {"ONPOWER", 0, "", sim_h_onpower},
     {"OPEN", 0, "[FORCE]", sim_h_open},
     {"OUTPUT", 0, "<[-]OUT#,...>", sim_h_output},
     {"POINT", 0, "<LOC>,<X>,<Y>,<Z>,<YAW>,<PITCH>,<ROLL>", sim_h_point},

@@ -29,6 +29,10 @@ int sim_arg_mode(args *a, int *flag, int on);
 int sim_arg_num(fbrl_sim *s, args *a, int i, double *v);
 int sim_arg_int(fbrl_sim *s, args *a, int i, long *v);
 int sim_arg_axis(fbrl_sim *s, args *a, int i, int hi, long *ax);
+/* A length in the controller's units (inches, or mm after METRIC) as inches. */
+int sim_arg_len(fbrl_sim *s, args *a, int i, double *inches);
+double sim_len_in(const fbrl_sim *s, double user);
+double sim_len_out(const fbrl_sim *s, double inches);
 /* SET A=B and SHIFTA A,B take two names separated by '=' or ','. */
 int sim_args_two_names(args *a, char *x, char *y);
 
@@ -122,5 +126,12 @@ int sim_h_we3(fbrl_sim *s, args *a, int *b);
 int sim_h_we5(fbrl_sim *s, args *a, int *b);
 int sim_h_status(fbrl_sim *s, args *a, int *b);
 int sim_h_run(fbrl_sim *s, args *a, int *b);
+
+/* sim_h_motion.c: arm power and units (ENABLE/DISABLE ARM, ONPOWER, METRIC/NOMETRIC) */
+int sim_h_enable(fbrl_sim *s, args *a, int *block);
+int sim_h_disable(fbrl_sim *s, args *a, int *block);
+int sim_h_onpower(fbrl_sim *s, args *a, int *block);
+int sim_h_metric(fbrl_sim *s, args *a, int *block);
+int sim_h_nometric(fbrl_sim *s, args *a, int *block);
 
 #endif

@@ -60,7 +60,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->control_path = dupstr(o->control_path);
     s->io.link_path = o->tcp_port < 0 ? dupstr(o->link_path) : NULL;
     s->opt.state_path = s->opt.log_path = s->opt.control_path = s->opt.link_path = NULL;
-    s->opt.inputs_path = s->opt.faults = NULL;
+    s->opt.inputs_path = s->opt.faults = s->opt.control_out = NULL;
     s->arm.model = o->model ? fbrl_sim_model_find(o->model) : &fbrl_sim_models[0];
     s->model_given = o->model != NULL;
     s->opt.model = NULL;
@@ -95,6 +95,13 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
         sim_seterr(err, errlen, "%s: %s", s->log_path, strerror(errno));
         goto fail;
     }
+    if (o->control_out && !(s->ctl_out = fopen(o->control_out, "ae"))) {
+        sim_seterr(err, errlen, "%s: %s", o->control_out, strerror(errno));
+        goto fail;
+    }
+    if (!s->ctl_out && o->control_out_stdout)
+        s->ctl_out = stdout;
+    s->term.aci = o->aci; /* a controller that powers up in ACI mode */
     if (pipe(s->wake) != 0) {
         sim_seterr(err, errlen, "pipe: %s", strerror(errno));
         goto fail;
@@ -189,6 +196,8 @@ static void work(fbrl_sim *s)
     skip_wait(s);
     sim_arm_update(s);
     sim_events_run(s);
+    sim_line_hold_check(&s->line, s->io.fd, now, s->dev.chan[0].handshake == 'X',
+                        s->line.byte_time > 0 ? sim_io_host_ixon(&s->io) : -1);
     sim_line_deliver(s, now);
     sim_term_process(s);
     do_write(s, sim_real_now(s));
@@ -333,6 +342,8 @@ void fbrl_sim_destroy(fbrl_sim *s)
         close(s->wake[1]);
     if (s->log)
         fclose(s->log);
+    if (s->ctl_out && s->ctl_out != stdout)
+        fclose(s->ctl_out);
     sim_free_memory(s);
     free(s->term.out.buf);
     sim_line_free(&s->line);

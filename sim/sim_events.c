@@ -47,8 +47,13 @@ void sim_events_read_fifo(fbrl_sim *s)
     for (i = 0; i < n; i++) {
         if (buf[i] == '\n' || buf[i] == '\r') {
             ev->ctlbuf[ev->ctllen] = 0;
-            if (ev->ctllen && !ev->ctl_overlong)
-                sim_control(s, ev->ctlbuf);
+            if (ev->ctllen && !ev->ctl_overlong) {
+                char why[160];
+                if (sim_control_why(s, ev->ctlbuf, why, sizeof why) != 0)
+                    sim_control_say(s, "REFUSED %s: %s", ev->ctlbuf, why);
+            } else if (ev->ctl_overlong) {
+                sim_control_say(s, "REFUSED a line longer than %d characters", (int)sizeof ev->ctlbuf - 1);
+            }
             ev->ctllen = 0;
             ev->ctl_overlong = 0;
         } else if (ev->ctllen < sizeof ev->ctlbuf - 1) {
@@ -95,8 +100,9 @@ int sim_events_load(sim_events *ev, const char *path, char *err, size_t errlen)
         }
         while (*end == ' ' || *end == '\t')
             end++;
-        if (sim_control(NULL, end) != 0) {
-            sim_seterr(err, errlen, "%s:%d: unknown control line '%s'", path, lineno, end);
+        char why[160];
+        if (sim_control_why(NULL, end, why, sizeof why) != 0) {
+            sim_seterr(err, errlen, "%s:%d: %s: '%s'", path, lineno, why, end);
             fclose(f);
             return -1;
         }

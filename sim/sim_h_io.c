@@ -59,9 +59,9 @@ int sim_h_grip(fbrl_sim *s, args *a, int *b)
     double d;
     int e = sim_args_want(a, 1, 2);
     (void)b;
-    if (e || (e = sim_arg_num(s, a, 0, &d)))
+    if (e || (e = sim_arg_len(s, a, 0, &d)))
         return e;
-    if (d > SIM_GRIP_MAX)
+    if (d > SIM_GRIP_MAX + 1e-9)
         return SIM_E_ARG_TOO_BIG;
     if (d < 0)
         return SIM_E_ILLEGAL_ARG;
@@ -312,4 +312,29 @@ int sim_h_gain(fbrl_sim *s, args *a, int *b)
             s->arm.gain[i] = v;
     s->dirty = 1;
     return 0;
+}
+
+/* METRIC / NOMETRIC [D: the RAPL-II word is not known]: lengths typed and shown in
+ * mm / inches; STATUS's last line says which; kept in the state file. */
+static int h_units(fbrl_sim *s, args *a, int metric)
+{
+    int e = sim_args_want(a, 0, 0);
+    if (e)
+        return e;
+    if (s->dev.metric != metric)
+        s->dirty = 1;
+    s->dev.metric = metric;
+    return 0;
+}
+
+int sim_h_metric(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_units(s, a, 1);
+}
+
+int sim_h_nometric(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_units(s, a, 0);
 }

@@ -62,7 +62,7 @@ int sim_h_point(fbrl_sim *s, args *a, int *b)
     if ((e = sim_args_want(a, need + 1, need + 1)))
         return e;
     for (i = 0; i < need; i++) {
-        if ((e = sim_arg_num(s, a, i + 1, &v[i])))
+        if ((e = !prec && i < 3 ? sim_arg_len(s, a, i + 1, &v[i]) : sim_arg_num(s, a, i + 1, &v[i])))
             return e;
         if (prec && fabs(v[i]) > 9999999999.0)
             return SIM_E_ARG_TOO_BIG;
@@ -112,7 +112,7 @@ int sim_h_shift(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_loc_cart(s, a->v[0], &l)))
         return e;
     for (i = 0; i < 3; i++)
-        if ((e = sim_arg_num(s, a, i + 1, &d[i])))
+        if ((e = sim_arg_len(s, a, i + 1, &d[i])))
             return e;
     for (i = 0; i < 3; i++)
         l->v[i] += d[i];
@@ -180,7 +180,7 @@ static void print_loc(fbrl_sim *s, sim_out *o, const sim_loc *l)
     } else {
         sim_out_printf(o, "%-9s", l->name);
         for (i = 0; i < 6; i++)
-            sim_out_printf(o, " %+09.4f", l->v[i] + 0.0);
+            sim_out_printf(o, " %+09.4f", (i < 3 ? sim_len_out(s, l->v[i]) : l->v[i]) + 0.0);
     }
     sim_out_printf(o, "\r\n");
 }

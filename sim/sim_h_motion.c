@@ -27,7 +27,7 @@ int sim_h_appro(fbrl_sim *s, args *a, int *b)
     double pose[6], q[FBRL_SIM_ARM_MAX_AXES], t[6], d;
     int S = sim_args_take_s(a, 2), prec, e = sim_args_want(a, 2, 2);
     (void)b;
-    if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)) || (e = sim_arg_num(s, a, 1, &d)))
+    if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)) || (e = sim_arg_len(s, a, 1, &d)))
         return e;
     sim_back_off(pose, prec ? q[0] : s->arm.q[0], d, t);
     return S ? sim_move_line(s, t, NULL) : sim_move_pose(s, t);
@@ -38,7 +38,7 @@ int sim_h_depart(fbrl_sim *s, args *a, int *b)
     double pose[6], t[6], d;
     int S = sim_args_take_s(a, 1), e = sim_args_want(a, 1, 1);
     (void)b;
-    if (e || (e = sim_arg_num(s, a, 0, &d)))
+    if (e || (e = sim_arg_len(s, a, 0, &d)))
         return e;
     sim_current_pose(s, pose);
     sim_back_off(pose, s->arm.q[0], d, t);
@@ -63,7 +63,7 @@ int sim_h_jog(fbrl_sim *s, args *a, int *b)
     int i, e = sim_args_want(a, 3, 3);
     (void)b;
     for (i = 0; !e && i < 3; i++)
-        e = sim_arg_num(s, a, i, &d[i]);
+        e = sim_arg_len(s, a, i, &d[i]);
     if (e)
         return e;
     sim_current_pose(s, pose);
@@ -263,6 +263,43 @@ int sim_h_arm(fbrl_sim *s, args *a, int *b)
         return SIM_E_ILLEGAL_ARG;
     }
     return 0;
+}
+
+/* ENABLE ARM / DISABLE ARM (S1 /176 /177 "ENABLE [item]"; S2 sends ENABLE ARM): arm
+ * power on / off, like ARM ON / OFF [D]. Other items are documented forms fbrlsim
+ * does not have: 066. */
+static int h_enable(fbrl_sim *s, args *a, int on)
+{
+    int e = sim_args_want(a, 1, 1);
+    if (e)
+        return e;
+    if (strcmp(a->v[0], "ARM"))
+        return SIM_E_NOT_AVAILABLE;
+    if (!on)
+        sim_halt(s);
+    s->arm.power = on;
+    return 0;
+}
+
+int sim_h_enable(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_enable(s, a, 1);
+}
+
+int sim_h_disable(fbrl_sim *s, args *a, int *b)
+{
+    (void)b;
+    return h_enable(s, a, 0);
+}
+
+/* ONPOWER: waits until arm power is on (S3: "blocks until motors come on"). */
+int sim_h_onpower(fbrl_sim *s, args *a, int *b)
+{
+    int e = sim_args_want(a, 0, 0);
+    if (!e && !s->arm.power)
+        *b = 1;
+    return e;
 }
 
 static int h_xaxis(fbrl_sim *s, args *a, int which, int *b)

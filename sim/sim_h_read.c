@@ -28,7 +28,7 @@ static void print_position(fbrl_sim *s, const char *title, const double q[FBRL_S
         sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", q[i] + 0.0); /* no "-000.0000" */
     sim_out_printf(o, "\r\nWORLD     ");
     for (i = 0; i < 6; i++)
-        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", pose[i] + 0.0);
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", (i < 3 ? sim_len_out(s, pose[i]) : pose[i]) + 0.0);
     sim_out_printf(o, "\r\n");
 }
 
@@ -154,6 +154,8 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
     sim_out_printf(o, "\r");
 }
 
+static void status_extra(fbrl_sim *s, sim_out *o);
+
 int sim_h_status(fbrl_sim *s, args *a, int *b)
 {
     sim_out *o = &s->term.out;
@@ -165,21 +167,36 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
     sim_joints_now(s, q);
     for (i = 0; i < sim_naxes(s); i++)
         moving[i] = s->arm.moving && fabs(s->arm.qt[i] - s->arm.q[i]) > 0 && sim_now(s) < s->arm.mt1;
-    sim_out_printf(o, "RAPL-II Version 2.60     %s Robot (fbrlsim)\r\n", s->arm.model->name);
+    /* The RAPL-II 2.60 sample's 20 lines (research notes 1.4, S2; S3 reads them as a fixed
+     * count); fbrlsim's own lines only with --status-extra, before the units line. */
+    /* --status-extra is fbrlsim's own layout: the header names it, no program line */
+    sim_out_printf(o, "RAPL-II Version 2.60     %s Robot%s\r\n", s->arm.model->name,
+                   s->opt.status_extra ? " (fbrlsim)" : "");
     if (s->term.last_error < 0)
         sim_out_printf(o, "LAST ERROR CODE: NONE\r\n");
     else
         sim_out_printf(o, "LAST ERROR CODE: %03d-%s.\r\n", s->term.last_error,
                        sim_error_text(s->term.last_error));
     sim_out_printf(o, "SPEED (%% OF FULL) : %+6ld\r\n", lround(s->arm.speed));
-    sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", s->arm.model->linear);
-    sim_out_printf(o, "CURRENT PROGRAM EXECUTING:%s%s\r\n", s->run.prog ? " " : "",
-                   s->run.prog ? s->run.prog->name : "");
+    sim_out_printf(o, "MAX LINEAR SPEED: %+09.4f\r\n", sim_len_out(s, s->arm.model->linear));
+    sim_out_printf(o, "CURRENT PROGRAM EXECUTING:\r\n");
+    if (s->opt.status_extra) {
+        /* no program line in fbrlsim's own layout */
+    } else if (s->run.prog)
+        sim_out_printf(o, "[00]%s#%05d :\r\n", s->run.prog->name, s->run.pc + 1);
+    else if (s->term.last_prog[0] && s->term.last_prog_err >= 0)
+        sim_out_printf(o, "[00]%s#%05d :%03d-%s.\r\n", s->term.last_prog, s->term.last_prog_line,
+                       s->term.last_prog_err, sim_error_text(s->term.last_prog_err));
+    else if (s->term.last_prog[0])
+        sim_out_printf(o, "[00]%s#%05d :\r\n", s->term.last_prog, s->term.last_prog_line);
+    else
+        sim_out_printf(o, "[00]NONE\r\n");
     sim_out_printf(o, "JOINT LIMIT CHECK IS ON\r\n");
     sim_out_printf(o, "CONTROLLER IS %sHOMED\r\n", s->arm.homed ? "" : "NOT ");
     sim_out_printf(o, "TOOL TRANSFORM\r\n%-10s", s->mem.tool_set ? "TOOL" : "NULL");
     for (i = 0; i < 6; i++)
-        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f", s->mem.tool[i]);
+        sim_out_printf(o, i ? " %+09.4f" : "%+09.4f",
+                       i < 3 ? sim_len_out(s, s->mem.tool[i]) : s->mem.tool[i]);
     sim_out_printf(o, "\r\nGRIPPER TYPE:  SERVO\r\n%-13s", "AXIS#");
     for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i ? " %d" : "%d", i + 1);
@@ -204,6 +221,16 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
                        pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
     }
     sim_out_printf(o, "MANUAL MODE STATUS IS %s\r\n", s->dev.manual ? "ON" : "OFF");
+    if (s->opt.status_extra)
+        status_extra(s, o);
+    sim_out_printf(o, "%s UNITS.\r\n", s->dev.metric ? "METRIC" : "INCH");
+    return 0;
+}
+
+/* fbrlsim's own STATUS lines (--status-extra): not in the 2.60 sample. */
+static void status_extra(fbrl_sim *s, sim_out *o)
+{
+    int i;
     sim_out_printf(o, "ARM POWER IS %s\r\n", s->arm.power ? "ON" : "OFF");
     sim_out_printf(o, "PENDANT LAMP IS %s\r\n", s->dev.flash ? "FLASHING" : "OFF");
     if (s->mem.teach)
@@ -211,7 +238,7 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
                        s->mem.teach_name, s->mem.teach_next);
     else
         sim_out_printf(o, "TEACH MODE IS OFF\r\n");
-    sim_out_printf(o, "GRIPPER OPENING: %+09.4f FORCE (%% OF FULL): %+6ld\r\n", s->dev.grip,
+    sim_out_printf(o, "GRIPPER OPENING: %+09.4f FORCE (%% OF FULL): %+6ld\r\n", sim_len_out(s, s->dev.grip),
                    lround(s->dev.grip_force));
     sim_out_printf(o, "INPUTS  1-16: ");
     for (i = 0; i < SIM_IO; i++)
@@ -219,6 +246,5 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
     sim_out_printf(o, "\r\nOUTPUTS 1-16: ");
     for (i = 0; i < SIM_IO; i++)
         sim_out_printf(o, "%d", s->dev.out_[i]);
-    sim_out_printf(o, "\r\nINCH UNITS.\r\n");
-    return 0;
+    sim_out_printf(o, "\r\n");
 }

@@ -88,6 +88,15 @@ typedef struct sim_line {
     int pop_valid;
     long overruns;
     int xoff_sent, peer_xoff;
+    /* After our XOFF has reached the host, its bytes stay where they are (in the kernel,
+     * as in a real host's UART) until our XON, unless the host goes on sending: */
+    int holding;       /* our XOFF is out: nothing more is taken off the OS */
+    double hold_from;  /* when the host had our XOFF (real s) */
+    int hold_base;     /* bytes the host had sent by then plus a grace; -1 not yet measured */
+    int host_ignores;  /* the host sent more after our XOFF: its bytes flow (and overrun) */
+    long ignored_xoff; /* times a host was seen ignoring our XOFF */
+    int flow;          /* XON/XOFF on (channel 0), as last seen */
+    int host_ixon;     /* the host's tty has IXON (1), not (0), unknown: TCP (-1) */
     /* controller -> host */
     int urgent; /* XON/XOFF waiting to go out first, -1 none */
     double urgent_q;
@@ -121,6 +130,14 @@ typedef struct sim_term {
     double stream_next;
     double think_until; /* PS_THINK: the controller is still reading the line */
     int last_error;     /* -1 none (STATUS shows it) */
+    int aci;            /* 1: ACI (binary host protocol) mode, not terminal mode */
+    int aci_st, aci_n;  /* sim_aci.c: where the host is in the switch handshake */
+    unsigned char aci_pkt[16];
+    int ctrl_z;                       /* the previous byte was Ctrl-Z (two of them: back to ACI mode) */
+    double cmd_t;                     /* simulated time the running line was submitted (stamped log) */
+    int cmd_logged;                   /* the running line is to be logged when it ends (stamped log) */
+    char last_prog[SIM_NAME_MAX + 1]; /* STATUS's program line: the last program RUN */
+    int last_prog_line, last_prog_err;
 } sim_term;
 
 /* sim_events.c: control lines from the FIFO and the --inputs script. */
@@ -178,6 +195,7 @@ typedef struct sim_dev {
     double grip, grip_force, object;
     sim_chan chan[2];
     int flash, manual;
+    int metric; /* METRIC: lengths typed and shown in mm (kept in the state file) */
 } sim_dev;
 
 /* sim_cmd.c: the program being RUN. */
@@ -191,6 +209,7 @@ struct fbrl_sim {
     fbrl_sim_options opt;
     char *state_path, *log_path, *control_path;
     FILE *log;
+    FILE *ctl_out; /* control-line answers and refusals, or NULL */
     int wake[2];
     int stop; /* set by fbrl_sim_stop (atomic builtins) */
     pthread_t thread;
@@ -247,6 +266,8 @@ int sim_line_read(fbrl_sim *s, int fd, double now);
 void sim_line_deliver(fbrl_sim *s, double now);
 int sim_line_rx_pop(fbrl_sim *s);
 int sim_line_rx_allow(const sim_line *l, double now);
+/* Does the host honour our XOFF? flow: XON/XOFF is on (channel 0's handshake). */
+void sim_line_hold_check(sim_line *l, int fd, double now, int flow, int host_ixon);
 double sim_line_due(const sim_line *l, double now, double limit);
 int sim_line_wants_write(const sim_line *l, double now);
 void sim_line_reset(sim_line *l);
@@ -254,9 +275,10 @@ void sim_line_reset(sim_line *l);
 /* sim_io.c */
 int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
-int sim_io_accept(sim_io *io);       /* 1: a new client */
-int sim_io_close_client(sim_io *io); /* 1: a client was closed */
-int sim_io_pty_opened(sim_io *io);   /* times the pty was opened since the last call */
+int sim_io_accept(sim_io *io);          /* 1: a new client */
+int sim_io_close_client(sim_io *io);    /* 1: a client was closed */
+int sim_io_pty_opened(sim_io *io);      /* times the pty was opened since the last call */
+int sim_io_host_ixon(const sim_io *io); /* the host's tty has IXON: 1, 0; -1 not a pty */
 void sim_io_close(sim_io *io);
 
 /* sim_term.c */
@@ -264,6 +286,10 @@ void sim_term_reset(sim_term *t);
 void sim_term_greet(fbrl_sim *s);
 void sim_term_process(fbrl_sim *s);
 double sim_term_due(const sim_term *t, const sim_line *l, double now, double limit);
+
+/* sim_aci.c: ACI mode, the binary host protocol a controller may power up in */
+int sim_aci_byte(fbrl_sim *s, unsigned char b); /* 1: the byte is terminal mode's now */
+void sim_aci_enter(fbrl_sim *s);                /* Ctrl-Z Ctrl-Z from terminal mode */
 
 /* sim_events.c */
 int sim_events_open_fifo(sim_events *ev, const char *path, char *err, size_t errlen);
@@ -295,6 +321,14 @@ void sim_stream_line(fbrl_sim *s, sim_out *o); /* the next line of a W1/W3/W5 re
 
 /* sim_control.c */
 int sim_control(fbrl_sim *s, const char *line); /* 0 ok, -1 bad line; s NULL: only check */
+/* The same, with the reason for a refusal in why[whylen]; answers queries to s->ctl_out. */
+int sim_control_why(fbrl_sim *s, const char *line, char *why, size_t whylen);
+/* Writes a control answer or refusal line to s->ctl_out (if any). */
+void sim_control_say(fbrl_sim *s, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
 
 /* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);

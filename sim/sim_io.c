@@ -177,3 +177,11 @@ void sim_io_close(sim_io *io)
     free(io->link_path);
     io->link_path = NULL;
 }
+
+int sim_io_host_ixon(const sim_io *io)
+{
+    struct termios t;
+    if (io->conn >= 0 || io->slave < 0 || tcgetattr(io->slave, &t) != 0)
+        return -1;
+    return (t.c_iflag & IXON) != 0;
+}

@@ -30,6 +30,11 @@
 #define WIRE_AHEAD_MIN 0.001 /* s: how far ahead the host's bytes are taken off the OS (at least one) */
 #define TX_FIRST_CAP   4096
 #define BURST_MIN      2 /* characters handed over at once at least (see pace_cap) */
+/* A host that honours XOFF stops within this time after it has our XOFF (what it sent
+ * by then was already on its way, as in a real UART's FIFO); more bytes after it mean
+ * it ignores XOFF. Generous, because a host on a loaded machine reacts late. */
+#define HOLD_GRACE 0.05
+#define HOLD_POLL  0.002 /* s: how often the bytes a holding host has queued are counted */
 
 /* The OS may wake the emulator late; characters whose time has come are then handed
  * over together. So that lateness never turns into a burst faster than the line,
@@ -153,6 +158,9 @@ static int parity_on(const fbrl_sim *s)
 }
 
 static int flow_on(const fbrl_sim *s) { return s->dev.chan[0].handshake == 'X'; }
+
+/* The receive buffer's fill at which the controller sends XOFF (three quarters). */
+static int xoff_mark(const sim_line *l) { return l->rxcap * 3 / 4; }
 
 /* Applies the line faults to one byte; returns how many bytes went to out (0..2).
  * bad[k] = the receiving UART sees a parity error on out[k] (only with parity on): a
@@ -309,6 +317,19 @@ int sim_line_write(fbrl_sim *s, int fd, double now)
         if (write(fd, &b, 1) != 1)
             return errno == EAGAIN || errno == EINTR ? 0 : -1;
         l->urgent = -1;
+        if (b == XOFF) {
+            /* from when the host has it, its bytes stay with it (sim_line_rx_allow) */
+            l->holding = 1;
+            l->hold_from = l->byte_time > 0 ? end : now;
+            l->hold_base = -1;
+            l->host_ignores = 0;
+        } else {
+            /* the host's UART starts again when it has our XON, not in the past */
+            double resume = l->byte_time > 0 ? end : now;
+            if (l->holding && l->rx_free < resume)
+                l->rx_free = resume;
+            l->holding = l->host_ignores = 0;
+        }
         if (l->byte_time > 0) {
             l->tx_free = end;
             pace_take(&l->tx_pace, l->byte_time, now, 1.0);
@@ -391,7 +412,7 @@ static void rx_byte(fbrl_sim *s, unsigned char b, double now)
     l->rx[(l->rxhead + l->rxcount) % l->rxcap] = b;
     l->rx_t[(l->rxhead + l->rxcount) % l->rxcap] = now;
     l->rxcount++;
-    if (l->byte_time > 0 && flow_on(s) && !l->xoff_sent && l->rxcount >= l->rxcap * 3 / 4) {
+    if (l->byte_time > 0 && flow_on(s) && !l->xoff_sent && l->rxcount >= xoff_mark(l)) {
         l->urgent = XOFF;
         l->urgent_q = now;
         l->xoff_sent = 1;
@@ -463,8 +484,17 @@ void sim_line_deliver(fbrl_sim *s, double now)
 /* How many bytes may be taken off the OS now. Paced: those that will be complete
  * within a short look-ahead (at least one when the wire is empty), so that bytes a
  * host still holds after our XOFF stay with it, as they would in its UART. */
+/* Whether the host's port stops sending on our XOFF: its tty has IXON (a pty), or, over
+ * TCP, it has not been seen sending on after our XOFF. */
+static int host_honours(const sim_line *l)
+{
+    return l->host_ixon == 1 || (l->host_ixon < 0 && !l->host_ignores);
+}
+
 int sim_line_rx_allow(const sim_line *l, double now)
 {
+    if (l->flow && l->holding && host_honours(l))
+        return 0; /* our XOFF is out: what the host queued stays with it */
     if (l->byte_time > 0) {
         double start = l->backlog > 0 || l->rx_free > now ? l->rx_free : now;
         double ahead = l->byte_time > WIRE_AHEAD_MIN ? l->byte_time : WIRE_AHEAD_MIN;
@@ -473,9 +503,43 @@ int sim_line_rx_allow(const sim_line *l, double now)
             k = 1;
         if (k > SIM_WIRE_MAX - l->wn)
             k = SIM_WIRE_MAX - l->wn;
+        if (l->flow && host_honours(l)) {
+            /* A real controller's XOFF leaves the moment its buffer reaches the mark, even
+             * when this process runs late: so a host that honours it never sends more than
+             * fills the buffer to the mark (plus what it still had on the wire). */
+            int room = xoff_mark(l) - l->rxcount - l->wn;
+            if (k > room)
+                k = room;
+        }
         return k < 0 ? 0 : k;
     }
     return l->rxcap - l->rxcount; /* no line model: the kernel buffer holds the rest */
+}
+
+/* Does the host honour our XOFF? On a pty its tty's IXON says (host_ixon 0 or 1: the
+ * kernel then stops its writes, as a real port's driver would stop its UART). Over TCP
+ * (host_ixon -1) its behaviour says: after the grace, count what it has queued; if
+ * that grows, it ignores XOFF and its bytes flow again (into an overrun). */
+void sim_line_hold_check(sim_line *l, int fd, double now, int flow, int host_ixon)
+{
+    int waiting = 0;
+    l->flow = flow;
+    l->host_ixon = host_ixon;
+    if (host_ixon >= 0)
+        return; /* the host's own port says whether it honours XOFF */
+    if (!l->holding || l->host_ignores || fd < 0 || now < l->hold_from + HOLD_GRACE)
+        return;
+    if (ioctl(fd, FIONREAD, &waiting) != 0 || waiting < 0)
+        return;
+    if (l->hold_base < 0) {
+        l->hold_base = waiting;
+    } else if (waiting > l->hold_base) {
+        l->host_ignores = 1; /* counted in ignored_xoff below */
+        l->ignored_xoff++;
+        l->backlog = 0; /* what it sends now starts now */
+        if (l->rx_free < now)
+            l->rx_free = now;
+    }
 }
 
 /* Reads from the host; 1 at end of file, -1 on a broken connection, else 0. */
@@ -539,6 +603,13 @@ double sim_line_due(const sim_line *l, double now, double limit)
     } else if (l->urgent >= 0) {
         r = 0;
     }
+    if (l->holding && l->host_ixon < 0 && !l->host_ignores) { /* TCP: watch what the host queues */
+        t = l->hold_from + HOLD_GRACE - now;
+        if (t < HOLD_POLL)
+            t = HOLD_POLL;
+        if (t < r)
+            r = t;
+    }
     if (sim_line_tx_pending(l) && !l->peer_xoff && l->tx_hold_until > now && l->tx_hold_until - now < r)
         r = l->tx_hold_until - now;
     return r;
@@ -560,5 +631,6 @@ void sim_line_reset(sim_line *l)
     l->backlog = 0;
     l->txoff = l->txlen = 0;
     l->peer_xoff = l->xoff_sent = 0;
+    l->holding = l->host_ignores = 0;
     l->urgent = -1;
 }

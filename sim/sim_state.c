@@ -92,6 +92,7 @@ static void write_state(fbrl_sim *s, FILE *f)
         fprintf(f, "TOOL %s %.17g %.17g %.17g %.17g %.17g %.17g\n", s->mem.tool_name, s->mem.tool[0],
                 s->mem.tool[1], s->mem.tool[2], s->mem.tool[3], s->mem.tool[4], s->mem.tool[5]);
     fprintf(f, "FLASH %d\n", s->dev.flash);
+    fprintf(f, "UNITS %s\n", s->dev.metric ? "METRIC" : "INCH");
     for (i = 0; i < 2; i++)
         fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity,
                 s->dev.chan[i].data, s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
@@ -393,6 +394,12 @@ static int load_item(loader *ld, sim_prog **prog)
         if (want_fields(ld, 2) || int_field(ld, 1, 0, 1, &v[0]))
             return -1;
         s->dev.flash = (int)v[0];
+    } else if (!strcmp(k, "UNITS")) {
+        if (want_fields(ld, 2))
+            return -1;
+        if (strcmp(ld->tok[1], "METRIC") && strcmp(ld->tok[1], "INCH"))
+            return bad(ld, "expected METRIC or INCH", ld->tok[1]);
+        s->dev.metric = !strcmp(ld->tok[1], "METRIC");
     } else if (!strcmp(k, "CONFIG")) {
         sim_chan c;
         if (want_fields(ld, 8) || int_field(ld, 1, 0, 1, &v[0]) || int_field(ld, 2, 1, BAUD_MAX, &c.baud) ||

@@ -8,8 +8,10 @@
 #include <errno.h>
 #include <string.h>
 
-#define TX_BUSY       512 /* pending output bytes at which the controller stops reading input */
-#define STREAM_PERIOD 0.1 /* s between the lines of a W1/W3/W5 readout */
+#define TX_BUSY       512  /* pending output bytes at which the controller stops reading input */
+#define STREAM_PERIOD 0.1  /* s between the lines of a W1/W3/W5 readout */
+#define NAK           0x15 /* --nak: sent before an error line, as S3 expects */
+#define CTRL_Z        0x1A /* two of them: back to ACI mode (--aci), research notes 2.5 */
 
 static void emit_str(fbrl_sim *s, const char *str) { sim_emit(s, str, strlen(str)); }
 
@@ -23,7 +25,7 @@ void sim_term_reset(sim_term *t)
 
 void sim_term_greet(fbrl_sim *s)
 {
-    if (s->term.ps == PS_IDLE && s->term.len == 0)
+    if (s->term.ps == PS_IDLE && s->term.len == 0 && !s->term.aci) /* ACI mode never prompts */
         emit_str(s, ">>");
 }
 
@@ -35,10 +37,20 @@ static void finish(fbrl_sim *s, int err)
     t->out.len = 0;
     if (err >= 0) {
         char e[96];
-        snprintf(e, sizeof e, "%03d-%s.\r\n", err, sim_error_text(err));
+        static const char nak[] = {NAK, 0};
+        snprintf(e, sizeof e, "%s%03d-%s.\r\n", s->opt.nak ? nak : "", err, sim_error_text(err));
         emit_str(s, e);
         s->term.last_error = err;
     }
+    if (t->cmd_logged && s->log) {
+        /* the stamped log: when the line was taken, how it ended, the line */
+        char st[12] = "OK";
+        if (err >= 0)
+            snprintf(st, sizeof st, "%03d", err);
+        fprintf(s->log, "%.3f %s %s\n", t->cmd_t, st, t->cur);
+        fflush(s->log);
+    }
+    t->cmd_logged = 0;
     if (t->ps == PS_STREAM) {
         t->stream_next = sim_real_now(s);
     } else {
@@ -82,7 +94,10 @@ static void submit(fbrl_sim *s)
         emit_str(s, ">>");
         return;
     }
-    if (s->log) {
+    if (s->log && s->opt.log_stamped) {
+        t->cmd_t = sim_now(s); /* written with its result when it ends (finish) */
+        t->cmd_logged = 1;
+    } else if (s->log) {
         fprintf(s->log, "%s\n", t->cur);
         fflush(s->log);
     }
@@ -141,6 +156,17 @@ static void line_byte(fbrl_sim *s, unsigned char b)
 {
     sim_term *t = &s->term;
     char c;
+    if (t->aci && !sim_aci_byte(s, b))
+        return;
+    if (s->opt.aci && b == CTRL_Z) {
+        if (t->ctrl_z) {
+            sim_aci_enter(s); /* the half-typed line is dropped */
+            return;
+        }
+        t->ctrl_z = 1;
+        return;
+    }
+    t->ctrl_z = 0;
     if (b == '\n' && t->last_cr) {
         t->last_cr = 0;
         return;
@@ -167,7 +193,12 @@ static void line_byte(fbrl_sim *s, unsigned char b)
         return;
     }
     t->line[t->len++] = c;
-    echo(s, &c, 1);
+    if (s->opt.echo_as_typed) {
+        char typed = (char)b;
+        echo(s, &typed, 1);
+    } else {
+        echo(s, &c, 1);
+    }
     if (t->help && (c == ' ' || c == ','))
         help_hint(s);
 }

@@ -63,6 +63,7 @@ void fbrl_link_config_init(fbrl_link_config *c)
     c->exec_ctx = 0;
     c->on_line = 0;
     c->line_ctx = 0;
+    c->aci = 0;
 }
 
 static uint64_t now_us(const fbrl_link *l)
@@ -443,7 +444,7 @@ static int same_status(const fbrl_rapl_status_info *a, const fbrl_rapl_status_in
     if (error_only)
         return 1;
     if (a->have != b->have || a->speed != b->speed || a->homed != b->homed || a->naxes != b->naxes ||
-        a->inputs != b->inputs || a->outputs != b->outputs)
+        a->inputs != b->inputs || a->outputs != b->outputs || a->metric != b->metric)
         return 0;
     for (unsigned k = 0; k < a->naxes; k++)
         if (a->lock[k] != b->lock[k] || a->done[k] != b->done[k] || a->limp[k] != b->limp[k] ||
@@ -1317,11 +1318,103 @@ static fbrl_status run(fbrl_link *l)
     }
 }
 
+/* ---- the ACI switch (connect only; research notes 2.5, S2's ACI_to_Term) ---- */
+
+#define ACI_SLAVE   0x21 /* slave 1 + 0x20 */
+#define ACI_TO_TERM 0x48
+#define ACI_PKT_LEN 13 /* SOH dst src op cmd, 6 data, ETX, checksum */
+
+/* Reads exactly n bytes within timeout_ms; how many came. */
+static size_t aci_read(fbrl_link *l, uint8_t *buf, size_t n, uint32_t timeout_ms)
+{
+    uint64_t end = now_us(l) + (uint64_t)timeout_ms * 1000u;
+    size_t got = 0;
+    while (got < n) {
+        uint64_t t = now_us(l);
+        size_t k = 0;
+        if (t >= end)
+            break;
+        if (fbrl_uart_read(l->u, buf + got, n - got, &k, (uint32_t)((end - t + 999) / 1000)) != FBRL_OK && !k)
+            break;
+        got += k;
+    }
+    return got;
+}
+
+static int aci_step(fbrl_link *l, const uint8_t *out, size_t n, const uint8_t *want, size_t wn)
+{
+    uint8_t got[8];
+    if (send(l, out, n) != FBRL_OK)
+        return 0;
+    if (aci_read(l, got, wn, l->cfg.reply_timeout_ms) != wn)
+        return 0;
+    for (size_t i = 0; i < wn; i++)
+        if (got[i] != want[i])
+            return 0;
+    return 1;
+}
+
+/* Switches a controller in ACI mode to terminal mode. One in terminal mode echoes the
+ * selection 'R' '!' (not its ENQ) instead of acknowledging it: the two are erased. */
+static fbrl_status aci_to_terminal(fbrl_link *l)
+{
+    static const uint8_t sel[] = {'R', ACI_SLAVE, 0x05};
+    static const uint8_t pkt_ack[] = {0x06, 0x02, 0x03, 0x00}, ack[] = {0x06}, eot[] = {0x04};
+    static const uint8_t erase[] = {0x08, 0x08};
+    uint8_t pkt[ACI_PKT_LEN] = {0x01, ACI_SLAVE, ACI_SLAVE, 0x00, ACI_TO_TERM, 0, 0, 0, 0, 0, 0, 0x03, 0};
+    uint8_t junk[16], b, last;
+    unsigned sum = 0;
+    int seen = 0, heard = 0, acked = 0; /* seen: 1 after 'R', 2 after 'R' '!' */
+    size_t k;
+    while (fbrl_uart_read(l->u, junk, sizeof junk, &k, 0) == FBRL_OK && k)
+        ; /* what came before (a greeting, old output) is not the answer */
+    if (send(l, sel, sizeof sel) != FBRL_OK)
+        return FBRL_EIO;
+    uint64_t end = now_us(l) + (uint64_t)l->cfg.reply_timeout_ms * 1000u;
+    for (;;) {
+        uint64_t t = now_us(l);
+        /* after "R!" the ACK comes at once or never (a terminal-mode echo) */
+        uint32_t wait = seen == 2 ? l->cfg.echo_timeout_ms : t < end ? (uint32_t)((end - t + 999) / 1000) : 0;
+        if (!wait || aci_read(l, &b, 1, wait) != 1)
+            break;
+        heard = 1;
+        if (seen == 2 && b == 0x06) {
+            acked = 1;
+            break;
+        }
+        seen = b == 'R' ? 1 : seen == 1 && b == ACI_SLAVE ? 2 : 0;
+    }
+    if (!acked) {
+        if (!heard)
+            return FBRL_ETIMEOUT; /* nothing answers */
+        /* terminal mode: "R!" was typed; erase it and let its echo pass */
+        if (send(l, erase, sizeof erase) != FBRL_OK)
+            return FBRL_EIO;
+        while (fbrl_uart_read(l->u, junk, sizeof junk, &k, l->cfg.echo_timeout_ms) == FBRL_OK && k)
+            ;
+        return FBRL_OK;
+    }
+    for (size_t i = 1; i < ACI_PKT_LEN - 2; i++) /* the bytes between SOH and ETX, mod 256 */
+        sum += pkt[i];
+    pkt[ACI_PKT_LEN - 1] = (uint8_t)(sum & 0xFFu);
+    if (!aci_step(l, pkt, sizeof pkt, pkt_ack, sizeof pkt_ack) ||
+        !aci_step(l, ack, sizeof ack, eot, sizeof eot))
+        return FBRL_EPROTOCOL;
+    if (send(l, eot, sizeof eot) != FBRL_OK || aci_read(l, &last, 1, l->cfg.reply_timeout_ms) != 1)
+        return FBRL_EPROTOCOL; /* the controller's last byte of the switch, discarded */
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_link_connect(fbrl_link *l)
 {
     if (!l || !l->u)
         return FBRL_EINVAL;
     l->ctrl_len = -1;
+    if (l->cfg.aci) {
+        fbrl_status sw = aci_to_terminal(l);
+        if (sw != FBRL_OK)
+            return sw;
+    }
     fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms, 1);
     return st == FBRL_OK ? run(l) : st;
 }

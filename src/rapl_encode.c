@@ -81,6 +81,12 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_LISTV] = {"LISTV", 69, "[V", 0, SAF, LINES},
     [FBRL_RAPL_SHIFT] = {"SHIFT", 52, "LRRR", 0, 0, NONE},
     [FBRL_RAPL_TYPE] = {"TYPE", 58, "T", 0, SAF, LINES},
+    [FBRL_RAPL_ENABLE] = {"ENABLE", 176, "W", "ARM", SAF, NONE},
+    [FBRL_RAPL_DISABLE] = {"DISABLE", 177, "W", "ARM", SAF, NONE},
+    [FBRL_RAPL_ONPOWER] = {"ONPOWER", 0, "", 0, WTS | SAF, NONE},
+    /* the unit words are fbrlsim's choice [D]: no source names RAPL-II's */
+    [FBRL_RAPL_METRIC] = {"METRIC", 0, "", 0, SAF, NONE},
+    [FBRL_RAPL_NOMETRIC] = {"NOMETRIC", 0, "", 0, SAF, NONE},
 };
 
 #define MAX_REPEAT     8 /* arguments a '*' list may hold in all */

@@ -534,6 +534,7 @@ void fbrl_rapl_status_init(fbrl_rapl_status_info *s)
     s->homed = 0;
     s->naxes = 0;
     s->inputs = s->outputs = 0;
+    s->metric = 0;
     s->have = 0;
 }
 
@@ -622,6 +623,11 @@ fbrl_status fbrl_rapl_status_line(fbrl_rapl_status_info *s, const char *line, si
         if (st == FBRL_OK)
             s->have |= FBRL_RAPL_ST_INPUTS;
         return st;
+    }
+    if (equals(line, len, "METRIC UNITS.") || equals(line, len, "INCH UNITS.")) {
+        s->metric = line[0] == 'M'; /* the units the controller's lengths are in */
+        s->have |= FBRL_RAPL_ST_UNITS;
+        return FBRL_OK;
     }
     if (starts(line, len, "OUTPUTS 1-16:", &i)) {
         fbrl_status st = io_row(&s->outputs, line, len, i);

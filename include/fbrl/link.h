@@ -103,6 +103,11 @@ typedef struct fbrl_link_config {
      * fbrl_link_set_line_handler() changes it later. */
     void (*on_line)(void *ctx, const char *line, size_t len, int flawed);
     void *line_ctx;
+    /* The controller may power up in ACI mode (default 0): fbrl_link_connect() first
+     * sends the ACI switch to terminal mode (research notes 2.5; docs/link.md). A
+     * controller already in terminal mode takes the switch's first bytes as typed
+     * text; the link erases them again. */
+    int aci;
 } fbrl_link_config;
 
 void fbrl_link_config_init(fbrl_link_config *c);

@@ -91,7 +91,12 @@ typedef enum fbrl_rapl_cmd {
     FBRL_RAPL_LISTV = 61,
     FBRL_RAPL_SHIFT = 62,
     FBRL_RAPL_TYPE = 63,
-    FBRL_RAPL_NCMDS = 64
+    FBRL_RAPL_ENABLE = 64,   /* ENABLE ARM: arm power on */
+    FBRL_RAPL_DISABLE = 65,  /* DISABLE ARM: arm power off */
+    FBRL_RAPL_ONPOWER = 66,  /* waits until arm power is on */
+    FBRL_RAPL_METRIC = 67,   /* lengths in mm from now on */
+    FBRL_RAPL_NOMETRIC = 68, /* lengths in inches from now on */
+    FBRL_RAPL_NCMDS = 69
 } fbrl_rapl_cmd;
 
 typedef enum fbrl_rapl_form {

@@ -115,6 +115,7 @@ typedef struct fbrl_rapl_status_info {
     char limp[FBRL_RAPL_MAX_AXES], axis_homed[FBRL_RAPL_MAX_AXES]; /* 1 = Y */
     uint32_t inputs, outputs;                                      /* bit n-1 = input/output n */
     unsigned have;                                                 /* FBRL_RAPL_ST_* bits of the lines seen */
+    int metric; /* the last line: 1 "METRIC UNITS." (lengths in mm), 0 "INCH UNITS." */
 } fbrl_rapl_status_info;
 
 #define FBRL_RAPL_ST_ERROR   0x01u
@@ -126,6 +127,7 @@ typedef struct fbrl_rapl_status_info {
 #define FBRL_RAPL_ST_AXHOMED 0x40u
 #define FBRL_RAPL_ST_INPUTS  0x80u
 #define FBRL_RAPL_ST_OUTPUTS 0x100u
+#define FBRL_RAPL_ST_UNITS   0x200u
 
 void fbrl_rapl_status_init(fbrl_rapl_status_info *s);
 

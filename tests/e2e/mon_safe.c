@@ -61,7 +61,7 @@ static pid_t start_sim(void)
         dup2(pfd[1], 1);
         close(pfd[0]);
         close(pfd[1]);
-        execl(g_simbin, g_simbin, "--link", g_link, "--log", g_log, (char *)NULL);
+        execl(g_simbin, g_simbin, "--status-extra", "--link", g_link, "--log", g_log, (char *)NULL);
         _exit(127);
     }
     close(pfd[1]);

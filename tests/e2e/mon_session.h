@@ -184,7 +184,7 @@ static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, 
         dup2(pfd[1], 1);
         close(pfd[0]);
         close(pfd[1]);
-        execl(sim, sim, "--log", log, (char *)NULL);
+        execl(sim, sim, "--status-extra", "--log", log, (char *)NULL);
         _exit(127);
     }
     close(pfd[1]);

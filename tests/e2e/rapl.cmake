@@ -1,7 +1,7 @@
 # RAPL encoder / reply parser / link end to end: the real fbrlsim binary on a pty,
 # driven by the link through the POSIX uart backend (label e2e).
 if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
-  foreach(prog rapl_e2e_commands link_e2e_faults link_e2e_multi link_e2e_fair link_e2e_burst link_e2e_wait burst_relay)
+  foreach(prog rapl_e2e_commands link_e2e_aci link_e2e_faults link_e2e_multi link_e2e_fair link_e2e_burst link_e2e_wait burst_relay)
     if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${prog}.c)
       add_executable(${prog} ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${prog}.c)
       target_include_directories(${prog} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/e2e)
@@ -13,6 +13,9 @@ if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)
   add_test(NAME rapl_e2e_keyword COMMAND rapl_e2e_commands $<TARGET_FILE:fbrlsim> keyword)
   add_test(NAME rapl_e2e_token COMMAND rapl_e2e_commands $<TARGET_FILE:fbrlsim> token)
   set_tests_properties(rapl_e2e_keyword rapl_e2e_token PROPERTIES LABELS e2e TIMEOUT 120)
+  # the connect step against a controller that starts in ACI mode, and the units it reports
+  add_test(NAME link_e2e_aci COMMAND link_e2e_aci $<TARGET_FILE:fbrlsim>)
+  set_tests_properties(link_e2e_aci PROPERTIES LABELS e2e TIMEOUT 60)
   if(TARGET link_e2e_faults)
     # even parity on both ends: nothing altered may run (docs/link.md 4)
     add_test(NAME link_e2e_faults COMMAND link_e2e_faults $<TARGET_FILE:fbrlsim> 10000 7 E)

@@ -38,6 +38,7 @@ static inline int rig_start_parity(rig *r, const char *sim, const char *const *a
     const char *argv[32];
     int n = 0;
     argv[n++] = sim;
+    argv[n++] = "--status-extra"; /* libfbrl reads the outputs from fbrlsim's own STATUS lines */
     for (; args && *args && n < 31; args++)
         argv[n++] = *args;
     argv[n] = NULL;

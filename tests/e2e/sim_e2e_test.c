@@ -40,6 +40,7 @@ static char g_dir[64];   /* per-run scratch directory */
 static pid_t g_pids[64]; /* emulators started, killed by the group teardown if a test failed */
 static int g_npids;
 static char g_buf[1 << 16];
+static int g_real; /* spawn as a user would: no --status-extra, and no greeting wanted (--aci) */
 
 static double now_s(void)
 {
@@ -77,6 +78,8 @@ static void spawn(simp *p, const char *const *extra)
     double end = now_s() + TIMEOUT;
 
     argv[n++] = FBRLSIM_PATH;
+    if (!g_real)
+        argv[n++] = "--status-extra"; /* these tests read fbrlsim's own STATUS lines */
     for (i = 0; extra && extra[i]; i++)
         argv[n++] = extra[i];
     argv[n] = NULL;
@@ -125,7 +128,8 @@ static void spawn(simp *p, const char *const *extra)
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
         raw_fd(p->fd);
-        expect_greeting(p);
+        if (g_real != 2)
+            expect_greeting(p);
     }
 }
 
@@ -140,6 +144,7 @@ static void forget(pid_t pid)
 static int kill_all(void **st)
 {
     (void)st;
+    g_real = 0;
     while (g_npids > 0) {
         pid_t pid = g_pids[--g_npids];
         kill(pid, SIGKILL);
@@ -1320,9 +1325,13 @@ static void t_state_lowercase(void **st)
 
 /* ---- baud pacing and overrun ----------------------------------------- */
 
+static char *slurp(const char *path);
+
 static void t_baud(void **st)
 {
-    static const char *const opts[] = {"--time-scale", "1", "--baud", "9600", NULL};
+    const char *ctl = tmp("ctl-baud"), *out = tmp("ctl-baud.out");
+    const char *const opts[] = {"--time-scale",  "1", "--baud", "9600", "--control", ctl,
+                                "--control-out", out, NULL};
     simp p;
     double t0, dt;
     size_t n, i, k, bytes;
@@ -1364,7 +1373,21 @@ static void t_baud(void **st)
     }
     assert_true(xoff >= 1);
     assert_true(xon >= 1);
-    assert_true(k < 290); /* characters were lost in the overrun */
+    assert_true(k > 0);
+    {
+        /* this host's tty has no IXON: its port ignores XOFF, characters overrun */
+        char *text;
+        long over = -1;
+        int fd = open(ctl, O_WRONLY);
+        assert_true(fd >= 0);
+        assert_int_equal(write(fd, "GET LINE\n", 9), 9);
+        close(fd);
+        usleep(200000);
+        text = slurp(out);
+        assert_int_equal(sscanf(text, "LINE OVERRUNS %ld", &over), 1);
+        assert_true(over > 100); /* of 300, at most the buffer's 128 fit */
+        free(text);
+    }
     stop(&p);
 }
 
@@ -2055,6 +2078,736 @@ static void t_model_a465(void **st)
     }
 }
 
+/* ---- what real clients send (research notes 2.5 and 4) ---------------- */
+
+/* Reads exactly n bytes (or what came by the timeout); returns how many. */
+static size_t read_n(simp *p, char *buf, size_t n, double timeout)
+{
+    size_t got = 0;
+    double end = now_s() + timeout;
+    while (got < n && now_s() < end) {
+        struct pollfd pf = {p->fd, POLLIN, 0};
+        if (poll(&pf, 1, 20) > 0) {
+            ssize_t r = read(p->fd, buf + got, n - got);
+            if (r <= 0)
+                break;
+            got += (size_t)r;
+        }
+    }
+    return got;
+}
+
+static void expect_bytes(simp *p, const char *want, size_t n)
+{
+    char got[64];
+    size_t k = read_n(p, got, n, TIMEOUT);
+    assert_int_equal(k, n);
+    assert_memory_equal(got, want, n);
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char *b = calloc(1, 1 << 20);
+    size_t n;
+    assert_non_null(f);
+    n = fread(b, 1, (1 << 20) - 1, f);
+    b[n] = 0;
+    fclose(f);
+    return b;
+}
+
+/* S2 (G3000 driver, ACI_to_Term): each step waits for the controller's reply. */
+static const char S2_PKT[] = "\x01\x21\x21\x00\x48\x00\x00\x00\x00\x00\x00\x03\x8a";
+/* S5 (A255 C# class): another data byte, so another checksum; no reads at all. */
+static const char S5_ALL[] = "\x52\x21\x05"
+                             "\x01\x21\x21\x00\x48\x00\x01\x00\x00\x00\x00\x03\x8b"
+                             "\x06\x04NOHELP\r";
+/* S6 (TurnOffACI.m): source id 0xFF, ACK ACK ETX ETX, then NOHELP and DC2. */
+static const char S6_ALL[] = "R!\x05"
+                             "\x01!\xff\x00H\x00\x01\x00\x00\x00\x00\x03i"
+                             "\x06\x06\x03\x03NOHELP\r\x12";
+
+static void t_aci(void **st)
+{
+    simp p;
+    const char *log = tmp("aci.log");
+    const char *const opts[] = {"--aci", "--log", log, "--time-scale", "200", NULL};
+    char bad[sizeof S2_PKT];
+    size_t n;
+    char *text;
+    (void)st;
+    g_real = 2;
+    spawn(&p, opts);
+    /* ACI mode: nothing is echoed, a typed line never runs */
+    puts_(&p, "NOHELP\r");
+    assert_int_equal(read_n(&p, g_buf, 1, 0.3), 0);
+    /* S2, step by step */
+    put(&p, "R\x21\x05", 3);
+    expect_bytes(&p, "R\x21\x06", 3);
+    memcpy(bad, S2_PKT, sizeof S2_PKT);
+    bad[12] = (char)0x8b; /* a wrong checksum: NAK, still in ACI mode */
+    put(&p, bad, 13);
+    expect_bytes(&p, "\x15", 1);
+    put(&p, S2_PKT, 13);
+    expect_bytes(&p, "\x06\x02\x03\x00", 4);
+    put(&p, "\x06", 1);
+    expect_bytes(&p, "\x04", 1);
+    put(&p, "\x04", 1);
+    assert_int_equal(read_n(&p, g_buf, 1, TIMEOUT), 1); /* S2 discards this byte */
+    assert_string_equal(cmd(&p, "NOHELP"), "");
+    assert_string_equal(cmd(&p, "SPEED 40"), ""); /* no HELP-mode artefacts in the echo */
+    /* Ctrl-Z Ctrl-Z: back to ACI mode (S2 disconnect) */
+    put(&p, "\x1a\x1a", 2);
+    puts_(&p, "W2\r");
+    assert_int_equal(read_n(&p, g_buf, 1, 0.3), 0);
+    /* S5 sends everything without reading: it ends in terminal mode, NOHELP done */
+    put(&p, S5_ALL, sizeof S5_ALL - 1);
+    n = read_until(&p, g_buf, sizeof g_buf, "NOHELP\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "NOHELP\r\n>>"));
+    assert_memory_equal(g_buf, "R\x21\x06\x06\x02\x03\x00\x04", 8);
+    assert_null(strstr(g_buf, "012-"));
+    put(&p, "\x1a\x1a", 2);
+    /* S6: source 0xFF, two ACKs and ETXs; its DC2 is ignored (echo stays on) */
+    put(&p, S6_ALL, sizeof S6_ALL - 1);
+    n = read_until(&p, g_buf, sizeof g_buf, "NOHELP\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "NOHELP\r\n>>"));
+    assert_null(strstr(g_buf, "012-"));
+    ok(&p, "HOME");
+    stop(&p);
+    g_real = 0;
+    /* the log holds what ran: never "R!!!HNOHELP", and W2 typed in ACI mode did not run */
+    text = slurp(log);
+    assert_string_equal(text,
+                        "# ACI: PACKET REFUSED\n# ACI: TERMINAL MODE\nNOHELP\nSPEED 40\n# ACI MODE\n"
+                        "# ACI: TERMINAL MODE\nNOHELP\n# ACI MODE\n# ACI: TERMINAL MODE\nNOHELP\nHOME\n");
+    free(text);
+    /* without --aci the bytes are typed text as on a terminal; Ctrl-Z does nothing */
+    start(&p, FAST);
+    put(&p, "\x1a\x1a", 2);
+    err(&p, "R!", 12);
+    stop(&p);
+}
+
+/* The clients' own start-up sequences after the switch (research notes section 4), each
+ * checked the way that client checks it. */
+static void t_client_startups(void **st)
+{
+    simp p;
+    const char *state = tmp("startup.state");
+    const char *const s2[] = {"--aci", "--model", "a465", "--state", state, "--time-scale", "200", NULL};
+    const char *const s3[] = {"--nak", "--model", "a465", "--state", state, "--time-scale", "200", NULL};
+    const char *const a255[] = {"--time-scale", "200", NULL};
+    const char *r, *x;
+    size_t n, lines;
+    int i;
+    FILE *f;
+    (void)st;
+    f = fopen(state, "w");
+    fputs("FBRLSIM-STATE 1\nMODEL A465\nPROGRAM HOME\n  HOME\nEND\nPROGRAM QPOOL\n  MOVE #QPOOL\n  "
+          "FINISH\nEND\n"
+          "PROGRAM CAL\n  HOME\nEND\nPROGRAM INIT_SYS\n  READY\n  FINISH\nEND\n",
+          f);
+    fclose(f);
+    /* S2 (G3000 driver): ACI switch, NOHELP, ENABLE ARM, RUN HOME, POINT #QPOOL, SPEED,
+     * RUN QPOOL, JOINT 6 +90; every command done when the buffer ends "\r\n>>"; W2 read
+     * after "JOINTS", STATUS after AXIS#, LIMP and HOMED */
+    g_real = 2;
+    spawn(&p, s2);
+    put(&p, "R\x21\x05", 3);
+    expect_bytes(&p, "R\x21\x06", 3);
+    put(&p, S2_PKT, 13);
+    expect_bytes(&p, "\x06\x02\x03\x00", 4);
+    put(&p, "\x06", 1);
+    expect_bytes(&p, "\x04", 1);
+    put(&p, "\x04", 1);
+    assert_int_equal(read_n(&p, g_buf, 1, TIMEOUT), 1);
+    usleep(50000); /* S2 sleeps 500 ms here */
+    static const char *const s2_cmds[] = {
+        "NOHELP",   "ENABLE ARM", "RUN HOME",   "POINT #QPOOL 1000, 2000, 3000, 400, 500, 600",
+        "SPEED 50", "RUN QPOOL",  "JOINT 6 +90"};
+    for (i = 0; i < (int)(sizeof s2_cmds / sizeof s2_cmds[0]); i++) {
+        r = raw(&p, s2_cmds[i]); /* expect(command), then "\r\n>>" */
+        assert_int_equal(strncmp(r, s2_cmds[i], strlen(s2_cmds[i])), 0);
+        assert_string_equal(r + strlen(s2_cmds[i]), "\r\n>>");
+    }
+    ok(&p, "FINISH");
+    r = raw(&p, "W2");
+    x = strstr(r, "JOINTS");
+    assert_non_null(x);
+    {
+        double j[6];
+        assert_int_equal(sscanf(x + 6, "%lf %lf %lf %lf %lf %lf", &j[0], &j[1], &j[2], &j[3], &j[4], &j[5]),
+                         6);
+        assert_true(fabs(j[0] - 1000 / 277.78) < 1e-3 && fabs(j[5] - (600 / 138.89 + 90)) < 1e-2);
+    }
+    r = raw(&p, "STATUS");
+    assert_non_null(strstr(r, "\r\nAXIS#        1 2 3 4 5 6\r\n"));
+    assert_non_null(strstr(r, "\r\nLIMP         N N N N N N\r\n"));
+    assert_non_null(strstr(r, "\r\nHOMED        Y Y Y Y Y Y\r\n"));
+    put(&p, "\x1a\x1a", 2); /* S2 disconnect */
+    usleep(100000);
+    stop(&p);
+    /* S3 (gantry, Python): NOHELP, ONPOWER, STATUS read as 21 lines looking for NOT
+     * HOMED, RUN CAL, @ZERO, RUN INIT_SYS, SPEED 40.00, MI ...,S; a line with NAK is
+     * its error, lines with ACK are skipped */
+    g_real = 1;
+    spawn(&p, s3);
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    assert_string_equal(raw(&p, "ONPOWER"), "ONPOWER\r\n>>");
+    puts_(&p, "STATUS\r");
+    n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    for (lines = 0, x = g_buf; (x = strstr(x, "\r\n")); x += 2)
+        lines++;
+    assert_int_equal(lines, 21);
+    assert_non_null(strstr(g_buf, "CONTROLLER IS NOT HOMED"));
+    assert_null(strchr(g_buf, 0x15));
+    assert_string_equal(raw(&p, "RUN CAL"), "RUN CAL\r\n>>");
+    r = raw(&p, "@ZERO");
+    assert_non_null(strstr(r, "\r\n\x15"
+                              "012-COMMAND ERROR.\r\n")); /* S3: NAK, an error line */
+    assert_string_equal(raw(&p, "RUN INIT_SYS"), "RUN INIT_SYS\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 40.00"), "SPEED 40.00\r\n>>");
+    ok(&p, "JOINT 5,30"); /* off the straight wrist, where a straight line cannot start */
+    ok(&p, "FINISH");
+    assert_string_equal(raw(&p, "MI 0.1,0,0.05,0,0,0,S"), "MI 0.1,0,0.05,0,0,0,S\r\n>>");
+    /* its W1 thread: the header, lines of six numbers ended by CR, a bare CR stops it */
+    puts_(&p, "W1\r");
+    n = read_until(&p, g_buf, sizeof g_buf, NULL, 0.5);
+    assert_non_null(strstr(g_buf, "\r\nACTUAL POSITION (MOTOR PULSES):\r"));
+    puts_(&p, "\r");
+    n += read_until(&p, g_buf + n, sizeof g_buf - n, "\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\r\n>>"));
+    stop(&p);
+    g_real = 0;
+    /* S5 (A255, C#): after its blind ACI switch (t_aci) it sends commands with sleeps and
+     * reads nothing; every one must run */
+    start(&p, a255);
+    static const char *const s5_cmds[] = {"HOME",       "HERE START", "SPEED 20",  "JOINT 1, 5", "FINISH",
+                                          "OPEN 50",    "CLOSE 50",   "JOG 1,0,0", "FINISH",     "JOG 0,0,0",
+                                          "MOVE START", "READY",      "FINISH",    "HALT"};
+    for (i = 0; i < (int)(sizeof s5_cmds / sizeof s5_cmds[0]); i++)
+        ok(&p, s5_cmds[i]);
+    /* S4 (York, CRSPLUS 250): lines end in LF; the reply is good when the character after
+     * the first LF is '>' (compare_resp) */
+    static const char *const s4_cmds[] = {"NOHELP", "SPEED 30", "JOG 0.5,0,0", "FINISH", "DEPART 1"};
+    for (i = 0; i < (int)(sizeof s4_cmds / sizeof s4_cmds[0]); i++) {
+        puts_(&p, s4_cmds[i]);
+        puts_(&p, "\n");
+        n = read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+        x = strchr(g_buf, '\n');
+        assert_non_null(x);
+        assert_int_equal(x[1], '>');
+        assert_int_equal(strncmp(g_buf, s4_cmds[i], strlen(s4_cmds[i])), 0); /* its echo check */
+    }
+    puts_(&p, "FOO\n");
+    read_until(&p, g_buf, sizeof g_buf, ">>", TIMEOUT);
+    assert_int_not_equal(strchr(g_buf, '\n')[1], '>'); /* S4 sees the error */
+    stop(&p);
+}
+
+/* A client working in millimetres (S2 STATUS "METRIC UNITS.", S3 MI in mm, S4). */
+static void t_units(void **st)
+{
+    simp p;
+    const char *state = tmp("units.state");
+    const char *const opts[] = {"--time-scale", "200", "--state", state, NULL};
+    double w[6];
+    char *text;
+    (void)st;
+    g_real = 1;
+    start(&p, opts);
+    ok(&p, "HOME");
+    err(&p, "JOG 0,0,-100", 29); /* 100 inches: out of reach */
+    ok(&p, "METRIC");
+    ok(&p, "JOG 0,0,-100"); /* 100 mm */
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[0] - 12 * 25.4) < 1e-3 && fabs(w[2] - (20 * 25.4 - 100)) < 1e-3);
+    ok(&p, "POINT P1,304.8,25.4,406.4,0,-90,0");
+    assert_string_equal(cmd(&p, "LISTL P1"),
+                        "P1        +304.8000 +025.4000 +406.4000 +000.0000 -090.0000 +000.0000\r\n");
+    ok(&p, "MOVE P1");
+    ok(&p, "APPRO P1,50.8");
+    ok(&p, "DEPART 25.4");
+    ok(&p, "FINISH");
+    where(&p, w, NULL, NULL);
+    assert_true(fabs(w[2] - (406.4 + 50.8 + 25.4)) < 1e-3); /* the tool points down: back is up */
+    err(&p, "GRIP 51", 20);                                 /* over 2 in = 50.8 mm */
+    ok(&p, "GRIP 25.4");
+    {
+        const char *r = cmd(&p, "STATUS");
+        assert_non_null(strstr(r, "MAX LINEAR SPEED: +499.9990\r\n")); /* 19.685 in/s */
+        assert_true(ends_with(r, strlen(r), "METRIC UNITS.\r\n"));
+    }
+    stop(&p); /* kept in the state file */
+    text = slurp(state);
+    assert_non_null(strstr(text, "\nUNITS METRIC\n"));
+    free(text);
+    start(&p, opts);
+    assert_non_null(strstr(cmd(&p, "STATUS"), "METRIC UNITS."));
+    assert_string_equal(cmd(&p, "LISTL P1"),
+                        "P1        +304.8000 +025.4000 +406.4000 +000.0000 -090.0000 +000.0000\r\n");
+    ok(&p, "NOMETRIC");
+    assert_string_equal(cmd(&p, "LISTL P1"),
+                        "P1        +012.0000 +001.0000 +016.0000 +000.0000 -090.0000 +000.0000\r\n");
+    assert_non_null(strstr(cmd(&p, "STATUS"), "INCH UNITS."));
+    err(&p, "METRIC ON", 14);
+    stop(&p);
+    g_real = 0;
+}
+
+/* Every command of the RAPL-II table a client may send: implemented, or 012. */
+static void t_client_commands(void **st)
+{
+    /* S1's table (research notes 1.1) minus what fbrlsim implements; PENDANT and @ZERO
+     * are S3's (not in the table) */
+    static const char *const unknown[] = {"XREADY",
+                                          "ALLOC 1,1,1,1",
+                                          "FREE",
+                                          "MAGGRIP 5",
+                                          "PRINT X",
+                                          "PRINTI 1",
+                                          "PRINTV 1",
+                                          "INPUT V",
+                                          "ABORT",
+                                          "IF A>B THEN 10",
+                                          "IFSIG 1 THEN 10",
+                                          "GOSUB 10",
+                                          "GOTO 10",
+                                          "PAUSE",
+                                          "RETURN",
+                                          "STOP",
+                                          "TRACE",
+                                          "DELAY 1",
+                                          "TIME",
+                                          "IORD 1",
+                                          "IOWR 1,2",
+                                          "IFSTART 10",
+                                          "IGNORE 1",
+                                          "AOUT 1,2",
+                                          "DELETE P",
+                                          "EDIT P",
+                                          "DIR",
+                                          "LISTP P",
+                                          "MEMRD 1",
+                                          "PROCEED",
+                                          "RENAME A,B",
+                                          "RETRY",
+                                          "DEVICE 0",
+                                          "MEMWR 1,2",
+                                          "PASSWORD X",
+                                          "CUT A",
+                                          "PASTE A",
+                                          "DECODE A",
+                                          "ENCODE A",
+                                          "STRPOS A",
+                                          "IFSTRING A",
+                                          "HLIM 1",
+                                          "IFPOWER 10",
+                                          "CPATH A,B",
+                                          "CTPATH A",
+                                          "GOPATH A",
+                                          "ELBOW UP",
+                                          "INVERT ON",
+                                          "REACH",
+                                          "WRIST",
+                                          "TRIGGER 1",
+                                          "CIRCLE",
+                                          "AXSTATUS",
+                                          "EXECUTE 1",
+                                          "HIMEM",
+                                          "IFAUX 1",
+                                          "RTCLOCK",
+                                          "VIA A,B",
+                                          "REMOTE",
+                                          "PENDANT OFF",
+                                          "@ZERO",
+                                          "; A COMMENT",
+                                          "++ I",
+                                          "-- I",
+                                          "/003",
+                                          "/100",
+                                          "/176X"};
+    simp p;
+    const char *ctl = tmp("ctl-cmds");
+    const char *const opts[] = {"--time-scale", "200", "--control", ctl, NULL};
+    size_t i, n;
+    int fd;
+    (void)st;
+    g_real = 0;
+    start(&p, opts);
+    for (i = 0; i < sizeof unknown / sizeof unknown[0]; i++)
+        err(&p, unknown[i], 12);
+    /* ENABLE/DISABLE ARM (S2), also by token */
+    ok(&p, "HOME");
+    ok(&p, "DISABLE ARM");
+    assert_string_equal(status_line(&p, "ARM POWER IS"), "ARM POWER IS OFF");
+    err(&p, "JOINT 1,5", 40);
+    ok(&p, "/176 ARM");
+    assert_string_equal(status_line(&p, "ARM POWER IS"), "ARM POWER IS ON");
+    err(&p, "ENABLE", 13);
+    err(&p, "ENABLE PENDANT", 66);
+    ok(&p, "ONPOWER"); /* power on: returns at once */
+    /* ONPOWER waits for the power (S3's start-up), here from the front panel */
+    ok(&p, "ARM OFF");
+    puts_(&p, "ONPOWER\r");
+    n = read_until(&p, g_buf, sizeof g_buf, ">>", 0.5);
+    assert_false(ends_with(g_buf, n, ">>"));
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "POWER 1\n", 8), 8);
+    close(fd);
+    n += read_until(&p, g_buf + n, sizeof g_buf - n, "\r\n>>", TIMEOUT);
+    assert_string_equal(g_buf, "ONPOWER\r\n>>");
+    /* GAIN: one motor, all motors (0), the query form */
+    ok(&p, "GAIN 0,2.5");
+    assert_string_equal(cmd(&p, "GAIN 3"), "GAIN MOTOR 3: +2.5000\r\n");
+    ok(&p, "GAIN 2,1");
+    assert_string_equal(cmd(&p, "GAIN 2"), "GAIN MOTOR 2: +1.0000\r\n");
+    assert_string_equal(cmd(&p, "GAIN 5"), "GAIN MOTOR 5: +2.5000\r\n");
+    err(&p, "GAIN 0", 65);
+    err(&p, "GAIN 6,1", 65);
+    err(&p, "GAIN 1,-1", 18);
+    stop(&p);
+}
+
+/* Replies as the clients read them: STATUS as S3 reads it (21 lines after the command),
+ * NAK before errors (S3), empty lines, lower case. */
+static void t_replies(void **st)
+{
+    static const char *const labels[] = {
+        "RAPL-II Version 2.60     A255 Robot",
+        "LAST ERROR CODE: ",
+        "SPEED (% OF FULL) :    +50",
+        "MAX LINEAR SPEED: +019.6850",
+        "CURRENT PROGRAM EXECUTING:",
+        "[00]",
+        "JOINT LIMIT CHECK IS ",
+        "CONTROLLER IS NOT HOMED",
+        "TOOL TRANSFORM",
+        "NULL      +000.0000 +000.0000 +000.0000 +000.0000 +000.0000 +000.0000",
+        "GRIPPER TYPE:  SERVO",
+        "AXIS#        1 2 3 4 5",
+        "LOCK         N N N N N",
+        "DONE         Y Y Y Y Y",
+        "LIMP         N N N N N",
+        "HOMED        N N N N N",
+        "REQUESTED ROBOT CONFIG : ",
+        "CURRENT ROBOT CONFIG : ",
+        "MANUAL MODE STATUS IS OFF",
+        "INCH UNITS."};
+    const char *log = tmp("replies.log");
+    const char *const nak[] = {"--nak", "--time-scale", "200", NULL};
+    const char *const typed[] = {"--echo-as-typed", "--log", log, "--time-scale", "200", NULL};
+    const char *const extra[] = {"--status-extra", "--time-scale", "200", NULL};
+    simp p;
+    size_t n, lines = 0;
+    const char *r, *x;
+    char *text;
+    (void)st;
+    g_real = 1;
+    start(&p, FAST);
+    err(&p, "FOO", 12);
+    assert_null(strchr(g_buf, 0x15)); /* no NAK by default */
+    /* S3: send STATUS, read 21 lines (the echo and 20), then the prompt follows */
+    puts_(&p, "STATUS\r");
+    n = read_until(&p, g_buf, sizeof g_buf, "\r\n>>", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "UNITS.\r\n>>"));
+    for (r = g_buf; (x = strstr(r, "\r\n")); r = x + 2) {
+        if (lines > 0)
+            assert_int_equal(strncmp(r, labels[lines - 1], strlen(labels[lines - 1])), 0);
+        lines++;
+    }
+    assert_int_equal(lines, 21);
+    assert_non_null(strstr(g_buf, "LAST ERROR CODE: 012-COMMAND ERROR.\r\n"));
+    assert_non_null(strstr(g_buf, "[00]NONE\r\n"));
+    /* an empty line: CR LF and the prompt, nothing runs */
+    assert_string_equal(raw(&p, ""), "\r\n>>");
+    assert_string_equal(raw(&p, "  "), "  \r\n>>");
+    /* lower case runs upper-cased and echoes upper-cased */
+    assert_string_equal(raw(&p, "speed 30"), "SPEED 30\r\n>>");
+    stop(&p);
+    /* the program line: where the last program stopped and why */
+    {
+        const char *state = tmp("replies.state");
+        const char *const so[] = {"--state", state, "--time-scale", "200", NULL};
+        FILE *f = fopen(state, "w");
+        fputs("FBRLSIM-STATE 1\nPROGRAM PICK\n  SPEED 20\n  FOO\nEND\n", f);
+        fclose(f);
+        start(&p, so);
+        err(&p, "RUN PICK", 12);
+        assert_string_equal(status_line(&p, "[00]"), "[00]PICK#00002 :012-COMMAND ERROR.");
+        stop(&p);
+    }
+    /* --nak: NAK, then the error line */
+    start(&p, nak);
+    r = cmd(&p, "FOO");
+    assert_string_equal(r, "\x15"
+                           "012-COMMAND ERROR.\r\n");
+    stop(&p);
+    /* --echo-as-typed: the echo keeps the case, the line runs upper-cased */
+    spawn(&p, typed);
+    assert_string_equal(raw(&p, "nohelp"), "nohelp\r\n>>");
+    assert_string_equal(raw(&p, "Speed 30"), "Speed 30\r\n>>");
+    stop(&p);
+    text = slurp(log);
+    assert_string_equal(text, "NOHELP\nSPEED 30\n");
+    free(text);
+    /* --status-extra: fbrlsim's own lines, the units line still last */
+    start(&p, extra);
+    r = cmd(&p, "STATUS");
+    assert_non_null(strstr(r, "MANUAL MODE STATUS IS OFF\r\nARM POWER IS ON\r\n"));
+    assert_int_equal(strncmp(r, "RAPL-II Version 2.60     A255 Robot (fbrlsim)\r\n", 47), 0);
+    assert_null(strstr(r, "[00]"));
+    assert_true(ends_with(r, strlen(r), "OUTPUTS 1-16: 0000000000000000\r\nINCH UNITS.\r\n"));
+    stop(&p);
+    g_real = 0;
+}
+
+/* One burst: 1,000 assignment lines as fast as the host can write them. honour: the
+ * host's tty has IXON (its port stops on the controller's XOFF; the kernel holds its
+ * writes), else its port ignores XOFF. Returns the lines the log shows, in order. */
+static int burst_run(int honour, long *overruns, long *ignored)
+{
+    simp p;
+    const char *log = tmp(honour ? "flow-h.log" : "flow-i.log");
+    const char *out = tmp(honour ? "flow-h.out" : "flow-i.out");
+    const char *ctl = tmp(honour ? "flow-h.ctl" : "flow-i.ctl");
+    const char *const opts[] = {"--baud", "9600", "--log", log, "--control", ctl, "--control-out", out, NULL};
+    enum { LINES = 1000 };
+    char line[32], *text, *s;
+    int sent = 0, good = 0, fd, fl;
+    size_t off = 0, len = 0;
+    double quiet;
+    start(&p, opts);
+    /* each line's echo and prompt are longer than the line: the controller's output is
+     * the bottleneck, so its receive buffer fills and it sends XOFF */
+    if (honour) {
+        /* as S2 (c_iflag |= IXON|IXOFF) and S3 (xonxoff=True) set their port */
+        struct termios t;
+        assert_int_equal(tcgetattr(p.fd, &t), 0);
+        t.c_iflag |= IXON | IXOFF;
+        assert_int_equal(tcsetattr(p.fd, TCSANOW, &t), 0);
+    }
+    fl = fcntl(p.fd, F_GETFL);
+    fcntl(p.fd, F_SETFL, fl | O_NONBLOCK);
+    quiet = now_s();
+    while (sent < LINES || off < len || now_s() - quiet < 1.0) {
+        struct pollfd pf = {p.fd, POLLIN, 0};
+        char b[4096];
+        ssize_t r;
+        if (!(off < len) && sent < LINES) {
+            snprintf(line, sizeof line, "V=%d\r", sent);
+            len = strlen(line);
+            off = 0;
+            sent++;
+        }
+        if (off < len)
+            pf.events |= POLLOUT;
+        if (poll(&pf, 1, 20) > 0) {
+            if (pf.revents & POLLIN) {
+                r = read(p.fd, b, sizeof b); /* echoes and prompts (and, without IXON, XON/XOFF) */
+                if (r > 0)
+                    quiet = now_s();
+            }
+            if ((pf.revents & POLLOUT) && off < len) {
+                r = write(p.fd, line + off, len - off);
+                if (r > 0)
+                    off += (size_t)r;
+            }
+        }
+        if (now_s() - quiet > TIMEOUT)
+            break;
+    }
+    fcntl(p.fd, F_SETFL, fl);
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "GET LINE\n", 9), 9);
+    close(fd);
+    usleep(200000);
+    stop(&p);
+    text = slurp(out);
+    assert_int_equal(sscanf(text, "LINE OVERRUNS %ld IGNORED-XOFF %ld", overruns, ignored), 2);
+    free(text);
+    text = slurp(log);
+    /* the lines that ran exactly as sent, in order */
+    for (s = strtok(text, "\n"); s; s = strtok(NULL, "\n")) {
+        snprintf(line, sizeof line, "V=%d", good);
+        if (!strcmp(s, line))
+            good++;
+    }
+    free(text);
+    return good;
+}
+
+/* Over TCP there is no tty to ask: a host that stops after the controller's XOFF (all it
+ * sent before is held) loses nothing; one that sends on is seen ignoring it, and overruns. */
+static void t_flow_tcp(void **st)
+{
+    const char *ctl = tmp("ctl-ftcp"), *out = tmp("ctl-ftcp.out");
+    const char *const opts[] = {"--tcp", "0", "--baud", "9600", "--control", ctl, "--control-out", out, NULL};
+    simp p;
+    char big[301], *text;
+    long over = -1, ign = -1;
+    size_t n;
+    int fd;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "HOME");
+    ok(&p, "SPEED 10");
+    ok(&p, "JOINT 1,10"); /* 1.7 s: the next motion waits, input piles up */
+    puts_(&p, "JOINT 1,-10\r");
+    usleep(50000);
+    memset(big, 'A', 300);
+    big[300] = 0;
+    puts_(&p, big); /* all sent before the XOFF: it waits with the host */
+    n = read_until(&p, g_buf, sizeof g_buf, "\x13", TIMEOUT);
+    assert_true(ends_with(g_buf, n, "\x13"));
+    usleep(300000);
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, "GET LINE\n", 9), 9);
+    usleep(200000);
+    puts_(&p, big); /* sent after the XOFF: ignored it */
+    usleep(500000);
+    assert_int_equal(write(fd, "GET LINE\n", 9), 9);
+    usleep(200000);
+    close(fd);
+    text = slurp(out);
+    assert_int_equal(sscanf(text, "LINE OVERRUNS %ld IGNORED-XOFF %ld", &over, &ign), 2);
+    assert_int_equal(over, 0);
+    assert_int_equal(ign, 0);
+    assert_int_equal(sscanf(strchr(text, '\n') + 1, "LINE OVERRUNS %ld IGNORED-XOFF %ld", &over, &ign), 2);
+    assert_true(over > 0);
+    assert_int_equal(ign, 1);
+    free(text);
+    stop(&p);
+}
+
+static void t_flow_burst(void **st)
+{
+    long over = -1, ign = -1;
+    int got;
+    (void)st;
+    got = burst_run(1, &over, &ign);
+    print_message("honours XOFF: %d of 1000 lines ran, %ld overruns, %ld XOFFs ignored\n", got, over, ign);
+    assert_int_equal(got, 1000);
+    assert_int_equal(over, 0);
+    assert_int_equal(ign, 0);
+    got = burst_run(0, &over, &ign);
+    print_message("ignores XOFF: %d of 1000 lines ran, %ld overruns\n", got, over);
+    assert_true(got < 1000);
+    assert_true(over > 0);
+}
+
+/* The control channel's queries and refusals, the stamped log, --version. */
+static void t_control_queries(void **st)
+{
+    simp p;
+    const char *ctl = tmp("ctl-q"), *out = tmp("ctl-q.out"), *log = tmp("stamped.log");
+    const char *const opts[] = {"--time-scale",  "200",     "--control", ctl,
+                                "--control-out", out,       "--log",     log,
+                                "--log-format",  "stamped", NULL};
+    static const char *const lines =
+        "GET POSITION\nGET OUTPUTS\nIN 3 1\nGET INPUTS\nGET ERROR\nGET MOTION\nGET LINE\nGET SPEED\n"
+        "IN 17 1\nIN 3 2\nFOO 1\nGET\nAIN 1 nan\nPOWER 2\nOBJECT 9\nTEACH NOW\nIN 3 1 junk\n";
+    char *text, *s;
+    int fd, k = 0;
+    (void)st;
+    start(&p, opts);
+    ok(&p, "OUTPUT 2,-5,16");
+    err(&p, "FOO", 12);
+    fd = open(ctl, O_WRONLY);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, lines, strlen(lines)), (ssize_t)strlen(lines));
+    usleep(300000);
+    ok(&p, "HOME");
+    ok(&p, "SPEED 5");
+    ok(&p, "JOINT 1,90"); /* 15 s simulated at 5 %: still moving */
+    assert_int_equal(write(fd, "GET MOTION\n", 11), 11);
+    usleep(200000);
+    close(fd);
+    stop(&p);
+    text = slurp(out);
+    {
+        static const char *const want[] = {
+            "POSITION JOINTS +0.0000 +90.0000 -90.0000 +0.0000 +0.0000 WORLD +12.0000 +0.0000 +20.0000 "
+            "+0.0000 "
+            "+0.0000 +0.0000",
+            "OUTPUTS 0100000000000001",
+            "INPUTS 0010000000000000",
+            "ERROR 012-COMMAND ERROR.",
+            "MOTION STOPPED EXTRA STOPPED POWER ON HOMED NO COMMAND IDLE",
+            "LINE OVERRUNS 0 IGNORED-XOFF 0 PARITY-IN 0 PARITY-OUT 0",
+            "REFUSED GET SPEED: GET: unknown item 'SPEED' (POSITION, OUTPUTS, INPUTS, ERROR, MOTION, LINE)",
+            "REFUSED IN 17 1: IN: input '17' is not a whole number 1-16",
+            "REFUSED IN 3 2: IN: value '2' is not 0 or 1",
+            "REFUSED FOO 1: unknown control word 'FOO' (IN, AIN, POWER, OBJECT, TEACH, GET)",
+            "REFUSED GET: GET takes one item",
+            "REFUSED AIN 1 nan: AIN: 'nan' is not a decimal number of volts in -10..10",
+            "REFUSED POWER 2: POWER takes 0 or 1",
+            "REFUSED OBJECT 9: OBJECT takes a width in inches, 0..2",
+            "REFUSED TEACH NOW: TEACH takes nothing after it",
+            "REFUSED IN 3 1 junk: too many words or a word too long",
+            "MOTION MOVING EXTRA STOPPED POWER ON HOMED YES COMMAND IDLE"};
+        for (s = strtok(text, "\n"); s; s = strtok(NULL, "\n"), k++) {
+            assert_true(k < (int)(sizeof want / sizeof want[0]));
+            assert_string_equal(s, want[k]);
+        }
+        assert_int_equal(k, (int)(sizeof want / sizeof want[0]));
+    }
+    free(text);
+    /* the stamped log: simulated time, OK or the error, the line */
+    text = slurp(log);
+    {
+        static const char *const want[] = {"OK NOHELP", "OK OUTPUT 2,-5,16", "012 FOO",
+                                           "OK HOME",   "OK SPEED 5",        "OK JOINT 1,90"};
+        double t, last = -1;
+        char rest[128];
+        k = 0;
+        for (s = strtok(text, "\n"); s; s = strtok(NULL, "\n"), k++) {
+            assert_true(k < 6);
+            assert_int_equal(sscanf(s, "%lf %127[^\n]", &t, rest), 2);
+            assert_true(t >= last);
+            last = t;
+            assert_string_equal(rest, want[k]);
+        }
+        assert_int_equal(k, 6);
+    }
+    free(text);
+    /* a bad --inputs line stops fbrlsim at start, saying why */
+    {
+        const char *in = tmp("bad.inputs"), *errf = tmp("bad.err");
+        FILE *f = fopen(in, "w");
+        int pid, stt;
+        fputs("1.0 IN 3 1\n2.0 IN 3 7\n", f);
+        fclose(f);
+        pid = fork();
+        if (pid == 0) {
+            int e = open(errf, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+            dup2(e, 2);
+            execl(FBRLSIM_PATH, FBRLSIM_PATH, "--inputs", in, (char *)NULL);
+            _exit(127);
+        }
+        waitpid(pid, &stt, 0);
+        assert_true(WIFEXITED(stt) && WEXITSTATUS(stt) == 1);
+        text = slurp(errf);
+        assert_non_null(strstr(text, "bad.inputs:2: IN: value '7' is not 0 or 1: 'IN 3 7'"));
+        free(text);
+    }
+    /* --version: the project's version */
+    {
+        FILE *v = popen(FBRLSIM_PATH " --version", "r");
+        char b[128] = "";
+        assert_non_null(v);
+        assert_non_null(fgets(b, sizeof b, v));
+        assert_int_equal(pclose(v), 0);
+        assert_int_equal(strncmp(b, "fbrlsim (libfbrl) ", 18), 0);
+        assert_true(b[18] >= '0' && b[18] <= '9');
+    }
+}
+
 static int cleanup(void)
 {
     char c[128];
@@ -2089,6 +2842,10 @@ int main(int argc, char **argv)
     GROUP("log", cmocka_unit_test(t_log))
     GROUP("tcp", cmocka_unit_test(t_tcp), cmocka_unit_test(t_tcp_busy))
     GROUP("embed", cmocka_unit_test(t_embed))
+    GROUP("clients", cmocka_unit_test(t_aci), cmocka_unit_test(t_client_startups), cmocka_unit_test(t_units),
+          cmocka_unit_test(t_client_commands), cmocka_unit_test(t_replies))
+    GROUP("flow", cmocka_unit_test(t_flow_tcp), cmocka_unit_test(t_flow_burst))
+    GROUP("ctlq", cmocka_unit_test(t_control_queries))
     GROUP("model", cmocka_unit_test(t_model_a465))
     cleanup();
     return rc;

@@ -131,6 +131,11 @@ static golden goldens[] = {
     G0(FBRL_RAPL_LISTV, "LISTV", "/069"),
     G(FBRL_RAPL_SHIFT, 0, "SHIFT P1,1,0,-2.25", "/052 P1,1,0,-2.25", S("P1"), R(1), R(0), R(-2.25)),
     G(FBRL_RAPL_TYPE, 0, "TYPE HELLO, WORLD", "/058 HELLO, WORLD", S("Hello, world")),
+    G(FBRL_RAPL_ENABLE, 0, "ENABLE ARM", "/176 ARM", S("arm")),
+    G(FBRL_RAPL_DISABLE, 0, "DISABLE ARM", "/177 ARM", S("ARM")),
+    G0(FBRL_RAPL_ONPOWER, "ONPOWER", "ONPOWER"),
+    G0(FBRL_RAPL_METRIC, "METRIC", "METRIC"),
+    G0(FBRL_RAPL_NOMETRIC, "NOMETRIC", "NOMETRIC"),
 };
 
 static void every_command_encodes_in_both_forms(void **state)

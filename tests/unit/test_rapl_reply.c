@@ -275,7 +275,10 @@ static void status_blocks_parse(void **state)
         fbrl_status st = fbrl_rapl_status_line(&s, lines[k], strlen(lines[k]));
         assert_true(st == FBRL_OK || st == FBRL_ENOENT);
     }
-    assert_int_equal(s.have, 0x1ffu);
+    assert_int_equal(s.have, 0x3ffu);
+    assert_int_equal(s.metric, 0);
+    assert_int_equal(fbrl_rapl_status_line(&s, "METRIC UNITS.", 13), FBRL_OK);
+    assert_int_equal(s.metric, 1);
     assert_int_equal(s.last_error, 29);
     assert_true(s.speed == 50.0);
     assert_int_equal(s.homed, 1);
