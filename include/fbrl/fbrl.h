@@ -25,5 +25,6 @@
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/runlog.h"
+#include "fbrl/method.h"
 
 #endif

@@ -23,6 +23,7 @@
 
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
+#include "fbrl/method.h"
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
@@ -35,6 +36,7 @@ typedef struct fixture {
     fbrl_vm *vm;
     fbrl_glossary g;
     fbrl_robot r;
+    fbrl_method_set methods;
     vmh_text out;
 } fixture;
 
@@ -54,6 +56,7 @@ static int setup(void **state)
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     assert_int_equal(fbrl_glossary_install(f->vm, &f->g), FBRL_OK);
     assert_int_equal(fbrl_robot_install(f->vm, &f->r, NULL, &f->g), FBRL_OK);
+    assert_int_equal(fbrl_method_install(f->vm, &f->methods), FBRL_OK);
     *state = f;
     return 0;
 }
