@@ -137,6 +137,8 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         else if (c->sim != NULL)
             lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
 #endif
+        lc.on_exec = o->on_exec; /* the run log (mon_runlog.c) */
+        lc.exec_ctx = o->exec_ctx;
         c->lcfg = lc; /* mon_conn_reopen uses it again */
         st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
     }

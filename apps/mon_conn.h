@@ -24,6 +24,9 @@ typedef struct mon_conn_options {
     const char *sim_inputs; /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
     const char *sim_model;  /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
     unsigned axes;          /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
+    /* every line the controller executed (fbrl_link_config.on_exec): the run log */
+    void (*on_exec)(void *ctx, const char *line, size_t len, fbrl_status result);
+    void *exec_ctx;
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */
