@@ -65,6 +65,7 @@ typedef struct console {
     /* the parameter form */
     char field[FBRL_METHOD_MAX_PARAMS][FIELD_MAX + 1];
     size_t fsel;
+    int fresh; /* the selected field was just entered: the first character typed replaces it */
     /* the run */
     size_t step;
     long sample, total_units, done_units;
@@ -76,6 +77,9 @@ typedef struct console {
     uint64_t last_draw;
     /* the live view, from what the controller executed */
     uint32_t outputs;
+    fbrl_rapl_pos pos; /* W2, read when the arm stands still: paused, stopped, finished */
+    int have_pos;
+    char pos_when[24];
     char grip[40];
     char last_cmd[FBRL_LINK_LINE_MAX + 1];
     char devname[FBRL_ROBOT_IO_MAX + 1][FBRL_METHOD_NAME_MAX + 1];
@@ -286,6 +290,7 @@ static void fill_form(console *c)
         textf(c->field[k], sizeof c->field[k], "%ld", v);
     }
     c->fsel = 0;
+    c->fresh = 1;
 }
 
 static void choose_method(console *c, const lib_entry *e)
@@ -357,6 +362,7 @@ static int commit_form(console *c)
     for (size_t k = 0; k < c->meth->nparams; k++)
         if (check_field(&c->meth->params[k], c->field[k], &v[k], msg, sizeof msg) != 0) {
             c->fsel = k;
+            c->fresh = 1;
             textf(c->hint, sizeof c->hint, "refused: %s", msg);
             return -1;
         }
@@ -396,13 +402,13 @@ static void draw_bar(console *c)
 
 static void draw_live(console *c)
 {
-    const fbrl_rapl_pos *p = c->m->link ? fbrl_link_last_pos(c->m->link) : NULL;
+    const fbrl_rapl_pos *p = c->have_pos ? &c->pos : NULL;
     int row = 2, shown = 0;
-    put_at(row++, RIGHT_COL, "| Arm (last read, in / deg)");
+    put_at(row++, RIGHT_COL, "| Arm %s", c->have_pos ? c->pos_when : "(read when it stands)");
     if (p != NULL && p->nworld >= 6)
         put_at(row++, RIGHT_COL, "|  X%7.2f Y%7.2f Z%7.2f", p->world[0], p->world[1], p->world[2]);
     else
-        put_at(row++, RIGHT_COL, "|  not read yet");
+        put_at(row++, RIGHT_COL, "|  not read yet (in, deg)");
     if (p != NULL && p->nworld >= 6)
         put_at(row++, RIGHT_COL, "|  pitch%7.1f roll%7.1f", p->world[4], p->world[5]);
     else
@@ -710,10 +716,12 @@ static void idle_key(console *c, int ch)
     } else if (c->screen == SCREEN_FORM) {
         char *f = c->field[c->fsel];
         size_t n = strlen(f);
+        int fresh = c->fresh;
+        c->fresh = 0;
         if (ch == KEY_UP && c->fsel > 0)
-            c->fsel--;
+            c->fsel--, c->fresh = 1;
         else if ((ch == KEY_DOWN || ch == '\t') && c->fsel + 1 < c->meth->nparams)
-            c->fsel++;
+            c->fsel++, c->fresh = 1;
         else if (ch == '\n' || ch == '\r' || ch == KEY_ENTER) {
             long v;
             char msg[160];
@@ -723,13 +731,15 @@ static void idle_key(console *c, int ch)
                 textf(c->hint, sizeof c->hint, "%s = %ld %s", c->meth->params[c->fsel].name, v,
                       c->meth->params[c->fsel].unit);
                 if (c->fsel + 1 < c->meth->nparams)
-                    c->fsel++;
+                    c->fsel++, c->fresh = 1;
             }
         } else if ((ch == KEY_BACKSPACE || ch == 127 || ch == 8) && n > 0)
             f[n - 1] = '\0';
         else if (ch == KEY_DC)
             f[0] = '\0';
-        else if (ch >= 0x20 && ch < 0x7f && n < FIELD_MAX) {
+        else if (ch >= 0x20 && ch < 0x7f && (n < FIELD_MAX || fresh)) {
+            if (fresh)
+                n = 0;
             f[n] = (char)ch;
             f[n + 1] = '\0';
         } else if (ch == KEY_F(5))
@@ -768,6 +778,26 @@ static void pump(console *c, int force)
 }
 
 /* ---- hooks inside a run ---- */
+
+/* Where the arm stands once its motion has ended (FINISH, W2: commands like any other, so
+ * the run log has them too). */
+static void read_arm(console *c, const char *when)
+{
+    fbrl_rapl_pos p;
+    fbrl_status st;
+    if (c->m->link == NULL || fbrl_link_busy(c->m->link) || fbrl_robot_lost(&c->m->robot))
+        return;
+    st = fbrl_link_finish(c->m->link);
+    if (st == FBRL_OK)
+        st = fbrl_link_where(c->m->link, FBRL_RAPL_W2, &p);
+    if (st != FBRL_OK)
+        push_error(c, "reading the arm's position", fbrl_status_str(st));
+    else if (p.nworld >= 6) {
+        c->pos = p;
+        c->have_pos = 1;
+        textf(c->pos_when, sizeof c->pos_when, "%s", when);
+    }
+}
 
 static int hook_tick(void *ctx)
 {
@@ -859,6 +889,7 @@ static int obs_between(void *ctx, const fbrl_method *m, size_t step, long sample
         c->state = ST_PAUSED;
         textf(c->hint, sizeof c->hint, "paused before step %zu (%s): F7 resumes, F8 aborts", step + 1,
               m->steps[step].name);
+        read_arm(c, "(paused)");
         while (c->want_pause && !c->want_abort) {
             nodelay(stdscr, FALSE);
             timeout(200);
@@ -899,10 +930,12 @@ static void obs_end(void *ctx, const fbrl_method *m, const char *outcome, const 
                 code != 0)
                 push_error(c, "ON-ABORT", msg);
         }
+        read_arm(c, strcmp(outcome, "aborted") == 0 ? "(safe place)" : "(halted)");
         if (fbrl_runlog_is_open(&c->log->log))
             fbrl_runlog_note(&c->log->log, "safe-stop",
                              stop.result == FBRL_OK ? "arm halted, outputs switched off" : "incomplete");
-    }
+    } else
+        read_arm(c, "(finished)");
     c->t_end = now_us();
 }
 

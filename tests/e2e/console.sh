@@ -1,0 +1,145 @@
+#!/bin/sh
+# console.sh FBRLMON FBRLSIM WORKDIR SRCDIR
+#
+# The operator console (issue 16, "must show"): fbrlmon --console on an 80x24 tmux terminal
+# against a real fbrlsim process (the tube sensor on, --log). The sample-prep method is
+# chosen from examples/methods; bad parameters are refused in the form with the allowed
+# range and nothing runs; 3 samples: start, pause (after the current step: the controller
+# gets nothing while paused), resume, abort (the arm ends at READY, the safe place, and
+# every output off, in fbrlsim's log); run again to the end. The run log parses line by
+# line as JSON and its commands are exactly fbrlsim's log. The panes are saved as
+# screen-*.txt (docs/console.md shows them).
+mon=$1 sim=$2 work=$3 src=$4
+here=$(cd "$(dirname "$0")" && pwd)
+command -v tmux >/dev/null 2>&1 || { echo "SKIP: no tmux"; exit 77; }
+command -v python3 >/dev/null 2>&1 || { echo "SKIP: no python3"; exit 77; }
+rm -rf "$work" && mkdir -p "$work" || exit 1
+cd "$work" || exit 1
+name=console
+sim_scale=50
+sim_args="--inputs $src/examples/tube_present.inputs"
+. "$here/tmux_session.sh"
+tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
+    "'$mon' --port '$work/robot' --console --methods '$src/examples/methods' --run-log '$work/run.jsonl' \
+     --operator tester -e '60 CONSTANT TIME-SCALE'; echo fbrlmon-exit=\$?; sleep 600"
+key() { tmux -L "$sock" send-keys -t said "$@"; }
+shot() { tmux -L "$sock" capture-pane -p -t said >"screen-$1.txt"; }
+# wait_long TEXT SECONDS: the visible screen shows TEXT
+wait_long() {
+    k=0
+    while ! tmux -L "$sock" capture-pane -p -t said | grep -qF -- "$1"; do
+        k=$((k + 1))
+        [ $k -lt $(($2 * 10)) ] || { fail "no '$1' on the screen in $2 s"; tmux -L "$sock" capture-pane -p -t said; return 1; }
+        sleep 0.1
+    done
+}
+lines() { grep -vc '^#' sim.log; }
+
+# ---- the library, the form
+wait_for "SAMPLE-PREP      ASPS sample preparation" || exit 1
+shot library
+key Enter
+wait_for "Parameters of SAMPLE-PREP" || exit 1
+wait_for "#SAMPLES       [3" || exit 1
+
+# ---- bad input is refused with the allowed range, and nothing runs
+before=$(lines)
+key -l abc; key F5
+wait_for "refused: #SAMPLES: 'abc' is not a whole number: enter 1..24 tubes"
+key -l 99; key F5
+wait_for "refused: #SAMPLES: 99 is outside the allowed range 1..24 tubes"
+shot refused
+key BSpace BSpace; key F5
+wait_for "refused: #SAMPLES is empty: enter a whole number 1..24 tubes"
+key -l 0; key F5
+wait_for "refused: #SAMPLES: 0 is outside the allowed range 1..24 tubes"
+[ "$(lines)" = "$before" ] || fail "a refused form sent commands: $(lines) lines, were $before"
+[ -e run.jsonl ] && fail "a refused form wrote a run log"
+
+# ---- 3 samples, a 1-minute reaction (1 s with TIME-SCALE 60); start
+key -l 3; key Down Down Down; key -l 1
+wait_for "REACTION-MIN   [1 "
+shot form
+key F5
+wait_long "RUNNING" 10
+# ---- pause while the reagent goes in: it takes effect after the current step
+wait_long "->  3 Reagent" 20
+key F6
+wait_long "PAUSED" 20 || exit 1
+sleep 0.5
+shot paused
+paused_at=$(lines)
+sleep 1.5
+[ "$(lines)" = "$paused_at" ] || fail "the controller got commands while paused"
+grep -q "paused before step [3-7]" screen-paused.txt || fail "the pause is not at a step's end"
+key F7
+wait_long "RUNNING" 10
+# ---- abort: asked once more, then the safe stop and the safe place
+key F8
+wait_for "Abort the run? y or F8 = abort"
+key y
+wait_long "ABORTED" 20 || exit 1
+wait_long "Arm (safe place)" 10
+shot aborted
+# the truth: fbrlsim's log after the abort's HALT ends with READY (the method's ON-ABORT)
+tail_after_halt=$(awk '/^HALT$/{n=NR} {l[NR]=$0} END{for(i=n;i<=NR;i++) print l[i]}' sim.log)
+echo "$tail_after_halt" | grep -qx HALT || fail "no HALT after the abort"
+[ "$(echo "$tail_after_halt" | grep -E '^(MOVE|MOVES|APPRO|APPROS|DEPART|DEPARTS|READY|HOME|JOG|JOINT)' | tail -1)" = READY ] ||
+    fail "the last motion after the abort is not READY: $tail_after_halt"
+# every output off: each OUTPUT line of the log replayed
+python3 - <<'PY' || fail "an output is left on after the abort"
+on = set()
+for l in open("sim.log"):
+    l = l.strip()
+    if l.startswith("OUTPUT "):
+        for n in l[7:].split(","):
+            n = int(n)
+            (on.add if n > 0 else on.discard)(abs(n))
+raise SystemExit(1 if on else 0)
+PY
+# READY, independently: upper arm up (10 in above a 10 in shoulder), forearm and tool level
+# (10 + 2 in): X 12, Z 20 (DESIGN 6)
+grep -q "X  12.00 Y   0.00 Z  20.00" screen-aborted.txt || fail "the arm is not shown at READY (X 12 Y 0 Z 20)"
+grep -q "Separation\|Reaction\|Rinse\|Reagent" screen-aborted.txt || fail "no step on the aborted screen"
+
+# ---- run again, to the end
+key F5
+wait_long "RUNNING" 10
+wait_long "DONE" 60 || exit 1
+wait_for "prepared 3 of 3 samples; used: buffer 6 ml, reagent 300 ul, wash 9 ml"
+shot done
+key F10
+wait_for "fbrlmon-exit=0"
+
+# ---- the run log: JSON line by line, its commands are fbrlsim's log
+python3 - "$work/run.jsonl" "$work/sim.log" <<'PY' || fail "the run log does not match"
+import json, sys
+recs = [json.loads(l) for l in open(sys.argv[1])]
+sim = [l.rstrip("\n") for l in open(sys.argv[2]) if not l.startswith("#")]
+heads = [r for r in recs if r["type"] == "header"]
+sums = [r for r in recs if r["type"] == "summary"]
+assert len(heads) == 2 and len(sums) == 2, (len(heads), len(sums))
+assert [s["outcome"] for s in sums] == ["aborted", "completed"], sums
+for h in heads:
+    p = {x["name"]: x["value"] for x in h["parameters"]}
+    assert p["#SAMPLES"] == 3 and p["REACTION-MIN"] == 1, p
+    assert h["method"] == "SAMPLE-PREP" and h["operator"] == "tester", h
+    assert h["program"].startswith("fbrlmon ") and h["source"].endswith("sample_prep.fbrl"), h
+cmds = [r["line"] for r in recs if r["type"] == "command"]
+assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
+# everything the controller executed after the connection's NOHELP was part of a run
+assert sim[0] == "NOHELP" and cmds == sim[1:], (len(cmds), len(sim))
+# the complete run: every step of every sample started and ended ok, in order
+last = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][1]:]
+ends = [(r["step"], r.get("sample")) for r in last if r["type"] == "step_end" and r["status"] == "ok"]
+assert len(ends) == 3 + 4 * 3, ends
+assert ends[0] == ("Recalibrate", None) and ends[-1] == ("Summary", None), ends
+first = recs[:[i for i, r in enumerate(recs) if r["type"] == "header"][1]]
+assert any(r["type"] == "error" and "interrupt" in r["message"] for r in first), "no error record for the abort"
+assert any(r["type"] == "note" and r["event"] == "safe-stop" for r in first)
+texts = [r["text"] for r in last if r["type"] == "text"]
+assert texts and texts[0].startswith("SAMPLE-PREP: completed after"), texts
+print("run log: %d records, %d commands = fbrlsim's log" % (len(recs), len(cmds)))
+PY
+[ $fails -eq 0 ] && echo "console: all checks passed"
+exit $((fails > 0))
