@@ -1,6 +1,7 @@
 /* mon_runlog.c - the run log's file, header and method observer; RUN-LOG and NO-RUN-LOG. */
 #include "mon_runlog.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -184,6 +185,61 @@ void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result
         r->exec_hook(r->exec_hook_ctx, line, len, result);
 }
 
+/* The name of the device word whose data field is addr. */
+typedef struct dev_find {
+    mon *m;
+    fbrl_cell addr;
+    char name[40];
+} dev_find;
+
+static int find_dev(void *ctx, const char *name, size_t len)
+{
+    dev_find *f = ctx;
+    fbrl_cell xt;
+    fbrl_robot_device d;
+    if (len < sizeof f->name && fbrl_vmx_find(f->m->vm, name, len, &xt) == FBRL_OK &&
+        fbrl_robot_device_of(&f->m->robot, xt, &d) == FBRL_OK && d.addr == f->addr) {
+        memcpy(f->name, name, len);
+        f->name[len] = '\0';
+        return 1;
+    }
+    return 0;
+}
+
+/* Device actions and timed waits (fbrl_robot_set_events), planned against actual. */
+static void on_event(void *ctx, const fbrl_robot_event *ev)
+{
+    mon_runlog *r = ctx;
+    dev_find f;
+    char what[96];
+    const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
+    if (!fbrl_runlog_is_open(&r->log))
+        return;
+    memset(&f, 0, sizeof f);
+    f.m = r->m;
+    f.addr = ev->device;
+    if (ev->device)
+        fbrl_vm_words(r->m->vm, find_dev, &f);
+    if (!f.name[0])
+        snprintf(f.name, sizeof f.name, "port %d", ev->port);
+    if (strcmp(ev->word, "WAIT-UNTIL") == 0) {
+        snprintf(what, sizeof what, "WAIT-UNTIL%s", failed);
+        fbrl_runlog_wait(&r->log, what, ev->planned_ms, ev->actual_ms);
+    } else if (strcmp(ev->word, "WAIT-INPUT") == 0) {
+        snprintf(what, sizeof what, "WAIT-INPUT %s %s: %s%s", f.name, ev->amount != 0 ? "on" : "off",
+                 ev->seen ? "seen" : "not seen", failed);
+        fbrl_runlog_wait(&r->log, what, ev->planned_ms, ev->actual_ms);
+    } else {
+        if (strcmp(ev->word, "DISPENSE") == 0)
+            snprintf(what, sizeof what, "dispense %.0f ml%s", ev->amount, failed);
+        else
+            snprintf(what, sizeof what, "%s%s", ev->word, failed);
+        for (char *p = what; *p && *p != ' '; p++)
+            *p = (char)tolower((unsigned char)*p);
+        fbrl_runlog_device(&r->log, f.name, what, ev->planned_ms, ev->actual_ms);
+    }
+}
+
 void mon_runlog_set_path(mon_runlog *r, const char *path)
 {
     snprintf(r->path, sizeof r->path, "%s", path ? path : "");
@@ -234,6 +290,7 @@ int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *c
     snprintf(r->controller, sizeof r->controller, "%s", controller ? controller : "");
     o.ctx = r;
     fbrl_method_set_observer(&m->methods, &o);
+    fbrl_robot_set_events(&m->robot, on_event, r);
     if (fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
                         "every following RUN-METHOD appends its run log (JSON lines) to file") != FBRL_OK ||
         fbrl_vmx_define(m->vm, "NO-RUN-LOG", w_no_run_log, r, NULL, 0, "( -- )", "stop writing run logs") !=

@@ -137,6 +137,15 @@ assert ends[0] == ("Recalibrate", None) and ends[-1] == ("Summary", None), ends
 first = recs[:[i for i, r in enumerate(recs) if r["type"] == "header"][1]]
 assert any(r["type"] == "error" and "interrupt" in r["message"] for r in first), "no error record for the abort"
 assert any(r["type"] == "note" and r["event"] == "safe-stop" for r in first)
+# device actions and timed waits, planned against actual (a pulse cannot be shorter than
+# planned unless aborted; WAIT-INPUT's plan is its time limit)
+dev = [r for r in last if r["type"] == "device"]
+assert sum(1 for r in dev if r["device"] == "BUFFER-PUMP" and r["action"] == "dispense 2 ml") == 3, dev
+assert sum(1 for r in dev if r["device"] == "SYRINGE-1" and r["action"] == "pulse") == 6, dev
+assert all(r["actual_ms"] >= r["planned_ms"] - 1 for r in dev if r.get("planned_ms") is not None), dev
+waits = [r for r in last if r["type"] == "wait"]
+assert [r["wait"] for r in waits].count("WAIT-INPUT TUBE-ON-SEPARATOR on: seen") == 3, waits
+assert any(r["wait"] == "WAIT-UNTIL" and r["actual_ms"] >= r["planned_ms"] - 1 for r in waits), waits
 texts = [r["text"] for r in last if r["type"] == "text"]
 assert texts and texts[0].startswith("SAMPLE-PREP: completed after"), texts
 print("run log: %d records, %d commands = fbrlsim's log" % (len(recs), len(cmds)))
