@@ -95,14 +95,31 @@ static void put_clean(const char *s)
         fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, stderr);
 }
 
-/* One line: "error: MESSAGE [WORD] (FILE:LINE)". Errors inside an included file
- * carry that file's name and line; otherwise `where` and the line we counted. */
+/* One line: "FILE:LINE: error: MESSAGE [in WORD]", the form editors and compilers use
+ * (docs/fbrlmon.md). Errors inside an included file carry that file's name and line;
+ * otherwise `where` and the line we counted; a typed line has no place: "error: ...". */
 static void report(mon *m, fbrl_status st, const char *where, unsigned long line)
 {
     const fbrl_vm_error *e = fbrl_vm_last_error(m->vm);
     const char *msg = e != NULL && e->message[0] ? e->message : fbrl_status_str(st);
 
     mon_host_newline(&m->host);
+    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
+        strcpy(m->resume_file, e->file); /* where RESUME goes on */
+        m->resume_line = e->line;
+    }
+    if (e != NULL && e->file[0]) {
+        put_clean(e->file);
+        if (e->line > 0)
+            fprintf(stderr, ":%lu", e->line);
+        fputs(": ", stderr);
+    } else if (where != NULL && line > 0) {
+        put_clean(where);
+        fprintf(stderr, ":%lu: ", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
+    } else if (where != NULL) {
+        put_clean(where);
+        fputs(": ", stderr);
+    }
     fputs("error: ", stderr);
     put_clean(msg);
     /* Codes outside the system's ranges are the program's own: show the number. */
@@ -112,25 +129,6 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
     if (e != NULL && e->word[0] && e->throw_code != -39) {
         fputs(e->throw_code == -13 ? " " : " in ", stderr);
         put_clean(e->word);
-    }
-    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
-        strcpy(m->resume_file, e->file); /* where RESUME goes on */
-        m->resume_line = e->line;
-    }
-    if (e != NULL && e->file[0]) {
-        fputs(" (", stderr);
-        put_clean(e->file);
-        if (e->line > 0)
-            fprintf(stderr, ":%lu", e->line);
-        fputc(')', stderr);
-    } else if (where != NULL && line > 0) {
-        fputs(" (", stderr);
-        put_clean(where);
-        fprintf(stderr, ":%lu)", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
-    } else if (where != NULL) {
-        fputs(" (", stderr);
-        put_clean(where);
-        fputc(')', stderr);
     }
     fputc('\n', stderr);
     fflush(stderr);
@@ -162,11 +160,10 @@ int mon_check_closed(mon *m, const char *what, const char *where, unsigned long 
     if (!fbrl_vm_compiling(m->vm))
         return 0;
     mon_host_newline(&m->host);
-    fprintf(stderr, "error: unterminated definition at end of %s (", what);
     put_clean(where);
     if (line > 0)
         fprintf(stderr, ":%lu", line);
-    fputs(")\n", stderr);
+    fprintf(stderr, ": error: unterminated definition at end of %s\n", what);
     fflush(stderr);
     m->errors++;
     fbrl_vm_reset(m->vm); /* as after any other error: the definition is dropped */

@@ -189,19 +189,18 @@ static size_t count_lines(const buf *b)
     return n;
 }
 
-/* "error: ... (SOMEWHERE:NUMBER)\n" */
+/* "SOMEWHERE:NUMBER: error: ...\n" (one line) */
 static int good_error_line(const buf *e)
 {
-    const char *end, *colon;
-    if (e->len < 8 || strncmp(e->p, "error: ", 7) != 0 || e->p[e->len - 1] != '\n')
+    const char *at, *d;
+    if (e->len < 12 || e->p[e->len - 1] != '\n' || memchr(e->p, '\n', e->len - 1) != NULL)
         return 0;
-    end = e->p + e->len - 1;
-    if (end[-1] != ')')
+    at = strstr(e->p, ": error: ");
+    if (at == NULL || at == e->p)
         return 0;
-    colon = end - 2;
-    while (colon > e->p && colon[0] >= '0' && colon[0] <= '9')
-        colon--;
-    return colon[0] == ':' && colon != end - 2 && strstr(e->p, " (") != NULL;
+    for (d = at - 1; d > e->p && d[0] >= '0' && d[0] <= '9'; d--)
+        ;
+    return d[0] == ':' && d != at - 1 && d > e->p;
 }
 
 static void show(const char *what, const buf *b)
