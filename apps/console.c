@@ -838,7 +838,7 @@ static void hook_exec(void *ctx, const char *line, size_t len, fbrl_status resul
             char *comma = strchr(l, ',');
             if (comma)
                 *comma = '\0';
-            textf(c->grip, sizeof c->grip, "opening %s in", l + 5);
+            textf(c->grip, sizeof c->grip, "width %s in", l + 5);
         } else if (strcmp(l, "OPEN") == 0 || strcmp(l, "CLOSE") == 0) {
             textf(c->grip, sizeof c->grip, "%s", l[0] == 'O' ? "open" : "closed");
         }
@@ -960,6 +960,7 @@ static void start_run(console *c)
     c->t_end = 0;
     memset(c->step_done, 0, sizeof c->step_done);
     memset(c->step_failed, 0, sizeof c->step_failed);
+    memset(c->errs, 0, sizeof c->errs); /* the last errors are this run's */
     textf(c->hint, sizeof c->hint, "running %s", c->meth->name);
     textf(c->log->source, sizeof c->log->source, "%s", c->entry ? c->entry->path : "");
     draw(c);
@@ -1049,6 +1050,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     raw();
     noecho();
     keypad(stdscr, TRUE);
+    set_escdelay(100); /* Esc leaves the Forth line at once, not after a second */
     curs_set(0);
     scan_library(c);
     if (c->nlib > 0)

@@ -30,15 +30,14 @@ const char *mon_runlog_advice(const char *msg)
     static const struct {
         const char *seen, *advice;
     } table[] = {
-        {"aborted by the operator",
-         "the arm went to its safe place and the outputs are off; start again when ready"},
-        {"user interrupt", "the arm went to its safe place and the outputs are off; start again when ready"},
+        {"aborted by the operator", "arm at its safe place, outputs off: start again when ready"},
+        {"user interrupt", "arm at its safe place, outputs off: start again when ready"},
         {"HAS NOT BEEN HOMED", "home the arm (HOME at the prompt, or the pendant), then start again"},
         {"ARM POWER", "switch the arm's power on, then start again"},
         {"TRANSFORM ILLEGAL", "a position is out of the arm's reach: have the method developer check it"},
-        {"OUT OF RANGE", "a joint would pass its limit: have the method developer check the positions"},
+        {"OUT OF RANGE", "a joint would pass its limit: have the method developer check positions"},
         {"disconnected", "check the cable and the controller's power, then reconnect (RECONNECT)"},
-        {"timed out", "the controller did not answer: check the cable and the controller, then retry"},
+        {"timed out", "the controller did not answer: check cable and controller, then retry"},
         {"not separated", "check that the tube is in the gripper and the sensor is clean"},
         {"undefined word", "the method file has an error: tell the method developer"},
     };

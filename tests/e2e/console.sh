@@ -20,7 +20,7 @@ sim_scale=50
 sim_args="--inputs $src/examples/tube_present.inputs"
 . "$here/tmux_session.sh"
 tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
-    "'$mon' --port '$work/robot' --console --methods '$src/examples/methods' --run-log '$work/run.jsonl' \
+    "FBRL_CONSOLE_PIN=4711 '$mon' --port '$work/robot' --console --methods '$src/examples/methods' --run-log '$work/run.jsonl' \
      --operator tester -e '60 CONSTANT TIME-SCALE'; echo fbrlmon-exit=\$?; sleep 600"
 key() { tmux -L "$sock" send-keys -t said "$@"; }
 shot() { tmux -L "$sock" capture-pane -p -t said >"screen-$1.txt"; }
@@ -108,6 +108,23 @@ wait_long "RUNNING" 10
 wait_long "DONE" 60 || exit 1
 wait_for "prepared 3 of 3 samples; used: buffer 6 ml, reagent 300 ul, wash 9 ml"
 shot done
+grep -q "Reagent, sample 2: user interrupt" screen-done.txt && fail "the aborted run's error is still shown"
+
+# ---- levels: up only with the PIN; the programmer's Forth line
+key F11
+sleep 0.3
+tmux -L "$sock" capture-pane -p -t said | grep -q "^ok> " && fail "an operator got the Forth line"
+key F9; key 3; key -l 1111; key Enter
+wait_for "wrong PIN: the level stays operator"
+key F9; key 3; key -l 4711; key Enter
+wait_for "level: programmer"
+key F11
+key -l "6 7 * ."; key Enter
+wait_for " 42 "
+shot programmer
+key Escape
+key F9; key 1
+wait_for "level: operator"
 key F10
 wait_for "fbrlmon-exit=0"
 
