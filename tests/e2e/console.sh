@@ -167,5 +167,34 @@ texts = [r["text"] for r in last if r["type"] == "text"]
 assert texts and texts[0].startswith("SAMPLE-PREP: completed after"), texts
 print("run log: %d records, %d commands = fbrlsim's log" % (len(recs), len(cmds)))
 PY
+# ---- fbrlmon without the console: RUN-LOG in a plan, RUN-METHOD; a log that cannot be
+# written is refused where it is asked for (file:line)
+cat >plan.fbrl <<'PLAN'
+RUN-LOG plan.jsonl
+: UP ( -- ) READY ;
+: GRIPS ( i -- ) DROP 30 1.5E0 GRIP ;
+METHOD TINY  two steps
+1 3 2 SAMPLES-PARAM N tubes  tubes
+' UP STEP Up  to READY
+' GRIPS SAMPLE-STEP Grip  the gripper
+END-METHOD
+TINY RUN-METHOD
+RUN-LOG /nonexistent/dir/x.jsonl
+PLAN
+before=$(lines)
+"$mon" --port "$work/robot" plan.fbrl >plan.out 2>plan.err
+[ $? = 1 ] || fail "fbrlmon plan.fbrl: exit status $? (want 1: RUN-LOG to a missing folder)"
+grep -q "^plan.fbrl:10: error: RUN-LOG: /nonexistent/dir/x.jsonl: No such file or directory" plan.err ||
+    fail "RUN-LOG's refusal: $(cat plan.err)"
+tail -n +$((before + 1)) sim.log | grep -v '^#' | grep -vx NOHELP >plan.sim
+python3 - <<'PY' || fail "RUN-LOG's log does not match"
+import json
+recs = [json.loads(l) for l in open("plan.jsonl")]
+cmds = [r["line"] for r in recs if r["type"] == "command"]
+sim = [l.rstrip("\n") for l in open("plan.sim")]
+assert cmds == sim and "READY" in cmds and cmds.count("GRIP 1.5,30") == 2, (cmds, sim)
+assert recs[-4]["type"] == "summary" and recs[-4]["outcome"] == "completed", recs[-4]
+PY
+
 [ $fails -eq 0 ] && echo "console: all checks passed"
 exit $((fails > 0))
