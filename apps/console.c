@@ -74,6 +74,7 @@ typedef struct console {
     long step_done[FBRL_METHOD_MAX_STEPS];
     int step_failed[FBRL_METHOD_MAX_STEPS];
     int want_pause, want_abort, abort_confirm;
+    int in_vm; /* the engine runs a line of the console's (Forth line, loading, a run) */
     uint64_t last_draw;
     /* the live view, from what the controller executed */
     uint32_t outputs;
@@ -185,6 +186,16 @@ static ssize_t cookie_write(void *ctx, const char *s, size_t n)
             c->partial[c->plen++] = s[i];
     }
     return (ssize_t)n;
+}
+
+/* Method output without a line end yet: show it. */
+static void flush_partial(console *c)
+{
+    if (c->plen > 0) {
+        c->partial[c->plen] = '\0';
+        push_msg(c, c->partial);
+        c->plen = 0;
+    }
 }
 
 /* The last error of the engine as "file:line: message [in WORD]" (the form editors parse). */
@@ -299,7 +310,10 @@ static void choose_method(console *c, const lib_entry *e)
     if (meth == NULL || !meth->complete) {
         textf(c->hint, sizeof c->hint, "loading %s ...", e->path);
         fflush(c->out);
-        if (fbrl_vm_include(c->m->vm, e->path) != FBRL_OK) {
+        c->in_vm++;
+        fbrl_status st = fbrl_vm_include(c->m->vm, e->path);
+        c->in_vm--;
+        if (st != FBRL_OK) {
             char msg[400];
             engine_error(c, msg, sizeof msg);
             fbrl_vm_reset(c->m->vm);
@@ -616,16 +630,16 @@ static void typed_done(console *c)
         char text[sizeof c->typed];
         memcpy(text, c->typed, c->tlen + 1);
         push_msg(c, text);
-        if (fbrl_vm_eval(c->m->vm, text, strlen(text)) != FBRL_OK) {
+        c->in_vm++;
+        fbrl_status st = fbrl_vm_eval(c->m->vm, text, strlen(text));
+        c->in_vm--;
+        fbrl_vmx_take_interrupt(c->m->vm);
+        if (st != FBRL_OK) {
             char msg[400];
             engine_error(c, msg, sizeof msg);
             push_error(c, "console", msg);
         }
-        if (c->plen > 0) { /* output without a line end: show it */
-            c->partial[c->plen] = '\0';
-            push_msg(c, c->partial);
-            c->plen = 0;
-        }
+        flush_partial(c);
         c->typing = 1; /* the prompt stays until Esc */
     }
     c->tlen = 0;
@@ -758,6 +772,11 @@ static void key(console *c, int ch)
 {
     if (ch == ERR || ch == KEY_RESIZE)
         return;
+    if (c->in_vm && !running(c) && c->state != ST_PAUSED) {
+        if (ch == KEY_CTRL_C) /* the engine runs a typed line or loads a file: only Ctrl-C */
+            fbrl_vm_interrupt(c->m->vm);
+        return;
+    }
     if (c->typing && !running(c))
         type_key(c, ch);
     else if (running(c) || c->state == ST_PAUSED)
@@ -846,11 +865,30 @@ static void hook_exec(void *ctx, const char *line, size_t len, fbrl_status resul
     pump(c, 0);
 }
 
+/* A run starts (from F5, or RUN-METHOD typed on the Forth line): the run view. */
 static int obs_begin(void *ctx, const fbrl_method *m)
 {
     console *c = ctx;
-    (void)m;
-    c->t_run0 = now_us();
+    if (m != c->meth) {
+        c->meth = m;
+        c->entry = NULL;
+        for (size_t i = 0; i < c->nlib; i++)
+            if (strcmp(c->lib[i].name, m->name) == 0)
+                c->entry = &c->lib[i];
+    }
+    c->screen = SCREEN_RUN;
+    c->state = ST_RUNNING;
+    c->want_pause = c->want_abort = c->abort_confirm = 0;
+    c->step = 0;
+    c->sample = -1;
+    c->done_units = 0;
+    c->t_run0 = c->t_unit0 = now_us();
+    c->t_end = 0;
+    memset(c->step_done, 0, sizeof c->step_done);
+    memset(c->step_failed, 0, sizeof c->step_failed);
+    memset(c->errs, 0, sizeof c->errs); /* the last errors are this run's */
+    textf(c->hint, sizeof c->hint, "running %s", m->name);
+    draw(c);
     return 0;
 }
 
@@ -912,7 +950,8 @@ static int obs_between(void *ctx, const fbrl_method *m, size_t step, long sample
 static void obs_end(void *ctx, const fbrl_method *m, const char *outcome, const char *error)
 {
     console *c = ctx;
-    (void)error;
+    if (error != NULL && strcmp(outcome, "completed") != 0 && !c->errs[0][0])
+        push_error(c, m->name, error); /* (a failed step has said it already) */
     if (strcmp(outcome, "completed") != 0) {
         fbrl_robot_stop stop;
         fbrl_vmx_take_interrupt(c->m->vm);
@@ -934,9 +973,21 @@ static void obs_end(void *ctx, const fbrl_method *m, const char *outcome, const 
         if (fbrl_runlog_is_open(&c->log->log))
             fbrl_runlog_note(&c->log->log, "safe-stop",
                              stop.result == FBRL_OK ? "arm halted, outputs switched off" : "incomplete");
-    } else
+    } else {
         read_arm(c, "(finished)");
+    }
     c->t_end = now_us();
+    c->want_abort = c->want_pause = 0;
+    if (strcmp(outcome, "completed") == 0) {
+        c->state = ST_DONE;
+        textf(c->hint, sizeof c->hint, "%s completed: F5 runs it again", m->name);
+    } else if (strcmp(outcome, "aborted") == 0) {
+        c->state = ST_ABORTED;
+        textf(c->hint, sizeof c->hint, "%s aborted: arm at its safe place, outputs off", m->name);
+    } else {
+        c->state = ST_FAILED;
+        textf(c->hint, sizeof c->hint, "%s failed: arm halted, outputs off", m->name);
+    }
 }
 
 /* ---- running ---- */
@@ -950,45 +1001,19 @@ static void start_run(console *c)
         return;
     }
     fill_form(c); /* the values as set */
-    c->screen = SCREEN_RUN;
-    c->state = ST_RUNNING;
-    c->want_pause = c->want_abort = c->abort_confirm = 0;
-    c->step = 0;
-    c->sample = -1;
-    c->done_units = 0;
-    c->t_run0 = c->t_unit0 = now_us();
-    c->t_end = 0;
-    memset(c->step_done, 0, sizeof c->step_done);
-    memset(c->step_failed, 0, sizeof c->step_failed);
-    memset(c->errs, 0, sizeof c->errs); /* the last errors are this run's */
-    textf(c->hint, sizeof c->hint, "running %s", c->meth->name);
     textf(c->log->source, sizeof c->log->source, "%s", c->entry ? c->entry->path : "");
-    draw(c);
     textf(text, sizeof text, "%s RUN-METHOD", c->meth->name);
+    c->in_vm++;
     fbrl_status st = fbrl_vm_eval(c->m->vm, text, strlen(text));
+    c->in_vm--;
     fbrl_vmx_take_interrupt(c->m->vm);
-    if (c->plen > 0) {
-        c->partial[c->plen] = '\0';
-        push_msg(c, c->partial);
-        c->plen = 0;
-    }
-    if (st == FBRL_OK) {
-        c->state = ST_DONE;
-        textf(c->hint, sizeof c->hint, "%s completed: F5 runs it again", c->meth->name);
-    } else if (c->state == ST_ABORTING || c->state == ST_PAUSED) {
-        c->state = ST_ABORTED;
-        textf(c->hint, sizeof c->hint, "%s aborted: arm at its safe place, outputs off", c->meth->name);
-    } else {
+    flush_partial(c);
+    if (st != FBRL_OK && running(c)) { /* refused before it began (the run log, ...) */
         char msg[400];
-        c->state = ST_FAILED;
         engine_error(c, msg, sizeof msg);
-        if (!c->errs[0][0] || !strstr(c->errs[0], fbrl_vm_last_error(c->m->vm)->message))
-            push_error(c, NULL, msg);
-        textf(c->hint, sizeof c->hint, "%s failed: arm halted, outputs off", c->meth->name);
+        push_error(c, NULL, msg);
+        c->state = ST_FAILED;
     }
-    if (c->t_end == 0)
-        c->t_end = now_us();
-    c->want_abort = c->want_pause = 0;
     draw(c);
 }
 
