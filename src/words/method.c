@@ -223,6 +223,33 @@ static fbrl_status w_on_abort(fbrl_vm *vm, void *ctx, const void *word)
     return st;
 }
 
+static fbrl_status method_arg(fbrl_method_set *s, const char *wname, fbrl_method **out);
+
+/* USE-PARAMS ( method -- ): the parameters of another method, shared (the same words,
+ * so the steps of that method see the values set here); for a method composed of its steps */
+static fbrl_status w_use_params(fbrl_vm *vm, void *ctx, const void *word)
+{
+    fbrl_method_set *s = ctx;
+    fbrl_method *m, *from = NULL;
+    (void)word;
+    fbrl_status st = declaring(s, "USE-PARAMS", &m);
+    if (st == FBRL_OK)
+        st = method_arg(s, "USE-PARAMS", &from);
+    if (st != FBRL_OK)
+        return st;
+    if (from == m)
+        return fail(vm, FBRL_THROW_BAD_NAME_ARG, "USE-PARAMS: %s is the method being declared%s", m->name, "");
+    if (m->nparams + from->nparams > FBRL_METHOD_MAX_PARAMS)
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "USE-PARAMS: %s: too many parameters%s", m->name, "");
+    if (from->samples >= 0 && m->samples >= 0)
+        return fail(vm, FBRL_THROW_BAD_NAME_ARG, "USE-PARAMS: %s has a sample count already%s", m->name, "");
+    if (from->samples >= 0)
+        m->samples = (int)m->nparams + from->samples;
+    memcpy(&m->params[m->nparams], from->params, from->nparams * sizeof from->params[0]);
+    m->nparams += from->nparams;
+    return FBRL_OK;
+}
+
 /* END-METHOD ( -- ) */
 static fbrl_status w_end_method(fbrl_vm *vm, void *ctx, const void *word)
 {
@@ -425,6 +452,8 @@ static const method_word words[] = {
     {"SAMPLE-STEP", w_step, "", "( xt \"name\" \"text\" -- )",
      "declare a named step run once per sample with ( index -- ), index 0.."},
     {"ON-ABORT", w_on_abort, NULL, "( xt -- )", "the word that takes the arm to a safe place after an abort"},
+    {"USE-PARAMS", w_use_params, NULL, "( method -- )",
+     "share another method's parameters (a method composed of its steps)"},
     {"END-METHOD", w_end_method, NULL, "( -- )", "end the method's declaration"},
     {"RUN-METHOD", w_run_method, NULL, "( method -- )", "run the method's steps in order (run log, console)"},
     {"METHODS", w_methods, NULL, "( -- )", "list the declared methods"},

@@ -53,3 +53,10 @@ END-METHOD
 T{ 0 TRACE !  EMPTY RUN-METHOD TRACE @ -> 9 }T
 T{ DEMO .METHOD -> }T
 T{ METHODS -> }T
+\ a method composed of DEMO's steps shares DEMO's parameters
+METHOD PART  DEMO's second step alone
+DEMO USE-PARAMS
+' EACH SAMPLE-STEP Treat  treat one tube
+END-METHOD
+T{ 0 TRACE !  2 PARAM! #TUBES  PART RUN-METHOD TRACE @ #TUBES -> 23 2 }T
+T{ DEMO ' USE-PARAMS CATCH NIP -> -32 }T   \ no method is being declared

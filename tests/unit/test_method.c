@@ -70,7 +70,7 @@ static void forth_method_words(void **state)
     assert_int_equal(errors, 0);
     /* EMPTY declared twice is one method */
     assert_non_null(fbrl_method_find(&f->set, "empty"));
-    assert_int_equal(f->set.count, 3);
+    assert_int_equal(f->set.count, 4); /* DEMO EMPTY FAILING PART */
     free(f->mem);
     free(f);
 }
