@@ -38,7 +38,7 @@
 enum level { LEVEL_OPERATOR, LEVEL_DEVELOPER, LEVEL_PROGRAMMER };
 static const char *const level_names[] = {"operator", "developer", "programmer"};
 
-enum con_screen { SCREEN_LIBRARY, SCREEN_FORM, SCREEN_RUN };
+enum con_screen { SCREEN_LIBRARY, SCREEN_FORM, SCREEN_RUN, SCREEN_COMPOSE };
 enum state { ST_IDLE, ST_RUNNING, ST_PAUSING, ST_PAUSED, ST_ABORTING, ST_DONE, ST_ABORTED, ST_FAILED };
 static const char *const state_names[] = {
     "READY", "RUNNING", "PAUSING (after this step)", "PAUSED", "ABORTING", "DONE", "ABORTED", "FAILED"};
@@ -92,7 +92,9 @@ typedef struct console {
     char advice[ERR_LINES][160];
     char hint[160];
     /* a line being typed: Forth (programmer), or the PIN */
-    int typing; /* 0 none, 1 Forth, 2 PIN, 3 level choice */
+    int typing; /* 0 none, 1 Forth, 2 PIN, 3 level choice, 4 a new method's name */
+    /* composing a method from the chosen method's steps (method developer) */
+    size_t csel, picked[FBRL_METHOD_MAX_STEPS], npicked;
     int want_level;
     char typed[128];
     size_t tlen;
@@ -399,7 +401,11 @@ static void draw_bar(console *c)
     else if (c->screen == SCREEN_LIBRARY)
         keys = "Up/Down choose  Enter open  F9 Level  F10 Quit";
     else if (c->screen == SCREEN_FORM)
-        keys = "Up/Down field  F5 Start  F2 Methods  F9 Level  F10 Quit";
+        keys = c->level >= LEVEL_DEVELOPER
+                   ? "Up/Down field  F5 Start  F2 Methods  F4 Compose  F9 Level  F10 Quit"
+                   : "Up/Down field  F5 Start  F2 Methods  F9 Level  F10 Quit";
+    else if (c->screen == SCREEN_COMPOSE)
+        keys = "Up/Down step  Enter add  Bksp remove  F5 Save  Esc back";
     else if (c->state == ST_RUNNING || c->state == ST_PAUSING || c->state == ST_ABORTING)
         keys = "F6 Pause  F8 Abort";
     else if (c->state == ST_PAUSED)
@@ -545,6 +551,28 @@ static void draw_form(console *c)
     }
 }
 
+/* The composer: the chosen method's steps on the left, the new method's on the right. */
+static void draw_compose(console *c)
+{
+    const fbrl_method *m = c->meth;
+    put_row(1, " Compose a method from the steps of %s", m->name);
+    for (size_t k = 0; k < 12; k++) {
+        put_row(2 + (int)k, " ");
+        if (k < m->nsteps) {
+            if (k == c->csel)
+                attron(A_REVERSE);
+            put_at(2 + (int)k, 1, "%-14.14s %-10s", m->steps[k].name,
+                   m->steps[k].per_sample ? "per sample" : "");
+            if (k == c->csel)
+                attroff(A_REVERSE);
+        }
+        put_at(2 + (int)k, 34, "|");
+        if (k < c->npicked)
+            put_at(2 + (int)k, 36, "%2zu. %-14.14s %.24s", k + 1, m->steps[c->picked[k]].name,
+                   m->steps[c->picked[k]].text);
+    }
+}
+
 static void draw(console *c)
 {
     int rows, cols;
@@ -563,6 +591,8 @@ static void draw(console *c)
         draw_library(c);
     else if (c->screen == SCREEN_FORM)
         draw_form(c);
+    else if (c->screen == SCREEN_COMPOSE)
+        draw_compose(c);
     else
         draw_run(c);
     if (c->screen == SCREEN_RUN)
@@ -583,11 +613,140 @@ static void draw(console *c)
         put_row(22, "PIN for %s: %.*s", level_names[c->want_level], (int)c->tlen, "****************");
     else if (c->typing == 3)
         put_row(22, "level: 1 operator  2 developer  3 programmer ?");
+    else if (c->typing == 4)
+        put_row(22, "name of the new method: %s", c->typed);
     else
         put_row(22, "%s", c->hint);
     draw_bar(c);
     refresh();
     c->last_draw = now_us();
+}
+
+/* ---- composing a method (method developer): saved as a method file ---- */
+
+typedef struct xt_find {
+    fbrl_vm *vm;
+    fbrl_cell xt;
+    char name[FBRL_VMX_NAME_MAX + 1];
+} xt_find;
+
+static int find_xt(void *ctx, const char *name, size_t len)
+{
+    xt_find *f = ctx;
+    fbrl_cell xt;
+    if (len <= FBRL_VMX_NAME_MAX && fbrl_vmx_find(f->vm, name, len, &xt) == FBRL_OK && xt == f->xt) {
+        memcpy(f->name, name, len);
+        f->name[len] = '\0';
+        return 1;
+    }
+    return 0;
+}
+
+/* The name that runs xt now (a step's word), or "" if none does. */
+static const char *word_of(console *c, fbrl_cell xt, xt_find *f)
+{
+    memset(f, 0, sizeof *f);
+    f->vm = c->m->vm;
+    f->xt = xt;
+    fbrl_vm_words(c->m->vm, find_xt, f);
+    return f->name;
+}
+
+/* Write DIR/name.fbrl: it loads the chosen method's file, shares its parameters and
+ * declares the picked steps. Nothing is written when anything is wrong. */
+static void save_composed(console *c, const char *typed)
+{
+    const fbrl_method *m = c->meth;
+    const char *dir = c->o->methods ? c->o->methods : "methods";
+    const char *src = c->entry ? strrchr(c->entry->path, '/') : NULL;
+    char name[FBRL_METHOD_NAME_MAX + 1], path[MON_RUNLOG_PATH_MAX], file[FBRL_METHOD_NAME_MAX + 1];
+    size_t n = strlen(typed);
+    xt_find f;
+    if (n == 0 || n > FBRL_METHOD_NAME_MAX) {
+        textf(c->hint, sizeof c->hint, "not saved: a name of 1..%d letters, digits and -",
+              FBRL_METHOD_NAME_MAX);
+        return;
+    }
+    for (size_t i = 0; i <= n; i++) {
+        char ch = (char)toupper((unsigned char)typed[i]);
+        if (ch && !isalnum((unsigned char)ch) && ch != '-') {
+            textf(c->hint, sizeof c->hint, "not saved: '%s': only letters, digits and - in a name", typed);
+            return;
+        }
+        name[i] = ch;
+        file[i] = ch == '-' ? '_' : (char)tolower((unsigned char)ch);
+    }
+    for (size_t i = 0; i < c->nlib; i++)
+        if (strcmp(c->lib[i].name, name) == 0) {
+            textf(c->hint, sizeof c->hint, "not saved: the library has %s already", name);
+            return;
+        }
+    if (src == NULL || c->npicked == 0) {
+        textf(c->hint, sizeof c->hint, "not saved: %s",
+              c->npicked ? "the method's file is unknown" : "no steps");
+        return;
+    }
+    textf(path, sizeof path, "%s/%s.fbrl", dir, file);
+    if (access(path, F_OK) == 0) {
+        textf(c->hint, sizeof c->hint, "not saved: %s exists", path);
+        return;
+    }
+    for (size_t k = 0; k < c->npicked; k++)
+        if (!word_of(c, m->steps[c->picked[k]].xt, &f)[0]) {
+            textf(c->hint, sizeof c->hint, "not saved: step %s has no word name",
+                  m->steps[c->picked[k]].name);
+            return;
+        }
+    FILE *out = fopen(path, "wx");
+    if (out == NULL) {
+        textf(c->hint, sizeof c->hint, "not saved: %s: %s", path, strerror(errno));
+        return;
+    }
+    fprintf(out, "\\ %s.fbrl - composed in the operator console from the steps of %s (%s)\n", file, m->name,
+            c->log->operator_id);
+    fprintf(out, "INCLUDE %s\n", src + 1);
+    fprintf(out, "METHOD %s  %s steps:", name, m->name);
+    for (size_t k = 0; k < c->npicked; k++)
+        fprintf(out, " %s", m->steps[c->picked[k]].name);
+    fprintf(out, "\n%s USE-PARAMS\n", m->name);
+    for (size_t k = 0; k < c->npicked; k++) {
+        const fbrl_method_step *st = &m->steps[c->picked[k]];
+        fprintf(out, "' %s %s %s  %s\n", word_of(c, st->xt, &f), st->per_sample ? "SAMPLE-STEP" : "STEP",
+                st->name, st->text);
+    }
+    if (m->abort_xt && word_of(c, m->abort_xt, &f)[0])
+        fprintf(out, "' %s ON-ABORT\n", f.name);
+    fprintf(out, "END-METHOD\n");
+    if (fclose(out) != 0) {
+        textf(c->hint, sizeof c->hint, "not saved: %s: %s", path, strerror(errno));
+        remove(path);
+        return;
+    }
+    scan_library(c);
+    c->screen = SCREEN_LIBRARY;
+    for (size_t i = 0; i < c->nlib; i++)
+        if (strcmp(c->lib[i].name, name) == 0)
+            c->sel = i;
+    textf(c->hint, sizeof c->hint, "saved %s as %s.fbrl in the library: Enter opens it", name, file);
+}
+
+static void compose_key(console *c, int ch)
+{
+    if (ch == KEY_UP && c->csel > 0)
+        c->csel--;
+    else if (ch == KEY_DOWN && c->csel + 1 < c->meth->nsteps)
+        c->csel++;
+    else if ((ch == '\n' || ch == '\r' || ch == KEY_ENTER || ch == ' ') && c->npicked < FBRL_METHOD_MAX_STEPS)
+        c->picked[c->npicked++] = c->csel;
+    else if ((ch == KEY_BACKSPACE || ch == 127 || ch == 8) && c->npicked > 0)
+        c->npicked--;
+    else if (ch == KEY_ESCAPE)
+        c->screen = SCREEN_FORM;
+    else if (ch == KEY_F(5)) {
+        c->typing = 4;
+        c->tlen = 0;
+        c->typed[0] = '\0';
+    }
 }
 
 /* ---- keys ---- */
@@ -626,6 +785,8 @@ static void typed_done(console *c)
         } else {
             textf(c->hint, sizeof c->hint, "wrong PIN: the level stays %s", level_names[c->level]);
         }
+    } else if (mode == 4) {
+        save_composed(c, c->typed);
     } else if (mode == 1 && c->tlen > 0) {
         char text[sizeof c->typed];
         memcpy(text, c->typed, c->tlen + 1);
@@ -716,6 +877,16 @@ static void idle_key(console *c, int ch)
         c->typing = 1;
         c->tlen = 0;
         c->typed[0] = '\0';
+    } else if (ch == KEY_F(4) && c->meth != NULL && c->screen != SCREEN_RUN) {
+        if (c->level < LEVEL_DEVELOPER)
+            textf(c->hint, sizeof c->hint, "composing a method needs the developer level (F9)");
+        else {
+            c->screen = SCREEN_COMPOSE;
+            c->csel = c->npicked = 0;
+            textf(c->hint, sizeof c->hint, "Enter adds the highlighted step to the new method; F5 saves it");
+        }
+    } else if (c->screen == SCREEN_COMPOSE) {
+        compose_key(c, ch);
     } else if (ch == KEY_F(2)) {
         c->screen = SCREEN_LIBRARY;
         scan_library(c);

@@ -18,9 +18,11 @@ cd "$work" || exit 1
 name=console
 sim_scale=50
 sim_args="--inputs $src/examples/tube_present.inputs"
+# the method library: a copy (the composer writes a method file into it)
+mkdir -p lib/methods && cp "$src"/examples/methods/*.fbrl lib/methods/ && cp "$src/examples/asps_cell.fbrl" lib/ || exit 1
 . "$here/tmux_session.sh"
 tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
-    "FBRL_CONSOLE_PIN=4711 '$mon' --port '$work/robot' --console --methods '$src/examples/methods' --run-log '$work/run.jsonl' \
+    "FBRL_CONSOLE_PIN=4711 '$mon' --port '$work/robot' --console --methods '$work/lib/methods' --run-log '$work/run.jsonl' \
      --operator tester -e '60 CONSTANT TIME-SCALE'; echo fbrlmon-exit=\$?; sleep 600"
 key() { tmux -L "$sock" send-keys -t said "$@"; }
 shot() { tmux -L "$sock" capture-pane -p -t said >"screen-$1.txt"; }
@@ -123,8 +125,27 @@ key -l "6 7 * ."; key Enter
 wait_for " 42 "
 shot programmer
 key Escape
+
+# ---- a method developer composes a method from SAMPLE-PREP's steps, saves it, runs it
+key F3
+wait_for "Parameters of SAMPLE-PREP"
+key F4
+wait_for "Compose a method from the steps of SAMPLE-PREP"
+key Enter; key Down; key Enter; key Down Down Down Down Down; key Enter
+wait_for " 3. Summary"
+shot compose
+key F5; key -l "quick-prep"; key Enter
+wait_for "saved QUICK-PREP as quick_prep.fbrl in the library"
+grep -qx "SAMPLE-PREP USE-PARAMS" lib/methods/quick_prep.fbrl || fail "the composed file does not share the parameters"
+key Enter
+wait_for "Parameters of QUICK-PREP"
+key -l 2; key F5
+wait_long "QUICK-PREP completed" 30 || exit 1
+shot composed-run
 key F9; key 1
 wait_for "level: operator"
+key F2; key F4
+wait_for "composing a method needs the developer level"
 key F10
 wait_for "fbrlmon-exit=0"
 
@@ -135,8 +156,15 @@ recs = [json.loads(l) for l in open(sys.argv[1])]
 sim = [l.rstrip("\n") for l in open(sys.argv[2]) if not l.startswith("#")]
 heads = [r for r in recs if r["type"] == "header"]
 sums = [r for r in recs if r["type"] == "summary"]
-assert len(heads) == 2 and len(sums) == 2, (len(heads), len(sums))
-assert [s["outcome"] for s in sums] == ["aborted", "completed"], sums
+assert len(heads) == 3 and len(sums) == 3, (len(heads), len(sums))
+assert [s["outcome"] for s in sums] == ["aborted", "completed", "completed"], sums
+# the composed method: its own name, SAMPLE-PREP's parameters, the three steps picked
+assert heads[2]["method"] == "QUICK-PREP" and heads[2]["source"].endswith("quick_prep.fbrl"), heads[2]
+third = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][2]:]
+assert [(r["step"], r.get("sample")) for r in third if r["type"] == "step_end"] == \
+    [("Recalibrate", None), ("Buffer", 1), ("Buffer", 2), ("Summary", None)], third
+assert {x["name"]: x["value"] for x in heads[2]["parameters"]}["#SAMPLES"] == 2
+heads = heads[:2]
 for h in heads:
     p = {x["name"]: x["value"] for x in h["parameters"]}
     assert p["#SAMPLES"] == 3 and p["REACTION-MIN"] == 1, p
@@ -147,7 +175,7 @@ assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
 # everything the controller executed after the connection's NOHELP was part of a run
 assert sim[0] == "NOHELP" and cmds == sim[1:], (len(cmds), len(sim))
 # the complete run: every step of every sample started and ended ok, in order
-last = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][1]:]
+last = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][1]:[i for i, r in enumerate(recs) if r["type"] == "header"][2]]
 ends = [(r["step"], r.get("sample")) for r in last if r["type"] == "step_end" and r["status"] == "ok"]
 assert len(ends) == 3 + 4 * 3, ends
 assert ends[0] == ("Recalibrate", None) and ends[-1] == ("Summary", None), ends
