@@ -19,6 +19,7 @@
 #include <unistd.h>
 #include <curses.h>
 
+#include "fbrl/glossary.h"
 #include "fbrl/vmx.h"
 #include "mon.h"
 #include "mon_runlog.h"
@@ -34,11 +35,12 @@
 #define PUMP_MS       20 /* the screen is redrawn at most this often from inside a run */
 #define RIGHT_COL     50 /* the live panel (arm, gripper, devices) starts here */
 #define DEVICES_SHOWN 8
+#define CELL_MAX      128 /* named places and devices the work-cell view lists */
 
 enum level { LEVEL_OPERATOR, LEVEL_DEVELOPER, LEVEL_PROGRAMMER };
 static const char *const level_names[] = {"operator", "developer", "programmer"};
 
-enum con_screen { SCREEN_LIBRARY, SCREEN_FORM, SCREEN_RUN, SCREEN_COMPOSE };
+enum con_screen { SCREEN_LIBRARY, SCREEN_FORM, SCREEN_RUN, SCREEN_COMPOSE, SCREEN_CELL };
 enum state { ST_IDLE, ST_RUNNING, ST_PAUSING, ST_PAUSED, ST_ABORTING, ST_DONE, ST_ABORTED, ST_FAILED };
 static const char *const state_names[] = {
     "READY", "RUNNING", "PAUSING (after this step)", "PAUSED", "ABORTING", "DONE", "ABORTED", "FAILED"};
@@ -95,6 +97,10 @@ typedef struct console {
     int typing; /* 0 none, 1 Forth, 2 PIN, 3 level choice, 4 a new method's name */
     /* composing a method from the chosen method's steps (method developer) */
     size_t csel, picked[FBRL_METHOD_MAX_STEPS], npicked;
+    /* the work-cell view: locations and devices by name (method developer) */
+    char cell[CELL_MAX][MIN_COLS];
+    size_t ncell, ctop;
+    enum con_screen cell_back; /* the screen Esc goes back to */
     int want_level;
     char typed[128];
     size_t tlen;
@@ -401,11 +407,12 @@ static void draw_bar(console *c)
     else if (c->screen == SCREEN_LIBRARY)
         keys = "Up/Down choose  Enter open  F9 Level  F10 Quit";
     else if (c->screen == SCREEN_FORM)
-        keys = c->level >= LEVEL_DEVELOPER
-                   ? "Up/Down field  F5 Start  F2 Methods  F4 Compose  F9 Level  F10 Quit"
-                   : "Up/Down field  F5 Start  F2 Methods  F9 Level  F10 Quit";
+        keys = c->level >= LEVEL_DEVELOPER ? "F5 Start  F2 Methods  F4 Compose  F6 Cell  F9 Level  F10 Quit"
+                                           : "Up/Down field  F5 Start  F2 Methods  F9 Level  F10 Quit";
     else if (c->screen == SCREEN_COMPOSE)
         keys = "Up/Down step  Enter add  Bksp remove  F5 Save  Esc back";
+    else if (c->screen == SCREEN_CELL)
+        keys = "Up/Down scroll  Esc back";
     else if (c->state == ST_RUNNING || c->state == ST_PAUSING || c->state == ST_ABORTING)
         keys = "F6 Pause  F8 Abort";
     else if (c->state == ST_PAUSED)
@@ -573,6 +580,48 @@ static void draw_compose(console *c)
     }
 }
 
+/* The work cell: every named location (CREATE-LOC) and device, newest definitions first. */
+static int add_cell(void *ctx, const char *name, size_t len)
+{
+    console *c = ctx;
+    fbrl_cell xt, addr;
+    fbrl_loc *l;
+    fbrl_robot_device d;
+    char nm[FBRL_VMX_NAME_MAX + 1];
+    if (c->ncell >= CELL_MAX || len > FBRL_VMX_NAME_MAX || fbrl_vmx_find(c->m->vm, name, len, &xt) != FBRL_OK)
+        return c->ncell >= CELL_MAX;
+    memcpy(nm, name, len);
+    nm[len] = '\0';
+    for (size_t i = 0; i < c->ncell; i++) /* a name defined again: the newest only */
+        if (strncmp(c->cell[i] + 1, nm, len) == 0 && c->cell[i][1 + len] == ' ')
+            return 0;
+    if (fbrl_glossary_loc_word(c->m->vm, xt, &addr) == FBRL_OK &&
+        fbrl_glossary_loc(c->m->vm, addr, &l) == FBRL_OK)
+        textf(c->cell[c->ncell++], sizeof c->cell[0],
+              " %-17s place X%7.2f Y%7.2f Z%7.2f  pitch%6.1f roll%6.1f", nm, l->x, l->y, l->z, l->a, l->t);
+    else if (fbrl_robot_device_of(&c->m->robot, xt, &d) == FBRL_OK)
+        textf(c->cell[c->ncell++], sizeof c->cell[0], " %-17s %-6s controller %s %d", nm,
+              d.output ? "device" : "sensor", d.output ? "output" : "input", d.port);
+    return 0;
+}
+
+static int by_text(const void *a, const void *b) { return strcmp((const char *)a, (const char *)b); }
+
+static void scan_cell(console *c)
+{
+    c->ncell = c->ctop = 0;
+    fbrl_vm_words(c->m->vm, add_cell, c);
+    qsort(c->cell, c->ncell, sizeof c->cell[0], by_text); /* by name */
+}
+
+static void draw_cell(console *c)
+{
+    put_row(1, " Work cell: %zu named places and devices (in, deg)%s", c->ncell,
+            c->ncell > 12 ? "  Up/Down scroll" : "");
+    for (size_t k = 0; k < 12; k++)
+        put_row(2 + (int)k, "%s", c->ctop + k < c->ncell ? c->cell[c->ctop + k] : "");
+}
+
 static void draw(console *c)
 {
     int rows, cols;
@@ -593,6 +642,8 @@ static void draw(console *c)
         draw_form(c);
     else if (c->screen == SCREEN_COMPOSE)
         draw_compose(c);
+    else if (c->screen == SCREEN_CELL)
+        draw_cell(c);
     else
         draw_run(c);
     if (c->screen == SCREEN_RUN)
@@ -877,7 +928,7 @@ static void idle_key(console *c, int ch)
         c->typing = 1;
         c->tlen = 0;
         c->typed[0] = '\0';
-    } else if (ch == KEY_F(4) && c->meth != NULL && c->screen != SCREEN_RUN) {
+    } else if (ch == KEY_F(4) && c->meth != NULL) {
         if (c->level < LEVEL_DEVELOPER)
             textf(c->hint, sizeof c->hint, "composing a method needs the developer level (F9)");
         else {
@@ -885,6 +936,22 @@ static void idle_key(console *c, int ch)
             c->csel = c->npicked = 0;
             textf(c->hint, sizeof c->hint, "Enter adds the highlighted step to the new method; F5 saves it");
         }
+    } else if (ch == KEY_F(6)) {
+        if (c->level < LEVEL_DEVELOPER)
+            textf(c->hint, sizeof c->hint, "the work-cell view needs the developer level (F9)");
+        else {
+            c->cell_back = c->screen;
+            c->screen = SCREEN_CELL;
+            scan_cell(c);
+            c->hint[0] = '\0';
+        }
+    } else if (c->screen == SCREEN_CELL) {
+        if (ch == KEY_UP && c->ctop > 0)
+            c->ctop--;
+        else if (ch == KEY_DOWN && c->ctop + 12 < c->ncell)
+            c->ctop++;
+        else if (ch == KEY_ESCAPE)
+            c->screen = c->cell_back;
     } else if (c->screen == SCREEN_COMPOSE) {
         compose_key(c, ch);
     } else if (ch == KEY_F(2)) {

@@ -142,10 +142,21 @@ wait_for "Parameters of QUICK-PREP"
 key -l 2; key F5
 wait_long "QUICK-PREP completed" 30 || exit 1
 shot composed-run
+# ---- the work-cell view: the cell file's places and devices by name
+key F6
+wait_for "Work cell:"
+tmux -L "$sock" capture-pane -p -t said | grep -q "^ A1  *place X  10.00 Y  -2.00 Z   3.00  pitch -90.0 roll   0.0" ||
+    fail "the work cell does not show A1 as the cell file defines it"
+tmux -L "$sock" capture-pane -p -t said | grep -q "^ BUFFER-PUMP  *device controller output 1" ||
+    fail "the work cell does not show BUFFER-PUMP on output 1"
+shot cell
+key Escape
 key F9; key 1
 wait_for "level: operator"
 key F2; key F4
 wait_for "composing a method needs the developer level"
+key F6
+wait_for "the work-cell view needs the developer level"
 key F10
 wait_for "fbrlmon-exit=0"
 
