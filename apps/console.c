@@ -99,7 +99,8 @@ typedef struct console {
     size_t csel, picked[FBRL_METHOD_MAX_STEPS], npicked;
     /* the work-cell view: locations and devices by name (method developer) */
     char cell[CELL_MAX][MIN_COLS];
-    size_t ncell, ctop;
+    size_t ncell, ctop, cpick; /* cpick: the selected row */
+    int outside;               /* curses is off (TEACH has the terminal): nothing is drawn */
     enum con_screen cell_back; /* the screen Esc goes back to */
     int want_level;
     char typed[128];
@@ -412,7 +413,7 @@ static void draw_bar(console *c)
     else if (c->screen == SCREEN_COMPOSE)
         keys = "Up/Down step  Enter add  Bksp remove  F5 Save  Esc back";
     else if (c->screen == SCREEN_CELL)
-        keys = "Up/Down scroll  Esc back";
+        keys = "Up/Down choose  t TEACH the place  Esc back";
     else if (c->state == ST_RUNNING || c->state == ST_PAUSING || c->state == ST_ABORTING)
         keys = "F6 Pause  F8 Abort";
     else if (c->state == ST_PAUSED)
@@ -609,17 +610,21 @@ static int by_text(const void *a, const void *b) { return strcmp((const char *)a
 
 static void scan_cell(console *c)
 {
-    c->ncell = c->ctop = 0;
+    c->ncell = c->ctop = c->cpick = 0;
     fbrl_vm_words(c->m->vm, add_cell, c);
     qsort(c->cell, c->ncell, sizeof c->cell[0], by_text); /* by name */
 }
 
 static void draw_cell(console *c)
 {
-    put_row(1, " Work cell: %zu named places and devices (in, deg)%s", c->ncell,
-            c->ncell > 12 ? "  Up/Down scroll" : "");
-    for (size_t k = 0; k < 12; k++)
+    put_row(1, " Work cell: %zu named places and devices (in, deg)", c->ncell);
+    for (size_t k = 0; k < 12; k++) {
+        if (c->ctop + k == c->cpick)
+            attron(A_REVERSE);
         put_row(2 + (int)k, "%s", c->ctop + k < c->ncell ? c->cell[c->ctop + k] : "");
+        if (c->ctop + k == c->cpick)
+            attroff(A_REVERSE);
+    }
 }
 
 static void draw(console *c)
@@ -800,6 +805,51 @@ static void compose_key(console *c, int ch)
     }
 }
 
+/* TEACH a place of the work cell: fbrlmon's keyboard pendant (docs/fbrlmon.md "TEACH")
+ * gets the terminal, as at the prompt; Enter there stores the arm's position into it. */
+static void teach_place(console *c, const char *row)
+{
+    char name[FBRL_VMX_NAME_MAX + 1], text[FBRL_VMX_NAME_MAX + 8];
+    size_t n = strcspn(row + 1, " ");
+    FILE *out = c->m->host.out;
+    int tty = c->m->host.out_is_tty, width = c->m->host.width;
+    if (strstr(row, " place ") == NULL || n == 0 || n > FBRL_VMX_NAME_MAX) {
+        textf(c->hint, sizeof c->hint, "only a place can be taught");
+        return;
+    }
+    memcpy(name, row + 1, n);
+    name[n] = '\0';
+    textf(text, sizeof text, "TEACH %s", name);
+    def_prog_mode();
+    endwin();
+    c->outside = 1;
+    c->m->host.out = stdout;
+    c->m->host.out_is_tty = isatty(STDOUT_FILENO);
+    c->m->host.width = COLS;
+    printf("\n%s (Enter stores the arm's position into %s, Esc leaves it)\n", text, name);
+    fflush(stdout);
+    c->in_vm++;
+    fbrl_status st = fbrl_vm_eval(c->m->vm, text, strlen(text));
+    c->in_vm--;
+    fbrl_vmx_take_interrupt(c->m->vm);
+    c->m->host.out = out;
+    c->m->host.out_is_tty = tty;
+    c->m->host.width = width;
+    c->outside = 0;
+    reset_prog_mode();
+    clearok(stdscr, TRUE);
+    if (st != FBRL_OK) {
+        char msg[400];
+        engine_error(c, msg, sizeof msg);
+        push_error(c, "TEACH", msg);
+    }
+    scan_cell(c);
+    for (size_t i = 0; i < c->ncell; i++)
+        if (strncmp(c->cell[i] + 1, name, n) == 0 && c->cell[i][1 + n] == ' ')
+            c->cpick = i, c->ctop = i >= 12 ? i - 11 : 0;
+    textf(c->hint, sizeof c->hint, "TEACH %s %s", name, st == FBRL_OK ? "done" : "did not store it");
+}
+
 /* ---- keys ---- */
 
 static void start_run(console *c);
@@ -946,12 +996,19 @@ static void idle_key(console *c, int ch)
             c->hint[0] = '\0';
         }
     } else if (c->screen == SCREEN_CELL) {
-        if (ch == KEY_UP && c->ctop > 0)
-            c->ctop--;
-        else if (ch == KEY_DOWN && c->ctop + 12 < c->ncell)
-            c->ctop++;
+        if (ch == KEY_UP && c->cpick > 0)
+            c->cpick--;
+        else if (ch == KEY_DOWN && c->cpick + 1 < c->ncell)
+            c->cpick++;
+        else if ((ch == 't' || ch == 'T' || ch == '\n' || ch == '\r' || ch == KEY_ENTER) &&
+                 c->cpick < c->ncell)
+            teach_place(c, c->cell[c->cpick]);
         else if (ch == KEY_ESCAPE)
             c->screen = c->cell_back;
+        if (c->cpick < c->ctop)
+            c->ctop = c->cpick;
+        else if (c->cpick >= c->ctop + 12)
+            c->ctop = c->cpick - 11;
     } else if (c->screen == SCREEN_COMPOSE) {
         compose_key(c, ch);
     } else if (ch == KEY_F(2)) {
@@ -1027,6 +1084,8 @@ static void key(console *c, int ch)
 static void pump(console *c, int force)
 {
     int ch;
+    if (c->outside)
+        return;
     nodelay(stdscr, TRUE);
     while ((ch = getch()) != ERR)
         key(c, ch), force = 1;

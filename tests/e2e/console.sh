@@ -150,6 +150,23 @@ tmux -L "$sock" capture-pane -p -t said | grep -q "^ A1  *place X  10.00 Y  -2.0
 tmux -L "$sock" capture-pane -p -t said | grep -q "^ BUFFER-PUMP  *device controller output 1" ||
     fail "the work cell does not show BUFFER-PUMP on output 1"
 shot cell
+# ---- TEACH a place from the work cell: SPOT (row 11), one jog X+ (0.1 in), Enter stores
+key Down Down Down Down Down Down Down Down Down Down
+teach_from=$(lines)
+key t
+wait_for "TEACH keys"
+jogs=$(grep -c '^JOG 0.1,0,0$' sim.log)
+key Right
+k=0
+while [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" = "$jogs" ] && [ $k -lt 100 ]; do sleep 0.1; k=$((k + 1)); done
+sleep 0.5
+key Enter
+wait_for "TEACH SPOT done"
+teach_to=$(lines)
+# where the composed run left the arm (X 6 Y -8 Z 7, its last W2) plus the jog
+tmux -L "$sock" capture-pane -p -t said | grep -q "^ SPOT  *place X   6.10 Y  -8.00 Z   7.00  pitch -90.0" ||
+    fail "TEACH did not store the jogged position into SPOT"
+shot teach
 key Escape
 key F9; key 1
 wait_for "level: operator"
@@ -161,7 +178,7 @@ key F10
 wait_for "fbrlmon-exit=0"
 
 # ---- the run log: JSON line by line, its commands are fbrlsim's log
-python3 - "$work/run.jsonl" "$work/sim.log" <<'PY' || fail "the run log does not match"
+python3 - "$work/run.jsonl" "$work/sim.log" "$teach_from" "$teach_to" <<'PY' || fail "the run log does not match"
 import json, sys
 recs = [json.loads(l) for l in open(sys.argv[1])]
 sim = [l.rstrip("\n") for l in open(sys.argv[2]) if not l.startswith("#")]
@@ -183,8 +200,11 @@ for h in heads:
     assert h["program"].startswith("fbrlmon ") and h["source"].endswith("sample_prep.fbrl"), h
 cmds = [r["line"] for r in recs if r["type"] == "command"]
 assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
-# everything the controller executed after the connection's NOHELP was part of a run
-assert sim[0] == "NOHELP" and cmds == sim[1:], (len(cmds), len(sim))
+# everything the controller executed after the connection's NOHELP was part of a run,
+# but for TEACH (outside any run)
+t0, t1 = int(sys.argv[3]), int(sys.argv[4])
+assert "JOG 0.1,0,0" in sim[t0:t1], sim[t0:t1]
+assert sim[0] == "NOHELP" and cmds == sim[1:t0] + sim[t1:], (len(cmds), len(sim))
 # the complete run: every step of every sample started and ended ok, in order
 last = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][1]:[i for i, r in enumerate(recs) if r["type"] == "header"][2]]
 ends = [(r["step"], r.get("sample")) for r in last if r["type"] == "step_end" and r["status"] == "ok"]
