@@ -82,12 +82,45 @@ static void calibration_text(mon *m, char *buf, size_t cap)
              m->glossary.map_on ? "MAP-ON" : "MAP-OFF");
 }
 
+static void version_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    mon_runlog *r = ctx;
+    const char *v = len >= 7 ? strstr(line, "Version") : NULL;
+    if (flawed || v == NULL || v >= line + len || r->version[0])
+        return;
+    while (len > 0 && (line[len - 1] == ' ' || line[len - 1] == '\r'))
+        len--;
+    snprintf(r->version, sizeof r->version, "%.*s", (int)len, line);
+    for (char *p = r->version; *p; p++) /* "RAPL-II Version 2.60     A255": one blank each */
+        while (p[0] == ' ' && p[1] == ' ')
+            memmove(p, p + 1, strlen(p));
+}
+
+/* The controller's version: STATUS, its lines read as they come (the header's
+ * "controller"); the command is the run's first, written after the header. */
+static void read_version(mon_runlog *r)
+{
+    fbrl_link *l = r->m->link;
+    fbrl_link_line_fn old_fn = NULL;
+    void *old_ctx = NULL;
+    int done = 0;
+    r->version[0] = '\0';
+    if (l == NULL || fbrl_link_busy(l) || fbrl_robot_lost(&r->m->robot))
+        return;
+    if (fbrl_link_set_line_handler(l, version_line, r, &old_fn, &old_ctx) != FBRL_OK)
+        return;
+    fbrl_status st = fbrl_link_start(l, "STATUS", FBRL_LINK_REPLY_LINES);
+    while (st == FBRL_OK && !done)
+        st = fbrl_link_poll(l, 100, &done);
+    fbrl_link_set_line_handler(l, old_fn, old_ctx, NULL, NULL);
+}
+
 static int o_begin(void *ctx, const fbrl_method *meth)
 {
     mon_runlog *r = ctx;
     fbrl_runlog_param p[FBRL_METHOD_MAX_PARAMS];
     fbrl_runlog_header h;
-    char when[32], cal[128];
+    char when[32], cal[128], ctl[sizeof r->version + sizeof r->controller + 2];
     time_t now = time(NULL);
     struct tm tm;
     r->step_t0_us = 0;
@@ -102,11 +135,20 @@ static int o_begin(void *ctx, const fbrl_method *meth)
         localtime_r(&now, &tm);
         strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S%z", &tm);
         calibration_text(r->m, cal, sizeof cal);
+        r->opening = 1;
+        r->npending = 0;
+        read_version(r);
+        r->opening = 0;
+        if (r->version[0] && r->controller[0] && strlen(r->version) + 2 < sizeof ctl) {
+            snprintf(ctl, sizeof ctl, "%s; %s", r->version, r->controller);
+            h.controller = ctl;
+        } else {
+            h.controller = r->version[0] ? r->version : r->controller[0] ? r->controller : NULL;
+        }
         h.method = meth->name;
         h.source = r->source[0] ? r->source : NULL;
         h.operator_id = r->operator_id;
         h.started = when;
-        h.controller = r->controller[0] ? r->controller : NULL;
         h.program = r->program;
         h.calibration = cal;
         h.params = p;
@@ -120,6 +162,8 @@ static int o_begin(void *ctx, const fbrl_method *meth)
             r->f = NULL;
             return -1;
         }
+        for (int k = 0; k < r->npending; k++)
+            fbrl_runlog_command(&r->log, r->pending[k], strlen(r->pending[k]), r->pending_st[k], -1);
     }
     return r->chain.run_begin ? r->chain.run_begin(r->chain.ctx, meth) : 0;
 }
@@ -175,6 +219,10 @@ void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result
     const char *text;
     if (r == NULL)
         return;
+    if (r->opening && r->npending < (int)(sizeof r->pending / sizeof r->pending[0])) {
+        snprintf(r->pending[r->npending], sizeof r->pending[0], "%.*s", (int)len, line);
+        r->pending_st[r->npending++] = result;
+    }
     if (fbrl_runlog_is_open(&r->log)) {
         if (result == FBRL_ECONTROLLER && r->m->link != NULL)
             fbrl_link_error(r->m->link, &code, &text);

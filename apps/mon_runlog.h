@@ -7,6 +7,7 @@
 
 #include <stdint.h>
 #include <stdio.h>
+#include "fbrl/link.h"
 #include "fbrl/method.h"
 #include "fbrl/runlog.h"
 
@@ -24,6 +25,13 @@ typedef struct mon_runlog {
     char controller[256];
     const char *program;
     uint64_t step_t0_us;
+    /* the controller's version line (STATUS, read as each run begins) and the lines the
+     * controller executed while the header was not written yet (they follow it) */
+    char version[80];
+    int opening;
+    char pending[4][FBRL_LINK_LINE_MAX + 1];
+    fbrl_status pending_st[4];
+    int npending;
     fbrl_method_observer chain; /* another observer (the console), called after the log's */
     /* every executed line, after the log has it (the console's live view) */
     void (*exec_hook)(void *ctx, const char *line, size_t len, fbrl_status result);

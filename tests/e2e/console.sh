@@ -198,6 +198,7 @@ for h in heads:
     assert p["#SAMPLES"] == 3 and p["REACTION-MIN"] == 1, p
     assert h["method"] == "SAMPLE-PREP" and h["operator"] == "tester", h
     assert h["program"].startswith("fbrlmon ") and h["source"].endswith("sample_prep.fbrl"), h
+    assert h["controller"].startswith("RAPL-II Version 2.60 A255 Robot (fbrlsim); controller on "), h
 cmds = [r["line"] for r in recs if r["type"] == "command"]
 assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
 # everything the controller executed after the connection's NOHELP was part of a run,
