@@ -26,5 +26,6 @@
 #include "fbrl/robot.h"
 #include "fbrl/runlog.h"
 #include "fbrl/method.h"
+#include "fbrl/recover.h"
 
 #endif
