@@ -22,6 +22,7 @@
 #include "fbrl/glossary.h"
 #include "fbrl/vmx.h"
 #include "mon.h"
+#include "mon_recover.h"
 #include "mon_runlog.h"
 
 #define LIB_MAX       64 /* method files shown */
@@ -1287,6 +1288,26 @@ static void obs_end(void *ctx, const fbrl_method *m, const char *outcome, const 
     }
 }
 
+/* A corrective action's ASK (fbrl_recover): the question with its choices on the hint
+ * line, answered with R, S or A (Ctrl-C: abort). */
+static int console_ask(void *ctx, const char *question)
+{
+    console *c = ctx;
+    int ch = 0;
+    push_error(c, "asked", question);
+    textf(c->advice[0], sizeof c->advice[0], "-> R retries the step, S skips this sample, A aborts the run");
+    while (ch != 'R' && ch != 'S' && ch != 'A') {
+        textf(c->hint, sizeof c->hint, "R retry, S skip this sample, A abort: %s", question);
+        draw(c);
+        nodelay(stdscr, FALSE);
+        timeout(200);
+        ch = getch();
+        ch = ch == KEY_CTRL_C ? 'A' : ch >= 0 && ch < 256 ? toupper(ch) : 0;
+    }
+    textf(c->hint, sizeof c->hint, "answered: %s", ch == 'R' ? "retry" : ch == 'S' ? "skip" : "abort");
+    return ch;
+}
+
 /* ---- running ---- */
 
 static void start_run(console *c)
@@ -1363,6 +1384,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     m->host.tick = hook_tick;
     m->host.tick_ctx = c;
     fbrl_robot_set_console(&m->robot, hook_progress, c, 0);
+    fbrl_recover_set_ask(&m->recover, console_ask, c);
     log->exec_hook = hook_exec;
     log->exec_hook_ctx = c;
     obs.ctx = c;
@@ -1387,6 +1409,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
 
     memset(&log->chain, 0, sizeof log->chain);
     log->exec_hook = NULL;
+    fbrl_recover_set_ask(&m->recover, mon_recover_ask, m);
     fbrl_robot_set_console(&m->robot, NULL, NULL, 0);
     m->host.tick = NULL;
     m->host.out = old_out;

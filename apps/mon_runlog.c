@@ -9,6 +9,7 @@
 
 #include "fbrl/vmx.h"
 #include "mon.h"
+#include "mon_recover.h"
 
 uint64_t mon_runlog_now_us(void *ctx)
 {
@@ -287,6 +288,22 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     }
 }
 
+/* A corrective action taken (fbrl_recover's note): into the run log, then to the terminal. */
+static void on_recovery(void *ctx, const char *step, const char *kind, const char *what, const char *action,
+                        long sample)
+{
+    mon_runlog *r = ctx;
+    if (fbrl_runlog_is_open(&r->log)) {
+        char where[64], text[200];
+        snprintf(where, sizeof where, sample > 0 ? "%s, sample %ld" : "%s", step, sample);
+        snprintf(text, sizeof text, "%s: %s", kind, what);
+        fbrl_runlog_error(&r->log, where, text, action);
+        snprintf(text, sizeof text, "%s: %s (%s): %s", where, kind, what, action);
+        fbrl_runlog_note(&r->log, "recovery", text);
+    }
+    mon_recover_note(r->m, step, kind, what, action, sample);
+}
+
 void mon_runlog_set_path(mon_runlog *r, const char *path)
 {
     snprintf(r->path, sizeof r->path, "%s", path ? path : "");
@@ -338,6 +355,7 @@ int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *c
     o.ctx = r;
     fbrl_method_set_observer(&m->methods, &o);
     fbrl_robot_set_events(&m->robot, on_event, r);
+    fbrl_recover_set_note(&m->recover, on_recovery, r);
     if (fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
                         "every following RUN-METHOD appends its run log (JSON lines) to file") != FBRL_OK ||
         fbrl_vmx_define(m->vm, "NO-RUN-LOG", w_no_run_log, r, NULL, 0, "( -- )", "stop writing run logs") !=

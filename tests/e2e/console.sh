@@ -20,6 +20,17 @@ sim_scale=50
 sim_args="--inputs $src/examples/tube_present.inputs"
 # the method library: a copy (the composer writes a method file into it)
 mkdir -p lib/methods && cp "$src"/examples/methods/*.fbrl lib/methods/ && cp "$src/examples/asps_cell.fbrl" lib/ || exit 1
+# a method whose corrective action asks the operator (ON-FAILURE ... ASK)
+cat >lib/methods/tube_check.fbrl <<'EOF2'
+: CHECK ( -- ) FAILURE PART-MISSING ;
+ON-FAILURE CHECK PART-MISSING ASK
+: ONE ( -- ) ['] CHECK ATTEMPT ;
+: TRY ( i -- ) DROP ['] ONE RUN-SAMPLE IF ." tube there" ELSE ." tube skipped" THEN CR ;
+METHOD TUBE-CHECK  asks when a tube is missing
+1 3 1 SAMPLES-PARAM #TUBES tubes  tubes
+' TRY SAMPLE-STEP Check  is the tube there?
+END-METHOD
+EOF2
 . "$here/tmux_session.sh"
 tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
     "FBRL_CONSOLE_PIN=4711 '$mon' --port '$work/robot' --console --methods '$work/lib/methods' --run-log '$work/run.jsonl' \
@@ -168,6 +179,17 @@ tmux -L "$sock" capture-pane -p -t said | grep -q "^ SPOT  *place X   6.10 Y  -8
     fail "TEACH did not store the jogged position into SPOT"
 shot teach
 key Escape
+# ---- a corrective action asks the operator in the console; S skips the sample
+key F2
+wait_for "TUBE-CHECK"
+key Down Down; key Enter
+wait_for "Parameters of TUBE-CHECK"
+key F5
+wait_long "R retry, S skip this sample, A abort" 10
+shot ask
+key s
+wait_long "TUBE-CHECK completed" 10
+wait_for "tube skipped"
 key F9; key 1
 wait_for "level: operator"
 key F2; key F4
@@ -184,11 +206,13 @@ recs = [json.loads(l) for l in open(sys.argv[1])]
 sim = [l.rstrip("\n") for l in open(sys.argv[2]) if not l.startswith("#")]
 heads = [r for r in recs if r["type"] == "header"]
 sums = [r for r in recs if r["type"] == "summary"]
-assert len(heads) == 3 and len(sums) == 3, (len(heads), len(sums))
-assert [s["outcome"] for s in sums] == ["aborted", "completed", "completed"], sums
+assert len(heads) == 4 and len(sums) == 4, (len(heads), len(sums))
+assert [s["outcome"] for s in sums] == ["aborted", "completed", "completed", "completed"], sums
+asked = [r for r in recs[[i for i, r in enumerate(recs) if r["type"] == "header"][3]:] if r["type"] == "note"]
+assert len(asked) == 1 and asked[0]["event"] == "recovery" and "PART-MISSING" in asked[0]["text"], asked
 # the composed method: its own name, SAMPLE-PREP's parameters, the three steps picked
 assert heads[2]["method"] == "QUICK-PREP" and heads[2]["source"].endswith("quick_prep.fbrl"), heads[2]
-third = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][2]:]
+third = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][2]:[i for i, r in enumerate(recs) if r["type"] == "header"][3]]
 assert [(r["step"], r.get("sample")) for r in third if r["type"] == "step_end"] == \
     [("Recalibrate", None), ("Buffer", 1), ("Buffer", 2), ("Summary", None)], third
 assert {x["name"]: x["value"] for x in heads[2]["parameters"]}["#SAMPLES"] == 2
@@ -233,10 +257,15 @@ cat >plan.fbrl <<'PLAN'
 RUN-LOG plan.jsonl
 : UP ( -- ) READY ;
 : GRIPS ( i -- ) DROP 30 1.5E0 GRIP ;
+: CHECK ( -- ) FAILURE PART-MISSING ;
+ON-FAILURE CHECK PART-MISSING SKIP
+: ONE ( -- ) ['] CHECK ATTEMPT ;
+: TRY ( i -- ) DROP ['] ONE RUN-SAMPLE DROP ;
 METHOD TINY  two steps
 1 3 2 SAMPLES-PARAM N tubes  tubes
 ' UP STEP Up  to READY
 ' GRIPS SAMPLE-STEP Grip  the gripper
+' TRY SAMPLE-STEP Try  a part missing: skipped by the corrective action
 END-METHOD
 TINY RUN-METHOD
 RUN-LOG /nonexistent/dir/x.jsonl
@@ -244,7 +273,7 @@ PLAN
 before=$(lines)
 "$mon" --port "$work/robot" plan.fbrl >plan.out 2>plan.err
 [ $? = 1 ] || fail "fbrlmon plan.fbrl: exit status $? (want 1: RUN-LOG to a missing folder)"
-grep -q "^plan.fbrl:10: error: RUN-LOG: /nonexistent/dir/x.jsonl: No such file or directory" plan.err ||
+grep -q "^plan.fbrl:15: error: RUN-LOG: /nonexistent/dir/x.jsonl: No such file or directory" plan.err ||
     fail "RUN-LOG's refusal: $(cat plan.err)"
 tail -n +$((before + 1)) sim.log | grep -v '^#' | grep -vx NOHELP >plan.sim
 python3 - <<'PY' || fail "RUN-LOG's log does not match"
@@ -254,6 +283,11 @@ cmds = [r["line"] for r in recs if r["type"] == "command"]
 sim = [l.rstrip("\n") for l in open("plan.sim")]
 assert cmds == sim and "READY" in cmds and cmds.count("GRIP 1.5,30") == 2, (cmds, sim)
 assert recs[-4]["type"] == "summary" and recs[-4]["outcome"] == "completed", recs[-4]
+# the corrective action (ON-FAILURE ... SKIP) is in the log: an error with the action, a note
+rec = [r for r in recs if r["type"] == "note" and r["event"] == "recovery"]
+assert len(rec) == 2 and rec[0]["text"].startswith("CHECK, sample 1: PART-MISSING"), rec
+assert all(r["text"].endswith(": skip the sample") for r in rec), rec
+assert sum(1 for r in recs if r["type"] == "error" and r["advice"] == "skip the sample") == 2
 PY
 
 [ $fails -eq 0 ] && echo "console: all checks passed"
