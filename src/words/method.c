@@ -238,9 +238,11 @@ static fbrl_status w_use_params(fbrl_vm *vm, void *ctx, const void *word)
     if (st != FBRL_OK)
         return st;
     if (from == m)
-        return fail(vm, FBRL_THROW_BAD_NAME_ARG, "USE-PARAMS: %s is the method being declared%s", m->name, "");
+        return fail(vm, FBRL_THROW_BAD_NAME_ARG, "USE-PARAMS: %s is the method being declared%s", m->name,
+                    "");
     if (m->nparams + from->nparams > FBRL_METHOD_MAX_PARAMS)
-        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "USE-PARAMS: %s: too many parameters%s", m->name, "");
+        return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "USE-PARAMS: %s: too many parameters%s", m->name,
+                    "");
     if (from->samples >= 0 && m->samples >= 0)
         return fail(vm, FBRL_THROW_BAD_NAME_ARG, "USE-PARAMS: %s has a sample count already%s", m->name, "");
     if (from->samples >= 0)

@@ -730,22 +730,14 @@ static void hostile_arguments(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(loc_words_are_known),
-        cmocka_unit_test(forth_loc),
-        cmocka_unit_test(forth_cal),
-        cmocka_unit_test(forth_file),
-        cmocka_unit_test(every_word_has_help),
-        cmocka_unit_test(install_checks_arguments),
-        cmocka_unit_test(display_loc_text),
-        cmocka_unit_test(print_loc_port),
-        cmocka_unit_test(show_matrices),
-        cmocka_unit_test(calibrate_n_report),
-        cmocka_unit_test(mapping_interface),
-        cmocka_unit_test(vms_are_independent),
-        cmocka_unit_test(file_table),
-        cmocka_unit_test(close_failure_keeps_file_open),
-        cmocka_unit_test(hostile_arguments),
-        cmocka_unit_test(example_plan),
+        cmocka_unit_test(loc_words_are_known), cmocka_unit_test(forth_loc),
+        cmocka_unit_test(forth_cal),           cmocka_unit_test(forth_file),
+        cmocka_unit_test(every_word_has_help), cmocka_unit_test(install_checks_arguments),
+        cmocka_unit_test(display_loc_text),    cmocka_unit_test(print_loc_port),
+        cmocka_unit_test(show_matrices),       cmocka_unit_test(calibrate_n_report),
+        cmocka_unit_test(mapping_interface),   cmocka_unit_test(vms_are_independent),
+        cmocka_unit_test(file_table),          cmocka_unit_test(close_failure_keeps_file_open),
+        cmocka_unit_test(hostile_arguments),   cmocka_unit_test(example_plan),
         cmocka_unit_test(dictionary_full),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
