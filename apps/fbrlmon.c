@@ -17,6 +17,8 @@
 #include "mon_conn.h"
 #include "mon_dry.h"
 #include "mon_relink.h"
+#include "mon_runlog.h"
+#include "console.h"
 #include "mon_safe.h"
 #include "mon_ws.h"
 
@@ -44,6 +46,7 @@ typedef struct options {
     int dry_run;     /* --dry-run (apps/mon_dry.c) */
     const char *svg; /* --svg FILE */
     mon_dry_options dry;
+    console_options console; /* --console, --methods, --level; --run-log, --operator */
 } options;
 
 static void usage(FILE *f)
@@ -79,6 +82,11 @@ static void usage(FILE *f)
           "                   pulses and waits, and draw the cell (docs/workcell.md)\n"
           "  --svg FILE       the dry run's picture (default: the last FILE's name .svg)\n"
           "  --keep-files     the dry run writes the plan's files (default: a scratch dir)\n"
+          "  --run-log FILE   every RUN-METHOD appends its run log (JSON lines) to FILE\n"
+          "  --operator NAME  the operator named in run logs (default: $USER)\n"
+          "  --console        the operator console (full screen) after the FILEs\n"
+          "  --methods DIR    the console's method library (default: methods)\n"
+          "  --level L        the console's level: operator (default), developer, programmer\n"
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
@@ -111,9 +119,9 @@ static int parse_size(const char *s, size_t *out)
 static int is_valued(const char *a)
 {
     static const char *const names[] = {
-        "--port",      "--baud",        "--data-bits", "--parity",     "--stop-bits",
-        "--flow",      "--low-latency", "--sim-state", "--sim-inputs", "--printer",
-        "--workspace", "--sim-model",   "--axes",      "--svg",        NULL};
+        "--port",      "--baud",       "--data-bits", "--parity",    "--stop-bits", "--flow", "--low-latency",
+        "--sim-state", "--sim-inputs", "--printer",   "--workspace", "--sim-model", "--axes", "--svg",
+        "--run-log",   "--operator",   "--methods",   "--level",     NULL};
     int i;
     for (i = 0; names[i] != NULL; i++)
         if (strcmp(a, names[i]) == 0)
@@ -140,6 +148,8 @@ static int set_valued(options *o, const char *a, const char *v)
         if (end == v || *end != '\0' || v[0] == '-' || n < 1 || n > FBRL_RAPL_MAX_AXES)
             return -1;
         o->conn.axes = (unsigned)n;
+    } else if (console_option(&o->console, a, v) == 0) {
+        /* --run-log, --operator, --methods, --level (console.c) */
     } else if (strcmp(a, "--printer") == 0) {
         o->printer = v;
     } else if (strcmp(a, "--sim-inputs") == 0) {
@@ -189,6 +199,8 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             o->conn.kind = MON_CONN_SIM;
             explicit_conn = 1;
 #endif
+        } else if (strcmp(a, "--console") == 0) {
+            o->console.on = 1;
         } else if (strcmp(a, "--list-ports") == 0) {
             o->list_ports = 1;
         } else if (is_valued(a)) {
@@ -237,7 +249,8 @@ bad:
     return -1;
 }
 
-static mon_conn g_conn; /* fixed address while open, as the uart backend needs */
+static mon_conn g_conn;     /* fixed address while open, as the uart backend needs */
+static mon_runlog g_runlog; /* the link reports every executed line to it */
 
 /* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
  * (a printer or a second line shows it as it is printed). */
@@ -317,6 +330,8 @@ int main(int argc, char **argv)
         }
         return MON_EXIT_OK;
     }
+    opt.conn.on_exec = mon_runlog_exec;
+    opt.conn.exec_ctx = &g_runlog;
     if (opt.dry_run && dry_prepare(&opt) != 0) {
         free(opt.actions);
         return MON_EXIT_CONNECT;
@@ -350,6 +365,20 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
     mon_safe_install(&m);
+    {
+        char desc[256];
+        mon_conn_describe(&g_conn, desc, sizeof desc);
+        if (mon_runlog_install(&g_runlog, &m, "fbrlmon " FBRL_VERSION, desc) != 0) {
+            fprintf(stderr, "fbrlmon: cannot define RUN-LOG\n");
+            mon_close(&m);
+            mon_conn_close(&g_conn);
+            free(opt.actions);
+            return MON_EXIT_CONNECT;
+        }
+        mon_runlog_set_path(&g_runlog, opt.console.run_log);
+        if (opt.console.operator_id != NULL)
+            snprintf(g_runlog.operator_id, sizeof g_runlog.operator_id, "%s", opt.console.operator_id);
+    }
 
     if (opt.printer != NULL) {
         printer = fopen(opt.printer, "a");
@@ -394,7 +423,10 @@ int main(int argc, char **argv)
     if (opt.dry_run && mon_dry_finish(&m, NULL, stdout, opt.svg) != 0)
         m.errors++;
     /* after a Ctrl-C, only a terminal goes on (at the prompt); piped input ends */
-    if (!opt.dry_run && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
+    if (opt.console.on && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && !stopped) {
+        if (console_run(&m, &g_runlog, &opt.console) != 0)
+            m.errors++;
+    } else if (!opt.dry_run && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
         if (m.host.in_is_tty) {
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);

@@ -67,6 +67,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     }
     if (st == FBRL_OK)
         st = fbrl_robot_install(m->vm, &m->robot, link, &m->glossary);
+    if (st == FBRL_OK)
+        st = fbrl_method_install(m->vm, &m->methods);
     if (st == FBRL_OK) {
         m->ws_mem = calloc(1, MON_WORKSPACE_STORAGE);
         st = m->ws_mem == NULL ? FBRL_ENOSPC

@@ -7,6 +7,7 @@
 #include "fbrl/cell.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
+#include "fbrl/method.h"
 #include "fbrl/recover.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
@@ -36,9 +37,10 @@ typedef struct mon {
     void *vm_mem;
     void *file_mem;
     mon_host host;
-    fbrl_glossary glossary; /* locations, matrices, calibration, metric, data files */
-    fbrl_robot robot;       /* robot words; talk through the link, if any */
-    fbrl_workspace ws;      /* SAVE-WORKSPACE, LOAD-WORKSPACE (mon_ws.c: --workspace) */
+    fbrl_glossary glossary;  /* locations, matrices, calibration, metric, data files */
+    fbrl_robot robot;        /* robot words; talk through the link, if any */
+    fbrl_method_set methods; /* METHOD ... RUN-METHOD (the console runs them) */
+    fbrl_workspace ws;       /* SAVE-WORKSPACE, LOAD-WORKSPACE (mon_ws.c: --workspace) */
     void *ws_mem;
     fbrl_cell_words *cell; /* the work cell and the motion guard (CELL-BOX ...) */
     fbrl_link *link;       /* the controller (NULL offline); TEACH talks through it too */

@@ -138,14 +138,14 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         /* The link reads W2 and STATUS rows for as many axes as the arm has. */
         fbrl_link_config lc;
         fbrl_link_config_init(&lc);
-        lc.on_exec = o->on_exec;
-        lc.exec_ctx = o->on_exec_ctx;
         if (o->axes)
             lc.naxes = o->axes;
 #ifdef FBRLMON_HAVE_SIM
         else if (c->sim != NULL)
             lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
 #endif
+        lc.on_exec = o->on_exec; /* the run log (mon_runlog.c), or the dry run's report */
+        lc.exec_ctx = o->exec_ctx;
         c->lcfg = lc; /* mon_conn_reopen uses it again */
         st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
     }

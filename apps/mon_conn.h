@@ -27,9 +27,9 @@ typedef struct mon_conn_options {
     double (*sim_clock)(void *ctx); /* MON_CONN_SIM: the emulator's clock (the dry run's), or NULL */
     void (*sim_skip)(void *ctx, double s);
     void *sim_clock_ctx;
-    /* the link's run log (fbrl_link_config on_exec), or NULL */
+    /* every line the controller executed (fbrl_link_config.on_exec): the run log */
     void (*on_exec)(void *ctx, const char *line, size_t len, fbrl_status result);
-    void *on_exec_ctx;
+    void *exec_ctx;
 } mon_conn_options;
 
 /* Keep at a fixed address while open (the backend points into it). */

@@ -180,7 +180,7 @@ int mon_dry_setup(const mon_dry_options *o, mon_conn_options *conn)
     conn->sim_skip = sim_skip;
     conn->sim_clock_ctx = NULL;
     conn->on_exec = on_exec;
-    conn->on_exec_ctx = NULL;
+    conn->exec_ctx = NULL;
     mon_host_use_clock(host_now_us, host_sleep_ms, host_time_date);
     g_scratch[0] = '\0';
     if (!o->keep_files) {

@@ -296,6 +296,8 @@ static void host_sleep_ms(void *user, uint32_t ms)
         while (nanosleep(&ts, &ts) != 0 && errno == EINTR && !h->interrupted)
             ;
         ms -= slice;
+        if (h->tick != NULL && h->tick(h->tick_ctx))
+            break;
     }
 }
 

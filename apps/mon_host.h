@@ -34,7 +34,11 @@ typedef struct mon_host {
     const char *(*edit_line)(void *ctx, const char *prompt, size_t *len);
     void *edit_ctx;
     int progress_shown; /* a progress line is on the screen (mon_host_progress) */
-    int line_too_long;  /* a line passed MON_HOST_LINE_MAX: input was stopped there */
+    /* Called every ~100 ms of a sleep (MS, PULSE, WAIT-UNTIL ...); non-zero ends the
+     * sleep early (the console: keys read, screen redrawn, abort asked). NULL: none. */
+    int (*tick)(void *ctx);
+    void *tick_ctx;
+    int line_too_long; /* a line passed MON_HOST_LINE_MAX: input was stopped there */
 } mon_host;
 
 /* The longest input line read from stdin (far above the engine's own line limit, so

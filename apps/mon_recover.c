@@ -10,7 +10,7 @@
 
 #define ASK_TRIES 5 /* unclear answers before the question counts as Abort */
 
-static int ask(void *ctx, const char *question)
+int mon_recover_ask(void *ctx, const char *question)
 {
     mon *m = ctx;
     FILE *out = m->host.out;
@@ -37,8 +37,8 @@ static int ask(void *ctx, const char *question)
     return 'A';
 }
 
-static void note(void *ctx, const char *step, const char *kind, const char *what, const char *action,
-                 long sample)
+void mon_recover_note(void *ctx, const char *step, const char *kind, const char *what, const char *action,
+                      long sample)
 {
     mon *m = ctx;
     FILE *out = m->host.out;
@@ -54,8 +54,8 @@ fbrl_status mon_recover_install(struct mon *m)
 {
     fbrl_status st = fbrl_recover_install(m->vm, &m->recover, &m->robot);
     if (st == FBRL_OK)
-        st = fbrl_recover_set_ask(&m->recover, ask, m);
+        st = fbrl_recover_set_ask(&m->recover, mon_recover_ask, m);
     if (st == FBRL_OK)
-        st = fbrl_recover_set_note(&m->recover, note, m);
+        st = fbrl_recover_set_note(&m->recover, mon_recover_note, m);
     return st;
 }

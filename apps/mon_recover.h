@@ -8,5 +8,10 @@
 struct mon;
 /* Install the words (fbrl_recover_install) with m's robot, asking and telling through m. */
 fbrl_status mon_recover_install(struct mon *m);
+/* The terminal's ASK and note (ctx: the mon), for whoever takes them over and hands on
+ * (the run log, the console). */
+int mon_recover_ask(void *ctx, const char *question);
+void mon_recover_note(void *ctx, const char *step, const char *kind, const char *what, const char *action,
+                      long sample);
 
 #endif

@@ -24,6 +24,8 @@
 #include "fbrl/vm.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
+#include "fbrl/runlog.h"
+#include "fbrl/method.h"
 #include "fbrl/recover.h"
 
 #endif

@@ -94,6 +94,10 @@ fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const do
  * fbrl_loc_check() before using it as a position. */
 fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out);
 
+/* Is the word xt a location template (CREATE-LOC name)? FBRL_OK and its data field in
+ * *addr, FBRL_ETYPE for any other word (the console's work-cell view lists them). */
+fbrl_status fbrl_glossary_loc_word(const fbrl_vm *vm, fbrl_cell xt, fbrl_cell *addr);
+
 /* The three location slots of the CREATE-CAL structure at VM address addr (what the
  * structure's name pushes), e.g. for GET-CAL-POINTS teaching them with the arm. FBRL_EINVAL
  * for NULL, FBRL_ERANGE if addr is outside the data space, FBRL_ETYPE if no CREATE-CAL

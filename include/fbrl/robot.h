@@ -47,6 +47,20 @@ typedef struct fbrl_robot_device {
 typedef void (*fbrl_robot_progress_fn)(void *ctx, const char *text);
 #define FBRL_ROBOT_PROGRESS_MS 1000u
 
+/* A device action or a timed wait, as it happened (for a run log): told once per word
+ * (ON OFF PULSE DISPENSE WAIT-INPUT WAIT-UNTIL) when it ends, also when it failed. */
+typedef struct fbrl_robot_event {
+    const char *word;   /* the word's name */
+    fbrl_cell device;   /* what the device's name pushes (0: WAIT-UNTIL) */
+    int port;           /* the device's port (0: WAIT-UNTIL) */
+    double amount;      /* DISPENSE: ml; WAIT-INPUT: the state waited for (1 on, 0 off) */
+    long planned_ms;    /* the time it should take (-1: none, ON and OFF) */
+    long actual_ms;     /* the time it took (host clock) */
+    int seen;           /* WAIT-INPUT: 1 the input came, 0 the time ran out */
+    fbrl_status status; /* FBRL_OK, or how the word failed (FBRL_ETHROW: interrupted ...) */
+} fbrl_robot_event;
+typedef void (*fbrl_robot_event_fn)(void *ctx, const fbrl_robot_event *ev);
+
 /* Room for one console line GET-CAL-POINTS reads. */
 #define FBRL_ROBOT_TIB 256
 
@@ -129,6 +143,8 @@ typedef struct fbrl_robot {
     fbrl_robot_progress_fn progress;
     void *progress_ctx;
     int tell;
+    fbrl_robot_event_fn on_event; /* fbrl_robot_set_events */
+    void *event_ctx;
     fbrl_loc target; /* tell: the location a motion word is sending the arm to */
     int have_target;
     /* the guard on every motion (fbrl_robot_set_guard), and a count that changes whenever
@@ -186,6 +202,8 @@ int fbrl_robot_lost(const fbrl_robot *r);
  * what it started ("MOV: the arm is moving to X ... in") and a word that waited for the
  * arm says when it stopped. Off by default (plans, pipes and programs get no chatter). */
 void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell);
+/* Tell fn of every device action and timed wait (fbrl_robot_event; NULL: nobody). */
+void fbrl_robot_set_events(fbrl_robot *r, fbrl_robot_event_fn fn, void *ctx);
 
 /* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
  * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */

@@ -11,6 +11,18 @@
 /* ---- III-1 location templates ---- */
 const char gl_loc_tag[] = "location";
 
+fbrl_status fbrl_glossary_loc_word(const fbrl_vm *vm, fbrl_cell xt, fbrl_cell *addr)
+{
+    const void *tag = NULL;
+    fbrl_cell a = 0;
+    if (vm == NULL || addr == NULL)
+        return FBRL_EINVAL;
+    if (fbrl_vmx_tag(vm, xt, &tag, &a) != FBRL_OK || tag != (const void *)gl_loc_tag)
+        return FBRL_ETYPE;
+    *addr = a;
+    return FBRL_OK;
+}
+
 static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
 {
     (void)arg;

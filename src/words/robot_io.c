@@ -142,6 +142,42 @@ static fbrl_status set_output(fbrl_robot *r, const rb_word *w, const fbrl_robot_
     return rb_cmd(r, w, FBRL_RAPL_OUTPUT, &a, 1, 0);
 }
 
+void fbrl_robot_set_events(fbrl_robot *r, fbrl_robot_event_fn fn, void *ctx)
+{
+    if (r) {
+        r->on_event = fn;
+        r->event_ctx = ctx;
+    }
+}
+
+/* The host clock in ms for told(); 0 without one (then actual times read 0). */
+static uint64_t t_ms(fbrl_robot *r)
+{
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    return h->now_us ? h->now_us(h->user) / 1000u : 0;
+}
+
+/* Tell the run log what a device word did: planned and actual time (since t0). */
+static fbrl_status told(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d, double amount,
+                        long planned, uint64_t t0, int seen, fbrl_status st)
+{
+    if (!r->on_event)
+        return st;
+    uint64_t now = t_ms(r);
+    fbrl_robot_event ev;
+    memset(&ev, 0, sizeof ev);
+    ev.word = w->name;
+    ev.device = d ? d->addr : 0;
+    ev.port = d ? d->port : 0;
+    ev.amount = amount;
+    ev.planned_ms = planned;
+    ev.actual_ms = now >= t0 ? (long)(now - t0) : 0;
+    ev.seen = seen;
+    ev.status = st;
+    r->on_event(r->event_ctx, &ev);
+    return st;
+}
+
 /* ON / OFF ( dev -- ); for any other address, F-PC's ( a -- ) stores true / false */
 static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
@@ -158,7 +194,9 @@ static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
         snprintf(msg, sizeof msg, "%s: input device (port %d) cannot be switched", w->name, d->port);
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
-    return set_output(r, w, d, (int)w->arg);
+    uint64_t t0 = t_ms(r);
+    fbrl_status st = set_output(r, w, d, (int)w->arg);
+    return told(r, w, d, 0, -1, t0, 0, st);
 }
 
 static fbrl_status ms_arg(fbrl_robot *r, const rb_word *w, fbrl_cell ms)
@@ -190,7 +228,10 @@ static fbrl_status w_pulse(fbrl_robot *r, const rb_word *w, rb_val *v)
         st = device(r, w, v[1].i, 1, &d);
     if (st == FBRL_OK)
         st = rb_online(r);
-    return st == FBRL_OK ? pulse(r, w, d, (uint32_t)v[0].i) : st;
+    if (st != FBRL_OK)
+        return st;
+    uint64_t t0 = t_ms(r);
+    return told(r, w, d, 0, (long)v[0].i, t0, 0, pulse(r, w, d, (uint32_t)v[0].i));
 }
 
 /* PULSE-WIDTH ( ms dev -- ): one DISPENSE pulse lasts ms, and so does the gap after it */
@@ -222,15 +263,16 @@ static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
                        "DISPENSE: a whole number of ml, 0..10000 (one pulse per ml)");
     if ((st = rb_online(r)) != FBRL_OK)
         return st;
-    for (long k = 0; k < (long)n; k++) {
-        if ((st = pulse(r, w, d, d->pulse_ms)) != FBRL_OK)
-            return st;
-        if (k + 1 < (long)n && (st = rb_sleep_ms(r, d->pulse_ms)) != FBRL_OK)
-            return st;
-        if ((st = rb_interrupted(r)) != FBRL_OK)
-            return st;
+    uint64_t t0 = t_ms(r);
+    long planned = n > 0 ? (long)d->pulse_ms * (2 * (long)n - 1) : 0; /* pulses and the gaps between */
+    for (long k = 0; k < (long)n && st == FBRL_OK; k++) {
+        st = pulse(r, w, d, d->pulse_ms);
+        if (st == FBRL_OK && k + 1 < (long)n)
+            st = rb_sleep_ms(r, d->pulse_ms);
+        if (st == FBRL_OK)
+            st = rb_interrupted(r);
     }
-    return FBRL_OK;
+    return told(r, w, d, n, planned, t0, 0, st);
 }
 
 static fbrl_status read_input(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d, int *on)
@@ -295,6 +337,7 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
     }
     if (shown)
         r->progress(r->progress_ctx, NULL);
+    told(r, w, d, want, (long)v[2].i, t0, st == FBRL_OK && on == want, st);
     if (st != FBRL_OK)
         return st;
     return fbrl_vm_push(r->vm, on == want ? -1 : 0) == FBRL_OK ? FBRL_OK
@@ -347,7 +390,9 @@ static fbrl_status w_wait_until(fbrl_robot *r, const rb_word *w, rb_val *v)
         st = elapsed(r, w, &ms);
     if (st != FBRL_OK)
         return st;
-    return ms < (uint64_t)v[0].i ? rb_wait_ms(r, w->name, (uint32_t)((uint64_t)v[0].i - ms)) : FBRL_OK;
+    long left = ms < (uint64_t)v[0].i ? (long)((uint64_t)v[0].i - ms) : 0;
+    uint64_t t0 = t_ms(r);
+    return told(r, w, NULL, 0, left, t0, 0, left > 0 ? rb_wait_ms(r, w->name, (uint32_t)left) : FBRL_OK);
 }
 
 /* TIME-OF-DAY ( -- seconds ): seconds since local midnight */

@@ -1,7 +1,7 @@
 # tmux_session.sh - sourced by the e2e tests that drive fbrlmon on a real terminal: tmux
 # gives it a pty of a chosen size (session "said" on a private server), fbrlsim (started
 # here with --time-scale ${sim_scale:-20} and --log sim.log) is the controller on
-# $work/robot. Defines fail, screen, wait_for, type_line, count, logged; the caller sets
+# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, wait_for, type_line, count, logged; the caller sets
 # $name (part of the tmux socket name) and starts the session.
 sock=fbrl-$name-$$
 fails=0
@@ -11,7 +11,7 @@ cleanup() { tmux -L "$sock" kill-server 2>/dev/null; [ -n "$simpid" ] && kill "$
 trap cleanup EXIT
 trap 'exit 1' INT TERM
 
-"$sim" --time-scale "${sim_scale:-20}" --log sim.log --link "$work/robot" >sim.out 2>sim.err &
+"$sim" --time-scale "${sim_scale:-20}" ${sim_args:-} --log sim.log --link "$work/robot" >sim.out 2>sim.err &
 simpid=$!
 i=0
 while [ ! -e robot ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done

@@ -17,6 +17,7 @@
 #include "fbrl/fileio.h"
 #include "fbrl/glossary.h"
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 #include "support/vm_host.h"
 
 #define FORTH_DIR    FBRL_TEST_SRCDIR "/tests/forth/"
@@ -134,6 +135,30 @@ static void run_forth_file(const char *name)
     assert_int_equal(errors, 0);
     assert_true(tests > 10);
     print_message("%s: %ld tests passed\n", name, (long)tests);
+    free_vm(f);
+}
+
+/* fbrl_glossary_loc_word: CREATE-LOC words, and no other */
+static void loc_words_are_known(void **state)
+{
+    (void)state;
+    fixture *f = new_vm();
+    fbrl_cell xt = 0, addr = 0;
+    fbrl_loc *loc = NULL;
+    ok(f, "CREATE-LOC P1 1E0 2E0 3E0 0E0 -90E0 0E0 P1 DEFINE-LOC VARIABLE V CREATE-LOC P2");
+    assert_int_equal(fbrl_vmx_find(f->vm, "P1", 2, &xt), FBRL_OK);
+    assert_int_equal(fbrl_glossary_loc_word(f->vm, xt, &addr), FBRL_OK);
+    assert_int_equal(fbrl_glossary_loc(f->vm, addr, &loc), FBRL_OK);
+    assert_true(loc->y == 2.0 && loc->a == -90.0);
+    ok(f, "P1");
+    assert_int_equal(pop1(f), addr);
+    assert_int_equal(fbrl_vmx_find(f->vm, "V", 1, &xt), FBRL_OK);
+    assert_int_equal(fbrl_glossary_loc_word(f->vm, xt, &addr), FBRL_ETYPE);
+    assert_int_equal(fbrl_vmx_find(f->vm, "DUP", 3, &xt), FBRL_OK);
+    assert_int_equal(fbrl_glossary_loc_word(f->vm, xt, &addr), FBRL_ETYPE);
+    assert_int_equal(fbrl_vmx_find(f->vm, "P2", 2, &xt), FBRL_OK);
+    assert_int_equal(fbrl_glossary_loc_word(f->vm, xt, &addr), FBRL_OK);
+    assert_int_equal(fbrl_glossary_loc_word(f->vm, xt, NULL), FBRL_EINVAL);
     free_vm(f);
 }
 
@@ -705,21 +730,14 @@ static void hostile_arguments(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(forth_loc),
-        cmocka_unit_test(forth_cal),
-        cmocka_unit_test(forth_file),
-        cmocka_unit_test(every_word_has_help),
-        cmocka_unit_test(install_checks_arguments),
-        cmocka_unit_test(display_loc_text),
-        cmocka_unit_test(print_loc_port),
-        cmocka_unit_test(show_matrices),
-        cmocka_unit_test(calibrate_n_report),
-        cmocka_unit_test(mapping_interface),
-        cmocka_unit_test(vms_are_independent),
-        cmocka_unit_test(file_table),
-        cmocka_unit_test(close_failure_keeps_file_open),
-        cmocka_unit_test(hostile_arguments),
-        cmocka_unit_test(example_plan),
+        cmocka_unit_test(loc_words_are_known), cmocka_unit_test(forth_loc),
+        cmocka_unit_test(forth_cal),           cmocka_unit_test(forth_file),
+        cmocka_unit_test(every_word_has_help), cmocka_unit_test(install_checks_arguments),
+        cmocka_unit_test(display_loc_text),    cmocka_unit_test(print_loc_port),
+        cmocka_unit_test(show_matrices),       cmocka_unit_test(calibrate_n_report),
+        cmocka_unit_test(mapping_interface),   cmocka_unit_test(vms_are_independent),
+        cmocka_unit_test(file_table),          cmocka_unit_test(close_failure_keeps_file_open),
+        cmocka_unit_test(hostile_arguments),   cmocka_unit_test(example_plan),
         cmocka_unit_test(dictionary_full),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

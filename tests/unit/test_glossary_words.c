@@ -24,6 +24,7 @@
 #include "fbrl/cell.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
+#include "fbrl/method.h"
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
@@ -37,6 +38,7 @@ typedef struct fixture {
     fbrl_glossary g;
     fbrl_robot r;
     fbrl_cell_words cell;
+    fbrl_method_set methods;
     vmh_text out;
 } fixture;
 
@@ -57,6 +59,7 @@ static int setup(void **state)
     assert_int_equal(fbrl_glossary_install(f->vm, &f->g), FBRL_OK);
     assert_int_equal(fbrl_robot_install(f->vm, &f->r, NULL, &f->g), FBRL_OK);
     assert_int_equal(fbrl_cell_install(f->vm, &f->cell, &f->r, &f->g), FBRL_OK);
+    assert_int_equal(fbrl_method_install(f->vm, &f->methods), FBRL_OK);
     *state = f;
     return 0;
 }

@@ -1,0 +1,365 @@
+/* mon_runlog.c - the run log's file, header and method observer; RUN-LOG and NO-RUN-LOG. */
+#include "mon_runlog.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "fbrl/vmx.h"
+#include "mon.h"
+#include "mon_recover.h"
+
+uint64_t mon_runlog_now_us(void *ctx)
+{
+    struct timespec ts;
+    (void)ctx;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+}
+
+static int file_write(void *ctx, const char *s, size_t n)
+{
+    FILE *f = ctx;
+    return fwrite(s, 1, n, f) == n && fflush(f) == 0 ? 0 : -1;
+}
+
+/* Plain words for the errors an operator meets; the message itself comes first. */
+const char *mon_runlog_advice(const char *msg)
+{
+    static const struct {
+        const char *seen, *advice;
+    } table[] = {
+        {"aborted by the operator", "arm at its safe place, outputs off: start again when ready"},
+        {"user interrupt", "arm at its safe place, outputs off: start again when ready"},
+        {"HAS NOT BEEN HOMED", "home the arm (HOME at the prompt, or the pendant), then start again"},
+        {"ARM POWER", "switch the arm's power on, then start again"},
+        {"TRANSFORM ILLEGAL", "a position is out of the arm's reach: have the method developer check it"},
+        {"OUT OF RANGE", "a joint would pass its limit: have the method developer check positions"},
+        {"disconnected", "check the cable and the controller's power, then reconnect (RECONNECT)"},
+        {"timed out", "the controller did not answer: check cable and controller, then retry"},
+        {"not separated", "check that the tube is in the gripper and the sensor is clean"},
+        {"undefined word", "the method file has an error: tell the method developer"},
+    };
+    for (size_t i = 0; msg && i < sizeof table / sizeof table[0]; i++)
+        if (strstr(msg, table[i].seen))
+            return table[i].advice;
+    return "read the message, fix the cause, and start the method again";
+}
+
+/* The calibration in force, in words: the WITH-CAL structure's name and MAP-ON/OFF. */
+typedef struct cal_find {
+    mon *m;
+    char name[64];
+} cal_find;
+
+static int find_cal(void *ctx, const char *name, size_t len)
+{
+    cal_find *c = ctx;
+    fbrl_cell xt, addr;
+    const void *tag;
+    if (fbrl_vmx_find(c->m->vm, name, len, &xt) == FBRL_OK &&
+        fbrl_vmx_tag(c->m->vm, xt, &tag, &addr) == FBRL_OK && addr == c->m->glossary.with_cal &&
+        len < sizeof c->name) {
+        memcpy(c->name, name, len);
+        c->name[len] = '\0';
+        return 1;
+    }
+    return 0;
+}
+
+static void calibration_text(mon *m, char *buf, size_t cap)
+{
+    cal_find c;
+    memset(&c, 0, sizeof c);
+    c.m = m;
+    if (m->glossary.with_cal == 0) {
+        snprintf(buf, cap, "none (no WITH-CAL)");
+        return;
+    }
+    fbrl_vm_words(m->vm, find_cal, &c);
+    snprintf(buf, cap, "WITH-CAL %s, %s", c.name[0] ? c.name : "(unnamed)",
+             m->glossary.map_on ? "MAP-ON" : "MAP-OFF");
+}
+
+static void version_line(void *ctx, const char *line, size_t len, int flawed)
+{
+    mon_runlog *r = ctx;
+    const char *v = len >= 7 ? strstr(line, "Version") : NULL;
+    if (flawed || v == NULL || v >= line + len || r->version[0])
+        return;
+    while (len > 0 && (line[len - 1] == ' ' || line[len - 1] == '\r'))
+        len--;
+    snprintf(r->version, sizeof r->version, "%.*s", (int)len, line);
+    for (char *p = r->version; *p; p++) /* "RAPL-II Version 2.60     A255": one blank each */
+        while (p[0] == ' ' && p[1] == ' ')
+            memmove(p, p + 1, strlen(p));
+}
+
+/* The controller's version: STATUS, its lines read as they come (the header's
+ * "controller"); the command is the run's first, written after the header. */
+static void read_version(mon_runlog *r)
+{
+    fbrl_link *l = r->m->link;
+    fbrl_link_line_fn old_fn = NULL;
+    void *old_ctx = NULL;
+    int done = 0;
+    r->version[0] = '\0';
+    if (l == NULL || fbrl_link_busy(l) || fbrl_robot_lost(&r->m->robot))
+        return;
+    if (fbrl_link_set_line_handler(l, version_line, r, &old_fn, &old_ctx) != FBRL_OK)
+        return;
+    fbrl_status st = fbrl_link_start(l, "STATUS", FBRL_LINK_REPLY_LINES);
+    while (st == FBRL_OK && !done)
+        st = fbrl_link_poll(l, 100, &done);
+    fbrl_link_set_line_handler(l, old_fn, old_ctx, NULL, NULL);
+}
+
+static int o_begin(void *ctx, const fbrl_method *meth)
+{
+    mon_runlog *r = ctx;
+    fbrl_runlog_param p[FBRL_METHOD_MAX_PARAMS];
+    fbrl_runlog_header h;
+    char when[32], cal[128], ctl[sizeof r->version + sizeof r->controller + 2];
+    time_t now = time(NULL);
+    struct tm tm;
+    r->step_t0_us = 0;
+    if (r->path[0]) {
+        memset(&h, 0, sizeof h);
+        for (size_t k = 0; k < meth->nparams; k++) {
+            p[k].name = meth->params[k].name;
+            p[k].unit = meth->params[k].unit;
+            p[k].value = 0;
+            fbrl_method_param_get(&r->m->methods, meth, k, &p[k].value);
+        }
+        localtime_r(&now, &tm);
+        strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S%z", &tm);
+        calibration_text(r->m, cal, sizeof cal);
+        r->opening = 1;
+        r->npending = 0;
+        read_version(r);
+        r->opening = 0;
+        if (r->version[0] && r->controller[0] && strlen(r->version) + 2 < sizeof ctl) {
+            snprintf(ctl, sizeof ctl, "%s; %s", r->version, r->controller);
+            h.controller = ctl;
+        } else {
+            h.controller = r->version[0] ? r->version : r->controller[0] ? r->controller : NULL;
+        }
+        h.method = meth->name;
+        h.source = r->source[0] ? r->source : NULL;
+        h.operator_id = r->operator_id;
+        h.started = when;
+        h.program = r->program;
+        h.calibration = cal;
+        h.params = p;
+        h.nparams = meth->nparams;
+        r->f = fopen(r->path, "a");
+        if (r->f == NULL)
+            return -1;
+        memset(&r->log, 0, sizeof r->log);
+        if (fbrl_runlog_begin(&r->log, file_write, r->f, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
+            fclose(r->f);
+            r->f = NULL;
+            return -1;
+        }
+        for (int k = 0; k < r->npending; k++)
+            fbrl_runlog_command(&r->log, r->pending[k], strlen(r->pending[k]), r->pending_st[k], -1);
+    }
+    return r->chain.run_begin ? r->chain.run_begin(r->chain.ctx, meth) : 0;
+}
+
+static void o_step(void *ctx, const fbrl_method *meth, size_t step, long sample, fbrl_method_phase ph,
+                   const char *error)
+{
+    mon_runlog *r = ctx;
+    const char *name = meth->steps[step].name;
+    long n = sample >= 0 ? sample + 1 : -1; /* the log numbers samples from 1, as people do */
+    if (fbrl_runlog_is_open(&r->log)) {
+        if (ph == FBRL_METHOD_STEP_BEGIN) {
+            fbrl_runlog_step_start(&r->log, name, n);
+        } else {
+            if (ph == FBRL_METHOD_STEP_FAILED) {
+                char where[64];
+                if (n > 0)
+                    snprintf(where, sizeof where, "%s, sample %ld", name, n);
+                else
+                    snprintf(where, sizeof where, "%s", name);
+                fbrl_runlog_error(&r->log, where, error, mon_runlog_advice(error));
+            }
+            fbrl_runlog_step_end(&r->log, name, n, ph == FBRL_METHOD_STEP_FAILED ? error : NULL);
+        }
+    }
+    if (r->chain.step)
+        r->chain.step(r->chain.ctx, meth, step, sample, ph, error);
+}
+
+static int o_between(void *ctx, const fbrl_method *meth, size_t step, long sample)
+{
+    mon_runlog *r = ctx;
+    return r->chain.between ? r->chain.between(r->chain.ctx, meth, step, sample) : 0;
+}
+
+static void o_end(void *ctx, const fbrl_method *meth, const char *outcome, const char *error)
+{
+    mon_runlog *r = ctx;
+    if (r->chain.run_end) /* first: the console's safe stop belongs to the run */
+        r->chain.run_end(r->chain.ctx, meth, outcome, error);
+    if (fbrl_runlog_is_open(&r->log))
+        fbrl_runlog_end(&r->log, outcome);
+    if (r->f != NULL) {
+        fclose(r->f);
+        r->f = NULL;
+    }
+}
+
+void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result)
+{
+    mon_runlog *r = ctx;
+    int code = -1;
+    const char *text;
+    if (r == NULL)
+        return;
+    if (r->opening && r->npending < (int)(sizeof r->pending / sizeof r->pending[0])) {
+        snprintf(r->pending[r->npending], sizeof r->pending[0], "%.*s", (int)len, line);
+        r->pending_st[r->npending++] = result;
+    }
+    if (fbrl_runlog_is_open(&r->log)) {
+        if (result == FBRL_ECONTROLLER && r->m->link != NULL)
+            fbrl_link_error(r->m->link, &code, &text);
+        fbrl_runlog_command(&r->log, line, len, result, code);
+    }
+    if (r->exec_hook)
+        r->exec_hook(r->exec_hook_ctx, line, len, result);
+}
+
+/* The name of the device word whose data field is addr. */
+typedef struct dev_find {
+    mon *m;
+    fbrl_cell addr;
+    char name[40];
+} dev_find;
+
+static int find_dev(void *ctx, const char *name, size_t len)
+{
+    dev_find *f = ctx;
+    fbrl_cell xt;
+    fbrl_robot_device d;
+    if (len < sizeof f->name && fbrl_vmx_find(f->m->vm, name, len, &xt) == FBRL_OK &&
+        fbrl_robot_device_of(&f->m->robot, xt, &d) == FBRL_OK && d.addr == f->addr) {
+        memcpy(f->name, name, len);
+        f->name[len] = '\0';
+        return 1;
+    }
+    return 0;
+}
+
+/* Device actions and timed waits (fbrl_robot_set_events), planned against actual. */
+static void on_event(void *ctx, const fbrl_robot_event *ev)
+{
+    mon_runlog *r = ctx;
+    dev_find f;
+    char what[96];
+    const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
+    if (!fbrl_runlog_is_open(&r->log))
+        return;
+    memset(&f, 0, sizeof f);
+    f.m = r->m;
+    f.addr = ev->device;
+    if (ev->device)
+        fbrl_vm_words(r->m->vm, find_dev, &f);
+    if (!f.name[0])
+        snprintf(f.name, sizeof f.name, "port %d", ev->port);
+    if (strcmp(ev->word, "WAIT-UNTIL") == 0) {
+        snprintf(what, sizeof what, "WAIT-UNTIL%s", failed);
+        fbrl_runlog_wait(&r->log, what, ev->planned_ms, ev->actual_ms);
+    } else if (strcmp(ev->word, "WAIT-INPUT") == 0) {
+        snprintf(what, sizeof what, "WAIT-INPUT %s %s: %s%s", f.name, ev->amount != 0 ? "on" : "off",
+                 ev->seen ? "seen" : "not seen", failed);
+        fbrl_runlog_wait(&r->log, what, ev->planned_ms, ev->actual_ms);
+    } else {
+        if (strcmp(ev->word, "DISPENSE") == 0)
+            snprintf(what, sizeof what, "dispense %.0f ml%s", ev->amount, failed);
+        else
+            snprintf(what, sizeof what, "%s%s", ev->word, failed);
+        for (char *p = what; *p && *p != ' '; p++)
+            *p = (char)tolower((unsigned char)*p);
+        fbrl_runlog_device(&r->log, f.name, what, ev->planned_ms, ev->actual_ms);
+    }
+}
+
+/* A corrective action taken (fbrl_recover's note): into the run log, then to the terminal. */
+static void on_recovery(void *ctx, const char *step, const char *kind, const char *what, const char *action,
+                        long sample)
+{
+    mon_runlog *r = ctx;
+    if (fbrl_runlog_is_open(&r->log)) {
+        char where[64], text[200];
+        snprintf(where, sizeof where, sample > 0 ? "%s, sample %ld" : "%s", step, sample);
+        snprintf(text, sizeof text, "%s: %s", kind, what);
+        fbrl_runlog_error(&r->log, where, text, action);
+        snprintf(text, sizeof text, "%s: %s (%s): %s", where, kind, what, action);
+        fbrl_runlog_note(&r->log, "recovery", text);
+    }
+    mon_recover_note(r->m, step, kind, what, action, sample);
+}
+
+void mon_runlog_set_path(mon_runlog *r, const char *path)
+{
+    snprintf(r->path, sizeof r->path, "%s", path ? path : "");
+}
+
+/* RUN-LOG ( "file" -- ) */
+static fbrl_status w_run_log(fbrl_vm *vm, void *ctx, const void *word)
+{
+    mon_runlog *r = ctx;
+    const char *name;
+    size_t len;
+    FILE *f;
+    (void)word;
+    fbrl_status st = fbrl_vm_parse_name(vm, &name, &len);
+    if (st != FBRL_OK)
+        return st;
+    if (len == 0 || len >= sizeof r->path)
+        return fbrl_vmx_throwf(vm, FBRL_THROW_NO_NAME, "RUN-LOG: a file name is needed");
+    memcpy(r->path, name, len);
+    r->path[len] = '\0';
+    f = fopen(r->path, "a"); /* say now, not at the run, that it cannot be written */
+    if (f == NULL) {
+        int e = errno;
+        r->path[0] = '\0';
+        return fbrl_vmx_throwf(vm, FBRL_THROW_FILE_IO, "RUN-LOG: %.*s: %s", (int)len, name, strerror(e));
+    }
+    fclose(f);
+    return FBRL_OK;
+}
+
+/* NO-RUN-LOG ( -- ) */
+static fbrl_status w_no_run_log(fbrl_vm *vm, void *ctx, const void *word)
+{
+    mon_runlog *r = ctx;
+    (void)vm, (void)word;
+    r->path[0] = '\0';
+    return FBRL_OK;
+}
+
+int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *controller)
+{
+    fbrl_method_observer o = {NULL, o_begin, o_step, o_between, o_end};
+    const char *who = getenv("USER");
+    memset(r, 0, sizeof *r);
+    r->m = m;
+    r->program = program;
+    snprintf(r->operator_id, sizeof r->operator_id, "%s", who ? who : "");
+    snprintf(r->controller, sizeof r->controller, "%s", controller ? controller : "");
+    o.ctx = r;
+    fbrl_method_set_observer(&m->methods, &o);
+    fbrl_robot_set_events(&m->robot, on_event, r);
+    fbrl_recover_set_note(&m->recover, on_recovery, r);
+    if (fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
+                        "every following RUN-METHOD appends its run log (JSON lines) to file") != FBRL_OK ||
+        fbrl_vmx_define(m->vm, "NO-RUN-LOG", w_no_run_log, r, NULL, 0, "( -- )", "stop writing run logs") !=
+            FBRL_OK)
+        return -1;
+    return 0;
+}

@@ -1,0 +1,107 @@
+/* runlog.h - the run log a lab keeps: one JSON object per line (JSON Lines).
+ *
+ * A run of a method writes a header (method, parameters, operator, time, controller and
+ * program versions, calibration in force), then in order every step's start and end,
+ * every command the controller executed with its reply status, device actions and timed
+ * waits (planned and actual milliseconds), notes (pause, resume, abort) and errors, and
+ * at the end a summary: counts, the outcome, and a few lines of plain text for a person.
+ * docs/console.md lists every field.
+ *
+ * The log writes through the caller's sink (a file, a buffer) and reads the caller's
+ * clock; it never allocates, prints or opens anything itself. Any part of a program (the
+ * console, fbrlmon, a debugger) adds records with these calls while the log is open. */
+#ifndef FBRL_RUNLOG_H
+#define FBRL_RUNLOG_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "fbrl/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The sink: write n bytes (one whole line each call); 0 = written, -1 = failed. */
+typedef int (*fbrl_runlog_write_fn)(void *ctx, const char *s, size_t n);
+/* Monotonic microseconds. */
+typedef uint64_t (*fbrl_runlog_clock_fn)(void *ctx);
+
+/* The longest record line (longer texts are cut, with "..." at the cut). */
+#define FBRL_RUNLOG_LINE_MAX 1024
+/* Parameters one header can name. */
+#define FBRL_RUNLOG_MAX_PARAMS 32
+
+typedef struct fbrl_runlog_param {
+    const char *name;
+    long value;
+    const char *unit; /* may be NULL */
+} fbrl_runlog_param;
+
+typedef struct fbrl_runlog_header {
+    const char *method;      /* the method's name (required) */
+    const char *source;      /* the method's file, or NULL */
+    const char *operator_id; /* who runs it, or NULL */
+    const char *started;     /* local date and time, ISO 8601 text, or NULL */
+    const char *controller;  /* the controller's version (STATUS), or NULL */
+    const char *program;     /* the program and its version ("fbrlmon 0.1.0"), or NULL */
+    const char *calibration; /* the calibration in force, in words, or NULL */
+    const fbrl_runlog_param *params;
+    size_t nparams;
+} fbrl_runlog_header;
+
+/* Caller-owned; fields private. */
+typedef struct fbrl_runlog {
+    fbrl_runlog_write_fn write;
+    void *write_ctx;
+    fbrl_runlog_clock_fn now_us;
+    void *clock_ctx;
+    uint64_t t0_us;
+    int open;
+    fbrl_status failed; /* the first failed write (the log is then incomplete) */
+    char method[64];
+    unsigned long commands, refused, not_run, maybe, steps, errors, waits, devices;
+    unsigned long aborted_steps;
+    char line[FBRL_RUNLOG_LINE_MAX + 2];
+    size_t len;
+} fbrl_runlog;
+
+/* Open the log and write its header record ("type":"header"). FBRL_EINVAL for NULLs or
+ * more than FBRL_RUNLOG_MAX_PARAMS parameters, FBRL_ESTATE if it is open, FBRL_EIO if the
+ * sink failed (the log stays closed). */
+fbrl_status fbrl_runlog_begin(fbrl_runlog *l, fbrl_runlog_write_fn write, void *write_ctx,
+                              fbrl_runlog_clock_fn now_us, void *clock_ctx, const fbrl_runlog_header *h);
+
+/* Is it open? */
+int fbrl_runlog_is_open(const fbrl_runlog *l);
+
+/* A step started ("step_start") or ended ("step_end", with "status": "ok" or the error
+ * text). sample < 0: a step done once for the run; else the sample's number (1..). */
+fbrl_status fbrl_runlog_step_start(fbrl_runlog *l, const char *step, long sample);
+fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long sample, const char *error);
+
+/* A command line the controller executed (or may have: FBRL_EMAYBE), with its result as
+ * the link reported it (fbrl_link_config.on_exec has this shape). "status" is "ran",
+ * "refused" (with the controller's "code" when code >= 0), "may-have-run" or "not-run". */
+fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code);
+
+/* A device action ("device": name, "action": "on", "off", "pulse", "dispense" ...) and a
+ * timed wait ("wait": what), each with planned and actual milliseconds (planned < 0: none). */
+fbrl_status fbrl_runlog_device(fbrl_runlog *l, const char *device, const char *action, long planned_ms,
+                               long actual_ms);
+fbrl_status fbrl_runlog_wait(fbrl_runlog *l, const char *what, long planned_ms, long actual_ms);
+
+/* An error in plain words: where (a step, "file:line", or NULL), what happened, and what
+ * to do about it (NULL: nothing to add). */
+fbrl_status fbrl_runlog_error(fbrl_runlog *l, const char *where, const char *message, const char *advice);
+
+/* A note: "pause", "resume", "abort", "safe-stop" ... with free text (may be NULL). */
+fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *text);
+
+/* Close the log: a "summary" record (outcome "completed", "aborted" or "failed", the
+ * counts, elapsed ms) and then the human summary as "text" records, one line each. */
+fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,308 @@
+/* runlog.c - the run log: JSON Lines records built in a fixed buffer, one sink write each. */
+#include "fbrl/runlog.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#define CUT_MARK "..."
+
+/* ---- one record in l->line ---- */
+
+static void put_raw(fbrl_runlog *l, const char *s, size_t n)
+{
+    /* room is kept for the closing "}\n" */
+    size_t room = FBRL_RUNLOG_LINE_MAX - 2 - l->len;
+    if (n > room)
+        n = room;
+    memcpy(l->line + l->len, s, n);
+    l->len += n;
+}
+
+static void put(fbrl_runlog *l, const char *s) { put_raw(l, s, strlen(s)); }
+
+/* A JSON string: quotes, backslash and control characters escaped; other bytes as they
+ * are (UTF-8 text stays UTF-8). A text that does not fit is cut with "...". */
+static void put_str(fbrl_runlog *l, const char *s, size_t n)
+{
+    static const char hex[] = "0123456789abcdef";
+    const size_t tail = sizeof CUT_MARK + 2; /* the mark, the quote, a comma */
+    put(l, "\"");
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        char esc[7];
+        size_t k = 0;
+        if (c == '"' || c == '\\') {
+            esc[k++] = '\\';
+            esc[k++] = (char)c;
+        } else if (c == '\n') {
+            esc[k++] = '\\';
+            esc[k++] = 'n';
+        } else if (c < 0x20 || c == 0x7f) {
+            memcpy(esc, "\\u00", 4);
+            esc[4] = hex[c >> 4];
+            esc[5] = hex[c & 15];
+            k = 6;
+        } else {
+            esc[k++] = (char)c;
+        }
+        if (l->len + k + tail + 2 > FBRL_RUNLOG_LINE_MAX) {
+            put(l, CUT_MARK);
+            break;
+        }
+        put_raw(l, esc, k);
+    }
+    put(l, "\"");
+}
+
+static void field_str(fbrl_runlog *l, const char *key, const char *v)
+{
+    put(l, ",\"");
+    put(l, key);
+    put(l, "\":");
+    if (v == NULL)
+        put(l, "null");
+    else
+        put_str(l, v, strlen(v));
+}
+
+static void field_long(fbrl_runlog *l, const char *key, long v)
+{
+    char num[32];
+    snprintf(num, sizeof num, "%ld", v);
+    put(l, ",\"");
+    put(l, key);
+    put(l, "\":");
+    put(l, num);
+}
+
+static uint64_t now_ms(const fbrl_runlog *l)
+{
+    uint64_t t = l->now_us ? l->now_us(l->clock_ctx) : 0;
+    return t >= l->t0_us ? (t - l->t0_us) / 1000u : 0;
+}
+
+/* Start a record: {"t":ms,"type":"..." */
+static void start(fbrl_runlog *l, const char *type)
+{
+    char num[32];
+    snprintf(num, sizeof num, "{\"t\":%llu", (unsigned long long)now_ms(l));
+    l->len = 0;
+    put(l, num);
+    field_str(l, "type", type);
+}
+
+static fbrl_status finish(fbrl_runlog *l)
+{
+    l->line[l->len++] = '}';
+    l->line[l->len++] = '\n';
+    if (l->write(l->write_ctx, l->line, l->len) != 0) {
+        if (l->failed == FBRL_OK)
+            l->failed = FBRL_EIO;
+        return FBRL_EIO;
+    }
+    return FBRL_OK;
+}
+
+/* ---- the records ---- */
+
+fbrl_status fbrl_runlog_begin(fbrl_runlog *l, fbrl_runlog_write_fn write, void *write_ctx,
+                              fbrl_runlog_clock_fn now_us, void *clock_ctx, const fbrl_runlog_header *h)
+{
+    if (l == NULL || write == NULL || h == NULL || h->method == NULL || (h->nparams && h->params == NULL) ||
+        h->nparams > FBRL_RUNLOG_MAX_PARAMS)
+        return FBRL_EINVAL;
+    if (l->open)
+        return FBRL_ESTATE;
+    memset(l, 0, sizeof *l);
+    l->write = write;
+    l->write_ctx = write_ctx;
+    l->now_us = now_us;
+    l->clock_ctx = clock_ctx;
+    l->t0_us = now_us ? now_us(clock_ctx) : 0;
+    snprintf(l->method, sizeof l->method, "%s", h->method);
+    start(l, "header");
+    field_str(l, "method", h->method);
+    field_str(l, "source", h->source);
+    field_str(l, "operator", h->operator_id);
+    field_str(l, "started", h->started);
+    field_str(l, "controller", h->controller);
+    field_str(l, "program", h->program);
+    field_str(l, "calibration", h->calibration);
+    put(l, ",\"parameters\":[");
+    for (size_t i = 0; i < h->nparams; i++) {
+        const fbrl_runlog_param *p = &h->params[i];
+        put(l, i ? ",{\"name\":" : "{\"name\":");
+        put_str(l, p->name ? p->name : "", p->name ? strlen(p->name) : 0);
+        field_long(l, "value", p->value);
+        field_str(l, "unit", p->unit);
+        put(l, "}");
+    }
+    put(l, "]");
+    if (finish(l) != FBRL_OK)
+        return FBRL_EIO;
+    l->open = 1;
+    return FBRL_OK;
+}
+
+int fbrl_runlog_is_open(const fbrl_runlog *l) { return l != NULL && l->open; }
+
+static fbrl_status opened(const fbrl_runlog *l)
+{
+    return l == NULL ? FBRL_EINVAL : l->open ? FBRL_OK : FBRL_ESTATE;
+}
+
+fbrl_status fbrl_runlog_step_start(fbrl_runlog *l, const char *step, long sample)
+{
+    fbrl_status st = opened(l);
+    if (st != FBRL_OK || step == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    start(l, "step_start");
+    field_str(l, "step", step);
+    if (sample >= 0)
+        field_long(l, "sample", sample);
+    return finish(l);
+}
+
+fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long sample, const char *error)
+{
+    fbrl_status st = opened(l);
+    if (st != FBRL_OK || step == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    l->steps++;
+    if (error != NULL)
+        l->aborted_steps++;
+    start(l, "step_end");
+    field_str(l, "step", step);
+    if (sample >= 0)
+        field_long(l, "sample", sample);
+    field_str(l, "status", error ? "failed" : "ok");
+    if (error != NULL)
+        field_str(l, "error", error);
+    return finish(l);
+}
+
+fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code)
+{
+    fbrl_status st = opened(l);
+    const char *how = "ran";
+    if (st != FBRL_OK || line == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    if (result == FBRL_ECONTROLLER)
+        how = "refused", l->refused++;
+    else if (result == FBRL_EMAYBE)
+        how = "may-have-run", l->maybe++;
+    else if (result == FBRL_EPROTOCOL)
+        how = "reply-damaged"; /* a query the link ran again: it did run */
+    else if (result != FBRL_OK)
+        how = "not-run", l->not_run++;
+    l->commands++;
+    start(l, "command");
+    put(l, ",\"line\":");
+    put_str(l, line, len);
+    field_str(l, "status", how);
+    if (result == FBRL_ECONTROLLER && code >= 0)
+        field_long(l, "code", code);
+    return finish(l);
+}
+
+static fbrl_status timed(fbrl_runlog *l, const char *type, const char *key, const char *what,
+                         const char *action, long planned_ms, long actual_ms)
+{
+    fbrl_status st = opened(l);
+    if (st != FBRL_OK || what == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    start(l, type);
+    field_str(l, key, what);
+    if (action != NULL)
+        field_str(l, "action", action);
+    if (planned_ms >= 0)
+        field_long(l, "planned_ms", planned_ms);
+    field_long(l, "actual_ms", actual_ms);
+    return finish(l);
+}
+
+fbrl_status fbrl_runlog_device(fbrl_runlog *l, const char *device, const char *action, long planned_ms,
+                               long actual_ms)
+{
+    if (action == NULL)
+        return FBRL_EINVAL;
+    fbrl_status st = timed(l, "device", "device", device, action, planned_ms, actual_ms);
+    if (st == FBRL_OK)
+        l->devices++;
+    return st;
+}
+
+fbrl_status fbrl_runlog_wait(fbrl_runlog *l, const char *what, long planned_ms, long actual_ms)
+{
+    fbrl_status st = timed(l, "wait", "wait", what, NULL, planned_ms, actual_ms);
+    if (st == FBRL_OK)
+        l->waits++;
+    return st;
+}
+
+fbrl_status fbrl_runlog_error(fbrl_runlog *l, const char *where, const char *message, const char *advice)
+{
+    fbrl_status st = opened(l);
+    if (st != FBRL_OK || message == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    l->errors++;
+    start(l, "error");
+    field_str(l, "where", where);
+    field_str(l, "message", message);
+    field_str(l, "advice", advice);
+    return finish(l);
+}
+
+fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *text)
+{
+    fbrl_status st = opened(l);
+    if (st != FBRL_OK || event == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    start(l, "note");
+    field_str(l, "event", event);
+    field_str(l, "text", text);
+    return finish(l);
+}
+
+static fbrl_status text_line(fbrl_runlog *l, const char *text)
+{
+    start(l, "text");
+    field_str(l, "text", text);
+    return finish(l);
+}
+
+fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome)
+{
+    fbrl_status st = opened(l);
+    char buf[256];
+    uint64_t ms;
+    if (st != FBRL_OK || outcome == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    ms = now_ms(l);
+    start(l, "summary");
+    field_str(l, "outcome", outcome);
+    field_long(l, "elapsed_ms", (long)ms);
+    field_long(l, "steps", (long)l->steps);
+    field_long(l, "commands", (long)l->commands);
+    field_long(l, "refused", (long)l->refused);
+    field_long(l, "may_have_run", (long)l->maybe);
+    field_long(l, "devices", (long)l->devices);
+    field_long(l, "waits", (long)l->waits);
+    field_long(l, "errors", (long)l->errors);
+    st = finish(l);
+    /* the human summary: what a person reads first */
+    snprintf(buf, sizeof buf, "%s: %s after %lu.%01lu s", l->method, outcome, (unsigned long)(ms / 1000u),
+             (unsigned long)(ms % 1000u / 100u));
+    if (st == FBRL_OK)
+        st = text_line(l, buf);
+    snprintf(buf, sizeof buf, "%lu steps done (%lu failed), %lu commands (%lu refused, %lu may have run)",
+             l->steps, l->aborted_steps, l->commands, l->refused, l->maybe);
+    if (st == FBRL_OK)
+        st = text_line(l, buf);
+    snprintf(buf, sizeof buf, "%lu device actions, %lu timed waits, %lu errors%s", l->devices, l->waits,
+             l->errors, l->failed != FBRL_OK ? " (the log missed records: a write failed)" : "");
+    if (st == FBRL_OK)
+        st = text_line(l, buf);
+    l->open = 0;
+    return st != FBRL_OK ? st : l->failed;
+}

@@ -1,0 +1,8 @@
+# Issue 16, the operator console: fbrlmon --console under tmux against fbrlsim
+# (tests/e2e/console.sh: the sample-prep method run, paused, resumed, aborted, run again).
+if(TARGET fbrlmon AND TARGET fbrlsim)
+  add_test(NAME console_e2e COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/console.sh
+    $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${PROJECT_BINARY_DIR}/e2e-console ${PROJECT_SOURCE_DIR})
+  set_tests_properties(console_e2e PROPERTIES LABELS e2e TIMEOUT 180 SKIP_RETURN_CODE 77
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()

@@ -1,0 +1,170 @@
+/* test_runlog.c - the run log's records, their escaping, cutting, and a failing sink. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <cmocka.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "fbrl/runlog.h"
+
+typedef struct sink {
+    char buf[16384];
+    size_t len;
+    unsigned writes;
+    int fail_after; /* writes that succeed before every later one fails; -1 never */
+    uint64_t now;
+} sink;
+
+static int sink_write(void *ctx, const char *s, size_t n)
+{
+    sink *k = ctx;
+    if (k->fail_after >= 0 && k->writes >= (unsigned)k->fail_after)
+        return -1;
+    k->writes++;
+    assert_true(n > 0 && s[n - 1] == '\n');
+    assert_null(memchr(s, '\n', n - 1)); /* one line per record */
+    assert_true(k->len + n < sizeof k->buf);
+    memcpy(k->buf + k->len, s, n);
+    k->len += n;
+    k->buf[k->len] = '\0';
+    return 0;
+}
+
+static uint64_t sink_clock(void *ctx) { return ((sink *)ctx)->now; }
+
+static const char *nth_line(const sink *k, unsigned n, char *out, size_t cap)
+{
+    const char *p = k->buf;
+    while (n-- > 0) {
+        p = strchr(p, '\n');
+        assert_non_null(p);
+        p++;
+    }
+    const char *e = strchr(p, '\n');
+    assert_non_null(e);
+    assert_true((size_t)(e - p) < cap);
+    memcpy(out, p, (size_t)(e - p));
+    out[e - p] = '\0';
+    return out;
+}
+
+static void a_run_writes_every_record(void **state)
+{
+    (void)state;
+    static sink k;
+    fbrl_runlog l;
+    char line[2048];
+    fbrl_runlog_param p[2] = {{"#SAMPLES", 3, "samples"}, {"REACTION-MIN", 15, "min"}};
+    fbrl_runlog_header h = {"SAMPLE-PREP",
+                            "methods/sample_prep.fbrl",
+                            "ann",
+                            "2026-11-25T04:00:00",
+                            "RAPL-II 2.0",
+                            "fbrlmon 0.1.0",
+                            NULL,
+                            p,
+                            2};
+    memset(&k, 0, sizeof k);
+    memset(&l, 0, sizeof l);
+    k.fail_after = -1;
+    k.now = 5000000;
+    assert_int_equal(fbrl_runlog_step_start(&l, "x", -1), FBRL_ESTATE);
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, sink_clock, &k, &h), FBRL_OK);
+    assert_true(fbrl_runlog_is_open(&l));
+    assert_string_equal(nth_line(&k, 0, line, sizeof line),
+                        "{\"t\":0,\"type\":\"header\",\"method\":\"SAMPLE-PREP\",\"source\":\"methods/"
+                        "sample_prep.fbrl\",\"operator\":\"ann\",\"started\":\"2026-11-25T04:00:00\","
+                        "\"controller\":\"RAPL-II 2.0\",\"program\":\"fbrlmon 0.1.0\",\"calibration\":null,"
+                        "\"parameters\":[{\"name\":\"#SAMPLES\",\"value\":3,\"unit\":\"samples\"},{\"name\":"
+                        "\"REACTION-MIN\",\"value\":15,\"unit\":\"min\"}]}");
+    k.now += 1500000;
+    assert_int_equal(fbrl_runlog_step_start(&l, "Buffer", 2), FBRL_OK);
+    assert_string_equal(nth_line(&k, 1, line, sizeof line),
+                        "{\"t\":1500,\"type\":\"step_start\",\"step\":\"Buffer\",\"sample\":2}");
+    assert_int_equal(fbrl_runlog_command(&l, "MOVE FBRLT1", 11, FBRL_OK, -1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command(&l, "MOVE X", 6, FBRL_ECONTROLLER, 11), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command(&l, "OUTPUT 3", 8, FBRL_EMAYBE, -1), FBRL_OK);
+    assert_string_equal(
+        nth_line(&k, 3, line, sizeof line),
+        "{\"t\":1500,\"type\":\"command\",\"line\":\"MOVE X\",\"status\":\"refused\",\"code\":11}");
+    assert_string_equal(
+        nth_line(&k, 4, line, sizeof line),
+        "{\"t\":1500,\"type\":\"command\",\"line\":\"OUTPUT 3\",\"status\":\"may-have-run\"}");
+    assert_int_equal(fbrl_runlog_device(&l, "WASH-VALVE", "pulse", 500, 503), FBRL_OK);
+    assert_int_equal(fbrl_runlog_wait(&l, "reaction", 900000, -1 + 900012), FBRL_OK);
+    assert_string_equal(nth_line(&k, 6, line, sizeof line),
+                        "{\"t\":1500,\"type\":\"wait\",\"wait\":\"reaction\",\"planned_ms\":900000,"
+                        "\"actual_ms\":900011}");
+    assert_int_equal(fbrl_runlog_error(&l, "plan.fbrl:12", "tube \"A1\"\tmissing\n", NULL), FBRL_OK);
+    assert_string_equal(nth_line(&k, 7, line, sizeof line),
+                        "{\"t\":1500,\"type\":\"error\",\"where\":\"plan.fbrl:12\",\"message\":\"tube "
+                        "\\\"A1\\\"\\u0009missing\\n\",\"advice\":null}");
+    assert_int_equal(fbrl_runlog_step_end(&l, "Buffer", 2, NULL), FBRL_OK);
+    k.now += 250000;
+    assert_int_equal(fbrl_runlog_end(&l, "completed"), FBRL_OK);
+    assert_false(fbrl_runlog_is_open(&l));
+    assert_string_equal(nth_line(&k, 9, line, sizeof line),
+                        "{\"t\":1750,\"type\":\"summary\",\"outcome\":\"completed\",\"elapsed_ms\":1750,"
+                        "\"steps\":1,\"commands\":3,\"refused\":1,\"may_have_run\":1,\"devices\":1,"
+                        "\"waits\":1,\"errors\":1}");
+    assert_string_equal(nth_line(&k, 10, line, sizeof line),
+                        "{\"t\":1750,\"type\":\"text\",\"text\":\"SAMPLE-PREP: completed after 1.7 s\"}");
+    assert_int_equal(k.writes, 13);
+    assert_int_equal(fbrl_runlog_note(&l, "pause", NULL), FBRL_ESTATE);
+}
+
+/* A long text is cut inside the line limit and stays valid JSON (ends with ..."}). */
+static void long_texts_are_cut(void **state)
+{
+    (void)state;
+    static sink k;
+    fbrl_runlog l;
+    char big[3000], line[2048];
+    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    memset(&k, 0, sizeof k);
+    memset(&l, 0, sizeof l);
+    k.fail_after = -1;
+    memset(big, '"', sizeof big - 1);
+    big[sizeof big - 1] = '\0';
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_OK);
+    assert_int_equal(fbrl_runlog_note(&l, "abort", big), FBRL_OK);
+    nth_line(&k, 1, line, sizeof line);
+    assert_true(strlen(line) <= FBRL_RUNLOG_LINE_MAX);
+    size_t n = strlen(line);
+    assert_string_equal(line + n - 5, "...\"}");
+    assert_int_equal(line[n - 6], '"'); /* whole escapes only: \" never cut in two */
+    assert_int_equal(line[n - 7], '\\');
+}
+
+static void a_failing_sink_is_reported(void **state)
+{
+    (void)state;
+    static sink k;
+    fbrl_runlog l;
+    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    memset(&k, 0, sizeof k);
+    memset(&l, 0, sizeof l);
+    k.fail_after = 0;
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_EIO);
+    assert_false(fbrl_runlog_is_open(&l));
+    k.fail_after = 2;
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_OK);
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_ESTATE);
+    assert_int_equal(fbrl_runlog_step_start(&l, "a", -1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_step_end(&l, "a", -1, NULL), FBRL_EIO);
+    assert_int_equal(fbrl_runlog_end(&l, "completed"), FBRL_EIO);
+    assert_false(fbrl_runlog_is_open(&l));
+    h.method = NULL;
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_EINVAL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(a_run_writes_every_record),
+        cmocka_unit_test(long_texts_are_cut),
+        cmocka_unit_test(a_failing_sink_is_reported),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
