@@ -5,6 +5,7 @@
 #ifndef FBRL_FBRL_H
 #define FBRL_FBRL_H
 
+#include "fbrl/version.h"
 #include "fbrl/status.h"
 #include "fbrl/crc32.h"
 #include "fbrl/ring.h"
