@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fbrlmon - the FBRL monitor: the language at a terminal, or running files.
  *
  *   fbrlmon [options] [FILE...]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_conn.c - opening the controller connection for fbrlmon, through fbrl_port. */
 #include "mon_conn.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_conn.h - fbrlmon's connection to a controller: a serial port, a pty or a
  * TCP serial server, or the built-in emulator (fbrlsim's core on a pty), all opened
  * by name through the library's fbrl_port (so every program opens ports the same way),

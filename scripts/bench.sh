@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Builds an optimised tree and runs every benchmark, printing their figures.
 # Benchmarks never run inside the test suite: speed is reported, not asserted.
 set -eu

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* main.c - fbrlsim: a RAPL-II robot controller emulator on a pseudo-terminal.
  * Usage: see usage() and docs/fbrlsim.md. */
 #include "fbrlsim.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* port.c - a controller port opened by its name, with the device's quirks (fbrl/port.h).
  *
  * The name decides the backend (tcp:, sim:, a path), the device decides the quirks:

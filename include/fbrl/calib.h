@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* calib.h - 3-D calibration of movable work blocks and mapping of locations (DESIGN 8). */
 #ifndef FBRL_CALIB_H
 #define FBRL_CALIB_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* clock.h - monotonic time and sleeping for hosted builds (POSIX: clock_posix.c).
  *
  * The driver core never reads a clock itself: backends hand it their now_us. These

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* crc32.h - CRC-32 (IEEE 802.3, reflected, as zlib/PNG), the checksum of every
  * libfbrl byte format (data files, saved calibrations, emulator state). */
 #ifndef FBRL_CRC32_H

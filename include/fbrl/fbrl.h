@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fbrl.h - libfbrl's portable public headers. Include this, or only the modules you use.
  * It includes no OS header, so it compiles in a freestanding build (the test
  * fbrl_h_freestanding checks that); the OS-specific backends have their own headers:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fileio.h - typed binary data files (the thesis's CREATE-FILE, OPEN-FILE, RESET-FILE,
  * APPEND-FILE, CLOSE-FILE, READ-FILE, WRITE-FILE; appendix I-9, chapter 5.7-5.8).
  *

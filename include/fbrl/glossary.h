@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary.h - the thesis's data glossary in the FBRL language: location templates and
  * matrices (appendix III), calibration and mapping (appendix II), metric conversion (I-7)
  * and typed data files (I-9), bound to the loc, matrix, calib, units and fileio modules.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link.h - a robot session: RAPL commands over an fbrl_uart with echo verification.
  *
  * The link types a command, checks the controller's echo of every character, and sends

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* loc.h - location templates: X Y Z O A T (x, y, z in inches; yaw, pitch, roll in degrees). */
 #ifndef FBRL_LOC_H
 #define FBRL_LOC_H

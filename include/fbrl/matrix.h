@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* matrix.h - generic arrays over caller storage, and the location matrices RECTMAT and RADMAT. */
 #ifndef FBRL_MATRIX_H
 #define FBRL_MATRIX_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* num.h - decimal numbers to and from doubles, the same whatever locale the host sets.
  *
  * strtod and printf's %f/%e/%g follow the C locale of the process (LC_NUMERIC): a host

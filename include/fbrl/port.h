@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* port.h - open a controller port by its name, the same way in every program.
  *
  *   fbrl_port_open(&p, "/dev/ttyUSB0", &opt)            a serial device (or any tty/pty path)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_encode.h - RAPL-II command lines for the CRS controller, from one command table.
  *
  * fbrl_rapl_encode() writes one command line (without the CR) into a caller's buffer,

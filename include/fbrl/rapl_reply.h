@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_reply.h - understanding what the RAPL controller prints (docs/rapl-commands.md 1, 4, 5).
  *
  * Two layers, both bounded and safe on any input (they never read past the given length):

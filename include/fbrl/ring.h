@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ring.h - single-producer/single-consumer byte ring (the thesis's queue).
  *
  * The thesis (5.1, appendix I-1) builds the serial buffers from a byte queue with

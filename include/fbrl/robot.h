@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot.h - FBRL's robot-side words: communications (thesis I-4), robot commands (I-5),
  * parameter input (I-6), RAPL line building (I-8), named peripherals and timers.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* status.h - result codes shared by every libfbrl module. */
 #ifndef FBRL_STATUS_H
 #define FBRL_STATUS_H

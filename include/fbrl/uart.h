@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart.h - the serial driver core: two SPSC rings, XON/XOFF flow control, counters.
  *
  * A backend (POSIX termios, PC 8250/16550, libserialport) moves bytes between the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_8250.h - PC 8250/16550 UART backend for the serial driver core (uart.h).
  *
  * The thesis's COM routine (section 5.2) at register level: divisor latch = 115200 /

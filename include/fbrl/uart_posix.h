@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_posix.h - POSIX backend for the UART core: termios ttys and ptys, and TCP.
  *
  * Open any tty or pty path ("/dev/ttyUSB0", "/dev/pts/3") or a serial server as

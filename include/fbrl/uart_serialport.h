@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_serialport.h - serial port enumeration and a UART backend over libserialport.
  *
  * Built only when libserialport was found (then FBRL_HAVE_SERIALPORT is defined).

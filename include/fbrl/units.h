@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* units.h - the metric switch: inches inside, centimetres at the user interface when on. */
 #ifndef FBRL_UNITS_H
 #define FBRL_UNITS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm.h - the embeddable FBRL language engine (a Forth system).
  *
  * A VM lives entirely in memory the caller provides (dictionary, stacks, buffers);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vmx.h - the extension interface for word sets (as Lua's lauxlib is to its lua.h).
  *
  * A word set (the data words, the glossary, calibration, files, robot, communication,

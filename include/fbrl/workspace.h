@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* workspace.h - a session's work kept in one data file: every named location (CREATE-LOC),
  * location matrix (RECTMAT / AUTOMAT, RADMAT), calibration (CREATE-CAL points,
  * CREATE-CAL-STRU motion) and named device (OUTPUT-DEVICE, INPUT-DEVICE), each with its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm.c - the FBRL engine: memory layout, dictionary, text interpreter, C API.
  * The inner interpreter (the big switch) is in run.c. */
 #include <string.h>

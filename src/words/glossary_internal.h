@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary_internal.h - helpers shared by the data glossary's sources (private).
  *
  * The glossary words make their structures in the VM's data space, where a program can

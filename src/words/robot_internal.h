@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_internal.h - shared by the robot words' sources (private to the library):
  *   robot.c        binding the tables into a VM (fbrl_robot_install)
  *   robot_svc.c    errors, Ctrl-C, console, clock

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_conn.sh FBRLMON FBRLSIM TMPDIR - fbrlmon's controller connection: --port to a
 # real fbrlsim process on a pty (its log proves the handshake reached it), line
 # settings, the built-in emulator (--sim, the default), --offline, --list-ports,

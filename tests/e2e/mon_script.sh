@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_script.sh FBRLMON SRCDIR TMPDIR - fbrlmon on script files, -e texts and
 # piped standard input: exact output, error lines and exit status. (Offline:
 # the connection has its own test, mon_conn.sh.)

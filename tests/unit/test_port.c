@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_port.c - opening ports by name over real ptys and a real TCP listener, the
  * option text, "sim:" through a hook that makes a real pty, low-latency mode refused
  * cleanly by a pty, and the USB latency timer through a fake sysfs tree in a temporary
