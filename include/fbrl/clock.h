@@ -6,6 +6,8 @@
 #ifndef FBRL_CLOCK_H
 #define FBRL_CLOCK_H
 
+#include "fbrl/export.h"
+
 #include <stdint.h>
 #include "fbrl/status.h"
 
@@ -14,10 +16,10 @@ extern "C" {
 #endif
 
 /* Microseconds from an arbitrary fixed point; never goes backwards (CLOCK_MONOTONIC). */
-uint64_t fbrl_clock_now_us(void);
+FBRL_API uint64_t fbrl_clock_now_us(void);
 
 /* Sleep at least us microseconds (resumed after signals). FBRL_EIO if the OS refuses. */
-fbrl_status fbrl_clock_sleep_us(uint64_t us);
+FBRL_API fbrl_status fbrl_clock_sleep_us(uint64_t us);
 
 #ifdef __cplusplus
 }

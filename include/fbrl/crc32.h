@@ -4,6 +4,8 @@
 #ifndef FBRL_CRC32_H
 #define FBRL_CRC32_H
 
+#include "fbrl/export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -13,7 +15,7 @@ extern "C" {
 
 /* Start with crc = 0 and feed pieces in order: fbrl_crc32(0, "123456789", 9) == 0xCBF43926.
  * NULL data leaves crc unchanged. */
-uint32_t fbrl_crc32(uint32_t crc, const void *data, size_t n);
+FBRL_API uint32_t fbrl_crc32(uint32_t crc, const void *data, size_t n);
 
 #ifdef __cplusplus
 }

@@ -7,6 +7,7 @@
 #define FBRL_FBRL_H
 
 #include "fbrl/version.h"
+#include "fbrl/abi.h"
 #include "fbrl/status.h"
 #include "fbrl/crc32.h"
 #include "fbrl/ring.h"

@@ -9,6 +9,8 @@
 #ifndef FBRL_LANG_GLOSSARY_INTERNAL_H
 #define FBRL_LANG_GLOSSARY_INTERNAL_H
 
+#include "internal_names.h"
+
 #include "fbrl/glossary.h"
 #include "fbrl/calib.h"
 #include "fbrl/vmx.h"

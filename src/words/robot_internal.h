@@ -12,6 +12,8 @@
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
 
+#include "internal_names.h"
+
 #include "fbrl/loc.h"
 #include "fbrl/robot.h"
 #include "fbrl/vmx.h"
