@@ -63,8 +63,11 @@ has "libfbrl0_${version}_$arch.deb" "^\./$L/libfbrl\.so\.0(\.|$)" "^\./usr/share
 has "libfbrl-dev_${version}_$arch.deb" "^\./usr/include/fbrl/fbrl\.h$" "^\./usr/include/fbrl/version\.h$" \
     "^\./usr/include/fbrl/export\.h$" "^\./usr/include/fbrlsim\.h$" "^\./$L/libfbrl\.so$" "^\./$L/libfbrl\.a$" \
     "^\./$L/libfbrlsim\.a$" "^\./$L/pkgconfig/fbrl\.pc$" "^\./$L/cmake/fbrl/fbrlConfig\.cmake$" \
-    "^\./usr/share/doc/libfbrl-dev/examples/sample_prep\.c$" "^\./usr/share/doc/libfbrl-dev/abi\.md"
-has "fbrl-tools_${version}_$arch.deb" "^\./usr/bin/fbrlmon$" "^\./usr/bin/fbrlsim$"
+    "^\./usr/share/doc/libfbrl-dev/examples/sample_prep\.c$" "^\./usr/share/doc/libfbrl-dev/abi\.md" \
+    "^\./usr/share/man/man3/libfbrl\.3\.gz$"
+has "fbrl-tools_${version}_$arch.deb" "^\./usr/bin/fbrlmon$" "^\./usr/bin/fbrlsim$" \
+    "^\./usr/share/man/man1/fbrlmon\.1\.gz$" "^\./usr/share/man/man1/fbrlsim\.1\.gz$" \
+    "^\./usr/share/bash-completion/completions/fbrlmon$" "^\./usr/share/bash-completion/completions/fbrlsim$"
 has "python3-fbrl_${version}_all.deb" "^\./usr/lib/python3/dist-packages/fbrl/__init__\.py$" \
     "^\./usr/lib/python3/dist-packages/fbrl/_ffi\.py$" "^\./usr/share/doc/python3-fbrl/examples/sample_prep\.py"
 # nothing internal: no build paths, no test programs
@@ -86,5 +89,9 @@ if [ -x /usr/bin/python3 ] && /usr/bin/python3 -c 'import cffi' 2>/dev/null; the
     [ "$v" = "$upstream" ] || fail "fbrl.version() says '$v'"
     echo "package: python3-fbrl imports, library version $v"
 fi
+# the packaged manual pages render
+for page in usr/share/man/man1/fbrlmon.1.gz usr/share/man/man1/fbrlsim.1.gz usr/share/man/man3/libfbrl.3.gz; do
+    MANWIDTH=80 man -l -P cat "$root/$page" 2>/dev/null | grep -q '^NAME' || fail "man -l $page"
+done
 echo "package: 4 packages, $fails failures"
 [ $fails = 0 ]
