@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
-# bash completion for fbrlmon and fbrlsim (installed as
-# /usr/share/bash-completion/completions/fbrlmon and .../fbrlsim). The option names come
+# bash completion for fbrlmon, fbrlsim and fbrl-dump (installed as
+# /usr/share/bash-completion/completions/fbrlmon, .../fbrlsim and .../fbrl-dump). The option names come
 # from the program's own --help, so a new option completes without a change here; the
 # values below are those the programs accept.
 
@@ -31,6 +31,10 @@ _fbrl_complete()
             else
                 COMPREPLY=($(compgen -W 'none even odd' -- "$cur"))
             fi
+            return
+            ;;
+        -f | --format)
+            COMPREPLY=($(compgen -W 'json csv' -- "$cur"))
             return
             ;;
         --flow)
@@ -72,7 +76,7 @@ _fbrl_complete()
         [[ ${COMPREPLY-} == *= ]] && compopt -o nospace
         return
     fi
-    # fbrlmon's operands are FBRL source files; fbrlsim takes none
-    [[ $prog == fbrlmon ]] && _filedir
+    # fbrlmon's operands are FBRL source files, fbrl-dump's a data file; fbrlsim takes none
+    [[ $prog != fbrlsim ]] && _filedir
 }
-complete -F _fbrl_complete fbrlmon fbrlsim
+complete -F _fbrl_complete fbrlmon fbrlsim fbrl-dump

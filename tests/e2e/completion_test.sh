@@ -46,5 +46,7 @@ expect "fbrlsim --parity " N E O
 expect "fbrlsim --model a4" a465
 expect "fbrlsim --ver" --version
 expect "fbrlmon --port tc" tcp:
+expect "fbrl-dump --fo" --format
+expect "fbrl-dump --format " json csv
 echo "completion: $count cases, $fails failed"
 [ $fails = 0 ]

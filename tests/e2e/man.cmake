@@ -4,7 +4,7 @@
 if(TARGET fbrlmon AND TARGET fbrlsim)
   if(TARGET man)
     add_test(NAME man_pages COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/man_test.sh ${PROJECT_BINARY_DIR}/man
-      $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim>)
+      $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> $<TARGET_FILE:fbrl-dump>)
     set_tests_properties(man_pages PROPERTIES LABELS e2e TIMEOUT 60 SKIP_RETURN_CODE 77)
   endif()
   add_test(NAME bash_completion COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/completion_test.sh

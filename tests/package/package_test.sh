@@ -65,7 +65,8 @@ has "libfbrl-dev_${version}_$arch.deb" "^\./usr/include/fbrl/fbrl\.h$" "^\./usr/
     "^\./$L/libfbrlsim\.a$" "^\./$L/pkgconfig/fbrl\.pc$" "^\./$L/cmake/fbrl/fbrlConfig\.cmake$" \
     "^\./usr/share/doc/libfbrl-dev/examples/sample_prep\.c$" "^\./usr/share/doc/libfbrl-dev/abi\.md" \
     "^\./usr/share/man/man3/libfbrl\.3\.gz$"
-has "fbrl-tools_${version}_$arch.deb" "^\./usr/bin/fbrlmon$" "^\./usr/bin/fbrlsim$" \
+has "fbrl-tools_${version}_$arch.deb" "^\./usr/bin/fbrlmon$" "^\./usr/bin/fbrlsim$" "^\./usr/bin/fbrl-dump$" \
+    "^\./usr/share/man/man1/fbrl-dump\.1\.gz$" \
     "^\./usr/share/man/man1/fbrlmon\.1\.gz$" "^\./usr/share/man/man1/fbrlsim\.1\.gz$" \
     "^\./usr/share/bash-completion/completions/fbrlmon$" "^\./usr/share/bash-completion/completions/fbrlsim$"
 has "python3-fbrl_${version}_all.deb" "^\./usr/lib/python3/dist-packages/fbrl/__init__\.py$" \
