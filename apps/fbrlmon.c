@@ -311,7 +311,7 @@ int main(int argc, char **argv)
         free(opt.actions);
         if (st != FBRL_OK) {
             fprintf(stderr, "fbrlmon: --list-ports: %s\n",
-                    st == FBRL_EUNSUPPORTED ? "this fbrlmon was built without libserialport"
+                    st == FBRL_EUNSUPPORTED ? "no sysfs, and this fbrlmon was built without libserialport"
                                             : fbrl_status_str(st));
             return MON_EXIT_CONNECT;
         }

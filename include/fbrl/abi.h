@@ -41,7 +41,8 @@ extern "C" {
     X(VM_ERROR, fbrl_vm_error)                 \
     X(WORKSPACE, fbrl_workspace)               \
     X(WORKSPACE_COUNTS, fbrl_workspace_counts) \
-    X(UART_8250, fbrl_uart_8250)
+    X(UART_8250, fbrl_uart_8250)               \
+    X(PORT_ENTRY, fbrl_port_entry)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,
 typedef enum fbrl_abi_type { FBRL_ABI_TYPES(FBRL_ABI_ENUM_) FBRL_ABI_TYPE_COUNT } fbrl_abi_type;

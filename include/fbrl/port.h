@@ -141,6 +141,29 @@ typedef struct fbrl_port_usb_info {
 FBRL_API fbrl_status fbrl_port_usb_info_get(const char *sysfs_root, const char *name,
                                             fbrl_port_usb_info *out);
 
+/* ---- the serial ports this machine has (Linux sysfs; nothing is opened) ---- */
+
+/* One port as fbrl_port_list() finds it. Every text is "" when unknown. */
+typedef struct fbrl_port_entry {
+    char device[128];      /* "/dev/ttyUSB0" */
+    char by_id[256];       /* its stable name, "/dev/serial/by-id/usb-FTDI_..._A12345-if00-port0" */
+    char description[128]; /* the USB product string ("FT232R USB UART") */
+    char manufacturer[64]; /* the USB manufacturer string ("FTDI") */
+    char serial[64];       /* the USB serial number ("A12345") */
+    int usb;               /* 1 when the port is on USB: vid and pid are known */
+    unsigned vid, pid;     /* USB vendor and product id */
+    char driver[32];       /* kernel driver ("ftdi_sio", "cdc_acm", "serial8250") */
+    int latency_timer_ms;  /* as fbrl_port_usb_info_get() says; -1 when none */
+} fbrl_port_entry;
+
+/* List the serial ports: every tty in SYSFS/class/tty with a device behind it (8250 UARTs
+ * only when one is there: their "type" is not 0), sorted by device name, with the names
+ * under DEV/serial/by-id that lead to each. sysfs_root NULL = "/sys", dev_root NULL =
+ * "/dev". Fills out[0 .. max) and sets *count to the number found (which may exceed max).
+ * FBRL_EUNSUPPORTED without SYSFS/class/tty (not Linux); FBRL_EINVAL for NULL count. */
+FBRL_API fbrl_status fbrl_port_list(const char *sysfs_root, const char *dev_root, fbrl_port_entry *out,
+                                    size_t max, size_t *count);
+
 /* Set the latency timer of the tty called name to ms (1..255) through
  * SYSFS/bus/usb-serial/devices/NAME/latency_timer; *was = the value before (may be NULL).
  * FBRL_ENOENT when the device has no latency timer, FBRL_EIO when it cannot be written

@@ -40,6 +40,19 @@ fbrl_status fbrl_port_open(fbrl_port *p, const char *url, const fbrl_port_option
 fbrl_uart *fbrl_port_uart(fbrl_port *p);
 fbrl_status fbrl_port_describe(const fbrl_port *p, char *buf, size_t cap);
 fbrl_status fbrl_port_close(fbrl_port *p);
+typedef struct fbrl_port_entry {
+    char device[128];
+    char by_id[256];
+    char description[128];
+    char manufacturer[64];
+    char serial[64];
+    int usb;
+    unsigned vid, pid;
+    char driver[32];
+    int latency_timer_ms;
+} fbrl_port_entry;
+fbrl_status fbrl_port_list(const char *sysfs_root, const char *dev_root, fbrl_port_entry *out, size_t max,
+                           size_t *count);
 
 /* the link */
 typedef struct fbrl_rapl_arg {
@@ -202,10 +215,10 @@ ABI = {
     "fbrl_rapl_reader": 9, "fbrl_rapl_pos": 10, "fbrl_loc": 11, "fbrl_calib": 12, "fbrl_calpts": 13,
     "fbrl_units": 14, "fbrl_file": 15, "fbrl_glossary": 16, "fbrl_robot": 17, "fbrl_robot_stop": 18,
     "fbrl_vm_config": 19, "fbrl_vm_error": 20, "fbrl_workspace": 21, "fbrl_workspace_counts": 22,
-    "fbrl_uart_8250": 23,
+    "fbrl_uart_8250": 23, "fbrl_port_entry": 24,
 }
 # The structs declared in full above: their layout must be the library's.
-DECLARED = ("fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error")
+DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error")
 
 ffi = FFI()
 ffi.cdef(CDEF)

@@ -10,6 +10,42 @@ FBRL_RAPL_W2 = 45  # fbrl_rapl_cmd codes (stable): the actual position
 _ARG_INT, _ARG_REAL, _ARG_STR = 0, 1, 2
 
 
+PORTS_MAX = 64
+
+
+class PortInfo:
+    """A serial port as fbrl.list_ports() finds it: device, by_id (the stable
+    /dev/serial/by-id name or None), description, manufacturer, serial, usb, vid, pid,
+    driver, latency_timer_ms. name is what to open: the by-id name when there is one."""
+
+    def __init__(self, c):
+        text = lambda a: ffi.string(a).decode("utf-8", "replace") or None
+        self.device = text(c.device)
+        self.by_id = text(c.by_id)
+        self.description = text(c.description)
+        self.manufacturer = text(c.manufacturer)
+        self.serial = text(c.serial)
+        self.usb = bool(c.usb)
+        self.vid = c.vid if c.usb else None
+        self.pid = c.pid if c.usb else None
+        self.driver = text(c.driver)
+        self.latency_timer_ms = c.latency_timer_ms if c.latency_timer_ms >= 0 else None
+        self.name = self.by_id or self.device
+
+    def __repr__(self):
+        usb = " [USB %04x:%04x]" % (self.vid, self.pid) if self.usb else ""
+        return "PortInfo(%s%s%s)" % (self.name, usb, " serial " + self.serial if self.serial else "")
+
+
+def list_ports(sysfs_root=None, dev_root=None):
+    """The serial ports this machine has (Linux sysfs; nothing is opened)."""
+    out = ffi.new("fbrl_port_entry[]", PORTS_MAX)
+    n = ffi.new("size_t *")
+    check(lib.fbrl_port_list(sysfs_root.encode() if sysfs_root else ffi.NULL,
+                             dev_root.encode() if dev_root else ffi.NULL, out, PORTS_MAX, n), "list_ports")
+    return [PortInfo(out[i]) for i in range(min(n[0], PORTS_MAX))]
+
+
 class Port:
     """A serial device, pty or tcp:HOST:PORT, opened with line options (baud=9600,
     parity="even", flow="xonxoff" ...: the names fbrlmon's options use). A context

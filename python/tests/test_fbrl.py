@@ -184,3 +184,31 @@ def test_collinear_points_raise_degenerate():
     with pytest.raises(fbrl.Error) as e:
         fbrl.Calibration.three_point(cal, cal)
     assert e.value.name == "FBRL_EDEGENERATE"
+
+
+def test_list_ports_reads_usb_details_and_by_id_names(tmp_path):
+    sysfs, dev = tmp_path / "sys", tmp_path / "dev"
+    usb = sysfs / "devices/usb1/1-1"
+    (usb / "1-1:1.0/ttyUSB0").mkdir(parents=True)
+    for name, text in (("idVendor", "0403"), ("idProduct", "6015"), ("product", "FT230X Basic UART"),
+                       ("serial", "DN0ABC")):
+        (usb / name).write_text(text + "\n")
+    (sysfs / "class/tty/ttyUSB0").mkdir(parents=True)
+    (sysfs / "class/tty/ttyUSB0/device").symlink_to(usb / "1-1:1.0/ttyUSB0")
+    (dev / "serial/by-id").mkdir(parents=True)
+    (dev / "ttyUSB0").write_text("")
+    (dev / "serial/by-id/usb-FTDI_FT230X_DN0ABC-if00-port0").symlink_to(dev / "ttyUSB0")
+    ports = fbrl.list_ports(str(sysfs), str(dev))
+    assert len(ports) == 1
+    p = ports[0]
+    assert (p.vid, p.pid, p.serial, p.description) == (0x0403, 0x6015, "DN0ABC", "FT230X Basic UART")
+    assert p.device == str(dev / "ttyUSB0")
+    assert p.name == p.by_id == str(dev / "serial/by-id/usb-FTDI_FT230X_DN0ABC-if00-port0")
+
+
+def test_a_port_opens_by_its_by_id_name(sim, tmp_path):
+    by_id = tmp_path / "usb-FTDI_FT232R_USB_UART_A12345-if00-port0"
+    by_id.symlink_to(sim.port)
+    with fbrl.Port(str(by_id)) as port:
+        fbrl.Link(port, echo_timeout_ms=500).home()
+    assert "HOME" in sim.log()
