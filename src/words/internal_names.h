@@ -57,6 +57,7 @@
 #define rb_motion_nwords fbrli_rb_motion_nwords
 #define rb_motion_words  fbrli_rb_motion_words
 #define rb_name_arg      fbrli_rb_name_arg
+#define rb_naxes         fbrli_rb_naxes
 #define rb_now_ms        fbrli_rb_now_ms
 #define rb_online        fbrli_rb_online
 #define rb_param_nwords  fbrli_rb_param_nwords
