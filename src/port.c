@@ -501,63 +501,78 @@ static int is_serial_port(const char *ttydir)
     return strcmp(type, "0") != 0;
 }
 
-/* The DEV/serial/by-id name that leads to device (the first in name order), or "". */
+/* The DEV/serial/by-id name that leads to device (the first in name order), or "".
+ * readdir, not scandir: the library never allocates. */
 static void by_id_name(const char *dev_root, const char *device, char *out, size_t cap)
 {
     char dir[PATH_BYTES], path[PATH_BYTES], real[PATH_MAX];
-    struct dirent **names;
+    struct dirent *d;
     out[0] = '\0';
     if (path_join(dir, sizeof dir, dev_root, "serial/by-id") != 0)
         return;
-    int n = scandir(dir, &names, NULL, alphasort);
-    if (n < 0)
+    DIR *dp = opendir(dir);
+    if (dp == NULL)
         return;
-    for (int i = 0; i < n; i++) {
-        if (!out[0] && names[i]->d_name[0] != '.' &&
-            path_join(path, sizeof path, dir, names[i]->d_name) == 0) {
-            if (realpath(path, real) != NULL && strcmp(strrchr(real, '/') + 1, device) == 0)
-                copy_text(out, cap, path);
-        }
-        free(names[i]);
+    while ((d = readdir(dp)) != NULL) {
+        if (d->d_name[0] == '.' || path_join(path, sizeof path, dir, d->d_name) != 0 ||
+            realpath(path, real) == NULL || strcmp(strrchr(real, '/') + 1, device) != 0)
+            continue;
+        if (!out[0] || strcmp(path, out) < 0)
+            copy_text(out, cap, path);
     }
-    free(names);
+    closedir(dp);
+}
+
+/* Puts the entry for tty into out[0 .. *n) in device-name order, keeping the first max. */
+static void insert_sorted(fbrl_port_entry *out, size_t max, size_t *n, const char *tty, const char *ttydir,
+                          const char *sysfs_root, const char *dev_root)
+{
+    fbrl_port_entry e;
+    fbrl_port_usb_info info;
+    char devdir[PATH_BYTES];
+    size_t at;
+    memset(&e, 0, sizeof e);
+    if (path_join(e.device, sizeof e.device, dev_root, tty) != 0)
+        return;
+    for (at = *n; at > 0 && strcmp(out[at - 1].device, e.device) > 0; at--)
+        ;
+    if (at >= max)
+        return;
+    if (path_join(devdir, sizeof devdir, ttydir, "device") == 0)
+        usb_details(devdir, &e);
+    by_id_name(dev_root, tty, e.by_id, sizeof e.by_id);
+    fbrl_port_usb_info_get(sysfs_root, tty, &info);
+    copy_text(e.driver, sizeof e.driver, info.driver);
+    e.latency_timer_ms = info.latency_timer_ms;
+    if (*n == max)
+        (*n)--; /* the last one drops out */
+    memmove(&out[at + 1], &out[at], (*n - at) * sizeof *out);
+    out[at] = e;
+    (*n)++;
 }
 
 fbrl_status fbrl_port_list(const char *sysfs_root, const char *dev_root, fbrl_port_entry *out, size_t max,
                            size_t *count)
 {
     char dir[PATH_BYTES], ttydir[PATH_BYTES];
-    struct dirent **names;
-    size_t found = 0;
+    struct dirent *d;
+    size_t found = 0, kept = 0;
     if (count == NULL || (out == NULL && max > 0))
         return FBRL_EINVAL;
     *count = 0;
     if (path_join(dir, sizeof dir, sysfs_root ? sysfs_root : DEFAULT_SYSFS, "class/tty") != 0)
         return FBRL_EINVAL;
-    int n = scandir(dir, &names, NULL, alphasort);
-    if (n < 0)
+    DIR *dp = opendir(dir);
+    if (dp == NULL)
         return FBRL_EUNSUPPORTED;
-    for (int i = 0; i < n; i++) {
-        const char *tty = names[i]->d_name;
-        if (tty[0] != '.' && path_join(ttydir, sizeof ttydir, dir, tty) == 0 && is_serial_port(ttydir)) {
-            if (found < max) {
-                fbrl_port_entry *e = &out[found];
-                fbrl_port_usb_info info;
-                char devdir[PATH_BYTES];
-                memset(e, 0, sizeof *e);
-                path_join(e->device, sizeof e->device, dev_root ? dev_root : DEFAULT_DEV, tty);
-                if (path_join(devdir, sizeof devdir, ttydir, "device") == 0)
-                    usb_details(devdir, e);
-                by_id_name(dev_root ? dev_root : DEFAULT_DEV, tty, e->by_id, sizeof e->by_id);
-                fbrl_port_usb_info_get(sysfs_root, tty, &info);
-                copy_text(e->driver, sizeof e->driver, info.driver);
-                e->latency_timer_ms = info.latency_timer_ms;
-            }
-            found++;
-        }
-        free(names[i]);
+    while ((d = readdir(dp)) != NULL) {
+        if (d->d_name[0] == '.' || path_join(ttydir, sizeof ttydir, dir, d->d_name) != 0 ||
+            !is_serial_port(ttydir))
+            continue;
+        found++;
+        insert_sorted(out, max, &kept, d->d_name, ttydir, sysfs_root, dev_root ? dev_root : DEFAULT_DEV);
     }
-    free(names);
+    closedir(dp);
     *count = found;
     return FBRL_OK;
 }

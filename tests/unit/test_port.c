@@ -392,6 +392,8 @@ static void port_list_in_fake_trees(void **state)
     /* a short array: the count still says how many there are */
     assert_int_equal(fbrl_port_list(sys, dev, e, 1, &n), FBRL_OK);
     assert_int_equal(n, 3);
+    snprintf(want, sizeof want, "%s/ttyACM0", dev); /* the first in name order */
+    assert_string_equal(e[0].device, want);
     assert_int_equal(fbrl_port_list(sys, dev, NULL, 0, &n), FBRL_OK);
     assert_int_equal(n, 3);
     assert_int_equal(fbrl_port_list(sys, dev, e, 8, NULL), FBRL_EINVAL);
