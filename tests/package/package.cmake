@@ -4,4 +4,5 @@
 # builds the project once more (a few minutes on 2 cores); CI's sanitizer run leaves it out.
 add_test(NAME package_deb COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/package/package_test.sh ${PROJECT_SOURCE_DIR}
   ${PROJECT_BINARY_DIR}/package)
-set_tests_properties(package_deb PROPERTIES LABELS package TIMEOUT 900 SKIP_RETURN_CODE 77)
+# alone: its compile would slow the timing-sensitive tests running beside it
+set_tests_properties(package_deb PROPERTIES LABELS package TIMEOUT 900 SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
