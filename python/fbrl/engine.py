@@ -111,7 +111,8 @@ class Engine:
         code = lib.fbrl_robot_last_error(self._robot.ptr)
         cls = Error
         ccode = ctext = None
-        if code >= 0 and code != self._last_code:
+        # a robot word the controller refused ends the text with FBRL_ECONTROLLER
+        if code >= 0 and status_name(st) == "FBRL_ECONTROLLER":
             cls, ccode = ControllerError, code
             t = lib.fbrl_rapl_error_text(code)
             ctext = ffi.string(t).decode() if t else None
@@ -127,7 +128,6 @@ class Engine:
     def eval(self, text):
         """Interpret text as if typed; returns what it printed."""
         self._out = []
-        self._last_code = lib.fbrl_robot_last_error(self._robot.ptr)
         data = text.encode()
         st = lib.fbrl_vm_eval(self._vm, data, len(data))
         if st < 0:
@@ -137,7 +137,6 @@ class Engine:
     def include(self, path):
         """INCLUDED: interpret a source file; returns what it printed."""
         self._out = []
-        self._last_code = lib.fbrl_robot_last_error(self._robot.ptr)
         st = lib.fbrl_vm_include(self._vm, os.fspath(path).encode())
         if st < 0:
             self._fail(st, "include " + os.fspath(path))

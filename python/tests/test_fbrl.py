@@ -112,6 +112,15 @@ def test_engine_robot_words_reach_the_controller(sim, link):
     assert "HOME" in sim.log()
 
 
+def test_engine_controller_errors_carry_its_code_twice_in_a_row(sim, link):
+    with fbrl.Engine(link=link) as fb:
+        for _ in range(2):
+            with pytest.raises(fbrl.ControllerError) as e:
+                fb.eval("RAPL MOVE NOWHERE")  # not homed yet: error 41
+            assert e.value.controller_code == 41 and "HOMED" in e.value.controller_text
+            assert e.value.name == "FBRL_ECONTROLLER" and e.value.word == "RAPL"
+
+
 def test_engine_robot_words_offline_fail_clearly():
     with fbrl.Engine() as fb:
         with pytest.raises(fbrl.Error) as e:
