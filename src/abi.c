@@ -5,20 +5,21 @@
 #include "fbrl/fbrl.h"
 #include "fbrl/workspace.h"
 
-/* C99 has no alignof: a type's alignment is its offset after one char in a struct. */
-#define ABI_ALIGN_(type) \
-    offsetof(            \
-        struct {         \
-            char c;      \
-            type t;      \
-        },               \
-        t)
+/* C99 has no alignof: a type's alignment is its offset after one char in a struct (one
+ * such struct per type, declared here: a type defined inside offsetof is not C99). */
+#define ABI_PROBE_(code, type) \
+    struct abi_probe_##code {  \
+        char c;                \
+        type t;                \
+    };
+FBRL_ABI_TYPES(ABI_PROBE_)
+#undef ABI_PROBE_
 
 static const struct {
     const char *name;
     size_t size, align;
 } abi_types[] = {
-#define ABI_ROW_(code, type) {#type, sizeof(type), ABI_ALIGN_(type)},
+#define ABI_ROW_(code, type) {#type, sizeof(type), offsetof(struct abi_probe_##code, t)},
     FBRL_ABI_TYPES(ABI_ROW_)
 #undef ABI_ROW_
 };

@@ -8,21 +8,22 @@
 #include "fbrl/fbrl.h"
 #include "fbrl/workspace.h"
 
-#define ALIGN_OF(type) \
-    offsetof(          \
-        struct {       \
-            char c;    \
-            type t;    \
-        },             \
-        t)
+/* alignment probes, one struct per type (C99 has no alignof) */
+#define PROBE(code, type) \
+    struct probe_##code { \
+        char c;           \
+        type t;           \
+    };
+FBRL_ABI_TYPES(PROBE)
+#undef PROBE
 
 /* What the library answers is what this compiler lays out from the same headers. */
 static void sizes_and_alignments_match_the_headers(void **state)
 {
     (void)state;
-#define CHECK(code, type)                                              \
-    assert_int_equal(fbrl_abi_size(FBRL_ABI_##code), sizeof(type));    \
-    assert_int_equal(fbrl_abi_align(FBRL_ABI_##code), ALIGN_OF(type)); \
+#define CHECK(code, type)                                                                \
+    assert_int_equal(fbrl_abi_size(FBRL_ABI_##code), sizeof(type));                      \
+    assert_int_equal(fbrl_abi_align(FBRL_ABI_##code), offsetof(struct probe_##code, t)); \
     assert_string_equal(fbrl_abi_name(FBRL_ABI_##code), #type);
     FBRL_ABI_TYPES(CHECK)
 #undef CHECK
