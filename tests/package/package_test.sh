@@ -9,11 +9,20 @@
 #   - dpkg -c: each package holds the files it should;
 #   - unpacked into a fresh root, fbrlsim --version runs and the Python package imports
 #     against the packaged library.
-# Exit 77 (skipped) when dpkg-buildpackage or lintian is not installed.
+# Exit 77 (skipped) when dpkg-buildpackage or lintian is not installed, or a build
+# dependency of debian/control is missing.
 src=$1 work=$2
 for t in dpkg-buildpackage lintian fakeroot dh; do
     command -v "$t" >/dev/null 2>&1 || { echo "package: $t not installed: skipped"; exit 77; }
 done
+# Build-Depends (debian/control) must be installed: dpkg-buildpackage would refuse anyway
+if ! (cd "$src" && dpkg-checkbuilddeps >"${TMPDIR:-/tmp}/fbrl-builddeps.$$" 2>&1); then
+    echo "package: build dependencies missing (scripts/deps.sh installs them): skipped"
+    cat "${TMPDIR:-/tmp}/fbrl-builddeps.$$"
+    rm -f "${TMPDIR:-/tmp}/fbrl-builddeps.$$"
+    exit 77
+fi
+rm -f "${TMPDIR:-/tmp}/fbrl-builddeps.$$"
 version=$(sed -n '1s/.*(\(.*\)).*/\1/p' "$src/debian/changelog")
 upstream=${version%-*}
 arch=$(dpkg --print-architecture)
