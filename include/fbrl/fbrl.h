@@ -27,5 +27,6 @@
 #include "fbrl/vm.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
+#include "fbrl/recover.h"
 
 #endif
