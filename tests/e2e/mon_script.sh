@@ -93,7 +93,7 @@ t "unknown option" 2 "" "~*unknown option" "" --bogus
 t "-e without its text" 2 "" "~*needs an argument" "" -e
 # getopt_long forms: attached values, '=' values, prefixes, "--" ends the options.
 t "-eTEXT attached" 0 "3 " "" "" -e'1 2 + .'
-t "--dict=SIZE" 1 "7 " "~^error: dictionary overflow.*\\(stdin:1\\)$" \
+t "--dict=SIZE" 1 "7 " "~*^stdin:1: error: dictionary overflow" \
     ': fill-up 100000 0 do 0 , loop ; fill-up\n7 .\n' --dict=64K
 t "--dict=bad" 2 "" "~*--dict: bad size 'lots'" "" --dict=lots
 t "a long option's prefix" 0 "5 " "" "" --dic 1M -e '5 .'
