@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fbrlmon - the FBRL monitor: the language at a terminal, or running files.
  *
  *   fbrlmon [options] [FILE...]
@@ -7,12 +8,14 @@
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
 #include <limits.h>
+#include <getopt.h>
 #include <locale.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#include "fbrl/version.h"
 #include "mon.h"
 #include "mon_conn.h"
 #include "mon_dry.h"
@@ -21,10 +24,6 @@
 #include "console.h"
 #include "mon_safe.h"
 #include "mon_ws.h"
-
-#ifndef FBRL_VERSION
-#define FBRL_VERSION "unknown"
-#endif
 
 #define DICT_BYTES_DEFAULT (8u * 1024u * 1024u)
 
@@ -56,7 +55,7 @@ static void usage(FILE *f)
           "terminal (interactive session) or from piped standard input.\n"
           "\n"
           "options:\n"
-          "  -e TEXT          evaluate TEXT (in order with the FILEs)\n"
+          "  -e TEXT          evaluate TEXT (in order with the FILEs; also -eTEXT)\n"
           "  --port PATH      controller on a serial device, pty or tcp:HOST:PORT\n"
           "  --baud N         line speed (default 9600)\n"
           "  --data-bits N    5, 6, 7 or 8 (default 8)\n"
@@ -90,6 +89,8 @@ static void usage(FILE *f)
           "  --list-ports     list the serial ports and exit\n"
           "  --dict BYTES     dictionary size (default 8M; suffix K or M)\n"
           "  -h, --help       show this help and exit\n"
+          "  (a long option's value may follow '=': --dict=1M; an unambiguous prefix\n"
+          "  of a long option's name is enough: --off)\n"
           "  -V, --version    show the version and exit\n"
           "\n"
           "exit status: 0 no error, 1 an error aborted a file, -e text or piped line,\n"
@@ -115,56 +116,127 @@ static int parse_size(const char *s, size_t *out)
     return 0;
 }
 
-/* Options that take a value (other than -e and --dict). */
-static int is_valued(const char *a)
+/* Long options that have no short form; the values follow CHAR_MAX so they never
+ * collide with a short option's letter. */
+enum {
+    OPT_PORT = 1000,
+    OPT_BAUD,
+    OPT_DATA_BITS,
+    OPT_PARITY,
+    OPT_STOP_BITS,
+    OPT_FLOW,
+    OPT_LOW_LATENCY,
+    OPT_AXES,
+    OPT_SIM,
+    OPT_SIM_STATE,
+    OPT_SIM_MODEL,
+    OPT_SIM_INPUTS,
+    OPT_OFFLINE,
+    OPT_PRINTER,
+    OPT_WORKSPACE,
+    OPT_LIST_PORTS,
+    OPT_DICT,
+    OPT_DRY_RUN,
+    OPT_KEEP_FILES,
+    OPT_SVG,
+    OPT_CONSOLE,
+    OPT_RUN_LOG,
+    OPT_OPERATOR,
+    OPT_METHODS,
+    OPT_LEVEL
+};
+
+/* "-" first: FILEs come back as option 1 in command-line order (they run in order
+ * with the -e texts); ":" next: a missing value is reported as ':' (our message). */
+static const char short_options[] = "-:e:hV";
+
+static const struct option long_options[] = {{"port", required_argument, NULL, OPT_PORT},
+                                             {"baud", required_argument, NULL, OPT_BAUD},
+                                             {"data-bits", required_argument, NULL, OPT_DATA_BITS},
+                                             {"parity", required_argument, NULL, OPT_PARITY},
+                                             {"stop-bits", required_argument, NULL, OPT_STOP_BITS},
+                                             {"flow", required_argument, NULL, OPT_FLOW},
+                                             {"low-latency", required_argument, NULL, OPT_LOW_LATENCY},
+                                             {"axes", required_argument, NULL, OPT_AXES},
+#ifdef FBRLMON_HAVE_SIM
+                                             {"sim", no_argument, NULL, OPT_SIM},
+                                             {"dry-run", no_argument, NULL, OPT_DRY_RUN},
+                                             {"keep-files", no_argument, NULL, OPT_KEEP_FILES},
+#endif
+                                             {"svg", required_argument, NULL, OPT_SVG},
+                                             {"console", no_argument, NULL, OPT_CONSOLE},
+                                             {"run-log", required_argument, NULL, OPT_RUN_LOG},
+                                             {"operator", required_argument, NULL, OPT_OPERATOR},
+                                             {"methods", required_argument, NULL, OPT_METHODS},
+                                             {"level", required_argument, NULL, OPT_LEVEL},
+                                             {"sim-state", required_argument, NULL, OPT_SIM_STATE},
+                                             {"sim-model", required_argument, NULL, OPT_SIM_MODEL},
+                                             {"sim-inputs", required_argument, NULL, OPT_SIM_INPUTS},
+                                             {"offline", no_argument, NULL, OPT_OFFLINE},
+                                             {"printer", required_argument, NULL, OPT_PRINTER},
+                                             {"workspace", required_argument, NULL, OPT_WORKSPACE},
+                                             {"list-ports", no_argument, NULL, OPT_LIST_PORTS},
+                                             {"dict", required_argument, NULL, OPT_DICT},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {"version", no_argument, NULL, 'V'},
+                                             {NULL, 0, NULL, 0}};
+
+/* The option's name as the user typed it, for messages. */
+static const char *option_name(int c, char *buf, size_t n)
 {
-    static const char *const names[] = {
-        "--port",      "--baud",       "--data-bits", "--parity",    "--stop-bits", "--flow", "--low-latency",
-        "--sim-state", "--sim-inputs", "--printer",   "--workspace", "--sim-model", "--axes", "--svg",
-        "--run-log",   "--operator",   "--methods",   "--level",     NULL};
-    int i;
-    for (i = 0; names[i] != NULL; i++)
-        if (strcmp(a, names[i]) == 0)
-            return 1;
-    return 0;
+    size_t i;
+    for (i = 0; long_options[i].name != NULL; i++)
+        if (long_options[i].val == c) {
+            snprintf(buf, n, "--%s", long_options[i].name);
+            return buf;
+        }
+    snprintf(buf, n, "-%c", c);
+    return buf;
 }
 
-static int set_valued(options *o, const char *a, const char *v)
+/* A valued option other than -e and --dict; the line settings (--baud, --data-bits,
+ * --parity, --stop-bits, --flow, --low-latency) are the library's option text. */
+static int set_valued(options *o, int c, const char *v)
 {
-    if (strcmp(a, "--port") == 0) {
+    switch (c) {
+    case OPT_PORT:
         o->conn.kind = MON_CONN_PORT;
         o->conn.port = v;
-    } else if (strcmp(a, "--svg") == 0) {
-        o->svg = v;
-    } else if (strcmp(a, "--workspace") == 0) {
-        o->workspace = v;
-    } else if (strcmp(a, "--sim-state") == 0) {
-        o->conn.sim_state = v;
-    } else if (strcmp(a, "--sim-model") == 0) {
-        o->conn.sim_model = v;
-    } else if (strcmp(a, "--axes") == 0) {
+        return 0;
+    case OPT_WORKSPACE: o->workspace = v; return 0;
+    case OPT_SIM_STATE: o->conn.sim_state = v; return 0;
+    case OPT_SIM_MODEL: o->conn.sim_model = v; return 0;
+    case OPT_SIM_INPUTS: o->conn.sim_inputs = v; return 0;
+    case OPT_PRINTER: o->printer = v; return 0;
+    case OPT_SVG: o->svg = v; return 0;
+    case OPT_RUN_LOG:
+    case OPT_OPERATOR:
+    case OPT_METHODS:
+    case OPT_LEVEL: { /* console.c's options */
+        char name[32];
+        return console_option(&o->console, option_name(c, name, sizeof name), v);
+    }
+    case OPT_AXES: {
         char *end;
         unsigned long n = strtoul(v, &end, 10);
         if (end == v || *end != '\0' || v[0] == '-' || n < 1 || n > FBRL_RAPL_MAX_AXES)
             return -1;
         o->conn.axes = (unsigned)n;
-    } else if (console_option(&o->console, a, v) == 0) {
-        /* --run-log, --operator, --methods, --level (console.c) */
-    } else if (strcmp(a, "--printer") == 0) {
-        o->printer = v;
-    } else if (strcmp(a, "--sim-inputs") == 0) {
-        o->conn.sim_inputs = v;
-    } else if (fbrl_port_set_option(&o->conn.line, a + 2, v) != FBRL_OK) {
-        /* --baud, --data-bits, --parity, --stop-bits, --flow, --low-latency: the library's option text */
-        return -1;
+        return 0;
     }
-    return 0;
+    default: {
+        char name[32];
+        return fbrl_port_set_option(&o->conn.line, option_name(c, name, sizeof name) + 2, v) == FBRL_OK ? 0
+                                                                                                        : -1;
+    }
+    }
 }
 
 /* Returns -1 to exit with `*status`, 0 to go on. */
 static int parse_args(int argc, char **argv, options *o, int *status)
 {
-    int i, only_files = 0, explicit_conn = 0;
+    int c, explicit_conn = 0;
+    char name[32];
     fbrl_port_options_init(&o->conn.line);
     o->actions = calloc((size_t)argc, sizeof *o->actions);
     o->dict_bytes = DICT_BYTES_DEFAULT;
@@ -172,65 +244,68 @@ static int parse_args(int argc, char **argv, options *o, int *status)
         *status = MON_EXIT_CONNECT;
         return -1;
     }
-    for (i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (only_files || a[0] != '-' || strcmp(a, "-") == 0) {
+    opterr = 0;
+    while ((c = getopt_long(argc, argv, short_options, long_options, NULL)) != -1) {
+        switch (c) {
+        case 1: /* a FILE ("-" is standard input) */
             o->actions[o->n_actions].is_text = 0;
-            o->actions[o->n_actions++].arg = a;
-        } else if (strcmp(a, "--") == 0) {
-            only_files = 1;
-        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            o->actions[o->n_actions++].arg = optarg;
+            break;
+        case 'e':
+            o->actions[o->n_actions].is_text = 1;
+            o->actions[o->n_actions++].arg = optarg;
+            break;
+        case 'h':
             usage(stdout);
             *status = MON_EXIT_OK;
             return -1;
-        } else if (strcmp(a, "-V") == 0 || strcmp(a, "--version") == 0) {
-            printf("fbrlmon (libfbrl) %s\n", FBRL_VERSION);
+        case 'V':
+            printf("fbrlmon (libfbrl) %s\n", fbrl_version());
             *status = MON_EXIT_OK;
             return -1;
-        } else if (strcmp(a, "--offline") == 0) {
+        case OPT_OFFLINE:
             o->conn.kind = MON_CONN_OFFLINE;
             explicit_conn = 1;
-#ifdef FBRLMON_HAVE_SIM
-        } else if (strcmp(a, "--dry-run") == 0) {
-            o->dry_run = 1;
-        } else if (strcmp(a, "--keep-files") == 0) {
-            o->dry.keep_files = 1;
-        } else if (strcmp(a, "--sim") == 0) {
+            break;
+        case OPT_SIM:
             o->conn.kind = MON_CONN_SIM;
             explicit_conn = 1;
-#endif
-        } else if (strcmp(a, "--console") == 0) {
-            o->console.on = 1;
-        } else if (strcmp(a, "--list-ports") == 0) {
-            o->list_ports = 1;
-        } else if (is_valued(a)) {
-            const char *v = i + 1 < argc ? argv[++i] : NULL;
-            if (v == NULL) {
-                fprintf(stderr, "fbrlmon: %s needs an argument\n", a);
+            break;
+        case OPT_LIST_PORTS: o->list_ports = 1; break;
+        case OPT_DRY_RUN: o->dry_run = 1; break;
+        case OPT_KEEP_FILES: o->dry.keep_files = 1; break;
+        case OPT_CONSOLE: o->console.on = 1; break;
+        case OPT_DICT:
+            if (parse_size(optarg, &o->dict_bytes) != 0) {
+                fprintf(stderr, "fbrlmon: --dict: bad size '%s'\n", optarg);
                 goto bad;
             }
-            if (set_valued(o, a, v) != 0) {
-                fprintf(stderr, "fbrlmon: %s: bad value '%s'\n", a, v);
-                goto bad;
-            }
-            if (strcmp(a, "--port") == 0)
-                explicit_conn = 1;
-        } else if (strcmp(a, "-e") == 0 || strcmp(a, "--dict") == 0) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "fbrlmon: %s needs an argument\n", a);
-                goto bad;
-            }
-            if (a[1] == 'e') {
-                o->actions[o->n_actions].is_text = 1;
-                o->actions[o->n_actions++].arg = argv[++i];
-            } else if (parse_size(argv[++i], &o->dict_bytes) != 0) {
-                fprintf(stderr, "fbrlmon: --dict: bad size '%s'\n", argv[i]);
-                goto bad;
-            }
-        } else {
-            fprintf(stderr, "fbrlmon: unknown option '%s'\n", a);
+            break;
+        case ':':
+            fprintf(stderr, "fbrlmon: %s needs an argument\n",
+                    optopt != 0 ? option_name(optopt, name, sizeof name) : argv[optind - 1]);
             goto bad;
+        case '?':
+            if (optopt != 0 && optopt < OPT_PORT)
+                fprintf(stderr, "fbrlmon: unknown option '-%c'\n", optopt);
+            else if (optopt != 0) /* a flag given a value: --offline=x */
+                fprintf(stderr, "fbrlmon: %s takes no value\n", option_name(optopt, name, sizeof name));
+            else
+                fprintf(stderr, "fbrlmon: unknown option '%s'\n", argv[optind - 1]);
+            goto bad;
+        default:
+            if (set_valued(o, c, optarg) != 0) {
+                fprintf(stderr, "fbrlmon: %s: bad value '%s'\n", option_name(c, name, sizeof name), optarg);
+                goto bad;
+            }
+            if (c == OPT_PORT)
+                explicit_conn = 1;
+            break;
         }
+    }
+    for (; optind < argc; optind++) { /* after "--": FILEs only */
+        o->actions[o->n_actions].is_text = 0;
+        o->actions[o->n_actions++].arg = argv[optind];
     }
     /* Inputs for the emulator ask for the emulator: one that cannot start is an error. */
     if (!explicit_conn && o->conn.sim_inputs != NULL)
@@ -324,7 +399,7 @@ int main(int argc, char **argv)
         free(opt.actions);
         if (st != FBRL_OK) {
             fprintf(stderr, "fbrlmon: --list-ports: %s\n",
-                    st == FBRL_EUNSUPPORTED ? "this fbrlmon was built without libserialport"
+                    st == FBRL_EUNSUPPORTED ? "no sysfs, and this fbrlmon was built without libserialport"
                                             : fbrl_status_str(st));
             return MON_EXIT_CONNECT;
         }
@@ -368,7 +443,7 @@ int main(int argc, char **argv)
     {
         char desc[256];
         mon_conn_describe(&g_conn, desc, sizeof desc);
-        if (mon_runlog_install(&g_runlog, &m, "fbrlmon " FBRL_VERSION, desc) != 0) {
+        if (mon_runlog_install(&g_runlog, &m, "fbrlmon " FBRL_VERSION_STRING, desc) != 0) {
             fprintf(stderr, "fbrlmon: cannot define RUN-LOG\n");
             mon_close(&m);
             mon_conn_close(&g_conn);
@@ -430,7 +505,7 @@ int main(int argc, char **argv)
         if (m.host.in_is_tty) {
             char desc[512];
             mon_conn_describe(&g_conn, desc, sizeof desc);
-            printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", FBRL_VERSION, desc);
+            printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", fbrl_version(), desc);
             /* a person at the prompt: motions say what they started and when a wait ended */
             if (m.host.out_is_tty)
                 fbrl_robot_set_console(&m.robot, mon_host_progress, &m.host, 1);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon.c - the monitor's session: VM setup and one-line error reports. */
 #include "mon.h"
 #include "mon_debug.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon.h - the monitor's session: one FBRL engine, its host services, and the
  * rules for reporting errors (one line each) shared by every input source. */
 #ifndef FBRLMON_MON_H

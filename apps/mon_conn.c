@@ -1,9 +1,11 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_conn.c - opening the controller connection for fbrlmon, through fbrl_port. */
 #include "mon_conn.h"
 
 #include <locale.h>
 #include <pthread.h>
 #include <signal.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -178,10 +180,22 @@ void mon_conn_close(mon_conn *c)
     c->open = 0;
 }
 
-fbrl_status mon_conn_list_ports(FILE *out)
+/* The latency timer's note: fbrlmon sets 1 ms when it opens the port. */
+static void print_driver(FILE *out, const char *driver, int latency_timer_ms)
+{
+    if (!driver[0])
+        return;
+    fprintf(out, "  driver %s", driver);
+    if (latency_timer_ms >= 0)
+        fprintf(out, ", latency timer %d ms%s", latency_timer_ms,
+                latency_timer_ms > 1 ? " (fbrlmon sets 1 ms when it opens the port)" : "");
+}
+
+/* Without sysfs (not Linux): what libserialport finds. */
+static fbrl_status list_with_serialport(FILE *out)
 {
 #ifdef FBRL_HAVE_SERIALPORT
-    fbrl_serial_port_info ports[64];
+    fbrl_serial_port_info ports[MON_LIST_PORTS_MAX];
     size_t i, n = 0;
     fbrl_status st = fbrl_uart_serialport_list(ports, sizeof ports / sizeof ports[0], &n);
     if (st != FBRL_OK)
@@ -195,13 +209,8 @@ fbrl_status mon_conn_list_ports(FILE *out)
             fprintf(out, "  %s", ports[i].description);
         if (ports[i].usb)
             fprintf(out, "  [USB %04x:%04x]", ports[i].vid, ports[i].pid);
-        /* what sysfs says (nothing is opened): the driver and its latency timer */
-        if (fbrl_port_usb_info_get(NULL, ports[i].name, &usb) == FBRL_OK && usb.driver[0]) {
-            fprintf(out, "  driver %s", usb.driver);
-            if (usb.latency_timer_ms >= 0)
-                fprintf(out, ", latency timer %d ms%s", usb.latency_timer_ms,
-                        usb.latency_timer_ms > 1 ? " (fbrlmon sets 1 ms when it opens the port)" : "");
-        }
+        if (fbrl_port_usb_info_get(NULL, ports[i].name, &usb) == FBRL_OK)
+            print_driver(out, usb.driver, usb.latency_timer_ms);
         fputc('\n', out);
     }
     return FBRL_OK;
@@ -209,6 +218,37 @@ fbrl_status mon_conn_list_ports(FILE *out)
     (void)out;
     return FBRL_EUNSUPPORTED;
 #endif
+}
+
+fbrl_status mon_conn_list_ports(FILE *out)
+{
+    static fbrl_port_entry ports[MON_LIST_PORTS_MAX];
+    size_t i, n = 0;
+    fbrl_status st =
+        fbrl_port_list(getenv(MON_SYSFS_ENV), getenv(MON_DEV_ENV), ports, MON_LIST_PORTS_MAX, &n);
+    if (st == FBRL_EUNSUPPORTED)
+        return list_with_serialport(out);
+    if (st != FBRL_OK)
+        return st;
+    if (n > MON_LIST_PORTS_MAX)
+        n = MON_LIST_PORTS_MAX;
+    /* one port a line: the stable name first when there is one (it survives re-plugging
+     * and other adapters; fbrlmon --port takes it), then the device and what it is */
+    for (i = 0; i < n; i++) {
+        const fbrl_port_entry *p = &ports[i];
+        fprintf(out, "%s", p->by_id[0] ? p->by_id : p->device);
+        if (p->by_id[0])
+            fprintf(out, "  (%s)", p->device);
+        if (p->description[0])
+            fprintf(out, "  %s", p->description);
+        if (p->usb)
+            fprintf(out, "  [USB %04x:%04x]", p->vid, p->pid);
+        if (p->serial[0])
+            fprintf(out, "  serial %s", p->serial);
+        print_driver(out, p->driver, p->latency_timer_ms);
+        fputc('\n', out);
+    }
+    return FBRL_OK;
 }
 
 fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_conn.h - fbrlmon's connection to a controller: a serial port, a pty or a
  * TCP serial server, or the built-in emulator (fbrlsim's core on a pty), all opened
  * by name through the library's fbrl_port (so every program opens ports the same way),
@@ -65,9 +66,14 @@ fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen);
  * useful): for FBRL_EPERM, the dialout group. */
 const char *mon_conn_hint(fbrl_status st);
 
-/* --list-ports: print the serial ports the system knows, one per line, with a USB
- * adapter's driver and latency timer. FBRL_EUNSUPPORTED when fbrlmon was built without
- * libserialport. */
+/* --list-ports: print the serial ports the system has, one per line: the stable
+ * /dev/serial/by-id name (when udev made one) and the device, the USB product, VID:PID and
+ * serial number, the driver and latency timer (fbrl_port_list: Linux sysfs; elsewhere
+ * libserialport's list). FBRL_EUNSUPPORTED with neither. The environment variables below
+ * point it at other sysfs and /dev trees (the tests' fake ones). */
+#define MON_SYSFS_ENV      "FBRLMON_SYSFS_ROOT"
+#define MON_DEV_ENV        "FBRLMON_DEV_ROOT"
+#define MON_LIST_PORTS_MAX 64
 fbrl_status mon_conn_list_ports(FILE *out);
 
 #endif

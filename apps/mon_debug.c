@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_debug.c - fbrlmon's words for finding and fixing a plan (docs/debugging.md):
  * LOCATE shows where a word was defined, EDIT opens that place in the user's editor and
  * loads the file again keeping the session's work, SAVE-DEFINITIONS writes the words

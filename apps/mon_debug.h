@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_debug.h - fbrlmon's LOCATE, EDIT and SAVE-DEFINITIONS (mon_debug.c). */
 #ifndef FBRLMON_DEBUG_H
 #define FBRLMON_DEBUG_H

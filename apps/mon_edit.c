@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_edit.c - the interactive session: prompt, line editing, history and TAB
  * completion of word names with libedit (<histedit.h>), or a plain line loop
  * when fbrlmon was built without libedit. */

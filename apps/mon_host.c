@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_host.c - OS services for the engine inside fbrlmon (the app may use the OS). */
 #include "mon_host.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_host.h - the operating-system services fbrlmon gives the FBRL engine:
  * console output, keyboard input, source files (stdio), time. */
 #ifndef FBRLMON_HOST_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_recover.c - corrective actions in fbrlmon (docs/debugging.md): ASK puts the failure
  * in plain words and the choices Retry / Skip / Abort to the operator at the terminal (or
  * reads the answer from piped input, echoing it); every action taken is printed as a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_recover.h - fbrlmon's side of corrective actions (mon_recover.c): the operator is
  * asked at the terminal, and each action taken is told there. */
 #ifndef FBRLMON_RECOVER_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_relink.c - a controller that went away and came back (fbrlsim restarted, a USB
  * adapter unplugged and plugged in again on the same path), and going on with the plan.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_relink.h - RECONNECT and RESUME: going on after the controller went away
  * (mon_relink.c). */
 #ifndef FBRLMON_RELINK_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_safe.c - Ctrl-C in fbrlmon. One handler serves the whole run: while the engine
  * evaluates it asks it to stop (the engine throws "user interrupt" at its next call,
  * loop step or robot wait); at the prompt it discards the line. Either way the main

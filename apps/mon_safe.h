@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_safe.h - Ctrl-C in fbrlmon: one SIGINT handler for the whole run, and the safe
  * stop (the arm halted, the outputs the session switched on switched off, a report of
  * where it stopped) that every Ctrl-C ends in, in a plan, a typed line or at the prompt.

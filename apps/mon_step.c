@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_step.c - fbrlmon's debugger (docs/debugging.md): breakpoints on a word or on a
  * file:line, and at each stop step into / next (step over) / finish / continue / quit,
  * with the stacks and the source line shown and any Forth (W2, .S, TEACH ...) run at the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_step.h - fbrlmon's debugger: BREAK, UNBREAK, BREAKS and the stops (mon_step.c). */
 #ifndef FBRLMON_STEP_H
 #define FBRLMON_STEP_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_teach.c - TEACH: fbrlmon's keyboard teach pendant.
  *
  *   TEACH P      (or P TEACH)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_teach.h - TEACH, fbrlmon's keyboard teach pendant (docs/fbrlmon.md "TEACH"). */
 #ifndef FBRLMON_TEACH_H
 #define FBRLMON_TEACH_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_trace.c - fbrlmon's command trace (docs/debugging.md): TRACE-ON prints each line
  * the controller ran, as the link reports it (so the trace's commands are the controller's
  * command log), with what became of it and the plan's word, file and line that sent it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_trace.h - fbrlmon's trace: each robot command the controller ran, with the plan
  * line that sent it (mon_trace.c); each word entered (TRACE-WORDS, mon_step.c). */
 #ifndef FBRLMON_TRACE_H

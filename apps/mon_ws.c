@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_ws.c - fbrlmon's workspace at start and exit (see mon_ws.h). */
 #include "mon_ws.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_ws.h - fbrlmon's workspace at start and exit (docs/workspace.md): --workspace FILE
  * loads it, and leaving a terminal session with unsaved changes offers to save them. */
 #ifndef FBRLMON_WS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_calib.c - calibration mapping throughput (points per second).
  * Position map: fbrl_calib_map_points over a block of points that stays in cache, the
  * 3x4 motion held in registers (target >= 50 M points/s). Full map: fbrl_calib_map of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_fileio.c - figures for typed data files: CRC-32 speed, open+verify time of a file of
  * locations, and the cost of an atomic commit (two fsyncs and a rename) on this disk.
  * Usage: bench_fileio [DIR]   (default: $TMPDIR or /tmp) */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_glossary.c - cost of the data glossary words as a program sees them: each figure is
  * a Forth loop running one word (plus the loop and its arguments) a million times, and the
  * same loop empty, so the word's own cost is the difference. Also the C interface the robot

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_link_fate: what the exactly-once rules (docs/link.md 3.9) cost.
  *  1. On a clean paced line (fbrlsim --baud 9600): a command not safe to repeat
  *     (V3=V3+1) and one that is (V3=1234) as shares of their echo bound: the rules send

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_link_wait: the next command after a wait against a fresh one (issue 11, item 4).
  * On fbrlsim's strict --baud 9600 line: SPEED 50 right after another SPEED 50 (fresh),
  * and SPEED 50 right after a FINISH that waited for a motion (JOINT 1,+-D) long enough

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_rapl: RAPL command throughput of the echo-verified link against fbrlsim with
  * baud pacing, as a fraction of the line-rate limit, and the encoder's cost.
  * Usage: bench_rapl [FBRLSIM] (default: ./sim/fbrlsim from the build directory)

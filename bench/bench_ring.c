@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_ring.c - throughput of the SPSC ring beside a naive mutex ring.
  *
  * Cases: single-byte put/get and 64-byte bulk write/read; one thread (put a chunk,

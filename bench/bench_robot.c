@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_robot.c - what the robot words cost on the host side, without a controller: the
  * word dispatch with parameters from the stack, the same word reading its parameter after
  * it (GETINT-style parsing of the input), and building a RAPL line with SEND-* (with

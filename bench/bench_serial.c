@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_serial.c - throughput of the UART core + POSIX backend through a pty pair,
  * with and without XON/XOFF, and the driver's CPU time per byte.
  *

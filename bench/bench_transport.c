@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_transport: what the transport layer costs on a real-rate line (fbrlsim --baud).
  * Usage: bench_transport [FBRLSIM [SECONDS [PARTS]]]  (default ./sim/fbrlsim, 3 s per run,
  * parts "123"; "3n" = part 3 with fbrl_link_poll_many only)

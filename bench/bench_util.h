@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_util.h - what the bench programs share: a monotonic clock in seconds and a timed
  * Forth evaluation that ends the program on a Forth error (a bench figure of a failed
  * run would mean nothing). Static inline, so a bench uses only what it needs. */

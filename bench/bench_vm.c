@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_vm.c - speed of the FBRL language engine on classic Forth loads.
  * Usage: bench_vm            print the time of each load
  *        bench_vm --dump DIR write each load as DIR/<name>.fs (plain Forth-2012,

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # run_forth.sh - FBRL's Forth engine (fbrlmon) beside gforth-fast, gforth and
 # pforth: start-up time and peak memory, then the standard-Forth benchmarks in
 # bench/forth/ with best-of-N times, ratios and their geometric mean.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rack.c - a 4 x 6 tube rack: locations from a rectangular matrix, a calibration taught on
  * the rack where it was first set up, a recalibration after it was moved, and the rack's
  * locations in both frames.  Usage: rack [--metric] */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sample_prep.c - a short version of examples/sample_prep.fbrl driven from C through the
  * public API: the POSIX serial backend, the echo-verified RAPL link, and an FBRL VM with
  * the data glossary and the robot words evaluating a few lines of the plan.

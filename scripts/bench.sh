@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Builds an optimised tree and runs every benchmark, printing their figures, then one
 # summary table (issue 11: the link on fbrlsim's strict line, the POINT text, the next
 # command after a wait, many robots, the Forth engine beside gforth-fast, gforth and

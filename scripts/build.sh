@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Configure and build into a build directory. Usage: build.sh BUILD_DIR [cmake args...]
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The boundary between the language engine (src/lang/) and its word sets: a word set uses
 # the public headers (fbrl/vm.h, fbrl/vmx.h ...) and its own folder's headers, never the
 # engine's insides. Checked on the sources: includes, and names only the engine has.

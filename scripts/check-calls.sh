@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # No call circles between the files of a folder, checked on the compiled objects: file A
 # "calls" file B when A uses a symbol B defines. Within each folder given the edges must
 # form no cycle (tsort finds them).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The HAL boundary, checked on the compiled objects: no library module may allocate,
 # print, exit or abort; only the OS modules below may call the operating system.
 # Usage: check-hal.sh OBJ...   (prints each violation; exit 1 if any)

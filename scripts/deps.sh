@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Installs what libfbrl needs to build and test, only when something is missing.
 # Debian/Ubuntu (apt-get); elsewhere it says what to install and stops.
 # Usage: deps.sh [EXTRA-PACKAGE...]   (extras are required too, e.g. gforth pforth for benchmarks)

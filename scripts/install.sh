@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Installs what is missing, builds, and installs libfbrl, fbrlmon and fbrlsim under PREFIX
 # (default: /usr/local as root, ~/.local otherwise), then says whether PREFIX/bin is on PATH.
 # Usage: install.sh [PREFIX]

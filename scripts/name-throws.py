@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Replace raw THROW codes by their names from include/fbrl/vm_throw.h, in the contexts
 where a number is a throw code: THROW(-n), a throw call's code argument (fbrl__throw_msg,
 fbrl_vm_throw, fbrl_vmx_throwf, rb_fail, gl_throw, fail), `return -n;`, `code = -n;` and

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Installs what is missing, builds, and runs the main program: the fbrlmon monitor
 # against the built-in emulated controller (arguments are passed on to it).
 set -eu

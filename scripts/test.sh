@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Installs what is missing, builds libfbrl with warnings as errors, and runs every test.
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)

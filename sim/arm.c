@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* arm.c - the emulated arms as data, and their kinematics; see arm.h. Sources of
  * the numbers: docs/fbrlsim.md ("The arm models"). */
 #include "arm.h"

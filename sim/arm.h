@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* arm.h - kinematic models of the emulated arms, as data (docs/fbrlsim.md).
  *
  * Pure computation: no OS, no allocation. Angles are degrees, lengths inches.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fbrlsim.h - the RAPL-II controller emulator as an embeddable library.
  *
  * fbrl_sim_create() opens a pseudo-terminal (or a TCP port on 127.0.0.1) and

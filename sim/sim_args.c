@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_args.c - a command line's arguments: split on commas and spaces, counted,
  * and read as numbers through the expression evaluator, as RAPL-II takes them. */
 #include "sim_cmd.h"

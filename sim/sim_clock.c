@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_clock.c - the emulator's two clocks: real seconds since start (the line,
  * replies) and simulated seconds (the arm, scripted inputs), which run
  * --time-scale times faster. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_cmd.c - what a command line means: the command table (keyword, unique
  * prefix or /NNN token, flags, HELP hint, handler), variable assignment, the
  * common checks before a motion command, and RUN, which feeds a program's lines

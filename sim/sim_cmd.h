@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_cmd.h - what the command side of the emulator shares: a command's
  * arguments, the helpers every handler group uses, and the handlers the command
  * table (sim_cmd.c) dispatches to. Calls go one way: sim_cmd.c -> handlers ->

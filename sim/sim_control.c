@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_control.c - control lines: the world outside the serial line (inputs,
  * analog inputs, the arm power switch, an object in the gripper, the teach
  * pendant's button), from the --control FIFO or the --inputs script.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_core.c - fbrlsim's event loop: creates the parts (line, transport,
  * terminal, control lines, memory), runs one slice at a time and tears them
  * down. Each part lives in its own file; this one only wires them together. */

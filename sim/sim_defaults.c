@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_defaults.c - the controller at power-up, before its state file is read:
  * the settings of every part for the arm model already chosen. The state file
  * (sim_state.c) calls it again when its MODEL line names another arm. */

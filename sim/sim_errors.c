@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_errors.c - the texts of the RAPL-II error numbers (sim_errors.h), as the
  * controller prints them after NNN-. */
 #include "sim_errors.h"

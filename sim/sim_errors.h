@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_errors.h - the RAPL-II error numbers the emulator reports (NNN-TEXT.),
  * named once; their texts are in sim_errors.c. docs/rapl-commands.md lists them. */
 #ifndef FBRL_SIM_ERRORS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_events.c - the world outside the serial line: control lines from the
  * --control FIFO at any time and from the time-stamped --inputs script. What a
  * control line does is sim_control(). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_expr.c - RAPL-II expressions: numbers, variables, + - * / and
  * parentheses, degree trigonometry, SIG/OSIG/ADC and GRIPPER. Errors are RAPL
  * codes (014 syntax, 010 undefined, 018 not a finite result). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_h_io.c - the commands for everything around the arm that is not motion:
  * the gripper, digital outputs and WAIT on inputs, text output (TYPE, TYPEI,
  * TYPEV), the serial channels (CONFIG, SERIAL), motor gains and the modes of the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_h_mem.c - the commands that define, change, list and delete locations and
  * variables (HERE/ACTUAL, POINT, SET, SHIFT, SHIFTA, TOOL, LISTL, LISTV, DLOCN,
  * DVAR, TEACH). Everything they change is kept in the state file (dirty). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_h_motion.c - the commands that move the arm or decide whether it may move
  * (MOVE, APPRO, DEPART, JOG, JOINT, MOTOR, MI/MA, READY, FINISH, HALT, SPEED,
  * HOME, LIMP/LOCK, ARM, the extra axis). They share the motion model's checks:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_h_read.c - the readouts: W0/W2/W4 once, W1/W3/W5 and WE1/WE3/WE5 as a
  * stream until a key, and STATUS, in the RAPL-II layouts (docs/rapl-commands.md)
  * that clients parse at fixed places. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_internal.h - state shared by the emulator's source files. */
 #ifndef FBRL_SIM_INTERNAL_H
 #define FBRL_SIM_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_io.c - where the line's bytes come from and go to: a pseudo-terminal
  * (with an optional stable symlink) or one TCP client on 127.0.0.1. Pacing and
  * faults are the line's (sim_line.c); this file only opens, accepts and closes. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_line.c - the serial line between the host and the controller: what each
  * side's UART does to the bytes, apart from where they come from (pty or TCP,
  * sim_io.c) and what the controller makes of them (sim_term.c).

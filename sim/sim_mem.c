@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_mem.c - the controller's memory of names: variables and locations (and
  * the programs the state file holds). Names enter it upper-cased. */
 #include "sim_cmd.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_motion.c - the arm in motion: one segment at a time (joint-interpolated or
  * straight), evaluated from simulated time, so any readout at any moment shows
  * where the arm is. The kinematics are arm.c's; this file plans and times. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_msg.c - error messages for whoever starts the emulator (option, file and
  * OS errors), shared by every part, so it depends on none of them. */
 #include "sim_internal.h"

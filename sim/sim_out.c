@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_out.c - the text of one reply, collected while a command runs and sent
  * by the terminal (sim_term.c) when it is done, so a reply is never interleaved. */
 #include "sim_cmd.h"

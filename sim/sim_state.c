@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_state.c - the controller's battery-backed memory: a text state file.
  *
  * Saving writes a uniquely named temporary created exclusively and without

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_term.c - the controller's terminal mode: the line editor (echo, BS/DEL,
  * Ctrl-X, HELP-mode hints), the framing of a reply (CR LF, error line, prompt),
  * the controller's own time to process a command, and the position readouts

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* atomic.h - the acquire/release loads and stores that the SPSC rings and the UART
  * core need, in one place (internal header, not installed).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* calib.c - 3-point and N-point calibration of work blocks, mapping of locations.
  *
  * The thesis (appendix II) chains planar rotations found with atan; that is the rigid

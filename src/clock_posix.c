@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* clock_posix.c - fbrl/clock.h on POSIX: CLOCK_MONOTONIC and clock_nanosleep. */
 #include <errno.h>
 #include <time.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* crc32.c - CRC-32, four bits at a time: a 64-byte table keeps it small enough
  * for the bare-metal image and fast enough for files of a few megabytes. */
 #include "fbrl/crc32.h"

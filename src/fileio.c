@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fileio.c - typed binary data files: verified whole on open, replaced atomically on commit.
  * The on-disk format is in docs/files.md; every field is little-endian and encoded byte by
  * byte, so the files move unchanged between hosts of any endianness. */

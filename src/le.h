@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* le.h - little-endian fixed-width fields, encoded byte by byte so every byte
  * format is the same on every host (internal to the library). */
 #ifndef FBRL_LE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link.c - echo-verified RAPL session over an fbrl_uart (no OS header).
  *
  * The controller (docs/rapl-commands.md 1) echoes every printable byte upper-cased,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* loc.c - location templates (thesis appendix III-1). */
 #include <math.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* matrix.c - arrays over caller storage and location matrices (thesis 5.1, 5.4). */
 #include <math.h>
 #include <stdint.h>

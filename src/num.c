@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* num.c - locale-free, exact decimal <-> double conversion; see num.h.
  *
  * Both directions work on exact big integers, so there is no rounding but the one asked

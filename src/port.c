@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* port.c - a controller port opened by its name, with the device's quirks (fbrl/port.h).
  *
  * The name decides the backend (tcp:, sim:, a path), the device decides the quirks:
@@ -12,7 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <dirent.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #ifdef __linux__
 #include <linux/serial.h>
 #endif
@@ -426,4 +429,150 @@ fbrl_status fbrl_port_close(fbrl_port *p)
         p->sim_stop(p->sim_ctx);
     p->sim_running = 0;
     return st;
+}
+
+/* ---- the serial ports this machine has ---- */
+
+#define DEFAULT_DEV       "/dev"
+#define USB_DEVICE_LEVELS 4 /* a tty's device dir to its USB device: port, interface, device */
+
+/* a "/" b into out; -1 (out "") when it does not fit. */
+static int path_join(char *out, size_t cap, const char *a, const char *b)
+{
+    size_t na = strlen(a), nb = strlen(b);
+    out[0] = '\0';
+    if (na + 1 + nb + 1 > cap)
+        return -1;
+    memcpy(out, a, na);
+    out[na] = '/';
+    memcpy(out + na + 1, b, nb + 1);
+    return 0;
+}
+
+/* The first line of DIR/NAME into out ("" if there is none). */
+static void read_attr(const char *dir, const char *name, char *out, size_t cap)
+{
+    char path[PATH_BYTES];
+    out[0] = '\0';
+    if (cap > 1 && path_join(path, sizeof path, dir, name) == 0 && read_small(path, out, cap) == 0)
+        out[strcspn(out, "\r\n")] = '\0';
+}
+
+/* The USB device above a tty's device directory: the nearest parent with an idVendor. */
+static void usb_details(const char *devdir, fbrl_port_entry *e)
+{
+    char dir[PATH_MAX], text[16];
+    if (realpath(devdir, dir) == NULL)
+        return;
+    for (int level = 0; level < USB_DEVICE_LEVELS; level++) {
+        unsigned long vid, pid;
+        read_attr(dir, "idVendor", text, sizeof text);
+        if (text[0]) {
+            char ptext[16];
+            read_attr(dir, "idProduct", ptext, sizeof ptext);
+            char *end1, *end2;
+            vid = strtoul(text, &end1, 16);
+            pid = strtoul(ptext, &end2, 16);
+            if (*end1 == '\0' && *end2 == '\0' && ptext[0]) {
+                e->usb = 1;
+                e->vid = (unsigned)vid;
+                e->pid = (unsigned)pid;
+            }
+            read_attr(dir, "product", e->description, sizeof e->description);
+            read_attr(dir, "manufacturer", e->manufacturer, sizeof e->manufacturer);
+            read_attr(dir, "serial", e->serial, sizeof e->serial);
+            return;
+        }
+        char *slash = strrchr(dir, '/');
+        if (slash == NULL || slash == dir)
+            return;
+        *slash = '\0';
+    }
+}
+
+/* A tty of class/tty that is a serial port: it has a device, and an 8250 UART is there. */
+static int is_serial_port(const char *ttydir)
+{
+    char path[PATH_BYTES], type[16];
+    struct stat sb;
+    if (path_join(path, sizeof path, ttydir, "device") != 0 || stat(path, &sb) != 0)
+        return 0;
+    read_attr(ttydir, "type", type, sizeof type); /* 8250: 0 = no UART at this address */
+    return strcmp(type, "0") != 0;
+}
+
+/* The DEV/serial/by-id name that leads to device (the first in name order), or "".
+ * readdir, not scandir: the library never allocates. */
+static void by_id_name(const char *dev_root, const char *device, char *out, size_t cap)
+{
+    char dir[PATH_BYTES], path[PATH_BYTES], real[PATH_MAX];
+    struct dirent *d;
+    out[0] = '\0';
+    if (path_join(dir, sizeof dir, dev_root, "serial/by-id") != 0)
+        return;
+    DIR *dp = opendir(dir);
+    if (dp == NULL)
+        return;
+    while ((d = readdir(dp)) != NULL) {
+        if (d->d_name[0] == '.' || path_join(path, sizeof path, dir, d->d_name) != 0 ||
+            realpath(path, real) == NULL || strcmp(strrchr(real, '/') + 1, device) != 0)
+            continue;
+        if (!out[0] || strcmp(path, out) < 0)
+            copy_text(out, cap, path);
+    }
+    closedir(dp);
+}
+
+/* Puts the entry for tty into out[0 .. *n) in device-name order, keeping the first max. */
+static void insert_sorted(fbrl_port_entry *out, size_t max, size_t *n, const char *tty, const char *ttydir,
+                          const char *sysfs_root, const char *dev_root)
+{
+    fbrl_port_entry e;
+    fbrl_port_usb_info info;
+    char devdir[PATH_BYTES];
+    size_t at;
+    memset(&e, 0, sizeof e);
+    if (path_join(e.device, sizeof e.device, dev_root, tty) != 0)
+        return;
+    for (at = *n; at > 0 && strcmp(out[at - 1].device, e.device) > 0; at--)
+        ;
+    if (at >= max)
+        return;
+    if (path_join(devdir, sizeof devdir, ttydir, "device") == 0)
+        usb_details(devdir, &e);
+    by_id_name(dev_root, tty, e.by_id, sizeof e.by_id);
+    fbrl_port_usb_info_get(sysfs_root, tty, &info);
+    copy_text(e.driver, sizeof e.driver, info.driver);
+    e.latency_timer_ms = info.latency_timer_ms;
+    if (*n == max)
+        (*n)--; /* the last one drops out */
+    memmove(&out[at + 1], &out[at], (*n - at) * sizeof *out);
+    out[at] = e;
+    (*n)++;
+}
+
+fbrl_status fbrl_port_list(const char *sysfs_root, const char *dev_root, fbrl_port_entry *out, size_t max,
+                           size_t *count)
+{
+    char dir[PATH_BYTES], ttydir[PATH_BYTES];
+    struct dirent *d;
+    size_t found = 0, kept = 0;
+    if (count == NULL || (out == NULL && max > 0))
+        return FBRL_EINVAL;
+    *count = 0;
+    if (path_join(dir, sizeof dir, sysfs_root ? sysfs_root : DEFAULT_SYSFS, "class/tty") != 0)
+        return FBRL_EINVAL;
+    DIR *dp = opendir(dir);
+    if (dp == NULL)
+        return FBRL_EUNSUPPORTED;
+    while ((d = readdir(dp)) != NULL) {
+        if (d->d_name[0] == '.' || path_join(ttydir, sizeof ttydir, dir, d->d_name) != 0 ||
+            !is_serial_port(ttydir))
+            continue;
+        found++;
+        insert_sorted(out, max, &kept, d->d_name, ttydir, sysfs_root, dev_root ? dev_root : DEFAULT_DEV);
+    }
+    closedir(dp);
+    *count = found;
+    return FBRL_OK;
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_encode.c - the RAPL command table and the line encoder (no OS header). */
 #include "fbrl/rapl_encode.h"
 

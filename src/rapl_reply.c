@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_reply.c - line assembly and parsers for the controller's output (no OS header). */
 #include "fbrl/rapl_reply.h"
 

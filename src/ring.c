@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ring.c - lock-free SPSC byte ring; see fbrl/ring.h for the rules.
  *
  * The capacity is a power of two and head/tail are free-running counters: the

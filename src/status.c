@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* status.c - texts for fbrl_status codes. */
 #include "fbrl/status.h"
 

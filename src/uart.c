@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart.c - the serial driver core: rings, XON/XOFF both ways, counters, waiting.
  *
  * The thesis's COM routine (5.2, appendix I-4) split in two: the backend's

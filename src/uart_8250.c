@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_8250.c - PC 8250/16550 backend: registers, interrupt handler, 8259.
  *
  * Concurrency: the handler (interrupt side) and the ops (main line) share the UART

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_posix.c - POSIX termios/pty/TCP backend for the UART core (fbrl/uart_posix.h).
  *
  * One "round" of the service loop does what the thesis's COM interrupt routine did:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_serialport.c - enumeration and a polled UART backend over libserialport. */
 #define _DEFAULT_SOURCE 1
 #include <errno.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* units.c - metric conversion at the user interface (thesis 5.6). */
 #include <math.h>
 #include "fbrl/units.h"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # gen_source.sh N - write a large standard-Forth source text to stdout: N colon
 # definitions, each compiled and then run by an interpreted line, for the
 # "compile and interpret" benchmark. MARKER forgets each batch of 100 so the

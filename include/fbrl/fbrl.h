@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fbrl.h - libfbrl's portable public headers. Include this, or only the modules you use.
  * It includes no OS header, so it compiles in a freestanding build (the test
  * fbrl_h_freestanding checks that); the OS-specific backends have their own headers:
@@ -5,6 +6,8 @@
 #ifndef FBRL_FBRL_H
 #define FBRL_FBRL_H
 
+#include "fbrl/version.h"
+#include "fbrl/abi.h"
 #include "fbrl/status.h"
 #include "fbrl/crc32.h"
 #include "fbrl/ring.h"

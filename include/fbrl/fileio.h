@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fileio.h - typed binary data files (the thesis's CREATE-FILE, OPEN-FILE, RESET-FILE,
  * APPEND-FILE, CLOSE-FILE, READ-FILE, WRITE-FILE; appendix I-9, chapter 5.7-5.8).
  *
@@ -19,6 +20,8 @@
  * A handle is not thread-safe; distinct handles may be used from distinct threads. */
 #ifndef FBRL_FILEIO_H
 #define FBRL_FILEIO_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -56,15 +59,15 @@ typedef struct fbrl_ftype {
     uint32_t size; /* payload bytes: 1, 2, 4, 8, 48, or any size >= 1 for USER */
 } fbrl_ftype;
 
-extern const fbrl_ftype fbrl_ftype_chr, fbrl_ftype_integer, fbrl_ftype_long, fbrl_ftype_real,
+extern FBRL_API const fbrl_ftype fbrl_ftype_chr, fbrl_ftype_integer, fbrl_ftype_long, fbrl_ftype_real,
     fbrl_ftype_location;
 
 /* A user-defined type of `size` bytes and caller-chosen `tag` (size is checked when used). */
-fbrl_ftype fbrl_ftype_user(uint16_t tag, uint32_t size);
+FBRL_API fbrl_ftype fbrl_ftype_user(uint16_t tag, uint32_t size);
 
 /* The thesis's rule "a type is its length": 1 -> CHR, 2 -> INTEGER, 4 -> LONG, 8 -> REAL,
  * 48 -> LOCATION, any other size -> USER with tag 0. */
-fbrl_ftype fbrl_ftype_of_size(size_t size);
+FBRL_API fbrl_ftype fbrl_ftype_of_size(size_t size);
 
 /* An open data file. Caller-owned; treat the fields as private. */
 typedef struct fbrl_file {
@@ -82,24 +85,24 @@ typedef struct fbrl_file {
 
 /* CREATE-FILE: make `path` an empty data file, atomically replacing any file of that name
  * (the thesis: "if the file exists, it is set to zero length"). */
-fbrl_status fbrl_file_create(const char *path);
+FBRL_API fbrl_status fbrl_file_create(const char *path);
 
 /* OPEN-FILE: read and verify the whole file into buf[0..cap) and position at record 0.
  * Errors: ENOENT (no such file or directory), EFORMAT (not a data file, or malformed),
  * EVERSION, ECHECKSUM, ETRUNCATED, ENOSPC (records do not fit in cap), ENAME (path longer
  * than FBRL_FILE_PATH_MAX-1), EIO. On error the handle is left closed. Opening over a handle
  * that is still open drops its unsaved changes: close it first. */
-fbrl_status fbrl_file_open(fbrl_file *f, const char *path, void *buf, size_t cap);
+FBRL_API fbrl_status fbrl_file_open(fbrl_file *f, const char *path, void *buf, size_t cap);
 
 /* RESET-FILE: position at the first record. */
-fbrl_status fbrl_file_reset(fbrl_file *f);
+FBRL_API fbrl_status fbrl_file_reset(fbrl_file *f);
 
 /* APPEND-FILE: position after the last record. */
-fbrl_status fbrl_file_append(fbrl_file *f);
+FBRL_API fbrl_status fbrl_file_append(fbrl_file *f);
 
 /* Drop every record from the current position to the end (in the buffer; the disk changes on
  * commit). RESET + TRUNCATE + writes + CLOSE rewrites a file in one atomic step. */
-fbrl_status fbrl_file_truncate(fbrl_file *f);
+FBRL_API fbrl_status fbrl_file_truncate(fbrl_file *f);
 
 /* WRITE-FILE: write one value of `type` at the current position and move past it. At the
  * end this appends a record; on an existing record it replaces that record (whatever its
@@ -108,50 +111,50 @@ fbrl_status fbrl_file_truncate(fbrl_file *f);
  * type.size raw bytes for USER. Errors: EINVAL (bad type or NULL), ENONFINITE (NaN/inf in a
  * REAL or LOCATION), ENOSPC (buffer full), EFULL (2^32-1 records), ESTATE (closed handle).
  * On error nothing changes. The change reaches the disk on commit/close. */
-fbrl_status fbrl_file_write(fbrl_file *f, fbrl_ftype type, const void *value);
+FBRL_API fbrl_status fbrl_file_write(fbrl_file *f, fbrl_ftype type, const void *value);
 
 /* READ-FILE: read the current record into `value` and move past it. ETYPE if the record is
  * not of `type` (position unchanged: read it again with the right type), EEOF at the end. */
-fbrl_status fbrl_file_read(fbrl_file *f, fbrl_ftype type, void *value);
+FBRL_API fbrl_status fbrl_file_read(fbrl_file *f, fbrl_ftype type, void *value);
 
 /* Type of the current record, without moving (EEOF at the end). */
-fbrl_status fbrl_file_peek(const fbrl_file *f, fbrl_ftype *type);
+FBRL_API fbrl_status fbrl_file_peek(const fbrl_file *f, fbrl_ftype *type);
 
 /* Current record number (0-based; == count at the end) and number of records. Either
  * pointer may be NULL. */
-fbrl_status fbrl_file_tell(const fbrl_file *f, uint32_t *index, uint32_t *count);
+FBRL_API fbrl_status fbrl_file_tell(const fbrl_file *f, uint32_t *index, uint32_t *count);
 
 /* Write the records to disk atomically (temporary, fsync, rename, fsync directory). No-op if
  * nothing changed. On error the file on disk is untouched and the handle stays open. */
-fbrl_status fbrl_file_commit(fbrl_file *f);
+FBRL_API fbrl_status fbrl_file_commit(fbrl_file *f);
 
 /* CLOSE-FILE: commit, then close the handle. If the commit fails the handle stays open and
  * the error is returned: retry, or fbrl_file_discard(). */
-fbrl_status fbrl_file_close(fbrl_file *f);
+FBRL_API fbrl_status fbrl_file_close(fbrl_file *f);
 
 /* Close the handle without writing its unsaved changes. */
-fbrl_status fbrl_file_discard(fbrl_file *f);
+FBRL_API fbrl_status fbrl_file_discard(fbrl_file *f);
 
 /* Remove the temporaries a writer killed mid-commit left next to `path` (hidden files named
  * .BASE.PID-N.tmp; see docs/files.md). They are never read and never block a later commit;
  * this only reclaims their space. Call it when no other process is committing to `path`: a
  * live writer's temporary would be removed and its commit would fail (without harm to the
  * file). `removed` (may be NULL) receives the number removed. */
-fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed);
+FBRL_API fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed);
 
 /* Typed shorthands for fbrl_file_write/read with the built-in types. */
-fbrl_status fbrl_file_write_chr(fbrl_file *f, unsigned char v);
-fbrl_status fbrl_file_write_integer(fbrl_file *f, int16_t v);
-fbrl_status fbrl_file_write_long(fbrl_file *f, int32_t v);
-fbrl_status fbrl_file_write_real(fbrl_file *f, double v);
-fbrl_status fbrl_file_write_loc(fbrl_file *f, const fbrl_loc *v);
-fbrl_status fbrl_file_write_user(fbrl_file *f, uint16_t tag, const void *data, size_t size);
-fbrl_status fbrl_file_read_chr(fbrl_file *f, unsigned char *v);
-fbrl_status fbrl_file_read_integer(fbrl_file *f, int16_t *v);
-fbrl_status fbrl_file_read_long(fbrl_file *f, int32_t *v);
-fbrl_status fbrl_file_read_real(fbrl_file *f, double *v);
-fbrl_status fbrl_file_read_loc(fbrl_file *f, fbrl_loc *v);
-fbrl_status fbrl_file_read_user(fbrl_file *f, uint16_t tag, void *data, size_t size);
+FBRL_API fbrl_status fbrl_file_write_chr(fbrl_file *f, unsigned char v);
+FBRL_API fbrl_status fbrl_file_write_integer(fbrl_file *f, int16_t v);
+FBRL_API fbrl_status fbrl_file_write_long(fbrl_file *f, int32_t v);
+FBRL_API fbrl_status fbrl_file_write_real(fbrl_file *f, double v);
+FBRL_API fbrl_status fbrl_file_write_loc(fbrl_file *f, const fbrl_loc *v);
+FBRL_API fbrl_status fbrl_file_write_user(fbrl_file *f, uint16_t tag, const void *data, size_t size);
+FBRL_API fbrl_status fbrl_file_read_chr(fbrl_file *f, unsigned char *v);
+FBRL_API fbrl_status fbrl_file_read_integer(fbrl_file *f, int16_t *v);
+FBRL_API fbrl_status fbrl_file_read_long(fbrl_file *f, int32_t *v);
+FBRL_API fbrl_status fbrl_file_read_real(fbrl_file *f, double *v);
+FBRL_API fbrl_status fbrl_file_read_loc(fbrl_file *f, fbrl_loc *v);
+FBRL_API fbrl_status fbrl_file_read_user(fbrl_file *f, uint16_t tag, void *data, size_t size);
 
 #ifdef __cplusplus
 }

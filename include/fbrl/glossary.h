@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary.h - the thesis's data glossary in the FBRL language: location templates and
  * matrices (appendix III), calibration and mapping (appendix II), metric conversion (I-7)
  * and typed data files (I-9), bound to the loc, matrix, calib, units and fileio modules.
@@ -11,6 +12,8 @@
  * fbrl_glossary_loc. */
 #ifndef FBRL_GLOSSARY_H
 #define FBRL_GLOSSARY_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -62,19 +65,19 @@ typedef struct fbrl_glossary {
  * the glossary words in vm. g must outlive vm (the words keep a pointer to it). Needs the
  * FBRL data words (LOCATION, ARRAY, ...) that every VM has. FBRL_EINVAL for NULL,
  * FBRL_ENOMEM if the dictionary is full. */
-fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
+FBRL_API fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 
 /* Give the file words their buffer storage (the VM never allocates): mem[0..size) is cut
  * into FBRL_GLOSSARY_FILES equal slices, one per open file, so one file can hold
  * size / FBRL_GLOSSARY_FILES bytes of records (fileio: 8 + payload bytes per record).
  * Call after install, while no file is open (FBRL_ESTATE otherwise). mem must stay valid
  * until fbrl_glossary_finish(). Without storage OPEN-FILE throws "no file storage". */
-fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
+FBRL_API fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
 
 /* Close every open file, committing its changes to disk (CLOSE-FILE for each). Call when
  * the VM is done. Every file is closed even if one fails (its changes are then discarded
  * and the first error is returned). */
-fbrl_status fbrl_glossary_finish(fbrl_glossary *g);
+FBRL_API fbrl_status fbrl_glossary_finish(fbrl_glossary *g);
 
 /* Mapping for the robot words (DESIGN 7). With MAP-ON, map_out carries a location from the
  * original block frame to the moved block through the WITH-CAL structure
@@ -85,14 +88,15 @@ fbrl_status fbrl_glossary_finish(fbrl_glossary *g);
  * unchanged): FBRL_EINVAL for NULL or an uninstalled g, FBRL_ESTATE if mapping is on but
  * the WITH-CAL structure is gone or was overwritten, FBRL_ERANGE from map_out when *off
  * passes FBRL_CALIB_AXIS_MAX, FBRL_ENONFINITE / FBRL_EOVERFLOW from the mapping. */
-fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2], double *off);
-fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2]);
+FBRL_API fbrl_status fbrl_glossary_map_out(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2],
+                                           double *off);
+FBRL_API fbrl_status fbrl_glossary_map_in(const fbrl_glossary *g, fbrl_loc *loc, const double axis[2]);
 
 /* The location at VM address addr: 48 bytes wholly inside the VM's data space and aligned
  * to 8 bytes (as CREATE-LOC and ARRAY cells are). FBRL_EINVAL for NULL, FBRL_ERANGE for an
  * address outside the data space or misaligned. Its contents are not checked: call
  * fbrl_loc_check() before using it as a position. */
-fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out);
+FBRL_API fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **out);
 
 /* Is the word xt a location template (CREATE-LOC name)? FBRL_OK and its data field in
  * *addr, FBRL_ETYPE for any other word (the console's work-cell view lists them). */
@@ -102,11 +106,11 @@ fbrl_status fbrl_glossary_loc_word(const fbrl_vm *vm, fbrl_cell xt, fbrl_cell *a
  * structure's name pushes), e.g. for GET-CAL-POINTS teaching them with the arm. FBRL_EINVAL
  * for NULL, FBRL_ERANGE if addr is outside the data space, FBRL_ETYPE if no CREATE-CAL
  * structure is there. Slot k (1..3) is (*out)->p[k - 1]. */
-fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out);
+FBRL_API fbrl_status fbrl_glossary_calpts(fbrl_vm *vm, fbrl_cell addr, fbrl_calpts **out);
 
 /* The metric switch of this VM (for converting user input and output with the units
  * module); NULL for NULL g. */
-const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g);
+FBRL_API const fbrl_units *fbrl_glossary_units(const fbrl_glossary *g);
 
 /* The glossary's named data, as a workspace keeps it (fbrl/workspace.h): what the word
  * xt is and the C address of its contents in the VM. */
@@ -121,27 +125,28 @@ typedef enum fbrl_glossary_kind {
 
 /* *kind (FBRL_GLOSSARY_NONE for any other word) and *obj its contents. FBRL_EINVAL for
  * NULL or an uninstalled g. */
-fbrl_status fbrl_glossary_object(fbrl_glossary *g, fbrl_cell xt, fbrl_glossary_kind *kind, void **obj);
+FBRL_API fbrl_status fbrl_glossary_object(fbrl_glossary *g, fbrl_cell xt, fbrl_glossary_kind *kind,
+                                          void **obj);
 
 /* Make a new named object of that kind, as its defining word would: name (1..31
  * characters), contents zero (a location at 0, a matrix of zeros: fill it with
  * fbrl_rectmat_init / fbrl_radmat_init), a calibration structure the identity. *obj gets
  * the contents' C address. All or nothing: on failure (dictionary full, bad name) no word
  * is left and the failure is thrown in the VM (FBRL_ETHROW). */
-fbrl_status fbrl_glossary_make(fbrl_glossary *g, fbrl_glossary_kind kind, const char *name, size_t len,
-                               void **obj);
+FBRL_API fbrl_status fbrl_glossary_make(fbrl_glossary *g, fbrl_glossary_kind kind, const char *name,
+                                        size_t len, void **obj);
 
 /* WITH-CAL's structure (VM address, 0 = none) and the MAP-ON switch; set_mapping takes a
  * structure address 0 (none) or a CREATE-CAL-STRU's (FBRL_ETYPE otherwise) and map_on only
  * with a rigid one (FBRL_ESTATE). */
-fbrl_status fbrl_glossary_mapping(const fbrl_glossary *g, fbrl_cell *with_cal, int *map_on);
-fbrl_status fbrl_glossary_set_mapping(fbrl_glossary *g, fbrl_cell with_cal, int map_on);
+FBRL_API fbrl_status fbrl_glossary_mapping(const fbrl_glossary *g, fbrl_cell *with_cal, int *map_on);
+FBRL_API fbrl_status fbrl_glossary_set_mapping(fbrl_glossary *g, fbrl_cell with_cal, int map_on);
 
 /* PRINT-LOC's destination, the communication port: write(ctx, s, n) receives each line
  * (the DISPLAY-LOC text followed by CR LF). write = NULL removes it; PRINT-LOC then
  * throws "no communication port". */
-void fbrl_glossary_set_port_writer(fbrl_glossary *g, void (*write)(void *ctx, const char *s, size_t n),
-                                   void *ctx);
+FBRL_API void fbrl_glossary_set_port_writer(fbrl_glossary *g,
+                                            void (*write)(void *ctx, const char *s, size_t n), void *ctx);
 
 #ifdef __cplusplus
 }

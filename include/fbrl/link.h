@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link.h - a robot session: RAPL commands over an fbrl_uart with echo verification.
  *
  * The link types a command, checks the controller's echo of every character, and sends
@@ -14,6 +15,8 @@
  * No OS header: time comes from the uart backend's now_us or the config's clock. */
 #ifndef FBRL_LINK_H
 #define FBRL_LINK_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -69,7 +72,7 @@ typedef struct fbrl_link_arm {
 } fbrl_link_arm;
 
 /* The CRS A255 (DESIGN 6): the default. */
-extern const fbrl_link_arm fbrl_link_arm_a255;
+extern FBRL_API const fbrl_link_arm fbrl_link_arm_a255;
 
 typedef struct fbrl_link_config {
     fbrl_rapl_form form;       /* keyword (default) or /NNN token form */
@@ -110,7 +113,7 @@ typedef struct fbrl_link_config {
     int aci;
 } fbrl_link_config;
 
-void fbrl_link_config_init(fbrl_link_config *c);
+FBRL_API void fbrl_link_config_init(fbrl_link_config *c);
 
 typedef struct fbrl_link_stats {
     uint64_t commands;       /* commands started */
@@ -220,29 +223,29 @@ typedef struct fbrl_link {
 
 /* Bind a session to an open uart (its receive and transmit rings should hold at least
  * 2 * FBRL_LINK_LINE_MAX bytes). cfg NULL = defaults. */
-fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg);
+FBRL_API fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg);
 
 /* Start-up handshake: bring the controller's line to a known state (erasing whatever
  * was typed) and send NOHELP. Blocking (through the uart's timeouts). */
-fbrl_status fbrl_link_connect(fbrl_link *l);
+FBRL_API fbrl_status fbrl_link_connect(fbrl_link *l);
 
 /* ---- one command, step by step (several links from one thread) ---- */
 
 /* Start a command line (printable ASCII, at most FBRL_LINK_LINE_MAX, no '?': the probes
  * use it). FBRL_ESTATE if a command is still running. */
-fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind);
+FBRL_API fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind);
 
 /* Make progress for at most timeout_ms (0 = only what is already there). *done = 1
  * when the command has ended; the return value is then its result. While it runs the
  * return value is FBRL_OK. */
-fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done);
+FBRL_API fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done);
 
 /* Start a continuous readout (W1 W3 W5 WE1 WE3 WE5) that ends after `lines` value
  * lines (each passed to the line handler); fbrl_link_poll() runs it. */
-fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
+FBRL_API fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
 
 /* Non-zero while a command runs. */
-int fbrl_link_busy(const fbrl_link *l);
+FBRL_API int fbrl_link_busy(const fbrl_link *l);
 
 /* Most links one fbrl_link_poll_many() call serves. */
 #define FBRL_LINK_POLL_MANY_MAX FBRL_UART_WAIT_MAX
@@ -256,45 +259,46 @@ int fbrl_link_busy(const fbrl_link *l);
  * few times per command, not per byte. FBRL_ETIMEOUT (and *index = n) if none finished
  * in time, FBRL_EEMPTY if none was busy, FBRL_EINVAL for n > FBRL_LINK_POLL_MANY_MAX.
  * NULL entries are skipped. */
-fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index);
+FBRL_API fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms,
+                                         size_t *index);
 
 /* ---- blocking calls ---- */
 
 /* Encode and run one command from the table. W0/W2/W4, STATUS, TYPEI and TYPEV fill the
  * results below (fbrl_link_last_pos() ...); streams are run by fbrl_link_stream(). */
-fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                          int straight);
+FBRL_API fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                   int straight);
 
 /* Run a raw line; its output lines go to cfg.on_line. */
-fbrl_status fbrl_link_raw(fbrl_link *l, const char *line);
+FBRL_API fbrl_status fbrl_link_raw(fbrl_link *l, const char *line);
 
 /* FINISH: wait until the current motion is done. */
-fbrl_status fbrl_link_finish(fbrl_link *l);
+FBRL_API fbrl_status fbrl_link_finish(fbrl_link *l);
 
 /* W2 (or W0 / W4 with cmd): position read back; out may be NULL. */
-fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out);
+FBRL_API fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out);
 
 /* STATUS into out. */
-fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out);
+FBRL_API fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out);
 
 /* TYPEI / TYPEV of a variable name (or any expression the controller understands,
  * e.g. "SIG(3)"). */
-fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value);
-fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value);
+FBRL_API fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value);
+FBRL_API fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value);
 
 /* Digital input n (1..16): *on = 0 or 1, read with TYPEI SIG(n). */
-fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
+FBRL_API fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
 
 /* Continuous readout (W1 W3 W5 WE1 WE3 WE5): read `lines` value lines, each passed to
  * cfg.on_line, then stop the stream. */
-fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
+FBRL_API fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
 
 /* Before writing raw bytes to the uart yourself (outside the link): erase whatever the
  * link may have left on the controller's line (a probe leaves three marker characters
  * there), so that a CR or LF you send runs only your own text. Sends one CAN unless the
  * line is known to be empty; afterwards the link treats the line as unknown and
  * verifies it before its next command. FBRL_ESTATE while a command runs. */
-fbrl_status fbrl_link_clear_line(fbrl_link *l);
+FBRL_API fbrl_status fbrl_link_clear_line(fbrl_link *l);
 
 /* ---- settings after init ---- */
 
@@ -303,47 +307,47 @@ typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int f
 /* Replace the handler of output lines (cfg.on_line, cfg.line_ctx; fn may be NULL).
  * The previous one goes to *old_fn / *old_ctx when those are not NULL, so a caller
  * can borrow the lines for one command and put the owner's handler back. */
-fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
-                                       fbrl_link_line_fn *old_fn, void **old_ctx);
+FBRL_API fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
+                                                fbrl_link_line_fn *old_fn, void **old_ctx);
 
 /* cfg.on_exec later: every line the controller executed. The previous handler goes to
  * *old_fn / *old_ctx (when not NULL) so a new one can pass each line on to it (a trace
  * beside a run log). */
 typedef void (*fbrl_link_exec_fn)(void *ctx, const char *line, size_t len, fbrl_status result);
-fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
-                                       fbrl_link_exec_fn *old_fn, void **old_ctx);
+FBRL_API fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
+                                                fbrl_link_exec_fn *old_fn, void **old_ctx);
 
 /* The command form the link sends (keyword or /NNN token, cfg.form). */
-fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form);
+FBRL_API fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form);
 
 /* The arm's axis count the link was configured with (cfg.naxes: 5 on the A255, 6 on the
  * A465): how many joint values MA, MI and precision points carry. */
-fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes);
+FBRL_API fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes);
 
 /* ---- results ---- */
 
 /* The controller's error of the last command that ended with FBRL_ECONTROLLER:
  * *code (e.g. 29) and its text ("TRANSFORM ILLEGAL"); code -1 if none. */
-fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
+FBRL_API fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
 
-const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l);
+FBRL_API const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l);
 /* The value of the last FBRL_LINK_REPLY_INT / REAL command that succeeded. */
-fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v);
-fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v);
-const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
-fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out);
+FBRL_API fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v);
+FBRL_API fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v);
+FBRL_API const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
+FBRL_API fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out);
 
 /* The class of a command's result (RAN for FBRL_OK, REFUSED for FBRL_ECONTROLLER,
  * MAY_HAVE_RUN for FBRL_EMAYBE, NOT_RUN for anything else). */
-fbrl_link_fate fbrl_link_fate_of(fbrl_status result);
+FBRL_API fbrl_link_fate fbrl_link_fate_of(fbrl_status result);
 
 /* The last command's outcome (FBRL_ESTATE while one runs). */
-fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out);
+FBRL_API fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out);
 
 /* Is this line safe to type twice (docs/link.md 3.9)? Table commands say it in the
  * encoder's table; an assignment is safe unless its value reads its own target
  * (V1=V1+1); anything the link cannot classify is not. */
-int fbrl_link_line_safe(const char *line);
+FBRL_API int fbrl_link_line_safe(const char *line);
 
 #ifdef __cplusplus
 }

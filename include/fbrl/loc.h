@@ -1,6 +1,9 @@
+/* SPDX-License-Identifier: MIT */
 /* loc.h - location templates: X Y Z O A T (x, y, z in inches; yaw, pitch, roll in degrees). */
 #ifndef FBRL_LOC_H
 #define FBRL_LOC_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include "fbrl/status.h"
@@ -41,31 +44,32 @@ typedef enum fbrl_loc_axis {
  * outside X..T and FBRL_ENONFINITE for a NaN or infinite input; on error no output changes. */
 
 /* FBRL_OK when all six components are finite (GETx/SETx callers use it to vet a location). */
-fbrl_status fbrl_loc_check(const fbrl_loc *loc);
+FBRL_API fbrl_status fbrl_loc_check(const fbrl_loc *loc);
 
 /* GETX .. GETT and SETX .. SETT, by axis. */
-fbrl_status fbrl_loc_get(const fbrl_loc *loc, fbrl_loc_axis axis, double *value);
-fbrl_status fbrl_loc_set(fbrl_loc *loc, fbrl_loc_axis axis, double value);
+FBRL_API fbrl_status fbrl_loc_get(const fbrl_loc *loc, fbrl_loc_axis axis, double *value);
+FBRL_API fbrl_status fbrl_loc_set(fbrl_loc *loc, fbrl_loc_axis axis, double value);
 
 /* DEFINE-LOC: set all six components. */
-fbrl_status fbrl_loc_define(fbrl_loc *loc, double x, double y, double z, double o, double a, double t);
+FBRL_API fbrl_status fbrl_loc_define(fbrl_loc *loc, double x, double y, double z, double o, double a,
+                                     double t);
 
 /* SET-LOC: copy src into dst (dst may equal src). */
-fbrl_status fbrl_loc_copy(fbrl_loc *dst, const fbrl_loc *src);
+FBRL_API fbrl_status fbrl_loc_copy(fbrl_loc *dst, const fbrl_loc *src);
 
 /* SHIFTA: add every component of `by` to loc (angles add too; they are not wrapped).
  * A finite sum that overflows gives FBRL_EOVERFLOW. */
-fbrl_status fbrl_loc_shift(fbrl_loc *loc, const fbrl_loc *by);
+FBRL_API fbrl_status fbrl_loc_shift(fbrl_loc *loc, const fbrl_loc *by);
 
 /* Straight-line distance between the positions (x, y, z) of two locations, in inches;
  * orientation is ignored. */
-fbrl_status fbrl_loc_distance(const fbrl_loc *a, const fbrl_loc *b, double *inches);
+FBRL_API fbrl_status fbrl_loc_distance(const fbrl_loc *a, const fbrl_loc *b, double *inches);
 
 /* DISPLAY-LOC's text, one line without newline, fixed width so that rows line up:
  *   "X   +12.0000 Y    -3.5000 Z    +1.2500 in  O  +90.000 A  -90.000 T   +0.000 deg"
  * With metric != 0 the lengths are shown in centimetres (unit "cm"); angles are always
  * degrees. FBRL_ENOSPC if buf is too small (buf then holds a truncated, terminated text). */
-fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t size);
+FBRL_API fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t size);
 
 #ifdef __cplusplus
 }

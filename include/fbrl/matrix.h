@@ -1,6 +1,9 @@
+/* SPDX-License-Identifier: MIT */
 /* matrix.h - generic arrays over caller storage, and the location matrices RECTMAT and RADMAT. */
 #ifndef FBRL_MATRIX_H
 #define FBRL_MATRIX_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include "fbrl/status.h"
@@ -23,20 +26,20 @@ typedef struct fbrl_array {
 } fbrl_array;
 
 /* Bytes of storage an array of rows x cols cells needs; FBRL_EOVERFLOW if not a size_t. */
-fbrl_status fbrl_array_bytes(size_t cell_size, size_t rows, size_t cols, size_t *bytes);
+FBRL_API fbrl_status fbrl_array_bytes(size_t cell_size, size_t rows, size_t cols, size_t *bytes);
 
 /* ARRAY: a 1-D array of `count` cells over storage of storage_size bytes.
  * FBRL_EINVAL for NULL or a zero size/count, FBRL_ENOSPC if the storage is too small. */
-fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size,
-                            size_t count);
+FBRL_API fbrl_status fbrl_array_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size,
+                                     size_t count);
 /* 2ARRAY: a rows x cols array. */
-fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size, size_t rows,
-                             size_t cols);
+FBRL_API fbrl_status fbrl_array2_init(fbrl_array *a, void *storage, size_t storage_size, size_t cell_size,
+                                      size_t rows, size_t cols);
 
 /* Address of cell `index` of a 1-D array (in a 2-D array, index counts cells row by row). */
-fbrl_status fbrl_array_cell(const fbrl_array *a, size_t index, void **cell);
+FBRL_API fbrl_status fbrl_array_cell(const fbrl_array *a, size_t index, void **cell);
 /* Address of cell (row, col). */
-fbrl_status fbrl_array2_cell(const fbrl_array *a, size_t row, size_t col, void **cell);
+FBRL_API fbrl_status fbrl_array2_cell(const fbrl_array *a, size_t row, size_t col, void **cell);
 
 /* ---- Rectangular location matrix: RECTMAT (= AUTOMAT) ----
  * Location (i, j, k) = base + (i*dx, j*dy, k*dz); yaw, pitch and roll are the base's.
@@ -47,8 +50,9 @@ typedef struct fbrl_rectmat {
     double dx, dy, dz; /* inches between neighbours along x, y, z (may be negative) */
 } fbrl_rectmat;
 
-fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base, double dx, double dy, double dz);
-fbrl_status fbrl_rectmat_loc(const fbrl_rectmat *m, long i, long j, long k, fbrl_loc *out);
+FBRL_API fbrl_status fbrl_rectmat_init(fbrl_rectmat *m, const fbrl_loc *base, double dx, double dy,
+                                       double dz);
+FBRL_API fbrl_status fbrl_rectmat_loc(const fbrl_rectmat *m, long i, long j, long k, fbrl_loc *out);
 
 /* ---- Radial location matrix: RADMAT ----
  * Centre = the arm's base axis (x = y = 0). The base location has radius r0 = hypot(x, y),
@@ -67,9 +71,9 @@ typedef struct fbrl_radmat {
     double r0, a0;    /* base radius (inches) and angle (radians), derived at init */
 } fbrl_radmat;
 
-fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base, double inc_angle, double ring_dist,
-                             double z_off);
-fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, fbrl_loc *out);
+FBRL_API fbrl_status fbrl_radmat_init(fbrl_radmat *m, const fbrl_loc *base, double inc_angle,
+                                      double ring_dist, double z_off);
+FBRL_API fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, fbrl_loc *out);
 
 /* SHOW-AUTOMAT and SHOW-RADMAT: one line describing the matrix, e.g.
  *   "RECTMAT base X ... deg  step X    +0.7500 Y    -1.2500 Z    +0.5000 in"
@@ -78,8 +82,8 @@ fbrl_status fbrl_radmat_loc(const fbrl_radmat *m, long ring, long idx, long k, f
  * Lengths in cm when metric != 0. FBRL_MATRIX_TEXT_SIZE holds it for components below 1e9;
  * FBRL_ENOSPC (truncated, terminated text) if buf is too small. */
 #define FBRL_MATRIX_TEXT_SIZE 320
-fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, size_t size);
-fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size_t size);
+FBRL_API fbrl_status fbrl_rectmat_format(const fbrl_rectmat *m, int metric, char *buf, size_t size);
+FBRL_API fbrl_status fbrl_radmat_format(const fbrl_radmat *m, int metric, char *buf, size_t size);
 
 #ifdef __cplusplus
 }

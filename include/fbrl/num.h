@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* num.h - decimal numbers to and from doubles, the same whatever locale the host sets.
  *
  * strtod and printf's %f/%e/%g follow the C locale of the process (LC_NUMERIC): a host
@@ -9,6 +10,8 @@
  * significant digits reads back bit for bit. No OS headers, no allocation. */
 #ifndef FBRL_NUM_H
 #define FBRL_NUM_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include "fbrl/status.h"
@@ -31,25 +34,25 @@ extern "C" {
  * FBRL_ESYNTAX for anything else, FBRL_EOVERFLOW when the magnitude is too large for a
  * double; a magnitude below the smallest subnormal reads as zero (with its sign), as
  * strtod does. *out changes only on success. */
-fbrl_status fbrl_num_parse(const char *s, size_t len, double *out);
+FBRL_API fbrl_status fbrl_num_parse(const char *s, size_t len, double *out);
 
 /* printf("%[+][0]<width>.<decimals>f", v) into buf (NUL-terminated), locale-free: the
  * exact value rounded half to even at the last decimal. NaN and infinities print "nan",
  * "inf", "-inf" (padded with spaces). *len (may be NULL) gets the length without the NUL.
  * FBRL_ENOSPC when the text does not fit (buf then holds as much as fits),
  * FBRL_ERANGE for decimals outside 0..FBRL_NUM_DECIMALS_MAX or a negative width. */
-fbrl_status fbrl_num_fixed(char *buf, size_t size, double v, int width, int decimals, unsigned flags,
-                           size_t *len);
+FBRL_API fbrl_status fbrl_num_fixed(char *buf, size_t size, double v, int width, int decimals, unsigned flags,
+                                    size_t *len);
 
 /* printf("%.<digits-1>e", v) split up: |v| rounded to ndig significant digits
  * (1..FBRL_NUM_DIGITS_MAX, half to even), digits[0..ndig) get '0'..'9' (no NUL) and *exp10
  * the decimal exponent of the first digit: |v| = d0.d1d2... x 10^exp10. Zero gives zeros
  * and exponent 0. FBRL_ENONFINITE for NaN or infinity, FBRL_ERANGE for a bad ndig. */
-fbrl_status fbrl_num_digits(double v, int ndig, char *digits, int *exp10);
+FBRL_API fbrl_status fbrl_num_digits(double v, int ndig, char *digits, int *exp10);
 
 /* printf("%.<prec>g", v) into buf, locale-free (prec 1..FBRL_NUM_DIGITS_MAX; exponent
  * written e+XX / e-XX with at least two digits). Errors as fbrl_num_fixed. */
-fbrl_status fbrl_num_general(char *buf, size_t size, double v, int prec, size_t *len);
+FBRL_API fbrl_status fbrl_num_general(char *buf, size_t size, double v, int prec, size_t *len);
 
 #ifdef __cplusplus
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* port.h - open a controller port by its name, the same way in every program.
  *
  *   fbrl_port_open(&p, "/dev/ttyUSB0", &opt)            a serial device (or any tty/pty path)
@@ -21,6 +22,8 @@
  * storage here), so fbrl.h stays freestanding; src/port.c is built on POSIX hosts. */
 #ifndef FBRL_PORT_H
 #define FBRL_PORT_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -74,13 +77,13 @@ typedef struct fbrl_port_options {
     void *sim_ctx;
 } fbrl_port_options;
 
-void fbrl_port_options_init(fbrl_port_options *o);
+FBRL_API void fbrl_port_options_init(fbrl_port_options *o);
 
 /* Set one option from text: "baud" (1..4000000), "data-bits" (5..8), "parity" (none|even|odd
  * or N|E|O), "stop-bits" (1|2), "flow" (none|xonxoff), "low-latency" (on|off|1|0),
  * "latency-timer" (1..255 ms), "thread" (on|off). FBRL_EINVAL for an unknown key or a bad
  * value (o unchanged). */
-fbrl_status fbrl_port_set_option(fbrl_port_options *o, const char *key, const char *value);
+FBRL_API fbrl_status fbrl_port_set_option(fbrl_port_options *o, const char *key, const char *value);
 
 /* Room for the backend's state (fbrl_uart_posix), checked at compile time in port.c. */
 #define FBRL_PORT_BACKEND_BYTES 8192
@@ -113,17 +116,17 @@ typedef struct fbrl_port {
  * FBRL_ETIMEOUT, FBRL_EIO), FBRL_EINVAL for a bad name or option text,
  * FBRL_EUNSUPPORTED for "sim:" without a hook, or what the hook returned. A low-latency
  * mode the driver lacks is no error: fbrl_port_describe() tells it. */
-fbrl_status fbrl_port_open(fbrl_port *p, const char *url, const fbrl_port_options *opt);
+FBRL_API fbrl_status fbrl_port_open(fbrl_port *p, const char *url, const fbrl_port_options *opt);
 
 /* The uart of an open port (NULL when p is not open). */
-fbrl_uart *fbrl_port_uart(fbrl_port *p);
+FBRL_API fbrl_uart *fbrl_port_uart(fbrl_port *p);
 
 /* One line: "/dev/ttyUSB0 (9600 8N1, XON/XOFF; ftdi_sio, low latency: latency timer 1 ms
  * (was 16))", "/dev/pts/4 (9600 8N1, XON/XOFF; pty, low latency: not supported)". */
-fbrl_status fbrl_port_describe(const fbrl_port *p, char *buf, size_t cap);
+FBRL_API fbrl_status fbrl_port_describe(const fbrl_port *p, char *buf, size_t cap);
 
 /* Close the uart and stop an emulator the hook started. */
-fbrl_status fbrl_port_close(fbrl_port *p);
+FBRL_API fbrl_status fbrl_port_close(fbrl_port *p);
 
 /* ---- USB-serial adapters by device name (also for port lists; nothing is opened) ---- */
 
@@ -135,13 +138,38 @@ typedef struct fbrl_port_usb_info {
 
 /* What sysfs (under sysfs_root, NULL = "/sys") says about the tty called name ("ttyUSB0"
  * or "/dev/ttyUSB0"). FBRL_OK (an unknown device gives driver "" and timer -1). */
-fbrl_status fbrl_port_usb_info_get(const char *sysfs_root, const char *name, fbrl_port_usb_info *out);
+FBRL_API fbrl_status fbrl_port_usb_info_get(const char *sysfs_root, const char *name,
+                                            fbrl_port_usb_info *out);
+
+/* ---- the serial ports this machine has (Linux sysfs; nothing is opened) ---- */
+
+/* One port as fbrl_port_list() finds it. Every text is "" when unknown. */
+typedef struct fbrl_port_entry {
+    char device[128];      /* "/dev/ttyUSB0" */
+    char by_id[256];       /* its stable name, "/dev/serial/by-id/usb-FTDI_..._A12345-if00-port0" */
+    char description[128]; /* the USB product string ("FT232R USB UART") */
+    char manufacturer[64]; /* the USB manufacturer string ("FTDI") */
+    char serial[64];       /* the USB serial number ("A12345") */
+    int usb;               /* 1 when the port is on USB: vid and pid are known */
+    unsigned vid, pid;     /* USB vendor and product id */
+    char driver[32];       /* kernel driver ("ftdi_sio", "cdc_acm", "serial8250") */
+    int latency_timer_ms;  /* as fbrl_port_usb_info_get() says; -1 when none */
+} fbrl_port_entry;
+
+/* List the serial ports: every tty in SYSFS/class/tty with a device behind it (8250 UARTs
+ * only when one is there: their "type" is not 0), sorted by device name, with the names
+ * under DEV/serial/by-id that lead to each. sysfs_root NULL = "/sys", dev_root NULL =
+ * "/dev". Fills out[0 .. max) and sets *count to the number found (which may exceed max).
+ * FBRL_EUNSUPPORTED without SYSFS/class/tty (not Linux); FBRL_EINVAL for NULL count. */
+FBRL_API fbrl_status fbrl_port_list(const char *sysfs_root, const char *dev_root, fbrl_port_entry *out,
+                                    size_t max, size_t *count);
 
 /* Set the latency timer of the tty called name to ms (1..255) through
  * SYSFS/bus/usb-serial/devices/NAME/latency_timer; *was = the value before (may be NULL).
  * FBRL_ENOENT when the device has no latency timer, FBRL_EIO when it cannot be written
  * (permissions: see docs/serial.md), FBRL_EINVAL for bad arguments. */
-fbrl_status fbrl_port_set_latency_timer(const char *sysfs_root, const char *name, unsigned ms, int *was);
+FBRL_API fbrl_status fbrl_port_set_latency_timer(const char *sysfs_root, const char *name, unsigned ms,
+                                                 int *was);
 
 #ifdef __cplusplus
 }

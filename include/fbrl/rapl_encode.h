@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_encode.h - RAPL-II command lines for the CRS controller, from one command table.
  *
  * fbrl_rapl_encode() writes one command line (without the CR) into a caller's buffer,
@@ -14,6 +15,8 @@
  * The module includes no OS header. */
 #ifndef FBRL_RAPL_ENCODE_H
 #define FBRL_RAPL_ENCODE_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -148,10 +151,10 @@ typedef struct fbrl_rapl_cmdinfo {
 } fbrl_rapl_cmdinfo;
 
 /* The table entry of cmd, or NULL when cmd is out of range. */
-const fbrl_rapl_cmdinfo *fbrl_rapl_cmd_info(fbrl_rapl_cmd cmd);
+FBRL_API const fbrl_rapl_cmdinfo *fbrl_rapl_cmd_info(fbrl_rapl_cmd cmd);
 
 /* Look a keyword up (case-insensitive, whole word). FBRL_ENOENT when unknown. */
-fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd);
+FBRL_API fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd);
 
 typedef enum fbrl_rapl_argkind { FBRL_RAPL_ARG_INT, FBRL_RAPL_ARG_REAL, FBRL_RAPL_ARG_STR } fbrl_rapl_argkind;
 
@@ -204,17 +207,18 @@ static inline fbrl_rapl_arg fbrl_rapl_str(const char *s)
  * Errors: FBRL_EINVAL (null pointer, unknown cmd, wrong argument count or kind, ",S" not
  * allowed), FBRL_ENAME (bad name), FBRL_ENONFINITE, FBRL_ERANGE (magnitude too large or
  * word not allowed), FBRL_ENOSPC (buf too small; buf then holds ""). */
-fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form, fbrl_rapl_cmd cmd,
-                             const fbrl_rapl_arg *args, size_t nargs, int straight);
+FBRL_API fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, fbrl_rapl_form form,
+                                      fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                      int straight);
 
 /* Check a name: 1-8 characters, a letter then letters, digits or '_' (either case); a
  * leading '#' (precision point) only when hash_ok. FBRL_ENAME otherwise. */
-fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok);
+FBRL_API fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok);
 
 /* Write a real rounded to FBRL_RAPL_REAL_DECIMALS as the shortest text of that value:
  * [-]digits[.d..d] without trailing zeros ("2.5", "-90", "0.0001"; "-0" never appears).
  * FBRL_ENONFINITE, FBRL_ERANGE (|v| > FBRL_RAPL_REAL_MAX), FBRL_ENOSPC. */
-fbrl_status fbrl_rapl_format_real(char *buf, size_t cap, size_t *len, double v);
+FBRL_API fbrl_status fbrl_rapl_format_real(char *buf, size_t cap, size_t *len, double v);
 
 #ifdef __cplusplus
 }

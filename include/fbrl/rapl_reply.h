@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_reply.h - understanding what the RAPL controller prints (docs/rapl-commands.md 1, 4, 5).
  *
  * Two layers, both bounded and safe on any input (they never read past the given length):
@@ -9,6 +10,8 @@
  * controller prints, so a corrupted byte rarely passes as a number. No OS header. */
 #ifndef FBRL_RAPL_REPLY_H
 #define FBRL_RAPL_REPLY_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -35,15 +38,15 @@ typedef struct fbrl_rapl_reader {
     unsigned char done;   /* the previous call completed a line: start a new one */
 } fbrl_rapl_reader;
 
-void fbrl_rapl_reader_init(fbrl_rapl_reader *r);
+FBRL_API void fbrl_rapl_reader_init(fbrl_rapl_reader *r);
 
 /* Take one byte. Printable bytes (0x20-0x7E) are collected; other bytes except CR and
  * LF are dropped and mark the line flawed. */
-fbrl_rapl_event fbrl_rapl_reader_feed(fbrl_rapl_reader *r, uint8_t byte);
+FBRL_API fbrl_rapl_event fbrl_rapl_reader_feed(fbrl_rapl_reader *r, uint8_t byte);
 
 /* The line completed by the last EV_LINE (valid until the next feed). *flawed (may be
  * NULL) tells whether a control byte was dropped from it or it was cut. */
-const char *fbrl_rapl_reader_line(const fbrl_rapl_reader *r, size_t *len, int *flawed);
+FBRL_API const char *fbrl_rapl_reader_line(const fbrl_rapl_reader *r, size_t *len, int *flawed);
 
 /* ---- error lines ---- */
 
@@ -54,32 +57,32 @@ typedef enum fbrl_rapl_errc {
     FBRL_RAPL_ERRC_JOINT_LIMIT, /* a joint would pass its range */
     FBRL_RAPL_ERRC_COLLISION    /* the motion hit something (an emulator with a work cell) */
 } fbrl_rapl_errc;
-fbrl_rapl_errc fbrl_rapl_error_class(int code);
+FBRL_API fbrl_rapl_errc fbrl_rapl_error_class(int code);
 
 /* The controller's text for an error code ("TRANSFORM ILLEGAL"), or NULL if unknown. */
-const char *fbrl_rapl_error_text(int code);
+FBRL_API const char *fbrl_rapl_error_text(int code);
 /* What the error means for the user, in plain words, and what to do ("the position is
  * out of the arm's reach ... - choose a point closer ..."), or NULL if unknown. Every
  * code with a text has one. */
-const char *fbrl_rapl_error_help(int code);
+FBRL_API const char *fbrl_rapl_error_help(int code);
 
 /* Parse "NNN-TEXT." (exactly three digits, '-', upper-case text, final '.').
  * FBRL_OK: *code and text (NUL-terminated, without the '.'; may be NULL) are set and the
  * text is the one the controller uses for that code. FBRL_ECHECKSUM: the line has the
  * shape of an error line but code and text disagree (a byte was corrupted; *code and
  * text are still set). FBRL_ESYNTAX: not an error line. FBRL_ENOSPC: text too small. */
-fbrl_status fbrl_rapl_parse_error(const char *line, size_t len, int *code, char *text, size_t cap);
+FBRL_API fbrl_status fbrl_rapl_parse_error(const char *line, size_t len, int *code, char *text, size_t cap);
 
 /* ---- numbers ---- */
 
 /* The whole line (leading/trailing spaces allowed) is one number: [+-]digits[.digits].
  * TYPEI prints "%ld", TYPEV "%+.6f". FBRL_ESYNTAX otherwise, FBRL_ERANGE if too large. */
-fbrl_status fbrl_rapl_parse_real(const char *line, size_t len, double *v);
-fbrl_status fbrl_rapl_parse_int(const char *line, size_t len, long *v);
+FBRL_API fbrl_status fbrl_rapl_parse_real(const char *line, size_t len, double *v);
+FBRL_API fbrl_status fbrl_rapl_parse_int(const char *line, size_t len, long *v);
 
 /* A line of up to max integers separated by spaces (W1 W3 W5 WE* stream lines,
  * "%+011ld"). *n = how many. FBRL_ESYNTAX if anything else is on the line. */
-fbrl_status fbrl_rapl_parse_ints(const char *line, size_t len, long *vals, size_t max, size_t *n);
+FBRL_API fbrl_status fbrl_rapl_parse_ints(const char *line, size_t len, long *vals, size_t max, size_t *n);
 
 /* ---- position blocks: W0 W2 W4 ---- */
 
@@ -94,15 +97,15 @@ typedef struct fbrl_rapl_pos {
     unsigned char part; /* the section the last line belonged to */
 } fbrl_rapl_pos;
 
-void fbrl_rapl_pos_init(fbrl_rapl_pos *p);
+FBRL_API void fbrl_rapl_pos_init(fbrl_rapl_pos *p);
 
 /* Feed one output line of a position block. FBRL_OK if it belongs to the block (title,
  * NAME headers, PULSES, JOINTS, WORLD and their continuation lines), FBRL_ESYNTAX if the
  * line does not fit the layout (the block is then not to be trusted). */
-fbrl_status fbrl_rapl_pos_line(fbrl_rapl_pos *p, const char *line, size_t len);
+FBRL_API fbrl_status fbrl_rapl_pos_line(fbrl_rapl_pos *p, const char *line, size_t len);
 
 /* Non-zero when title, naxes pulses, naxes joints and 6 world values were seen. */
-int fbrl_rapl_pos_complete(const fbrl_rapl_pos *p, unsigned naxes);
+FBRL_API int fbrl_rapl_pos_complete(const fbrl_rapl_pos *p, unsigned naxes);
 
 /* ---- STATUS block ---- */
 
@@ -129,12 +132,12 @@ typedef struct fbrl_rapl_status_info {
 #define FBRL_RAPL_ST_OUTPUTS 0x100u
 #define FBRL_RAPL_ST_UNITS   0x200u
 
-void fbrl_rapl_status_init(fbrl_rapl_status_info *s);
+FBRL_API void fbrl_rapl_status_init(fbrl_rapl_status_info *s);
 
 /* Feed one STATUS line. FBRL_OK when understood (or a known line without data),
  * FBRL_ESYNTAX when a line with a known label has a malformed value, FBRL_ENOENT when
  * the label is not one this parser reads (such lines are simply skipped). */
-fbrl_status fbrl_rapl_status_line(fbrl_rapl_status_info *s, const char *line, size_t len);
+FBRL_API fbrl_status fbrl_rapl_status_line(fbrl_rapl_status_info *s, const char *line, size_t len);
 
 #ifdef __cplusplus
 }

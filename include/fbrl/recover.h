@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* recover.h - corrective actions (thesis 4.1: "corrective actions should be provided for
  * problems which arise more frequently"): per step of a plan, what to do when a named kind
  * of failure happens - retry, run a recovery word and retry, skip the sample, ask the
@@ -16,6 +17,8 @@
  * controller from the link. */
 #ifndef FBRL_RECOVER_H
 #define FBRL_RECOVER_H
+
+#include "fbrl/export.h"
 
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
@@ -88,15 +91,15 @@ typedef struct fbrl_recover {
 
 /* Define ON-FAILURE FAILURE ATTEMPT RUN-SAMPLE RECOVERY-RULES in vm; rc must live as long.
  * robot may be NULL (then controller errors are not classified and STOP only ends the plan). */
-fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_robot *robot);
+FBRL_API fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_robot *robot);
 /* How ASK reaches the operator (NULL: ASK stops safely) and who is told of each action. */
-fbrl_status fbrl_recover_set_ask(fbrl_recover *rc, fbrl_recover_ask_fn fn, void *ctx);
-fbrl_status fbrl_recover_set_note(fbrl_recover *rc, fbrl_recover_note_fn fn, void *ctx);
+FBRL_API fbrl_status fbrl_recover_set_ask(fbrl_recover *rc, fbrl_recover_ask_fn fn, void *ctx);
+FBRL_API fbrl_status fbrl_recover_set_note(fbrl_recover *rc, fbrl_recover_note_fn fn, void *ctx);
 /* The kind of a THROW code (with the robot's last controller error), FBRL_RECOVER_NONE if
  * no rule can name it; its name ("GRIP-EMPTY") and plain words. */
-fbrl_recover_kind fbrl_recover_classify(const fbrl_recover *rc, int throw_code);
-const char *fbrl_recover_kind_name(fbrl_recover_kind kind);
-const char *fbrl_recover_kind_text(fbrl_recover_kind kind);
+FBRL_API fbrl_recover_kind fbrl_recover_classify(const fbrl_recover *rc, int throw_code);
+FBRL_API const char *fbrl_recover_kind_name(fbrl_recover_kind kind);
+FBRL_API const char *fbrl_recover_kind_text(fbrl_recover_kind kind);
 
 #ifdef __cplusplus
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ring.h - single-producer/single-consumer byte ring (the thesis's queue).
  *
  * The thesis (5.1, appendix I-1) builds the serial buffers from a byte queue with
@@ -26,6 +27,8 @@
 #ifndef FBRL_RING_H
 #define FBRL_RING_H
 
+#include "fbrl/export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 #include <stdbool.h>
@@ -51,40 +54,40 @@ typedef struct fbrl_ring {
 
 /* CREATE-Q: use storage (size bytes, of which the largest power of two is used) as
  * an empty ring. EINVAL: r or storage NULL, or size < 2. */
-fbrl_status fbrl_ring_init(fbrl_ring *r, void *storage, size_t size);
+FBRL_API fbrl_status fbrl_ring_init(fbrl_ring *r, void *storage, size_t size);
 
 /* Empty the ring. Only while neither producer nor consumer runs. */
-fbrl_status fbrl_ring_reset(fbrl_ring *r);
+FBRL_API fbrl_status fbrl_ring_reset(fbrl_ring *r);
 
 /* ENQ: add one byte. FBRL_EFULL when there is no room (nothing changes). */
-fbrl_status fbrl_ring_put(fbrl_ring *r, uint8_t byte);
+FBRL_API fbrl_status fbrl_ring_put(fbrl_ring *r, uint8_t byte);
 
 /* DEQ: take the oldest byte. FBRL_EEMPTY when there is none. */
-fbrl_status fbrl_ring_get(fbrl_ring *r, uint8_t *byte);
+FBRL_API fbrl_status fbrl_ring_get(fbrl_ring *r, uint8_t *byte);
 
 /* Add up to len bytes from src; *written = how many fit (may be fewer than len).
  * FBRL_EFULL when len > 0 and nothing fit. src may be NULL only when len is 0. */
-fbrl_status fbrl_ring_write(fbrl_ring *r, const void *src, size_t len, size_t *written);
+FBRL_API fbrl_status fbrl_ring_write(fbrl_ring *r, const void *src, size_t len, size_t *written);
 
 /* Take up to len bytes into dst; *got = how many. FBRL_EEMPTY when len > 0 and the
  * ring was empty. */
-fbrl_status fbrl_ring_read(fbrl_ring *r, void *dst, size_t len, size_t *got);
+FBRL_API fbrl_status fbrl_ring_read(fbrl_ring *r, void *dst, size_t len, size_t *got);
 
 /* Copy up to len of the oldest bytes into dst without taking them (consumer side). */
-fbrl_status fbrl_ring_peek(const fbrl_ring *r, void *dst, size_t len, size_t *got);
+FBRL_API fbrl_status fbrl_ring_peek(const fbrl_ring *r, void *dst, size_t len, size_t *got);
 
 /* Drop the n oldest bytes (consumer side). FBRL_ERANGE when fewer than n are stored. */
-fbrl_status fbrl_ring_skip(fbrl_ring *r, size_t n);
+FBRL_API fbrl_status fbrl_ring_skip(fbrl_ring *r, size_t n);
 
 /* Bytes stored / bytes of room / total capacity. A NULL or uninitialised ring
  * reads as capacity 0: count 0, space 0. */
-size_t fbrl_ring_count(const fbrl_ring *r);
-size_t fbrl_ring_space(const fbrl_ring *r);
-size_t fbrl_ring_capacity(const fbrl_ring *r);
+FBRL_API size_t fbrl_ring_count(const fbrl_ring *r);
+FBRL_API size_t fbrl_ring_space(const fbrl_ring *r);
+FBRL_API size_t fbrl_ring_capacity(const fbrl_ring *r);
 
 /* EMPTY-Q? and FULL-Q?. A NULL ring is both empty and full (nothing goes in or out). */
-bool fbrl_ring_empty(const fbrl_ring *r);
-bool fbrl_ring_full(const fbrl_ring *r);
+FBRL_API bool fbrl_ring_empty(const fbrl_ring *r);
+FBRL_API bool fbrl_ring_full(const fbrl_ring *r);
 
 #ifdef __cplusplus
 }

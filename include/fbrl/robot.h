@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot.h - FBRL's robot-side words: communications (thesis I-4), robot commands (I-5),
  * parameter input (I-6), RAPL line building (I-8), named peripherals and timers.
  *
@@ -14,6 +15,8 @@
  * lengths the user types (docs/robot.md). Words: docs/glossary.md. */
 #ifndef FBRL_ROBOT_H
 #define FBRL_ROBOT_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -158,11 +161,11 @@ typedef struct fbrl_robot {
 /* Bind every robot word into vm. link NULL = offline (the words exist and throw when
  * used); g NULL = no mapping and no metric conversion. r must stay valid as long as
  * the VM runs. FBRL_EINVAL for a NULL vm or r; FBRL_ENOMEM if the dictionary is full. */
-fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
+FBRL_API fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 
 /* Connect (or, with NULL, disconnect) a controller later, e.g. after the monitor
  * opened a port. The link should already be connected (fbrl_link_connect). */
-fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+FBRL_API fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
 
 /* What fbrl_robot_safe_stop() found and did. Positions are the arm's (W2 WORLD). */
 typedef struct fbrl_robot_stop {
@@ -186,28 +189,29 @@ typedef struct fbrl_robot_stop {
  * context switched on that is still on, and read STATUS and W2 for the report. Never
  * throws; blocking, bounded by the link's timeouts. out must not be NULL. */
 #define FBRL_ROBOT_STOP_DRAIN_MS 5000u
-fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out);
+FBRL_API fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out);
 
 /* A function that reconnects the controller (reopens the port, fbrl_link_init,
  * fbrl_link_connect, fbrl_robot_set_link) and tells the user its state. The next robot
  * word calls it after the controller went away (FBRL_EDISCONNECTED); NULL (the default)
  * = that word throws "controller disconnected" instead. */
-fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fbrl_robot *r), void *ctx);
+FBRL_API fbrl_status fbrl_robot_set_relink(fbrl_robot *r, fbrl_status (*fn)(void *ctx, fbrl_robot *r),
+                                           void *ctx);
 
 /* Non-zero after a robot word found the controller gone, until it is connected again
  * (fbrl_robot_set_link). */
-int fbrl_robot_lost(const fbrl_robot *r);
+FBRL_API int fbrl_robot_lost(const fbrl_robot *r);
 /* For a person at a terminal: progress (may be NULL) shows long waits as they go
  * (motions, FINISH, timed waits, WAIT-INPUT); with tell != 0 a motion word also says
  * what it started ("MOV: the arm is moving to X ... in") and a word that waited for the
  * arm says when it stopped. Off by default (plans, pipes and programs get no chatter). */
-void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell);
+FBRL_API void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell);
 /* Tell fn of every device action and timed wait (fbrl_robot_event; NULL: nobody). */
-void fbrl_robot_set_events(fbrl_robot *r, fbrl_robot_event_fn fn, void *ctx);
+FBRL_API void fbrl_robot_set_events(fbrl_robot *r, fbrl_robot_event_fn fn, void *ctx);
 
 /* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
  * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */
-const char *fbrl_robot_word(size_t i);
+FBRL_API const char *fbrl_robot_word(size_t i);
 
 /* Limits of a device's DISPENSE pulse (PULSE-WIDTH), ms. */
 #define FBRL_ROBOT_PULSE_MIN 1u
@@ -220,10 +224,10 @@ const char *fbrl_robot_word(size_t i);
  * FBRL_ERANGE for a port outside 1..FBRL_ROBOT_IO_MAX or a pulse width outside
  * FBRL_ROBOT_PULSE_MIN..MAX, FBRL_EFULL when the table is full, FBRL_ETHROW (thrown in the
  * VM, no word left) when the word cannot be made. devices_free: free table slots. */
-fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_device *d);
-fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
-                                     uint32_t pulse_ms);
-size_t fbrl_robot_devices_free(const fbrl_robot *r);
+FBRL_API fbrl_status fbrl_robot_device_of(const fbrl_robot *r, fbrl_cell xt, fbrl_robot_device *d);
+FBRL_API fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, size_t len, int port,
+                                              int output, uint32_t pulse_ms);
+FBRL_API size_t fbrl_robot_devices_free(const fbrl_robot *r);
 
 /* Set (or with NULL remove) the guard every motion word consults (fbrl/cell.h installs one). */
 fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g);
@@ -235,12 +239,12 @@ unsigned long fbrl_robot_where_epoch(const fbrl_robot *r);
 fbrl_status fbrl_robot_joints(fbrl_robot *r, const char *word, double *q, unsigned *n);
 
 /* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
-fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);
-fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4]);
+FBRL_API fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);
+FBRL_API fbrl_status fbrl_robot_set_base_offset(fbrl_robot *r, const double base[4]);
 
 /* The controller error code of the last robot word that failed with a controller
  * error (e.g. 29), -1 if none; the same number RAPL-ERROR pushes. */
-int fbrl_robot_last_error(const fbrl_robot *r);
+FBRL_API int fbrl_robot_last_error(const fbrl_robot *r);
 
 #ifdef __cplusplus
 }

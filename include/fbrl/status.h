@@ -1,6 +1,9 @@
+/* SPDX-License-Identifier: MIT */
 /* status.h - result codes shared by every libfbrl module. */
 #ifndef FBRL_STATUS_H
 #define FBRL_STATUS_H
+
+#include "fbrl/export.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,10 +52,10 @@ typedef enum fbrl_status {
 #define FBRL_STATUS_MIN FBRL_EMAYBE
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
-const char *fbrl_status_str(fbrl_status st);
+FBRL_API const char *fbrl_status_str(fbrl_status st);
 
 /* Symbolic name, e.g. "FBRL_EINVAL"; never NULL. */
-const char *fbrl_status_name(fbrl_status st);
+FBRL_API const char *fbrl_status_name(fbrl_status st);
 
 #ifdef __cplusplus
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart.h - the serial driver core: two SPSC rings, XON/XOFF flow control, counters.
  *
  * A backend (POSIX termios, PC 8250/16550, libserialport) moves bytes between the
@@ -8,6 +9,8 @@
  * The core includes no OS header; time and waiting come from the backend's ops. */
 #ifndef FBRL_UART_H
 #define FBRL_UART_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -135,15 +138,16 @@ typedef struct fbrl_uart {
  * (baud > 0, data bits 5..8, parity N/E/O, stop bits 1..2, flow NONE/XONXOFF:
  * otherwise FBRL_EINVAL) and passed to ops->configure. ops->configure, tx_kick,
  * service and now_us must be non-NULL. */
-fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx, void *rx_storage,
-                           size_t rx_size, void *tx_storage, size_t tx_size, const fbrl_uart_config *cfg);
+FBRL_API fbrl_status fbrl_uart_init(fbrl_uart *u, const fbrl_uart_ops *ops, void *ctx, void *rx_storage,
+                                    size_t rx_size, void *tx_storage, size_t tx_size,
+                                    const fbrl_uart_config *cfg);
 
 /* Change the line settings (same checks as init). Pending bytes are not drained:
  * call fbrl_uart_drain() first if they must leave at the old settings. */
-fbrl_status fbrl_uart_configure(fbrl_uart *u, const fbrl_uart_config *cfg);
+FBRL_API fbrl_status fbrl_uart_configure(fbrl_uart *u, const fbrl_uart_config *cfg);
 
 /* Current settings. */
-fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
+FBRL_API fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
 
 /* Queue len bytes for sending, waiting up to timeout_ms for room (0 = take what
  * fits now), and hand them to the backend's transmitter before returning (a polled
@@ -151,35 +155,36 @@ fbrl_status fbrl_uart_get_config(const fbrl_uart *u, fbrl_uart_config *cfg);
  * such as FBRL_EDISCONNECTED, is returned). FBRL_OK when all were queued; FBRL_ETIMEOUT when the deadline passed
  * first; *written (may be NULL) tells how many were queued either way. With XON/XOFF
  * the bytes 0x11 and 0x13 cannot be sent as data (the peer would obey them). */
-fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written, uint32_t timeout_ms);
+FBRL_API fbrl_status fbrl_uart_write(fbrl_uart *u, const void *data, size_t len, size_t *written,
+                                     uint32_t timeout_ms);
 
 /* Take up to len received bytes, waiting up to timeout_ms for the first one (0 = do
  * not wait). Returns as soon as at least one byte is there: FBRL_OK with *got >= 1
  * (len 0: FBRL_OK, *got 0), FBRL_ETIMEOUT with *got 0 when none came in time. Bytes
  * already received are returned before a backend error such as FBRL_EDISCONNECTED.
  * got must not be NULL. */
-fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got, uint32_t timeout_ms);
+FBRL_API fbrl_status fbrl_uart_read(fbrl_uart *u, void *buf, size_t len, size_t *got, uint32_t timeout_ms);
 
 /* Wait until every queued byte has been handed to the backend (the tx ring is empty),
  * at most timeout_ms. A peer's XOFF can hold this up: FBRL_ETIMEOUT then. */
-fbrl_status fbrl_uart_drain(fbrl_uart *u, uint32_t timeout_ms);
+FBRL_API fbrl_status fbrl_uart_drain(fbrl_uart *u, uint32_t timeout_ms);
 
 /* Bytes waiting to be read / waiting to be sent (0 for a bad handle). */
-size_t fbrl_uart_rx_available(const fbrl_uart *u);
-size_t fbrl_uart_tx_pending(const fbrl_uart *u);
+FBRL_API size_t fbrl_uart_rx_available(const fbrl_uart *u);
+FBRL_API size_t fbrl_uart_tx_pending(const fbrl_uart *u);
 
 /* Interrupt side: how many more bytes the receive ring can take now (0 for a bad
  * handle). A backend that can leave bytes in a lower queue (the kernel's, a FIFO it
  * can mask) reads no more than this, so nothing is lost while the reader is slow. */
-size_t fbrl_uart_rx_room(const fbrl_uart *u);
+FBRL_API size_t fbrl_uart_rx_room(const fbrl_uart *u);
 
 /* 1 while the peer's XOFF holds our transmitter, 0 otherwise (or bad handle). */
-int fbrl_uart_peer_stopped(const fbrl_uart *u);
+FBRL_API int fbrl_uart_peer_stopped(const fbrl_uart *u);
 
 /* Snapshot of the counters since init. Call it from one main-line thread at a time;
  * on 32-bit targets call it at least once per 2^32 counted events or microseconds
  * held (71 minutes of continuous XOFF) so the 64-bit totals stay exact. */
-fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out);
+FBRL_API fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out);
 
 /* fbrl_uart_wait_any() flags, one byte per port. */
 #define FBRL_UART_WAIT_RX    0x1u /* in: wake up when this port receives */
@@ -196,10 +201,11 @@ fbrl_status fbrl_uart_get_counters(fbrl_uart *u, fbrl_uart_counters *out);
  * (POSIX, polled, at most FBRL_UART_WAIT_MAX) are served by one poll(); otherwise each
  * port is serviced in turn and the wait is cut into slices of at most 1 ms. FBRL_OK
  * (also when the time passed with nothing), FBRL_EINVAL (NULL, n 0, a closed port). */
-fbrl_status fbrl_uart_wait_any(fbrl_uart *const *ports, size_t n, uint32_t timeout_us, unsigned char *flags);
+FBRL_API fbrl_status fbrl_uart_wait_any(fbrl_uart *const *ports, size_t n, uint32_t timeout_us,
+                                        unsigned char *flags);
 
 /* Release the port through ops->close (if any); the handle is unusable afterwards. */
-fbrl_status fbrl_uart_close(fbrl_uart *u);
+FBRL_API fbrl_status fbrl_uart_close(fbrl_uart *u);
 
 /* ---- interrupt side: called by backends only ----
  * These never block and ignore a NULL or closed handle. */
@@ -207,15 +213,15 @@ fbrl_status fbrl_uart_close(fbrl_uart *u);
 /* One byte arrived from the line. With XON/XOFF, XON and XOFF are obeyed and not
  * stored; the rest go to the rx ring (a full ring counts an overrun and re-sends
  * XOFF). Reaching the high-water mark queues XOFF and calls ops->tx_kick. */
-void fbrl_uart_isr_rx(fbrl_uart *u, uint8_t byte);
+FBRL_API void fbrl_uart_isr_rx(fbrl_uart *u, uint8_t byte);
 
 /* The transmitter has room for one byte: returns it (0..255), or -1 when there is
  * nothing to send now (queue empty, or held by the peer's XOFF). Flow-control bytes
  * come first: XOFF when queued, XON once the rx ring has drained to rx_low. */
-int fbrl_uart_isr_tx(fbrl_uart *u);
+FBRL_API int fbrl_uart_isr_tx(fbrl_uart *u);
 
 /* The line reported errors: FBRL_UART_LS_* flags, each counted once per call. */
-void fbrl_uart_isr_line_status(fbrl_uart *u, unsigned flags);
+FBRL_API void fbrl_uart_isr_line_status(fbrl_uart *u, unsigned flags);
 
 #ifdef __cplusplus
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_8250.h - PC 8250/16550 UART backend for the serial driver core (uart.h).
  *
  * The thesis's COM routine (section 5.2) at register level: divisor latch = 115200 /
@@ -20,6 +21,8 @@
  */
 #ifndef FBRL_UART_8250_H
 #define FBRL_UART_8250_H
+
+#include "fbrl/export.h"
 
 #include <stdint.h>
 #include "fbrl/status.h"
@@ -146,33 +149,34 @@ typedef struct fbrl_uart_8250 {
 /* Set up the state; touches no register. rx_trigger is the 16550's receive FIFO
  * trigger level (1, 4, 8 or 14) and must be 1 on an 8250. EINVAL: b or io NULL or a
  * hook missing; ERANGE: irq > 7 (COM ports live on the master 8259), bad trigger. */
-fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, uint16_t base, uint8_t irq,
-                                fbrl_uart_8250_chip chip, uint8_t rx_trigger);
+FBRL_API fbrl_status fbrl_uart_8250_init(fbrl_uart_8250 *b, const fbrl_uart_8250_io *io, uint16_t base,
+                                         uint8_t irq, fbrl_uart_8250_chip chip, uint8_t rx_trigger);
 
 /* The ops for fbrl_uart_init(); ctx is the fbrl_uart_8250. configure programs the
  * line (FBRL_EUNSUPPORTED when 115200 is not a whole multiple of the baud rate, or for
  * 5 data bits with 2 stop bits, which an 8250 sends as 1.5); tx_kick primes the
  * transmitter; service sleeps until the handler has moved something (or the
  * timeout); close masks everything and drops DTR/RTS/OUT2. */
-extern const fbrl_uart_ops fbrl_uart_8250_ops;
+extern FBRL_API const fbrl_uart_ops fbrl_uart_8250_ops;
 
 /* Connect the handler to the core and enable interrupts: IER = receive data + line
  * status, then unmask the IRQ at the 8259. Call after the core configured the line. */
-fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u);
+FBRL_API fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u);
 
 /* The interrupt handler: call it from the IRQ's vector. Loops on IIR until nothing is
  * pending, then sends the 8259 its EOI. */
-void fbrl_uart_8250_isr(fbrl_uart_8250 *b);
+FBRL_API void fbrl_uart_8250_isr(fbrl_uart_8250 *b);
 
 /* Find out what sits at base (before init; only inb/outb are used, and the chip is
  * left with its FIFOs off and LCR as found): FBRL_UART_8250_16550 for a 16550A with
  * working FIFOs, FBRL_UART_8250_8250 for an 8250/16450 - or for an early 16550, whose
  * FIFO is broken. FBRL_ENOENT when no UART answers there (LCR does not read back what
  * was written, as on an empty ISA port that reads 0xFF). EINVAL on NULL arguments. */
-fbrl_status fbrl_uart_8250_probe(const fbrl_uart_8250_io *io, uint16_t base, fbrl_uart_8250_chip *chip);
+FBRL_API fbrl_status fbrl_uart_8250_probe(const fbrl_uart_8250_io *io, uint16_t base,
+                                          fbrl_uart_8250_chip *chip);
 
 /* Copy of the handler's counters. EINVAL on NULL. */
-fbrl_status fbrl_uart_8250_get_stats(const fbrl_uart_8250 *b, fbrl_uart_8250_stats *out);
+FBRL_API fbrl_status fbrl_uart_8250_get_stats(const fbrl_uart_8250 *b, fbrl_uart_8250_stats *out);
 
 #ifdef __cplusplus
 }

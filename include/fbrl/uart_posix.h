@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_posix.h - POSIX backend for the UART core: termios ttys and ptys, and TCP.
  *
  * Open any tty or pty path ("/dev/ttyUSB0", "/dev/pts/3") or a serial server as
@@ -35,6 +36,8 @@
  * server owns the real line. */
 #ifndef FBRL_UART_POSIX_H
 #define FBRL_UART_POSIX_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -88,23 +91,23 @@ typedef struct fbrl_uart_posix {
 
 /* Open path (tty/pty device or "tcp:HOST:PORT") as u, using rx/tx storage for the
  * core's rings and cfg for the line (see fbrl_uart_init). opt may be NULL (defaults). */
-fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *path,
-                                 const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
-                                 size_t tx_size, const fbrl_uart_posix_options *opt);
+FBRL_API fbrl_status fbrl_uart_posix_open(fbrl_uart_posix *p, fbrl_uart *u, const char *path,
+                                          const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
+                                          size_t tx_size, const fbrl_uart_posix_options *opt);
 
 /* The same over an fd the caller already opened (a pty master from posix_openpt, a
  * connected socket, a tty); the port takes ownership and closes it on close. No
  * exclusivity is claimed. FBRL_EINVAL for fd < 0. */
-fbrl_status fbrl_uart_posix_open_fd(fbrl_uart_posix *p, fbrl_uart *u, int fd, const fbrl_uart_config *cfg,
-                                    void *rx, size_t rx_size, void *tx, size_t tx_size,
-                                    const fbrl_uart_posix_options *opt);
+FBRL_API fbrl_status fbrl_uart_posix_open_fd(fbrl_uart_posix *p, fbrl_uart *u, int fd,
+                                             const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
+                                             size_t tx_size, const fbrl_uart_posix_options *opt);
 
 /* The fd in use (e.g. to tcgetattr it), or -1. */
-int fbrl_uart_posix_fd(const fbrl_uart_posix *p);
+FBRL_API int fbrl_uart_posix_fd(const fbrl_uart_posix *p);
 
 /* The termios speed constant for a baud rate (e.g. 9600 -> B9600); FBRL_EUNSUPPORTED
  * when this system has none. */
-fbrl_status fbrl_uart_posix_speed(uint32_t baud, speed_t *speed);
+FBRL_API fbrl_status fbrl_uart_posix_speed(uint32_t baud, speed_t *speed);
 
 #ifdef __cplusplus
 }

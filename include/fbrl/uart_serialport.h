@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_serialport.h - serial port enumeration and a UART backend over libserialport.
  *
  * Built only when libserialport was found (then FBRL_HAVE_SERIALPORT is defined).
@@ -13,6 +14,8 @@
  * the core's XON/XOFF; libserialport's own flow control is switched off. */
 #ifndef FBRL_UART_SERIALPORT_H
 #define FBRL_UART_SERIALPORT_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -33,7 +36,7 @@ typedef struct fbrl_serial_port_info {
 /* Fill up to max entries; *count = how many ports exist (may be more than max, or
  * 0). Names and descriptions longer than the fields are cut. FBRL_EIO when the
  * system cannot be asked. out may be NULL when max is 0 (just count). */
-fbrl_status fbrl_uart_serialport_list(fbrl_serial_port_info *out, size_t max, size_t *count);
+FBRL_API fbrl_status fbrl_uart_serialport_list(fbrl_serial_port_info *out, size_t max, size_t *count);
 
 #define FBRL_UART_SERIALPORT_STAGE 256
 
@@ -48,9 +51,9 @@ typedef struct fbrl_uart_serialport {
 /* Open the port called name with cfg (see fbrl_uart_init for rx/tx storage). Errors:
  * FBRL_ENOENT (no such port), FBRL_EUNSUPPORTED (exists but libserialport cannot
  * drive it, e.g. a pty; or a setting it refuses), FBRL_EBUSY (in use), FBRL_EIO. */
-fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, const char *name,
-                                      const fbrl_uart_config *cfg, void *rx, size_t rx_size, void *tx,
-                                      size_t tx_size);
+FBRL_API fbrl_status fbrl_uart_serialport_open(fbrl_uart_serialport *p, fbrl_uart *u, const char *name,
+                                               const fbrl_uart_config *cfg, void *rx, size_t rx_size,
+                                               void *tx, size_t tx_size);
 
 #ifdef __cplusplus
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm.h - the embeddable FBRL language engine (a Forth system).
  *
  * A VM lives entirely in memory the caller provides (dictionary, stacks, buffers);
@@ -6,6 +7,8 @@
  * process. Every error is returned, never an exit. */
 #ifndef FBRL_VM_H
 #define FBRL_VM_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -79,9 +82,9 @@ typedef struct fbrl_vm_error {
 #define FBRL_VM_THROW_OF_STATUS(st) (-300 + (int)(st))
 typedef fbrl_status (*fbrl_vm_prim)(fbrl_vm *vm, void *arg);
 
-fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg);
+FBRL_API fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg);
 /* Smallest mem_size that fits the VM with these stack sizes and dict_bytes of dictionary. */
-size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes);
+FBRL_API size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes);
 
 /* Interpret text (any number of lines) as if typed. On error: stacks are reset,
  * the interpreter is back in interpretation state, the dictionary is unharmed,
@@ -89,10 +92,10 @@ size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes);
  * which stops the text), FBRL_ETHROW for a Forth error, the status a C word failed
  * with (see FBRL_VM_THROW_OF_STATUS), FBRL_EINVAL, or FBRL_ESTATE when called from
  * inside a running word. A definition may span several calls (fbrl_vm_compiling). */
-fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
+FBRL_API fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 /* INCLUDED: interpret a file through the host's file callbacks. */
-fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
-const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
+FBRL_API fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
+FBRL_API const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 
 /* A backtrace keeps at most FBRL_VM_BACKTRACE_MAX frames: of a deeper chain, the
  * innermost ones and the outermost FBRL_VM_BACKTRACE_OUTER (the gap is before those). */
@@ -103,7 +106,8 @@ const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 /* Where the word name was defined: *file is its file ("" when it was typed or evaluated
  * text) and *line the line its definition starts on; a built-in word (a primitive, a C
  * word, the engine's own Forth) has *file "" and *line 0. FBRL_ENOENT if there is none. */
-fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file, unsigned long *line);
+FBRL_API fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file,
+                                    unsigned long *line);
 /* A colon definition about to run, as a step hook sees it. */
 typedef struct fbrl_vm_stop {
     const char *word;        /* the definition ("" for :NONAME code) */
@@ -121,16 +125,16 @@ typedef struct fbrl_vm_stop {
 typedef int (*fbrl_vm_step_fn)(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *stop);
 /* Set (fn) or clear (NULL) the step hook: the base of a debugger. A program runs slower
  * while one is set. FBRL_EINVAL for a NULL vm. */
-fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
+FBRL_API fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
 
 /* Where the running program is, for a C word (e.g. a robot word telling which line sent
  * a command): the colon definition that called it and the file and line of that call; or,
  * called from interpreted text, *word "" and the text's file and line. Outside an
  * evaluation all are "" and 0. */
-fbrl_status fbrl_vm_where(fbrl_vm *vm, const char **word, const char **file, unsigned long *line);
+FBRL_API fbrl_status fbrl_vm_where(fbrl_vm *vm, const char **word, const char **file, unsigned long *line);
 
 /* How many words the dictionary holds (it grows with each definition). */
-size_t fbrl_vm_word_count(const fbrl_vm *vm);
+FBRL_API size_t fbrl_vm_word_count(const fbrl_vm *vm);
 
 /* One word of the last error's chain of calls. */
 typedef struct fbrl_vm_frame {
@@ -144,50 +148,51 @@ typedef struct fbrl_vm_frame {
  * there are; a chain deeper than the engine keeps loses its middle, and *omitted
  * (if not NULL) says how many frames that dropped. 0 when the error happened outside
  * any colon definition (e.g. an undefined word typed). */
-size_t fbrl_vm_backtrace(const fbrl_vm *vm, fbrl_vm_frame *out, size_t cap, size_t *omitted);
+FBRL_API size_t fbrl_vm_backtrace(const fbrl_vm *vm, fbrl_vm_frame *out, size_t cap, size_t *omitted);
 /* The data stack when the last error happened: returns its depth and copies up to cap
  * of its top cells (deepest first; at most FBRL_VM_BACKTRACE_STACK are kept). */
-size_t fbrl_vm_error_stack(const fbrl_vm *vm, fbrl_cell *out, size_t cap);
+FBRL_API size_t fbrl_vm_error_stack(const fbrl_vm *vm, fbrl_cell *out, size_t cap);
 /* Ask the running evaluation to stop: it throws -28 ("user interrupt") at its next
  * call, loop iteration, backward branch, C word's return, MS or output padding. Safe from a signal handler or another
  * thread (e.g. the monitor's Ctrl-C). A request is dropped when it is delivered and
  * at the start of each fbrl_vm_eval()/fbrl_vm_include(). */
-void fbrl_vm_interrupt(fbrl_vm *vm);
+FBRL_API void fbrl_vm_interrupt(fbrl_vm *vm);
 /* True while an interrupt is requested and not yet delivered: a C word that waits
  * (motion, input, sleep) polls this and returns early; the engine then throws -28
  * as soon as the word returns. */
-int fbrl_vm_interrupt_pending(const fbrl_vm *vm);
+FBRL_API int fbrl_vm_interrupt_pending(const fbrl_vm *vm);
 /* True once BYE ran. */
-int fbrl_vm_bye(const fbrl_vm *vm);
+FBRL_API int fbrl_vm_bye(const fbrl_vm *vm);
 /* True while a colon definition (or other compilation) spans lines. */
-int fbrl_vm_compiling(const fbrl_vm *vm);
+FBRL_API int fbrl_vm_compiling(const fbrl_vm *vm);
 /* Back to a clean prompt, as after an error: an unfinished definition is dropped,
  * the stacks are emptied, interpretation state. (Not from inside a running word.) */
-void fbrl_vm_reset(fbrl_vm *vm);
+FBRL_API void fbrl_vm_reset(fbrl_vm *vm);
 
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */
-fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,
-                           const char *stack_effect, const char *help);
-fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);
-fbrl_status fbrl_vm_pop(fbrl_vm *vm, fbrl_cell *v);
-fbrl_status fbrl_vm_fpush(fbrl_vm *vm, double v);
-fbrl_status fbrl_vm_fpop(fbrl_vm *vm, double *v);
-size_t fbrl_vm_depth(const fbrl_vm *vm);
-size_t fbrl_vm_fdepth(const fbrl_vm *vm);
+FBRL_API fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,
+                                    const char *stack_effect, const char *help);
+FBRL_API fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);
+FBRL_API fbrl_status fbrl_vm_pop(fbrl_vm *vm, fbrl_cell *v);
+FBRL_API fbrl_status fbrl_vm_fpush(fbrl_vm *vm, double v);
+FBRL_API fbrl_status fbrl_vm_fpop(fbrl_vm *vm, double *v);
+FBRL_API size_t fbrl_vm_depth(const fbrl_vm *vm);
+FBRL_API size_t fbrl_vm_fdepth(const fbrl_vm *vm);
 /* Raise a Forth exception from a primitive (code < 0 standard, else user); msg may be NULL. */
-fbrl_status fbrl_vm_throw(fbrl_vm *vm, int code, const char *msg);
+FBRL_API fbrl_status fbrl_vm_throw(fbrl_vm *vm, int code, const char *msg);
 /* Parse the next blank-delimited name from the input (for parsing words such as
  * `CREATE-LOC P1`); *len = 0 at end of line. */
-fbrl_status fbrl_vm_parse_name(fbrl_vm *vm, const char **name, size_t *len);
+FBRL_API fbrl_status fbrl_vm_parse_name(fbrl_vm *vm, const char **name, size_t *len);
 /* Translate a VM address (as pushed on the data stack) to a C pointer with n bytes
  * in the VM's data space, or NULL if it does not lie wholly inside. */
-void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n);
+FBRL_API void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n);
 
 /* Introspection for the monitor: help text and word iteration (for TAB completion). */
-fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect, const char **help);
+FBRL_API fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect,
+                                  const char **help);
 /* Calls fn for every visible word name, newest first; stops early if fn returns non-zero. */
-void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, size_t len), void *ctx);
+FBRL_API void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, size_t len), void *ctx);
 
 #ifdef __cplusplus
 }

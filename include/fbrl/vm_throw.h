@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm_throw.h - names for the FBRL engine's THROW codes (Forth-2012 table 9.1), used by the
  * engine and by every word set. FBRL_VM_THROW_OF_STATUS(st) (vm.h) is the code of a libfbrl
  * status; any other code a program THROWs is its own. fbrl_vm_last_error() reports them. */

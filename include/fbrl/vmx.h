@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vmx.h - the extension interface for word sets (as Lua's lauxlib is to its lua.h).
  *
  * A word set (the data words, the glossary, calibration, files, robot, communication,
@@ -18,6 +19,8 @@
  * Throw codes are named in fbrl/vm_throw.h. docs/language.md tells how to write a word set. */
 #ifndef FBRL_VMX_H
 #define FBRL_VMX_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -52,14 +55,15 @@ typedef fbrl_status (*fbrl_vmx_fn)(fbrl_vm *vm, void *ctx, const void *word);
  * strings must outlive the VM). FBRL_EINVAL for NULLs or unknown flags, FBRL_ENAME for a
  * bad name (1..31 characters, no blanks), FBRL_ESTATE inside a definition, FBRL_ENOMEM when
  * the dictionary is full. */
-fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn fn, void *ctx, const void *word,
-                            unsigned flags, const char *stack_effect, const char *help);
+FBRL_API fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn fn, void *ctx,
+                                     const void *word, unsigned flags, const char *stack_effect,
+                                     const char *help);
 
 /* The execution token of the newest visible word of that name: FBRL_OK, or FBRL_ENOENT. */
-fbrl_status fbrl_vmx_find(const fbrl_vm *vm, const char *name, size_t len, fbrl_cell *xt);
+FBRL_API fbrl_status fbrl_vmx_find(const fbrl_vm *vm, const char *name, size_t len, fbrl_cell *xt);
 /* The name of the word xt (in the VM's headers, valid while the word is; "" for :NONAME
  * code): FBRL_OK, or FBRL_ENOENT for a cell that is no xt. */
-fbrl_status fbrl_vmx_name(const fbrl_vm *vm, fbrl_cell xt, const char **name, size_t *len);
+FBRL_API fbrl_status fbrl_vmx_name(const fbrl_vm *vm, fbrl_cell xt, const char **name, size_t *len);
 
 /* ---- typed data in VM memory ---- */
 
@@ -82,24 +86,24 @@ typedef struct fbrl_vmx_type {
  * All or nothing: on any failure (no name, name too long, dictionary full) no word and no
  * byte of data space is left behind, and the failure is thrown (e.g. -8 dictionary overflow):
  * the result is FBRL_ETHROW. */
-fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbrl_vmx_type *type,
-                            size_t bytes, fbrl_vmx_fn run, void *ctx, const char *stack_effect,
-                            const char *help, fbrl_cell *addr, void **payload);
+FBRL_API fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbrl_vmx_type *type,
+                                     size_t bytes, fbrl_vmx_fn run, void *ctx, const char *stack_effect,
+                                     const char *help, fbrl_cell *addr, void **payload);
 
 /* The payload of a structure of this type at VM address addr (a data field fbrl_vmx_create
  * made, or a copy of one), checked to lie wholly in data space with `bytes` payload bytes;
  * NULL if addr is not one (wrong magic, outside, misaligned). */
-void *fbrl_vmx_data(fbrl_vm *vm, fbrl_cell addr, const fbrl_vmx_type *type, size_t bytes);
+FBRL_API void *fbrl_vmx_data(fbrl_vm *vm, fbrl_cell addr, const fbrl_vmx_type *type, size_t bytes);
 
 /* The data field of the word xt if fbrl_vmx_create made it with this run function (run
  * NULL: if xt only pushes its data field's address, as VARIABLE and fbrl_vmx_create without
  * run make it): FBRL_OK, or FBRL_ETYPE (another word, or no word). */
-fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, fbrl_cell *addr);
+FBRL_API fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, fbrl_cell *addr);
 
 /* The tag fbrl_vmx_create gave the word xt (made without a run function; NULL for other
  * data words: VARIABLE, CREATE) and its data field: FBRL_OK, or FBRL_ETYPE if xt is not a
  * word that pushes its data field's address. */
-fbrl_status fbrl_vmx_tag(const fbrl_vm *vm, fbrl_cell xt, const void **tag, fbrl_cell *addr);
+FBRL_API fbrl_status fbrl_vmx_tag(const fbrl_vm *vm, fbrl_cell xt, const void **tag, fbrl_cell *addr);
 
 /* A point in the dictionary's history, to take back every word (and data space) made
  * after it: a word set that makes several words as one step (a workspace loaded) undoes
@@ -109,9 +113,9 @@ typedef struct fbrl_vmx_mark {
     uint32_t nwords;
     size_t required;
 } fbrl_vmx_mark;
-fbrl_status fbrl_vmx_mark_here(const fbrl_vm *vm, fbrl_vmx_mark *m);
+FBRL_API fbrl_status fbrl_vmx_mark_here(const fbrl_vm *vm, fbrl_vmx_mark *m);
 /* Forget every word made since m (FBRL_ESTATE inside a definition or if m lies in the future). */
-fbrl_status fbrl_vmx_forget(fbrl_vm *vm, const fbrl_vmx_mark *m);
+FBRL_API fbrl_status fbrl_vmx_forget(fbrl_vm *vm, const fbrl_vmx_mark *m);
 
 /* ---- arguments: from the stacks or from the input after the word ---- */
 
@@ -145,42 +149,43 @@ typedef struct fbrl_vmx_val {
  * (variable, CREATE, constant, value) for an address; code never runs.
  * word names the word in error messages; what[k], if what is not NULL and what[k] is not
  * NULL, describes parameter k there ("a location name"). Throws on error. */
-fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what,
-                          unsigned how, fbrl_vmx_val *v);
+FBRL_API fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what,
+                                   unsigned how, fbrl_vmx_val *v);
 
 /* One parameter of the given kind parsed from the input after the word (GETREAL). */
-fbrl_status fbrl_vmx_arg_parse(fbrl_vm *vm, const char *word, char kind, const char *what, fbrl_vmx_val *v);
+FBRL_API fbrl_status fbrl_vmx_arg_parse(fbrl_vm *vm, const char *word, char kind, const char *what,
+                                        fbrl_vmx_val *v);
 
 /* Push n values (as the interpreter would: -3 / -44 on overflow, thrown). */
-fbrl_status fbrl_vmx_push(fbrl_vm *vm, fbrl_cell v);
-fbrl_status fbrl_vmx_fpush(fbrl_vm *vm, double v);
+FBRL_API fbrl_status fbrl_vmx_push(fbrl_vm *vm, fbrl_cell v);
+FBRL_API fbrl_status fbrl_vmx_fpush(fbrl_vm *vm, double v);
 
 /* ---- parsing, state, compiling, running ---- */
 
 /* Text up to delim (a blank delimiter also ends at any control character); *found = 1 if
  * the delimiter was met. At the end of the input: *len = 0. */
-fbrl_status fbrl_vmx_parse(fbrl_vm *vm, char delim, const char **text, size_t *len, int *found);
+FBRL_API fbrl_status fbrl_vmx_parse(fbrl_vm *vm, char delim, const char **text, size_t *len, int *found);
 /* Skip blanks; if a '"' follows, the text up to the next '"' (1 = found, 0 = unterminated,
  * -1 = no quote follows: nothing but the blanks is consumed). */
-int fbrl_vmx_parse_quoted(fbrl_vm *vm, const char **text, size_t *len);
+FBRL_API int fbrl_vmx_parse_quoted(fbrl_vm *vm, const char **text, size_t *len);
 /* The rest of the line, blanks trimmed at both ends; the line is consumed. */
-fbrl_status fbrl_vmx_parse_line(fbrl_vm *vm, const char **text, size_t *len);
+FBRL_API fbrl_status fbrl_vmx_parse_line(fbrl_vm *vm, const char **text, size_t *len);
 /* The next line of the current input source (a file or evaluated text), consumed whole:
  * FBRL_OK, FBRL_EEOF when it has none (or it is an EVALUATEd string), or a throw. */
-fbrl_status fbrl_vmx_refill(fbrl_vm *vm, const char **line, size_t *len);
+FBRL_API fbrl_status fbrl_vmx_refill(fbrl_vm *vm, const char **line, size_t *len);
 
 /* True while compiling (STATE is not zero). */
-int fbrl_vmx_compiling(const fbrl_vm *vm);
+FBRL_API int fbrl_vmx_compiling(const fbrl_vm *vm);
 /* Compile into the current definition: a literal; a call to xt; a string literal that
  * pushes its c-addr u when run. Throw on error (dictionary full). */
-fbrl_status fbrl_vmx_compile_lit(fbrl_vm *vm, fbrl_cell v);
-fbrl_status fbrl_vmx_compile_xt(fbrl_vm *vm, fbrl_cell xt);
-fbrl_status fbrl_vmx_compile_string(fbrl_vm *vm, const char *s, size_t n);
+FBRL_API fbrl_status fbrl_vmx_compile_lit(fbrl_vm *vm, fbrl_cell v);
+FBRL_API fbrl_status fbrl_vmx_compile_xt(fbrl_vm *vm, fbrl_cell xt);
+FBRL_API fbrl_status fbrl_vmx_compile_string(fbrl_vm *vm, const char *s, size_t n);
 
 /* Run a word / interpret text (it must stay in place while it runs, e.g. in data space)
  * from inside a C word; an exception inside is re-thrown to the caller's caller. */
-fbrl_status fbrl_vmx_execute(fbrl_vm *vm, fbrl_cell xt);
-fbrl_status fbrl_vmx_evaluate(fbrl_vm *vm, const char *text, size_t len);
+FBRL_API fbrl_status fbrl_vmx_execute(fbrl_vm *vm, fbrl_cell xt);
+FBRL_API fbrl_status fbrl_vmx_evaluate(fbrl_vm *vm, const char *text, size_t len);
 
 /* Interpret text as fbrl_vmx_evaluate, catching an exception inside (as CATCH would): the
  * stacks are put back to their depth before, a definition the text left open is dropped,
@@ -188,21 +193,21 @@ fbrl_status fbrl_vmx_evaluate(fbrl_vm *vm, const char *text, size_t len);
  * as usual). Returns 0, or the THROW code with its one-line message (the failing word
  * named, e.g. "undefined word FOO") in msg[0..cap) (cap >= 1). BYE and QUIT are not
  * caught: they return as from fbrl_vmx_evaluate, with *code 0. */
-fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, int *code, char *msg,
-                                    size_t cap);
+FBRL_API fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, int *code, char *msg,
+                                             size_t cap);
 
 /* ---- host services ---- */
 
 /* The host callbacks the VM was made with (output, keys, files, clock). */
-const fbrl_vm_host *fbrl_vmx_host(const fbrl_vm *vm);
+FBRL_API const fbrl_vm_host *fbrl_vmx_host(const fbrl_vm *vm);
 /* Console output (nothing without a write callback). */
-void fbrl_vmx_write(fbrl_vm *vm, const char *s, size_t n);
-void fbrl_vmx_puts(fbrl_vm *vm, const char *s);
+FBRL_API void fbrl_vmx_write(fbrl_vm *vm, const char *s, size_t n);
+FBRL_API void fbrl_vmx_puts(fbrl_vm *vm, const char *s);
 /* Take a pending Ctrl-C (fbrl_vm_interrupt) now, for a word that waits: 1 if there was one
  * (it is then cleared: the word should throw FBRL_THROW_INTERRUPT), else 0. */
-int fbrl_vmx_take_interrupt(fbrl_vm *vm);
+FBRL_API int fbrl_vmx_take_interrupt(fbrl_vm *vm);
 /* Throw with a printf-formatted message (at most 127 characters are kept). */
-fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
+FBRL_API fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
@@ -212,7 +217,7 @@ fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
 
 /* The data words every VM has (queues, arrays, strings, type sizes: thesis I-1 .. I-3);
  * fbrl_vm_create() installs them. */
-fbrl_status fbrl_vmx_data_words(fbrl_vm *vm);
+FBRL_API fbrl_status fbrl_vmx_data_words(fbrl_vm *vm);
 
 #ifdef __cplusplus
 }

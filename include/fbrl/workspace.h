@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* workspace.h - a session's work kept in one data file: every named location (CREATE-LOC),
  * location matrix (RECTMAT / AUTOMAT, RADMAT), calibration (CREATE-CAL points,
  * CREATE-CAL-STRU motion) and named device (OUTPUT-DEVICE, INPUT-DEVICE), each with its
@@ -15,6 +16,8 @@
  * WORKSPACE-CHANGED?. No allocation: the caller gives the file buffer. */
 #ifndef FBRL_WORKSPACE_H
 #define FBRL_WORKSPACE_H
+
+#include "fbrl/export.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -69,13 +72,13 @@ typedef struct fbrl_workspace {
  * as the file buffer (FBRL_WORKSPACE_OBJECT_BYTES per object a workspace may hold). The
  * session as it is now counts as unchanged. FBRL_EINVAL for NULLs, FBRL_ENOMEM when the
  * dictionary is full. */
-fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r,
-                                   void *buf, size_t cap);
+FBRL_API fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r,
+                                            void *buf, size_t cap);
 
 /* Save every named object to path (atomically; an existing file is replaced only if it
  * is a workspace or an empty data file: FBRL_EFORMAT otherwise). n (may be NULL) gets the
  * counts. FBRL_ENOSPC if the buffer cannot hold them; the file is then untouched. */
-fbrl_status fbrl_workspace_save(fbrl_workspace *ws, const char *path, fbrl_workspace_counts *n);
+FBRL_API fbrl_status fbrl_workspace_save(fbrl_workspace *ws, const char *path, fbrl_workspace_counts *n);
 
 /* Load path into the session: objects of a saved name are made or overwritten, other
  * words are left alone, then WITH-CAL, MAP-ON and BASE-OFFSET are set. On any error
@@ -84,15 +87,15 @@ fbrl_status fbrl_workspace_save(fbrl_workspace *ws, const char *path, fbrl_works
  * EFORMAT, EVERSION, ECHECKSUM, ETRUNCATED, ENOSPC), EFORMAT (not a workspace or a bad
  * record), EVERSION (newer workspace), ETYPE (name conflict), EFULL (device table full),
  * ENOMEM (dictionary full). */
-fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_workspace_counts *n, char *why,
-                                size_t cap);
+FBRL_API fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_workspace_counts *n,
+                                         char *why, size_t cap);
 
 /* *changed = 1 if the named objects or settings differ from the last save or load (or
  * from install, when neither happened). *n (may be NULL) gets the counts now. */
-fbrl_status fbrl_workspace_changed(fbrl_workspace *ws, int *changed, fbrl_workspace_counts *n);
+FBRL_API fbrl_status fbrl_workspace_changed(fbrl_workspace *ws, int *changed, fbrl_workspace_counts *n);
 
 /* The file last saved or loaded ("" if none; never NULL). */
-const char *fbrl_workspace_path(const fbrl_workspace *ws);
+FBRL_API const char *fbrl_workspace_path(const fbrl_workspace *ws);
 
 #ifdef __cplusplus
 }

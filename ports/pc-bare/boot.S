@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* boot.S - Multiboot v1 entry, flat GDT, and the interrupt stubs.
  *
  * QEMU's -kernel loads this ELF at 1 MiB and jumps to _start in 32-bit protected

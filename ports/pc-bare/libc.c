@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libc.c - the handful of C library functions the freestanding image needs. GCC may
  * emit calls to memcpy/memset/memmove/memcmp even from plain assignments, so they
  * must exist; everything else of libc is absent on purpose. */

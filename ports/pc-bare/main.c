@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* main.c - the bare-metal demo service: an interrupt-driven echo on COM1.
  *
  * The library's driver core (uart.c with its rings and XON/XOFF) runs over the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pc.c - IDT, 8259 PIC, PIT clock, port-I/O hooks and exits for the bare PC image. */
 #include "pc.h"
 

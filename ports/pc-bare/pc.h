@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pc.h - the few PC facilities the image needs: port I/O, interrupts (IDT, 8259),
  * a 1 kHz PIT clock, the debug console and QEMU's isa-debug-exit. */
 #ifndef PC_H

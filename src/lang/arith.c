@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* arith.c - double-cell arithmetic (portable: half-cell products, shift-subtract
  * division) and conversions between doubles and floats. */
 #include <math.h>

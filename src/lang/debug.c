@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* debug.c - where code came from: each word's file and line, a table from compiled
  * code addresses to source lines, and the chain of words (backtrace) kept when an
  * error is thrown, so a failure names the word it happened in and the calls that led

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* dict.c - the dictionary: word headers and their lookup, data space (ALLOT), the
  * compiler (compiling ops, literals and calls with peephole fusion), defining words
  * and FORGET. Nothing here executes code: the inner interpreter is run.c. */

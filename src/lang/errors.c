@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* errors.c - throw codes: their standard texts (Forth-2012 table 9.1) and throws that
  * carry a message of their own. */
 #include <string.h>

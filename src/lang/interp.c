@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* interp.c - the text interpreter: find or convert each name and execute or compile
  * it; EVALUATE and INCLUDED nest it, fbrl_vm_eval and fbrl_vm_include enter it.
  * Errors are captured here with the word, file and line they happened at. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* io.c - the engine's text streams: output through the host, the stack of input
  * sources (text, strings, files) and the parsing of names and delimited text. */
 #include <string.h>

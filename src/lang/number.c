@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* number.c - reading numbers: integers and doubles in BASE, floats in the
  * standard's form (the text interpreter and >NUMBER >FLOAT use it). */
 #include <math.h>

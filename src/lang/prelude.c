@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* prelude.c - the few built-in words written in FBRL itself (compiled at
  * fbrl_vm_create). The "( stack ) \ help" after each name is its HELP text. */
 #include "vm_internal.h"

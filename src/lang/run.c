@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* run.c - the inner interpreter: token-threaded code.
  *
  * A code cell is either an opcode (< OP__END, see ops.def) or an execution token

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm.c - one VM in the caller's memory block: its layout, creation, the interrupt
  * flag and the C API to its stacks. The text interpreter is interp.c, the inner
  * interpreter run.c, the dictionary dict.c. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm_internal.h - the FBRL engine's private structures (not installed).
  *
  * Memory layout of one VM, all inside the caller's block:

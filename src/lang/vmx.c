@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vmx.c - the extension interface for word sets (include/fbrl/vmx.h): the one place
  * where word sets meet the engine's insides (headers, input sources, the number parser). */
 #include <stdarg.h>

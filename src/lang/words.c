@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* words.c - the words that are not worth inlining in the inner interpreter:
  * control-structure compilers, defining and parsing words,
  * number and float formatting, and the tools (.S SEE WORDS DUMP HELP).

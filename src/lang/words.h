@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* words.h - helpers shared by the engine's source files (private). */
 #ifndef FBRL_LANG_WORDS_H
 #define FBRL_LANG_WORDS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* words_fbrl.c - FBRL's data-structure words (thesis appendix I-1 .. I-3):
  * queues (bound to the ring module), one- and two-dimensional arrays (bound to the
  * matrix module's fbrl_array), counted strings, and the data type sizes.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary.c - the data glossary in the language: installation and the C interface the
  * robot words use (locations in VM memory, mapping, units, PRINT-LOC's port). The words are
  * in glossary_loc.c (locations, matrices, metric), glossary_cal.c (calibration) and

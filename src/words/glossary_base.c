@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary_base.c - helpers every glossary word uses: defining a table, throwing with a
  * message, popping arguments, checked locations and structures in the VM's data space,
  * structures made with a magic cell, metric conversion of lengths. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary_cal.c - three-dimensional calibration and mapping words (thesis appendix II),
  * bound to the calib module.
  *

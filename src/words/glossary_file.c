@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary_file.c - typed data files (thesis appendix I-9) on the fileio module, and
  * SAVE-CAL / LOAD-CAL to keep calibrations in them.
  *

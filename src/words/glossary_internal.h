@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary_internal.h - helpers shared by the data glossary's sources (private).
  *
  * The glossary words make their structures in the VM's data space, where a program can
@@ -7,6 +8,8 @@
  * module touch memory outside the VM. */
 #ifndef FBRL_LANG_GLOSSARY_INTERNAL_H
 #define FBRL_LANG_GLOSSARY_INTERNAL_H
+
+#include "internal_names.h"
 
 #include "fbrl/glossary.h"
 #include "fbrl/calib.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* glossary_loc.c - thesis appendix III location templates and matrices, and I-7 metric
  * conversion. Stored locations are always inches; with METRIC-ON the words that take or
  * give location lengths (GETX/SETX and Y Z, DEFINE-LOC, DISPLAY-LOC, PRINT-LOC, RECTMAT and

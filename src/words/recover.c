@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* recover.c - corrective actions per step of a plan (include/fbrl/recover.h,
  * docs/debugging.md): rules ON-FAILURE declares, and ATTEMPT, which runs a step and on a
  * failure applies the first rule of that step and kind that still has tries left. The

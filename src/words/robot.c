@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot.c - binding the FBRL robot words into a VM: each word set's table (robot_motion.c
  * robot_rapl.c robot_teach.c robot_param.c robot_line.c robot_comm.c robot_io.c) is
  * defined with its parameters fetched by robot_param.c before the word runs.

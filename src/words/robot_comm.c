@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_comm.c - thesis I-4: the communications words on the uart API.
  *
  * The thesis programmed a PC's 8250 through BIOS INT 14h and revectored its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_import.c - IMPORT-LOC: a location taught on the controller (its own teach
  * pendant's TEACH, HERE, POINT) becomes a host location of the same name, read with LISTL
  * and never by moving the arm there. */

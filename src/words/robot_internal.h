@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_internal.h - shared by the robot words' sources (private to the library):
  *   robot.c        binding the tables into a VM (fbrl_robot_install)
  *   robot_svc.c    errors, Ctrl-C, console, clock, the motion guard's hook
@@ -11,6 +12,8 @@
  * Calls go downwards in that list (tables up to robot.c), never in a circle. */
 #ifndef FBRL_LANG_ROBOT_INTERNAL_H
 #define FBRL_LANG_ROBOT_INTERNAL_H
+
+#include "internal_names.h"
 
 #include "fbrl/loc.h"
 #include "fbrl/robot.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_io.c - peripherals by name, as the thesis asked for instead of RAPL's numbered
  * OUTPUT bits (3.4), and the real-time clock for timed reaction steps.
  *

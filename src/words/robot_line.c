@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_line.c - thesis I-8: a RAPL command line built piecewise (SEND-COM, SEND-INT,
  * SEND-LOC ...) and sent, echo-verified, by SEND-CR. */
 #include <math.h>

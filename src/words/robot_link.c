@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_link.c - robot words talking to the controller through the fbrl_link: one
  * command (echo-verified), a raw line, a stream of readings; controller errors become
  * exceptions, and a command an interrupted word left running is finished first. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_loc.c - locations between the user's frame and the arm's: host-side location
  * templates, MAP-ON mapping (the glossary's WITH-CAL) and the BASE-OFFSET, the scratch
  * controller points motion words move to, and the arm's position read back (W2). */

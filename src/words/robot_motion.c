@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_motion.c - thesis I-5 robot commands: motion to host locations (a scratch
  * controller point, then the move), joint and motor moves, positions read back, arm
  * state, gripper and numbered I/O. */

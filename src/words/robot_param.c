@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_param.c - thesis 5.3 and I-6: a robot word's parameters, from the stacks or
  * from the input after the word (one rule, docs/robot.md), their checks, and the words
  * GETREAL GETINT GETSTRING. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_rapl.c - thesis I-5 words that show the controller's text (W0..WE5, STATUS,
  * SERIAL), configure its serial channel, and read and set its variables and locations. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_safe.c - the safe stop after an abort (Ctrl-C): the arm halted, the outputs this
  * context switched on switched off, and what was found reported (docs/robot.md,
  * "Stopping safely"). It never throws: the host calls it after the word was aborted. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_svc.c - what every robot word uses from the VM: throwing an error (with the
  * word's name), Ctrl-C while a word waits, console output and the host's clock; and the
  * motion guard's hook every motion word passes before it sends a byte. */

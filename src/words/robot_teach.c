@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_teach.c - GET-CAL-POINTS: the three calibration points taught with the arm,
  * each after the input lines that bring the arm there.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* workspace.c - a session's named work in one data file (include/fbrl/workspace.h):
  * SAVE-WORKSPACE, LOAD-WORKSPACE, WORKSPACE, WORKSPACE-CHANGED?.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* burst_relay: a serial line that loses bursts, as a flaky USB adapter or a loose
  * connector does. It opens PEER (a pty path, e.g. fbrlsim's), makes a new pty, prints
  * its path on the first line of stdout, and copies bytes both ways; in each direction

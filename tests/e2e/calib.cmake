@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Calibrated orientation against the emulated arm (label unit): the mapping's stability
 # under teaching error and the grip's heading through the emulator's inverse kinematics;
 # and the sample-preparation plan with its pins jogged to different heights (label e2e).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* calib_arm_test.c - the calibrated orientation against the emulated arm (issue 9 item 1).
  *
  * stable: 1,000 random block motions (any turn about the vertical up to 180 degrees, a

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # calib_plan.sh FBRLSIM FBRLMON EXAMPLES WORKDIR PLAN_RUN INPUTS
 #
 # The sample-preparation plan (EXAMPLES/sample_prep.fbrl) with its three locating pins

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Finding and fixing a plan (docs/debugging.md): backtraces, breakpoints and steps, EDIT,
 # against fbrlsim on a pty.
 if(TARGET fbrlmon AND TARGET fbrlsim)

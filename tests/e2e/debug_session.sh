@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # debug_session.sh FBRLMON FBRLSIM TMPDIR - finding and fixing a plan (docs/debugging.md),
 # driven as a person would, against fbrlsim on a pty whose command log is the truth:
 #  1. an error three words deep in a file: the backtrace names each word and its line;

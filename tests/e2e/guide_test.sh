@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # guide_test.sh DOC BINDIR...
 #
 # Runs a documentation page's examples as written and checks the outputs it shows. The

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # fbrlmon and INCLUDED on input without an end (issue 20 item 4; label e2e): devices and
 # FIFOs refused, over-long lines stopped at the limit with file:line, each within a second.
 if(TARGET fbrlmon)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link_e2e_burst: exactly once on a bad line (docs/link.md 3.9). N commands that are
  * NOT safe to repeat (V3=V3+i: each run adds i again), every 25th refused by the
  * controller (V3=V3+Qi: Qi is undefined, 010), driven through the C API or through

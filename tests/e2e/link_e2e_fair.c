@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link_e2e_fair: one thread drives 16 robots (16 fbrlsim processes at 9600 baud) through
  * fbrl_link_poll_many() and every robot gets its share: each completes at least half of
  * the mean number of commands (the old scan from link 0 left most of them at 0), and each

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link_e2e_faults: N commands through fbrlsim with 1% of the bytes dropped and 1% with a
  * bit flipped, in both directions. fbrlsim's --log (every line it executed) must equal,
  * line for line and in order, the lines the link reported as executed (cfg.on_exec; a

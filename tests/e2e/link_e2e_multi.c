@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link_e2e_multi: one thread drives two robots (two fbrlsim processes on two ptys)
  * through fbrl_link_start() + fbrl_link_poll_many(): each robot works through its own
  * command list while the other's commands are in flight; both end where they were sent.

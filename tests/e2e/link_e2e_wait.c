@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link_e2e_wait: the probes a waiting command sends leave nothing for the next command
  * (docs/link.md 3.3). On fbrlsim's strict --baud 9600 line a FINISH waits long enough
  * for idle probes to go out; the FINISH erases their markers itself, so the next command

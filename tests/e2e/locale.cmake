@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Numbers independent of the host's locale (issue 9 item 5), under de_DE.UTF-8 (decimal
 # comma) through tests/e2e/with_de.sh (label locale; skipped, with the reason, only where
 # the locale cannot be generated):

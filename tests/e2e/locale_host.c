@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* locale_host.c - a host program embedding libfbrl that sets the user's locale, as a GUI
  * or a lab program does (setlocale(LC_ALL, "")), run under de_DE.UTF-8 (decimal comma) by
  * tests/e2e/with_de.sh. libfbrl must read and print numbers exactly as in the "C" locale:

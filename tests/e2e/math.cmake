@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The rack example runs as a real program: its calibration survives save/load, and its
 # own cross-checks (mapped vs. the true move, map then unmap) stay below 1e-10 in.
 if(TARGET example_rack)

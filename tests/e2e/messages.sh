@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # messages.sh FBRLMON FBRLSIM WORKDIR
 #
 # "Messages that tell the user what happened" (issue 10, item 3), in fbrlmon on an 80x24

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # End-to-end tests of fbrlmon (label e2e): scripts and piped input, the bad-input
 # cases (tests/e2e/mon_badinput.txt) and an interactive session on a real pty.
 if(TARGET fbrlmon)

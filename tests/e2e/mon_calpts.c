@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_calpts.c - GET-CAL-POINTS at the terminal, on a real pseudo-terminal against a real
  * fbrlsim process (its command log is the witness of what ran):
  *  1. the point's lines are edited as at the prompt: the typed text echoes, Backspace

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_cases.c - the bad-input test: every case of a data file is fed to a fresh
  * fbrlmon, followed by a line that must work. Each case must give exactly one
  * error line (naming a place: "(FILE:LINE)"; an error inside a colon definition

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_conn.sh FBRLMON FBRLSIM TMPDIR - fbrlmon's controller connection: --port to a
 # real fbrlsim process on a pty (its log proves the handshake reached it), line
 # settings, the built-in emulator (--sim, the default), --offline, --list-ports,
@@ -56,6 +57,14 @@ CREATE-LOC NOW  NOW ARM-HERE  NOW GETX F>S .  NOW GETY F>S .  NOW GETZ F>S .
 PLAN
 expect "robot words over --port" 0 "12 3 8 " --port "$port" "$tmp/plan.fbrl"
 grep -q '^MOVE FBRLT1' sim.log || fail "MOVE did not reach the emulator (log: $(cat sim.log))"
+
+# A stable name as udev makes it (/dev/serial/by-id/...): a symlink to the emulator's pty.
+mkdir -p by-id
+byid=$tmp/by-id/usb-FTDI_FT232R_USB_UART_A12345-if00-port0
+ln -sf "$port" "$byid"
+n1=$(grep -c '^HOME' sim.log)
+expect "--port /dev/serial/by-id/... (a symlink)" 0 "7 " --port "$byid" -e 'HOME 7 .'
+[ "$(grep -c '^HOME' sim.log)" -gt "$n1" ] || fail "HOME over the by-id name did not reach the emulator"
 kill $simpid
 wait $simpid 2>/dev/null
 
@@ -112,6 +121,36 @@ count=$((count + 1))
 st=$?
 if [ $st != 0 ] && ! { [ $st = 3 ] && grep -q 'without libserialport' err.txt; }; then
     fail "--list-ports: status $st"
+fi
+
+# --list-ports in fake sysfs and /dev trees: an FTDI adapter with its by-id name, VID:PID,
+# product and serial number; a CDC-ACM board; no absent 8250 UART, no console
+fake=$tmp/fake
+rm -rf "$fake"
+mkdir -p "$fake/sys/devices/usb1/1-1/1-1:1.0/ttyUSB0" "$fake/sys/devices/usb1/1-2/1-2:1.0" \
+    "$fake/sys/class/tty/ttyUSB0" "$fake/sys/class/tty/ttyACM0" "$fake/sys/class/tty/ttyS3" \
+    "$fake/sys/class/tty/tty1" "$fake/dev/serial/by-id"
+printf '0403\n' >"$fake/sys/devices/usb1/1-1/idVendor"
+printf '6001\n' >"$fake/sys/devices/usb1/1-1/idProduct"
+printf 'FT232R USB UART\n' >"$fake/sys/devices/usb1/1-1/product"
+printf 'A12345\n' >"$fake/sys/devices/usb1/1-1/serial"
+printf '2341\n' >"$fake/sys/devices/usb1/1-2/idVendor"
+printf '0043\n' >"$fake/sys/devices/usb1/1-2/idProduct"
+printf '0\n' >"$fake/sys/class/tty/ttyS3/type"
+ln -s "$fake/sys/devices/usb1/1-1/1-1:1.0/ttyUSB0" "$fake/sys/class/tty/ttyUSB0/device"
+ln -s "$fake/sys/devices/usb1/1-2/1-2:1.0" "$fake/sys/class/tty/ttyACM0/device"
+ln -s "$fake/sys/devices/usb1" "$fake/sys/class/tty/ttyS3/device"
+: >"$fake/dev/ttyUSB0"
+: >"$fake/dev/ttyACM0"
+ln -s ../../ttyUSB0 "$fake/dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A12345-if00-port0"
+count=$((count + 1))
+FBRLMON_SYSFS_ROOT=$fake/sys FBRLMON_DEV_ROOT=$fake/dev "$mon" --list-ports >out.txt 2>err.txt
+st=$?
+want1="$fake/dev/ttyACM0  [USB 2341:0043]"
+want2="$fake/dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A12345-if00-port0  ($fake/dev/ttyUSB0)  FT232R USB UART  [USB 0403:6001]  serial A12345"
+if [ $st != 0 ] || [ "$(sed -n 1p out.txt)" != "$want1" ] || [ "$(sed -n 2p out.txt)" != "$want2" ] ||
+    [ "$(wc -l <out.txt)" != 2 ]; then
+    fail "--list-ports in fake trees: status $st; want lines '$want1' and '$want2'"
 fi
 
 echo "mon_conn: $count runs, $fails failed"

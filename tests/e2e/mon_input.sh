@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_input.sh FBRLMON WORKDIR - input fbrlmon cannot read to an end is refused or bounded
 # (issue 20 item 4): /dev/zero and a FIFO with no writer, as a plan FILE and through
 # INCLUDED, are refused with a clear message; stdin with no line end and a file with an

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_pty.c - fbrlmon's interactive session through a real pseudo-terminal:
  * prompts ("ok>" / "compiling>"), echo and output, one error line, TAB
  * completion of a word name, KEY in raw mode, and history kept between sessions.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_safe.c - Ctrl-C makes the cell safe, and a controller that goes away comes back:
  * fbrlmon on a real pseudo-terminal against a real fbrlsim process, whose command log
  * (--log, appended across its restarts) is the witness of what ran.

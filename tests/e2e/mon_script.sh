@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_script.sh FBRLMON SRCDIR TMPDIR - fbrlmon on script files, -e texts and
 # piped standard input: exact output, error lines and exit status. (Offline:
 # the connection has its own test, mon_conn.sh.)
@@ -78,6 +79,7 @@ if [ "$(./script.fbrl </dev/null)" != "hello" ]; then
     echo "FAIL: executable plan file with #! line: $(./script.fbrl </dev/null 2>&1)"
 fi
 printf '#!fbrlmon\nnosuch\n' >lines.fbrl
+printf "2 .\n" >two.fbrl
 t "#! line keeps line numbers" 1 "" "$tmp/lines.fbrl:2: error: undefined word nosuch\n" "" "$tmp/lines.fbrl"
 t "WORDS lists the dictionary" 0 "*" "" 'words\n'
 grep -qiw dup out.txt && grep -qiw words out.txt || { fails=$((fails + 1)); echo "FAIL: WORDS output lacks DUP/WORDS"; }
@@ -89,6 +91,16 @@ t "--dict 0" 2 "" "~*bad size" "" --dict 0
 t "--dict not a size" 2 "" "~*bad size" "" --dict lots
 t "unknown option" 2 "" "~*unknown option" "" --bogus
 t "-e without its text" 2 "" "~*needs an argument" "" -e
+# getopt_long forms: attached values, '=' values, prefixes, "--" ends the options.
+t "-eTEXT attached" 0 "3 " "" "" -e'1 2 + .'
+t "--dict=SIZE" 1 "7 " "~*^stdin:1: error: dictionary overflow" \
+    ': fill-up 100000 0 do 0 , loop ; fill-up\n7 .\n' --dict=64K
+t "--dict=bad" 2 "" "~*--dict: bad size 'lots'" "" --dict=lots
+t "a long option's prefix" 0 "5 " "" "" --dic 1M -e '5 .'
+t "a flag given a value" 2 "" "~*--offline takes no value" "" --offline=yes
+t "unknown short option" 2 "" "~*unknown option '-x'" "" -x
+t "-e and FILE in order" 0 "1 2 3 " "" "" -e '1 .' "$tmp/two.fbrl" -e '3 .'
+t "-- ends the options" 0 "2 " "" "" -- "$tmp/two.fbrl"
 t "--help" 0 "*" "" "" --help
 grep -q '^usage: fbrlmon' out.txt || { fails=$((fails + 1)); echo "FAIL: --help output"; }
 t "--version" 0 "*" "" "" --version

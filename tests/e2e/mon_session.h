@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_session.h - shared by the e2e tests that drive fbrlmon through a real
  * pseudo-terminal (mon_pty.c, mon_teach.c): start it on a pty, type keys, wait for
  * output or a terminal mode, collect its exit status, print the transcript on failure.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_teach.c - TEACH, fbrlmon's keyboard teach pendant, on a real pseudo-terminal
  * against a real fbrlsim process (its command log is the independent witness):
  *  1. arrow, page and pitch keys jog the arm, Enter stores: P holds the position W2

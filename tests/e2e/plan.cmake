@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The sample-preparation plan end to end (label e2e): examples/sample_prep.fbrl run by
 # fbrlmon, and the C example examples/sample_prep.c, each against a real fbrlsim process on
 # a pty; the emulator's command log must equal the committed examples/*.expected exactly.

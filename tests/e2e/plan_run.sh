@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # plan_run.sh FBRLSIM WORKDIR INPUTS EXPECTED_LOG EXPECTED_OUT CMD [ARG...]
 #
 # Runs CMD (fbrlmon with a plan, or a C example) against a real fbrlsim process on a pty

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # RAPL encoder / reply parser / link end to end: the real fbrlsim binary on a pty,
 # driven by the link through the POSIX uart backend (label e2e).
 if(TARGET fbrlsim AND EXISTS ${PROJECT_SOURCE_DIR}/src/uart_posix.c)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_e2e_commands: every command of the RAPL table, encoded by rapl_encode, sent by
  * the link over a real pty to the real fbrlsim binary, and its effect checked: position
  * read-backs after moves, errors 011 029 040 041 042-046, STATUS rows, variables, I/O.

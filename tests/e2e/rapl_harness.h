@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rapl_harness.h - shared by the RAPL e2e tests and bench_rapl: start the real fbrlsim
  * binary on a pseudo-terminal, open it with the POSIX uart backend and bind a link. */
 #ifndef RAPL_HARNESS_H

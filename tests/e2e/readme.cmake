@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # README.md's commands and examples, read from README.md itself and run as written
 # (tests/e2e/readme_test.sh). The sample-preparation plan runs in the built-in emulator's
 # real time (about a minute): label readme as well as e2e.

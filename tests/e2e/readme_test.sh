@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # readme_test.sh SRC BUILD FBRLMON FBRLSIM
 #
 # Runs what README.md tells a new user to run, reading it from README.md itself:

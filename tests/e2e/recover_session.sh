@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # recover_session.sh FBRLMON FBRLSIM TMPDIR - corrective actions (docs/debugging.md) against
 # fbrlsim on a pty, its inputs and control channel, its command log the truth for what ran:
 #  1. a tube missing at sample 2 of 3, the operator answers Skip: samples 1 and 3 are

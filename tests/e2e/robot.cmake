@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Robot words end to end: a VM with the data glossary and the robot words, over a real
 # link (POSIX uart on a pty) to the real fbrlsim binary; one test per Forth file
 # tests/forth/robot_*.fs (label e2e). Each checks results with tester.fs and the exact

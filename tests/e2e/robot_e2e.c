@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_e2e: the robot words end to end. Starts the real fbrlsim binary on a pty (fast
  * simulated time, a command log, a control FIFO, optional scripted inputs), connects a
  * link over the POSIX uart backend, makes a VM with the data glossary and the robot

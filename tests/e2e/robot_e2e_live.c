@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_e2e_live: readings while the arm moves (docs/robot.md "Live and final
  * positions"). ROUNDS times: a joint-interpolated MOVE between two points, then after a
  * random delay (0 to the motion's duration) the words W2, W0 and ACTUAL (live: they must

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Ctrl-C makes the cell safe, and a controller that goes away comes back: fbrlmon on a
 # real pty against a real fbrlsim process (label e2e; tests/e2e/mon_safe.c).
 if(TARGET fbrlmon AND TARGET fbrlsim)

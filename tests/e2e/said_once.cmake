@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Issue 10 item 1, "said once, where it should go": fbrlmon on an 80x24 tmux terminal
 # against a real fbrlsim (tests/e2e/said_once.sh; skipped without tmux).
 if(TARGET fbrlmon AND TARGET fbrlsim)

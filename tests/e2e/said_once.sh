@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # said_once.sh FBRLMON FBRLSIM WORKDIR
 #
 # "Said once, where it should go" (issue 10, item 1), in fbrlmon on a real terminal: tmux

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # fbrlsim tests: the arm model (label unit) and the emulator driven over real
 # pseudo-terminals by a small raw client (label e2e), one ctest entry per group.
 if(TARGET fbrlsim)

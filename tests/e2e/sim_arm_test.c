@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_arm_test.c - the emulated arms' kinematics (sim/arm.c), for every model.
  *
  * The truth for forward kinematics is computed here independently: each arm as

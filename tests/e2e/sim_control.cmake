@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # sim_control_test (label unit): fbrlsim's control lines, --inputs file, long RUNs and state file lines,
 # called in-process through fbrlsim_core (no pty, no client).
 if(TARGET fbrlsim_core)

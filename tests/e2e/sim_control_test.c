@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_control_test.c - fbrlsim's control lines, --inputs file, long RUNs and
  * the state file lines the fuzz targets tripped over (issue 20: what their
  * regression inputs cannot judge alone).

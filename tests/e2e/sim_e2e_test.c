@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_e2e_test.c - fbrlsim driven over real pseudo-terminals (and TCP) by a
  * small raw client: line discipline, every command with its effects, readout
  * formats, persistence, baud pacing, faults and the command log.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # sim_mon_a465.sh FBRLMON FBRLSIM TMPDIR - fbrlmon drives a 6-axis A465 emulator
 # through the same robot words as the A255: the built-in emulator (--sim-model a465)
 # and an fbrlsim --model a465 process on a pty (--axes 6), whose command log is the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # TEACH, fbrlmon's keyboard teach pendant, on a real pty against a real fbrlsim
 # process (label e2e; tests/e2e/mon_teach.c).
 if(TARGET fbrlmon AND TARGET fbrlsim)

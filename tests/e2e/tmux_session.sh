@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tmux_session.sh - sourced by the e2e tests that drive fbrlmon on a real terminal: tmux
 # gives it a pty of a chosen size (session "said" on a private server), fbrlsim (started
 # here with --time-scale ${sim_scale:-20} and --log sim.log) is the controller on

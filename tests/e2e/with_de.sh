@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # with_de.sh LOCDIR CMD [ARG...]
 #
 # Runs CMD with LC_ALL=de_DE.UTF-8 (decimal comma), the locale under which libfbrl once

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # A session's work survives (docs/workspace.md): two fbrlmon processes on real fbrlsim
 # processes (their command logs), damaged workspace files (label e2e).
 if(TARGET fbrlmon AND TARGET fbrlsim)

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # workspace_test.sh FBRLMON FBRLSIM TMPDIR - a session's work survives (docs/workspace.md).
 #  1. One fbrlmon process on a real fbrlsim: teaches P by jogging (ARM-HERE), has the
 #     controller's own pendant teach PEN001 (TEACH mode and the pendant button on fbrlsim's

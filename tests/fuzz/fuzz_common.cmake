@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # fuzz_common.cmake - what every fuzz fragment uses (included first: the fragments
 # are read in name order and this name sorts before them).
 #  - FBRL_FUZZ_SECONDS: how long ctest runs each libFuzzer target (label fuzz).

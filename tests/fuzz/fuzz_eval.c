@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_eval.c - fuzz target for the FBRL evaluator: any input text, evaluated
  * in a fresh VM, must never crash, hang or touch memory outside the VM, and the
  * VM must stay usable afterwards.

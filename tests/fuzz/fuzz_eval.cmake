@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # fuzz_eval.cmake - fuzzing the FBRL evaluator (tests/fuzz/fuzz_eval.c), once the engine exists.
 #  - fuzz_replay (every build): runs the seed corpus through the fuzz entry point.
 #  - fuzz_eval (clang with -fsanitize=fuzzer only): libFuzzer for a bounded time.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_fileio.c - fuzz target for the typed data file reader (src/fileio.c).
  *
  * Input: one flag byte, then the bytes of a data file. Flag bit 0 reseals the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_replay.c - runs files (a seed corpus, crash reproducers) through the fuzz
  * entry point without libFuzzer, so the normal (gcc, ASan) build always tests it.
  *

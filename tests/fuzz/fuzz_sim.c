@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_sim.c - the harness fbrlsim's fuzz targets share (fuzz_sim.h).
  *
  * The emulator is created as fbrlsim creates it (fbrl_sim_create: options,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # fuzz_sim.cmake - fuzz targets for fbrlsim (command line and control lines, state
 # file, --inputs file) and for the typed data file reader (src/fileio.c).
 #  - fuzz_replay_<target> (every build, also under ASan): the seed corpus

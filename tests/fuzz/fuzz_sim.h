@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_sim.h - what fbrlsim's fuzz targets share: an emulator without a
  * client (TCP listener only), driven on simulated time by the harness, files in
  * a private temporary directory, and the round trip "what it saves it loads". */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_sim_clock.c - fbrlsim's clocks for the fuzz targets, in place of
  * sim/sim_clock.c: the monotonic clock is a number the harness moves forward
  * (fuzz_sim_advance), so no input waits on real time and every run of an input

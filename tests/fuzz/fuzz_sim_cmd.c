@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_sim_cmd.c - fuzz target for fbrlsim's command line and control lines.
  *
  * The input is what a host types, line by line ('\n' ends a chunk; CR, BS,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_sim_inputs.c - fuzz target for fbrlsim's --inputs parser and the
  * control lines it schedules.
  *

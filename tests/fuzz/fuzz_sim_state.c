@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_sim_state.c - fuzz target for fbrlsim's state file loader.
  *
  * The input is a state file, optionally followed by a line "%%" and what a

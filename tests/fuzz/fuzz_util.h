@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_util.h - helpers every fuzz target may use: failing loudly, a private
  * temporary directory for the files an input becomes, and input splitting. */
 #ifndef FBRL_FUZZ_UTIL_H

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # lang.cmake - random-program runs against the FBRL language engine (label fuzz).
 add_executable(lang_random ${PROJECT_SOURCE_DIR}/tests/fuzz/lang_random.c)
 target_link_libraries(lang_random PRIVATE fbrl_static m)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lang_random.c - long random-program runs against the FBRL engine (label fuzz).
  * Usage: lang_random [first-seed [seeds [lines]]]
  * Each seed builds lines of random tokens from the dictionary's own words and a

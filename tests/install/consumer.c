@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* A lab program built against an installed libfbrl: every public header compiles,
  * and a calibrated rack location and a VM evaluation work through the library. */
 #include <stdio.h>

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Installs the built tree into a temporary prefix, then builds and runs a program
 # against it three ways: find_package(fbrl) shared, static, and pkg-config.
 set -eu

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # QEMU tests of the bare-metal port (ports/pc-bare): boot the image with COM1 on a pty
 # and push data through its interrupt-driven echo from the host, over the project's
 # own POSIX backend with XON/XOFF, checking every byte. Needs qemu-system-i386 (TCG;

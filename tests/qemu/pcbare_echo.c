@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pcbare_echo.c - host side of the bare-metal test: boots the pc-bare image under
  * QEMU with COM1 on a pty, opens that pty with the project's own POSIX backend
  * (fbrl_uart over uart_posix, XON/XOFF on), pushes a pseudo-random payload through

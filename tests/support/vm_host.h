@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* vm_host.h - the VM host callbacks the test programs share: console output into a
  * buffer, source files through stdio, the POSIX clock and local time. Static inline, like
  * tests/e2e/rapl_harness.h, so that a test includes it with no object of its own and no

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Compiled by the test fbrl_h_freestanding with -ffreestanding -nostdinc and only the
  * compiler's own headers: fbrl.h must need nothing from an operating system. */
 #include "fbrl/fbrl.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_fileio.c - typed data files on real files in a temporary directory: round trips,
  * the byte-exact format, type checks, every truncation, every bit flip, and writers killed
  * with SIGKILL mid-commit. */

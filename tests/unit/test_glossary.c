@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_glossary.c - the data glossary words (locations, matrices, calibration, metric,
  * files): the Forth conformance files tests/forth/glossary_*.fs, the printed texts, the
  * C interface the robot words use, and the file table's commit-on-finish. */

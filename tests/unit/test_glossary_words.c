@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_glossary_words.c - docs/glossary.md is the glossary of every thesis word; this test
  * keeps it true. It parses the document's tables and, in a VM with the data glossary and the
  * robot words installed offline (no controller), checks that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_link: the link's protocol against a scripted controller on a real pty pair.
  * The test plays the controller on the master side (line discipline of
  * docs/rapl-commands.md 1: upper-case echo, BS/DEL/CAN erase with BS SP BS, CR LF,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_num.c - locale-free number conversion against the C library in the "C" locale
  * (which the test never leaves): parse against strtod, printing against snprintf, over
  * random doubles of every magnitude, exact ties, subnormals and long inputs. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_port.c - opening ports by name over real ptys and a real TCP listener, the
  * option text, "sim:" through a hook that makes a real pty, low-latency mode refused
  * cleanly by a pty, and the USB latency timer through a fake sysfs tree in a temporary
@@ -312,12 +313,106 @@ static void latency_timer_in_fake_sysfs(void **state)
     assert_int_equal(system(cmd), 0);
 }
 
+/* ---- the port list: USB details and /dev/serial/by-id names in fake sysfs and dev trees ---- */
+
+static void symlink_in_root(const char *target_rel, const char *link_rel)
+{
+    char link[256], target[256];
+    snprintf(link, sizeof link, "%s/%s", root, link_rel);
+    snprintf(target, sizeof target, "%s/%s", root, target_rel);
+    assert_int_equal(symlink(target, link), 0);
+}
+
+static void port_list_in_fake_trees(void **state)
+{
+    (void)state;
+    char sys[128], dev[128];
+    snprintf(root, sizeof root, "/tmp/fbrl-ports-XXXXXX");
+    assert_non_null(mkdtemp(root));
+    snprintf(sys, sizeof sys, "%s/sys", root);
+    snprintf(dev, sizeof dev, "%s/dev", root);
+    /* an FTDI adapter as Linux shows it: the tty's device is the usb-serial port under the
+     * interface 1-1:1.0 of the USB device 1-1, which has the ids and strings */
+    mkdirs("sys/devices/usb1/1-1/1-1:1.0/ttyUSB3");
+    put_file("sys/devices/usb1/1-1/idVendor", "0403\n");
+    put_file("sys/devices/usb1/1-1/idProduct", "6001\n");
+    put_file("sys/devices/usb1/1-1/product", "FT232R USB UART\n");
+    put_file("sys/devices/usb1/1-1/manufacturer", "FTDI\n");
+    put_file("sys/devices/usb1/1-1/serial", "A12345\n");
+    mkdirs("sys/class/tty/ttyUSB3");
+    symlink_in_root("sys/devices/usb1/1-1/1-1:1.0/ttyUSB3", "sys/class/tty/ttyUSB3/device");
+    /* a CDC-ACM device (an Arduino): the tty's device is the interface itself */
+    mkdirs("sys/devices/usb1/1-2/1-2:1.0");
+    put_file("sys/devices/usb1/1-2/idVendor", "2341\n");
+    put_file("sys/devices/usb1/1-2/idProduct", "0043\n");
+    put_file("sys/devices/usb1/1-2/serial", "7553\n");
+    mkdirs("sys/class/tty/ttyACM0");
+    symlink_in_root("sys/devices/usb1/1-2/1-2:1.0", "sys/class/tty/ttyACM0/device");
+    /* 8250 UARTs: ttyS0 is there (type 4, a 16550A), ttyS1 is not (type 0); tty1 is a console */
+    mkdirs("sys/devices/platform/serial8250/tty/ttyS0");
+    mkdirs("sys/class/tty/ttyS0");
+    mkdirs("sys/class/tty/ttyS1");
+    mkdirs("sys/class/tty/tty1");
+    put_file("sys/class/tty/ttyS0/type", "4\n");
+    put_file("sys/class/tty/ttyS1/type", "0\n");
+    symlink_in_root("sys/devices/platform/serial8250/tty/ttyS0", "sys/class/tty/ttyS0/device");
+    symlink_in_root("sys/devices/platform/serial8250/tty/ttyS0", "sys/class/tty/ttyS1/device");
+    /* /dev: the ttys, and udev's stable name for the FTDI adapter */
+    mkdirs("dev/serial/by-id");
+    put_file("dev/ttyUSB3", "");
+    put_file("dev/ttyACM0", "");
+    put_file("dev/ttyS0", "");
+    symlink_in_root("dev/ttyUSB3", "dev/serial/by-id/usb-FTDI_FT232R_USB_UART_A12345-if00-port0");
+
+    fbrl_port_entry e[8];
+    size_t n = 0;
+    assert_int_equal(fbrl_port_list(sys, dev, e, 8, &n), FBRL_OK);
+    assert_int_equal(n, 3); /* ttyACM0 ttyS0 ttyUSB3: not the absent UART, not the console */
+    char want[256];
+    snprintf(want, sizeof want, "%s/ttyACM0", dev);
+    assert_string_equal(e[0].device, want);
+    assert_true(e[0].usb);
+    assert_int_equal(e[0].vid, 0x2341);
+    assert_int_equal(e[0].pid, 0x0043);
+    assert_string_equal(e[0].serial, "7553");
+    assert_string_equal(e[0].by_id, "");
+    snprintf(want, sizeof want, "%s/ttyS0", dev);
+    assert_string_equal(e[1].device, want);
+    assert_false(e[1].usb);
+    snprintf(want, sizeof want, "%s/ttyUSB3", dev);
+    assert_string_equal(e[2].device, want);
+    assert_true(e[2].usb);
+    assert_int_equal(e[2].vid, 0x0403);
+    assert_int_equal(e[2].pid, 0x6001);
+    assert_string_equal(e[2].description, "FT232R USB UART");
+    assert_string_equal(e[2].manufacturer, "FTDI");
+    assert_string_equal(e[2].serial, "A12345");
+    snprintf(want, sizeof want, "%s/serial/by-id/usb-FTDI_FT232R_USB_UART_A12345-if00-port0", dev);
+    assert_string_equal(e[2].by_id, want);
+    /* a short array: the count still says how many there are */
+    assert_int_equal(fbrl_port_list(sys, dev, e, 1, &n), FBRL_OK);
+    assert_int_equal(n, 3);
+    snprintf(want, sizeof want, "%s/ttyACM0", dev); /* the first in name order */
+    assert_string_equal(e[0].device, want);
+    assert_int_equal(fbrl_port_list(sys, dev, NULL, 0, &n), FBRL_OK);
+    assert_int_equal(n, 3);
+    assert_int_equal(fbrl_port_list(sys, dev, e, 8, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_port_list(dev, dev, e, 8, &n), FBRL_EUNSUPPORTED); /* no class/tty */
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", root);
+    assert_int_equal(system(cmd), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(options_from_text),  cmocka_unit_test(pty_by_path_with_options),
-        cmocka_unit_test(bad_names),          cmocka_unit_test(sim_through_the_hook),
-        cmocka_unit_test(tcp_server_by_name), cmocka_unit_test(latency_timer_in_fake_sysfs),
+        cmocka_unit_test(options_from_text),
+        cmocka_unit_test(pty_by_path_with_options),
+        cmocka_unit_test(bad_names),
+        cmocka_unit_test(sim_through_the_hook),
+        cmocka_unit_test(tcp_server_by_name),
+        cmocka_unit_test(latency_timer_in_fake_sysfs),
+        cmocka_unit_test(port_list_in_fake_trees),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

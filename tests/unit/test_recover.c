@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_recover.c - corrective actions (fbrl/recover.h): rules per step and kind, retries
  * counted per ATTEMPT, a recovery word before the retry, skip, the operator's three
  * answers, the safe stop, failures classed from THROW codes and controller errors, and

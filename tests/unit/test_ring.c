@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_ring.c - the SPSC byte ring: queue semantics against a reference model,
  * wrap-around at every offset, bad input, and a two-thread stress run that moves
  * at least 100 MB in random chunks and checks every byte's value and order.

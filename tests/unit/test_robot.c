@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_robot.c - the robot words without a controller: installation, the offline error,
  * parameters on the stack or after the word (I-6), argument checks made before anything
  * is sent, the host-side words (I-8 line building, serial settings, devices, timers,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_uart.c - the driver core over an in-test loopback "wire": two ports whose
  * backends hand each other's bytes across when serviced, under a simulated clock.
  * This is the hardware boundary (the only fake allowed); everything above it is the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_uart_posix.c - the POSIX backend over real pseudo-terminals (posix_openpt)
  * and a real loopback TCP listener: settings read back with tcgetattr, exclusive
  * use, restore on close, 16 MiB both ways under XON/XOFF with a slow reader, the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_uart_serialport.c - the libserialport part: enumeration answers (possibly with
  * zero ports: CI machines have none), and names it cannot open give clear errors.
  * libserialport cannot drive a Linux pty, so data tests live in test_uart_posix.c. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_vm.c - the FBRL language engine: the Forth conformance suite in tests/forth
  * (each file must report zero failures) and the C embedding API. */
 /* ctest-labels: threads */

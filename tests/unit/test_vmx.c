@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_vmx.c - the extension interface for word sets (fbrl/vmx.h): words with flags and two
  * context pointers, typed data made all or nothing, the one argument parser (stacks or the
  * input after the word, the engine's number syntax), the rule for integers given where a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_workspace.c - the workspace module (include/fbrl/workspace.h) in real VMs with the
  * glossary and the robot words, on real files:
  *  - what one VM saves, another loads: every kind of object, by name, with the settings;

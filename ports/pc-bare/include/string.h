@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* string.h - the freestanding image's own: only what libc.c provides. */
 #ifndef PCBARE_STRING_H
 #define PCBARE_STRING_H

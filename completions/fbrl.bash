@@ -1,0 +1,82 @@
+# SPDX-License-Identifier: MIT
+# bash completion for fbrlmon, fbrlsim and fbrl-dump (installed as
+# /usr/share/bash-completion/completions/fbrlmon, .../fbrlsim and .../fbrl-dump). The option names come
+# from the program's own --help, so a new option completes without a change here; the
+# values below are those the programs accept.
+
+_fbrl_ports()
+{
+    local p
+    for p in /dev/serial/by-id/* /dev/ttyUSB* /dev/ttyACM* /dev/ttyS*; do
+        [[ -e $p ]] && printf '%s\n' "$p"
+    done
+    printf '%s\n' tcp:
+}
+
+_fbrl_complete()
+{
+    local cur prev words cword split
+    _init_completion -s || return
+
+    local prog=${1##*/}
+    case $prev in
+        --port)
+            COMPREPLY=($(compgen -W '$(_fbrl_ports)' -- "$cur"))
+            [[ $cur != tcp:* ]] && _filedir
+            return
+            ;;
+        --parity)
+            if [[ $prog == fbrlsim ]]; then
+                COMPREPLY=($(compgen -W 'N E O' -- "$cur"))
+            else
+                COMPREPLY=($(compgen -W 'none even odd' -- "$cur"))
+            fi
+            return
+            ;;
+        -f | --format)
+            COMPREPLY=($(compgen -W 'json csv' -- "$cur"))
+            return
+            ;;
+        --flow)
+            COMPREPLY=($(compgen -W 'none xonxoff' -- "$cur"))
+            return
+            ;;
+        --low-latency)
+            COMPREPLY=($(compgen -W 'on off' -- "$cur"))
+            return
+            ;;
+        --sim-model | --model)
+            COMPREPLY=($(compgen -W 'a255 a465' -- "$cur"))
+            return
+            ;;
+        --data-bits)
+            COMPREPLY=($(compgen -W '5 6 7 8' -- "$cur"))
+            return
+            ;;
+        --stop-bits)
+            COMPREPLY=($(compgen -W '1 2' -- "$cur"))
+            return
+            ;;
+        --baud)
+            COMPREPLY=($(compgen -W '300 1200 2400 4800 9600 19200 38400 57600 115200' -- "$cur"))
+            return
+            ;;
+        -e | --dict | --axes | --tcp | --rx-buffer | --time-scale | --cmd-time | --faults)
+            return
+            ;;
+        --sim-state | --sim-inputs | --workspace | --printer | --state | --log | --inputs | --control | --link)
+            _filedir
+            return
+            ;;
+    esac
+    $split && return
+
+    if [[ $cur == -* ]]; then
+        COMPREPLY=($(compgen -W '$(_parse_help "$1")' -- "$cur"))
+        [[ ${COMPREPLY-} == *= ]] && compopt -o nospace
+        return
+    fi
+    # fbrlmon's operands are FBRL source files, fbrl-dump's a data file; fbrlsim takes none
+    [[ $prog != fbrlsim ]] && _filedir
+}
+complete -F _fbrl_complete fbrlmon fbrlsim fbrl-dump

@@ -1,0 +1,69 @@
+# SPDX-License-Identifier: MIT
+"""Fixtures: a real fbrlsim process on a pty, its command log (the truth for what ran)."""
+import os
+import subprocess
+import sys
+import time
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))  # python/: the package under test
+
+SIM_START_SECONDS = 10
+TIME_SCALE = "100"
+LOADED_HOST_ECHO_MS = 500  # a loaded test machine may stall us; the controller is not slow  # simulated time 100 times faster: motions take milliseconds
+
+
+def _fbrlsim():
+    path = os.environ.get("FBRL_SIM") or os.path.join(os.path.dirname(os.path.dirname(HERE)), "build", "sim",
+                                                      "fbrlsim")
+    if not os.access(path, os.X_OK):
+        pytest.fail("fbrlsim not found at %s (set FBRL_SIM)" % path)
+    return path
+
+
+class Sim:
+    """An fbrlsim process: .port is its pty, .log() the command lines it executed."""
+
+    def __init__(self, tmp_path, *args):
+        self.log_path = str(tmp_path / "sim.log")
+        self.proc = subprocess.Popen([_fbrlsim(), "--log", self.log_path, "--time-scale", TIME_SCALE] + list(args),
+                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + SIM_START_SECONDS
+        self.port = self.proc.stdout.readline().strip()
+        if not self.port.startswith("/dev/") or time.monotonic() > deadline:
+            self.stop()
+            pytest.fail("fbrlsim did not start: %r %s" % (self.port, self.proc.stderr.read()))
+
+    def log(self):
+        try:
+            with open(self.log_path) as f:
+                return [line.rstrip("\n") for line in f]
+        except FileNotFoundError:
+            return []
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout=SIM_START_SECONDS)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        self.proc.stdout.close()
+        self.proc.stderr.close()
+
+
+@pytest.fixture
+def sim(tmp_path):
+    s = Sim(tmp_path)
+    yield s
+    s.stop()
+
+
+@pytest.fixture
+def link(sim):
+    import fbrl
+    with fbrl.Port(sim.port) as port:
+        yield fbrl.Link(port, echo_timeout_ms=LOADED_HOST_ECHO_MS)
