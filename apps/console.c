@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* console.c - the operator console (fbrlmon --console), on ncurses.
  *
  * One thread: the method runs in the FBRL engine (RUN-METHOD), and the screen is kept

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* console.h - the operator console (fbrlmon --console): a full-screen ncurses view to
  * pick a method from the method library, fill in its parameters (ranges checked), start,
  * pause after the current step, resume and abort it, and watch its progress, the arm,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_dry.c - fbrlmon --dry-run (see mon_dry.h, docs/workcell.md). */
 #define _GNU_SOURCE /* mkdtemp, nftw */
 #include "mon_dry.h"

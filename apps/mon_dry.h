@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_dry.h - the dry run (fbrlmon --dry-run, docs/workcell.md): a plan run against the
  * built-in emulator with every wait skipped, then a report of what it did.
  *

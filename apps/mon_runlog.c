@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_runlog.c - the run log's file, header and method observer; RUN-LOG and NO-RUN-LOG. */
 #include "mon_runlog.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_runlog.h - the run log in fbrlmon and its console: every RUN-METHOD writes a JSON
  * Lines record of the run (include/fbrl/runlog.h) to the file chosen with --run-log or
  * RUN-LOG: the header, each step, each command the controller executed (from the link's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_cell.c - the motion guard's cost per move (docs/workcell.md; the bound is 50 us):
  * the ASPS cell of examples/asps_cell_objects.fbrl (table, 7 obstacles, one of them on a
  * moved block), and the moves of the sample plan's kind: joint moves between stations,

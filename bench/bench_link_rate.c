@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* bench_link_rate: the echo-verified link's throughput on fbrlsim's strict line (issue 11,
  * item 2), for a short and a long command at 9600, 38400 and 115200 baud.
  * Usage: bench_link_rate [FBRLSIM [SECONDS [CMD_TIME_MS [pty|tcp]]]]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_aci.c - ACI mode: the binary host protocol some RAPL-II controllers power
  * up in (fbrlsim --aci). Only what clients use is emulated: the switch to
  * terminal mode (research notes 2.5, S2's ACI_to_Term with the S5 and S6

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* sim_cell.c - the work cell fbrlsim knows (--cell FILE): the same description fbrlmon
  * INCLUDEs (docs/workcell.md), read here without a Forth engine: numbers, the CELL-* words
  * and comments; anything else is an error naming its line. A motion whose path meets the

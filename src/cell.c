@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cell.c - the work cell's geometry and the path check (cell.h, docs/workcell.md). */
 #include <math.h>
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* runlog.c - the run log: JSON Lines records built in a fixed buffer, one sink write each. */
 #include "fbrl/runlog.h"
 

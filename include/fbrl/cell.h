@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cell.h - the work cell: the table plane, boxes, cylinders and keep-out zones, the tool
  * envelope, and the check of an arm's path against them (docs/workcell.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* method.h - methods as a thing: a named procedure a lab runs without programming.
  *
  * A method file declares, in FBRL:

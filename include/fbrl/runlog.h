@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* runlog.h - the run log a lab keeps: one JSON object per line (JSON Lines).
  *
  * A run of a method writes a header (method, parameters, operator, time, controller and

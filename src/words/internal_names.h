@@ -33,6 +33,9 @@
 #define gl_type_rad      fbrli_gl_type_rad
 #define gl_type_rect     fbrli_gl_type_rect
 #define gl_type_stru     fbrli_gl_type_stru
+#define rb_guard         fbrli_rb_guard
+#define rb_guard_done    fbrli_rb_guard_done
+#define rb_where_lost    fbrli_rb_where_lost
 #define rb_arm_where     fbrli_rb_arm_where
 #define rb_cmd           fbrli_rb_cmd
 #define rb_comm_asc      fbrli_rb_comm_asc

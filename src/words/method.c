@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* method.c - the method words: METHOD PARAM SAMPLES-PARAM STEP SAMPLE-STEP ON-ABORT
  * END-METHOD declare a method; RUN-METHOD runs it step by step under an observer;
  * METHODS .METHOD PARAM! show and set it at the prompt (include/fbrl/method.h). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_cell.c - the work cell's FBRL words (docs/workcell.md) and the guard they put on
  * every robot motion: before a motion word sends its first byte, the path the arm will take
  * (from where it stands, known from the last guarded motion or read with W2) is checked

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* robot_guard.c - what a motion guard (fbrl_robot_set_guard; the work cell's, fbrl/cell.h)
  * may ask the robot: the arm's joints (W2) once it stands. The hook itself is robot_svc.c's. */
 #include <string.h>

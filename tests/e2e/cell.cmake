@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The work cell's guard against a real fbrlsim that knows the same cell (docs/workcell.md):
 # a move into the table, into a box, through a keep-out zone in a straight line, and a joint
 # move whose ends are clear but whose path is not: refused before any byte of the motion is

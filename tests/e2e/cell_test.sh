@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # cell_test.sh FBRLMON FBRLSIM CELLDIR WORKDIR - see cell.cmake.
 mon=$1 sim=$2 dir=$3 work=$4
 rm -rf "$work" && mkdir -p "$work" || exit 2

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Issue 16, the operator console: fbrlmon --console under tmux against fbrlsim
 # (tests/e2e/console.sh: the sample-prep method run, paused, resumed, aborted, run again).
 if(TARGET fbrlmon AND TARGET fbrlsim)

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # console.sh FBRLMON FBRLSIM WORKDIR SRCDIR
 #
 # The operator console (issue 16, "must show"): fbrlmon --console on an 80x24 tmux terminal

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # dry_run.sh FBRLMON EXAMPLES WORKDIR [real] - fbrlmon --dry-run of examples/sample_prep.fbrl
 # (docs/workcell.md): it finishes in under 10 s of wall time, reports what the plan did, and
 # its picture renders (rsvg-convert) with the expected elements. With "real", the same plan

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* link_e2e_aci.c - the link's connect step against the real fbrlsim: a controller that
  * powers up in ACI mode (fbrlsim --aci) is switched to terminal mode; one already in
  * terminal mode has the switch's bytes erased; the link learns the units from STATUS.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_cell.c - the work cell's geometry: kinematics against hand-computed poses, path
  * checks against a brute-force dense sampling of the same motion, thin obstacles, blocks
  * carried by their calibration, and bad descriptions. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_method.c - the method words (tests/forth/method.fs) and their C side: the
  * declared methods, parameters set with their ranges checked, and a run watched step by
  * step through the observer (pause = a between() that says stop). */

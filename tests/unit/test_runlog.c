@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_runlog.c - the run log's records, their escaping, cutting, and a failing sink. */
 #include <stdarg.h>
 #include <stddef.h>
