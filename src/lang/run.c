@@ -113,13 +113,12 @@
 #define U(x)     ((fbrl_ucell)(x))
 #define FLAG(c)  ((c) ? (fbrl_cell)-1 : 0)
 #define FCELLS   ((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell))
-/* a float result must be finite when its inputs were (else -43 / -46) */
-#define FRES(r, bad)       \
-    do {                   \
-        double r_ = (r);   \
-        if (!isfinite(r_)) \
-            goto e_f##bad; \
-        ftos = r_;         \
+/* float results follow IEEE 754 (infinities, NaN, signed zero): the safety check is at
+ * the controller boundary instead (robot words refuse a value that is not finite) */
+#define FRES(r, bad) \
+    do {             \
+        (void)(bad); \
+        ftos = (r);  \
     } while (0)
 /* binary float op: r1 = second, r2 = top; the result replaces both */
 #define FBIN(expr, bad)                \
@@ -1098,9 +1097,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(IF)
             CASE(ELSE)
             CASE(THEN)
-            CASE(BEGIN) CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO)
-                CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE)
-                    CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
+            CASE(BEGIN)
+            CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP)
+                CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES)
+                    CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
@@ -1113,15 +1113,17 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(CREATE)
             CASE(VARIABLE)
             CASE(TWOVARIABLE)
-            CASE(CONSTANT) CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON)
-                CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
+            CASE(CONSTANT)
+            CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER)
+                CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
             NEXT;
             CASE(TO)
             CASE(IS)
             CASE(ACTIONOF)
-            CASE(POSTPONE) CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN)
-                CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE)
-                    CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
+            CASE(POSTPONE)
+            CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH)
+                CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE)
+                    CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
                         CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE)
                             CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL)
                                 CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE)
@@ -1241,10 +1243,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(KEY)
             CASE(KEYQ)
             CASE(ACCEPT)
-            CASE(DOT) CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION)
-                CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS)
-                    CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT)
-                        CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
+            CASE(DOT)
+            CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM)
+                CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP)
+                    CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT)
+                        CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */
@@ -1258,8 +1261,6 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             FBIN(r1 * r2, 43);
             NEXT;
             CASE(FSLASH) FNEED(2);
-            if (ftos == 0)
-                THROW(FBRL_THROW_FDIV_ZERO);
             FBIN(r1 / r2, 43);
             NEXT;
             CASE(FNEGATE) FNEED(1);
@@ -1442,8 +1443,6 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 NEED(1);
                 FNEED(1);
                 CHKC(T, 4);
-                if (fabs(ftos) > 3.4028234663852886e38)
-                    THROW(FBRL_THROW_FRESULT_RANGE);
                 f = (float)ftos;
                 memcpy((void *)T, &f, 4);
                 DROP1();
@@ -1622,6 +1621,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                     THROW(FBRL_THROW_UNSUPPORTED);
                 SAVE();
                 vm->pending_throw = 0;
+                vm->cword = h;
                 st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
                 if (vm->sp < ds0 || vm->sp > dse || vm->fp < fs0 || vm->fp > fse) {
                     vm->sp = ds0;
@@ -1671,12 +1671,6 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         goto e_stored;
     e_address:
         vm->run_code = -9;
-        goto e_stored;
-    e_f43:
-        vm->run_code = -43;
-        goto e_stored;
-    e_f46:
-        vm->run_code = -46;
         goto e_stored;
     e_stored:
         code = vm->run_code;

@@ -157,10 +157,11 @@ struct fbrl_vm {
     int precision;
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
-    fbrl_cell guard_addr;    /* address of the guard cells (HALT, CATCHEND, BAD...) */
-    unsigned char *peep;     /* last instruction the compiler may fuse with (dict.c) */
-    unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
-    int run_code;            /* run.c: the code of an error exit */
+    fbrl_cell guard_addr;         /* address of the guard cells (HALT, CATCHEND, BAD...) */
+    unsigned char *peep;          /* last instruction the compiler may fuse with (dict.c) */
+    unsigned char *peep_end;      /* HERE right after it; NULL: no fusion */
+    int run_code;                 /* run.c: the code of an error exit */
+    const struct fbrl_hdr *cword; /* the C word last called (names it in vmx.c's errors) */
     /* The text interpreter (interp.c) nested from below: EVALUATE, INCLUDED, INCLUDE and
      * REQUIRE run in run.c and words.c, which interp.c itself calls. fbrl_vm_create sets
      * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */

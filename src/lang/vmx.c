@@ -1,5 +1,6 @@
 /* vmx.c - the extension interface for word sets (include/fbrl/vmx.h): the one place
  * where word sets meet the engine's insides (headers, input sources, the number parser). */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -319,6 +320,21 @@ fbrl_status fbrl_vmx_arg_parse(fbrl_vm *vm, const char *word, char kind, const c
 
 static size_t cells_of(char kind) { return kind == 'R' ? 0 : (kind == 'S' || kind == 'T') ? 2 : 1; }
 
+/* The safety of real arithmetic (IEEE: infinities, NaN) is checked here, where a value
+ * enters a word set: every real parameter of a word set's word (a location, a motion, a
+ * speed, a calibration: anything that may be bound for the controller) must be finite. */
+static fbrl_status refuse_nonfinite(fbrl_vm *vm, const char *word, double f)
+{
+    return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENONFINITE),
+                           "%s refuses %s: not a finite number (nothing was sent)",
+                           word && *word ? word
+                           : vm->cword   ? vm->cword->name
+                                         : "?",
+                           isnan(f) ? "NaN"
+                           : f < 0  ? "-Inf"
+                                    : "Inf");
+}
+
 fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what,
                           unsigned how, fbrl_vmx_val *v)
 {
@@ -344,6 +360,8 @@ fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const
             fbrl_status st = fbrl_vmx_arg_parse(vm, word, spec[k], what ? what[k] : NULL, &v[k]);
             if (st != FBRL_OK)
                 return st;
+            if (spec[k] == 'R' && !isfinite(v[k].f))
+                return refuse_nonfinite(vm, word, v[k].f);
         }
         return FBRL_OK;
     }
@@ -351,6 +369,9 @@ fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const
         return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
     if (ints && d < nc + nf)
         return fbrl_vm_throw(vm, FBRL_THROW_FSTACK_UNDERFLOW, NULL);
+    for (k = 0; !ints && k < nf; k++) /* before anything is taken: bad input loses nothing */
+        if (!isfinite(vm->fp[-1 - (ptrdiff_t)k]))
+            return refuse_nonfinite(vm, word, vm->fp[-1 - (ptrdiff_t)k]);
     /* the word's cell parameters are on top, in spec order; beneath them its reals given
      * as integers (or the reals are on the float stack) */
     fbrl_cell *top = (fbrl_cell *)vm->sp;

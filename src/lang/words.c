@@ -81,8 +81,8 @@ int fbrl__w_string(fbrl_vm *vm, int op)
             return r;
         for (size_t i = 0; n2 <= n1 && i <= n1 - n2; i++) {
             if (n2 == 0 || memcmp(s1 + i, s2, n2) == 0) {
-                vm->sp += 2;
-                vm->sp[-2] = (fbrl_cell)(s1 + i);
+                vm->sp += 2; /* a1 stays as given (an empty string's too) */
+                vm->sp[-2] = (fbrl_cell)(U(vm->sp[-2]) + i);
                 vm->sp[-1] = (fbrl_cell)(n1 - i);
                 return push(vm, -1);
             }
@@ -777,8 +777,6 @@ static int skip_conditional(fbrl_vm *vm, int else_ok)
                 return 0;
         } else if (name_is(p, n, "[ELSE]") && level == 0 && else_ok)
             return 0;
-        else if (name_is(p, n, "\\"))
-            *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
     }
 }
 

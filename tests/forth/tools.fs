@@ -15,3 +15,7 @@ T{ TIME&DATE DROP DROP DROP DROP 0 60 WITHIN SWAP 0 61 WITHIN -> TRUE TRUE }T
 T{ UTIME UTIME 2SWAP D- D0< -> FALSE }T
 T{ KEY? DUP 0= OR -> TRUE }T
 T{ STATE @ -> 0 }T
+\ [IF] skips by parsing words: a backslash does not hide what follows it
+T{ 0 [IF] \ [ELSE] 11 [THEN] -> 11 }T
+T{ 0 [IF] 1 \ [THEN] 22 [THEN] -> 22 }T
+T{ 1 [IF] 33 [ELSE] \ [THEN] 44 [THEN] -> 33 44 }T
