@@ -52,19 +52,56 @@ static int name_eq(const char *a, const char *b, size_t n)
     return 1;
 }
 
+/* Position of word list wl in the search order (norder: not in it). */
+static int order_rank(const fbrl_vm *vm, unsigned wl)
+{
+    int k = 0;
+    while (k < vm->norder && vm->order[k] != wl)
+        k++;
+    return k;
+}
+
+/* The newest word of that name in the earliest word list of the search order. The hash
+ * chain runs newest first, so a match in the first word list (the usual FORTH) ends the
+ * walk at once: one list is as fast as before word lists. */
 int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
+{
+    if (len == 0 || len > FBRL_NAME_MAX)
+        return -1;
+    int best = -1, brank = vm->norder;
+    uint32_t i = vm->hash[hash_name(name, len)];
+    while (i) {
+        const fbrl_hdr *h = HDR(vm, i - 1);
+        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
+            int r = order_rank(vm, h->wl);
+            if (r == 0)
+                return (int)(i - 1);
+            if (r < brank) {
+                brank = r;
+                best = (int)(i - 1);
+            }
+        }
+        i = h->next;
+    }
+    return best;
+}
+
+/* The newest word of that name in word list wl alone (SEARCH-WORDLIST). */
+int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
 {
     if (len == 0 || len > FBRL_NAME_MAX)
         return -1;
     uint32_t i = vm->hash[hash_name(name, len)];
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
-        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+        if (h->wl == wl && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
             return (int)(i - 1);
         i = h->next;
     }
     return -1;
 }
+
+int fbrl__name_eq(const char *a, const char *b, size_t n) { return name_eq(a, b, n); }
 
 static void rebuild_hash(fbrl_vm *vm)
 {
@@ -103,6 +140,7 @@ static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsig
     h->len = (uint8_t)len;
     h->kind = (uint8_t)kind;
     h->flags = (uint8_t)flags;
+    h->wl = vm->current;
     h->stack = "";
     h->help = "";
     unsigned b = hash_name(name, len);
@@ -147,7 +185,6 @@ int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
     vm->peep_end = NULL;
     return 0;
 }
-
 
 /* ---- compilation helpers ---- */
 /* Peephole fusion: common pairs of ops become one superinstruction (ops.def), and
@@ -254,7 +291,10 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     if (!h)
         return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
-    case K_PRIM: return fbrl__compile_op(vm, h->op);
+    case K_PRIM:
+        if (h->op == OP_EXIT && vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
+            return r; /* EXIT from a definition with locals drops their frame first */
+        return fbrl__compile_op(vm, h->op);
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL)))
             return r;
@@ -452,6 +492,9 @@ int fbrl__semicolon(fbrl_vm *vm)
     int r;
     if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON)
         return FBRL_THROW_CONTROL_MISMATCH;
+    if (vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
+        return r;
+    vm->nlocals = 0;
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
@@ -467,6 +510,7 @@ int fbrl__semicolon(fbrl_vm *vm)
 /* After an error: drop a half-made definition, back to interpretation. */
 static void discard_definition(fbrl_vm *vm)
 {
+    vm->nlocals = 0;
     if (vm->defining) {
         vm->here = vm->def_here;
         vm->nwords = vm->def_nwords;
@@ -528,6 +572,41 @@ fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void 
     h->stack = stack_effect ? stack_effect : "";
     h->help = help ? help : "";
     return FBRL_OK;
+}
+
+/* The engine's own C words (word lists, locals, memory, files ...) into the current word list. */
+int fbrl__define_words(fbrl_vm *vm, const fbrl_cword *w, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        fbrl_hdr *h;
+        if (new_header(vm, w[k].name, strlen(w[k].name), K_CFUNC, w[k].flags, &h))
+            return FBRL_THROW_DICT_OVERFLOW;
+        h->fn = w[k].fn;
+        h->arg = w[k].arg;
+        h->body = (fbrl_cell)vm->here;
+        h->stack = w[k].stack;
+        h->help = w[k].help;
+    }
+    return 0;
+}
+
+/* SYNONYM: a new header that is a copy of old (its behaviour, flags and data), named name. */
+int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old)
+{
+    fbrl_hdr *h, copy = *old;
+    int r = new_header(vm, name, len, old->kind, old->flags & (FI | FC | FS), &h);
+    if (r)
+        return r;
+    uint32_t next = h->next;
+    uint8_t wl = h->wl;
+    *h = copy;
+    memset(h->name, 0, sizeof h->name);
+    memcpy(h->name, name, len);
+    h->len = (uint8_t)len;
+    h->next = next;
+    h->wl = wl;
+    h->flags = (uint8_t)(old->flags & (FI | FC | FS));
+    return 0;
 }
 
 fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect, const char **help)
