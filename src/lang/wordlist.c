@@ -239,9 +239,8 @@ static fbrl_status w_traverse_wordlist(fbrl_vm *vm, void *arg)
             continue;
         if ((r = fbrl__cpush(vm, FBRL_XT_BASE + (fbrl_cell)i)))
             return fbrl__cthrow(vm, r);
-        fbrl_status st = fbrl_vmx_execute(vm, xt);
-        if (st != FBRL_OK)
-            return st;
+        if ((r = fbrl__run(vm, xt)))
+            return fbrl__cthrow(vm, r);
         if (fbrl__cneed(vm, 1))
             return fbrl__cthrow(vm, FBRL_THROW_STACK_UNDERFLOW);
         if (!*--vm->sp)

@@ -54,7 +54,10 @@ static inline int fbrl__cpush(fbrl_vm *vm, fbrl_cell v)
 /* A throw code as a C word's result. */
 static inline fbrl_status fbrl__cthrow(fbrl_vm *vm, int code)
 {
-    return code ? fbrl_vm_throw(vm, code, NULL) : FBRL_OK;
+    if (!code)
+        return FBRL_OK;
+    vm->pending_throw = code; /* as fbrl_vm_throw (vm.c), which calls into these files */
+    return FBRL_ETHROW;
 }
 
 /* wordlist.c, locals.c, heap.c, strings.c, file.c: install their words (vm.c) */
