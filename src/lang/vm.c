@@ -16,7 +16,15 @@ typedef struct layout {
 #define FBRL_BUFS                                                                     \
     (FBRL_SYSVARS * sizeof(fbrl_cell) + FBRL_WORDBUF + FBRL_PADSIZE + FBRL_HOLDSIZE + \
      FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
-#define FBRL_EXTRA_WORDS 160 /* headers beyond the primitives (data words, C words of src/lang) */
+#define FBRL_HEAP_PART   8            /* the heap takes an eighth of the free data region, */
+#define FBRL_HEAP_MAX    (512u << 10) /* at most this much (the dictionary keeps the rest) */
+#define FBRL_EXTRA_WORDS 128          /* headers beyond the primitives (data words, C words of src/lang) */
+
+static size_t heap_for(size_t free_bytes)
+{
+    size_t h = free_bytes / FBRL_HEAP_PART;
+    return (h < FBRL_HEAP_MAX ? h : FBRL_HEAP_MAX) & ~(size_t)15;
+}
 
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
@@ -39,7 +47,7 @@ size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes)
     if (!cfg)
         return 0;
     make_layout(cfg, &l);
-    return l.fixed + dict_bytes;
+    return l.fixed + dict_bytes + heap_for(dict_bytes + dict_bytes / (FBRL_HEAP_PART - 1)) + 16;
 }
 
 fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
@@ -102,6 +110,10 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
         d += FBRL_LINE_MAX + 8;
     }
     vm->dict_lo = vm->here = vm->data_lo + align16(FBRL_BUFS);
+    /* ALLOCATE's heap: a part of the free data region, below the dictionary (heap.c) */
+    size_t heap = heap_for(size - l.fixed); /* size >= l.fixed */
+    fbrl__heap_init(vm, vm->here, heap);
+    vm->dict_lo = vm->here = vm->here + heap;
 
     fbrl_cell *guard = (fbrl_cell *)(void *)(vm->mem_end - FBRL_GUARD_CELLS * sizeof(fbrl_cell));
     for (int i = 0; i < FBRL_GUARD_CELLS; i++)
@@ -116,7 +128,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
 
     vm->nest_evaluate = fbrl__evaluate;
     vm->nest_included = fbrl__included;
-    if (fbrl__wordlist_init(vm) || fbrl__install_prims(vm))
+    if (fbrl__wordlist_init(vm) || fbrl__install_prims(vm) || fbrl__heap_words(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st != FBRL_OK)

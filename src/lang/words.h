@@ -65,6 +65,7 @@ int fbrl__wordlist_init(fbrl_vm *vm);
 int fbrl__new_wordlist(fbrl_vm *vm, const char *name, unsigned *wl);
 int fbrl__locals_init(fbrl_vm *vm);
 int fbrl__heap_init(fbrl_vm *vm, unsigned char *lo, size_t size);
+int fbrl__heap_words(fbrl_vm *vm);
 int fbrl__strings_init(fbrl_vm *vm);
 /* locals.c: the index of a local of the open definition, or -1 */
 int fbrl__local_index(const fbrl_vm *vm, const char *name, size_t len);
