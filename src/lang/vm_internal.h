@@ -184,6 +184,7 @@ struct fbrl_vm {
     uint8_t llen[FBRL_NLOCALS];
     /* ALLOCATE's heap (heap.c): [heap_lo, heap_hi) inside the data region */
     unsigned char *heap_lo, *heap_hi;
+    fbrl_cell subst; /* strings.c: REPLACES's first entry (a heap block), 0 = none */
     /* The text interpreter (interp.c) nested from below: EVALUATE, INCLUDED, INCLUDE and
      * REQUIRE run in run.c and words.c, which interp.c itself calls. fbrl_vm_create sets
      * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */
