@@ -494,7 +494,7 @@ int fbrl__semicolon(fbrl_vm *vm)
         return FBRL_THROW_CONTROL_MISMATCH;
     if (vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
         return r;
-    vm->nlocals = 0;
+    vm->nlocals = vm->lpend = 0;
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
@@ -510,7 +510,7 @@ int fbrl__semicolon(fbrl_vm *vm)
 /* After an error: drop a half-made definition, back to interpretation. */
 static void discard_definition(fbrl_vm *vm)
 {
-    vm->nlocals = 0;
+    vm->nlocals = vm->lpend = 0;
     if (vm->defining) {
         vm->here = vm->def_here;
         vm->nwords = vm->def_nwords;

@@ -35,6 +35,11 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
     size_t n = len < sizeof vm->cur_word - 1 ? len : sizeof vm->cur_word - 1;
     memcpy(vm->cur_word, name, n);
     vm->cur_word[n] = 0;
+    if (vm->nlocals && *vm->state) { /* a local of the definition comes first */
+        int k = fbrl__local_index(vm, name, len);
+        if (k >= 0)
+            return fbrl__compile_local(vm, k, 0);
+    }
     int idx = fbrl__find(vm, name, len);
     if (idx >= 0) {
         fbrl_hdr *h = HDR(vm, idx);

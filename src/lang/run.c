@@ -1101,8 +1101,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(UNTIL)
             CASE(AGAIN)
             CASE(WHILE)
-            CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE)
-                CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
+            CASE(REPEAT)
+            CASE(AHEAD)
+            CASE(DO)
+            CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE)
+                CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
@@ -1119,8 +1122,9 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(TWOCONSTANT)
             CASE(VALUE)
             CASE(TWOVALUE)
-            CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE)
-                CALLC(fbrl__w_define(vm, (int)w));
+            CASE(DEFER)
+            CASE(BUFFERCOLON)
+            CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
             NEXT;
             CASE(TO)
             CASE(IS)
@@ -1129,14 +1133,16 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(BCOMPILE)
             CASE(BTICK)
             CASE(BCHAR)
-            CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE)
-                CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD)
-                    CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA)
-                        CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE)
-                            CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH)
-                                CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED)
-                                    CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
-                                        CALLC(fbrl__w_parse(vm, (int)w));
+            CASE(TICK)
+            CASE(CHAR)
+            CASE(PAREN)
+            CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE)
+                CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
+                    CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE)
+                        CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL)
+                            CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE) CASE(BIF)
+                                CASE(BELSE) CASE(BTHEN) CASE(BDEFINED) CASE(BUNDEFINED) CASE(SAVEINPUT)
+                                    CASE(RESTOREINPUT) CALLC(fbrl__w_parse(vm, (int)w));
             NEXT;
             CASE(LBRACKET) *vm->state = 0;
             NEXT;
@@ -1205,7 +1211,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             rp[1] = sp + 1 - ds0;
             rp[2] = fp + 1 - fs0;
             rp[3] = vm->handler;
-            rp[4] = 0;
+            rp[4] = vm->lp; /* the locals in use (locals.c) */
             rp += 5;
             vm->handler = rp - rs0;
             ip = (const fbrl_cell *)vm->guard_addr + 1; /* the CATCHEND cell */
@@ -1255,10 +1261,12 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(UDOT)
             CASE(DOTR)
             CASE(UDOTR)
-            CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT)
-                CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE)
-                    CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT)
-                        CALLC(fbrl__w_io(vm, (int)w));
+            CASE(DDOT)
+            CASE(DDOTR)
+            CASE(UDDOT)
+            CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN)
+                CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT)
+                    CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */
@@ -1694,6 +1702,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 fbrl_cell *f = rs0 + hd - 5;
                 rp = f;
                 vm->handler = (f[3] >= 0 && f[3] <= hd - 5) ? f[3] : 0;
+                vm->lp = (f[4] >= 0 && f[4] <= vm->lp) ? f[4] : 0;
                 sp = ds0 + (U(f[1]) < U(dse - ds0) ? f[1] : 0) - 1;
                 tos = *sp;
                 fp = fs0 + (U(f[2]) <= U(fse - fs0) ? f[2] : 0) - 1;
@@ -1714,6 +1723,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 out:
     SAVE();
     vm->nest--;
+    if (code && vm->nest == 0)
+        vm->lp = 0; /* no definition runs any more: no locals */
     return code;
 }
 #if FBRL_CGOTO

@@ -128,7 +128,8 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
 
     vm->nest_evaluate = fbrl__evaluate;
     vm->nest_included = fbrl__included;
-    if (fbrl__wordlist_init(vm) || fbrl__install_prims(vm) || fbrl__heap_words(vm) || fbrl__strings_init(vm))
+    if (fbrl__wordlist_init(vm) || fbrl__install_prims(vm) || fbrl__heap_words(vm) ||
+        fbrl__strings_init(vm) || fbrl__locals_init(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st != FBRL_OK)

@@ -179,6 +179,7 @@ struct fbrl_vm {
     fbrl_cell locals[FBRL_LOCALS_MAX];
     fbrl_cell lp;       /* cells in use; a CATCH frame keeps it */
     int nlocals;        /* locals of the open definition (0: none) */
+    int lpend;          /* (LOCAL) declarations not yet ended */
     fbrl_cell lexit_xt; /* (LOCALS-EXIT): compiled before EXIT and ; when nlocals */
     char lname[FBRL_NLOCALS][FBRL_NAME_MAX + 1];
     uint8_t llen[FBRL_NLOCALS];

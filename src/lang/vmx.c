@@ -496,7 +496,7 @@ fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, i
         return FBRL_EINVAL;
     fbrl_cell *sp = vm->sp, *rp = vm->rp;
     double *fp = vm->fp;
-    fbrl_cell handler = vm->handler;
+    fbrl_cell handler = vm->handler, lp = vm->lp;
     int nest = vm->nest, nsrc = vm->nsrc, captured = vm->err_captured;
     int defining = vm->defining, compiling = *vm->state != 0;
     char word[sizeof vm->cur_word];
@@ -521,6 +521,7 @@ fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, i
     vm->rp = rp;
     vm->fp = fp;
     vm->handler = handler;
+    vm->lp = lp;
     vm->nest = nest;
     while (vm->nsrc > nsrc)
         fbrl__pop_source(vm);

@@ -222,6 +222,12 @@ static int control(fbrl_vm *vm, int op)
     case OP_DOES:
         if (!vm->defining)
             return FBRL_THROW_CONTROL_MISMATCH;
+        if (vm->nlocals) { /* the creating part's locals end here; DOES> code may have its own */
+            int r = fbrl__compile_xt(vm, vm->lexit_xt);
+            vm->nlocals = 0;
+            if (r)
+                return r;
+        }
         return fbrl__emit(vm, OP_DOESSET);
     }
     return FBRL_THROW_UNSUPPORTED;
@@ -687,6 +693,8 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         {"STACK-CELLS", 12},
         {"FLOATING-STACK", 13},
         {"MAX-FLOAT", 14},
+        {"#LOCALS", 16},
+        {"WORDLISTS", 17},
         /* Forth-94 word-set queries (obsolescent, still asked by test suites) */
         {"CORE", 15},
         {"CORE-EXT", 15},
@@ -733,6 +741,8 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         case 13: r = push(vm, vm->fs_end - vm->fs0); break;
         case 14: r = fpush(vm, 1.7976931348623157e308); break;
         case 15: r = push(vm, -1); break;
+        case 16: r = push(vm, FBRL_NLOCALS); break;
+        case 17: r = push(vm, FBRL_WL_MAX); break;
         }
         return r ? r : push(vm, -1);
     }
@@ -792,6 +802,14 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_TO:
     case OP_IS:
     case OP_ACTIONOF:
+        if (op == OP_TO && vm->nlocals && *vm->state) { /* TO a local (locals.c) */
+            fbrl_cell in = *vm->toin;
+            fbrl__parse_name(vm, &p, &n);
+            int k = fbrl__local_index(vm, p, n);
+            if (k >= 0)
+                return fbrl__compile_local(vm, k, 1);
+            *vm->toin = in;
+        }
         if ((r = parse_word_xt(vm, &xt, &h)))
             return r;
         if (op == OP_TO) {
