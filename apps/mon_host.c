@@ -1,5 +1,6 @@
 /* mon_host.c - OS services for the engine inside fbrlmon (the app may use the OS). */
 #include "mon_host.h"
+#include "mon_files.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -364,6 +365,7 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->sleep_ms = host_sleep_ms;
     cb->time_date = host_time_date;
     cb->read_line = host_read_line;
+    cb->files = mon_files();
 }
 
 void mon_host_progress(void *ctx, const char *text)

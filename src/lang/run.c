@@ -1104,8 +1104,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(REPEAT)
             CASE(AHEAD)
             CASE(DO)
-            CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE)
-                CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
+            CASE(QDO)
+            CASE(LOOP)
+            CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES)
+                CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
@@ -1136,13 +1138,15 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(TICK)
             CASE(CHAR)
             CASE(PAREN)
-            CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE)
-                CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
-                    CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE)
-                        CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL)
-                            CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE) CASE(BIF)
-                                CASE(BELSE) CASE(BTHEN) CASE(BDEFINED) CASE(BUNDEFINED) CASE(SAVEINPUT)
-                                    CASE(RESTOREINPUT) CALLC(fbrl__w_parse(vm, (int)w));
+            CASE(BACKSLASH)
+            CASE(SHEBANG)
+            CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE)
+                CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL)
+                    CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP)
+                        CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY)
+                            CASE(DEFERFETCH) CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED)
+                                CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
+                                    CALLC(fbrl__w_parse(vm, (int)w));
             NEXT;
             CASE(LBRACKET) *vm->state = 0;
             NEXT;
@@ -1264,9 +1268,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(DDOT)
             CASE(DDOTR)
             CASE(UDDOT)
-            CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN)
-                CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT)
-                    CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
+            CASE(QUESTION)
+            CASE(LTNUM)
+            CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP)
+                CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT)
+                    CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */

@@ -132,6 +132,8 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
         fbrl__strings_init(vm) || fbrl__locals_init(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
+    if (st == FBRL_OK && vm->host.files)
+        st = fbrl__file_words(vm) ? FBRL_ENOSPC : FBRL_OK;
     if (st != FBRL_OK)
         return st == FBRL_ENOMEM ? FBRL_ENOSPC : st;
     st = fbrl_vm_eval(vm, fbrl__prelude, strlen(fbrl__prelude));

@@ -36,6 +36,7 @@
 #define FBRL_ORDER_MAX   16   /* word lists in the search order */
 #define FBRL_LOCALS_MAX  512  /* cells of the locals stack (locals.c) */
 #define FBRL_NLOCALS     32   /* locals of one definition */
+#define FBRL_FILES_MAX   16   /* files open at once through the standard FILE words */
 
 /* Sizes of the buffers at the start of the data region. */
 #define FBRL_WORDBUF  260
@@ -171,8 +172,9 @@ struct fbrl_vm {
      * name in the earliest word list of order[0..norder) */
     uint8_t order[FBRL_ORDER_MAX];
     int norder;
-    uint8_t current; /* the compilation word list */
-    uint8_t nwl;     /* word lists made */
+    uint8_t current;      /* the compilation word list */
+    uint8_t nwl;          /* word lists made */
+    uint8_t wl_forth2012; /* the standard words FBRL's word sets shadow (FORTH-2012) */
     const char *wl_name[FBRL_WL_MAX];
     /* locals (locals.c): the frames of running definitions (not addressable), and the
      * names of the definition being compiled */
@@ -186,6 +188,10 @@ struct fbrl_vm {
     /* ALLOCATE's heap (heap.c): [heap_lo, heap_hi) inside the data region */
     unsigned char *heap_lo, *heap_hi;
     fbrl_cell subst; /* strings.c: REPLACES's first entry (a heap block), 0 = none */
+    /* file.c: the standard FILE words' open files (host handles, not addressable);
+     * a fileid is the slot's number + 1 */
+    void *file_h[FBRL_FILES_MAX];
+    char file_path[FBRL_FILES_MAX][FBRL_PATH_MAX];
     /* The text interpreter (interp.c) nested from below: EVALUATE, INCLUDED, INCLUDE and
      * REQUIRE run in run.c and words.c, which interp.c itself calls. fbrl_vm_create sets
      * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */

@@ -550,3 +550,15 @@ fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
     va_end(ap);
     return fbrl_vm_throw(vm, code, msg);
 }
+
+fbrl_cell fbrl_vmx_forth2012_wid(const fbrl_vm *vm) { return vm ? (fbrl_cell)vm->wl_forth2012 + 1 : 0; }
+
+fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell *previous)
+{
+    if (!vm || wid < 1 || wid > (fbrl_cell)vm->nwl)
+        return FBRL_EINVAL;
+    if (previous)
+        *previous = (fbrl_cell)vm->current + 1;
+    vm->current = (uint8_t)(wid - 1);
+    return FBRL_OK;
+}

@@ -180,6 +180,20 @@ static fbrl_status w_vocabulary(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
+/* FORTH-2012: the standard words first (the word list in front, if not there yet). */
+static fbrl_status w_forth2012(fbrl_vm *vm, void *arg)
+{
+    (void)arg;
+    if (vm->norder > 0 && vm->order[0] == vm->wl_forth2012)
+        return FBRL_OK;
+    if (vm->norder >= FBRL_ORDER_MAX)
+        return fbrl__cthrow(vm, FBRL_THROW_SEARCH_OVERFLOW);
+    memmove(vm->order + 1, vm->order, (size_t)vm->norder);
+    vm->order[0] = vm->wl_forth2012;
+    vm->norder++;
+    return FBRL_OK;
+}
+
 static void put_wl(fbrl_vm *vm, unsigned wl)
 {
     char b[24];
@@ -416,6 +430,8 @@ static const fbrl_cword words[] = {
     {"ONLY", w_only, NULL, 0, "( -- )", "the minimal search order (FORTH-WORDLIST)"},
     {"FORTH", w_vocabulary, (void *)(uintptr_t)WL_FORTH, 0, "( -- )",
      "make FORTH-WORDLIST the first word list searched"},
+    {"FORTH-2012", w_forth2012, NULL, 0, "( -- )",
+     "search the standard words first (FILE's CREATE-FILE ... instead of the thesis's typed files)"},
     {"ORDER", w_order, NULL, 0, "( -- )", "show the search order and the compilation word list"},
     {"TRAVERSE-WORDLIST", w_traverse_wordlist, NULL, 0, "( i*x xt wid -- j*x )",
      "run xt ( k*x nt -- l*x flag ) on each word of wid, newest first, until it gives false"},
@@ -441,5 +457,7 @@ int fbrl__wordlist_init(fbrl_vm *vm)
     fbrl__new_wordlist(vm, "FORTH", &wl);
     vm->current = (uint8_t)wl;
     minimal_order(vm);
+    fbrl__new_wordlist(vm, "FORTH-2012", &wl);
+    vm->wl_forth2012 = (uint8_t)wl;
     return fbrl__define_words(vm, words, sizeof words / sizeof words[0]);
 }

@@ -1110,6 +1110,9 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (v < 0 || vm->sp - vm->ds0 < v)
             return FBRL_THROW_STACK_UNDERFLOW;
         vm->sp -= v;
+        if (v == 3 && s && vm->sp[2] == s->id && vm->sp[1] != (fbrl_cell)s->line && s->kind == SRC_FILE &&
+            vm->sp[1] > 0 && fbrl__src_goto_line(vm, (unsigned long)vm->sp[1]) != 0)
+            return push(vm, -1); /* a file source goes back to the saved line */
         if (v != 3 || !s || vm->sp[2] != s->id || vm->sp[1] != (fbrl_cell)s->line || vm->sp[0] < 0 ||
             (size_t)vm->sp[0] > s->len)
             return push(vm, -1);

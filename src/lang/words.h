@@ -67,6 +67,7 @@ int fbrl__locals_init(fbrl_vm *vm);
 int fbrl__heap_init(fbrl_vm *vm, unsigned char *lo, size_t size);
 int fbrl__heap_words(fbrl_vm *vm);
 int fbrl__strings_init(fbrl_vm *vm);
+int fbrl__file_words(fbrl_vm *vm); /* only with host.files */
 /* locals.c: the index of a local of the open definition, or -1 */
 int fbrl__local_index(const fbrl_vm *vm, const char *name, size_t len);
 /* locals.c: compile a local's value (read) or TO local (write) */
@@ -83,6 +84,7 @@ void fbrl__pop_source(fbrl_vm *vm); /* the newest input source, if any */
 void fbrl__parse_name(fbrl_vm *vm, const char **p, size_t *n);
 void fbrl__parse(fbrl_vm *vm, char c, const char **p, size_t *n, int *found);
 int fbrl__refill(fbrl_vm *vm);
+int fbrl__src_goto_line(fbrl_vm *vm, unsigned long n); /* 0, or -1: not possible */
 
 /* number.c */
 size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, fbrl_ucell *hi);
