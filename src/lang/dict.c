@@ -66,7 +66,7 @@ static int order_rank(const fbrl_vm *vm, unsigned wl)
  * walk at once: one list is as fast as before word lists. */
 int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
 {
-    if (len == 0 || len > FBRL_NAME_MAX)
+    if (len == 0 || len > FBRL_NAME_MAX || vm->norder == 0)
         return -1;
     int best = -1, brank = vm->norder;
     uint32_t i = vm->hash[hash_name(name, len)];

@@ -309,7 +309,7 @@ static fbrl_status w_include_file(fbrl_vm *vm, void *arg)
     memcpy(path, vm->file_path[fid - 1], sizeof path);
     fs(vm)->close(vm->host.user, h);
     vm->file_h[fid - 1] = NULL;
-    return fbrl__cthrow(vm, vm->nest_included(vm, path, strlen(path), 0));
+    return fbrl__cthrow(vm, vm->nest_included(vm, path, strlen(path), 2));
 }
 
 #define FAM(x) ((void *)(uintptr_t)(x))

@@ -122,14 +122,15 @@ static int is_included(const fbrl_vm *vm, const char *path)
     return 0;
 }
 
-/* INCLUDED / REQUIRED. Relative paths are taken from the including file's directory. */
+/* INCLUDED / REQUIRED (require 1). Relative paths are taken from the including file's
+ * directory, except for INCLUDE-FILE (require 2): its path is the one the host opened. */
 int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
 {
     char path[FBRL_PATH_MAX];
     size_t dl = 0;
     if (n == 0)
         return FBRL_THROW_NO_FILE;
-    if (name[0] != '/') {
+    if (name[0] != '/' && require != 2) {
         for (int i = vm->nsrc - 1; i >= 0; i--) {
             if (vm->src[i].kind != SRC_FILE)
                 continue;
@@ -147,7 +148,7 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
     path[dl + n] = 0;
     if (memchr(path, 0, dl + n))
         return FBRL_THROW_NO_FILE;
-    if (require && is_included(vm, path))
+    if (require == 1 && is_included(vm, path))
         return 0;
     if (!vm->host.file_open || !vm->host.file_read_line)
         return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no file support in this host");

@@ -15,6 +15,7 @@
 
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
+#include "mon_files.h"
 
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
 
@@ -66,6 +67,7 @@ static fixture *new_vm(size_t mem_size)
     cfg.host.key_ready = h_key_ready;
     vmh_use_files(&cfg.host);
     vmh_use_clock(&cfg.host);
+    cfg.host.files = mon_files(); /* fbrlmon's file system for the standard FILE words */
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     return f;
 }
@@ -124,6 +126,10 @@ FORTH_TEST(forth_float, "float.fs")
 FORTH_TEST(forth_string, "string.fs")
 FORTH_TEST(forth_tools, "tools.fs")
 FORTH_TEST(forth_fbrl, "fbrl.fs")
+FORTH_TEST(forth_search, "search.fs")
+FORTH_TEST(forth_locals, "locals.fs")
+FORTH_TEST(forth_memory, "memory.fs")
+FORTH_TEST(forth_file, "file.fs")
 
 /* ---- the C API ---- */
 static void create_rejects_bad_config(void **state)
@@ -892,6 +898,33 @@ static int collect(void *ctx, const char *name, size_t len)
     return 0;
 }
 
+/* A host without a file system (the firmware) has no standard FILE words at all. */
+static void no_file_system_no_file_words(void **state)
+{
+    (void)state;
+    fixture *f = calloc(1, sizeof *f);
+    assert_non_null(f);
+    f->mem = malloc(1 << 20);
+    assert_non_null(f->mem);
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.mem = f->mem;
+    cfg.mem_size = 1 << 20;
+    cfg.host.user = &f->h;
+    cfg.host.write = h_write;
+    assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(ev(f, "[DEFINED] R/O [DEFINED] READ-LINE FORTH-2012 [DEFINED] OPEN-FILE"), FBRL_OK);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 0);
+    /* the rest of the standard words are there */
+    assert_int_equal(ev(f, "10 ALLOCATE SWAP FREE [DEFINED] {:"), FBRL_OK);
+    assert_int_equal(pop1(f), -1);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 0);
+    free_vm(f);
+}
+
 static void random_programs_are_contained(void **state)
 {
     (void)state;
@@ -945,6 +978,11 @@ int main(void)
         cmocka_unit_test(forth_string),
         cmocka_unit_test(forth_tools),
         cmocka_unit_test(forth_fbrl),
+        cmocka_unit_test(forth_search),
+        cmocka_unit_test(forth_locals),
+        cmocka_unit_test(forth_memory),
+        cmocka_unit_test(forth_file),
+        cmocka_unit_test(no_file_system_no_file_words),
         cmocka_unit_test(output_formats),
         cmocka_unit_test(console_input),
         cmocka_unit_test(create_rejects_bad_config),
