@@ -206,6 +206,16 @@ static void reset_after_error(fbrl_vm *vm)
         fbrl__pop_source(vm);
     fbrl__drop_definition(vm);
     vm->hld = vm->hold + FBRL_HOLDSIZE;
+    vm->lp = 0; /* no definition runs: no locals */
+    /* a search order without FORTH-WORDLIST (0 SET-ORDER, a lone WORDLIST) could not even
+     * find ONLY again: after an error it is the minimal order (docs/language.md) */
+    int k = 0;
+    while (k < vm->norder && vm->order[k] != 0)
+        k++;
+    if (k == vm->norder) {
+        vm->order[0] = 0;
+        vm->norder = 1;
+    }
 }
 
 static void begin_top(fbrl_vm *vm)
