@@ -67,6 +67,7 @@ int fbrl__locals_init(fbrl_vm *vm);
 int fbrl__heap_init(fbrl_vm *vm, unsigned char *lo, size_t size);
 int fbrl__heap_words(fbrl_vm *vm);
 int fbrl__strings_init(fbrl_vm *vm);
+int fbrl__facility_words(fbrl_vm *vm);
 int fbrl__file_words(fbrl_vm *vm); /* only with host.files */
 /* locals.c: the index of a local of the open definition, or -1 */
 int fbrl__local_index(const fbrl_vm *vm, const char *name, size_t len);

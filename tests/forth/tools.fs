@@ -19,3 +19,9 @@ T{ STATE @ -> 0 }T
 T{ 0 [IF] \ [ELSE] 11 [THEN] -> 11 }T
 T{ 0 [IF] 1 \ [THEN] 22 [THEN] -> 22 }T
 T{ 1 [IF] 33 [ELSE] \ [THEN] 44 [THEN] -> 33 44 }T
+\ FACILITY EXT: key events and the terminal
+T{ 65 EKEY>CHAR -> 65 TRUE }T
+T{ K-UP EKEY>FKEY -> K-UP TRUE }T
+T{ K-UP EKEY>CHAR NIP -> FALSE }T
+T{ K-F1 K-F2 <> K-UP K-SHIFT-MASK OR K-UP <> -> TRUE TRUE }T
+T{ EMIT? -> TRUE }T

@@ -548,6 +548,23 @@ static void output_formats(void **state)
     free_vm(f);
 }
 
+/* EKEY decodes the terminal's cursor and function keys; other bytes are characters. */
+static void ekey_decodes_terminal_keys(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    f->h.keys = "\033[Ax\033OP\033[3~\033[1;5C";
+    assert_int_equal(ev(f, "EKEY K-UP = EKEY EKEY K-F1 = EKEY K-DELETE = EKEY K-RIGHT K-CTRL-MASK OR ="),
+                     FBRL_OK);
+    for (int i = 0; i < 3; i++) /* F1, DELETE, ctrl-RIGHT */
+        assert_int_equal(pop1(f), -1);
+    assert_int_equal(pop1(f), 'x');
+    assert_int_equal(pop1(f), -1);
+    assert_int_equal(ev(f, "3 4 AT-XY PAGE"), FBRL_OK);
+    assert_string_equal(f->h.out.s, "\033[5;4H\033[2J\033[H");
+    free_vm(f);
+}
+
 static void console_input(void **state)
 {
     (void)state;
@@ -957,7 +974,12 @@ static void random_programs_are_contained(void **state)
         }
     }
     assert_true(errors > 0);
-    assert_int_equal(ev(f, "; DECIMAL"), fbrl_vm_compiling(f->vm) ? FBRL_OK : FBRL_ETHROW);
+    /* close a definition left open; a random line may also have made a word named ";"
+     * (CREATE ; and the like), so outside a definition either answer is right */
+    if (fbrl_vm_compiling(f->vm))
+        assert_int_equal(ev(f, "; DECIMAL"), FBRL_OK);
+    else
+        ev(f, "; DECIMAL");
     while (fbrl_vm_depth(f->vm))
         pop1(f);
     assert_int_equal(ev(f, "DECIMAL 6 7 *"), FBRL_OK);
@@ -981,6 +1003,7 @@ int main(void)
         cmocka_unit_test(forth_memory),
         cmocka_unit_test(forth_file),
         cmocka_unit_test(no_file_system_no_file_words),
+        cmocka_unit_test(ekey_decodes_terminal_keys),
         cmocka_unit_test(output_formats),
         cmocka_unit_test(console_input),
         cmocka_unit_test(create_rejects_bad_config),
