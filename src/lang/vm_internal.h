@@ -27,7 +27,7 @@
 #define FBRL_LINE_MAX    1024              /* longest source line */
 #define FBRL_SRC_MAX     10                /* nested input sources (files, texts, EVALUATE) */
 #define FBRL_CF_MAX      64                /* control-flow stack entries */
-#define FBRL_HASH        512               /* dictionary hash buckets (power of two) */
+#define FBRL_HASH        1024              /* dictionary hash buckets (power of two) */
 #define FBRL_PATH_MAX    256
 #define FBRL_REQ_POOL    4096 /* bytes for REQUIRE's list of included files */
 #define FBRL_GUARD_CELLS 8
@@ -80,6 +80,7 @@ typedef struct fbrl_hdr {
     uint8_t wl; /* its word list (wordlist.c): 0 = FORTH-WORDLIST */
     char name[FBRL_NAME_MAX + 1];
     uint16_t op;     /* K_PRIM: opcode */
+    uint32_t hash;   /* its name's hash (dict.c; compared before the name) */
     fbrl_cell body;  /* data field / colon body (a data-region address) */
     fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
