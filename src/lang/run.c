@@ -1112,9 +1112,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(BEGIN)
             CASE(UNTIL)
             CASE(AGAIN)
-            CASE(WHILE)
-            CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE)
-                CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
+            CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE)
+                CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
@@ -1130,9 +1129,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(CONSTANT)
             CASE(TWOCONSTANT)
             CASE(VALUE)
-            CASE(TWOVALUE)
-            CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE)
-                CALLC(fbrl__w_define(vm, (int)w));
+            CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT)
+                CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
             NEXT;
             CASE(TO)
             CASE(IS)
@@ -1140,14 +1138,13 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(POSTPONE)
             CASE(BCOMPILE)
             CASE(BTICK)
-            CASE(BCHAR)
-            CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE)
-                CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD)
-                    CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA)
-                        CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE)
-                            CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH)
-                                CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED)
-                                    CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
+            CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN)
+                CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE)
+                    CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL)
+                        CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP)
+                            CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY)
+                                CASE(DEFERFETCH) CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN)
+                                    CASE(BDEFINED) CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
                                         CALLC(fbrl__w_parse(vm, (int)w));
             NEXT;
             CASE(LBRACKET) *vm->state = 0;
@@ -1266,11 +1263,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(DOT)
             CASE(UDOT)
             CASE(DOTR)
-            CASE(UDOTR)
-            CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT)
-                CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE)
-                    CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT)
-                        CALLC(fbrl__w_io(vm, (int)w));
+            CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS)
+                CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS)
+                    CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT)
+                        CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */
