@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* mon_host.c - OS services for the engine inside fbrlmon (the app may use the OS). */
 #include "mon_host.h"
+#include "mon_files.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -380,6 +381,7 @@ void mon_host_init(mon_host *h, FILE *out, int in_fd, fbrl_vm_host *cb)
     cb->sleep_ms = g_sleep_ms ? g_sleep_ms : host_sleep_ms;
     cb->time_date = g_time_date ? g_time_date : host_time_date;
     cb->read_line = host_read_line;
+    cb->files = mon_files();
 }
 
 void mon_host_progress(void *ctx, const char *text)

@@ -23,6 +23,31 @@ typedef struct fbrl_vm fbrl_vm;
 
 /* Host services. Any callback may be NULL; the words that need a missing one
  * throw a clear error (e.g. INCLUDED without file_open). */
+/* The standard FILE word set's access to a file system (optional: a host without one,
+ * e.g. the firmware, passes NULL and the VM has no standard file words). Paths are
+ * NUL-terminated; a handle is the host's own. Each returns FBRL_OK or a status
+ * (FBRL_ENOENT no such file, FBRL_EIO ...), which the words give as an ior. */
+typedef struct fbrl_vm_files {
+    /* fam: FBRL_FAM_* bits; create: make or empty the file first */
+    fbrl_status (*open)(void *user, const char *path, unsigned fam, int create, void **handle);
+    fbrl_status (*close)(void *user, void *handle);
+    /* up to n bytes (*got < n only at the end of the file) */
+    fbrl_status (*read)(void *user, void *handle, void *buf, size_t n, size_t *got);
+    fbrl_status (*write)(void *user, void *handle, const void *buf, size_t n);
+    fbrl_status (*seek)(void *user, void *handle, uint64_t pos);
+    fbrl_status (*tell)(void *user, void *handle, uint64_t *pos);
+    fbrl_status (*size)(void *user, void *handle, uint64_t *size);
+    fbrl_status (*resize)(void *user, void *handle, uint64_t size);
+    fbrl_status (*flush)(void *user, void *handle);
+    fbrl_status (*remove)(void *user, const char *path);
+    fbrl_status (*rename)(void *user, const char *from, const char *to);
+    /* FBRL_OK if the file exists (*mode: FBRL_FAM_* bits it may be opened with) */
+    fbrl_status (*status)(void *user, const char *path, unsigned *mode);
+} fbrl_vm_files;
+#define FBRL_FAM_READ  1u
+#define FBRL_FAM_WRITE 2u
+#define FBRL_FAM_BIN   4u
+
 typedef struct fbrl_vm_host {
     void *user;
     /* Output: n bytes for the console (EMIT, TYPE, ., error messages). */
@@ -47,6 +72,8 @@ typedef struct fbrl_vm_host {
      * *len < cap), FBRL_EEOF at the end of input or when Ctrl-C ended the reading (the
      * host then has called fbrl_vm_interrupt). */
     fbrl_status (*read_line)(void *user, const char *prompt, char *buf, size_t cap, size_t *len);
+    /* The standard FILE words (optional, see fbrl_vm_files). */
+    const fbrl_vm_files *files;
 } fbrl_vm_host;
 
 typedef struct fbrl_vm_config {

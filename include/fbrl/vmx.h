@@ -213,6 +213,14 @@ FBRL_API fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...
 #endif
     ;
 
+/* ---- word lists ---- */
+
+/* The word list FORTH-2012 puts first in the search order: the standard words whose names
+ * an FBRL word set uses with another meaning (the thesis's typed files: CREATE-FILE ...). */
+fbrl_cell fbrl_vmx_forth2012_wid(const fbrl_vm *vm);
+/* Make new definitions go into word list wid (a wid from the VM); *previous: the one before. */
+fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell *previous);
+
 /* ---- the built-in word set ---- */
 
 /* The data words every VM has (queues, arrays, strings, type sizes: thesis I-1 .. I-3);

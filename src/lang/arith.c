@@ -115,7 +115,8 @@ int fbrl__mstarslash(fbrl_cell *lo, fbrl_cell *hi, fbrl_cell n, fbrl_cell div)
         q0++;
         q1 += q0 == 0;
     }
-    if (q1 >> (CELL_BITS - 1))
+    /* The quotient's magnitude may be 2^(2*bits-1) when negative: that is MIN-2INT. */
+    if ((q1 >> (CELL_BITS - 1)) && !(neg && q0 == 0 && q1 == (fbrl_ucell)1 << (CELL_BITS - 1)))
         return FBRL_THROW_RESULT_RANGE;
     if (neg)
         fbrl__dneg(&q0, &q1);

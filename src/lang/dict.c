@@ -27,45 +27,92 @@ void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n)
 }
 
 /* ---- dictionary ---- */
-static unsigned hash_name(const char *s, size_t n)
+/* Upper case of each byte (names match regardless of case): a table, one load a byte. */
+static const unsigned char upcase[256] = {
+    0,   1,   2,   3,   4,   5,   6,   7,   8,   9,   10,  11,  12,  13,  14,  15,  16,  17,  18,  19,
+    20,  21,  22,  23,  24,  25,  26,  27,  28,  29,  30,  31,  32,  33,  34,  35,  36,  37,  38,  39,
+    40,  41,  42,  43,  44,  45,  46,  47,  48,  49,  50,  51,  52,  53,  54,  55,  56,  57,  58,  59,
+    60,  61,  62,  63,  64,  65,  66,  67,  68,  69,  70,  71,  72,  73,  74,  75,  76,  77,  78,  79,
+    80,  81,  82,  83,  84,  85,  86,  87,  88,  89,  90,  91,  92,  93,  94,  95,  96,  65,  66,  67,
+    68,  69,  70,  71,  72,  73,  74,  75,  76,  77,  78,  79,  80,  81,  82,  83,  84,  85,  86,  87,
+    88,  89,  90,  123, 124, 125, 126, 127, 128, 129, 130, 131, 132, 133, 134, 135, 136, 137, 138, 139,
+    140, 141, 142, 143, 144, 145, 146, 147, 148, 149, 150, 151, 152, 153, 154, 155, 156, 157, 158, 159,
+    160, 161, 162, 163, 164, 165, 166, 167, 168, 169, 170, 171, 172, 173, 174, 175, 176, 177, 178, 179,
+    180, 181, 182, 183, 184, 185, 186, 187, 188, 189, 190, 191, 192, 193, 194, 195, 196, 197, 198, 199,
+    200, 201, 202, 203, 204, 205, 206, 207, 208, 209, 210, 211, 212, 213, 214, 215, 216, 217, 218, 219,
+    220, 221, 222, 223, 224, 225, 226, 227, 228, 229, 230, 231, 232, 233, 234, 235, 236, 237, 238, 239,
+    240, 241, 242, 243, 244, 245, 246, 247, 248, 249, 250, 251, 252, 253, 254, 255,
+};
+#define upc(c) upcase[(unsigned char)(c)]
+
+/* The full 32-bit hash of a name (kept in its header); its low bits pick the bucket. */
+static uint32_t hash_name(const char *s, size_t n)
 {
     uint32_t h = 2166136261u;
-    for (size_t i = 0; i < n; i++) {
-        unsigned char c = (unsigned char)s[i];
-        if (c >= 'a' && c <= 'z')
-            c = (unsigned char)(c - 32);
-        h = (h ^ c) * 16777619u;
-    }
-    return (unsigned)(h ^ (h >> 15)) & (FBRL_HASH - 1);
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ upc(s[i])) * 16777619u;
+    return h ^ (h >> 15);
 }
+#define BUCKET(h) ((h) & (FBRL_HASH - 1))
 
 static int name_eq(const char *a, const char *b, size_t n)
 {
-    for (size_t i = 0; i < n; i++) {
-        unsigned char x = (unsigned char)a[i], y = (unsigned char)b[i];
-        if (x >= 'a' && x <= 'z')
-            x = (unsigned char)(x - 32);
-        if (y >= 'a' && y <= 'z')
-            y = (unsigned char)(y - 32);
-        if (x != y)
+    for (size_t i = 0; i < n; i++)
+        if (upc(a[i]) != upc(b[i]))
             return 0;
-    }
     return 1;
 }
 
+/* Position of word list wl in the search order (norder: not in it). */
+static int order_rank(const fbrl_vm *vm, unsigned wl)
+{
+    int k = 0;
+    while (k < vm->norder && vm->order[k] != wl)
+        k++;
+    return k;
+}
+
+/* The newest word of that name in the earliest word list of the search order. The hash
+ * chain runs newest first, so a match in the first word list (the usual FORTH) ends the
+ * walk at once: one list is as fast as before word lists. */
 int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
+{
+    if (len == 0 || len > FBRL_NAME_MAX || vm->norder == 0)
+        return -1;
+    int best = -1, brank = vm->norder;
+    uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
+    while (i) {
+        const fbrl_hdr *h = HDR(vm, i - 1);
+        if (h->hash == hn && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
+            int r = order_rank(vm, h->wl);
+            if (r == 0)
+                return (int)(i - 1);
+            if (r < brank) {
+                brank = r;
+                best = (int)(i - 1);
+            }
+        }
+        i = h->next;
+    }
+    return best;
+}
+
+/* The newest word of that name in word list wl alone (SEARCH-WORDLIST). */
+int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
 {
     if (len == 0 || len > FBRL_NAME_MAX)
         return -1;
-    uint32_t i = vm->hash[hash_name(name, len)];
+    uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
-        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+        if (h->hash == hn && h->wl == wl && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
             return (int)(i - 1);
         i = h->next;
     }
     return -1;
 }
+
+int fbrl__name_eq(const char *a, const char *b, size_t n) { return name_eq(a, b, n); }
 
 static void rebuild_hash(fbrl_vm *vm)
 {
@@ -73,7 +120,7 @@ static void rebuild_hash(fbrl_vm *vm)
     memset(vm->hash, 0, sizeof vm->hash);
     for (uint32_t i = 0; i < vm->nwords; i++) {
         fbrl_hdr *h = HDR(vm, i);
-        unsigned b = hash_name(h->name, h->len);
+        unsigned b = BUCKET(h->hash);
         h->next = vm->hash[b];
         vm->hash[b] = i + 1;
     }
@@ -104,10 +151,12 @@ static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsig
     h->len = (uint8_t)len;
     h->kind = (uint8_t)kind;
     h->flags = (uint8_t)flags;
+    h->wl = vm->current;
     h->stack = "";
     h->help = "";
+    h->hash = hash_name(name, len);
     fbrl__note_header(vm, h);
-    unsigned b = hash_name(name, len);
+    unsigned b = BUCKET(h->hash);
     h->next = vm->hash[b];
     vm->hash[b] = vm->nwords + 1;
     vm->nwords++;
@@ -255,7 +304,10 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     if (!h)
         return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
-    case K_PRIM: return fbrl__compile_op(vm, h->op);
+    case K_PRIM:
+        if (h->op == OP_EXIT && vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
+            return r; /* EXIT from a definition with locals drops their frame first */
+        return fbrl__compile_op(vm, h->op);
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL)))
             return r;
@@ -453,6 +505,9 @@ int fbrl__semicolon(fbrl_vm *vm)
     int r;
     if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON)
         return FBRL_THROW_CONTROL_MISMATCH;
+    if (vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
+        return r;
+    vm->nlocals = vm->lpend = 0;
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
@@ -468,6 +523,7 @@ int fbrl__semicolon(fbrl_vm *vm)
 /* After an error: drop a half-made definition, back to interpretation. */
 static void discard_definition(fbrl_vm *vm)
 {
+    vm->nlocals = vm->lpend = 0;
     if (vm->defining) {
         vm->here = vm->def_here;
         vm->nwords = vm->def_nwords;
@@ -533,6 +589,42 @@ fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void 
     return FBRL_OK;
 }
 
+/* The engine's own C words (word lists, locals, memory, files ...) into the current word list. */
+int fbrl__define_words(fbrl_vm *vm, const fbrl_cword *w, size_t n)
+{
+    for (size_t k = 0; k < n; k++) {
+        fbrl_hdr *h;
+        if (new_header(vm, w[k].name, strlen(w[k].name), K_CFUNC, w[k].flags, &h))
+            return FBRL_THROW_DICT_OVERFLOW;
+        h->fn = w[k].fn;
+        h->arg = w[k].arg;
+        h->body = (fbrl_cell)vm->here;
+        h->stack = w[k].stack;
+        h->help = w[k].help;
+    }
+    return 0;
+}
+
+/* SYNONYM: a new header that is a copy of old (its behaviour, flags and data), named name. */
+int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old)
+{
+    fbrl_hdr *h, copy = *old;
+    int r = new_header(vm, name, len, old->kind, old->flags & (FI | FC | FS), &h);
+    if (r)
+        return r;
+    uint32_t next = h->next, hash = h->hash;
+    uint8_t wl = h->wl;
+    *h = copy;
+    h->hash = hash;
+    memset(h->name, 0, sizeof h->name);
+    memcpy(h->name, name, len);
+    h->len = (uint8_t)len;
+    h->next = next;
+    h->wl = wl;
+    h->flags = (uint8_t)(old->flags & (FI | FC | FS));
+    return 0;
+}
+
 fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect, const char **help)
 {
     if (!vm || !name)
@@ -548,6 +640,25 @@ fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack
     return FBRL_OK;
 }
 
+/* True if find(name of word i) gives word i: what fbrl__find does, from the stored hash. */
+static int found_as_itself(const fbrl_vm *vm, uint32_t i)
+{
+    const fbrl_hdr *w = HDR(vm, i);
+    int rw = order_rank(vm, w->wl);
+    if (rw >= vm->norder)
+        return 0;
+    for (uint32_t j = vm->hash[BUCKET(w->hash)]; j; j = HDR(vm, j - 1)->next) {
+        const fbrl_hdr *h = HDR(vm, j - 1);
+        if (j - 1 == i || h->hash != w->hash || h->len != w->len || (h->flags & FH) ||
+            !name_eq(h->name, w->name, w->len))
+            continue;
+        int r = order_rank(vm, h->wl);
+        if (r < rw || (r == rw && j - 1 > i)) /* an earlier list, or newer in the same */
+            return 0;
+    }
+    return 1;
+}
+
 void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, size_t len), void *ctx)
 {
     if (!vm || !fn)
@@ -556,8 +667,8 @@ void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, siz
         const fbrl_hdr *h = HDR(vm, i);
         if (!h->len || (h->flags & FH))
             continue;
-        /* skip words shadowed by a newer one of the same name */
-        if (fbrl__find(vm, h->name, h->len) != (int)i)
+        /* skip words find would not give (shadowed, or out of the search order) */
+        if (!found_as_itself(vm, i))
             continue;
         if (fn(ctx, h->name, h->len))
             return;

@@ -36,6 +36,11 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
     size_t n = len < sizeof vm->cur_word - 1 ? len : sizeof vm->cur_word - 1;
     memcpy(vm->cur_word, name, n);
     vm->cur_word[n] = 0;
+    if (vm->nlocals && *vm->state) { /* a local of the definition comes first */
+        int k = fbrl__local_index(vm, name, len);
+        if (k >= 0)
+            return fbrl__compile_local(vm, k, 0);
+    }
     int idx = fbrl__find(vm, name, len);
     if (idx >= 0) {
         fbrl_hdr *h = HDR(vm, idx);
@@ -124,14 +129,15 @@ static uint32_t file_id(const fbrl_vm *vm, const char *path)
 
 static int is_included(const fbrl_vm *vm, const char *path) { return file_id(vm, path) != 0; }
 
-/* INCLUDED / REQUIRED. Relative paths are taken from the including file's directory. */
+/* INCLUDED / REQUIRED (require 1). Relative paths are taken from the including file's
+ * directory, except for INCLUDE-FILE (require 2): its path is the one the host opened. */
 int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
 {
     char path[FBRL_PATH_MAX];
     size_t dl = 0;
     if (n == 0)
         return FBRL_THROW_NO_FILE;
-    if (name[0] != '/') {
+    if (name[0] != '/' && require != 2) {
         for (int i = vm->nsrc - 1; i >= 0; i--) {
             if (vm->src[i].kind != SRC_FILE)
                 continue;
@@ -149,7 +155,7 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
     path[dl + n] = 0;
     if (memchr(path, 0, dl + n))
         return FBRL_THROW_NO_FILE;
-    if (require && is_included(vm, path))
+    if (require == 1 && is_included(vm, path))
         return 0;
     if (!vm->host.file_open || !vm->host.file_read_line)
         return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no file support in this host");
@@ -208,6 +214,16 @@ static void reset_after_error(fbrl_vm *vm)
         fbrl__pop_source(vm);
     fbrl__drop_definition(vm);
     vm->hld = vm->hold + FBRL_HOLDSIZE;
+    vm->lp = 0; /* no definition runs: no locals */
+    /* a search order without FORTH-WORDLIST (0 SET-ORDER, a lone WORDLIST) could not even
+     * find ONLY again: after an error it is the minimal order (docs/language.md) */
+    int k = 0;
+    while (k < vm->norder && vm->order[k] != 0)
+        k++;
+    if (k == vm->norder) {
+        vm->order[0] = 0;
+        vm->norder = 1;
+    }
 }
 
 static void begin_top(fbrl_vm *vm)

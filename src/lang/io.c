@@ -140,3 +140,21 @@ void fbrl__pop_source(fbrl_vm *vm)
     if (vm->nsrc > 0)
         pop_source(vm);
 }
+
+/* RESTORE-INPUT of a file source to another line: reopen the file, read to line n. */
+int fbrl__src_goto_line(fbrl_vm *vm, unsigned long n)
+{
+    fbrl_src *s = fbrl__src(vm);
+    void *fh = NULL;
+    if (s->kind != SRC_FILE || !vm->host.file_open || n == 0 ||
+        vm->host.file_open(vm->host.user, s->path, &fh) != FBRL_OK)
+        return -1;
+    if (s->fh && vm->host.file_close)
+        vm->host.file_close(vm->host.user, s->fh);
+    s->fh = fh;
+    s->line = 0;
+    while (s->line < n)
+        if (fbrl__refill(vm) <= 0)
+            return -1;
+    return 0;
+}

@@ -126,13 +126,12 @@
 #define U(x)     ((fbrl_ucell)(x))
 #define FLAG(c)  ((c) ? (fbrl_cell)-1 : 0)
 #define FCELLS   ((sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell))
-/* a float result must be finite when its inputs were (else -43 / -46) */
-#define FRES(r, bad)       \
-    do {                   \
-        double r_ = (r);   \
-        if (!isfinite(r_)) \
-            goto e_f##bad; \
-        ftos = r_;         \
+/* float results follow IEEE 754 (infinities, NaN, signed zero): the safety check is at
+ * the controller boundary instead (robot words refuse a value that is not finite) */
+#define FRES(r, bad) \
+    do {             \
+        (void)(bad); \
+        ftos = (r);  \
     } while (0)
 /* binary float op: r1 = second, r2 = top; the result replaces both */
 #define FBIN(expr, bad)                \
@@ -1216,7 +1215,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             rp[1] = sp + 1 - ds0;
             rp[2] = fp + 1 - fs0;
             rp[3] = vm->handler;
-            rp[4] = 0;
+            rp[4] = vm->lp; /* the locals in use (locals.c) */
             rp += 5;
             vm->handler = rp - rs0;
             ip = (const fbrl_cell *)vm->guard_addr + 1; /* the CATCHEND cell */
@@ -1282,8 +1281,6 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             FBIN(r1 * r2, 43);
             NEXT;
             CASE(FSLASH) FNEED(2);
-            if (ftos == 0)
-                THROW(FBRL_THROW_FDIV_ZERO);
             FBIN(r1 / r2, 43);
             NEXT;
             CASE(FNEGATE) FNEED(1);
@@ -1466,8 +1463,6 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 NEED(1);
                 FNEED(1);
                 CHKC(T, 4);
-                if (fabs(ftos) > 3.4028234663852886e38)
-                    THROW(FBRL_THROW_FRESULT_RANGE);
                 f = (float)ftos;
                 memcpy((void *)T, &f, 4);
                 DROP1();
@@ -1647,6 +1642,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 SAVE();
                 vm->ip = ip;
                 vm->pending_throw = 0;
+                vm->cword = h;
                 st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
                 if (vm->sp < ds0 || vm->sp > dse || vm->fp < fs0 || vm->fp > fse) {
                     vm->sp = ds0;
@@ -1697,12 +1693,6 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     e_address:
         vm->run_code = -9;
         goto e_stored;
-    e_f43:
-        vm->run_code = -43;
-        goto e_stored;
-    e_f46:
-        vm->run_code = -46;
-        goto e_stored;
     e_stored:
         code = vm->run_code;
     do_throw:
@@ -1718,6 +1708,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 fbrl_cell *f = rs0 + hd - 5;
                 rp = f;
                 vm->handler = (f[3] >= 0 && f[3] <= hd - 5) ? f[3] : 0;
+                vm->lp = (f[4] >= 0 && f[4] <= vm->lp) ? f[4] : 0;
                 sp = ds0 + (U(f[1]) < U(dse - ds0) ? f[1] : 0) - 1;
                 tos = *sp;
                 fp = fs0 + (U(f[2]) <= U(fse - fs0) ? f[2] : 0) - 1;
@@ -1739,6 +1730,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 out:
     SAVE();
     vm->nest--;
+    if (code && vm->nest == 0)
+        vm->lp = 0; /* no definition runs any more: no locals */
     return code;
 }
 #if FBRL_CGOTO

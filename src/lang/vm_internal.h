@@ -28,11 +28,16 @@
 #define FBRL_LINE_MAX    1024              /* longest source line */
 #define FBRL_SRC_MAX     10                /* nested input sources (files, texts, EVALUATE) */
 #define FBRL_CF_MAX      64                /* control-flow stack entries */
-#define FBRL_HASH        512               /* dictionary hash buckets (power of two) */
+#define FBRL_HASH        1024              /* dictionary hash buckets (power of two) */
 #define FBRL_PATH_MAX    256
 #define FBRL_REQ_POOL    4096 /* bytes for REQUIRE's list of included files */
 #define FBRL_GUARD_CELLS 8
 #define FBRL_XT_BASE     4096 /* execution tokens are FBRL_XT_BASE + header index */
+#define FBRL_WL_MAX      32   /* word lists (wordlist.c); a wid is its index + 1 */
+#define FBRL_ORDER_MAX   16   /* word lists in the search order */
+#define FBRL_LOCALS_MAX  512  /* cells of the locals stack (locals.c) */
+#define FBRL_NLOCALS     32   /* locals of one definition */
+#define FBRL_FILES_MAX   16   /* files open at once through the standard FILE words */
 
 /* Sizes of the buffers at the start of the data region. */
 #define FBRL_WORDBUF  260
@@ -73,8 +78,10 @@ enum {
 typedef struct fbrl_hdr {
     uint32_t next; /* next header in the hash chain, as index+1 (0 = end) */
     uint8_t kind, flags, len;
+    uint8_t wl; /* its word list (wordlist.c): 0 = FORTH-WORDLIST */
     char name[FBRL_NAME_MAX + 1];
     uint16_t op;     /* K_PRIM: opcode */
+    uint32_t hash;   /* its name's hash (dict.c; compared before the name) */
     fbrl_cell body;  /* data field / colon body (a data-region address) */
     fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
@@ -194,6 +201,31 @@ struct fbrl_vm {
     int bt_captured;
     fbrl_cell bt_stack[FBRL_BT_STACK]; /* its data stack: the top cells, deepest first */
     size_t bt_depth;
+    const struct fbrl_hdr *cword; /* the C word last called (names it in vmx.c's errors) */
+    /* word lists and the search order (wordlist.c): find() takes the newest word of the
+     * name in the earliest word list of order[0..norder) */
+    uint8_t order[FBRL_ORDER_MAX];
+    int norder;
+    uint8_t current;      /* the compilation word list */
+    uint8_t nwl;          /* word lists made */
+    uint8_t wl_forth2012; /* the standard words FBRL's word sets shadow (FORTH-2012) */
+    const char *wl_name[FBRL_WL_MAX];
+    /* locals (locals.c): the frames of running definitions (not addressable), and the
+     * names of the definition being compiled */
+    fbrl_cell locals[FBRL_LOCALS_MAX];
+    fbrl_cell lp;       /* cells in use; a CATCH frame keeps it */
+    int nlocals;        /* locals of the open definition (0: none) */
+    int lpend;          /* (LOCAL) declarations not yet ended */
+    fbrl_cell lexit_xt; /* (LOCALS-EXIT): compiled before EXIT and ; when nlocals */
+    char lname[FBRL_NLOCALS][FBRL_NAME_MAX + 1];
+    uint8_t llen[FBRL_NLOCALS];
+    /* ALLOCATE's heap (heap.c): [heap_lo, heap_hi) inside the data region */
+    unsigned char *heap_lo, *heap_hi;
+    fbrl_cell subst; /* strings.c: REPLACES's first entry (a heap block), 0 = none */
+    /* file.c: the standard FILE words' open files (host handles, not addressable);
+     * a fileid is the slot's number + 1 */
+    void *file_h[FBRL_FILES_MAX];
+    char file_path[FBRL_FILES_MAX][FBRL_PATH_MAX];
     /* The text interpreter (interp.c) nested from below: EVALUATE, INCLUDED, INCLUDE and
      * REQUIRE run in run.c and words.c, which interp.c itself calls. fbrl_vm_create sets
      * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* vmx.c - the extension interface for word sets (include/fbrl/vmx.h): the one place
  * where word sets meet the engine's insides (headers, input sources, the number parser). */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -332,6 +333,21 @@ fbrl_status fbrl_vmx_arg_parse(fbrl_vm *vm, const char *word, char kind, const c
 
 static size_t cells_of(char kind) { return kind == 'R' ? 0 : (kind == 'S' || kind == 'T') ? 2 : 1; }
 
+/* The safety of real arithmetic (IEEE: infinities, NaN) is checked here, where a value
+ * enters a word set: every real parameter of a word set's word (a location, a motion, a
+ * speed, a calibration: anything that may be bound for the controller) must be finite. */
+static fbrl_status refuse_nonfinite(fbrl_vm *vm, const char *word, double f)
+{
+    return fbrl_vmx_throwf(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENONFINITE),
+                           "%s refuses %s: not a finite number (nothing was sent)",
+                           word && *word ? word
+                           : vm->cword   ? vm->cword->name
+                                         : "?",
+                           isnan(f) ? "NaN"
+                           : f < 0  ? "-Inf"
+                                    : "Inf");
+}
+
 fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what,
                           unsigned how, fbrl_vmx_val *v)
 {
@@ -357,6 +373,8 @@ fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const
             fbrl_status st = fbrl_vmx_arg_parse(vm, word, spec[k], what ? what[k] : NULL, &v[k]);
             if (st != FBRL_OK)
                 return st;
+            if (spec[k] == 'R' && !isfinite(v[k].f))
+                return refuse_nonfinite(vm, word, v[k].f);
         }
         return FBRL_OK;
     }
@@ -364,6 +382,9 @@ fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const
         return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
     if (ints && d < nc + nf)
         return fbrl_vm_throw(vm, FBRL_THROW_FSTACK_UNDERFLOW, NULL);
+    for (k = 0; !ints && k < nf; k++) /* before anything is taken: bad input loses nothing */
+        if (!isfinite(vm->fp[-1 - (ptrdiff_t)k]))
+            return refuse_nonfinite(vm, word, vm->fp[-1 - (ptrdiff_t)k]);
     /* the word's cell parameters are on top, in spec order; beneath them its reals given
      * as integers (or the reals are on the float stack) */
     fbrl_cell *top = (fbrl_cell *)vm->sp;
@@ -488,7 +509,7 @@ fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, i
         return FBRL_EINVAL;
     fbrl_cell *sp = vm->sp, *rp = vm->rp;
     double *fp = vm->fp;
-    fbrl_cell handler = vm->handler;
+    fbrl_cell handler = vm->handler, lp = vm->lp;
     int nest = vm->nest, nsrc = vm->nsrc, captured = vm->err_captured;
     int defining = vm->defining, compiling = *vm->state != 0;
     char word[sizeof vm->cur_word];
@@ -513,6 +534,7 @@ fbrl_status fbrl_vmx_evaluate_catch(fbrl_vm *vm, const char *text, size_t len, i
     vm->rp = rp;
     vm->fp = fp;
     vm->handler = handler;
+    vm->lp = lp;
     vm->nest = nest;
     while (vm->nsrc > nsrc)
         fbrl__pop_source(vm);
@@ -540,4 +562,16 @@ fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     return fbrl_vm_throw(vm, code, msg);
+}
+
+fbrl_cell fbrl_vmx_forth2012_wid(const fbrl_vm *vm) { return vm ? (fbrl_cell)vm->wl_forth2012 + 1 : 0; }
+
+fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell *previous)
+{
+    if (!vm || wid < 1 || wid > (fbrl_cell)vm->nwl)
+        return FBRL_EINVAL;
+    if (previous)
+        *previous = (fbrl_cell)vm->current + 1;
+    vm->current = (uint8_t)(wid - 1);
+    return FBRL_OK;
 }

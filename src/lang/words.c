@@ -82,8 +82,8 @@ int fbrl__w_string(fbrl_vm *vm, int op)
             return r;
         for (size_t i = 0; n2 <= n1 && i <= n1 - n2; i++) {
             if (n2 == 0 || memcmp(s1 + i, s2, n2) == 0) {
-                vm->sp += 2;
-                vm->sp[-2] = (fbrl_cell)(s1 + i);
+                vm->sp += 2; /* a1 stays as given (an empty string's too) */
+                vm->sp[-2] = (fbrl_cell)(U(vm->sp[-2]) + i);
                 vm->sp[-1] = (fbrl_cell)(n1 - i);
                 return push(vm, -1);
             }
@@ -223,6 +223,12 @@ static int control(fbrl_vm *vm, int op)
     case OP_DOES:
         if (!vm->defining)
             return FBRL_THROW_CONTROL_MISMATCH;
+        if (vm->nlocals) { /* the creating part's locals end here; DOES> code may have its own */
+            int r = fbrl__compile_xt(vm, vm->lexit_xt);
+            vm->nlocals = 0;
+            if (r)
+                return r;
+        }
         return fbrl__emit(vm, OP_DOESSET);
     }
     return FBRL_THROW_UNSUPPORTED;
@@ -688,6 +694,8 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         {"STACK-CELLS", 12},
         {"FLOATING-STACK", 13},
         {"MAX-FLOAT", 14},
+        {"#LOCALS", 16},
+        {"WORDLISTS", 17},
         /* Forth-94 word-set queries (obsolescent, still asked by test suites) */
         {"CORE", 15},
         {"CORE-EXT", 15},
@@ -734,6 +742,8 @@ static int env_query(fbrl_vm *vm, const char *s, size_t n)
         case 13: r = push(vm, vm->fs_end - vm->fs0); break;
         case 14: r = fpush(vm, 1.7976931348623157e308); break;
         case 15: r = push(vm, -1); break;
+        case 16: r = push(vm, FBRL_NLOCALS); break;
+        case 17: r = push(vm, FBRL_WL_MAX); break;
         }
         return r ? r : push(vm, -1);
     }
@@ -778,8 +788,6 @@ static int skip_conditional(fbrl_vm *vm, int else_ok)
                 return 0;
         } else if (name_is(p, n, "[ELSE]") && level == 0 && else_ok)
             return 0;
-        else if (name_is(p, n, "\\"))
-            *vm->toin = (fbrl_cell)fbrl__src(vm)->len;
     }
 }
 
@@ -795,6 +803,14 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
     case OP_TO:
     case OP_IS:
     case OP_ACTIONOF:
+        if (op == OP_TO && vm->nlocals && *vm->state) { /* TO a local (locals.c) */
+            fbrl_cell in = *vm->toin;
+            fbrl__parse_name(vm, &p, &n);
+            int k = fbrl__local_index(vm, p, n);
+            if (k >= 0)
+                return fbrl__compile_local(vm, k, 1);
+            *vm->toin = in;
+        }
         if ((r = parse_word_xt(vm, &xt, &h)))
             return r;
         if (op == OP_TO) {
@@ -1095,6 +1111,9 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (v < 0 || vm->sp - vm->ds0 < v)
             return FBRL_THROW_STACK_UNDERFLOW;
         vm->sp -= v;
+        if (v == 3 && s && vm->sp[2] == s->id && vm->sp[1] != (fbrl_cell)s->line && s->kind == SRC_FILE &&
+            vm->sp[1] > 0 && fbrl__src_goto_line(vm, (unsigned long)vm->sp[1]) != 0)
+            return push(vm, -1); /* a file source goes back to the saved line */
         if (v != 3 || !s || vm->sp[2] != s->id || vm->sp[1] != (fbrl_cell)s->line || vm->sp[0] < 0 ||
             (size_t)vm->sp[0] > s->len)
             return push(vm, -1);

@@ -23,6 +23,8 @@ if(TARGET fbrlmon)
   if(TARGET fbrlsim)
     add_test(NAME mon_conn COMMAND sh ${_mon_dir}/mon_conn.sh $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${_mon_tmp}/conn)
     list(APPEND _mon_tests mon_conn)
+    add_test(NAME mon_nonfinite COMMAND sh ${_mon_dir}/mon_nonfinite.sh $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${_mon_tmp}/nonfinite)
+    list(APPEND _mon_tests mon_nonfinite)
   endif()
   set_tests_properties(${_mon_tests} PROPERTIES LABELS e2e TIMEOUT 300
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${_mon_dir}/mon_lsan.supp")

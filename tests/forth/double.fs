@@ -23,3 +23,10 @@ T{ 1 2 3 4 5 6 2ROT -> 3 4 5 6 1 2 }T
 T{ 1. 2. DU< MAX-UINT 0 1. DU< -> TRUE FALSE }T
 : PIC <# #S #> ;
 T{ 1 CELLS 8 = [IF] 0 1 PIC S" 18446744073709551616" COMPARE [ELSE] 0 [THEN] -> 0 }T
+\ M*/ keeps a triple-cell intermediate: the extremes come back whole
+0 INVERT 1 RSHIFT CONSTANT MAX-N  MAX-N INVERT CONSTANT MIN-N
+T{ 0 MIN-N MAX-N DUP M*/ -> 0 MIN-N }T
+T{ -1 MAX-N MAX-N DUP M*/ -> -1 MAX-N }T
+: M*/-CODE ( d n +n -- code ) ['] M*/ CATCH >R 2DROP 2DROP R> ;
+T{ 0 MIN-N MAX-N NEGATE MAX-N M*/-CODE -> -11 }T  \ -MIN-2INT does not fit
+T{ 0 MIN-N 2 1 M*/-CODE -> -11 }T

@@ -31,7 +31,7 @@ T{ 1 0 ' / CATCH NIP NIP -> -10 }T
 T{ ' DROP CATCH -> -4 }T
 T{ 0 ' @ CATCH NIP -> -9 }T
 T{ S" NO-SUCH-WORD" ' EVALUATE CATCH NIP NIP -> -13 }T
-T{ 1E0 0E0 ' F/ CATCH FDROP FDROP -> -42 }T
+T{ 1E0 0E0 ' F/ CATCH FDROP -> 0 }T  \ IEEE: +Inf, no exception
 T{ : TH0 0 THROW 5 ; TH0 -> 5 }T
 \ user codes pass through unchanged
 T{ -1000 ' THROW CATCH NIP -> -1000 }T

@@ -67,6 +67,24 @@ T{ -0.0125E0 FBUF 3 REPRESENT -> -1 TRUE TRUE }T
 T{ FBUF 3 S" 125" COMPARE -> 0 }T
 T{ PRECISION 3 SET-PRECISION PRECISION SWAP SET-PRECISION -> 3 }T
 \ errors
-T{ 1E0 0E0 ' F/ CATCH FDROP FDROP -> -42 }T
-T{ -1E0 ' FSQRT CATCH FDROP -> -46 }T
+\ IEEE 754: infinities, NaN and signed zero are values, not errors (docs/language.md)
+: INF? ( F: r -- ) ( -- flag ) FDUP F0= 0= FDUP FDUP F+ F= AND ;  \ r + r = r and r <> 0
+: NAN? ( F: r -- ) ( -- flag ) FDUP F= 0= ;
+T{ 1E0 0E0 F/ FDUP INF? F0< -> TRUE FALSE }T
+T{ -1E0 0E0 F/ FDUP INF? F0< -> TRUE TRUE }T
+T{ 0E0 0E0 F/ NAN? -> TRUE }T
+T{ -1E0 FSQRT NAN? -> TRUE }T
+T{ 0E0 FLN FDUP INF? F0< -> TRUE TRUE }T
+T{ 1E300 1E300 F* INF? -> TRUE }T
+T{ 1E0 0E0 FNEGATE F/ F0< -> TRUE }T                  \ signed zero: 1/-0 = -Inf
+T{ 1E0 0E0 F/ 1E0 FSWAP F/ F0= -> TRUE }T             \ 1/Inf = 0
+\ FATAN2's four quadrants and its signed zeros
+T{ 1E0 1E0 FATAN2 PI 4E0 F/ F- FABS 1E-15 F< -> TRUE }T
+T{ 1E0 -1E0 FATAN2 PI 0.75E0 F* F- FABS 1E-15 F< -> TRUE }T
+T{ -1E0 -1E0 FATAN2 PI -0.75E0 F* F- FABS 1E-15 F< -> TRUE }T
+T{ -1E0 1E0 FATAN2 PI -4E0 F/ F- FABS 1E-15 F< -> TRUE }T
+T{ 0E0 -1E0 FATAN2 PI F= -> TRUE }T
+T{ 0E0 FNEGATE -1E0 FATAN2 PI FNEGATE F= -> TRUE }T
+\ SF! of a value beyond single precision stores an infinity
+T{ 1E300 FBUF SF! FBUF SF@ INF? -> TRUE }T
 T{ ' F+ CATCH -> -45 }T

@@ -25,3 +25,18 @@ T{ S2 BUF SWAP CMOVE BUF 1+ BUF 2 CMOVE> BUF 3 S" ccc" COMPARE -> 0 }T
 T{ S2 BUF SWAP CMOVE BUF BUF 1+ 3 CMOVE> BUF 4 S" aabc" COMPARE -> 0 }T
 T{ : SL [ S2 ] SLITERAL ; SL S2 COMPARE -> 0 }T
 T{ S1 DROP 0 S7 COMPARE -> 0 }T
+\ SEARCH of and for empty strings (found at once, the address kept)
+T{ S1 DROP 0 S1 DROP 0 SEARCH ROT S1 DROP = -> 0 TRUE TRUE }T
+T{ S1 S1 DROP 0 SEARCH -> S1 TRUE }T
+T{ S1 DROP 0 S1 SEARCH ROT DROP -> 0 FALSE }T
+\ REPLACES SUBSTITUTE UNESCAPE
+CREATE SB 64 ALLOT
+T{ S" robot" S" arm" REPLACES -> }T
+T{ S" the %arm% moves 100%%" SB 64 SUBSTITUTE ROT SB = -> 20 1 TRUE }T
+T{ SB 20 S" the robot moves 100%" COMPARE -> 0 }T
+T{ S" %ARM%" SB 64 SUBSTITUTE NIP NIP -> 1 }T              \ names match in any case
+T{ S" %nope% %" SB 64 SUBSTITUTE NIP NIP -> 0 }T          \ unknown names stay
+T{ S" long %arm%" SB 5 SUBSTITUTE NIP NIP 0< -> TRUE }T   \ too long: n < 0
+T{ S" 50%" SB UNESCAPE S" 50%%" COMPARE -> 0 }T
+T{ S" 50%" SB UNESCAPE SB 32 + 32 SUBSTITUTE ROT ROT S" 50%" COMPARE -> 0 0 }T
+T{ S" crane" S" arm" REPLACES S" %arm%" SB 64 SUBSTITUTE DROP S" crane" COMPARE -> 0 }T

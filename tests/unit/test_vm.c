@@ -16,6 +16,7 @@
 
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
+#include "mon_files.h"
 
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
 
@@ -67,6 +68,7 @@ static fixture *new_vm(size_t mem_size)
     cfg.host.key_ready = h_key_ready;
     vmh_use_files(&cfg.host);
     vmh_use_clock(&cfg.host);
+    cfg.host.files = mon_files(); /* fbrlmon's file system for the standard FILE words */
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     return f;
 }
@@ -125,6 +127,10 @@ FORTH_TEST(forth_float, "float.fs")
 FORTH_TEST(forth_string, "string.fs")
 FORTH_TEST(forth_tools, "tools.fs")
 FORTH_TEST(forth_fbrl, "fbrl.fs")
+FORTH_TEST(forth_search, "search.fs")
+FORTH_TEST(forth_locals, "locals.fs")
+FORTH_TEST(forth_memory, "memory.fs")
+FORTH_TEST(forth_file, "file.fs")
 
 /* ---- the C API ---- */
 static void create_rejects_bad_config(void **state)
@@ -601,6 +607,23 @@ static void output_formats(void **state)
     free_vm(f);
 }
 
+/* EKEY decodes the terminal's cursor and function keys; other bytes are characters. */
+static void ekey_decodes_terminal_keys(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    f->h.keys = "\033[Ax\033OP\033[3~\033[1;5C";
+    assert_int_equal(ev(f, "EKEY K-UP = EKEY EKEY K-F1 = EKEY K-DELETE = EKEY K-RIGHT K-CTRL-MASK OR ="),
+                     FBRL_OK);
+    for (int i = 0; i < 3; i++) /* F1, DELETE, ctrl-RIGHT */
+        assert_int_equal(pop1(f), -1);
+    assert_int_equal(pop1(f), 'x');
+    assert_int_equal(pop1(f), -1);
+    assert_int_equal(ev(f, "3 4 AT-XY PAGE"), FBRL_OK);
+    assert_string_equal(f->h.out.s, "\033[5;4H\033[2J\033[H");
+    free_vm(f);
+}
+
 static void console_input(void **state)
 {
     (void)state;
@@ -706,10 +729,6 @@ static void hostile_programs_fail_cleanly(void **state)
         {"1 0 /", -10},
         {"1 0 MOD", -10},
         {"1 0 0 UM/MOD", -10},
-        {"1E0 0E0 F/", -42},
-        {"-1E0 FSQRT", -46},
-        {"0E0 FLN", -46},
-        {"1E300 1E300 F*", -43},
         {"1E30 F>S", -11},
         {"R>", -14},
         {": X1 R> R> R> R> ; X1", -6},
@@ -953,6 +972,33 @@ static int collect(void *ctx, const char *name, size_t len)
     return 0;
 }
 
+/* A host without a file system (the firmware) has no standard FILE words at all. */
+static void no_file_system_no_file_words(void **state)
+{
+    (void)state;
+    fixture *f = calloc(1, sizeof *f);
+    assert_non_null(f);
+    f->mem = malloc(1 << 20);
+    assert_non_null(f->mem);
+    fbrl_vm_config cfg;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.mem = f->mem;
+    cfg.mem_size = 1 << 20;
+    cfg.host.user = &f->h;
+    cfg.host.write = h_write;
+    assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(ev(f, "[DEFINED] R/O [DEFINED] READ-LINE FORTH-2012 [DEFINED] OPEN-FILE"), FBRL_OK);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 0);
+    /* the rest of the standard words are there */
+    assert_int_equal(ev(f, "10 ALLOCATE SWAP FREE [DEFINED] {:"), FBRL_OK);
+    assert_int_equal(pop1(f), -1);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(pop1(f), 0);
+    free_vm(f);
+}
+
 static void random_programs_are_contained(void **state)
 {
     (void)state;
@@ -987,7 +1033,12 @@ static void random_programs_are_contained(void **state)
         }
     }
     assert_true(errors > 0);
-    assert_int_equal(ev(f, "; DECIMAL"), fbrl_vm_compiling(f->vm) ? FBRL_OK : FBRL_ETHROW);
+    /* close a definition left open; a random line may also have made a word named ";"
+     * (CREATE ; and the like), so outside a definition either answer is right */
+    if (fbrl_vm_compiling(f->vm))
+        assert_int_equal(ev(f, "; DECIMAL"), FBRL_OK);
+    else
+        ev(f, "; DECIMAL");
     while (fbrl_vm_depth(f->vm))
         pop1(f);
     assert_int_equal(ev(f, "DECIMAL 6 7 *"), FBRL_OK);
@@ -1006,6 +1057,12 @@ int main(void)
         cmocka_unit_test(forth_string),
         cmocka_unit_test(forth_tools),
         cmocka_unit_test(forth_fbrl),
+        cmocka_unit_test(forth_search),
+        cmocka_unit_test(forth_locals),
+        cmocka_unit_test(forth_memory),
+        cmocka_unit_test(forth_file),
+        cmocka_unit_test(no_file_system_no_file_words),
+        cmocka_unit_test(ekey_decodes_terminal_keys),
         cmocka_unit_test(output_formats),
         cmocka_unit_test(console_input),
         cmocka_unit_test(create_rejects_bad_config),
