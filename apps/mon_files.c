@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_files.c - the file system behind the standard FILE words in fbrlmon (stdio and
  * POSIX; the engine reaches it only through fbrl_vm_host.files). A handle is a mon_fh:
  * C streams need a seek between a read and a write, so every operation seeks first. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* facility.c - the FACILITY EXT words the engine did not have: AT-XY PAGE (ANSI terminal
  * sequences on the console output), EKEY EKEY? EKEY>CHAR EKEY>FKEY EMIT? and the K-
  * key constants. Keys come from the host's key callback (a firmware without one throws

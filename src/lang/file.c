@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* file.c - the standard FILE and FILE EXT word sets on the host's file system
  * (fbrl_vm_host.files). A host without one (the firmware) passes NULL, and the VM has
  * none of these words: the engine itself includes no OS header.

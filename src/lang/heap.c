@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* heap.c - the MEMORY word set (ALLOCATE FREE RESIZE) on a heap inside the VM's own
  * block (the core never calls malloc).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* locals.c - the LOCALS word set: {: args | vals -- outs :} and TO for locals.
  *
  * A definition's locals live in a frame on the VM's locals stack (vm->locals, not

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* strings.c - the STRING EXT words REPLACES SUBSTITUTE UNESCAPE.
  *
  * REPLACES keeps its name/text pairs in ALLOCATE's heap (heap.c), one block each, linked

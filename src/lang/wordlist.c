@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* wordlist.c - word lists and the search order (SEARCH-ORDER and its EXT words), name
  * tokens (TRAVERSE-WORDLIST, NAME>STRING, NAME>INTERPRET, NAME>COMPILE), SYNONYM,
  * [DEFINED] [UNDEFINED], and the control-flow and return-stack words of TOOLS EXT

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_nonfinite.sh FBRLMON FBRLSIM TMPDIR - IEEE arithmetic makes infinities and NaN, so
 # the safety check sits at the controller boundary: a NaN or an infinity given to
 # DEFINE-LOC, a motion word, a calibration or any word that sends a real is refused with
