@@ -16,7 +16,7 @@ typedef struct layout {
 #define FBRL_BUFS                                                                     \
     (FBRL_SYSVARS * sizeof(fbrl_cell) + FBRL_WORDBUF + FBRL_PADSIZE + FBRL_HOLDSIZE + \
      FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
-#define FBRL_EXTRA_WORDS 64 /* headers beyond the primitives (data words) */
+#define FBRL_EXTRA_WORDS 96 /* headers beyond the primitives (data words) */
 
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
@@ -117,6 +117,8 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     vm->nest_evaluate = fbrl__evaluate;
     vm->nest_included = fbrl__included;
     if (fbrl__install_prims(vm))
+        return FBRL_ENOSPC;
+    if (fbrl__task_words(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st != FBRL_OK)
