@@ -225,6 +225,9 @@ fbrl_vmx_wait *fbrl_vmx_wait_state(fbrl_vm *vm);
  * (what the word popped is put back): a background task yields here, and the word is
  * called again when the task resumes; or Ctrl-C (a throw). */
 fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us);
+/* True when the status fbrl_vmx_pause() just returned is a yield (the word runs again;
+ * leave what it started, e.g. an output switched on, as it is), false for an error. */
+int fbrl_vmx_yielded(const fbrl_vm *vm);
 /* The running task's START-TIMER mark. */
 fbrl_vmx_timer *fbrl_vmx_task_timer(fbrl_vm *vm);
 /* Wait (as fbrl_vmx_pause) while another task holds the resource key (e.g. the arm,

@@ -1629,6 +1629,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 SAVE();
                 vm->pending_throw = 0;
                 st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
+                vm->resuming = 0; /* task.c: only the first C word after a resume runs again */
                 if (st == FBRL_ETHROW && vm->pending_throw == THROW_YIELD) {
                     vm->sp = sp + 1; /* it runs again on resuming: its arguments back */
                     vm->fp = fp + 1;

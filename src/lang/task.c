@@ -15,14 +15,14 @@
 #include "atomic.h"
 #include "words.h"
 
-#define TASK_DS      64 /* cells of each task's stacks */
-#define TASK_RS      64
-#define TASK_FS      16
-#define TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
-#define US_PER_MS    1000u
-#define TASK_SPARE   16        /* bytes below the data and float stacks (run.c's cached top) */
-#define TASK_MAX_MS  86400000L /* the longest timed step: one day */
-#define NO_WAKE      UINT64_MAX
+#define TASK_DS           64 /* cells of each task's stacks */
+#define TASK_RS           64
+#define TASK_FS           16
+#define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
+#define US_PER_MS         1000u
+#define TASK_SPARE        16        /* bytes below the data and float stacks (run.c's cached top) */
+#define TASK_MAX_MS       86400000L /* the longest timed step: one day */
+#define NO_WAKE           UINT64_MAX
 #define TASK_MEM                                                                           \
     (TASK_SPARE + TASK_DS * sizeof(fbrl_cell) + TASK_RS * sizeof(fbrl_cell) + TASK_SPARE + \
      TASK_FS * sizeof(double))
@@ -211,12 +211,15 @@ static void slice(fbrl_vm *vm, int i)
     t->state = TK_RUN;
     vm->slice_nest = vm->nest + 1;
     vm->resume_ip = t->ip;
+    vm->resuming = t->resuming;
+    t->resuming = 0;
     vm->pending_msg = NULL;
     int code = fbrl__run(vm, t->w);
     ctx_save(vm, t);
     t->ip = vm->resume_at;
     t->w = vm->resume_w;
     vm->resume_ip = NULL;
+    vm->resuming = 0;
 
     char line[200];
     if (code == THROW_YIELD && !t->stop_req) {
@@ -502,7 +505,7 @@ static fbrl_status w_await(fbrl_vm *vm, void *arg)
         int s = vm->tasks[i].state;
         if (s != TK_READY && s != TK_WAIT && s != TK_RUN)
             return FBRL_OK;
-        int code = task_pause(vm, now_us(vm) + TASK_POLL_US);
+        int code = task_pause(vm, now_us(vm) + FBRL_TASK_POLL_US);
         if (code)
             return tk_throw(vm, code, NULL);
     }
@@ -554,15 +557,10 @@ static fbrl_status w_task_state(fbrl_vm *vm, void *arg)
 }
 
 /* ---- claims: CLAIM ( key -- ) RELEASE ( key -- ) ARM ( -- key ) ---- */
-static fbrl_status w_claim(fbrl_vm *vm, void *arg)
+static fbrl_status claim(fbrl_vm *vm, fbrl_cell key)
 {
-    (void)arg;
-    fbrl_cell key;
-    fbrl_status st;
-    if ((st = tk_pop(vm, &key)))
-        return st;
     if (key == 0)
-        return tk_throw(vm, FBRL_THROW_BAD_NUMBER, "CLAIM: 0 is no resource (ARM, or a device)");
+        return tk_throw(vm, FBRL_THROW_BAD_NUMBER, "CLAIM: 0 is no resource (THE-ARM, or a device)");
     fbrl__wait_begin(vm);
     for (;;) {
         fbrl_claim *c = claim_of(vm, key, 1);
@@ -584,7 +582,7 @@ static fbrl_status w_claim(fbrl_vm *vm, void *arg)
             ;
         if (k == c->nq)
             c->queue[c->nq++] = me; /* claims wait in order */
-        int code = task_pause(vm, now_us(vm) + TASK_POLL_US);
+        int code = task_pause(vm, now_us(vm) + FBRL_TASK_POLL_US);
         if (code) {
             if (code != THROW_YIELD)
                 unqueue(c, me), claim_tidy(c);
@@ -593,13 +591,18 @@ static fbrl_status w_claim(fbrl_vm *vm, void *arg)
     }
 }
 
-static fbrl_status w_release(fbrl_vm *vm, void *arg)
+/* CLAIM ( key -- ) CLAIM-ARM ( -- ): the key stays on the stack while the claim waits */
+static fbrl_status w_claim(fbrl_vm *vm, void *arg)
 {
-    (void)arg;
-    fbrl_cell key;
+    fbrl_cell key = FBRL_VMX_ARM;
     fbrl_status st;
-    if ((st = tk_pop(vm, &key)))
+    if (!arg && (st = tk_pop(vm, &key)))
         return st;
+    return claim(vm, key);
+}
+
+static fbrl_status release(fbrl_vm *vm, fbrl_cell key)
+{
     fbrl_claim *c = claim_of(vm, key, 0);
     if (!c || c->owner != vm->cur_task)
         return tk_throw(vm, FBRL_THROW_UNSUPPORTED, "RELEASE: this task does not hold that");
@@ -609,6 +612,16 @@ static fbrl_status w_release(fbrl_vm *vm, void *arg)
         claim_tidy(c);
     }
     return FBRL_OK;
+}
+
+/* RELEASE ( key -- ) RELEASE-ARM ( -- ) */
+static fbrl_status w_release(fbrl_vm *vm, void *arg)
+{
+    fbrl_cell key = FBRL_VMX_ARM;
+    fbrl_status st;
+    if (!arg && (st = tk_pop(vm, &key)))
+        return st;
+    return release(vm, key);
 }
 
 static fbrl_status w_arm(fbrl_vm *vm, void *arg)
@@ -782,9 +795,11 @@ static const struct {
     {"TASKS", w_tasks, 0, "( -- )", "list the tasks: state, timed steps, what they hold"},
     {"TASK-STATE", w_task_state, 0, "( task -- n )",
      "1 made 2 ready 3 waiting 4 running 5 done 6 failed 7 stopped"},
-    {"CLAIM", w_claim, 0, "( key -- )", "take the arm (ARM) or a device for this task; waits in turn"},
+    {"CLAIM", w_claim, 0, "( key -- )", "take a device (or THE-ARM) for this task; claims wait in turn"},
     {"RELEASE", w_release, 0, "( key -- )", "give back what CLAIM took"},
-    {"ARM", w_arm, 0, "( -- key )", "the arm, for CLAIM and RELEASE"},
+    {"CLAIM-ARM", w_claim, 1, "( -- )", "take the arm for a manoeuvre; other tasks' moves wait"},
+    {"RELEASE-ARM", w_release, 1, "( -- )", "give the arm back to the other tasks"},
+    {"THE-ARM", w_arm, 0, "( -- key )", "the arm, for CLAIM and RELEASE"},
     {"ZERO-CLOCK", w_zero_clock, 0, "( -- )", "the task's clock starts now (START starts it too)"},
     {"CLOCK", w_clock, 0, "( -- ms )", "milliseconds on the task's clock"},
     {"AT", w_at, 0, "( ms -- )", "wait until ms on the task's clock (a timed step)"},

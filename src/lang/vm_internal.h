@@ -122,8 +122,9 @@ typedef struct fbrl_cf {
  * place. Every other task runs in slices: fbrl__run from its saved ip with its own stacks
  * (in data space), until a waiting word yields (THROW_YIELD) or the word ends. The record
  * lives here, outside data space, so a program cannot corrupt its pointers. */
-#define FBRL_TASKS_MAX  16
-#define FBRL_CLAIMS_MAX 16
+#define FBRL_TASKS_MAX    16
+#define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
+#define FBRL_CLAIMS_MAX   16
 enum { TK_FREE, TK_IDLE, TK_READY, TK_WAIT, TK_RUN, TK_DONE, TK_FAILED, TK_STOPPED };
 typedef struct fbrl_task {
     uint32_t word; /* header index + 1 of its TASK word (0: a free slot; slot 0: main) */
@@ -213,6 +214,7 @@ struct fbrl_vm {
     int cur_task;               /* the task whose stacks are in sp/rp/fp */
     int ntasks;                 /* background tasks started and not yet ended */
     int slice_nest;             /* nest of the running slice's fbrl__run (-1: main) */
+    int resuming; /* the word about to run is a waiting word run again (cleared after a C word) */
     unsigned rr;                /* round-robin position */
     const fbrl_cell *resume_ip; /* set before fbrl__run resumes a task */
     const fbrl_cell *resume_at; /* set by fbrl__run when a slice yields: ip and the word */
@@ -262,8 +264,8 @@ int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], dou
 static inline fbrl_vmx_wait *fbrl__wait_begin(fbrl_vm *vm)
 {
     fbrl_task *t = &vm->tasks[vm->cur_task];
-    if (t->resuming) {
-        t->resuming = 0;
+    if (vm->resuming) {
+        vm->resuming = 0;
         t->wait.resumed = 1;
         return &t->wait;
     }

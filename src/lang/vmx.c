@@ -544,6 +544,8 @@ fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us)
     return FBRL_ETHROW;
 }
 
+int fbrl_vmx_yielded(const fbrl_vm *vm) { return vm->pending_throw == THROW_YIELD; }
+
 fbrl_vmx_timer *fbrl_vmx_task_timer(fbrl_vm *vm) { return &vm->tasks[vm->cur_task].timer; }
 
 fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key)
@@ -558,7 +560,7 @@ fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key)
         if (!c || c->owner < 0 || c->owner == vm->cur_task)
             return FBRL_OK;
         uint64_t now = vm->host.now_us ? vm->host.now_us(vm->host.user) : 0;
-        fbrl_status st = fbrl_vmx_pause(vm, now + 2000u);
+        fbrl_status st = fbrl_vmx_pause(vm, now + FBRL_TASK_POLL_US);
         if (st != FBRL_OK)
             return st;
     }

@@ -1298,7 +1298,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         if (!vm->host.key)
             return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         if (vm->ntasks && vm->host.key_ready && vm->host.now_us) /* other tasks run until a key comes */
-            while (!vm->host.key_ready(vm->host.user))
+            for (fbrl__wait_begin(vm); !vm->host.key_ready(vm->host.user);)
                 if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US)))
                     return r;
         r = vm->host.key(vm->host.user);
