@@ -16,6 +16,7 @@
 #include "mon_conn.h"
 #include "mon_relink.h"
 #include "mon_safe.h"
+#include "mon_tasks.h"
 #include "mon_ws.h"
 
 #ifndef FBRL_VERSION
@@ -355,6 +356,8 @@ int main(int argc, char **argv)
         }
     }
 
+    if (!fbrl_vm_bye(m.vm) && !mon_safe_quit())
+        mon_tasks_finish(&m); /* what a file started runs to its end */
     mon_ws_finish(&m);
     mon_close(&m);
     if (printer != NULL && fclose(printer) != 0)
