@@ -269,7 +269,7 @@ static void run_round(fbrl_vm *vm)
 {
     uint64_t now = now_us(vm);
     for (int n = 1; n < FBRL_TASKS_MAX; n++) {
-        int i = (int)((vm->rr + (unsigned)n) % FBRL_TASKS_MAX);
+        int i = n; /* in slot order: each due task one slice a round */
         fbrl_task *t = &vm->tasks[i];
         if (i == 0 || !t->word)
             continue;
@@ -283,7 +283,6 @@ static void run_round(fbrl_vm *vm)
             now = now_us(vm);
         }
     }
-    vm->rr = (vm->rr + 1) % FBRL_TASKS_MAX;
 }
 
 static uint64_t next_wake(const fbrl_vm *vm, uint64_t limit)

@@ -215,7 +215,6 @@ struct fbrl_vm {
     int ntasks;                 /* background tasks started and not yet ended */
     int slice_nest;             /* nest of the running slice's fbrl__run (-1: main) */
     int resuming; /* the word about to run is a waiting word run again (cleared after a C word) */
-    unsigned rr;                /* round-robin position */
     const fbrl_cell *resume_ip; /* set before fbrl__run resumes a task */
     const fbrl_cell *resume_at; /* set by fbrl__run when a slice yields: ip and the word */
     fbrl_cell resume_w;
