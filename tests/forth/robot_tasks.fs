@@ -56,6 +56,14 @@ T{ SEEN @ T-CHANGE @ - 20000 < -> TRUE }T
 T{ TH TASK-STATE -> 3 }T  \ still watching for the next change
 T{ TH STOP  TH TASK-STATE -> 7 }T
 SIM: IN 3 0
+\ WHEN: once the input is in the state (at once if it is); INPUT-EDGE waits for a change
+T{ 0 SEEN !  ' NOTE SENSOR FALSE TH WHEN  100 MS  SEEN @ 0<>  TH TASK-STATE -> TRUE 5 }T
+T{ 0 SEEN !  ' NOTE SENSOR TRUE TH WHEN  100 MS  SEEN @ -> 0 }T
+SIM: IN 3 1
+T{ 200 MS SEEN @ 0<>  TH TASK-STATE -> TRUE 5 }T
+T{ SENSOR FALSE 2 ' INPUT-EDGE TH START-WITH  100 MS TH TASK-STATE -> 3 }T
+SIM: IN 3 0
+T{ 200 MS TH TASK-STATE -> 5 }T
 LOG-SKIP
 
 \ 4. two tasks both moving the arm: a claimed manoeuvre (approach, down, grip, up) is

@@ -1010,6 +1010,29 @@ static void tasks_in_the_engine(void **state)
     free_vm(f);
 }
 
+/* The task's clock: ME, ZERO-CLOCK, CLOCK, EVERY (periods without drift), DEADLINE (a
+ * missed one throws -316 and counts), LATENESS reports them. */
+static void task_clock_words(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    assert_int_equal(ev(f, "ME ZERO-CLOCK CLOCK"), FBRL_OK);
+    assert_true(pop1(f) < 5);
+    assert_int_equal(pop1(f), 0);
+    assert_int_equal(ev(f, "TASK TP VARIABLE WHO  : PER ( -- ) ME WHO !  5 0 DO 20 EVERY LOOP  CLOCK ;"),
+                     FBRL_OK);
+    assert_int_equal(ev(f, "' PER TP START TP AWAIT WHO @ TP = TP LATE-MAX"), FBRL_OK);
+    assert_true(pop1(f) < 20000);
+    assert_int_equal(pop1(f), -1);
+    assert_int_equal(ev(f, "ZERO-CLOCK 1000 DEADLINE 10 MS 5 ' DEADLINE CATCH"), FBRL_OK);
+    assert_int_equal(pop1(f), FBRL_VM_THROW_OF_STATUS(FBRL_ETIMEOUT));
+    f->h.out.n = 0;
+    assert_int_equal(ev(f, "DROP LATENESS"), FBRL_OK);
+    assert_non_null(strstr(f->h.out.s, "TP                   5"));
+    assert_non_null(strstr(f->h.out.s, "MAIN"));
+    free_vm(f);
+}
+
 /* A host drives the tasks from its own event loop: fbrl_vm_run_tasks runs what is due and
  * says when to call again; timed steps keep their times. */
 static void tasks_from_a_host_loop(void **state)
@@ -1068,6 +1091,7 @@ int main(void)
         cmocka_unit_test(corrupted_code_is_contained),
         cmocka_unit_test(tasks_in_the_engine),
         cmocka_unit_test(tasks_from_a_host_loop),
+        cmocka_unit_test(task_clock_words),
         cmocka_unit_test(random_programs_are_contained),
         cmocka_unit_test(interrupt_stops_endless_loops),
         cmocka_unit_test(interrupt_stops_padding_and_waiting_c_words),
