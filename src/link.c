@@ -1624,11 +1624,33 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
     return FBRL_OK;
 }
 
+fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
+                                       fbrl_link_exec_fn *old_fn, void **old_ctx)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    if (old_fn)
+        *old_fn = l->cfg.on_exec;
+    if (old_ctx)
+        *old_ctx = l->cfg.exec_ctx;
+    l->cfg.on_exec = fn;
+    l->cfg.exec_ctx = ctx;
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
 {
     if (!l || !form)
         return FBRL_EINVAL;
     *form = l->cfg.form;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes)
+{
+    if (!l || !naxes)
+        return FBRL_EINVAL;
+    *naxes = l->cfg.naxes;
     return FBRL_OK;
 }
 

@@ -24,5 +24,6 @@
 #include "fbrl/vm.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
+#include "fbrl/recover.h"
 
 #endif

@@ -22,6 +22,7 @@
 #define US_PER_MS         1000u
 #define TASK_SPARE        16        /* bytes below the data and float stacks (run.c's cached top) */
 #define TASK_MAX_MS       86400000L /* the longest timed step: one day */
+#define SLEEP_MARGIN_MS   5
 #define NO_WAKE           UINT64_MAX
 #define TASK_MEM                                                                           \
     (TASK_SPARE + TASK_DS * sizeof(fbrl_cell) + TASK_RS * sizeof(fbrl_cell) + TASK_SPARE + \
@@ -300,8 +301,11 @@ static uint64_t next_wake(const fbrl_vm *vm, uint64_t limit)
 static void sleep_until(fbrl_vm *vm, uint64_t when)
 {
     uint64_t now = now_us(vm);
-    if (when > now && vm->host.sleep_ms) {
-        uint64_t ms = (when - now + US_PER_MS - 1) / US_PER_MS;
+    if (when > now + US_PER_MS && vm->host.sleep_ms) {
+        /* a host's sleep may oversleep: the last few ms are slept one at a time, and the
+         * last part of a ms not at all (the caller looks again) */
+        uint64_t ms = (when - now) / US_PER_MS;
+        ms = ms > SLEEP_MARGIN_MS * 2 ? ms - SLEEP_MARGIN_MS : 1;
         vm->host.sleep_ms(vm->host.user, (uint32_t)(ms > 1000 ? 1000 : ms));
     }
 }
