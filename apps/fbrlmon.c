@@ -23,6 +23,7 @@
 #include "mon_runlog.h"
 #include "console.h"
 #include "mon_safe.h"
+#include "mon_tasks.h"
 #include "mon_ws.h"
 
 #define DICT_BYTES_DEFAULT (8u * 1024u * 1024u)
@@ -529,7 +530,9 @@ int main(int argc, char **argv)
         }
     }
 
-    if (!opt.dry_run) /* a dry run changes no file it was not asked to */
+    if (!fbrl_vm_bye(m.vm) && !mon_safe_quit())
+        mon_tasks_finish(&m); /* what a file started runs to its end */
+    if (!opt.dry_run)         /* a dry run changes no file it was not asked to */
         mon_ws_finish(&m);
     mon_close(&m);
     if (printer != NULL && fclose(printer) != 0)

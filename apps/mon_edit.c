@@ -4,6 +4,7 @@
  * when fbrlmon was built without libedit. */
 #include "mon.h"
 #include "mon_safe.h"
+#include "mon_tasks.h"
 
 #include <ctype.h>
 #include <signal.h>
@@ -72,7 +73,8 @@ static int read_key(EditLine *el, wchar_t *wc)
         p.fd = STDIN_FILENO;
         p.events = POLLIN;
         p.revents = 0;
-        if (poll(&p, 1, 100) <= 0)
+        /* the tasks run while the prompt waits for a key (mon_tasks.c) */
+        if (poll(&p, 1, g_mon != NULL ? mon_tasks_poll_ms(g_mon, 100) : 100) <= 0)
             continue;
         r = read(STDIN_FILENO, &b, 1);
         if (r == 0)

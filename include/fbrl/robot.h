@@ -118,7 +118,7 @@ typedef struct fbrl_robot {
     /* BASE-OFFSET: the user's world frame as seen from the arm's base */
     double base[4]; /* dx dy dz (in), dO (deg) */
     /* timers */
-    uint64_t mark_ms; /* START-TIMER (host clock) */
+    uint64_t mark_ms; /* unused: START-TIMER marks are per task (fbrl_vmx_task_timer) */
     int mark_set;
     int teaching; /* GET-CAL-POINTS is running */
     /* devices */

@@ -196,6 +196,13 @@ FBRL_API int fbrl_vm_compiling(const fbrl_vm *vm);
  * the stacks are emptied, interpretation state. (Not from inside a running word.) */
 FBRL_API void fbrl_vm_reset(fbrl_vm *vm);
 
+/* Cooperative tasks (docs/tasks.md) from a host's own event loop: run every task that
+ * is due until each waits, without blocking; *wake_us (host clock, now_us) is when to
+ * call again (UINT64_MAX: no task waits on the clock; *live = 0: no task left). Output
+ * (a task's error, its name first) goes to the write callback. FBRL_ESTATE from inside
+ * fbrl_vm_eval() (its waits run the tasks themselves). live may be NULL. */
+fbrl_status fbrl_vm_run_tasks(fbrl_vm *vm, uint64_t *wake_us, int *live);
+
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */
 FBRL_API fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,

@@ -206,6 +206,44 @@ FBRL_API void fbrl_vmx_puts(fbrl_vm *vm, const char *s);
 /* Take a pending Ctrl-C (fbrl_vm_interrupt) now, for a word that waits: 1 if there was one
  * (it is then cleared: the word should throw FBRL_THROW_INTERRUPT), else 0. */
 FBRL_API int fbrl_vmx_take_interrupt(fbrl_vm *vm);
+/* ---- waiting words and cooperative tasks (docs/tasks.md) ---- */
+
+/* What a waiting word keeps while it waits: when it began (host microseconds) and a few
+ * cells of its own progress (zero at first). A background task's waiting word gives up
+ * the processor by returning fbrl_vmx_pause()'s status; the engine then calls it again
+ * when the task resumes, with this record kept, until it returns anything else. */
+typedef struct fbrl_vmx_wait {
+    uint64_t since_us;
+    fbrl_cell memo[4];
+    int resumed; /* 0 on the first call of this wait, 1 when called again */
+} fbrl_vmx_wait;
+/* START-TIMER's mark: each task has its own. */
+typedef struct fbrl_vmx_timer {
+    uint64_t mark_ms;
+    int set;
+} fbrl_vmx_timer;
+
+/* True while other tasks exist: a waiting word must then let them run (fbrl_vmx_pause);
+ * false when the program runs alone, and the word may wait as it always did. */
+int fbrl_vmx_tasking(const fbrl_vm *vm);
+/* The running task's record for the waiting word calling it (begun on the first call). */
+fbrl_vmx_wait *fbrl_vmx_wait_state(fbrl_vm *vm);
+/* Let the other tasks run until the host clock reaches wake_us. FBRL_OK: it is that time
+ * now (check your condition again). Anything else: return it at once, pushing nothing
+ * (what the word popped is put back): a background task yields here, and the word is
+ * called again when the task resumes; or Ctrl-C (a throw). */
+fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us);
+/* True when the status fbrl_vmx_pause() just returned is a yield (the word runs again;
+ * leave what it started, e.g. an output switched on, as it is), false for an error. */
+int fbrl_vmx_yielded(const fbrl_vm *vm);
+/* The running task's START-TIMER mark. */
+fbrl_vmx_timer *fbrl_vmx_task_timer(fbrl_vm *vm);
+/* Wait (as fbrl_vmx_pause) while another task holds the resource key (e.g. the arm,
+ * FBRL_VMX_ARM): a motion word calls this so that it never cuts into another task's
+ * claimed manoeuvre. FBRL_OK when the running task may go on. */
+fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key);
+#define FBRL_VMX_ARM ((fbrl_cell)1) /* the arm's resource key (ARM pushes it) */
+
 /* Throw with a printf-formatted message (at most 127 characters are kept). */
 FBRL_API fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...)
 #if defined(__GNUC__)

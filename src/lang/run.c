@@ -232,6 +232,12 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     LOAD();
     entry = rp - rs0;
     vm->nest++;
+    if (vm->resume_ip) { /* task.c: a task's slice goes on where it stopped (xt: the word to run again) */
+        ip = vm->resume_ip;
+        vm->resume_ip = NULL;
+        entry = 0;
+        DISPATCH();
+    }
     goto execute_xt;
 
     for (;;) {
@@ -1644,6 +1650,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 vm->pending_throw = 0;
                 vm->cword = h;
                 st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
+                vm->resuming = 0; /* task.c: only the first C word after a resume runs again */
+                if (st == FBRL_ETHROW && vm->pending_throw == THROW_YIELD) {
+                    vm->sp = sp + 1; /* it runs again on resuming: its arguments back */
+                    vm->fp = fp + 1;
+                }
                 if (vm->sp < ds0 || vm->sp > dse || vm->fp < fs0 || vm->fp > fse) {
                     vm->sp = ds0;
                     vm->fp = fs0;
@@ -1698,6 +1709,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     do_throw:
         if (code == THROW_BYE || code == THROW_QUIT)
             goto out;
+        if (code == THROW_YIELD || code == THROW_STOP) { /* task.c: the slice ends here */
+            vm->resume_w = w;
+            vm->resume_at = ip;
+            goto out;
+        }
         if (!vm->handler && !vm->bt_captured) { /* no CATCH will take it: keep where it happened */
             SAVE();
             fbrl__backtrace(vm, ip);

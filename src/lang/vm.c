@@ -20,7 +20,7 @@ typedef struct layout {
 #define FBRL_STACK_ALIGN 4096         /* see make_layout */
 #define FBRL_HEAP_PART   8            /* the heap takes an eighth of the free data region, */
 #define FBRL_HEAP_MAX    (512u << 10) /* at most this much (the dictionary keeps the rest) */
-#define FBRL_EXTRA_WORDS 160          /* headers beyond the primitives (data words, C words of src/lang) */
+#define FBRL_EXTRA_WORDS 192          /* headers beyond the primitives (data words, C words of src/lang) */
 
 static size_t heap_for(size_t free_bytes)
 {
@@ -136,6 +136,8 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     vm->nest_included = fbrl__included;
     if (fbrl__wordlist_init(vm) || fbrl__install_prims(vm) || fbrl__heap_words(vm) ||
         fbrl__strings_init(vm) || fbrl__locals_init(vm) || fbrl__facility_words(vm))
+        return FBRL_ENOSPC;
+    if (fbrl__task_words(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
     if (st == FBRL_OK && vm->host.files)

@@ -17,6 +17,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 #include "fbrl/vm.h"
 #include "fbrl/vmx.h"
 #include "atomic.h"
@@ -137,8 +138,49 @@ typedef struct fbrl_cf {
 /* THROW codes the engine uses internally to unwind without being catchable. */
 #define THROW_BYE  (-100000)
 #define THROW_QUIT (FBRL_THROW_QUIT)
+/* task.c: a waiting word in a background task gives up the processor (the word runs
+ * again when the task resumes); STOP of the running task ends it. Neither is catchable. */
+#define THROW_YIELD (-100001)
+#define THROW_STOP  (-100002)
 /* A fbrl_status returned by a C word becomes THROW code FBRL_THROW_STATUS(st). */
 #define FBRL_THROW_STATUS(st) FBRL_VM_THROW_OF_STATUS(st)
+
+/* Cooperative tasks (task.c, docs/tasks.md). Slot 0 is the main task: whatever
+ * fbrl_vm_eval() runs, on the caller's C stack, whose waits run the other tasks in
+ * place. Every other task runs in slices: fbrl__run from its saved ip with its own stacks
+ * (in data space), until a waiting word yields (THROW_YIELD) or the word ends. The record
+ * lives here, outside data space, so a program cannot corrupt its pointers. */
+#define FBRL_TASKS_MAX    16
+#define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
+#define FBRL_CLAIMS_MAX   16
+enum { TK_FREE, TK_IDLE, TK_READY, TK_WAIT, TK_RUN, TK_DONE, TK_FAILED, TK_STOPPED };
+typedef struct fbrl_task {
+    uint32_t word; /* header index + 1 of its TASK word (0: a free slot; slot 0: main) */
+    int state;
+    fbrl_cell *ds0, *ds_end, *sp, *rs0, *rs_end, *rp;
+    double *fs0, *fs_end, *fp;
+    fbrl_cell handler;
+    const fbrl_cell *ip; /* where it resumes, and the word it runs again (w) first */
+    fbrl_cell w;
+    uint64_t wake_us;      /* TK_WAIT: run again at or after this host time */
+    unsigned char *mem_lo; /* its stacks' memory in data space (dropped if forgotten) */
+    int resuming;          /* its slice ended in a wait: the word runs again, its record kept */
+    int stop_req;          /* STOP while it waits in place: it ends when it gets back */
+    fbrl_vmx_wait wait;
+    fbrl_vmx_timer timer;
+    /* timed steps: the task's clock origin, EVERY's next due time, lateness */
+    uint64_t origin_us, every_due_us;
+    unsigned long steps, missed;
+    uint64_t late_max_us, late_sum_us;
+    int code; /* TK_FAILED: its throw code */
+    char msg[96];
+} fbrl_task;
+typedef struct fbrl_claim {
+    fbrl_cell key;                 /* what is claimed (0: a free entry) */
+    int owner;                     /* task slot, -1 none */
+    int depth;                     /* nested claims by the owner */
+    int queue[FBRL_TASKS_MAX], nq; /* waiting tasks, in order */
+} fbrl_claim;
 
 struct fbrl_vm {
     fbrl_vm_host host;
@@ -231,6 +273,17 @@ struct fbrl_vm {
      * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */
     int (*nest_evaluate)(fbrl_vm *vm, char *text, size_t len);
     int (*nest_included)(fbrl_vm *vm, const char *name, size_t n, int require);
+    /* tasks (task.c); words.c waits through task_pause (set by fbrl_vm_create) */
+    fbrl_task tasks[FBRL_TASKS_MAX];
+    fbrl_claim claims[FBRL_CLAIMS_MAX];
+    int cur_task;               /* the task whose stacks are in sp/rp/fp */
+    int ntasks;                 /* background tasks started and not yet ended */
+    int slice_nest;             /* nest of the running slice's fbrl__run (-1: main) */
+    int resuming; /* the word about to run is a waiting word run again (cleared after a C word) */
+    const fbrl_cell *resume_ip; /* set before fbrl__run resumes a task */
+    const fbrl_cell *resume_at; /* set by fbrl__run when a slice yields: ip and the word */
+    fbrl_cell resume_w;
+    int (*task_pause)(fbrl_vm *vm, uint64_t wake_us);
 };
 
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
@@ -283,6 +336,23 @@ const char *fbrl__file_name(const fbrl_vm *vm, uint32_t file);
 /* number.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
  * 3 float (*f); 0 not a number. */
 int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f);
+
+/* The waiting word's record (vmx.h): kept when the word runs again after a yield. */
+static inline fbrl_vmx_wait *fbrl__wait_begin(fbrl_vm *vm)
+{
+    fbrl_task *t = &vm->tasks[vm->cur_task];
+    if (vm->resuming) {
+        vm->resuming = 0;
+        t->wait.resumed = 1;
+        return &t->wait;
+    }
+    memset(&t->wait, 0, sizeof t->wait);
+    t->wait.since_us = vm->host.now_us ? vm->host.now_us(vm->host.user) : 0;
+    return &t->wait;
+}
+
+/* task.c */
+int fbrl__task_words(fbrl_vm *vm);
 
 /* prelude.c */
 extern const char fbrl__prelude[];

@@ -575,3 +575,40 @@ fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell *previous
     vm->current = (uint8_t)(wid - 1);
     return FBRL_OK;
 }
+
+/* ---- waiting words and tasks (task.c runs them) ---- */
+
+int fbrl_vmx_tasking(const fbrl_vm *vm) { return vm && vm->ntasks > 0; }
+
+fbrl_vmx_wait *fbrl_vmx_wait_state(fbrl_vm *vm) { return fbrl__wait_begin(vm); }
+
+fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us)
+{
+    int code = vm->task_pause(vm, wake_us);
+    if (!code)
+        return FBRL_OK;
+    vm->pending_throw = code;
+    return FBRL_ETHROW;
+}
+
+int fbrl_vmx_yielded(const fbrl_vm *vm) { return vm->pending_throw == THROW_YIELD; }
+
+fbrl_vmx_timer *fbrl_vmx_task_timer(fbrl_vm *vm) { return &vm->tasks[vm->cur_task].timer; }
+
+fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key)
+{
+    if (!vm->ntasks)
+        return FBRL_OK;
+    for (;;) {
+        const fbrl_claim *c = NULL;
+        for (int k = 0; k < FBRL_CLAIMS_MAX && !c; k++)
+            if (vm->claims[k].key == key)
+                c = &vm->claims[k];
+        if (!c || c->owner < 0 || c->owner == vm->cur_task)
+            return FBRL_OK;
+        uint64_t now = vm->host.now_us ? vm->host.now_us(vm->host.user) : 0;
+        fbrl_status st = fbrl_vmx_pause(vm, now + FBRL_TASK_POLL_US);
+        if (st != FBRL_OK)
+            return st;
+    }
+}

@@ -1284,6 +1284,29 @@ static int words_line(void *ctx, const char *name, size_t len)
     return 0;
 }
 
+#define KEY_POLL_US 10000u /* KEY beside tasks: how often it looks for a key */
+
+/* MS while other tasks exist: they run until the time has come; the argument stays on
+ * the stack until then (a background task's MS runs again when it resumes). */
+static int ms_beside_tasks(fbrl_vm *vm)
+{
+    int r;
+    if ((r = need(vm, 1)))
+        return r;
+    if (!vm->host.sleep_ms || !vm->host.now_us)
+        return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    fbrl_cell v = vm->sp[-1];
+    uint64_t due = fbrl__wait_begin(vm)->since_us + (v > 0 ? (uint64_t)v * 1000u : 0);
+    for (;;) {
+        if (vm->host.now_us(vm->host.user) >= due) {
+            vm->sp--;
+            return 0;
+        }
+        if ((r = vm->task_pause(vm, due)))
+            return r;
+    }
+}
+
 int fbrl__w_io(fbrl_vm *vm, int op)
 {
     fbrl_cell a, u, v, w;
@@ -1294,6 +1317,10 @@ int fbrl__w_io(fbrl_vm *vm, int op)
     case OP_KEY:
         if (!vm->host.key)
             return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
+        if (vm->ntasks && vm->host.key_ready && vm->host.now_us) /* other tasks run until a key comes */
+            for (fbrl__wait_begin(vm); !vm->host.key_ready(vm->host.user);)
+                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US)))
+                    return r;
         r = vm->host.key(vm->host.user);
         if (r < 0)
             return FBRL_THROW_CHAR_IO;
@@ -1443,6 +1470,8 @@ int fbrl__w_io(fbrl_vm *vm, int op)
         fbrl__write(vm, "\n", 1);
         return 0;
     case OP_MS:
+        if (vm->ntasks) /* other tasks run while this one waits (task.c) */
+            return ms_beside_tasks(vm);
         if ((r = pop(vm, &v)))
             return r;
         if (!vm->host.sleep_ms)

@@ -67,6 +67,16 @@ const char *fbrl_robot_word(size_t i)
     return NULL;
 }
 
+/* Input handlers (docs/tasks.md): a word run as a task when an input device changes to a
+ * state (ONSIG, every time) or once it is in that state (WHEN). */
+static const char rb_handlers[] =
+    ": (ONSIG) ( xt dev state -- ) BEGIN 2DUP INPUT-EDGE 2 PICK EXECUTE AGAIN ;\n"
+    ": ONSIG ( xt dev state task -- ) \\ run xt as the task each time the input device turns to state\n"
+    "   >R 3 ['] (ONSIG) R> START-WITH ;\n"
+    ": (WHEN) ( xt dev state -- ) BEGIN 2DUP 86400000 WAIT-INPUT UNTIL 2DROP EXECUTE ;\n"
+    ": WHEN ( xt dev state task -- ) \\ run xt as the task once the input device is in state\n"
+    "   >R 3 ['] (WHEN) R> START-WITH ;\n";
+
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g)
 {
     fbrl_cell xt;
@@ -91,6 +101,8 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
             continue;
         st = rb_define(r, tables[k].t, *tables[k].n);
     }
+    if (st == FBRL_OK)
+        st = fbrl_vm_eval(vm, rb_handlers, strlen(rb_handlers));
     if (st == FBRL_OK)
         st = fbrl_robot_set_link(r, link);
     return st;

@@ -84,6 +84,12 @@ fbrl_status rb_now_ms(fbrl_robot *r, uint64_t *ms);
 fbrl_status rb_sleep_ms(fbrl_robot *r, uint32_t ms);
 fbrl_status rb_wait_ms(fbrl_robot *r, const char *who, uint32_t ms);
 
+/* Beside other tasks: wait until until_us (host clock) letting them run; FBRL_OK when
+ * it has come, else return the status (a yield: the word runs again, see vmx.h). */
+fbrl_status rb_pause_until(fbrl_robot *r, uint64_t until_us);
+uint64_t rb_now_us(fbrl_robot *r);
+#define RB_US_PER_MS 1000u
+
 /* Any control character counts as blank (as the engine's parser has it). */
 static inline int rb_blank(char c) { return (unsigned char)c <= ' '; }
 

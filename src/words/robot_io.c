@@ -21,6 +21,7 @@
 static const fbrl_vmx_type device_type = {"device", (fbrl_cell)0x44455643 /* "DEVC" */};
 #define DEFAULT_PULSE_MS 100u
 #define POLL_MS          20u
+#define EDGE_POLL_MS     5u        /* INPUT-EDGE, under ONSIG: well inside a 20 ms reaction */
 #define MAX_WAIT_MS      86400000L /* one day */
 
 static fbrl_robot_device *device_at(const fbrl_robot *r, fbrl_cell addr)
@@ -209,9 +210,42 @@ static fbrl_status ms_arg(fbrl_robot *r, const rb_word *w, fbrl_cell ms)
     return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
 }
 
+/* Beside other tasks, a pulse is steps the word's wait record counts (the word runs again
+ * after each yield): memo[0] steps done (on, hold, off, gap; n pulses), memo[1] the time
+ * the current step began. The output is switched off even when the wait fails. */
+static fbrl_status pulses_beside_tasks(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d,
+                                       uint32_t ms, long n)
+{
+    fbrl_vmx_wait *wt = fbrl_vmx_wait_state(r->vm);
+    fbrl_status st = FBRL_OK;
+    while (st == FBRL_OK && wt->memo[0] < 2 * (fbrl_cell)n - 1) {
+        int on = wt->memo[0] % 2 == 0;
+        if (on && !wt->memo[2]) {
+            if ((st = set_output(r, w, d, 1)) != FBRL_OK)
+                return st;
+            wt->memo[2] = 1;
+            wt->memo[1] = (fbrl_cell)rb_now_us(r);
+        }
+        st = rb_pause_until(r, (uint64_t)wt->memo[1] + (uint64_t)ms * RB_US_PER_MS);
+        if (st != FBRL_OK && fbrl_vmx_yielded(r->vm))
+            return st;
+        if (on) {
+            fbrl_status off = set_output(r, w, d, 0);
+            wt->memo[2] = 0;
+            if (st == FBRL_OK)
+                st = off;
+        }
+        wt->memo[0]++;
+        wt->memo[1] = (fbrl_cell)rb_now_us(r);
+    }
+    return st;
+}
+
 /* One pulse: on, hold, off. The output is switched off even when the wait fails. */
 static fbrl_status pulse(fbrl_robot *r, const rb_word *w, const fbrl_robot_device *d, uint32_t ms)
 {
+    if (fbrl_vmx_tasking(r->vm))
+        return pulses_beside_tasks(r, w, d, ms, 1);
     fbrl_status st = set_output(r, w, d, 1);
     if (st != FBRL_OK)
         return st;
@@ -266,6 +300,10 @@ static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
         return st;
     uint64_t t0 = t_ms(r);
     long planned = n > 0 ? (long)d->pulse_ms * (2 * (long)n - 1) : 0; /* pulses and the gaps between */
+    if (fbrl_vmx_tasking(r->vm)) {
+        st = n > 0 ? pulses_beside_tasks(r, w, d, d->pulse_ms, (long)n) : FBRL_OK;
+        return st != FBRL_OK && fbrl_vmx_yielded(r->vm) ? st : told(r, w, d, n, planned, t0, 0, st);
+    }
     for (long k = 0; k < (long)n && st == FBRL_OK; k++) {
         st = pulse(r, w, d, d->pulse_ms);
         if (st == FBRL_OK && k + 1 < (long)n)
@@ -312,8 +350,11 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
         st = rb_now_ms(r, &t0);
     if (st != FBRL_OK)
         return st;
+    int tasking = fbrl_vmx_tasking(r->vm);
+    if (tasking) /* its timeout holds from the first call, however often it runs again */
+        t0 = fbrl_vmx_wait_state(r->vm)->since_us / RB_US_PER_MS;
     uint64_t shown = 0;
-    int count_down = r->progress && v[2].i >= 2 * (fbrl_cell)FBRL_ROBOT_PROGRESS_MS;
+    int count_down = !tasking && r->progress && v[2].i >= 2 * (fbrl_cell)FBRL_ROBOT_PROGRESS_MS;
     for (;;) {
         if ((st = read_input(r, w, d, &on)) != FBRL_OK)
             break;
@@ -331,7 +372,11 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
                      (unsigned long)shown);
             r->progress(r->progress_ctx, line);
         }
-        if ((st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS))) != FBRL_OK)
+        if (tasking)
+            st = rb_pause_until(r, (now + (left < POLL_MS ? left : POLL_MS)) * RB_US_PER_MS);
+        else
+            st = rb_sleep_ms(r, (uint32_t)(left < POLL_MS ? left : POLL_MS));
+        if (st != FBRL_OK)
             break;
         if ((st = rb_interrupted(r)) != FBRL_OK)
             break;
@@ -345,13 +390,41 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
                                                                : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
+/* INPUT-EDGE ( dev state -- ): until the input turns to state (a flag) from the other
+ * state (the ONSIG idea); memo[0]: the other state was seen. Polls every EDGE_POLL_MS,
+ * letting other tasks run. */
+static fbrl_status w_input_edge(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    fbrl_robot_device *d = NULL;
+    int want = v[1].i != 0, on = 0;
+    fbrl_status st = device(r, w, v[0].i, 0, &d);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_vmx_wait *wt = fbrl_vmx_wait_state(r->vm);
+    for (;;) {
+        if ((st = read_input(r, w, d, &on)) != FBRL_OK)
+            return st;
+        if (on != want)
+            wt->memo[0] = 1;
+        else if (wt->memo[0])
+            return FBRL_OK;
+        if (fbrl_vmx_tasking(r->vm))
+            st = rb_pause_until(r, rb_now_us(r) + EDGE_POLL_MS * RB_US_PER_MS);
+        else if ((st = rb_sleep_ms(r, EDGE_POLL_MS)) == FBRL_OK)
+            st = rb_interrupted(r);
+        if (st != FBRL_OK)
+            return st;
+    }
+}
+
 /* START-TIMER ( -- ) */
 static fbrl_status w_start_timer(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     (void)w;
     (void)v;
-    fbrl_status st = rb_now_ms(r, &r->mark_ms);
-    r->mark_set = st == FBRL_OK;
+    fbrl_vmx_timer *t = fbrl_vmx_task_timer(r->vm); /* each task has its own */
+    fbrl_status st = rb_now_ms(r, &t->mark_ms);
+    t->set = st == FBRL_OK;
     return st;
 }
 
@@ -359,14 +432,15 @@ static fbrl_status elapsed(fbrl_robot *r, const rb_word *w, uint64_t *ms)
 {
     uint64_t now;
     char msg[64];
-    if (!r->mark_set) {
+    const fbrl_vmx_timer *t = fbrl_vmx_task_timer(r->vm);
+    if (!t->set) {
         snprintf(msg, sizeof msg, "%s: no timer started (START-TIMER)", w->name);
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, msg);
     }
     fbrl_status st = rb_now_ms(r, &now);
     if (st != FBRL_OK)
         return st;
-    *ms = now - r->mark_ms;
+    *ms = now - t->mark_ms;
     return FBRL_OK;
 }
 
@@ -393,6 +467,10 @@ static fbrl_status w_wait_until(fbrl_robot *r, const rb_word *w, rb_val *v)
         return st;
     long left = ms < (uint64_t)v[0].i ? (long)((uint64_t)v[0].i - ms) : 0;
     uint64_t t0 = t_ms(r);
+    if (left > 0 && fbrl_vmx_tasking(r->vm)) {
+        st = rb_pause_until(r, (fbrl_vmx_task_timer(r->vm)->mark_ms + (uint64_t)v[0].i) * RB_US_PER_MS);
+        return st != FBRL_OK && fbrl_vmx_yielded(r->vm) ? st : told(r, w, NULL, 0, left, t0, 0, st);
+    }
     return told(r, w, NULL, 0, left, t0, 0, left > 0 ? rb_wait_ms(r, w->name, (uint32_t)left) : FBRL_OK);
 }
 
@@ -428,6 +506,8 @@ const rb_word rb_io_words[] = {
     {"INPUT?", w_input_q, "A", 0, -1, 0, "( dev -- flag )", "true if the input device is on"},
     {"WAIT-INPUT", w_wait_input, "AII", 0, -1, 0, "( dev state ms -- flag )",
      "wait up to ms for the input to reach state; false on timeout"},
+    {"INPUT-EDGE", w_input_edge, "AI", 0, -1, 0, "( dev state -- )",
+     "wait until the input device turns to state (a flag) from the other state"},
     {"START-TIMER", w_start_timer, "", 0, -1, 0, "( -- )", "mark the start of a timed step"},
     {"ELAPSED", w_elapsed, "", 0, -1, 0, "( -- ms )", "milliseconds since START-TIMER"},
     {"WAIT-UNTIL", w_wait_until, "I", 0, -1, 0, "( ms -- )", "wait until ms after START-TIMER"},

@@ -192,6 +192,8 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
             break;
         if (sr.zeros > 0) {
             r->moving = 0;
+        } else if (fbrl_vmx_tasking(r->vm)) { /* the others run (the link is free between rounds) */
+            st = rb_pause_until(r, rb_now_us(r) + RB_STILL_POLL_MS * RB_US_PER_MS);
         } else {
             const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
             if (h->sleep_ms)
@@ -236,6 +238,10 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
         return st;
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);
+    /* beside other tasks: never cut into a manoeuvre another task has claimed the arm for */
+    if ((motion || cmd == FBRL_RAPL_OPEN || cmd == FBRL_RAPL_CLOSE || cmd == FBRL_RAPL_GRIP) &&
+        (st = fbrl_vmx_claim_wait(r->vm, FBRL_VMX_ARM)) != FBRL_OK)
+        return st;
     if (cmd == FBRL_RAPL_OUTPUT)
         note_outputs(r, a, n);
     /* a motion or FINISH behind a running motion would make the controller wait, deaf

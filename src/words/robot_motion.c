@@ -339,13 +339,33 @@ static fbrl_status w_out2byte(fbrl_robot *r, const rb_word *w, rb_val *v)
     return st;
 }
 
-/* WAITPORT ( input# -- ): RAPL WAIT: input n on, -n off */
+/* WAITPORT ( input# -- ): RAPL WAIT: input n on, -n off; beside other tasks the host
+ * polls the input instead, as long as the link would allow the controller's WAIT */
+#define WAITPORT_POLL_MS 20u
+#define WAITPORT_MAX_MS  120000u
 static fbrl_status w_waitport(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_cell n = v[0].i < 0 ? -v[0].i : v[0].i;
     fbrl_status st = rb_range(r, w, "input", n, 1, FBRL_ROBOT_IO_MAX);
     if (st != FBRL_OK)
         return st;
+    if (fbrl_vmx_tasking(r->vm)) { /* the controller's WAIT would hold the link: poll it here */
+        uint64_t t0 = fbrl_vmx_wait_state(r->vm)->since_us;
+        for (;;) {
+            int on = 0;
+            if ((st = rb_online(r)) != FBRL_OK ||
+                (st = rb_link_result(r, w, fbrl_link_input(r->link, (int)n, &on))) != FBRL_OK)
+                return st;
+            if ((on != 0) == (v[0].i > 0))
+                return FBRL_OK;
+            uint64_t now = rb_now_us(r);
+            if (now - t0 > (uint64_t)WAITPORT_MAX_MS * RB_US_PER_MS)
+                return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ETIMEOUT),
+                               "WAITPORT: the input never came (120 s)");
+            if ((st = rb_pause_until(r, now + WAITPORT_POLL_MS * RB_US_PER_MS)) != FBRL_OK)
+                return st;
+        }
+    }
     fbrl_rapl_arg a = fbrl_rapl_int((long)v[0].i);
     return rb_cmd(r, w, FBRL_RAPL_WAIT, &a, 1, 0);
 }

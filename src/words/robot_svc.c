@@ -106,3 +106,25 @@ fbrl_status rb_guard_done(fbrl_robot *r, const fbrl_robot_move *m, fbrl_status r
         r->guard.done(r->guard.ctx, r, m, result);
     return result;
 }
+
+/* Beside other tasks (fbrl_vmx_tasking): wait until the host clock reaches until_us,
+ * letting them run. FBRL_OK when the time has come; otherwise return the status at once
+ * (fbrl_vmx_yielded: the word runs again when its task resumes). */
+fbrl_status rb_pause_until(fbrl_robot *r, uint64_t until_us)
+{
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    if (!h->now_us)
+        return rb_fail(r, FBRL_THROW_UNSUPPORTED, "no clock in this host");
+    while (h->now_us(h->user) < until_us) {
+        fbrl_status st = fbrl_vmx_pause(r->vm, until_us);
+        if (st != FBRL_OK)
+            return st;
+    }
+    return FBRL_OK;
+}
+
+uint64_t rb_now_us(fbrl_robot *r)
+{
+    const fbrl_vm_host *h = fbrl_vmx_host(r->vm);
+    return h->now_us ? h->now_us(h->user) : 0;
+}
