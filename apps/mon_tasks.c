@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_tasks.c - fbrlmon's side of the engine's tasks: run them from the prompt's key
  * wait (fbrl_vm_run_tasks, the host event loop API) and let them end before exit. */
 #include <poll.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* mon_tasks.h - fbrlmon and the engine's cooperative tasks (docs/tasks.md): the tasks run
  * while the prompt waits for keys, and a file's tasks run to their end before fbrlmon
  * exits. */

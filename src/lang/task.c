@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* task.c - cooperative tasks: several procedures at once (docs/tasks.md).
  *
  * The main task is whatever fbrl_vm_eval() runs, on the caller's C stack. Every other

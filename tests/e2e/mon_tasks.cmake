@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Tasks at fbrlmon's prompt on a real terminal (tmux) against a real fbrlsim
 # (tests/e2e/mon_tasks.sh; skipped without tmux).
 if(TARGET fbrlsim AND TARGET fbrlmon)

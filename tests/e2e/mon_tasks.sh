@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # mon_tasks.sh FBRLMON FBRLSIM WORKDIR
 #
 # Tasks at fbrlmon's prompt (docs/tasks.md), on a real terminal (tmux) against a real

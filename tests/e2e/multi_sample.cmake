@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # examples/multi_sample.fbrl shortened, on a real fbrlsim (tests/e2e/multi_sample.sh, ~8 s).
 if(TARGET fbrlsim AND TARGET fbrlmon)
   add_test(NAME plan_multi_sample COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/multi_sample.sh

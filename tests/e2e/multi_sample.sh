@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # multi_sample.sh FBRLMON FBRLSIM WORKDIR
 #
 # examples/multi_sample.fbrl, shortened (3 samples, a 60 s reaction), on a real fbrlsim at
