@@ -16,8 +16,9 @@ for dir in $folders; do
     : >"$tmp/uses"
     n=0
     for obj in "$@"; do
-        case "$obj" in */"$dir"/*) ;; *) continue ;; esac
-        rest=${obj##*/"$dir"/}
+        path=$(printf '%s' "$obj" | sed 's#/\./#/#g') # objects of a target's own folder: dir.dir/./x.c.o
+        case "$path" in */"$dir"/*) ;; *) continue ;; esac
+        rest=${path##*/"$dir"/}
         case "$rest" in */*) continue ;; esac # only the folder itself, not below it
         f=${rest%.o}
         n=$((n + 1))

@@ -124,14 +124,21 @@ static double tidy(double v, double half_step) { return fabs(v) < half_step ? 0.
 fbrl_status fbrl_loc_format(const fbrl_loc *loc, int metric, char *buf, size_t size)
 {
     fbrl_loc shown;
-    fbrl_units u = FBRL_UNITS_INIT;
     fbrl_status st;
     int n;
     if (!loc || !buf || size == 0)
         return FBRL_EINVAL;
-    if (metric)
-        fbrl_units_metric_on(&u);
-    if ((st = fbrl_units_loc_out(&u, loc, &shown)) != FBRL_OK) {
+    /* Scaled here with units.h's constant, not through fbrl_units_loc_out: units.c
+     * builds on this module (fbrl_loc_check), so the dependency stays one way. */
+    shown = *loc;
+    if ((st = fbrl_loc_check(&shown)) == FBRL_OK && metric) {
+        shown.x *= FBRL_CM_PER_IN;
+        shown.y *= FBRL_CM_PER_IN;
+        shown.z *= FBRL_CM_PER_IN;
+        if (fbrl_loc_check(&shown) != FBRL_OK)
+            st = FBRL_EOVERFLOW;
+    }
+    if (st != FBRL_OK) {
         buf[0] = '\0';
         return st;
     }

@@ -10,7 +10,7 @@
  * function; define FBRL_NO_CGOTO or configure with -DFBRL_PORTABLE_DISPATCH=ON for
  * the portable switch). The top of the data stack and of the float stack live in
  * locals (tos, ftos) that the compiler keeps in registers; the stacks in memory hold
- * the rest. Each primitive checks the depth it needs; the compiler (vm.c) fuses
+ * the rest. Each primitive checks the depth it needs; the compiler (dict.c) fuses
  * common pairs (a literal and an operator, a comparison and a branch) into one op.
  *
  * Stack representation inside fbrl__run: with depth d, the d-1 lower cells are at
@@ -1097,9 +1097,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             /* compiling words */
             CASE(IF)
             CASE(ELSE)
-            CASE(THEN) CASE(BEGIN) CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO)
-                CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF)
-                    CASE(ENDCASE) CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
+            CASE(THEN)
+            CASE(BEGIN) CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO)
+                CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE)
+                    CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
@@ -1111,21 +1112,21 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
             CASE(CREATE)
             CASE(VARIABLE)
-            CASE(TWOVARIABLE) CASE(CONSTANT) CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER)
-                CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE)
-                    CALLC(fbrl__w_define(vm, (int)w));
+            CASE(TWOVARIABLE)
+            CASE(CONSTANT) CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON)
+                CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
             NEXT;
             CASE(TO)
             CASE(IS)
-            CASE(ACTIONOF) CASE(POSTPONE) CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR)
-                CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE)
-                    CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND)
-                        CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA)
-                            CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE)
-                                CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH)
-                                    CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED)
-                                        CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
-                                            CALLC(fbrl__w_parse(vm, (int)w));
+            CASE(ACTIONOF)
+            CASE(POSTPONE) CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN)
+                CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE)
+                    CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
+                        CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE)
+                            CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL)
+                                CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE)
+                                    CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED) CASE(BUNDEFINED)
+                                        CASE(SAVEINPUT) CASE(RESTOREINPUT) CALLC(fbrl__w_parse(vm, (int)w));
             NEXT;
             CASE(LBRACKET) *vm->state = 0;
             NEXT;
@@ -1168,7 +1169,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (b < 0)
                 THROW(FBRL_THROW_BAD_NUMBER);
             CHK(a, b);
-            CALLC(fbrl__evaluate(vm, (char *)a, (size_t)b));
+            CALLC(vm->nest_evaluate(vm, (char *)a, (size_t)b));
             NEXT;
             CASE(INCLUDED) CASE(REQUIRED) NEED(2);
             a = S;
@@ -1178,7 +1179,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (b < 0)
                 THROW(FBRL_THROW_BAD_NUMBER);
             CHK(a, b);
-            CALLC(fbrl__included(vm, (const char *)a, (size_t)b, w == OP_REQUIRED));
+            CALLC(vm->nest_included(vm, (const char *)a, (size_t)b, w == OP_REQUIRED));
             NEXT;
             CASE(QUIT) THROW(THROW_QUIT);
             CASE(ABORT) THROW(FBRL_THROW_ABORT);
@@ -1239,10 +1240,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
             CASE(KEY)
             CASE(KEYQ)
-            CASE(ACCEPT) CASE(DOT) CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT)
-                CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN)
-                    CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT)
-                        CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
+            CASE(ACCEPT)
+            CASE(DOT) CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION)
+                CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS)
+                    CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT)
+                        CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */

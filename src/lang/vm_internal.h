@@ -18,6 +18,7 @@
 #include <stdint.h>
 #include "fbrl/vm.h"
 #include "fbrl/vmx.h"
+#include "atomic.h"
 
 #define CELL      ((fbrl_cell)sizeof(fbrl_cell))
 #define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
@@ -157,9 +158,14 @@ struct fbrl_vm {
     char req_pool[FBRL_REQ_POOL];
     size_t req_used;
     fbrl_cell guard_addr;    /* address of the guard cells (HALT, CATCHEND, BAD...) */
-    unsigned char *peep;     /* last instruction the compiler may fuse with (vm.c) */
+    unsigned char *peep;     /* last instruction the compiler may fuse with (dict.c) */
     unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
     int run_code;            /* run.c: the code of an error exit */
+    /* The text interpreter (interp.c) nested from below: EVALUATE, INCLUDED, INCLUDE and
+     * REQUIRE run in run.c and words.c, which interp.c itself calls. fbrl_vm_create sets
+     * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */
+    int (*nest_evaluate)(fbrl_vm *vm, char *text, size_t len);
+    int (*nest_included)(fbrl_vm *vm, const char *name, size_t n, int require);
 };
 
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
@@ -172,17 +178,31 @@ static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
     return (fbrl_ucell)n <= size && off <= size - (fbrl_ucell)n;
 }
 
-/* vm.c */
+/* run.c: execute one xt (the inner interpreter) */
 int fbrl__run(fbrl_vm *vm, fbrl_cell xt);
-int fbrl__take_interrupt(fbrl_vm *vm); /* 1 (and cleared) if fbrl_vm_interrupt() was called */
+
+/* 1 (and cleared) if fbrl_vm_interrupt() was called */
+static inline int fbrl__take_interrupt(fbrl_vm *vm)
+{
+    if (!fbrl_load_rlx(&vm->interrupt))
+        return 0;
+    fbrl_store_rlx(&vm->interrupt, 0);
+    return 1;
+}
+
+/* errors.c */
 int fbrl__throw_msg(fbrl_vm *vm, int code, const char *msg);
-fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt);
-int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);
-void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
-void fbrl__puts(fbrl_vm *vm, const char *s);
 const char *fbrl__throw_text(int code);
 
-/* vm.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
+/* dict.c */
+fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt);
+int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);
+
+/* io.c */
+void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
+void fbrl__puts(fbrl_vm *vm, const char *s);
+
+/* number.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
  * 3 float (*f); 0 not a number. */
 int fbrl__parse_number(fbrl_vm *vm, const char *s, size_t n, fbrl_cell v[2], double *f);
 

@@ -4,24 +4,18 @@
 
 #include "vm_internal.h"
 
-/* vm.c: dictionary, parsing and compilation */
+/* dict.c: the dictionary and the compiler */
 const char *fbrl__op_name(int op);
+size_t fbrl__named_ops(void);
+int fbrl__install_prims(fbrl_vm *vm);
 int fbrl__emit(fbrl_vm *vm, fbrl_cell v);
 int fbrl__allot(fbrl_vm *vm, fbrl_cell n);
 int fbrl__align(fbrl_vm *vm);
 int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt);
 int fbrl__semicolon(fbrl_vm *vm);
 void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used);
-/* For fbrl_vmx_evaluate_catch: drop an open definition (STATE 0) / the newest input source. */
+/* drop an open definition (STATE 0), as after an error */
 void fbrl__drop_definition(fbrl_vm *vm);
-void fbrl__pop_source(fbrl_vm *vm);
-int fbrl__evaluate(fbrl_vm *vm, char *text, size_t len);
-int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require);
-fbrl_src *fbrl__src(fbrl_vm *vm);
-void fbrl__parse_name(fbrl_vm *vm, const char **p, size_t *n);
-void fbrl__parse(fbrl_vm *vm, char c, const char **p, size_t *n, int *found);
-int fbrl__refill(fbrl_vm *vm);
-size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, fbrl_ucell *hi);
 int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt);
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v);
 int fbrl__compile_op(fbrl_vm *vm, int op);
@@ -31,12 +25,30 @@ int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n);
 int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack, const char *help,
                    fbrl_hdr **out);
 int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, fbrl_hdr **out);
-int fbrl__parse_float(const char *s, size_t n, double *out);
+
+/* io.c: input sources and parsing */
+fbrl_src *fbrl__src(fbrl_vm *vm);
+size_t fbrl__src_in(fbrl_vm *vm, const fbrl_src *s); /* >IN clamped to the source */
+int fbrl__push_source(fbrl_vm *vm, int kind, fbrl_src **out);
+void fbrl__pop_source(fbrl_vm *vm); /* the newest input source, if any */
+void fbrl__parse_name(fbrl_vm *vm, const char **p, size_t *n);
+void fbrl__parse(fbrl_vm *vm, char c, const char **p, size_t *n, int *found);
+int fbrl__refill(fbrl_vm *vm);
+
+/* number.c */
+size_t fbrl__to_number(const char *s, size_t n, fbrl_cell base, fbrl_ucell *lo, fbrl_ucell *hi);
+/* a float in the standard's form; need_e: the exponent is required (text interpreter) */
+int fbrl__parse_float(const char *s, size_t n, int need_e, double *out);
+
+/* interp.c: the text interpreter (from below only through vm->nest_*) */
+int fbrl__evaluate(fbrl_vm *vm, char *text, size_t len);
+int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require);
 
 /* words.c: output */
 int fbrl__spaces(fbrl_vm *vm, fbrl_cell n);
 
-/* words.c: arithmetic */
+/* arith.c */
+void fbrl__dneg(fbrl_ucell *lo, fbrl_ucell *hi);
 void fbrl__umul(fbrl_ucell a, fbrl_ucell b, fbrl_ucell *hi, fbrl_ucell *lo);
 void fbrl__udiv(fbrl_ucell hi, fbrl_ucell lo, fbrl_ucell d, fbrl_ucell *q, fbrl_ucell *r);
 void fbrl__mstar(fbrl_cell a, fbrl_cell b, fbrl_cell *lo, fbrl_cell *hi);

@@ -1,0 +1,578 @@
+/* dict.c - the dictionary: word headers and their lookup, data space (ALLOT), the
+ * compiler (compiling ops, literals and calls with peephole fusion), defining words
+ * and FORGET. Nothing here executes code: the inner interpreter is run.c. */
+#include <string.h>
+#include "words.h"
+
+typedef struct opinfo {
+    const char *name;
+    uint8_t flags;
+    const char *stack, *help;
+} opinfo;
+static const opinfo ops[OP__END] = {
+#define OP(id, name, flags, stack, help) {name, flags, stack, help},
+#include "ops.def"
+#undef OP
+};
+
+const char *fbrl__op_name(int op) { return (op >= 0 && op < OP__END) ? ops[op].name : ""; }
+
+/* ---- memory checks ---- */
+void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n)
+{
+    if (!vm || !fbrl__addr_ok(vm, addr, (fbrl_cell)n))
+        return NULL;
+    return (void *)addr;
+}
+
+/* ---- dictionary ---- */
+static unsigned hash_name(const char *s, size_t n)
+{
+    uint32_t h = 2166136261u;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        if (c >= 'a' && c <= 'z')
+            c = (unsigned char)(c - 32);
+        h = (h ^ c) * 16777619u;
+    }
+    return (unsigned)(h ^ (h >> 15)) & (FBRL_HASH - 1);
+}
+
+static int name_eq(const char *a, const char *b, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        unsigned char x = (unsigned char)a[i], y = (unsigned char)b[i];
+        if (x >= 'a' && x <= 'z')
+            x = (unsigned char)(x - 32);
+        if (y >= 'a' && y <= 'z')
+            y = (unsigned char)(y - 32);
+        if (x != y)
+            return 0;
+    }
+    return 1;
+}
+
+int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
+{
+    if (len == 0 || len > FBRL_NAME_MAX)
+        return -1;
+    uint32_t i = vm->hash[hash_name(name, len)];
+    while (i) {
+        const fbrl_hdr *h = HDR(vm, i - 1);
+        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+            return (int)(i - 1);
+        i = h->next;
+    }
+    return -1;
+}
+
+static void rebuild_hash(fbrl_vm *vm)
+{
+    vm->data_hi = (unsigned char *)(vm->hdr_top - vm->nwords);
+    memset(vm->hash, 0, sizeof vm->hash);
+    for (uint32_t i = 0; i < vm->nwords; i++) {
+        fbrl_hdr *h = HDR(vm, i);
+        unsigned b = hash_name(h->name, h->len);
+        h->next = vm->hash[b];
+        vm->hash[b] = i + 1;
+    }
+}
+
+fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt)
+{
+    fbrl_ucell i = (fbrl_ucell)xt - FBRL_XT_BASE;
+    return i < vm->nwords ? HDR(vm, i) : NULL;
+}
+
+static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
+{
+    return (fbrl_cell)(FBRL_XT_BASE + (vm->hdr_top - 1 - h));
+}
+
+/* A new header; the name must be 1..31 characters (0 allowed only for :NONAME). */
+static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsigned flags, fbrl_hdr **out)
+{
+    if (len > FBRL_NAME_MAX)
+        return FBRL_THROW_NAME_TOO_LONG;
+    unsigned char *newlo = (unsigned char *)(vm->hdr_top - vm->nwords - 1);
+    if (vm->here > newlo)
+        return FBRL_THROW_DICT_OVERFLOW;
+    fbrl_hdr *h = HDR(vm, vm->nwords);
+    memset(h, 0, sizeof *h);
+    memcpy(h->name, name, len);
+    h->len = (uint8_t)len;
+    h->kind = (uint8_t)kind;
+    h->flags = (uint8_t)flags;
+    h->stack = "";
+    h->help = "";
+    unsigned b = hash_name(name, len);
+    h->next = vm->hash[b];
+    vm->hash[b] = vm->nwords + 1;
+    vm->nwords++;
+    vm->data_hi = (unsigned char *)h;
+    *out = h;
+    return 0;
+}
+
+static fbrl_cell unused_bytes(const fbrl_vm *vm)
+{
+    return (fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here);
+}
+
+int fbrl__allot(fbrl_vm *vm, fbrl_cell n)
+{
+    if (n >= 0) {
+        if (n > unused_bytes(vm))
+            return FBRL_THROW_DICT_OVERFLOW;
+    } else if ((fbrl_ucell)(-(n + 1)) >= (fbrl_ucell)(vm->here - vm->dict_lo)) {
+        return FBRL_THROW_BAD_ADDRESS;
+    }
+    vm->here += n;
+    vm->peep_end = NULL;
+    return 0;
+}
+
+int fbrl__align(fbrl_vm *vm)
+{
+    fbrl_ucell a = (fbrl_ucell)vm->here, m = (fbrl_ucell)CELL - 1;
+    return fbrl__allot(vm, (fbrl_cell)(((a + m) & ~m) - a));
+}
+
+int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
+{
+    if (unused_bytes(vm) < CELL)
+        return FBRL_THROW_DICT_OVERFLOW;
+    memcpy(vm->here, &v, sizeof v);
+    vm->here += CELL;
+    vm->peep_end = NULL;
+    return 0;
+}
+
+
+/* ---- compilation helpers ---- */
+/* Peephole fusion: common pairs of ops become one superinstruction (ops.def), and
+ * a literal followed by CELLS, 1+, ... is folded. vm->peep is the last instruction
+ * that fbrl__compile_op/fbrl__compile_lit emitted; it may be rewritten only while
+ * HERE still ends it (peep_end == here). Everything else that moves HERE clears
+ * peep_end, and so do the control-flow words and HERE itself, because a branch
+ * target (a label at HERE) must never end up inside a fused instruction. */
+static void peep_set(fbrl_vm *vm, unsigned char *at)
+{
+    vm->peep = at;
+    vm->peep_end = vm->here;
+}
+
+void fbrl__peep_reset(fbrl_vm *vm) { vm->peep_end = NULL; }
+
+/* What `LIT v op` folds to: 1 and *v updated, or 0. */
+static int fold_lit(int op, fbrl_cell *v)
+{
+    fbrl_ucell u = (fbrl_ucell)*v;
+    switch (op) {
+    case OP_CELLS: u *= (fbrl_ucell)CELL; break;
+    case OP_CELLPLUS: u += (fbrl_ucell)CELL; break;
+    case OP_FLOATS:
+    case OP_DFLOATS: u *= sizeof(double); break;
+    case OP_ONEPLUS:
+    case OP_CHARPLUS: u += 1; break;
+    case OP_ONEMINUS: u -= 1; break;
+    case OP_TWOSTAR: u <<= 1; break;
+    case OP_NEGATE: u = 0 - u; break;
+    case OP_INVERT: u = ~u; break;
+    case OP_CHARS: break;
+    default: return 0;
+    }
+    *v = (fbrl_cell)u;
+    return 1;
+}
+
+/* The superinstruction for `prev op`, or 0. */
+static int fuse(fbrl_cell prev, int op)
+{
+    static const struct {
+        uint16_t prev, op, fused;
+    } pairs[] = {
+        {OP_LIT, OP_PLUS, OP_LITPLUS},       {OP_LIT, OP_MINUS, OP_LITMINUS},
+        {OP_LIT, OP_STAR, OP_LITSTAR},       {OP_LIT, OP_AND, OP_LITAND},
+        {OP_LIT, OP_EQ, OP_LITEQ},           {OP_LIT, OP_NE, OP_LITNE},
+        {OP_LIT, OP_LT, OP_LITLT},           {OP_LIT, OP_GT, OP_LITGT},
+        {OP_LIT, OP_FETCH, OP_LITFETCH},     {OP_OVER, OP_PLUS, OP_OVERPLUS},
+        {OP_I, OP_PLUS, OP_IPLUS},           {OP_CELLPLUS, OP_FETCH, OP_CELLPLUSFETCH},
+        {OP_DUP, OP_FETCH, OP_DUPFETCH},     {OP_EQ, OP_ZBRANCH, OP_EQZBR},
+        {OP_NE, OP_ZBRANCH, OP_NEZBR},       {OP_LT, OP_ZBRANCH, OP_LTZBR},
+        {OP_GT, OP_ZBRANCH, OP_GTZBR},       {OP_ZEQ, OP_ZBRANCH, OP_ZEQZBR},
+        {OP_LITEQ, OP_ZBRANCH, OP_LITEQZBR}, {OP_LITNE, OP_ZBRANCH, OP_LITNEZBR},
+        {OP_LITLT, OP_ZBRANCH, OP_LITLTZBR}, {OP_LITGT, OP_ZBRANCH, OP_LITGTZBR},
+    };
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
+        if (pairs[i].prev == prev && pairs[i].op == op)
+            return pairs[i].fused;
+    return 0;
+}
+
+/* Compile one op (a primitive, or OP_ZBRANCH whose target the caller emits next). */
+int fbrl__compile_op(fbrl_vm *vm, int op)
+{
+    if (vm->peep_end && vm->peep_end == vm->here) {
+        /* (HERE need not be aligned: , and C, can leave it anywhere, so memcpy) */
+        unsigned char *p = vm->peep;
+        fbrl_cell prev, v;
+        int f;
+        memcpy(&prev, p, sizeof prev);
+        if (prev == OP_LIT) {
+            memcpy(&v, p + CELL, sizeof v);
+            if (fold_lit(op, &v)) {
+                memcpy(p + CELL, &v, sizeof v);
+                return 0;
+            }
+            if (op == OP_PICK && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
+                prev = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
+                memcpy(p, &prev, sizeof prev);
+                vm->here -= CELL;
+                vm->peep_end = vm->here;
+                return 0;
+            }
+        }
+        if ((f = fuse(prev, op))) {
+            prev = f;
+            memcpy(p, &prev, sizeof prev);
+            return 0;
+        }
+    }
+    unsigned char *at = vm->here;
+    int r = fbrl__emit(vm, op);
+    if (!r)
+        peep_set(vm, at);
+    return r;
+}
+
+int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
+{
+    fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
+    fbrl_cell v;
+    int r;
+    if (!h)
+        return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
+    switch (h->kind) {
+    case K_PRIM: return fbrl__compile_op(vm, h->op);
+    case K_COLON:
+        if ((r = fbrl__emit(vm, OP_CALL)))
+            return r;
+        return fbrl__emit(vm, h->body);
+    case K_CREATE:
+        /* Without DOES> a created word is a literal. DOES> can only change the
+         * latest word, and a word compiled into a definition is no longer latest. */
+        if (h->does)
+            return fbrl__emit(vm, xt);
+        /* fall through */
+    case K_VAR: return fbrl__compile_lit(vm, h->body);
+    case K_CONST: memcpy(&v, (void *)h->body, sizeof v); return fbrl__compile_lit(vm, v);
+    default: return fbrl__emit(vm, xt);
+    }
+}
+
+int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v)
+{
+    unsigned char *at = vm->here;
+    int r = fbrl__emit(vm, OP_LIT);
+    if (r || (r = fbrl__emit(vm, v)))
+        return r;
+    peep_set(vm, at);
+    return 0;
+}
+
+int fbrl__compile_flit(fbrl_vm *vm, double d)
+{
+    int r = fbrl__emit(vm, OP_FLIT);
+    fbrl_cell c[(sizeof(double) + sizeof(fbrl_cell) - 1) / sizeof(fbrl_cell)] = {0};
+    memcpy(c, &d, sizeof d);
+    for (size_t i = 0; !r && i < sizeof c / sizeof c[0]; i++)
+        r = fbrl__emit(vm, c[i]);
+    return r;
+}
+
+/* Compiled string: op, length, bytes (padded to a cell). */
+int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n)
+{
+    int r;
+    if (n > 65535)
+        return FBRL_THROW_PARSED_OVERFLOW;
+    if ((r = fbrl__emit(vm, op)) || (r = fbrl__emit(vm, (fbrl_cell)n)))
+        return r;
+    fbrl_cell need = (fbrl_cell)((n + 1 + (size_t)CELL - 1) / (size_t)CELL * (size_t)CELL);
+    if (unused_bytes(vm) < need)
+        return FBRL_THROW_DICT_OVERFLOW;
+    memmove(vm->here, s, n);
+    memset(vm->here + n, 0, (size_t)need - n);
+    vm->here += need;
+    vm->peep_end = NULL;
+    return 0;
+}
+
+/* Capture "( stack )" and "\ help" following a new word's name on its line. */
+static void capture_help(fbrl_vm *vm, fbrl_hdr *h, const char *dstack, const char *dhelp)
+{
+    h->stack = dstack;
+    h->help = dhelp;
+    if (vm->nsrc == 0)
+        return;
+    fbrl_src *s = fbrl__src(vm);
+    size_t i = fbrl__src_in(vm, s), n = s->len;
+    const char *b = s->buf;
+    const char *st = NULL, *hp = NULL;
+    size_t stn = 0, hpn = 0;
+    while (i < n && (unsigned char)b[i] <= ' ')
+        i++;
+    if (i + 1 < n && b[i] == '(' && (unsigned char)b[i + 1] <= ' ') {
+        const char *e = memchr(b + i, ')', n - i);
+        if (e) {
+            st = b + i;
+            stn = (size_t)(e - st) + 1;
+            i = (size_t)(e - b) + 1;
+            while (i < n && (unsigned char)b[i] <= ' ')
+                i++;
+        }
+    }
+    if (i < n && b[i] == '\\' && (i + 1 == n || (unsigned char)b[i + 1] <= ' ')) {
+        i++;
+        while (i < n && (unsigned char)b[i] <= ' ')
+            i++;
+        hp = b + i;
+        hpn = n - i;
+        while (hpn && (unsigned char)hp[hpn - 1] <= ' ')
+            hpn--;
+    }
+    if (!st && !hp)
+        return;
+    vm->peep_end = NULL;
+    if (unused_bytes(vm) < (fbrl_cell)(stn + hpn + 2 + 64))
+        return;
+    if (st) {
+        memmove(vm->here, st, stn);
+        vm->here[stn] = 0;
+        h->stack = (const char *)vm->here;
+        vm->here += stn + 1;
+    }
+    if (hp) {
+        memmove(vm->here, hp, hpn);
+        vm->here[hpn] = 0;
+        h->help = (const char *)vm->here;
+        vm->here += hpn + 1;
+    }
+}
+
+/* Make a word of the given kind with its data field aligned at HERE. */
+int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack, const char *help,
+                   fbrl_hdr **out)
+{
+    fbrl_hdr *h;
+    int r;
+    if (len == 0)
+        return FBRL_THROW_NO_NAME;
+    if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr))
+        return FBRL_THROW_DICT_OVERFLOW;
+    if ((r = new_header(vm, name, len, kind, 0, &h)))
+        return r;
+    h->stack = stack;
+    h->help = help;
+    h->body = (fbrl_cell)vm->here;
+    if ((r = fbrl__align(vm)))
+        return r;
+    h->body = (fbrl_cell)vm->here;
+    *out = h;
+    return 0;
+}
+
+/* Parse a name and make a word of the given kind; a "( stack )" and "\ help" comment
+ * after the name on its line become the word's HELP text. */
+int fbrl__create(fbrl_vm *vm, int kind, const char *dstack, const char *dhelp, fbrl_hdr **out)
+{
+    const char *name;
+    size_t len;
+    fbrl_hdr *h;
+    int r;
+    fbrl__parse_name(vm, &name, &len);
+    if ((r = fbrl__new_word(vm, name, len, kind, dstack, dhelp, &h)))
+        return r;
+    capture_help(vm, h, dstack, dhelp);
+    if ((r = fbrl__align(vm)))
+        return r;
+    h->body = (fbrl_cell)vm->here;
+    *out = h;
+    return 0;
+}
+
+/* ---- colon definitions ---- */
+static void discard_definition(fbrl_vm *vm);
+
+int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
+{
+    fbrl_hdr *h;
+    int r;
+    if (*vm->state)
+        return FBRL_THROW_COMPILER_NESTING;
+    /* A definition left open in interpretation state (": A 1 [" and never closed)
+     * is abandoned: it was never finished, so it was never findable either. */
+    if (vm->defining)
+        discard_definition(vm);
+    vm->def_here = vm->here;
+    vm->def_nwords = vm->nwords;
+    if (noname) {
+        if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr))
+            return FBRL_THROW_DICT_OVERFLOW;
+        if ((r = new_header(vm, "", 0, K_COLON, FH, &h)) || (r = fbrl__align(vm)))
+            goto fail;
+        h->body = (fbrl_cell)vm->here;
+    } else {
+        if ((r = fbrl__create(vm, K_COLON, "", "", &h)))
+            goto fail;
+        h->flags |= FH;
+    }
+    h->stack = h->stack[0] ? h->stack : "( i*x -- j*x )";
+    h->help = h->help[0] ? h->help : "colon definition";
+    vm->defining = 1;
+    vm->def_word = vm->nwords - 1;
+    vm->ncf = 1;
+    vm->cf[0].tag = CF_COLON;
+    vm->cf[0].a = 0;
+    *vm->state = -1;
+    if (xt)
+        *xt = hdr_xt(vm, h);
+    return 0;
+fail:
+    vm->here = vm->def_here;
+    vm->peep_end = NULL;
+    vm->nwords = vm->def_nwords;
+    rebuild_hash(vm);
+    return r;
+}
+
+int fbrl__semicolon(fbrl_vm *vm)
+{
+    int r;
+    if (!vm->defining || vm->ncf != 1 || vm->cf[0].tag != CF_COLON)
+        return FBRL_THROW_CONTROL_MISMATCH;
+    if ((r = fbrl__emit(vm, OP_EXIT)))
+        return r;
+    fbrl_hdr *h = HDR(vm, vm->def_word);
+    h->end = (fbrl_cell)vm->here;
+    if (h->len)
+        h->flags &= (uint8_t)~FH;
+    vm->defining = 0;
+    vm->ncf = 0;
+    *vm->state = 0;
+    return 0;
+}
+
+/* After an error: drop a half-made definition, back to interpretation. */
+static void discard_definition(fbrl_vm *vm)
+{
+    if (vm->defining) {
+        vm->here = vm->def_here;
+        vm->nwords = vm->def_nwords;
+        rebuild_hash(vm);
+        vm->defining = 0;
+        vm->peep_end = NULL;
+    }
+    vm->ncf = 0;
+    *vm->state = 0;
+}
+
+void fbrl__drop_definition(fbrl_vm *vm) { discard_definition(vm); }
+
+void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_used)
+{
+    vm->here = here;
+    vm->peep_end = NULL;
+    vm->nwords = nwords;
+    if (req_used <= vm->req_used)
+        vm->req_used = req_used;
+    rebuild_hash(vm);
+}
+
+/* Primitives with a dictionary entry (internal ops and superinstructions have none). */
+size_t fbrl__named_ops(void)
+{
+    size_t n = 0;
+    for (int op = 0; op < OP__END; op++)
+        n += ops[op].name[0] != 0;
+    return n;
+}
+
+static int valid_name(const char *name, size_t n)
+{
+    if (n == 0 || n > FBRL_NAME_MAX)
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        if ((unsigned char)name[i] <= ' ')
+            return 0;
+    return 1;
+}
+
+fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,
+                           const char *stack_effect, const char *help)
+{
+    fbrl_hdr *h;
+    if (!vm || !name || !fn)
+        return FBRL_EINVAL;
+    if (vm->defining)
+        return FBRL_ESTATE;
+    size_t n = strlen(name);
+    if (!valid_name(name, n))
+        return FBRL_ENAME;
+    if (new_header(vm, name, n, K_CFUNC, 0, &h))
+        return FBRL_ENOMEM;
+    h->fn = fn;
+    h->arg = arg;
+    h->body = (fbrl_cell)vm->here;
+    h->stack = stack_effect ? stack_effect : "";
+    h->help = help ? help : "";
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack_effect, const char **help)
+{
+    if (!vm || !name)
+        return FBRL_EINVAL;
+    int i = fbrl__find(vm, name, strlen(name));
+    if (i < 0)
+        return FBRL_ENOENT;
+    const fbrl_hdr *h = HDR(vm, i);
+    if (stack_effect)
+        *stack_effect = h->stack;
+    if (help)
+        *help = h->help;
+    return FBRL_OK;
+}
+
+void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, size_t len), void *ctx)
+{
+    if (!vm || !fn)
+        return;
+    for (uint32_t i = vm->nwords; i-- > 0;) {
+        const fbrl_hdr *h = HDR(vm, i);
+        if (!h->len || (h->flags & FH))
+            continue;
+        /* skip words shadowed by a newer one of the same name */
+        if (fbrl__find(vm, h->name, h->len) != (int)i)
+            continue;
+        if (fn(ctx, h->name, h->len))
+            return;
+    }
+}
+
+/* One header per named primitive, in ops.def order (fbrl_vm_create calls this first). */
+int fbrl__install_prims(fbrl_vm *vm)
+{
+    for (int op = 0; op < OP__END; op++) {
+        fbrl_hdr *h;
+        if (!ops[op].name[0])
+            continue;
+        if (new_header(vm, ops[op].name, strlen(ops[op].name), K_PRIM, ops[op].flags, &h))
+            return FBRL_THROW_DICT_OVERFLOW;
+        h->op = (uint16_t)op;
+        h->stack = ops[op].stack;
+        h->help = ops[op].help;
+    }
+    return 0;
+}
