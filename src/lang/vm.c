@@ -16,7 +16,9 @@ typedef struct layout {
 #define FBRL_BUFS                                                                     \
     (FBRL_SYSVARS * sizeof(fbrl_cell) + FBRL_WORDBUF + FBRL_PADSIZE + FBRL_HOLDSIZE + \
      FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
+#ifndef FBRL_EXTRA_WORDS
 #define FBRL_EXTRA_WORDS 64 /* headers beyond the primitives (data words) */
+#endif
 
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
