@@ -30,36 +30,36 @@
 #define RCGC2_GPIOD      (1u << 3)
 
 /* GPIO: UART0 on PA0/PA1, UART1 on PD2/PD3 */
-#define GPIOA_BASE    0x40004000u
-#define GPIOD_BASE    0x40007000u
-#define GPIO_AFSEL    0x420u
-#define GPIO_DEN      0x51Cu
-#define UART0_PINS    0x03u
-#define UART1_PINS    0x0Cu
-#define UART0_BASE    0x4000C000u
-#define UART1_BASE    0x4000D000u
-#define UART0_IRQ     5u
-#define UART1_IRQ     6u
+#define GPIOA_BASE      0x40004000u
+#define GPIOD_BASE      0x40007000u
+#define GPIO_AFSEL      0x420u
+#define GPIO_DEN        0x51Cu
+#define UART0_PINS      0x03u
+#define UART1_PINS      0x0Cu
+#define UART0_BASE      0x4000C000u
+#define UART1_BASE      0x4000D000u
+#define UART0_IRQ       5u
+#define UART1_IRQ       6u
 #define CLOCK_GATE_WAIT 3u /* cycles to wait after a clock gate opens */
 
 /* Cortex-M3 core peripherals */
-#define SYST_CSR          0xE000E010u
-#define SYST_RVR          0xE000E014u
-#define SYST_CVR          0xE000E018u
-#define SYST_CSR_ENABLE   (1u << 0)
-#define SYST_CSR_TICKINT  (1u << 1)
-#define SYST_CSR_CORECLK  (1u << 2)
-#define SCB_ICSR          0xE000ED04u
-#define ICSR_PENDSTSET    (1u << 26)
-#define NVIC_ISER0        0xE000E100u
-#define SCB_AIRCR         0xE000ED0Cu
-#define AIRCR_RESET       ((0x05FAu << 16) | (1u << 2)) /* VECTKEY | SYSRESETREQ */
+#define SYST_CSR         0xE000E010u
+#define SYST_RVR         0xE000E014u
+#define SYST_CVR         0xE000E018u
+#define SYST_CSR_ENABLE  (1u << 0)
+#define SYST_CSR_TICKINT (1u << 1)
+#define SYST_CSR_CORECLK (1u << 2)
+#define SCB_ICSR         0xE000ED04u
+#define ICSR_PENDSTSET   (1u << 26)
+#define NVIC_ISER0       0xE000E100u
+#define SCB_AIRCR        0xE000ED0Cu
+#define AIRCR_RESET      ((0x05FAu << 16) | (1u << 2)) /* VECTKEY | SYSRESETREQ */
 
 #define US_PER_TICK   (1000000u / BOARD_TICK_HZ)
 #define CYCLES_PER_US (SYSCLK_HZ / 1000000u)
 #define TICK_RELOAD   (SYSCLK_HZ / BOARD_TICK_HZ - 1u)
 
-#define STORAGE_BYTES 4096u /* RAM region for the data files (store.c) */
+#define STORAGE_BYTES 2048u /* RAM region for the data files (store.c) */
 
 /* ---- interrupts ---- */
 
@@ -256,11 +256,11 @@ typedef void (*vector)(void);
 __attribute__((section(".vectors"), used)) static const vector vectors[VECTORS] = {
     [0] = (vector)(uintptr_t)fw_stack_top,
     [1] = fw_reset,
-    [2] = fault_handler, /* NMI */
-    [3] = fault_handler, /* HardFault */
-    [4] = fault_handler, /* MemManage */
-    [5] = fault_handler, /* BusFault */
-    [6] = fault_handler, /* UsageFault */
+    [2] = fault_handler,   /* NMI */
+    [3] = fault_handler,   /* HardFault */
+    [4] = fault_handler,   /* MemManage */
+    [5] = fault_handler,   /* BusFault */
+    [6] = fault_handler,   /* UsageFault */
     [11] = unused_handler, /* SVCall */
     [14] = unused_handler, /* PendSV */
     [15] = systick_handler,

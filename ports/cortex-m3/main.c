@@ -20,28 +20,28 @@
 #endif
 
 /* Memory (docs/firmware.md has the budget). */
-#define FW_DICT_BYTES      (16u * 1024u) /* dictionary free for programs, at least */
-#define FW_DATA_STACK      128u          /* cells */
-#define FW_RETURN_STACK    128u          /* cells */
-#define FW_FLOAT_STACK     32u           /* floats */
-#define FW_FILE_BUFFER     2048u         /* records of the open data files */
-#define FW_CON_RX          256u
-#define FW_CON_TX          512u
-#define FW_ROBOT_RX        512u
-#define FW_ROBOT_TX        256u
-#define FW_LINE_MAX        256u /* longest console line */
-#define FW_CONSOLE_BAUD    115200u
-#define FW_CONNECT_TRIES   5u /* the controller may still be starting when we boot */
-#define FW_WRITE_WAIT_MS   1000u
-#define FW_KEY_POLL_MS     1000u
-#define FW_CHAR_CTRL_C     0x03
-#define FW_CHAR_BS         0x08
-#define FW_CHAR_DEL        0x7F
+#define FW_DICT_BYTES    (16u * 1024u) /* dictionary free for programs, at least */
+#define FW_DATA_STACK    128u          /* cells */
+#define FW_RETURN_STACK  128u          /* cells */
+#define FW_FLOAT_STACK   32u           /* floats */
+#define FW_FILE_BUFFER   2048u         /* records of the open data files */
+#define FW_CON_RX        256u
+#define FW_CON_TX        512u
+#define FW_ROBOT_RX      512u
+#define FW_ROBOT_TX      256u
+#define FW_LINE_MAX      256u /* longest console line */
+#define FW_CONSOLE_BAUD  115200u
+#define FW_CONNECT_TRIES 5u /* the controller may still be starting when we boot */
+#define FW_WRITE_WAIT_MS 1000u
+#define FW_KEY_POLL_MS   1000u
+#define FW_CHAR_CTRL_C   0x03
+#define FW_CHAR_BS       0x08
+#define FW_CHAR_DEL      0x7F
 
 /* The VM's memory: its own structures, stacks and buffers, the built-in words' headers
  * and FW_DICT_BYTES for programs (checked at boot against fbrl_vm_size_for()). */
 #ifndef FW_VM_BYTES
-#define FW_VM_BYTES (34u * 1024u)
+#define FW_VM_BYTES (44u * 1024u)
 #endif
 
 static unsigned char vm_mem[FW_VM_BYTES] __attribute__((aligned(16)));
@@ -173,8 +173,8 @@ static void host_time_date(void *user, int out[6])
 
 /* ---- the controller ---- */
 
-static fbrl_status open_uart(fbrl_uart_pl011 *hw, fbrl_uart *u, unsigned n, uint8_t *rx, size_t rxn, uint8_t *tx,
-                             size_t txn, const fbrl_uart_config *cfg)
+static fbrl_status open_uart(fbrl_uart_pl011 *hw, fbrl_uart *u, unsigned n, uint8_t *rx, size_t rxn,
+                             uint8_t *tx, size_t txn, const fbrl_uart_config *cfg)
 {
     fbrl_status st = fbrl_uart_pl011_init(hw, board_uart_io(n), board_uart_clock_hz());
     if (st == FBRL_OK)
@@ -242,11 +242,11 @@ int main(void)
 
     board_init();
     con_cfg.baud = FW_CONSOLE_BAUD;
-    if (open_uart(&con_hw, &con, BOARD_UART_CONSOLE, con_rx, sizeof con_rx, con_tx, sizeof con_tx, &con_cfg) !=
-        FBRL_OK)
+    if (open_uart(&con_hw, &con, BOARD_UART_CONSOLE, con_rx, sizeof con_rx, con_tx, sizeof con_tx,
+                  &con_cfg) != FBRL_OK)
         board_reset();
-    st = open_uart(&robot_hw, &robot_line, BOARD_UART_ROBOT, robot_rx, sizeof robot_rx, robot_tx, sizeof robot_tx,
-                   &robot_cfg);
+    st = open_uart(&robot_hw, &robot_line, BOARD_UART_ROBOT, robot_rx, sizeof robot_rx, robot_tx,
+                   sizeof robot_tx, &robot_cfg);
     board_irq_on();
     con_puts("FBRL firmware " FW_VERSION "\n");
     if (st != FBRL_OK)

@@ -59,7 +59,8 @@ static int find(const char *name)
     int best = -1;
     for (unsigned k = 0; k < STORE_SLOTS; k++) {
         const slot_header *h = slot_at(k);
-        if (slot_valid(h) && strcmp(h->name, name) == 0 && (best < 0 || h->seq > slot_at((unsigned)best)->seq))
+        if (slot_valid(h) && strcmp(h->name, name) == 0 &&
+            (best < 0 || h->seq > slot_at((unsigned)best)->seq))
             best = (int)k;
     }
     return best;
