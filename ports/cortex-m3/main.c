@@ -51,6 +51,7 @@ static uint8_t con_rx[FW_CON_RX], con_tx[FW_CON_TX], robot_rx[FW_ROBOT_RX], robo
 static fbrl_uart_pl011 con_hw, robot_hw;
 static fbrl_uart con, robot_line;
 static fbrl_link link;
+static fbrl_link_config link_cfg;
 static fbrl_glossary glossary;
 static fbrl_robot robot;
 static fbrl_vm *vm;
@@ -204,6 +205,28 @@ static fbrl_status relink(void *ctx, fbrl_robot *r)
     return st == FBRL_OK ? fbrl_robot_set_link(r, &link) : st;
 }
 
+/* XONXOFF ( flag -- ): flow control on the controller's line, as fbrlmon's --flow: true
+ * XON/XOFF (the default, the thesis's), false none (a line whose noise could fake an
+ * XOFF and hold the output until an XON that never comes). The link learns the line's
+ * setting when it starts (without flow control its probes carry an XON), so it starts
+ * again and greets the controller, as RECONNECT does. */
+static fbrl_status w_xonxoff(fbrl_vm *v, void *arg)
+{
+    fbrl_cell flag;
+    fbrl_uart_config c;
+    fbrl_status st;
+    (void)arg;
+    if ((st = fbrl_vm_pop(v, &flag)) != FBRL_OK)
+        return st;
+    if ((st = fbrl_uart_get_config(&robot_line, &c)) != FBRL_OK)
+        return st;
+    c.flow = flag ? FBRL_FLOW_XONXOFF : FBRL_FLOW_NONE;
+    if ((st = fbrl_uart_configure(&robot_line, &c)) != FBRL_OK ||
+        (st = fbrl_link_init(&link, &robot_line, &link_cfg)) != FBRL_OK || (st = connect()) != FBRL_OK)
+        return st;
+    return fbrl_robot_set_link(&robot, &link);
+}
+
 /* ---- errors, as fbrlmon prints them: "error: MESSAGE [in WORD]" ---- */
 
 static void report(fbrl_status st)
@@ -234,7 +257,6 @@ static void fail(const char *what, fbrl_status st)
 int main(void)
 {
     fbrl_uart_config con_cfg = FBRL_UART_CONFIG_DEFAULT, robot_cfg = FBRL_UART_CONFIG_DEFAULT;
-    fbrl_link_config lcfg;
     fbrl_vm_config cfg;
     fbrl_status st;
     char msg[96];
@@ -278,13 +300,16 @@ int main(void)
     if (st == FBRL_OK)
         st = fbrl_glossary_set_file_storage(&glossary, file_mem, sizeof file_mem);
     if (st == FBRL_OK) {
-        fbrl_link_config_init(&lcfg);
-        st = fbrl_link_init(&link, &robot_line, &lcfg);
+        fbrl_link_config_init(&link_cfg);
+        st = fbrl_link_init(&link, &robot_line, &link_cfg);
     }
     if (st == FBRL_OK)
         st = fbrl_robot_install(vm, &robot, &link, &glossary);
     if (st == FBRL_OK)
         st = fbrl_robot_set_relink(&robot, relink, NULL);
+    if (st == FBRL_OK)
+        st = fbrl_vm_define(vm, "XONXOFF", w_xonxoff, NULL, "( flag -- )",
+                            "flow control on the controller's line: XON/XOFF (true, the default) or none");
     if (st != FBRL_OK) {
         fail("engine", st);
         board_reset();
