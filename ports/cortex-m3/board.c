@@ -220,7 +220,7 @@ void board_init(void)
 /* ---- reset and the vector table ---- */
 
 extern uint32_t fw_data_start[], fw_data_end[], fw_data_load[], fw_tdata_start[], fw_tdata_end[],
-    fw_tdata_load[], fw_bss_start[], fw_bss_end[], fw_stack_top[];
+    fw_tdata_load[], fw_bss_start[], fw_bss_end[], fw_stack_bottom[], fw_stack_top[];
 extern void _set_tls(void *tls); /* picolibc: the thread pointer (errno lives there) */
 int main(void);
 void fw_reset(void) __attribute__((noreturn));
@@ -231,9 +231,30 @@ static void copy_words(uint32_t *dst, const uint32_t *end, const uint32_t *src)
         *dst++ = *src++;
 }
 
+#define STACK_PAINT     0x5354414Bu /* "STAK": never written by the program, so far */
+#define STACK_PAINT_GAP 64u         /* bytes left alone below fw_reset's own frame */
+
+size_t board_stack_size(void)
+{
+    return (size_t)((unsigned char *)fw_stack_top - (unsigned char *)fw_stack_bottom);
+}
+
+size_t board_stack_used(void)
+{
+    const uint32_t *p = fw_stack_bottom;
+    while (p < fw_stack_top && *p == STACK_PAINT)
+        p++;
+    return (size_t)((const unsigned char *)fw_stack_top - (const unsigned char *)p);
+}
+
 void fw_reset(void)
 {
     uint32_t *p;
+    unsigned char *sp;
+    /* Paint the stack below this frame: board_stack_used() finds the high-water mark. */
+    __asm volatile("mov %0, sp" : "=r"(sp));
+    for (p = fw_stack_bottom; (unsigned char *)(p + 1) < sp - STACK_PAINT_GAP; p++)
+        *p = STACK_PAINT;
     copy_words(fw_data_start, fw_data_end, fw_data_load);
     copy_words(fw_tdata_start, fw_tdata_end, fw_tdata_load);
     for (p = fw_bss_start; p < fw_bss_end; p++)

@@ -32,6 +32,10 @@ void *board_storage(size_t *size);
 /* Copy n bytes to offset off of the region (flash: program); 0 on success. */
 int board_storage_write(size_t off, const void *src, size_t n);
 
+/* Bytes of the main stack used so far (its high-water mark, from a painted stack). */
+size_t board_stack_used(void);
+size_t board_stack_size(void);
+
 /* BYE: a system reset (QEMU run with -no-reboot exits instead). */
 void board_reset(void) __attribute__((noreturn));
 

@@ -26,7 +26,7 @@
 #define FW_FLOAT_STACK   32u           /* floats */
 #define FW_FILE_BUFFER   2048u         /* records of the open data files */
 #define FW_CON_RX        256u
-#define FW_CON_TX        512u
+#define FW_CON_TX        256u
 #define FW_ROBOT_RX      512u
 #define FW_ROBOT_TX      256u
 #define FW_LINE_MAX      256u /* longest console line */
@@ -41,7 +41,7 @@
 /* The VM's memory: its own structures, stacks and buffers, the built-in words' headers
  * and FW_DICT_BYTES for programs (checked at boot against fbrl_vm_size_for()). */
 #ifndef FW_VM_BYTES
-#define FW_VM_BYTES (44u * 1024u)
+#define FW_VM_BYTES (42u * 1024u)
 #endif
 
 static unsigned char vm_mem[FW_VM_BYTES] __attribute__((aligned(16)));
@@ -227,6 +227,39 @@ static fbrl_status w_xonxoff(fbrl_vm *v, void *arg)
     return fbrl_robot_set_link(&robot, &link);
 }
 
+/* FW-STATS ( -- ), defined in Forth over (FW-STATS): what the board's memory and lines have seen, for a person at the
+ * console and for the tests: stack high-water mark, dictionary free, each UART's
+ * counters. */
+static void stats_line(const char *name, fbrl_uart *u)
+{
+    fbrl_uart_counters c;
+    char msg[160];
+    if (fbrl_uart_get_counters(u, &c) != FBRL_OK)
+        return;
+    snprintf(msg, sizeof msg,
+             "%s: rx %lu tx %lu overruns %lu framing %lu parity %lu xoff-in %lu xoff-out %lu\n", name,
+             (unsigned long)c.rx_bytes, (unsigned long)c.tx_bytes, (unsigned long)c.overruns,
+             (unsigned long)c.framing_errors, (unsigned long)c.parity_errors, (unsigned long)c.xoff_received,
+             (unsigned long)c.xoff_sent);
+    con_puts(msg);
+}
+
+static fbrl_status w_fw_stats(fbrl_vm *v, void *arg) /* (FW-STATS) ( unused -- ) */
+{
+    fbrl_cell unused;
+    char msg[96];
+    fbrl_status st;
+    (void)arg;
+    if ((st = fbrl_vm_pop(v, &unused)) != FBRL_OK)
+        return st;
+    snprintf(msg, sizeof msg, "stack: %lu of %lu bytes used; dictionary: %ld bytes free\n",
+             (unsigned long)board_stack_used(), (unsigned long)board_stack_size(), (long)unused);
+    con_puts(msg);
+    stats_line("console", &con);
+    stats_line("controller", &robot_line);
+    return FBRL_OK;
+}
+
 /* ---- errors, as fbrlmon prints them: "error: MESSAGE [in WORD]" ---- */
 
 static void report(fbrl_status st)
@@ -310,6 +343,12 @@ int main(void)
     if (st == FBRL_OK)
         st = fbrl_vm_define(vm, "XONXOFF", w_xonxoff, NULL, "( flag -- )",
                             "flow control on the controller's line: XON/XOFF (true, the default) or none");
+    if (st == FBRL_OK)
+        st = fbrl_vm_define(vm, "(FW-STATS)", w_fw_stats, NULL, "( u -- )", "FW-STATS with UNUSED given");
+    if (st == FBRL_OK) {
+        static const char fw_stats[] = ": FW-STATS ( -- ) UNUSED (FW-STATS) ;";
+        st = fbrl_vm_eval(vm, fw_stats, sizeof fw_stats - 1);
+    }
     if (st != FBRL_OK) {
         fail("engine", st);
         board_reset();

@@ -57,7 +57,7 @@ awk -v n="$n" -v seed="$seed" 'BEGIN {
     echo 'FALSE XONXOFF'
     echo ': TRY ( c-addr u -- ) ['"'"'] RAPL CATCH DUP IF NIP NIP THEN ." R " . CR ;'
     sed 's/.*/S" &" TRY/' "$work/commands"
-    echo ".( FAULT-TEST-END) CR"
+    echo "FW-STATS"
     echo "BYE"
 } >"$work/typed"
 

@@ -23,6 +23,7 @@ DEADLINE_S=40
 {
     echo "$scale CONSTANT TIME-SCALE"
     sed -e '/^INCLUDE asps_cell.fbrl/{r '"$examples"'/asps_cell.fbrl' -e 'd;}' "$examples/sample_prep.fbrl"
+    echo "[DEFINED] FW-STATS [IF] FW-STATS [THEN]"
     echo "BYE"
 } >"$plan"
 
