@@ -109,7 +109,7 @@ typedef struct fbrl_uart_pl011 {
 fbrl_status fbrl_uart_pl011_init(fbrl_uart_pl011 *b, const fbrl_uart_pl011_io *io, uint32_t clock_hz);
 
 /* The backend for fbrl_uart_init(u, &fbrl_uart_pl011_ops, b, ...). configure programs
- * IBRD/FBRD (nearest 1/64, refused beyond 2 % off or outside the divisor's range), LCRH
+ * IBRD/FBRD (nearest 1/64: within 0.8 %; refused where IBRD leaves 1..65535), LCRH
  * (5-8 bits, N/E/O, 1-2 stop bits, FIFOs on), IFLS, CR. */
 extern const fbrl_uart_ops fbrl_uart_pl011_ops;
 
