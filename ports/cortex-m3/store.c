@@ -66,15 +66,21 @@ static int find(const char *name)
     return best;
 }
 
-/* A slot that holds no current file (free, or an older version), or -1. */
-static int free_slot(void)
+/* A slot that holds no current file (free, or an older version), or -1; *n says how many
+ * such slots there are. */
+static int free_slot(unsigned *n)
 {
+    int first = -1;
+    *n = 0;
     for (unsigned k = 0; k < STORE_SLOTS; k++) {
         const slot_header *h = slot_at(k);
-        if (!slot_valid(h) || find(h->name) != (int)k)
-            return (int)k;
+        if (!slot_valid(h) || find(h->name) != (int)k) {
+            if (first < 0)
+                first = (int)k;
+            ++*n;
+        }
     }
-    return -1;
+    return first;
 }
 
 static uint32_t next_seq(void)
@@ -130,13 +136,15 @@ fbrl_status fbrl__fstore_replace(const char *path, long keep_mode, const unsigne
 {
     slot_header h;
     size_t off;
+    unsigned nfree;
     int k;
     (void)keep_mode;
     if (strlen(path) >= STORE_NAME_MAX)
         return FBRL_ENAME;
     if (FBRL_FILE_HEADER_SIZE + len > slot_bytes() - sizeof h)
         return FBRL_ENOSPC;
-    if ((k = free_slot()) < 0)
+    /* A new name must leave a slot free: every existing file can then still be replaced. */
+    if ((k = free_slot(&nfree)) < 0 || (find(path) < 0 && nfree < 2))
         return FBRL_ENOSPC;
     memset(&h, 0, sizeof h);
     h.seq = next_seq();

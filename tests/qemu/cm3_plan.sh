@@ -7,7 +7,8 @@
 # console (UART0, QEMU's stdio); UART1 is a real fbrlsim on a pty. Then fbrlmon runs
 # the same text, typed on its standard input, against a fresh fbrlsim. The two
 # emulators' command logs (every command the controller executed) must be identical,
-# and neither run may report an error.
+# and neither run may report an error. The firmware then also checks its data files
+# (cm3_files.fbrl) and prints FW-STATS.
 #
 # Runs of the same W5 or "TYPEI SIG(n)" line count as one: a robot word reads the
 # velocity while the arm moves and WAIT-INPUT polls its input, as often as timing has it.
@@ -19,13 +20,18 @@ plan=$work/plan.fbrl
 DEADLINE_S=40
 
 # the plan as one text: TIME-SCALE, the cell, the method, then BYE (the firmware resets;
-# QEMU, run with -no-reboot, exits)
+# QEMU, run with -no-reboot, exits). The firmware also gets the data-file check
+# (cm3_files.fbrl: its storage region) and FW-STATS before its BYE.
 {
     echo "$scale CONSTANT TIME-SCALE"
     sed -e '/^INCLUDE asps_cell.fbrl/{r '"$examples"'/asps_cell.fbrl' -e 'd;}' "$examples/sample_prep.fbrl"
-    echo "[DEFINED] FW-STATS [IF] FW-STATS [THEN]"
-    echo "BYE"
 } >"$plan"
+{
+    cat "$plan" "$(dirname "$0")/cm3_files.fbrl"
+    echo "FW-STATS"
+    echo "BYE"
+} >"$work/fw.fbrl"
+echo "BYE" >>"$plan"
 
 pids=""
 cleanup() { for p in $pids; do kill "$p" 2>/dev/null; done; }
@@ -57,7 +63,7 @@ t0=$(date +%s)
 # 1. the firmware
 start_sim fw
 # -serial stdio is UART0 (the console), the second -serial UART1 (the controller)
-run_fw "$qemu" "$image" "$port" "$plan" "$work/fw.out" "$DEADLINE_S"
+run_fw "$qemu" "$image" "$port" "$work/fw.fbrl" "$work/fw.out" "$DEADLINE_S"
 st=$?
 kill $simpid 2>/dev/null
 wait $simpid 2>/dev/null
@@ -73,6 +79,9 @@ if grep -a '^error:' "$work/fw.out" >/dev/null; then
     fails=1
 fi
 grep -a -q 'prepared 3 of 3 samples' "$work/fw.out" || { echo "FAIL: the firmware's plan did not finish"; fails=1; }
+for want in "FILE-CHECK 3 1234 0" "FOURTH -304" "REWRITE 0" "REREAD 6 1234 0"; do
+    tr -d '\r' <"$work/fw.out" | grep -a -q "^$want *\$" || { echo "FAIL: data files: no \"$want\""; fails=1; }
+done
 
 # 2. the host: fbrlmon with the same text on its standard input
 start_sim host
