@@ -1632,6 +1632,14 @@ fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
     return FBRL_OK;
 }
 
+fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes)
+{
+    if (!l || !naxes)
+        return FBRL_EINVAL;
+    *naxes = l->cfg.naxes;
+    return FBRL_OK;
+}
+
 const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
 const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
 

@@ -34,9 +34,9 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_JOINT] = {"JOINT", 6, "IR", 0, MOT, NONE},
     [FBRL_RAPL_LIMP] = {"LIMP", 7, "[I*", 0, SAF, NONE},
     [FBRL_RAPL_LOCK] = {"LOCK", 9, "I*", 0, SAF, NONE},
-    [FBRL_RAPL_MA] = {"MA", 132, "RRRRR", 0, MOT | STR | SAF, NONE},
+    [FBRL_RAPL_MA] = {"MA", 132, "RRRRR[R]", 0, MOT | STR | SAF, NONE},
     [FBRL_RAPL_MANUAL] = {"MANUAL", 45, "[W", "JOI|CYL", SAF, NONE},
-    [FBRL_RAPL_MI] = {"MI", 131, "RRRRR", 0, MOT | STR, NONE},
+    [FBRL_RAPL_MI] = {"MI", 131, "RRRRR[R]", 0, MOT | STR, NONE},
     [FBRL_RAPL_MOTOR] = {"MOTOR", 11, "II", 0, MOT, NONE},
     [FBRL_RAPL_MOVE] = {"MOVE", 0, "L", 0, MOT | STR | SAF, NONE},
     [FBRL_RAPL_NOFLASH] = {"NOFLASH", 0, "", 0, SAF, NONE},
@@ -346,19 +346,21 @@ static void encode_args(out *o, const sigdesc *d, const fbrl_rapl_arg *args, siz
     }
 }
 
-/* POINT name,x,y,z,yaw,pitch,roll or POINT #name,p1,...,p5. */
+/* POINT name,x,y,z,yaw,pitch,roll or POINT #name,p1,...,pn: one pulse count per axis
+ * (5 on the A255, 6 on the A465). */
 static fbrl_status point_sig(const fbrl_rapl_arg *args, size_t nargs, sigdesc *d)
 {
     if (nargs < 1 || args[0].kind != FBRL_RAPL_ARG_STR || !args[0].s)
         return FBRL_EINVAL;
     int precision = args[0].s[0] == '#';
-    size_t n = precision ? 6 : 7;
+    size_t n = precision ? 1 + FBRL_RAPL_ARM_AXES_MAX : 7;
     d->kind[0] = 'L';
     for (size_t k = 0; k < n; k++)
         d->eq[k] = 0;
     for (size_t k = 1; k < n; k++)
         d->kind[k] = precision ? 'I' : 'R';
-    d->min = d->max = n;
+    d->min = precision ? 1 + FBRL_RAPL_ARM_AXES_MIN : n;
+    d->max = n;
     return FBRL_OK;
 }
 

@@ -300,6 +300,10 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
 /* The command form the link sends (keyword or /NNN token, cfg.form). */
 fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form);
 
+/* The arm's axis count the link was configured with (cfg.naxes: 5 on the A255, 6 on the
+ * A465): how many joint values MA, MI and precision points carry. */
+fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes);
+
 /* ---- results ---- */
 
 /* The controller's error of the last command that ended with FBRL_ECONTROLLER:

@@ -176,6 +176,11 @@ static inline fbrl_rapl_arg fbrl_rapl_str(const char *s)
 
 /* Decimals the controller keeps of a real (it prints them with %+09.4f): the encoder
  * rounds to this precision, so the shorter text reads back to the same value. */
+/* The arms a RAPL-II controller drives: the A255 has 5 axes, the A465 6. MA, MI and a
+ * precision point (POINT #name,...) carry one value per axis. */
+#define FBRL_RAPL_ARM_AXES_MIN 5
+#define FBRL_RAPL_ARM_AXES_MAX 6
+
 #define FBRL_RAPL_REAL_DECIMALS 4
 
 /* Largest magnitude of a real and an integer argument. A real is sent with at most four

@@ -91,6 +91,9 @@ fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd);
  * the word. */
 fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v);
 fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v);
+/* The arm's axes: the link's configuration (5 when offline). Parameter letter J in a
+ * word's spec stands for one real per axis. */
+unsigned rb_naxes(const fbrl_robot *r);
 fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *buf, size_t cap);
 fbrl_status rb_range(fbrl_robot *r, const rb_word *w, const char *what, fbrl_cell v, fbrl_cell lo,
                      fbrl_cell hi);

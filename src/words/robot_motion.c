@@ -16,14 +16,14 @@ static fbrl_status w_plain(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0);
 }
 
-/* One axis / number. arg: 0 plain; 1 axis 1..5 with 0 = all (no argument sent);
- * 2 axis 1..5; 3 extra axis 1..8; 4 SPEED 1..100; 5 FLASH interval >= 0. */
+/* One axis / number. arg: 0 plain; 1 axis 1..n with 0 = all (no argument sent);
+ * 2 axis 1..n; 3 extra axis 1..8; 4 SPEED 1..100; 5 FLASH interval >= 0 (n: the arm's axes). */
 static fbrl_status w_int1(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_status st = FBRL_OK;
     switch (w->arg) {
-    case 1: st = rb_range(r, w, "axis", v[0].i, 0, 5); break;
-    case 2: st = rb_range(r, w, "axis", v[0].i, 1, 5); break;
+    case 1: st = rb_range(r, w, "axis", v[0].i, 0, (fbrl_cell)rb_naxes(r)); break;
+    case 2: st = rb_range(r, w, "axis", v[0].i, 1, (fbrl_cell)rb_naxes(r)); break;
     case 3: st = rb_range(r, w, "axis", v[0].i, 1, 8); break;
     case 4: st = rb_range(r, w, "speed", v[0].i, 1, 100); break;
     case 5: st = rb_range(r, w, "interval", v[0].i, 0, 32767); break;
@@ -35,11 +35,13 @@ static fbrl_status w_int1(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, &a, (w->arg == 1 && v[0].i == 0) ? 0 : 1, 0);
 }
 
-/* JOINT ( joint degrees -- ), MOTOR ( axis# #pulses -- ) */
+/* JOINT ( joint degrees -- ), MOTOR ( axis# #pulses -- ): the gripper's motor follows the
+ * arm's joints. */
 static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
+    fbrl_cell n = (fbrl_cell)rb_naxes(r);
     fbrl_status st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "motor" : "joint", v[0].i, 1,
-                              w->cmd == FBRL_RAPL_MOTOR ? 6 : 5);
+                              w->cmd == FBRL_RAPL_MOTOR ? n + 1 : n);
     if (st == FBRL_OK)
         st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "pulses" : "degrees", v[1].i, -2000000000L,
                       2000000000L);
@@ -91,16 +93,17 @@ static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
     return rb_cmd(r, w, FBRL_RAPL_JOG, a, 3, 0);
 }
 
-/* MA / MI ( F: j1 j2 j3 j4 j5 -- ), radians; arg 1 = straight */
+/* MA / MI ( F: j1 .. jn -- ), one per axis of the arm; arg 1 = straight */
 static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
-    fbrl_status st = rb_finite(r, w, v, 5);
+    size_t n = rb_naxes(r);
+    fbrl_status st = n <= FBRL_RAPL_ARM_AXES_MAX ? rb_finite(r, w, v, n) : FBRL_EINVAL;
     if (st != FBRL_OK)
         return st;
-    fbrl_rapl_arg a[5];
-    for (int k = 0; k < 5; k++)
+    fbrl_rapl_arg a[FBRL_RAPL_ARM_AXES_MAX];
+    for (size_t k = 0; k < n; k++)
         a[k] = fbrl_rapl_real(v[k].f);
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 5, (int)w->arg);
+    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, n, (int)w->arg);
 }
 
 /* DEPART / DEPART-STRT ( F: distance -- ) */
@@ -315,10 +318,10 @@ const rb_word rb_motion_words[] = {
      "move the tool by the displacements (straight line)"},
     {"JOINT", w_joint, "II", 0, CMD(JOINT), 0, "( joint degrees -- )", "drive one joint by degrees"},
     {"MOTOR", w_joint, "II", 0, CMD(MOTOR), 0, "( axis# #pulses -- )", "drive one motor by encoder pulses"},
-    {"MA", w_joints, "RRRRR", 0, CMD(MA), 0, "( F: j1 j2 j3 j4 j5 -- )",
-     "joint-interpolated move to absolute joint angles (radians)"},
-    {"MI", w_joints, "RRRRR", 0, CMD(MI), 0, "( F: j1 j2 j3 j4 j5 -- )",
-     "joint-interpolated move by joint increments (radians)"},
+    {"MA", w_joints, "J", 0, CMD(MA), 0, "( F: j1 .. jn -- )",
+     "joint-interpolated move to absolute joint angles, radians, one per axis (5 on the A255, 6 on the A465)"},
+    {"MI", w_joints, "J", 0, CMD(MI), 0, "( F: j1 .. jn -- )",
+     "joint-interpolated move by joint increments, radians, one per axis (5 on the A255, 6 on the A465)"},
     {"READY", w_plain, "", 0, CMD(READY), 0, "( -- )", "move the arm to the READY position"},
     {"HOME", w_plain, "", 0, CMD(HOME), 0, "( -- )", "initialise the robot position registers"},
     {"ALIGNTOOL", w_plain, "", 0, CMD(ALIGN), 0, "( -- )", "align the tool with the nearest major axis"},

@@ -31,15 +31,27 @@ fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v
 /* The one rule (docs/robot.md): when the stacks hold enough values for every
  * parameter, they come from the stacks; otherwise all of them are read from the
  * input after the word, in the order of the stack effect. */
+unsigned rb_naxes(const fbrl_robot *r)
+{
+    unsigned n = FBRL_RAPL_ARM_AXES_MIN;
+    if (r->link && fbrl_link_get_naxes(r->link, &n) != FBRL_OK)
+        n = FBRL_RAPL_ARM_AXES_MIN;
+    return n;
+}
+
 fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     char spec[RB_MAXP + 1];
     const char *what[RB_MAXP];
-    size_t np = strlen(w->spec);
-    if (np > RB_MAXP)
-        return FBRL_EINVAL;
-    for (size_t k = 0; k < np; k++)
-        spec[k] = vmx_kind(w->spec[k], &what[k]);
+    size_t np = 0;
+    for (const char *p = w->spec; *p; p++) {
+        size_t rep = *p == 'J' ? rb_naxes(r) : 1; /* J: the joint values, one per axis */
+        for (size_t k = 0; k < rep; k++, np++) {
+            if (np >= RB_MAXP)
+                return FBRL_EINVAL;
+            spec[np] = vmx_kind(*p == 'J' ? 'R' : *p, &what[np]);
+        }
+    }
     spec[np] = '\0';
     return fbrl_vmx_args(r->vm, w->name, spec, what, FBRL_VMX_LINE, v);
 }

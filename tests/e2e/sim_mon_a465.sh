@@ -18,6 +18,7 @@ CREATE-LOC T1  16E0 4E0 14E0 10E0 -45E0 20E0 T1 DEFINE-LOC
 T1 MOV
 CREATE-LOC NOW  NOW ARM-HERE
 NOW GETX F.  NOW GETY F.  NOW GETZ F.  NOW GETO F.  NOW GETA F.  NOW GETT F.
+0E0 0.5E0 -1E0 0E0 0.2E0 0.3E0 MA FINISH
 PLAN
 want="16. 4. 14. 10. -45. 20. "
 
@@ -37,6 +38,7 @@ case $port in
 esac
 "$mon" --port "$port" --axes 6 "$tmp/plan.fbrl" </dev/null >out.txt 2>err.txt
 [ $? = 0 ] && [ "$(cat out.txt)" = "$want" ] || fail "--port to fbrlsim --model a465 with --axes 6"
+grep -q '^MA 0,0.5,-1,0,0.2,0.3$' sim.log || fail "MA did not carry the sixth joint (log: $(cat sim.log))"
 grep -q '^MOVE ' sim.log || fail "MOVE did not reach the emulator (log: $(cat sim.log))"
 grep -q '^W2' sim.log || grep -q '^/031' sim.log || fail "no position readout in the log ($(cat sim.log))"
 # five axes expected from a six-axis controller: the readout does not parse, and says so

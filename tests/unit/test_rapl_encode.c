@@ -397,9 +397,27 @@ static void arguments_are_checked(void **state)
                                       A(I(1), I(2), I(3), I(4), I(5), I(6), I(7), I(8)), 8, 0),
                      FBRL_OK);
     assert_string_equal(buf, "LOCK 1,2,3,4,5,6,7,8");
+    /* a precision point and MA/MI carry one value per axis: 5 (A255) or 6 (A465) */
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
+                                      A(S("#B"), I(1), I(2), I(3), I(4), I(5), I(6), I(7)), 8, 0),
+                     FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
+                                      A(S("#B"), I(1), I(2), I(3), I(4)), 5, 0),
+                     FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
                                       A(S("#B"), I(1), I(2), I(3), I(4), I(5), I(6)), 7, 0),
+                     FBRL_OK);
+    assert_string_equal(buf, "POINT #B,1,2,3,4,5,6");
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MA,
+                                      A(R(1), R(2), R(3), R(4), R(5), R(6)), 6, 0),
+                     FBRL_OK);
+    assert_string_equal(buf, "MA 1,2,3,4,5,6");
+    assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MA,
+                                      A(R(1), R(2), R(3), R(4), R(5), R(6), R(7)), 7, 0),
                      FBRL_EINVAL);
+    assert_int_equal(
+        fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_MI, A(R(1), R(2), R(3), R(4)), 4, 0),
+        FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_encode(buf, sizeof buf, &len, kw, FBRL_RAPL_POINT,
                                       A(S("#B"), R(1), I(2), I(3), I(4), I(5)), 6, 0),
                      FBRL_EINVAL);
