@@ -77,12 +77,18 @@ void board_irq_on(void) { __asm volatile("cpsie i" ::: "memory"); }
 /* ---- clock ---- */
 
 static volatile uint32_t ticks_hi, ticks_lo; /* SysTick interrupts since reset (64 bits) */
+static void (*volatile tick_hook)(void);
 
 static void systick_handler(void)
 {
+    void (*fn)(void) = tick_hook;
     if (++ticks_lo == 0)
         ticks_hi++;
+    if (fn)
+        fn();
 }
+
+void board_on_tick(void (*fn)(void)) { tick_hook = fn; }
 
 uint64_t board_now_us(void)
 {

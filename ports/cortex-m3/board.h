@@ -24,6 +24,8 @@ void board_uart_irq(unsigned n, fbrl_uart_pl011 *b);
 void board_irq_on(void);
 
 uint64_t board_now_us(void); /* since reset, monotonic */
+/* fn runs in the clock's interrupt, every tick (NULL: none). */
+void board_on_tick(void (*fn)(void));
 void board_sleep_until(uint64_t us);
 
 /* The storage region the data files live in (store.c): RAM here; a flash port returns

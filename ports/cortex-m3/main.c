@@ -20,23 +20,24 @@
 #endif
 
 /* Memory (docs/firmware.md has the budget). */
-#define FW_DICT_BYTES    (16u * 1024u) /* dictionary free for programs, at least */
-#define FW_DATA_STACK    128u          /* cells */
-#define FW_RETURN_STACK  128u          /* cells */
-#define FW_FLOAT_STACK   32u           /* floats */
-#define FW_FILE_BUFFER   2048u         /* records of the open data files */
-#define FW_CON_RX        256u
-#define FW_CON_TX        256u
-#define FW_ROBOT_RX      512u
-#define FW_ROBOT_TX      256u
-#define FW_LINE_MAX      256u /* longest console line */
-#define FW_CONSOLE_BAUD  115200u
-#define FW_CONNECT_TRIES 5u /* the controller may still be starting when we boot */
-#define FW_WRITE_WAIT_MS 1000u
-#define FW_KEY_POLL_MS   1000u
-#define FW_CHAR_CTRL_C   0x03
-#define FW_CHAR_BS       0x08
-#define FW_CHAR_DEL      0x7F
+#define FW_DICT_BYTES     (16u * 1024u) /* dictionary free for programs, at least */
+#define FW_DATA_STACK     128u          /* cells */
+#define FW_RETURN_STACK   128u          /* cells */
+#define FW_FLOAT_STACK    32u           /* floats */
+#define FW_FILE_BUFFER    2048u         /* records of the open data files */
+#define FW_CON_RX         256u
+#define FW_CON_TX         256u
+#define FW_ROBOT_RX       512u
+#define FW_ROBOT_TX       256u
+#define FW_LINE_MAX       256u /* longest console line */
+#define FW_CONSOLE_BAUD   115200u
+#define FW_CONNECT_TRIES  5u /* the controller may still be starting when we boot */
+#define FW_WRITE_WAIT_MS  1000u
+#define FW_KEY_POLL_MS    1000u
+#define FW_SLEEP_SLICE_US 1000u /* one clock tick: MS checks for Ctrl-C this often */
+#define FW_CHAR_CTRL_C    0x03
+#define FW_CHAR_BS        0x08
+#define FW_CHAR_DEL       0x7F
 
 /* The VM's memory: its own structures, stacks and buffers, the built-in words' headers
  * and FW_DICT_BYTES for programs (checked at boot against fbrl_vm_size_for()). */
@@ -145,6 +146,17 @@ static fbrl_status con_read_line(void *user, const char *prompt, char *buf, size
     return FBRL_OK;
 }
 
+/* Ctrl-C while a word runs: every tick looks at the next console byte without taking it
+ * (the line reader takes it later, and then the request is dropped at the next line).
+ * A Ctrl-C typed behind other unread input is seen when that input has been read. */
+static void on_tick(void)
+{
+    uint8_t c;
+    size_t got = 0;
+    if (vm && fbrl_ring_peek(&con.rx, &c, 1, &got) == FBRL_OK && got == 1 && c == FW_CHAR_CTRL_C)
+        fbrl_vm_interrupt(vm);
+}
+
 /* ---- time ---- */
 
 static uint64_t host_now_us(void *user)
@@ -153,10 +165,13 @@ static uint64_t host_now_us(void *user)
     return board_now_us();
 }
 
+/* MS and the timed waits: tick by tick, so that a Ctrl-C (on_tick) ends them early. */
 static void host_sleep_ms(void *user, uint32_t ms)
 {
+    uint64_t end = board_now_us() + (uint64_t)ms * 1000u, now;
     (void)user;
-    board_sleep_until(board_now_us() + (uint64_t)ms * 1000u);
+    while ((now = board_now_us()) < end && !fbrl_vm_interrupt_pending(vm))
+        board_sleep_until(end - now > FW_SLEEP_SLICE_US ? now + FW_SLEEP_SLICE_US : end);
 }
 
 /* The board has no calendar: TIME&DATE counts from 2000-01-01 00:00:00 at reset. */
@@ -353,6 +368,7 @@ int main(void)
         fail("engine", st);
         board_reset();
     }
+    board_on_tick(on_tick);
     st = connect();
     if (st != FBRL_OK)
         fail("controller (the robot words try again when used)", st);
