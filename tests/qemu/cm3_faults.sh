@@ -19,7 +19,7 @@ qemu=$1 image=$2 sim=$3 work=$4 n=${5:-150} seed=${6:-7}
 [ $# -ge 4 ] || { echo "usage: cm3_faults.sh QEMU IMAGE FBRLSIM WORKDIR [N] [SEED]"; exit 2; }
 rm -rf "$work" && mkdir -p "$work" || exit 2
 . "$(dirname "$0")/cm3_lib.sh"
-DEADLINE_S=50
+DEADLINE_S=100
 RAN=0 REFUSED=-321 MAYBE=-333
 
 # The commands: counters (V3=V3+17: not safe to repeat, so the link must never type one

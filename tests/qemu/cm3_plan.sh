@@ -17,7 +17,7 @@ qemu=$1 image=$2 sim=$3 mon=$4 examples=$5 work=$6 scale=${7:-600}
 rm -rf "$work" && mkdir -p "$work" || exit 2
 . "$(dirname "$0")/cm3_lib.sh"
 plan=$work/plan.fbrl
-DEADLINE_S=40
+DEADLINE_S=60
 
 # the plan as one text: TIME-SCALE, the cell, the method, then BYE (the firmware resets;
 # QEMU, run with -no-reboot, exits). The firmware also gets the data-file check
