@@ -346,8 +346,8 @@ int main(int argc, char **argv)
                 stopped = mon_safe_end(&m, "stdin", ln);
             }
             if (m.host.line_too_long) {
-                fprintf(stderr, "error: input stopped: line %lu has no end within %ld bytes (stdin:%lu)\n",
-                        ln, MON_HOST_LINE_MAX, ln);
+                fprintf(stderr, "stdin:%lu: error: input stopped: line %lu has no end within %ld bytes\n", ln,
+                        ln, MON_HOST_LINE_MAX);
                 m.errors++;
             }
             if (!fbrl_vm_bye(m.vm) && !stopped)

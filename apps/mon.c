@@ -1,5 +1,7 @@
 /* mon.c - the monitor's session: VM setup and one-line error reports. */
 #include "mon.h"
+#include "mon_debug.h"
+#include "mon_recover.h"
 #include "mon_teach.h"
 
 #include <stdio.h>
@@ -51,6 +53,14 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         m->link = link;
         st = mon_teach_install(m);
     }
+    if (st == FBRL_OK)
+        st = mon_debug_install(m);
+    if (st == FBRL_OK)
+        st = mon_step_install(m);
+    if (st == FBRL_OK)
+        st = mon_trace_install(m);
+    if (st == FBRL_OK)
+        st = mon_recover_install(m);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
@@ -83,24 +93,109 @@ void mon_close(mon *m)
     free(m->vm_mem);
     m->vm_mem = NULL;
     m->vm = NULL;
+    mon_trace_close(m);
+    free(m->typed_src);
+    m->typed_src = NULL;
+    m->typed_len = m->typed_cap = 0;
 }
 
 /* Write s to stderr with control characters shown as '?', so a report is
  * always exactly one line whatever bytes the input held. */
+#define MON_BT_FRAMES FBRL_VM_BACKTRACE_MAX
+#define MON_BT_OUTER  FBRL_VM_BACKTRACE_OUTER
+#define MON_BT_STACK  FBRL_VM_BACKTRACE_STACK
+
 static void put_clean(const char *s)
 {
     for (; *s; s++)
         fputc((unsigned char)*s < 0x20 || *s == 0x7f ? '?' : *s, stderr);
 }
 
-/* One line: "error: MESSAGE [WORD] (FILE:LINE)". Errors inside an included file
- * carry that file's name and line; otherwise `where` and the line we counted. */
+/* " (FILE:LINE)" of a backtrace frame; words typed at the prompt say so. */
+static void put_frame_place(const fbrl_vm_frame *f)
+{
+    if (!f->file[0]) {
+        fputs(" (defined at the prompt)", stderr);
+        return;
+    }
+    fputs(" (", stderr);
+    put_clean(f->file);
+    if (f->line > 0)
+        fprintf(stderr, ":%lu", f->line);
+    fputc(')', stderr);
+}
+
+/* After the error line, the chain of calls that led to it (innermost first; the error
+ * line names the innermost), where the failing text was, and the data stack then: each
+ * indented, so the error itself stays the one line an editor parses. */
+static void report_backtrace(mon *m, const fbrl_vm_error *e, const fbrl_vm_frame *bt, size_t n,
+                             size_t omitted, const char *where, unsigned long line)
+{
+    for (size_t i = 1; i < n; i++) {
+        if (omitted && i == n - MON_BT_OUTER)
+            fprintf(stderr, "  ... %zu more calls ...\n", omitted);
+        fputs("  called by ", stderr);
+        put_clean(bt[i].word);
+        put_frame_place(&bt[i]);
+        fputc('\n', stderr);
+    }
+    if (e->file[0] && e->line > 0 && (n == 0 || strcmp(bt[0].file, e->file) != 0 || bt[0].line != e->line)) {
+        fputs("  called from ", stderr);
+        put_clean(e->file);
+        fprintf(stderr, ":%lu\n", e->line);
+    } else if (!e->file[0] && where != NULL && line > 0) {
+        fputs("  called from ", stderr);
+        put_clean(where);
+        fprintf(stderr, ":%lu\n", line + (e->line > 1 ? e->line - 1 : 0));
+    }
+    fbrl_cell cells[MON_BT_STACK];
+    size_t depth = fbrl_vm_error_stack(m->vm, cells, MON_BT_STACK);
+    if (depth > 0) {
+        size_t shown = depth < MON_BT_STACK ? depth : MON_BT_STACK;
+        fprintf(stderr, "  data stack <%zu>:%s", depth, depth > shown ? " ..." : "");
+        for (size_t i = 0; i < shown; i++)
+            fprintf(stderr, " %ld", (long)cells[i]);
+        fputc('\n', stderr);
+    }
+}
+
+/* "FILE:LINE: error: MESSAGE [in WORD]", the form editors and compilers use
+ * (docs/fbrlmon.md). Errors inside an included file carry that file's name and line;
+ * otherwise `where` and the line we counted; a typed line has no place: "error: ...".
+ * An error inside a colon definition of a file names that word and its place, and the
+ * indented lines after it show the calls that led there (report_backtrace). */
 static void report(mon *m, fbrl_status st, const char *where, unsigned long line)
 {
     const fbrl_vm_error *e = fbrl_vm_last_error(m->vm);
+    fbrl_vm_frame bt[MON_BT_FRAMES];
+    size_t omitted = 0;
+    size_t nbt = e != NULL ? fbrl_vm_backtrace(m->vm, bt, MON_BT_FRAMES, &omitted) : 0;
+    if (nbt > MON_BT_FRAMES)
+        nbt = MON_BT_FRAMES;
     const char *msg = e != NULL && e->message[0] ? e->message : fbrl_status_str(st);
 
     mon_host_newline(&m->host);
+    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
+        strcpy(m->resume_file, e->file); /* where RESUME goes on */
+        m->resume_line = e->line;
+    }
+    if (nbt > 0 && bt[0].file[0]) {
+        put_clean(bt[0].file);
+        if (bt[0].line > 0)
+            fprintf(stderr, ":%lu", bt[0].line);
+        fputs(": ", stderr);
+    } else if (e != NULL && e->file[0]) {
+        put_clean(e->file);
+        if (e->line > 0)
+            fprintf(stderr, ":%lu", e->line);
+        fputs(": ", stderr);
+    } else if (where != NULL && line > 0) {
+        put_clean(where);
+        fprintf(stderr, ":%lu: ", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
+    } else if (where != NULL) {
+        put_clean(where);
+        fputs(": ", stderr);
+    }
     fputs("error: ", stderr);
     put_clean(msg);
     /* Codes outside the system's ranges are the program's own: show the number. */
@@ -111,32 +206,21 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
         fputs(e->throw_code == -13 ? " " : " in ", stderr);
         put_clean(e->word);
     }
-    if (e != NULL && e->file[0] && e->line > 0 && strlen(e->file) < sizeof m->resume_file) {
-        strcpy(m->resume_file, e->file); /* where RESUME goes on */
-        m->resume_line = e->line;
-    }
-    if (e != NULL && e->file[0]) {
-        fputs(" (", stderr);
-        put_clean(e->file);
-        if (e->line > 0)
-            fprintf(stderr, ":%lu", e->line);
-        fputc(')', stderr);
-    } else if (where != NULL && line > 0) {
-        fputs(" (", stderr);
-        put_clean(where);
-        fprintf(stderr, ":%lu)", line + (e != NULL && e->line > 1 ? e->line - 1 : 0));
-    } else if (where != NULL) {
-        fputs(" (", stderr);
-        put_clean(where);
-        fputc(')', stderr);
-    }
     fputc('\n', stderr);
+    if (nbt > 0)
+        report_backtrace(m, e, bt, nbt, omitted, where, line);
     fflush(stderr);
 }
 
 int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts)
 {
+    size_t words = fbrl_vm_word_count(m->vm);
+    int compiling = fbrl_vm_compiling(m->vm);
     fbrl_status st = fbrl_vm_eval(m->vm, text, len);
+    /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS. */
+    if (st == FBRL_OK && (where == NULL || strcmp(where, "stdin") == 0) &&
+        (compiling || fbrl_vm_compiling(m->vm) || fbrl_vm_word_count(m->vm) > words))
+        mon_debug_typed(m, text, len);
     if (st == FBRL_OK)
         return 0;
     report(m, st, where, line);
@@ -160,11 +244,10 @@ int mon_check_closed(mon *m, const char *what, const char *where, unsigned long 
     if (!fbrl_vm_compiling(m->vm))
         return 0;
     mon_host_newline(&m->host);
-    fprintf(stderr, "error: unterminated definition at end of %s (", what);
     put_clean(where);
     if (line > 0)
         fprintf(stderr, ":%lu", line);
-    fputs(")\n", stderr);
+    fprintf(stderr, ": error: unterminated definition at end of %s\n", what);
     fflush(stderr);
     m->errors++;
     fbrl_vm_reset(m->vm); /* as after any other error: the definition is dropped */

@@ -6,10 +6,13 @@
 #include <stddef.h>
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
+#include "fbrl/recover.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
 #include "fbrl/workspace.h"
 #include "mon_host.h"
+#include "mon_step.h"
+#include "mon_trace.h"
 
 /* Exit status (documented in docs/fbrlmon.md). */
 #define MON_EXIT_OK      0 /* everything evaluated without error */
@@ -42,6 +45,12 @@ typedef struct mon {
     int typed;             /* evaluating a line typed at the prompt */
     char resume_file[256]; /* RESUME: the file and line of the last error in a file */
     unsigned long resume_line;
+    char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
+    size_t typed_len, typed_cap;
+    char edit_ws[256];    /* EDIT: where the session's work waits while the file loads */
+    mon_step step;        /* the debugger (mon_step.c) */
+    mon_trace trace;      /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */
+    fbrl_recover recover; /* ON-FAILURE, ATTEMPT (mon_recover.c) */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -1624,6 +1624,20 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
     return FBRL_OK;
 }
 
+fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
+                                       fbrl_link_exec_fn *old_fn, void **old_ctx)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    if (old_fn)
+        *old_fn = l->cfg.on_exec;
+    if (old_ctx)
+        *old_ctx = l->cfg.exec_ctx;
+    l->cfg.on_exec = fn;
+    l->cfg.exec_ctx = ctx;
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
 {
     if (!l || !form)

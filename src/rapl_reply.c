@@ -146,6 +146,22 @@ const char *fbrl_rapl_error_text(int code)
     return error_texts[code];
 }
 
+/* Error numbers by what they mean for a corrective action (the texts above). */
+#define ERR_TRANSFORM     29 /* TRANSFORM ILLEGAL */
+#define ERR_JOINT1_RANGE  42 /* JOINT #1 OUT OF RANGE ... #5: 42 .. 46 */
+#define ERR_JOINT5_RANGE  46
+#define ERR_JOINT6_RANGE  48 /* the A465's sixth joint */
+#define ERR_STRAIGHT_LINE 68 /* STRAIGHT LINE ERROR: the straight path leaves the reach */
+
+fbrl_rapl_errc fbrl_rapl_error_class(int code)
+{
+    if (code == ERR_TRANSFORM || code == ERR_STRAIGHT_LINE)
+        return FBRL_RAPL_ERRC_REACH;
+    if ((code >= ERR_JOINT1_RANGE && code <= ERR_JOINT5_RANGE) || code == ERR_JOINT6_RANGE)
+        return FBRL_RAPL_ERRC_JOINT_LIMIT;
+    return FBRL_RAPL_ERRC_OTHER;
+}
+
 /* What each error means for the user, in plain words, and what to do: the one table
  * every message uses (docs/rapl-commands.md shows it). */
 #define AXIS_RANGE  "that axis would pass its limit - choose a point or a motion that keeps it in range"

@@ -25,5 +25,6 @@
 #include "fbrl/vm.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
+#include "fbrl/recover.h"
 
 #endif

@@ -297,6 +297,13 @@ typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int f
 fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
                                        fbrl_link_line_fn *old_fn, void **old_ctx);
 
+/* cfg.on_exec later: every line the controller executed. The previous handler goes to
+ * *old_fn / *old_ctx (when not NULL) so a new one can pass each line on to it (a trace
+ * beside a run log). */
+typedef void (*fbrl_link_exec_fn)(void *ctx, const char *line, size_t len, fbrl_status result);
+fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
+                                       fbrl_link_exec_fn *old_fn, void **old_ctx);
+
 /* The command form the link sends (keyword or /NNN token, cfg.form). */
 fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form);
 

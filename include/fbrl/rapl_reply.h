@@ -47,6 +47,15 @@ const char *fbrl_rapl_reader_line(const fbrl_rapl_reader *r, size_t *len, int *f
 
 /* ---- error lines ---- */
 
+/* What kind of trouble an error code is, for corrective actions (recover.h). */
+typedef enum fbrl_rapl_errc {
+    FBRL_RAPL_ERRC_OTHER = 0,
+    FBRL_RAPL_ERRC_REACH,       /* no arm configuration reaches the place, or the straight path */
+    FBRL_RAPL_ERRC_JOINT_LIMIT, /* a joint would pass its range */
+    FBRL_RAPL_ERRC_COLLISION    /* the motion hit something (an emulator with a work cell) */
+} fbrl_rapl_errc;
+fbrl_rapl_errc fbrl_rapl_error_class(int code);
+
 /* The controller's text for an error code ("TRANSFORM ILLEGAL"), or NULL if unknown. */
 const char *fbrl_rapl_error_text(int code);
 /* What the error means for the user, in plain words, and what to do ("the position is

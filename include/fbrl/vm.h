@@ -93,6 +93,61 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 /* INCLUDED: interpret a file through the host's file callbacks. */
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
+
+/* A backtrace keeps at most FBRL_VM_BACKTRACE_MAX frames: of a deeper chain, the
+ * innermost ones and the outermost FBRL_VM_BACKTRACE_OUTER (the gap is before those). */
+#define FBRL_VM_BACKTRACE_MAX   16
+#define FBRL_VM_BACKTRACE_OUTER 4
+#define FBRL_VM_BACKTRACE_STACK 8 /* data stack cells kept at an error */
+
+/* Where the word name was defined: *file is its file ("" when it was typed or evaluated
+ * text) and *line the line its definition starts on; a built-in word (a primitive, a C
+ * word, the engine's own Forth) has *file "" and *line 0. FBRL_ENOENT if there is none. */
+fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file, unsigned long *line);
+/* A colon definition about to run, as a step hook sees it. */
+typedef struct fbrl_vm_stop {
+    const char *word;        /* the definition ("" for :NONAME code) */
+    const char *file;        /* where it is defined ("" typed or evaluated) */
+    unsigned long line;      /* its first line */
+    const char *caller;      /* the definition calling it ("" when typed or run from C) */
+    const char *call_file;   /* where the call is */
+    unsigned long call_line; /* 0: not known (typed, or C) */
+    size_t depth;            /* return stack cells in use: deeper calls have more */
+} fbrl_vm_stop;
+/* Called before each colon definition runs while set: return 0 to let it run, or a THROW
+ * code to throw there (e.g. -1 to abort the evaluation). It may evaluate text with
+ * fbrl_vmx_evaluate_catch (what that runs is not stepped) and must leave the stacks as
+ * it found them. */
+typedef int (*fbrl_vm_step_fn)(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *stop);
+/* Set (fn) or clear (NULL) the step hook: the base of a debugger. A program runs slower
+ * while one is set. FBRL_EINVAL for a NULL vm. */
+fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
+
+/* Where the running program is, for a C word (e.g. a robot word telling which line sent
+ * a command): the colon definition that called it and the file and line of that call; or,
+ * called from interpreted text, *word "" and the text's file and line. Outside an
+ * evaluation all are "" and 0. */
+fbrl_status fbrl_vm_where(fbrl_vm *vm, const char **word, const char **file, unsigned long *line);
+
+/* How many words the dictionary holds (it grows with each definition). */
+size_t fbrl_vm_word_count(const fbrl_vm *vm);
+
+/* One word of the last error's chain of calls. */
+typedef struct fbrl_vm_frame {
+    const char *word;   /* the colon definition (valid until the next evaluation) */
+    const char *file;   /* the file it is in; "" when it was typed or evaluated text */
+    unsigned long line; /* the line of the failing or calling code (that of the definition
+                           when finer lines are not known); 0: unknown */
+} fbrl_vm_frame;
+/* The chain of colon definitions the last error happened in, innermost first: the
+ * word that failed, then its callers. Fills up to cap frames and returns how many
+ * there are; a chain deeper than the engine keeps loses its middle, and *omitted
+ * (if not NULL) says how many frames that dropped. 0 when the error happened outside
+ * any colon definition (e.g. an undefined word typed). */
+size_t fbrl_vm_backtrace(const fbrl_vm *vm, fbrl_vm_frame *out, size_t cap, size_t *omitted);
+/* The data stack when the last error happened: returns its depth and copies up to cap
+ * of its top cells (deepest first; at most FBRL_VM_BACKTRACE_STACK are kept). */
+size_t fbrl_vm_error_stack(const fbrl_vm *vm, fbrl_cell *out, size_t cap);
 /* Ask the running evaluation to stop: it throws -28 ("user interrupt") at its next
  * call, loop iteration, backward branch, C word's return, MS or output padding. Safe from a signal handler or another
  * thread (e.g. the monitor's Ctrl-C). A request is dropped when it is delivered and

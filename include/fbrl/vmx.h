@@ -57,6 +57,9 @@ fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn fn, void 
 
 /* The execution token of the newest visible word of that name: FBRL_OK, or FBRL_ENOENT. */
 fbrl_status fbrl_vmx_find(const fbrl_vm *vm, const char *name, size_t len, fbrl_cell *xt);
+/* The name of the word xt (in the VM's headers, valid while the word is; "" for :NONAME
+ * code): FBRL_OK, or FBRL_ENOENT for a cell that is no xt. */
+fbrl_status fbrl_vmx_name(const fbrl_vm *vm, fbrl_cell xt, const char **name, size_t *len);
 
 /* ---- typed data in VM memory ---- */
 

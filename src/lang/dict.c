@@ -136,6 +136,7 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
     h->stack = "";
     h->help = "";
 #endif
+    fbrl__note_header(vm, h);
     unsigned b = hash_name(name, len);
     h->next = vm->hash[b];
     vm->hash[b] = vm->nwords + 1;
@@ -516,6 +517,7 @@ static void discard_definition(fbrl_vm *vm)
         vm->here = vm->def_here;
         vm->nwords = vm->def_nwords;
         rebuild_hash(vm);
+        fbrl__lines_forget(vm);
         vm->defining = 0;
         vm->peep_end = NULL;
     }
@@ -533,6 +535,7 @@ void fbrl__forget(fbrl_vm *vm, unsigned char *here, uint32_t nwords, size_t req_
     if (req_used <= vm->req_used)
         vm->req_used = req_used;
     rebuild_hash(vm);
+    fbrl__lines_forget(vm);
 }
 
 /* Primitives with a dictionary entry (internal ops and superinstructions have none). */
@@ -634,3 +637,20 @@ int fbrl__install_prims(fbrl_vm *vm)
     }
     return 0;
 }
+
+fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file, unsigned long *line)
+{
+    if (!vm || !name || !file || !line)
+        return FBRL_EINVAL;
+    int i = fbrl__find(vm, name, strlen(name));
+    if (i < 0)
+        return FBRL_ENOENT;
+    const fbrl_hdr *h = HDR(vm, i);
+    int built_in =
+        h->kind == K_PRIM || h->line == 0 || (h->kind == K_COLON && h->body < (fbrl_cell)vm->dict_lo);
+    *file = built_in ? "" : fbrl__file_name(vm, h->file);
+    *line = built_in ? 0 : h->line;
+    return FBRL_OK;
+}
+
+size_t fbrl_vm_word_count(const fbrl_vm *vm) { return vm ? vm->nwords : 0; }

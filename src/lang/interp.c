@@ -41,8 +41,10 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
         fbrl_cell xt = FBRL_XT_BASE + idx;
         if (*vm->state == 0 && (h->flags & FC))
             return FBRL_THROW_COMPILE_ONLY;
-        if (*vm->state != 0 && !(h->flags & FI))
+        if (*vm->state != 0 && !(h->flags & FI)) {
+            fbrl__note_line(vm);
             return fbrl__compile_xt(vm, xt);
+        }
         return fbrl__run(vm, xt);
     }
     fbrl_cell v[2];
@@ -51,6 +53,7 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
     if (kind == 0)
         return FBRL_THROW_UNDEFINED;
     if (*vm->state) {
+        fbrl__note_line(vm);
         if (kind == 3)
             return fbrl__compile_flit(vm, f);
         int r = fbrl__compile_lit(vm, v[0]);
@@ -109,13 +112,16 @@ int fbrl__evaluate(fbrl_vm *vm, char *text, size_t len)
     return r;
 }
 
-static int is_included(const fbrl_vm *vm, const char *path)
+/* A file's id: its path's offset + 1 in REQUIRE's pool of included files (0: none). */
+static uint32_t file_id(const fbrl_vm *vm, const char *path)
 {
     for (size_t i = 0; i < vm->req_used; i += strlen(vm->req_pool + i) + 1)
         if (strcmp(vm->req_pool + i, path) == 0)
-            return 1;
+            return (uint32_t)i + 1;
     return 0;
 }
+
+static int is_included(const fbrl_vm *vm, const char *path) { return file_id(vm, path) != 0; }
 
 /* INCLUDED / REQUIRED. Relative paths are taken from the including file's directory. */
 int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
@@ -158,6 +164,7 @@ int fbrl__included(fbrl_vm *vm, const char *name, size_t n, int require)
         return r;
     memcpy(s->path, path, dl + n + 1);
     s->id = vm->nsrc;
+    s->file = file_id(vm, path);
     fbrl_status ost = vm->host.file_open(vm->host.user, path, &s->fh);
     if (ost != FBRL_OK) {
         s->fh = NULL;
@@ -204,7 +211,7 @@ static void reset_after_error(fbrl_vm *vm)
 
 static void begin_top(fbrl_vm *vm)
 {
-    fbrl_store_rlx(&vm->interrupt, 0);
+    fbrl_store_rlx(&vm->interrupt, fbrl_load_rlx(&vm->interrupt) & FBRL_ATTN_STEP);
     vm->running = 1;
     vm->err_captured = 0;
     vm->pending_msg = NULL;
@@ -213,6 +220,9 @@ static void begin_top(fbrl_vm *vm)
     vm->rp = vm->rs0;
     vm->handler = 0;
     vm->nest = 0;
+    vm->bt_captured = 0;
+    vm->nbt = 0;
+    vm->bt_depth = 0;
 }
 
 static fbrl_status finish_top(fbrl_vm *vm, int code)
@@ -232,6 +242,8 @@ static fbrl_status finish_top(fbrl_vm *vm, int code)
     }
     capture_error(vm);
     vm->err.throw_code = code;
+    if (vm->nbt > 0) /* name the word it happened in, not the one typed */
+        memcpy(vm->err.word, vm->bt[0].word, sizeof vm->bt[0].word);
     const char *msg =
         (vm->pending_msg && vm->pending_code == code) ? vm->pending_msg : fbrl__throw_text(code);
     size_t n = strlen(msg);

@@ -148,4 +148,3 @@ int fbrl__parse_float(const char *s, size_t n, int need_e, double *out)
     *out = v;
     return 1;
 }
-

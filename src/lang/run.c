@@ -84,10 +84,22 @@
             goto do_throw; \
     } while (0)
 /* fbrl_vm_interrupt() is honoured wherever a program can loop or recurse */
-#define POLL()                             \
-    if (fbrl_load_rlx(&vm->interrupt)) {   \
-        fbrl_store_rlx(&vm->interrupt, 0); \
-        THROW(FBRL_THROW_INTERRUPT);       \
+#define POLL()                                                     \
+    if (fbrl_load_rlx(&vm->interrupt) && fbrl__take_interrupt(vm)) \
+        THROW(FBRL_THROW_INTERRUPT);
+/* A colon definition starts: POLL, and a step hook (debug.c) may stop it there. */
+#define ENTER(body)                             \
+    if (fbrl_load_rlx(&vm->interrupt)) {        \
+        if (fbrl__take_interrupt(vm))           \
+            THROW(FBRL_THROW_INTERRUPT);        \
+        if (vm->step_fn && !vm->in_step) {      \
+            SAVE();                             \
+            vm->ip = ip;                        \
+            int stop_ = fbrl__step(vm, (body)); \
+            LOAD();                             \
+            if (stop_)                          \
+                THROW(stop_);                   \
+        }                                       \
     }
 /* T is the top cell, S the second, S3 the third ... */
 #define T  tos
@@ -253,7 +265,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             ftos = *fp;
             ip += FCELLS;
             NEXT;
-            CASE(CALL) POLL();
+            CASE(CALL) ENTER(*ip);
             RROOM(1);
             a = *ip++;
             *rp++ = (fbrl_cell)ip;
@@ -1098,9 +1110,11 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(IF)
             CASE(ELSE)
             CASE(THEN)
-            CASE(BEGIN) CASE(UNTIL) CASE(AGAIN) CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO)
-                CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE) CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE)
-                    CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
+            CASE(BEGIN)
+            CASE(UNTIL)
+            CASE(AGAIN)
+            CASE(WHILE) CASE(REPEAT) CASE(AHEAD) CASE(DO) CASE(QDO) CASE(LOOP) CASE(PLUSLOOP) CASE(RECURSE)
+                CASE(CASE) CASE(OF) CASE(ENDOF) CASE(ENDCASE) CASE(DOES) CALLC(fbrl__w_control(vm, (int)w));
             NEXT;
             CASE(COLON) CALLC(fbrl__colon(vm, 0, NULL));
             NEXT;
@@ -1113,20 +1127,26 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(CREATE)
             CASE(VARIABLE)
             CASE(TWOVARIABLE)
-            CASE(CONSTANT) CASE(TWOCONSTANT) CASE(VALUE) CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON)
-                CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT) CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
+            CASE(CONSTANT)
+            CASE(TWOCONSTANT)
+            CASE(VALUE)
+            CASE(TWOVALUE) CASE(DEFER) CASE(BUFFERCOLON) CASE(MARKER) CASE(FVARIABLE) CASE(FCONSTANT)
+                CASE(FVALUE) CALLC(fbrl__w_define(vm, (int)w));
             NEXT;
             CASE(TO)
             CASE(IS)
             CASE(ACTIONOF)
-            CASE(POSTPONE) CASE(BCOMPILE) CASE(BTICK) CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN)
-                CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN) CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE)
-                    CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE) CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL)
-                        CASE(TWOLITERAL) CASE(SLITERAL) CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE)
-                            CASE(TONUMBER) CASE(SEE) CASE(HELP) CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL)
-                                CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY) CASE(DEFERFETCH) CASE(DEFERSTORE)
-                                    CASE(BIF) CASE(BELSE) CASE(BTHEN) CASE(BDEFINED) CASE(BUNDEFINED)
-                                        CASE(SAVEINPUT) CASE(RESTOREINPUT) CALLC(fbrl__w_parse(vm, (int)w));
+            CASE(POSTPONE)
+            CASE(BCOMPILE)
+            CASE(BTICK)
+            CASE(BCHAR) CASE(TICK) CASE(CHAR) CASE(PAREN) CASE(BACKSLASH) CASE(SHEBANG) CASE(DOTPAREN)
+                CASE(DOTQUOTE) CASE(SQUOTE) CASE(SBQUOTE) CASE(CQUOTE) CASE(ABORTQ) CASE(PARSE)
+                    CASE(PARSENAME) CASE(WORD) CASE(FIND) CASE(LITERAL) CASE(TWOLITERAL) CASE(SLITERAL)
+                        CASE(FLITERAL) CASE(COMPILECOMMA) CASE(IMMEDIATE) CASE(TONUMBER) CASE(SEE) CASE(HELP)
+                            CASE(INCLUDE) CASE(REQUIRE) CASE(REFILL) CASE(ENVQ) CASE(LATESTXT) CASE(TOBODY)
+                                CASE(DEFERFETCH) CASE(DEFERSTORE) CASE(BIF) CASE(BELSE) CASE(BTHEN)
+                                    CASE(BDEFINED) CASE(BUNDEFINED) CASE(SAVEINPUT) CASE(RESTOREINPUT)
+                                        CALLC(fbrl__w_parse(vm, (int)w));
             NEXT;
             CASE(LBRACKET) *vm->state = 0;
             NEXT;
@@ -1241,10 +1261,13 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(KEY)
             CASE(KEYQ)
             CASE(ACCEPT)
-            CASE(DOT) CASE(UDOT) CASE(DOTR) CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION)
-                CASE(LTNUM) CASE(NUM) CASE(NUMS) CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS)
-                    CASE(DUMP) CASE(WORDS) CASE(MS) CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT)
-                        CASE(FSDOT) CASE(REPRESENT) CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
+            CASE(DOT)
+            CASE(UDOT)
+            CASE(DOTR)
+            CASE(UDOTR) CASE(DDOT) CASE(DDOTR) CASE(UDDOT) CASE(QUESTION) CASE(LTNUM) CASE(NUM) CASE(NUMS)
+                CASE(NUMGT) CASE(HOLD) CASE(HOLDS) CASE(SIGN) CASE(DOTS) CASE(DUMP) CASE(WORDS) CASE(MS)
+                    CASE(TIMEDATE) CASE(USECS) CASE(FDOT) CASE(FEDOT) CASE(FSDOT) CASE(REPRESENT)
+                        CASE(TOFLOAT) CALLC(fbrl__w_io(vm, (int)w));
             NEXT;
 
             /* floating point */
@@ -1564,7 +1587,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             switch (h->kind) {
             case K_PRIM: w = h->op; DISPATCH();
             case K_COLON:
-                POLL();
+                ENTER(h->body);
                 RROOM(1);
                 *rp++ = (fbrl_cell)ip;
                 JUMP(h->body);
@@ -1621,6 +1644,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 if (!h->fn && !h->xfn)
                     THROW(FBRL_THROW_UNSUPPORTED);
                 SAVE();
+                vm->ip = ip;
                 vm->pending_throw = 0;
                 st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
                 if (vm->sp < ds0 || vm->sp > dse || vm->fp < fs0 || vm->fp > fse) {
@@ -1683,6 +1707,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     do_throw:
         if (code == THROW_BYE || code == THROW_QUIT)
             goto out;
+        if (!vm->handler && !vm->bt_captured) { /* no CATCH will take it: keep where it happened */
+            SAVE();
+            fbrl__backtrace(vm, ip);
+        }
         {
             fbrl_cell hd = vm->handler;
             if (hd > entry && hd >= 5 && hd <= rp - rs0) {
@@ -1694,6 +1722,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 fp = fs0 + (U(f[2]) <= U(fse - fs0) ? f[2] : 0) - 1;
                 ftos = *fp;
                 vm->err_captured = 0;
+                vm->bt_captured = 0;
                 if (!CODE_OK(f[0])) {
                     code = FBRL_THROW_BAD_ADDRESS;
                     goto do_throw;

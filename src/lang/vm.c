@@ -134,12 +134,12 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
 void fbrl_vm_interrupt(fbrl_vm *vm)
 {
     if (vm)
-        fbrl_store_rlx(&vm->interrupt, 1);
+        fbrl_store_rlx(&vm->interrupt, fbrl_load_rlx(&vm->interrupt) | FBRL_ATTN_INTERRUPT);
 }
 
 int fbrl_vm_interrupt_pending(const fbrl_vm *vm)
 {
-    return vm ? fbrl_load_rlx(&((fbrl_vm *)vm)->interrupt) != 0 : 0;
+    return vm ? (fbrl_load_rlx(&((fbrl_vm *)vm)->interrupt) & FBRL_ATTN_INTERRUPT) != 0 : 0;
 }
 
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm) { return vm ? &vm->err : NULL; }

@@ -99,8 +99,9 @@ typedef struct fbrl_hdr {
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn; /* K_CFUNC */
     void *arg;
-    fbrl_vmx_fn xfn;  /* K_CFUNC defined through vmx.h: called instead of fn */
-    const void *word; /* its word pointer */
+    fbrl_vmx_fn xfn;     /* K_CFUNC defined through vmx.h: called instead of fn */
+    uint32_t file, line; /* where it was defined: req_pool offset + 1 (0: not a file), line */
+    const void *word;    /* its word pointer */
 #ifndef FBRL_NO_HELP
     const char *stack, *help; /* HELP text (NUL-terminated) */
 #endif
@@ -119,7 +120,26 @@ typedef struct fbrl_src {
     fbrl_cell id;             /* SOURCE-ID */
     fbrl_cell saved_in;       /* the parent's >IN */
     char path[FBRL_PATH_MAX]; /* SRC_FILE: the file's path */
+    uint32_t file;            /* SRC_FILE: the path's req_pool offset + 1 (debug.c) */
 } fbrl_src;
+
+/* Where compiled code came from (debug.c): one entry each time compilation moves to a
+ * new source line, in the order of the code addresses. A port short of RAM may shrink it;
+ * when it is full, later lines fall back to the line their word was defined on. */
+#ifndef FBRL_LINE_TABLE
+#define FBRL_LINE_TABLE 1024
+#endif
+#define FBRL_BT_MAX   FBRL_VM_BACKTRACE_MAX
+#define FBRL_BT_OUTER FBRL_VM_BACKTRACE_OUTER
+#define FBRL_BT_STACK FBRL_VM_BACKTRACE_STACK
+typedef struct fbrl_line {
+    fbrl_cell addr;
+    uint32_t file, line;
+} fbrl_line;
+typedef struct fbrl_bt {
+    char word[FBRL_NAME_MAX + 1];
+    uint32_t file, line;
+} fbrl_bt;
 
 enum { CF_COLON = 1, CF_ORIG, CF_DEST, CF_DO, CF_CASE, CF_OF, CF_ENDOF };
 
@@ -174,7 +194,7 @@ struct fbrl_vm {
     char cur_word[64];
     fbrl_vm_error err;
     int bye;
-    size_t interrupt; /* set by fbrl_vm_interrupt (atomic access only) */
+    size_t interrupt; /* attention bits FBRL_ATTN_* (atomic access only) */
     int running;      /* inside fbrl_vm_eval/include */
     int precision;
     char req_pool[FBRL_REQ_POOL];
@@ -183,6 +203,18 @@ struct fbrl_vm {
     unsigned char *peep;     /* last instruction the compiler may fuse with (dict.c) */
     unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
     int run_code;            /* run.c: the code of an error exit */
+    const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word or step hook runs */
+    fbrl_vm_step_fn step_fn; /* fbrl_vm_step_hook (debug.c) */
+    void *step_ctx;
+    int in_step;   /* inside step_fn: what it evaluates runs without stops */
+    fbrl_bt where; /* fbrl_vm_where's answer */
+    fbrl_line lines[FBRL_LINE_TABLE];
+    uint32_t nlines;
+    fbrl_bt bt[FBRL_BT_MAX]; /* the last error's chain of words, innermost first */
+    uint32_t nbt, bt_omitted;
+    int bt_captured;
+    fbrl_cell bt_stack[FBRL_BT_STACK]; /* its data stack: the top cells, deepest first */
+    size_t bt_depth;
     /* The text interpreter (interp.c) nested from below: EVALUATE, INCLUDED, INCLUDE and
      * REQUIRE run in run.c and words.c, which interp.c itself calls. fbrl_vm_create sets
      * these, so the files depend one way only: interp.c -> run.c -> words.c -> dict.c. */
@@ -203,12 +235,17 @@ static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)
 /* run.c: execute one xt (the inner interpreter) */
 int fbrl__run(fbrl_vm *vm, fbrl_cell xt);
 
+/* vm->interrupt: the inner interpreter's one check at calls and loops (nonzero: look). */
+#define FBRL_ATTN_INTERRUPT 1u /* fbrl_vm_interrupt() was called */
+#define FBRL_ATTN_STEP      2u /* a step hook wants each colon definition's start */
+
 /* 1 (and cleared) if fbrl_vm_interrupt() was called */
 static inline int fbrl__take_interrupt(fbrl_vm *vm)
 {
-    if (!fbrl_load_rlx(&vm->interrupt))
+    size_t v = fbrl_load_rlx(&vm->interrupt);
+    if (!(v & FBRL_ATTN_INTERRUPT))
         return 0;
-    fbrl_store_rlx(&vm->interrupt, 0);
+    fbrl_store_rlx(&vm->interrupt, v & ~(size_t)FBRL_ATTN_INTERRUPT);
     return 1;
 }
 
@@ -223,6 +260,14 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len);
 /* io.c */
 void fbrl__write(fbrl_vm *vm, const char *s, size_t n);
 void fbrl__puts(fbrl_vm *vm, const char *s);
+
+/* debug.c: where code came from */
+void fbrl__note_line(fbrl_vm *vm);                      /* before compiling from the current line */
+void fbrl__note_header(fbrl_vm *vm, fbrl_hdr *h);       /* a new word: its file and line */
+void fbrl__lines_forget(fbrl_vm *vm);                   /* code above HERE is gone */
+void fbrl__backtrace(fbrl_vm *vm, const fbrl_cell *ip); /* at a throw: keep the chain of words */
+int fbrl__step(fbrl_vm *vm, fbrl_cell body); /* a colon definition starts: the step hook (vm->ip: the call) */
+const char *fbrl__file_name(const fbrl_vm *vm, uint32_t file);
 
 /* number.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),
  * 3 float (*f); 0 not a number. */

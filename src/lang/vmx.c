@@ -32,6 +32,18 @@ fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn fn, void 
     return FBRL_OK;
 }
 
+fbrl_status fbrl_vmx_name(const fbrl_vm *vm, fbrl_cell xt, const char **name, size_t *len)
+{
+    if (!vm || !name || !len)
+        return FBRL_EINVAL;
+    const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
+    if (!h)
+        return FBRL_ENOENT;
+    *name = h->name;
+    *len = h->len;
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_vmx_find(const fbrl_vm *vm, const char *name, size_t len, fbrl_cell *xt)
 {
     if (!vm || !name || !xt)

@@ -98,8 +98,7 @@ static void mon_errors(const char *err_path, long n, char **msg)
     FILE *f = fopen(err_path, "r");
     char buf[512];
     while (f && fgets(buf, sizeof buf, f)) {
-        char *at = strstr(buf, "(stdin:");
-        long ln = at ? atol(at + 7) : 0;
+        long ln = strncmp(buf, "stdin:", 6) == 0 ? atol(buf + 6) : 0; /* "stdin:LINE: error: ..." */
         if (ln >= 1 && ln <= n && !msg[ln - 1])
             msg[ln - 1] = strdup(buf);
     }
@@ -202,7 +201,7 @@ int main(int argc, char **argv)
         fbrl_link_get_stats(&link, &s);
         fbrl_uart_close(&u);
     } else {
-        /* one command per stdin line: fbrlmon reports an error as "... (stdin:LINE)" */
+        /* one command per stdin line: fbrlmon reports an error as "stdin:LINE: error: ..." */
         snprintf(script, sizeof script, "%s/plan.fbrl", dir);
         snprintf(outp, sizeof outp, "%s/out", dir);
         snprintf(errp, sizeof errp, "%s/err", dir);

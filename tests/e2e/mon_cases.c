@@ -1,6 +1,7 @@
 /* mon_cases.c - the bad-input test: every case of a data file is fed to a fresh
  * fbrlmon, followed by a line that must work. Each case must give exactly one
- * error line (naming a place: "(FILE:LINE)"), leave both stacks empty, let the
+ * error line (naming a place: "(FILE:LINE)"; an error inside a colon definition
+ * may be followed by indented lines: its backtrace), leave both stacks empty, let the
  * next line run, exit with status 1, and not crash.
  *
  *   mon_cases FBRLMON CASES TMPDIR
@@ -179,29 +180,30 @@ static int run(char *const argv[], const buf *in, buf *out, buf *err)
     return st;
 }
 
+/* Lines that are not a backtrace's indented continuation lines. */
 static size_t count_lines(const buf *b)
 {
     size_t i, n = 0;
     for (i = 0; i < b->len; i++)
-        n += b->p[i] == '\n';
+        n += b->p[i] == '\n' && !(i + 2 < b->len && b->p[i + 1] == ' ' && b->p[i + 2] == ' ');
     if (b->len > 0 && b->p[b->len - 1] != '\n')
         n++;
     return n;
 }
 
-/* "error: ... (SOMEWHERE:NUMBER)\n" */
+/* "SOMEWHERE:NUMBER: error: ...\n" (the first line; a backtrace's lines follow it) */
 static int good_error_line(const buf *e)
 {
-    const char *end, *colon;
-    if (e->len < 8 || strncmp(e->p, "error: ", 7) != 0 || e->p[e->len - 1] != '\n')
+    const char *at, *d;
+    const char *nl = memchr(e->p, '\n', e->len);
+    if (e->len < 12 || e->p[e->len - 1] != '\n' || nl == NULL)
         return 0;
-    end = e->p + e->len - 1;
-    if (end[-1] != ')')
+    at = strstr(e->p, ": error: ");
+    if (at == NULL || at == e->p || at > nl)
         return 0;
-    colon = end - 2;
-    while (colon > e->p && colon[0] >= '0' && colon[0] <= '9')
-        colon--;
-    return colon[0] == ':' && colon != end - 2 && strstr(e->p, " (") != NULL;
+    for (d = at - 1; d > e->p && d[0] >= '0' && d[0] <= '9'; d--)
+        ;
+    return d[0] == ':' && d != at - 1 && d > e->p;
 }
 
 static void show(const char *what, const buf *b)

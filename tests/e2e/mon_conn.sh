@@ -105,7 +105,7 @@ if "$mon" --help | grep -q -- '--sim '; then
 fi
 expect "--offline" 0 "9 " --offline -e '9 .'
 expect "robot words offline: one clear error" 1 "" --offline -e 'HOME'
-grep -q '^error: no controller connected.*(-e:1)$' err.txt && [ "$(wc -l <err.txt)" = 1 ] ||
+grep -q '^-e:1: error: no controller connected' err.txt && [ "$(wc -l <err.txt)" = 1 ] ||
     fail "offline HOME: want one 'no controller connected' line"
 count=$((count + 1))
 "$mon" --list-ports >out.txt 2>err.txt

@@ -32,16 +32,16 @@ awk 'BEGIN { printf "1 .\n2 .\n"; for (i = 0; i < 100000; i++) printf "x"; print
 printf '1 .\n2 .\n%s' "$(head -c 3000 /dev/zero | tr '\0' 'y')" >noend.fs
 
 run dev_zero_file 1 'cannot open /dev/zero: not a regular file' /dev/null /dev/zero
-run dev_zero_included 1 'cannot open /dev/zero: not a regular file.* in INCLUDED (-e:1)' /dev/null \
+run dev_zero_included 1 '-e:1: error: cannot open /dev/zero: not a regular file.* in INCLUDED' /dev/null \
     -e 'S" /dev/zero" INCLUDED'
 run fifo_file 1 "cannot open $work/fifo: not a regular file" /dev/null "$work/fifo"
 run fifo_included 1 'cannot open fifo: not a regular file.* in INCLUDED' /dev/null -e 'S" fifo" INCLUDED'
 run directory 1 'cannot open .: not a regular file' /dev/null .
-run long_line 1 'input line too long.* (long.fs:3)' /dev/null long.fs
+run long_line 1 'long.fs:3: error: input line too long' /dev/null long.fs
 grep -q '^1 2 $' long_line.out || fail "long_line: lines 1 and 2 should run before the long line (got: $(cat long_line.out))"
 grep -q '3' long_line.out && fail "long_line: line 4 ran after the long line stopped the file"
-run no_line_end 1 'input line too long.* (noend.fs:3)' /dev/null noend.fs
-run stdin_zero 1 'input stopped: line 1 has no end within 1048576 bytes (stdin:1)' /dev/zero
+run no_line_end 1 'noend.fs:3: error: input line too long' /dev/null noend.fs
+run stdin_zero 1 'stdin:1: error: input stopped: line 1 has no end within 1048576 bytes' /dev/zero
 # a regular plan still runs
 run regular 0 '' /dev/null ok.fs
 grep -q '^3 $' regular.out || fail "regular: ok.fs printed '$(cat regular.out)'"

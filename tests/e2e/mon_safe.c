@@ -277,7 +277,7 @@ static void ctrl_c_tests(void)
         return;
     /* 1a: B MOV waits for A's motion (plan1.fbrl:6) */
     ctrl_c_after(&s, from, "MOVE FBRLT1");
-    expect(&s, "error: user interrupt in MOV (plan1.fbrl:6)", "the error names file:line");
+    expect(&s, "plan1.fbrl:6: error: user interrupt in MOV", "the error names file:line");
     expect(&s, "stopped (plan1.fbrl:6 in MOV): arm halted while moving (MOVE FBRLT1)", "the stop report");
     expect(&s, "outputs switched off: 5; outputs still on: 9", "the valve switched off, output 9 left");
     expect(&s, "ok> ", "the session goes on at the prompt");
@@ -294,7 +294,7 @@ static void ctrl_c_tests(void)
     expect(&s, "pulsing", "plan2 runs");
     {
         long t0 = ctrl_c_after(&s, from, "OUTPUT 5");
-        expect(&s, "(plan2.fbrl:3", "the error names file:line");
+        expect(&s, "plan2.fbrl:3: error:", "the error names file:line");
         expect(&s, "stopped (plan2.fbrl:3", "the stop report");
         expect(&s, "ok> ", "the session goes on");
         if (now_ms() - t0 > 5000)
@@ -308,7 +308,7 @@ static void ctrl_c_tests(void)
     type(&s, "INCLUDE plan3.fbrl\r");
     expect(&s, "pumping", "plan3 runs");
     ctrl_c_after(&s, from, "OUTPUT 6");
-    expect(&s, "error: user interrupt in MS (plan3.fbrl:3)", "the error names file:line");
+    expect(&s, "plan3.fbrl:3: error: user interrupt in MS", "the error names file:line");
     expect(&s, "outputs switched off: 6; outputs still on: 9", "the pump switched off by the stop");
     expect(&s, "ok> ", "the session goes on");
     check_halt(&s, from, "Ctrl-C in MS");
@@ -318,7 +318,7 @@ static void ctrl_c_tests(void)
     from = log_mark();
     type(&s, "INCLUDE plan4.fbrl\r");
     ctrl_c_after(&s, from, "MOVE");
-    expect(&s, "error: user interrupt in FINISH (plan4.fbrl:3)", "the error names file:line");
+    expect(&s, "plan4.fbrl:3: error: user interrupt in FINISH", "the error names file:line");
     expect(&s, "stopped (plan4.fbrl:3 in FINISH): arm halted while moving (MOVE FBRLT", "the stop report");
     expect(&s, "ok> ", "the session goes on");
     check_halt(&s, from, "Ctrl-C in FINISH");
@@ -391,7 +391,7 @@ static void reconnect_tests(pid_t *sim)
     kill(*sim, SIGKILL);
     waitpid(*sim, NULL, 0);
     t_kill = now_ms();
-    if (expect(&s, "error: controller disconnected (RECONNECT when it is back) in MOV (plan5.fbrl:7)",
+    if (expect(&s, "plan5.fbrl:7: error: controller disconnected (RECONNECT when it is back) in MOV",
                "the loss reported with file:line"))
         printf("mon_safe: the loss reported %ld ms after the kill\n", now_ms() - t_kill);
     if (!g_failed && now_ms() - t_kill > 2000)

@@ -409,6 +409,64 @@ static void errors_carry_word_file_line(void **state)
     free_vm(f);
 }
 
+/* An error inside colon definitions names the word it happened in and keeps the
+ * chain of calls with their files and lines, and the data stack then. */
+static void backtraces_name_the_failing_word(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    const fbrl_vm_error *e = fbrl_vm_last_error(f->vm);
+    fbrl_vm_frame bt[FBRL_VM_BACKTRACE_MAX];
+    fbrl_cell cells[FBRL_VM_BACKTRACE_STACK];
+    size_t omitted = 99;
+    const char *file = FORTH_DIR "files/chain.fs";
+
+    assert_int_equal(fbrl_vm_include(f->vm, file), FBRL_OK);
+    assert_int_equal(ev(f, "7 OUTER"), FBRL_ETHROW);
+    assert_int_equal(e->throw_code, -10);
+    assert_string_equal(e->word, "INNER"); /* not OUTER, the word typed */
+    assert_int_equal(fbrl_vm_backtrace(f->vm, bt, 4, &omitted), 3);
+    assert_int_equal(omitted, 0);
+    assert_string_equal(bt[0].word, "INNER");
+    assert_string_equal(bt[0].file, file);
+    assert_int_equal(bt[0].line, 2);
+    assert_string_equal(bt[1].word, "MIDDLE");
+    assert_int_equal(bt[1].line, 5); /* the line of the call, not of the colon */
+    assert_string_equal(bt[2].word, "OUTER");
+    assert_int_equal(bt[2].line, 6);
+    assert_int_equal(fbrl_vm_error_stack(f->vm, cells, FBRL_VM_BACKTRACE_STACK), 3);
+    assert_int_equal(cells[0], 7);
+    assert_int_equal(cells[1], 8);
+    assert_int_equal(cells[2], 0);
+    assert_int_equal(fbrl_vm_error_stack(f->vm, cells, 1), 3); /* the top cell only */
+    assert_int_equal(cells[0], 0);
+
+    /* caught: no backtrace is left over */
+    assert_int_equal(ev(f, "CAUGHT"), FBRL_OK);
+    assert_int_equal(pop1(f), -10);
+    assert_int_equal(fbrl_vm_backtrace(f->vm, bt, 4, NULL), 0);
+    /* outside any definition: none */
+    assert_int_equal(ev(f, "FROB"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_backtrace(f->vm, bt, 4, NULL), 0);
+    assert_string_equal(e->word, "FROB");
+
+    /* typed words have no file; loop parameters and >R values are not callers */
+    assert_int_equal(ev(f, ": T1 5 0 DO I >R 1 0 / LOOP ;\n: T2\n T1 ;\nT2"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_backtrace(f->vm, bt, 4, NULL), 2);
+    assert_string_equal(bt[0].word, "T1");
+    assert_string_equal(bt[0].file, "");
+    assert_int_equal(bt[0].line, 1);
+    assert_string_equal(bt[1].word, "T2");
+    assert_int_equal(bt[1].line, 3);
+
+    /* a deep chain keeps its innermost and outermost calls */
+    assert_int_equal(ev(f, ": R DUP IF 1- RECURSE ELSE 1 0 / THEN ; 40 R"), FBRL_ETHROW);
+    assert_int_equal(fbrl_vm_backtrace(f->vm, bt, FBRL_VM_BACKTRACE_MAX, &omitted), FBRL_VM_BACKTRACE_MAX);
+    assert_int_equal(omitted, 41 - FBRL_VM_BACKTRACE_MAX);
+    assert_string_equal(bt[FBRL_VM_BACKTRACE_MAX - 1].word, "R");
+    free_vm(f);
+}
+
 static void include_relative_and_require(void **state)
 {
     (void)state;
@@ -956,6 +1014,7 @@ int main(void)
         cmocka_unit_test(c_words),
         cmocka_unit_test(api_stacks),
         cmocka_unit_test(errors_carry_word_file_line),
+        cmocka_unit_test(backtraces_name_the_failing_word),
         cmocka_unit_test(include_relative_and_require),
         cmocka_unit_test(multi_line_definitions_and_bye),
         cmocka_unit_test(every_word_has_help),

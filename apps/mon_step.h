@@ -1,0 +1,28 @@
+/* mon_step.h - fbrlmon's debugger: BREAK, UNBREAK, BREAKS and the stops (mon_step.c). */
+#ifndef FBRLMON_STEP_H
+#define FBRLMON_STEP_H
+
+#include "fbrl/vm.h"
+
+#define MON_STEP_BREAKS      16  /* breakpoints at once */
+#define MON_STEP_STACK_COPY  256 /* stack cells a stop keeps while Forth runs there */
+#define MON_STEP_TRACE_CELLS 8   /* top cells TRACE-WORDS shows */
+
+typedef struct mon_break {
+    char where[128];    /* a word's name, or a file (its path or the end of it) */
+    unsigned long line; /* 0: where is a word */
+} mon_break;
+
+typedef struct mon_step {
+    mon_break breaks[MON_STEP_BREAKS];
+    size_t nbreaks;
+    int mode;     /* what to stop at next (mon_step.c) */
+    size_t depth; /* the return stack depth that stop compares with */
+    int hinted;   /* the keys were explained at the first stop */
+} mon_step;
+
+struct mon;
+/* Define the words in m->vm. */
+fbrl_status mon_step_install(struct mon *m);
+
+#endif
