@@ -647,9 +647,9 @@ fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **fil
         return FBRL_ENOENT;
     const fbrl_hdr *h = HDR(vm, i);
     int built_in =
-        h->kind == K_PRIM || h->line == 0 || (h->kind == K_COLON && h->body < (fbrl_cell)vm->dict_lo);
-    *file = built_in ? "" : fbrl__file_name(vm, h->file);
-    *line = built_in ? 0 : h->line;
+        h->kind == K_PRIM || HDR_LINE(h) == 0 || (h->kind == K_COLON && h->body < (fbrl_cell)vm->dict_lo);
+    *file = built_in ? "" : fbrl__file_name(vm, HDR_FILE(h));
+    *line = built_in ? 0 : HDR_LINE(h);
     return FBRL_OK;
 }
 

@@ -99,13 +99,25 @@ typedef struct fbrl_hdr {
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn; /* K_CFUNC */
     void *arg;
-    fbrl_vmx_fn xfn;     /* K_CFUNC defined through vmx.h: called instead of fn */
+    fbrl_vmx_fn xfn; /* K_CFUNC defined through vmx.h: called instead of fn */
+#ifndef FBRL_SMALL_HEADERS
     uint32_t file, line; /* where it was defined: req_pool offset + 1 (0: not a file), line */
-    const void *word;    /* its word pointer */
+#endif
+    const void *word; /* its word pointer */
 #ifndef FBRL_NO_HELP
     const char *stack, *help; /* HELP text (NUL-terminated) */
 #endif
 } fbrl_hdr;
+
+/* Where a word was defined; FBRL_SMALL_HEADERS keeps no place (the small targets read no
+ * source files): file 0, line 0. */
+#ifdef FBRL_SMALL_HEADERS
+#define HDR_FILE(h) ((void)(h), 0u)
+#define HDR_LINE(h) ((void)(h), 0u)
+#else
+#define HDR_FILE(h) ((h)->file)
+#define HDR_LINE(h) ((h)->line)
+#endif
 
 enum { SRC_TEXT, SRC_FILE, SRC_STRING };
 
