@@ -75,15 +75,17 @@ if [ $st != 0 ]; then
     tail -5 "$work/fw.out"
     fails=1
 fi
-if grep -a '^error:' "$work/fw.out" | grep -v 'user interrupt' >/dev/null; then
+# the console's own XON/XOFF bytes (its ring passing the marks) may fall inside a line
+tr -d '\r\021\023' <"$work/fw.out" >"$work/fw.txt"
+if grep -a '^error:' "$work/fw.txt" | grep -v 'user interrupt' >/dev/null; then
     echo "FAIL: the firmware reported errors:"
-    grep -a '^error:' "$work/fw.out" | head -10
+    grep -a '^error:' "$work/fw.txt" | head -10
     fails=1
 fi
-grep -a -q 'prepared 3 of 3 samples' "$work/fw.out" || { echo "FAIL: the firmware's plan did not finish"; fails=1; }
+grep -a -q 'prepared 3 of 3 samples' "$work/fw.txt" || { echo "FAIL: the firmware's plan did not finish"; fails=1; }
 for want in "FILE-CHECK 3 1234 0" "FOURTH -304" "REWRITE 0" "REREAD 6 1234 0" "error: user interrupt in SPIN" \
     "AFTER-SPIN" "error: user interrupt in MS" "AFTER-MS"; do
-    tr -d '\r' <"$work/fw.out" | grep -a -q "^$want *\$" || { echo "FAIL: data files: no \"$want\""; fails=1; }
+    grep -a -q "^$want *\$" "$work/fw.txt" || { echo "FAIL: data files: no \"$want\""; fails=1; }
 done
 
 # 2. the host: fbrlmon with the same text on its standard input
