@@ -4,23 +4,17 @@
  * byte, so the files move unchanged between hosts of any endianness. */
 #include "fbrl/fileio.h"
 #include "fbrl/crc32.h"
+#include "fileio_store.h"
 #include "le.h"
 
-#include <dirent.h>
-#include <errno.h>
-#include <fcntl.h>
 #include <math.h>
-#include <stdio.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 /* REAL is stored as the bit pattern of an IEEE-754 binary64 double. */
 typedef char fbrl_fileio_double_is_8_bytes[sizeof(double) == 8 ? 1 : -1];
 
 #define OPEN_MARK 0x46424c46u /* "FBLF": a handle between open and close */
 #define LOC_BYTES 48u
-#define TMP_TRIES 1000u
 
 static const unsigned char magic[8] = {0x89, 'F', 'B', 'R', 'L', 'D', '\r', '\n'};
 
@@ -211,58 +205,6 @@ static fbrl_status check_records(const unsigned char *buf, size_t len, uint32_t 
     return n == count ? FBRL_OK : FBRL_EFORMAT;
 }
 
-/* ---- operating system ---- */
-
-static fbrl_status from_errno(int e)
-{
-    switch (e) {
-    case ENOENT:
-    case ENOTDIR: return FBRL_ENOENT;
-    case ENAMETOOLONG: return FBRL_ENAME;
-    default: return FBRL_EIO;
-    }
-}
-
-/* Read up to n bytes (fewer only at end of file). */
-static fbrl_status read_full(int fd, unsigned char *p, size_t n, size_t *got)
-{
-    size_t done = 0;
-    while (done < n) {
-        ssize_t r = read(fd, p + done, n - done);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r < 0)
-            return from_errno(errno);
-        if (r == 0)
-            break;
-        done += (size_t)r;
-    }
-    *got = done;
-    return FBRL_OK;
-}
-
-static fbrl_status write_full(int fd, const unsigned char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t r = write(fd, p, n);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            return FBRL_EIO;
-        p += r;
-        n -= (size_t)r;
-    }
-    return FBRL_OK;
-}
-
-static fbrl_status sync_fd(int fd)
-{
-    while (fsync(fd) != 0)
-        if (errno != EINTR)
-            return FBRL_EIO;
-    return FBRL_OK;
-}
-
 static fbrl_status check_path(const char *path)
 {
     if (!path || !path[0])
@@ -271,152 +213,12 @@ static fbrl_status check_path(const char *path)
     return n >= FBRL_FILE_PATH_MAX || path[n - 1] == '/' ? FBRL_ENAME : FBRL_OK;
 }
 
-/* Decimal digits of v at out; returns the number written (at most 10). */
-static size_t put_decimal(char *out, uint32_t v)
-{
-    char tmp[10];
-    size_t n = 0;
-    do {
-        tmp[n++] = (char)('0' + v % 10u);
-        v /= 10u;
-    } while (v);
-    for (size_t i = 0; i < n; i++)
-        out[i] = tmp[n - 1 - i];
-    return n;
-}
-
-/* The directory part of path ("." when there is none), into dir[FBRL_FILE_PATH_MAX]. */
-static void dir_of(const char *path, char *dir)
-{
-    const char *slash = strrchr(path, '/');
-    if (!slash) {
-        strcpy(dir, ".");
-    } else if (slash == path) {
-        strcpy(dir, "/");
-    } else {
-        memcpy(dir, path, (size_t)(slash - path));
-        dir[slash - path] = '\0';
-    }
-}
-
-/* Temporary name in the same directory: DIR/.BASE.PID-N.tmp (a leading dot keeps it out of
- * listings; pid and N keep concurrent writers apart). */
-#define TMP_PATH_MAX (FBRL_FILE_PATH_MAX + 32)
-
-static void tmp_name(const char *path, uint32_t n, char *out)
-{
-    const char *slash = strrchr(path, '/');
-    size_t dlen = slash ? (size_t)(slash - path) + 1 : 0;
-    size_t k = 0;
-    memcpy(out, path, dlen);
-    k = dlen;
-    out[k++] = '.';
-    size_t blen = strlen(path + dlen);
-    memcpy(out + k, path + dlen, blen);
-    k += blen;
-    out[k++] = '.';
-    k += put_decimal(out + k, (uint32_t)getpid());
-    out[k++] = '-';
-    k += put_decimal(out + k, n);
-    memcpy(out + k, ".tmp", 5);
-}
-
-/* Replace path by header+data: temporary, fsync, rename, fsync directory. keep_mode >= 0 sets
- * the new file's permission bits (the old file's); otherwise open()'s 0666 & ~umask stands. */
-static fbrl_status atomic_replace(const char *path, long keep_mode, const unsigned char *hdr,
-                                  const unsigned char *data, size_t len)
-{
-    char tmp[TMP_PATH_MAX];
-    int fd = -1;
-    for (uint32_t n = 0; n < TMP_TRIES && fd < 0; n++) {
-        tmp_name(path, n, tmp);
-        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd < 0 && errno != EEXIST && errno != EINTR)
-            return from_errno(errno);
-    }
-    if (fd < 0)
-        return FBRL_EIO;
-
-    fbrl_status st = FBRL_OK;
-    if (keep_mode >= 0 && fchmod(fd, (mode_t)keep_mode) != 0)
-        st = FBRL_EIO;
-    if (st == FBRL_OK)
-        st = write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
-    if (st == FBRL_OK)
-        st = write_full(fd, data, len);
-    if (st == FBRL_OK)
-        st = sync_fd(fd);
-    if (close(fd) != 0 && st == FBRL_OK)
-        st = FBRL_EIO;
-    if (st == FBRL_OK && rename(tmp, path) != 0)
-        st = from_errno(errno);
-    if (st != FBRL_OK) {
-        unlink(tmp);
-        return st;
-    }
-
-    /* Make the rename itself durable. Some file systems cannot fsync a directory (EINVAL):
-     * the rename is then as durable as that file system makes it. */
-    char dir[FBRL_FILE_PATH_MAX];
-    dir_of(path, dir);
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd < 0)
-        return FBRL_EIO;
-    if (fsync(dfd) != 0 && errno != EINVAL)
-        st = FBRL_EIO;
-    close(dfd);
-    return st;
-}
-
-/* name is ".BASE.DIGITS-DIGITS.tmp" for this base: a temporary of ours, not a user file. */
-static int is_temporary(const char *name, const char *base, size_t blen)
-{
-    if (name[0] != '.' || strncmp(name + 1, base, blen) != 0 || name[1 + blen] != '.')
-        return 0;
-    const char *p = name + 2 + blen;
-    for (int part = 0; part < 2; part++) {
-        const char *start = p;
-        while (*p >= '0' && *p <= '9')
-            p++;
-        if (p == start || *p != (part == 0 ? '-' : '.'))
-            return 0;
-        p++;
-    }
-    return strcmp(p, "tmp") == 0;
-}
-
 fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed)
 {
     fbrl_status st = check_path(path);
     if (removed)
         *removed = 0;
-    if (st != FBRL_OK)
-        return st;
-    char dir[FBRL_FILE_PATH_MAX];
-    dir_of(path, dir);
-    const char *slash = strrchr(path, '/');
-    const char *base = slash ? slash + 1 : path;
-    size_t blen = strlen(base);
-    DIR *dp = opendir(dir);
-    if (!dp)
-        return from_errno(errno);
-    char victim[TMP_PATH_MAX];
-    size_t dlen = (size_t)(base - path);
-    struct dirent *e;
-    while ((e = readdir(dp)) != NULL) {
-        if (!is_temporary(e->d_name, base, blen) || dlen + strlen(e->d_name) >= sizeof victim)
-            continue;
-        memcpy(victim, path, dlen);
-        strcpy(victim + dlen, e->d_name);
-        if (unlink(victim) == 0) {
-            if (removed)
-                (*removed)++;
-        } else if (errno != ENOENT) {
-            st = FBRL_EIO;
-        }
-    }
-    closedir(dp);
-    return st;
+    return st != FBRL_OK ? st : fbrl__fstore_sweep(path, removed);
 }
 
 static void make_header(unsigned char *h, const unsigned char *data, size_t len, uint32_t count)
@@ -431,13 +233,6 @@ static void make_header(unsigned char *h, const unsigned char *data, size_t len,
     fbrl_le_put32(h + 28, fbrl_crc32(0, h, 28));
 }
 
-/* Permission bits of an existing file, or -1 if there is none. */
-static long mode_of(const char *path)
-{
-    struct stat sb;
-    return stat(path, &sb) == 0 ? (long)(sb.st_mode & 07777) : -1L;
-}
-
 /* ---- the words ---- */
 
 fbrl_status fbrl_file_create(const char *path)
@@ -447,11 +242,11 @@ fbrl_status fbrl_file_create(const char *path)
         return st;
     unsigned char h[FBRL_FILE_HEADER_SIZE];
     make_header(h, NULL, 0, 0);
-    return atomic_replace(path, mode_of(path), h, NULL, 0);
+    return fbrl__fstore_replace(path, fbrl__fstore_mode(path), h, NULL, 0);
 }
 
 /* Verify the header (as much of it as `got` bytes hold) and the file size. */
-static fbrl_status check_header(const unsigned char *h, size_t got, off_t file_size, uint32_t *len,
+static fbrl_status check_header(const unsigned char *h, size_t got, uint64_t file_size, uint32_t *len,
                                 uint32_t *count)
 {
     size_t m = got < sizeof magic ? got : sizeof magic;
@@ -478,29 +273,24 @@ static fbrl_status check_header(const unsigned char *h, size_t got, off_t file_s
     return FBRL_OK;
 }
 
-static fbrl_status load(fbrl_file *f, int fd, unsigned char *buf, size_t cap)
+static fbrl_status load(fbrl_file *f, void *fh, uint64_t size, uint32_t mode, unsigned char *buf, size_t cap)
 {
-    struct stat sb;
-    if (fstat(fd, &sb) != 0)
-        return FBRL_EIO;
-    if (!S_ISREG(sb.st_mode))
-        return FBRL_EFORMAT;
     unsigned char h[FBRL_FILE_HEADER_SIZE];
     size_t got;
     uint32_t len = 0, count = 0;
-    fbrl_status st = read_full(fd, h, sizeof h, &got);
+    fbrl_status st = fbrl__fstore_read(fh, h, sizeof h, &got);
     if (st == FBRL_OK)
-        st = check_header(h, got, sb.st_size, &len, &count);
+        st = check_header(h, got, size, &len, &count);
     if (st != FBRL_OK)
         return st;
     if (len > cap)
         return FBRL_ENOSPC;
-    if ((st = read_full(fd, buf, len, &got)) != FBRL_OK)
+    if ((st = fbrl__fstore_read(fh, buf, len, &got)) != FBRL_OK)
         return st;
     if (got < len)
-        return FBRL_ETRUNCATED; /* shrank since fstat: not written by this library */
+        return FBRL_ETRUNCATED; /* shrank since it was opened: not written by this library */
     unsigned char extra;
-    if ((st = read_full(fd, &extra, 1, &got)) != FBRL_OK)
+    if ((st = fbrl__fstore_read(fh, &extra, 1, &got)) != FBRL_OK)
         return st;
     if (got != 0)
         return FBRL_EFORMAT;
@@ -514,7 +304,7 @@ static fbrl_status load(fbrl_file *f, int fd, unsigned char *buf, size_t cap)
     f->pos = 0;
     f->count = count;
     f->index = 0;
-    f->mode = (uint32_t)(sb.st_mode & 07777);
+    f->mode = mode;
     f->dirty = 0;
     return FBRL_OK;
 }
@@ -529,15 +319,13 @@ fbrl_status fbrl_file_open(fbrl_file *f, const char *path, void *buf, size_t cap
         return st;
     if (!buf || cap == 0)
         return FBRL_EINVAL;
-    /* O_NONBLOCK: a FIFO must not hang the open; it is refused as not a regular file. */
-    int fd;
-    do {
-        fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    } while (fd < 0 && errno == EINTR);
-    if (fd < 0)
-        return from_errno(errno);
-    st = load(f, fd, buf, cap);
-    close(fd);
+    void *fh;
+    uint64_t size;
+    uint32_t mode;
+    if ((st = fbrl__fstore_open(path, &fh, &size, &mode)) != FBRL_OK)
+        return st;
+    st = load(f, fh, size, mode, buf, cap);
+    fbrl__fstore_close(fh);
     if (st != FBRL_OK)
         return st;
     memcpy(f->path, path, strlen(path) + 1);
@@ -674,7 +462,7 @@ fbrl_status fbrl_file_commit(fbrl_file *f)
         return st;
     unsigned char h[FBRL_FILE_HEADER_SIZE];
     make_header(h, f->buf, f->len, f->count);
-    st = atomic_replace(f->path, (long)f->mode, h, f->buf, f->len);
+    st = fbrl__fstore_replace(f->path, (long)f->mode, h, f->buf, f->len);
     if (st == FBRL_OK)
         f->dirty = 0;
     return st;

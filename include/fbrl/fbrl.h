@@ -14,6 +14,7 @@
 #include "fbrl/clock.h"
 #include "fbrl/uart.h"
 #include "fbrl/uart_8250.h"
+#include "fbrl/uart_pl011.h"
 #include "fbrl/port.h"
 #include "fbrl/rapl_encode.h"
 #include "fbrl/rapl_reply.h"

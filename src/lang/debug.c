@@ -23,7 +23,14 @@ static void position(const fbrl_vm *vm, uint32_t *file, uint32_t *line)
     }
 }
 
-void fbrl__note_header(fbrl_vm *vm, fbrl_hdr *h) { position(vm, &h->file, &h->line); }
+void fbrl__note_header(fbrl_vm *vm, fbrl_hdr *h)
+{
+#ifdef FBRL_SMALL_HEADERS
+    (void)vm, (void)h;
+#else
+    position(vm, &h->file, &h->line);
+#endif
+}
 
 void fbrl__note_line(fbrl_vm *vm)
 {
@@ -75,8 +82,8 @@ static const fbrl_hdr *word_at(const fbrl_vm *vm, fbrl_cell addr)
 /* The source line of the code at addr inside h: the last line noted at or before it. */
 static void line_at(const fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr, fbrl_bt *f)
 {
-    f->file = h->file;
-    f->line = h->line;
+    f->file = HDR_FILE(h);
+    f->line = HDR_LINE(h);
     uint32_t lo = 0, hi = vm->nlines;
     while (lo < hi) { /* the first entry above addr */
         uint32_t mid = lo + (hi - lo) / 2;
@@ -193,8 +200,8 @@ int fbrl__step(fbrl_vm *vm, fbrl_cell body)
     if (h)
         add_name(h, &callee);
     st.word = callee.word;
-    st.file = h ? fbrl__file_name(vm, h->file) : "";
-    st.line = h ? h->line : 0;
+    st.file = h ? fbrl__file_name(vm, HDR_FILE(h)) : "";
+    st.line = h ? HDR_LINE(h) : 0;
     /* vm->ip: just after the call (OP_CALL body, or EXECUTE's cell) */
     const fbrl_hdr *c = word_at(vm, (fbrl_cell)vm->ip - CELL);
     if (c) {

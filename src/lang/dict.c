@@ -5,13 +5,21 @@
 #include <string.h>
 #include "words.h"
 
+/* FBRL_NO_HELP (a build option for small targets): no HELP texts in the image or the
+ * headers; HELP then has only the word's name to go by. */
 typedef struct opinfo {
     const char *name;
     uint8_t flags;
+#ifndef FBRL_NO_HELP
     const char *stack, *help;
+#endif
 } opinfo;
 static const opinfo ops[OP__END] = {
+#ifdef FBRL_NO_HELP
+#define OP(id, name, flags, stack, help) {name, flags},
+#else
 #define OP(id, name, flags, stack, help) {name, flags, stack, help},
+#endif
 #include "ops.def"
 #undef OP
 };
@@ -137,23 +145,46 @@ static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
     return (fbrl_cell)(FBRL_XT_BASE + (vm->hdr_top - 1 - h));
 }
 
-/* A new header; the name must be 1..31 characters (0 allowed only for :NONAME). */
-static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsigned flags, fbrl_hdr **out)
+/* A new header; the name must be 1..31 characters (0 allowed only for :NONAME).
+ * FBRL_SMALL_HEADERS (small targets): the header points at its name; a name that is not
+ * `fixed` (a string that lives as long as the program) is copied to HERE first, so it
+ * goes with the word when FORGET, MARKER or a failed definition drop it. */
+static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, unsigned flags, int fixed,
+                         fbrl_hdr **out)
 {
     if (len > FBRL_NAME_MAX)
         return FBRL_THROW_NAME_TOO_LONG;
     unsigned char *newlo = (unsigned char *)(vm->hdr_top - vm->nwords - 1);
+#ifdef FBRL_SMALL_HEADERS
+    size_t copy = fixed || len == 0 ? 0 : len;
+    if (vm->here > newlo || (size_t)(newlo - vm->here) < copy)
+        return FBRL_THROW_DICT_OVERFLOW;
+    if (copy) {
+        memmove(vm->here, name, len);
+        name = (const char *)vm->here;
+        vm->here += len;
+        vm->peep_end = NULL;
+    }
+#else
+    (void)fixed;
     if (vm->here > newlo)
         return FBRL_THROW_DICT_OVERFLOW;
+#endif
     fbrl_hdr *h = HDR(vm, vm->nwords);
     memset(h, 0, sizeof *h);
+#ifdef FBRL_SMALL_HEADERS
+    h->name = name;
+#else
     memcpy(h->name, name, len);
+#endif
     h->len = (uint8_t)len;
     h->kind = (uint8_t)kind;
     h->flags = (uint8_t)flags;
     h->wl = vm->current;
+#ifndef FBRL_NO_HELP
     h->stack = "";
     h->help = "";
+#endif
     h->hash = hash_name(name, len);
     fbrl__note_header(vm, h);
     unsigned b = BUCKET(h->hash);
@@ -163,6 +194,11 @@ static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsig
     vm->data_hi = (unsigned char *)h;
     *out = h;
     return 0;
+}
+
+static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsigned flags, fbrl_hdr **out)
+{
+    return new_header_at(vm, name, len, kind, flags, 0, out);
 }
 
 static fbrl_cell unused_bytes(const fbrl_vm *vm)
@@ -365,6 +401,9 @@ int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n)
 /* Capture "( stack )" and "\ help" following a new word's name on its line. */
 static void capture_help(fbrl_vm *vm, fbrl_hdr *h, const char *dstack, const char *dhelp)
 {
+#ifdef FBRL_NO_HELP
+    (void)vm, (void)h, (void)dstack, (void)dhelp;
+#else
     h->stack = dstack;
     h->help = dhelp;
     if (vm->nsrc == 0)
@@ -412,6 +451,7 @@ static void capture_help(fbrl_vm *vm, fbrl_hdr *h, const char *dstack, const cha
         h->help = (const char *)vm->here;
         vm->here += hpn + 1;
     }
+#endif
 }
 
 /* Make a word of the given kind with its data field aligned at HERE. */
@@ -426,8 +466,12 @@ int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const ch
         return FBRL_THROW_DICT_OVERFLOW;
     if ((r = new_header(vm, name, len, kind, 0, &h)))
         return r;
+#ifdef FBRL_NO_HELP
+    (void)stack, (void)help;
+#else
     h->stack = stack;
     h->help = help;
+#endif
     h->body = (fbrl_cell)vm->here;
     if ((r = fbrl__align(vm)))
         return r;
@@ -481,8 +525,10 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
             goto fail;
         h->flags |= FH;
     }
+#ifndef FBRL_NO_HELP
     h->stack = h->stack[0] ? h->stack : "( i*x -- j*x )";
     h->help = h->help[0] ? h->help : "colon definition";
+#endif
     vm->defining = 1;
     vm->def_word = vm->nwords - 1;
     vm->ncf = 1;
@@ -584,8 +630,12 @@ fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void 
     h->fn = fn;
     h->arg = arg;
     h->body = (fbrl_cell)vm->here;
+#ifdef FBRL_NO_HELP
+    (void)stack_effect, (void)help;
+#else
     h->stack = stack_effect ? stack_effect : "";
     h->help = help ? help : "";
+#endif
     return FBRL_OK;
 }
 
@@ -599,8 +649,10 @@ int fbrl__define_words(fbrl_vm *vm, const fbrl_cword *w, size_t n)
         h->fn = w[k].fn;
         h->arg = w[k].arg;
         h->body = (fbrl_cell)vm->here;
+#ifndef FBRL_NO_HELP
         h->stack = w[k].stack;
         h->help = w[k].help;
+#endif
     }
     return 0;
 }
@@ -614,10 +666,16 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
         return r;
     uint32_t next = h->next, hash = h->hash;
     uint8_t wl = h->wl;
+#ifdef FBRL_SMALL_HEADERS
+    const char *own = h->name; /* new_header copied the name to HERE */
     *h = copy;
-    h->hash = hash;
+    h->name = own;
+#else
+    *h = copy;
     memset(h->name, 0, sizeof h->name);
     memcpy(h->name, name, len);
+#endif
+    h->hash = hash;
     h->len = (uint8_t)len;
     h->next = next;
     h->wl = wl;
@@ -632,11 +690,18 @@ fbrl_status fbrl_vm_help(const fbrl_vm *vm, const char *name, const char **stack
     int i = fbrl__find(vm, name, strlen(name));
     if (i < 0)
         return FBRL_ENOENT;
+#ifdef FBRL_NO_HELP
+    if (stack_effect)
+        *stack_effect = "";
+    if (help)
+        *help = "";
+#else
     const fbrl_hdr *h = HDR(vm, i);
     if (stack_effect)
         *stack_effect = h->stack;
     if (help)
         *help = h->help;
+#endif
     return FBRL_OK;
 }
 
@@ -682,11 +747,13 @@ int fbrl__install_prims(fbrl_vm *vm)
         fbrl_hdr *h;
         if (!ops[op].name[0])
             continue;
-        if (new_header(vm, ops[op].name, strlen(ops[op].name), K_PRIM, ops[op].flags, &h))
+        if (new_header_at(vm, ops[op].name, strlen(ops[op].name), K_PRIM, ops[op].flags, 1, &h))
             return FBRL_THROW_DICT_OVERFLOW;
         h->op = (uint16_t)op;
+#ifndef FBRL_NO_HELP
         h->stack = ops[op].stack;
         h->help = ops[op].help;
+#endif
     }
     return 0;
 }
@@ -700,9 +767,9 @@ fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **fil
         return FBRL_ENOENT;
     const fbrl_hdr *h = HDR(vm, i);
     int built_in =
-        h->kind == K_PRIM || h->line == 0 || (h->kind == K_COLON && h->body < (fbrl_cell)vm->dict_lo);
-    *file = built_in ? "" : fbrl__file_name(vm, h->file);
-    *line = built_in ? 0 : h->line;
+        h->kind == K_PRIM || HDR_LINE(h) == 0 || (h->kind == K_COLON && h->body < (fbrl_cell)vm->dict_lo);
+    *file = built_in ? "" : fbrl__file_name(vm, HDR_FILE(h));
+    *line = built_in ? 0 : HDR_LINE(h);
     return FBRL_OK;
 }
 

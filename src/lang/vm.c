@@ -20,7 +20,9 @@ typedef struct layout {
 #define FBRL_STACK_ALIGN 4096         /* see make_layout */
 #define FBRL_HEAP_PART   8            /* the heap takes an eighth of the free data region, */
 #define FBRL_HEAP_MAX    (512u << 10) /* at most this much (the dictionary keeps the rest) */
-#define FBRL_EXTRA_WORDS 192          /* headers beyond the primitives (data words, C words of src/lang) */
+#ifndef FBRL_EXTRA_WORDS
+#define FBRL_EXTRA_WORDS 192 /* headers beyond the primitives (data words, C words of src/lang) */
+#endif
 
 static size_t heap_for(size_t free_bytes)
 {

@@ -25,13 +25,27 @@
 #define CELL      ((fbrl_cell)sizeof(fbrl_cell))
 #define CELL_BITS ((int)(sizeof(fbrl_cell) * 8))
 
-#define FBRL_NAME_MAX    FBRL_VMX_NAME_MAX /* longest word name (as F-PC) */
-#define FBRL_LINE_MAX    1024              /* longest source line */
-#define FBRL_SRC_MAX     10                /* nested input sources (files, texts, EVALUATE) */
-#define FBRL_CF_MAX      64                /* control-flow stack entries */
-#define FBRL_HASH        1024              /* dictionary hash buckets (power of two) */
-#define FBRL_PATH_MAX    256
-#define FBRL_REQ_POOL    4096 /* bytes for REQUIRE's list of included files */
+/* Sizes a small target may set lower on the compiler's command line (the Cortex-M3
+ * firmware does: ports/cortex-m3/CMakeLists.txt, docs/firmware.md). */
+#ifndef FBRL_NAME_MAX
+#define FBRL_NAME_MAX FBRL_VMX_NAME_MAX /* longest word name (as F-PC) */
+#endif
+#ifndef FBRL_LINE_MAX
+#define FBRL_LINE_MAX 1024 /* longest source line */
+#endif
+#ifndef FBRL_SRC_MAX
+#define FBRL_SRC_MAX 10 /* nested input sources (files, texts, EVALUATE) */
+#endif
+#define FBRL_CF_MAX 64 /* control-flow stack entries */
+#ifndef FBRL_HASH
+#define FBRL_HASH 1024 /* dictionary hash buckets (power of two) */
+#endif
+#ifndef FBRL_PATH_MAX
+#define FBRL_PATH_MAX 256
+#endif
+#ifndef FBRL_REQ_POOL
+#define FBRL_REQ_POOL 4096 /* bytes for REQUIRE's list of included files */
+#endif
 #define FBRL_GUARD_CELLS 8
 #define FBRL_XT_BASE     4096 /* execution tokens are FBRL_XT_BASE + header index */
 #define FBRL_WL_MAX      32   /* word lists (wordlist.c); a wid is its index + 1 */
@@ -45,7 +59,9 @@
 #define FBRL_PADSIZE  256
 #define FBRL_HOLDSIZE 260
 #define FBRL_SBUF     256 /* each interpretation-state S" buffer */
-#define FBRL_NSBUF    8   /* S" buffers in rotation (the standard asks for 2) */
+#ifndef FBRL_NSBUF
+#define FBRL_NSBUF 8 /* S" buffers in rotation (the standard asks for 2) */
+#endif
 
 enum {
 #define OP(id, name, flags, stack, help) OP_##id,
@@ -80,7 +96,11 @@ typedef struct fbrl_hdr {
     uint32_t next; /* next header in the hash chain, as index+1 (0 = end) */
     uint8_t kind, flags, len;
     uint8_t wl; /* its word list (wordlist.c): 0 = FORTH-WORDLIST */
+#ifdef FBRL_SMALL_HEADERS
+    const char *name; /* len bytes, not NUL-terminated (dict.c new_header_at) */
+#else
     char name[FBRL_NAME_MAX + 1];
+#endif
     uint16_t op;     /* K_PRIM: opcode */
     uint32_t hash;   /* its name's hash (dict.c; compared before the name) */
     fbrl_cell body;  /* data field / colon body (a data-region address) */
@@ -88,11 +108,25 @@ typedef struct fbrl_hdr {
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn; /* K_CFUNC */
     void *arg;
-    fbrl_vmx_fn xfn;          /* K_CFUNC defined through vmx.h: called instead of fn */
-    uint32_t file, line;      /* where it was defined: req_pool offset + 1 (0: not a file), line */
-    const void *word;         /* its word pointer */
+    fbrl_vmx_fn xfn; /* K_CFUNC defined through vmx.h: called instead of fn */
+#ifndef FBRL_SMALL_HEADERS
+    uint32_t file, line; /* where it was defined: req_pool offset + 1 (0: not a file), line */
+#endif
+    const void *word; /* its word pointer */
+#ifndef FBRL_NO_HELP
     const char *stack, *help; /* HELP text (NUL-terminated) */
+#endif
 } fbrl_hdr;
+
+/* Where a word was defined; FBRL_SMALL_HEADERS keeps no place (the small targets read no
+ * source files): file 0, line 0. */
+#ifdef FBRL_SMALL_HEADERS
+#define HDR_FILE(h) ((void)(h), 0u)
+#define HDR_LINE(h) ((void)(h), 0u)
+#else
+#define HDR_FILE(h) ((h)->file)
+#define HDR_LINE(h) ((h)->line)
+#endif
 
 enum { SRC_TEXT, SRC_FILE, SRC_STRING };
 

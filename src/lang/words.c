@@ -1056,11 +1056,15 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
         if (r)
             return r;
         put_name(vm, h);
+#ifdef FBRL_NO_HELP
+        fbrl__puts(vm, ": this build has no HELP texts (docs/glossary.md has them)\n");
+#else
         fbrl__puts(vm, " ");
         fbrl__puts(vm, h->stack);
         fbrl__puts(vm, h->stack[0] ? " " : "");
         fbrl__puts(vm, h->help);
         fbrl__puts(vm, "\n");
+#endif
         return 0;
     case OP_INCLUDE:
     case OP_REQUIRE:
