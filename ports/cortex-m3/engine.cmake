@@ -5,4 +5,6 @@
 # board reads no source files; past it, a line falls back to its word's line). Used by ports/cortex-m3/CMakeLists.txt and, on the host, by
 # tests/qemu/cm3_engine.cmake (the Forth conformance suite with the same options).
 set(FBRL_CM3_ENGINE_DEFS FBRL_NO_HELP FBRL_SMALL_HEADERS FBRL_LINE_MAX=256 FBRL_SRC_MAX=4
-  FBRL_PATH_MAX=32 FBRL_HASH=128 FBRL_REQ_POOL=256 FBRL_NSBUF=3 FBRL_LINE_TABLE=64)
+  FBRL_PATH_MAX=32 FBRL_HASH=128 FBRL_REQ_POOL=256 FBRL_NSBUF=3 FBRL_LINE_TABLE=64
+  FBRL_STACK_ALIGN=16 FBRL_HEAP_MAX=2048 FBRL_LOCALS_MAX=64 FBRL_TASKS_MAX=4
+  FBRL_WL_MAX=8 FBRL_FILES_MAX=2)

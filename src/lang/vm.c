@@ -17,9 +17,14 @@ typedef struct layout {
 #define FBRL_BUFS                                                                     \
     (FBRL_SYSVARS * sizeof(fbrl_cell) + FBRL_WORDBUF + FBRL_PADSIZE + FBRL_HOLDSIZE + \
      FBRL_NSBUF * FBRL_SBUF + FBRL_SRC_MAX * (FBRL_LINE_MAX + 8))
-#define FBRL_STACK_ALIGN 4096         /* see make_layout */
-#define FBRL_HEAP_PART   8            /* the heap takes an eighth of the free data region, */
-#define FBRL_HEAP_MAX    (512u << 10) /* at most this much (the dictionary keeps the rest) */
+/* A small target (the Cortex-M3 firmware) sets these lower on the command line. */
+#ifndef FBRL_STACK_ALIGN
+#define FBRL_STACK_ALIGN 4096 /* see make_layout */
+#endif
+#define FBRL_HEAP_PART 8 /* the heap takes an eighth of the free data region, */
+#ifndef FBRL_HEAP_MAX
+#define FBRL_HEAP_MAX (512u << 10) /* at most this much (the dictionary keeps the rest) */
+#endif
 #ifndef FBRL_EXTRA_WORDS
 #define FBRL_EXTRA_WORDS 192 /* headers beyond the primitives (data words, C words of src/lang) */
 #endif

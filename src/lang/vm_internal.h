@@ -48,11 +48,19 @@
 #endif
 #define FBRL_GUARD_CELLS 8
 #define FBRL_XT_BASE     4096 /* execution tokens are FBRL_XT_BASE + header index */
+#ifndef FBRL_WL_MAX
 #define FBRL_WL_MAX      32   /* word lists (wordlist.c); a wid is its index + 1 */
+#endif
+#ifndef FBRL_ORDER_MAX
 #define FBRL_ORDER_MAX   16   /* word lists in the search order */
+#endif
+#ifndef FBRL_LOCALS_MAX
 #define FBRL_LOCALS_MAX  512  /* cells of the locals stack (locals.c) */
+#endif
 #define FBRL_NLOCALS     32   /* locals of one definition */
+#ifndef FBRL_FILES_MAX
 #define FBRL_FILES_MAX   16   /* files open at once through the standard FILE words */
+#endif
 
 /* Sizes of the buffers at the start of the data region. */
 #define FBRL_WORDBUF  260
@@ -184,9 +192,13 @@ typedef struct fbrl_cf {
  * place. Every other task runs in slices: fbrl__run from its saved ip with its own stacks
  * (in data space), until a waiting word yields (THROW_YIELD) or the word ends. The record
  * lives here, outside data space, so a program cannot corrupt its pointers. */
+#ifndef FBRL_TASKS_MAX
 #define FBRL_TASKS_MAX    16
+#endif
 #define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
+#ifndef FBRL_CLAIMS_MAX
 #define FBRL_CLAIMS_MAX   16
+#endif
 enum { TK_FREE, TK_IDLE, TK_READY, TK_WAIT, TK_RUN, TK_DONE, TK_FAILED, TK_STOPPED };
 typedef struct fbrl_task {
     uint32_t word; /* header index + 1 of its TASK word (0: a free slot; slot 0: main) */

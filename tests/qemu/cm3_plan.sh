@@ -24,7 +24,8 @@ DEADLINE_S=60
 # (cm3_files.fbrl: its storage region) and FW-STATS before its BYE.
 {
     echo "$scale CONSTANT TIME-SCALE"
-    sed -e '/^INCLUDE asps_cell.fbrl/{r '"$examples"'/asps_cell.fbrl' -e 'd;}' "$examples/sample_prep.fbrl"
+    sed -e '/^INCLUDE asps_cell.fbrl/{r '"$examples"'/asps_cell.fbrl' -e 'd;}' "$examples/sample_prep.fbrl" |
+        sed -e '/^INCLUDE asps_cell_objects.fbrl/{r '"$examples"'/asps_cell_objects.fbrl' -e 'd;}'
 } >"$plan"
 {
     cat "$plan" "$(dirname "$0")/cm3_files.fbrl"
