@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fileio_posix.c - the data files' store in a POSIX file system (fileio_store.h): reads
  * through open/read, atomic replace as temporary, fsync, rename, fsync of the directory. */
 #include "fbrl/fileio.h"

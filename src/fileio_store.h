@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fileio_store.h - what the typed data files (fileio.c) need from the storage under them
  * (internal). fileio.c owns the format and never touches storage itself; a store provides
  * these functions at link time: fileio_posix.c keeps files in a POSIX file system, a board

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_pl011.c - ARM PL011 backend: line programming, interrupt handler, headroom rule.
  *
  * Concurrency: the handler (interrupt side) and the ops (main line) share the UART's

@@ -23,6 +23,8 @@
 #ifndef FBRL_CELL_H
 #define FBRL_CELL_H
 
+#include "fbrl/export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 #include "fbrl/status.h"
@@ -94,57 +96,58 @@ typedef struct fbrl_cell_hit {
 
 /* An empty cell (no table, no tool envelope radius, A255) keeping its obstacles in
  * storage[0..cap). FBRL_EINVAL for NULLs. */
-fbrl_status fbrl_cell_init(fbrl_cell_model *c, fbrl_cell_obj *storage, size_t cap);
+FBRL_API fbrl_status fbrl_cell_init(fbrl_cell_model *c, fbrl_cell_obj *storage, size_t cap);
 /* Forget every obstacle, block and the table (the tool and arm stay). */
-fbrl_status fbrl_cell_clear(fbrl_cell_model *c);
+FBRL_API fbrl_status fbrl_cell_clear(fbrl_cell_model *c);
 /* The table top at height z (FBRL_ENONFINITE). */
-fbrl_status fbrl_cell_set_table(fbrl_cell_model *c, double z);
+FBRL_API fbrl_status fbrl_cell_set_table(fbrl_cell_model *c, double z);
 /* The tool envelope (FBRL_ERANGE for a negative length or radius). */
-fbrl_status fbrl_cell_set_tool(fbrl_cell_model *c, double len, double radius);
+FBRL_API fbrl_status fbrl_cell_set_tool(fbrl_cell_model *c, double len, double radius);
 /* The arm (FBRL_ERANGE for a non-positive length). */
-fbrl_status fbrl_cell_set_arm(fbrl_cell_model *c, const fbrl_cell_arm *arm);
+FBRL_API fbrl_status fbrl_cell_set_arm(fbrl_cell_model *c, const fbrl_cell_arm *arm);
 
 /* The block named name[0..len): its index, made (identity placement) if new. FBRL_ENAME for
  * an empty or too long name, FBRL_EFULL beyond FBRL_CELL_BLOCKS. */
-fbrl_status fbrl_cell_block(fbrl_cell_model *c, const char *name, size_t len, int *index);
+FBRL_API fbrl_status fbrl_cell_block(fbrl_cell_model *c, const char *name, size_t len, int *index);
 /* Where block index stands now: the rigid motion from where it was taught (a calibration). */
-fbrl_status fbrl_cell_set_block(fbrl_cell_model *c, int index, const fbrl_calib *m);
+FBRL_API fbrl_status fbrl_cell_set_block(fbrl_cell_model *c, int index, const fbrl_calib *m);
 
 /* Add an obstacle (copied). FBRL_ENAME: empty, too long, or the name of an obstacle
  * already in the cell; FBRL_ERANGE: a size not positive (hi <= lo, r <= 0) or an unknown
  * kind or block; FBRL_ENONFINITE; FBRL_EFULL when the storage is full. */
-fbrl_status fbrl_cell_add(fbrl_cell_model *c, const fbrl_cell_obj *o);
+FBRL_API fbrl_status fbrl_cell_add(fbrl_cell_model *c, const fbrl_cell_obj *o);
 /* The obstacle of that name (case-insensitive): FBRL_OK and *index, or FBRL_ENOENT. */
-fbrl_status fbrl_cell_find(const fbrl_cell_model *c, const char *name, size_t len, size_t *index);
+FBRL_API fbrl_status fbrl_cell_find(const fbrl_cell_model *c, const char *name, size_t len, size_t *index);
 /* Obstacle i (NULL past the end), as described (where its block was taught). */
-const fbrl_cell_obj *fbrl_cell_get(const fbrl_cell_model *c, size_t i);
+FBRL_API const fbrl_cell_obj *fbrl_cell_get(const fbrl_cell_model *c, size_t i);
 /* The name of obstacle index i, "the table" or "nothing". */
-const char *fbrl_cell_obj_name(const fbrl_cell_model *c, size_t i);
+FBRL_API const char *fbrl_cell_obj_name(const fbrl_cell_model *c, size_t i);
 
 /* Clearance of a point (no envelope) to the obstacles of block `block` (-2: all, -1: the
  * fixed ones) as they were taught, the table not counted: *d negative inside. */
-fbrl_status fbrl_cell_point_clearance(const fbrl_cell_model *c, const double p[3], int block, double *d,
-                                      size_t *obj);
+FBRL_API fbrl_status fbrl_cell_point_clearance(const fbrl_cell_model *c, const double p[3], int block,
+                                               double *d, size_t *obj);
 
 /* Kinematics of the arm: joints (degrees) -> pose x y z yaw pitch roll; pose -> joints
  * (reaching forward, else backward over the shoulder; FBRL_ERANGE out of reach or past a
  * joint limit). hint: the joints now (the waist on the base axis keeps hint's). */
-fbrl_status fbrl_cell_fk(const fbrl_cell_arm *arm, const double q[FBRL_CELL_AXES], double pose[6]);
-fbrl_status fbrl_cell_ik(const fbrl_cell_arm *arm, const double pose[6], const double hint[FBRL_CELL_AXES],
-                         double q[FBRL_CELL_AXES]);
+FBRL_API fbrl_status fbrl_cell_fk(const fbrl_cell_arm *arm, const double q[FBRL_CELL_AXES], double pose[6]);
+FBRL_API fbrl_status fbrl_cell_ik(const fbrl_cell_arm *arm, const double pose[6],
+                                  const double hint[FBRL_CELL_AXES], double q[FBRL_CELL_AXES]);
 /* The pose dist back along its tool axis (APPRO, DEPART), the waist's direction as the arm
  * has it (waist degrees, used on the base axis). */
-void fbrl_cell_back_off(const double pose[6], double waist, double dist, double out[6]);
+FBRL_API void fbrl_cell_back_off(const double pose[6], double waist, double dist, double out[6]);
 
 /* Checks: the envelope at joints q; along the joint-interpolated path q0 -> q1; along the
  * straight line from the arm at q0 to pose1 (position and angles interpolated, as the
  * controller moves). h gets what was found (h->hit). FBRL_ERANGE: a straight line the arm
  * cannot follow (a sample out of reach or past a limit), h up to there. */
-fbrl_status fbrl_cell_check_pose(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], fbrl_cell_hit *h);
-fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
-                                   const double q1[FBRL_CELL_AXES], fbrl_cell_hit *h);
-fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
-                                 const double pose1[6], fbrl_cell_hit *h);
+FBRL_API fbrl_status fbrl_cell_check_pose(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES],
+                                          fbrl_cell_hit *h);
+FBRL_API fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
+                                            const double q1[FBRL_CELL_AXES], fbrl_cell_hit *h);
+FBRL_API fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
+                                          const double pose1[6], fbrl_cell_hit *h);
 
 /* ---- the FBRL words (src/words/robot_cell.c) ---- */
 
@@ -202,14 +205,14 @@ typedef struct fbrl_cell_words {
 /* Define the words in vm, guarding robot r's motions (fbrl_robot_set_guard); g (may be NULL)
  * gives the calibrations that carry blocks and the named locations a new obstacle must not
  * hold. FBRL_EINVAL for NULLs, FBRL_ENOMEM when the dictionary is full. */
-fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
+FBRL_API fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
 /* Where CELL-SVG saves its picture (NULL: it throws "no file output"). */
-void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx);
+FBRL_API void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx);
 /* The guard's record. */
-const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw);
+FBRL_API const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw);
 /* The SVG picture (top and side views to scale, obstacles, the named locations, the tool
  * path, the closest approach) written through fn. */
-fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx);
+FBRL_API fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx);
 
 #ifdef __cplusplus
 }

@@ -100,7 +100,7 @@ FBRL_API fbrl_status fbrl_glossary_loc(fbrl_vm *vm, fbrl_cell addr, fbrl_loc **o
 
 /* Is the word xt a location template (CREATE-LOC name)? FBRL_OK and its data field in
  * *addr, FBRL_ETYPE for any other word (the console's work-cell view lists them). */
-fbrl_status fbrl_glossary_loc_word(const fbrl_vm *vm, fbrl_cell xt, fbrl_cell *addr);
+FBRL_API fbrl_status fbrl_glossary_loc_word(const fbrl_vm *vm, fbrl_cell xt, fbrl_cell *addr);
 
 /* The three location slots of the CREATE-CAL structure at VM address addr (what the
  * structure's name pushes), e.g. for GET-CAL-POINTS teaching them with the arm. FBRL_EINVAL

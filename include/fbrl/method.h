@@ -19,6 +19,8 @@
 #ifndef FBRL_METHOD_H
 #define FBRL_METHOD_H
 
+#include "fbrl/export.h"
+
 #include <stddef.h>
 #include "fbrl/status.h"
 #include "fbrl/vm.h"
@@ -95,20 +97,20 @@ typedef struct fbrl_method_set {
 
 /* Bind METHOD PARAM SAMPLES-PARAM STEP SAMPLE-STEP ON-ABORT END-METHOD RUN-METHOD
  * METHODS .METHOD PARAM! into vm. */
-fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s);
-void fbrl_method_set_observer(fbrl_method_set *s, const fbrl_method_observer *obs);
+FBRL_API fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s);
+FBRL_API void fbrl_method_set_observer(fbrl_method_set *s, const fbrl_method_observer *obs);
 
 /* The declared methods (complete or not) by index, or by name (case-insensitive); NULL if none. */
-const fbrl_method *fbrl_method_at(const fbrl_method_set *s, size_t i);
-const fbrl_method *fbrl_method_find(const fbrl_method_set *s, const char *name);
+FBRL_API const fbrl_method *fbrl_method_at(const fbrl_method_set *s, size_t i);
+FBRL_API const fbrl_method *fbrl_method_find(const fbrl_method_set *s, const char *name);
 
 /* A parameter's value, and setting it: FBRL_ERANGE outside min..max (nothing changes),
  * FBRL_EINVAL for a bad index, FBRL_ESTATE while the method runs. */
-fbrl_status fbrl_method_param_get(const fbrl_method_set *s, const fbrl_method *m, size_t k, long *v);
-fbrl_status fbrl_method_param_set(fbrl_method_set *s, const fbrl_method *m, size_t k, long v);
+FBRL_API fbrl_status fbrl_method_param_get(const fbrl_method_set *s, const fbrl_method *m, size_t k, long *v);
+FBRL_API fbrl_status fbrl_method_param_set(fbrl_method_set *s, const fbrl_method *m, size_t k, long v);
 
 /* How many times step k runs with the current parameters (1, or the sample count). */
-long fbrl_method_step_runs(const fbrl_method_set *s, const fbrl_method *m, size_t k);
+FBRL_API long fbrl_method_step_runs(const fbrl_method_set *s, const fbrl_method *m, size_t k);
 
 #ifdef __cplusplus
 }

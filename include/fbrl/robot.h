@@ -230,13 +230,13 @@ FBRL_API fbrl_status fbrl_robot_define_device(fbrl_robot *r, const char *name, s
 FBRL_API size_t fbrl_robot_devices_free(const fbrl_robot *r);
 
 /* Set (or with NULL remove) the guard every motion word consults (fbrl/cell.h installs one). */
-fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g);
+FBRL_API fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g);
 /* Changes whenever the arm may have moved where the host cannot follow it. */
-unsigned long fbrl_robot_where_epoch(const fbrl_robot *r);
+FBRL_API unsigned long fbrl_robot_where_epoch(const fbrl_robot *r);
 /* The arm's joint angles (degrees) read from the controller (W2) once the motion in progress
  * has ended; *n gets how many (up to FBRL_RAPL_MAX_AXES). Throws in the VM on error
  * (FBRL_ETHROW-like statuses as the robot words return them), naming word. */
-fbrl_status fbrl_robot_joints(fbrl_robot *r, const char *word, double *q, unsigned *n);
+FBRL_API fbrl_status fbrl_robot_joints(fbrl_robot *r, const char *word, double *q, unsigned *n);
 
 /* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
 FBRL_API fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);

@@ -14,6 +14,8 @@
 #ifndef FBRL_RUNLOG_H
 #define FBRL_RUNLOG_H
 
+#include "fbrl/export.h"
+
 #include <stddef.h>
 #include <stdint.h>
 #include "fbrl/status.h"
@@ -69,38 +71,41 @@ typedef struct fbrl_runlog {
 /* Open the log and write its header record ("type":"header"). FBRL_EINVAL for NULLs or
  * more than FBRL_RUNLOG_MAX_PARAMS parameters, FBRL_ESTATE if it is open, FBRL_EIO if the
  * sink failed (the log stays closed). */
-fbrl_status fbrl_runlog_begin(fbrl_runlog *l, fbrl_runlog_write_fn write, void *write_ctx,
-                              fbrl_runlog_clock_fn now_us, void *clock_ctx, const fbrl_runlog_header *h);
+FBRL_API fbrl_status fbrl_runlog_begin(fbrl_runlog *l, fbrl_runlog_write_fn write, void *write_ctx,
+                                       fbrl_runlog_clock_fn now_us, void *clock_ctx,
+                                       const fbrl_runlog_header *h);
 
 /* Is it open? */
-int fbrl_runlog_is_open(const fbrl_runlog *l);
+FBRL_API int fbrl_runlog_is_open(const fbrl_runlog *l);
 
 /* A step started ("step_start") or ended ("step_end", with "status": "ok" or the error
  * text). sample < 0: a step done once for the run; else the sample's number (1..). */
-fbrl_status fbrl_runlog_step_start(fbrl_runlog *l, const char *step, long sample);
-fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long sample, const char *error);
+FBRL_API fbrl_status fbrl_runlog_step_start(fbrl_runlog *l, const char *step, long sample);
+FBRL_API fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long sample, const char *error);
 
 /* A command line the controller executed (or may have: FBRL_EMAYBE), with its result as
  * the link reported it (fbrl_link_config.on_exec has this shape). "status" is "ran",
  * "refused" (with the controller's "code" when code >= 0), "may-have-run" or "not-run". */
-fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code);
+FBRL_API fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result,
+                                         int code);
 
 /* A device action ("device": name, "action": "on", "off", "pulse", "dispense" ...) and a
  * timed wait ("wait": what), each with planned and actual milliseconds (planned < 0: none). */
-fbrl_status fbrl_runlog_device(fbrl_runlog *l, const char *device, const char *action, long planned_ms,
-                               long actual_ms);
-fbrl_status fbrl_runlog_wait(fbrl_runlog *l, const char *what, long planned_ms, long actual_ms);
+FBRL_API fbrl_status fbrl_runlog_device(fbrl_runlog *l, const char *device, const char *action,
+                                        long planned_ms, long actual_ms);
+FBRL_API fbrl_status fbrl_runlog_wait(fbrl_runlog *l, const char *what, long planned_ms, long actual_ms);
 
 /* An error in plain words: where (a step, "file:line", or NULL), what happened, and what
  * to do about it (NULL: nothing to add). */
-fbrl_status fbrl_runlog_error(fbrl_runlog *l, const char *where, const char *message, const char *advice);
+FBRL_API fbrl_status fbrl_runlog_error(fbrl_runlog *l, const char *where, const char *message,
+                                       const char *advice);
 
 /* A note: "pause", "resume", "abort", "safe-stop" ... with free text (may be NULL). */
-fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *text);
+FBRL_API fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *text);
 
 /* Close the log: a "summary" record (outcome "completed", "aborted" or "failed", the
  * counts, elapsed ms) and then the human summary as "text" records, one line each. */
-fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome);
+FBRL_API fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome);
 
 #ifdef __cplusplus
 }

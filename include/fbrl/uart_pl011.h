@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* uart_pl011.h - ARM PrimeCell PL011 backend for the UART driver core (uart.h): the
  * UART of most Cortex-M and Cortex-A parts (Stellaris/Tiva, STM32 "USART" excepted,
  * Raspberry Pi, QEMU's lm3s6965evb/virt/versatile machines). Interrupt driven: the board
@@ -9,6 +10,8 @@
  * No OS header, no hardware address: docs/firmware.md. */
 #ifndef FBRL_UART_PL011_H
 #define FBRL_UART_PL011_H
+
+#include "fbrl/export.h"
 
 #include <stdint.h>
 #include "fbrl/status.h"
@@ -106,7 +109,8 @@ typedef struct fbrl_uart_pl011 {
 
 /* Fill b (no register touched). clock_hz is the UART's reference clock (UARTCLK; on a
  * Stellaris part the system clock). */
-fbrl_status fbrl_uart_pl011_init(fbrl_uart_pl011 *b, const fbrl_uart_pl011_io *io, uint32_t clock_hz);
+FBRL_API fbrl_status fbrl_uart_pl011_init(fbrl_uart_pl011 *b, const fbrl_uart_pl011_io *io,
+                                          uint32_t clock_hz);
 
 /* The backend for fbrl_uart_init(u, &fbrl_uart_pl011_ops, b, ...). configure programs
  * IBRD/FBRD (nearest 1/64: within 0.8 %; refused where IBRD leaves 1..65535), LCRH
@@ -115,12 +119,12 @@ extern const fbrl_uart_ops fbrl_uart_pl011_ops;
 
 /* After fbrl_uart_init: connect the handler to the core and unmask receive and error
  * interrupts in IMSC. The board enables the UART's line in its interrupt controller. */
-fbrl_status fbrl_uart_pl011_attach(fbrl_uart_pl011 *b, struct fbrl_uart *u);
+FBRL_API fbrl_status fbrl_uart_pl011_attach(fbrl_uart_pl011 *b, struct fbrl_uart *u);
 
 /* The interrupt handler: call from the UART's vector. */
-void fbrl_uart_pl011_isr(fbrl_uart_pl011 *b);
+FBRL_API void fbrl_uart_pl011_isr(fbrl_uart_pl011 *b);
 
-fbrl_status fbrl_uart_pl011_get_stats(const fbrl_uart_pl011 *b, fbrl_uart_pl011_stats *out);
+FBRL_API fbrl_status fbrl_uart_pl011_get_stats(const fbrl_uart_pl011 *b, fbrl_uart_pl011_stats *out);
 
 #ifdef __cplusplus
 }

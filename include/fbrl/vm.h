@@ -201,7 +201,7 @@ FBRL_API void fbrl_vm_reset(fbrl_vm *vm);
  * call again (UINT64_MAX: no task waits on the clock; *live = 0: no task left). Output
  * (a task's error, its name first) goes to the write callback. FBRL_ESTATE from inside
  * fbrl_vm_eval() (its waits run the tasks themselves). live may be NULL. */
-fbrl_status fbrl_vm_run_tasks(fbrl_vm *vm, uint64_t *wake_us, int *live);
+FBRL_API fbrl_status fbrl_vm_run_tasks(fbrl_vm *vm, uint64_t *wake_us, int *live);
 
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */

@@ -225,23 +225,23 @@ typedef struct fbrl_vmx_timer {
 
 /* True while other tasks exist: a waiting word must then let them run (fbrl_vmx_pause);
  * false when the program runs alone, and the word may wait as it always did. */
-int fbrl_vmx_tasking(const fbrl_vm *vm);
+FBRL_API int fbrl_vmx_tasking(const fbrl_vm *vm);
 /* The running task's record for the waiting word calling it (begun on the first call). */
-fbrl_vmx_wait *fbrl_vmx_wait_state(fbrl_vm *vm);
+FBRL_API fbrl_vmx_wait *fbrl_vmx_wait_state(fbrl_vm *vm);
 /* Let the other tasks run until the host clock reaches wake_us. FBRL_OK: it is that time
  * now (check your condition again). Anything else: return it at once, pushing nothing
  * (what the word popped is put back): a background task yields here, and the word is
  * called again when the task resumes; or Ctrl-C (a throw). */
-fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us);
+FBRL_API fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us);
 /* True when the status fbrl_vmx_pause() just returned is a yield (the word runs again;
  * leave what it started, e.g. an output switched on, as it is), false for an error. */
-int fbrl_vmx_yielded(const fbrl_vm *vm);
+FBRL_API int fbrl_vmx_yielded(const fbrl_vm *vm);
 /* The running task's START-TIMER mark. */
-fbrl_vmx_timer *fbrl_vmx_task_timer(fbrl_vm *vm);
+FBRL_API fbrl_vmx_timer *fbrl_vmx_task_timer(fbrl_vm *vm);
 /* Wait (as fbrl_vmx_pause) while another task holds the resource key (e.g. the arm,
  * FBRL_VMX_ARM): a motion word calls this so that it never cuts into another task's
  * claimed manoeuvre. FBRL_OK when the running task may go on. */
-fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key);
+FBRL_API fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key);
 #define FBRL_VMX_ARM ((fbrl_cell)1) /* the arm's resource key (ARM pushes it) */
 
 /* Throw with a printf-formatted message (at most 127 characters are kept). */
@@ -255,9 +255,9 @@ FBRL_API fbrl_status fbrl_vmx_throwf(fbrl_vm *vm, int code, const char *fmt, ...
 
 /* The word list FORTH-2012 puts first in the search order: the standard words whose names
  * an FBRL word set uses with another meaning (the thesis's typed files: CREATE-FILE ...). */
-fbrl_cell fbrl_vmx_forth2012_wid(const fbrl_vm *vm);
+FBRL_API fbrl_cell fbrl_vmx_forth2012_wid(const fbrl_vm *vm);
 /* Make new definitions go into word list wid (a wid from the VM); *previous: the one before. */
-fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell *previous);
+FBRL_API fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell *previous);
 
 /* ---- the built-in word set ---- */
 

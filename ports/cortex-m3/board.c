@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* board.c - TI Stellaris LM3S6965 (QEMU lm3s6965evb): vector table and reset, the PLL
  * at 50 MHz, SysTick at 1 kHz as the clock, UART0/UART1 (PL011) with their pins and
  * NVIC lines, a RAM storage region, reset. Register addresses: LM3S6965 data sheet. */

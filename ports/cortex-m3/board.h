@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* board.h - the hooks the FBRL firmware needs from its board (board.c: TI LM3S6965, as
  * QEMU's lm3s6965evb models it). A port to another Cortex-M3 with a PL011 replaces
  * board.c and keeps main.c and store.c (docs/firmware.md, "Porting"). */

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The language engine's compile-time options for the Cortex-M3 firmware's 64 KB of RAM
 # (docs/firmware.md, "Engine options the firmware uses"): no HELP texts, headers that point
 # at their names, 256-byte lines, 4 nested sources, short paths, 128 hash buckets, a small

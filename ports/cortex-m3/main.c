@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* main.c - the FBRL firmware: the whole language on the board, with the console on
  * UART0 (the Forth prompt) and the controller on UART1 (RAPL through the link).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* store.c - the data files' store (src/fileio_store.h) on the board's storage region:
  * the firmware's replacement for fileio_posix.c.
  *

@@ -169,6 +169,7 @@ typedef struct fbrl_vm_host {
     void (*sleep_ms)(void *user, uint32_t ms);
     void (*time_date)(void *user, int out[6]);
     fbrl_status (*read_line)(void *user, const char *prompt, char *buf, size_t cap, size_t *len);
+    const void *files; /* the standard FILE words (fbrl_vm_files): none from Python */
 } fbrl_vm_host;
 typedef struct fbrl_vm_config {
     void *mem;

@@ -28,7 +28,7 @@ class Sim:
 
     def __init__(self, tmp_path, *args):
         self.log_path = str(tmp_path / "sim.log")
-        self.proc = subprocess.Popen([_fbrlsim(), "--log", self.log_path, "--time-scale", TIME_SCALE] + list(args),
+        self.proc = subprocess.Popen([_fbrlsim(), "--status-extra", "--log", self.log_path, "--time-scale", TIME_SCALE] + list(args),
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + SIM_START_SECONDS
         self.port = self.proc.stdout.readline().strip()

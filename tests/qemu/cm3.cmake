@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # QEMU tests of the Cortex-M3 firmware (ports/cortex-m3): the image boots in
 # qemu-system-arm's lm3s6965evb with the console (UART0) on the test's stdio and the
 # controller's line (UART1) on a real fbrlsim's pty. About 10-20 s each.

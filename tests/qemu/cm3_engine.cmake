@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The engine with the Cortex-M3 firmware's compile-time options, on the host (label unit):
 # the Forth conformance suite and the cases the options change (cm3_engine_test.c). Built
 # from the library's sources again with those options; needs no cross compiler.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cm3_engine_test.c - the language engine as the Cortex-M3 firmware builds it
  * (FBRL_SMALL_HEADERS, FBRL_NO_HELP, 256-byte lines, 4 nested sources, 128 hash buckets,
  * 2 S" buffers: ports/cortex-m3/CMakeLists.txt), run on the host against the Forth

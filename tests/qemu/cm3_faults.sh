@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # cm3_faults.sh QEMU IMAGE FBRLSIM WORKDIR [N] [SEED]
 #
 # The link fault test over the firmware's own UART: the Cortex-M3 image in QEMU drives a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # cm3_lib.sh - shared by the Cortex-M3 firmware tests (cm3_plan.sh, cm3_faults.sh).
 
 # run_fw QEMU IMAGE PORT TYPED OUT DEADLINE_S: boot the image with UART0 on stdio and UART1

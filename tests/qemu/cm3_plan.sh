@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # cm3_plan.sh QEMU IMAGE FBRLSIM FBRLMON EXAMPLES WORKDIR [SCALE]
 #
 # The sample-preparation plan on the Cortex-M3 firmware, checked against the same plan

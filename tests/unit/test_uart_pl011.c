@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_uart_pl011.c - the PL011 backend against a register model.
  *
  * The model below is the hardware boundary (the only place the project allows a
