@@ -20,7 +20,7 @@ name=console
 sim_scale=50
 sim_args="--inputs $src/examples/tube_present.inputs"
 # the method library: a copy (the composer writes a method file into it)
-mkdir -p lib/methods && cp "$src"/examples/methods/*.fbrl lib/methods/ && cp "$src/examples/asps_cell.fbrl" lib/ || exit 1
+mkdir -p lib/methods && cp "$src"/examples/methods/*.fbrl lib/methods/ && cp "$src/examples/asps_cell.fbrl" "$src/examples/asps_cell_objects.fbrl" lib/ || exit 1
 # a method whose corrective action asks the operator (ON-FAILURE ... ASK)
 cat >lib/methods/tube_check.fbrl <<'EOF2'
 : CHECK ( -- ) FAILURE PART-MISSING ;
@@ -223,7 +223,7 @@ for h in heads:
     assert p["#SAMPLES"] == 3 and p["REACTION-MIN"] == 1, p
     assert h["method"] == "SAMPLE-PREP" and h["operator"] == "tester", h
     assert h["program"].startswith("fbrlmon ") and h["source"].endswith("sample_prep.fbrl"), h
-    assert h["controller"].startswith("RAPL-II Version 2.60 A255 Robot (fbrlsim); controller on "), h
+    assert h["controller"].startswith("RAPL-II Version 2.60 A255 Robot") and "; controller on " in h["controller"], h
 cmds = [r["line"] for r in recs if r["type"] == "command"]
 assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
 # everything the controller executed after the connection's NOHELP was part of a run,
