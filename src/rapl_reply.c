@@ -154,7 +154,8 @@ const char *fbrl_rapl_error_text(int code)
 #define ERR_JOINT1_RANGE  42 /* JOINT #1 OUT OF RANGE ... #5: 42 .. 46 */
 #define ERR_JOINT5_RANGE  46
 #define ERR_JOINT6_RANGE  48 /* the A465's sixth joint */
-#define ERR_STRAIGHT_LINE 68 /* STRAIGHT LINE ERROR: the straight path leaves the reach */
+#define ERR_STRAIGHT_LINE 68  /* STRAIGHT LINE ERROR: the straight path leaves the reach */
+#define ERR_COLLISION     190 /* COLLISION: an emulator with a work cell stopped the motion */
 
 fbrl_rapl_errc fbrl_rapl_error_class(int code)
 {
@@ -162,6 +163,8 @@ fbrl_rapl_errc fbrl_rapl_error_class(int code)
         return FBRL_RAPL_ERRC_REACH;
     if ((code >= ERR_JOINT1_RANGE && code <= ERR_JOINT5_RANGE) || code == ERR_JOINT6_RANGE)
         return FBRL_RAPL_ERRC_JOINT_LIMIT;
+    if (code == ERR_COLLISION)
+        return FBRL_RAPL_ERRC_COLLISION;
     return FBRL_RAPL_ERRC_OTHER;
 }
 

@@ -177,6 +177,7 @@ static void failures_are_classed(void **state)
     assert_int_equal(fbrl_rapl_error_class(46), FBRL_RAPL_ERRC_JOINT_LIMIT);
     assert_int_equal(fbrl_rapl_error_class(48), FBRL_RAPL_ERRC_JOINT_LIMIT);
     assert_int_equal(fbrl_rapl_error_class(41), FBRL_RAPL_ERRC_OTHER);
+    assert_int_equal(fbrl_rapl_error_class(190), FBRL_RAPL_ERRC_COLLISION);
     assert_string_equal(fbrl_recover_kind_name(FBRL_RECOVER_JOINT_LIMIT), "JOINT-LIMIT");
 }
 
