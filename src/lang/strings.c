@@ -40,7 +40,7 @@ static int pop_str(fbrl_vm *vm, const char **s, size_t *n)
     fbrl_cell u = *--vm->sp, a = *--vm->sp;
     if (u < 0 || (u > 0 && !fbrl__addr_ok(vm, a, u)))
         return FBRL_THROW_BAD_ADDRESS;
-    *s = (const char *)a;
+    *s = u ? (const char *)a : ""; /* never NULL: memmove/memcmp of 0 bytes need a pointer too */
     *n = (size_t)u;
     return 0;
 }
