@@ -18,7 +18,7 @@ if(_fuzz_engine)
     # The engine is compiled into the target again with coverage instrumentation
     # (the library objects are not), and with ASan+UBSan unless the build has them.
     add_executable(fuzz_eval ${_fuzz_dir}/fuzz_eval.c ${FBRL_SOURCES} ${FBRL_WORD_SOURCES})
-    target_include_directories(fuzz_eval PRIVATE ${PROJECT_SOURCE_DIR}/include ${PROJECT_SOURCE_DIR}/src)
+    target_include_directories(fuzz_eval PRIVATE ${PROJECT_SOURCE_DIR}/include ${PROJECT_BINARY_DIR}/include ${PROJECT_SOURCE_DIR}/src)
     target_compile_definitions(fuzz_eval PRIVATE _POSIX_C_SOURCE=200809L)
     if(FBRL_HAVE_SERIALPORT)
       target_compile_definitions(fuzz_eval PRIVATE FBRL_HAVE_SERIALPORT=1)
