@@ -17,20 +17,7 @@ rm -f ./*.log ./*.out ./*.err trace.txt
 fails=0
 fail() { fails=$((fails + 1)); echo "FAIL: $*"; }
 
-simpid=
-start_sim() { # start_sim LOG: a fresh emulator; $port is its pty
-    "$sim" --log "$tmp/$1" >sim.out 2>sim.err &
-    simpid=$!
-    i=0
-    while [ ! -s sim.out ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
-    port=$(head -n 1 sim.out)
-    case $port in
-    /dev/*) ;;
-    *) echo "FAIL: fbrlsim printed no device path: $(cat sim.out sim.err)"; exit 1 ;;
-    esac
-}
-stop_sim() { kill "$simpid" 2>/dev/null; wait "$simpid" 2>/dev/null; rm -f sim.out; }
-trap 'kill $simpid 2>/dev/null' EXIT
+. "$(dirname "$0")/sim_pty.sh"
 
 cat >plan.fbrl <<'PLAN'
 \ plan.fbrl - two moves, each word on its own lines
