@@ -422,6 +422,8 @@ static void draw_bar(console *c)
         keys = "F7 Resume  F8 Abort";
     else
         keys = "F5 Run again  F3 Parameters  F2 Methods  F9 Level  F10 Quit";
+    if (c->abort_confirm && c->state >= ST_RUNNING && c->state <= ST_PAUSED)
+        keys = "Abort the run?  y or F8 Abort   any other key Go on";
     attron(A_REVERSE);
     put_row(MIN_ROWS - 1, " %s%s", keys,
             c->level == LEVEL_PROGRAMMER && !c->typing && c->state != ST_RUNNING && c->state != ST_PAUSED
@@ -1117,6 +1119,26 @@ static void read_arm(console *c, const char *when)
     }
 }
 
+/* While a robot word waits for the arm to stop (fbrl_robot_set_watch): where the arm is on
+ * its way, read live (W2 gives a consistent reading during a motion). A reading that fails
+ * is not an error of the method: the panel keeps the last one. */
+static void watch_arm(void *ctx, fbrl_robot *r)
+{
+    console *c = ctx;
+    fbrl_rapl_pos p;
+    char t[12];
+    (void)r;
+    if (c->m->link == NULL || fbrl_link_busy(c->m->link))
+        return;
+    if (fbrl_link_where(c->m->link, FBRL_RAPL_W2, &p) != FBRL_OK || p.nworld < 6)
+        return;
+    c->pos = p;
+    c->have_pos = 1;
+    fmt_time(t, sizeof t, c->t_run0 ? (double)(now_us() - c->t_run0) / 1000.0 : 0);
+    textf(c->pos_when, sizeof c->pos_when, "(moving, at %s)", t);
+    pump(c, 1);
+}
+
 static int hook_tick(void *ctx)
 {
     console *c = ctx;
@@ -1127,7 +1149,8 @@ static int hook_tick(void *ctx)
 static void hook_progress(void *ctx, const char *text)
 {
     console *c = ctx;
-    if (text != NULL)
+    /* a question or a request the operator made stays visible over the wait's progress */
+    if (text != NULL && !c->abort_confirm && c->state == ST_RUNNING)
         textf(c->hint, sizeof c->hint, "%s", text);
     pump(c, 1);
 }
@@ -1385,6 +1408,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     m->host.tick = hook_tick;
     m->host.tick_ctx = c;
     fbrl_robot_set_console(&m->robot, hook_progress, c, 0);
+    fbrl_robot_set_watch(&m->robot, watch_arm, c);
     fbrl_recover_set_ask(&m->recover, console_ask, c);
     log->exec_hook = hook_exec;
     log->exec_hook_ctx = c;
@@ -1412,6 +1436,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     log->exec_hook = NULL;
     fbrl_recover_set_ask(&m->recover, mon_recover_ask, m);
     fbrl_robot_set_console(&m->robot, NULL, NULL, 0);
+    fbrl_robot_set_watch(&m->robot, NULL, NULL);
     m->host.tick = NULL;
     m->host.out = old_out;
     m->host.out_is_tty = old_tty;

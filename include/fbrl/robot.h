@@ -50,6 +50,14 @@ typedef struct fbrl_robot_device {
 typedef void (*fbrl_robot_progress_fn)(void *ctx, const char *text);
 #define FBRL_ROBOT_PROGRESS_MS 1000u
 
+struct fbrl_robot;
+/* A watcher of a moving arm (fbrl_robot_set_watch): called while a robot word waits for
+ * the arm to stop, between two of its W5 readings, when the link is free, at most once
+ * every FBRL_ROBOT_WATCH_MS and first that long into the wait. It may use the link for a
+ * reading (fbrl_link_where W2 reads the arm as it moves) but must not move the arm. */
+typedef void (*fbrl_robot_watch_fn)(void *ctx, struct fbrl_robot *r);
+#define FBRL_ROBOT_WATCH_MS 1000u
+
 /* A device action or a timed wait, as it happened (for a run log): told once per word
  * (ON OFF PULSE DISPENSE WAIT-INPUT WAIT-UNTIL) when it ends, also when it failed. */
 typedef struct fbrl_robot_event {
@@ -148,6 +156,8 @@ typedef struct fbrl_robot {
     int tell;
     fbrl_robot_event_fn on_event; /* fbrl_robot_set_events */
     void *event_ctx;
+    fbrl_robot_watch_fn watch; /* fbrl_robot_set_watch */
+    void *watch_ctx;
     fbrl_loc target; /* tell: the location a motion word is sending the arm to */
     int have_target;
     /* the guard on every motion (fbrl_robot_set_guard), and a count that changes whenever
@@ -208,6 +218,8 @@ FBRL_API int fbrl_robot_lost(const fbrl_robot *r);
 FBRL_API void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void *ctx, int tell);
 /* Tell fn of every device action and timed wait (fbrl_robot_event; NULL: nobody). */
 FBRL_API void fbrl_robot_set_events(fbrl_robot *r, fbrl_robot_event_fn fn, void *ctx);
+/* Let fn look at the arm while it moves (fbrl_robot_watch_fn; NULL: nobody): a live view. */
+FBRL_API void fbrl_robot_set_watch(fbrl_robot *r, fbrl_robot_watch_fn fn, void *ctx);
 
 /* The name of robot word i (0, 1, ...) in the order fbrl_robot_install() defines them;
  * NULL past the last. (ASC is among them; a VM that has its own ASC keeps it.) */

@@ -164,3 +164,11 @@ void fbrl_robot_set_console(fbrl_robot *r, fbrl_robot_progress_fn progress, void
     r->progress_ctx = ctx;
     r->tell = tell != 0;
 }
+
+void fbrl_robot_set_watch(fbrl_robot *r, fbrl_robot_watch_fn fn, void *ctx)
+{
+    if (!r)
+        return;
+    r->watch = fn;
+    r->watch_ctx = ctx;
+}

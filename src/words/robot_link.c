@@ -168,6 +168,7 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
 {
     rb_wait wt;
     fbrl_status st = rb_online(r);
+    uint64_t watched = rb_now_us(r); /* the last look of the watcher (fbrl_robot_set_watch) */
     wait_begin(r, &wt);
     while (st == FBRL_OK && r->moving) {
         still_read sr;
@@ -192,7 +193,13 @@ fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
             break;
         if (sr.zeros > 0) {
             r->moving = 0;
-        } else if (fbrl_vmx_tasking(r->vm)) { /* the others run (the link is free between rounds) */
+            break;
+        }
+        if (r->watch && rb_now_us(r) - watched >= FBRL_ROBOT_WATCH_MS * RB_US_PER_MS) {
+            r->watch(r->watch_ctx, r); /* the link is free between two W5 rounds */
+            watched = rb_now_us(r);
+        }
+        if (fbrl_vmx_tasking(r->vm)) { /* the others run (the link is free between rounds) */
             st = rb_pause_until(r, rb_now_us(r) + RB_STILL_POLL_MS * RB_US_PER_MS);
         } else {
             const fbrl_vm_host *h = fbrl_vmx_host(r->vm);

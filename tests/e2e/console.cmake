@@ -7,3 +7,10 @@ if(TARGET fbrlmon AND TARGET fbrlsim)
   set_tests_properties(console_e2e PROPERTIES LABELS e2e TIMEOUT 180 SKIP_RETURN_CODE 77
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+if(TARGET fbrlmon AND TARGET fbrlsim)
+  # the live arm panel and the abort question over a motion's progress (real-time fbrlsim)
+  add_test(NAME console_live COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/console_live.sh
+    $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${PROJECT_BINARY_DIR}/e2e-console-live)
+  set_tests_properties(console_live PROPERTIES LABELS e2e TIMEOUT 120 SKIP_RETURN_CODE 77
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()
