@@ -27,6 +27,7 @@
 #include "mon_ws.h"
 
 #define DICT_BYTES_DEFAULT (8u * 1024u * 1024u)
+#define DEFAULT_COLUMNS    80 /* a terminal that does not say its width */
 
 /* A FILE or -e TEXT, kept in command-line order. */
 typedef struct action {
@@ -339,6 +340,27 @@ static void print_to_printer(void *ctx, const char *s, size_t n)
 
 /* --dry-run: file names absolute (the plan runs in a scratch directory), the picture's
  * name, the shared clock. */
+/* A line for a person at a terminal, broken at spaces so no word is cut by the terminal's
+ * own wrap (a port's name longer than the width stands alone on its line). */
+static void print_wrapped(const char *text, int width)
+{
+    const char *p = text;
+    while (*p) {
+        size_t n = strlen(p), cut = n;
+        if (n > (size_t)width) {
+            cut = (size_t)width;
+            while (cut > 0 && p[cut] != ' ')
+                cut--;
+            if (cut == 0)
+                cut = strcspn(p, " ");
+        }
+        printf("%.*s\n", (int)cut, p);
+        p += cut;
+        while (*p == ' ')
+            p++;
+    }
+}
+
 static int dry_prepare(options *o)
 {
     static char paths[64][PATH_MAX], svg[PATH_MAX];
@@ -504,9 +526,11 @@ int main(int argc, char **argv)
             m.errors++;
     } else if (!opt.dry_run && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
         if (m.host.in_is_tty) {
-            char desc[512];
+            char desc[512], hello[640];
             mon_conn_describe(&g_conn, desc, sizeof desc);
-            printf("fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.\n", fbrl_version(), desc);
+            snprintf(hello, sizeof hello, "fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.", fbrl_version(),
+                     desc);
+            print_wrapped(hello, (m.host.width > 0 ? m.host.width : DEFAULT_COLUMNS) - 1); /* the last column would wrap */
             /* a person at the prompt: motions say what they started and when a wait ended */
             if (m.host.out_is_tty)
                 fbrl_robot_set_console(&m.robot, mon_host_progress, &m.host, 1);

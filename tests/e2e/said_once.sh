@@ -10,7 +10,8 @@
 #   - GET-STRING says that it cut a line longer than the string;
 #   - PRINT-LOC on the controller's line says what the controller answered (050), and with
 #     --printer PATH the location goes to PATH and nothing to the controller;
-#   - TEACH shows a refused jog on an 80-column terminal when the status line is long.
+#   - TEACH shows a refused jog on an 80-column terminal when the status line is long;
+#   - the greeting is broken between words to fit the 80 columns.
 mon=$1 sim=$2 work=$3
 here=$(cd "$(dirname "$0")" && pwd)
 command -v tmux >/dev/null 2>&1 || { echo "SKIP: no tmux"; exit 77; }
@@ -20,6 +21,12 @@ name=said-once
 . "$here/tmux_session.sh"
 tmux -L "$sock" new-session -d -s said -x 80 -y 24 "'$mon' --port '$work/robot'; sleep 600"
 wait_for "ok>" || exit 1
+
+# ---- the greeting fits the 80 columns: broken between words, none cut by the terminal
+greeting=$(tmux -L "$sock" capture-pane -p -t said | sed -n '1,/^ok>/p' | sed '$d')
+echo "$greeting" | awk 'length($0) > 79 { bad = 1 } END { exit bad }' || fail "a greeting line is wider than 79: $greeting"
+echo "$greeting" | tr '\n' ' ' | grep -q "low latency: not supported). HELP name, WORDS; BYE or Ctrl-D ends." ||
+    fail "the greeting lost words: $greeting"
 
 # ---- ROBOT-STATUS and RAPL TYPEV: printed once, sent once
 type_line "ROBOT-STATUS"
