@@ -516,9 +516,21 @@ const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw) { return c
 #define SVG_Z_LO  (-3.5) /* in: the side view's height range */
 #define SVG_Z_HI  27.5
 
+#define SVG_LABELS   96   /* labels a view keeps clear of each other (more are drawn where they fall) */
+#define SVG_CHAR_W   6    /* px: a 10 px sans-serif character, a little wide to be safe */
+#define SVG_LINE_H   11   /* px: one label line */
+#define SVG_NUDGES   7    /* tries: where the label belongs, then a line below, above, two below ... */
+
+/* A label's place on the page (px), kept so the next ones can step aside. */
+typedef struct svg_box {
+    short x0, y0, x1, y1;
+} svg_box;
+
 typedef struct svg_ctx {
     fbrl_cell_write_fn fn;
     void *ctx;
+    svg_box placed[SVG_LABELS];
+    unsigned nplaced;
 } svg_ctx;
 
 static void out(svg_ctx *s, const char *t) { s->fn(s->ctx, t, strlen(t)); }
@@ -545,9 +557,33 @@ static void rect(svg_ctx *s, const view *v, const double a[3], const double b[3]
     out(s, line);
 }
 
+static int overlaps(const svg_ctx *s, const svg_box *b)
+{
+    for (unsigned k = 0; k < s->nplaced; k++) {
+        const svg_box *o = &s->placed[k];
+        if (b->x0 < o->x1 && o->x0 < b->x1 && b->y0 < o->y1 && o->y0 < b->y1)
+            return 1;
+    }
+    return 0;
+}
+
+/* A label at (x, y), its baseline; where it would cover one already drawn it moves down
+ * or up a line at a time (names that stand close, VIAL and REAGENT-VIAL, stay legible). */
 static void label(svg_ctx *s, double x, double y, const char *cls, const char *text)
 {
     char line[300], a[24], b[24];
+    double w = (double)strlen(text) * SVG_CHAR_W;
+    for (int k = 0; k < SVG_NUDGES && s->nplaced < SVG_LABELS; k++) {
+        double dy = (double)((k + 1) / 2) * SVG_LINE_H * (k % 2 ? 1 : -1);
+        svg_box bx = {(short)x, (short)(y + dy - SVG_LINE_H + 2), (short)(x + w), (short)(y + dy + 2)};
+        if (!overlaps(s, &bx) || k == SVG_NUDGES - 1) {
+            if (!overlaps(s, &bx))
+                y += dy;
+            bx.y0 = (short)(y - SVG_LINE_H + 2), bx.y1 = (short)(y + 2);
+            s->placed[s->nplaced++] = bx;
+            break;
+        }
+    }
     snprintf(line, sizeof line, "<text class=\"%s\" x=\"%s\" y=\"%s\">%s</text>\n", cls, num(a, sizeof a, x),
              num(b, sizeof b, y), text);
     out(s, line);
@@ -620,6 +656,7 @@ static int draw_loc(void *ctx, const char *name, size_t len)
 static void draw_view(svg_ctx *s, fbrl_cell_words *cw, const view *v)
 {
     char line[400], a[24], b[24];
+    s->nplaced = 0; /* each view places its own labels */
     label(s, v->ox - SVG_HALF * SVG_SCALE + 6, v->oy - (v->side ? 28 : SVG_HALF) * SVG_SCALE + 16, "title",
           v->side ? "side view (x across, z up)" : "top view (x across, y up)");
     if (v->side && cw->model.have_table) {
@@ -680,7 +717,10 @@ static void draw_view(svg_ctx *s, fbrl_cell_words *cw, const view *v)
 fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx)
 {
     char line[300], w[24], h[24];
-    svg_ctx s = {fn, ctx};
+    svg_ctx s;
+    memset(&s, 0, sizeof s);
+    s.fn = fn;
+    s.ctx = ctx;
     if (!cw || !fn)
         return FBRL_EINVAL;
     place_blocks(cw);
