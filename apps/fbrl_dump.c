@@ -336,9 +336,9 @@ static int dump(const char *path, int format)
 static void usage(FILE *out)
 {
     fputs("usage: fbrl-dump [options] FILE\n"
-          "Print a typed data file (CREATE-FILE, fbrl_file_*) or a workspace (SAVE-WORKSPACE)\n"
-          "as JSON (default) or CSV: every record with its type; a workspace's objects with\n"
-          "their names and named numbers (docs/files.md).\n"
+          "Print a typed data file (CREATE-FILE, fbrl_file_*) or a workspace\n"
+          "(SAVE-WORKSPACE) as JSON (default) or CSV: every record with its type; a\n"
+          "workspace's objects with their names and named numbers (docs/files.md).\n"
           "\n"
           "options:\n"
           "  -f, --format F   json (default) or csv\n"
