@@ -153,8 +153,21 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     }
     if (st == FBRL_OK)
         st = fbrl_link_connect(&c->link); /* NOHELP: a controller must answer */
+    if (st == FBRL_ETIMEOUT && c->kind == MON_CONN_PORT) {
+        /* Not one character echoed: a controller that powered up in ACI mode ignores typed
+         * text until a host switches it to terminal mode (docs/link.md). The switch is
+         * harmless to a line that is dead, and the link erases it on a controller that
+         * was in terminal mode after all; it is kept for reconnecting after a power cycle. */
+        c->lcfg.aci = 1;
+        st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &c->lcfg);
+        if (st == FBRL_OK)
+            st = fbrl_link_connect(&c->link);
+        if (st != FBRL_OK)
+            c->lcfg.aci = 0;
+    }
     if (st != FBRL_OK) {
-        snprintf(err, errlen, "no controller answers on %s: %s", c->port.name, fbrl_status_str(st));
+        snprintf(err, errlen, "no controller answers on %s: %s%s", c->port.name, fbrl_status_str(st),
+                 c->kind == MON_CONN_PORT ? " (neither in terminal mode nor to the switch from ACI mode)" : "");
         mon_conn_close(c);
         return st;
     }
@@ -169,7 +182,8 @@ void mon_conn_describe(const mon_conn *c, char *buf, size_t cap)
         snprintf(buf, cap, "offline (no controller)");
         return;
     }
-    snprintf(buf, cap, "%s %s", c->kind == MON_CONN_SIM ? "emulator on" : "controller on", port);
+    snprintf(buf, cap, "%s %s%s", c->kind == MON_CONN_SIM ? "emulator on" : "controller on", port,
+             c->lcfg.aci ? ", switched from ACI to terminal mode" : "");
 }
 
 void mon_conn_close(mon_conn *c)

@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 # mon_conn.sh FBRLMON FBRLSIM TMPDIR - fbrlmon's controller connection: --port to a
 # real fbrlsim process on a pty (its log proves the handshake reached it), line
-# settings, the built-in emulator (--sim, the default), --offline, --list-ports,
-# and the failures: bad values (status 2), ports that cannot open (status 3).
+# settings, a controller in ACI mode, the built-in emulator (--sim, the default),
+# --offline, --list-ports, and the failures: bad values (status 2), ports that cannot open (status 3).
 mon=$1
 sim=$2
 tmp=$3
@@ -84,6 +84,22 @@ tcp:*)
 esac
 kill $tcppid
 wait $tcppid 2>/dev/null
+
+# A controller that powers up in ACI mode (fbrlsim --aci) echoes nothing typed: fbrlmon
+# switches it to terminal mode by itself (docs/link.md) and says so; the switch is in the
+# emulator's log before the handshake, and the robot words work.
+rm -f aci.log aci.out
+"$sim" --aci --log "$tmp/aci.log" >aci.out 2>aci.err &
+acipid=$!
+trap 'kill $simpid $tcppid $acipid 2>/dev/null' EXIT
+i=0
+while [ ! -s aci.out ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
+aciport=$(head -n 1 aci.out)
+expect "--port to a controller in ACI mode" 0 "12 " --port "$aciport" -e 'HOME READY 12 .'
+[ "$(sed -n 1p aci.log)" = "# ACI: TERMINAL MODE" ] && [ "$(sed -n 2p aci.log)" = NOHELP ] &&
+    grep -qx READY aci.log || fail "ACI: want the switch, then NOHELP, then the commands (log: $(cat aci.log))"
+kill $acipid
+wait $acipid 2>/dev/null
 
 expect "--port that does not exist" 3 "" --port "$tmp/no-such-port" -e '1 .'
 grep -q 'cannot open' err.txt || fail "no 'cannot open' message"
