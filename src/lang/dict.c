@@ -7,6 +7,25 @@
 
 /* FBRL_NO_HELP (a build option for small targets): no HELP texts in the image or the
  * headers; HELP then has only the word's name to go by. */
+#ifdef FBRL_ROM_PRIMS
+/* The primitives' headers, in flash (vm_internal.h, HDR); they are also the table of op
+ * names. A nameless op's header is hidden.
+ * (the parameters are not named as the fields: a designator would be replaced) */
+const fbrl_hdr fbrl__rom_hdrs[OP__END] = {
+#ifdef FBRL_NO_HELP
+#define OP(id, nm, fl, st, hl)                                                                     \
+    {.kind = K_PRIM, .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), .len = (uint8_t)(sizeof(nm) - 1), \
+     .name = nm, .op = OP_##id},
+#else
+#define OP(id, nm, fl, st, hl)                                                                     \
+    {.kind = K_PRIM, .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), .len = (uint8_t)(sizeof(nm) - 1), \
+     .name = nm, .op = OP_##id, .stack = st, .help = hl},
+#endif
+#include "ops.def"
+#undef OP
+};
+#define ops fbrl__rom_hdrs
+#else
 typedef struct opinfo {
     const char *name;
     uint8_t flags;
@@ -23,6 +42,7 @@ static const opinfo ops[OP__END] = {
 #include "ops.def"
 #undef OP
 };
+#endif
 
 const char *fbrl__op_name(int op) { return (op >= 0 && op < OP__END) ? ops[op].name : ""; }
 
@@ -80,6 +100,19 @@ static int order_rank(const fbrl_vm *vm, unsigned wl)
     return k;
 }
 
+#ifdef FBRL_ROM_PRIMS
+/* The newest primitive of that name (all are in FORTH, word list 0), or -1. */
+static int rom_find(const char *name, size_t len)
+{
+    for (uint32_t k = HDR_ROM; k-- > 0;) {
+        const fbrl_hdr *h = &fbrl__rom_hdrs[k];
+        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+            return (int)k;
+    }
+    return -1;
+}
+#endif
+
 /* The newest word of that name in the earliest word list of the search order. The hash
  * chain runs newest first, so a match in the first word list (the usual FORTH) ends the
  * walk at once: one list is as fast as before word lists. */
@@ -102,6 +135,13 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
         }
         i = h->next;
     }
+#ifdef FBRL_ROM_PRIMS
+    if (order_rank(vm, 0) < brank) { /* the primitives: older than any RAM word */
+        int k = rom_find(name, len);
+        if (k >= 0)
+            return k;
+    }
+#endif
     return best;
 }
 
@@ -117,6 +157,10 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
             return (int)(i - 1);
         i = h->next;
     }
+#ifdef FBRL_ROM_PRIMS
+    if (wl == 0)
+        return rom_find(name, len);
+#endif
     return -1;
 }
 
@@ -124,9 +168,9 @@ int fbrl__name_eq(const char *a, const char *b, size_t n) { return name_eq(a, b,
 
 static void rebuild_hash(fbrl_vm *vm)
 {
-    vm->data_hi = (unsigned char *)(vm->hdr_top - vm->nwords);
+    vm->data_hi = (unsigned char *)HDR_LOW(vm);
     memset(vm->hash, 0, sizeof vm->hash);
-    for (uint32_t i = 0; i < vm->nwords; i++) {
+    for (uint32_t i = HDR_ROM; i < vm->nwords; i++) {
         fbrl_hdr *h = HDR(vm, i);
         unsigned b = BUCKET(h->hash);
         h->next = vm->hash[b];
@@ -140,10 +184,17 @@ fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt)
     return i < vm->nwords ? HDR(vm, i) : NULL;
 }
 
-static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
+uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h)
 {
-    return (fbrl_cell)(FBRL_XT_BASE + (vm->hdr_top - 1 - h));
+#ifdef FBRL_ROM_PRIMS
+    uintptr_t p = (uintptr_t)h, rom = (uintptr_t)fbrl__rom_hdrs;
+    if (p >= rom && p < rom + sizeof fbrl__rom_hdrs)
+        return (uint32_t)((p - rom) / sizeof *h);
+#endif
+    return (uint32_t)(vm->hdr_top - 1 - h) + HDR_ROM;
 }
+
+static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h) { return (fbrl_cell)(FBRL_XT_BASE + fbrl__hdr_index(vm, h)); }
 
 /* A new header; the name must be 1..31 characters (0 allowed only for :NONAME).
  * FBRL_SMALL_HEADERS (small targets): the header points at its name; a name that is not
@@ -154,7 +205,7 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
 {
     if (len > FBRL_NAME_MAX)
         return FBRL_THROW_NAME_TOO_LONG;
-    unsigned char *newlo = (unsigned char *)(vm->hdr_top - vm->nwords - 1);
+    unsigned char *newlo = (unsigned char *)(HDR_LOW(vm) - 1);
 #ifdef FBRL_SMALL_HEADERS
     size_t copy = fixed || len == 0 ? 0 : len;
     if (vm->here > newlo || (size_t)(newlo - vm->here) < copy)
@@ -203,7 +254,7 @@ static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsig
 
 static fbrl_cell unused_bytes(const fbrl_vm *vm)
 {
-    return (fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here);
+    return (fbrl_cell)((unsigned char *)HDR_LOW(vm) - vm->here);
 }
 
 int fbrl__allot(fbrl_vm *vm, fbrl_cell n)
@@ -712,9 +763,18 @@ static int found_as_itself(const fbrl_vm *vm, uint32_t i)
     int rw = order_rank(vm, w->wl);
     if (rw >= vm->norder)
         return 0;
-    for (uint32_t j = vm->hash[BUCKET(w->hash)]; j; j = HDR(vm, j - 1)->next) {
+#ifdef FBRL_ROM_PRIMS
+    /* a primitive's header keeps no hash */
+    uint32_t wh = i < HDR_ROM ? hash_name(w->name, w->len) : w->hash;
+    int k = rom_find(w->name, w->len); /* a primitive of that name: older than any RAM word */
+    if (k >= 0 && (i < HDR_ROM ? (uint32_t)k != i : order_rank(vm, 0) < rw))
+        return 0;
+#else
+    uint32_t wh = w->hash;
+#endif
+    for (uint32_t j = vm->hash[BUCKET(wh)]; j; j = HDR(vm, j - 1)->next) {
         const fbrl_hdr *h = HDR(vm, j - 1);
-        if (j - 1 == i || h->hash != w->hash || h->len != w->len || (h->flags & FH) ||
+        if (j - 1 == i || h->hash != wh || h->len != w->len || (h->flags & FH) ||
             !name_eq(h->name, w->name, w->len))
             continue;
         int r = order_rank(vm, h->wl);
@@ -743,6 +803,9 @@ void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, siz
 /* One header per named primitive, in ops.def order (fbrl_vm_create calls this first). */
 int fbrl__install_prims(fbrl_vm *vm)
 {
+#ifdef FBRL_ROM_PRIMS
+    (void)vm; /* their headers are fbrl__rom_hdrs */
+#else
     for (int op = 0; op < OP__END; op++) {
         fbrl_hdr *h;
         if (!ops[op].name[0])
@@ -755,6 +818,7 @@ int fbrl__install_prims(fbrl_vm *vm)
         h->help = ops[op].help;
 #endif
     }
+#endif
     return 0;
 }
 

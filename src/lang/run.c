@@ -1058,7 +1058,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
             CASE(UNUSED)
             ROOM(1);
-            PUSH((fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here));
+            PUSH((fbrl_cell)((unsigned char *)HDR_LOW(vm) - vm->here));
             NEXT;
             CASE(PAD) ROOM(1);
             PUSH((fbrl_cell)vm->pad);

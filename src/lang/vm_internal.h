@@ -57,7 +57,9 @@
 #ifndef FBRL_LOCALS_MAX
 #define FBRL_LOCALS_MAX  512  /* cells of the locals stack (locals.c) */
 #endif
-#define FBRL_NLOCALS     32   /* locals of one definition */
+#ifndef FBRL_NLOCALS
+#define FBRL_NLOCALS     32   /* locals of one definition (Forth-2012 asks for 16) */
+#endif
 #ifndef FBRL_FILES_MAX
 #define FBRL_FILES_MAX   16   /* files open at once through the standard FILE words */
 #endif
@@ -332,7 +334,29 @@ struct fbrl_vm {
     int (*task_pause)(fbrl_vm *vm, uint64_t wake_us);
 };
 
+/* Header i. FBRL_ROM_PRIMS (a small target short of RAM: the Cortex-M3 firmware): the
+ * primitives' headers are a const table, one per op (indices 0 .. OP__END-1; an internal
+ * op's is nameless and hidden), so they stay in flash; RAM holds only the other words'
+ * headers, which follow them. The primitives are in no hash chain: fbrl__find looks them
+ * up by name after the RAM words, which are all newer. */
+#ifdef FBRL_ROM_PRIMS
+#ifndef FBRL_SMALL_HEADERS
+#error "FBRL_ROM_PRIMS needs FBRL_SMALL_HEADERS (a const header points at its name)"
+#endif
+extern const fbrl_hdr fbrl__rom_hdrs[];
+#define HDR_ROM ((uint32_t)OP__END)
+/* The const is cast away for the one pointer type; nothing writes a primitive's header. */
+#define HDR(vm, i)                                                              \
+    ((uint32_t)(i) < HDR_ROM ? (fbrl_hdr *)(uintptr_t)&fbrl__rom_hdrs[(i)]    \
+                             : (vm)->hdr_top - 1 - ((ptrdiff_t)(i) - (ptrdiff_t)HDR_ROM))
+#else
+#define HDR_ROM 0u
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
+#endif
+/* The lowest header in RAM (the end of the addressable data region). */
+#define HDR_LOW(vm) ((vm)->hdr_top - ((vm)->nwords - HDR_ROM))
+/* The index of header h (its xt is FBRL_XT_BASE + the index). */
+uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h);
 
 /* True if [a, a+n) lies inside the VM's addressable data region. */
 static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)

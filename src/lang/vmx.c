@@ -197,7 +197,7 @@ static const fbrl_hdr *data_word(fbrl_vm *vm, const char *s, size_t n)
 static int data_value(fbrl_vm *vm, const fbrl_hdr *h, int want_float, fbrl_cell *c, double *f)
 {
     size_t d0 = fbrl_vm_depth(vm), f0 = fbrl_vm_fdepth(vm);
-    if (fbrl__run(vm, (fbrl_cell)(FBRL_XT_BASE + (vm->hdr_top - 1 - h))) != 0)
+    if (fbrl__run(vm, (fbrl_cell)(FBRL_XT_BASE + fbrl__hdr_index(vm, h))) != 0)
         return 0;
     size_t d1 = fbrl_vm_depth(vm), f1 = fbrl_vm_fdepth(vm);
     if (d1 == d0 + 1 && f1 == f0) {

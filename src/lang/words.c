@@ -1020,7 +1020,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
             return r;
         return fbrl__compile_xt(vm, xt);
     case OP_IMMEDIATE:
-        if (vm->nwords == 0)
+        if (vm->nwords == HDR_ROM) /* no word in RAM (a primitive's header is in flash) */
             return FBRL_THROW_UNSUPPORTED;
         HDR(vm, vm->nwords - 1)->flags |= FI;
         return 0;
