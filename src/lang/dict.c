@@ -13,13 +13,21 @@
  * (the parameters are not named as the fields: a designator would be replaced) */
 const fbrl_hdr fbrl__rom_hdrs[OP__END] = {
 #ifdef FBRL_NO_HELP
-#define OP(id, nm, fl, st, hl)                                                                     \
-    {.kind = K_PRIM, .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), .len = (uint8_t)(sizeof(nm) - 1), \
-     .name = nm, .op = OP_##id},
+#define OP(id, nm, fl, st, hl)                       \
+    {.kind = K_PRIM,                                 \
+     .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), \
+     .len = (uint8_t)(sizeof(nm) - 1),               \
+     .name = nm,                                     \
+     .op = OP_##id},
 #else
-#define OP(id, nm, fl, st, hl)                                                                     \
-    {.kind = K_PRIM, .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), .len = (uint8_t)(sizeof(nm) - 1), \
-     .name = nm, .op = OP_##id, .stack = st, .help = hl},
+#define OP(id, nm, fl, st, hl)                       \
+    {.kind = K_PRIM,                                 \
+     .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), \
+     .len = (uint8_t)(sizeof(nm) - 1),               \
+     .name = nm,                                     \
+     .op = OP_##id,                                  \
+     .stack = st,                                    \
+     .help = hl},
 #endif
 #include "ops.def"
 #undef OP
@@ -194,7 +202,10 @@ uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h)
     return (uint32_t)(vm->hdr_top - 1 - h) + HDR_ROM;
 }
 
-static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h) { return (fbrl_cell)(FBRL_XT_BASE + fbrl__hdr_index(vm, h)); }
+static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
+{
+    return (fbrl_cell)(FBRL_XT_BASE + fbrl__hdr_index(vm, h));
+}
 
 /* A new header; the name must be 1..31 characters (0 allowed only for :NONAME).
  * FBRL_SMALL_HEADERS (small targets): the header points at its name; a name that is not

@@ -259,8 +259,9 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 const rb_word rb_teach_words[] = {
-    {"GET-CAL-POINTS", w_get_cal_points, "I", 0, -1, 0, "( cal -- )",
-     "teach the 3 calibration points from the arm's positions (at the console: TEACH, BACK, CANCEL; "
-     "docs/robot.md)"},
+    {"GET-CAL-POINTS", w_get_cal_points, "I", 0, -1, 0,
+     FBRL_DOC("( cal -- )",
+              "teach the 3 calibration points from the arm's positions (at the console: TEACH, BACK, CANCEL; "
+              "docs/robot.md)")},
 };
 const size_t rb_teach_nwords = sizeof rb_teach_words / sizeof rb_teach_words[0];
