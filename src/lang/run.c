@@ -1314,18 +1314,22 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FCOS) FNEED(1);
             FRES(cos(ftos), 46);
             NEXT;
+#ifndef FBRL_NO_FTRANS
             CASE(FTAN) FNEED(1);
             FRES(tan(ftos), 46);
             NEXT;
+#endif
             CASE(FSINCOS) FNEED(1);
             FROOM(1);
             fa = ftos;
             *fp++ = sin(fa);
             ftos = cos(fa);
             NEXT;
+#ifndef FBRL_NO_FTRANS
             CASE(FASIN) FNEED(1);
             FRES(asin(ftos), 46);
             NEXT;
+#endif
             CASE(FACOS) FNEED(1);
             FRES(acos(ftos), 46);
             NEXT;
@@ -1335,6 +1339,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FATAN2) FNEED(2);
             FBIN(atan2(r1, r2), 46);
             NEXT;
+#ifndef FBRL_NO_FTRANS
             CASE(FSINH) FNEED(1);
             FRES(sinh(ftos), 43);
             NEXT;
@@ -1374,6 +1379,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FPOW) FNEED(2);
             FBIN(pow(r1, r2), 46);
             NEXT;
+#endif
             CASE(FLOOR) FNEED(1);
             ftos = floor(ftos);
             NEXT;

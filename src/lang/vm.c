@@ -158,8 +158,10 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     if (fbrl__task_words(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
+#ifndef FBRL_NO_FILE_WORDS /* a port without a file system (the firmware) leaves them out */
     if (st == FBRL_OK && vm->host.files)
         st = fbrl__file_words(vm) ? FBRL_ENOSPC : FBRL_OK;
+#endif
     if (st != FBRL_OK)
         return st == FBRL_ENOMEM ? FBRL_ENOSPC : st;
     st = fbrl_vm_eval(vm, fbrl__prelude, strlen(fbrl__prelude));
