@@ -90,6 +90,15 @@ static uint32_t hash_name(const char *s, size_t n)
     return h ^ (h >> 15);
 }
 #define BUCKET(h) ((h) & (FBRL_HASH - 1))
+/* A header's hash, and whether it can be that of hash hn (FBRL_SMALL_HEADERS keeps none:
+ * the name comparison decides). */
+#ifdef FBRL_SMALL_HEADERS
+#define HASH_OF(h)      hash_name((h)->name, (h)->len)
+#define HASH_MAY(h, hn) ((void)(hn), 1)
+#else
+#define HASH_OF(h)      ((h)->hash)
+#define HASH_MAY(h, hn) ((h)->hash == (hn))
+#endif
 
 static int name_eq(const char *a, const char *b, size_t n)
 {
@@ -132,7 +141,7 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
     uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
-        if (h->hash == hn && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
+        if (HASH_MAY(h, hn) && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
             int r = order_rank(vm, h->wl);
             if (r == 0)
                 return (int)(i - 1);
@@ -161,7 +170,8 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
     uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
-        if (h->hash == hn && h->wl == wl && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+        if (HASH_MAY(h, hn) && h->wl == wl && h->len == len && !(h->flags & FH) &&
+            name_eq(h->name, name, len))
             return (int)(i - 1);
         i = h->next;
     }
@@ -180,9 +190,9 @@ static void rebuild_hash(fbrl_vm *vm)
     memset(vm->hash, 0, sizeof vm->hash);
     for (uint32_t i = HDR_ROM; i < vm->nwords; i++) {
         fbrl_hdr *h = HDR(vm, i);
-        unsigned b = BUCKET(h->hash);
+        unsigned b = BUCKET(HASH_OF(h));
         h->next = vm->hash[b];
-        vm->hash[b] = i + 1;
+        vm->hash[b] = (fbrl_hlink)(i + 1);
     }
 }
 
@@ -216,6 +226,8 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
 {
     if (len > FBRL_NAME_MAX)
         return FBRL_THROW_NAME_TOO_LONG;
+    if (vm->nwords >= FBRL_WORDS_MAX) /* its index + 1 must fit a chain link */
+        return FBRL_THROW_DICT_OVERFLOW;
     unsigned char *newlo = (unsigned char *)(HDR_LOW(vm) - 1);
 #ifdef FBRL_SMALL_HEADERS
     size_t copy = fixed || len == 0 ? 0 : len;
@@ -247,11 +259,14 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
     h->stack = "";
     h->help = "";
 #endif
-    h->hash = hash_name(name, len);
+    uint32_t hn = hash_name(name, len);
+#ifndef FBRL_SMALL_HEADERS
+    h->hash = hn;
+#endif
     fbrl__note_header(vm, h);
-    unsigned b = BUCKET(h->hash);
+    unsigned b = BUCKET(hn);
     h->next = vm->hash[b];
-    vm->hash[b] = vm->nwords + 1;
+    vm->hash[b] = (fbrl_hlink)(vm->nwords + 1);
     vm->nwords++;
     vm->data_hi = (unsigned char *)h;
     *out = h;
@@ -726,18 +741,19 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
     int r = new_header(vm, name, len, old->kind, old->flags & (FI | FC | FS), &h);
     if (r)
         return r;
-    uint32_t next = h->next, hash = h->hash;
+    fbrl_hlink next = h->next;
     uint8_t wl = h->wl;
 #ifdef FBRL_SMALL_HEADERS
     const char *own = h->name; /* new_header copied the name to HERE */
     *h = copy;
     h->name = own;
 #else
+    uint32_t hash = h->hash;
     *h = copy;
     memset(h->name, 0, sizeof h->name);
     memcpy(h->name, name, len);
-#endif
     h->hash = hash;
+#endif
     h->len = (uint8_t)len;
     h->next = next;
     h->wl = wl;
@@ -774,18 +790,15 @@ static int found_as_itself(const fbrl_vm *vm, uint32_t i)
     int rw = order_rank(vm, w->wl);
     if (rw >= vm->norder)
         return 0;
+    uint32_t wh = HASH_OF(w);
 #ifdef FBRL_ROM_PRIMS
-    /* a primitive's header keeps no hash */
-    uint32_t wh = i < HDR_ROM ? hash_name(w->name, w->len) : w->hash;
     int k = rom_find(w->name, w->len); /* a primitive of that name: older than any RAM word */
     if (k >= 0 && (i < HDR_ROM ? (uint32_t)k != i : order_rank(vm, 0) < rw))
         return 0;
-#else
-    uint32_t wh = w->hash;
 #endif
     for (uint32_t j = vm->hash[BUCKET(wh)]; j; j = HDR(vm, j - 1)->next) {
         const fbrl_hdr *h = HDR(vm, j - 1);
-        if (j - 1 == i || h->hash != wh || h->len != w->len || (h->flags & FH) ||
+        if (j - 1 == i || !HASH_MAY(h, wh) || h->len != w->len || (h->flags & FH) ||
             !name_eq(h->name, w->name, w->len))
             continue;
         int r = order_rank(vm, h->wl);

@@ -102,17 +102,29 @@ enum {
 #define FH 4u /* hidden (being defined, or :NONAME) */
 #define FS 8u /* state-smart immediate word (POSTPONE runs it compiling) */
 
+/* FBRL_SMALL_HEADERS: a header 8 bytes shorter, as its chain link is 16 bits (at most
+ * FBRL_WORDS_MAX words) and it keeps no hash (dict.c computes it from the name). */
+#ifdef FBRL_SMALL_HEADERS
+typedef uint16_t fbrl_hlink;
+#define FBRL_WORDS_MAX UINT16_MAX
+#else
+typedef uint32_t fbrl_hlink;
+#define FBRL_WORDS_MAX UINT32_MAX
+#endif
 typedef struct fbrl_hdr {
-    uint32_t next; /* next header in the hash chain, as index+1 (0 = end) */
+    fbrl_hlink next; /* next header in the hash chain, as index+1 (0 = end) */
+#ifdef FBRL_SMALL_HEADERS
+    uint16_t op; /* K_PRIM: opcode */
+#endif
     uint8_t kind, flags, len;
     uint8_t wl; /* its word list (wordlist.c): 0 = FORTH-WORDLIST */
 #ifdef FBRL_SMALL_HEADERS
     const char *name; /* len bytes, not NUL-terminated (dict.c new_header_at) */
 #else
     char name[FBRL_NAME_MAX + 1];
+    uint16_t op;   /* K_PRIM: opcode */
+    uint32_t hash; /* its name's hash (dict.c; compared before the name) */
 #endif
-    uint16_t op;     /* K_PRIM: opcode */
-    uint32_t hash;   /* its name's hash (dict.c; compared before the name) */
     fbrl_cell body;  /* data field / colon body (a data-region address) */
     fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
@@ -244,7 +256,7 @@ struct fbrl_vm {
     fbrl_hdr *hdr_top;      /* header i is hdr_top[-1 - i] */
     unsigned char *data_hi; /* end of the addressable region = lowest header */
     uint32_t nwords;
-    uint32_t hash[FBRL_HASH];
+    fbrl_hlink hash[FBRL_HASH];
     fbrl_cell *base, *state, *toin; /* system variables in the data region */
     char *wordbuf, *pad, *hold, *sbuf;
     char *hld; /* pictured output: next free position (moves down) */
