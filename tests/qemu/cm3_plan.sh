@@ -19,6 +19,7 @@ rm -rf "$work" && mkdir -p "$work" || exit 2
 . "$(dirname "$0")/cm3_lib.sh"
 plan=$work/plan.fbrl
 DEADLINE_S=60
+DICT_MIN=16384 # the budget: a dictionary of at least 16 KB free for programs after boot
 
 # the plan as one text: TIME-SCALE, the cell, the method, then BYE (the firmware resets;
 # QEMU, run with -no-reboot, exits). The firmware also gets the data-file check
@@ -88,6 +89,11 @@ if grep -a '^error:' "$work/fw.txt" | grep -v 'user interrupt' >/dev/null; then
     fails=1
 fi
 grep -a -q 'prepared 3 of 3 samples' "$work/fw.txt" || { echo "FAIL: the firmware's plan did not finish"; fails=1; }
+dict=$(sed -n 's/^dictionary: \([0-9]*\) bytes free;.*/\1/p' "$work/fw.txt" | head -n 1)
+if [ -z "$dict" ] || [ "$dict" -lt $DICT_MIN ]; then
+    echo "FAIL: the dictionary has ${dict:-?} bytes free at boot, $DICT_MIN asked"
+    fails=1
+fi
 for want in "FILE-CHECK 3 1234 0" "FOURTH -304" "REWRITE 0" "REREAD 6 1234 0" "error: user interrupt in SPIN" \
     "AFTER-SPIN" "error: user interrupt in MS" "AFTER-MS"; do
     grep -a -q "^$want *\$" "$work/fw.txt" || { echo "FAIL: data files: no \"$want\""; fails=1; }
@@ -117,5 +123,6 @@ if ! cmp -s "$work/host.cmp" "$work/fw.cmp"; then
     diff "$work/host.cmp" "$work/fw.cmp" | head -40
     fails=1
 fi
-[ $fails = 0 ] && echo "ok: $n commands, identical on the firmware and the host (firmware run $((t1 - t0)) s)"
+[ $fails = 0 ] && echo "ok: $n commands, identical on the firmware and the host (firmware run $((t1 - t0)) s);" \
+    "dictionary $dict bytes free at boot"
 exit $fails
