@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "atomic.h"
+#include "fbrl/num.h"
 #include "words.h"
 
 #define TASK_DS           64 /* cells of each task's stacks */
@@ -530,9 +531,12 @@ static fbrl_status w_tasks(fbrl_vm *vm, void *arg)
         if (s == TK_WAIT && t->wake_us > now)
             n += snprintf(line + n, sizeof line - (size_t)n, " due in %lu ms",
                           (unsigned long)((t->wake_us - now) / US_PER_MS));
-        if (t->steps)
-            n += snprintf(line + n, sizeof line - (size_t)n, " steps %lu late max %.1f ms", t->steps,
-                          (double)t->late_max_us / US_PER_MS);
+        if (t->steps) {
+            /* floats through fbrl_num_fixed ("%.1f"): the firmware's printf has no %f */
+            char late[24];
+            fbrl_num_fixed(late, sizeof late, (double)t->late_max_us / US_PER_MS, 0, 1, 0, NULL);
+            n += snprintf(line + n, sizeof line - (size_t)n, " steps %lu late max %s ms", t->steps, late);
+        }
         if (s == TK_FAILED)
             n += snprintf(line + n, sizeof line - (size_t)n, " (%s)", t->msg);
         for (int k = 0; k < FBRL_CLAIMS_MAX; k++)
@@ -774,9 +778,13 @@ static fbrl_status w_lateness(fbrl_vm *vm, void *arg)
         const fbrl_task *t = &vm->tasks[i];
         if ((i && !t->word) || (!t->steps && !t->missed))
             continue;
-        snprintf(line, sizeof line, "%-16s %5lu  %11.1f  %12.1f  %6lu\n", task_name(vm, i), t->steps,
-                 (double)t->late_max_us / US_PER_MS,
-                 t->steps ? (double)t->late_sum_us / (double)t->steps / US_PER_MS : 0.0, t->missed);
+        char late_max[24], late_mean[24]; /* "%11.1f" "%12.1f": the firmware's printf has no %f */
+        fbrl_num_fixed(late_max, sizeof late_max, (double)t->late_max_us / US_PER_MS, 11, 1, 0, NULL);
+        fbrl_num_fixed(late_mean, sizeof late_mean,
+                       t->steps ? (double)t->late_sum_us / (double)t->steps / US_PER_MS : 0.0, 12, 1, 0,
+                       NULL);
+        snprintf(line, sizeof line, "%-16s %5lu  %s  %s  %6lu\n", task_name(vm, i), t->steps, late_max,
+                 late_mean, t->missed);
         say(vm, line);
     }
     return FBRL_OK;

@@ -79,11 +79,12 @@ static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
         return st;
     int metric = rb_metric(r);
     double k = metric ? FBRL_CM_PER_IN : 1.0;
-    char out[160];
-    snprintf(out, sizeof out,
-             "world: X %+.4f Y %+.4f Z %+.4f %s  yaw %+.3f (the arm's own)  pitch %+.3f  roll %+.3f deg\n",
-             p.world[0] * k, p.world[1] * k, p.world[2] * k, metric ? "cm" : "in", p.world[3], p.world[4],
-             p.world[5]);
+    char out[256], f[6][24]; /* "%+.4f" "%+.3f" through fbrl_num_fixed: the firmware's printf has no %f */
+    for (int i = 0; i < 6; i++)
+        fbrl_num_fixed(f[i], sizeof f[i], i < 3 ? p.world[i] * k : p.world[i], 0, i < 3 ? 4 : 3,
+                       FBRL_NUM_PLUS, NULL);
+    snprintf(out, sizeof out, "world: X %s Y %s Z %s %s  yaw %s (the arm's own)  pitch %s  roll %s deg\n",
+             f[0], f[1], f[2], metric ? "cm" : "in", f[3], f[4], f[5]);
     rb_puts(r, out);
     return FBRL_OK;
 }
