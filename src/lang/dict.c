@@ -428,7 +428,7 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     case K_CREATE:
         /* Without DOES> a created word is a literal. DOES> can only change the
          * latest word, and a word compiled into a definition is no longer latest. */
-        if (h->does)
+        if (H_DOES(h))
             return fbrl__emit(vm, xt);
         /* fall through */
     case K_VAR: return fbrl__compile_lit(vm, h->body);
@@ -634,7 +634,7 @@ int fbrl__semicolon(fbrl_vm *vm)
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
-    h->end = (fbrl_cell)vm->here;
+    H_END(h) = (fbrl_cell)vm->here;
     if (h->len)
         h->flags &= (uint8_t)~FH;
     vm->defining = 0;
@@ -704,8 +704,8 @@ fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void 
         return FBRL_ENAME;
     if (new_header(vm, name, n, K_CFUNC, 0, &h))
         return FBRL_ENOMEM;
-    h->fn = fn;
-    h->arg = arg;
+    H_FN(h) = fn;
+    H_ARG(h) = arg;
     h->body = (fbrl_cell)vm->here;
 #ifdef FBRL_NO_HELP
     (void)stack_effect, (void)help;
@@ -723,8 +723,8 @@ int fbrl__define_words(fbrl_vm *vm, const fbrl_cword *w, size_t n)
         fbrl_hdr *h;
         if (new_header(vm, w[k].name, strlen(w[k].name), K_CFUNC, w[k].flags, &h))
             return FBRL_THROW_DICT_OVERFLOW;
-        h->fn = w[k].fn;
-        h->arg = w[k].arg;
+        H_FN(h) = w[k].fn;
+        H_ARG(h) = w[k].arg;
         h->body = (fbrl_cell)vm->here;
 #ifndef FBRL_NO_HELP
         h->stack = w[k].stack;

@@ -102,8 +102,9 @@ enum {
 #define FH 4u /* hidden (being defined, or :NONAME) */
 #define FS 8u /* state-smart immediate word (POSTPONE runs it compiling) */
 
-/* FBRL_SMALL_HEADERS: a header 8 bytes shorter, as its chain link is 16 bits (at most
- * FBRL_WORDS_MAX words) and it keeps no hash (dict.c computes it from the name). */
+/* FBRL_SMALL_HEADERS: a header 16 bytes shorter, as its chain link is 16 bits (at most
+ * FBRL_WORDS_MAX words), it keeps no hash (dict.c computes it from the name) and a code
+ * word's fields overlay a C word's. */
 #ifdef FBRL_SMALL_HEADERS
 typedef uint16_t fbrl_hlink;
 #define FBRL_WORDS_MAX UINT16_MAX
@@ -125,12 +126,27 @@ typedef struct fbrl_hdr {
     uint16_t op;   /* K_PRIM: opcode */
     uint32_t hash; /* its name's hash (dict.c; compared before the name) */
 #endif
-    fbrl_cell body;  /* data field / colon body (a data-region address) */
+    fbrl_cell body; /* data field / colon body (a data-region address) */
+#ifdef FBRL_SMALL_HEADERS
+    /* a code word's fields and a C word's never meet in one word: they share the room
+     * (read through H_END ... H_XFN) */
+    union {
+        struct {
+            fbrl_cell end, does;
+        } code;
+        struct {
+            fbrl_vm_prim fn;
+            void *arg;
+            fbrl_vmx_fn xfn;
+        } c;
+    } u;
+#else
     fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn; /* K_CFUNC */
     void *arg;
     fbrl_vmx_fn xfn; /* K_CFUNC defined through vmx.h: called instead of fn */
+#endif
 #ifndef FBRL_SMALL_HEADERS
     uint32_t file, line; /* where it was defined: req_pool offset + 1 (0: not a file), line */
 #endif
@@ -139,6 +155,22 @@ typedef struct fbrl_hdr {
     const char *stack, *help; /* HELP text (NUL-terminated) */
 #endif
 } fbrl_hdr;
+
+/* The fields by kind: end (K_COLON, K_MARKER), does (K_CREATE, K_MARKER); fn, arg, xfn
+ * (K_CFUNC). FBRL_SMALL_HEADERS overlays the two groups. */
+#ifdef FBRL_SMALL_HEADERS
+#define H_END(h)  ((h)->u.code.end)
+#define H_DOES(h) ((h)->u.code.does)
+#define H_FN(h)   ((h)->u.c.fn)
+#define H_ARG(h)  ((h)->u.c.arg)
+#define H_XFN(h)  ((h)->u.c.xfn)
+#else
+#define H_END(h)  ((h)->end)
+#define H_DOES(h) ((h)->does)
+#define H_FN(h)   ((h)->fn)
+#define H_ARG(h)  ((h)->arg)
+#define H_XFN(h)  ((h)->xfn)
+#endif
 
 /* Where a word was defined; FBRL_SMALL_HEADERS keeps no place (the small targets read no
  * source files): file 0, line 0. */

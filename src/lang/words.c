@@ -304,8 +304,8 @@ int fbrl__w_define(fbrl_vm *vm, int op)
         if ((r = fbrl__create(vm, K_MARKER, "( -- )", "forget this marker and everything after it", &h)))
             return r;
         h->body = (fbrl_cell)here;
-        h->end = (fbrl_cell)n;
-        h->does = (fbrl_cell)vm->req_used;
+        H_END(h) = (fbrl_cell)n;
+        H_DOES(h) = (fbrl_cell)vm->req_used;
         return 0;
     }
     case OP_FVARIABLE:
@@ -537,7 +537,7 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 
 static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
 {
-    fbrl_cell pc = h->body, end = h->end;
+    fbrl_cell pc = h->body, end = H_END(h);
     fbrl__puts(vm, ": ");
     put_name(vm, h);
     while (pc < end && fbrl__addr_ok(vm, pc, CELL)) {
