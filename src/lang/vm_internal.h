@@ -57,9 +57,7 @@
 #ifndef FBRL_LOCALS_MAX
 #define FBRL_LOCALS_MAX  512  /* cells of the locals stack (locals.c) */
 #endif
-#ifndef FBRL_NLOCALS
-#define FBRL_NLOCALS     32   /* locals of one definition (Forth-2012 asks for 16) */
-#endif
+#define FBRL_NLOCALS     32   /* locals of one definition */
 #ifndef FBRL_FILES_MAX
 #define FBRL_FILES_MAX   16   /* files open at once through the standard FILE words */
 #endif
