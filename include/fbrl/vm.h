@@ -205,6 +205,13 @@ FBRL_API fbrl_status fbrl_vm_run_tasks(fbrl_vm *vm, uint64_t *wake_us, int *live
 
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */
+/* A word table's stack effect and description: both NULL under FBRL_NO_HELP (a small
+ * target's build option), so that the texts stay out of the image. */
+#ifdef FBRL_NO_HELP
+#define FBRL_DOC(stack_effect, help) NULL, NULL
+#else
+#define FBRL_DOC(stack_effect, help) stack_effect, help
+#endif
 FBRL_API fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,
                                     const char *stack_effect, const char *help);
 FBRL_API fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);

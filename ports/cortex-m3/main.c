@@ -40,10 +40,11 @@
 #define FW_CHAR_BS        0x08
 #define FW_CHAR_DEL       0x7F
 
-/* The VM's memory: its own structures, stacks and buffers, the built-in words' headers
- * and FW_DICT_BYTES for programs (checked at boot against fbrl_vm_size_for()). */
+/* The VM's memory: its own structures, stacks and buffers, ALLOCATE's heap, the headers
+ * of the C words (the primitives' are in flash: FBRL_ROM_PRIMS) and FW_DICT_BYTES for
+ * programs (checked at boot against fbrl_vm_size_for()). All the RAM the rest leaves. */
 #ifndef FW_VM_BYTES
-#define FW_VM_BYTES (42u * 1024u)
+#define FW_VM_BYTES (44u * 1024u + 768u)
 #endif
 
 static unsigned char vm_mem[FW_VM_BYTES] __attribute__((aligned(16)));

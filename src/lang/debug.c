@@ -72,7 +72,7 @@ static const fbrl_hdr *word_at(const fbrl_vm *vm, fbrl_cell addr)
 {
     for (uint32_t i = vm->nwords; i-- > 0;) {
         const fbrl_hdr *h = HDR(vm, i);
-        fbrl_cell end = h->end ? h->end : (fbrl_cell)vm->here; /* still being defined */
+        fbrl_cell end = H_END(h) ? H_END(h) : (fbrl_cell)vm->here; /* still being defined */
         if (h->kind == K_COLON && h->body <= addr && addr < end)
             return h;
     }

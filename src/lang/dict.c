@@ -7,6 +7,33 @@
 
 /* FBRL_NO_HELP (a build option for small targets): no HELP texts in the image or the
  * headers; HELP then has only the word's name to go by. */
+#ifdef FBRL_ROM_PRIMS
+/* The primitives' headers, in flash (vm_internal.h, HDR); they are also the table of op
+ * names. A nameless op's header is hidden.
+ * (the parameters are not named as the fields: a designator would be replaced) */
+const fbrl_hdr fbrl__rom_hdrs[OP__END] = {
+#ifdef FBRL_NO_HELP
+#define OP(id, nm, fl, st, hl)                       \
+    {.kind = K_PRIM,                                 \
+     .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), \
+     .len = (uint8_t)(sizeof(nm) - 1),               \
+     .name = nm,                                     \
+     .op = OP_##id},
+#else
+#define OP(id, nm, fl, st, hl)                       \
+    {.kind = K_PRIM,                                 \
+     .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), \
+     .len = (uint8_t)(sizeof(nm) - 1),               \
+     .name = nm,                                     \
+     .op = OP_##id,                                  \
+     .stack = st,                                    \
+     .help = hl},
+#endif
+#include "ops.def"
+#undef OP
+};
+#define ops fbrl__rom_hdrs
+#else
 typedef struct opinfo {
     const char *name;
     uint8_t flags;
@@ -23,6 +50,7 @@ static const opinfo ops[OP__END] = {
 #include "ops.def"
 #undef OP
 };
+#endif
 
 const char *fbrl__op_name(int op) { return (op >= 0 && op < OP__END) ? ops[op].name : ""; }
 
@@ -62,6 +90,15 @@ static uint32_t hash_name(const char *s, size_t n)
     return h ^ (h >> 15);
 }
 #define BUCKET(h) ((h) & (FBRL_HASH - 1))
+/* A header's hash, and whether it can be that of hash hn (FBRL_SMALL_HEADERS keeps none:
+ * the name comparison decides). */
+#ifdef FBRL_SMALL_HEADERS
+#define HASH_OF(h)      hash_name((h)->name, (h)->len)
+#define HASH_MAY(h, hn) ((void)(hn), 1)
+#else
+#define HASH_OF(h)      ((h)->hash)
+#define HASH_MAY(h, hn) ((h)->hash == (hn))
+#endif
 
 static int name_eq(const char *a, const char *b, size_t n)
 {
@@ -80,6 +117,19 @@ static int order_rank(const fbrl_vm *vm, unsigned wl)
     return k;
 }
 
+#ifdef FBRL_ROM_PRIMS
+/* The newest primitive of that name (all are in FORTH, word list 0), or -1. */
+static int rom_find(const char *name, size_t len)
+{
+    for (uint32_t k = HDR_ROM; k-- > 0;) {
+        const fbrl_hdr *h = &fbrl__rom_hdrs[k];
+        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+            return (int)k;
+    }
+    return -1;
+}
+#endif
+
 /* The newest word of that name in the earliest word list of the search order. The hash
  * chain runs newest first, so a match in the first word list (the usual FORTH) ends the
  * walk at once: one list is as fast as before word lists. */
@@ -91,7 +141,7 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
     uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
-        if (h->hash == hn && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
+        if (HASH_MAY(h, hn) && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
             int r = order_rank(vm, h->wl);
             if (r == 0)
                 return (int)(i - 1);
@@ -102,6 +152,13 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
         }
         i = h->next;
     }
+#ifdef FBRL_ROM_PRIMS
+    if (order_rank(vm, 0) < brank) { /* the primitives: older than any RAM word */
+        int k = rom_find(name, len);
+        if (k >= 0)
+            return k;
+    }
+#endif
     return best;
 }
 
@@ -113,10 +170,15 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
     uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
-        if (h->hash == hn && h->wl == wl && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+        if (HASH_MAY(h, hn) && h->wl == wl && h->len == len && !(h->flags & FH) &&
+            name_eq(h->name, name, len))
             return (int)(i - 1);
         i = h->next;
     }
+#ifdef FBRL_ROM_PRIMS
+    if (wl == 0)
+        return rom_find(name, len);
+#endif
     return -1;
 }
 
@@ -124,13 +186,13 @@ int fbrl__name_eq(const char *a, const char *b, size_t n) { return name_eq(a, b,
 
 static void rebuild_hash(fbrl_vm *vm)
 {
-    vm->data_hi = (unsigned char *)(vm->hdr_top - vm->nwords);
+    vm->data_hi = (unsigned char *)HDR_LOW(vm);
     memset(vm->hash, 0, sizeof vm->hash);
-    for (uint32_t i = 0; i < vm->nwords; i++) {
+    for (uint32_t i = HDR_ROM; i < vm->nwords; i++) {
         fbrl_hdr *h = HDR(vm, i);
-        unsigned b = BUCKET(h->hash);
+        unsigned b = BUCKET(HASH_OF(h));
         h->next = vm->hash[b];
-        vm->hash[b] = i + 1;
+        vm->hash[b] = (fbrl_hlink)(i + 1);
     }
 }
 
@@ -140,9 +202,19 @@ fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt)
     return i < vm->nwords ? HDR(vm, i) : NULL;
 }
 
+uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h)
+{
+#ifdef FBRL_ROM_PRIMS
+    uintptr_t p = (uintptr_t)h, rom = (uintptr_t)fbrl__rom_hdrs;
+    if (p >= rom && p < rom + sizeof fbrl__rom_hdrs)
+        return (uint32_t)((p - rom) / sizeof *h);
+#endif
+    return (uint32_t)(vm->hdr_top - 1 - h) + HDR_ROM;
+}
+
 static fbrl_cell hdr_xt(const fbrl_vm *vm, const fbrl_hdr *h)
 {
-    return (fbrl_cell)(FBRL_XT_BASE + (vm->hdr_top - 1 - h));
+    return (fbrl_cell)(FBRL_XT_BASE + fbrl__hdr_index(vm, h));
 }
 
 /* A new header; the name must be 1..31 characters (0 allowed only for :NONAME).
@@ -154,7 +226,9 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
 {
     if (len > FBRL_NAME_MAX)
         return FBRL_THROW_NAME_TOO_LONG;
-    unsigned char *newlo = (unsigned char *)(vm->hdr_top - vm->nwords - 1);
+    if (vm->nwords >= FBRL_WORDS_MAX) /* its index + 1 must fit a chain link */
+        return FBRL_THROW_DICT_OVERFLOW;
+    unsigned char *newlo = (unsigned char *)(HDR_LOW(vm) - 1);
 #ifdef FBRL_SMALL_HEADERS
     size_t copy = fixed || len == 0 ? 0 : len;
     if (vm->here > newlo || (size_t)(newlo - vm->here) < copy)
@@ -185,11 +259,14 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
     h->stack = "";
     h->help = "";
 #endif
-    h->hash = hash_name(name, len);
+    uint32_t hn = hash_name(name, len);
+#ifndef FBRL_SMALL_HEADERS
+    h->hash = hn;
+#endif
     fbrl__note_header(vm, h);
-    unsigned b = BUCKET(h->hash);
+    unsigned b = BUCKET(hn);
     h->next = vm->hash[b];
-    vm->hash[b] = vm->nwords + 1;
+    vm->hash[b] = (fbrl_hlink)(vm->nwords + 1);
     vm->nwords++;
     vm->data_hi = (unsigned char *)h;
     *out = h;
@@ -203,7 +280,7 @@ static int new_header(fbrl_vm *vm, const char *name, size_t len, int kind, unsig
 
 static fbrl_cell unused_bytes(const fbrl_vm *vm)
 {
-    return (fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here);
+    return (fbrl_cell)((unsigned char *)HDR_LOW(vm) - vm->here);
 }
 
 int fbrl__allot(fbrl_vm *vm, fbrl_cell n)
@@ -351,7 +428,7 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
     case K_CREATE:
         /* Without DOES> a created word is a literal. DOES> can only change the
          * latest word, and a word compiled into a definition is no longer latest. */
-        if (h->does)
+        if (H_DOES(h))
             return fbrl__emit(vm, xt);
         /* fall through */
     case K_VAR: return fbrl__compile_lit(vm, h->body);
@@ -557,7 +634,7 @@ int fbrl__semicolon(fbrl_vm *vm)
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
-    h->end = (fbrl_cell)vm->here;
+    H_END(h) = (fbrl_cell)vm->here;
     if (h->len)
         h->flags &= (uint8_t)~FH;
     vm->defining = 0;
@@ -627,8 +704,8 @@ fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void 
         return FBRL_ENAME;
     if (new_header(vm, name, n, K_CFUNC, 0, &h))
         return FBRL_ENOMEM;
-    h->fn = fn;
-    h->arg = arg;
+    H_FN(h) = fn;
+    H_ARG(h) = arg;
     h->body = (fbrl_cell)vm->here;
 #ifdef FBRL_NO_HELP
     (void)stack_effect, (void)help;
@@ -646,8 +723,8 @@ int fbrl__define_words(fbrl_vm *vm, const fbrl_cword *w, size_t n)
         fbrl_hdr *h;
         if (new_header(vm, w[k].name, strlen(w[k].name), K_CFUNC, w[k].flags, &h))
             return FBRL_THROW_DICT_OVERFLOW;
-        h->fn = w[k].fn;
-        h->arg = w[k].arg;
+        H_FN(h) = w[k].fn;
+        H_ARG(h) = w[k].arg;
         h->body = (fbrl_cell)vm->here;
 #ifndef FBRL_NO_HELP
         h->stack = w[k].stack;
@@ -664,18 +741,19 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
     int r = new_header(vm, name, len, old->kind, old->flags & (FI | FC | FS), &h);
     if (r)
         return r;
-    uint32_t next = h->next, hash = h->hash;
+    fbrl_hlink next = h->next;
     uint8_t wl = h->wl;
 #ifdef FBRL_SMALL_HEADERS
     const char *own = h->name; /* new_header copied the name to HERE */
     *h = copy;
     h->name = own;
 #else
+    uint32_t hash = h->hash;
     *h = copy;
     memset(h->name, 0, sizeof h->name);
     memcpy(h->name, name, len);
-#endif
     h->hash = hash;
+#endif
     h->len = (uint8_t)len;
     h->next = next;
     h->wl = wl;
@@ -712,9 +790,15 @@ static int found_as_itself(const fbrl_vm *vm, uint32_t i)
     int rw = order_rank(vm, w->wl);
     if (rw >= vm->norder)
         return 0;
-    for (uint32_t j = vm->hash[BUCKET(w->hash)]; j; j = HDR(vm, j - 1)->next) {
+    uint32_t wh = HASH_OF(w);
+#ifdef FBRL_ROM_PRIMS
+    int k = rom_find(w->name, w->len); /* a primitive of that name: older than any RAM word */
+    if (k >= 0 && (i < HDR_ROM ? (uint32_t)k != i : order_rank(vm, 0) < rw))
+        return 0;
+#endif
+    for (uint32_t j = vm->hash[BUCKET(wh)]; j; j = HDR(vm, j - 1)->next) {
         const fbrl_hdr *h = HDR(vm, j - 1);
-        if (j - 1 == i || h->hash != w->hash || h->len != w->len || (h->flags & FH) ||
+        if (j - 1 == i || !HASH_MAY(h, wh) || h->len != w->len || (h->flags & FH) ||
             !name_eq(h->name, w->name, w->len))
             continue;
         int r = order_rank(vm, h->wl);
@@ -743,6 +827,9 @@ void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, siz
 /* One header per named primitive, in ops.def order (fbrl_vm_create calls this first). */
 int fbrl__install_prims(fbrl_vm *vm)
 {
+#ifdef FBRL_ROM_PRIMS
+    (void)vm; /* their headers are fbrl__rom_hdrs */
+#else
     for (int op = 0; op < OP__END; op++) {
         fbrl_hdr *h;
         if (!ops[op].name[0])
@@ -755,6 +842,7 @@ int fbrl__install_prims(fbrl_vm *vm)
         h->help = ops[op].help;
 #endif
     }
+#endif
     return 0;
 }
 

@@ -199,12 +199,13 @@ static fbrl_status w_unused_heap(fbrl_vm *vm, void *arg)
 }
 
 static const fbrl_cword words[] = {
-    {"ALLOCATE", w_allocate, NULL, 0, "( u -- a-addr ior )",
-     "take u bytes from the heap (ior 0: done; -8: no room)"},
-    {"FREE", w_free, NULL, 0, "( a-addr -- ior )", "give back a block ALLOCATE gave (ior -9: not one)"},
-    {"RESIZE", w_resize, NULL, 0, "( a-addr1 u -- a-addr2 ior )",
-     "change a block's size, keeping its contents (it may move)"},
-    {"UNUSED-HEAP", w_unused_heap, NULL, 0, "( -- u )", "free bytes in the heap (in pieces)"},
+    {"ALLOCATE", w_allocate, NULL, 0,
+     FBRL_DOC("( u -- a-addr ior )", "take u bytes from the heap (ior 0: done; -8: no room)")},
+    {"FREE", w_free, NULL, 0,
+     FBRL_DOC("( a-addr -- ior )", "give back a block ALLOCATE gave (ior -9: not one)")},
+    {"RESIZE", w_resize, NULL, 0,
+     FBRL_DOC("( a-addr1 u -- a-addr2 ior )", "change a block's size, keeping its contents (it may move)")},
+    {"UNUSED-HEAP", w_unused_heap, NULL, 0, FBRL_DOC("( -- u )", "free bytes in the heap (in pieces)")},
 };
 
 int fbrl__heap_words(fbrl_vm *vm) { return fbrl__define_words(vm, words, sizeof words / sizeof words[0]); }

@@ -234,16 +234,19 @@ static fbrl_status w_locals_bar(fbrl_vm *vm, void *arg)
 }
 
 static const fbrl_cword words[] = {
-    {"(LOCAL)", w_paren_local, NULL, FC, "( c-addr u -- )",
-     "declare a local (u = 0 ends); the first declared takes the top of the stack"},
-    {"LOCALS|", w_locals_bar, NULL, FI | FC, "( \"name ... |\" -- )",
-     "declare locals; the first name takes the top of the stack"},
-    {"{:", w_brace_colon, NULL, FI | FC, "( \"args | vals -- outs :}\" -- )",
-     "declare locals: args taken from the stack, vals set to 0; TO name sets one"},
-    {"(LOCALS)", w_locals, NULL, 0, "( x1 .. xn n m -- )", "make a locals frame (compiled by {:)"},
-    {"(LOCAL@)", w_local_fetch, NULL, 0, "( k -- x )", "the k-th local (compiled)"},
-    {"(LOCAL!)", w_local_store, NULL, 0, "( x k -- )", "set the k-th local (compiled by TO)"},
-    {"(LOCALS-EXIT)", w_locals_exit, NULL, 0, "( -- )", "drop the locals frame (compiled before EXIT)"},
+    {"(LOCAL)", w_paren_local, NULL, FC,
+     FBRL_DOC("( c-addr u -- )",
+              "declare a local (u = 0 ends); the first declared takes the top of the stack")},
+    {"LOCALS|", w_locals_bar, NULL, FI | FC,
+     FBRL_DOC("( \"name ... |\" -- )", "declare locals; the first name takes the top of the stack")},
+    {"{:", w_brace_colon, NULL, FI | FC,
+     FBRL_DOC("( \"args | vals -- outs :}\" -- )",
+              "declare locals: args taken from the stack, vals set to 0; TO name sets one")},
+    {"(LOCALS)", w_locals, NULL, 0, FBRL_DOC("( x1 .. xn n m -- )", "make a locals frame (compiled by {:)")},
+    {"(LOCAL@)", w_local_fetch, NULL, 0, FBRL_DOC("( k -- x )", "the k-th local (compiled)")},
+    {"(LOCAL!)", w_local_store, NULL, 0, FBRL_DOC("( x k -- )", "set the k-th local (compiled by TO)")},
+    {"(LOCALS-EXIT)", w_locals_exit, NULL, 0,
+     FBRL_DOC("( -- )", "drop the locals frame (compiled before EXIT)")},
 };
 
 int fbrl__locals_init(fbrl_vm *vm)

@@ -391,7 +391,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 fbrl_hdr *h = vm->nwords ? HDR(vm, vm->nwords - 1) : NULL;
                 if (!h || h->kind != K_CREATE)
                     THROW(fbrl__throw_msg(vm, FBRL_THROW_TO_BODY, "DOES> needs a CREATEd word"));
-                h->does = (fbrl_cell)ip;
+                H_DOES(h) = (fbrl_cell)ip;
                 RNEED(1);
                 JUMP(*--rp);
                 NEXT;
@@ -1058,7 +1058,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
             CASE(UNUSED)
             ROOM(1);
-            PUSH((fbrl_cell)((unsigned char *)(vm->hdr_top - vm->nwords) - vm->here));
+            PUSH((fbrl_cell)((unsigned char *)HDR_LOW(vm) - vm->here));
             NEXT;
             CASE(PAD) ROOM(1);
             PUSH((fbrl_cell)vm->pad);
@@ -1314,18 +1314,22 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FCOS) FNEED(1);
             FRES(cos(ftos), 46);
             NEXT;
+#ifndef FBRL_NO_FTRANS
             CASE(FTAN) FNEED(1);
             FRES(tan(ftos), 46);
             NEXT;
+#endif
             CASE(FSINCOS) FNEED(1);
             FROOM(1);
             fa = ftos;
             *fp++ = sin(fa);
             ftos = cos(fa);
             NEXT;
+#ifndef FBRL_NO_FTRANS
             CASE(FASIN) FNEED(1);
             FRES(asin(ftos), 46);
             NEXT;
+#endif
             CASE(FACOS) FNEED(1);
             FRES(acos(ftos), 46);
             NEXT;
@@ -1335,6 +1339,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FATAN2) FNEED(2);
             FBIN(atan2(r1, r2), 46);
             NEXT;
+#ifndef FBRL_NO_FTRANS
             CASE(FSINH) FNEED(1);
             FRES(sinh(ftos), 43);
             NEXT;
@@ -1374,6 +1379,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FPOW) FNEED(2);
             FBIN(pow(r1, r2), 46);
             NEXT;
+#endif
             CASE(FLOOR) FNEED(1);
             ftos = floor(ftos);
             NEXT;
@@ -1601,10 +1607,10 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             case K_CREATE:
                 ROOM(1);
                 PUSH(h->body);
-                if (h->does) {
+                if (H_DOES(h)) {
                     RROOM(1);
                     *rp++ = (fbrl_cell)ip;
-                    JUMP(h->does);
+                    JUMP(H_DOES(h));
                 }
                 NEXT;
             case K_CONST:
@@ -1643,13 +1649,13 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             }
             case K_CFUNC: {
                 fbrl_status st;
-                if (!h->fn && !h->xfn)
+                if (!H_FN(h) && !H_XFN(h))
                     THROW(FBRL_THROW_UNSUPPORTED);
                 SAVE();
                 vm->ip = ip;
                 vm->pending_throw = 0;
                 vm->cword = h;
-                st = h->xfn ? h->xfn(vm, h->arg, h->word) : h->fn(vm, h->arg);
+                st = H_XFN(h) ? H_XFN(h)(vm, H_ARG(h), h->word) : H_FN(h)(vm, H_ARG(h));
                 vm->resuming = 0; /* task.c: only the first C word after a resume runs again */
                 if (st == FBRL_ETHROW && vm->pending_throw == THROW_YIELD) {
                     vm->sp = sp + 1; /* it runs again on resuming: its arguments back */
@@ -1672,7 +1678,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 if (vm->defining)
                     THROW(fbrl__throw_msg(vm, FBRL_THROW_COMPILER_NESTING,
                                           "a MARKER cannot run inside a definition"));
-                fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)h->end, (size_t)h->does);
+                fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)H_END(h), (size_t)H_DOES(h));
                 data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo);
                 NEXT;
             default: THROW(FBRL_THROW_UNSUPPORTED);

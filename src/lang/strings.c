@@ -174,12 +174,15 @@ static fbrl_status w_unescape(fbrl_vm *vm, void *arg)
 }
 
 static const fbrl_cword words[] = {
-    {"REPLACES", w_replaces, NULL, 0, "( c-addr1 u1 c-addr2 u2 -- )",
-     "make %name% (c-addr2 u2) stand for the text c-addr1 u1 in SUBSTITUTE"},
-    {"SUBSTITUTE", w_substitute, NULL, 0, "( c-addr1 u1 c-addr2 u2 -- c-addr2 u3 n )",
-     "copy the text into the buffer replacing %name% and %% (n < 0: too long)"},
-    {"UNESCAPE", w_unescape, NULL, 0, "( c-addr1 u1 c-addr2 -- c-addr2 u2 )",
-     "copy the text doubling each %, so SUBSTITUTE gives it back"},
+    {"REPLACES", w_replaces, NULL, 0,
+     FBRL_DOC("( c-addr1 u1 c-addr2 u2 -- )",
+              "make %name% (c-addr2 u2) stand for the text c-addr1 u1 in SUBSTITUTE")},
+    {"SUBSTITUTE", w_substitute, NULL, 0,
+     FBRL_DOC("( c-addr1 u1 c-addr2 u2 -- c-addr2 u3 n )",
+              "copy the text into the buffer replacing %name% and %% (n < 0: too long)")},
+    {"UNESCAPE", w_unescape, NULL, 0,
+     FBRL_DOC("( c-addr1 u1 c-addr2 -- c-addr2 u2 )",
+              "copy the text doubling each %, so SUBSTITUTE gives it back")},
 };
 
 int fbrl__strings_init(fbrl_vm *vm) { return fbrl__define_words(vm, words, sizeof words / sizeof words[0]); }

@@ -14,6 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "atomic.h"
+#include "fbrl/num.h"
 #include "words.h"
 
 #define TASK_DS           64 /* cells of each task's stacks */
@@ -530,9 +531,12 @@ static fbrl_status w_tasks(fbrl_vm *vm, void *arg)
         if (s == TK_WAIT && t->wake_us > now)
             n += snprintf(line + n, sizeof line - (size_t)n, " due in %lu ms",
                           (unsigned long)((t->wake_us - now) / US_PER_MS));
-        if (t->steps)
-            n += snprintf(line + n, sizeof line - (size_t)n, " steps %lu late max %.1f ms", t->steps,
-                          (double)t->late_max_us / US_PER_MS);
+        if (t->steps) {
+            /* floats through fbrl_num_fixed ("%.1f"): the firmware's printf has no %f */
+            char late[24];
+            fbrl_num_fixed(late, sizeof late, (double)t->late_max_us / US_PER_MS, 0, 1, 0, NULL);
+            n += snprintf(line + n, sizeof line - (size_t)n, " steps %lu late max %s ms", t->steps, late);
+        }
         if (s == TK_FAILED)
             n += snprintf(line + n, sizeof line - (size_t)n, " (%s)", t->msg);
         for (int k = 0; k < FBRL_CLAIMS_MAX; k++)
@@ -774,9 +778,13 @@ static fbrl_status w_lateness(fbrl_vm *vm, void *arg)
         const fbrl_task *t = &vm->tasks[i];
         if ((i && !t->word) || (!t->steps && !t->missed))
             continue;
-        snprintf(line, sizeof line, "%-16s %5lu  %11.1f  %12.1f  %6lu\n", task_name(vm, i), t->steps,
-                 (double)t->late_max_us / US_PER_MS,
-                 t->steps ? (double)t->late_sum_us / (double)t->steps / US_PER_MS : 0.0, t->missed);
+        char late_max[24], late_mean[24]; /* "%11.1f" "%12.1f": the firmware's printf has no %f */
+        fbrl_num_fixed(late_max, sizeof late_max, (double)t->late_max_us / US_PER_MS, 11, 1, 0, NULL);
+        fbrl_num_fixed(late_mean, sizeof late_mean,
+                       t->steps ? (double)t->late_sum_us / (double)t->steps / US_PER_MS : 0.0, 12, 1, 0,
+                       NULL);
+        snprintf(line, sizeof line, "%-16s %5lu  %s  %s  %6lu\n", task_name(vm, i), t->steps, late_max,
+                 late_mean, t->missed);
         say(vm, line);
     }
     return FBRL_OK;
@@ -788,29 +796,31 @@ static const struct {
     int arg;
     const char *stack, *help;
 } task_words[] = {
-    {"TASK", w_task, 0, "( \"name\" -- )", "make a task with its own stacks; name pushes it"},
-    {"START", w_start, 0, "( xt task -- )", "run xt as the task, beside the others"},
-    {"START-WITH", w_start, 1, "( x1..xn n xt task -- )", "START, with n cells on the task's stack"},
-    {"STOP", w_stop, 0, "( task -- )", "end a task (what it claimed is released)"},
-    {"STOP-TASKS", w_stop_tasks, 0, "( -- )", "end every task but the main one"},
-    {"PAUSE", w_pause, 0, "( -- )", "let the other tasks run"},
-    {"ME", w_me, 0, "( -- task )", "the running task (0: the main one)"},
-    {"AWAIT", w_await, 0, "( task -- )", "wait until the task has ended"},
-    {"TASKS", w_tasks, 0, "( -- )", "list the tasks: state, timed steps, what they hold"},
-    {"TASK-STATE", w_task_state, 0, "( task -- n )",
-     "1 made 2 ready 3 waiting 4 running 5 done 6 failed 7 stopped"},
-    {"CLAIM", w_claim, 0, "( key -- )", "take a device (or THE-ARM) for this task; claims wait in turn"},
-    {"RELEASE", w_release, 0, "( key -- )", "give back what CLAIM took"},
-    {"CLAIM-ARM", w_claim, 1, "( -- )", "take the arm for a manoeuvre; other tasks' moves wait"},
-    {"RELEASE-ARM", w_release, 1, "( -- )", "give the arm back to the other tasks"},
-    {"THE-ARM", w_arm, 0, "( -- key )", "the arm, for CLAIM and RELEASE"},
-    {"ZERO-CLOCK", w_zero_clock, 0, "( -- )", "the task's clock starts now (START starts it too)"},
-    {"CLOCK", w_clock, 0, "( -- ms )", "milliseconds on the task's clock"},
-    {"AT", w_at, 0, "( ms -- )", "wait until ms on the task's clock (a timed step)"},
-    {"EVERY", w_every, 0, "( ms -- )", "wait for the task's next period of ms"},
-    {"DEADLINE", w_deadline, 0, "( ms -- )", "throw if the task's clock is past ms"},
-    {"LATE-MAX", w_late_max, 0, "( task -- us )", "how late the task's latest-run timed step was"},
-    {"LATENESS", w_lateness, 0, "( -- )", "how late each task's timed steps ran"},
+    {"TASK", w_task, 0, FBRL_DOC("( \"name\" -- )", "make a task with its own stacks; name pushes it")},
+    {"START", w_start, 0, FBRL_DOC("( xt task -- )", "run xt as the task, beside the others")},
+    {"START-WITH", w_start, 1,
+     FBRL_DOC("( x1..xn n xt task -- )", "START, with n cells on the task's stack")},
+    {"STOP", w_stop, 0, FBRL_DOC("( task -- )", "end a task (what it claimed is released)")},
+    {"STOP-TASKS", w_stop_tasks, 0, FBRL_DOC("( -- )", "end every task but the main one")},
+    {"PAUSE", w_pause, 0, FBRL_DOC("( -- )", "let the other tasks run")},
+    {"ME", w_me, 0, FBRL_DOC("( -- task )", "the running task (0: the main one)")},
+    {"AWAIT", w_await, 0, FBRL_DOC("( task -- )", "wait until the task has ended")},
+    {"TASKS", w_tasks, 0, FBRL_DOC("( -- )", "list the tasks: state, timed steps, what they hold")},
+    {"TASK-STATE", w_task_state, 0,
+     FBRL_DOC("( task -- n )", "1 made 2 ready 3 waiting 4 running 5 done 6 failed 7 stopped")},
+    {"CLAIM", w_claim, 0,
+     FBRL_DOC("( key -- )", "take a device (or THE-ARM) for this task; claims wait in turn")},
+    {"RELEASE", w_release, 0, FBRL_DOC("( key -- )", "give back what CLAIM took")},
+    {"CLAIM-ARM", w_claim, 1, FBRL_DOC("( -- )", "take the arm for a manoeuvre; other tasks' moves wait")},
+    {"RELEASE-ARM", w_release, 1, FBRL_DOC("( -- )", "give the arm back to the other tasks")},
+    {"THE-ARM", w_arm, 0, FBRL_DOC("( -- key )", "the arm, for CLAIM and RELEASE")},
+    {"ZERO-CLOCK", w_zero_clock, 0, FBRL_DOC("( -- )", "the task's clock starts now (START starts it too)")},
+    {"CLOCK", w_clock, 0, FBRL_DOC("( -- ms )", "milliseconds on the task's clock")},
+    {"AT", w_at, 0, FBRL_DOC("( ms -- )", "wait until ms on the task's clock (a timed step)")},
+    {"EVERY", w_every, 0, FBRL_DOC("( ms -- )", "wait for the task's next period of ms")},
+    {"DEADLINE", w_deadline, 0, FBRL_DOC("( ms -- )", "throw if the task's clock is past ms")},
+    {"LATE-MAX", w_late_max, 0, FBRL_DOC("( task -- us )", "how late the task's latest-run timed step was")},
+    {"LATENESS", w_lateness, 0, FBRL_DOC("( -- )", "how late each task's timed steps ran")},
 };
 
 int fbrl__task_words(fbrl_vm *vm)

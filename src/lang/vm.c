@@ -35,6 +35,16 @@ static size_t heap_for(size_t free_bytes)
     return (h < FBRL_HEAP_MAX ? h : FBRL_HEAP_MAX) & ~(size_t)15;
 }
 
+/* Primitives whose headers take RAM (none with FBRL_ROM_PRIMS: theirs are in flash). */
+static size_t ram_prims(void)
+{
+#ifdef FBRL_ROM_PRIMS
+    return 0;
+#else
+    return fbrl__named_ops();
+#endif
+}
+
 static void make_layout(const fbrl_vm_config *cfg, layout *l)
 {
     l->ds = cfg->data_stack_cells ? cfg->data_stack_cells : 256;
@@ -51,7 +61,7 @@ static void make_layout(const fbrl_vm_config *cfg, layout *l)
     l->o_fs = l->o_rs + align16(l->rs * sizeof(fbrl_cell)) + 16;
     l->o_data = l->o_fs + align16(l->fs * sizeof(double));
     l->fixed = l->o_data + align16(FBRL_BUFS) + FBRL_GUARD_CELLS * sizeof(fbrl_cell) + 16 +
-               (fbrl__named_ops() + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
+               (ram_prims() + FBRL_EXTRA_WORDS) * sizeof(fbrl_hdr) + 2048;
 }
 
 size_t fbrl_vm_size_for(const fbrl_vm_config *cfg, size_t dict_bytes)
@@ -135,6 +145,7 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     guard[1] = OP_CATCHEND;
     vm->guard_addr = (fbrl_cell)guard;
     vm->hdr_top = (fbrl_hdr *)(void *)guard;
+    vm->nwords = HDR_ROM; /* FBRL_ROM_PRIMS: the primitives' headers come first, in flash */
     vm->data_hi = (unsigned char *)guard;
     *vm->base = 10;
     vm->precision = 6;
@@ -147,8 +158,10 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
     if (fbrl__task_words(vm))
         return FBRL_ENOSPC;
     fbrl_status st = fbrl__fbrl_words(vm);
+#ifndef FBRL_NO_FILE_WORDS /* a port without a file system (the firmware) leaves them out */
     if (st == FBRL_OK && vm->host.files)
         st = fbrl__file_words(vm) ? FBRL_ENOSPC : FBRL_OK;
+#endif
     if (st != FBRL_OK)
         return st == FBRL_ENOMEM ? FBRL_ENOSPC : st;
     st = fbrl_vm_eval(vm, fbrl__prelude, strlen(fbrl__prelude));

@@ -100,23 +100,51 @@ enum {
 #define FH 4u /* hidden (being defined, or :NONAME) */
 #define FS 8u /* state-smart immediate word (POSTPONE runs it compiling) */
 
+/* FBRL_SMALL_HEADERS: a header 16 bytes shorter, as its chain link is 16 bits (at most
+ * FBRL_WORDS_MAX words), it keeps no hash (dict.c computes it from the name) and a code
+ * word's fields overlay a C word's. */
+#ifdef FBRL_SMALL_HEADERS
+typedef uint16_t fbrl_hlink;
+#define FBRL_WORDS_MAX UINT16_MAX
+#else
+typedef uint32_t fbrl_hlink;
+#define FBRL_WORDS_MAX UINT32_MAX
+#endif
 typedef struct fbrl_hdr {
-    uint32_t next; /* next header in the hash chain, as index+1 (0 = end) */
+    fbrl_hlink next; /* next header in the hash chain, as index+1 (0 = end) */
+#ifdef FBRL_SMALL_HEADERS
+    uint16_t op; /* K_PRIM: opcode */
+#endif
     uint8_t kind, flags, len;
     uint8_t wl; /* its word list (wordlist.c): 0 = FORTH-WORDLIST */
 #ifdef FBRL_SMALL_HEADERS
     const char *name; /* len bytes, not NUL-terminated (dict.c new_header_at) */
 #else
     char name[FBRL_NAME_MAX + 1];
+    uint16_t op;   /* K_PRIM: opcode */
+    uint32_t hash; /* its name's hash (dict.c; compared before the name) */
 #endif
-    uint16_t op;     /* K_PRIM: opcode */
-    uint32_t hash;   /* its name's hash (dict.c; compared before the name) */
-    fbrl_cell body;  /* data field / colon body (a data-region address) */
+    fbrl_cell body; /* data field / colon body (a data-region address) */
+#ifdef FBRL_SMALL_HEADERS
+    /* a code word's fields and a C word's never meet in one word: they share the room
+     * (read through H_END ... H_XFN) */
+    union {
+        struct {
+            fbrl_cell end, does;
+        } code;
+        struct {
+            fbrl_vm_prim fn;
+            void *arg;
+            fbrl_vmx_fn xfn;
+        } c;
+    } u;
+#else
     fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
     fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
     fbrl_vm_prim fn; /* K_CFUNC */
     void *arg;
     fbrl_vmx_fn xfn; /* K_CFUNC defined through vmx.h: called instead of fn */
+#endif
 #ifndef FBRL_SMALL_HEADERS
     uint32_t file, line; /* where it was defined: req_pool offset + 1 (0: not a file), line */
 #endif
@@ -125,6 +153,22 @@ typedef struct fbrl_hdr {
     const char *stack, *help; /* HELP text (NUL-terminated) */
 #endif
 } fbrl_hdr;
+
+/* The fields by kind: end (K_COLON, K_MARKER), does (K_CREATE, K_MARKER); fn, arg, xfn
+ * (K_CFUNC). FBRL_SMALL_HEADERS overlays the two groups. */
+#ifdef FBRL_SMALL_HEADERS
+#define H_END(h)  ((h)->u.code.end)
+#define H_DOES(h) ((h)->u.code.does)
+#define H_FN(h)   ((h)->u.c.fn)
+#define H_ARG(h)  ((h)->u.c.arg)
+#define H_XFN(h)  ((h)->u.c.xfn)
+#else
+#define H_END(h)  ((h)->end)
+#define H_DOES(h) ((h)->does)
+#define H_FN(h)   ((h)->fn)
+#define H_ARG(h)  ((h)->arg)
+#define H_XFN(h)  ((h)->xfn)
+#endif
 
 /* Where a word was defined; FBRL_SMALL_HEADERS keeps no place (the small targets read no
  * source files): file 0, line 0. */
@@ -242,7 +286,7 @@ struct fbrl_vm {
     fbrl_hdr *hdr_top;      /* header i is hdr_top[-1 - i] */
     unsigned char *data_hi; /* end of the addressable region = lowest header */
     uint32_t nwords;
-    uint32_t hash[FBRL_HASH];
+    fbrl_hlink hash[FBRL_HASH];
     fbrl_cell *base, *state, *toin; /* system variables in the data region */
     char *wordbuf, *pad, *hold, *sbuf;
     char *hld; /* pictured output: next free position (moves down) */
@@ -332,7 +376,29 @@ struct fbrl_vm {
     int (*task_pause)(fbrl_vm *vm, uint64_t wake_us);
 };
 
+/* Header i. FBRL_ROM_PRIMS (a small target short of RAM: the Cortex-M3 firmware): the
+ * primitives' headers are a const table, one per op (indices 0 .. OP__END-1; an internal
+ * op's is nameless and hidden), so they stay in flash; RAM holds only the other words'
+ * headers, which follow them. The primitives are in no hash chain: fbrl__find looks them
+ * up by name after the RAM words, which are all newer. */
+#ifdef FBRL_ROM_PRIMS
+#ifndef FBRL_SMALL_HEADERS
+#error "FBRL_ROM_PRIMS needs FBRL_SMALL_HEADERS (a const header points at its name)"
+#endif
+extern const fbrl_hdr fbrl__rom_hdrs[];
+#define HDR_ROM ((uint32_t)OP__END)
+/* The const is cast away for the one pointer type; nothing writes a primitive's header. */
+#define HDR(vm, i)                                                              \
+    ((uint32_t)(i) < HDR_ROM ? (fbrl_hdr *)(uintptr_t)&fbrl__rom_hdrs[(i)]    \
+                             : (vm)->hdr_top - 1 - ((ptrdiff_t)(i) - (ptrdiff_t)HDR_ROM))
+#else
+#define HDR_ROM 0u
 #define HDR(vm, i) ((vm)->hdr_top - 1 - (ptrdiff_t)(i))
+#endif
+/* The lowest header in RAM (the end of the addressable data region). */
+#define HDR_LOW(vm) ((vm)->hdr_top - ((vm)->nwords - HDR_ROM))
+/* The index of header h (its xt is FBRL_XT_BASE + the index). */
+uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h);
 
 /* True if [a, a+n) lies inside the VM's addressable data region. */
 static inline int fbrl__addr_ok(const fbrl_vm *vm, fbrl_cell a, fbrl_cell n)

@@ -26,7 +26,7 @@ fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn fn, void 
     if (st != FBRL_OK)
         return st;
     fbrl_hdr *h = latest(vm);
-    h->xfn = fn;
+    H_XFN(h) = fn;
     h->word = word;
     h->flags =
         (uint8_t)(((flags & FBRL_VMX_IMMEDIATE) ? FI : 0u) | ((flags & FBRL_VMX_COMPILE_ONLY) ? FC : 0u) |
@@ -96,9 +96,9 @@ fbrl_status fbrl_vmx_create(fbrl_vm *vm, const char *name, size_t len, const fbr
     if (!run) {
         h->word = ctx; /* the word set's tag (fbrl_vmx_tag) */
     } else {
-        h->fn = never_called;
-        h->xfn = run;
-        h->arg = ctx;
+        H_FN(h) = never_called;
+        H_XFN(h) = run;
+        H_ARG(h) = ctx;
         h->word = (const void *)h->body;
     }
     if (addr)
@@ -123,7 +123,7 @@ fbrl_status fbrl_vmx_created(const fbrl_vm *vm, fbrl_cell xt, fbrl_vmx_fn run, f
     if (!vm || !addr)
         return FBRL_EINVAL;
     const fbrl_hdr *h = fbrl__xt_hdr(vm, xt);
-    if (!h || (run ? (h->kind != K_CFUNC || h->xfn != run) : h->kind != K_VAR))
+    if (!h || (run ? (h->kind != K_CFUNC || H_XFN(h) != run) : h->kind != K_VAR))
         return FBRL_ETYPE;
     *addr = h->body;
     return FBRL_OK;
@@ -183,7 +183,7 @@ static const fbrl_hdr *data_word(fbrl_vm *vm, const char *s, size_t n)
         return NULL;
     const fbrl_hdr *h = HDR(vm, i);
     switch (h->kind) {
-    case K_CREATE: return h->does ? NULL : h; /* a DOES> part is code: never run for a parameter */
+    case K_CREATE: return H_DOES(h) ? NULL : h; /* a DOES> part is code: never run for a parameter */
     case K_VAR:
     case K_CONST:
     case K_VALUE:
@@ -197,7 +197,7 @@ static const fbrl_hdr *data_word(fbrl_vm *vm, const char *s, size_t n)
 static int data_value(fbrl_vm *vm, const fbrl_hdr *h, int want_float, fbrl_cell *c, double *f)
 {
     size_t d0 = fbrl_vm_depth(vm), f0 = fbrl_vm_fdepth(vm);
-    if (fbrl__run(vm, (fbrl_cell)(FBRL_XT_BASE + (vm->hdr_top - 1 - h))) != 0)
+    if (fbrl__run(vm, (fbrl_cell)(FBRL_XT_BASE + fbrl__hdr_index(vm, h))) != 0)
         return 0;
     size_t d1 = fbrl_vm_depth(vm), f1 = fbrl_vm_fdepth(vm);
     if (d1 == d0 + 1 && f1 == f0) {

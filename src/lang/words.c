@@ -304,8 +304,8 @@ int fbrl__w_define(fbrl_vm *vm, int op)
         if ((r = fbrl__create(vm, K_MARKER, "( -- )", "forget this marker and everything after it", &h)))
             return r;
         h->body = (fbrl_cell)here;
-        h->end = (fbrl_cell)n;
-        h->does = (fbrl_cell)vm->req_used;
+        H_END(h) = (fbrl_cell)n;
+        H_DOES(h) = (fbrl_cell)vm->req_used;
         return 0;
     }
     case OP_FVARIABLE:
@@ -537,7 +537,7 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 
 static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
 {
-    fbrl_cell pc = h->body, end = h->end;
+    fbrl_cell pc = h->body, end = H_END(h);
     fbrl__puts(vm, ": ");
     put_name(vm, h);
     while (pc < end && fbrl__addr_ok(vm, pc, CELL)) {
@@ -1020,7 +1020,7 @@ int fbrl__w_parse(fbrl_vm *vm, int op)
             return r;
         return fbrl__compile_xt(vm, xt);
     case OP_IMMEDIATE:
-        if (vm->nwords == 0)
+        if (vm->nwords == HDR_ROM) /* no word in RAM (a primitive's header is in flash) */
             return FBRL_THROW_UNSUPPORTED;
         HDR(vm, vm->nwords - 1)->flags |= FI;
         return 0;

@@ -282,21 +282,27 @@ static fbrl_status w_save_cal(fbrl_vm *vm, void *g) { return cal_record(vm, g, 1
 static fbrl_status w_load_cal(fbrl_vm *vm, void *g) { return cal_record(vm, g, 0); }
 
 static const gl_word file_words[] = {
-    {"CREATE-FILE", w_create_file, "( \"filename\" -- )",
-     "make filename an empty data file (an existing file of that name is replaced)"},
-    {"OPEN-FILE", w_open_file, "( \"hndl filename\" -- )",
-     "open a data file under handle hndl (made if not defined); reads and verifies it whole"},
-    {"RESET-FILE", w_reset_file, "( hndl -- )", "position at the first record"},
-    {"APPEND-FILE", w_append_file, "( hndl -- )", "position after the last record"},
-    {"CLOSE-FILE", w_close_file, "( hndl -- code )",
-     "save the file atomically and close it; code 0, or the error (file then stays open)"},
-    {"WRITE-FILE", w_write_file, "( addr type hndl -- )",
-     "write the variable at addr as one record of type (CHR INTEGER LONG-INTEGER REAL LOCATION or a size)"},
-    {"READ-FILE", w_read_file, "( addr type hndl -- )",
-     "read the next record into addr; a record of another type is refused and stays unread"},
-    {"SAVE-CAL", w_save_cal, "( cal-stru hndl -- )", "write the calibration structure as one record"},
-    {"LOAD-CAL", w_load_cal, "( cal-stru hndl -- )",
-     "read a calibration record (written by SAVE-CAL) into cal-stru"},
+    {"CREATE-FILE", w_create_file,
+     FBRL_DOC("( \"filename\" -- )",
+              "make filename an empty data file (an existing file of that name is replaced)")},
+    {"OPEN-FILE", w_open_file,
+     FBRL_DOC("( \"hndl filename\" -- )",
+              "open a data file under handle hndl (made if not defined); reads and verifies it whole")},
+    {"RESET-FILE", w_reset_file, FBRL_DOC("( hndl -- )", "position at the first record")},
+    {"APPEND-FILE", w_append_file, FBRL_DOC("( hndl -- )", "position after the last record")},
+    {"CLOSE-FILE", w_close_file,
+     FBRL_DOC("( hndl -- code )",
+              "save the file atomically and close it; code 0, or the error (file then stays open)")},
+    {"WRITE-FILE", w_write_file,
+     FBRL_DOC("( addr type hndl -- )", "write the variable at addr as one record of type (CHR INTEGER "
+                                       "LONG-INTEGER REAL LOCATION or a size)")},
+    {"READ-FILE", w_read_file,
+     FBRL_DOC("( addr type hndl -- )",
+              "read the next record into addr; a record of another type is refused and stays unread")},
+    {"SAVE-CAL", w_save_cal,
+     FBRL_DOC("( cal-stru hndl -- )", "write the calibration structure as one record")},
+    {"LOAD-CAL", w_load_cal,
+     FBRL_DOC("( cal-stru hndl -- )", "read a calibration record (written by SAVE-CAL) into cal-stru")},
 };
 
 fbrl_status gl_install_file(fbrl_vm *vm, fbrl_glossary *g)

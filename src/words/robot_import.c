@@ -104,8 +104,10 @@ static fbrl_status w_import_loc(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 const rb_word rb_import_words[] = {
-    {"IMPORT-LOC", w_import_loc, "S", 0, -1, 0, "( \"name\" -- ) or ( c-addr u -- )",
-     "the controller's location name (#name: precision point) into the host location name (made if new), "
-     "read with LISTL: the arm does not move"},
+    {"IMPORT-LOC", w_import_loc, "S", 0, -1, 0,
+     FBRL_DOC(
+         "( \"name\" -- ) or ( c-addr u -- )",
+         "the controller's location name (#name: precision point) into the host location name (made if new), "
+         "read with LISTL: the arm does not move")},
 };
 const size_t rb_import_nwords = sizeof rb_import_words / sizeof rb_import_words[0];

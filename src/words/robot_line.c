@@ -137,15 +137,19 @@ static fbrl_status w_send_cr(fbrl_robot *r, const rb_word *w, rb_val *v)
 
 const rb_word rb_line_words[] = {
     /* I-8 */
-    {"SEND-COM", w_send_com, "I", 0, -1, 0, "( command# -- )",
-     "start a command line with the RAPL command of that number"},
-    {"SEND-REAL", w_send_real, "R", 0, -1, 0, "( F: r -- )", "add a real to the command line"},
-    {"SEND-INT", w_send_int, "I", 0, -1, 0, "( n -- )", "add an integer to the command line"},
-    {"SEND-TEXT", w_send_text, "S", 0, -1, 1, "( c-addr u -- )", "add a name or text to the command line"},
-    {"SEND-COMMA", w_send_const, "", 0, -1, (intptr_t) ",", "( -- )", "add a comma to the command line"},
-    {"SEND-STRT", w_send_const, "", 0, -1, (intptr_t) ",S", "( -- )", "add the straight-line suffix ,S"},
-    {"SEND-LOC", w_send_loc, "L", 0, -1, 0, "( loc -- )", "add a location's six components (mapped)"},
-    {"SEND-CR", w_send_cr, "", 0, -1, 0, "( -- )",
-     "send the command line (echo-verified) and show its output"},
+    {"SEND-COM", w_send_com, "I", 0, -1, 0,
+     FBRL_DOC("( command# -- )", "start a command line with the RAPL command of that number")},
+    {"SEND-REAL", w_send_real, "R", 0, -1, 0, FBRL_DOC("( F: r -- )", "add a real to the command line")},
+    {"SEND-INT", w_send_int, "I", 0, -1, 0, FBRL_DOC("( n -- )", "add an integer to the command line")},
+    {"SEND-TEXT", w_send_text, "S", 0, -1, 1,
+     FBRL_DOC("( c-addr u -- )", "add a name or text to the command line")},
+    {"SEND-COMMA", w_send_const, "", 0, -1, (intptr_t) ",",
+     FBRL_DOC("( -- )", "add a comma to the command line")},
+    {"SEND-STRT", w_send_const, "", 0, -1, (intptr_t) ",S",
+     FBRL_DOC("( -- )", "add the straight-line suffix ,S")},
+    {"SEND-LOC", w_send_loc, "L", 0, -1, 0,
+     FBRL_DOC("( loc -- )", "add a location's six components (mapped)")},
+    {"SEND-CR", w_send_cr, "", 0, -1, 0,
+     FBRL_DOC("( -- )", "send the command line (echo-verified) and show its output")},
 };
 const size_t rb_line_nwords = sizeof rb_line_words / sizeof rb_line_words[0];

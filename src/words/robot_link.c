@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include "fbrl/num.h"
 
 #include "robot_internal.h"
 
@@ -44,8 +45,9 @@ static void wait_end(fbrl_robot *r, rb_wait *wt, const char *who, const char *wh
         return;
     r->progress(r->progress_ctx, NULL);
     if (r->tell && rb_now_ms(r, &now) == FBRL_OK) {
-        char line[96];
-        snprintf(line, sizeof line, "%s: waited %.1f s for %s\n", who, (double)(now - wt->t0) / 1000.0, what);
+        char line[96], secs[24]; /* "%.1f" through fbrl_num_fixed: the firmware's printf has no %f */
+        fbrl_num_fixed(secs, sizeof secs, (double)(now - wt->t0) / 1000.0, 0, 1, 0, NULL);
+        snprintf(line, sizeof line, "%s: waited %s s for %s\n", who, secs, what);
         rb_puts(r, line);
     }
 }
@@ -225,12 +227,16 @@ static void note_outputs(fbrl_robot *r, const fbrl_rapl_arg *a, size_t n)
  * (the next motion or FINISH waits for it). */
 static void tell_motion(fbrl_robot *r, const rb_word *w, const char *text)
 {
-    char line[200];
+    char line[256];
     if (r->have_target) {
         int metric = rb_metric(r);
         double k = metric ? FBRL_CM_PER_IN : 1.0;
-        snprintf(line, sizeof line, "%s: the arm is moving to X %+.4f Y %+.4f Z %+.4f %s (%s)\n", w->name,
-                 r->target.x * k, r->target.y * k, r->target.z * k, metric ? "cm" : "in", text);
+        char x[24], y[24], z[24]; /* "%+.4f" through fbrl_num_fixed: the firmware's printf has no %f */
+        fbrl_num_fixed(x, sizeof x, r->target.x * k, 0, 4, FBRL_NUM_PLUS, NULL);
+        fbrl_num_fixed(y, sizeof y, r->target.y * k, 0, 4, FBRL_NUM_PLUS, NULL);
+        fbrl_num_fixed(z, sizeof z, r->target.z * k, 0, 4, FBRL_NUM_PLUS, NULL);
+        snprintf(line, sizeof line, "%s: the arm is moving to X %s Y %s Z %s %s (%s)\n", w->name, x, y, z,
+                 metric ? "cm" : "in", text);
     } else {
         snprintf(line, sizeof line, "%s: the arm is moving (%s)\n", w->name, text);
     }

@@ -121,11 +121,11 @@ static fbrl_status w_getstring(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 const rb_word rb_param_words[] = {
-    {"GETREAL", w_getreal, "", 0, -1, 0, "( \"number\" -- ) ( F: -- r )",
-     "read a real (literal or constant) from the input"},
-    {"GETINT", w_getint, "", 0, -1, 0, "( \"number\" -- n )",
-     "read an integer (literal or constant) from the input"},
-    {"GETSTRING", w_getstring, "", 0, -1, 0, "( \"text\" -- c-addr u )",
-     "read a word or a \"quoted text\" from the input"},
+    {"GETREAL", w_getreal, "", 0, -1, 0,
+     FBRL_DOC("( \"number\" -- ) ( F: -- r )", "read a real (literal or constant) from the input")},
+    {"GETINT", w_getint, "", 0, -1, 0,
+     FBRL_DOC("( \"number\" -- n )", "read an integer (literal or constant) from the input")},
+    {"GETSTRING", w_getstring, "", 0, -1, 0,
+     FBRL_DOC("( \"text\" -- c-addr u )", "read a word or a \"quoted text\" from the input")},
 };
 const size_t rb_param_nwords = sizeof rb_param_words / sizeof rb_param_words[0];

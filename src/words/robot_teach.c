@@ -16,6 +16,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include "fbrl/num.h"
 
 #include "robot_internal.h"
 
@@ -165,9 +166,11 @@ static fbrl_status take(fbrl_robot *r, const rb_word *w, int slot, int from, fbr
     if ((st = rb_from_arm(r, w, &arm, pt, 0)) != FBRL_OK)
         return st;
     if (from == FROM_CONSOLE) {
-        char line[160];
-        snprintf(line, sizeof line, "point %d taken: X %+.4f Y %+.4f Z %+.4f in\n", slot, pt->x, pt->y,
-                 pt->z);
+        char line[160], x[24], y[24], z[24]; /* "%+.4f": the firmware's printf has no %f */
+        fbrl_num_fixed(x, sizeof x, pt->x, 0, 4, FBRL_NUM_PLUS, NULL);
+        fbrl_num_fixed(y, sizeof y, pt->y, 0, 4, FBRL_NUM_PLUS, NULL);
+        fbrl_num_fixed(z, sizeof z, pt->z, 0, 4, FBRL_NUM_PLUS, NULL);
+        snprintf(line, sizeof line, "point %d taken: X %s Y %s Z %s in\n", slot, x, y, z);
         rb_puts(r, line);
     }
     return FBRL_OK;
@@ -259,8 +262,9 @@ static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 const rb_word rb_teach_words[] = {
-    {"GET-CAL-POINTS", w_get_cal_points, "I", 0, -1, 0, "( cal -- )",
-     "teach the 3 calibration points from the arm's positions (at the console: TEACH, BACK, CANCEL; "
-     "docs/robot.md)"},
+    {"GET-CAL-POINTS", w_get_cal_points, "I", 0, -1, 0,
+     FBRL_DOC("( cal -- )",
+              "teach the 3 calibration points from the arm's positions (at the console: TEACH, BACK, CANCEL; "
+              "docs/robot.md)")},
 };
 const size_t rb_teach_nwords = sizeof rb_teach_words / sizeof rb_teach_words[0];

@@ -6,13 +6,21 @@
 #                    log must equal the log of the same plan run by fbrlmon on the host.
 #   qemu_cm3_faults: the link fault test (1 % drops, 1 % corrupted bytes both ways) over
 #                    the firmware's UART: 0 altered, 0 run twice, every result true.
-# Off by default for now: with the Forth-2012 word sets and the tasks the engine's fixed
-# part (word headers of the new primitives, the VM struct) no longer fits the firmware's
-# 43 KB engine region, and the image boots to "engine: out of memory space" (docs/firmware.md,
-# "Budgets"). cmake -DFBRL_CM3_QEMU_TESTS=ON runs them.
-option(FBRL_CM3_QEMU_TESTS "run the Cortex-M3 firmware under QEMU (it does not fit its RAM today)" OFF)
+# They run wherever qemu-system-arm, the cross toolchain (the fbrl_cm3 target) and mkfifo
+# exist; -DFBRL_CM3_QEMU_TESTS=OFF leaves them out.
+# cm3_size (label unit, no QEMU): the image's size report against the budgets.
+if(TARGET fbrl_cm3)
+  get_property(cm3_image TARGET fbrl_cm3 PROPERTY FBRL_IMAGE)
+  get_filename_component(cm3_dir ${cm3_image} DIRECTORY)
+  # the flash ceiling while the image is over its 128 KB budget (tests/qemu/cm3_size.sh)
+  set(FBRL_CM3_FLASH_CEILING 176128)
+  add_test(NAME cm3_size COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/qemu/cm3_size.sh ${cm3_dir}/size-report.txt
+    ${FBRL_CM3_FLASH_CEILING})
+  set_tests_properties(cm3_size PROPERTIES LABELS unit TIMEOUT 10)
+endif()
+option(FBRL_CM3_QEMU_TESTS "run the Cortex-M3 firmware under QEMU (label qemu)" ON)
 if(NOT FBRL_CM3_QEMU_TESTS)
-  message(STATUS "cortex-m3: the QEMU tests are off (FBRL_CM3_QEMU_TESTS): the image does not fit its RAM")
+  message(STATUS "cortex-m3: the QEMU tests are off (FBRL_CM3_QEMU_TESTS=OFF)")
 elseif(TARGET fbrl_cm3 AND TARGET fbrlsim AND TARGET fbrlmon)
   find_program(FBRL_QEMU_ARM qemu-system-arm)
   find_program(FBRL_MKFIFO mkfifo)
