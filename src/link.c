@@ -97,6 +97,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     *l = (fbrl_link){0};
     l->u = u;
     l->cfg = c;
+    l->units = FBRL_LINK_UNITS_UNKNOWN;
     l->xon_ok = uc.flow == FBRL_FLOW_NONE; /* with XON/XOFF the uart owns 0x11 */
     fbrl_uart_counters cnt;
     if (fbrl_uart_get_counters(u, &cnt) == FBRL_OK)
@@ -126,6 +127,45 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 /* Out of attempts: the echo never matched, or nothing at all came back. */
 static fbrl_status gave_up(const fbrl_link *l) { return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT; }
 
+/* word (n characters of the canonical, upper-case line) is kw. */
+static int same_word(const char *word, size_t n, const char *kw)
+{
+    size_t k = 0;
+    while (k < n && kw[k] && word[k] == kw[k])
+        k++;
+    return k == n && kw[k] == '\0';
+}
+
+/* METRIC and NOMETRIC switch the controller's units: the link follows what ran (a line
+ * that may have run leaves them unknown). */
+static void follow_units(fbrl_link *l, const char *line, size_t len, fbrl_status result)
+{
+    size_t k = 0, n;
+    while (k < len && line[k] == ' ')
+        k++;
+    for (n = k; n < len && line[n] != ' '; n++)
+        ;
+    int is_metric = same_word(line + k, n - k, "METRIC");
+    int is_nometric = same_word(line + k, n - k, "NOMETRIC");
+    if (!is_metric && !is_nometric)
+        return;
+    if (result == FBRL_OK)
+        l->units = is_metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+    else if (result == FBRL_EMAYBE)
+        l->units = FBRL_LINK_UNITS_UNKNOWN;
+}
+
+/* A STATUS ran whole: its last line says the units. Read as a value (verified by a second
+ * reading) a STATUS without that line means inches, the controller's default; shown as it
+ * came (a damaged line is not parsed), only the line itself counts. */
+static void learn_units(fbrl_link *l)
+{
+    if (l->st.have & FBRL_RAPL_ST_UNITS)
+        l->units = l->st.metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+    else if (l->kind == FBRL_LINK_REPLY_STATUS)
+        l->units = FBRL_LINK_UNITS_INCH;
+}
+
 /* The run log (cfg.on_exec) of one run of the current line. While STATUS settles a
  * command's damaged reply, its runs are only counted: the command itself ran before
  * them and is reported first, once its result is known (settle_end()). */
@@ -141,6 +181,7 @@ static void journal(fbrl_link *l, fbrl_status result)
             l->settle_bad++;
         return;
     }
+    follow_units(l, l->line, l->len, result);
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
 }
@@ -162,6 +203,7 @@ static void settle_end(fbrl_link *l, fbrl_status result)
     l->attempts = l->main_attempts;
     l->stage = ST_MAIN;
     l->cr_pending = 0;
+    follow_units(l, l->line, l->len, result);
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
     report_n(l, l->settle_bad, FBRL_EPROTOCOL);
@@ -197,6 +239,8 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
     }
     if (res == FBRL_EMAYBE)
         l->stats.may_have_run++;
+    if (res == FBRL_OK && l->stage == ST_MAIN && same_word(l->line, l->len, "STATUS"))
+        learn_units(l);
     l->result = res;
     l->busy = 0;
     l->phase = PH_IDLE;
@@ -402,7 +446,11 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
             l->cfg.on_line(l->cfg.line_ctx, s, n, flawed);
         break;
     }
-    case FBRL_LINK_REPLY_LINES: break;
+    case FBRL_LINK_REPLY_LINES:
+        /* a STATUS shown as it comes (ROBOT-STATUS) still tells the controller's units */
+        if (!flawed && l->stage == ST_MAIN && same_word(l->line, l->len, "STATUS"))
+            (void)fbrl_rapl_status_line(&l->st, s, n);
+        break;
     }
 }
 
@@ -1411,6 +1459,7 @@ fbrl_status fbrl_link_connect(fbrl_link *l)
     if (!l || !l->u)
         return FBRL_EINVAL;
     l->ctrl_len = -1;
+    l->units = FBRL_LINK_UNITS_UNKNOWN;
     if (l->cfg.aci) {
         fbrl_status sw = aci_to_terminal(l);
         if (sw != FBRL_OK)
@@ -1478,6 +1527,8 @@ fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out)
         *out = l->st;
     return st;
 }
+
+int fbrl_link_units(const fbrl_link *l) { return l ? l->units : FBRL_LINK_UNITS_UNKNOWN; }
 
 static fbrl_status type_value(fbrl_link *l, const char *kw, const char *expr, fbrl_link_reply kind)
 {

@@ -219,7 +219,18 @@ typedef struct fbrl_link {
     size_t main_len;
     fbrl_link_reply main_kind;
     unsigned main_attempts;
+    int units; /* FBRL_LINK_UNITS_*: what the controller's lengths are, as last learned */
 } fbrl_link;
+
+/* The controller's units of length (fbrl_link_units): learned from a STATUS that the
+ * link read whole (its last line, "INCH UNITS." or "METRIC UNITS."; a STATUS without that
+ * line means inches, the controller's default) and from METRIC or NOMETRIC when they ran.
+ * Unknown after fbrl_link_init and fbrl_link_connect (a controller may have been switched
+ * while nobody listened). */
+#define FBRL_LINK_UNITS_UNKNOWN (-1)
+#define FBRL_LINK_UNITS_INCH    0
+#define FBRL_LINK_UNITS_MM      1
+FBRL_API int fbrl_link_units(const fbrl_link *l);
 
 /* Bind a session to an open uart (its receive and transmit rings should hold at least
  * 2 * FBRL_LINK_LINE_MAX bytes). cfg NULL = defaults. */

@@ -37,6 +37,7 @@
 #define rb_guard_done    fbrli_rb_guard_done
 #define rb_where_lost    fbrli_rb_where_lost
 #define rb_now_us        fbrli_rb_now_us
+#define rb_units         fbrli_rb_units
 #define rb_pause_until   fbrli_rb_pause_until
 #define rb_arm_where     fbrli_rb_arm_where
 #define rb_cmd           fbrli_rb_cmd

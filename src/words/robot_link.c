@@ -105,6 +105,18 @@ fbrl_status rb_online(fbrl_robot *r)
     return FBRL_OK;
 }
 
+fbrl_status rb_units(fbrl_robot *r, const rb_word *w)
+{
+    if (fbrl_link_units(r->link) != FBRL_LINK_UNITS_MM)
+        return FBRL_OK;
+    char msg[240];
+    snprintf(msg, sizeof msg,
+             "%s: the controller works in millimetres (STATUS: METRIC UNITS.) and the robot words send "
+             "inches: not sent; switch it to inches (RAPL NOMETRIC) first",
+             w->name);
+    return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), msg);
+}
+
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
     char msg[240];
@@ -248,6 +260,11 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
 {
     fbrl_status st = rb_online(r);
     if (st != FBRL_OK)
+        return st;
+    /* lengths, and points made of them, are inches: not for a controller in millimetres
+     * (the unit switches themselves and the reads that tell the units go through) */
+    if (cmd != FBRL_RAPL_METRIC && cmd != FBRL_RAPL_NOMETRIC && cmd != FBRL_RAPL_STATUS &&
+        (st = rb_units(r, w)) != FBRL_OK)
         return st;
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);

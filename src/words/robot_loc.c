@@ -154,6 +154,8 @@ fbrl_status rb_arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_loc *
 {
     fbrl_rapl_pos p;
     fbrl_status st = rb_online(r);
+    if (st == FBRL_OK)
+        st = rb_units(r, w); /* the WORLD line is in the controller's units */
     if (st != FBRL_OK)
         return st;
     if (finish && (st = rb_cmd(r, w, FBRL_RAPL_FINISH, NULL, 0, 0)) != FBRL_OK)

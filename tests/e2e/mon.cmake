@@ -25,6 +25,8 @@ if(TARGET fbrlmon)
     list(APPEND _mon_tests mon_conn)
     add_test(NAME mon_nonfinite COMMAND sh ${_mon_dir}/mon_nonfinite.sh $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${_mon_tmp}/nonfinite)
     list(APPEND _mon_tests mon_nonfinite)
+    add_test(NAME mon_units COMMAND sh ${_mon_dir}/mon_units.sh $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${_mon_tmp}/units)
+    list(APPEND _mon_tests mon_units)
   endif()
   set_tests_properties(${_mon_tests} PROPERTIES LABELS e2e TIMEOUT 300
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${_mon_dir}/mon_lsan.supp")
