@@ -15,17 +15,9 @@ cd "$tmp" || exit 2
 fails=0
 fail() { fails=$((fails + 1)); echo "FAIL: $*"; }
 
-rm -f sim.log sim.out sim.state
-"$sim" --state "$tmp/sim.state" --log "$tmp/sim.log" >sim.out 2>sim.err &
-simpid=$!
-trap 'kill $simpid 2>/dev/null' EXIT
-i=0
-while [ ! -s sim.out ] && [ $i -lt 300 ]; do sleep 0.1; i=$((i + 1)); done
-port=$(head -n 1 sim.out)
-case $port in
-/dev/*) ;;
-*) echo "FAIL: fbrlsim printed no device path: $(cat sim.out sim.err)"; exit 1 ;;
-esac
+rm -f sim.log sim.state
+. "$(dirname "$0")/sim_pty.sh"
+start_sim sim.log --state "$tmp/sim.state"
 lines() { grep -vc '^#' sim.log; }
 new_lines() { tail -n +$(($1 + 1)) sim.log | grep -v -e '^#' -e '^NOHELP$' -e '^W5$' -e '^STATUS$'; }
 
