@@ -127,30 +127,25 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 /* Out of attempts: the echo never matched, or nothing at all came back. */
 static fbrl_status gave_up(const fbrl_link *l) { return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT; }
 
-/* word (n characters of the canonical, upper-case line) is kw. */
-static int same_word(const char *word, size_t n, const char *kw)
+static int line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **eq);
+
+/* Whether a line is command want (by its keyword or its /NNN token). */
+static int line_is(const char *line, fbrl_rapl_cmd want)
 {
-    size_t k = 0;
-    while (k < n && kw[k] && word[k] == kw[k])
-        k++;
-    return k == n && kw[k] == '\0';
+    fbrl_rapl_cmd c;
+    const char *eq = 0;
+    return line_cmd(line, &c, &eq) == 1 && c == want;
 }
 
 /* METRIC and NOMETRIC switch the controller's units: the link follows what ran (a line
  * that may have run leaves them unknown). */
-static void follow_units(fbrl_link *l, const char *line, size_t len, fbrl_status result)
+static void follow_units(fbrl_link *l, fbrl_status result)
 {
-    size_t k = 0, n;
-    while (k < len && line[k] == ' ')
-        k++;
-    for (n = k; n < len && line[n] != ' '; n++)
-        ;
-    int is_metric = same_word(line + k, n - k, "METRIC");
-    int is_nometric = same_word(line + k, n - k, "NOMETRIC");
-    if (!is_metric && !is_nometric)
+    int metric = line_is(l->line, FBRL_RAPL_METRIC);
+    if (!metric && !line_is(l->line, FBRL_RAPL_NOMETRIC))
         return;
     if (result == FBRL_OK)
-        l->units = is_metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+        l->units = metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
     else if (result == FBRL_EMAYBE)
         l->units = FBRL_LINK_UNITS_UNKNOWN;
 }
@@ -181,7 +176,7 @@ static void journal(fbrl_link *l, fbrl_status result)
             l->settle_bad++;
         return;
     }
-    follow_units(l, l->line, l->len, result);
+    follow_units(l, result);
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
 }
@@ -203,7 +198,7 @@ static void settle_end(fbrl_link *l, fbrl_status result)
     l->attempts = l->main_attempts;
     l->stage = ST_MAIN;
     l->cr_pending = 0;
-    follow_units(l, l->line, l->len, result);
+    follow_units(l, result);
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
     report_n(l, l->settle_bad, FBRL_EPROTOCOL);
@@ -239,7 +234,7 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
     }
     if (res == FBRL_EMAYBE)
         l->stats.may_have_run++;
-    if (res == FBRL_OK && l->stage == ST_MAIN && same_word(l->line, l->len, "STATUS"))
+    if (res == FBRL_OK && l->stage == ST_MAIN && line_is(l->line, FBRL_RAPL_STATUS))
         learn_units(l);
     l->result = res;
     l->busy = 0;
@@ -448,7 +443,7 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
     }
     case FBRL_LINK_REPLY_LINES:
         /* a STATUS shown as it comes (ROBOT-STATUS) still tells the controller's units */
-        if (!flawed && l->stage == ST_MAIN && same_word(l->line, l->len, "STATUS"))
+        if (!flawed && l->stage == ST_MAIN && line_is(l->line, FBRL_RAPL_STATUS))
             (void)fbrl_rapl_status_line(&l->st, s, n);
         break;
     }
