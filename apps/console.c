@@ -400,6 +400,8 @@ static int commit_form(console *c)
 
 static uint64_t now_us(void) { return mon_runlog_now_us(NULL); }
 
+static int running(const console *c) { return c->state >= ST_RUNNING && c->state <= ST_ABORTING; }
+
 static void draw_bar(console *c)
 {
     const char *keys;
@@ -422,7 +424,7 @@ static void draw_bar(console *c)
         keys = "F7 Resume  F8 Abort";
     else
         keys = "F5 Run again  F3 Parameters  F2 Methods  F9 Level  F10 Quit";
-    if (c->abort_confirm && c->state >= ST_RUNNING && c->state <= ST_PAUSED)
+    if (c->abort_confirm && running(c))
         keys = "Abort the run?  y or F8 Abort   any other key Go on";
     attron(A_REVERSE);
     put_row(MIN_ROWS - 1, " %s%s", keys,
@@ -934,8 +936,6 @@ static void type_key(console *c, int ch)
         c->typed[c->tlen] = '\0';
     }
 }
-
-static int running(const console *c) { return c->state >= ST_RUNNING && c->state <= ST_ABORTING; }
 
 static void request_abort(console *c)
 {

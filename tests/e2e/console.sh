@@ -38,15 +38,6 @@ tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
      --operator tester -e '60 CONSTANT TIME-SCALE'; echo fbrlmon-exit=\$?; sleep 600"
 key() { tmux -L "$sock" send-keys -t said "$@"; }
 shot() { tmux -L "$sock" capture-pane -p -t said >"screen-$1.txt"; }
-# wait_long TEXT SECONDS: the visible screen shows TEXT
-wait_long() {
-    k=0
-    while ! tmux -L "$sock" capture-pane -p -t said | grep -qF -- "$1"; do
-        k=$((k + 1))
-        [ $k -lt $(($2 * 10)) ] || { fail "no '$1' on the screen in $2 s"; tmux -L "$sock" capture-pane -p -t said; return 1; }
-        sleep 0.1
-    done
-}
 lines() { grep -vc '^#' sim.log; }
 
 # ---- the library, the form

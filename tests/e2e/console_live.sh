@@ -28,21 +28,13 @@ tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
     "'$mon' --port '$work/robot' --console --methods '$work/methods'; echo fbrlmon-exit=\$?; sleep 600"
 key() { tmux -L "$sock" send-keys -t said "$@"; }
 pane() { tmux -L "$sock" capture-pane -p -t said; }
-wait_pane() { # TEXT SECONDS
-    k=0
-    while ! pane | grep -qF -- "$1"; do
-        k=$((k + 1))
-        [ $k -lt $(($2 * 10)) ] || { fail "no '$1' on the screen in $2 s"; pane; return 1; }
-        sleep 0.1
-    done
-}
 wait_for "FAR-AND-BACK" || exit 1
 key Enter
 wait_for "Parameters of FAR-AND-BACK" || exit 1
 key F5
-wait_pane "RUNNING" 10 || exit 1
+wait_long "RUNNING" 10 || exit 1
 # the motion to FAR: readings on the way
-wait_pane "Arm (moving, at" 20 || exit 1
+wait_long "Arm (moving, at" 20 || exit 1
 : >readings.txt
 for i in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
     pane | sed -n 's/.*|  X *\([-0-9.]*\) Y *\([-0-9.]*\) Z *\([-0-9.]*\)$/\1 \2 \3/p' >>readings.txt
@@ -55,8 +47,8 @@ pane >screen-question.txt
 grep -q "Abort the run?  y or F8 Abort   any other key Go on" screen-question.txt ||
     fail "the abort question is not on the screen: $(tail -3 screen-question.txt)"
 key n
-wait_pane "not aborted: the method goes on" 5
-wait_pane "DONE" 40 || exit 1
+wait_long "not aborted: the method goes on" 5
+wait_long "DONE" 40 || exit 1
 # the truth: fbrlsim's log has W2 readings while the arm moved to FAR
 python3 - <<'PY' || fail "the live readings are not readings of the moving arm"
 log = [l.strip() for l in open("sim.log") if not l.startswith("#")]

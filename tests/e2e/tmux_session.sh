@@ -2,7 +2,7 @@
 # tmux_session.sh - sourced by the e2e tests that drive fbrlmon on a real terminal: tmux
 # gives it a pty of a chosen size (session "said" on a private server), fbrlsim (started
 # here with --time-scale ${sim_scale:-20} and --log sim.log) is the controller on
-# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, wait_for, type_line, count, logged; the caller sets
+# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, wait_for, wait_long, type_line, count, logged; the caller sets
 # $name (part of the tmux socket name) and starts the session.
 sock=fbrl-$name-$$
 fails=0
@@ -24,6 +24,15 @@ wait_for() {
     while ! screen | grep -qF -- "$1"; do
         k=$((k + 1))
         [ $k -lt 100 ] || { fail "no '$1' on the screen"; screen; return 1; }
+        sleep 0.1
+    done
+}
+# wait_long TEXT SECONDS: until the visible screen (no history) shows TEXT, at most SECONDS
+wait_long() {
+    k=0
+    while ! tmux -L "$sock" capture-pane -p -t said | grep -qF -- "$1"; do
+        k=$((k + 1))
+        [ $k -lt $(($2 * 10)) ] || { fail "no '$1' on the screen in $2 s"; tmux -L "$sock" capture-pane -p -t said; return 1; }
         sleep 0.1
     done
 }
