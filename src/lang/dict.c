@@ -8,31 +8,51 @@
 /* FBRL_NO_HELP (a build option for small targets): no HELP texts in the image or the
  * headers; HELP then has only the word's name to go by. */
 #ifdef FBRL_ROM_PRIMS
-/* The primitives' headers, in flash (vm_internal.h, HDR); they are also the table of op
- * names. A nameless op's header is hidden.
- * (the parameters are not named as the fields: a designator would be replaced) */
-const fbrl_hdr fbrl__rom_hdrs[OP__END] = {
-#ifdef FBRL_NO_HELP
-#define OP(id, nm, fl, st, hl)                       \
-    {.kind = K_PRIM,                                 \
-     .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), \
-     .len = (uint8_t)(sizeof(nm) - 1),               \
-     .name = nm,                                     \
-     .op = OP_##id},
-#else
-#define OP(id, nm, fl, st, hl)                       \
-    {.kind = K_PRIM,                                 \
-     .flags = (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), \
-     .len = (uint8_t)(sizeof(nm) - 1),               \
-     .name = nm,                                     \
-     .op = OP_##id,                                  \
-     .stack = st,                                    \
-     .help = hl},
-#endif
+/* The primitives' names, one block: a member per op, so offsetof gives each name's place
+ * (names keep their NUL: fbrl__op_name gives them as C strings). */
+static const struct rom_names {
+#define OP(id, nm, fl, st, hl) char n_##id[sizeof(nm)];
+#include "ops.def"
+#undef OP
+} rom_names = {
+#define OP(id, nm, fl, st, hl) nm,
 #include "ops.def"
 #undef OP
 };
-#define ops fbrl__rom_hdrs
+/* One primitive's header in flash (vm_internal.h, HDR): a nameless op's is hidden. */
+typedef struct rom_prim {
+    uint16_t name; /* offset in rom_names */
+    uint8_t flags, len;
+} rom_prim;
+static const rom_prim rom_prims[OP__END] = {
+#define OP(id, nm, fl, st, hl)                            \
+    {(uint16_t)offsetof(struct rom_names, n_##id),       \
+     (uint8_t)(sizeof(nm) > 1 ? (fl) : FH), (uint8_t)(sizeof(nm) - 1)},
+#include "ops.def"
+#undef OP
+};
+typedef char rom_names_fit[sizeof rom_names <= UINT16_MAX ? 1 : -1];
+#define ROM_NAME(k) ((const char *)&rom_names + rom_prims[k].name)
+
+/* The ring of primitives' headers made on demand (one image runs one engine thread; the
+ * headers are the same for every VM). */
+static fbrl_hdr rom_views[FBRL_ROM_VIEWS];
+static unsigned rom_next;
+
+fbrl_hdr *fbrl__rom_hdr(uint32_t op)
+{
+    fbrl_hdr *h = &rom_views[rom_next];
+    rom_next = (rom_next + 1) % FBRL_ROM_VIEWS;
+    memset(h, 0, sizeof *h);
+    h->kind = K_PRIM;
+    h->op = (uint16_t)op;
+    h->flags = rom_prims[op].flags;
+    h->len = rom_prims[op].len;
+    h->name = ROM_NAME(op);
+    return h;
+}
+
+const char *fbrl__op_name(int op) { return (op >= 0 && op < OP__END) ? ROM_NAME(op) : ""; }
 #else
 typedef struct opinfo {
     const char *name;
@@ -50,9 +70,8 @@ static const opinfo ops[OP__END] = {
 #include "ops.def"
 #undef OP
 };
-#endif
-
 const char *fbrl__op_name(int op) { return (op >= 0 && op < OP__END) ? ops[op].name : ""; }
+#endif
 
 /* ---- memory checks ---- */
 void *fbrl_vm_addr(fbrl_vm *vm, fbrl_cell addr, size_t n)
@@ -122,8 +141,7 @@ static int order_rank(const fbrl_vm *vm, unsigned wl)
 static int rom_find(const char *name, size_t len)
 {
     for (uint32_t k = HDR_ROM; k-- > 0;) {
-        const fbrl_hdr *h = &fbrl__rom_hdrs[k];
-        if (h->len == len && !(h->flags & FH) && name_eq(h->name, name, len))
+        if (rom_prims[k].len == len && !(rom_prims[k].flags & FH) && name_eq(ROM_NAME(k), name, len))
             return (int)k;
     }
     return -1;
@@ -205,9 +223,8 @@ fbrl_hdr *fbrl__xt_hdr(const fbrl_vm *vm, fbrl_cell xt)
 uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h)
 {
 #ifdef FBRL_ROM_PRIMS
-    uintptr_t p = (uintptr_t)h, rom = (uintptr_t)fbrl__rom_hdrs;
-    if (p >= rom && p < rom + sizeof fbrl__rom_hdrs)
-        return (uint32_t)((p - rom) / sizeof *h);
+    if (h >= rom_views && h < rom_views + FBRL_ROM_VIEWS)
+        return h->op; /* a primitive's index is its op */
 #endif
     return (uint32_t)(vm->hdr_top - 1 - h) + HDR_ROM;
 }
@@ -677,7 +694,7 @@ size_t fbrl__named_ops(void)
 {
     size_t n = 0;
     for (int op = 0; op < OP__END; op++)
-        n += ops[op].name[0] != 0;
+        n += fbrl__op_name(op)[0] != 0;
     return n;
 }
 
@@ -828,7 +845,7 @@ void fbrl_vm_words(const fbrl_vm *vm, int (*fn)(void *ctx, const char *name, siz
 int fbrl__install_prims(fbrl_vm *vm)
 {
 #ifdef FBRL_ROM_PRIMS
-    (void)vm; /* their headers are fbrl__rom_hdrs */
+    (void)vm; /* their headers are rom_prims */
 #else
     for (int op = 0; op < OP__END; op++) {
         fbrl_hdr *h;

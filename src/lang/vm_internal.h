@@ -377,19 +377,23 @@ struct fbrl_vm {
 };
 
 /* Header i. FBRL_ROM_PRIMS (a small target short of RAM: the Cortex-M3 firmware): the
- * primitives' headers are a const table, one per op (indices 0 .. OP__END-1; an internal
- * op's is nameless and hidden), so they stay in flash; RAM holds only the other words'
- * headers, which follow them. The primitives are in no hash chain: fbrl__find looks them
- * up by name after the RAM words, which are all newer. */
+ * primitives' headers stay in flash, as a const table of 4 bytes a primitive (its name's
+ * place in one block of names, its flags and length; indices 0 .. OP__END-1, an internal
+ * op's nameless and hidden); RAM holds only the other words' headers, which follow them.
+ * A full header for a primitive is made when asked for (dict.c fbrl__rom_hdr), in a ring
+ * of FBRL_ROM_VIEWS, so a pointer to one stays good until that many more are made: every
+ * user takes one, reads it and lets it go. Nothing writes a primitive's header. The
+ * primitives are in no hash chain: fbrl__find looks them up by name after the RAM words,
+ * which are all newer. */
 #ifdef FBRL_ROM_PRIMS
 #ifndef FBRL_SMALL_HEADERS
-#error "FBRL_ROM_PRIMS needs FBRL_SMALL_HEADERS (a const header points at its name)"
+#error "FBRL_ROM_PRIMS needs FBRL_SMALL_HEADERS (a header points at its name)"
 #endif
-extern const fbrl_hdr fbrl__rom_hdrs[];
+#define FBRL_ROM_VIEWS 4
+fbrl_hdr *fbrl__rom_hdr(uint32_t op);
 #define HDR_ROM ((uint32_t)OP__END)
-/* The const is cast away for the one pointer type; nothing writes a primitive's header. */
-#define HDR(vm, i)                                                              \
-    ((uint32_t)(i) < HDR_ROM ? (fbrl_hdr *)(uintptr_t)&fbrl__rom_hdrs[(i)]    \
+#define HDR(vm, i)                                                  \
+    ((uint32_t)(i) < HDR_ROM ? fbrl__rom_hdr((uint32_t)(i))         \
                              : (vm)->hdr_top - 1 - ((ptrdiff_t)(i) - (ptrdiff_t)HDR_ROM))
 #else
 #define HDR_ROM 0u
