@@ -52,7 +52,7 @@ fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body);
 typedef struct gl_word {
     const char *name;
     fbrl_vm_prim fn;
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } gl_word;
 
 /* Define the n words of a table with arg = g. */

@@ -31,8 +31,8 @@ static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
 static fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
-        fbrl_status st =
-            fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, t[i].stack, t[i].help);
+        fbrl_status st = fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, FBRL_DOC_STACK(t[i]),
+                                         FBRL_DOC_HELP(t[i]));
         if (st != FBRL_OK)
             return st;
     }

@@ -38,7 +38,7 @@ typedef struct rb_word {
     unsigned flags;
     int cmd;      /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
     intptr_t arg; /* word-specific */
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } rb_word;
 
 /* Throw a Forth exception with a message (the message is copied). */
