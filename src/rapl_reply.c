@@ -169,7 +169,16 @@ fbrl_rapl_errc fbrl_rapl_error_class(int code)
 }
 
 /* What each error means for the user, in plain words, and what to do: the one table
- * every message uses (docs/rapl-commands.md shows it). */
+ * every message uses (docs/rapl-commands.md shows it). Left out under FBRL_NO_HELP (a small
+ * target's build option: no HELP texts), where every code has none; messages then give the
+ * controller's text alone. */
+#ifdef FBRL_NO_HELP
+const char *fbrl_rapl_error_help(int code)
+{
+    (void)code;
+    return 0;
+}
+#else
 #define AXIS_RANGE  "that axis would pass its limit - choose a point or a motion that keeps it in range"
 #define HOME_FAILED "homing that joint failed - check that nothing blocks it, then HOME again"
 #define JOINT_RANGE                                                                                        \
@@ -252,6 +261,7 @@ const char *fbrl_rapl_error_help(int code)
         return 0;
     return error_help[code];
 }
+#endif
 
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 static int is_upper(char c) { return c >= 'A' && c <= 'Z'; }
