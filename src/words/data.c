@@ -76,7 +76,7 @@ static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
     if (n < 2 || n > (1 << 24))
         return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
     if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL,
-                              "( -- q-addr )", "queue", NULL, &p)))
+                              FBRL_DOC_TEXT("( -- q-addr )"), FBRL_DOC_TEXT("queue"), NULL, &p)))
         return st;
     return fbrl_ring_init((fbrl_ring *)p, (fbrl_ring *)p + 1, (size_t)n);
 }
@@ -190,11 +190,12 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
         return fail(vm, FBRL_THROW_BAD_NUMBER, "array sizes must be 1..65535");
     if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK)
         return fail(vm, FBRL_THROW_BAD_NUMBER, NULL);
-    if ((st = fbrl_vmx_create(
-             vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes, two ? w_array2_run : w_array1_run,
-             NULL, two ? "( row col -- addr )" : "( index -- addr )",
-             two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY", NULL,
-             &p)))
+    if ((st = fbrl_vmx_create(vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes,
+                              two ? w_array2_run : w_array1_run, NULL,
+                              FBRL_DOC_TEXT(two ? "( row col -- addr )" : "( index -- addr )"),
+                              FBRL_DOC_TEXT(two ? "address of cell (row, col) of this 2ARRAY"
+                                                : "address of a cell of this ARRAY"),
+                              NULL, &p)))
         return st;
     fbrl_cell aa = (fbrl_cell)p;
     fbrl_cell data = align16(aa + (fbrl_cell)sizeof(fbrl_array));
@@ -276,8 +277,8 @@ static fbrl_status w_string(fbrl_vm *vm, void *arg)
     fbrl_vm_pop(vm, &n);
     if (n < 1 || n > STR_MAX)
         return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
-    if ((st =
-             fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, "( -- str )", "string", NULL, &p)))
+    if ((st = fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, FBRL_DOC_TEXT("( -- str )"),
+                              FBRL_DOC_TEXT("string"), NULL, &p)))
         return st;
     uint16_t v = (uint16_t)n;
     memcpy(p, &v, 2);

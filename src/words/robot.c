@@ -91,8 +91,8 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     if (fbrl_vm_compiling(vm))
         return FBRL_ESTATE;
     /* GET-CAL-POINTS' line buffer lives in the data space: the words it runs parse it */
-    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, "( -- a )",
-                        "robot words' line buffer", &r->tib, NULL) != FBRL_OK)
+    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, FBRL_DOC_TEXT("( -- a )"),
+                        FBRL_DOC_TEXT("robot words' line buffer"), &r->tib, NULL) != FBRL_OK)
         return FBRL_ENOMEM;
     fbrl_status st = FBRL_OK;
     for (size_t k = 0; st == FBRL_OK && k < NTABLES; k++) {
