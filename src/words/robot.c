@@ -69,13 +69,19 @@ const char *fbrl_robot_word(size_t i)
 
 /* Input handlers (docs/tasks.md): a word run as a task when an input device changes to a
  * state (ONSIG, every time) or once it is in that state (WHEN). */
+/* (clang-format cannot lay out strings joined to a macro's string) */
+/* clang-format off */
 static const char rb_handlers[] =
-    ": (ONSIG) ( xt dev state -- ) BEGIN 2DUP INPUT-EDGE 2 PICK EXECUTE AGAIN ;\n"
-    ": ONSIG ( xt dev state task -- ) \\ run xt as the task each time the input device turns to state\n"
+    ": (ONSIG) " FBRL_DOC_SRC("( xt dev state -- )") " BEGIN 2DUP INPUT-EDGE 2 PICK EXECUTE AGAIN ;\n"
+    ": ONSIG "
+        FBRL_DOC_SRC("( xt dev state task -- ) \\ run xt as the task each time the input device "
+                     "turns to state") "\n"
     "   >R 3 ['] (ONSIG) R> START-WITH ;\n"
-    ": (WHEN) ( xt dev state -- ) BEGIN 2DUP 86400000 WAIT-INPUT UNTIL 2DROP EXECUTE ;\n"
-    ": WHEN ( xt dev state task -- ) \\ run xt as the task once the input device is in state\n"
+    ": (WHEN) " FBRL_DOC_SRC("( xt dev state -- )") " BEGIN 2DUP 86400000 WAIT-INPUT UNTIL 2DROP EXECUTE ;\n"
+    ": WHEN "
+        FBRL_DOC_SRC("( xt dev state task -- ) \\ run xt as the task once the input device is in state") "\n"
     "   >R 3 ['] (WHEN) R> START-WITH ;\n";
+/* clang-format on */
 
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g)
 {
