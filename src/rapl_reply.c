@@ -2,6 +2,8 @@
 /* rapl_reply.c - line assembly and parsers for the controller's output (no OS header). */
 #include "fbrl/rapl_reply.h"
 
+#include <string.h>
+
 /* ---- reader ---- */
 
 void fbrl_rapl_reader_init(fbrl_rapl_reader *r)
@@ -76,77 +78,87 @@ const char *fbrl_rapl_reader_line(const fbrl_rapl_reader *r, size_t *len, int *f
 
 /* ---- errors ---- */
 
-static const char *const error_texts[] = {
-    [0] = "AXIS #1 OUT OF RANGE",
-    [1] = "AXIS #2 OUT OF RANGE",
-    [2] = "AXIS #3 OUT OF RANGE",
-    [3] = "AXIS #4 OUT OF RANGE",
-    [4] = "AXIS #5 OUT OF RANGE",
-    [5] = "AXIS #6 OUT OF RANGE",
-    [6] = "AXIS #7 OUT OF RANGE",
-    [7] = "AXIS #8 OUT OF RANGE",
-    [8] = "ILLEGAL OPERAND",
-    [9] = "END OF LINE NOT FOUND",
-    [10] = "SYMBOL UNDEFINED",
-    [11] = "LOCATION UNDEFINED",
-    [12] = "COMMAND ERROR",
-    [13] = "ARGUMENT MISSING",
-    [14] = "BAD SYNTAX",
-    [15] = "PRECISION POINT NOT LEGAL",
-    [16] = "I/O ADDRESS ERROR",
-    [17] = "PROGRAM NOT FOUND",
-    [18] = "ILLEGAL ARGUMENT",
-    [19] = "LINE NOT FOUND",
-    [20] = "ARGUMENT TOO BIG",
-    [21] = "NO ROOM LEFT",
-    [22] = "TABLE FULL",
-    [23] = "BAD LINE NUMBER",
-    [24] = "ILLEGAL A/D CHANNEL",
-    [25] = "LINE TOO LONG",
-    [26] = "END OF FILE NOT FOUND",
-    [27] = "PROGRAM EXISTS",
-    [28] = "LINE EXISTS",
-    [29] = "TRANSFORM ILLEGAL",
-    [32] = "JOINT #1 HOME FAILED",
-    [33] = "JOINT #2 HOME FAILED",
-    [34] = "JOINT #3 HOME FAILED",
-    [35] = "JOINT #4 HOME FAILED",
-    [36] = "JOINT #5 HOME FAILED",
-    [37] = "JOINT #6 HOME FAILED",
-    [38] = "JOINT #7 HOME FAILED",
-    [39] = "JOINT #8 HOME FAILED",
-    [40] = "ARM POWER HAS BEEN SWITCHED OFF",
-    [41] = "ROBOT HAS NOT BEEN HOMED",
-    [42] = "JOINT #1 OUT OF RANGE",
-    [43] = "JOINT #2 OUT OF RANGE",
-    [44] = "JOINT #3 OUT OF RANGE",
-    [45] = "JOINT #4 OUT OF RANGE",
-    [46] = "JOINT #5 OUT OF RANGE",
-    [47] = "CHECKSUM FAILURE",
-    [49] = "MEMORY NOT ALLOCATED",
-    [50] = "AMBIGUOUS COMMAND",
-    [51] = "SERIAL CHANNEL #0 TIMEOUT",
-    [52] = "SERIAL CHANNEL #0 CTS TIMEOUT",
-    [53] = "SERIAL CHANNEL #1 TIMEOUT",
-    [54] = "SERIAL CHANNEL #1 CTS TIMEOUT",
-    [58] = "CALIBRATION CHECKSUM ERROR",
-    [60] = "CANNOT USE PRIVILEGED COMMAND",
-    [61] = "ILLEGAL CHANNEL",
-    [62] = "REMOTE COMMUNICATION ERROR",
-    [64] = "NO RETURN LEVEL",
-    [65] = "BAD AXIS NUMBER",
-    [66] = "NOT AVAILABLE",
-    [67] = "AXIS SLOT ALREADY USED",
-    [68] = "STRAIGHT LINE ERROR",
-    /* fbrlsim's own (docs/workcell.md): outside RAPL-II's table, which ends before 100 */
-    [190] = "COLLISION",
-};
+/* The controller's error texts by code: one list, from which the two tables below are made. */
+#define RAPL_ERRORS(X)                                                                     \
+    X(0, "AXIS #1 OUT OF RANGE")                                                           \
+    X(1, "AXIS #2 OUT OF RANGE")                                                           \
+    X(2, "AXIS #3 OUT OF RANGE")                                                           \
+    X(3, "AXIS #4 OUT OF RANGE")                                                           \
+    X(4, "AXIS #5 OUT OF RANGE")                                                           \
+    X(5, "AXIS #6 OUT OF RANGE")                                                           \
+    X(6, "AXIS #7 OUT OF RANGE")                                                           \
+    X(7, "AXIS #8 OUT OF RANGE")                                                           \
+    X(8, "ILLEGAL OPERAND")                                                                \
+    X(9, "END OF LINE NOT FOUND")                                                          \
+    X(10, "SYMBOL UNDEFINED")                                                              \
+    X(11, "LOCATION UNDEFINED")                                                            \
+    X(12, "COMMAND ERROR")                                                                 \
+    X(13, "ARGUMENT MISSING")                                                              \
+    X(14, "BAD SYNTAX")                                                                    \
+    X(15, "PRECISION POINT NOT LEGAL")                                                     \
+    X(16, "I/O ADDRESS ERROR")                                                             \
+    X(17, "PROGRAM NOT FOUND")                                                             \
+    X(18, "ILLEGAL ARGUMENT")                                                              \
+    X(19, "LINE NOT FOUND")                                                                \
+    X(20, "ARGUMENT TOO BIG")                                                              \
+    X(21, "NO ROOM LEFT")                                                                  \
+    X(22, "TABLE FULL")                                                                    \
+    X(23, "BAD LINE NUMBER")                                                               \
+    X(24, "ILLEGAL A/D CHANNEL")                                                           \
+    X(25, "LINE TOO LONG")                                                                 \
+    X(26, "END OF FILE NOT FOUND")                                                         \
+    X(27, "PROGRAM EXISTS")                                                                \
+    X(28, "LINE EXISTS")                                                                   \
+    X(29, "TRANSFORM ILLEGAL")                                                             \
+    X(32, "JOINT #1 HOME FAILED")                                                          \
+    X(33, "JOINT #2 HOME FAILED")                                                          \
+    X(34, "JOINT #3 HOME FAILED")                                                          \
+    X(35, "JOINT #4 HOME FAILED")                                                          \
+    X(36, "JOINT #5 HOME FAILED")                                                          \
+    X(37, "JOINT #6 HOME FAILED")                                                          \
+    X(38, "JOINT #7 HOME FAILED")                                                          \
+    X(39, "JOINT #8 HOME FAILED")                                                          \
+    X(40, "ARM POWER HAS BEEN SWITCHED OFF")                                               \
+    X(41, "ROBOT HAS NOT BEEN HOMED")                                                      \
+    X(42, "JOINT #1 OUT OF RANGE")                                                         \
+    X(43, "JOINT #2 OUT OF RANGE")                                                         \
+    X(44, "JOINT #3 OUT OF RANGE")                                                         \
+    X(45, "JOINT #4 OUT OF RANGE")                                                         \
+    X(46, "JOINT #5 OUT OF RANGE")                                                         \
+    X(47, "CHECKSUM FAILURE")                                                              \
+    X(49, "MEMORY NOT ALLOCATED")                                                          \
+    X(50, "AMBIGUOUS COMMAND")                                                             \
+    X(51, "SERIAL CHANNEL #0 TIMEOUT")                                                     \
+    X(52, "SERIAL CHANNEL #0 CTS TIMEOUT")                                                 \
+    X(53, "SERIAL CHANNEL #1 TIMEOUT")                                                     \
+    X(54, "SERIAL CHANNEL #1 CTS TIMEOUT")                                                 \
+    X(58, "CALIBRATION CHECKSUM ERROR")                                                    \
+    X(60, "CANNOT USE PRIVILEGED COMMAND")                                                 \
+    X(61, "ILLEGAL CHANNEL")                                                               \
+    X(62, "REMOTE COMMUNICATION ERROR")                                                    \
+    X(64, "NO RETURN LEVEL")                                                               \
+    X(65, "BAD AXIS NUMBER")                                                               \
+    X(66, "NOT AVAILABLE")                                                                 \
+    X(67, "AXIS SLOT ALREADY USED")                                                        \
+    X(68, "STRAIGHT LINE ERROR")                                                           \
+    /* fbrlsim's own (docs/workcell.md): outside RAPL-II's table, which ends before 100 */ \
+    X(190, "COLLISION")
+
+/* The codes in the list's order (a byte each: -Woverflow refuses a larger one), and their
+ * texts one after another, each ending in its NUL: a code's text is found by counting (an
+ * error is rare), without a table of pointers as long as the highest code. */
+#define ERROR_CODE(code, text) code,
+#define ERROR_TEXT(code, text) text "\0"
+static const uint8_t error_codes[] = {RAPL_ERRORS(ERROR_CODE)};
+static const char error_texts[] = RAPL_ERRORS(ERROR_TEXT);
 
 const char *fbrl_rapl_error_text(int code)
 {
-    if (code < 0 || (size_t)code >= sizeof error_texts / sizeof error_texts[0])
-        return 0;
-    return error_texts[code];
+    const char *t = error_texts;
+    for (size_t k = 0; k < sizeof error_codes; k++, t += strlen(t) + 1)
+        if (error_codes[k] == code)
+            return t;
+    return 0;
 }
 
 /* Error numbers by what they mean for a corrective action (the texts above). */
@@ -169,7 +181,16 @@ fbrl_rapl_errc fbrl_rapl_error_class(int code)
 }
 
 /* What each error means for the user, in plain words, and what to do: the one table
- * every message uses (docs/rapl-commands.md shows it). */
+ * every message uses (docs/rapl-commands.md shows it). Left out under FBRL_NO_HELP (a small
+ * target's build option: no HELP texts), where every code has none; messages then give the
+ * controller's text alone. */
+#ifdef FBRL_NO_HELP
+const char *fbrl_rapl_error_help(int code)
+{
+    (void)code;
+    return 0;
+}
+#else
 #define AXIS_RANGE  "that axis would pass its limit - choose a point or a motion that keeps it in range"
 #define HOME_FAILED "homing that joint failed - check that nothing blocks it, then HOME again"
 #define JOINT_RANGE                                                                                        \
@@ -252,6 +273,7 @@ const char *fbrl_rapl_error_help(int code)
         return 0;
     return error_help[code];
 }
+#endif
 
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 static int is_upper(char c) { return c >= 'A' && c <= 'Z'; }

@@ -2,46 +2,51 @@
 /* status.c - texts for fbrl_status codes. */
 #include "fbrl/status.h"
 
-static const struct {
-    const char *name, *text;
-} entries[] = {
-    {"FBRL_OK", "ok"},
-    {"FBRL_EINVAL", "invalid argument"},
-    {"FBRL_ERANGE", "value or index out of range"},
-    {"FBRL_ENONFINITE", "number is not finite"},
-    {"FBRL_ENOSPC", "buffer too small"},
-    {"FBRL_EEMPTY", "empty"},
-    {"FBRL_EFULL", "full"},
-    {"FBRL_EDEGENERATE", "calibration points are coincident or collinear"},
-    {"FBRL_EIO", "input/output error"},
-    {"FBRL_ENOENT", "no such file, port or name"},
-    {"FBRL_EFORMAT", "not a libfbrl data file"},
-    {"FBRL_EVERSION", "unsupported file version"},
-    {"FBRL_ECHECKSUM", "checksum mismatch (data corrupted)"},
-    {"FBRL_ETRUNCATED", "data ends early (truncated)"},
-    {"FBRL_ETYPE", "wrong data type"},
-    {"FBRL_EEOF", "end of file"},
-    {"FBRL_ETIMEOUT", "timed out"},
-    {"FBRL_EBUSY", "port is in use"},
-    {"FBRL_ENOTTY", "not a terminal device"},
-    {"FBRL_EUNSUPPORTED", "setting not supported"},
-    {"FBRL_EDISCONNECTED", "peer disconnected"},
-    {"FBRL_ECONTROLLER", "controller reported an error"},
-    {"FBRL_EECHO", "controller echo did not match"},
-    {"FBRL_EPROTOCOL", "unexpected reply from controller"},
-    {"FBRL_ENAME", "illegal name"},
-    {"FBRL_ESTATE", "not valid in the current state"},
-    {"FBRL_ESYNTAX", "syntax error"},
-    {"FBRL_EOVERFLOW", "arithmetic overflow"},
-    {"FBRL_ETHROW", "uncaught exception"},
-    {"FBRL_ENOMEM", "out of memory space"},
-    {"FBRL_EOFFLINE", "no controller connected"},
-    {"FBRL_ENOTFILE", "not a regular file (a device, FIFO or directory)"},
-    {"FBRL_EPERM", "permission denied"},
-    {"FBRL_EMAYBE", "the command may have run (the link cannot tell)"},
-};
+/* Every status with its text: one list, so that a name is its constant's spelling. */
+#define STATUSES(X)                                                       \
+    X(FBRL_OK, "ok")                                                      \
+    X(FBRL_EINVAL, "invalid argument")                                    \
+    X(FBRL_ERANGE, "value or index out of range")                         \
+    X(FBRL_ENONFINITE, "number is not finite")                            \
+    X(FBRL_ENOSPC, "buffer too small")                                    \
+    X(FBRL_EEMPTY, "empty")                                               \
+    X(FBRL_EFULL, "full")                                                 \
+    X(FBRL_EDEGENERATE, "calibration points are coincident or collinear") \
+    X(FBRL_EIO, "input/output error")                                     \
+    X(FBRL_ENOENT, "no such file, port or name")                          \
+    X(FBRL_EFORMAT, "not a libfbrl data file")                            \
+    X(FBRL_EVERSION, "unsupported file version")                          \
+    X(FBRL_ECHECKSUM, "checksum mismatch (data corrupted)")               \
+    X(FBRL_ETRUNCATED, "data ends early (truncated)")                     \
+    X(FBRL_ETYPE, "wrong data type")                                      \
+    X(FBRL_EEOF, "end of file")                                           \
+    X(FBRL_ETIMEOUT, "timed out")                                         \
+    X(FBRL_EBUSY, "port is in use")                                       \
+    X(FBRL_ENOTTY, "not a terminal device")                               \
+    X(FBRL_EUNSUPPORTED, "setting not supported")                         \
+    X(FBRL_EDISCONNECTED, "peer disconnected")                            \
+    X(FBRL_ECONTROLLER, "controller reported an error")                   \
+    X(FBRL_EECHO, "controller echo did not match")                        \
+    X(FBRL_EPROTOCOL, "unexpected reply from controller")                 \
+    X(FBRL_ENAME, "illegal name")                                         \
+    X(FBRL_ESTATE, "not valid in the current state")                      \
+    X(FBRL_ESYNTAX, "syntax error")                                       \
+    X(FBRL_EOVERFLOW, "arithmetic overflow")                              \
+    X(FBRL_ETHROW, "uncaught exception")                                  \
+    X(FBRL_ENOMEM, "out of memory space")                                 \
+    X(FBRL_EOFFLINE, "no controller connected")                           \
+    X(FBRL_ENOTFILE, "not a regular file (a device, FIFO or directory)")  \
+    X(FBRL_EPERM, "permission denied")                                    \
+    X(FBRL_EMAYBE, "the command may have run (the link cannot tell)")
 
-#define NENTRIES ((int)(sizeof entries / sizeof entries[0]))
+/* Two tables indexed by -st (a place given twice is a warning), so that a program that asks
+ * only for texts (the firmware) links no names. */
+#define STATUS_NAME(st, text) [-(st)] = #st,
+#define STATUS_TEXT(st, text) [-(st)] = text,
+static const char *const names[] = {STATUSES(STATUS_NAME)};
+static const char *const texts[] = {STATUSES(STATUS_TEXT)};
+
+#define NENTRIES ((int)(sizeof texts / sizeof texts[0]))
 
 static int idx(fbrl_status st)
 {
@@ -52,11 +57,11 @@ static int idx(fbrl_status st)
 const char *fbrl_status_str(fbrl_status st)
 {
     int i = idx(st);
-    return i < 0 ? "unknown status" : entries[i].text;
+    return i < 0 ? "unknown status" : texts[i];
 }
 
 const char *fbrl_status_name(fbrl_status st)
 {
     int i = idx(st);
-    return i < 0 ? "FBRL_E?" : entries[i].name;
+    return i < 0 ? "FBRL_E?" : names[i];
 }

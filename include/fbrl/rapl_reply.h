@@ -63,7 +63,7 @@ FBRL_API fbrl_rapl_errc fbrl_rapl_error_class(int code);
 FBRL_API const char *fbrl_rapl_error_text(int code);
 /* What the error means for the user, in plain words, and what to do ("the position is
  * out of the arm's reach ... - choose a point closer ..."), or NULL if unknown. Every
- * code with a text has one. */
+ * code with a text has one, but for a library built with FBRL_NO_HELP (NULL always). */
 FBRL_API const char *fbrl_rapl_error_help(int code);
 
 /* Parse "NNN-TEXT." (exactly three digits, '-', upper-case text, final '.').

@@ -205,12 +205,28 @@ FBRL_API fbrl_status fbrl_vm_run_tasks(fbrl_vm *vm, uint64_t *wake_us, int *live
 
 /* Extending the language from C (robot words, data words). The stack effect and
  * the one-line description are what HELP prints. */
-/* A word table's stack effect and description: both NULL under FBRL_NO_HELP (a small
- * target's build option), so that the texts stay out of the image. */
+/* A word table's stack effect and description. Under FBRL_NO_HELP (a small target's build
+ * option) neither the texts nor the two pointers are in the image: a row type ends with
+ * FBRL_DOC_FIELDS (no semicolon after it), each row ends with FBRL_DOC(stack, help) (which
+ * leaves a trailing comma, as C allows), and FBRL_DOC_STACK(row), FBRL_DOC_HELP(row) read
+ * them (NULL under the option). A text given to a call (fbrl_vmx_create's for the words a
+ * defining word makes) is FBRL_DOC_TEXT(text): NULL under the option. In Forth source kept
+ * in C, a definition's "( stack ) \\ help" is FBRL_DOC_SRC("( stack ) \\ help"): "" under the
+ * option. */
 #ifdef FBRL_NO_HELP
-#define FBRL_DOC(stack_effect, help) NULL, NULL
+#define FBRL_DOC_FIELDS
+#define FBRL_DOC(stack_effect, help)
+#define FBRL_DOC_STACK(row)   NULL
+#define FBRL_DOC_HELP(row)    NULL
+#define FBRL_DOC_TEXT(text)   NULL
+#define FBRL_DOC_SRC(comment) ""
 #else
+#define FBRL_DOC_FIELDS              const char *stack, *help;
 #define FBRL_DOC(stack_effect, help) stack_effect, help
+#define FBRL_DOC_STACK(row)          ((row).stack)
+#define FBRL_DOC_HELP(row)           ((row).help)
+#define FBRL_DOC_TEXT(text)          (text)
+#define FBRL_DOC_SRC(comment)        comment
 #endif
 FBRL_API fbrl_status fbrl_vm_define(fbrl_vm *vm, const char *name, fbrl_vm_prim fn, void *arg,
                                     const char *stack_effect, const char *help);

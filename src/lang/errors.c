@@ -5,72 +5,75 @@
 #include "words.h"
 
 /* ---- throw codes and their standard texts (Forth-2012 table 9.1) ---- */
-static const char *const throw_texts[] = {
-    "",
-    "aborted",
-    "aborted",
-    "stack overflow",
-    "stack underflow",
-    "return stack overflow",
-    "return stack underflow",
-    "do-loops nested too deeply",
-    "dictionary overflow",
-    "invalid memory address",
-    "division by zero",
-    "result out of range",
-    "argument type mismatch",
-    "undefined word",
-    "interpreting a compile-only word",
-    "invalid FORGET",
-    "attempt to use zero-length string as a name",
-    "pictured numeric output string overflow",
-    "parsed string overflow",
-    "definition name too long",
-    "write to a read-only location",
-    "unsupported operation",
-    "control structure mismatch",
-    "address alignment exception",
-    "invalid numeric argument",
-    "return stack imbalance",
-    "loop parameters unavailable",
-    "invalid recursion",
-    "user interrupt",
-    "compiler nesting",
-    "obsolescent feature",
-    ">BODY used on non-CREATEd definition",
-    "invalid name argument",
-    "block read exception",
-    "block write exception",
-    "invalid block number",
-    "invalid file position",
-    "file I/O exception",
-    "non-existent file",
-    "unexpected end of file",
-    "invalid BASE for floating point conversion",
-    "loss of precision",
-    "floating-point divide by zero",
-    "floating-point result out of range",
-    "floating-point stack overflow",
-    "floating-point stack underflow",
-    "floating-point invalid argument",
-    "compilation word list deleted",
-    "invalid POSTPONE",
-    "search-order overflow",
-    "search-order underflow",
-    "compilation word list changed",
-    "control-flow stack overflow",
-    "exception stack overflow",
-    "floating-point underflow",
-    "floating-point unidentified fault",
-    "QUIT",
-    "exception in sending or receiving a character",
-    "[IF], [ELSE], or [THEN] exception",
-};
+/* Code -n's text is the n-th after code 0's (empty), each ending in its NUL: one string, not
+ * a table of pointers; an uncaught error is rare and counting is cheap. */
+static const char throw_texts[] = "\0"
+                                  "aborted\0"
+                                  "aborted\0"
+                                  "stack overflow\0"
+                                  "stack underflow\0"
+                                  "return stack overflow\0"
+                                  "return stack underflow\0"
+                                  "do-loops nested too deeply\0"
+                                  "dictionary overflow\0"
+                                  "invalid memory address\0"
+                                  "division by zero\0"
+                                  "result out of range\0"
+                                  "argument type mismatch\0"
+                                  "undefined word\0"
+                                  "interpreting a compile-only word\0"
+                                  "invalid FORGET\0"
+                                  "attempt to use zero-length string as a name\0"
+                                  "pictured numeric output string overflow\0"
+                                  "parsed string overflow\0"
+                                  "definition name too long\0"
+                                  "write to a read-only location\0"
+                                  "unsupported operation\0"
+                                  "control structure mismatch\0"
+                                  "address alignment exception\0"
+                                  "invalid numeric argument\0"
+                                  "return stack imbalance\0"
+                                  "loop parameters unavailable\0"
+                                  "invalid recursion\0"
+                                  "user interrupt\0"
+                                  "compiler nesting\0"
+                                  "obsolescent feature\0"
+                                  ">BODY used on non-CREATEd definition\0"
+                                  "invalid name argument\0"
+                                  "block read exception\0"
+                                  "block write exception\0"
+                                  "invalid block number\0"
+                                  "invalid file position\0"
+                                  "file I/O exception\0"
+                                  "non-existent file\0"
+                                  "unexpected end of file\0"
+                                  "invalid BASE for floating point conversion\0"
+                                  "loss of precision\0"
+                                  "floating-point divide by zero\0"
+                                  "floating-point result out of range\0"
+                                  "floating-point stack overflow\0"
+                                  "floating-point stack underflow\0"
+                                  "floating-point invalid argument\0"
+                                  "compilation word list deleted\0"
+                                  "invalid POSTPONE\0"
+                                  "search-order overflow\0"
+                                  "search-order underflow\0"
+                                  "compilation word list changed\0"
+                                  "control-flow stack overflow\0"
+                                  "exception stack overflow\0"
+                                  "floating-point underflow\0"
+                                  "floating-point unidentified fault\0"
+                                  "QUIT\0"
+                                  "exception in sending or receiving a character\0"
+                                  "[IF], [ELSE], or [THEN] exception";
 
 const char *fbrl__throw_text(int code)
 {
-    if (code < 0 && -code < (int)(sizeof throw_texts / sizeof throw_texts[0]))
-        return throw_texts[-code];
+    const char *t = throw_texts, *end = throw_texts + sizeof throw_texts;
+    for (int k = code; k < 0 && t < end; k++)
+        t += strlen(t) + 1;
+    if (code < 0 && t < end)
+        return t;
     if (code <= FBRL_THROW_STATUS(0) && code >= FBRL_THROW_STATUS(FBRL_STATUS_MIN))
         return fbrl_status_str((fbrl_status)(code - FBRL_THROW_STATUS(0)));
     return "user exception";

@@ -174,9 +174,9 @@ static fbrl_status w_kconst(fbrl_vm *vm, void *arg)
     return fbrl__cthrow(vm, fbrl__cpush(vm, (fbrl_cell)(intptr_t)arg));
 }
 
-#define KC(name, v)                                                                                \
-    {                                                                                              \
-        name, w_kconst, (void *)(intptr_t)(v), 0, "( -- u )", "the key event EKEY gives for " name \
+#define KC(name, v)                                                                                          \
+    {                                                                                                        \
+        name, w_kconst, (void *)(intptr_t)(v), 0, FBRL_DOC("( -- u )", "the key event EKEY gives for " name) \
     }
 
 static const fbrl_cword words[] = {

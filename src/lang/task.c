@@ -794,7 +794,7 @@ static const struct {
     const char *name;
     fbrl_vm_prim fn;
     int arg;
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } task_words[] = {
     {"TASK", w_task, 0, FBRL_DOC("( \"name\" -- )", "make a task with its own stacks; name pushes it")},
     {"START", w_start, 0, FBRL_DOC("( xt task -- )", "run xt as the task, beside the others")},
@@ -831,7 +831,7 @@ int fbrl__task_words(fbrl_vm *vm)
     vm->task_pause = task_pause;
     for (size_t k = 0; k < sizeof task_words / sizeof task_words[0]; k++)
         if (fbrl_vm_define(vm, task_words[k].name, task_words[k].fn, task_words[k].arg ? (void *)vm : NULL,
-                           task_words[k].stack, task_words[k].help) != FBRL_OK)
+                           FBRL_DOC_STACK(task_words[k]), FBRL_DOC_HELP(task_words[k])) != FBRL_OK)
             return -1;
     return 0;
 }

@@ -481,7 +481,8 @@ static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
 static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 {
     static const struct {
-        int16_t op, lit, br;
+        int16_t op;
+        uint8_t lit, br; /* 1: a literal, a branch follow the op (bytes: a row is 8 bytes, not 12) */
         const char *words;
     } fused[] = {
         {OP_LITPLUS, 1, 0, "+"},

@@ -33,7 +33,7 @@ typedef struct fbrl_cword {
     fbrl_vm_prim fn;
     void *arg;
     uint8_t flags; /* FI FC FS */
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } fbrl_cword;
 int fbrl__define_words(fbrl_vm *vm, const fbrl_cword *w, size_t n);
 int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old);

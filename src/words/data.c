@@ -76,7 +76,7 @@ static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
     if (n < 2 || n > (1 << 24))
         return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
     if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL,
-                              "( -- q-addr )", "queue", NULL, &p)))
+                              FBRL_DOC_TEXT("( -- q-addr )"), FBRL_DOC_TEXT("queue"), NULL, &p)))
         return st;
     return fbrl_ring_init((fbrl_ring *)p, (fbrl_ring *)p + 1, (size_t)n);
 }
@@ -190,11 +190,12 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
         return fail(vm, FBRL_THROW_BAD_NUMBER, "array sizes must be 1..65535");
     if (fbrl_array_bytes((size_t)size, (size_t)rows, (size_t)cols, &bytes) != FBRL_OK)
         return fail(vm, FBRL_THROW_BAD_NUMBER, NULL);
-    if ((st = fbrl_vmx_create(
-             vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes, two ? w_array2_run : w_array1_run,
-             NULL, two ? "( row col -- addr )" : "( index -- addr )",
-             two ? "address of cell (row, col) of this 2ARRAY" : "address of a cell of this ARRAY", NULL,
-             &p)))
+    if ((st = fbrl_vmx_create(vm, NULL, 0, &array_type, sizeof(fbrl_array) + 16 + bytes,
+                              two ? w_array2_run : w_array1_run, NULL,
+                              FBRL_DOC_TEXT(two ? "( row col -- addr )" : "( index -- addr )"),
+                              FBRL_DOC_TEXT(two ? "address of cell (row, col) of this 2ARRAY"
+                                                : "address of a cell of this ARRAY"),
+                              NULL, &p)))
         return st;
     fbrl_cell aa = (fbrl_cell)p;
     fbrl_cell data = align16(aa + (fbrl_cell)sizeof(fbrl_array));
@@ -276,8 +277,8 @@ static fbrl_status w_string(fbrl_vm *vm, void *arg)
     fbrl_vm_pop(vm, &n);
     if (n < 1 || n > STR_MAX)
         return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
-    if ((st =
-             fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, "( -- str )", "string", NULL, &p)))
+    if ((st = fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, FBRL_DOC_TEXT("( -- str )"),
+                              FBRL_DOC_TEXT("string"), NULL, &p)))
         return st;
     uint16_t v = (uint16_t)n;
     memcpy(p, &v, 2);
@@ -504,77 +505,76 @@ typedef struct word {
     const char *name;
     fbrl_vm_prim fn;
     intptr_t arg;
-    const char *stack, *help;
     fbrl_vmx_fn xfn;
     unsigned flags;
+    FBRL_DOC_FIELDS
 } word;
 static const word words[] = {
-    {"CREATE-Q", w_create_q, 0,
+    {"CREATE-Q", w_create_q, 0, NULL, 0,
      FBRL_DOC("( n \"name\" -- )",
-              "make a character queue named name; it holds n characters, rounded down to a power of two"),
-     NULL, 0},
-    {"ENQ", w_enq, 0, FBRL_DOC("( c q-addr -- )", "add a character to the queue (throws when full)"), NULL,
-     0},
-    {"DEQ", w_deq, 0,
-     FBRL_DOC("( q-addr -- c )", "take the oldest character from the queue (throws when empty)"), NULL, 0},
-    {"EMPTY-Q?", w_q_test, 0, FBRL_DOC("( q-addr -- flag )", "true if the queue is empty"), NULL, 0},
-    {"FULL-Q?", w_q_test, 1, FBRL_DOC("( q-addr -- flag )", "true if the queue is full"), NULL, 0},
-    {"ENQ-L", w_enq, 0, FBRL_DOC("( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)"),
-     NULL, 0},
-    {"DEQ-L", w_deq, 0, FBRL_DOC("( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)"),
-     NULL, 0},
-    {"EMPTY-Q?-L", w_q_test, 0, FBRL_DOC("( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)"),
-     NULL, 0},
-    {"FULL-Q?-L", w_q_test, 1, FBRL_DOC("( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)"), NULL,
-     0},
-    {"Q-COUNT", w_q_count, 0, FBRL_DOC("( q-addr -- n )", "number of characters in the queue"), NULL, 0},
-    {"ARRAY", w_array, 0,
+              "make a character queue named name; it holds n characters, rounded down to a power of two")},
+    {"ENQ", w_enq, 0, NULL, 0,
+     FBRL_DOC("( c q-addr -- )", "add a character to the queue (throws when full)")},
+    {"DEQ", w_deq, 0, NULL, 0,
+     FBRL_DOC("( q-addr -- c )", "take the oldest character from the queue (throws when empty)")},
+    {"EMPTY-Q?", w_q_test, 0, NULL, 0, FBRL_DOC("( q-addr -- flag )", "true if the queue is empty")},
+    {"FULL-Q?", w_q_test, 1, NULL, 0, FBRL_DOC("( q-addr -- flag )", "true if the queue is full")},
+    {"ENQ-L", w_enq, 0, NULL, 0,
+     FBRL_DOC("( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)")},
+    {"DEQ-L", w_deq, 0, NULL, 0,
+     FBRL_DOC("( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)")},
+    {"EMPTY-Q?-L", w_q_test, 0, NULL, 0,
+     FBRL_DOC("( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)")},
+    {"FULL-Q?-L", w_q_test, 1, NULL, 0,
+     FBRL_DOC("( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)")},
+    {"Q-COUNT", w_q_count, 0, NULL, 0, FBRL_DOC("( q-addr -- n )", "number of characters in the queue")},
+    {"ARRAY", w_array, 0, NULL, 0,
      FBRL_DOC("( n cell-size \"name\" -- ) ( run: index -- addr )",
-              "make a one-dimensional array of n cells"),
-     NULL, 0},
-    {"2ARRAY", w_2array, 0,
-     FBRL_DOC("( rows cols cell-size \"name\" -- ) ( run: row col -- addr )", "make a two-dimensional array"),
-     NULL, 0},
-    {"STRING", w_string, 0,
-     FBRL_DOC("( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters"), NULL, 0},
-    {"STRING-CNT", w_str1, S_CNT, FBRL_DOC("( str -- cnt )", "number of characters in the string"), NULL, 0},
-    {"STRING-SIZE", w_str1, S_SIZE,
-     FBRL_DOC("( str -- size )", "number of characters reserved for the string"), NULL, 0},
-    {"TYPE-STRING", w_str1, S_TYPE, FBRL_DOC("( str -- )", "print the string"), NULL, 0},
-    {"NULL-STRING", w_str1, S_NULL, FBRL_DOC("( str -- )", "make the string empty"), NULL, 0},
-    {"STRING-TEXT", w_str1, S_TEXT,
-     FBRL_DOC("( str -- a u )", "address and length of the string's characters"), NULL, 0},
-    {"APPEND-CHR", w_append_chr, 0, FBRL_DOC("( c str -- )", "append a character to the string"), NULL, 0},
-    {"APPEND-STRING", w_append_copy, 1, FBRL_DOC("( targ src -- )", "append string src to string targ"), NULL,
-     0},
-    {"COPY-STRING", w_append_copy, 0, FBRL_DOC("( targ src -- )", "copy string src into string targ"), NULL,
-     0},
-    {"SUB-STRING", w_sub_string, 0,
-     FBRL_DOC("( targ src m n -- )", "copy characters m..n (from 1) of src into targ"), NULL, 0},
-    {"STRING->CHR", w_string_chr, 0, FBRL_DOC("( str n -- c )", "the n-th character of the string (from 1)"),
-     NULL, 0},
-    {"STRING-PUT", w_string_put, 0, FBRL_DOC("( str a u -- )", "store the text a u into the string"), NULL,
-     0},
-    {"STRING-LIT", NULL, 0, FBRL_DOC("( str \"\"text\"\" -- )", "store the quoted text into the string"),
-     w_string_lit, FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART},
-    {"GET-STRING", w_get_string, 0, FBRL_DOC("( str -- )", "read a line from the console into the string"),
-     NULL, 0},
-    {"CHR", w_const, 1, FBRL_DOC("( -- 1 )", "size in bytes of a character (for ARRAY)"), NULL, 0},
-    {"INTEGER", w_const, 2, FBRL_DOC("( -- 2 )", "size in bytes of an integer (for ARRAY)"), NULL, 0},
-    {"LONG-INTEGER", w_const, 4, FBRL_DOC("( -- 4 )", "size in bytes of a long integer (for ARRAY)"), NULL,
-     0},
-    {"REAL", w_const, 8, FBRL_DOC("( -- 8 )", "size in bytes of a real (a float, for ARRAY)"), NULL, 0},
-    {"LOCATION", w_const, 48,
-     FBRL_DOC("( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)"), NULL, 0},
+              "make a one-dimensional array of n cells")},
+    {"2ARRAY", w_2array, 0, NULL, 0,
+     FBRL_DOC("( rows cols cell-size \"name\" -- ) ( run: row col -- addr )",
+              "make a two-dimensional array")},
+    {"STRING", w_string, 0, NULL, 0,
+     FBRL_DOC("( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters")},
+    {"STRING-CNT", w_str1, S_CNT, NULL, 0, FBRL_DOC("( str -- cnt )", "number of characters in the string")},
+    {"STRING-SIZE", w_str1, S_SIZE, NULL, 0,
+     FBRL_DOC("( str -- size )", "number of characters reserved for the string")},
+    {"TYPE-STRING", w_str1, S_TYPE, NULL, 0, FBRL_DOC("( str -- )", "print the string")},
+    {"NULL-STRING", w_str1, S_NULL, NULL, 0, FBRL_DOC("( str -- )", "make the string empty")},
+    {"STRING-TEXT", w_str1, S_TEXT, NULL, 0,
+     FBRL_DOC("( str -- a u )", "address and length of the string's characters")},
+    {"APPEND-CHR", w_append_chr, 0, NULL, 0, FBRL_DOC("( c str -- )", "append a character to the string")},
+    {"APPEND-STRING", w_append_copy, 1, NULL, 0,
+     FBRL_DOC("( targ src -- )", "append string src to string targ")},
+    {"COPY-STRING", w_append_copy, 0, NULL, 0,
+     FBRL_DOC("( targ src -- )", "copy string src into string targ")},
+    {"SUB-STRING", w_sub_string, 0, NULL, 0,
+     FBRL_DOC("( targ src m n -- )", "copy characters m..n (from 1) of src into targ")},
+    {"STRING->CHR", w_string_chr, 0, NULL, 0,
+     FBRL_DOC("( str n -- c )", "the n-th character of the string (from 1)")},
+    {"STRING-PUT", w_string_put, 0, NULL, 0,
+     FBRL_DOC("( str a u -- )", "store the text a u into the string")},
+    {"STRING-LIT", NULL, 0, w_string_lit, FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART,
+     FBRL_DOC("( str \"\"text\"\" -- )", "store the quoted text into the string")},
+    {"GET-STRING", w_get_string, 0, NULL, 0,
+     FBRL_DOC("( str -- )", "read a line from the console into the string")},
+    {"CHR", w_const, 1, NULL, 0, FBRL_DOC("( -- 1 )", "size in bytes of a character (for ARRAY)")},
+    {"INTEGER", w_const, 2, NULL, 0, FBRL_DOC("( -- 2 )", "size in bytes of an integer (for ARRAY)")},
+    {"LONG-INTEGER", w_const, 4, NULL, 0,
+     FBRL_DOC("( -- 4 )", "size in bytes of a long integer (for ARRAY)")},
+    {"REAL", w_const, 8, NULL, 0, FBRL_DOC("( -- 8 )", "size in bytes of a real (a float, for ARRAY)")},
+    {"LOCATION", w_const, 48, NULL, 0,
+     FBRL_DOC("( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)")},
 };
 
 fbrl_status fbrl_vmx_data_words(fbrl_vm *vm)
 {
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st = words[i].fn ? fbrl_vm_define(vm, words[i].name, words[i].fn, (void *)words[i].arg,
-                                                      words[i].stack, words[i].help)
-                                     : fbrl_vmx_define(vm, words[i].name, words[i].xfn, NULL, &words[i],
-                                                       words[i].flags, words[i].stack, words[i].help);
+        fbrl_status st =
+            words[i].fn ? fbrl_vm_define(vm, words[i].name, words[i].fn, (void *)words[i].arg,
+                                         FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]))
+                        : fbrl_vmx_define(vm, words[i].name, words[i].xfn, NULL, &words[i], words[i].flags,
+                                          FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]));
         if (st != FBRL_OK)
             return st;
     }

@@ -10,7 +10,7 @@
 fbrl_status gl_define(fbrl_vm *vm, fbrl_glossary *g, const gl_word *w, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
-        fbrl_status st = fbrl_vm_define(vm, w[i].name, w[i].fn, g, w[i].stack, w[i].help);
+        fbrl_status st = fbrl_vm_define(vm, w[i].name, w[i].fn, g, FBRL_DOC_STACK(w[i]), FBRL_DOC_HELP(w[i]));
         if (st != FBRL_OK)
             return st;
     }

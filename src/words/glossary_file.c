@@ -134,8 +134,9 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
         return file_error(vm, st, "OPEN-FILE", path);
     if (!cells) { /* a new handle word: made whole, or not at all */
         void *p;
-        st = fbrl_vmx_create(vm, name, len, &gl_type_hndl, sizeof(fbrl_cell), NULL, NULL, "( -- hndl )",
-                             "file handle (made by OPEN-FILE)", &owner, &p);
+        st = fbrl_vmx_create(vm, name, len, &gl_type_hndl, sizeof(fbrl_cell), NULL, NULL,
+                             FBRL_DOC_TEXT("( -- hndl )"), FBRL_DOC_TEXT("file handle (made by OPEN-FILE)"),
+                             &owner, &p);
         if (st != FBRL_OK) {
             fbrl_file_discard(f);
             return st;

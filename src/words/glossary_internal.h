@@ -25,17 +25,17 @@ extern const fbrl_vmx_type gl_type_cal, gl_type_stru, gl_type_rect, gl_type_rad,
 /* A location template's tag (fbrl_vmx_tag): how the glossary knows its CREATE-LOC words. */
 extern const char gl_loc_tag[];
 /* The HELP of the words the defining words make (one text each, for the words made by
- * fbrl_glossary_make too). */
-#define GL_LOC_STACK  "( -- loc )"
-#define GL_LOC_HELP   "location template (X Y Z O A T)"
-#define GL_RECT_STACK "( i j k loc -- )"
-#define GL_RECT_HELP  "store location (i, j, k) of this RECTMAT into loc"
-#define GL_RAD_STACK  "( ring idx k loc -- )"
-#define GL_RAD_HELP   "store location (ring, idx, k) of this RADMAT into loc"
-#define GL_CAL_STACK  "( -- cal )"
-#define GL_CAL_HELP   "calibration: three location slots 1 2 3"
-#define GL_STRU_STACK "( -- cal-stru )"
-#define GL_STRU_HELP  "calibration structure: the block's motion (identity until CALIBRATE)"
+ * fbrl_glossary_make too; NULL under FBRL_NO_HELP). */
+#define GL_LOC_STACK  FBRL_DOC_TEXT("( -- loc )")
+#define GL_LOC_HELP   FBRL_DOC_TEXT("location template (X Y Z O A T)")
+#define GL_RECT_STACK FBRL_DOC_TEXT("( i j k loc -- )")
+#define GL_RECT_HELP  FBRL_DOC_TEXT("store location (i, j, k) of this RECTMAT into loc")
+#define GL_RAD_STACK  FBRL_DOC_TEXT("( ring idx k loc -- )")
+#define GL_RAD_HELP   FBRL_DOC_TEXT("store location (ring, idx, k) of this RADMAT into loc")
+#define GL_CAL_STACK  FBRL_DOC_TEXT("( -- cal )")
+#define GL_CAL_HELP   FBRL_DOC_TEXT("calibration: three location slots 1 2 3")
+#define GL_STRU_STACK FBRL_DOC_TEXT("( -- cal-stru )")
+#define GL_STRU_HELP  FBRL_DOC_TEXT("calibration structure: the block's motion (identity until CALIBRATE)")
 /* The run functions of RECTMAT and RADMAT words (glossary_loc.c). */
 fbrl_status gl_rect_run(fbrl_vm *vm, void *ctx, const void *body);
 fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body);
@@ -52,7 +52,7 @@ fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body);
 typedef struct gl_word {
     const char *name;
     fbrl_vm_prim fn;
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } gl_word;
 
 /* Define the n words of a table with arg = g. */

@@ -442,7 +442,7 @@ typedef struct method_word {
     const char *name;
     fbrl_vmx_fn fn;
     const void *arg; /* non-NULL: the SAMPLE- variant */
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } method_word;
 
 static const method_word words[] = {
@@ -479,8 +479,8 @@ fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s)
     memset(s, 0, sizeof *s);
     s->vm = vm;
     for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st = fbrl_vmx_define(vm, words[i].name, words[i].fn, s, words[i].arg, 0, words[i].stack,
-                                         words[i].help);
+        fbrl_status st = fbrl_vmx_define(vm, words[i].name, words[i].fn, s, words[i].arg, 0,
+                                         FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]));
         if (st != FBRL_OK)
             return st;
     }

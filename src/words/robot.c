@@ -31,8 +31,8 @@ static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
 static fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
-        fbrl_status st =
-            fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, t[i].stack, t[i].help);
+        fbrl_status st = fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, FBRL_DOC_STACK(t[i]),
+                                         FBRL_DOC_HELP(t[i]));
         if (st != FBRL_OK)
             return st;
     }
@@ -69,13 +69,19 @@ const char *fbrl_robot_word(size_t i)
 
 /* Input handlers (docs/tasks.md): a word run as a task when an input device changes to a
  * state (ONSIG, every time) or once it is in that state (WHEN). */
+/* (clang-format cannot lay out strings joined to a macro's string) */
+/* clang-format off */
 static const char rb_handlers[] =
-    ": (ONSIG) ( xt dev state -- ) BEGIN 2DUP INPUT-EDGE 2 PICK EXECUTE AGAIN ;\n"
-    ": ONSIG ( xt dev state task -- ) \\ run xt as the task each time the input device turns to state\n"
+    ": (ONSIG) " FBRL_DOC_SRC("( xt dev state -- )") " BEGIN 2DUP INPUT-EDGE 2 PICK EXECUTE AGAIN ;\n"
+    ": ONSIG "
+        FBRL_DOC_SRC("( xt dev state task -- ) \\ run xt as the task each time the input device "
+                     "turns to state") "\n"
     "   >R 3 ['] (ONSIG) R> START-WITH ;\n"
-    ": (WHEN) ( xt dev state -- ) BEGIN 2DUP 86400000 WAIT-INPUT UNTIL 2DROP EXECUTE ;\n"
-    ": WHEN ( xt dev state task -- ) \\ run xt as the task once the input device is in state\n"
+    ": (WHEN) " FBRL_DOC_SRC("( xt dev state -- )") " BEGIN 2DUP 86400000 WAIT-INPUT UNTIL 2DROP EXECUTE ;\n"
+    ": WHEN "
+        FBRL_DOC_SRC("( xt dev state task -- ) \\ run xt as the task once the input device is in state") "\n"
     "   >R 3 ['] (WHEN) R> START-WITH ;\n";
+/* clang-format on */
 
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g)
 {
@@ -91,8 +97,8 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     if (fbrl_vm_compiling(vm))
         return FBRL_ESTATE;
     /* GET-CAL-POINTS' line buffer lives in the data space: the words it runs parse it */
-    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, "( -- a )",
-                        "robot words' line buffer", &r->tib, NULL) != FBRL_OK)
+    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, FBRL_DOC_TEXT("( -- a )"),
+                        FBRL_DOC_TEXT("robot words' line buffer"), &r->tib, NULL) != FBRL_OK)
         return FBRL_ENOMEM;
     fbrl_status st = FBRL_OK;
     for (size_t k = 0; st == FBRL_OK && k < NTABLES; k++) {

@@ -20,7 +20,7 @@ typedef struct cw_word {
     const char *name;
     fbrl_status (*fn)(fbrl_cell_words *cw, const struct cw_word *w);
     int arg;
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } cw_word;
 
 /* "12.3456" locale-free. */
@@ -492,8 +492,8 @@ fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, f
     cw->stats.clearance = INFINITY;
     cw->stats.near_obj = FBRL_CELL_NONE;
     for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
-        fbrl_status st =
-            fbrl_vmx_define(vm, words[k].name, tramp, cw, &words[k], 0, words[k].stack, words[k].help);
+        fbrl_status st = fbrl_vmx_define(vm, words[k].name, tramp, cw, &words[k], 0, FBRL_DOC_STACK(words[k]),
+                                         FBRL_DOC_HELP(words[k]));
         if (st != FBRL_OK)
             return st;
     }

@@ -393,11 +393,11 @@ const rb_word rb_comm_words[] = {
 const size_t rb_comm_nwords = sizeof rb_comm_words / sizeof rb_comm_words[0];
 
 /* ASC is F-PC's; a VM that has one keeps it. Immediate. */
-const rb_word rb_comm_asc = {"ASC",
-                             w_asc,
-                             "",
-                             FBRL_VMX_IMMEDIATE,
-                             -1,
-                             0,
-                             "( \"c\" -- char )",
-                             "the character code of the next word's first character"};
+const rb_word rb_comm_asc = {
+    "ASC",
+    w_asc,
+    "",
+    FBRL_VMX_IMMEDIATE,
+    -1,
+    0,
+    FBRL_DOC("( \"c\" -- char )", "the character code of the next word's first character")};

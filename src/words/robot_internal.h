@@ -30,16 +30,22 @@ typedef fbrl_status (*rb_fn)(fbrl_robot *r, const struct rb_word *w, rb_val *v);
 
 /* A table entry. spec lists the parameters in stack-effect order: vmx.h's letters (I R C S T)
  * and L location address, X location or controller location name, A device address.
- * flags: FBRL_VMX_IMMEDIATE ... */
+ * flags: FBRL_VMX_IMMEDIATE ... flags and cmd are narrow and fill the gap before arg, so a
+ * row is five words on a 32-bit target (the firmware has about 200 rows). */
 typedef struct rb_word {
     const char *name;
     rb_fn fn;
     const char *spec;
-    unsigned flags;
-    int cmd;      /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
+    uint8_t flags;
+    int16_t cmd;  /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
     intptr_t arg; /* word-specific */
-    const char *stack, *help;
+    FBRL_DOC_FIELDS
 } rb_word;
+/* Every flag and command number fits (C99 has no static assertion: a negative array size
+ * fails to compile). */
+#define RB_WORD_FLAGS (FBRL_VMX_IMMEDIATE | FBRL_VMX_COMPILE_ONLY | FBRL_VMX_STATE_SMART)
+typedef char rb_word_flags_fit[RB_WORD_FLAGS <= UINT8_MAX ? 1 : -1];
+typedef char rb_word_cmds_fit[FBRL_RAPL_NCMDS - 1 <= INT16_MAX ? 1 : -1];
 
 /* Throw a Forth exception with a message (the message is copied). */
 fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg);

@@ -52,8 +52,6 @@ static fbrl_status device(fbrl_robot *r, const rb_word *w, fbrl_cell addr, int o
     return FBRL_OK;
 }
 
-static const char *device_help(int output) { return output ? "output device" : "input device"; }
-
 /* A new device word (name NULL: parsed from the input) in a free slot of the table. */
 static fbrl_status make_device(fbrl_robot *r, const char *name, size_t len, int port, int output,
                                uint32_t pulse_ms)
@@ -66,7 +64,8 @@ static fbrl_status make_device(fbrl_robot *r, const char *name, size_t len, int 
     if (k == FBRL_ROBOT_MAX_DEVICES)
         return FBRL_EFULL;
     fbrl_status st = fbrl_vmx_create(r->vm, name, len, &device_type, sizeof(fbrl_cell), NULL, NULL,
-                                     "( -- dev )", device_help(output), &addr, &p);
+                                     FBRL_DOC_TEXT("( -- dev )"),
+                                     FBRL_DOC_TEXT(output ? "output device" : "input device"), &addr, &p);
     if (st != FBRL_OK)
         return st;
     memcpy(p, &cell, sizeof cell);
