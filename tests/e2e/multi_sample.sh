@@ -3,7 +3,7 @@
 # multi_sample.sh FBRLMON FBRLSIM WORKDIR
 #
 # examples/multi_sample.fbrl, shortened (3 samples, a 60 s reaction), on a real fbrlsim at
-# time scale 60: both runs end, every reaction ends within 100 ms (simulated) of its time,
+# time scale 60: both runs end, every reaction ends within 3 s (simulated) of its time,
 # and the tasks' makespan is shorter than the sequential one. (docs/tasks.md has the full
 # run: 6 samples, 15 min reactions.)
 mon=$1 sim=$2 work=$3
@@ -21,8 +21,13 @@ cat out.txt
 fails=0
 n=$(grep -c "latest reaction end" out.txt)
 [ "$n" = 2 ] || { echo "FAIL: $n reports, 2 expected"; fails=1; }
+# At time scale 60 a simulated second is 17 ms of real time, so a busy machine's scheduling
+# delay shows 60 times larger (7 ms real made 411 ms simulated under the full suite). The
+# bound is 50 ms of real time; a reaction held up by another step (a move, a wait for the
+# arm) is late by seconds.
+late_max=3000
 for late in $(sed -n 's/.*latest reaction end \([0-9-]*\) ms late.*/\1/p' out.txt); do
-    [ "$late" -lt 100 ] || { echo "FAIL: a reaction ended $late ms late (simulated)"; fails=1; }
+    [ "$late" -lt $late_max ] || { echo "FAIL: a reaction ended $late ms late (simulated)"; fails=1; }
 done
 seq=$(sed -n 's/^sequential.*makespan \([0-9]*\)\..*/\1/p' out.txt)
 par=$(sed -n 's/^as tasks.*makespan \([0-9]*\)\..*/\1/p' out.txt)
