@@ -128,13 +128,15 @@ END {
     p = 0; twice = 0; unreported = 0; altered = 0; invisible = 0; ok = 0; refusedn = 0; maybes = 0; notrun = 0
     for (i = 0; i < nc; i++) {
         # a line that ran but is neither this command nor one of the next few (this one
-        # may not have run): altered, or the 8N1 blind spot
+        # may not have run): altered, or the 8N1 blind spot. A blind-spot line is a run of
+        # this command, as the controller got it: the link saw the echo match, sent the CR
+        # and reports what came back, so it counts as one of its runs.
+        runs = 0
         while (p < nl && log_[p] != cmd[i] && !upcoming(p, i)) {
-            if (onebit(log_[p], cmd[i])) { invisible++; print "8N1 blind spot: sent \"" cmd[i] "\", ran \"" log_[p] "\"" }
+            if (onebit(log_[p], cmd[i])) { invisible++; runs++; print "8N1 blind spot: sent \"" cmd[i] "\", ran \"" log_[p] "\"" }
             else { altered++; print "ALTERED: ran \"" log_[p] "\" (sending \"" cmd[i] "\")" }
             p++
         }
-        runs = 0
         while (p < nl && log_[p] == cmd[i]) { runs++; p++ }
         r = res[i]
         if (r == ran) ok++; else if (r == refused) refusedn++; else if (r == maybe) maybes++; else notrun++
