@@ -916,10 +916,18 @@ static void saw_foreign(fbrl_link *l, uint8_t b)
     l->last_byte = b;
 }
 
+/* The last prompt's second '>' (3.10) answers the command before this one: alone it
+ * does not make a silent controller one whose echo went wrong (gave_up()). */
+static int is_owed_gt(const fbrl_link *l, uint8_t b)
+{
+    return b == '>' && ((l->phase == PH_ERASE && l->owed) || (l->phase == PH_TYPE && l->lead && l->match == 0));
+}
+
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
     l->t_last = now_us(l);
-    l->heard = 1;
+    if (!is_owed_gt(l, b))
+        l->heard = 1;
     switch (l->phase) {
     case PH_ERASE:
         if (l->owed) {

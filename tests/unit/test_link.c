@@ -462,6 +462,17 @@ static void silence_is_an_error(void **state)
     uint64_t t0 = fbrl_clock_now_us();
     assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_ETIMEOUT);
     assert_true(fbrl_clock_now_us() - t0 < 3000000u);
+    /* the last prompt's second '>' lands just after the next command starts, then
+     * silence: that '>' belongs to the command before, so this one heard nothing */
+    s->c.dead = 0;
+    s->c.hold_gt = 1;
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_true(s->c.held);
+    s->c.hold_gt = s->c.held = 0;
+    s->c.dead = 1;
+    assert_int_equal(fbrl_link_start(&s->l, "READY", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    outs(&s->c, ">");
+    assert_int_equal(drive(s), FBRL_ETIMEOUT);
     /* echoes everything wrong: the echo never matches */
     s->c.dead = 0;
     ctl_rule(&s->c, IN, 'h', 0, REPLACE, 'j');
