@@ -1147,20 +1147,13 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             *done = 1;
             return finish(l, FBRL_ETIMEOUT);
         }
-        if (t >= quiet_end) {
-            fbrl_status st = on_silence(l, t);
-            if (!l->busy || st != FBRL_OK) {
-                *done = 1;
-                if (l->busy)
-                    l->ctrl_len = -1;
-                return l->busy ? finish(l, st) : l->result;
-            }
-            continue;
-        }
+        /* Past the quiet time the line is still looked at once, without waiting: bytes
+         * that came while this thread was not running are not silence. */
+        int quiet = t >= quiet_end;
         uint64_t spent = t - start;
-        if (spent > budget)
+        if (!quiet && spent > budget)
             return FBRL_OK;
-        uint64_t wait = quiet_end - t;
+        uint64_t wait = quiet ? 0 : quiet_end - t;
         if (wait > budget - spent)
             wait = budget - spent;
         uint8_t buf[64];
@@ -1171,7 +1164,18 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
             *done = 1;
             return finish(l, st);
         }
-        if (parity_error(l)) {
+        int damaged = parity_error(l);
+        if (quiet && got == 0 && !damaged) {
+            st = on_silence(l, t);
+            if (!l->busy || st != FBRL_OK) {
+                *done = 1;
+                if (l->busy)
+                    l->ctrl_len = -1;
+                return l->busy ? finish(l, st) : l->result;
+            }
+            continue;
+        }
+        if (damaged) {
             if (l->phase == PH_TYPE) {
                 /* a byte of the echo (or a stray one before it) was lost: nothing of it
                  * can be trusted, and no CR goes out for it; older than the probe, the

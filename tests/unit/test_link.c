@@ -523,6 +523,29 @@ static void count_line(void *ctx, const char *line, size_t len, int flawed)
     *(int *)ctx += 1;
 }
 
+/* The host's thread sleeps (a loaded machine) while the whole echo comes in: on waking
+ * the echo is in the buffer, so the link does not take the time asleep for silence. */
+static void late_host_is_not_silence(void **state)
+{
+    session *s = *state;
+    fbrl_link_stats st0, st;
+    fbrl_link_get_stats(&s->l, &st0);
+    s->c.nlog = 0;
+    assert_int_equal(fbrl_link_start(&s->l, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    for (int k = 0; k < 200 && s->c.len < 4; k++) {
+        usleep(1000);
+        ctl_service(&s->c);
+    }
+    assert_int_equal(s->c.len, 4); /* typed and echoed, link not polled yet */
+    usleep(4 * 1000 * s->l.cfg.echo_timeout_ms); /* four echo timeouts asleep */
+    assert_int_equal(drive(s), FBRL_OK);
+    fbrl_link_get_stats(&s->l, &st);
+    assert_int_equal(st.echo_timeout, st0.echo_timeout);
+    assert_int_equal(st.attempts, st0.attempts + 1);
+    static const char *const want[] = {"HOME"};
+    assert_log(s, want, 1);
+}
+
 /* Run a W1 stream of `lines` value lines with the step-by-step calls. */
 static fbrl_status run_stream(session *s, unsigned lines)
 {
@@ -887,6 +910,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(errors_carry_the_code, setup, teardown),
         cmocka_unit_test_setup_teardown(queries_are_confirmed, setup, teardown),
         cmocka_unit_test_setup_teardown(silence_is_an_error, setup, teardown),
+        cmocka_unit_test_setup_teardown(late_host_is_not_silence, setup, teardown),
         cmocka_unit_test_setup_teardown(stream_stop_runs_nothing, setup, teardown),
         cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
         cmocka_unit_test_setup_teardown(next_command_overlaps_the_prompt, setup, teardown),
