@@ -27,7 +27,6 @@ EOF2
 tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
     "'$mon' --port '$work/robot' --console --methods '$work/methods'; echo fbrlmon-exit=\$?; sleep 600"
 key() { tmux -L "$sock" send-keys -t said "$@"; }
-pane() { tmux -L "$sock" capture-pane -p -t said; }
 wait_for "FAR-AND-BACK" || exit 1
 key Enter
 wait_for "Parameters of FAR-AND-BACK" || exit 1

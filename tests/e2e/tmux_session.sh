@@ -2,7 +2,7 @@
 # tmux_session.sh - sourced by the e2e tests that drive fbrlmon on a real terminal: tmux
 # gives it a pty of a chosen size (session "said" on a private server), fbrlsim (started
 # here with --time-scale ${sim_scale:-20} and --log sim.log) is the controller on
-# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, wait_for, wait_long, type_line, count, logged; the caller sets
+# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, pane, wait_for, wait_long, type_line, count, logged; the caller sets
 # $name (part of the tmux socket name) and starts the session.
 sock=fbrl-$name-$$
 fails=0
@@ -18,24 +18,20 @@ i=0
 while [ ! -e robot ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
 
 screen() { tmux -L "$sock" capture-pane -p -J -S - -t said; }  # -J: wrapped lines joined
+pane() { tmux -L "$sock" capture-pane -p -t said; }               # the visible screen only
+# shown CAPTURE TEXT SECONDS: until CAPTURE (screen or pane) shows TEXT, at most SECONDS
+shown() {
+    k=0
+    while ! "$1" | grep -qF -- "$2"; do
+        k=$((k + 1))
+        [ $k -lt $(($3 * 10)) ] || { fail "no '$2' on the screen in $3 s"; "$1"; return 1; }
+        sleep 0.1
+    done
+}
 # wait_for TEXT: until the screen (with its history) shows TEXT, at most 10 s
-wait_for() {
-    k=0
-    while ! screen | grep -qF -- "$1"; do
-        k=$((k + 1))
-        [ $k -lt 100 ] || { fail "no '$1' on the screen"; screen; return 1; }
-        sleep 0.1
-    done
-}
+wait_for() { shown screen "$1" 10; }
 # wait_long TEXT SECONDS: until the visible screen (no history) shows TEXT, at most SECONDS
-wait_long() {
-    k=0
-    while ! tmux -L "$sock" capture-pane -p -t said | grep -qF -- "$1"; do
-        k=$((k + 1))
-        [ $k -lt $(($2 * 10)) ] || { fail "no '$1' on the screen in $2 s"; tmux -L "$sock" capture-pane -p -t said; return 1; }
-        sleep 0.1
-    done
-}
+wait_long() { shown pane "$1" "$2"; }
 # type LINE: the line and Enter, then wait until a new prompt follows it
 prompts() { screen | grep -c "^ok>"; }
 type_line() {
