@@ -84,21 +84,26 @@ def deferred(wake=None):
         yield State(wake)
         return
     state = State(wake)
-    rfd, wfd = os.pipe()
-    os.set_blocking(wfd, False)
-    old_fd = signal.set_wakeup_fd(wfd, warn_on_full_buffer=False)
-    watcher = threading.Thread(target=_watch, args=(rfd, state, old_fd), name="fbrl-sigint", daemon=True)
-    watcher.start()
-    signal.signal(signal.SIGINT, lambda signum, frame: state.fire())
+    signal.signal(signal.SIGINT, lambda signum, frame: state.fire())  # first: no Ctrl-C raises from here
     _active = state
+    rfd, wfd = os.pipe()
+    installed = False
+    watcher = None
     try:
+        os.set_blocking(wfd, False)
+        old_fd = signal.set_wakeup_fd(wfd, warn_on_full_buffer=False)
+        installed = True
+        watcher = threading.Thread(target=_watch, args=(rfd, state, old_fd), name="fbrl-sigint", daemon=True)
+        watcher.start()
         yield state
     finally:
         _active = None
+        if installed:
+            signal.set_wakeup_fd(old_fd)
         signal.signal(signal.SIGINT, signal.default_int_handler)
-        signal.set_wakeup_fd(old_fd)
-        os.close(wfd)
-        watcher.join()
+        os.close(wfd)  # the watcher reads the end and returns
+        if watcher is not None:
+            watcher.join()
         os.close(rfd)
 
 

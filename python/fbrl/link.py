@@ -190,7 +190,9 @@ class Link:
         # what this program did through the link, as the controller ran it (every line,
         # the Engine's robot words' too): the safe stop's knowledge
         self._outputs_on = 0  # bit n-1: output n switched on
-        self._motion = None  # the last motion line, until it is seen to end
+        # the last motion line, until it is seen to end; "": a controller nobody watched may
+        # be moving, so the first motion asks first (as fbrl_robot_set_link)
+        self._motion = ""
         self.motions = 0  # motion lines run so far
         self.last_stop = None  # the report of the last safe stop
         self._on_line = ffi.callback("void(void *, const char *, size_t, int)", self._line,

@@ -41,7 +41,8 @@ class Stop:
             return ("the controller is still running a command that waits (WAIT or RUN) and reads nothing else: "
                     "HALT could not be sent; stop the arm at the controller")
         if self.halted:
-            text = "arm halted " + ("while moving (%s)" % self.motion if self.was_moving else "(no motion was running)")
+            text = "arm halted " + ("(no motion was running)" if not self.was_moving else
+                                    "while moving (%s)" % self.motion if self.motion else "while it may have moved")
         else:
             text = "HALT failed (%s)" % status_text(self.status)
         if self.where:

@@ -2,7 +2,7 @@
 # The Python bindings (python/, label python): pytest against the built shared library and
 # a real fbrlsim, and the Python sample-prep example, whose output must be exactly the C
 # example's (examples/sample_prep_c.out.expected) and whose controller log the C example's
-# with the three W5 readings the Python link makes before a motion or FINISH while the arm
+# with the four W5 readings the Python link makes before a motion or FINISH while the arm
 # may move (python/examples/sample_prep.expected; docs/python.md). Needs a Python 3 with
 # cffi and pytest (Debian: python3-cffi, python3-pytest); without one the tests are not
 # added. Not in sanitizer builds: a sanitized library cannot be dlopen'ed by Python.

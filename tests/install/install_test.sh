@@ -85,7 +85,7 @@ sed 's/fbrl_rapl_real(14.0)/fbrl_rapl_real(40.0)/' "$tmp/doc/hello_arm.c" >"$tmp
 cc -std=c99 -o "$tmp/doc/far" "$tmp/doc/far.c" $(PKG_CONFIG_PATH="$pcdir" pkg-config --cflags --libs fbrl)
 "$prefix/bin/fbrlsim" --link "$tmp/robot" --log "$tmp/sim.log" >/dev/null 2>&1 &
 simpid=$!
-trap 'kill $simpid 2>/dev/null; rm -rf "$tmp"' EXIT
+trap 'kill $simpid 2>/dev/null || :; rm -rf "$tmp"' EXIT
 i=0
 while [ ! -e "$tmp/robot" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
 for prog in "$tmp/doc/build/hello_arm" "$tmp/doc/hello_arm_static" "LD_LIBRARY_PATH=$prefix/lib $tmp/doc/hello_arm_pc"; do
@@ -112,7 +112,7 @@ case $got in
 "$prefix/lib/libfbrl.so."*" x 14.00") ;; # where hello_arm left the arm
 *) fail "python3 used '$got', not $prefix/lib" ;;
 esac
-kill $simpid 2>/dev/null
+kill $simpid 2>/dev/null && wait $simpid 2>/dev/null || :
 grep -qx HOME "$tmp/sim.log" || fail "no HOME in fbrlsim's log"
 
 # 2. staged for packaging (DESTDIR) under /usr/local: the directories python3 and the
