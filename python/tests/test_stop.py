@@ -153,3 +153,16 @@ def test_ctrl_c_in_the_program_s_own_code_stops_the_arm(realtime_sim, slow_link)
     stop = e.value.stop
     assert stop.halted and stop.motion == "MOVE P1" and stop.switched_off == [OUTPUT]
     assert stop.where.distance(TARGET) > SHORT_IN
+
+
+def test_ctrl_c_while_the_controller_waits_says_halt_could_not_be_sent(sim, link):
+    """A WAIT for an input that never comes: the controller reads nothing else, HALT cannot
+    be typed; the stop says so (FBRL_EBUSY) instead of claiming the arm was halted."""
+    sent = []
+    interrupt_after(0.5, sent)
+    with pytest.raises(KeyboardInterrupt) as e:
+        link.raw("WAIT 5")
+    stop = e.value.stop
+    assert stop.name == "FBRL_EBUSY" and not stop.halted and not stop.ok
+    assert "HALT could not be sent" in str(e.value)
+    assert "HALT" not in sim.log()
