@@ -38,7 +38,7 @@ class Engine:
         self._files = {}
         self._errors = []  # exceptions raised inside a callback, for the caller
         self._sig = None  # the Ctrl-C deferral of the evaluation in progress
-        self._motions = link.motions if link else 0  # the link's motions this engine knows of
+        self._link_motions = link._motions if link else 0  # the link's motions this engine knows of
         cfg = ffi.new("fbrl_vm_config *")
         st_io = status_code("FBRL_EIO")
         kept = self._callback_failed
@@ -183,15 +183,14 @@ class Engine:
         through it); the robot words then take nothing for granted about the arm."""
         e.output = "".join(self._out)
         if self.link is None:
-            e.stop = False  # offline: nothing to stop
-            return
+            return  # offline: nothing to stop
         self.link._stopped(e)
         lib.fbrl_robot_set_link(self._robot.ptr, self.link.ptr)
 
     def _evaluate(self, what, call):
         if lib.fbrl_vm_bye(self._vm):
             raise Error(status_code("FBRL_ESTATE"), what, detail="the engine ran BYE: start a new Engine")
-        if self.link is not None and self.link.motions != self._motions:
+        if self.link is not None and self.link._motions != self._link_motions:
             # the arm was moved through the link outside this engine: its robot words ask
             # the controller first (a motion may still run) and the guard reads the arm
             lib.fbrl_robot_set_link(self._robot.ptr, self.link.ptr)
@@ -207,7 +206,7 @@ class Engine:
             finally:
                 self._sig = None
                 if self.link is not None:
-                    self._motions = self.link.motions
+                    self._link_motions = self.link._motions
         cause = self._errors[0] if self._errors else None
         if st < 0:
             self._fail(st, what, cause)

@@ -193,7 +193,7 @@ class Link:
         # the last motion line, until it is seen to end; "": a controller nobody watched may
         # be moving, so the first motion asks first (as fbrl_robot_set_link)
         self._motion = ""
-        self.motions = 0  # motion lines run so far
+        self._motions = 0  # motion lines run so far
         self.last_stop = None  # the report of the last safe stop
         self._on_line = ffi.callback("void(void *, const char *, size_t, int)", self._line,
                                      onerror=self._callback_failed)
@@ -243,7 +243,7 @@ class Link:
         self._outputs_on |= on[0]
         if effect[0] & _LINE_MOTION:
             self._motion = text.decode("latin-1")
-            self.motions += 1
+            self._motions += 1
         elif effect[0] & (_LINE_FINISH | _LINE_HALT) and result == FBRL_OK:
             self._motion = None
 

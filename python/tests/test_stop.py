@@ -130,9 +130,10 @@ def test_ctrl_c_during_finish_halts_within_a_round_trip(realtime_sim, slow_link)
 
 def test_ctrl_c_during_an_fbrl_wait_halts(realtime_sim, slow_link):
     link = slow_link
-    start_long_move(link)
-    offset = clock_offset(realtime_sim, link)
     with fbrl.Engine(link=link) as fb:
+        fb.eval("FINISH")  # its robot words now know the arm stands
+        start_long_move(link)  # moved through the link: they must ask again (W5), not send FINISH
+        offset = clock_offset(realtime_sim, link)
         sent = []
         timer = interrupt_after(MOVING_S, sent)
         with pytest.raises(KeyboardInterrupt) as e:
