@@ -1224,18 +1224,27 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
     }
 }
 
+fbrl_status fbrl_link_line_check(const char *line, size_t len)
+{
+    if (!line || len == 0 || len > FBRL_LINK_LINE_MAX)
+        return FBRL_EINVAL;
+    for (size_t k = 0; k < len; k++)
+        if (line[k] < 0x20 || line[k] > 0x7e || line[k] == '?')
+            return FBRL_EINVAL;
+    return FBRL_OK;
+}
+
 static fbrl_status check_line(const char *line, size_t *len)
 {
     size_t n = 0;
     if (!line)
         return FBRL_EINVAL;
-    for (; line[n]; n++)
-        if (n >= FBRL_LINK_LINE_MAX || line[n] < 0x20 || line[n] > 0x7e || line[n] == '?')
-            return FBRL_EINVAL;
-    if (n == 0)
-        return FBRL_EINVAL;
-    *len = n;
-    return FBRL_OK;
+    while (n <= FBRL_LINK_LINE_MAX && line[n])
+        n++;
+    fbrl_status st = fbrl_link_line_check(line, n);
+    if (st == FBRL_OK)
+        *len = n;
+    return st;
 }
 
 static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms, int safe)
@@ -1476,8 +1485,8 @@ fbrl_status fbrl_link_connect(fbrl_link *l)
     return st == FBRL_OK ? run(l) : st;
 }
 
-fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                          int straight)
+fbrl_status fbrl_link_start_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                int straight)
 {
     char text[FBRL_RAPL_LINE_MAX];
     size_t n;
@@ -1491,13 +1500,19 @@ fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     if (ci->reply == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() */
-    st = start(l, text, ci->reply,
-               (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
-               (ci->flags & FBRL_RAPL_F_SAFE) != 0);
+    return start(l, text, ci->reply,
+                 (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
+                 (ci->flags & FBRL_RAPL_F_SAFE) != 0);
+}
+
+fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                          int straight)
+{
+    fbrl_status st = fbrl_link_start_cmd(l, cmd, args, nargs, straight);
     return st == FBRL_OK ? run(l) : st;
 }
 
-fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
+fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
     const char *eq;
@@ -1511,7 +1526,12 @@ fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
         kind = fbrl_rapl_cmd_info(c)->reply;
     if (kind == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
-    fbrl_status st = fbrl_link_start(l, line, kind);
+    return fbrl_link_start(l, line, kind);
+}
+
+fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
+{
+    fbrl_status st = fbrl_link_start_raw(l, line);
     return st == FBRL_OK ? run(l) : st;
 }
 

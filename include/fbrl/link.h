@@ -246,6 +246,17 @@ FBRL_API fbrl_status fbrl_link_connect(fbrl_link *l);
  * use it). FBRL_ESTATE if a command is still running. */
 FBRL_API fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind);
 
+/* The check fbrl_link_start() makes of a line, on len bytes: FBRL_OK for 1..FBRL_LINK_LINE_MAX
+ * printable ASCII characters without '?', else FBRL_EINVAL. A NUL among the len bytes fails:
+ * a caller holding counted strings (Python) learns that C would stop there. */
+FBRL_API fbrl_status fbrl_link_line_check(const char *line, size_t len);
+
+/* fbrl_link_cmd() and fbrl_link_raw() started, not run: fbrl_link_poll() runs them, so a
+ * caller can look for Ctrl-C between two polls (the Python bindings do). */
+FBRL_API fbrl_status fbrl_link_start_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                         int straight);
+FBRL_API fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line);
+
 /* Make progress for at most timeout_ms (0 = only what is already there). *done = 1
  * when the command has ended; the return value is then its result. While it runs the
  * return value is FBRL_OK. */
