@@ -1414,6 +1414,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     log->exec_hook_ctx = c;
     log->error_hook = log_failed;
     log->error_hook_ctx = c;
+    log->quiet = 1;
 
     initscr();
     raw();
@@ -1434,6 +1435,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
 
     fbrl_run_unobserve(&m->run, observe, c);
     log->error_hook = NULL;
+    log->quiet = 0;
     log->exec_hook = NULL;
     fbrl_robot_set_console(&m->robot, NULL, NULL, 0);
     fbrl_robot_set_watch(&m->robot, NULL, NULL);
