@@ -27,6 +27,7 @@
 #include "mon.h"
 #include "mon_recover.h"
 #include "mon_runlog.h"
+#include "mon_ws.h"
 
 #define LIB_MAX       64 /* method files shown */
 #define MSG_LINES     4  /* method output lines shown */
@@ -313,15 +314,28 @@ static void fill_form(console *c)
     c->fresh = 1;
 }
 
+/* A taught place the method file defined again keeps its taught value: said under Messages. */
+static void kept_taught(void *ctx, const char *name, const fbrl_loc *taught, const fbrl_loc *file)
+{
+    console *c = ctx;
+    char line[MIN_COLS + 1];
+    textf(line, sizeof line, "kept taught %s X%.2f Y%.2f Z%.2f (file: X%.2f Y%.2f Z%.2f)", name, taught->x,
+          taught->y, taught->z, file->x, file->y, file->z);
+    push_msg(c, line);
+}
+
 static void choose_method(console *c, const lib_entry *e)
 {
     const fbrl_method *meth = fbrl_method_find(&c->m->methods, e->name);
+    size_t kept = 0;
     if (meth == NULL || !meth->complete) {
         textf(c->hint, sizeof c->hint, "loading %s ...", e->path);
         fflush(c->out);
+        mon_ws_protect(c->m); /* the method file's DEFINE-LOC does not overwrite a taught place */
         c->in_vm++;
         fbrl_status st = fbrl_vm_include(c->m->vm, e->path);
         c->in_vm--;
+        kept = mon_ws_restore(c->m, kept_taught, c);
         if (st != FBRL_OK) {
             char msg[400];
             engine_error(c, msg, sizeof msg);
@@ -343,7 +357,11 @@ static void choose_method(console *c, const lib_entry *e)
     fill_form(c);
     c->screen = SCREEN_FORM;
     c->state = ST_IDLE;
-    textf(c->hint, sizeof c->hint, "fill in the parameters, then F5 to start");
+    if (kept > 0)
+        textf(c->hint, sizeof c->hint, "%zu taught place%s kept over the method file's (see Messages); F5 starts",
+              kept, kept == 1 ? "" : "s");
+    else
+        textf(c->hint, sizeof c->hint, "fill in the parameters, then F5 to start");
 }
 
 /* ---- the parameter form: each field checked against its range ---- */
@@ -842,6 +860,8 @@ static void teach_place(console *c, const char *row)
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, "TEACH", msg);
+    } else {
+        mon_ws_taught(c->m, name); /* a method file opened later does not overwrite it */
     }
     scan_cell(c);
     for (size_t i = 0; i < c->ncell; i++)
