@@ -15,10 +15,12 @@
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <curses.h>
 
@@ -30,6 +32,7 @@
 #include "mon_ws.h"
 
 #define LIB_MAX       64 /* method files shown */
+#define LIB_HEAD_BYTES 65536 /* the head of a method file looked at for its METHOD line */
 #define MSG_LINES     4  /* method output lines shown */
 #define ERR_LINES     2  /* last errors shown (each with what to do) */
 #define FIELD_MAX     12 /* characters of a parameter's field */
@@ -225,15 +228,29 @@ static void engine_error(console *c, char *buf, size_t cap)
 /* ---- the method library: a folder of method files ---- */
 
 /* The first "METHOD name text" line of a file, read as text (the file is loaded only when
- * it is chosen). */
+ * it is chosen): 1 found, 0 none, -1 not a regular file (a device such as /dev/zero, a
+ * FIFO: opened without waiting for a writer, and never read). Only the head is read. */
 static int scan_method_file(const char *path, lib_entry *e)
 {
-    FILE *f = fopen(path, "r");
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat sb;
+    FILE *f;
     char line[512];
+    long head = 0;
     int found = 0;
-    if (f == NULL)
+    if (fd < 0)
         return 0;
-    while (!found && fgets(line, sizeof line, f) != NULL) {
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close(fd);
+        return -1;
+    }
+    f = fdopen(fd, "r");
+    if (f == NULL) {
+        close(fd);
+        return 0;
+    }
+    while (!found && head < LIB_HEAD_BYTES && fgets(line, sizeof line, f) != NULL) {
+        head += (long)strlen(line);
         char *p = line;
         while (*p == ' ' || *p == '\t')
             p++;
@@ -269,6 +286,8 @@ static void scan_library(console *c)
     const char *dir = c->o->methods ? c->o->methods : "methods";
     DIR *d = opendir(dir);
     struct dirent *de;
+    char odd[64] = "";
+    size_t nodd = 0;
     c->nlib = 0;
     if (d == NULL) {
         textf(c->hint, sizeof c->hint, "method library %s: %s", dir, strerror(errno));
@@ -280,12 +299,18 @@ static void scan_library(console *c)
         if (n < 6 || strcmp(de->d_name + n - 5, ".fbrl") != 0)
             continue;
         textf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (scan_method_file(path, &c->lib[c->nlib]))
+        int got = scan_method_file(path, &c->lib[c->nlib]);
+        if (got > 0)
             c->nlib++;
+        else if (got < 0 && nodd++ == 0)
+            textf(odd, sizeof odd, "%s", de->d_name);
     }
     closedir(d);
     qsort(c->lib, c->nlib, sizeof c->lib[0], by_name);
-    if (c->nlib == 0)
+    if (nodd > 0) /* said, so a method that is missing from the list is explained */
+        textf(c->hint, sizeof c->hint, "left out %s%s: not a regular file", odd,
+              nodd > 1 ? " and others" : "");
+    else if (c->nlib == 0)
         textf(c->hint, sizeof c->hint, "no method files (*.fbrl with a METHOD line) in %s", dir);
 }
 
@@ -1363,12 +1388,15 @@ static void start_run(console *c)
     c->in_vm--;
     flush_partial(c);
     fill_form(c); /* the values as set */
-    if (st != FBRL_OK) { /* it did not begin (the run log, ...) */
+    if (st != FBRL_OK) { /* it did not begin: the reason shown, the form back */
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, NULL, st == FBRL_ETHROW ? msg : fbrl_status_str(st));
-        if (c->state == ST_RUNNING)
-            c->state = ST_FAILED;
+        if (c->log->write_failed) /* the run log could not be written: that is the reason */
+            push_error(c, "run log", c->log->write_error);
+        c->screen = SCREEN_FORM;
+        c->state = ST_IDLE;
+        textf(c->hint, sizeof c->hint, "the run did not start: see the errors");
     }
     draw(c);
 }
@@ -1443,7 +1471,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     set_escdelay(100); /* Esc leaves the Forth line at once, not after a second */
     curs_set(0);
     scan_library(c);
-    if (c->nlib > 0)
+    if (c->nlib > 0 && !c->hint[0])
         textf(c->hint, sizeof c->hint, "choose a method and press Enter");
     while (!c->quit && !fbrl_vm_bye(m->vm)) {
         draw(c);

@@ -684,6 +684,7 @@ static fbrl_status run_method(fbrl_run *r, const fbrl_method *m)
         r->methods->running = NULL;
         r->work.s.state = FBRL_RUN_FINISHED;
         r->work.s.outcome = FBRL_RUN_NONE;
+        r->work.end_us = r->work.t0_us;
         publish(r);
         return fbrl_vmx_throwf(vm, FBRL_THROW_FILE_IO, "RUN-METHOD: %s: the run could not start (its run log?)",
                                m->name);
