@@ -1262,9 +1262,9 @@ static void run_ends(console *c, fbrl_run *run, const fbrl_run_event *ev)
     fbrl_run_snap *s = &c->snap;
     long ok = 0, failed = 0, skipped = 0;
     char line[MIN_COLS + 1];
-    read_arm(c, ev->outcome == FBRL_RUN_ABORTED ? "(safe place)"
-                : ev->outcome == FBRL_RUN_COMPLETED ? "(finished)"
-                                                    : "(halted)");
+    read_arm(c, ev->outcome == FBRL_RUN_ABORTED ? "(safe place)" /* after the safe stop and ON-ABORT */
+                : ev->text != NULL                  ? "(halted)"     /* stopped by a failed step */
+                                                    : "(finished)");
     fbrl_run_snapshot(run, s);
     flush_partial(c);
     if (ev->text != NULL && ev->outcome != FBRL_RUN_COMPLETED && !c->errs[0][0])

@@ -30,3 +30,10 @@ if(TARGET fbrlmon AND TARGET fbrlsim)
   set_tests_properties(console_library PROPERTIES LABELS e2e TIMEOUT 120 SKIP_RETURN_CODE 77
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+if(TARGET fbrlmon AND TARGET fbrlsim)
+  # issue 27: the end screen of a run whose samples failed says so, sample by sample
+  add_test(NAME console_outcome COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/console_outcome.sh
+    $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${PROJECT_BINARY_DIR}/e2e-console-outcome ${PROJECT_SOURCE_DIR})
+  set_tests_properties(console_outcome PROPERTIES LABELS e2e TIMEOUT 120 SKIP_RETURN_CODE 77
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()
