@@ -97,14 +97,7 @@ row=$(pane | grep -n "^ SPOT  *place" | cut -d: -f1)
 i=3
 while [ $i -lt "$row" ]; do key Down; i=$((i + 1)); done
 key t
-wait_for "TEACH keys"
-jogs=$(grep -c '^JOG 0.1,0,0$' sim.log)
-key Right
-k=0
-while [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" = "$jogs" ] && [ $k -lt 100 ]; do sleep 0.1; k=$((k + 1)); done
-[ "$(grep -c '^JOG 0.1,0,0$' sim.log)" -gt "$jogs" ] || fail "TEACH's jog never reached the controller"
-sleep 0.5
-key Enter
+teach_jog
 wait_for "TEACH SPOT done"
 spot=$(pane | sed -n 's/^ SPOT  *place X *\([-0-9.]*\) Y *\([-0-9.]*\) .*/\1 \2/p')
 [ -n "$spot" ] || fail "SPOT is not shown after TEACH"
