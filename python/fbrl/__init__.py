@@ -21,6 +21,7 @@ from .datafile import DataFile, CHR, INTEGER, LONG, REAL, LOCATION, user_type
 from .link import Port, Link, Position, Status, PortInfo, list_ports
 from .stop import Stop
 from .engine import Engine
+from .run import Run
 
 __all__ = [
     "Error", "ControllerError", "Location", "Calibration", "DataFile", "CHR", "INTEGER", "LONG",
