@@ -4,7 +4,7 @@
 # print, exit or abort; only the OS modules below may call the operating system.
 # Usage: check-hal.sh OBJ...   (prints each violation; exit 1 if any)
 set -u
-os_modules="uart_posix uart_serialport clock_posix fileio_posix port"
+os_modules="uart_posix uart_serialport clock_posix fileio_posix audit_posix port"
 never='^(malloc|calloc|realloc|free|printf|fprintf|vfprintf|puts|fputs|putchar|perror|exit|_exit|abort|__assert_fail|system)$'
 # Text <-> number through the C library follows the host's locale (LC_NUMERIC): the library
 # converts with fbrl_num (docs/language.md, "Numbers do not depend on the locale").

@@ -1,0 +1,159 @@
+/* SPDX-License-Identifier: MIT */
+/* audit_posix.c - the audit chain's and users file's store in a POSIX file system
+ * (audit_store.h): appends made durable with fdatasync, whole files replaced atomically. */
+#include "audit_store.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define TMP_TRIES 1000u
+#define PATH_CAP 4096
+
+static fbrl_status from_errno(int e)
+{
+    switch (e) {
+    case ENOENT:
+    case ENOTDIR: return FBRL_ENOENT;
+    case ENAMETOOLONG: return FBRL_ENAME;
+    case EACCES:
+    case EPERM: return FBRL_EPERM;
+    default: return FBRL_EIO;
+    }
+}
+
+/* A handle is the descriptor + 1 kept in the pointer: nothing to allocate. */
+static void *to_handle(int fd) { return (void *)(intptr_t)(fd + 1); }
+static int fd_of(void *h) { return (int)(intptr_t)h - 1; }
+
+fbrl_status fbrl__astore_open_append(const char *path, void **handle)
+{
+    int fd = open(path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0640);
+    if (fd < 0)
+        return from_errno(errno);
+    *handle = to_handle(fd);
+    return FBRL_OK;
+}
+
+static fbrl_status write_full(int fd, const char *p, size_t n)
+{
+    while (n > 0) {
+        ssize_t r = write(fd, p, n);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return FBRL_EIO;
+        p += r;
+        n -= (size_t)r;
+    }
+    return FBRL_OK;
+}
+
+fbrl_status fbrl__astore_append(void *handle, const char *s, size_t n)
+{
+    int fd = fd_of(handle);
+    fbrl_status st = write_full(fd, s, n);
+    while (st == FBRL_OK && fdatasync(fd) != 0)
+        if (errno != EINTR)
+            st = FBRL_EIO;
+    return st;
+}
+
+void fbrl__astore_close(void *handle)
+{
+    if (handle != NULL)
+        close(fd_of(handle));
+}
+
+fbrl_status fbrl__astore_read_open(const char *path, void **handle)
+{
+    struct stat sb;
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return from_errno(errno);
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close(fd);
+        return FBRL_ENOTFILE;
+    }
+    *handle = to_handle(fd);
+    return FBRL_OK;
+}
+
+fbrl_status fbrl__astore_read(void *handle, char *buf, size_t n, size_t *got)
+{
+    for (;;) {
+        ssize_t r = read(fd_of(handle), buf, n);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r < 0)
+            return FBRL_EIO;
+        *got = (size_t)r;
+        return FBRL_OK;
+    }
+}
+
+fbrl_status fbrl__astore_put(const char *path, const char *s, size_t n, int owner_only)
+{
+    char tmp[PATH_CAP], dir[PATH_CAP];
+    const char *slash = strrchr(path, '/');
+    int fd = -1, k;
+    fbrl_status st = FBRL_OK;
+    for (unsigned i = 0; i < TMP_TRIES && fd < 0; i++) {
+        k = snprintf(tmp, sizeof tmp, "%s.%ld-%u.tmp", path, (long)getpid(), i);
+        if (k < 0 || (size_t)k >= sizeof tmp)
+            return FBRL_ENAME;
+        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, owner_only ? 0600 : 0640);
+        if (fd < 0 && errno != EEXIST && errno != EINTR)
+            return from_errno(errno);
+    }
+    if (fd < 0)
+        return FBRL_EIO;
+    /* the umask may have left more or fewer bits than asked: set them */
+    if (fchmod(fd, owner_only ? 0600 : 0640) != 0)
+        st = FBRL_EIO;
+    if (st == FBRL_OK)
+        st = write_full(fd, s, n);
+    while (st == FBRL_OK && fsync(fd) != 0)
+        if (errno != EINTR)
+            st = FBRL_EIO;
+    if (close(fd) != 0 && st == FBRL_OK)
+        st = FBRL_EIO;
+    if (st == FBRL_OK && rename(tmp, path) != 0)
+        st = from_errno(errno);
+    if (st != FBRL_OK) {
+        unlink(tmp);
+        return st;
+    }
+    if (slash == NULL)
+        snprintf(dir, sizeof dir, ".");
+    else
+        snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path);
+    fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0)
+        return FBRL_EIO;
+    if (fsync(fd) != 0 && errno != EINVAL) /* some file systems cannot sync a directory */
+        st = FBRL_EIO;
+    close(fd);
+    return st;
+}
+
+fbrl_status fbrl__astore_guarded(const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return from_errno(errno);
+    if (!S_ISREG(sb.st_mode))
+        return FBRL_ENOTFILE;
+    return (sb.st_mode & (S_IWGRP | S_IWOTH)) ? FBRL_EPERM : FBRL_OK;
+}
+
+int64_t fbrl__astore_utc_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
