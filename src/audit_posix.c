@@ -11,7 +11,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#define TMP_TRIES 1000u
 #define PATH_CAP 4096
 
 static fbrl_status from_errno(int e)
@@ -96,37 +95,56 @@ fbrl_status fbrl__astore_read(void *handle, char *buf, size_t n, size_t *got)
     }
 }
 
-fbrl_status fbrl__astore_put(const char *path, const char *s, size_t n, int owner_only)
+/* The temporary beside path: path.PID.tmp (one writer per file in a process). */
+static int tmp_of(const char *path, char *tmp, size_t cap)
+{
+    int k = snprintf(tmp, cap, "%s.%ld.tmp", path, (long)getpid());
+    return k < 0 || (size_t)k >= cap ? -1 : 0;
+}
+
+fbrl_status fbrl__astore_put_begin(const char *path, int owner_only, void **handle)
+{
+    char tmp[PATH_CAP];
+    int fd;
+    if (tmp_of(path, tmp, sizeof tmp) != 0)
+        return FBRL_ENAME;
+    unlink(tmp); /* one a killed writer of this pid left */
+    fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, owner_only ? 0600 : 0640);
+    if (fd < 0)
+        return from_errno(errno);
+    /* the umask may have taken bits asked for: set them */
+    if (fchmod(fd, owner_only ? 0600 : 0640) != 0) {
+        close(fd);
+        unlink(tmp);
+        return FBRL_EIO;
+    }
+    *handle = to_handle(fd);
+    return FBRL_OK;
+}
+
+fbrl_status fbrl__astore_put_write(void *handle, const char *s, size_t n)
+{
+    return write_full(fd_of(handle), s, n);
+}
+
+fbrl_status fbrl__astore_put_commit(void *handle, const char *path, int ok)
 {
     char tmp[PATH_CAP], dir[PATH_CAP];
     const char *slash = strrchr(path, '/');
-    int fd = -1, k;
-    fbrl_status st = FBRL_OK;
-    for (unsigned i = 0; i < TMP_TRIES && fd < 0; i++) {
-        k = snprintf(tmp, sizeof tmp, "%s.%ld-%u.tmp", path, (long)getpid(), i);
-        if (k < 0 || (size_t)k >= sizeof tmp)
-            return FBRL_ENAME;
-        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, owner_only ? 0600 : 0640);
-        if (fd < 0 && errno != EEXIST && errno != EINTR)
-            return from_errno(errno);
-    }
-    if (fd < 0)
-        return FBRL_EIO;
-    /* the umask may have left more or fewer bits than asked: set them */
-    if (fchmod(fd, owner_only ? 0600 : 0640) != 0)
-        st = FBRL_EIO;
-    if (st == FBRL_OK)
-        st = write_full(fd, s, n);
+    int fd = fd_of(handle);
+    fbrl_status st = ok ? FBRL_OK : FBRL_EIO;
     while (st == FBRL_OK && fsync(fd) != 0)
         if (errno != EINTR)
             st = FBRL_EIO;
     if (close(fd) != 0 && st == FBRL_OK)
         st = FBRL_EIO;
+    if (tmp_of(path, tmp, sizeof tmp) != 0)
+        return FBRL_ENAME;
     if (st == FBRL_OK && rename(tmp, path) != 0)
         st = from_errno(errno);
     if (st != FBRL_OK) {
         unlink(tmp);
-        return st;
+        return ok ? st : FBRL_OK;
     }
     if (slash == NULL)
         snprintf(dir, sizeof dir, ".");
@@ -139,6 +157,16 @@ fbrl_status fbrl__astore_put(const char *path, const char *s, size_t n, int owne
         st = FBRL_EIO;
     close(fd);
     return st;
+}
+
+fbrl_status fbrl__astore_put(const char *path, const char *s, size_t n, int owner_only)
+{
+    void *h;
+    fbrl_status st = fbrl__astore_put_begin(path, owner_only, &h);
+    if (st != FBRL_OK)
+        return st;
+    st = fbrl__astore_put_write(h, s, n);
+    return fbrl__astore_put_commit(h, path, st == FBRL_OK) != FBRL_OK ? FBRL_EIO : st;
 }
 
 fbrl_status fbrl__astore_guarded(const char *path)

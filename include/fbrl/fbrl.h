@@ -32,5 +32,6 @@
 #include "fbrl/method.h"
 #include "fbrl/recover.h"
 #include "fbrl/audit.h"
+#include "fbrl/users.h"
 
 #endif
