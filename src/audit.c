@@ -165,6 +165,12 @@ static int skip_value(const char *s, size_t n, size_t *i, int depth)
     return 0;
 }
 
+int fbrl__audit_json_skip(const char *s, size_t n, size_t *i)
+{
+    *i = ws(s, n, *i);
+    return skip_value(s, n, i, 0);
+}
+
 int fbrl__audit_json_object(const char *s, size_t n)
 {
     size_t i = ws(s, n, 0);

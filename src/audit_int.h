@@ -18,6 +18,8 @@ int fbrl__audit_unhex(const char *s, size_t len, unsigned char *out, size_t n);
 int fbrl__audit_name_ok(const char *s);
 /* s[0..n) is one JSON object and nothing else but blanks: 0, else -1. */
 int fbrl__audit_json_object(const char *s, size_t n);
+/* Skip the JSON value at s[*i] (blanks before it too); 0, or -1 if there is none. */
+int fbrl__audit_json_skip(const char *s, size_t n, size_t *i);
 /* A JSON string into the body being built. */
 void fbrl__audit_json_str(fbrl_audit *a, const char *s);
 /* Write a record with the utc and prev given, numbered seq. */

@@ -33,5 +33,6 @@
 #include "fbrl/recover.h"
 #include "fbrl/audit.h"
 #include "fbrl/users.h"
+#include "fbrl/release.h"
 
 #endif
