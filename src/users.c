@@ -81,6 +81,14 @@ void fbrl_users_init(fbrl_users *u)
     u->kdf_mem = crypto_pwhash_MEMLIMIT_INTERACTIVE;
 }
 
+static void copy_name(char *dst, const char *src)
+{
+    size_t n = strlen(src);
+    n = n < FBRL_AUDIT_NAME_MAX ? n : FBRL_AUDIT_NAME_MAX - 1;
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
 static fbrl_user *find(fbrl_users *u, const char *name)
 {
     for (size_t i = 0; u && name && i < u->n; i++)
@@ -238,10 +246,18 @@ fbrl_status fbrl_users_disable(fbrl_users *u, const char *name, int disabled)
 fbrl_status fbrl_users_reset(fbrl_users *u, const char *name, const char *password)
 {
     fbrl_user *x = find(u, name);
+    fbrl_audit_key *k;
     if (x == NULL)
         return u == NULL ? FBRL_EINVAL : FBRL_ENOENT;
     if (password_ok(password) != FBRL_OK)
         return FBRL_ERANGE;
+    if (u->nold >= FBRL_USERS_OLD_KEYS)
+        return FBRL_EFULL;
+    k = &u->old[u->nold++];
+    memset(k, 0, sizeof *k);
+    copy_name(k->name, x->name);
+    snprintf(k->role, sizeof k->role, "%s", role_names[x->role]);
+    memcpy(k->pk, x->pk, sizeof k->pk);
     return set_password(u, x, password);
 }
 
@@ -300,6 +316,11 @@ fbrl_status fbrl_users_keys(const fbrl_users *u, fbrl_audit_key *out, size_t cap
         memcpy(out[*n].pk, u->user[i].pk, FBRL_AUDIT_PK_SIZE);
         (*n)++;
     }
+    for (size_t i = 0; i < u->nold; i++) {
+        if (*n >= cap)
+            return FBRL_ENOSPC;
+        out[(*n)++] = u->old[i];
+    }
     return FBRL_OK;
 }
 
@@ -336,6 +357,12 @@ fbrl_status fbrl_users_save(fbrl_users *u, const char *path)
     for (size_t i = 0; st == FBRL_OK && i < u->n; i++) {
         n = put_user(u, &u->user[i]);
         st = n > 0 && (size_t)n < sizeof u->line ? fbrl__astore_put_write(h, u->line, (size_t)n) : FBRL_ENOSPC;
+    }
+    for (size_t i = 0; st == FBRL_OK && i < u->nold; i++) {
+        char pk[2 * FBRL_AUDIT_PK_SIZE + 1];
+        fbrl__audit_hex(u->old[i].pk, sizeof u->old[i].pk, pk);
+        n = snprintf(u->line, sizeof u->line, "oldkey %s %s %s\n", u->old[i].name, u->old[i].role, pk);
+        st = fbrl__astore_put_write(h, u->line, (size_t)n);
     }
     fbrl_status cst = fbrl__astore_put_commit(h, path, st == FBRL_OK);
     return st != FBRL_OK ? st : cst;
@@ -392,6 +419,19 @@ static fbrl_status parse_line(fbrl_users *u, char *s, unsigned long lineno)
         if (key == NULL || number(word(s, &p), &a) != 0 || word(s, &p) != NULL)
             return FBRL_EFORMAT;
         return fbrl_users_set(u, key, a) == FBRL_OK ? FBRL_OK : FBRL_EFORMAT;
+    }
+    if (strcmp(kind, "oldkey") == 0) {
+        fbrl_audit_key *k = &u->old[u->nold];
+        fbrl_role r;
+        char *name = word(s, &p), *role = word(s, &p);
+        if (u->nold >= FBRL_USERS_OLD_KEYS || !fbrl__audit_name_ok(name) || role == NULL ||
+            fbrl_users_role_parse(role, &r) != FBRL_OK || unhex(word(s, &p), k->pk, sizeof k->pk) != 0 ||
+            word(s, &p) != NULL)
+            return FBRL_EFORMAT;
+        copy_name(k->name, name);
+        snprintf(k->role, sizeof k->role, "%s", role_names[r]);
+        u->nold++;
+        return FBRL_OK;
     }
     if (strcmp(kind, "user") != 0 || u->n >= FBRL_USERS_MAX)
         return FBRL_EFORMAT;

@@ -30,6 +30,7 @@ extern "C" {
 #define FBRL_USERS_PWHASH_MAX 128 /* crypto_pwhash_STRBYTES */
 #define FBRL_USERS_PASSWORD_MIN 8
 #define FBRL_USERS_PASSWORD_MAX 128
+#define FBRL_USERS_OLD_KEYS 128 /* public keys replaced by resets, kept to check old signatures */
 #define FBRL_USERS_SEALED_SIZE (FBRL_AUDIT_SK_SIZE + 16) /* the secret key and its MAC */
 
 typedef enum fbrl_role {
@@ -79,6 +80,8 @@ typedef struct fbrl_users {
     int allow_drafts;         /* developers may run Drafts (0) */
     unsigned long long kdf_ops; /* Argon2id cost for new passwords (libsodium's interactive) */
     unsigned long kdf_mem;
+    size_t nold;              /* public keys a reset replaced: old signatures stay checkable */
+    fbrl_audit_key old[FBRL_USERS_OLD_KEYS];
     unsigned long bad_line;   /* the file's line a load refused (0: none) */
     char line[1024];
 } fbrl_users;
@@ -108,7 +111,8 @@ FBRL_API fbrl_status fbrl_users_unlock(fbrl_users *u, const char *name, const ch
                                        unsigned char *sk, unsigned char *pk);
 /* Disable (1) or enable (0) a user; FBRL_ENOENT. A disabled user cannot sign in or sign. */
 FBRL_API fbrl_status fbrl_users_disable(fbrl_users *u, const char *name, int disabled);
-/* A new password (and so a new key pair); clears the count and the lock. */
+/* A new password (and so a new key pair; the old public key is kept for old signatures);
+ * clears the count and the lock. FBRL_EFULL when no more old keys can be kept. */
 FBRL_API fbrl_status fbrl_users_reset(fbrl_users *u, const char *name, const char *password);
 FBRL_API fbrl_status fbrl_users_set_role(fbrl_users *u, const char *name, fbrl_role role);
 /* Change a setting: "max_tries", "lock_s", "idle_s", "allow_drafts", "kdf_ops",
@@ -123,7 +127,8 @@ FBRL_API int fbrl_users_may(fbrl_role role, fbrl_right right);
 FBRL_API const char *fbrl_users_role_name(fbrl_role role);
 /* The role named (those names; "method-developer" too); FBRL_ENOENT. */
 FBRL_API fbrl_status fbrl_users_role_parse(const char *text, fbrl_role *role);
-/* The users' public keys for a verifier (fbrl_audit_verify_init): up to cap, *n of them. */
+/* The users' public keys for a verifier (fbrl_audit_verify_init), the current ones and
+ * those resets replaced: up to cap, *n of them. */
 FBRL_API fbrl_status fbrl_users_keys(const fbrl_users *u, fbrl_audit_key *out, size_t cap, size_t *n);
 /* Overwrite n bytes (a password, a secret key) so the compiler keeps the writes. */
 FBRL_API void fbrl_users_wipe(void *p, size_t n);

@@ -201,6 +201,19 @@ static void public_keys_go_to_a_verifier(void **state)
     assert_string_equal(k[0].role, "reviewer");
     assert_memory_equal(k[0].pk, u.user[0].pk, 32);
     assert_int_equal(fbrl_users_keys(&u, k, 1, &n), FBRL_ENOSPC);
+    /* a reset keeps the old public key, through the file too: old signatures stay checkable */
+    unsigned char old[32];
+    char path[512];
+    memcpy(old, u.user[0].pk, 32);
+    assert_int_equal(fbrl_users_reset(&u, "rev", "another review pass"), FBRL_OK);
+    path_in(path, "users-keys");
+    assert_int_equal(fbrl_users_save(&u, path), FBRL_OK);
+    assert_int_equal(fbrl_users_load(&u2, path), FBRL_OK);
+    assert_int_equal(fbrl_users_keys(&u2, k, 4, &n), FBRL_OK);
+    assert_int_equal(n, 3);
+    assert_string_equal(k[2].name, "rev");
+    assert_memory_equal(k[2].pk, old, 32);
+    assert_memory_not_equal(k[0].pk, old, 32);
 }
 
 static int setup(void **state)
