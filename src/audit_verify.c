@@ -66,11 +66,18 @@ static void learn_key(fbrl_audit_verifier *v, const char *s, size_t n)
 {
     char name[FBRL_AUDIT_NAME_MAX], role[FBRL_AUDIT_ROLE_MAX], hex[2 * FBRL_AUDIT_PK_SIZE + 2];
     unsigned char pk[FBRL_AUDIT_PK_SIZE];
-    if (!v->keys_from_chain || v->nkeys >= v->key_cap ||
-        fbrl_audit_field_str(s, n, "name", name, sizeof name) != FBRL_OK ||
+    fbrl_audit_key *known;
+    if (!v->keys_from_chain || fbrl_audit_field_str(s, n, "name", name, sizeof name) != FBRL_OK ||
         fbrl_audit_field_str(s, n, "role", role, sizeof role) != FBRL_OK ||
         fbrl_audit_field_str(s, n, "key", hex, sizeof hex) != FBRL_OK ||
-        fbrl__audit_unhex(hex, strlen(hex), pk, sizeof pk) != 0 || find_key(v, name, pk) != NULL)
+        fbrl__audit_unhex(hex, strlen(hex), pk, sizeof pk) != 0)
+        return;
+    known = (fbrl_audit_key *)(uintptr_t)find_key(v, name, pk);
+    if (known != NULL) { /* a role change: the key is the same */
+        snprintf(known->role, FBRL_AUDIT_ROLE_MAX, "%s", role);
+        return;
+    }
+    if (v->nkeys >= v->key_cap)
         return;
     snprintf(v->keys[v->nkeys].name, FBRL_AUDIT_NAME_MAX, "%s", name);
     snprintf(v->keys[v->nkeys].role, FBRL_AUDIT_ROLE_MAX, "%s", role);
