@@ -170,6 +170,19 @@ int audit_replay(const char *path, long which, const char *fbrlsim, int home, in
     int rc = AUDIT_EXIT_OK;
     char *want;
 
+    {
+        /* only a trustworthy record is replayed */
+        static fbrl_audit_verifier v;
+        static fbrl_audit_key kb[64];
+        audit_keys none = {kb, 0, 64, NULL};
+        unsigned char (*hashes)[FBRL_AUDIT_HASH_SIZE] = NULL;
+        st = audit_verify(path, &none, &v, &hashes);
+        free(hashes);
+        if (st != FBRL_OK) {
+            printf("%s: %s: not replayed\n", path, st == FBRL_ECHECKSUM ? v.where : fbrl_status_str(st));
+            return AUDIT_EXIT_BROKEN;
+        }
+    }
     if (audit_text_read(path, &t) != 0) {
         fprintf(stderr, "fbrl-audit: %s: cannot be read\n", path);
         return AUDIT_EXIT_BROKEN;

@@ -20,12 +20,6 @@ uint64_t mon_runlog_now_us(void *ctx)
     return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
 }
 
-static int file_write(void *ctx, const char *s, size_t n)
-{
-    FILE *f = ctx;
-    return fwrite(s, 1, n, f) == n && fflush(f) == 0 ? 0 : -1;
-}
-
 /* Plain words for the errors an operator meets; the message itself comes first. */
 const char *mon_runlog_advice(const char *msg)
 {
@@ -155,13 +149,17 @@ static int o_begin(void *ctx, const fbrl_method *meth)
         h.calibration = cal;
         h.params = p;
         h.nparams = meth->nparams;
-        r->f = fopen(r->path, "a");
-        if (r->f == NULL)
+        /* the run log's file is an audit chain: checked (and the method's release) first */
+        snprintf(r->audit.path, sizeof r->audit.path, "%s", r->path);
+        if (!r->audit.user[0])
+            mon_audit_set_user(&r->audit, r->operator_id, 0, FBRL_ROLE_OPERATOR);
+        if (mon_audit_run_begin(&r->audit, meth, r->source) != 0) {
+            fprintf(stderr, "fbrlmon: %s\n", r->audit.err);
             return -1;
+        }
         memset(&r->log, 0, sizeof r->log);
-        if (fbrl_runlog_begin(&r->log, file_write, r->f, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
-            fclose(r->f);
-            r->f = NULL;
+        if (fbrl_runlog_begin(&r->log, mon_audit_sink, &r->audit, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
+            mon_audit_run_end(&r->audit);
             return -1;
         }
         for (int k = 0; k < r->npending; k++)
@@ -208,10 +206,8 @@ static void o_end(void *ctx, const fbrl_method *meth, const char *outcome, const
         r->chain.run_end(r->chain.ctx, meth, outcome, error);
     if (fbrl_runlog_is_open(&r->log))
         fbrl_runlog_end(&r->log, outcome);
-    if (r->f != NULL) {
-        fclose(r->f);
-        r->f = NULL;
-    }
+    if (r->audit.open)
+        mon_audit_run_end(&r->audit); /* sealed */
 }
 
 void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result)

@@ -11,6 +11,7 @@
 #include "fbrl/link.h"
 #include "fbrl/method.h"
 #include "fbrl/runlog.h"
+#include "mon_audit.h"
 
 struct mon;
 
@@ -19,7 +20,7 @@ struct mon;
 typedef struct mon_runlog {
     struct mon *m;
     fbrl_runlog log;
-    FILE *f;                          /* open while a run is logged */
+    mon_audit audit;                  /* the run log's file: a hash-chained audit trail */
     char path[MON_RUNLOG_PATH_MAX];   /* "" = no log */
     char source[MON_RUNLOG_PATH_MAX]; /* the method's file, for the header ("" unknown) */
     char operator_id[64];

@@ -147,14 +147,18 @@ fbrl_status fbrl_audit_file_open(fbrl_audit_file *f, const char *path, fbrl_audi
     fbrl_status st = start(f, path);
     if (st != FBRL_OK || v == NULL)
         return st != FBRL_OK ? st : FBRL_EINVAL;
-    st = fbrl_audit_file_verify(path, v);
-    if (st == FBRL_ECHECKSUM)
-        snprintf(f->where, sizeof f->where, "%s", v->where);
-    if (st != FBRL_OK)
-        return st;
+    /* locked first, then verified: nobody appends between the check and the writes */
     st = fbrl__astore_open_append(path, &f->handle);
     if (st != FBRL_OK)
         return st;
+    st = fbrl_audit_file_verify(path, v);
+    if (st == FBRL_ECHECKSUM)
+        snprintf(f->where, sizeof f->where, "%s", v->where);
+    if (st != FBRL_OK) {
+        fbrl__astore_close(f->handle);
+        f->handle = NULL;
+        return st;
+    }
     f->head_seq = v->seq;
     memcpy(f->head, v->head, sizeof f->head);
     st = fbrl_audit_init(&f->a, file_write, f, store_utc, NULL, v->seq, v->seq ? v->head : NULL);
@@ -174,15 +178,16 @@ fbrl_status fbrl_audit_file_recover(fbrl_audit_file *f, const char *path, fbrl_a
     fbrl_status st = start(f, path);
     if (st != FBRL_OK || v == NULL || admin == NULL || reason == NULL || sk == NULL || pk == NULL)
         return st != FBRL_OK ? st : FBRL_EINVAL;
-    st = fbrl_audit_file_verify(path, v);
-    if (st == FBRL_OK)
-        return FBRL_ESTATE;
-    if (st != FBRL_ECHECKSUM)
-        return st;
-    snprintf(f->where, sizeof f->where, "%s", v->where);
     st = fbrl__astore_open_append(path, &f->handle);
     if (st != FBRL_OK)
         return st;
+    st = fbrl_audit_file_verify(path, v);
+    if (st != FBRL_ECHECKSUM) {
+        fbrl__astore_close(f->handle);
+        f->handle = NULL;
+        return st == FBRL_OK ? FBRL_ESTATE : st;
+    }
+    snprintf(f->where, sizeof f->where, "%s", v->where);
     memcpy(&hs, v->file_hash, sizeof hs);
     line = v->line;
     if (v->len > 0 || v->overlong) { /* a cut last line: ended, so the recovery stands on its own line */

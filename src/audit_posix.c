@@ -1,12 +1,14 @@
 /* SPDX-License-Identifier: MIT */
 /* audit_posix.c - the audit chain's and users file's store in a POSIX file system
  * (audit_store.h): appends made durable with fdatasync, whole files replaced atomically. */
+#define _DEFAULT_SOURCE /* flock: a whole-file lock a second descriptor's close does not drop */
 #include "audit_store.h"
 
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -34,6 +36,13 @@ fbrl_status fbrl__astore_open_append(const char *path, void **handle)
     int fd = open(path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0640);
     if (fd < 0)
         return from_errno(errno);
+    /* one writer at a time: another would continue from a head this one moved */
+    while (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        if (errno == EINTR)
+            continue;
+        close(fd);
+        return errno == EWOULDBLOCK ? FBRL_EBUSY : FBRL_EIO;
+    }
     *handle = to_handle(fd);
     return FBRL_OK;
 }

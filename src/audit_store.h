@@ -8,7 +8,8 @@
 #include <stdint.h>
 #include "fbrl/status.h"
 
-/* Open path for appending (created owner read-write, group read, when missing). */
+/* Open path for appending (created owner read-write, group read, when missing), locked
+ * against other writers until closed: FBRL_EBUSY while another holds it. */
 fbrl_status fbrl__astore_open_append(const char *path, void **handle);
 /* Append n bytes and make them durable (fdatasync) before returning. */
 fbrl_status fbrl__astore_append(void *handle, const char *s, size_t n);

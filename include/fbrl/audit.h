@@ -204,7 +204,8 @@ typedef struct fbrl_audit_file {
  * with v (initialised by the caller: the keys it trusts) and start a writer after its last
  * record. A broken
  * chain is refused: FBRL_ECHECKSUM, f->where says where it broke; nothing is written. The
- * record writes append, fsync and then rewrite the head file. */
+ * file is locked against other writers until closed (FBRL_EBUSY while another has it).
+ * The record writes append, fsync and then rewrite the head file. */
 FBRL_API fbrl_status fbrl_audit_file_open(fbrl_audit_file *f, const char *path, fbrl_audit_verifier *v);
 /* Open a broken chain only to append an administrator's recovery: the recovery record
  * (what broke, the reason) signed by the administrator (sk/pk) with the meaning "chain
