@@ -50,15 +50,22 @@ static fbrl_status read_head(const char *path, uint64_t *seq, unsigned char *has
     return FBRL_OK;
 }
 
-static fbrl_status write_head(const char *path, uint64_t seq, const unsigned char *hash)
+/* The head, always the same length (seq in 20 digits), rewritten in place: one sync. */
+static fbrl_status write_head(fbrl_audit_file *f, uint64_t seq, const unsigned char *hash)
 {
     char hp[FBRL_AUDIT_PATH_MAX + 8], hex[2 * FBRL_AUDIT_HASH_SIZE + 1], buf[160];
     int n;
-    if (head_path(path, hp, sizeof hp) != 0)
-        return FBRL_ENAME;
+    if (f->head_handle == NULL) {
+        fbrl_status st;
+        if (head_path(f->path, hp, sizeof hp) != 0)
+            return FBRL_ENAME;
+        st = fbrl__astore_head_open(hp, &f->head_handle);
+        if (st != FBRL_OK)
+            return st;
+    }
     fbrl__audit_hex(hash, FBRL_AUDIT_HASH_SIZE, hex);
-    n = snprintf(buf, sizeof buf, "%s%llu %s\n", HEAD_MAGIC, (unsigned long long)seq, hex);
-    return fbrl__astore_put(hp, buf, (size_t)n, 0);
+    n = snprintf(buf, sizeof buf, "%s%020llu %s\n", HEAD_MAGIC, (unsigned long long)seq, hex);
+    return fbrl__astore_head_put(f->head_handle, buf, (size_t)n);
 }
 
 fbrl_status fbrl_audit_file_verify(const char *path, fbrl_audit_verifier *v)
@@ -116,7 +123,7 @@ static int file_write(void *ctx, const char *s, size_t n)
     while (k < n && s[k] >= '0' && s[k] <= '9')
         seq = seq * 10 + (unsigned long long)(s[k++] - '0');
     if (fbrl__audit_unhex(s + n - 3 - 2 * FBRL_AUDIT_HASH_SIZE, 2 * FBRL_AUDIT_HASH_SIZE, h, sizeof h) != 0 ||
-        write_head(f->path, seq, h) != FBRL_OK)
+        write_head(f, seq, h) != FBRL_OK)
         return -1;
     f->head_seq = seq;
     memcpy(f->head, h, sizeof h);
@@ -220,7 +227,8 @@ fbrl_status fbrl_audit_file_recover(fbrl_audit_file *f, const char *path, fbrl_a
         st = fbrl_audit_sign(&f->a, f->a.seq, f->a.head, FBRL_AUDIT_MEANING_RECOVERY, sk, pk);
     if (st != FBRL_OK) {
         fbrl__astore_close(f->handle);
-        f->handle = NULL;
+        fbrl__astore_close(f->head_handle);
+        f->handle = f->head_handle = NULL;
     }
     return st;
 }
@@ -232,6 +240,7 @@ fbrl_status fbrl_audit_file_close(fbrl_audit_file *f)
         return FBRL_EINVAL;
     st = f->a.failed;
     fbrl__astore_close(f->handle);
-    f->handle = NULL;
+    fbrl__astore_close(f->head_handle);
+    f->handle = f->head_handle = NULL;
     return st;
 }

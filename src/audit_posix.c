@@ -168,14 +168,31 @@ fbrl_status fbrl__astore_put_commit(void *handle, const char *path, int ok)
     return st;
 }
 
-fbrl_status fbrl__astore_put(const char *path, const char *s, size_t n, int owner_only)
+fbrl_status fbrl__astore_head_open(const char *path, void **handle)
 {
-    void *h;
-    fbrl_status st = fbrl__astore_put_begin(path, owner_only, &h);
-    if (st != FBRL_OK)
-        return st;
-    st = fbrl__astore_put_write(h, s, n);
-    return fbrl__astore_put_commit(h, path, st == FBRL_OK) != FBRL_OK ? FBRL_EIO : st;
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0640);
+    if (fd < 0)
+        return from_errno(errno);
+    *handle = to_handle(fd);
+    return FBRL_OK;
+}
+
+fbrl_status fbrl__astore_head_put(void *handle, const char *s, size_t n)
+{
+    int fd = fd_of(handle);
+    size_t done = 0;
+    while (done < n) {
+        ssize_t r = pwrite(fd, s + done, n - done, (off_t)done);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            return FBRL_EIO;
+        done += (size_t)r;
+    }
+    while (fdatasync(fd) != 0)
+        if (errno != EINTR)
+            return FBRL_EIO;
+    return FBRL_OK;
 }
 
 fbrl_status fbrl__astore_guarded(const char *path)

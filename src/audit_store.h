@@ -18,14 +18,16 @@ void fbrl__astore_close(void *handle);
  * end: *got 0 there). */
 fbrl_status fbrl__astore_read_open(const char *path, void **handle);
 fbrl_status fbrl__astore_read(void *handle, char *buf, size_t n, size_t *got);
-/* Replace path by s[0..n) atomically (temporary, fsync, rename, fsync of the directory);
- * owner_only: created readable and writable by the owner alone (0600), else 0640. */
-fbrl_status fbrl__astore_put(const char *path, const char *s, size_t n, int owner_only);
-/* The same in pieces: begin makes the temporary, write adds to it, commit syncs and
- * renames it over path (or, when ok is 0 or a write failed, removes it). */
+/* Replace path atomically, written in pieces: begin makes a temporary beside it (owner_only:
+ * 0600, else 0640, whatever the umask), write adds to it, commit syncs it, renames it over
+ * path and syncs the directory (or, when ok is 0, removes it). */
 fbrl_status fbrl__astore_put_begin(const char *path, int owner_only, void **handle);
 fbrl_status fbrl__astore_put_write(void *handle, const char *s, size_t n);
 fbrl_status fbrl__astore_put_commit(void *handle, const char *path, int ok);
+/* A small file rewritten in place (the chain's head): open (created 0640), put n bytes at
+ * its start and make them durable (fdatasync); every put has the same length. */
+fbrl_status fbrl__astore_head_open(const char *path, void **handle);
+fbrl_status fbrl__astore_head_put(void *handle, const char *s, size_t n);
 /* FBRL_OK if path exists and neither its group nor others may write it; FBRL_EPERM if they
  * may, FBRL_ENOENT if there is none, FBRL_ENOTFILE if it is not a regular file. */
 fbrl_status fbrl__astore_guarded(const char *path);

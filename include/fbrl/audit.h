@@ -193,7 +193,7 @@ FBRL_API fbrl_status fbrl_audit_verify_hash(const fbrl_audit_verifier *v, uint64
 /* A chain file open for appending: its writer, after a full verification. */
 typedef struct fbrl_audit_file {
     fbrl_audit a;
-    void *handle;
+    void *handle, *head_handle;
     char path[FBRL_AUDIT_PATH_MAX];
     char where[FBRL_AUDIT_WHERE_MAX]; /* why it was refused */
     uint64_t head_seq;
@@ -205,7 +205,8 @@ typedef struct fbrl_audit_file {
  * record. A broken
  * chain is refused: FBRL_ECHECKSUM, f->where says where it broke; nothing is written. The
  * file is locked against other writers until closed (FBRL_EBUSY while another has it).
- * The record writes append, fsync and then rewrite the head file. */
+ * Each record is appended and synced (fdatasync), then the head file is rewritten in place
+ * and synced. */
 FBRL_API fbrl_status fbrl_audit_file_open(fbrl_audit_file *f, const char *path, fbrl_audit_verifier *v);
 /* Open a broken chain only to append an administrator's recovery: the recovery record
  * (what broke, the reason) signed by the administrator (sk/pk) with the meaning "chain

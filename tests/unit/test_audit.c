@@ -474,7 +474,7 @@ static void file_chain_refuses_to_append_when_broken_until_recovered(void **stat
     fp = fopen(hpath, "r");
     assert_non_null(fgets(head, sizeof head, fp));
     fclose(fp);
-    assert_memory_equal(head, "fbrl-audit-head 1 7 ", 20);
+    assert_memory_equal(head, "fbrl-audit-head 1 00000000000000000007 ", 39);
 
     /* reopened: continues at 8 */
     fbrl_audit_verify_init(&v, keys, 0, 8, hashes, 4096);
