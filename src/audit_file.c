@@ -195,6 +195,7 @@ fbrl_status fbrl_audit_file_recover(fbrl_audit_file *f, const char *path, fbrl_a
         return st == FBRL_OK ? FBRL_ESTATE : st;
     }
     snprintf(f->where, sizeof f->where, "%s", v->where);
+    st = FBRL_OK;
     memcpy(&hs, v->file_hash, sizeof hs);
     line = v->line;
     if (v->len > 0 || v->overlong) { /* a cut last line: ended, so the recovery stands on its own line */
