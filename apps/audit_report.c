@@ -161,7 +161,8 @@ int audit_report(const char *path, const char *out, const audit_keys *keys)
     size_t nrun = 0;
     for (size_t i = 0; i < t.nlines; i++) {
         const char *l = t.buf + t.start[i];
-        size_t n = t.start[i + 1] - t.start[i] - (t.start[i + 1] > t.start[i] && l[t.start[i + 1] - t.start[i] - 1] == '\n');
+        size_t n = t.start[i + 1] - t.start[i];
+        n -= n > 0 && l[n - 1] == '\n';
         if (strcmp(str(l, n, "type", a), "header") != 0)
             continue;
         run_info r = {i + 1, 0, 0};
@@ -180,10 +181,19 @@ int audit_report(const char *path, const char *out, const audit_keys *keys)
         esc_s(f, str(l, n, "method", a));
         fprintf(f, "<br><span class=\"muted\">");
         esc_s(f, str(l, n, "source", a));
-        fprintf(f, "</span></td><td><code>");
-        esc(f, str(l, n, "method_version", a), 12);
-        fprintf(f, "</code> ");
-        esc_s(f, str(l, n, "method_state", a));
+        fprintf(f, "</span></td><td>");
+        if (i > 0) { /* the run's method_run record, just before its header: version and state */
+            const char *p = t.buf + t.start[i - 1];
+            size_t pn = t.start[i] - t.start[i - 1] - 1;
+            if (strcmp(str(p, pn, "type", b), "method_run") == 0) {
+                fprintf(f, "<code>");
+                esc(f, str(p, pn, "version", a), 12);
+                fprintf(f, "</code> ");
+                esc_s(f, str(p, pn, "state", a));
+                if (strcmp(str(p, pn, "drafts_allowed", c), "1") == 0)
+                    fprintf(f, " (Drafts allowed)");
+            }
+        }
         fprintf(f, "</td><td>");
         esc_s(f, str(l, n, "user", a));
         fprintf(f, "</td><td>");
@@ -227,7 +237,7 @@ int audit_report(const char *path, const char *out, const audit_keys *keys)
     fprintf(f, "<h2>Actions, sign-ins, users, methods, settings, signatures</h2>\n<table><tr><th>record</th><th>time "
                "(UTC)</th><th>user</th><th>what</th><th>details</th></tr>\n");
     static const char *const run_types[] = {"header", "step_start", "step_end", "command", "device", "wait", "text",
-                                            "note", "error", "summary", "poll"};
+                                            "note", "error", "summary", "poll", "method_run"};
     int in_run = 0;
     for (size_t i = 0; i < t.nlines; i++) {
         const char *l = t.buf + t.start[i];
