@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* audit_posix.c - the audit chain's and users file's store in a POSIX file system
  * (audit_store.h): appends made durable with fdatasync, whole files replaced atomically. */
+#ifndef _DEFAULT_SOURCE
 #define _DEFAULT_SOURCE /* flock: a whole-file lock a second descriptor's close does not drop */
+#endif
 #include "audit_store.h"
 
 #include <errno.h>
@@ -64,7 +66,11 @@ static fbrl_status write_full(int fd, const char *p, size_t n)
 fbrl_status fbrl__astore_append(void *handle, const char *s, size_t n)
 {
     int fd = fd_of(handle);
+    struct stat sb;
+    off_t at = fstat(fd, &sb) == 0 ? sb.st_size : -1;
     fbrl_status st = write_full(fd, s, n);
+    if (st != FBRL_OK && at >= 0 && S_ISREG(sb.st_mode)) /* a cut record taken back: the file ends whole */
+        (void)!ftruncate(fd, at);
     while (st == FBRL_OK && fdatasync(fd) != 0)
         if (errno != EINTR)
             st = FBRL_EIO;

@@ -31,6 +31,7 @@
 #include "fbrl/runlog.h"
 #include "fbrl/method.h"
 #include "fbrl/recover.h"
+#include "fbrl/run.h"
 #include "fbrl/audit.h"
 #include "fbrl/users.h"
 #include "fbrl/release.h"

@@ -100,7 +100,7 @@ for h in [i for i, r in enumerate(recs) if r.get("type") == "header"]:
         if r.get("type") == "seal":
             break
         if r.get("type") == "command":
-            cmds.append(r["line"])
+            cmds += [r["line"]] * r.get("count", 1)  # a folded poll: that many times
     while at < len(simlog) and simlog[at:at + len(cmds)] != cmds:
         at += 1
     if at >= len(simlog):
