@@ -11,7 +11,9 @@
  * Passwords are typed without echo (or read one a line from standard input when it is not
  * a terminal: the administrator's first, then the user's). Every change, and every
  * sign-in attempt, is a record in the lab's audit trail. */
+#include <errno.h>
 #include <getopt.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -72,6 +74,19 @@ static int setup(const char *name)
     if (lab_load_users(&L) == 0 || fbrl_users_load(&L.users, L.users_path) != FBRL_ENOENT)
         return fail("the lab has a users file already: set-up is done once");
     fbrl_users_init(&L.users);
+    {   /* the lab's folder, made when missing: its owner and group only */
+        char dir[LAB_PATH_MAX];
+        char *slash;
+        snprintf(dir, sizeof dir, "%s", L.users_path);
+        slash = strrchr(dir, '/');
+        if (slash && slash != dir) {
+            *slash = '\0';
+            if (mkdir(dir, 0750) != 0 && errno != EEXIST) {
+                fprintf(stderr, "fbrl-users: %s: %s\n", dir, strerror(errno));
+                return EXIT_REFUSED;
+            }
+        }
+    }
     if (new_password(name, pw, sizeof pw) != 0)
         return EXIT_REFUSED;
     st = fbrl_users_add(&L.users, name, FBRL_ROLE_ADMINISTRATOR, pw);
