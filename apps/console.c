@@ -664,6 +664,8 @@ static void draw(console *c)
     }
     put_row(20, " %s", c->errs[0]);
     put_row(21, "   %s", c->errs[0][0] ? c->advice[0] : "");
+    if (c->typing >= 5) /* why the last sign-in failed, or what to do */
+        put_row(21, " %s", c->hint);
     if (c->typing == 1)
         put_row(22, "ok> %s", c->typed);
     else if (c->typing == 3)
@@ -1390,12 +1392,19 @@ static void start_run(console *c)
             cu_action("parameter", what, detail);
         }
     }
+    c->log->audit.err[0] = '\0';
     c->in_vm++;
     fbrl_status st = fbrl_run_start(&c->m->run, c->meth->name, v, c->meth->nparams, &bad);
     c->in_vm--;
     flush_partial(c);
     fill_form(c); /* the values as set */
-    if (st != FBRL_OK) { /* it did not begin (the run log, ...) */
+    if (st != FBRL_OK && c->log->audit.err[0]) { /* refused before it began: why, nothing ran */
+        push_error(c, NULL, c->log->audit.err);
+        textf(c->advice[0], sizeof c->advice[0], "-> nothing ran");
+        textf(c->hint, sizeof c->hint, "%s", c->log->audit.err);
+        c->screen = SCREEN_FORM;
+        c->state = ST_IDLE;
+    } else if (st != FBRL_OK) { /* it did not begin (the run log, ...) */
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, NULL, st == FBRL_ETHROW ? msg : fbrl_status_str(st));

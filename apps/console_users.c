@@ -136,6 +136,7 @@ void cu_end(void)
 {
     mon_audit *A = &cu.log->audit;
     cu_sign_out("the console closed");
-    if (A->path[0] && A->user[0] && mon_audit_open(A) == 0)
+    mon_audit_set_user(A, "fbrlmon", 0, FBRL_ROLE_OPERATOR); /* the program closes the session */
+    if (A->path[0] && mon_audit_open(A) == 0)
         mon_audit_close(A, 1); /* the session's seal */
 }

@@ -66,6 +66,7 @@ int mon_audit_run_begin(mon_audit *A, const fbrl_method *m, const char *source)
 {
     const char *state = "unchecked (no lab)";
     int allow = A->lab ? A->lab->users.allow_drafts : 0;
+    A->err[0] = '\0';
     if (mon_audit_open(A) != 0)
         return -1;
     memset(&A->mv, 0, sizeof A->mv);

@@ -158,6 +158,18 @@ static int log_begin(mon_runlog *r, const fbrl_method *meth)
         p[k].value = 0;
         fbrl_method_param_get(&r->m->methods, meth, k, &p[k].value);
     }
+    /* the audit chain verified and the method's release checked (in a lab) before the
+     * controller hears anything of the run */
+    snprintf(r->audit.path, sizeof r->audit.path, "%s", r->path);
+    if (!r->audit.user[0])
+        mon_audit_set_user(&r->audit, r->operator_id, 0, FBRL_ROLE_OPERATOR);
+    if (mon_audit_run_begin(&r->audit, meth, r->source) != 0) {
+        if (r->error_hook)
+            r->error_hook(r->error_hook_ctx, r->audit.err);
+        else
+            fprintf(stderr, "fbrlmon: error: %s\n", r->audit.err);
+        return 1;
+    }
     localtime_r(&now, &tm);
     strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S%z", &tm);
     calibration_text(r->m, cal, sizeof cal);
@@ -179,18 +191,6 @@ static int log_begin(mon_runlog *r, const fbrl_method *meth)
     h.calibration = cal;
     h.params = p;
     h.nparams = meth->nparams;
-    /* the audit chain: verified, the method's release checked (in a lab), then the header */
-    snprintf(r->audit.path, sizeof r->audit.path, "%s", r->path);
-    if (!r->audit.user[0])
-        mon_audit_set_user(&r->audit, r->operator_id, 0, FBRL_ROLE_OPERATOR);
-    if (mon_audit_run_begin(&r->audit, meth, r->source) != 0) {
-        r->m->errors++;
-        if (r->error_hook)
-            r->error_hook(r->error_hook_ctx, r->audit.err);
-        else
-            fprintf(stderr, "fbrlmon: error: %s\n", r->audit.err);
-        return 1;
-    }
     memset(&r->log, 0, sizeof r->log);
     if (fbrl_runlog_begin(&r->log, chain_write, r, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
         mon_audit_run_end(&r->audit);
