@@ -305,12 +305,12 @@ static void first_change(const fbrl_method_version *mv, const char *s, size_t n,
         for (k = 0; k < mv->nfiles && strcmp(mv->file[k].name, name) != 0; k++)
             ;
         if (k == mv->nfiles || memcmp(mv->file[k].sha256, h, sizeof h) != 0) {
-            copy(out, cap, k == mv->nfiles ? name : mv->file[k].path);
+            copy(out, cap, k == mv->nfiles ? name : mv->file[k].name);
             return;
         }
     }
     if (seen < mv->nfiles) /* mv includes a file the release did not */
-        copy(out, cap, mv->file[mv->nfiles - 1].path);
+        copy(out, cap, mv->file[mv->nfiles - 1].name);
 }
 
 static void record(status_scan *c, const char *s, size_t n)
@@ -445,7 +445,7 @@ fbrl_status fbrl_release_check(fbrl_method_version *mv, fbrl_role role, int allo
     if (allow_drafts && fbrl_users_may(role, FBRL_RIGHT_RUN_DRAFT)) {
         if (mv->has_released)
             say(mv, "%s: runs as a Draft: %s changed since release %.12s", name,
-                     mv->changed[0] ? mv->changed : mv->file[0].path, mv->released_hex);
+                     mv->changed[0] ? mv->changed : mv->file[0].name, mv->released_hex);
         else
             say(mv, "%s: runs as a Draft (version %.12s, %s)", name, mv->hex,
                      fbrl_release_state_name(mv->state));
@@ -455,7 +455,7 @@ fbrl_status fbrl_release_check(fbrl_method_version *mv, fbrl_role role, int allo
         say(mv,
                  "%s: refused: %s changed since its release (released version %.12s, these files make %.12s): a "
                  "changed method needs a new review and release",
-                 name, mv->changed[0] ? mv->changed : mv->file[0].path, mv->released_hex, mv->hex);
+                 name, mv->changed[0] ? mv->changed : mv->file[0].name, mv->released_hex, mv->hex);
     else
         say(mv, "%s: refused: version %.12s is %s, not Released: %s", name, mv->hex,
                  fbrl_release_state_name(mv->state),

@@ -62,7 +62,7 @@ typedef struct fbrl_method_version {
     char state_utc[32];
     int has_released;   /* the method has another version Released */
     char released_hex[2 * FBRL_AUDIT_HASH_SIZE + 1];
-    char changed[FBRL_RELEASE_PATH_MAX]; /* the first file that differs from it */
+    char changed[FBRL_RELEASE_PATH_MAX]; /* the first file that differs from it, by the name it is included by */
     char why[FBRL_RELEASE_WHY_MAX];      /* a refusal in words */
 } fbrl_method_version;
 

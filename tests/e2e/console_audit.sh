@@ -89,7 +89,7 @@ cmp -s lib/asps_cell.fbrl "$src/examples/asps_cell.fbrl" && fail "the edit chang
 key F2; key Down; key Enter
 wait_for "Parameters of SAMPLE-PREP" || exit 1
 key F5
-wait_for "refused:" || exit 1
+wait_for "SAMPLE-PREP: refused: ../asps_cell.fbrl changed since its release" || exit 1
 shot changed-refused
 # ---- the reviewer: five wrong passwords lock the account
 key F9; key s

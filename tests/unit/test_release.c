@@ -168,7 +168,7 @@ static void only_a_reviewers_signed_release_releases(void **state)
     assert_true(mv.has_released);
     assert_int_equal(fbrl_release_check(&mv, FBRL_ROLE_OPERATOR, 1), FBRL_EPERM);
     char want[600];
-    snprintf(want, sizeof want, "MINI: refused: %s/lib/more.fbrl changed since its release", dir);
+    snprintf(want, sizeof want, "MINI: refused: more.fbrl changed since its release");
     assert_memory_equal(mv.why, want, strlen(want));
     /* a developer may try it as a Draft where the lab allows, and is told what changed */
     assert_int_equal(fbrl_release_check(&mv, FBRL_ROLE_DEVELOPER, 1), FBRL_OK);
