@@ -21,11 +21,12 @@ from .datafile import DataFile, CHR, INTEGER, LONG, REAL, LOCATION, user_type
 from .link import Port, Link, Position, Status, PortInfo, list_ports
 from .engine import Engine
 from .run import Run
+from .users import Users
 
 __all__ = [
     "Error", "ControllerError", "Location", "Calibration", "DataFile", "CHR", "INTEGER", "LONG",
     "REAL", "LOCATION", "user_type", "Port", "Link", "Position", "Status", "Engine", "version",
-    "status_name", "status_text", "FATES", "PortInfo", "list_ports",
+    "status_name", "status_text", "FATES", "PortInfo", "list_ports", "Users",
 ]
 
 __version__ = ffi.string(lib.fbrl_version()).decode()
