@@ -521,7 +521,7 @@ int main(int argc, char **argv)
     }
 
     if (opt.dry_run)
-        mon_dry_start(&m);
+        mon_dry_start(&m, &g_runlog);
     /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
      * skipped (docs/fbrlmon.md "Ctrl-C") */
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm) && !stopped; i++) {

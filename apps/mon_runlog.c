@@ -228,6 +228,30 @@ static void log_end(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
     mon_audit_run_end(&r->audit); /* sealed */
 }
 
+/* A run that did not complete, told on stderr (fbrlmon without the console): the outcome,
+ * and every sample that did not succeed with why. */
+static void tell_outcome(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
+{
+    static fbrl_run_snap s;
+    long ok = 0;
+    if (ev->outcome == FBRL_RUN_COMPLETED || r->quiet || fbrl_run_snapshot(run, &s) != FBRL_OK)
+        return;
+    for (long i = 0; i < s.samples; i++)
+        ok += s.outcomes[i].outcome == FBRL_SAMPLE_SUCCEEDED;
+    mon_host_newline(&r->m->host);
+    fprintf(stderr, "fbrlmon: %s: %s", s.method, fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome));
+    if (s.samples > 0)
+        fprintf(stderr, ": %ld of %ld samples succeeded", ok, s.samples);
+    if (ev->text != NULL)
+        fprintf(stderr, " (%s)", ev->text);
+    fprintf(stderr, "%s%s\n", r->path[0] ? "; run log " : "", r->path);
+    for (long i = 0; i < s.samples; i++)
+        if (s.outcomes[i].outcome == FBRL_SAMPLE_FAILED || s.outcomes[i].outcome == FBRL_SAMPLE_SKIPPED)
+            fprintf(stderr, "  sample %ld %s: %s\n", i + 1,
+                    fbrl_run_sample_name((fbrl_run_sample_outcome)s.outcomes[i].outcome), s.outcomes[i].reason);
+    fflush(stderr);
+}
+
 static int observe(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
 {
     static const char *const choices[] = {"", "retry", "skip the sample", "abort"};
@@ -236,6 +260,8 @@ static int observe(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
     char where[96], text[320];
     if (ev->kind == FBRL_RUN_EV_END && ev->outcome != FBRL_RUN_COMPLETED && r->m->counting)
         r->m->runs_incomplete++; /* fbrlmon's exit status: a run from a file, -e or a pipe */
+    if (ev->kind == FBRL_RUN_EV_END)
+        tell_outcome(r, run, ev);
     if (ev->kind == FBRL_RUN_EV_BEGIN)
         return log_begin(r, ev->method);
     if (!fbrl_runlog_is_open(l))
@@ -335,9 +361,7 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     dev_find f;
     char what[96];
     const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
-    if (r->event_hook)
-        r->event_hook(r->event_hook_ctx, ev);
-    if (!fbrl_runlog_is_open(&r->log))
+    if (!fbrl_runlog_is_open(&r->log) && r->event_hook == NULL)
         return;
     memset(&f, 0, sizeof f);
     f.m = r->m;
@@ -346,6 +370,10 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
         fbrl_vm_words(r->m->vm, find_dev, &f);
     if (!f.name[0])
         snprintf(f.name, sizeof f.name, "port %d", ev->port);
+    if (r->event_hook)
+        r->event_hook(r->event_hook_ctx, ev, f.name);
+    if (!fbrl_runlog_is_open(&r->log))
+        return;
     if (strcmp(ev->word, "WAIT-UNTIL") == 0) {
         snprintf(what, sizeof what, "WAIT-UNTIL%s", failed);
         fbrl_runlog_wait(&r->log, what, ev->planned_ms, ev->actual_ms);

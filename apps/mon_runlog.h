@@ -41,12 +41,13 @@ typedef struct mon_runlog {
     /* every executed line, after the log has it (the console's live view) */
     void (*exec_hook)(void *ctx, const char *line, size_t len, fbrl_status result);
     void *exec_hook_ctx;
-    /* every device action and timed wait, after the log has it (the dry run's report) */
-    fbrl_robot_event_fn event_hook;
+    /* every device action and timed wait with the device's name (the dry run's report) */
+    void (*event_hook)(void *ctx, const fbrl_robot_event *ev, const char *device);
     void *event_hook_ctx;
     /* the run log could not be written: told here (the console) instead of stderr */
     void (*error_hook)(void *ctx, const char *message);
     void *error_hook_ctx;
+    int quiet;        /* a screen shows the outcomes (the console): not told on stderr */
     int write_failed; /* in this run: told once */
     char write_error[MON_RUNLOG_PATH_MAX + 96];
 } mon_runlog;

@@ -166,13 +166,7 @@ shot cell
 key Down Down Down Down Down Down Down Down Down Down
 teach_from=$(lines)
 key t
-wait_for "TEACH keys"
-jogs=$(grep -c '^JOG 0.1,0,0$' sim.log)
-key Right
-k=0
-while [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" = "$jogs" ] && [ $k -lt 100 ]; do sleep 0.1; k=$((k + 1)); done
-sleep 0.5
-key Enter
+teach_jog
 wait_for "TEACH SPOT done"
 teach_to=$(lines)
 # where the composed run left the arm (X 6 Y -8 Z 7, its last W2) plus the jog

@@ -327,6 +327,23 @@ static void corrective_actions_skip_samples(void **state)
     drop(f);
 }
 
+/* Two more observers that only say they were called (BEGIN and END). */
+static int order_a(void *ctx, fbrl_run *r, const fbrl_run_event *ev)
+{
+    (void)r;
+    if (ev->kind == FBRL_RUN_EV_BEGIN || ev->kind == FBRL_RUN_EV_END)
+        ev_add(ctx, "A;");
+    return 0;
+}
+
+static int order_b(void *ctx, fbrl_run *r, const fbrl_run_event *ev)
+{
+    (void)r;
+    if (ev->kind == FBRL_RUN_EV_BEGIN || ev->kind == FBRL_RUN_EV_END)
+        ev_add(ctx, "B;");
+    return 0;
+}
+
 static void observers_and_the_remaining_time(void **state)
 {
     (void)state;
@@ -340,6 +357,7 @@ static void observers_and_the_remaining_time(void **state)
              "' C STEP C  at once\n"
              "END-METHOD\n");
     /* an observer that refuses: the run never begins */
+    f->events[0] = '\0';
     f->refuse = 1;
     assert_int_not_equal(fbrl_run_start(&f->run, "T", NULL, 0, NULL), FBRL_OK);
     assert_null(strstr(f->events, "start"));
@@ -369,6 +387,18 @@ static void observers_and_the_remaining_time(void **state)
     assert_int_equal(f->rem[0], 2000 + 1000 + 100);
     assert_int_equal(f->rem[1], 1000 + 100);
     assert_int_equal(f->rem[5], 100);
+    /* observers in the order added; one removed and added again comes last */
+    assert_int_equal(fbrl_run_observe(&f->run, order_a, f), FBRL_OK);
+    assert_int_equal(fbrl_run_observe(&f->run, order_b, f), FBRL_OK);
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_a, f), FBRL_OK);
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_a, f), FBRL_ENOENT);
+    assert_int_equal(fbrl_run_observe(&f->run, order_a, f), FBRL_OK);
+    f->events[0] = '\0';
+    assert_int_equal(fbrl_run_start(&f->run, "T", NULL, 0, NULL), FBRL_OK);
+    SAW(f, "begin T;B;A;start A -1;");
+    SAW(f, "end completed;B;A;");
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_a, f), FBRL_OK);
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_b, f), FBRL_OK);
     f->fake = 0;
     drop(f);
 }
