@@ -5,6 +5,7 @@
 #define _DEFAULT_SOURCE /* flock: a whole-file lock a second descriptor's close does not drop */
 #endif
 #include "audit_store.h"
+#include "posix_io.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -49,26 +50,12 @@ fbrl_status fbrl__astore_open_append(const char *path, void **handle)
     return FBRL_OK;
 }
 
-static fbrl_status write_full(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t r = write(fd, p, n);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            return FBRL_EIO;
-        p += r;
-        n -= (size_t)r;
-    }
-    return FBRL_OK;
-}
-
 fbrl_status fbrl__astore_append(void *handle, const char *s, size_t n)
 {
     int fd = fd_of(handle);
     struct stat sb;
     off_t at = fstat(fd, &sb) == 0 ? sb.st_size : -1;
-    fbrl_status st = write_full(fd, s, n);
+    fbrl_status st = fbrl__posix_write_full(fd, s, n);
     if (st != FBRL_OK && at >= 0 && S_ISREG(sb.st_mode)) /* a cut record taken back: the file ends whole */
         (void)!ftruncate(fd, at);
     while (st == FBRL_OK && fdatasync(fd) != 0)
@@ -139,7 +126,7 @@ fbrl_status fbrl__astore_put_begin(const char *path, int owner_only, void **hand
 
 fbrl_status fbrl__astore_put_write(void *handle, const char *s, size_t n)
 {
-    return write_full(fd_of(handle), s, n);
+    return fbrl__posix_write_full(fd_of(handle), s, n);
 }
 
 fbrl_status fbrl__astore_put_commit(void *handle, const char *path, int ok)
@@ -148,9 +135,8 @@ fbrl_status fbrl__astore_put_commit(void *handle, const char *path, int ok)
     const char *slash = strrchr(path, '/');
     int fd = fd_of(handle);
     fbrl_status st = ok ? FBRL_OK : FBRL_EIO;
-    while (st == FBRL_OK && fsync(fd) != 0)
-        if (errno != EINTR)
-            st = FBRL_EIO;
+    if (st == FBRL_OK)
+        st = fbrl__posix_sync(fd);
     if (close(fd) != 0 && st == FBRL_OK)
         st = FBRL_EIO;
     if (tmp_of(path, tmp, sizeof tmp) != 0)

@@ -15,6 +15,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "support/tmpdir.h"
+
 #include "fbrl/audit.h"
 
 typedef struct sink {
@@ -548,19 +550,13 @@ static int setup(void **state)
     assert_true(sodium_init() >= 0);
     crypto_sign_keypair(pk_rev, sk_rev);
     crypto_sign_keypair(pk_adm, sk_adm);
-    snprintf(dir, sizeof dir, "%s/tests/unit/audit-XXXXXX", FBRL_TEST_BINDIR);
-    char base[300];
-    snprintf(base, sizeof base, "%s/tests/unit", FBRL_TEST_BINDIR);
-    mkdir(base, 0755);
-    return mkdtemp(dir) ? 0 : -1;
+    return test_tmpdir_make(dir, sizeof dir, "audit");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
+    return test_tmpdir_remove(dir);
 }
 
 int main(void)

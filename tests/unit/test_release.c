@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "support/tmpdir.h"
+
 #include "fbrl/release.h"
 
 static char dir[320], chain[400];
@@ -203,23 +205,17 @@ static void only_a_reviewers_signed_release_releases(void **state)
 static int setup(void **state)
 {
     (void)state;
-    char base[300];
     assert_true(sodium_init() >= 0);
     crypto_sign_keypair(pk_dev, sk_dev);
     crypto_sign_keypair(pk_rev, sk_rev);
     crypto_sign_keypair(pk_op, sk_op);
-    snprintf(base, sizeof base, "%s/tests/unit", FBRL_TEST_BINDIR);
-    mkdir(base, 0755);
-    snprintf(dir, sizeof dir, "%s/release-XXXXXX", base);
-    return mkdtemp(dir) ? 0 : -1;
+    return test_tmpdir_make(dir, sizeof dir, "release");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
+    return test_tmpdir_remove(dir);
 }
 
 int main(void)

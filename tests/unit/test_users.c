@@ -13,6 +13,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "support/tmpdir.h"
+
 #include "fbrl/users.h"
 
 static char dir[320];
@@ -219,20 +221,14 @@ static void public_keys_go_to_a_verifier(void **state)
 static int setup(void **state)
 {
     (void)state;
-    char base[300];
     assert_true(sodium_init() >= 0);
-    snprintf(base, sizeof base, "%s/tests/unit", FBRL_TEST_BINDIR);
-    mkdir(base, 0755);
-    snprintf(dir, sizeof dir, "%s/users-XXXXXX", base);
-    return mkdtemp(dir) ? 0 : -1;
+    return test_tmpdir_make(dir, sizeof dir, "users");
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[400];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
+    return test_tmpdir_remove(dir);
 }
 
 int main(void)
