@@ -1292,7 +1292,8 @@ static void run_begins(console *c, const fbrl_method *m)
     c->screen = SCREEN_RUN;
     c->state = ST_RUNNING;
     c->abort_asked = c->abort_confirm = c->asking = 0;
-    memset(c->errs, 0, sizeof c->errs); /* the last errors are this run's */
+    memset(c->errs, 0, sizeof c->errs); /* the last errors and the messages are this run's */
+    memset(c->msgs, 0, sizeof c->msgs);
     textf(c->hint, sizeof c->hint, "running %s", m->name);
     draw(c);
 }
@@ -1327,21 +1328,22 @@ static void run_ends(console *c, fbrl_run *run, const fbrl_run_event *ev)
                : ev->outcome == FBRL_RUN_ABORTED ? ST_ABORTED
                : ev->outcome == FBRL_RUN_PARTIAL ? ST_PARTIAL
                                                  : ST_FAILED;
+    /* one line: the outcome, the samples, then what matters next (the samples line and
+     * Messages say which failed and why) */
     if (s->samples > 0)
-        textf(line, sizeof line, ", %ld of %ld samples succeeded (%ld failed, %ld skipped)", ok, s->samples, failed,
-              skipped);
+        textf(line, sizeof line, ": %ld of %ld samples succeeded", ok, s->samples);
     else
         line[0] = '\0';
     if (ev->outcome == FBRL_RUN_ABORTED)
-        textf(c->hint, sizeof c->hint, "%s aborted%s: arm at its safe place, outputs off", ev->method->name, line);
+        textf(c->hint, sizeof c->hint, "%s aborted%s; arm at safe place, outputs off", ev->method->name, line);
     else if (ev->outcome == FBRL_RUN_COMPLETED)
-        textf(c->hint, sizeof c->hint, "%s completed%s: F5 runs it again", ev->method->name, line);
+        textf(c->hint, sizeof c->hint, "%s completed%s; F5 runs it again", ev->method->name, line);
     else if (ev->text != NULL)
-        textf(c->hint, sizeof c->hint, "%s %s%s: arm halted, outputs off", ev->method->name,
+        textf(c->hint, sizeof c->hint, "%s %s%s; arm halted, outputs off", ev->method->name,
               fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line);
     else
-        textf(c->hint, sizeof c->hint, "%s %s%s", ev->method->name,
-              fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line);
+        textf(c->hint, sizeof c->hint, "%s %s%s (%ld failed, %ld skipped)", ev->method->name,
+              fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line, failed, skipped);
 }
 
 /* The console observes the run (as the run log does): what it shows follows the events. */

@@ -480,6 +480,10 @@ static int between(fbrl_run *r, long step, long sample)
         wait_once(r);
     if (take_abort(r))
         return 1;
+    if (fbrl_vm_interrupt_pending(r->vm)) { /* interrupted from outside while paused: no resume */
+        r->interrupted = 1;
+        return 1;
+    }
     lock(r);
     copy_text(who, sizeof who, r->req_who[WHO_RESUME]);
     unlock(r);

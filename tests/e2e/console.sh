@@ -183,7 +183,7 @@ key F5
 wait_long "R retry, S skip this sample, A abort" 10
 shot ask
 key s
-wait_long "TUBE-CHECK failed, 0 of 1 samples succeeded (0 failed, 1 skipped)" 10
+wait_long "TUBE-CHECK failed: 0 of 1 samples succeeded (0 failed, 1 skipped)" 10
 wait_for "tube skipped"
 wait_for "sample 1 skipped: CHECK failed (PART-MISSING): the operator skipped the sample"
 key F9; key 1

@@ -31,7 +31,7 @@ wait_long "RUNNING" 10 || exit 1
 # the buffer step's progress while it works on its first sample: 0 done
 wait_long "->  2 Buffer         sample 0/2" 20 || exit 1
 wait_long "FAILED" 60 || exit 1
-wait_long "SAMPLE-PREP failed, 0 of 2 samples succeeded (2 failed, 0 skipped)" 5
+wait_long "SAMPLE-PREP failed: 0 of 2 samples succeeded (2 failed, 0 skipped)" 5
 pane >screen-end.txt
 grep -q "samples 2/2 done: 1 FAILED 2 FAILED" screen-end.txt || fail "the samples' outcomes are not on the end screen"
 grep -q "sample 1 failed: its tube never reached the separation unit's sensor" screen-end.txt ||

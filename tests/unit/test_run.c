@@ -537,6 +537,37 @@ static void pause_resume_abort_from_another_thread(void **state)
     drop(f);
 }
 
+/* An interrupt from outside the run (fbrlmon's Ctrl-C is fbrl_vm_interrupt) while it is
+ * paused: aborted, and neither a resume nor the safe stop and ON-ABORT, which are whoever
+ * interrupted's to make. */
+static void an_interrupt_from_outside_while_paused(void **state)
+{
+    (void)state;
+    fixture *f = new_run();
+    pthread_t eng;
+    void *res;
+    fbrl_cell safe = -1;
+    lines(f, threads_src);
+    assert_int_equal(pthread_create(&eng, NULL, engine, f), 0);
+    wait_state(f, FBRL_RUN_RUNNING, 2000);
+    assert_int_equal(fbrl_run_pause(&f->run, "ann"), FBRL_OK);
+    wait_state(f, FBRL_RUN_PAUSED, 3000);
+    fbrl_vm_interrupt(f->vm);
+    assert_int_equal(pthread_join(eng, &res), 0);
+    assert_int_equal((intptr_t)res, FBRL_OK);
+    fbrl_run_snap s = snap(f);
+    assert_int_equal(s.outcome, FBRL_RUN_ABORTED);
+    SAW(f, " by ann;");
+    SAW(f, ";end aborted");
+    assert_null(strstr(f->events, "resume"));
+    assert_null(strstr(f->events, "safe-stop"));
+    assert_null(strstr(f->events, "on-abort"));
+    assert_int_equal(fbrl_vm_eval(f->vm, "SAFE @", 6), FBRL_OK);
+    assert_int_equal(fbrl_vm_pop(f->vm, &safe), FBRL_OK);
+    assert_int_equal(safe, 0);
+    drop(f);
+}
+
 typedef struct answerer {
     fixture *f;
     fbrl_run_choice choices[4];
@@ -617,6 +648,7 @@ int main(void)
         cmocka_unit_test(corrective_actions_skip_samples),
         cmocka_unit_test(observers_and_the_remaining_time),
         cmocka_unit_test(pause_resume_abort_from_another_thread),
+        cmocka_unit_test(an_interrupt_from_outside_while_paused),
         cmocka_unit_test(questions_answered_from_another_thread),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
