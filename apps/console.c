@@ -1448,7 +1448,7 @@ static void start_run(console *c)
     if (st != FBRL_OK && c->log->audit.err[0]) { /* refused before it began: why, nothing ran */
         push_error(c, NULL, c->log->audit.err);
         textf(c->advice[0], sizeof c->advice[0], "-> nothing ran");
-        textf(c->hint, sizeof c->hint, "%s", c->log->audit.err);
+        textf(c->hint, sizeof c->hint, "the run did not start: see the errors");
         c->screen = SCREEN_FORM;
         c->state = ST_IDLE;
     } else if (st != FBRL_OK) { /* it did not begin: the reason shown, the form back */

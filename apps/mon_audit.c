@@ -68,7 +68,7 @@ int mon_audit_run_begin(mon_audit *A, const fbrl_method *m, const char *source)
     int allow = A->lab ? A->lab->users.allow_drafts : 0;
     A->err[0] = '\0';
     if (mon_audit_open(A) != 0)
-        return -1;
+        return -1; /* the trail cannot be kept: an error */
     memset(&A->mv, 0, sizeof A->mv);
     if (source && source[0] && fbrl_release_identify(&A->mv, source) != FBRL_OK) {
         snprintf(A->err, sizeof A->err, "%s", A->mv.why);
@@ -121,7 +121,7 @@ refuse:
     fbrl_audit_str(&A->f.a, "reason", A->err);
     fbrl_audit_end(&A->f.a);
     mon_audit_close(A, 1);
-    return -1;
+    return -2; /* what the lab allows: a refusal, not an error */
 }
 
 void mon_audit_run_end(mon_audit *A)

@@ -35,7 +35,9 @@ int mon_audit_open(mon_audit *A);
 /* Seal what was written (seal 1) and close. */
 void mon_audit_close(mon_audit *A, int seal);
 /* A run begins: the chain opened, the method's version checked against the lab's releases
- * (source: the method file, "" unknown), a "method_run" record. -1 refuses the run (A->err). */
+ * (source: the method file, "" unknown), a "method_run" record. -1: the trail cannot be
+ * kept (broken, not a file ...), -2: the lab does not let this user run this version
+ * ("method_refused" recorded); either refuses the run, A->err says why. */
 int mon_audit_run_begin(mon_audit *A, const fbrl_method *m, const char *source);
 /* The run ended: sealed and closed. */
 void mon_audit_run_end(mon_audit *A);

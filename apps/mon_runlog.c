@@ -42,9 +42,10 @@ static void write_failed(mon_runlog *r, const char *what, int err)
 static int chain_write(void *ctx, const char *s, size_t n)
 {
     mon_runlog *r = ctx;
+    errno = 0;
     if (mon_audit_sink(&r->audit, s, n) == 0)
         return 0;
-    write_failed(r, "a record was not written to the audit trail", EIO);
+    write_failed(r, "a record was not written", errno ? errno : EIO); /* the store kept the write's errno */
     return -1;
 }
 
@@ -163,7 +164,10 @@ static int log_begin(mon_runlog *r, const fbrl_method *meth)
     snprintf(r->audit.path, sizeof r->audit.path, "%s", r->path);
     if (!r->audit.user[0])
         mon_audit_set_user(&r->audit, r->operator_id, 0, FBRL_ROLE_OPERATOR);
-    if (mon_audit_run_begin(&r->audit, meth, r->source) != 0) {
+    int refused = mon_audit_run_begin(&r->audit, meth, r->source);
+    if (refused != 0) {
+        if (refused == -1)
+            r->m->errors++; /* no trail for the run: an error of fbrlmon (its exit status) */
         if (r->error_hook)
             r->error_hook(r->error_hook_ctx, r->audit.err);
         else

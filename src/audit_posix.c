@@ -56,8 +56,11 @@ fbrl_status fbrl__astore_append(void *handle, const char *s, size_t n)
     struct stat sb;
     off_t at = fstat(fd, &sb) == 0 ? sb.st_size : -1;
     fbrl_status st = fbrl__posix_write_full(fd, s, n);
-    if (st != FBRL_OK && at >= 0 && S_ISREG(sb.st_mode)) /* a cut record taken back: the file ends whole */
+    if (st != FBRL_OK && at >= 0 && S_ISREG(sb.st_mode)) { /* a cut record taken back: the file ends whole */
+        int e = errno; /* the caller tells why (ENOSPC ...) */
         (void)!ftruncate(fd, at);
+        errno = e;
+    }
     while (st == FBRL_OK && fdatasync(fd) != 0)
         if (errno != EINTR)
             st = FBRL_EIO;
