@@ -20,6 +20,7 @@
 #include "mon_conn.h"
 #include "mon_dry.h"
 #include "mon_relink.h"
+#include "lab.h"
 #include "mon_runlog.h"
 #include "console.h"
 #include "mon_safe.h"
@@ -48,6 +49,7 @@ typedef struct options {
     const char *svg; /* --svg FILE */
     mon_dry_options dry;
     console_options console; /* --console, --methods, --level; --run-log, --operator */
+    const char *lab;         /* --lab DIR: the lab's users and audit trail (docs/compliance.md) */
 } options;
 
 static void usage(FILE *f)
@@ -85,6 +87,8 @@ static void usage(FILE *f)
           "  --keep-files     the dry run writes the plan's files (default: a scratch dir)\n"
           "  --run-log FILE   every RUN-METHOD appends its run log (JSON lines) to FILE\n"
           "  --operator NAME  the operator named in run logs (default: $USER)\n"
+          "  --lab DIR        the lab's users and audit trail: runs need a\n"
+          "                   signed-in user and a Released method (docs/compliance.md)\n"
           "  --console        the operator console (full screen) after the FILEs\n"
           "  --methods DIR    the console's method library (default: methods)\n"
           "  --level L        the console's level: operator (default), developer or\n"
@@ -147,7 +151,8 @@ enum {
     OPT_RUN_LOG,
     OPT_OPERATOR,
     OPT_METHODS,
-    OPT_LEVEL
+    OPT_LEVEL,
+    OPT_LAB
 };
 
 /* "-" first: FILEs come back as option 1 in command-line order (they run in order
@@ -171,6 +176,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"console", no_argument, NULL, OPT_CONSOLE},
                                              {"run-log", required_argument, NULL, OPT_RUN_LOG},
                                              {"operator", required_argument, NULL, OPT_OPERATOR},
+                                             {"lab", required_argument, NULL, OPT_LAB},
                                              {"methods", required_argument, NULL, OPT_METHODS},
                                              {"level", required_argument, NULL, OPT_LEVEL},
                                              {"sim-state", required_argument, NULL, OPT_SIM_STATE},
@@ -212,6 +218,7 @@ static int set_valued(options *o, int c, const char *v)
     case OPT_SIM_MODEL: o->conn.sim_model = v; return 0;
     case OPT_SIM_INPUTS: o->conn.sim_inputs = v; return 0;
     case OPT_PRINTER: o->printer = v; return 0;
+    case OPT_LAB: o->lab = v; return 0;
     case OPT_SVG: o->svg = v; return 0;
     case OPT_RUN_LOG:
     case OPT_OPERATOR:
@@ -330,6 +337,7 @@ bad:
 
 static mon_conn g_conn;     /* fixed address while open, as the uart backend needs */
 static mon_runlog g_runlog; /* the link reports every executed line to it */
+static lab g_lab;          /* --lab: its users and chain */
 
 /* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
  * (a printer or a second line shows it as it is printed). */
@@ -478,6 +486,18 @@ int main(int argc, char **argv)
         mon_runlog_set_path(&g_runlog, opt.console.run_log);
         if (opt.console.operator_id != NULL)
             snprintf(g_runlog.operator_id, sizeof g_runlog.operator_id, "%s", opt.console.operator_id);
+        if (opt.lab != NULL) {
+            /* the lab: its users sign in; its chain is the run log unless --run-log names one */
+            if (lab_init(&g_lab, opt.lab, NULL, opt.console.run_log) != 0 || lab_load_users(&g_lab) != 0) {
+                fprintf(stderr, "fbrlmon: %s\n", g_lab.err);
+                mon_close(&m);
+                mon_conn_close(&g_conn);
+                free(opt.actions);
+                return MON_EXIT_CONNECT;
+            }
+            g_runlog.audit.lab = &g_lab;
+            mon_runlog_set_path(&g_runlog, g_lab.chain_path);
+        }
     }
 
     if (opt.printer != NULL) {

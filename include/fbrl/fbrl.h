@@ -32,5 +32,8 @@
 #include "fbrl/method.h"
 #include "fbrl/recover.h"
 #include "fbrl/run.h"
+#include "fbrl/audit.h"
+#include "fbrl/users.h"
+#include "fbrl/release.h"
 
 #endif
