@@ -173,7 +173,7 @@ double sim_cell_stop(fbrl_sim *s, const double *qt, const double *pb, double *qs
 {
     fbrl_cell_hit h;
     fbrl_status st;
-    if (!s->cell_on || s->arm.model->kin != FBRL_SIM_KIN_5R)
+    if (!s->cell_on || s->arm.model->form != FBRL_ARM_5R)
         return 1.0;
     st = pb ? fbrl_cell_check_line(&s->cell, s->arm.q, pb, &h)
             : fbrl_cell_check_joints(&s->cell, s->arm.q, qt, &h);
