@@ -236,11 +236,12 @@ struct fbrl_sim {
 /* The arm's axis count (its model's). */
 static inline int sim_naxes(const fbrl_sim *s) { return (int)s->arm.model->naxes; }
 
-/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb) meets
- * it: the fraction of the way and the joints there (1.0: clear). */
+/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb, of the
+ * tool point tool inches past the flange) meets it: the fraction of the way and the joints
+ * there (1.0: clear). */
 #define SIM_CELL_MAX 256
 int sim_cell_load(fbrl_sim *s, const char *path, char *err, size_t errlen);
-double sim_cell_stop(fbrl_sim *s, const double *qt, const double *pb, double *qstop);
+double sim_cell_stop(fbrl_sim *s, double tool, const double *qt, const double *pb, double *qstop);
 
 /* sim_clock.c */
 double sim_mono(void);

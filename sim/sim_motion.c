@@ -150,7 +150,7 @@ int sim_move_joints(fbrl_sim *s, const double target[FBRL_ARM_AXES_MAX])
         /* the work cell: the arm goes as far as the contact and stops there */
         double qs[FBRL_ARM_AXES_MAX], f;
         memcpy(qs, qt, sizeof qs);
-        f = sim_cell_stop(s, qt, NULL, qs);
+        f = sim_cell_stop(s, sim_tool_len(s), qt, NULL, qs);
         begin(s, qs, joint_time(s, s->arm.q, qt) * (f < 1.0 ? f : 1.0), 0);
         s->arm.collide = f < 1.0;
     }
@@ -210,7 +210,7 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
         /* the work cell: the line ends at the contact */
         double qs[FBRL_ARM_AXES_MAX], f;
         memcpy(qs, qt, sizeof qs);
-        f = sim_cell_stop(s, qt, s->arm.pb, qs);
+        f = sim_cell_stop(s, sim_tool_len(s), qt, s->arm.pb, qs);
         if (f < 1.0) {
             double end[6];
             fbrl_arm_lerp(from, s->arm.pb, f, end);
