@@ -18,6 +18,7 @@
 #define MAX_SAMPLES 100000u /* a path check gives up (FBRL_ERANGE) beyond this */
 #define LINE_HALVE  30      /* step halvings on a straight line before it counts as a jump */
 #define LINE_SLACK  1.25    /* margin for the bend of a straight line's joint path between samples */
+#define LINE_GUESS  1.1     /* a straight line's next step aims this much below the length allowed */
 
 static int ok(const fbrl_cell_model *c) { return c && c->magic == CELL_MAGIC; }
 
@@ -667,7 +668,7 @@ static double body_moved(const fbrl_arm_capsule *s, const fbrl_arm_capsule *sn, 
 fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double *q0, const double pose1[6],
                                  fbrl_cell_hit *h)
 {
-    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], dist, turn,
+    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], rate, turn, most = 0.0,
                            step[FBRL_ARM_PARTS];
     fbrl_arm_capsule s[FBRL_ARM_PARTS], sn[FBRL_ARM_PARTS];
     track t;
@@ -680,11 +681,14 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double *q0, con
     fbrl_arm_fk(c->arm, q0, c->tcp, p0);
     memcpy(q, q0, bytes);
     body(c, q, s);
-    /* a first guess of how far the body goes, for the first step (halving corrects it) */
-    turn = fabs(pose1[4] - p0[4]) + fabs(pose1[5] - p0[5]) + (n > 5 ? fabs(pose1[3] - p0[3]) : 0.0);
-    dist = sqrt((pose1[0] - p0[0]) * (pose1[0] - p0[0]) + (pose1[1] - p0[1]) * (pose1[1] - p0[1]) +
-                (pose1[2] - p0[2]) * (pose1[2] - p0[2])) +
-           RAD(turn) * (c->arm->flange + c->tcp + c->tool_len + c->tool_r);
+    /* how far the body goes per unit of the line, for the first step's length: a guess from the
+     * tool's way, then as measured at the step before (halving corrects a step too long) */
+    turn = fabs(pose1[4] - p0[4]) + fabs(pose1[5] - p0[5]) +
+           (c->arm->form == FBRL_ARM_6R ? fabs(pose1[3] - p0[3]) : 0.0); /* a 5R's yaw is not its own */
+    rate =
+        LINE_SLACK * (sqrt((pose1[0] - p0[0]) * (pose1[0] - p0[0]) + (pose1[1] - p0[1]) * (pose1[1] - p0[1]) +
+                           (pose1[2] - p0[2]) * (pose1[2] - p0[2])) +
+                      RAD(turn) * (c->arm->flange + c->tcp + c->tool_len + c->tool_r));
     for (;;) {
         if (sample(c, q, f, h, &d, &t, s))
             return FBRL_OK;
@@ -693,7 +697,7 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double *q0, con
         if (h->samples >= MAX_SAMPLES)
             return FBRL_ERANGE;
         /* the step the clearance allows, halved until the joints' motion keeps to it */
-        double allow = step_for(d), df = dist > 0 ? allow / (dist * LINE_SLACK * LINE_SLACK) : 1.0, nf = 0.0;
+        double allow = step_for(d), df = rate > 0 ? allow / (rate * LINE_GUESS) : 1.0, nf = 0.0;
         int tries;
         for (tries = 0; tries < LINE_HALVE; tries++, df *= 0.5) {
             nf = f + df > 1.0 ? 1.0 : f + df;
@@ -704,7 +708,7 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double *q0, con
                 return FBRL_ERANGE; /* the controller refuses such a line (068) */
             }
             body(c, qn, sn);
-            if (body_moved(s, sn, step) <= allow)
+            if ((most = body_moved(s, sn, step)) <= allow)
                 break;
         }
         if (tries == LINE_HALVE) {
@@ -715,6 +719,8 @@ fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double *q0, con
         track_moved(&t, c->n, step);
         memcpy(q, qn, bytes);
         memcpy(s, sn, sizeof s);
+        if (nf > f && most > 0.0)
+            rate = most / (nf - f);
         f = nf;
     }
     memcpy(h->q_end, q, bytes);
