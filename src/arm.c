@@ -488,16 +488,16 @@ fbrl_status fbrl_arm_chain(const fbrl_arm *m, const double *q, double tool, doub
         return FBRL_EINVAL;
     cw = cos(RAD(q[0])), sw = sin(RAD(q[0])), tl = m->flange + tool;
     if (m->form == FBRL_ARM_6R) {
-        double t2 = RAD(q[1]), phi = RAD(q[1] + q[2]), c4 = cos(RAD(q[3])), s4 = sin(RAD(q[3]));
-        double c5 = cos(RAD(q[4])), s5 = sin(RAD(q[4]));
-        /* the tool axis: the forearm's frame times the wrist's Rx(q4) Ry(q5) e_x */
-        double x36[3] = {c5, s4 * s5, -c4 * s5};
-        mat3 r03;
-        forearm_rot(q[0], q[1] + q[2], r03);
-        for (int i = 0; i < 3; i++)
-            axis[i] = r03[i][0] * x36[0] + r03[i][1] * x36[1] + r03[i][2] * x36[2];
+        double t2 = RAD(q[1]), cp = cos(RAD(q[1] + q[2])), sp = sin(RAD(q[1] + q[2]));
+        double c4 = cos(RAD(q[3])), s4 = sin(RAD(q[3])), c5 = cos(RAD(q[4])), s5 = sin(RAD(q[4]));
+        /* the tool axis: the wrist's Rx(q4) Ry(q5) e_x in the forearm's frame (forearm_rot's
+         * columns: along the forearm, across the arm's plane, and their cross) */
+        double a = c5, b = s4 * s5, c = -c4 * s5;
+        axis[0] = a * sp * cw - b * sw - c * cp * cw;
+        axis[1] = a * sp * sw + b * cw - c * cp * sw;
+        axis[2] = a * cp + c * sp;
         e = m->upper * sin(t2), ez = m->base_h + m->upper * cos(t2);
-        w = e + m->fore * sin(phi), wz = ez + m->fore * cos(phi);
+        w = e + m->fore * sp, wz = ez + m->fore * cp;
     } else {
         double a2 = RAD(q[1]), a3 = RAD(q[1] + q[2]), pr = RAD(q[1] + q[2] + q[3]);
         e = m->upper * cos(a2), ez = m->base_h + m->upper * sin(a2);
