@@ -227,9 +227,9 @@ ffi.cdef(CDEF)
 
 def _load():
     """FBRL_LIBRARY names the shared library (the tests point it at the build tree);
-    otherwise the system's libfbrl.so.0 (the libfbrl0 package)."""
+    otherwise the system's libfbrl.so.1 (the libfbrl1 package)."""
     names = [os.environ["FBRL_LIBRARY"]] if os.environ.get("FBRL_LIBRARY") else []
-    names += ["libfbrl.so.0", ctypes.util.find_library("fbrl") or "libfbrl.so"]
+    names += ["libfbrl.so.1", ctypes.util.find_library("fbrl") or "libfbrl.so"]
     err = None
     for name in names:
         try:
