@@ -17,8 +17,8 @@
  *
  * Path checks sample the motion adaptively: each step moves no point of the arm further than
  * the clearance just measured (nothing can be met in between), and never further than
- * FBRL_CELL_THIN / 2 close to an obstacle, so no obstacle at least FBRL_CELL_THIN thick is
- * skipped.
+ * 0.9 * FBRL_CELL_THIN close to an obstacle, so no obstacle at least FBRL_CELL_THIN thick is
+ * skipped (and a hit is found at most that far past the first contact).
  *
  * The FBRL words (CELL-BOX ... CELL-SVG) are installed by fbrl_cell_install (src/words/
  * robot_cell.c); they guard every robot motion through fbrl_robot_set_guard. */

@@ -37,8 +37,8 @@ n=$(grep -c 'controller 190' "$work/off.out")
 moves=$(grep -cE '^(MOVE|APPRO|DEPART|JOG)' "$work/sim.log")
 [ "$moves" = 7 ] || fail "guard off: $moves motions sent, want 7"
 # where each stopped (the line after it: "at X Y Z" of the tool point), the arm touching (a path is
-# sampled at most FBRL_CELL_THIN / 2 past the contact): the tool envelope (0.5 in past the tool
-# point, 0.25 in thick) the table (z = 0.75) and the post's top (z = 6.75); the wrist housing (the
+# sampled at most 0.09 in, 0.9 FBRL_CELL_THIN, past the contact): the tool envelope (0.5 in past the tool
+# point, 0.25 in thick) the table (z = 0.75) and the post's top edge (z 6 to 6.8); the wrist housing (the
 # forearm's end, 1 in around the wrist centre 2 in above the tool point) the keep-out zone
 # (y = 5 - 1) and the post's top edge (y = -1 - 1, z 6); the forearm the rack's top while the tool
 # is past the rack (y < -13 - 0.25)
@@ -46,9 +46,9 @@ awk -v f="$work/off.check" '
   /^table:/ { w = "table"; next } /^box:/ { w = "box"; next } /^keep-out:/ { w = "keep"; next } /^arc:/ { w = "arc"; next }
   /^rack:/ { w = "rack"; next }
   /^at / { x = $2 + 0; y = $3 + 0; z = $4 + 0
-    if (w == "table" && (z < 0.70 || z > 0.80)) print "table: stopped at z " z
-    if (w == "keep" && (y < 3.95 || y > 4.05)) print "keep-out: stopped at y " y
-    if (w == "arc" && (y < -2.01 || y > -1.9)) print "arc: stopped at y " y
+    if (w == "table" && (z < 0.66 || z > 0.76)) print "table: stopped at z " z
+    if (w == "keep" && (y < 3.99 || y > 4.09)) print "keep-out: stopped at y " y
+    if (w == "arc" && (y < -2.01 || y > -1.91)) print "arc: stopped at y " y
     if (w == "box" && (x < 12.7 || x > 15.3 || z < 6.0 || z > 6.8)) print "box: stopped at " x " " z
     if (w == "rack" && !(y < -13.25 || z > 9.75)) print "rack: the tool stopped at y " y " z " z " (not past the rack)" }' "$work/off.out" >"$work/off.check"
 [ -s "$work/off.check" ] && fail "guard off: wrong place: $(cat "$work/off.check")"
