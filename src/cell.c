@@ -405,7 +405,7 @@ static void body(const fbrl_cell_model *c, const double *q, fbrl_arm_capsule s[F
  * have moved since). A sample measures the pairs nearest first and stops at the first bound
  * above the least distance found: on a path past one obstacle the others, and the parts far
  * from it, cost nothing. */
-#define TRACK_MAX 64 /* obstacles tracked (beyond: measured at every sample) */
+#define TRACK_MAX FBRL_CELL_MAX_OBJ /* obstacles tracked, the words' cell's (beyond: every sample) */
 typedef struct track {
     double lb[FBRL_ARM_PARTS][TRACK_MAX];
     int fresh; /* no sample yet: no bounds */

@@ -39,7 +39,9 @@ extern "C" {
 
 #define FBRL_CELL_NAME_MAX 31                /* obstacle and block names */
 #define FBRL_CELL_THIN     0.1               /* in: the thinnest obstacle a path check cannot skip */
-#define FBRL_CELL_BLOCKS   8                 /* blocks whose calibration carries obstacles */
+#ifndef FBRL_CELL_BLOCKS
+#define FBRL_CELL_BLOCKS 8 /* blocks whose calibration carries obstacles (a small build sets fewer) */
+#endif
 #define FBRL_CELL_AXES     FBRL_ARM_AXES_MAX /* joints in a hit's q_end and the words' state */
 #define FBRL_CELL_TABLE    ((size_t)-1)      /* "obstacle" index of the table plane */
 #define FBRL_CELL_NONE     ((size_t)-2)      /* no obstacle at all */
@@ -143,10 +145,18 @@ FBRL_API fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double
 #include "fbrl/robot.h"
 #include "fbrl/glossary.h"
 
-#define FBRL_CELL_MAX_OBJ  64  /* obstacles the words' cell holds */
+/* The words' state's sizes; a small build (the firmware, docs/firmware.md) sets smaller ones
+ * for all its sources. */
+#ifndef FBRL_CELL_MAX_OBJ
+#define FBRL_CELL_MAX_OBJ 64 /* obstacles the words' cell holds */
+#endif
+#ifndef FBRL_CELL_PATH_MAX
 #define FBRL_CELL_PATH_MAX 512 /* tool points of the path kept for the picture */
-#define FBRL_CELL_LOG_MAX  16  /* refused motions kept for the report */
-#define FBRL_CELL_MSG_MAX  192 /* a refusal's message, its end included */
+#endif
+#ifndef FBRL_CELL_LOG_MAX
+#define FBRL_CELL_LOG_MAX 16 /* refused motions kept for the report */
+#endif
+#define FBRL_CELL_MSG_MAX 192 /* a refusal's message, its end included */
 /* What a refused motion throws (catchable): the code of FBRL_ERANGE. */
 #define FBRL_CELL_THROW_COLLISION FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE)
 
