@@ -67,11 +67,22 @@ static void usage(FILE *f)
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
           "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
-          "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
+          "  --axes N         the axes in the controller's readouts (default: the arm's)\n",
+          f);
+    {
+        char names[64];
+        fbrl_arm_names(names, sizeof names, '|');
+        fprintf(f,
+                "  --arm %-10s the arm (default %s): its kinematics, limits, pulses per\n"
+                "                   degree and READY for the link's position check, the cell's\n"
+                "                   guard and the robot words; the emulator is that arm\n",
+                names, fbrl_arm_model(0)->name);
+    }
+    fputs(
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
-          "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
+          "  --sim-model M    the same as --arm (its older name)\n"
           "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
           "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
@@ -135,6 +146,7 @@ enum {
     OPT_FLOW,
     OPT_LOW_LATENCY,
     OPT_AXES,
+    OPT_ARM,
     OPT_SIM,
     OPT_SIM_STATE,
     OPT_SIM_MODEL,
@@ -167,6 +179,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"flow", required_argument, NULL, OPT_FLOW},
                                              {"low-latency", required_argument, NULL, OPT_LOW_LATENCY},
                                              {"axes", required_argument, NULL, OPT_AXES},
+                                             {"arm", required_argument, NULL, OPT_ARM},
 #ifdef FBRLMON_HAVE_SIM
                                              {"sim", no_argument, NULL, OPT_SIM},
                                              {"dry-run", no_argument, NULL, OPT_DRY_RUN},
@@ -215,7 +228,8 @@ static int set_valued(options *o, int c, const char *v)
         return 0;
     case OPT_WORKSPACE: o->workspace = v; return 0;
     case OPT_SIM_STATE: o->conn.sim_state = v; return 0;
-    case OPT_SIM_MODEL: o->conn.sim_model = v; return 0;
+    case OPT_ARM:
+    case OPT_SIM_MODEL: return (o->conn.arm = fbrl_arm_find(v)) != NULL ? 0 : -1;
     case OPT_SIM_INPUTS: o->conn.sim_inputs = v; return 0;
     case OPT_PRINTER: o->printer = v; return 0;
     case OPT_LAB: o->lab = v; return 0;
@@ -306,13 +320,22 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         default:
             if (set_valued(o, c, optarg) != 0) {
-                fprintf(stderr, "fbrlmon: %s: bad value '%s'\n", option_name(c, name, sizeof name), optarg);
+                int arm = c == OPT_ARM || c == OPT_SIM_MODEL;
+                char names[64];
+                fbrl_arm_names(names, sizeof names, '|');
+                fprintf(stderr, "fbrlmon: %s: bad value '%s'%s%s%s\n", option_name(c, name, sizeof name), optarg,
+                        arm ? " (" : "", arm ? names : "", arm ? ")" : "");
                 goto bad;
             }
             if (c == OPT_PORT)
                 explicit_conn = 1;
             break;
         }
+    }
+    if (o->conn.arm != NULL && o->conn.axes != 0 && o->conn.axes != o->conn.arm->naxes) {
+        fprintf(stderr, "fbrlmon: --axes %u does not fit the %s (%u axes)\n", o->conn.axes, o->conn.arm->name,
+                o->conn.arm->naxes);
+        goto bad;
     }
     for (; optind < argc; optind++) { /* after "--": FILEs only */
         o->actions[o->n_actions].is_text = 0;
@@ -465,6 +488,8 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
     m.conn = g_conn.open ? &g_conn : NULL;
+    /* the guard computes the arm the link checks positions of (and the emulator is) */
+    fbrl_cell_set_arm(&m.cell->model, g_conn.arm ? g_conn.arm : fbrl_arm_model(0), 0.0);
     if (mon_relink_install(&m) != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot define RECONNECT and RESUME\n");
         mon_close(&m);

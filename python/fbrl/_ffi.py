@@ -255,14 +255,14 @@ def _load():
     """FBRL_LIBRARY names the shared library (the tests point it at the build tree);
     otherwise the one scripts/install.sh installed with this package (_installed.py: by
     path, so no ldconfig or LD_LIBRARY_PATH is needed); otherwise the system's
-    libfbrl.so.0 (the libfbrl0 package)."""
+    libfbrl.so.1 (the libfbrl1 package)."""
     names = [os.environ["FBRL_LIBRARY"]] if os.environ.get("FBRL_LIBRARY") else []
     try:
         from ._installed import LIBRARY
         names.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), LIBRARY))
     except ImportError:
         pass  # not installed by install.sh: the source tree or the Debian package
-    names += ["libfbrl.so.0", ctypes.util.find_library("fbrl") or "libfbrl.so"]
+    names += ["libfbrl.so.1", ctypes.util.find_library("fbrl") or "libfbrl.so"]
     err = None
     for name in names:
         try:
