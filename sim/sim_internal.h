@@ -117,7 +117,7 @@ typedef struct sim_io {
     int master, slave; /* pty (slave kept open so the master never hangs up) */
     int lfd, conn;     /* TCP listener and client */
     int fd;            /* fd the line uses: master or conn, -1 if none */
-    int ino;           /* inotify on the pty slave: a client opened it, -1 none */
+    int ino;           /* --greet-pty: inotify on the pty slave (a client opened it), -1 none */
 } sim_io;
 
 /* sim_term.c: terminal mode (line editor, reply framing, streams). */
@@ -274,7 +274,7 @@ int sim_line_wants_write(const sim_line *l, double now);
 void sim_line_reset(sim_line *l);
 
 /* sim_io.c */
-int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
+int sim_io_open_pty(sim_io *io, int greet, char *err, size_t errlen); /* greet: watch opens */
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
 int sim_io_accept(sim_io *io);          /* 1: a new client */
 int sim_io_close_client(sim_io *io);    /* 1: a client was closed */

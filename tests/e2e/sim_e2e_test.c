@@ -30,6 +30,7 @@
 #include "fbrlsim.h"
 
 #define TIMEOUT 15.0 /* seconds: generous, the machine may be loaded */
+#define SILENCE_S 0.5 /* seconds of nothing that prove no unasked-for byte comes */
 
 typedef struct simp {
     pid_t pid;
@@ -41,7 +42,7 @@ static char g_dir[64];   /* per-run scratch directory */
 static pid_t g_pids[64]; /* emulators started, killed by the group teardown if a test failed */
 static int g_npids;
 static char g_buf[1 << 16];
-static int g_real; /* spawn as a user would: no --status-extra, and no greeting wanted (--aci) */
+static int g_real; /* spawn as a user would: no --status-extra (2: --aci, no prompt at all) */
 
 static double now_s(void)
 {
@@ -126,11 +127,14 @@ static void spawn(simp *p, const char *const *extra)
         }
         expect_greeting(p);
     } else {
+        /* a pty is greeted only when asked (--greet-pty): a serial line's controller cannot
+         * see a program open its port; the first reply of each test is its proof of silence */
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
         raw_fd(p->fd);
-        if (g_real != 2)
-            expect_greeting(p);
+        for (i = 0; extra && extra[i]; i++)
+            if (strcmp(extra[i], "--greet-pty") == 0)
+                expect_greeting(p);
     }
 }
 
@@ -203,12 +207,21 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     return n;
 }
 
-/* A client is greeted with the prompt as soon as it connects (TCP) or opens the pty. */
+/* A client is greeted with the prompt as soon as it connects (TCP) or, with --greet-pty,
+ * opens the pty. */
 static void expect_greeting(simp *p)
 {
     size_t n = read_until(p, g_buf, sizeof g_buf, ">>", TIMEOUT);
     if (n != 2 || strcmp(g_buf, ">>") != 0)
         fail_msg("no prompt on connect: got '%s'", g_buf);
+}
+
+/* Nothing arrives for a while (SILENCE_S): no byte that nobody typed for. */
+static void expect_silence(simp *p)
+{
+    size_t n = read_until(p, g_buf, sizeof g_buf, NULL, SILENCE_S);
+    if (n != 0)
+        fail_msg("%zu bytes nobody typed for: '%s'", n, g_buf);
 }
 
 /* Sends a line with CR; returns everything up to and including the prompt. */
@@ -342,13 +355,31 @@ static void t_echo_prompt(void **st)
         strcat(want, "1,5\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>");
         assert_string_equal(raw(&p, "JOINT,1,5"), want);
     }
-    /* a terminal program that opens the pty again is greeted again */
+    /* a terminal program that opens the pty again hears nothing until it types: a
+     * controller on a serial line cannot see a program open its port */
+    close(p.fd);
+    p.fd = open(p.path, O_RDWR | O_NOCTTY);
+    assert_true(p.fd >= 0);
+    raw_fd(p.fd);
+    expect_silence(&p);
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    stop(&p);
+}
+
+/* --greet-pty: each program that opens the pty is greeted, as a TCP client is. */
+static void t_greet_pty(void **st)
+{
+    static const char *const opts[] = {"--greet-pty", "--time-scale", "200", NULL};
+    simp p;
+    (void)st;
+    spawn(&p, opts); /* the first open's greeting is read there */
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
     close(p.fd);
     p.fd = open(p.path, O_RDWR | O_NOCTTY);
     assert_true(p.fd >= 0);
     raw_fd(p.fd);
     expect_greeting(&p);
-    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 30"), "SPEED 30\r\n>>");
     stop(&p);
 }
 
@@ -1946,7 +1977,7 @@ static void t_embed(void **st)
     p.fd = open(link, O_RDWR | O_NOCTTY);
     assert_true(p.fd >= 0);
     raw_fd(p.fd);
-    expect_greeting(&p); /* opening the pty is its connect */
+    expect_silence(&p); /* opening the pty sends nothing: a serial line cannot see it */
     ok(&p, "NOHELP");
     ok(&p, "HOME");
     ok(&p, "JOINT 1,45");
@@ -2829,7 +2860,8 @@ int main(int argc, char **argv)
         const struct CMUnitTest t[] = {__VA_ARGS__};                                    \
         rc |= _cmocka_run_group_tests(name, t, sizeof t / sizeof t[0], NULL, kill_all); \
     }
-    GROUP("line", cmocka_unit_test(t_echo_prompt), cmocka_unit_test(t_editing), cmocka_unit_test(t_errors))
+    GROUP("line", cmocka_unit_test(t_echo_prompt), cmocka_unit_test(t_greet_pty), cmocka_unit_test(t_editing),
+          cmocka_unit_test(t_errors))
     GROUP("motion", cmocka_unit_test(t_home_ready), cmocka_unit_test(t_moves),
           cmocka_unit_test(t_motion_errors), cmocka_unit_test(t_motion_timing), cmocka_unit_test(t_locations),
           cmocka_unit_test(t_teach))
