@@ -239,7 +239,7 @@ typedef struct fbrl_cf {
 #ifndef FBRL_TASKS_MAX
 #define FBRL_TASKS_MAX    16
 #endif
-#define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
+#define FBRL_TASK_NEVER   UINT64_MAX /* a wait with no deadline: only another task's signal ends it */
 #ifndef FBRL_CLAIMS_MAX
 #define FBRL_CLAIMS_MAX   16
 #endif
@@ -255,6 +255,7 @@ typedef struct fbrl_task {
     uint64_t wake_us;      /* TK_WAIT: run again at or after this host time */
     unsigned char *mem_lo; /* its stacks' memory in data space (dropped if forgotten) */
     int resuming;          /* its slice ended in a wait: the word runs again, its record kept */
+    int on_signal;         /* TK_WAIT: another task's signal (an end, a release) makes it due */
     int stop_req;          /* STOP while it waits in place: it ends when it gets back */
     fbrl_vmx_wait wait;
     fbrl_vmx_timer timer;
@@ -373,7 +374,10 @@ struct fbrl_vm {
     const fbrl_cell *resume_ip; /* set before fbrl__run resumes a task */
     const fbrl_cell *resume_at; /* set by fbrl__run when a slice yields: ip and the word */
     fbrl_cell resume_w;
-    int (*task_pause)(fbrl_vm *vm, uint64_t wake_us);
+    /* wait until wake_us, letting the other tasks run; on_signal: or until another task ends
+     * or releases a claim (the caller looks at its condition again) */
+    int (*task_pause)(fbrl_vm *vm, uint64_t wake_us, int on_signal);
+    unsigned long task_signals; /* counts those signals (task.c) */
 };
 
 /* Header i. FBRL_ROM_PRIMS (a small target short of RAM: the Cortex-M3 firmware): the

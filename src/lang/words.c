@@ -1307,7 +1307,7 @@ static int ms_beside_tasks(fbrl_vm *vm)
             vm->sp--;
             return 0;
         }
-        if ((r = vm->task_pause(vm, due)))
+        if ((r = vm->task_pause(vm, due, 0)))
             return r;
     }
 }
@@ -1324,7 +1324,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
             return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         if (vm->ntasks && vm->host.key_ready && vm->host.now_us) /* other tasks run until a key comes */
             for (fbrl__wait_begin(vm); !vm->host.key_ready(vm->host.user);)
-                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US)))
+                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US, 0)))
                     return r;
         r = vm->host.key(vm->host.user);
         if (r < 0)
