@@ -392,17 +392,38 @@ static fbrl_status need_clock(fbrl_vm *vm)
                : tk_throw(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
 }
 
-/* TASK ( "name" -- ): a task with its own stacks; name ( -- task ) */
+/* The slot of the task "name" already names when it is not running (a file loaded again,
+ * EDIT: its TASK lines make the same tasks again), or 0. The input is left as it was. */
+static int same_task(fbrl_vm *vm)
+{
+    fbrl_cell in = *vm->toin, v;
+    const char *name;
+    size_t len;
+    fbrl__parse_name(vm, &name, &len);
+    int k = fbrl__find(vm, name, len);
+    *vm->toin = in;
+    if (k < 0 || HDR(vm, k)->kind != K_CONST || !fbrl__addr_ok(vm, HDR(vm, k)->body, sizeof v))
+        return 0;
+    memcpy(&v, (const void *)HDR(vm, k)->body, sizeof v);
+    if (v < 1 || v >= FBRL_TASKS_MAX || vm->tasks[v].word != (uint32_t)k + 1)
+        return 0;
+    int s = vm->tasks[v].state;
+    return s == TK_READY || s == TK_WAIT || s == TK_RUN ? 0 : (int)v;
+}
+
+/* TASK ( "name" -- ): a task with its own stacks; name ( -- task ). A name that already
+ * is a task that is not running gets that task's slot (loading a file again leaks none). */
 static fbrl_status w_task(fbrl_vm *vm, void *arg)
 {
     (void)arg;
     int i, r;
     fbrl_hdr *h;
-    for (i = 1; i < FBRL_TASKS_MAX; i++) {
-        fbrl_task *t = &vm->tasks[i];
-        if (!t->word || ((t->state == TK_IDLE || t->state >= TK_DONE) && forgotten(vm, t)))
-            break;
-    }
+    if ((i = same_task(vm)) == 0)
+        for (i = 1; i < FBRL_TASKS_MAX; i++) {
+            fbrl_task *t = &vm->tasks[i];
+            if (!t->word || ((t->state == TK_IDLE || t->state >= TK_DONE) && forgotten(vm, t)))
+                break;
+        }
     if (i == FBRL_TASKS_MAX)
         return tk_throw(vm, FBRL_THROW_UNSUPPORTED, "TASK: no room for another task (16 at most)");
     unsigned char *here0 = vm->here;

@@ -1233,10 +1233,31 @@ static void waiting_costs_nothing(void **state)
     free_vm(f);
 }
 
+/* TASK of a name that already is a task that is not running (a file loaded again, EDIT)
+ * takes that task's slot again: 100 loads of three tasks fit in 16; a running task keeps
+ * its slot and the new name gets another. */
+static void task_again_reuses_its_slot(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    for (int i = 0; i < 100; i++)
+        assert_int_equal(ev(f, "TASK TR TASK TS TASK TT : NOP ; ' NOP TS START TS AWAIT"), FBRL_OK);
+    assert_int_equal(ev(f, "TR TS TT"), FBRL_OK);
+    fbrl_cell tt = pop1(f), ts = pop1(f), tr = pop1(f);
+    assert_true(tr >= 1 && ts == tr + 1 && tt == ts + 1);
+    assert_int_equal(ev(f, ": LONG ( -- ) 200 MS ;  ' LONG TR START  TASK TR  TR TASK-STATE"), FBRL_OK);
+    assert_int_equal(pop1(f), 1); /* the new TR: made, not started */
+    assert_int_equal(ev(f, "TR"), FBRL_OK);
+    assert_true(pop1(f) != tr);
+    assert_int_equal(ev(f, "STOP-TASKS"), FBRL_OK);
+    free_vm(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(waiting_costs_nothing),
+        cmocka_unit_test(task_again_reuses_its_slot),
         cmocka_unit_test(forth_core),
         cmocka_unit_test(forth_coreext),
         cmocka_unit_test(forth_exception),
