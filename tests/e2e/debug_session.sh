@@ -105,6 +105,23 @@ stop_sim
 grep -q '41 ' edit.out && grep -q '42 ' edit.out || fail "the edited definition did not run: $(cat edit.out)"
 grep -q '14\. 2\. ' edit.out || fail "HOLD lost its taught place (14 2): $(cat edit.out)"
 
+# 3b. EDIT a hundred times a file that makes three tasks: each load makes the same tasks
+# again (five loads used to end in "no room for another task")
+cat >tasks.fbrl <<'PLAN'
+\ tasks.fbrl
+TASK TA TASK TB TASK TC
+: NAP ( -- ) 1 MS ;
+' NAP TA START TA AWAIT
+PLAN
+i=0
+: >edit100.in
+while [ $i -lt 100 ]; do echo 'EDIT NAP' >>edit100.in; i=$((i + 1)); done
+echo 'TASKS' >>edit100.in
+EDITOR=true VISUAL= "$mon" --offline tasks.fbrl <edit100.in >edit100.out 2>edit100.err ||
+    fail "100 EDITs: $(grep -m 1 'error' edit100.err)"
+[ "$(grep -c 'loading .*tasks.fbrl again' edit100.out)" = 100 ] || fail "not 100 reloads: $(tail -n 3 edit100.out)"
+[ "$(grep -c '^T[ABC]  ' edit100.out)" = 3 ] || fail "TASKS after 100 EDITs does not list three tasks: $(cat edit100.out | tail -n 6)"
+
 # 4. bad use: one clear error each
 printf 'BREAK NO-SUCH-WORD\nEDIT DUP\n: TYPED 1 ;\nEDIT TYPED\n' | "$mon" --offline >bad.out 2>bad.err
 grep -q 'BREAK: NO-SUCH-WORD is not a word' bad.err || fail "BREAK of an unknown word: $(cat bad.err)"
