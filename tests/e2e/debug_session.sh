@@ -122,6 +122,17 @@ EDITOR=true VISUAL= "$mon" --offline tasks.fbrl <edit100.in >edit100.out 2>edit1
 [ "$(grep -c 'loading .*tasks.fbrl again' edit100.out)" = 100 ] || fail "not 100 reloads: $(tail -n 3 edit100.out)"
 [ "$(grep -c '^T[ABC]  ' edit100.out)" = 3 ] || fail "TASKS after 100 EDITs does not list three tasks: $(cat edit100.out | tail -n 6)"
 
+# 3c. SAVE-DEFINITIONS keeps the definitions that compiled: one abandoned by an error on its
+# second line is left out, and the file it writes loads without an error
+rm -f saved.fbrl
+printf ': GOOD ( -- n ) 1 ;\n: HALF ( -- n ) 2\n  NOSUCH ;\n: MULTI ( -- n )\n  3 ;\nSAVE-DEFINITIONS saved.fbrl\n' |
+    "$mon" --offline >save.out 2>save.err
+grep -q 'stdin:3: error: undefined word NOSUCH' save.err || fail "the abandoned definition's error: $(cat save.err)"
+grep -q '^: GOOD' saved.fbrl && grep -q '^: MULTI' saved.fbrl || fail "SAVE-DEFINITIONS lost a definition: $(cat saved.fbrl)"
+grep -q 'HALF' saved.fbrl && fail "SAVE-DEFINITIONS wrote the abandoned definition: $(cat saved.fbrl)"
+"$mon" --offline saved.fbrl -e 'GOOD MULTI + .' </dev/null >load.out 2>load.err || fail "the saved file does not load: $(cat load.err)"
+grep -q '^4 ' load.out || fail "the saved definitions do not run: $(cat load.out)"
+
 # 4. bad use: one clear error each
 printf 'BREAK NO-SUCH-WORD\nEDIT DUP\n: TYPED 1 ;\nEDIT TYPED\n' | "$mon" --offline >bad.out 2>bad.err
 grep -q 'BREAK: NO-SUCH-WORD is not a word' bad.err || fail "BREAK of an unknown word: $(cat bad.err)"
