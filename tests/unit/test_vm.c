@@ -1253,10 +1253,57 @@ static void task_again_reuses_its_slot(void **state)
     free_vm(f);
 }
 
+/* The word hook (a debugger's single steps): every word a definition runs, built-ins,
+ * numbers and superinstructions by their source words, and the interpreter's words, with
+ * where each is and how deep; a non-zero return throws there; cleared, nothing more. */
+typedef struct seen {
+    char words[512];
+    size_t depth[32];
+    int n, stop_at;
+} seen;
+static int record_word(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *st)
+{
+    seen *w = ctx;
+    (void)vm;
+    strncat(w->words, st->word, sizeof w->words - strlen(w->words) - 2);
+    strncat(w->words, "|", sizeof w->words - strlen(w->words) - 1);
+    if (w->n < 32)
+        w->depth[w->n] = st->depth;
+    w->n++;
+    if (!strcmp(st->word, "DROP"))
+        assert_string_equal(st->caller, "STEPPED");
+    return w->n == w->stop_at ? -1 : 0;
+}
+
+static void word_hook_sees_every_word(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    seen w;
+    memset(&w, 0, sizeof w);
+    assert_int_equal(ev(f, "VARIABLE V : STEPPED ( -- ) 1 2 + DROP V @ DROP ;"), FBRL_OK);
+    assert_int_equal(fbrl_vm_word_hook(f->vm, record_word, &w), FBRL_OK);
+    assert_int_equal(ev(f, "STEPPED"), FBRL_OK);
+    assert_string_equal(w.words, "STEPPED|1|2 +|DROP|V @|DROP|;|"); /* V @: one superinstruction */
+    assert_true(w.depth[1] == w.depth[0] + 1); /* inside the definition: one deeper */
+    memset(&w, 0, sizeof w);
+    w.stop_at = 4; /* a hook's throw stops the word there: DROP never runs */
+    assert_int_equal(ev(f, "STEPPED"), FBRL_ETHROW);
+    assert_string_equal(w.words, "STEPPED|1|2 +|DROP|");
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    assert_int_equal(fbrl_vm_word_hook(f->vm, NULL, NULL), FBRL_OK);
+    memset(&w, 0, sizeof w);
+    assert_int_equal(ev(f, "STEPPED"), FBRL_OK);
+    assert_int_equal(w.n, 0);
+    assert_int_equal(fbrl_vm_word_hook(NULL, record_word, &w), FBRL_EINVAL);
+    free_vm(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(waiting_costs_nothing),
+        cmocka_unit_test(word_hook_sees_every_word),
         cmocka_unit_test(task_again_reuses_its_slot),
         cmocka_unit_test(forth_core),
         cmocka_unit_test(forth_coreext),
