@@ -252,6 +252,7 @@ int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned l
     size_t words = fbrl_vm_word_count(m->vm);
     int compiling = fbrl_vm_compiling(m->vm);
     fbrl_status st = fbrl_vm_eval(m->vm, text, len);
+    mon_step_end(m);
     /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS: the
      * lines of a definition count once it ended without an error. */
     if (where == NULL || strcmp(where, "stdin") == 0)
@@ -268,6 +269,7 @@ int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned l
 int mon_include(mon *m, const char *path)
 {
     fbrl_status st = fbrl_vm_include(m->vm, path);
+    mon_step_end(m);
     if (st == FBRL_OK)
         return 0; /* (the engine itself refuses a file that ends inside a definition) */
     report(m, st, path, 0);

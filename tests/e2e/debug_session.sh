@@ -63,14 +63,36 @@ printf 'HOME READY\nBREAK TO-T1\nSHUTTLE\ns\ns\nW2\n.S\nc\n' |
 stop_sim
 grep -q '^stop: TO-T1 (plan.fbrl:6), called by SHUTTLE at plan.fbrl:9' stepped.out ||
     fail "no stop at TO-T1 called from line 9: $(cat stepped.out)"
-grep -q '^stop: GO (plan.fbrl:5), called by TO-T1 at plan.fbrl:6' stepped.out || fail "step into GO missing"
-grep -q '^stop: TO-T2 (plan.fbrl:7), called by SHUTTLE at plan.fbrl:10' stepped.out || fail "second step missing"
-grep -q '^ *10 *TO-T2 ;' stepped.out || fail "the source line of the call is not shown"
+# a step visits each word of TO-T1 (T1 GO ;), as gforth's dbg does
+grep -q '^stop: T1, in TO-T1 at plan.fbrl:6' stepped.out || fail "the step to T1 is missing: $(cat stepped.out)"
+grep -q '^stop: GO (plan.fbrl:5), in TO-T1 at plan.fbrl:6' stepped.out || fail "the step to GO missing"
+grep -q '^ *6 *: TO-T1 T1 GO ;' stepped.out || fail "the source line of the word is not shown"
 [ "$(grep -c '^W2' stepped.log)" = 1 ] || fail "the W2 typed at the stop did not reach the controller once"
 # W5 (is the motion over?) is asked as often as the motion takes: not part of what ran
 grep -v '^W[25]$' stepped.log >stepped.cmds
 grep -v '^W5$' plain.log >plain.cmds
 cmp -s plain.cmds stepped.cmds || fail "the stepped run's command log differs: $(diff plain.cmds stepped.cmds)"
+
+# 2c. steps visit built-in words: a word made only of them stops before each, the failing
+# one included; a FILE:LINE breakpoint stops on the line that fails (its first word), in a
+# definition or interpreted; after UNBREAK ALL nothing stops, a step under way included
+cat >built.fbrl <<'PLAN'
+\ built.fbrl - built-in words only
+: MATH ( -- n ) 6 7 * 0 / ;
+: SPLIT ( n -- a b )
+   DUP 2 /
+   SWAP 0 / ;
+PLAN
+printf 'BREAK MATH\nMATH\ns\ns\ns\ns\ns\n' | "$mon" --offline built.fbrl >built.out 2>built.err
+for w in '6' '7 \*' '0' '/'; do
+    grep -q "^stop: $w, in MATH at built.fbrl:2" built.out || fail "no step stop at $w in MATH: $(cat built.out)"
+done
+grep -q 'built.fbrl:2: error: division by zero in MATH' built.err || fail "MATH did not fail after the steps"
+printf 'c\n' | "$mon" --offline -e 'BREAK built.fbrl:5' built.fbrl -e '7 SPLIT' >line.out 2>line.err
+grep -q '^stop: SWAP, in SPLIT at built.fbrl:5' line.out || fail "BREAK FILE:LINE did not stop on the failing line: $(cat line.out)"
+grep -q 'built.fbrl:5: error: division by zero in SPLIT' line.err || fail "SPLIT did not fail after the stop"
+printf 'BREAK SPLIT\n9 SPLIT 2DROP\ns\nUNBREAK ALL\nc\n9 SPLIT\n: AGAIN-1 1 ;\nAGAIN-1 .\n' | "$mon" --offline built.fbrl >unbreak.out 2>unbreak.err
+[ "$(grep -c '^stop: ' unbreak.out)" = 2 ] || fail "stops after the breakpoint was gone: $(cat unbreak.out)"
 
 # 2b. the trace's commands are the controller's command log, each with the line that sent it
 start_sim traced.log
