@@ -11,6 +11,7 @@
 #include <limits.h>
 #include <getopt.h>
 #include <locale.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -415,6 +416,9 @@ int main(int argc, char **argv)
     /* The user's locale (the terminal's character set for line editing). libfbrl reads
      * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
     setlocale(LC_ALL, "");
+    /* a file size limit (ulimit -f) is an error the write reports (EFBIG: "no space left"),
+     * not the end of the run with a temporary file left behind */
+    signal(SIGXFSZ, SIG_IGN);
     memset(&opt, 0, sizeof opt);
     if (parse_args(argc, argv, &opt, &status) != 0) {
         free(opt.actions);
