@@ -76,13 +76,7 @@ cmp -s plain.cmds stepped.cmds || fail "the stepped run's command log differs: $
 # 2c. steps visit built-in words: a word made only of them stops before each, the failing
 # one included; a FILE:LINE breakpoint stops on the line that fails (its first word), in a
 # definition or interpreted; after UNBREAK ALL nothing stops, a step under way included
-cat >built.fbrl <<'PLAN'
-\ built.fbrl - built-in words only
-: MATH ( -- n ) 6 7 * 0 / ;
-: SPLIT ( n -- a b )
-   DUP 2 /
-   SWAP 0 / ;
-PLAN
+cp "$(cd "$(dirname "$0")" && pwd)/debug_built.fbrl" built.fbrl
 printf 'BREAK MATH\nMATH\ns\ns\ns\ns\ns\n' | "$mon" --offline built.fbrl >built.out 2>built.err
 for w in '6' '7 \*' '0' '/'; do
     grep -q "^stop: $w, in MATH at built.fbrl:2" built.out || fail "no step stop at $w in MATH: $(cat built.out)"

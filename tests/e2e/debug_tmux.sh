@@ -15,14 +15,7 @@ rm -rf "$work" && mkdir -p "$work" || exit 1
 cd "$work" || exit 1
 name=debug-tmux
 . "$here/tmux_session.sh"
-cat >built.fbrl <<'PLAN'
-\ built.fbrl - built-in words only
-: MATH ( -- n ) 6 7 * 0 / ;
-: SPLIT ( n -- a b )
-   DUP 2 /
-   SWAP 0 / ;
-TASK TA TASK TB TASK TC
-PLAN
+cp "$(cd "$(dirname "$0")" && pwd)/debug_built.fbrl" built.fbrl
 tmux -L "$sock" new-session -d -s said -x 100 -y 40 "EDITOR=true VISUAL= '$mon' --port '$work/robot' built.fbrl; sleep 600"
 wait_for "ok>" || exit 1
 key() { tmux -L "$sock" send-keys -t said -l -- "$1"; tmux -L "$sock" send-keys -t said Enter; }
