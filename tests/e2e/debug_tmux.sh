@@ -19,6 +19,15 @@ cp "$(cd "$(dirname "$0")" && pwd)/debug_built.fbrl" built.fbrl
 tmux -L "$sock" new-session -d -s said -x 100 -y 40 "EDITOR=true VISUAL= '$mon' --port '$work/robot' built.fbrl; sleep 600"
 wait_for "ok>" || exit 1
 key() { tmux -L "$sock" send-keys -t said -l -- "$1"; tmux -L "$sock" send-keys -t said Enter; }
+# at_stop TEXT: typed at a debug> prompt, then wait for the next debug> (Forth run at the stop)
+at_stop() {
+    n=$(count "debug>")
+    key "$1"
+    k=0
+    while [ "$(count "debug>")" -le "$n" ]; do
+        k=$((k + 1)); [ $k -lt 100 ] || { fail "no debug> after '$1'"; return 1; }; sleep 0.1
+    done
+}
 
 # 1. steps over built-ins, up to the failing one
 type_line "BREAK MATH"
@@ -31,17 +40,16 @@ for w in '6' '7 \*' '0' '/'; do
         k=$((k + 1)); [ $k -lt 100 ] || { fail "no step stop at $w"; break; }; sleep 0.1
     done
 done
-before=$(prompts)
 key "s"
 shown screen "division by zero in MATH" 10 || fail "MATH did not fail after the steps"
 
 # 2. UNBREAK ALL in the middle of a step: nothing stops any more
-key "BREAK SPLIT"
+type_line "BREAK SPLIT"
 key "9 SPLIT"
-wait_for "stop: SPLIT" || true
-key "s"
+wait_for "stop: SPLIT (built.fbrl:3)" || fail "no stop at SPLIT"
+at_stop "s"
 shown screen "stop: DUP, in SPLIT" 10 || fail "no step into SPLIT"
-key "UNBREAK ALL"
+at_stop "UNBREAK ALL"
 key "c"
 shown screen "division by zero in SPLIT" 10 || fail "SPLIT did not run on to its error"
 stops=$(count "debug>")
@@ -56,8 +64,10 @@ sleep 0.5
 type_line "BREAK built.fbrl:5"
 key "7 SPLIT"
 shown screen "stop: SWAP, in SPLIT at built.fbrl:5" 10 || fail "BREAK FILE:LINE did not stop on the failing line"
-key "q"
-sleep 0.3
+n=$(prompts)
+key "q" # the debugger off: SPLIT runs on to its error and the prompt
+k=0
+while [ "$(prompts)" -le "$n" ]; do k=$((k + 1)); [ $k -lt 100 ] || { fail "no prompt after q"; break; }; sleep 0.1; done
 
 # 4. EDIT reloads a file that makes three tasks: six times, no task leaks
 i=0

@@ -37,10 +37,9 @@ shown pane "broken 1" 30 || fail "a run that failed did not end with status 1"
 grep -q "broken.fbrl:2: error: division by zero" broken.err || fail "the error is not named: $(cat broken.err)"
 
 # the output on the terminal: the file runs, then the session (its prompt) as before
-say "'$mon' --port '$work/robot' method.fbrl"
+say "'$mon' --port '$work/robot' method.fbrl; echo \"after \$?\""
 shown pane "ok>" 30 || fail "no session after the file with the output on the terminal"
 say "BYE"
-say "echo \"after \$?\""
 shown pane "after 0" 10 || fail "BYE did not end the session"
 
 [ $fails = 0 ] && echo "terminal_run: ok" && exit 0
