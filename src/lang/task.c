@@ -182,19 +182,36 @@ static void end_task(fbrl_vm *vm, int i, int state)
     signal_tasks(vm);
 }
 
+static void slice(fbrl_vm *vm, int i);
+
+/* End task i; 1 if it was live. tidy: a task waiting inside a word (a PULSE with its output
+ * on) runs once more, its stop asked: the wait says "stopped" and the word tidies up (the
+ * output off) before the task ends at that wait, or at its next. Ctrl-C (not tidy) ends it
+ * at once: the host's safe stop makes the cell safe. */
+static int stop_task(fbrl_vm *vm, int i, int tidy)
+{
+    fbrl_task *t = &vm->tasks[i];
+    if (t->state == TK_WAIT && t->resuming && tidy) {
+        t->stop_req = 1;
+        slice(vm, i);
+        if (t->state == TK_READY || t->state == TK_WAIT)
+            end_task(vm, i, TK_STOPPED);
+        return 1;
+    }
+    if (t->state == TK_READY || t->state == TK_WAIT) {
+        end_task(vm, i, TK_STOPPED);
+        return 1;
+    }
+    if (t->state == TK_RUN) /* waiting in place under the running task: it ends when it gets back */
+        t->stop_req = 1;
+    return t->state == TK_RUN;
+}
+
 static void stop_all(fbrl_vm *vm, const char *why)
 {
     int n = 0;
-    for (int i = 1; i < FBRL_TASKS_MAX; i++) {
-        fbrl_task *t = &vm->tasks[i];
-        if (t->state == TK_READY || t->state == TK_WAIT) {
-            end_task(vm, i, TK_STOPPED);
-            n++;
-        } else if (t->state == TK_RUN) {
-            t->stop_req = 1;
-            n++;
-        }
-    }
+    for (int i = 1; i < FBRL_TASKS_MAX; i++)
+        n += stop_task(vm, i, why == NULL);
     if (n && why) {
         char line[96];
         snprintf(line, sizeof line, "tasks stopped (%s)\n", why);
@@ -497,13 +514,9 @@ static fbrl_status w_stop(fbrl_vm *vm, void *arg)
     fbrl_status st;
     if ((st = tk_pop(vm, &v)) || (st = task_arg(vm, v, &i)))
         return st;
-    fbrl_task *t = &vm->tasks[i];
     if (i == vm->cur_task)
         return tk_throw(vm, THROW_STOP, NULL);
-    if (t->state == TK_RUN)
-        t->stop_req = 1; /* waiting in place under the running task: it ends when it gets back */
-    else if (t->state == TK_READY || t->state == TK_WAIT)
-        end_task(vm, i, TK_STOPPED);
+    stop_task(vm, i, 1);
     return FBRL_OK;
 }
 
@@ -839,7 +852,8 @@ static const struct {
     {"START", w_start, 0, FBRL_DOC("( xt task -- )", "run xt as the task, beside the others")},
     {"START-WITH", w_start, 1,
      FBRL_DOC("( x1..xn n xt task -- )", "START, with n cells on the task's stack")},
-    {"STOP", w_stop, 0, FBRL_DOC("( task -- )", "end a task (what it claimed is released)")},
+    {"STOP", w_stop, 0,
+     FBRL_DOC("( task -- )", "end a task (what it claimed is released; a word it waits in tidies up)")},
     {"STOP-TASKS", w_stop_tasks, 0, FBRL_DOC("( -- )", "end every task but the main one")},
     {"PAUSE", w_pause, 0, FBRL_DOC("( -- )", "let the other tasks run")},
     {"ME", w_me, 0, FBRL_DOC("( -- task )", "the running task (0: the main one)")},
