@@ -5,6 +5,7 @@
  * stays. Failures are named (permission, a full disk, a link loop, read-only). */
 #include "fbrl/fileio.h"
 #include "fileio_store.h"
+#include "posix_io.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -59,8 +60,9 @@ static fbrl_status read_full(int fd, unsigned char *p, size_t n, size_t *got)
     return FBRL_OK;
 }
 
-static fbrl_status write_full(int fd, const unsigned char *p, size_t n)
+fbrl_status fbrl__posix_write_full(int fd, const void *data, size_t n)
 {
+    const unsigned char *p = data;
     while (n > 0) {
         ssize_t r = write(fd, p, n);
         if (r < 0 && errno == EINTR)
@@ -73,7 +75,7 @@ static fbrl_status write_full(int fd, const unsigned char *p, size_t n)
     return FBRL_OK;
 }
 
-static fbrl_status sync_fd(int fd)
+fbrl_status fbrl__posix_sync(int fd)
 {
     while (fsync(fd) != 0)
         if (errno != EINTR)
@@ -204,11 +206,11 @@ fbrl_status fbrl__fstore_replace(const char *given, long keep_mode, const unsign
     if (keep_mode >= 0 && fchmod(fd, (mode_t)keep_mode) != 0)
         st = from_errno(errno);
     if (st == FBRL_OK)
-        st = write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
+        st = fbrl__posix_write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
     if (st == FBRL_OK)
-        st = write_full(fd, data, len);
+        st = fbrl__posix_write_full(fd, data, len);
     if (st == FBRL_OK)
-        st = sync_fd(fd);
+        st = fbrl__posix_sync(fd);
     if (close(fd) != 0 && st == FBRL_OK)
         st = from_errno(errno);
     if (st == FBRL_OK && rename(tmp, path) != 0)
