@@ -4,12 +4,14 @@
  *   fbrlmon [options] [FILE...]
  *
  * Evaluates -e texts and FILEs in command-line order; then, when standard input
- * is a terminal, an interactive session (line editing, history, completion);
+ * is a terminal, an interactive session (line editing, history, completion) -
+ * unless FILEs or -e texts ran with the output not on a terminal (a run, ended);
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
 #include <limits.h>
 #include <getopt.h>
 #include <locale.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,7 +58,8 @@ static void usage(FILE *f)
 {
     fputs("usage: fbrlmon [options] [FILE...]\n"
           "Evaluate FBRL (Forth) source FILEs in order, then read commands from a\n"
-          "terminal (interactive session) or from piped standard input.\n"
+          "terminal (interactive session) or from piped standard input. FILEs or -e\n"
+          "with the output redirected (fbrlmon plan.fbrl > log) run and end.\n"
           "\n"
           "options:\n"
           "  -e TEXT          evaluate TEXT (in order with the FILEs; also -eTEXT)\n"
@@ -438,13 +441,16 @@ int main(int argc, char **argv)
 {
     options opt;
     static mon m; /* fixed address for the words; large */
-    int status = MON_EXIT_OK, stopped = 0;
+    int status = MON_EXIT_OK, stopped = 0, run_only;
     size_t i;
     FILE *printer = NULL;
 
     /* The user's locale (the terminal's character set for line editing). libfbrl reads
      * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
     setlocale(LC_ALL, "");
+    /* a file size limit (ulimit -f) is an error the write reports (EFBIG: "no space left"),
+     * not the end of the run with a temporary file left behind */
+    signal(SIGXFSZ, SIG_IGN);
     memset(&opt, 0, sizeof opt);
     if (parse_args(argc, argv, &opt, &status) != 0) {
         free(opt.actions);
@@ -565,6 +571,7 @@ int main(int argc, char **argv)
         stopped = mon_safe_end(&m, a->is_text ? "-e" : a->arg, a->is_text ? 1 : 0);
     }
 
+    run_only = m.host.in_is_tty && opt.n_actions > 0 && !m.host.out_is_tty;
     if (opt.dry_run && mon_dry_finish(&m, NULL, stdout, opt.svg) != 0)
         m.errors++;
     /* after a Ctrl-C, only a terminal goes on (at the prompt); piped input ends */
@@ -572,7 +579,10 @@ int main(int argc, char **argv)
         if (console_run(&m, &g_runlog, &opt.console) != 0)
             m.errors++;
     } else if (!opt.dry_run && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
-        if (m.host.in_is_tty) {
+        if (run_only) {
+            /* FILEs or -e texts with the output going elsewhere (fbrlmon plan.fbrl > run.log):
+             * a run, not a session; nobody would see a prompt, so the terminal is not read */
+        } else if (m.host.in_is_tty) {
             char desc[512], hello[640];
             mon_conn_describe(&g_conn, desc, sizeof desc);
             snprintf(hello, sizeof hello, "fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.", fbrl_version(),
@@ -611,7 +621,7 @@ int main(int argc, char **argv)
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
     if (m.runs_incomplete) /* the more telling: a run's outcome is in its run log */
         status = MON_EXIT_RUN;
-    if (mon_safe_quit() || (stopped && !m.host.in_is_tty))
+    if (mon_safe_quit() || (stopped && (!m.host.in_is_tty || run_only)))
         status = MON_EXIT_INTERRUPT;
     mon_conn_close(&g_conn);
     free(opt.actions);

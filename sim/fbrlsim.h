@@ -56,6 +56,8 @@ typedef struct fbrl_sim_options {
     int nak;                 /* send NAK (0x15) before every error line */
     int status_extra;        /* STATUS adds fbrlsim's own lines after the 2.60 sample's */
     int echo_as_typed;       /* echo lower case as typed (the line still runs upper-cased) */
+    int greet_pty;           /* send the prompt when a program opens the pty (a serial line's
+                                 * controller cannot see that: off by default) */
     int log_stamped;         /* --log lines: "T STATUS LINE" (simulated s, OK/NNN) */
     const char *control_out; /* file that control-line answers and refusals are appended
                                  * to; NULL: stdout for the program, nowhere embedded */

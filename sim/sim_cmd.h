@@ -108,6 +108,11 @@ int sim_h_output(fbrl_sim *s, args *a, int *b);
 int sim_h_wait(fbrl_sim *s, args *a, int *b);
 int sim_h_config(fbrl_sim *s, args *a, int *b);
 int sim_h_serial(fbrl_sim *s, args *a, int *b);
+/* sim_h_prog.c */
+int sim_h_free(fbrl_sim *s, args *a, int *b);
+int sim_h_dir(fbrl_sim *s, args *a, int *b);
+int sim_h_listp(fbrl_sim *s, args *a, int *b);
+int sim_h_edit(fbrl_sim *s, args *a, int *b);
 int sim_h_gain(fbrl_sim *s, args *a, int *b);
 int sim_h_arm(fbrl_sim *s, args *a, int *b);
 int sim_h_xcal(fbrl_sim *s, args *a, int *b);

@@ -115,7 +115,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     fcntl(s->wake[0], F_SETFL, O_NONBLOCK);
     fcntl(s->wake[1], F_SETFL, O_NONBLOCK);
     if ((o->tcp_port >= 0 ? sim_io_open_tcp(&s->io, o->tcp_port, err, errlen)
-                          : sim_io_open_pty(&s->io, err, errlen)) != 0)
+                          : sim_io_open_pty(&s->io, o->greet_pty, err, errlen)) != 0)
         goto fail;
     if (s->control_path && sim_events_open_fifo(&s->events, s->control_path, err, errlen) != 0)
         goto fail;

@@ -15,6 +15,7 @@
 #define SIM_NAME_MAX   8
 #define SIM_MAX_LOCS   100
 #define SIM_MAX_VARS   100
+#define SIM_MAX_PROGS  16 /* the program table (S1 ALLOC: "leaving 16 programs") */
 #define SIM_IO         16
 #define SIM_AIN        8       /* analog inputs (A/D channels), volts */
 #define SIM_GRIP_MAX   2.0     /* servo gripper fully open, in */
@@ -117,7 +118,7 @@ typedef struct sim_io {
     int master, slave; /* pty (slave kept open so the master never hangs up) */
     int lfd, conn;     /* TCP listener and client */
     int fd;            /* fd the line uses: master or conn, -1 if none */
-    int ino;           /* inotify on the pty slave: a client opened it, -1 none */
+    int ino;           /* --greet-pty: inotify on the pty slave (a client opened it), -1 none */
 } sim_io;
 
 /* sim_term.c: terminal mode (line editor, reply framing, streams). */
@@ -139,6 +140,8 @@ typedef struct sim_term {
     int cmd_logged;                   /* the running line is to be logged when it ends (stamped log) */
     char last_prog[SIM_NAME_MAX + 1]; /* STATUS's program line: the last program RUN */
     int last_prog_line, last_prog_err;
+    char edit_prog[SIM_NAME_MAX + 1]; /* EDIT's program (sim_h_prog.c) */
+    int editing;                      /* edit mode: typed lines go into edit_prog */
 } sim_term;
 
 /* sim_events.c: control lines from the FIFO and the --inputs script. */
@@ -186,8 +189,11 @@ typedef struct sim_arm {
     double speed;
     int homed, power;
     int locked[FBRL_ARM_AXES_MAX], limp[FBRL_ARM_AXES_MAX];
-    double gain[FBRL_ARM_AXES_MAX + 1];
 } sim_arm;
+
+/* GAIN: each motor's three servo parameters, in the order GAIN takes them; a lab's
+ * controller showed 8,.25,100 (docs/fbrlsim.md). They do not change the ideal servo model. */
+#define SIM_GAIN_PARAMS 3
 
 /* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
 typedef struct sim_dev {
@@ -197,6 +203,7 @@ typedef struct sim_dev {
     sim_chan chan[2];
     int flash, manual;
     int metric; /* METRIC: lengths typed and shown in mm (kept in the state file) */
+    double gain[FBRL_ARM_AXES_MAX + 1][SIM_GAIN_PARAMS]; /* [motor 1..n] */
 } sim_dev;
 
 /* sim_cmd.c: the program being RUN. */
@@ -275,7 +282,7 @@ int sim_line_wants_write(const sim_line *l, double now);
 void sim_line_reset(sim_line *l);
 
 /* sim_io.c */
-int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
+int sim_io_open_pty(sim_io *io, int greet, char *err, size_t errlen); /* greet: watch opens */
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
 int sim_io_accept(sim_io *io);          /* 1: a new client */
 int sim_io_close_client(sim_io *io);    /* 1: a client was closed */
@@ -338,6 +345,9 @@ void sim_control_say(fbrl_sim *s, const char *fmt, ...)
 
 /* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);
+
+/* sim_h_prog.c: a line typed in edit mode (EDIT); 0 or a RAPL error code */
+int sim_prog_edit(fbrl_sim *s, const char *line, int blank);
 
 /* sim_defaults.c */
 void sim_defaults(fbrl_sim *s); /* power-up settings for the arm model in s->arm.model */

@@ -98,7 +98,7 @@ static void write_state(fbrl_sim *s, FILE *f)
         fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity,
                 s->dev.chan[i].data, s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
     for (i = 1; i <= sim_naxes(s); i++)
-        fprintf(f, "GAIN %d %.17g\n", i, s->arm.gain[i]);
+        fprintf(f, "GAIN %d %.17g %.17g %.17g\n", i, s->dev.gain[i][0], s->dev.gain[i][1], s->dev.gain[i][2]);
     for (i = 0; i < s->mem.nvars; i++)
         fprintf(f, "VAR %s %.17g\n", s->mem.vars[i].name, s->mem.vars[i].v);
     for (i = 0; i < s->mem.nlocs; i++) {
@@ -412,11 +412,14 @@ static int load_item(loader *ld, sim_prog **prog)
         c.stop = (int)v[2];
         c.echo = (int)v[3];
         s->dev.chan[v[0]] = c;
-    } else if (!strcmp(k, "GAIN")) {
-        if (want_fields(ld, 3) || int_field(ld, 1, 1, sim_naxes(s), &v[0]) ||
-            real_field(ld, 2, 0.0, HUGE_VAL, &d[0]))
+    } else if (!strcmp(k, "GAIN")) { /* GAIN m p i d; an older file's GAIN m p keeps i and d */
+        int n = ld->ntok == 3 ? 1 : SIM_GAIN_PARAMS;
+        if (want_fields(ld, 2 + n) || int_field(ld, 1, 1, sim_naxes(s), &v[0]))
             return -1;
-        s->arm.gain[v[0]] = d[0];
+        for (i = 0; i < n; i++)
+            if (real_field(ld, 2 + i, 0.0, HUGE_VAL, &d[i]))
+                return -1;
+        memcpy(s->dev.gain[v[0]], d, (size_t)n * sizeof d[0]);
     } else if (!strcmp(k, "VAR")) {
         if (want_fields(ld, 3) || name_field(ld, 1, name) || real_field(ld, 2, -HUGE_VAL, HUGE_VAL, &d[0]))
             return -1;
@@ -456,6 +459,8 @@ static int load_item(loader *ld, sim_prog **prog)
         for (i = 0; i < s->mem.nprogs; i++)
             if (!strcmp(s->mem.progs[i].name, name))
                 return bad(ld, "program defined twice:", name);
+        if (s->mem.nprogs == SIM_MAX_PROGS)
+            return bad(ld, "too many programs (the program table holds 16)", NULL);
         np = realloc(s->mem.progs, (size_t)(s->mem.nprogs + 1) * sizeof *np);
         if (!np)
             return bad(ld, "out of memory", NULL);
