@@ -264,6 +264,10 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
     if (!fbrl_runlog_is_open(&r->log))
         return;
+    if (ev->line != NULL) { /* a motion sent around the guard on purpose (fbrl_link_unguarded) */
+        fbrl_runlog_note(&r->log, "unguarded", ev->line);
+        return;
+    }
     memset(&f, 0, sizeof f);
     f.m = r->m;
     f.addr = ev->device;

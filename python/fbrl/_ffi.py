@@ -97,6 +97,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
 fbrl_status fbrl_link_connect(fbrl_link *l);
 fbrl_status fbrl_link_cmd(fbrl_link *l, int cmd, const fbrl_rapl_arg *args, size_t nargs, int straight);
 fbrl_status fbrl_link_raw(fbrl_link *l, const char *line);
+fbrl_status fbrl_link_unguarded(fbrl_link *l);
 fbrl_status fbrl_link_finish(fbrl_link *l);
 fbrl_status fbrl_link_where(fbrl_link *l, int cmd, fbrl_rapl_pos *out);
 fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out);
@@ -205,6 +206,8 @@ fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+typedef struct fbrl_cell_words fbrl_cell_words;
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
 int fbrl_robot_last_error(const fbrl_robot *r);
 uint64_t fbrl_clock_now_us(void);
 """
@@ -216,7 +219,7 @@ ABI = {
     "fbrl_rapl_reader": 9, "fbrl_rapl_pos": 10, "fbrl_loc": 11, "fbrl_calib": 12, "fbrl_calpts": 13,
     "fbrl_units": 14, "fbrl_file": 15, "fbrl_glossary": 16, "fbrl_robot": 17, "fbrl_robot_stop": 18,
     "fbrl_vm_config": 19, "fbrl_vm_error": 20, "fbrl_workspace": 21, "fbrl_workspace_counts": 22,
-    "fbrl_uart_8250": 23, "fbrl_port_entry": 24,
+    "fbrl_uart_8250": 23, "fbrl_port_entry": 24, "fbrl_cell_words": 25,
 }
 # The structs declared in full above: their layout must be the library's.
 DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error")

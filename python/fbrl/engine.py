@@ -54,6 +54,10 @@ class Engine:
               "Engine glossary")
         check(lib.fbrl_robot_install(self._vm, self._robot.ptr, link.ptr if link else ffi.NULL,
                                      self._glossary.ptr), "Engine robot words")
+        # the work cell's words and the guard on every motion (docs/workcell.md)
+        self._cell = alloc("fbrl_cell_words")
+        check(lib.fbrl_cell_install(self._vm, self._cell.ptr, self._robot.ptr, self._glossary.ptr),
+              "Engine cell words")
 
     def __enter__(self):
         return self
@@ -63,10 +67,17 @@ class Engine:
         return False
 
     def close(self):
-        """Closes the source files an interrupted INCLUDED left open."""
+        """Closes the source files an interrupted INCLUDED left open, and takes the robot
+        words' gate off the link (the link goes on without this engine)."""
         for f in self._files.values():
             f.close()
         self._files.clear()
+        if getattr(self, "link", None) is not None and hasattr(self, "_robot"):
+            lib.fbrl_robot_set_link(self._robot.ptr, ffi.NULL)
+            self.link = None
+
+    def __del__(self):
+        self.close()
 
     # host callbacks
     def _write(self, user, s, n):

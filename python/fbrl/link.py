@@ -172,9 +172,12 @@ class Link:
         """The start-up handshake: a known, empty command line; NOHELP."""
         self._check(lib.fbrl_link_connect(self._link.ptr), "connect")
 
-    def command(self, keyword, *args, straight=False):
+    def command(self, keyword, *args, straight=False, unguarded=False):
         """Run one RAPL command from the library's table, e.g. command("MOVE", "P1"),
-        command("SPEED", 50), command("APPRO", "P1", 2.0). Ints, floats and names."""
+        command("SPEED", 50), command("APPRO", "P1", 2.0). Ints, floats and names.
+        On a link an Engine with a described work cell shares, a motion is refused
+        (FBRL_EGUARD) unless unguarded=True sends it around the guard, which the run log
+        is told (docs/workcell.md "The guard")."""
         cmd = ffi.new("int *")
         st = lib.fbrl_rapl_cmd_find(keyword.encode(), cmd)
         if st < 0:
@@ -191,11 +194,15 @@ class Link:
                 keep.append(s)
                 cargs[i].kind, cargs[i].s = _ARG_STR, s
         what = " ".join([keyword] + [str(a) for a in args])
+        if unguarded:
+            lib.fbrl_link_unguarded(self._link.ptr)
         self._check(lib.fbrl_link_cmd(self._link.ptr, cmd[0], cargs, len(args), 1 if straight else 0), what)
 
-    def raw(self, line):
-        """Run a raw command line; returns the lines it printed."""
+    def raw(self, line, unguarded=False):
+        """Run a raw command line; returns the lines it printed. unguarded: as command()."""
         self._lines = []
+        if unguarded:
+            lib.fbrl_link_unguarded(self._link.ptr)
         self._check(lib.fbrl_link_raw(self._link.ptr, line.encode()), line)
         return list(self._lines)
 
