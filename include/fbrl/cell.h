@@ -191,6 +191,10 @@ typedef struct fbrl_cell_words {
     int guard; /* CELL-GUARD-ON (the default) / CELL-GUARD-OFF */
     int block; /* CELL-BLOCK: the block later obstacles belong to, -1 none */
     int checked;                    /* the motion being sent was checked (done records it) */
+    int pulses_ok;                  /* a W2 showed pulses = joints x pulses per degree (as of epoch):
+                                     * one W1 line tells where the arm stands */
+    unsigned long epoch;
+    int expect;                      /* the last motion sent ends at pending (until the next check) */
     double q[FBRL_CELL_AXES];       /* where it starts: the joints read for its check */
     double pending[FBRL_CELL_AXES]; /* where it ends */
     fbrl_cell_hit last;

@@ -297,6 +297,13 @@ FBRL_API unsigned long fbrl_robot_where_epoch(const fbrl_robot *r);
  * has ended; *n gets how many (up to FBRL_RAPL_MAX_AXES). Throws in the VM on error
  * (FBRL_ETHROW-like statuses as the robot words return them), naming word. */
 FBRL_API fbrl_status fbrl_robot_joints(fbrl_robot *r, const char *word, double *q, unsigned *n);
+/* The same reading whole: pulses, joints and world (W2). */
+FBRL_API fbrl_status fbrl_robot_position(fbrl_robot *r, const char *word, fbrl_rapl_pos *p);
+/* The arm's motor pulses once the motion in progress has ended: one line of W1, about a
+ * quarter of W2 on the wire (*n values, up to FBRL_RAPL_MAX_AXES). FBRL_EPROTOCOL, without
+ * a throw, when the reading was not one clean line (read W2 instead); other errors throw
+ * as fbrl_robot_joints. */
+FBRL_API fbrl_status fbrl_robot_pulses(fbrl_robot *r, const char *word, long *pulses, unsigned *n);
 
 /* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
 FBRL_API fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);

@@ -384,10 +384,48 @@ static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
     memcpy(cw->path[cw->npath++], pose, 3 * sizeof(double));
 }
 
-/* The check, one step with the motion's send (robot_gate.c): nothing else runs between.
- * Where the arm starts is read from the controller every time (W2, the arm stands by
- * then): a stop the guard did not command (HALT, power off, an E-stop, the pendant, a lost
- * connection) or a motion sent around it can never leave it checking from the wrong place. */
+/* Where the arm stands (it stands: robot_gate.c waited for it), read from the controller
+ * for every check: a stop the guard did not command (HALT, power off, an E-stop, the
+ * pendant, a lost connection) or a motion sent around it never leaves the guard checking
+ * from the wrong place. One W1 line (motor pulses) once a W2 has shown that pulses are
+ * joints times the A255's pulses per degree on this controller (again after anything that
+ * changes the where-epoch: a link set, HALT, ...); else, or when that line was not clean,
+ * the whole W2. The last motion's end counts as the start only when the pulses show the
+ * arm there (within a pulse on every axis): seen to end there. *n: the axes read. */
+static fbrl_status where(fbrl_cell_words *cw, fbrl_robot *r, const char *word, double *q, unsigned *n)
+{
+    fbrl_rapl_pos p;
+    fbrl_status st;
+    int expect = cw->expect;
+    cw->expect = 0;
+    if (cw->pulses_ok && cw->epoch == fbrl_robot_where_epoch(r)) {
+        long pulses[FBRL_RAPL_MAX_AXES];
+        st = fbrl_robot_pulses(r, word, pulses, n);
+        if (st == FBRL_OK && *n == FBRL_CELL_AXES) {
+            for (unsigned k = 0; k < *n; k++) {
+                q[k] = (double)pulses[k] / a255_ppd[k];
+                expect = expect && fabs((double)pulses[k] - cw->pending[k] * a255_ppd[k]) <= 1.0;
+            }
+            if (expect)
+                memcpy(q, cw->pending, sizeof cw->pending);
+            return FBRL_OK;
+        }
+        if (st != FBRL_OK && st != FBRL_EPROTOCOL)
+            return st;
+    }
+    if ((st = fbrl_robot_position(r, word, &p)) != FBRL_OK)
+        return st;
+    *n = p.njoints;
+    for (unsigned k = 0; k < p.njoints; k++)
+        q[k] = p.joints[k];
+    cw->pulses_ok = p.njoints == FBRL_CELL_AXES && p.npulses == FBRL_CELL_AXES;
+    for (unsigned k = 0; cw->pulses_ok && k < FBRL_CELL_AXES; k++) /* 4 decimals: within a pulse */
+        cw->pulses_ok = fabs((double)p.pulses[k] - p.joints[k] * a255_ppd[k]) <= 1.0;
+    cw->epoch = fbrl_robot_where_epoch(r);
+    return FBRL_OK;
+}
+
+/* The check, one step with the motion's send (robot_gate.c): nothing else runs between. */
 static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *m)
 {
     fbrl_cell_words *cw = ctx;
@@ -401,9 +439,9 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         return FBRL_OK;
     if (m->kind == FBRL_ROBOT_MOVE_OTHER)
         return refuse(cw, m, "the guard cannot follow this motion (CELL-GUARD-OFF sends it unchecked)");
-    double q[16];
+    double q[FBRL_RAPL_MAX_AXES];
     unsigned n = 0;
-    if ((st = fbrl_robot_joints(r, m->word, q, &n)) != FBRL_OK)
+    if ((st = where(cw, r, m->word, q, &n)) != FBRL_OK)
         return st;
     if (n != FBRL_CELL_AXES) { /* the guard's kinematics are the A255's (DESIGN 6) */
         snprintf(what, sizeof what,
@@ -482,6 +520,7 @@ static void guard_done(void *ctx, fbrl_robot *r, const fbrl_robot_move *m, fbrl_
         return;
     }
     cw->checked = 0;
+    cw->expect = 1; /* the next check sees whether it ended there */
     cw->stats.moves++;
     if (cw->last.clearance < cw->stats.clearance) {
         cw->stats.clearance = cw->last.clearance;

@@ -163,10 +163,14 @@ static fbrl_status raw_gate(fbrl_robot *r, const rb_word *w, const uint8_t *p, s
     for (size_t i = 0; i < n; i++) {
         if (p[i] == '\r' || p[i] == '\n') {
             if (k > 0 && rb_link_gate(r, line, k, 0) != FBRL_OK) {
-                char msg[200];
+                char msg[220];
+                /* what of it the controller has on its line never runs: erased */
+                r->raw_open = 0;
+                r->raw_len = 0;
+                (void)fbrl_link_clear_line(r->link);
                 snprintf(msg, sizeof msg,
                          "%s: %.*s would move the arm, and the guard cannot follow a line sent byte by byte "
-                         "(RAPL sends it checked; CELL-GUARD-OFF unchecked); nothing was sent",
+                         "(RAPL sends it checked; CELL-GUARD-OFF unchecked); the line was erased, nothing ran",
                          w->name, (int)k, line);
                 return rb_fail(r, FBRL_ROBOT_THROW_REFUSED, msg);
             }

@@ -14,6 +14,8 @@
  *  5. a controller left in METRIC: a target out of the guard's reach in inches lands
  *     inside the post in millimetres; and (the rule behind it) a target out of reach on an
  *     inch controller is refused too, saying why.
+ * And TEACH's advice after a 190 (a cell the host does not describe, the guard off, a host
+ * cell that lacks what the arm met) says what to do in that situation.
  *
  *   guard_bypass FBRLMON FBRLSIM CELLDIR TMPDIR [CASE]    exit 0 when every case passed */
 #define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
@@ -94,16 +96,16 @@ static void control(const sim *x, const char *line)
     fclose(f);
 }
 
-/* fbrlmon on a terminal against x, the cell included. */
+/* fbrlmon on a terminal against x, the cell included (NULL: none described). */
 static int mon_start(session *s, const sim *x, const char *dir, const char *cell)
 {
     char inc[1200];
     char *argv[6];
-    snprintf(inc, sizeof inc, "INCLUDE %s/%s", g_cells, cell);
+    snprintf(inc, sizeof inc, "INCLUDE %s/%s", g_cells, cell ? cell : "");
     argv[0] = (char *)g_mon;
     argv[1] = (char *)"--port";
     argv[2] = (char *)x->port;
-    argv[3] = (char *)"-e";
+    argv[3] = cell ? (char *)"-e" : NULL;
     argv[4] = inc;
     argv[5] = NULL;
     if (start_mon_argv(s, TIMEOUT_MS, dir, argv) != 0)
@@ -325,11 +327,57 @@ static void reach(void)
     end_case("reach (a target out of the guard's reach, in inches)", &s, &x);
 }
 
+/* TEACH's advice after fbrlsim's 190 matches the situation: no cell described on the host,
+ * the guard off, or a host cell that lacks what the arm met (the beam). Each jog down is
+ * stopped by fbrlsim at the beam; one up backs out. */
+static void advice_after(session *s, const char *want, const char *what)
+{
+    type(s, "TEACH P\r");
+    expect(s, "Enter  store the position", "TEACH starts");
+    type(s, "4");
+    expect(s, "step 1 in 10 deg", "step 1 in");
+    for (int k = 0; k < 4 && !g_failed && !strstr(s->buf + s->mark, "190-COLLISION"); k++) {
+        type(s, "\033[6~");
+        expect(s, "\033[K", "status line after PgDn");
+        settle(s, 300);
+    }
+    expect(s, want, what);
+    type(s, "\033[5~"); /* back out of the contact */
+    expect(s, "\033[K", "status line after PgUp");
+    type(s, "\033");
+    expect(s, "ok> ", "TEACH cancelled");
+}
+
+static void advice(void)
+{
+    static session s;
+    sim x;
+    char dir[1024], inc[1200];
+    case_dir("advice", dir, sizeof dir);
+    if (sim_start(&x, dir, "beam.fbrl", "5") != 0 || mon_start(&s, &x, dir, NULL) != 0) {
+        g_fails++;
+        return;
+    }
+    line(&s, "HOME READY CREATE-LOC P", "home");
+    advice_after(&s, "190-COLLISION (the arm met the work cell and stopped there (fbrlsim --cell)): describe the cell "
+                     "on the host too",
+                 "no cell on the host: describe it");
+    snprintf(inc, sizeof inc, "INCLUDE %s/beam.fbrl CELL-GUARD-OFF", g_cells);
+    line(&s, inc, "the cell, the guard off");
+    advice_after(&s, ": the guard is off (CELL-GUARD-OFF); CELL-GUARD-ON checks", "the guard off: switch it on");
+    line(&s, "CELL-CLEAR 0E0 CELL-TABLE CELL-GUARD-ON", "a host cell without the beam");
+    advice_after(&s, ": the guard let it pass, so the host's cell lacks what the arm met",
+                 "the guard on: the host's cell lacks it");
+    if (file_count(x.log, " 190 ") != 3)
+        fail("advice", "%s", "fbrlsim did not stop three jogs at the beam");
+    end_case("advice (TEACH after a 190: what to do, as things stand)", &s, &x);
+}
+
 int main(int argc, char **argv)
 {
     const char *only = argc > 5 ? argv[5] : "";
     if (argc < 5) {
-        fprintf(stderr, "usage: guard_bypass FBRLMON FBRLSIM CELLDIR TMPDIR [teach|halt|power|tasks|metric|reach]\n");
+        fprintf(stderr, "usage: guard_bypass FBRLMON FBRLSIM CELLDIR TMPDIR [teach|halt|power|tasks|metric|reach|advice]\n");
         return 2;
     }
     g_mon = argv[1], g_sim = argv[2], g_cells = argv[3], g_tmp = argv[4];
@@ -347,5 +395,7 @@ int main(int argc, char **argv)
         metric();
     if (!*only || !strcmp(only, "reach"))
         reach();
+    if (!*only || !strcmp(only, "advice"))
+        advice();
     return g_fails ? 1 : 0;
 }
