@@ -37,44 +37,17 @@ typedef struct sim {
 static int sim_start(sim *x, const char *dir, const char *cell, const char *scale)
 {
     char cellpath[1024], ctlout[1024];
-    int pfd[2];
-    size_t n = 0;
-    long deadline = now_ms() + TIMEOUT_MS;
     snprintf(cellpath, sizeof cellpath, "%s/%s", g_cells, cell);
     snprintf(x->log, sizeof x->log, "%s/sim.log", dir);
     snprintf(x->ctl, sizeof x->ctl, "%s/ctl", dir);
     snprintf(ctlout, sizeof ctlout, "%s/ctl.out", dir);
     remove(x->log);
     remove(x->ctl);
-    if (pipe(pfd) != 0)
-        return -1;
-    x->pid = fork();
-    if (x->pid < 0)
-        return -1;
-    if (x->pid == 0) {
-        dup2(pfd[1], 1);
-        close(pfd[0]);
-        close(pfd[1]);
-        execl(g_sim, g_sim, "--cell", cellpath, "--log", x->log, "--log-format", "stamped", "--control", x->ctl,
-              "--control-out", ctlout, "--time-scale", scale, (char *)NULL);
-        _exit(127);
-    }
-    close(pfd[1]);
-    while (n + 1 < sizeof x->port && now_ms() < deadline) {
-        char c;
-        if (read(pfd[0], &c, 1) <= 0 || c == '\n')
-            break;
-        x->port[n++] = c;
-    }
-    x->port[n] = '\0';
-    close(pfd[0]);
-    if (strncmp(x->port, "/dev/", 5) != 0) {
-        fprintf(stderr, "FAIL: fbrlsim printed no device path (\"%s\")\n", x->port);
-        kill(x->pid, SIGTERM);
-        waitpid(x->pid, NULL, 0);
-        return -1;
-    }
-    return 0;
+    const char *args[] = {"--cell",    cellpath, "--log",         x->log, "--log-format", "stamped",
+                          "--control", x->ctl,   "--control-out", ctlout, "--time-scale", scale,
+                          NULL};
+    x->pid = start_sim_pty_args(g_sim, args, x->port, sizeof x->port, TIMEOUT_MS);
+    return x->pid < 0 ? -1 : 0;
 }
 
 static void sim_stop(sim *x)

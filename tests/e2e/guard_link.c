@@ -13,20 +13,10 @@
  *  - raw bytes (TYPE-COM) that end a motion line are refused while the guard is on.
  * fbrlsim's log must hold no 190 and none of the refused lines.
  *   guard_link FBRLSIM CELL */
-#include "rapl_harness.h"
-#include "fbrl/cell.h"
-#include "fbrl/glossary.h"
-#include "fbrl/robot.h"
-#include "fbrl/vm.h"
-#include "fbrl/vmx.h"
-#include "support/vm_host.h"
+#include "cell_rig.h"
 
-static rig R;
-static fbrl_vm *vm;
-static fbrl_glossary G;
-static fbrl_robot robot;
-static fbrl_cell_words cw;
-static vmh_text out;
+static cell_rig C;
+static fbrl_vm *vm; /* C.vm */
 static int fails;
 static char told[256];
 static int ntold;
@@ -66,39 +56,21 @@ static fbrl_status eval(const char *text) { return fbrl_vm_eval(vm, text, strlen
 
 int main(int argc, char **argv)
 {
-    char dir[256], log_path[600], inc[700], msg[256];
+    char dir[256], log_path[600], msg[256];
     if (argc < 3) {
         fprintf(stderr, "usage: guard_link FBRLSIM CELL\n");
         return 2;
     }
     rig_tmpdir(dir, sizeof dir, "guard-link");
     snprintf(log_path, sizeof log_path, "%s/sim.log", dir);
-    const char *args[] = {"--time-scale", "50", "--cell", argv[2], "--log", log_path, "--log-format", "stamped", NULL};
-    fbrl_link_config lc;
-    fbrl_link_config_init(&lc);
-    lc.echo_timeout_ms = 500;
-    if (rig_start(&R, argv[1], args, 38400, FBRL_FLOW_XONXOFF, &lc) != 0 || fbrl_link_connect(&R.link) != FBRL_OK) {
-        fprintf(stderr, "FAIL: no fbrlsim\n");
-        return 1;
-    }
+    const char *args[] = {"--time-scale", "50", "--log", log_path, "--log-format", "stamped", NULL};
     static unsigned char mem[2 << 20] __attribute__((aligned(16)));
-    fbrl_vm_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.mem = mem;
-    cfg.mem_size = sizeof mem;
-    cfg.host.user = &out;
-    cfg.host.write = vmh_write;
-    vmh_use_files(&cfg.host);
-    vmh_use_clock(&cfg.host);
-    snprintf(inc, sizeof inc, "INCLUDE %s HOME READY FINISH", argv[2]);
-    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_glossary_install(vm, &G) != FBRL_OK ||
-        fbrl_robot_install(vm, &robot, &R.link, &G) != FBRL_OK || fbrl_cell_install(vm, &cw, &robot, &G) != FBRL_OK ||
-        eval(inc) != FBRL_OK) {
-        fprintf(stderr, "FAIL: setup\n");
-        rig_stop(&R);
+    if (cell_rig_start(&C, argv[1], argv[2], args, mem, sizeof mem, NULL, NULL) != 0)
         return 1;
-    }
-    fbrl_robot_set_events(&robot, on_event, NULL);
+    vm = C.vm;
+    if (eval("HOME READY FINISH") != FBRL_OK)
+        return 1;
+    fbrl_robot_set_events(&C.robot, on_event, NULL);
 
     /* the robot layer from C */
     fbrl_robot_move m;
@@ -107,40 +79,40 @@ int main(int argc, char **argv)
     m.word = "STATION";
     double in_post[6] = {14, 0, 3, 0, -90, 0}, beside[6] = {12, -6, 4, 0, -90, 0};
     memcpy(m.v, in_post, sizeof in_post);
-    fbrl_status st = fbrl_robot_motion(&robot, &m, msg, sizeof msg);
+    fbrl_status st = fbrl_robot_motion(&C.robot, &m, msg, sizeof msg);
     CHECK(st == FBRL_EGUARD, "fbrl_robot_motion into the post: %s, want FBRL_EGUARD", fbrl_status_name(st));
     CHECK(strstr(msg, "STATION: would hit POST at ") == msg && strstr(msg, "; nothing was sent"),
           "its message: \"%s\"", msg);
     memcpy(m.v, beside, sizeof beside);
-    st = fbrl_robot_motion(&robot, &m, msg, sizeof msg);
+    st = fbrl_robot_motion(&C.robot, &m, msg, sizeof msg);
     CHECK(st == FBRL_OK && msg[0] == 0, "fbrl_robot_motion beside the post: %s \"%s\"", fbrl_status_name(st), msg);
     memset(&m, 0, sizeof m);
     m.kind = FBRL_ROBOT_MOVE_JOINTS; /* past the elbow's limit (0): the controller's to refuse */
     m.v[1] = 90, m.v[2] = 20;
-    st = fbrl_robot_motion(&robot, &m, msg, sizeof msg);
-    CHECK(st == FBRL_ECONTROLLER && fbrl_robot_last_error(&robot) == 44 && strstr(msg, "MOTION: controller error 044"),
-          "fbrl_robot_motion past a limit: %s %d \"%s\"", fbrl_status_name(st), fbrl_robot_last_error(&robot), msg);
+    st = fbrl_robot_motion(&C.robot, &m, msg, sizeof msg);
+    CHECK(st == FBRL_ECONTROLLER && fbrl_robot_last_error(&C.robot) == 44 && strstr(msg, "MOTION: controller error 044"),
+          "fbrl_robot_motion past a limit: %s %d \"%s\"", fbrl_status_name(st), fbrl_robot_last_error(&C.robot), msg);
     m.kind = FBRL_ROBOT_MOVE_OTHER;
-    CHECK(fbrl_robot_motion(&robot, &m, msg, sizeof msg) == FBRL_EINVAL, "a kind fbrl_robot_motion cannot send");
+    CHECK(fbrl_robot_motion(&C.robot, &m, msg, sizeof msg) == FBRL_EINVAL, "a kind fbrl_robot_motion cannot send");
 
     /* the link's own commands */
     fbrl_rapl_arg down[3] = {fbrl_rapl_real(0), fbrl_rapl_real(0), fbrl_rapl_real(-8)};
-    st = fbrl_link_cmd(&R.link, FBRL_RAPL_JOG, down, 3, 0); /* from beside the post: through the table */
+    st = fbrl_link_cmd(&C.r.link, FBRL_RAPL_JOG, down, 3, 0); /* from beside the post: through the table */
     CHECK(st == FBRL_EGUARD && fbrl_link_fate_of(st) == FBRL_LINK_NOT_RUN, "a JOG on the link: %s",
           fbrl_status_name(st));
-    CHECK(fbrl_link_raw(&R.link, "mi 0,0,0,-1,0") == FBRL_EGUARD, "a raw MI in lower case on the link");
-    CHECK(fbrl_link_raw(&R.link, "/005 0,0,-8") == FBRL_EGUARD, "a JOG by its /NNN token on the link");
-    CHECK(fbrl_link_raw(&R.link, "FBRLPROG") == FBRL_EGUARD, "a word the host does not know (a program?)");
+    CHECK(fbrl_link_raw(&C.r.link, "mi 0,0,0,-1,0") == FBRL_EGUARD, "a raw MI in lower case on the link");
+    CHECK(fbrl_link_raw(&C.r.link, "/005 0,0,-8") == FBRL_EGUARD, "a JOG by its /NNN token on the link");
+    CHECK(fbrl_link_raw(&C.r.link, "FBRLPROG") == FBRL_EGUARD, "a word the host does not know (a program?)");
     CHECK(in_log(log_path, "JOG") == 0 && in_log(log_path, " MI ") == 0 && in_log(log_path, "FBRLPROG") == 0,
           "a refused line reached fbrlsim");
     fbrl_rapl_pos pos;
-    CHECK(fbrl_link_where(&R.link, FBRL_RAPL_W2, &pos) == FBRL_OK, "a query on the guarded link");
+    CHECK(fbrl_link_where(&C.r.link, FBRL_RAPL_W2, &pos) == FBRL_OK, "a query on the guarded link");
     fbrl_rapl_arg up[3] = {fbrl_rapl_real(0), fbrl_rapl_real(0), fbrl_rapl_real(1)};
-    CHECK(fbrl_link_unguarded(&R.link) == FBRL_OK, "fbrl_link_unguarded");
-    st = fbrl_link_cmd(&R.link, FBRL_RAPL_JOG, up, 3, 0);
+    CHECK(fbrl_link_unguarded(&C.r.link) == FBRL_OK, "fbrl_link_unguarded");
+    st = fbrl_link_cmd(&C.r.link, FBRL_RAPL_JOG, up, 3, 0);
     CHECK(st == FBRL_OK, "the unguarded JOG: %s", fbrl_status_name(st));
     CHECK(ntold == 1 && strcmp(told, "JOG 0,0,1") == 0, "the event told %d times: \"%s\"", ntold, told);
-    CHECK(fbrl_link_cmd(&R.link, FBRL_RAPL_JOG, up, 3, 0) == FBRL_EGUARD, "unguarded is for one line only");
+    CHECK(fbrl_link_cmd(&C.r.link, FBRL_RAPL_JOG, up, 3, 0) == FBRL_EGUARD, "unguarded is for one line only");
     /* the guard reads where the unguarded JOG left the arm: 5 in down is into the table now
      * (the tool 0.5 in past the tool point), not from where it checked last */
     st = eval("0E0 0E0 -5E0 JOG");
@@ -155,16 +127,15 @@ int main(int argc, char **argv)
     CHECK(st == FBRL_OK, "raw bytes ending an assignment: %s", fbrl_vm_last_error(vm)->message);
 
     /* off the link: the link alone knows no cell */
-    fbrl_robot_set_link(&robot, NULL);
-    CHECK(R.link.gate == NULL, "the robot's gate stayed on the link it left");
-    CHECK(fbrl_link_cmd(&R.link, FBRL_RAPL_JOG, up, 3, 0) == FBRL_OK, "a JOG on a link without a robot");
+    fbrl_robot_set_link(&C.robot, NULL);
+    CHECK(C.r.link.gate == NULL, "the robot's gate stayed on the link it left");
+    CHECK(fbrl_link_cmd(&C.r.link, FBRL_RAPL_JOG, up, 3, 0) == FBRL_OK, "a JOG on a link without a robot");
 
     CHECK(in_log(log_path, " 190 ") == 0, "a motion hit the cell (fbrlsim's log %s)", log_path);
     CHECK(in_log(log_path, "JOG 0,0,-8") == 0 && in_log(log_path, "POINT FBRLT1,14,0,3,") == 0 &&
               in_log(log_path, "POINT FBRLT2,14,0,3,") == 0,
           "a refused motion reached fbrlsim");
-    fbrl_glossary_finish(&G);
-    rig_stop(&R);
+    cell_rig_stop(&C);
     if (fails == 0) {
         unlink(log_path);
         rmdir(dir);

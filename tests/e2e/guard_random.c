@@ -17,13 +17,7 @@
 #include <math.h>
 #include <time.h>
 
-#include "rapl_harness.h"
-#include "fbrl/cell.h"
-#include "fbrl/glossary.h"
-#include "fbrl/robot.h"
-#include "fbrl/vm.h"
-#include "fbrl/vmx.h"
-#include "support/vm_host.h"
+#include "cell_rig.h"
 
 /* The VM's clock runs this many times faster than the host's (and its sleeps are that much
  * shorter): the robot words' 50 ms rounds while the arm moves and the tasks' waits pass
@@ -33,12 +27,8 @@
 #define MAX_OBJ     16
 #define PI          3.14159265358979323846
 
-static rig R;
-static fbrl_vm *vm;
-static fbrl_glossary G;
-static fbrl_robot robot;
-static fbrl_cell_words cw;
-static vmh_text out;
+static cell_rig C;
+static fbrl_vm *vm; /* C.vm */
 static char ctl_path[600];
 static uint64_t seed_state;
 
@@ -132,9 +122,9 @@ static int named_obstacle(const char *msg)
     if (!p)
         return -1;
     p += strlen(": would hit ");
-    for (size_t k = 0; k < cw.model.n; k++) {
-        size_t n = strlen(cw.model.obj[k].name);
-        if (strncmp(p, cw.model.obj[k].name, n) == 0 && p[n] == ' ')
+    for (size_t k = 0; k < C.cw.model.n; k++) {
+        size_t n = strlen(C.cw.model.obj[k].name);
+        if (strncmp(p, C.cw.model.obj[k].name, n) == 0 && p[n] == ' ')
             return (int)k;
     }
     if (strncmp(p, "the table ", 10) == 0)
@@ -168,7 +158,7 @@ static int run(const char *text)
         }
     } else if (code == FBRL_VM_THROW_OF_STATUS(FBRL_ECONTROLLER)) {
         n_ctrl++;
-        int c = fbrl_robot_last_error(&robot);
+        int c = fbrl_robot_last_error(&C.robot);
         if (c >= 0 && c < 1000)
             ctrl_codes[c]++;
         if (c == 190)
@@ -204,7 +194,7 @@ static void stopped_short(const double target[6])
     if (run("FINISH") != 0)
         return;
     n_ok--;
-    if (fbrl_link_where(&R.link, FBRL_RAPL_W2, &p) == FBRL_OK && p.nworld >= 3) {
+    if (fbrl_link_where(&C.r.link, FBRL_RAPL_W2, &p) == FBRL_OK && p.nworld >= 3) {
         double d = sqrt((p.world[0] - target[0]) * (p.world[0] - target[0]) +
                         (p.world[1] - target[1]) * (p.world[1] - target[1]) +
                         (p.world[2] - target[2]) * (p.world[2] - target[2]));
@@ -315,7 +305,7 @@ static unsigned long log_results(const char *log, const char *res, unsigned long
 
 int main(int argc, char **argv)
 {
-    char dir[256], log_path[600], ctlout[600], inc[700];
+    char dir[256], log_path[600], ctlout[600];
     unsigned long n = 2000, seed;
     if (argc < 3) {
         fprintf(stderr, "usage: guard_random FBRLSIM CELL [N [SEED]]\n");
@@ -332,35 +322,18 @@ int main(int argc, char **argv)
     snprintf(log_path, sizeof log_path, "%s/sim.log", dir);
     snprintf(ctl_path, sizeof ctl_path, "%s/ctl", dir);
     snprintf(ctlout, sizeof ctlout, "%s/ctl.out", dir);
-    const char *args[] = {"--time-scale", SIM_SCALE, "--cell", argv[2], "--log", log_path, "--log-format",
-                          "stamped",      "--control", ctl_path, "--control-out", ctlout, NULL};
-    fbrl_link_config lc;
-    fbrl_link_config_init(&lc);
-    lc.echo_timeout_ms = 500; /* a loaded CI machine can stall this process */
-    if (rig_start(&R, argv[1], args, 38400, FBRL_FLOW_XONXOFF, &lc) != 0 || fbrl_link_connect(&R.link) != FBRL_OK) {
-        fprintf(stderr, "FAIL: no fbrlsim\n");
-        rig_stop(&R);
-        return 1;
-    }
+    const char *args[] = {"--time-scale", SIM_SCALE, "--log", log_path, "--log-format", "stamped",
+                          "--control", ctl_path, "--control-out", ctlout, NULL};
     static unsigned char mem[4 << 20] __attribute__((aligned(16)));
-    fbrl_vm_config cfg;
-    memset(&cfg, 0, sizeof cfg);
-    cfg.mem = mem;
-    cfg.mem_size = sizeof mem;
-    cfg.host.user = &out;
-    cfg.host.write = vmh_write;
-    vmh_use_files(&cfg.host);
-    cfg.host.now_us = fast_now_us;
-    cfg.host.sleep_ms = fast_sleep_ms;
-    snprintf(inc, sizeof inc, "INCLUDE %s", argv[2]);
     const char *setup = "HOME READY CREATE-LOC TGT CREATE-LOC T2-TO TASK T2 VARIABLE T2-CODE "
                         ": T2-GO ( -- ) T2-TO ['] MOV CATCH T2-CODE ! ; "
                         ": BOTH ( -- ) ['] T2-GO T2 START TGT ['] MOV CATCH T2 AWAIT THROW ;";
-    if (fbrl_vm_create(&vm, &cfg) != FBRL_OK || fbrl_glossary_install(vm, &G) != FBRL_OK ||
-        fbrl_robot_install(vm, &robot, &R.link, &G) != FBRL_OK || fbrl_cell_install(vm, &cw, &robot, &G) != FBRL_OK ||
-        fbrl_vm_eval(vm, inc, strlen(inc)) != FBRL_OK || fbrl_vm_eval(vm, setup, strlen(setup)) != FBRL_OK) {
-        fprintf(stderr, "FAIL: VM setup: %s\n", fbrl_vm_last_error(vm) ? fbrl_vm_last_error(vm)->message : "");
-        rig_stop(&R);
+    if (cell_rig_start(&C, argv[1], argv[2], args, mem, sizeof mem, fast_now_us, fast_sleep_ms) != 0)
+        return 1;
+    vm = C.vm;
+    if (fbrl_vm_eval(vm, setup, strlen(setup)) != FBRL_OK) {
+        fprintf(stderr, "FAIL: setup: %s\n", fbrl_vm_last_error(vm)->message);
+        cell_rig_stop(&C);
         return 1;
     }
     uint64_t t0 = fbrl_clock_now_us();
@@ -369,7 +342,7 @@ int main(int argc, char **argv)
                               A_JOG, A_APPROACH, A_DEPART, A_READY, A_HALT, A_POWER, A_TASKS, A_MOV, A_MA, A_JOG, A_MOV};
     for (unsigned long i = 0; i < n; i++) {
         action(mix[rnd() % (sizeof mix / sizeof mix[0])]);
-        if (fbrl_robot_lost(&robot)) {
+        if (fbrl_robot_lost(&C.robot)) {
             fprintf(stderr, "FAIL: the controller went away after %lu actions\n", i + 1);
             break;
         }
@@ -384,8 +357,8 @@ int main(int argc, char **argv)
            "nothing), %lu controller errors, %lu other\n",
            n_ok, n_refused, n_refused - n_unchecked - n_bad_refusal, n_unchecked, n_bad_refusal, n_ctrl, n_other);
     printf("refusals by obstacle:");
-    for (size_t k = 0; k < cw.model.n; k++)
-        printf(" %s %lu", cw.model.obj[k].name, n_hit[k]);
+    for (size_t k = 0; k < C.cw.model.n; k++)
+        printf(" %s %lu", C.cw.model.obj[k].name, n_hit[k]);
     printf(" table %lu\n", n_hit[MAX_OBJ]);
     printf("controller errors by code:");
     for (int c = 0; c < 1000; c++)
@@ -397,8 +370,7 @@ int main(int argc, char **argv)
     int rc = hits != 0 || n_bad_refusal != 0 || motions == 0 || n_short == 0;
     if (rc)
         printf("FAIL (seed %lu; fbrlsim's log kept in %s)\n", seed, log_path);
-    fbrl_glossary_finish(&G);
-    rig_stop(&R);
+    cell_rig_stop(&C);
     if (!rc) {
         unlink(log_path);
         unlink(ctl_path);
