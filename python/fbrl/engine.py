@@ -77,7 +77,10 @@ class Engine:
             self.link = None
 
     def __del__(self):
-        self.close()
+        try:
+            self.close()
+        except Exception:  # at interpreter exit the module's globals may be gone already
+            pass
 
     # host callbacks
     def _write(self, user, s, n):

@@ -169,8 +169,8 @@ static fbrl_status raw_gate(fbrl_robot *r, const rb_word *w, const uint8_t *p, s
                 r->raw_len = 0;
                 (void)fbrl_link_clear_line(r->link);
                 snprintf(msg, sizeof msg,
-                         "%s: %.*s would move the arm, and the guard cannot follow a line sent byte by byte "
-                         "(RAPL sends it checked; CELL-GUARD-OFF unchecked); the line was erased, nothing ran",
+                         "%s: %.*s would move the arm unchecked by the guard (RAPL checks it); erased, "
+                         "nothing ran",
                          w->name, (int)k, line);
                 return rb_fail(r, FBRL_ROBOT_THROW_REFUSED, msg);
             }

@@ -119,9 +119,15 @@ fbrl_status rb_units(fbrl_robot *r, const rb_word *w)
 
 /* What to do about an error, as things stand here: after the controller's 190-COLLISION
  * that depends on the guard (no cell described, the guard off, or a cell that lacks what
- * the arm met). "" when there is nothing to add. */
+ * the arm met). "" when there is nothing to add, and under FBRL_NO_HELP, which leaves the
+ * controller's error advice out (fbrl_rapl_error_help). */
 static const char *rb_advice(const fbrl_robot *r, int code)
 {
+#ifdef FBRL_NO_HELP
+    (void)r;
+    (void)code;
+    return "";
+#else
     if (fbrl_rapl_error_class(code) != FBRL_RAPL_ERRC_COLLISION)
         return "";
     fbrl_robot_guard_state g = !r->guard.check ? FBRL_ROBOT_GUARD_EMPTY
@@ -134,6 +140,7 @@ static const char *rb_advice(const fbrl_robot *r, int code)
         return ": the guard is off (CELL-GUARD-OFF); CELL-GUARD-ON checks every motion before it is sent";
     return ": the guard let it pass, so the host's cell lacks what the arm met: describe it as the "
            "controller's cell has it";
+#endif
 }
 
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)

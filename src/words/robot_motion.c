@@ -16,12 +16,8 @@ static fbrl_status w_plain(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_move m;
     rb_out o;
     (void)v;
-    if (w->cmd != FBRL_RAPL_READY && w->cmd != FBRL_RAPL_HOME && w->cmd != FBRL_RAPL_ALIGN) {
-        fbrl_status st = rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0);
-        if (w->cmd == FBRL_RAPL_HALT)
-            rb_where_lost(r); /* stopped somewhere on the way */
-        return st;
-    }
+    if (w->cmd != FBRL_RAPL_READY && w->cmd != FBRL_RAPL_HOME && w->cmd != FBRL_RAPL_ALIGN)
+        return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0); /* HALT: the link's gate notes it */
     memset(&m, 0, sizeof m);
     m.kind = w->cmd == FBRL_RAPL_READY  ? FBRL_ROBOT_MOVE_READY
              : w->cmd == FBRL_RAPL_HOME ? FBRL_ROBOT_MOVE_HOME

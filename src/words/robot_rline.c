@@ -60,99 +60,75 @@ int rb_line_loses(rb_line_kind k, fbrl_rapl_cmd cmd)
                                 cmd == FBRL_RAPL_TEACH);
 }
 
-/* The numbers after the command word, comma-separated; a trailing S (",S") sets *straight.
- * FBRL_OK when exactly want numbers (want_max at most) were there. */
-static fbrl_status numbers(const char *p, size_t len, double *v, size_t want, size_t want_max, size_t *got,
-                           int *straight)
-{
-    size_t n = 0, i = 0;
-    *straight = 0;
-    while (i < len) {
-        size_t e = i;
-        while (e < len && p[e] != ',')
-            e++;
-        size_t a = i, b = e;
-        while (a < b && p[a] == ' ')
-            a++;
-        while (b > a && p[b - 1] == ' ')
-            b--;
-        if (b - a == 1 && upper(p[a]) == 'S' && e == len && n >= want)
-            *straight = 1;
-        else if (n >= want_max || fbrl_rapl_parse_real(p + a, b - a, &v[n++]) != FBRL_OK)
-            return FBRL_ESYNTAX;
-        i = e + 1;
-    }
-    *got = n;
-    return n >= want && n <= want_max ? FBRL_OK : FBRL_ESYNTAX;
-}
+/* The raw motions the guard can follow: the command, the move it makes, how many numbers
+ * it takes (MA MI: one per axis, 5 or 6). */
+static const struct rline_follow {
+    uint8_t cmd, kind, nmin, nmax;
+} follow[] = {
+    {FBRL_RAPL_READY, FBRL_ROBOT_MOVE_READY, 0, 0},   {FBRL_RAPL_HOME, FBRL_ROBOT_MOVE_HOME, 0, 0},
+    {FBRL_RAPL_JOG, FBRL_ROBOT_MOVE_JOG, 3, 3},       {FBRL_RAPL_DEPART, FBRL_ROBOT_MOVE_DEPART, 1, 1},
+    {FBRL_RAPL_JOINT, FBRL_ROBOT_MOVE_DJOINTS, 2, 2}, {FBRL_RAPL_MOTOR, FBRL_ROBOT_MOVE_MOTOR, 2, 2},
+    {FBRL_RAPL_MA, FBRL_ROBOT_MOVE_JOINTS, 5, 6},     {FBRL_RAPL_MI, FBRL_ROBOT_MOVE_DJOINTS, 5, 6},
+};
 
 void rb_line_move(const char *line, size_t len, fbrl_robot_move *m)
 {
     fbrl_rapl_cmd cmd;
-    double v[FBRL_RAPL_ARM_AXES_MAX];
-    size_t n = 0;
+    double v[6];
+    size_t n = 0, i = 0, f = 0;
     int s = 0;
     memset(m, 0, sizeof *m);
-    m->kind = FBRL_ROBOT_MOVE_OTHER; /* what the guard cannot follow */
+    m->kind = FBRL_ROBOT_MOVE_OTHER; /* what the guard cannot follow: MOVE, APPRO to a controller
+                                      * location, ALIGN, RUN ... */
     if (rb_line_cmd(line, len, &cmd) != RB_LINE_CMD)
         return;
-    size_t i = 0;
+    while (f < sizeof follow / sizeof follow[0] && follow[f].cmd != cmd)
+        f++;
+    if (f == sizeof follow / sizeof follow[0])
+        return;
     while (i < len && line[i] == ' ')
         i++;
     while (i < len && line[i] != ' ' && line[i] != ',')
         i++;
-    const char *args = line + i;
-    size_t alen = len - i;
-    while (alen > 0 && *args == ' ') /* the first separator is a space (or a comma) */
-        args++, alen--;
-    if (alen > 0 && *args == ',')
-        args++, alen--;
+    if (i < len) /* the first separator: a space or a comma */
+        i++;
+    /* the numbers, comma-separated, and a last S (",S": a straight line) */
+    while (i < len) {
+        size_t e = i, a, b;
+        while (e < len && line[e] != ',')
+            e++;
+        for (a = i; a < e && line[a] == ' '; a++)
+            ;
+        for (b = e; b > a && line[b - 1] == ' '; b--)
+            ;
+        if (b - a == 1 && upper(line[a]) == 'S' && e == len)
+            s = 1;
+        else if (n >= follow[f].nmax || fbrl_rapl_parse_real(line + a, b - a, &v[n++]) != FBRL_OK)
+            return;
+        i = e + 1;
+    }
+    if (n < follow[f].nmin)
+        return;
+    m->kind = (fbrl_robot_move_kind)follow[f].kind;
+    m->straight = s;
     switch (cmd) {
-    case FBRL_RAPL_READY:
-        if (alen == 0)
-            m->kind = FBRL_ROBOT_MOVE_READY;
-        break;
-    case FBRL_RAPL_HOME:
-        if (alen == 0)
-            m->kind = FBRL_ROBOT_MOVE_HOME;
-        break;
     case FBRL_RAPL_JOG:
-        if (numbers(args, alen, v, 3, 3, &n, &s) == FBRL_OK && !s) {
-            m->kind = FBRL_ROBOT_MOVE_JOG;
-            m->straight = 1;
-            memcpy(m->v, v, 3 * sizeof v[0]);
-        }
+        m->straight = 1;
+        memcpy(m->v, v, 3 * sizeof v[0]);
         break;
-    case FBRL_RAPL_DEPART:
-        if (numbers(args, alen, v, 1, 1, &n, &s) == FBRL_OK) {
-            m->kind = FBRL_ROBOT_MOVE_DEPART;
-            m->straight = s;
-            m->dist = v[0];
-        }
-        break;
-    case FBRL_RAPL_JOINT:
-        if (numbers(args, alen, v, 2, 2, &n, &s) == FBRL_OK && !s && v[0] >= 1 && v[0] <= 6 &&
-            v[0] == (double)(int)v[0]) {
-            m->kind = FBRL_ROBOT_MOVE_DJOINTS;
+    case FBRL_RAPL_DEPART: m->dist = v[0]; break;
+    case FBRL_RAPL_JOINT: /* JOINT j,degrees */
+        if (v[0] < 1 || v[0] > 6 || v[0] != (double)(int)v[0])
+            m->kind = FBRL_ROBOT_MOVE_OTHER;
+        else
             m->v[(int)v[0] - 1] = v[1];
-        }
         break;
-    case FBRL_RAPL_MOTOR:
-        if (numbers(args, alen, v, 2, 2, &n, &s) == FBRL_OK && !s) {
-            m->kind = FBRL_ROBOT_MOVE_MOTOR;
-            m->v[0] = v[0];
-            m->v[1] = v[1];
-        }
-        break;
+    case FBRL_RAPL_MOTOR: memcpy(m->v, v, 2 * sizeof v[0]); break;
     case FBRL_RAPL_MA:
     case FBRL_RAPL_MI: /* radians on the wire */
-        if (numbers(args, alen, v, 5, FBRL_RAPL_ARM_AXES_MAX, &n, &s) == FBRL_OK) {
-            m->kind = cmd == FBRL_RAPL_MA ? FBRL_ROBOT_MOVE_JOINTS : FBRL_ROBOT_MOVE_DJOINTS;
-            m->straight = s;
-            for (size_t k = 0; k < n && k < 6; k++)
-                m->v[k] = v[k] * (180.0 / 3.14159265358979323846);
-        }
+        for (size_t k = 0; k < n; k++)
+            m->v[k] = v[k] * (180.0 / 3.14159265358979323846);
         break;
-    default: break; /* MOVE, APPRO to a controller location, ALIGN, RUN ...: not followed */
+    default: break;
     }
 }

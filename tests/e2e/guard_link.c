@@ -121,7 +121,7 @@ int main(int argc, char **argv)
 
     /* raw bytes */
     st = eval("S\" JOG 0,0,-8\" SWAP TYPE-COM 13 EMIT-COM");
-    CHECK(st != FBRL_OK && strstr(fbrl_vm_last_error(vm)->message, "EMIT-COM: JOG 0,0,-8 would move the arm"),
+    CHECK(st != FBRL_OK && strstr(fbrl_vm_last_error(vm)->message, "EMIT-COM: JOG 0,0,-8 would move the arm unchecked by the guard"),
           "raw bytes ending a JOG line: %s", fbrl_vm_last_error(vm)->message);
     st = eval("S\" V1=5\" SWAP TYPE-COM 13 EMIT-COM 1 RESET-COMM");
     CHECK(st == FBRL_OK, "raw bytes ending an assignment: %s", fbrl_vm_last_error(vm)->message);
