@@ -10,6 +10,7 @@
  *    source, fbrl_robot_set_events) is told "UNGUARDED" with the line; the guard then reads
  *    where that left the arm;
  *  - a robot taken off its link (fbrl_robot_set_link NULL) leaves the link without a gate;
+ *  - a controller program (RAPL-RUN) is refused while the guard is on: it cannot follow it;
  *  - raw bytes (TYPE-COM) that end a motion line are refused while the guard is on.
  * fbrlsim's log must hold no 190 and none of the refused lines.
  *   guard_link FBRLSIM CELL */
@@ -118,6 +119,13 @@ int main(int argc, char **argv)
     st = eval("0E0 0E0 -5E0 JOG");
     CHECK(st != FBRL_OK && strstr(fbrl_vm_last_error(vm)->message, "JOG: would hit the table"),
           "the word's JOG after the unguarded one: %s", fbrl_vm_last_error(vm)->message);
+
+    /* a controller program may move the arm: the guard cannot follow it */
+    st = eval("RAPL-RUN PICK");
+    CHECK(st != FBRL_OK &&
+              strstr(fbrl_vm_last_error(vm)->message, "RAPL-RUN: the guard cannot follow this motion"),
+          "RAPL-RUN with the guard on: %s", fbrl_vm_last_error(vm)->message);
+    CHECK(in_log(log_path, "RUN PICK") == 0, "the refused RUN reached fbrlsim");
 
     /* raw bytes */
     st = eval("S\" JOG 0,0,-8\" SWAP TYPE-COM 13 EMIT-COM");
