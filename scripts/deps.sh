@@ -5,13 +5,14 @@
 # Usage: deps.sh [EXTRA-PACKAGE...]   (extras are required too, e.g. gforth pforth for benchmarks)
 set -eu
 
-REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev qemu-system-x86 locales
+REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev libsodium-dev qemu-system-x86 locales
  libncurses-dev tmux gcc-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
  python3-cffi python3-pytest debhelper dpkg-dev fakeroot lintian abigail-tools scdoc
  librsvg2-bin bash-completion $*"
 # what each is for: ncurses/tmux the operator console and its tests; the ARM toolchain,
 # picolibc and qemu-system-arm the Cortex-M firmware; cffi/pytest the Python bindings;
-# debhelper..scdoc the Debian packages, ABI check and man pages; rsvg the work-cell pictures.
+# debhelper..scdoc the Debian packages, ABI check and man pages; rsvg the work-cell pictures;
+# libsodium the audit trail, users and signatures (SHA-256, Argon2id, Ed25519).
 # Optional: the build works without them (fewer features or tests).
 OPTIONAL="libserialport-dev clang libclang-rt-14-dev"
 
@@ -38,7 +39,7 @@ if [ -z "$missing$opt_missing" ]; then gen_de; exit 0; fi
 
 if ! command -v apt-get >/dev/null 2>&1; then
     echo "deps: cannot check or install packages here (no apt-get)." >&2
-    echo "deps: libfbrl needs: a C99 compiler, cmake, ninja or make, pkg-config, cmocka, libedit, qemu-system-i386," >&2
+    echo "deps: libfbrl needs: a C99 compiler, cmake, ninja or make, pkg-config, cmocka, libedit, libsodium, qemu-system-i386," >&2
     echo "deps: ncurses, tmux, arm-none-eabi gcc + picolibc, qemu-system-arm, python3 cffi + pytest, debhelper, lintian, abigail, scdoc, rsvg;" >&2
     echo "deps: optional: libserialport, clang with libFuzzer. Install them, then run the build again." >&2
     exit 1

@@ -47,7 +47,9 @@ typedef enum fbrl_status {
     FBRL_EPERM = -32,         /* the operating system refused access (e.g. a port's mode) */
     FBRL_EMAYBE = -33,        /* link: the command may have run; the link cannot prove
                                 * either way (docs/link.md 3.9): do not repeat it blindly */
-    FBRL_EGUARD = -34         /* a motion the work cell's guard refused, or one that did not
+    FBRL_EAUTH = -34,         /* users: unknown name or wrong password */
+    FBRL_ELOCKED = -35,       /* users: account locked (too many wrong passwords) or disabled */
+    FBRL_EGUARD = -36         /* a motion the work cell's guard refused, or one that did not
                                 * pass it (docs/workcell.md "The guard"): nothing was sent */
 } fbrl_status;
 

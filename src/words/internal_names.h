@@ -39,7 +39,6 @@
 #define rb_line_moves    fbrli_rb_line_moves
 #define rb_link_gate     fbrli_rb_link_gate
 #define rb_motion        fbrli_rb_motion
-#define rb_note_raw_outputs fbrli_rb_note_raw_outputs
 #define rb_raw_send      fbrli_rb_raw_send
 #define rb_send          fbrli_rb_send
 #define rb_where_lost    fbrli_rb_where_lost

@@ -12,11 +12,6 @@
 #include "fbrl/num.h"
 #include "fbrl/vmx.h"
 
-/* Encoder pulses per degree of the A255 (DESIGN 6), for MOTOR. */
-static const double a255_ppd[FBRL_CELL_AXES] = {200.0, 200.0, 200.0, 44.44, 22.22};
-/* READY (DESIGN 6). */
-static const double a255_ready[FBRL_CELL_AXES] = {0.0, 90.0, -90.0, 0.0, 0.0};
-
 typedef struct cw_word {
     const char *name;
     fbrl_status (*fn)(fbrl_cell_words *cw, const struct cw_word *w);
@@ -363,7 +358,7 @@ static fbrl_robot_guard_state guard_state(void *ctx)
 
 static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what)
 {
-    char msg[240];
+    char msg[FBRL_CELL_MSG_MAX];
     snprintf(msg, sizeof msg, "%s: %s; nothing was sent", m->word, what);
     if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX) { /* the report keeps its head */
         char *keep = cw->stats.refusals[cw->stats.nrefusals++];
@@ -380,7 +375,7 @@ static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
     double pose[6];
     if (cw->npath >= FBRL_CELL_PATH_MAX)
         return;
-    fbrl_cell_fk(&cw->model.arm, q, pose);
+    fbrl_arm_fk(cw->model.arm, q, cw->model.tcp, pose);
     memcpy(cw->path[cw->npath++], pose, 3 * sizeof(double));
 }
 
@@ -388,12 +383,16 @@ static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
  * for every check: a stop the guard did not command (HALT, power off, an E-stop, the
  * pendant, a lost connection) or a motion sent around it never leaves the guard checking
  * from the wrong place. One W1 line (motor pulses) once a W2 has shown that pulses are
- * joints times the A255's pulses per degree on this controller (again after anything that
+ * joints times the arm's pulses per degree on this controller (again after anything that
  * changes the where-epoch: a link set, HALT, ...); else, or when that line was not clean,
  * the whole W2. The last motion's end counts as the start only when the pulses show the
  * arm there (within a pulse on every axis): seen to end there. *n: the axes read. */
+/* Two pulse counts within one pulse of each other. */
+static int near_pulse(long a, long b) { return a - b <= 1 && b - a <= 1; }
+
 static fbrl_status where(fbrl_cell_words *cw, fbrl_robot *r, const char *word, double *q, unsigned *n)
 {
+    const fbrl_arm *arm = cw->model.arm;
     fbrl_rapl_pos p;
     fbrl_status st;
     int expect = cw->expect;
@@ -401,13 +400,13 @@ static fbrl_status where(fbrl_cell_words *cw, fbrl_robot *r, const char *word, d
     if (cw->pulses_ok && cw->epoch == fbrl_robot_where_epoch(r)) {
         long pulses[FBRL_RAPL_MAX_AXES];
         st = fbrl_robot_pulses(r, word, pulses, n);
-        if (st == FBRL_OK && *n == FBRL_CELL_AXES) {
+        if (st == FBRL_OK && *n == arm->naxes) {
             for (unsigned k = 0; k < *n; k++) {
-                q[k] = (double)pulses[k] / a255_ppd[k];
-                expect = expect && fabs((double)pulses[k] - cw->pending[k] * a255_ppd[k]) <= 1.0;
+                q[k] = fbrl_arm_degrees(arm, k, pulses[k]);
+                expect = expect && near_pulse(pulses[k], fbrl_arm_pulses(arm, k, cw->pending[k]));
             }
             if (expect)
-                memcpy(q, cw->pending, sizeof cw->pending);
+                memcpy(q, cw->pending, arm->naxes * sizeof q[0]);
             return FBRL_OK;
         }
         if (st != FBRL_OK && st != FBRL_EPROTOCOL)
@@ -418,9 +417,9 @@ static fbrl_status where(fbrl_cell_words *cw, fbrl_robot *r, const char *word, d
     *n = p.njoints;
     for (unsigned k = 0; k < p.njoints; k++)
         q[k] = p.joints[k];
-    cw->pulses_ok = p.njoints == FBRL_CELL_AXES && p.npulses == FBRL_CELL_AXES;
-    for (unsigned k = 0; cw->pulses_ok && k < FBRL_CELL_AXES; k++) /* 4 decimals: within a pulse */
-        cw->pulses_ok = fabs((double)p.pulses[k] - p.joints[k] * a255_ppd[k]) <= 1.0;
+    cw->pulses_ok = p.njoints == arm->naxes && p.npulses == arm->naxes;
+    for (unsigned k = 0; cw->pulses_ok && k < arm->naxes; k++) /* 4 decimals: within a pulse */
+        cw->pulses_ok = near_pulse(p.pulses[k], fbrl_arm_pulses(arm, k, p.joints[k]));
     cw->epoch = fbrl_robot_where_epoch(r);
     return FBRL_OK;
 }
@@ -429,40 +428,41 @@ static fbrl_status where(fbrl_cell_words *cw, fbrl_robot *r, const char *word, d
 static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *m)
 {
     fbrl_cell_words *cw = ctx;
+    const fbrl_arm *arm = cw->model.arm;
     double q0[FBRL_CELL_AXES], q1[FBRL_CELL_AXES], p0[6], target[6];
     fbrl_cell_hit *h = &cw->last;
     fbrl_status st;
     int line = m->straight;
-    char what[200], a[24], b[24], c[24];
+    char what[FBRL_CELL_MSG_MAX - 32], a[24], b[24], c[24];
     cw->checked = 0;
     if (!active(cw) || m->kind == FBRL_ROBOT_MOVE_HOME)
         return FBRL_OK;
     if (m->kind == FBRL_ROBOT_MOVE_OTHER)
         return refuse(cw, m, "the guard cannot follow this motion (CELL-GUARD-OFF sends it unchecked)");
-    double q[FBRL_RAPL_MAX_AXES];
+    double q[FBRL_RAPL_MAX_AXES] = {0};
     unsigned n = 0;
     if ((st = where(cw, r, m->word, q, &n)) != FBRL_OK)
         return st;
-    if (n != FBRL_CELL_AXES) { /* the guard's kinematics are the A255's (DESIGN 6) */
+    if (n != arm->naxes) { /* the controller is not the arm the guard computes */
         snprintf(what, sizeof what,
-                 "%s: the guard knows 5-axis arms (A255); this arm has %u axes (CELL-GUARD-OFF "
-                 "sends the motion unchecked)",
-                 m->word, n);
+                 "%s: the guard computes the %s (%u axes); this controller reports %u (fbrlmon --arm names "
+                 "the arm; CELL-GUARD-OFF sends the motion unchecked)",
+                 m->word, arm->name, arm->naxes, n);
         return fbrl_robot_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED), what);
     }
     memcpy(cw->q, q, sizeof cw->q);
     place_blocks(cw);
     memcpy(q0, cw->q, sizeof q0);
     memcpy(q1, q0, sizeof q1);
-    fbrl_cell_fk(&cw->model.arm, q0, p0);
+    fbrl_arm_fk(arm, q0, cw->model.tcp, p0);
     memcpy(target, p0, sizeof target);
     switch (m->kind) {
     case FBRL_ROBOT_MOVE_POSE:
         memcpy(target, m->v, sizeof target);
         if (m->dist != 0.0)
-            fbrl_cell_back_off(m->v, q0[0], m->dist, target);
+            fbrl_arm_back_off(arm, m->v, q0[0], m->dist, target);
         break;
-    case FBRL_ROBOT_MOVE_DEPART: fbrl_cell_back_off(p0, q0[0], m->dist, target); break;
+    case FBRL_ROBOT_MOVE_DEPART: fbrl_arm_back_off(arm, p0, q0[0], m->dist, target); break;
     case FBRL_ROBOT_MOVE_JOG:
         for (int k = 0; k < 3; k++)
             target[k] += m->v[k];
@@ -470,28 +470,27 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         break;
     case FBRL_ROBOT_MOVE_JOINTS: memcpy(q1, m->v, sizeof q1); break;
     case FBRL_ROBOT_MOVE_DJOINTS:
-        for (int k = 0; k < FBRL_CELL_AXES; k++)
+        for (unsigned k = 0; k < arm->naxes; k++)
             q1[k] += m->v[k];
         break;
     case FBRL_ROBOT_MOVE_MOTOR:
-        if (m->v[0] >= 1 && m->v[0] <= FBRL_CELL_AXES)
-            q1[(int)m->v[0] - 1] += m->v[1] / a255_ppd[(int)m->v[0] - 1];
+        if (m->v[0] >= 1 && m->v[0] <= arm->naxes)
+            q1[(int)m->v[0] - 1] += fbrl_arm_degrees(arm, (unsigned)m->v[0] - 1, 1) * m->v[1];
         break;
-    case FBRL_ROBOT_MOVE_READY: memcpy(q1, a255_ready, sizeof q1); break;
+    case FBRL_ROBOT_MOVE_READY: memcpy(q1, arm->ready, sizeof q1); break;
     default: break;
     }
     int to_pose = m->kind == FBRL_ROBOT_MOVE_POSE || m->kind == FBRL_ROBOT_MOVE_DEPART ||
                   m->kind == FBRL_ROBOT_MOVE_JOG;
     /* a target or a line the guard cannot compute cannot be checked: refused while a cell is
      * described (a controller in millimetres reads such a target as another, reachable one) */
-    if (to_pose && !line && fbrl_cell_ik(&cw->model.arm, target, q0, q1) != FBRL_OK) {
-        snprintf(what, sizeof what,
-                 "the guard cannot check it: X %s Y %s Z %s in is beyond the arm's reach",
+    if (to_pose && !line && fbrl_arm_ik(arm, target, cw->model.tcp, q0, q1, NULL) != FBRL_OK) {
+        snprintf(what, sizeof what, "the guard cannot check it: X %s Y %s Z %s in is beyond the arm's reach",
                  num(a, sizeof a, target[0]), num(b, sizeof b, target[1]), num(c, sizeof c, target[2]));
         return refuse(cw, m, what);
     }
     if (!to_pose && line)
-        fbrl_cell_fk(&cw->model.arm, q1, target);
+        fbrl_arm_fk(arm, q1, cw->model.tcp, target);
     st = line ? fbrl_cell_check_line(&cw->model, q0, target, h)
               : fbrl_cell_check_joints(&cw->model, q0, q1, h);
     if (st != FBRL_OK)
@@ -499,8 +498,8 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
                       "the guard cannot check it: the straight line leaves the arm's reach (move in steps, "
                       "or joint-interpolated)");
     if (h->hit) {
-        snprintf(what, sizeof what, "would hit %s at X %s Y %s Z %s in (%d%% of the way)",
-                 fbrl_cell_obj_name(&cw->model, h->obj), num(a, sizeof a, h->at[0]),
+        snprintf(what, sizeof what, "would hit %s with the %s at X %s Y %s Z %s in (%d%% of the way)",
+                 fbrl_cell_obj_name(&cw->model, h->obj), fbrl_arm_part_name(h->part), num(a, sizeof a, h->at[0]),
                  num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]), (int)(h->fraction * 100.0 + 0.5));
         return refuse(cw, m, what);
     }

@@ -128,7 +128,10 @@ fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
         o.print = print;
         return rb_motion(r, w, &m, &o);
     }
-    rb_note_raw_outputs(r, line);
+    unsigned effect = 0;
+    uint32_t on = 0;
+    (void)fbrl_robot_line_effect(line, &effect, &on);
+    r->outputs_on |= on; /* remembered for the safe stop */
     if (k == RB_LINE_CMD && cmd == FBRL_RAPL_FINISH && (st = rb_still(r, w)) != FBRL_OK)
         return st;
     st = rb_raw_send(r, w, line, print, 0);

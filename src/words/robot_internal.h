@@ -74,8 +74,7 @@ fbrl_status rb_send(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fb
                     int straight, int checked);
 /* Send a raw line (checked: as rb_send); its output lines go to the console when print != 0. */
 fbrl_status rb_raw_send(fbrl_robot *r, const rb_word *w, const char *line, int print, int checked);
-/* The outputs a raw OUTPUT line switches on, remembered for the safe stop. */
-void rb_note_raw_outputs(fbrl_robot *r, const char *line);
+
 /* Wait until a motion this context sent has ended (the commanded velocity, W5, one line
  * a round, a round every RB_STILL_POLL_MS or as fast as the line allows, until it reads
  * zero; Ctrl-C throws), so that the next motion or FINISH never waits inside the

@@ -192,16 +192,27 @@ typedef struct still_read {
     unsigned zeros; /* consecutive all-zero value lines, up to the last one */
 } still_read;
 
+int fbrl_robot_still_line(const char *line, size_t len, int flawed)
+{
+    long v[FBRL_RAPL_MAX_AXES];
+    size_t n = 0, k;
+    if (!line || flawed) /* a damaged line is no proof of rest */
+        return 0;
+    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
+        return 0; /* title */
+    for (k = 0; k < n && v[k] == 0; k++)
+        ;
+    return k == n;
+}
+
 static void still_line(void *ctx, const char *line, size_t len, int flawed)
 {
     still_read *sr = ctx;
     long v[FBRL_RAPL_MAX_AXES];
-    size_t n = 0, k;
+    size_t n = 0;
     if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
-        return; /* title */
-    for (k = 0; k < n && v[k] == 0; k++)
-        ;
-    sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
+        return; /* a title leaves the count as it is */
+    sr->zeros = fbrl_robot_still_line(line, len, flawed) ? sr->zeros + 1 : 0;
 }
 
 fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
@@ -409,29 +420,6 @@ fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link
     if (st != FBRL_OK)
         return st;
     return rb_link_result(r, w, res);
-}
-
-/* Outputs a raw OUTPUT line switches on (OUTPUT n,-m,...): remembered for the safe stop. */
-void rb_note_raw_outputs(fbrl_robot *r, const char *line)
-{
-    fbrl_rapl_cmd cmd;
-    const char *p = line;
-    if (rb_line_cmd(line, strlen(line), &cmd) != RB_LINE_CMD || cmd != FBRL_RAPL_OUTPUT)
-        return;
-    while (*p == ' ')
-        p++;
-    while (*p && *p != ' ' && *p != ',')
-        p++;
-    for (; *p; p++)
-        if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
-            long v = 0;
-            while (*p >= '0' && *p <= '9')
-                v = v * 10 + (*p++ - '0');
-            fbrl_rapl_arg a = fbrl_rapl_int(v);
-            note_outputs(r, &a, 1);
-            if (!*p)
-                break;
-        }
 }
 
 fbrl_status rb_raw_send(fbrl_robot *r, const rb_word *w, const char *line, int print, int motion)

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* robot_rline.c - what a RAPL line typed by hand is (RAPL, SEND-CR, TYPE-COM, a line on
- * the link): the command it starts with, whether it can move the arm, and the motion it
- * makes, for the guard. The one place the robot words read a raw line's command. */
+ * the link, Python's link): the command it starts with, what it does to the cell
+ * (fbrl_robot_line_effect), whether it can move the arm, and the motion it makes, for the
+ * guard. The one place the robot words read a raw line's command. */
 #include <string.h>
 
 #include "fbrl/rapl_reply.h"
@@ -50,6 +51,41 @@ int rb_line_moves(rb_line_kind k, fbrl_rapl_cmd cmd)
     if (k != RB_LINE_CMD)
         return 0;
     return (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN;
+}
+
+fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on)
+{
+    fbrl_rapl_cmd cmd = FBRL_RAPL_NCMDS;
+    uint32_t on = 0;
+    if (!line || !effect)
+        return FBRL_EINVAL;
+    size_t len = strlen(line);
+    rb_line_kind k = rb_line_cmd(line, len, &cmd);
+    *effect = rb_line_moves(k, cmd) ? FBRL_ROBOT_LINE_MOTION : 0;
+    if (k == RB_LINE_CMD && cmd == FBRL_RAPL_FINISH)
+        *effect = FBRL_ROBOT_LINE_FINISH;
+    if (k == RB_LINE_CMD && cmd == FBRL_RAPL_HALT)
+        *effect = FBRL_ROBOT_LINE_HALT;
+    if (k == RB_LINE_CMD && cmd == FBRL_RAPL_OUTPUT) { /* OUTPUT n,-m,...: the n switched on */
+        const char *p = line;
+        while (*p == ' ')
+            p++;
+        while (*p && *p != ' ' && *p != ',')
+            p++;
+        for (; *p; p++)
+            if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
+                long v = 0;
+                while (*p >= '0' && *p <= '9' && v <= FBRL_ROBOT_IO_MAX)
+                    v = v * 10 + (*p++ - '0');
+                if (v >= 1 && v <= FBRL_ROBOT_IO_MAX)
+                    on |= 1u << (v - 1);
+                if (!*p)
+                    break;
+            }
+    }
+    if (outputs_on)
+        *outputs_on = on;
+    return FBRL_OK;
 }
 
 int rb_line_loses(rb_line_kind k, fbrl_rapl_cmd cmd)

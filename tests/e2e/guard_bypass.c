@@ -301,8 +301,9 @@ static void reach(void)
 }
 
 /* TEACH's advice after fbrlsim's 190 matches the situation: no cell described on the host,
- * the guard off, or a host cell that lacks what the arm met (the beam). Each jog down is
- * stopped by fbrlsim at the beam; one up backs out. */
+ * the guard off, or a host cell that lacks what the arm met (the beam). Jogs down 1 in at a
+ * time until fbrlsim stops one at the beam, then 0.5 in up out of the contact (so that the
+ * next descent crosses the beam again rather than starting on it). */
 static void advice_after(session *s, const char *want, const char *what)
 {
     type(s, "TEACH P\r");
@@ -315,10 +316,14 @@ static void advice_after(session *s, const char *want, const char *what)
         settle(s, 300);
     }
     expect(s, want, what);
-    type(s, "\033[5~"); /* back out of the contact */
+    type(s, "3");
+    expect(s, "step 0.5 in", "step 0.5 in");
+    type(s, "\033[5~"); /* out of the contact */
     expect(s, "\033[K", "status line after PgUp");
+    settle(s, 300);
     type(s, "\033");
-    expect(s, "ok> ", "TEACH cancelled");
+    expect(s, "cancelled", "TEACH cancelled");
+    expect(s, "ok> ", "the prompt after TEACH");
 }
 
 static void advice(void)

@@ -82,7 +82,7 @@ int main(int argc, char **argv)
     memcpy(m.v, in_post, sizeof in_post);
     fbrl_status st = fbrl_robot_motion(&C.robot, &m, msg, sizeof msg);
     CHECK(st == FBRL_EGUARD, "fbrl_robot_motion into the post: %s, want FBRL_EGUARD", fbrl_status_name(st));
-    CHECK(strstr(msg, "STATION: would hit POST at ") == msg && strstr(msg, "; nothing was sent"),
+    CHECK(strstr(msg, "STATION: would hit POST with the ") == msg && strstr(msg, "; nothing was sent"),
           "its message: \"%s\"", msg);
     memcpy(m.v, beside, sizeof beside);
     st = fbrl_robot_motion(&C.robot, &m, msg, sizeof msg);
