@@ -1244,8 +1244,12 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     if (l->busy)
         return FBRL_ESTATE;
     fbrl_status st = check_line(line, &n);
+    int unguarded = l->unguarded;
+    l->unguarded = 0; /* for this one line only, whatever becomes of it */
     if (st != FBRL_OK)
         return st;
+    if (l->gate && (st = l->gate(l->gate_ctx, line, n, unguarded)) != FBRL_OK)
+        return st; /* the guard's: nothing of it is typed */
     for (size_t k = 0; k < n; k++)
         l->line[k] = upper(line[k]);
     l->line[n] = '\0';
@@ -1844,6 +1848,23 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
         *old_ctx = l->cfg.line_ctx;
     l->cfg.on_line = fn;
     l->cfg.line_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_set_gate(fbrl_link *l, fbrl_link_gate_fn fn, void *ctx)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    l->gate = fn;
+    l->gate_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_unguarded(fbrl_link *l)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    l->unguarded = 1;
     return FBRL_OK;
 }
 

@@ -158,7 +158,7 @@ FBRL_API fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double
 #endif
 #define FBRL_CELL_MSG_MAX 192 /* a refusal's message, its end included */
 /* What a refused motion throws (catchable): the code of FBRL_ERANGE. */
-#define FBRL_CELL_THROW_COLLISION FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE)
+#define FBRL_CELL_THROW_COLLISION FBRL_ROBOT_THROW_REFUSED
 
 /* A text sink (the SVG picture). */
 typedef void (*fbrl_cell_write_fn)(void *ctx, const char *s, size_t n);
@@ -191,10 +191,13 @@ typedef struct fbrl_cell_words {
     fbrl_glossary *g;
     int guard; /* CELL-GUARD-ON (the default) / CELL-GUARD-OFF */
     int block; /* CELL-BLOCK: the block later obstacles belong to, -1 none */
-    int known; /* the arm's joints q are known (as of epoch) */
+    int checked;                    /* the motion being sent was checked (done records it) */
+    int pulses_ok;                  /* a W2 showed pulses = joints x pulses per degree (as of epoch):
+                                     * one W1 line tells where the arm stands */
     unsigned long epoch;
-    double q[FBRL_CELL_AXES];
-    double pending[FBRL_CELL_AXES]; /* where the motion being sent ends */
+    int expect;                      /* the last motion sent ends at pending (until the next check) */
+    double q[FBRL_CELL_AXES];       /* where it starts: the joints read for its check */
+    double pending[FBRL_CELL_AXES]; /* where it ends */
     fbrl_cell_hit last;
     fbrl_cell_stats stats;
     double path[FBRL_CELL_PATH_MAX][3];

@@ -108,6 +108,7 @@ const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
 fbrl_status fbrl_link_get_form(const fbrl_link *l, int *form);
 fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, int form, int cmd, const fbrl_rapl_arg *args,
                              size_t nargs, int straight);
+fbrl_status fbrl_link_unguarded(fbrl_link *l);
 fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value);
 fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value);
 fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
@@ -215,6 +216,8 @@ fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+typedef struct fbrl_cell_words fbrl_cell_words;
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
 typedef struct fbrl_robot_stop {
     fbrl_status result;
     int was_moving;
@@ -241,7 +244,7 @@ ABI = {
     "fbrl_rapl_reader": 9, "fbrl_rapl_pos": 10, "fbrl_loc": 11, "fbrl_calib": 12, "fbrl_calpts": 13,
     "fbrl_units": 14, "fbrl_file": 15, "fbrl_glossary": 16, "fbrl_robot": 17, "fbrl_robot_stop": 18,
     "fbrl_vm_config": 19, "fbrl_vm_error": 20, "fbrl_workspace": 21, "fbrl_workspace_counts": 22,
-    "fbrl_uart_8250": 23, "fbrl_port_entry": 24,
+    "fbrl_uart_8250": 23, "fbrl_port_entry": 24, "fbrl_cell_words": 33,
 }
 # The structs declared in full above: their layout must be the library's.
 DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error",

@@ -70,6 +70,10 @@ class Engine:
               "Engine glossary")
         check(lib.fbrl_robot_install(self._vm, self._robot.ptr, link.ptr if link else ffi.NULL,
                                      self._glossary.ptr), "Engine robot words")
+        # the work cell's words and the guard on every motion (docs/workcell.md)
+        self._cell = alloc("fbrl_cell_words")
+        check(lib.fbrl_cell_install(self._vm, self._cell.ptr, self._robot.ptr, self._glossary.ptr),
+              "Engine cell words")
 
     def __enter__(self):
         return self
@@ -79,10 +83,20 @@ class Engine:
         return False
 
     def close(self):
-        """Closes the source files an interrupted INCLUDED left open."""
+        """Closes the source files an interrupted INCLUDED left open, and takes the robot
+        words' gate off the link (the link goes on without this engine)."""
         for f in self._files.values():
             f.close()
         self._files.clear()
+        if getattr(self, "link", None) is not None and hasattr(self, "_robot"):
+            lib.fbrl_robot_set_link(self._robot.ptr, ffi.NULL)
+            self.link = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # at interpreter exit the module's globals may be gone already
+            pass
 
     # host callbacks: an exception in one is an error status for the engine and is kept
     # for the caller (raised, or the cause of the error eval() raises), never lost

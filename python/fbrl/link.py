@@ -310,24 +310,33 @@ class Link:
             self._sig.sleep(STILL_POLL_S)
             self._sig.check()
 
-    def _send(self, line, what, start):
-        """A command line: first, if it moves the arm or waits for it, the wait for rest."""
+    def _send(self, line, what, start, unguarded=False):
+        """A command line: first, if it moves the arm or waits for it, the wait for rest.
+        unguarded: the line goes around the work cell's guard (fbrl_link_unguarded), set
+        just before it starts so that the wait's own W5 readings do not take it."""
         effect = ffi.new("unsigned *")
         lib.fbrl_robot_line_effect(line, effect, ffi.NULL)
+
+        def go():
+            if unguarded:
+                lib.fbrl_link_unguarded(self._link.ptr)
+            return start()
         with self._stopping():
             if effect[0] & (_LINE_MOTION | _LINE_FINISH):
                 self._await_still()
-            return self._check(self._run(what, start), what)
+            return self._check(self._run(what, go), what)
 
     def connect(self):
         """The start-up handshake: a known, empty command line; NOHELP."""
         with self._stopping():
             self._check(lib.fbrl_link_connect(self._link.ptr), "connect")
 
-    def command(self, keyword, *args, straight=False):
+    def command(self, keyword, *args, straight=False, unguarded=False):
         """Run one RAPL command from the library's table, e.g. command("MOVE", "P1"),
         command("SPEED", 50), command("APPRO", "P1", 2.0). Ints, floats and names (str);
-        anything else is a TypeError."""
+        anything else is a TypeError. On a link an Engine with a described work cell shares,
+        a motion is refused (FBRL_EGUARD, nothing sent) unless unguarded=True sends it around
+        the guard, which the engine's robot is told (docs/workcell.md "The guard")."""
         cmd = ffi.new("int *")
         st = lib.fbrl_rapl_cmd_find(_args.text(keyword, "RAPL command"), cmd)
         if st < 0:
@@ -354,17 +363,19 @@ class Link:
         what = line.decode() if st == FBRL_OK else " ".join([keyword] + [str(a) for a in args])
         if st < 0:
             self._check(st, what)  # refused before anything was sent
-        self._send(line, what, lambda: lib.fbrl_link_start_cmd(self._link.ptr, cmd[0], cargs, len(args), straight))
+        self._send(line, what, lambda: lib.fbrl_link_start_cmd(self._link.ptr, cmd[0], cargs, len(args), straight),
+                   unguarded)
 
-    def raw(self, line):
+    def raw(self, line, unguarded=False):
         """Run a raw command line; returns the lines it printed. A line the link would not
-        send (a NUL, a control character, '?', over 80 characters) is a ValueError."""
+        send (a NUL, a control character, '?', over 80 characters) is a ValueError.
+        unguarded: as command()."""
         data = _args.text(line, "raw line")
         if lib.fbrl_link_line_check(data, len(data)) != FBRL_OK:
             raise ValueError("raw line %r: not a line the link sends (printable ASCII, 1 to 80 characters, no '?';"
                              " docs/link.md)" % (line,))
         what = data.decode()
-        self._send(data, what, lambda: lib.fbrl_link_start_raw(self._link.ptr, data))
+        self._send(data, what, lambda: lib.fbrl_link_start_raw(self._link.ptr, data), unguarded)
         return [t.decode("latin-1") for t, flawed in self._lines]
 
     # robot commands
