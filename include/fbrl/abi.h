@@ -42,7 +42,8 @@ extern "C" {
     X(WORKSPACE, fbrl_workspace)               \
     X(WORKSPACE_COUNTS, fbrl_workspace_counts) \
     X(UART_8250, fbrl_uart_8250)               \
-    X(PORT_ENTRY, fbrl_port_entry)
+    X(PORT_ENTRY, fbrl_port_entry)             \
+    X(CELL_WORDS, fbrl_cell_words)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,
 typedef enum fbrl_abi_type { FBRL_ABI_TYPES(FBRL_ABI_ENUM_) FBRL_ABI_TYPE_COUNT } fbrl_abi_type;

@@ -8,6 +8,7 @@ from ._errors import Error, ControllerError, check, status_name
 
 DICT_BYTES_DEFAULT = 1 << 20
 FILE_STORAGE_BYTES = 1 << 20  # the glossary's data-file buffers (OPEN-FILE)
+SLEEP_SLICE_S = 0.05  # a timed wait looks for an interrupt this often
 
 
 class Engine:
@@ -33,7 +34,7 @@ class Engine:
             ffi.callback("fbrl_status(void *, void *, char *, size_t, size_t *)", self._file_read_line),
             ffi.callback("void(void *, void *)", self._file_close),
             ffi.callback("uint64_t(void *)", lambda user: lib.fbrl_clock_now_us()),
-            ffi.callback("void(void *, uint32_t)", lambda user, ms: time.sleep(ms / 1000.0)),
+            ffi.callback("void(void *, uint32_t)", self._sleep_ms),
         ]
         cfg.host.write, cfg.host.file_open, cfg.host.file_read_line, cfg.host.file_close = cb[:4]
         cfg.host.now_us, cfg.host.sleep_ms = cb[4], cb[5]
@@ -54,6 +55,10 @@ class Engine:
               "Engine glossary")
         check(lib.fbrl_robot_install(self._vm, self._robot.ptr, link.ptr if link else ffi.NULL,
                                      self._glossary.ptr), "Engine robot words")
+        # the work cell (CELL-BOX ...) and its guard over every robot motion, as in fbrlmon
+        self._cell = alloc("fbrl_cell_words")
+        check(lib.fbrl_cell_install(self._vm, self._cell.ptr, self._robot.ptr, self._glossary.ptr),
+              "Engine cell words")
 
     def __enter__(self):
         return self
@@ -71,6 +76,15 @@ class Engine:
     # host callbacks
     def _write(self, user, s, n):
         self._out.append(ffi.unpack(s, n).decode("latin-1"))
+
+    def _sleep_ms(self, user, ms):
+        # in slices, so interrupt() from another thread ends a timed wait within one
+        end = time.monotonic() + ms / 1000.0
+        while not lib.fbrl_vm_interrupt_pending(self._vm):
+            left = end - time.monotonic()
+            if left <= 0:
+                break
+            time.sleep(min(left, SLEEP_SLICE_S))
 
     def _file_open(self, user, path, handle):
         try:
@@ -141,6 +155,23 @@ class Engine:
         if st < 0:
             self._fail(st, "include " + os.fspath(path))
         return "".join(self._out)
+
+    def set_link(self, link):
+        """Drive another controller (or none: None) from now on, e.g. after the port was
+        reopened; the dictionary, the cell and the places stay as they are."""
+        check(lib.fbrl_robot_set_link(self._robot.ptr, link.ptr if link else ffi.NULL), "set_link")
+        self.link = link
+
+    def interrupt(self):
+        """Ask a running eval()/include() to stop (THROW -28 at its next word; a wait for the
+        arm returns early). The one call that is safe from another thread."""
+        lib.fbrl_vm_interrupt(self._vm)
+
+    @property
+    def guard(self):
+        """The collision guard's record: (motions checked and sent, motions refused)."""
+        st = lib.fbrl_cell_stats_get(self._cell.ptr)
+        return st.moves, st.refused
 
     @property
     def bye(self):

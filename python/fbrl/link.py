@@ -8,6 +8,7 @@ from .loc import Location
 
 FBRL_RAPL_W2 = 45  # fbrl_rapl_cmd codes (stable): the actual position
 _ARG_INT, _ARG_REAL, _ARG_STR = 0, 1, 2
+_UNITS = {0: "inch", 1: "mm"}  # FBRL_LINK_UNITS_INCH, _MM (fbrl/link.h); -1: not known
 
 
 PORTS_MAX = 64
@@ -167,6 +168,12 @@ class Link:
             lib.fbrl_link_error(self._link.ptr, code, text)
             raise ControllerError(st, what, code[0], ffi.string(text[0]).decode() if text[0] else None, fate)
         raise Error(st, what, fate=fate)
+
+    @property
+    def units(self):
+        """The controller's units of length as the link last learned them (a STATUS, or METRIC
+        sent): "inch", "mm", or None when not known yet (fbrl_link_units)."""
+        return _UNITS.get(lib.fbrl_link_units(self._link.ptr))
 
     def connect(self):
         """The start-up handshake: a known, empty command line; NOHELP."""
