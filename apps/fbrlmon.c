@@ -97,7 +97,8 @@ static void usage(FILE *f)
           "  -V, --version    show the version and exit\n"
           "\n"
           "exit status: 0 no error, 1 an error aborted a file, -e text or piped line,\n"
-          "             2 bad command line, 3 could not start\n",
+          "             2 bad command line, 3 could not start, 4 a method run did not\n"
+          "             complete (its run log says how each sample ended)\n",
           f);
 }
 
@@ -500,7 +501,7 @@ int main(int argc, char **argv)
     }
 
     if (opt.dry_run)
-        mon_dry_start(&m);
+        mon_dry_start(&m, &g_runlog);
     /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
      * skipped (docs/fbrlmon.md "Ctrl-C") */
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm) && !stopped; i++) {
@@ -563,6 +564,8 @@ int main(int argc, char **argv)
     if (printer != NULL && fclose(printer) != 0)
         fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
+    if (m.runs_incomplete) /* the more telling: a run's outcome is in its run log */
+        status = MON_EXIT_RUN;
     if (mon_safe_quit() || (stopped && !m.host.in_is_tty))
         status = MON_EXIT_INTERRUPT;
     mon_conn_close(&g_conn);

@@ -94,6 +94,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         st = mon_trace_install(m);
     if (st == FBRL_OK)
         st = mon_recover_install(m);
+    if (st == FBRL_OK) /* after the corrective actions: the run asks and notes through them */
+        st = fbrl_run_install(&m->run, m->vm, &m->methods, &m->recover, &m->robot);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
@@ -250,8 +252,10 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
 int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts)
 {
     size_t words = fbrl_vm_word_count(m->vm);
-    int compiling = fbrl_vm_compiling(m->vm);
+    int compiling = fbrl_vm_compiling(m->vm), counting = m->counting;
+    m->counting = counts;
     fbrl_status st = fbrl_vm_eval(m->vm, text, len);
+    m->counting = counting;
     /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS. */
     if (st == FBRL_OK && (where == NULL || strcmp(where, "stdin") == 0) &&
         (compiling || fbrl_vm_compiling(m->vm) || fbrl_vm_word_count(m->vm) > words))
@@ -266,7 +270,10 @@ int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned l
 
 int mon_include(mon *m, const char *path)
 {
+    int counting = m->counting;
+    m->counting = 1;
     fbrl_status st = fbrl_vm_include(m->vm, path);
+    m->counting = counting;
     if (st == FBRL_OK)
         return 0; /* (the engine itself refuses a file that ends inside a definition) */
     report(m, st, path, 0);

@@ -43,6 +43,12 @@ extern "C" {
     X(WORKSPACE_COUNTS, fbrl_workspace_counts) \
     X(UART_8250, fbrl_uart_8250)               \
     X(PORT_ENTRY, fbrl_port_entry)             \
+    X(METHOD_SET, fbrl_method_set)             \
+    X(RECOVER, fbrl_recover)                   \
+    X(RUN, fbrl_run)                           \
+    X(RUN_SNAP, fbrl_run_snap)                 \
+    X(RUN_EVENT, fbrl_run_event)               \
+    X(METHOD, fbrl_method)                     \
     X(CELL_WORDS, fbrl_cell_words)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,

@@ -31,5 +31,6 @@
 #include "fbrl/runlog.h"
 #include "fbrl/method.h"
 #include "fbrl/recover.h"
+#include "fbrl/run.h"
 
 #endif

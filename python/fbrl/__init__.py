@@ -20,6 +20,7 @@ from .loc import Location, Calibration
 from .datafile import DataFile, CHR, INTEGER, LONG, REAL, LOCATION, user_type
 from .link import Port, Link, Position, Status, PortInfo, list_ports
 from .engine import Engine
+from .run import Run
 
 __all__ = [
     "Error", "ControllerError", "Location", "Calibration", "DataFile", "CHR", "INTEGER", "LONG",

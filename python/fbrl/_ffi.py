@@ -227,7 +227,7 @@ ABI = {
     "fbrl_rapl_reader": 9, "fbrl_rapl_pos": 10, "fbrl_loc": 11, "fbrl_calib": 12, "fbrl_calpts": 13,
     "fbrl_units": 14, "fbrl_file": 15, "fbrl_glossary": 16, "fbrl_robot": 17, "fbrl_robot_stop": 18,
     "fbrl_vm_config": 19, "fbrl_vm_error": 20, "fbrl_workspace": 21, "fbrl_workspace_counts": 22,
-    "fbrl_uart_8250": 23, "fbrl_port_entry": 24, "fbrl_cell_words": 25,
+    "fbrl_uart_8250": 23, "fbrl_port_entry": 24, "fbrl_cell_words": 31,
 }
 # The structs declared in full above: their layout must be the library's.
 DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error")
