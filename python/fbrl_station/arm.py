@@ -47,6 +47,7 @@ class Observable:
         """work(controller) runs on the owner thread as a motion; returns the confirmation."""
         self.protected(context)
         st = self.st
+        self.not_running()
         e = st.executions.new(self.f.command_fqi(command))
 
         def job(c):
@@ -120,6 +121,7 @@ class ArmController(Observable, Feature):
     def _now(self, context, text):
         """An unobservable command: run it and wait."""
         self.protected(context)
+        self.not_running()
         try:
             self.st.owner.motion(lambda c: c.eval(text)).result()
         except RobotFailure as failure:
@@ -141,6 +143,7 @@ class ArmController(Observable, Feature):
     def TeachPlace(self, request, context):
         self.check("TeachPlace", request)
         self.protected(context)
+        self.not_running()
         name = request.Place.PlaceName.value
         owner, cell = self.st.owner, self.st.cell
 

@@ -57,6 +57,7 @@ class Controller:
     def __init__(self, opts):
         self.opts = opts
         self.engine = fbrl.Engine(dict_bytes=ENGINE_DICT_BYTES)
+        self.run = fbrl.Run(self.engine)  # the method, corrective-action and run words, before any file
         self.sim = self.port = self.link = None
         self.simulation = opts.port is None
         self.lost = False

@@ -32,6 +32,13 @@ class Feature:
     def check(self, command, request):
         validate.check(self.f, command, request)
 
+    def not_running(self):
+        """A command that needs the arm is refused at once while a method run owns it."""
+        rs = self.st.owner.run
+        if rs is not None:
+            raise sila.defined(self.f, "StationBusy", "a method run owns the arm (%s): cancel it or let it end "
+                               "first" % rs.describe())
+
     def error(self, failure):
         """A RobotFailure as this feature's defined execution error (or an undefined one)."""
         kind = failure.kind

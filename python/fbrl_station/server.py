@@ -15,16 +15,19 @@ import fbrl
 from . import fdl, pb, sila, tls
 from .arm import ArmController, RobotController
 from .cell import Cell
+from .commands import CancelController, ErrorRecoveryService, MethodLibrary, PauseController
 from .controller import Controller, RobotFailure
 from .core import DESCRIPTION, LockController, SiLAService, SimulationController
 from .datadir import DataDir
 from .owner import Owner
+from .runs import Runs
 
 log = logging.getLogger("fbrl-station")
 
 GRPC_WORKERS = 64  # every open stream (Info, Intermediate, property subscriptions) holds one
 STOP_GRACE_S = 2.0
-FEATURE_CLASSES = (SiLAService, LockController, SimulationController, ArmController, RobotController)
+FEATURE_CLASSES = (SiLAService, LockController, CancelController, PauseController, SimulationController,
+                   ErrorRecoveryService, ArmController, RobotController, MethodLibrary)
 
 
 class StartError(Exception):
@@ -47,6 +50,7 @@ class Station:
         self.controller = Controller(opts)
         self.owner = Owner(self.controller)
         self.cell = Cell(self.data)
+        self.runs = Runs(self)
         self.servicers = [cls(self) for cls in FEATURE_CLASSES]
         self.server = None
         self.port = None
@@ -89,11 +93,13 @@ class Station:
             try:
                 out = c.engine.eval(what) if kind == "eval" else c.engine.include(what)
             except fbrl.Error as e:
-                raise StartError(_report(e, "-e" if kind == "eval" else what), status=1)
+                raise StartError(report(e, "-e" if kind == "eval" else what), status=1)
             finally:
                 c.engine.reset()
             if out.strip():
                 sys.stdout.write(out if out.endswith("\n") else out + "\n")
+        self.runs.install(c)
+        self.runs.library.load(c, log.warning)
         self.cell.restore(c, log.warning)
         self.owner.refresh(status=True)
 
@@ -165,7 +171,7 @@ def run(opts):
     return 0
 
 
-def _report(e, where):
+def report(e, where):
     """An FBRL error as fbrlmon reports it: "FILE:LINE: error: MESSAGE [in WORD]"."""
     if getattr(e, "file", ""):
         where = "%s:%d" % (e.file, e.line) if e.line else e.file

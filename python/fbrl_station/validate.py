@@ -20,7 +20,7 @@ def check(feature, command, request):
     types = {t.identifier: t.data_type for t in feature.types}
     for p in cmd.parameters:
         fqi = feature.parameter_fqi(command, p.identifier)
-        if not request.HasField(p.identifier):
+        if p.data_type.kind != "list" and not request.HasField(p.identifier):  # a list may be empty
             raise sila.validation(fqi, "the parameter %s is missing" % p.identifier)
         _value(getattr(request, p.identifier), p.data_type, types, fqi, p.identifier)
 

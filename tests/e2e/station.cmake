@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # fbrl-station (label station, docs/sila.md): its feature definitions and protobuf files against
 # the standard's (station_fdl), pytest against fbrlsim for every command, property and error
-# (station), several stations found by discovery and driven at once (station_many), and a
+# (station, station_methods), several stations found by discovery and driven at once (station_many), and a
 # client the project did not write, Node's @grpc/grpc-js from the lock file in
 # tests/station/node, installed into the build tree by npm ci (station_node_deps, then
 # station_node). Not in sanitizer builds: Python cannot load a sanitized library (the runtime
@@ -20,7 +20,10 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET station)
   add_test(NAME station_fdl COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/fdl ${_st}/test_fdl.py)
   add_test(NAME station COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/main
     ${_st}/test_arm.py ${_st}/test_core.py)
-  set_tests_properties(station_fdl station PROPERTIES LABELS station TIMEOUT 600 ENVIRONMENT "${_st_env}")
+  add_test(NAME station_methods COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/methods
+    ${_st}/test_methods.py)
+  set_tests_properties(station_fdl station station_methods PROPERTIES LABELS station TIMEOUT 600
+    ENVIRONMENT "${_st_env}")
 
   find_program(FBRL_NODE node)
   find_program(FBRL_NPM npm)
