@@ -12,7 +12,7 @@ import time
 
 import fbrl
 
-from . import dryrun, pb
+from . import dryrun, pb, sila
 from .cell import SITES_FBRL
 from .sila import I, S
 from .controller import RobotFailure
@@ -170,9 +170,8 @@ class Runs:
             self._predict(c, rs, m)
             rs.guard_before = c.engine.guard[1]
             ticker = threading.Thread(target=self._tick, args=(rs,), name="fbrl-run-ticker", daemon=True)
-            rs.e.start()
             rs.ticking = True
-            ticker.start()
+            ticker.start()  # it reports once the run has begun (the begin event starts the execution)
             try:
                 snap = c.run.start(m["name"], [v for _, v in rs.values])
             finally:
@@ -208,6 +207,9 @@ class Runs:
     def _tick(self, rs):
         """Progress and remaining time from the run's snapshot, and the arm's state."""
         while rs.ticking:
+            if not rs.e.status == sila.RUNNING:
+                time.sleep(TICK_S / 5)
+                continue
             try:
                 s = rs.run.snapshot()
             except fbrl.Error:  # the engine was changing it: the next tick reads it
@@ -234,7 +236,9 @@ class Runs:
         """The run's events (owner thread) as the execution's intermediate responses."""
         kind = ev["kind"]
         if kind == "begin":
-            rs.samples = len(rs.run.snapshot()["samples"])
+            snap = rs.run.snapshot()
+            rs.samples = len(snap["samples"])
+            rs.e.start(None if snap["remaining_ms"] is None else snap["remaining_ms"] / 1000.0)
             return
         if kind == "recovery":
             rs.failure_kind = ev.get("failure")

@@ -16,7 +16,7 @@ log = logging.getLogger("fbrl-station")
 
 # How often an Info stream speaks while nothing changes (the remaining time counts down), and
 # how long a finished execution stays answerable.
-INFO_PERIOD_S = 0.5
+INFO_PERIOD_S = 0.25
 EXECUTIONS_KEPT = 1000
 
 
