@@ -22,7 +22,9 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET station)
     ${_st}/test_arm.py ${_st}/test_core.py)
   add_test(NAME station_methods COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/methods
     ${_st}/test_methods.py)
-  set_tests_properties(station_fdl station station_methods PROPERTIES LABELS station TIMEOUT 600
+  add_test(NAME station_many COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/many
+    ${_st}/test_many.py)
+  set_tests_properties(station_fdl station station_methods station_many PROPERTIES LABELS station TIMEOUT 600
     ENVIRONMENT "${_st_env}")
 
   find_program(FBRL_NODE node)

@@ -51,13 +51,17 @@ def _stream(call):
 
 
 class Client:
-    def __init__(self, port, cert=None, host="127.0.0.1"):
+    def __init__(self, port, cert=None, host="127.0.0.1", pem=None):
+        """cert: the station's certificate file to pin, or pem: its text; neither: plain gRPC."""
         target = "%s:%d" % (host, port)
-        if cert is None:
-            self.channel = grpc.insecure_channel(target)
-        else:
+        if cert is not None:
             with open(cert, "rb") as f:
-                self.channel = grpc.secure_channel(target, grpc.ssl_channel_credentials(root_certificates=f.read()))
+                pem = f.read()
+        if pem is None:
+            self.channel = grpc.insecure_channel(target)
+        else:  # the certificate names localhost and 127.0.0.1; TLS's server name may not be an address
+            self.channel = grpc.secure_channel(target, grpc.ssl_channel_credentials(root_certificates=pem),
+                                               options=[("grpc.ssl_target_name_override", "localhost")])
         self.lock_id = None
         self._stubs = {}
 
