@@ -76,8 +76,11 @@ FBRL_MON=\"\${FBRL_MON:-$<TARGET_FILE:fbrlmon>}\" FBRL_STATION_GEN='${FBRL_STATI
     set(_dest \"\${CMAKE_INSTALL_PREFIX}\")
     file(MAKE_DIRECTORY \"${FBRL_STATION_BUILD}/install\")
     file(WRITE \"${FBRL_STATION_BUILD}/install/fbrl-station\" \"#!/bin/sh
-# fbrl-station (libfbrl): Debian's python3 on the station's package
-PYTHONPATH='\${_dest}/${FBRL_STATION_DIR}' FBRL_LIBRARY='\${_dest}/${CMAKE_INSTALL_LIBDIR}/libfbrl.so.${PROJECT_VERSION_MAJOR}' \\\\
+# fbrl-station (libfbrl): Debian's python3 on the station's package; the library installed
+# beside it when it is there, else the one the dynamic loader finds (a system install)
+lib='\${_dest}/${CMAKE_INSTALL_LIBDIR}/libfbrl.so.${PROJECT_VERSION_MAJOR}'
+[ -e \\\"\\\$lib\\\" ] && [ -z \\\"\\\${FBRL_LIBRARY:-}\\\" ] && FBRL_LIBRARY=\\\$lib && export FBRL_LIBRARY
+PYTHONPATH='\${_dest}/${FBRL_STATION_DIR}' \\\\
 FBRL_SIM=\\\"\\\${FBRL_SIM:-\${_dest}/${CMAKE_INSTALL_BINDIR}/fbrlsim}\\\" \\\\
 FBRL_MON=\\\"\\\${FBRL_MON:-\${_dest}/${CMAKE_INSTALL_BINDIR}/fbrlmon}\\\" exec ${FBRL_STATION_PYTHON} -m fbrl_station \\\"\\$@\\\"
 \")

@@ -334,3 +334,17 @@ def test_skip_abort_and_unhandled_errors(lab):
         assert time.monotonic() - t0 < 10
     finally:
         lab.client.call(ERR, "SetErrorHandlingTimeout", ErrorHandlingTimeout=I(0))
+
+
+# ------------------------------------------------------------------ the docs' scheduler
+def test_the_scheduler_example_of_the_docs(lab):
+    """examples/station/scheduler.py, a plain gRPC client with only the generated modules."""
+    import subprocess
+    env = dict(os.environ, PYTHONPATH=os.environ["FBRL_STATION_GEN"])
+    p = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "examples", "station", "scheduler.py"),
+                        "127.0.0.1:%d" % lab.station.port, lab.station.cert, "QUICK", "#ITEMS=2", "HOLD-DS=1"],
+                       env=env, capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "QUICK: completed" in p.stdout and "sample 2: succeeded" in p.stdout
+    assert "ArmController, RobotController, MethodLibrary" in p.stdout
+    assert not lab.client.get("LockController", "IsLocked").value  # it unlocked
