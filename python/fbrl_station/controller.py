@@ -165,6 +165,17 @@ class RobotFailure(Exception):
         self.kind, self.message, self.error = kind, message, error
 
 
+def report(e, where):
+    """An FBRL error as fbrlmon reports it: "FILE:LINE: error: MESSAGE [in WORD]"."""
+    if getattr(e, "file", ""):
+        where = "%s:%d" % (e.file, e.line) if e.line else e.file
+    text = "%s: error: %s" % (where, getattr(e, "message", None) or e.text)
+    word, code = getattr(e, "word", ""), getattr(e, "throw_code", 0)
+    if word and code != -39:  # -39, end of file: between words
+        text += (" " if code == -13 else " in ") + word  # -13: the undefined word itself
+    return text
+
+
 def throw_status(throw_code):
     """The library status a THROW code stands for (its name), or None."""
     if throw_code is None or not THROW_STATUS_LOW < throw_code <= THROW_STATUS_BASE:

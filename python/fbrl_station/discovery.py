@@ -56,6 +56,13 @@ class Announcer:
         except Exception as e:  # no multicast here: the station still serves, undiscovered
             log.warning("discovery: could not announce the station over mDNS: %s", e)
 
+    def update(self, props):
+        """A new TXT record (the server's name changed)."""
+        self._thread.join()
+        if self.zc is not None:
+            self.info.properties = props
+            self.zc.update_service(self.info)
+
     def close(self):
         self._thread.join()
         if self.zc is not None:

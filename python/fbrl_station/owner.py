@@ -61,15 +61,29 @@ class Owner:
     def start(self):
         self.thread.start()
 
-    def stop(self):
+    def stop(self, last=None):
+        """Drop the jobs that wait (their Futures cancelled), run last(controller), end the
+        thread. A job that runs now finishes first."""
         self._stop = True
+        while True:
+            try:
+                job = self.jobs.get_nowait()
+            except queue.Empty:
+                break
+            if job is not None:
+                job[0].cancel()
+        if last is not None:
+            self.jobs.put((concurrent.futures.Future(), last, ()))
         self.jobs.put(None)
         self.thread.join()
 
     def submit(self, fn, *args):
         """Run fn(controller, *args) on the owner thread; a Future of its result."""
         fut = concurrent.futures.Future()
-        self.jobs.put((fut, fn, args))
+        if self._stop:  # the station is stopping: nothing new starts
+            fut.cancel()
+        else:
+            self.jobs.put((fut, fn, args))
         return fut
 
     def call(self, fn, *args):
@@ -85,7 +99,7 @@ class Owner:
             return self._watchers[what] > 0
 
     def _loop(self):
-        while not self._stop:
+        while True:
             try:
                 job = self.jobs.get(timeout=IDLE_READ_S)
             except queue.Empty:

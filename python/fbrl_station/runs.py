@@ -15,7 +15,7 @@ import fbrl
 from . import dryrun, pb, sila
 from .cell import SITES_FBRL
 from .sila import I, S
-from .controller import RobotFailure
+from .controller import RobotFailure, report
 from .owner import Watched
 
 log = logging.getLogger("fbrl-station")
@@ -49,7 +49,6 @@ class Library:
         if not os.path.isdir(self.directory):
             warn("no method library at %s (--methods DIR): no methods" % self.directory)
             return
-        from .server import report  # the one place errors are worded as fbrlmon words them
         for path in sorted(glob.glob(os.path.join(self.directory, "*.fbrl"))):
             if not os.path.isfile(path):
                 continue
@@ -92,6 +91,9 @@ class RunState:
         self.e = execution
         self.method = method
         self.values = values
+        self.future = None  # the owner's job
+        self.ticking = False
+        self.cancelled_by = ""  # who cancelled it, or why the error was left unhandled
         self.run = None  # fbrl.Run once started
         self.question = None  # the recoverable error waiting for a choice (a dict)
         self.ending = None  # why it was stopped: "cancel", "error-handling" (a failure left unhandled)

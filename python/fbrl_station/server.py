@@ -16,7 +16,7 @@ from . import fdl, pb, sila, tls
 from .arm import ArmController, RobotController
 from .cell import Cell
 from .commands import CancelController, ErrorRecoveryService, MethodLibrary, PauseController
-from .controller import Controller, RobotFailure
+from .controller import Controller, RobotFailure, report
 from .core import DESCRIPTION, LockController, SiLAService, SimulationController
 from .datadir import DataDir
 from .owner import Owner
@@ -63,6 +63,12 @@ class Station:
         with self._name_lock:
             self.data.set_name(name)
             self.identity = dict(self.identity, name=name)
+            if self.announcer is not None:
+                self.announcer.update(self._txt())
+
+    def _txt(self):
+        from .discovery import txt_record
+        return txt_record(fbrl.version(), self.identity["name"], DESCRIPTION, self.cert_pem)
 
     def lock_protected(self):
         """The calls the lock protects: every command that moves the arm or changes the
@@ -118,19 +124,21 @@ class Station:
         if not self.port:
             raise StartError("cannot listen on %s (in use, or not an address of this host)" % address)
         self.server.start()
-        if self.opts.discovery:
-            from .discovery import Announcer, txt_record
-            self.announcer = Announcer(self.identity["uuid"], host, self.port,
-                                       txt_record(fbrl.version(), self.identity["name"], DESCRIPTION, self.cert_pem))
+        if self.opts.discovery:  # zeroconf is loaded only when it is used
+            from .discovery import Announcer
+            self.announcer = Announcer(self.identity["uuid"], host, self.port, self._txt())
 
     def stop(self):
-        """Withdraw the record, end the calls, stop what runs safely, let the controller go."""
+        """Withdraw the record, end the calls, stop a method run as a cancel does (the arm
+        halted, the outputs off, ON-ABORT), drop what waits, let the controller go."""
         if self.announcer is not None:
             self.announcer.close()
         if self.server is not None:
             self.server.stop(STOP_GRACE_S).wait()
-        self.owner.call(lambda c: c.disconnect())
-        self.owner.stop()
+        for e in self.executions.all():
+            if e.cancel is not None and not e.finished:
+                e.cancel("fbrl-station stopping")
+        self.owner.stop(lambda c: c.disconnect())
 
 
 def run(opts):
@@ -169,17 +177,6 @@ def run(opts):
     log.info("stopping")
     station.stop()
     return 0
-
-
-def report(e, where):
-    """An FBRL error as fbrlmon reports it: "FILE:LINE: error: MESSAGE [in WORD]"."""
-    if getattr(e, "file", ""):
-        where = "%s:%d" % (e.file, e.line) if e.line else e.file
-    text = "%s: error: %s" % (where, getattr(e, "message", None) or e.text)
-    word, code = getattr(e, "word", ""), getattr(e, "throw_code", 0)
-    if word and code != -39:  # -39, end of file: between words
-        text += (" " if code == -13 else " in ") + word  # -13: the undefined word itself
-    return text
 
 
 def _stop_quietly(station):

@@ -228,8 +228,8 @@ class Execution:
         self.intermediates = []
         self.result = None
         self.error = None
-        self.cancel = self.pause = self.resume = None
-        self.paused = False
+        self.cancel = self.pause = self.resume = None  # hooks of a method run (runs.py)
+        self.run_state = None
 
     def _set(self, **kw):
         with self._cond:

@@ -348,3 +348,22 @@ def test_the_scheduler_example_of_the_docs(lab):
     assert "QUICK: completed" in p.stdout and "sample 2: succeeded" in p.stdout
     assert "ArmController, RobotController, MethodLibrary" in p.stdout
     assert not lab.client.get("LockController", "IsLocked").value  # it unlocked
+
+
+def test_sigterm_during_a_run_stops_it_safely(tmp_path):
+    """A service manager stops the station while a method runs: the run is cancelled as the
+    console's abort (halt, outputs off, ON-ABORT), then the station exits 0."""
+    lab = Lab(str(tmp_path))
+    try:
+        before = len(lab.sim.log())
+        uuid = start(lab, "QUICK", *params(N_ITEMS=3, HOLD_DS=50))
+        wait_for(lambda: "OUTPUT 1" in lab.sim.log()[before:], what="the pump to run")
+        t0 = time.monotonic()
+        assert lab.station.stop() == 0
+        assert time.monotonic() - t0 < 20
+        log = lab.sim.log()[before:]
+        on = log.index("OUTPUT 1")
+        assert "HALT" in log[on:] and "OUTPUT -1" in log[on:] and "READY" in log[on:], log[on:]
+        assert uuid and log.count("OUTPUT 1") == 1
+    finally:
+        lab.stop()
