@@ -193,7 +193,8 @@ def classify(e, guard_refused, link):
     if guard_refused:
         return "CollisionRefused"
     status = throw_status(getattr(e, "throw_code", None)) or e.name
-    if status == "FBRL_ESTATE" and link is not None and link.units == "mm":
+    # ESTATE: the robot words' refusal; EUNITS: the link's own, where it checks units itself
+    if status in ("FBRL_ESTATE", "FBRL_EUNITS") and link is not None and link.units == "mm":
         return "UnitsMismatch"
     if status == "FBRL_EMAYBE" or e.fate == "may have run":
         return "MayHaveRun"
