@@ -15,10 +15,12 @@
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <curses.h>
 
@@ -27,8 +29,10 @@
 #include "mon.h"
 #include "mon_recover.h"
 #include "mon_runlog.h"
+#include "mon_ws.h"
 
 #define LIB_MAX       64 /* method files shown */
+#define LIB_HEAD_BYTES 65536 /* the head of a method file looked at for its METHOD line */
 #define MSG_LINES     4  /* method output lines shown */
 #define ERR_LINES     2  /* last errors shown (each with what to do) */
 #define FIELD_MAX     12 /* characters of a parameter's field */
@@ -224,15 +228,29 @@ static void engine_error(console *c, char *buf, size_t cap)
 /* ---- the method library: a folder of method files ---- */
 
 /* The first "METHOD name text" line of a file, read as text (the file is loaded only when
- * it is chosen). */
+ * it is chosen): 1 found, 0 none, -1 not a regular file (a device such as /dev/zero, a
+ * FIFO: opened without waiting for a writer, and never read). Only the head is read. */
 static int scan_method_file(const char *path, lib_entry *e)
 {
-    FILE *f = fopen(path, "r");
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat sb;
+    FILE *f;
     char line[512];
+    long head = 0;
     int found = 0;
-    if (f == NULL)
+    if (fd < 0)
         return 0;
-    while (!found && fgets(line, sizeof line, f) != NULL) {
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close(fd);
+        return -1;
+    }
+    f = fdopen(fd, "r");
+    if (f == NULL) {
+        close(fd);
+        return 0;
+    }
+    while (!found && head < LIB_HEAD_BYTES && fgets(line, sizeof line, f) != NULL) {
+        head += (long)strlen(line);
         char *p = line;
         while (*p == ' ' || *p == '\t')
             p++;
@@ -268,6 +286,8 @@ static void scan_library(console *c)
     const char *dir = c->o->methods ? c->o->methods : "methods";
     DIR *d = opendir(dir);
     struct dirent *de;
+    char odd[64] = "";
+    size_t nodd = 0;
     c->nlib = 0;
     if (d == NULL) {
         textf(c->hint, sizeof c->hint, "method library %s: %s", dir, strerror(errno));
@@ -279,12 +299,18 @@ static void scan_library(console *c)
         if (n < 6 || strcmp(de->d_name + n - 5, ".fbrl") != 0)
             continue;
         textf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (scan_method_file(path, &c->lib[c->nlib]))
+        int got = scan_method_file(path, &c->lib[c->nlib]);
+        if (got > 0)
             c->nlib++;
+        else if (got < 0 && nodd++ == 0)
+            textf(odd, sizeof odd, "%s", de->d_name);
     }
     closedir(d);
     qsort(c->lib, c->nlib, sizeof c->lib[0], by_name);
-    if (c->nlib == 0)
+    if (nodd > 0) /* said, so a method that is missing from the list is explained */
+        textf(c->hint, sizeof c->hint, "left out %s%s: not a regular file", odd,
+              nodd > 1 ? " and others" : "");
+    else if (c->nlib == 0)
         textf(c->hint, sizeof c->hint, "no method files (*.fbrl with a METHOD line) in %s", dir);
 }
 
@@ -313,15 +339,28 @@ static void fill_form(console *c)
     c->fresh = 1;
 }
 
+/* A taught place the method file defined again keeps its taught value: said under Messages. */
+static void kept_taught(void *ctx, const char *name, const fbrl_loc *taught, const fbrl_loc *file)
+{
+    console *c = ctx;
+    char line[MIN_COLS + 1];
+    textf(line, sizeof line, "kept taught %s X%.2f Y%.2f Z%.2f (file: X%.2f Y%.2f Z%.2f)", name, taught->x,
+          taught->y, taught->z, file->x, file->y, file->z);
+    push_msg(c, line);
+}
+
 static void choose_method(console *c, const lib_entry *e)
 {
     const fbrl_method *meth = fbrl_method_find(&c->m->methods, e->name);
+    size_t kept = 0;
     if (meth == NULL || !meth->complete) {
         textf(c->hint, sizeof c->hint, "loading %s ...", e->path);
         fflush(c->out);
+        mon_ws_protect(c->m); /* the method file's DEFINE-LOC does not overwrite a taught place */
         c->in_vm++;
         fbrl_status st = fbrl_vm_include(c->m->vm, e->path);
         c->in_vm--;
+        kept = mon_ws_restore(c->m, kept_taught, c);
         if (st != FBRL_OK) {
             char msg[400];
             engine_error(c, msg, sizeof msg);
@@ -343,7 +382,11 @@ static void choose_method(console *c, const lib_entry *e)
     fill_form(c);
     c->screen = SCREEN_FORM;
     c->state = ST_IDLE;
-    textf(c->hint, sizeof c->hint, "fill in the parameters, then F5 to start");
+    if (kept > 0)
+        textf(c->hint, sizeof c->hint, "%zu taught place%s kept over the method file's (see Messages); F5 starts",
+              kept, kept == 1 ? "" : "s");
+    else
+        textf(c->hint, sizeof c->hint, "fill in the parameters, then F5 to start");
 }
 
 /* ---- the parameter form: each field checked against its range ---- */
@@ -842,6 +885,8 @@ static void teach_place(console *c, const char *row)
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, "TEACH", msg);
+    } else {
+        mon_ws_taught(c->m, name); /* a method file opened later does not overwrite it */
     }
     scan_cell(c);
     for (size_t i = 0; i < c->ncell; i++)
@@ -1205,7 +1250,8 @@ static void run_begins(console *c, const fbrl_method *m)
     c->screen = SCREEN_RUN;
     c->state = ST_RUNNING;
     c->abort_asked = c->abort_confirm = c->asking = 0;
-    memset(c->errs, 0, sizeof c->errs); /* the last errors are this run's */
+    memset(c->errs, 0, sizeof c->errs); /* the last errors and the messages are this run's */
+    memset(c->msgs, 0, sizeof c->msgs);
     textf(c->hint, sizeof c->hint, "running %s", m->name);
     draw(c);
 }
@@ -1217,9 +1263,9 @@ static void run_ends(console *c, fbrl_run *run, const fbrl_run_event *ev)
     fbrl_run_snap *s = &c->snap;
     long ok = 0, failed = 0, skipped = 0;
     char line[MIN_COLS + 1];
-    read_arm(c, ev->outcome == FBRL_RUN_ABORTED ? "(safe place)"
-                : ev->outcome == FBRL_RUN_COMPLETED ? "(finished)"
-                                                    : "(halted)");
+    read_arm(c, ev->outcome == FBRL_RUN_ABORTED ? "(safe place)" /* after the safe stop and ON-ABORT */
+                : ev->text != NULL                  ? "(halted)"     /* stopped by a failed step */
+                                                    : "(finished)");
     fbrl_run_snapshot(run, s);
     flush_partial(c);
     if (ev->text != NULL && ev->outcome != FBRL_RUN_COMPLETED && !c->errs[0][0])
@@ -1240,21 +1286,22 @@ static void run_ends(console *c, fbrl_run *run, const fbrl_run_event *ev)
                : ev->outcome == FBRL_RUN_ABORTED ? ST_ABORTED
                : ev->outcome == FBRL_RUN_PARTIAL ? ST_PARTIAL
                                                  : ST_FAILED;
+    /* one line: the outcome, the samples, then what matters next (the samples line and
+     * Messages say which failed and why) */
     if (s->samples > 0)
-        textf(line, sizeof line, ", %ld of %ld samples succeeded (%ld failed, %ld skipped)", ok, s->samples, failed,
-              skipped);
+        textf(line, sizeof line, ": %ld of %ld samples succeeded", ok, s->samples);
     else
         line[0] = '\0';
     if (ev->outcome == FBRL_RUN_ABORTED)
-        textf(c->hint, sizeof c->hint, "%s aborted%s: arm at its safe place, outputs off", ev->method->name, line);
+        textf(c->hint, sizeof c->hint, "%s aborted%s; arm at safe place, outputs off", ev->method->name, line);
     else if (ev->outcome == FBRL_RUN_COMPLETED)
-        textf(c->hint, sizeof c->hint, "%s completed%s: F5 runs it again", ev->method->name, line);
+        textf(c->hint, sizeof c->hint, "%s completed%s; F5 runs it again", ev->method->name, line);
     else if (ev->text != NULL)
-        textf(c->hint, sizeof c->hint, "%s %s%s: arm halted, outputs off", ev->method->name,
+        textf(c->hint, sizeof c->hint, "%s %s%s; arm halted, outputs off", ev->method->name,
               fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line);
     else
-        textf(c->hint, sizeof c->hint, "%s %s%s", ev->method->name,
-              fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line);
+        textf(c->hint, sizeof c->hint, "%s %s%s (%ld failed, %ld skipped)", ev->method->name,
+              fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line, failed, skipped);
 }
 
 /* The console observes the run (as the run log does): what it shows follows the events. */
@@ -1343,12 +1390,15 @@ static void start_run(console *c)
     c->in_vm--;
     flush_partial(c);
     fill_form(c); /* the values as set */
-    if (st != FBRL_OK) { /* it did not begin (the run log, ...) */
+    if (st != FBRL_OK) { /* it did not begin: the reason shown, the form back */
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, NULL, st == FBRL_ETHROW ? msg : fbrl_status_str(st));
-        if (c->state == ST_RUNNING)
-            c->state = ST_FAILED;
+        if (c->log->write_failed) /* the run log could not be written: that is the reason */
+            push_error(c, "run log", c->log->write_error);
+        c->screen = SCREEN_FORM;
+        c->state = ST_IDLE;
+        textf(c->hint, sizeof c->hint, "the run did not start: see the errors");
     }
     draw(c);
 }
@@ -1423,7 +1473,7 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     set_escdelay(100); /* Esc leaves the Forth line at once, not after a second */
     curs_set(0);
     scan_library(c);
-    if (c->nlib > 0)
+    if (c->nlib > 0 && !c->hint[0])
         textf(c->hint, sizeof c->hint, "choose a method and press Enter");
     while (!c->quit && !fbrl_vm_bye(m->vm)) {
         draw(c);

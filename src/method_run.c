@@ -371,8 +371,9 @@ static int run_ask(void *ctx, const char *question)
     r->work.s.question = 0;
     r->work.s.question_text[0] = '\0';
     publish(r);
-    if (choice == 0) { /* aborted, or interrupted, while it asked */
-        take_abort(r);
+    if (choice == 0) { /* aborted, or interrupted from outside (fbrlmon's Ctrl-C), while it asked */
+        if (!take_abort(r))
+            r->interrupted = 1;
         return 'A';
     }
     event(&ev, FBRL_RUN_EV_ANSWER, r->work.s.step, r->work.s.sample, NULL);
@@ -441,7 +442,7 @@ static void begin(fbrl_run *r, const fbrl_method *m, long samples)
     memset(r->marked, 0, sizeof r->marked);
     w->t0_us = now_us(r);
     r->m = m;
-    r->aborted = 0;
+    r->aborted = r->interrupted = 0;
     r->questions = 0;
     r->abort_who[0] = '\0';
     lock(r);
@@ -479,6 +480,10 @@ static int between(fbrl_run *r, long step, long sample)
         wait_once(r);
     if (take_abort(r))
         return 1;
+    if (fbrl_vm_interrupt_pending(r->vm)) { /* interrupted from outside while paused: no resume */
+        r->interrupted = 1;
+        return 1;
+    }
     lock(r);
     copy_text(who, sizeof who, r->req_who[WHO_RESUME]);
     unlock(r);
@@ -602,7 +607,7 @@ static fbrl_run_outcome settle(fbrl_run *r, int code, int reached_end, const cha
     }
     for (long i = 0; i < s->samples; i++)
         ok += s->outcomes[i].outcome == FBRL_SAMPLE_SUCCEEDED;
-    if (r->aborted || code == FBRL_THROW_INTERRUPT)
+    if (r->aborted || r->interrupted || code == FBRL_THROW_INTERRUPT)
         return FBRL_RUN_ABORTED;
     if (reached_end && ok == s->samples)
         return FBRL_RUN_COMPLETED;
@@ -684,6 +689,7 @@ static fbrl_status run_method(fbrl_run *r, const fbrl_method *m)
         r->methods->running = NULL;
         r->work.s.state = FBRL_RUN_FINISHED;
         r->work.s.outcome = FBRL_RUN_NONE;
+        r->work.end_us = r->work.t0_us;
         publish(r);
         return fbrl_vmx_throwf(vm, FBRL_THROW_FILE_IO, "RUN-METHOD: %s: the run could not start (its run log?)",
                                m->name);

@@ -176,7 +176,7 @@ typedef struct fbrl_run {
     void *outer_note_ctx;
     /* the engine's side */
     const fbrl_method *m;
-    int active, began, aborted, last_sample_step, questions;
+    int active, began, aborted, interrupted, last_sample_step, questions;
     uint8_t marked[FBRL_RUN_MAX_SAMPLES];
     char abort_who[FBRL_RUN_WHO_MAX + 1];
     char pred_method[FBRL_METHOD_NAME_MAX + 1], meas_method[FBRL_METHOD_NAME_MAX + 1];

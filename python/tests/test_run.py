@@ -9,6 +9,7 @@ import time
 import pytest
 
 import fbrl
+from conftest import Sim, LOADED_HOST_ECHO_MS
 
 SRC = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -120,3 +121,42 @@ def test_pause_resume_and_abort_from_another_thread():
         assert fb.eval("SAFE @ .").strip() == "1"  # ON-ABORT ran
         with pytest.raises(fbrl.Error):
             run.pause("late")  # no run goes
+
+
+SEPARATION = """3 INPUT-DEVICE TUBE-ON-SEPARATOR
+5 OUTPUT-DEVICE SEPARATOR-VACUUM
+: SEPARATE ( n -- ) TUBE-ON-SEPARATOR TRUE 300 WAIT-INPUT IF 50 SEPARATOR-VACUUM PULSE DROP
+   ELSE S" its tube never reached the separation unit's sensor" SAMPLE-FAILED THEN ;
+METHOD SEP  the separation step of the sample preparation
+1 12 2 SAMPLES-PARAM #SAMPLES tubes  the tubes
+' SEPARATE SAMPLE-STEP Separation  vacuum when the tube is there
+END-METHOD
+"""
+
+
+def run_separation(port):
+    with fbrl.Port(port) as p:
+        link = fbrl.Link(p, echo_timeout_ms=LOADED_HOST_ECHO_MS)
+        with fbrl.Engine(link=link) as fb:
+            run = fbrl.Run(fb)
+            declare(fb, SEPARATION)
+            return run.start("SEP", {"#SAMPLES": 2})
+
+
+def test_a_method_on_fbrlsim_with_and_without_the_tube(sim, tmp_path):
+    """The controller's log is the truth: the vacuum valve opened once per sample that
+    succeeded; without the tube both samples failed, with why."""
+    r = run_separation(sim.port)
+    why = "its tube never reached the separation unit's sensor"
+    assert r["outcome"] == "failed"
+    assert r["samples"] == [{"sample": 1, "outcome": "failed", "reason": why},
+                            {"sample": 2, "outcome": "failed", "reason": why}]
+    assert "TYPEI SIG(3)" in sim.log() and "OUTPUT 5" not in sim.log()
+    (tmp_path / "tube").mkdir()
+    tube = Sim(tmp_path / "tube", "--inputs", os.path.join(SRC, "examples", "tube_present.inputs"))
+    try:
+        r = run_separation(tube.port)
+        assert r["outcome"] == "completed" and [x["outcome"] for x in r["samples"]] == ["succeeded"] * 2
+        assert tube.log().count("OUTPUT 5") == 2 and tube.log().count("OUTPUT -5") == 2
+    finally:
+        tube.stop()

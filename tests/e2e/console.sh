@@ -157,13 +157,7 @@ shot cell
 key Down Down Down Down Down Down Down Down Down Down
 teach_from=$(lines)
 key t
-wait_for "TEACH keys"
-jogs=$(grep -c '^JOG 0.1,0,0$' sim.log)
-key Right
-k=0
-while [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" = "$jogs" ] && [ $k -lt 100 ]; do sleep 0.1; k=$((k + 1)); done
-sleep 0.5
-key Enter
+teach_jog
 wait_for "TEACH SPOT done"
 teach_to=$(lines)
 # where the composed run left the arm (X 6 Y -8 Z 7, its last W2) plus the jog
@@ -180,7 +174,7 @@ key F5
 wait_long "R retry, S skip this sample, A abort" 10
 shot ask
 key s
-wait_long "TUBE-CHECK failed, 0 of 1 samples succeeded (0 failed, 1 skipped)" 10
+wait_long "TUBE-CHECK failed: 0 of 1 samples succeeded (0 failed, 1 skipped)" 10
 wait_for "tube skipped"
 wait_for "sample 1 skipped: CHECK failed (PART-MISSING): the operator skipped the sample"
 key F9; key 1

@@ -20,7 +20,7 @@ wall=$(echo "$t1 $t0" | awk '{ printf "%.3f", $1 - $2 }')
 awk -v w="$wall" 'BEGIN { exit !(w < 10) }' || fail "the dry run took $wall s (at most 10)"
 dur=$(sed -n 's/^simulated duration \([0-9.]*\) s.*/\1/p' "$work/dry.out")
 [ -n "$dur" ] || fail "no simulated duration: $(cat "$work/dry.out")"
-grep -q '^commands [0-9]*, moves 89, errors 0$' "$work/dry.out" || fail "moves/errors: $(grep '^commands' "$work/dry.out")"
+grep -q '^commands [0-9]*, moves 89, errors 0, time-outs 0$' "$work/dry.out" || fail "moves/errors: $(grep '^commands' "$work/dry.out")"
 grep -q '^smallest clearance [0-9.]* in to [A-Z-]* at X ' "$work/dry.out" || fail "no smallest clearance"
 # the plan's pulses: buffer pump (output 1) 2 per tube, syringe (6) 2 per tube, ...
 n=$(grep -c ' output 1 pulse 0.05' "$work/dry.out")

@@ -327,6 +327,23 @@ static void corrective_actions_skip_samples(void **state)
     drop(f);
 }
 
+/* Two more observers that only say they were called (BEGIN and END). */
+static int order_a(void *ctx, fbrl_run *r, const fbrl_run_event *ev)
+{
+    (void)r;
+    if (ev->kind == FBRL_RUN_EV_BEGIN || ev->kind == FBRL_RUN_EV_END)
+        ev_add(ctx, "A;");
+    return 0;
+}
+
+static int order_b(void *ctx, fbrl_run *r, const fbrl_run_event *ev)
+{
+    (void)r;
+    if (ev->kind == FBRL_RUN_EV_BEGIN || ev->kind == FBRL_RUN_EV_END)
+        ev_add(ctx, "B;");
+    return 0;
+}
+
 static void observers_and_the_remaining_time(void **state)
 {
     (void)state;
@@ -340,6 +357,7 @@ static void observers_and_the_remaining_time(void **state)
              "' C STEP C  at once\n"
              "END-METHOD\n");
     /* an observer that refuses: the run never begins */
+    f->events[0] = '\0';
     f->refuse = 1;
     assert_int_not_equal(fbrl_run_start(&f->run, "T", NULL, 0, NULL), FBRL_OK);
     assert_null(strstr(f->events, "start"));
@@ -369,6 +387,18 @@ static void observers_and_the_remaining_time(void **state)
     assert_int_equal(f->rem[0], 2000 + 1000 + 100);
     assert_int_equal(f->rem[1], 1000 + 100);
     assert_int_equal(f->rem[5], 100);
+    /* observers in the order added; one removed and added again comes last */
+    assert_int_equal(fbrl_run_observe(&f->run, order_a, f), FBRL_OK);
+    assert_int_equal(fbrl_run_observe(&f->run, order_b, f), FBRL_OK);
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_a, f), FBRL_OK);
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_a, f), FBRL_ENOENT);
+    assert_int_equal(fbrl_run_observe(&f->run, order_a, f), FBRL_OK);
+    f->events[0] = '\0';
+    assert_int_equal(fbrl_run_start(&f->run, "T", NULL, 0, NULL), FBRL_OK);
+    SAW(f, "begin T;B;A;start A -1;");
+    SAW(f, "end completed;B;A;");
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_a, f), FBRL_OK);
+    assert_int_equal(fbrl_run_unobserve(&f->run, order_b, f), FBRL_OK);
     f->fake = 0;
     drop(f);
 }
@@ -507,6 +537,37 @@ static void pause_resume_abort_from_another_thread(void **state)
     drop(f);
 }
 
+/* An interrupt from outside the run (fbrlmon's Ctrl-C is fbrl_vm_interrupt) while it is
+ * paused: aborted, and neither a resume nor the safe stop and ON-ABORT, which are whoever
+ * interrupted's to make. */
+static void an_interrupt_from_outside_while_paused(void **state)
+{
+    (void)state;
+    fixture *f = new_run();
+    pthread_t eng;
+    void *res;
+    fbrl_cell safe = -1;
+    lines(f, threads_src);
+    assert_int_equal(pthread_create(&eng, NULL, engine, f), 0);
+    wait_state(f, FBRL_RUN_RUNNING, 2000);
+    assert_int_equal(fbrl_run_pause(&f->run, "ann"), FBRL_OK);
+    wait_state(f, FBRL_RUN_PAUSED, 3000);
+    fbrl_vm_interrupt(f->vm);
+    assert_int_equal(pthread_join(eng, &res), 0);
+    assert_int_equal((intptr_t)res, FBRL_OK);
+    fbrl_run_snap s = snap(f);
+    assert_int_equal(s.outcome, FBRL_RUN_ABORTED);
+    SAW(f, " by ann;");
+    SAW(f, ";end aborted");
+    assert_null(strstr(f->events, "resume"));
+    assert_null(strstr(f->events, "safe-stop"));
+    assert_null(strstr(f->events, "on-abort"));
+    assert_int_equal(fbrl_vm_eval(f->vm, "SAFE @", 6), FBRL_OK);
+    assert_int_equal(fbrl_vm_pop(f->vm, &safe), FBRL_OK);
+    assert_int_equal(safe, 0);
+    drop(f);
+}
+
 typedef struct answerer {
     fixture *f;
     fbrl_run_choice choices[4];
@@ -587,6 +648,7 @@ int main(void)
         cmocka_unit_test(corrective_actions_skip_samples),
         cmocka_unit_test(observers_and_the_remaining_time),
         cmocka_unit_test(pause_resume_abort_from_another_thread),
+        cmocka_unit_test(an_interrupt_from_outside_while_paused),
         cmocka_unit_test(questions_answered_from_another_thread),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
