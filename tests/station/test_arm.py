@@ -151,6 +151,9 @@ def test_a_motion_before_home_is_not_homed(fresh):
     result, _ = client.run(ARM, "MoveToPlace", **place("SEPARATOR"))
     assert isinstance(result, Failure) and result.identifier == "NotHomed", result
     assert "041" in result.message
+    result, _ = client.run(ROBOT, "MovePlate", OriginSite=site("SEPARATOR", 0), DestinationSite=site("RINSE-REST", 0),
+                           PlateType=S("TUBE"))
+    assert isinstance(result, Failure) and result.identifier == "NotHomed", result
 
 
 def test_a_controller_in_millimetres_is_a_units_mismatch(tmp_path):

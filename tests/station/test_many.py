@@ -33,7 +33,7 @@ def test_four_arms_found_by_discovery_run_a_method_at_once(tmp_path):
     (lib / "methods").mkdir(parents=True)
     for f in ("asps_cell.fbrl", "asps_cell_objects.fbrl"):
         shutil.copy(os.path.join(ROOT, "examples", f), lib)
-    shutil.copy(os.path.join(ROOT, "tests", "station", "methods", "quick.fbrl"), lib / "methods")
+    shutil.copy(os.path.join(ROOT, "tests", "station", "methods", "station_tests.fbrl"), lib / "methods")
     sims, stations, clients = [], [], []
     try:
         for k in range(ARMS):

@@ -116,7 +116,7 @@ def wait_for_event(lab, uuid, event, step=None):
 # ------------------------------------------------------------------ the library
 def test_methods_list_parameters_with_their_ranges_as_sila_constraints(lab):
     methods = {m.Name.value: m for m in lab.client.get(ML, "Methods")}
-    assert {"SAMPLE-PREP", "QUICK", "VIAL-CHECK", "BUMP"} <= set(methods)
+    assert {"SAMPLE-PREP", "QUICK", "VIAL-CHECK", "BUMP", "FAR-AWAY"} <= set(methods)
     sp = methods["SAMPLE-PREP"]
     assert sp.File.value.endswith("sample_prep.fbrl")
     ps = {p.Name.value: p for p in sp.Parameters}
@@ -173,6 +173,12 @@ def test_samples_that_fail_make_the_outcome(lab):
     assert [(s.Outcome.value, bool(s.Reason.value)) for s in result.Samples] == [("failed", True)]
 
 
+def test_a_run_the_controller_refuses_carries_its_code(lab):
+    result, inter, _ = follow(lab, start(lab, "FAR-AWAY"))
+    assert isinstance(result, Failure) and result.identifier == "ControllerRefused", result
+    assert "029" in result.message and ("StepFailed", "Reach", 0) in events(inter)
+
+
 def test_a_run_stopped_by_the_guard_is_collision_refused(lab):
     before = len(lab.sim.log())
     result, inter, _ = follow(lab, start(lab, "BUMP"))
@@ -191,7 +197,11 @@ def test_pause_resume_and_the_arm_is_busy_meanwhile(lab):
     with pytest.raises(Failure) as e:  # paused already
         lab.client.call(PAUSE, "Pause", CommandExecutionUUID=pb.messages(PAUSE).DataType_UUID(UUID=S(uuid)))
     assert e.value.identifier == "InvalidCommandState"
+    site = pb.messages("RobotController").DataType_Site
     for call in (lambda: lab.client.start(ARM, "Home"),
+                 lambda: lab.client.start("RobotController", "MovePlate", OriginSite=site(
+                     Site=site.Site_Struct(Device=S("SEPARATOR"), SiteIndex=I(0))), DestinationSite=site(
+                     Site=site.Site_Struct(Device=S("RINSE-REST"), SiteIndex=I(0))), PlateType=S("TUBE")),
                  lambda: lab.client.call(ARM, "Grip", Width=am.DataType_Opening(Opening=R(1.0)), Force=I(40))):
         with pytest.raises(Failure) as e:
             call()
@@ -233,9 +243,11 @@ def test_cancel_and_pause_know_what_they_can_act_on(lab):
     with pytest.raises(Failure) as e:
         lab.client.call(PAUSE, "Pause", CommandExecutionUUID=pb.messages(PAUSE).DataType_UUID(UUID=S(u)))
     assert e.value.identifier == "OperationNotSupported"
-    with pytest.raises(Failure) as e:
-        lab.client.call(CANCEL, "CancelCommand", CommandExecutionUUID=U(UUID=S("12345678-1234-1234-1234-123456789abc")))
-    assert e.value.identifier == "InvalidCommandExecutionUUID"
+    for feature, command in ((CANCEL, "CancelCommand"), (PAUSE, "Pause"), (PAUSE, "Resume")):
+        with pytest.raises(Failure) as e:
+            lab.client.call(feature, command, CommandExecutionUUID=pb.messages(feature).DataType_UUID(
+                UUID=S("12345678-1234-1234-1234-123456789abc")))
+        assert e.value.identifier == "InvalidCommandExecutionUUID"
     with pytest.raises(Failure) as e:
         lab.client.call(CANCEL, "CancelCommand", CommandExecutionUUID=U(UUID=S("not-a-uuid")))
     assert e.value.kind == "validationError"
