@@ -5,10 +5,11 @@ median and p99 of a property read and of an observable command's overhead beyond
 own time, with TLS and with plain gRPC, and with four arms (four stations, four emulators)
 driven at once from one client. Prints figures; asserts nothing.
 
-The robot's own time of the command (MoveToPlace between two places, with FINISH) is the same
-FBRL text run straight through the Python bindings against an emulator like the station's;
-a call's overhead is its time at the client (the command, its Info stream to the end, its
-Result) less the median of those direct runs. The emulators run 1000 times faster than the
+The robot's own time of the command (MoveToPlace between two places, with FINISH, and the W2
+the station reads after it) is the same FBRL text run straight through the Python bindings
+against an emulator like the station's, timed just before each call to the station, so both
+see the same load; a call's overhead is its time at the client (the command, its Info stream
+to the end, its Result) less that direct run's. The emulators run 1000 times faster than the
 arm (fbrlsim --time-scale 1000), so the robot's time is the link's.
 
     ./scripts/build.sh build && /usr/bin/python3 bench/station_bench.py build
@@ -63,26 +64,28 @@ class Sim:
         self.proc.stdout.close()
 
 
-def direct_times(tmp):
+class Direct:
     """The robot's own time of the motion: the same FBRL text through the bindings."""
-    sim = Sim(os.path.join(tmp, "direct.log"))
-    try:
-        with fbrl.Port(sim.port) as port:
-            fb = fbrl.Engine(link=fbrl.Link(port), dict_bytes=4 << 20)
-            fb.include(os.path.join(ROOT, "python", "fbrl_station", "sites.fbrl"))
-            fb.include(SITES)
-            fb.eval("HOME")
-            names = fb.eval(".SITES").split()
-            index = {names[i]: i // 3 for i in range(0, len(names), 3)}
-            times = []
-            for k in range(MOVES):
-                t = time.perf_counter()
-                fb.eval("0 %d SITE-LOC MOV FINISH" % index[PLACES[k % 2]])
-                fb.link.where()  # the station reads the arm after each command too
-                times.append(time.perf_counter() - t)
-            return times
-    finally:
-        sim.stop()
+
+    def __init__(self, tmp):
+        self.sim = Sim(os.path.join(tmp, "direct.log"))
+        self.port = fbrl.Port(self.sim.port)
+        self.fb = fbrl.Engine(link=fbrl.Link(self.port), dict_bytes=4 << 20)
+        self.fb.include(os.path.join(ROOT, "python", "fbrl_station", "sites.fbrl"))
+        self.fb.include(SITES)
+        self.fb.eval("HOME")
+        names = self.fb.eval(".SITES").split()
+        self.index = {names[i]: i // 3 for i in range(0, len(names), 3)}
+
+    def move(self, k):
+        t = time.perf_counter()
+        self.fb.eval("0 %d SITE-LOC MOV FINISH" % self.index[PLACES[k % 2]])
+        self.fb.link.where()  # the station reads the arm after each command too
+        return time.perf_counter() - t
+
+    def close(self):
+        self.port.close()
+        self.sim.stop()
 
 
 def station(tmp, name, insecure):
@@ -101,59 +104,70 @@ def reads(c):
     return times
 
 
-def moves(c, n=MOVES):
+def moves(c, direct, n=MOVES, lock=None):
+    """n MoveToPlace calls, each after the same motion run directly: [(station s, direct s)]."""
     c.run("ArmController", "Home")
-    times = []
+    out = []
     for k in range(n):
+        if lock:
+            with lock:
+                d = direct.move(k)
+        else:
+            d = direct.move(k)
         t = time.perf_counter()
         result, _ = c.run("ArmController", "MoveToPlace", Place=am.DataType_PlaceName(PlaceName=S(PLACES[k % 2])),
                           Index=I(0))
-        times.append(time.perf_counter() - t)
+        out.append((time.perf_counter() - t, d))
         assert result is not None and not hasattr(result, "kind"), result
-    return times
+    return out
+
+
+def overhead(pairs):
+    return [st - d for st, d in pairs]
 
 
 def main():
     print("machine: %d cores, load %s" % (os.cpu_count(), open("/proc/loadavg").read().split()[:3]))
     with tempfile.TemporaryDirectory() as tmp:
-        robot = direct_times(tmp)
-        base = statistics.median(robot)
-        print("robot's own time of a MoveToPlace (bindings, fbrlsim x%s): %s" % (SCALE, ms(robot)))
-        for insecure in (False, True):
-            sim, st = station(tmp, "plain" if insecure else "tls", insecure)
-            c = st.client()
-            try:
-                label = "plain gRPC" if insecure else "TLS"
-                r = reads(c)
-                print("| property read (Get_ServerUUID), %s | %s |" % (label, ms(r)))
-                m = moves(c)
-                print("| observable command overhead (MoveToPlace), %s | %s |" % (label, ms([x - base for x in m])))
-            finally:
-                c.close()
-                st.stop()
-                sim.stop()
-        arms = [station(tmp, "arm%d" % k, False) for k in range(4)]
+        direct = Direct(tmp)
         try:
-            clients = [st.client() for _, st in arms]
-            results = [None] * 4
-            threads = [threading.Thread(target=lambda k=k: results.__setitem__(k, moves(clients[k], MOVES // 2)))
-                       for k in range(4)]
-            t0 = time.perf_counter()
-            for t in threads:
-                t.start()
-            for t in threads:
-                t.join()
-            wall = time.perf_counter() - t0
-            allm = [x - base for r in results for x in r]
-            print("| observable command overhead, 4 arms at once, TLS | %s (%d commands in %.1f s) |"
-                  % (ms(allm), len(allm), wall))
-            for c in clients:
-                c.close()
+            for insecure in (False, True):
+                sim, st = station(tmp, "plain" if insecure else "tls", insecure)
+                c = st.client()
+                try:
+                    label = "plain gRPC" if insecure else "TLS"
+                    print("| property read (Get_ServerUUID), %s | %s |" % (label, ms(reads(c))))
+                    pairs = moves(c, direct)
+                    print("| observable command overhead (MoveToPlace), %s | %s | robot's own time %s |"
+                          % (label, ms(overhead(pairs)), ms([d for _, d in pairs])))
+                finally:
+                    c.close()
+                    st.stop()
+                    sim.stop()
+            arms = [station(tmp, "arm%d" % k, False) for k in range(4)]
+            try:
+                clients = [st.client() for _, st in arms]
+                results = [None] * 4
+                lock = threading.Lock()  # the one direct emulator serves the four in turn
+                threads = [threading.Thread(target=lambda k=k: results.__setitem__(
+                    k, moves(clients[k], direct, MOVES // 2, lock))) for k in range(4)]
+                t0 = time.perf_counter()
+                for t in threads:
+                    t.start()
+                for t in threads:
+                    t.join()
+                wall = time.perf_counter() - t0
+                allm = [x for r in results for x in overhead(r)]
+                print("| observable command overhead, 4 arms at once, TLS | %s (%d commands in %.1f s) |"
+                      % (ms(allm), len(allm), wall))
+                for c in clients:
+                    c.close()
+            finally:
+                for sim, st in arms:
+                    st.stop()
+                    sim.stop()
         finally:
-            for sim, st in arms:
-                st.stop()
-                sim.stop()
-
+            direct.close()
 
 if __name__ == "__main__":
     main()
