@@ -138,7 +138,7 @@ def main():
                     label = "plain gRPC" if insecure else "TLS"
                     print("| property read (Get_ServerUUID), %s | %s |" % (label, ms(reads(c))))
                     pairs = moves(c, direct)
-                    print("| observable command overhead (MoveToPlace), %s | %s | robot's own time %s |"
+                    print("| observable command overhead (MoveToPlace), %s | %s (the robot's own time: %s) |"
                           % (label, ms(overhead(pairs)), ms([d for _, d in pairs])))
                 finally:
                     c.close()
