@@ -170,6 +170,9 @@ class Runs:
         owner.arm_state.set("Running")
         try:
             self._predict(c, rs, m)
+            if rs.ending == "cancel":  # while the dry run ran
+                raise RobotFailure("MethodCancelled", "cancelled by %s before it started" % rs.cancelled_by)
+            log.info("%s: run started by %s", m["name"], who)
             rs.guard_before = c.engine.guard[1]
             ticker = threading.Thread(target=self._tick, args=(rs,), name="fbrl-run-ticker", daemon=True)
             rs.ticking = True
@@ -238,6 +241,8 @@ class Runs:
         """The run's events (owner thread) as the execution's intermediate responses."""
         kind = ev["kind"]
         if kind == "begin":
+            if rs.ending == "cancel":  # cancelled between the check above and now: it ends at once
+                rs.run.abort(rs.cancelled_by)
             snap = rs.run.snapshot()
             rs.samples = len(snap["samples"])
             rs.e.start(None if snap["remaining_ms"] is None else snap["remaining_ms"] / 1000.0)
