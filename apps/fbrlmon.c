@@ -20,6 +20,7 @@
 #include "mon_conn.h"
 #include "mon_dry.h"
 #include "mon_relink.h"
+#include "lab.h"
 #include "mon_runlog.h"
 #include "console.h"
 #include "mon_safe.h"
@@ -48,6 +49,7 @@ typedef struct options {
     const char *svg; /* --svg FILE */
     mon_dry_options dry;
     console_options console; /* --console, --methods, --level; --run-log, --operator */
+    const char *lab;         /* --lab DIR: the lab's users and audit trail (docs/compliance.md) */
 } options;
 
 static void usage(FILE *f)
@@ -65,11 +67,22 @@ static void usage(FILE *f)
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
           "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
-          "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
+          "  --axes N         the axes in the controller's readouts (default: the arm's)\n",
+          f);
+    {
+        char names[64];
+        fbrl_arm_names(names, sizeof names, '|');
+        fprintf(f,
+                "  --arm %-10s the arm (default %s): its kinematics, limits, pulses per\n"
+                "                   degree and READY for the link's position check, the cell's\n"
+                "                   guard and the robot words; the emulator is that arm\n",
+                names, fbrl_arm_model(0)->name);
+    }
+    fputs(
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
-          "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
+          "  --sim-model M    the same as --arm (its older name)\n"
           "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
           "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
@@ -85,6 +98,8 @@ static void usage(FILE *f)
           "  --keep-files     the dry run writes the plan's files (default: a scratch dir)\n"
           "  --run-log FILE   every RUN-METHOD appends its run log (JSON lines) to FILE\n"
           "  --operator NAME  the operator named in run logs (default: $USER)\n"
+          "  --lab DIR        the lab's users and audit trail: runs need a\n"
+          "                   signed-in user and a Released method (docs/compliance.md)\n"
           "  --console        the operator console (full screen) after the FILEs\n"
           "  --methods DIR    the console's method library (default: methods)\n"
           "  --level L        the console's level: operator (default), developer or\n"
@@ -131,6 +146,7 @@ enum {
     OPT_FLOW,
     OPT_LOW_LATENCY,
     OPT_AXES,
+    OPT_ARM,
     OPT_SIM,
     OPT_SIM_STATE,
     OPT_SIM_MODEL,
@@ -147,7 +163,8 @@ enum {
     OPT_RUN_LOG,
     OPT_OPERATOR,
     OPT_METHODS,
-    OPT_LEVEL
+    OPT_LEVEL,
+    OPT_LAB
 };
 
 /* "-" first: FILEs come back as option 1 in command-line order (they run in order
@@ -162,6 +179,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"flow", required_argument, NULL, OPT_FLOW},
                                              {"low-latency", required_argument, NULL, OPT_LOW_LATENCY},
                                              {"axes", required_argument, NULL, OPT_AXES},
+                                             {"arm", required_argument, NULL, OPT_ARM},
 #ifdef FBRLMON_HAVE_SIM
                                              {"sim", no_argument, NULL, OPT_SIM},
                                              {"dry-run", no_argument, NULL, OPT_DRY_RUN},
@@ -171,6 +189,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"console", no_argument, NULL, OPT_CONSOLE},
                                              {"run-log", required_argument, NULL, OPT_RUN_LOG},
                                              {"operator", required_argument, NULL, OPT_OPERATOR},
+                                             {"lab", required_argument, NULL, OPT_LAB},
                                              {"methods", required_argument, NULL, OPT_METHODS},
                                              {"level", required_argument, NULL, OPT_LEVEL},
                                              {"sim-state", required_argument, NULL, OPT_SIM_STATE},
@@ -209,9 +228,11 @@ static int set_valued(options *o, int c, const char *v)
         return 0;
     case OPT_WORKSPACE: o->workspace = v; return 0;
     case OPT_SIM_STATE: o->conn.sim_state = v; return 0;
-    case OPT_SIM_MODEL: o->conn.sim_model = v; return 0;
+    case OPT_ARM:
+    case OPT_SIM_MODEL: return (o->conn.arm = fbrl_arm_find(v)) != NULL ? 0 : -1;
     case OPT_SIM_INPUTS: o->conn.sim_inputs = v; return 0;
     case OPT_PRINTER: o->printer = v; return 0;
+    case OPT_LAB: o->lab = v; return 0;
     case OPT_SVG: o->svg = v; return 0;
     case OPT_RUN_LOG:
     case OPT_OPERATOR:
@@ -299,13 +320,22 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         default:
             if (set_valued(o, c, optarg) != 0) {
-                fprintf(stderr, "fbrlmon: %s: bad value '%s'\n", option_name(c, name, sizeof name), optarg);
+                int arm = c == OPT_ARM || c == OPT_SIM_MODEL;
+                char names[64];
+                fbrl_arm_names(names, sizeof names, '|');
+                fprintf(stderr, "fbrlmon: %s: bad value '%s'%s%s%s\n", option_name(c, name, sizeof name), optarg,
+                        arm ? " (" : "", arm ? names : "", arm ? ")" : "");
                 goto bad;
             }
             if (c == OPT_PORT)
                 explicit_conn = 1;
             break;
         }
+    }
+    if (o->conn.arm != NULL && o->conn.axes != 0 && o->conn.axes != o->conn.arm->naxes) {
+        fprintf(stderr, "fbrlmon: --axes %u does not fit the %s (%u axes)\n", o->conn.axes, o->conn.arm->name,
+                o->conn.arm->naxes);
+        goto bad;
     }
     for (; optind < argc; optind++) { /* after "--": FILEs only */
         o->actions[o->n_actions].is_text = 0;
@@ -330,6 +360,7 @@ bad:
 
 static mon_conn g_conn;     /* fixed address while open, as the uart backend needs */
 static mon_runlog g_runlog; /* the link reports every executed line to it */
+static lab g_lab;          /* --lab: its users and chain */
 
 /* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
  * (a printer or a second line shows it as it is printed). */
@@ -457,6 +488,8 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
     m.conn = g_conn.open ? &g_conn : NULL;
+    /* the guard computes the arm the link checks positions of (and the emulator is) */
+    fbrl_cell_set_arm(&m.cell->model, g_conn.arm ? g_conn.arm : fbrl_arm_model(0), 0.0);
     if (mon_relink_install(&m) != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot define RECONNECT and RESUME\n");
         mon_close(&m);
@@ -478,6 +511,18 @@ int main(int argc, char **argv)
         mon_runlog_set_path(&g_runlog, opt.console.run_log);
         if (opt.console.operator_id != NULL)
             snprintf(g_runlog.operator_id, sizeof g_runlog.operator_id, "%s", opt.console.operator_id);
+        if (opt.lab != NULL) {
+            /* the lab: its users sign in; its chain is the run log unless --run-log names one */
+            if (lab_init(&g_lab, opt.lab, NULL, opt.console.run_log) != 0 || lab_load_users(&g_lab) != 0) {
+                fprintf(stderr, "fbrlmon: %s\n", g_lab.err);
+                mon_close(&m);
+                mon_conn_close(&g_conn);
+                free(opt.actions);
+                return MON_EXIT_CONNECT;
+            }
+            g_runlog.audit.lab = &g_lab;
+            mon_runlog_set_path(&g_runlog, g_lab.chain_path);
+        }
     }
 
     if (opt.printer != NULL) {

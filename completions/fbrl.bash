@@ -2,7 +2,7 @@
 # bash completion for fbrlmon, fbrlsim, fbrl-dump and fbrl-station (installed as
 # /usr/share/bash-completion/completions/fbrlmon, .../fbrlsim, .../fbrl-dump and .../fbrl-station). The option names come
 # from the program's own --help, so a new option completes without a change here; the
-# values below are those the programs accept.
+# values below are those the programs accept (the arm models also from --help).
 
 _fbrl_ports()
 {
@@ -45,8 +45,10 @@ _fbrl_complete()
             COMPREPLY=($(compgen -W 'on off' -- "$cur"))
             return
             ;;
-        --sim-model | --model)
-            COMPREPLY=($(compgen -W 'a255 a465' -- "$cur"))
+        --arm | --sim-model | --model)
+            # the arm models, as --help lists them ("--arm a255|a465")
+            COMPREPLY=($(compgen -W "$("$1" --help 2>/dev/null |
+                sed -n 's/^ *--\(arm\|model\) \([a-z0-9|]*\) .*/\2/p' | tr '|' ' ')" -- "$cur"))
             return
             ;;
         --data-bits)

@@ -33,10 +33,17 @@ static void usage(FILE *f)
           "  --cmd-time MS       the controller's own time to read a command line before it\n"
           "                      acts, in simulated ms (default 0)\n"
           "  --rx-buffer N       receive buffer size with --baud (default 128)\n"
-          "  --time-scale N      run simulated time N times faster than real time\n"
-          "  --model a255|a465   the arm: 5-axis A255 (default) or 6-axis A465; kept in\n"
-          "                      --state\n"
-          "  --state FILE        keep locations, variables, outputs and settings in FILE\n"
+          "  --time-scale N      run simulated time N times faster than real time\n",
+          f);
+    {
+        char names[64];
+        fbrl_arm_names(names, sizeof names, '|');
+        fprintf(f,
+                "  --model %-11s the arm (default %s; fbrlmon --arm, docs/robot.md); kept\n"
+                "                      in --state\n",
+                names, fbrl_arm_model(0)->name);
+    }
+    fputs("  --state FILE        keep locations, variables, outputs and settings in FILE\n"
           "  --log FILE          append one line per command executed\n"
           "  --cell FILE         the work cell (CELL-* words): a motion into it stops\n"
           "                      there with 190-COLLISION\n"

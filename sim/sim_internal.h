@@ -6,7 +6,7 @@
 #include <pthread.h>
 #include <stdio.h>
 
-#include "arm.h"
+#include "fbrl/arm.h"
 #include "sim_errors.h"
 #include "fbrlsim.h"
 #include "fbrl/cell.h"
@@ -24,7 +24,7 @@ typedef struct sim_loc {
     char name[SIM_NAME_MAX + 1]; /* without '#' */
     int precision;               /* 1: pulses in p, 0: cartesian in v */
     double v[6];
-    long p[FBRL_SIM_ARM_MAX_AXES];
+    long p[FBRL_ARM_AXES_MAX];
 } sim_loc;
 
 typedef struct sim_var {
@@ -173,20 +173,20 @@ typedef struct sim_mem {
 
 /* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
 typedef struct sim_arm {
-    double q[FBRL_SIM_ARM_MAX_AXES];  /* joints at the segment's start (or at rest) */
-    double qt[FBRL_SIM_ARM_MAX_AXES]; /* joints at its end */
-    double pa[6], pb[6];              /* straight-line segment poses */
-    int collide;                      /* this segment ends at a collision: its command answers
+    double q[FBRL_ARM_AXES_MAX];  /* joints at the segment's start (or at rest) */
+    double qt[FBRL_ARM_AXES_MAX]; /* joints at its end */
+    double pa[6], pb[6];          /* straight-line segment poses */
+    int collide;                  /* this segment ends at a collision: its command answers
                                        * SIM_E_COLLISION once the arm stands */
     int moving, straight;
     double mt0, mt1;                       /* simulated start and end */
     double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
     int xmoving, xhomed;
-    const fbrl_sim_model *model; /* the arm: geometry, limits, speeds, axes */
+    const fbrl_arm *model; /* the arm: geometry, limits, speeds, axes */
     double speed;
     int homed, power;
-    int locked[FBRL_SIM_ARM_MAX_AXES], limp[FBRL_SIM_ARM_MAX_AXES];
-    double gain[FBRL_SIM_ARM_MAX_AXES + 1];
+    int locked[FBRL_ARM_AXES_MAX], limp[FBRL_ARM_AXES_MAX];
+    double gain[FBRL_ARM_AXES_MAX + 1];
 } sim_arm;
 
 /* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
@@ -234,13 +234,14 @@ struct fbrl_sim {
 };
 
 /* The arm's axis count (its model's). */
-static inline int sim_naxes(const fbrl_sim *s) { return s->arm.model->naxes; }
+static inline int sim_naxes(const fbrl_sim *s) { return (int)s->arm.model->naxes; }
 
-/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb) meets
- * it: the fraction of the way and the joints there (1.0: clear). */
+/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb, of the
+ * tool point tool inches past the flange) meets it: the fraction of the way and the joints
+ * there (1.0: clear). */
 #define SIM_CELL_MAX 256
 int sim_cell_load(fbrl_sim *s, const char *path, char *err, size_t errlen);
-double sim_cell_stop(fbrl_sim *s, const double *qt, const double *pb, double *qstop);
+double sim_cell_stop(fbrl_sim *s, double tool, const double *qt, const double *pb, double *qstop);
 
 /* sim_clock.c */
 double sim_mono(void);
@@ -315,7 +316,11 @@ void sim_out_printf(sim_out *o, const char *fmt, ...)
 
 /* sim_motion.c */
 void sim_arm_update(fbrl_sim *s); /* finish motions whose time has come */
-void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES]);
+void sim_joints_now(fbrl_sim *s, double q[FBRL_ARM_AXES_MAX]);
+/* The arm's inverse kinematics and limits (fbrl/arm.h) as the controller reports them: 0,
+ * 029 (out of reach) or the joint's out-of-range code. */
+int sim_arm_ik(const fbrl_arm *m, const double pose[6], double tool, const double *hint, double *q);
+int sim_arm_check(const fbrl_arm *m, const double *q);
 
 /* sim_h_read.c */
 void sim_stream_line(fbrl_sim *s, sim_out *o); /* the next line of a W1/W3/W5 readout */

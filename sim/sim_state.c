@@ -73,7 +73,7 @@ static void sync_dir(const char *path)
 static void write_state(fbrl_sim *s, FILE *f)
 {
     int i, j;
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     /* A motion in progress is saved at its end point: the arm is on its way there. */
     memcpy(q, s->arm.moving ? s->arm.qt : s->arm.q, sizeof q);
     fprintf(f, "%s\n", MAGIC);
@@ -322,16 +322,16 @@ static int load_item(loader *ld, sim_prog **prog)
     const char *k = ld->tok[0];
     char name[SIM_NAME_MAX + 1];
     double d[8];
-    long v[FBRL_SIM_ARM_MAX_AXES + 1];
+    long v[FBRL_ARM_AXES_MAX + 1];
     int i;
 
     if (!strcmp(k, "MODEL")) {
-        const fbrl_sim_model *m;
+        const fbrl_arm *m;
         if (want_fields(ld, 2))
             return -1;
         if (ld->items > 0)
             return bad(ld, "MODEL must be the first item", NULL);
-        if (!(m = fbrl_sim_model_find(ld->tok[1])))
+        if (!(m = fbrl_arm_find(ld->tok[1])))
             return bad(ld, "unknown arm model", ld->tok[1]);
         if (s->model_given && m != s->arm.model) {
             sim_seterr(ld->err, ld->errlen, "%s:%d: this memory belongs to an %s, not the %s of --model",
@@ -340,7 +340,7 @@ static int load_item(loader *ld, sim_prog **prog)
         }
         s->arm.model = m;
         sim_defaults(s); /* READY and gains of this arm */
-    } else if (ld->items == 0 && s->arm.model != &fbrl_sim_models[0]) {
+    } else if (ld->items == 0 && s->arm.model != fbrl_arm_model(0)) {
         /* files from before models were kept hold an A255's memory */
         sim_seterr(ld->err, ld->errlen,
                    "%s:%d: no MODEL line: this memory belongs to an A255, not the %s of --model", ld->path,
@@ -360,9 +360,9 @@ static int load_item(loader *ld, sim_prog **prog)
         for (i = 0; i < sim_naxes(s); i++)
             if (real_field(ld, i + 1, -360.0, 360.0, &d[i]))
                 return -1;
-        if ((i = fbrl_sim_arm_check(s->arm.model, d)) != 0) {
+        if (fbrl_arm_check(s->arm.model, d, &i) != FBRL_OK) {
             sim_seterr(ld->err, ld->errlen, "%s:%d: joint %d outside its limits", ld->path, ld->lineno,
-                       i - 41);
+                       i + 1);
             return -1;
         }
         memcpy(s->arm.q, d, sizeof s->arm.q);

@@ -3,6 +3,7 @@
  * through open/read, atomic replace as temporary, fsync, rename, fsync of the directory. */
 #include "fbrl/fileio.h"
 #include "fileio_store.h"
+#include "posix_io.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -42,8 +43,9 @@ static fbrl_status read_full(int fd, unsigned char *p, size_t n, size_t *got)
     return FBRL_OK;
 }
 
-static fbrl_status write_full(int fd, const unsigned char *p, size_t n)
+fbrl_status fbrl__posix_write_full(int fd, const void *data, size_t n)
 {
+    const unsigned char *p = data;
     while (n > 0) {
         ssize_t r = write(fd, p, n);
         if (r < 0 && errno == EINTR)
@@ -56,7 +58,7 @@ static fbrl_status write_full(int fd, const unsigned char *p, size_t n)
     return FBRL_OK;
 }
 
-static fbrl_status sync_fd(int fd)
+fbrl_status fbrl__posix_sync(int fd)
 {
     while (fsync(fd) != 0)
         if (errno != EINTR)
@@ -134,11 +136,11 @@ fbrl_status fbrl__fstore_replace(const char *path, long keep_mode, const unsigne
     if (keep_mode >= 0 && fchmod(fd, (mode_t)keep_mode) != 0)
         st = FBRL_EIO;
     if (st == FBRL_OK)
-        st = write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
+        st = fbrl__posix_write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
     if (st == FBRL_OK)
-        st = write_full(fd, data, len);
+        st = fbrl__posix_write_full(fd, data, len);
     if (st == FBRL_OK)
-        st = sync_fd(fd);
+        st = fbrl__posix_sync(fd);
     if (close(fd) != 0 && st == FBRL_OK)
         st = FBRL_EIO;
     if (st == FBRL_OK && rename(tmp, path) != 0)

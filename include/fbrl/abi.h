@@ -49,6 +49,8 @@ extern "C" {
     X(RUN_SNAP, fbrl_run_snap)                 \
     X(RUN_EVENT, fbrl_run_event)               \
     X(METHOD, fbrl_method)                     \
+    X(USERS, fbrl_users)                       \
+    X(USER, fbrl_user)                         \
     X(CELL_WORDS, fbrl_cell_words)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,

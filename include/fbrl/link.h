@@ -21,6 +21,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "fbrl/status.h"
+#include "fbrl/arm.h"
 #include "fbrl/uart.h"
 #include "fbrl/rapl_encode.h"
 #include "fbrl/rapl_reply.h"
@@ -62,18 +63,6 @@ typedef enum fbrl_link_fate {
     FBRL_LINK_MAY_HAVE_RUN = 4
 } fbrl_link_fate;
 
-/* The arm behind the controller, for checking a position block read while the arm moves
- * (docs/link.md 3.5): pulses per degree per axis and an A255-type geometry (shoulder
- * height, upper arm, forearm, wrist pitch axis to flange, inches). */
-typedef struct fbrl_link_arm {
-    unsigned naxes;
-    double ppd[FBRL_RAPL_MAX_AXES];
-    double base_h, upper, fore, flange;
-} fbrl_link_arm;
-
-/* The CRS A255 (DESIGN 6): the default. */
-extern FBRL_API const fbrl_link_arm fbrl_link_arm_a255;
-
 typedef struct fbrl_link_config {
     fbrl_rapl_form form;       /* keyword (default) or /NNN token form */
     int lower_case;            /* send letters in lower case (default 1; see docs/link.md) */
@@ -86,11 +75,11 @@ typedef struct fbrl_link_config {
     unsigned query_reads;      /* identical consecutive replies a read-only query needs
                                 * (1..3, default 2; see docs/link.md for the odds) */
     unsigned naxes;            /* axes in W0/W2/W4 and STATUS rows (5) */
-    /* The arm model a position block is checked against (NULL = fbrl_link_arm_a255). A
-     * block whose pulses, joints and world agree is believed at once, even while the arm
-     * moves; one that does not (another arm, a tool with an offset) needs query_reads
-     * agreeing replies, as other queries do. */
-    const fbrl_link_arm *arm;
+    /* The arm a position block is checked against (fbrl/arm.h; NULL = the A255): its pulses
+     * per degree and kinematics. A block whose pulses, joints and world agree is believed at
+     * once, even while the arm moves; one that does not (another arm, a tool with an offset
+     * across its axis) needs query_reads agreeing replies, as other queries do. */
+    const fbrl_arm *arm;
     /* Clock; NULL = the uart backend's now_us. */
     uint64_t (*now_us)(void *ctx);
     void *clock_ctx;
@@ -245,6 +234,17 @@ FBRL_API fbrl_status fbrl_link_connect(fbrl_link *l);
 /* Start a command line (printable ASCII, at most FBRL_LINK_LINE_MAX, no '?': the probes
  * use it). FBRL_ESTATE if a command is still running. */
 FBRL_API fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind);
+
+/* The check fbrl_link_start() makes of a line, on len bytes: FBRL_OK for 1..FBRL_LINK_LINE_MAX
+ * printable ASCII characters without '?', else FBRL_EINVAL. A NUL among the len bytes fails:
+ * a caller holding counted strings (Python) learns that C would stop there. */
+FBRL_API fbrl_status fbrl_link_line_check(const char *line, size_t len);
+
+/* fbrl_link_cmd() and fbrl_link_raw() started, not run: fbrl_link_poll() runs them, so a
+ * caller can look for Ctrl-C between two polls (the Python bindings do). */
+FBRL_API fbrl_status fbrl_link_start_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                         int straight);
+FBRL_API fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line);
 
 /* Make progress for at most timeout_ms (0 = only what is already there). *done = 1
  * when the command has ended; the return value is then its result. While it runs the

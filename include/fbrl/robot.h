@@ -201,6 +201,29 @@ typedef struct fbrl_robot_stop {
 #define FBRL_ROBOT_STOP_DRAIN_MS 5000u
 FBRL_API fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out);
 
+/* ---- for a host that sends the commands on a link itself (the Python bindings) ---- */
+
+/* The same stop without a robot context: outputs are the outputs the host switched on
+ * (bit n-1 = output n), motion the last motion line it sent and has not seen end (NULL:
+ * none). FBRL_EOFFLINE for a NULL link. */
+FBRL_API fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const char *motion,
+                                               fbrl_robot_stop *out);
+
+/* What a command line does to the cell, as the robot words class a raw line by its first
+ * word (docs/robot.md, "Stopping safely"): *effect gets the bits below (0: none of them),
+ * *outputs_on (may be NULL) the outputs an OUTPUT line switches on (bit n-1 = output n). */
+#define FBRL_ROBOT_LINE_MOTION 0x1u /* it may move the arm: a motion, RUN, or a command the
+                                     * library does not know */
+#define FBRL_ROBOT_LINE_FINISH 0x2u /* FINISH: its prompt comes once the motion has ended */
+#define FBRL_ROBOT_LINE_HALT   0x4u /* HALT: the arm stops where it is */
+FBRL_API fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
+
+/* Does a value line of the W5 readout (len bytes) show the arm at rest, every commanded
+ * velocity zero? A title line or a damaged one (flawed != 0) does not (0). The test the
+ * robot words make before a motion or FINISH, so the controller never waits inside one,
+ * deaf to HALT. */
+FBRL_API int fbrl_robot_still_line(const char *line, size_t len, int flawed);
+
 /* A function that reconnects the controller (reopens the port, fbrl_link_init,
  * fbrl_link_connect, fbrl_robot_set_link) and tells the user its state. The next robot
  * word calls it after the controller went away (FBRL_EDISCONNECTED); NULL (the default)

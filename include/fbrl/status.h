@@ -45,11 +45,13 @@ typedef enum fbrl_status {
     FBRL_EOFFLINE = -30,      /* no controller connected */
     FBRL_ENOTFILE = -31,      /* not a regular file (a device, FIFO or directory) */
     FBRL_EPERM = -32,         /* the operating system refused access (e.g. a port's mode) */
-    FBRL_EMAYBE = -33         /* link: the command may have run; the link cannot prove
+    FBRL_EMAYBE = -33,        /* link: the command may have run; the link cannot prove
                                 * either way (docs/link.md 3.9): do not repeat it blindly */
+    FBRL_EAUTH = -34,         /* users: unknown name or wrong password */
+    FBRL_ELOCKED = -35        /* users: account locked (too many wrong passwords) or disabled */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EMAYBE
+#define FBRL_STATUS_MIN FBRL_ELOCKED
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 FBRL_API const char *fbrl_status_str(fbrl_status st);

@@ -17,7 +17,7 @@ run, its outcomes and its rules are the library's (docs/c-programs.md, "Method r
 """
 from ._ffi import ffi, lib, alloc, ABI
 from ._errors import Error, check
-from .engine import _status
+from ._errors import status_code as _status
 
 ffi.cdef("""
 typedef struct fbrl_method_set fbrl_method_set;

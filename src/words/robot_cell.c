@@ -11,11 +11,6 @@
 #include "fbrl/num.h"
 #include "fbrl/vmx.h"
 
-/* Encoder pulses per degree of the A255 (DESIGN 6), for MOTOR. */
-static const double a255_ppd[FBRL_CELL_AXES] = {200.0, 200.0, 200.0, 44.44, 22.22};
-/* READY (DESIGN 6). */
-static const double a255_ready[FBRL_CELL_AXES] = {0.0, 90.0, -90.0, 0.0, 0.0};
-
 typedef struct cw_word {
     const char *name;
     fbrl_status (*fn)(fbrl_cell_words *cw, const struct cw_word *w);
@@ -355,7 +350,7 @@ static int active(const fbrl_cell_words *cw)
 
 static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what)
 {
-    char msg[160];
+    char msg[FBRL_CELL_MSG_MAX];
     snprintf(msg, sizeof msg, "%s: %s; nothing was sent", m->word, what);
     if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX)
         memcpy(cw->stats.refusals[cw->stats.nrefusals++], msg, sizeof msg);
@@ -368,18 +363,19 @@ static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
     double pose[6];
     if (cw->npath >= FBRL_CELL_PATH_MAX)
         return;
-    fbrl_cell_fk(&cw->model.arm, q, pose);
+    fbrl_arm_fk(cw->model.arm, q, cw->model.tcp, pose);
     memcpy(cw->path[cw->npath++], pose, 3 * sizeof(double));
 }
 
 static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *m)
 {
     fbrl_cell_words *cw = ctx;
+    const fbrl_arm *arm = cw->model.arm;
     double q0[FBRL_CELL_AXES], q1[FBRL_CELL_AXES], p0[6], target[6];
     fbrl_cell_hit *h = &cw->last;
     fbrl_status st;
     int line = m->straight;
-    char what[128], a[24], b[24], c[24];
+    char what[FBRL_CELL_MSG_MAX - 32], a[24], b[24], c[24];
     if (!active(cw) || m->kind == FBRL_ROBOT_MOVE_HOME)
         return FBRL_OK;
     if (m->kind == FBRL_ROBOT_MOVE_OTHER)
@@ -389,12 +385,11 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         unsigned n = 0;
         if ((st = fbrl_robot_joints(r, m->word, q, &n)) != FBRL_OK)
             return st;
-        if (n != FBRL_CELL_AXES) /* the guard's kinematics are the A255's (DESIGN 6) */
-            return fbrl_vmx_throwf(
-                cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED),
-                "%s: the guard knows 5-axis arms (A255); this arm has %u axes (CELL-GUARD-OFF "
-                "sends the motion unchecked)",
-                m->word, n);
+        if (n != cw->model.arm->naxes) /* the controller is not the arm the guard computes */
+            return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED),
+                                   "%s: the guard computes the %s (%u axes); this controller reports %u "
+                                   "(fbrlmon --arm names the arm; CELL-GUARD-OFF sends the motion unchecked)",
+                                   m->word, cw->model.arm->name, cw->model.arm->naxes, n);
         memcpy(cw->q, q, sizeof cw->q);
         cw->known = 1;
         cw->epoch = fbrl_robot_where_epoch(r);
@@ -402,15 +397,15 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
     place_blocks(cw);
     memcpy(q0, cw->q, sizeof q0);
     memcpy(q1, q0, sizeof q1);
-    fbrl_cell_fk(&cw->model.arm, q0, p0);
+    fbrl_arm_fk(arm, q0, cw->model.tcp, p0);
     memcpy(target, p0, sizeof target);
     switch (m->kind) {
     case FBRL_ROBOT_MOVE_POSE:
         memcpy(target, m->v, sizeof target);
         if (m->dist != 0.0)
-            fbrl_cell_back_off(m->v, q0[0], m->dist, target);
+            fbrl_arm_back_off(arm, m->v, q0[0], m->dist, target);
         break;
-    case FBRL_ROBOT_MOVE_DEPART: fbrl_cell_back_off(p0, q0[0], m->dist, target); break;
+    case FBRL_ROBOT_MOVE_DEPART: fbrl_arm_back_off(arm, p0, q0[0], m->dist, target); break;
     case FBRL_ROBOT_MOVE_JOG:
         for (int k = 0; k < 3; k++)
             target[k] += m->v[k];
@@ -418,24 +413,24 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         break;
     case FBRL_ROBOT_MOVE_JOINTS: memcpy(q1, m->v, sizeof q1); break;
     case FBRL_ROBOT_MOVE_DJOINTS:
-        for (int k = 0; k < FBRL_CELL_AXES; k++)
+        for (unsigned k = 0; k < arm->naxes; k++)
             q1[k] += m->v[k];
         break;
     case FBRL_ROBOT_MOVE_MOTOR:
-        if (m->v[0] >= 1 && m->v[0] <= FBRL_CELL_AXES)
-            q1[(int)m->v[0] - 1] += m->v[1] / a255_ppd[(int)m->v[0] - 1];
+        if (m->v[0] >= 1 && m->v[0] <= arm->naxes)
+            q1[(int)m->v[0] - 1] += fbrl_arm_degrees(arm, (unsigned)m->v[0] - 1, 1) * m->v[1];
         break;
-    case FBRL_ROBOT_MOVE_READY: memcpy(q1, a255_ready, sizeof q1); break;
+    case FBRL_ROBOT_MOVE_READY: memcpy(q1, arm->ready, sizeof q1); break;
     default: break;
     }
     int to_pose = m->kind == FBRL_ROBOT_MOVE_POSE || m->kind == FBRL_ROBOT_MOVE_DEPART ||
                   m->kind == FBRL_ROBOT_MOVE_JOG;
-    if (to_pose && !line && fbrl_cell_ik(&cw->model.arm, target, q0, q1) != FBRL_OK) {
+    if (to_pose && !line && fbrl_arm_ik(arm, target, cw->model.tcp, q0, q1, NULL) != FBRL_OK) {
         cw->known = 0; /* out of reach: the controller says so (029, 04x) and stays put */
         return FBRL_OK;
     }
     if (!to_pose && line)
-        fbrl_cell_fk(&cw->model.arm, q1, target);
+        fbrl_arm_fk(arm, q1, cw->model.tcp, target);
     st = line ? fbrl_cell_check_line(&cw->model, q0, target, h)
               : fbrl_cell_check_joints(&cw->model, q0, q1, h);
     if (st != FBRL_OK) {
@@ -443,8 +438,8 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         return FBRL_OK;
     }
     if (h->hit) {
-        snprintf(what, sizeof what, "would hit %s at X %s Y %s Z %s in (%d%% of the way)",
-                 fbrl_cell_obj_name(&cw->model, h->obj), num(a, sizeof a, h->at[0]),
+        snprintf(what, sizeof what, "would hit %s with the %s at X %s Y %s Z %s in (%d%% of the way)",
+                 fbrl_cell_obj_name(&cw->model, h->obj), fbrl_arm_part_name(h->part), num(a, sizeof a, h->at[0]),
                  num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]), (int)(h->fraction * 100.0 + 0.5));
         return refuse(cw, m, what);
     }

@@ -166,16 +166,27 @@ typedef struct still_read {
     unsigned zeros; /* consecutive all-zero value lines, up to the last one */
 } still_read;
 
+int fbrl_robot_still_line(const char *line, size_t len, int flawed)
+{
+    long v[FBRL_RAPL_MAX_AXES];
+    size_t n = 0, k;
+    if (!line || flawed) /* a damaged line is no proof of rest */
+        return 0;
+    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
+        return 0; /* title */
+    for (k = 0; k < n && v[k] == 0; k++)
+        ;
+    return k == n;
+}
+
 static void still_line(void *ctx, const char *line, size_t len, int flawed)
 {
     still_read *sr = ctx;
     long v[FBRL_RAPL_MAX_AXES];
-    size_t n = 0, k;
+    size_t n = 0;
     if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
-        return; /* title */
-    for (k = 0; k < n && v[k] == 0; k++)
-        ;
-    sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
+        return; /* a title leaves the count as it is */
+    sr->zeros = fbrl_robot_still_line(line, len, flawed) ? sr->zeros + 1 : 0;
 }
 
 fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
@@ -392,13 +403,17 @@ static int display_query(const char *line)
     return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
 }
 
-/* What a raw line is, from its first word: a motion, FINISH, OUTPUT (its outputs are
- * noted), or a command the host cannot name (which might move the arm). */
-static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
+/* What a line is, from its first word: a motion, FINISH, HALT, OUTPUT (the outputs it
+ * switches on), or a command the host cannot name (which might move the arm). */
+fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on)
 {
     char word[16];
     size_t k = 0;
     fbrl_rapl_cmd cmd;
+    uint32_t on = 0;
+    if (!line || !effect)
+        return FBRL_EINVAL;
+    *effect = 0;
     while (*line == ' ')
         line++;
     while (k + 1 < sizeof word && line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=') {
@@ -406,26 +421,40 @@ static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
         k++;
     }
     word[k] = 0;
-    *motion = *finish = 0;
-    if (line[k] == '=')
-        return; /* an assignment */
-    if (fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK) {
-        *motion = 1;
-        return;
+    if (line[k] != '=' && fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK)
+        *effect = FBRL_ROBOT_LINE_MOTION;
+    else if (line[k] != '=') { /* not an assignment */
+        if ((fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN)
+            *effect = FBRL_ROBOT_LINE_MOTION;
+        else if (cmd == FBRL_RAPL_FINISH)
+            *effect = FBRL_ROBOT_LINE_FINISH;
+        else if (cmd == FBRL_RAPL_HALT)
+            *effect = FBRL_ROBOT_LINE_HALT;
+        if (cmd == FBRL_RAPL_OUTPUT)
+            for (const char *p = line + k; *p; p++)
+                if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
+                    long v = 0;
+                    while (*p >= '0' && *p <= '9' && v <= FBRL_ROBOT_IO_MAX)
+                        v = v * 10 + (*p++ - '0');
+                    if (v >= 1 && v <= FBRL_ROBOT_IO_MAX)
+                        on |= 1u << (v - 1);
+                    if (!*p)
+                        break;
+                }
     }
-    *motion = (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN;
-    *finish = cmd == FBRL_RAPL_FINISH;
-    if (cmd == FBRL_RAPL_OUTPUT)
-        for (const char *p = line + k; *p; p++)
-            if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
-                long v = 0;
-                while (*p >= '0' && *p <= '9')
-                    v = v * 10 + (*p++ - '0');
-                fbrl_rapl_arg a = fbrl_rapl_int(v);
-                note_outputs(r, &a, 1);
-                if (!*p)
-                    break;
-            }
+    if (outputs_on)
+        *outputs_on = on;
+    return FBRL_OK;
+}
+
+static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
+{
+    unsigned e = 0;
+    uint32_t on = 0;
+    (void)fbrl_robot_line_effect(line, &e, &on);
+    r->outputs_on |= on;
+    *motion = (e & FBRL_ROBOT_LINE_MOTION) != 0;
+    *finish = (e & FBRL_ROBOT_LINE_FINISH) != 0;
 }
 
 fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)

@@ -37,6 +37,9 @@ expect() {
 expect "fbrlmon --di" --dict
 expect "fbrlmon --sim-m" --sim-model
 expect "fbrlmon --sim-model " a255 a465
+expect "fbrlmon --ar" --arm
+expect "fbrlmon --arm " a255 a465
+expect "fbrlsim --model " a255 a465
 expect "fbrlmon --parity " none even odd
 expect "fbrlmon --flow x" xonxoff
 expect "fbrlmon --low-latency o" on off

@@ -1,14 +1,7 @@
 # SPDX-License-Identifier: MIT
-# fbrlsim tests: the arm model (label unit) and the emulator driven over real
+# fbrlsim tests: the emulator driven over real
 # pseudo-terminals by a small raw client (label e2e), one ctest entry per group.
 if(TARGET fbrlsim)
-  add_executable(sim_arm_test ${CMAKE_CURRENT_SOURCE_DIR}/e2e/sim_arm_test.c)
-  target_include_directories(sim_arm_test PRIVATE ${CMOCKA_INCLUDE})
-  target_compile_definitions(sim_arm_test PRIVATE _DEFAULT_SOURCE)
-  target_link_libraries(sim_arm_test PRIVATE fbrlsim_core ${CMOCKA_LIB} m)
-  add_test(NAME sim_arm COMMAND sim_arm_test)
-  set_tests_properties(sim_arm PROPERTIES LABELS unit TIMEOUT 60)
-
   add_executable(sim_e2e_test ${CMAKE_CURRENT_SOURCE_DIR}/e2e/sim_e2e_test.c)
   target_include_directories(sim_e2e_test PRIVATE ${CMOCKA_INCLUDE})
   target_compile_definitions(sim_e2e_test PRIVATE _GNU_SOURCE FBRLSIM_PATH="$<TARGET_FILE:fbrlsim>")

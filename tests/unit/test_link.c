@@ -860,6 +860,40 @@ static void bad_calls_are_refused(void **state)
     assert_int_equal(fbrl_link_start_stream(&s->l, FBRL_RAPL_W1, 0), FBRL_EINVAL);
 }
 
+/* The line check on counted bytes: what fbrl_link_start() refuses, and a NUL inside the
+ * count (C would stop there: "OUTPUT 3\0 junk" must not pass as "OUTPUT 3"). The started
+ * forms of fbrl_link_cmd and fbrl_link_raw run through fbrl_link_poll and run once. */
+static void line_check_and_started_commands(void **state)
+{
+    session *s = *state;
+    static const char nul[] = "OUTPUT 3\0 junk";
+    char longline[FBRL_LINK_LINE_MAX + 1];
+    memset(longline, 'A', sizeof longline);
+    assert_int_equal(fbrl_link_line_check("HOME", 4), FBRL_OK);
+    assert_int_equal(fbrl_link_line_check(nul, 8), FBRL_OK);
+    assert_int_equal(fbrl_link_line_check(nul, sizeof nul - 1), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check(longline, FBRL_LINK_LINE_MAX), FBRL_OK);
+    assert_int_equal(fbrl_link_line_check(longline, FBRL_LINK_LINE_MAX + 1), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("", 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check(NULL, 3), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("A?", 2), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("A\tB", 3), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("\xc3\xa9", 2), FBRL_EINVAL);
+
+    fbrl_rapl_arg sp = fbrl_rapl_int(20);
+    assert_int_equal(fbrl_link_start_cmd(&s->l, FBRL_RAPL_SPEED, &sp, 1, 0), FBRL_OK);
+    assert_int_equal(fbrl_link_start_raw(&s->l, "HOME"), FBRL_ESTATE); /* one at a time */
+    assert_int_equal(drive(s), FBRL_OK);
+    assert_int_equal(fbrl_link_start_raw(&s->l, "W2"), FBRL_OK); /* read as the table says */
+    assert_int_equal(drive(s), FBRL_OK);
+    assert_true(fbrl_link_last_pos(&s->l)->nworld == 6);
+    assert_int_equal(fbrl_link_start_raw(&s->l, "W1"), FBRL_EINVAL); /* streams: fbrl_link_stream */
+    assert_int_equal(fbrl_link_start_raw(NULL, "HOME"), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start_cmd(&s->l, FBRL_RAPL_W1, NULL, 0, 0), FBRL_EINVAL);
+    static const char *const want[] = {"NOHELP", "SPEED 20", "W2"}; /* a consistent block: read once */
+    assert_log(s, want, 3);
+}
+
 /* One thread, two robots: both commands progress and finish through poll_many. */
 static void one_thread_serves_two_links(void **state)
 {
@@ -920,6 +954,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
+        cmocka_unit_test_setup_teardown(line_check_and_started_commands, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
