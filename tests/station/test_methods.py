@@ -281,7 +281,7 @@ def test_a_question_is_a_recoverable_error_and_retry_answers_it(lab):
     uuid = start(lab, "VIAL-CHECK", *params(N_VIALS=1))
     inter, collector = collect(lab, uuid)
     errors = recoverable(lab)
-    assert len(errors) == 1
+    assert len(errors) == 1 and "sample 1" in errors[0].ErrorMessage.value
     e = errors[0]
     assert e.CommandExecutionUUID.value == uuid and e.CommandIdentifier.value.endswith("/Command/RunMethod")
     assert e.ErrorIdentifier.value == "org.libfbrl/robot/MethodLibrary/v1/DefinedExecutionError/StepFailed"
@@ -321,7 +321,8 @@ def test_skip_abort_and_unhandled_errors(lab):
     recoverable(lab)
     lab.client.call(ERR, "ExecuteContinuationOption", CommandExecutionUUID=S(uuid), ContinuationOption=S("SkipSample"),
                     InputData=S(""))
-    wait_for(lambda: len(recoverable(lab)) == 1, what="the second vial's question")
+    wait_for(lambda: any("sample 2" in e.ErrorMessage.value for e in recoverable(lab)),
+             what="the second vial's question")
     lab.client.call(ERR, "AbortErrorHandling", CommandExecutionUUID=S(uuid))
     result, _, _ = follow(lab, uuid)
     assert isinstance(result, Failure) and result.identifier == "StepFailed", result
