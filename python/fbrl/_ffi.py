@@ -32,6 +32,7 @@ typedef struct fbrl_glossary fbrl_glossary;
 typedef struct fbrl_robot fbrl_robot;
 typedef struct fbrl_vm fbrl_vm;
 typedef struct fbrl_file fbrl_file;
+typedef struct fbrl_cell_words fbrl_cell_words;
 
 /* ports */
 void fbrl_port_options_init(fbrl_port_options *o);
@@ -117,6 +118,7 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
 fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx, fbrl_link_exec_fn *old_fn,
                                        void **old_ctx);
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
+int fbrl_link_units(const fbrl_link *l);
 int fbrl_link_fate_of(fbrl_status result);
 fbrl_status fbrl_rapl_cmd_find(const char *keyword, int *cmd);
 const char *fbrl_rapl_error_text(int code);
@@ -204,6 +206,7 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 void fbrl_vm_interrupt(fbrl_vm *vm);
+int fbrl_vm_interrupt_pending(const fbrl_vm *vm);
 int fbrl_vm_bye(const fbrl_vm *vm);
 void fbrl_vm_reset(fbrl_vm *vm);
 fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);
@@ -234,6 +237,14 @@ fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const c
 fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
 int fbrl_robot_still_line(const char *line, size_t len, int flawed);
 int fbrl_robot_last_error(const fbrl_robot *r);
+/* the work cell's words and the guard on every robot motion (fbrl/cell.h); the guard's record
+ * starts with these two counters */
+typedef struct fbrl_cell_stats_head {
+    unsigned long moves;
+    unsigned long refused;
+} fbrl_cell_stats_head;
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
+const fbrl_cell_stats_head *fbrl_cell_stats_get(const fbrl_cell_words *cw);
 uint64_t fbrl_clock_now_us(void);
 """
 
@@ -283,6 +294,20 @@ for _name in DECLARED:
     if _have != _want or ffi.string(lib.fbrl_abi_name(ABI[_name])).decode() != _name:
         raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"
                           % (_name, _have, _want))
+
+
+def _code_of(name):
+    """The library's fbrl_abi_type code of a struct, found by its name."""
+    for code in range(256):
+        n = lib.fbrl_abi_name(code)
+        if n == ffi.NULL:
+            break
+        if ffi.string(n).decode() == name:
+            return code
+    raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % name)
+
+
+ABI.setdefault("fbrl_cell_words", _code_of("fbrl_cell_words"))  # appended to fbrl/abi.h after the table
 
 
 def alloc(type_name):

@@ -14,6 +14,7 @@ from .stop import Stop
 FBRL_OK = 0
 FBRL_RAPL_STATUS, FBRL_RAPL_W2, FBRL_RAPL_W5 = 37, 45, 48  # fbrl_rapl_cmd codes (stable)
 _ARG_INT, _ARG_REAL, _ARG_STR = 0, 1, 2
+_UNITS = {0: "inch", 1: "mm"}  # FBRL_LINK_UNITS_INCH, _MM (fbrl/link.h); -1: not known
 _LINE_MOTION, _LINE_FINISH, _LINE_HALT = 0x1, 0x2, 0x4  # FBRL_ROBOT_LINE_* (fbrl/robot.h)
 RAPL_LINE_MAX = 96  # FBRL_RAPL_LINE_MAX: the encoder's longest line and its NUL fit
 POLL_SLICE_MS = 50  # the longest C waits before Python looks for Ctrl-C again
@@ -256,6 +257,12 @@ class Link:
             lib.fbrl_link_error(self._link.ptr, code, text)
             raise ControllerError(st, what, code[0], ffi.string(text[0]).decode() if text[0] else None, fate)
         raise Error(st, what, fate=fate)
+
+    @property
+    def units(self):
+        """The controller's units of length as the link last learned them (a STATUS, or METRIC
+        sent): "inch", "mm", or None when not known yet (fbrl_link_units)."""
+        return _UNITS.get(lib.fbrl_link_units(self._link.ptr))
 
     # waiting where Ctrl-C can stop the arm
     @contextlib.contextmanager

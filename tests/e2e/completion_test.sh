@@ -45,6 +45,10 @@ expect "fbrlmon --flow x" xonxoff
 expect "fbrlmon --low-latency o" on off
 expect "fbrlmon --ver" --version
 expect "fbrlsim --ti" --time-scale
+if command -v fbrl-station >/dev/null 2>&1; then  # built when its Python modules are there
+    expect "fbrl-station --no-d" --no-discovery
+    expect "fbrl-station --sila " 127.0.0.1:50052 off
+fi
 expect "fbrlsim --parity " N E O
 expect "fbrlsim --model a4" a465
 expect "fbrlsim --ver" --version
