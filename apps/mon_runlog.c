@@ -367,6 +367,11 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
     if (!fbrl_runlog_is_open(&r->log) && r->event_hook == NULL)
         return;
+    if (ev->line != NULL) { /* a motion sent around the guard on purpose (fbrl_link_unguarded) */
+        if (fbrl_runlog_is_open(&r->log))
+            fbrl_runlog_note(&r->log, "unguarded", NULL, ev->line);
+        return;
+    }
     memset(&f, 0, sizeof f);
     f.m = r->m;
     f.addr = ev->device;

@@ -20,6 +20,7 @@
 #include "fbrl/rapl_reply.h"
 #include "fbrl/link.h"
 #include "fbrl/num.h"
+#include "fbrl/arm.h"
 #include "fbrl/loc.h"
 #include "fbrl/units.h"
 #include "fbrl/matrix.h"
