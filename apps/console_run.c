@@ -14,6 +14,7 @@
 #include "console_form.h"
 #include "console_text.h"
 #include "console_users.h"
+#include "fbrl/clock.h"
 
 #define RIGHT_COL     50 /* the live panel (arm, gripper, devices) starts here */
 #define DEVICES_SHOWN 8
@@ -134,6 +135,11 @@ static void request_abort(console *c)
     con_hint(c, "aborting: the arm goes to its safe place, the outputs go off");
 }
 
+/* What a key did stays readable for a while: the wait's progress would replace it at its next tick. */
+#define CON_ANSWER_HOLD_US 3000000u
+
+static void answer_shown(console *c) { c->hint_held_until_us = fbrl_clock_now_us() + CON_ANSWER_HOLD_US; }
+
 void con_run_key(console *c, int ch)
 {
     int up = ch >= 0 && ch < 256 ? toupper(ch) : 0;
@@ -144,6 +150,7 @@ void con_run_key(console *c, int ch)
         if (fbrl_run_answer(&c->m->run, choice, c->log->operator_id) == FBRL_OK) {
             c->asking = 0;
             con_hint(c, "answered: %s", up == 'R' ? "retry" : up == 'S' ? "skip" : "abort");
+            answer_shown(c);
         }
     } else if (c->abort_confirm) {
         if (ch == 'y' || ch == 'Y' || ch == KEY_F(8))
@@ -151,6 +158,7 @@ void con_run_key(console *c, int ch)
         else {
             c->abort_confirm = 0;
             con_hint(c, "not aborted: the method goes on");
+            answer_shown(c);
         }
     } else if (ch == KEY_F(8) || ch == 'a') {
         c->abort_confirm = 1;
@@ -159,11 +167,13 @@ void con_run_key(console *c, int ch)
         if (fbrl_run_pause(&c->m->run, c->log->operator_id) == FBRL_OK) {
             c->state = ST_PAUSING;
             con_hint(c, "pausing after the current step ...");
+            answer_shown(c);
         }
     } else if ((ch == KEY_F(7) || ch == 'r') && (c->state == ST_PAUSED || c->state == ST_PAUSING)) {
         if (fbrl_run_resume(&c->m->run, c->log->operator_id) == FBRL_OK) {
             c->state = ST_RUNNING;
             con_hint(c, "resumed");
+            answer_shown(c);
         }
     }
 }
@@ -257,7 +267,8 @@ int con_run_watch(console *c)
 void con_run_progress(console *c, const char *text)
 {
     /* a question or a request the operator made stays visible over the wait's progress */
-    if (text != NULL && !c->abort_confirm && c->state == ST_RUNNING)
+    if (text != NULL && !c->abort_confirm && c->state == ST_RUNNING &&
+        fbrl_clock_now_us() >= c->hint_held_until_us)
         con_hint(c, "%s", text);
 }
 

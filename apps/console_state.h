@@ -119,6 +119,7 @@ typedef struct console {
     char errs[ERR_LINES][160];
     char advice[ERR_LINES][160];
     char hint[160]; /* the line above the keys, when nothing is typed there */
+    uint64_t hint_held_until_us; /* an answer to the operator's key outlives the wait's progress */
     /* the typed line (console_line.c) */
     struct {
         enum con_line mode;
