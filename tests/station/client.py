@@ -142,6 +142,8 @@ class Station:
     def __init__(self, launcher, data, *args, insecure=False, env=None):
         self.data = str(data)
         argv = [launcher, "--sila", "127.0.0.1:0", "--data", self.data] + list(args)
+        if "--http" not in args:  # the page's default port is one for all: only its own tests serve it
+            argv += ["--http", "off"]
         if insecure:
             argv.append("--insecure")
         self.proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
