@@ -61,7 +61,8 @@ function buildScene(s) {
   scene3.background = new THREE.Color(COLOURS.background);
   const lo = [-6, -6, 0], hi = [6, 6, 20]; // the arm's base and some of its height, always in view
   const grow = (p) => { for (let i = 0; i < 3; i++) { lo[i] = Math.min(lo[i], p[i]); hi[i] = Math.max(hi[i], p[i]); } };
-  s.obstacles.forEach((o) => { grow(o.lo); grow(o.hi); });
+  // framed on what stands in the cell: a keep-out zone (the operator's side) may reach far past it
+  s.obstacles.filter((o) => o.kind !== 'keepout').forEach((o) => { grow(o.lo); grow(o.hi); });
   s.places.forEach((p) => grow(p.at));
   centre = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
   span = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) + 8;
