@@ -8,6 +8,7 @@ import asyncio
 import json
 import logging
 import os
+import tempfile
 import threading
 import time
 
@@ -15,6 +16,8 @@ from aiohttp import web, WSMsgType
 
 import fbrl
 
+from . import dryrun
+from .cell import SITES_FBRL
 from .controller import RobotFailure
 
 log = logging.getLogger("fbrl-station")
@@ -178,8 +181,8 @@ class Page:
                     continue
                 try:
                     req = json.loads(msg.data)
-                    reply = self._request(ws, req)
-                except (ValueError, KeyError, TypeError) as e:
+                    reply = await self._dry_run(req) if req["op"] == "dryrun" else self._request(ws, req)
+                except (ValueError, KeyError, TypeError, OSError) as e:
                     reply = {"t": "error", "message": str(e)}
                 if reply is not None:
                     await ws.send_json(reply)
@@ -254,6 +257,22 @@ class Page:
         ml = next(s for s in self.st.servicers if s.FEATURE == "MethodLibrary")
         e = ml.launch_run(method, values, who)
         return {"t": "started", "uuid": e.uuid, "method": method}
+
+    async def _dry_run(self, req):
+        """The method's plan against fbrlmon's emulator (nothing moves: any page may ask)."""
+        method = req["method"]
+        m = self.st.runs.library.find(method)
+        if m is None:
+            return {"t": "error", "message": "the method library has no method %s" % method}
+        values = self.st.runs.check_values(method, [(k, int(v)) for k, v in req.get("params", {}).items()])
+        path = self.st.runs.library.files[m["name"].upper()]
+
+        def work():
+            with tempfile.TemporaryDirectory(prefix="fbrl-page-dry-") as d:
+                return dryrun.plan(self.st.opts, SITES_FBRL, path, m["name"], values, d)
+
+        r = await asyncio.get_running_loop().run_in_executor(None, work)
+        return dict(r, t="plan", method=m["name"], values=values)
 
     def _current(self):
         """The method run's execution that has not finished (started by a page or a SiLA client)."""

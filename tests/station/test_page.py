@@ -6,6 +6,7 @@ kinematics from the library, projected here with the camera's own matrices, agai
 screenshot's pixels. Run with -s to see the figures (time to an interactive page, the delay from
 a reading to the drawn pose)."""
 import io
+import re
 import os
 import shutil
 import statistics
@@ -281,3 +282,35 @@ def test_one_page_controls_the_runs_the_other_is_told_who(lab):
         other.wait_for("document.getElementById('control').textContent === 'no one controls the runs'")
     finally:
         other.close()
+
+
+def test_a_dry_run_from_the_page_shows_the_plan_and_moves_nothing(lab):
+    b = ready(lab)
+    before = len(lab.sim.log())
+    b.eval("var s = document.getElementById('method'); s.value = 'QUICK'; s.onchange(); "
+           "document.querySelector('#params input[name=\"#ITEMS\"]').value = '3'; "
+           "document.querySelector('#params input[name=\"HOLD-DS\"]').value = '10'; "
+           "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+    plan = b.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+    assert plan["method"] == "QUICK" and plan["outcome"] == "completed", plan["report"]
+    assert [(s["sample"], s["outcome"]) for s in plan["samples"]] == [(1, "succeeded"), (2, "succeeded"),
+                                                                      (3, "succeeded")]
+    assert plan["duration_s"] > 3 * 1.0  # three holds of a second (the method's own waits)
+    assert plan["picture"].startswith("<?xml") and not plan["refused"]
+    # a method the guard refuses: the refusal names the obstacle, the closest approach is marked
+    b.eval("var s = document.getElementById('method'); s.value = 'BUMP'; s.onchange(); "
+           "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+    plan = b.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+    assert plan["refused"] and "HEATING-BLOCK-BODY" in plan["refused"][0], plan["report"]
+    assert "refused: " in b.eval("document.getElementById('plan').textContent")
+    # nothing reached the controller but the page's once-a-second readings of the arm
+    assert [l for l in lab.sim.log()[before:] if l not in ("W2", "STATUS")] == []
+    shot(lab, "page-dry-run.png")
+    # the point of contact the guard names is marked red in the view
+    hit = re.search(r"at X (\S+) Y (\S+) Z (\S+) in", plan["refused"][0])
+    b.eval("document.getElementById('show-labels').click(); true")
+    time.sleep(0.3)
+    x, y = project(b.eval("fbrlPage.camera()"), [float(v) for v in hit.groups()])
+    img = shot(lab, "page-dry-run-nolabels.png")
+    b.eval("document.getElementById('show-labels').click(); true")
+    assert near(img.getpixel((int(round(x)), int(round(y)))), (0xff, 0, 0), 30)

@@ -271,17 +271,64 @@ function send(req) {
 }
 
 function runMethod() {
-  const form = $('params');
-  const params = {};
-  for (const input of form.querySelectorAll('input')) {
+  const p = params();
+  if (p) send({ op: 'run', method: $('method').value, params: p });
+}
+
+function dryRun() {
+  const p = params();
+  if (!p) return;
+  $('plan').textContent = 'dry run of ' + $('method').value + ' ...';
+  send({ op: 'dryrun', method: $('method').value, params: p });
+}
+
+function params() {
+  const out = {};
+  for (const input of $('params').querySelectorAll('input')) {
     const v = Number(input.value);
     if (!Number.isInteger(v) || v < Number(input.min) || v > Number(input.max)) {
       note(input.name + ' must be a whole number in ' + input.min + '..' + input.max, true);
-      return;
+      return null;
     }
-    params[input.name] = v;
+    out[input.name] = v;
   }
-  send({ op: 'run', method: $('method').value, params });
+  return out;
+}
+
+let planMarks = []; // the refused motions' points of contact (red), the closest approach (orange)
+function showPlan(r) {
+  page.plan = r;
+  const el = $('plan');
+  el.innerHTML = '';
+  const line = (text, cls) => { const d = document.createElement('div'); d.textContent = text; if (cls) d.className = cls; el.appendChild(d); };
+  line('Dry run of ' + r.method + ': ' + (r.duration_s === null ? 'no duration' : 'predicted ' + r.duration_s.toFixed(1) + ' s') +
+       (r.outcome ? ', ' + r.outcome : '') + (r.status ? ' (fbrlmon exit ' + r.status + ')' : ''));
+  r.samples.forEach((x) => line('sample ' + x.sample + ': ' + x.outcome, x.outcome.startsWith('succeeded') ? '' : 'error'));
+  r.refused.forEach((x) => line('refused: ' + x, 'refused'));
+  r.errors.forEach((x) => line('error: ' + x, 'error'));
+  planMarks.forEach((x) => scene3.remove(x));
+  planMarks = [];
+  const mark = (at, colour, r) => {
+    const m = new THREE.Mesh(new THREE.SphereGeometry(r, 12, 8), new THREE.MeshBasicMaterial({ color: colour }));
+    m.position.copy(v3(at));
+    scene3.add(m);
+    planMarks.push(m);
+  };
+  r.refused.forEach((x) => { // the guard's message names the obstacle and the point of contact
+    const hit = /would hit (\S+) with the (.+?) at X (\S+) Y (\S+) Z (\S+) in/.exec(x);
+    if (hit) mark([Number(hit[3]), Number(hit[4]), Number(hit[5])], 0xff0000, 0.45);
+  });
+  if (r.closest) {
+    line('smallest clearance ' + r.closest.clearance.toFixed(3) + ' in to ' + r.closest.obstacle + ' (' + r.closest.word + ')');
+    mark(r.closest.at, 0xd07000, 0.3);
+  }
+  if (r.picture) { // the library's picture of the plan: the tool's path, the closest approach
+    const img = document.createElement('img');
+    img.src = URL.createObjectURL(new Blob([r.picture], { type: 'image/svg+xml' }));
+    img.alt = 'the dry run (CELL-SVG)';
+    img.onclick = () => window.open(img.src);
+    el.appendChild(img);
+  }
 }
 
 function showControl() {
@@ -358,6 +405,7 @@ function onMessage(m) {
       note('run ended: ' + m.summary, m.outcome !== 'completed');
       break;
     case 'started': break;
+    case 'plan': showPlan(m); break;
     case 'error': note(m.message, true); page.errors.push(m.message); break;
     default: break;
   }
@@ -380,6 +428,7 @@ async function main() {
   showMethod();
   startView(s);
   $('run').onclick = runMethod;
+  $('dry').onclick = dryRun;
   $('pause').onclick = () => send({ op: 'pause' });
   $('resume').onclick = () => send({ op: 'resume' });
   $('abort').onclick = () => { if (window.confirm('Abort the run? The arm halts, the outputs go off, ON-ABORT runs.')) send({ op: 'abort' }); };
