@@ -124,6 +124,8 @@ def test_the_page_loads_and_shows_the_cell_where_the_model_puts_it(lab):
     assert b.eval("fbrlPage.errors.length") == 0, b.eval("fbrlPage.errors")
     print("\ntime to an interactive page: %.2f s (page's own clock from navigation: %.0f ms)"
           % (took, b.eval("fbrlPage.readyAt")))
+    print("  (ms from navigation: script %(script).0f, scene and methods fetched %(fetched).0f, view built %(view).0f, "
+          "WebSocket open %(open).0f)" % b.eval("fbrlPage.marks"))
     scene = b.eval("fbrlPage.scene")
     listed = the_cell()
     for o in scene["obstacles"]:  # every obstacle of the cell files, with its numbers

@@ -10,7 +10,7 @@ const COLOURS = { box: 0xb8b8b8, cylinder: 0xc8a070, keepout: 0xff6060, table: 0
 const ESTIMATED_AFTER_S = 1.5; // a reading older than this (or the arm moving) is an estimate
 const ARM_RADII = [1.0, 0.9, 0.7, 0.3]; // base-shoulder, upper arm, forearm, wrist-tool (drawing only)
 
-const page = window.fbrlPage = { ready: false, delays: [], poses: 0, errors: [] };
+const page = window.fbrlPage = { ready: false, delays: [], poses: 0, errors: [], marks: { script: performance.now() } };
 const $ = (id) => document.getElementById(id);
 let scene3, camera, renderer, controls, armGroup, toolMark, labels = [], centre, span;
 let methods = [], ws = null, me = null, controlBy = null, lastPose = null, armState = 'Disconnected';
@@ -414,19 +414,21 @@ function onMessage(m) {
 function connect() {
   ws = new WebSocket((location.protocol === 'https:' ? 'wss://' : 'ws://') + location.host + '/ws');
   ws.onmessage = (ev) => onMessage(JSON.parse(ev.data));
-  ws.onopen = () => { page.connected = true; };
+  ws.onopen = () => { page.connected = true; page.marks.open = page.marks.open || performance.now(); };
   ws.onclose = () => { page.connected = false; note('the station went away; trying again', true); setTimeout(connect, 1000); };
 }
 
 async function main() {
   const [s, ms] = await Promise.all([fetch('/api/scene').then((r) => r.json()), fetch('/api/methods').then((r) => r.json())]);
   page.scene = s;
+  page.marks.fetched = performance.now();
   $('arm-model').textContent = s.arm;
   methods = ms;
   ms.forEach((m) => { const o = document.createElement('option'); o.value = o.textContent = m.name; $('method').appendChild(o); });
   $('method').onchange = showMethod;
   showMethod();
   startView(s);
+  page.marks.view = performance.now();
   $('run').onclick = runMethod;
   $('dry').onclick = dryRun;
   $('pause').onclick = () => send({ op: 'pause' });
