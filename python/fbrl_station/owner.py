@@ -145,7 +145,7 @@ class Owner:
             st = dict(self.status.value or {})
             st.update(connected=False, connection=c.describe())
             self.status.set(st)
-        elif self.run is None and self.arm_state.value in ("Disconnected", "Busy"):
+        elif self.run is None and self.arm_state.value != "Idle":  # a motion's or a run's state is over
             self.arm_state.set("Idle")
 
     def motion(self, fn, *args):

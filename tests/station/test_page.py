@@ -203,6 +203,8 @@ def test_a_run_from_the_page_goes_to_its_end_as_fbrlsim_logs_it(lab):
     assert all(any(l.startswith("MOVE") for l in log[a:b]) for a, b in zip([0] + on, on + [len(log)])), log
     rows = b.eval("[...document.querySelectorAll('#steps tr')].map(r => r.className)")
     assert rows == ["done", "done"]
+    b.wait_for("document.getElementById('arm-state').textContent === 'Idle'", what="the arm idle after the run")
+    b.wait_for("document.getElementById('reading').className === ''", what="a fresh reading, not an estimate")
     shot(lab, "page-run.png")
 
 
