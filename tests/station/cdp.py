@@ -11,6 +11,8 @@ import time
 
 import websocket
 
+from client import end
+
 CHROMIUM_FLAGS = ["--headless=new", "--no-sandbox", "--disable-gpu-sandbox", "--use-gl=angle",
                   "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist",
                   "--no-first-run", "--no-default-browser-check", "--disable-extensions",
@@ -94,12 +96,6 @@ class Browser:
             if getattr(self, "ws", None) is not None:
                 self.ws.close()
         finally:
-            if self.proc.poll() is None:
-                self.proc.terminate()
-                try:
-                    self.proc.wait(timeout=10)
-                except subprocess.TimeoutExpired:
-                    self.proc.kill()
-                    self.proc.wait()
+            end(self.proc, 10)
             self.proc.stderr.close()
             shutil.rmtree(self.dir, ignore_errors=True)

@@ -2,6 +2,7 @@
 """Fixtures for fbrl-station's tests: a real fbrlsim (its command log is the truth of what the
 controller ran) and a station on it, started by the build's launcher as a user starts it."""
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -14,7 +15,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "python"))
 
-from client import Station  # noqa: E402
+from client import Station, end  # noqa: E402
 
 SITES = os.path.join(ROOT, "examples", "station", "asps_sites.fbrl")
 SIM_TIME_SCALE = "20"  # motions 20 times faster than the arm's: a move takes tens of ms
@@ -76,15 +77,24 @@ class Sim:
     def stop(self):
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGCONT)
-            self.proc.terminate()
-            try:
-                self.proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        end(self.proc, 10)
         self.proc.stdout.close()
         self.proc.stderr.close()
         self.panel.close()
+
+
+def method_library(directory, sample_prep=True):
+    """directory/lib/methods: the tests' methods (tests/station/methods) and the sample-prep
+    method, beside the ASPS cell files they include; its path."""
+    lib = os.path.join(directory, "lib", "methods")
+    os.makedirs(lib)
+    for f in ("asps_cell.fbrl", "asps_cell_objects.fbrl"):
+        shutil.copy(os.path.join(ROOT, "examples", f), os.path.join(directory, "lib"))
+    if sample_prep:
+        shutil.copy(os.path.join(ROOT, "examples", "methods", "sample_prep.fbrl"), lib)
+    for f in os.listdir(os.path.join(HERE, "methods")):
+        shutil.copy(os.path.join(HERE, "methods", f), lib)
+    return lib
 
 
 def wait_for(predicate, seconds=20, what="the condition"):

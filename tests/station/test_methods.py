@@ -2,7 +2,6 @@
 """MethodLibrary, PauseController, CancelController and ErrorRecoveryService: method runs on
 the library's run, against fbrlsim (its log is the truth of what the controller did)."""
 import os
-import shutil
 import threading
 import time
 
@@ -10,7 +9,7 @@ import pytest
 from lxml import etree
 
 from client import Failure
-from conftest import ROOT, SITES, Sim, launcher, wait_for
+from conftest import ROOT, SITES, Sim, launcher, method_library, wait_for
 from client import Station
 from fbrl_station import pb
 from fbrl_station.sila import I, R, S
@@ -28,13 +27,7 @@ class Lab:
     sets (--control), a station on it."""
 
     def __init__(self, directory):
-        lib = os.path.join(directory, "lib", "methods")
-        os.makedirs(lib)
-        for f in ("asps_cell.fbrl", "asps_cell_objects.fbrl"):
-            shutil.copy(os.path.join(ROOT, "examples", f), os.path.join(directory, "lib"))
-        shutil.copy(os.path.join(ROOT, "examples", "methods", "sample_prep.fbrl"), lib)
-        for f in os.listdir(os.path.join(HERE, "methods")):
-            shutil.copy(os.path.join(HERE, "methods", f), lib)
+        lib = method_library(directory)
         self.sim = Sim(os.path.join(directory, "sim"))
         try:
             self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,

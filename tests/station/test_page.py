@@ -8,14 +8,13 @@ a reading to the drawn pose)."""
 import io
 import re
 import os
-import shutil
 import statistics
 import time
 
 import pytest
 
 from client import Station
-from conftest import ROOT, SITES, Sim, launcher, wait_for
+from conftest import ROOT, SITES, Sim, launcher, method_library, wait_for
 
 import fbrl
 from fbrl_station import pb
@@ -23,7 +22,6 @@ from fbrl_station.sila import I, S
 
 PIL = pytest.importorskip("PIL.Image", reason="python3-pil reads the screenshots")
 cdp = pytest.importorskip("cdp", reason="python3-websocket drives chromium")
-HERE = os.path.dirname(os.path.abspath(__file__))
 SHOTS = os.environ.get("FBRL_PAGE_SHOTS")  # a folder for the screenshots (docs/page.md's come from here)
 COLOURS = {"box": (0xb8, 0xb8, 0xb8), "cylinder": (0xc8, 0xa0, 0x70), "tool": (0xff, 0x00, 0xff),
            "table": (0xe2, 0xdc, 0xcb), "background": (0xf4, 0xf6, 0xf8)}  # page.js's COLOURS
@@ -34,12 +32,7 @@ class Lab:
     page on a free loopback port, a browser on it."""
 
     def __init__(self, directory):
-        lib = os.path.join(directory, "lib", "methods")
-        os.makedirs(lib)
-        for f in ("asps_cell.fbrl", "asps_cell_objects.fbrl"):
-            shutil.copy(os.path.join(ROOT, "examples", f), os.path.join(directory, "lib"))
-        for f in os.listdir(os.path.join(HERE, "methods")):
-            shutil.copy(os.path.join(HERE, "methods", f), lib)
+        lib = method_library(directory, sample_prep=False)
         self.sim = Sim(os.path.join(directory, "sim"))
         try:
             self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
