@@ -115,7 +115,7 @@ class Page:
 
     async def _main(self):
         self._quit = asyncio.Event()
-        app = web.Application()
+        app = web.Application(middlewares=[self._same_origin])
         app.router.add_get("/", self._index)
         app.router.add_get("/page/{name}", self._page_file)
         app.router.add_get("/three/{name:.+}", self._three)
@@ -132,6 +132,25 @@ class Page:
         for ws in list(self.clients):
             await ws.close()
         await runner.cleanup()
+
+    # ---------------------------------------------------------------- who may ask
+    def _hosts(self):
+        """The Host headers a request to this page carries: its loopback address by number or
+        as localhost. Another name is a DNS rebinding (a web site whose name now points here)."""
+        names = {"localhost", "[::1]" if ":" in self.host else "127.0.0.1",
+                 "[%s]" % self.host if ":" in self.host else self.host}
+        return {"%s:%d" % (n, self.port) for n in names}
+
+    @web.middleware
+    async def _same_origin(self, request, handler):
+        """Only the page itself: a request must name this host, and a WebSocket must come from a
+        page this station served (browsers let any web site open a WebSocket to 127.0.0.1)."""
+        if request.host not in self._hosts():
+            raise web.HTTPForbidden(text="fbrl-station: not this station's address: %s\n" % request.host)
+        origin = request.headers.get("Origin")
+        if request.path == "/ws" and origin != "http://" + request.host:
+            raise web.HTTPForbidden(text="fbrl-station: a WebSocket from another site (%s)\n" % origin)
+        return await handler(request)
 
     # ---------------------------------------------------------------- files and JSON
     async def _index(self, request):

@@ -6,6 +6,7 @@ kinematics from the library, projected here with the camera's own matrices, agai
 screenshot's pixels. Run with -s to see the figures (time to an interactive page, the delay from
 a reading to the drawn pose)."""
 import io
+import json
 import re
 import os
 import statistics
@@ -311,3 +312,28 @@ def test_a_dry_run_from_the_page_shows_the_plan_and_moves_nothing(lab):
     img = shot(lab, "page-dry-run-nolabels.png")
     b.eval("document.getElementById('show-labels').click(); true")
     assert near(img.getpixel((int(round(x)), int(round(y)))), (0xff, 0, 0), 30)
+
+
+def test_other_web_sites_cannot_reach_the_station_through_the_browser(lab):
+    """A web site the operator has open could open a WebSocket to 127.0.0.1 (browsers allow it)
+    or point its own name at 127.0.0.1 (DNS rebinding): both are refused; the page's own are not."""
+    import urllib.error
+    import urllib.request
+
+    import websocket
+    ws_url = lab.url.replace("http://", "ws://") + "ws"
+    host = lab.url[len("http://"):].rstrip("/")
+    with pytest.raises(websocket.WebSocketBadStatusException) as e:
+        websocket.create_connection(ws_url, origin="http://evil.example", timeout=10)
+    assert e.value.status_code == 403
+    with pytest.raises(websocket.WebSocketBadStatusException):
+        websocket.create_connection(ws_url, suppress_origin=True, timeout=10)  # no Origin: not a page of ours
+    with pytest.raises(urllib.error.HTTPError) as e:
+        urllib.request.urlopen(urllib.request.Request(lab.url + "api/scene", headers={"Host": "evil.example"}),
+                               timeout=10)
+    assert e.value.code == 403
+    ws = websocket.create_connection(ws_url, origin="http://" + host, timeout=10)
+    try:
+        assert json.loads(ws.recv())["t"] == "hello"
+    finally:
+        ws.close()
