@@ -3,6 +3,7 @@
 RunMethod), CancelController, PauseController and ErrorRecoveryService, on runs.py."""
 import concurrent.futures
 import decimal
+import time
 from xml.sax.saxutils import escape
 
 from . import sila
@@ -74,8 +75,13 @@ class MethodLibrary(Feature):
         st = self.st
         e = st.executions.new(self.f.command_fqi("RunMethod"))
         fut = st.runs.launch(e, name, values, by)
+        started = time.time()
 
         def done(f):
+            finish(f)
+            st.history.record(e, started)
+
+        def finish(f):
             try:
                 s = f.result()
             except concurrent.futures.CancelledError:

@@ -19,6 +19,7 @@ from .commands import CancelController, ErrorRecoveryService, MethodLibrary, Pau
 from .controller import Controller, RobotFailure, report
 from .core import DESCRIPTION, LockController, SiLAService, SimulationController
 from .datadir import DataDir
+from .history import History
 from .owner import Owner
 from .runs import Runs
 
@@ -51,6 +52,7 @@ class Station:
         self.owner = Owner(self.controller)
         self.cell = Cell(self.data)
         self.runs = Runs(self)
+        self.history = History(self.data)
         self.servicers = [cls(self) for cls in FEATURE_CLASSES]
         self.server = None
         self.port = None

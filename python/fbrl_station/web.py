@@ -19,6 +19,7 @@ import fbrl
 from . import dryrun
 from .cell import SITES_FBRL
 from .controller import RobotFailure
+from .history import _progress as progress
 
 log = logging.getLogger("fbrl-station")
 
@@ -59,11 +60,6 @@ def scene(c, cell, arm_name):
             places.append({"site": s.name, "index": i, "count": s.count, "at": xyz[:3],
                            "taught": cell.is_taught(s.name)})
     return {"arm": arm_name, "table": table, "tool": tool, "obstacles": obstacles, "places": places}
-
-
-def _progress(p):
-    return {"event": p.Event.value, "step": p.Step.value, "step_name": p.StepName.value,
-            "sample": p.Sample.value, "samples": p.SampleCount.value, "message": p.Message.value}
 
 
 class Page:
@@ -121,6 +117,8 @@ class Page:
         app.router.add_get("/three/{name:.+}", self._three)
         app.router.add_get("/api/scene", self._scene)
         app.router.add_get("/api/methods", self._methods)
+        app.router.add_get("/api/history", self._history)
+        app.router.add_get("/history/{uuid}", self._run_log)
         app.router.add_get("/ws", self._ws)
         runner = web.AppRunner(app, access_log=None)
         await runner.setup()
@@ -176,6 +174,29 @@ class Page:
 
     async def _methods(self, request):
         return web.json_response(self._method_list())
+
+    async def _history(self, request):
+        runs = await asyncio.get_running_loop().run_in_executor(None, self.st.history.runs)
+        return web.json_response([{k: r.get(k) for k in ("uuid", "start", "end", "method", "values", "by", "outcome",
+                                                          "summary")} for r in runs])
+
+    async def _run_log(self, request):
+        """One past run as text: what it was, each event, each sample's outcome."""
+        uuid = request.match_info["uuid"]
+        runs = await asyncio.get_running_loop().run_in_executor(None, self.st.history.runs)
+        r = next((x for x in runs if x["uuid"] == uuid), None)
+        if r is None:
+            raise web.HTTPNotFound(text="no run %s in the station's history\n" % uuid)
+        at = lambda t: time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(t))  # noqa: E731
+        lines = ["%s %s, started by %s at %s, ended %s" % (r["method"], " ".join("%s=%s" % tuple(v) for v in r["values"]),
+                                                            r["by"], at(r["start"]), at(r["end"])),
+                 "outcome: %s: %s" % (r["outcome"], r["summary"]), ""]
+        for ev in r["events"]:
+            lines.append("%-18s %s%s%s" % (ev["event"], ev["step_name"], ", sample %d" % ev["sample"] if ev["sample"]
+                                           else "", ": " + ev["message"] if ev["message"] else ""))
+        lines += [""] + ["sample %d: %s%s" % (x["sample"], x["outcome"], " (%s)" % x["reason"] if x["reason"] else "")
+                         for x in r["samples"]]
+        return web.Response(text="\n".join(lines) + "\n")
 
     def _method_list(self):
         lib = self.st.runs.library
@@ -351,7 +372,7 @@ class Page:
             new = e.intermediates[seen[0]:]
             seen[0] += len(new)
             for x in new:
-                self._publish(dict(_progress(x.Progress), t="progress", uuid=e.uuid), "run")
+                self._publish(dict(progress(x.Progress), t="progress", uuid=e.uuid), "run")
             if e.finished and not seen[1]:
                 seen[1] = True
                 m = {"t": "end", "uuid": e.uuid}

@@ -337,3 +337,24 @@ def test_other_web_sites_cannot_reach_the_station_through_the_browser(lab):
         assert json.loads(ws.recv())["t"] == "hello"
     finally:
         ws.close()
+
+
+def test_the_history_lists_past_runs_and_opens_their_log(lab):
+    """The runs of this module's earlier tests (run alone, one of its own): newest first, with
+    outcome and who started it; each opens its log. The record is the station's file."""
+    import urllib.request
+    b = ready(lab)
+    if not b.eval("fbrlPage.history && fbrlPage.history.length > 0"):
+        test_a_run_from_the_page_goes_to_its_end_as_fbrlsim_logs_it(lab)
+    b.wait_for("fbrlPage.history && fbrlPage.history.some(r => r.outcome === 'completed')", what="the history")
+    runs = b.eval("fbrlPage.history")
+    assert [r["start"] for r in runs] == sorted((r["start"] for r in runs), reverse=True)
+    done = next(r for r in runs if r["outcome"] == "completed")
+    assert done["method"] == "QUICK" and done["by"].startswith("page ") and done["values"] == [["#ITEMS", 2],
+                                                                                               ["HOLD-DS", 1]]
+    assert b.eval("document.querySelectorAll('#history li').length") == len(runs)
+    text = urllib.request.urlopen(lab.url + "history/" + done["uuid"], timeout=10).read().decode()
+    assert "outcome: completed" in text and "StepEnded          Item, sample 2" in text, text
+    assert "sample 2: succeeded" in text
+    with open(os.path.join(lab.station.data, "runs.jsonl")) as f:
+        assert sum(1 for _ in f) == len(runs)

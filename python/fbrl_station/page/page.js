@@ -403,12 +403,31 @@ function onMessage(m) {
       $('outcome').textContent = m.outcome + ': ' + m.summary;
       if (page.run) page.run.end = m;
       note('run ended: ' + m.summary, m.outcome !== 'completed');
+      setTimeout(showHistory, 500); // the station records it as the run's result is set
       break;
     case 'started': break;
     case 'plan': showPlan(m); break;
     case 'error': note(m.message, true); page.errors.push(m.message); break;
     default: break;
   }
+}
+
+async function showHistory() { // the station's past runs, newest first; each opens its log
+  const runs = await fetch('/api/history').then((r) => r.json());
+  const ol = $('history');
+  ol.innerHTML = '';
+  runs.forEach((r) => {
+    const li = document.createElement('li');
+    const a = document.createElement('a');
+    a.href = '/history/' + r.uuid;
+    a.target = '_blank';
+    a.textContent = new Date(r.start * 1000).toLocaleString() + ' ' + r.method + ': ' + r.outcome;
+    li.appendChild(a);
+    li.appendChild(document.createTextNode(' (' + r.by + ')'));
+    li.dataset.uuid = r.uuid;
+    ol.appendChild(li);
+  });
+  page.history = runs;
 }
 
 function connect() {
@@ -437,6 +456,7 @@ async function main() {
   $('take').onclick = () => send({ op: 'control' });
   $('release').onclick = () => send({ op: 'release' });
   showControl();
+  showHistory();
   connect();
   const wait = () => { // interactive: the view drawn, the arm on it, the station's messages coming
     if (page.connected && page.poses > 0) { page.ready = true; page.readyAt = performance.now(); } else setTimeout(wait, 10);
