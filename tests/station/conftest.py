@@ -97,6 +97,28 @@ def method_library(directory, sample_prep=True):
     return lib
 
 
+class MethodLab:
+    """A method library (method_library), an fbrlsim, a station on it with the library and
+    station_args: .sim, .station, .client."""
+
+    def __init__(self, directory, *station_args, sample_prep=True):
+        lib = method_library(directory, sample_prep)
+        self.sim = Sim(os.path.join(directory, "sim"))
+        try:
+            self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
+                                   "--no-discovery", "--methods", lib, *station_args, "-e",
+                                   "200 CONSTANT TIME-SCALE", SITES)
+        except BaseException:
+            self.sim.stop()
+            raise
+        self.client = self.station.client()
+
+    def stop(self):
+        self.client.close()
+        self.station.stop()
+        self.sim.stop()
+
+
 def wait_for(predicate, seconds=20, what="the condition"):
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:

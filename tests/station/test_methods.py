@@ -9,8 +9,7 @@ import pytest
 from lxml import etree
 
 from client import Failure
-from conftest import ROOT, SITES, Sim, launcher, method_library, wait_for
-from client import Station
+from conftest import ROOT, MethodLab, wait_for
 from fbrl_station import pb
 from fbrl_station.sila import I, R, S
 
@@ -22,28 +21,12 @@ P = mm.RunMethod_Parameters.Parameters_Struct
 DONE = pb.fw.ExecutionInfo.CommandStatus.Value("finishedSuccessfully")
 
 
-class Lab:
+class Lab(MethodLab):
     """A method library (sample prep and the tests' methods), an fbrlsim whose inputs the test
     sets (--control), a station on it."""
 
-    def __init__(self, directory):
-        lib = method_library(directory)
-        self.sim = Sim(os.path.join(directory, "sim"))
-        try:
-            self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
-                                   "--no-discovery", "--methods", lib, "-e", "200 CONSTANT TIME-SCALE", SITES)
-        except BaseException:
-            self.sim.stop()
-            raise
-        self.client = self.station.client()
-
     def set_input(self, n, on):
         self.sim.control("IN %d %d" % (n, 1 if on else 0))
-
-    def stop(self):
-        self.client.close()
-        self.station.stop()
-        self.sim.stop()
 
 
 @pytest.fixture(scope="module")

@@ -14,8 +14,7 @@ import time
 
 import pytest
 
-from client import Station
-from conftest import ROOT, SITES, Sim, launcher, method_library, wait_for
+from conftest import ROOT, MethodLab, wait_for
 
 import fbrl
 from fbrl_station import pb
@@ -28,31 +27,24 @@ COLOURS = {"box": (0xb8, 0xb8, 0xb8), "cylinder": (0xc8, 0xa0, 0x70), "tool": (0
            "table": (0xe2, 0xdc, 0xcb), "background": (0xf4, 0xf6, 0xf8)}  # page.js's COLOURS
 
 
-class Lab:
+class Lab(MethodLab):
     """The method library of the station's tests, fbrlsim with its log, a station serving the
     page on a free loopback port, a browser on it."""
 
     def __init__(self, directory):
-        lib = method_library(directory, sample_prep=False)
-        self.sim = Sim(os.path.join(directory, "sim"))
+        super().__init__(directory, "--http", "127.0.0.1:0", sample_prep=False)
         try:
-            self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
-                                   "--no-discovery", "--http", "127.0.0.1:0", "--methods", lib,
-                                   "-e", "200 CONSTANT TIME-SCALE", SITES)
             wait_for(lambda: any("the page on http://" in l for l in self.station.lines), what="the page's address")
             line = next(l for l in self.station.lines if "the page on http://" in l)
             self.url = line[line.index("http://"):].strip()
-            self.client = self.station.client()
             self.browser = cdp.Browser()
         except BaseException:
-            self.sim.stop()
+            super().stop()
             raise
 
     def stop(self):
         self.browser.close()
-        self.client.close()
-        self.station.stop()
-        self.sim.stop()
+        super().stop()
 
 
 @pytest.fixture(scope="module")
