@@ -97,28 +97,6 @@ def method_library(directory, sample_prep=True):
     return lib
 
 
-class MethodLab:
-    """A method library (method_library), an fbrlsim, a station on it with the library and
-    station_args: .sim, .station, .client."""
-
-    def __init__(self, directory, *station_args, sample_prep=True):
-        lib = method_library(directory, sample_prep)
-        self.sim = Sim(os.path.join(directory, "sim"))
-        try:
-            self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
-                                   "--no-discovery", "--methods", lib, *station_args, "-e",
-                                   "200 CONSTANT TIME-SCALE", SITES)
-        except BaseException:
-            self.sim.stop()
-            raise
-        self.client = self.station.client()
-
-    def stop(self):
-        self.client.close()
-        self.station.stop()
-        self.sim.stop()
-
-
 def wait_for(predicate, seconds=20, what="the condition"):
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
@@ -138,16 +116,42 @@ class Arm:
     def __init__(self, directory):
         self.sim = Sim(os.path.join(directory, "sim"))
         try:
-            self.station = start_station(os.path.join(directory, "data"), self.sim)
+            self.station = self.start(os.path.join(directory, "data"))
         except BaseException:
             self.sim.stop()
             raise
         self.client = self.station.client()
 
+    def start(self, data):
+        return start_station(data, self.sim)
+
     def stop(self):
         self.client.close()
         self.station.stop()
         self.sim.stop()
+
+
+class MethodLab(Arm):
+    """An Arm whose station has a method library (method_library) and station_args."""
+
+    def __init__(self, directory, *station_args, sample_prep=True):
+        self.lib = method_library(directory, sample_prep)
+        self.station_args = station_args
+        super().__init__(directory)
+
+    def start(self, data):
+        return Station(launcher(), data, "--port", self.sim.port, "--no-discovery", "--methods", self.lib,
+                       *self.station_args, "-e", "200 CONSTANT TIME-SCALE", SITES)
+
+
+def assert_aborted_safely(log):
+    """fbrlsim's log of a run aborted while the pump ran for its first item: the arm halted,
+    then the outputs off and ON-ABORT's safe place, and no second item."""
+    on = log.index("OUTPUT 1")
+    assert "HALT" in log[on:], log[on:]
+    halt = log.index("HALT", on)
+    assert "OUTPUT -1" in log[halt:] and "READY" in log[halt:]  # outputs off, then ON-ABORT's safe place
+    assert log.count("OUTPUT 1") == 1  # it never got to the next item
 
 
 @pytest.fixture(scope="module")

@@ -9,7 +9,7 @@ import pytest
 from lxml import etree
 
 from client import Failure
-from conftest import ROOT, MethodLab, wait_for
+from conftest import ROOT, MethodLab, assert_aborted_safely, wait_for
 from fbrl_station import pb
 from fbrl_station.sila import I, R, S
 
@@ -208,12 +208,7 @@ def test_cancel_is_the_console_s_abort(lab):
     result, inter, infos = follow(lab, uuid)
     assert isinstance(result, Failure) and result.identifier == "MethodCancelled", result
     assert "sample 1" in result.message
-    log = lab.sim.log()[before:]
-    on = log.index("OUTPUT 1")
-    assert "HALT" in log[on:], log[on:]
-    halt = log.index("HALT", on)
-    assert "OUTPUT -1" in log[halt:] and "READY" in log[halt:]  # outputs off, then ON-ABORT's safe place
-    assert log.count("OUTPUT 1") == 1  # it never got to the next item
+    assert_aborted_safely(lab.sim.log()[before:])
 
 
 def test_cancel_and_pause_know_what_they_can_act_on(lab):

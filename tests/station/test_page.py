@@ -14,7 +14,7 @@ import time
 
 import pytest
 
-from conftest import ROOT, MethodLab, wait_for
+from conftest import ROOT, MethodLab, assert_aborted_safely, wait_for
 
 import fbrl
 from fbrl_station import pb
@@ -246,12 +246,7 @@ def test_abort_from_the_page_halts_the_arm(lab):
     end = b.wait_for("fbrlPage.run && fbrlPage.run.end", seconds=60, what="the run's end")
     assert b.eval("window.asked") == 1
     assert end["outcome"] == "error" and "MethodCancelled" in end["summary"] and "page 1" in end["summary"], end
-    log = lab.sim.log()[before:]
-    on = log.index("OUTPUT 1")
-    assert "HALT" in log[on:], log[on:]
-    halt = log.index("HALT", on)
-    assert "OUTPUT -1" in log[halt:] and "READY" in log[halt:]  # outputs off, then ON-ABORT's safe place
-    assert log.count("OUTPUT 1") == 1  # it never got to the next item
+    assert_aborted_safely(lab.sim.log()[before:])
 
 
 def test_one_page_controls_the_runs_the_other_is_told_who(lab):
