@@ -74,6 +74,7 @@ class Page:
         self.last = {}  # the latest message of each kind, for a page that comes later
         self.run_log = []  # the current (or last) run's messages, likewise
         self.loop = None
+        self.watcher = None  # the thread that sends the owner's news, once the page is served
         self._stop = threading.Event()
         self._ready = threading.Event()
         self._error = None
@@ -92,11 +93,12 @@ class Page:
 
     def stop(self):
         self._stop.set()
-        if self.loop is not None:
-            self.loop.call_soon_threadsafe(self._quit.set)
-            self.thread.join(START_S)
-            self.watcher.join(START_S)
-            self.st.owner.watch("position", -1)
+        if self.watcher is None:  # it never served (start failed): its loop has ended already
+            return
+        self.loop.call_soon_threadsafe(self._quit.set)
+        self.thread.join(START_S)
+        self.watcher.join(START_S)
+        self.st.owner.watch("position", -1)
 
     def _serve(self):
         self.loop = asyncio.new_event_loop()

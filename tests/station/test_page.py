@@ -345,3 +345,26 @@ def test_the_history_lists_past_runs_and_opens_their_log(lab):
     assert "sample 2: succeeded" in text
     with open(os.path.join(lab.station.data, "runs.jsonl")) as f:
         assert sum(1 for _ in f) == len(runs)
+
+
+def test_a_page_that_cannot_be_served_stops_the_station_cleanly(tmp_path):
+    """The page's port is taken: the station says so, exits 3 and leaves no emulator behind."""
+    import socket
+    import subprocess
+
+    from conftest import fbrlsim, launcher
+    wrapper = tmp_path / "fbrlsim"
+    pid_file = tmp_path / "sim.pid"
+    wrapper.write_text("#!/bin/sh\necho $$ > '%s'\nexec '%s' \"$@\"\n" % (pid_file, fbrlsim()))
+    wrapper.chmod(0o755)
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        p = subprocess.run([launcher(), "--sim", "--data", str(tmp_path / "data"), "--no-discovery", "--sila",
+                            "127.0.0.1:0", "--http", "127.0.0.1:%d" % port], capture_output=True, text=True,
+                           timeout=120, env=dict(os.environ, FBRL_SIM=str(wrapper)))
+    assert p.returncode == 3 and "cannot serve the page on 127.0.0.1:%d" % port in p.stderr, p.stderr
+    pid = int(pid_file.read_text())
+    wait_for(lambda: not os.path.exists("/proc/%d" % pid) or open("/proc/%d/stat" % pid).read().split()[2] == "Z",
+             seconds=10, what="the emulator to end")
