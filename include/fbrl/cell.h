@@ -156,7 +156,17 @@ FBRL_API fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double
 #ifndef FBRL_CELL_LOG_MAX
 #define FBRL_CELL_LOG_MAX 16 /* refused motions kept for the report */
 #endif
-#define FBRL_CELL_MSG_MAX 192 /* a refusal's message, its end included */
+#ifndef FBRL_CELL_PICTURE
+/* 0: no picture (the firmware): CELL-RACK checks its matrix and keeps nothing, no refused
+ * motion is kept for drawing, fbrl_cell_svg is FBRL_EUNSUPPORTED */
+#define FBRL_CELL_PICTURE 1
+#endif
+#ifndef FBRL_CELL_RACKS
+#define FBRL_CELL_RACKS 8 /* matrices the picture draws whole (CELL-RACK) */
+#endif
+#define FBRL_CELL_RACK_MAX    64  /* rows (rings) or columns (radials) of one rack */
+#define FBRL_CELL_REFUSED_PTS 9   /* tool points kept of a refused motion, for the picture */
+#define FBRL_CELL_MSG_MAX     192 /* a refusal's message, its end included */
 /* What a refused motion throws (catchable): the code of FBRL_ERANGE. */
 #define FBRL_CELL_THROW_COLLISION FBRL_ROBOT_THROW_REFUSED
 
@@ -178,6 +188,24 @@ typedef struct fbrl_cell_stats {
     char refusals[FBRL_CELL_LOG_MAX][FBRL_CELL_MSG_MAX]; /* their messages */
     unsigned nrefusals;
 } fbrl_cell_stats;
+
+/* A matrix the picture draws whole: positions (i, j, 0), i < rows, j < cols (RECTMAT), or
+ * (ring, radial, 0) of a RADMAT. */
+typedef struct fbrl_cell_rack {
+    char name[FBRL_CELL_NAME_MAX + 1];
+    int rows, cols;
+} fbrl_cell_rack;
+
+/* A refused motion as the picture draws it: the tool point from the start up to the contact
+ * (or towards a target the guard could not check), and the contact. */
+typedef struct fbrl_cell_refusal {
+    double pts[FBRL_CELL_REFUSED_PTS][3];
+    unsigned npts;
+    int hit;    /* 1: it would hit obj at `at`; 0: the guard could not check it */
+    size_t obj; /* the obstacle (FBRL_CELL_TABLE, ...) when hit */
+    double at[3];
+    char word[FBRL_CELL_NAME_MAX + 1];
+} fbrl_cell_refusal;
 
 /* The words' state: caller-owned, fields private but model, the cell the words describe
  * (fbrl_cell_set_arm(&cw->model, ...) chooses the arm the guard computes); keep it at a
@@ -202,6 +230,12 @@ typedef struct fbrl_cell_words {
     fbrl_cell_stats stats;
     double path[FBRL_CELL_PATH_MAX][3];
     size_t npath;
+#if FBRL_CELL_PICTURE
+    fbrl_cell_rack racks[FBRL_CELL_RACKS];        /* CELL-RACK */
+    size_t nracks;
+    fbrl_cell_refusal refused[FBRL_CELL_LOG_MAX]; /* the first refused motions, drawn */
+    unsigned nrefused;
+#endif
     fbrl_cell_save_fn save;
     void *save_ctx;
 } fbrl_cell_words;
@@ -214,8 +248,12 @@ FBRL_API fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_ro
 FBRL_API void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx);
 /* The guard's record. */
 FBRL_API const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw);
-/* The SVG picture (top and side views to scale, obstacles, the named locations, the tool
- * path, the closest approach) written through fn. */
+/* The SVG picture written through fn (src/words/cell_svg.c): top and side views at one scale
+ * whose frame fits the cell, the locations and the path, with a scale bar and a legend;
+ * obstacles, the named locations, every position of a CELL-RACK, the tool path, the closest
+ * approach and each refused motion (red, naming what it would hit); labels never overlap
+ * (one that finds no free place is left to its element's tooltip). FBRL_EUNSUPPORTED in a
+ * build without the picture (FBRL_CELL_PICTURE 0). */
 FBRL_API fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx);
 
 #ifdef __cplusplus

@@ -9,6 +9,8 @@
 #ifndef FBRL_WORDS_INTERNAL_NAMES_H
 #define FBRL_WORDS_INTERNAL_NAMES_H
 
+#define cw_num           fbrli_cw_num
+#define cw_place_blocks  fbrli_cw_place_blocks
 #define gl_define        fbrli_gl_define
 #define gl_fpop          fbrli_gl_fpop
 #define gl_in            fbrli_gl_in

@@ -11,6 +11,7 @@
 #include "fbrl/cell.h"
 #include "fbrl/num.h"
 #include "fbrl/vmx.h"
+#include "cell_internal.h"
 
 typedef struct cw_word {
     const char *name;
@@ -19,13 +20,14 @@ typedef struct cw_word {
     FBRL_DOC_FIELDS
 } cw_word;
 
-/* "12.3456" locale-free. */
-static const char *num(char *buf, size_t cap, double v)
+/* "12.3456" locale-free (the picture's numbers too). */
+const char *cw_num(char *buf, size_t cap, double v)
 {
     if (fbrl_num_fixed(buf, cap, v, 0, 4, 0, NULL) != FBRL_OK)
         snprintf(buf, cap, "?");
     return buf;
 }
+#define num cw_num
 
 static fbrl_status pop_reals(fbrl_cell_words *cw, const cw_word *w, const char *spec, double *out)
 {
@@ -237,6 +239,49 @@ static fbrl_status w_clear(fbrl_cell_words *cw, const cw_word *w)
     cw->stats.clearance = INFINITY;
     cw->stats.near_obj = FBRL_CELL_NONE;
     cw->npath = 0;
+#if FBRL_CELL_PICTURE
+    cw->nrefused = 0; /* the racks stay: they describe the places, not the cell */
+#endif
+    return FBRL_OK;
+}
+
+/* CELL-RACK ( rows cols -- ) ( PAR: matrix ): the picture draws every position of that
+ * RECTMAT (i < rows, j < cols) or RADMAT (rings, radials), not only its base. */
+static fbrl_status w_rack(fbrl_cell_words *cw, const cw_word *w)
+{
+    fbrl_vmx_val v[2];
+    char name[FBRL_CELL_NAME_MAX + 1];
+    fbrl_cell xt;
+    fbrl_glossary_kind kind;
+    void *obj;
+    size_t k;
+    fbrl_status st = fbrl_vmx_args(cw->vm, w->name, "II", NULL, FBRL_VMX_STACKS, v);
+    if (st == FBRL_OK)
+        st = parse_name(cw, w, name);
+    if (st != FBRL_OK)
+        return st;
+    if (v[0].i < 1 || v[0].i > FBRL_CELL_RACK_MAX || v[1].i < 1 || v[1].i > FBRL_CELL_RACK_MAX)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE),
+                               "%s: %s: rows and columns must be 1 to %d", w->name, name, FBRL_CELL_RACK_MAX);
+    if (!cw->g || fbrl_vmx_find(cw->vm, name, strlen(name), &xt) != FBRL_OK ||
+        fbrl_glossary_object(cw->g, xt, &kind, &obj) != FBRL_OK ||
+        (kind != FBRL_GLOSSARY_RECTMAT && kind != FBRL_GLOSSARY_RADMAT))
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_ENAME), "%s: %s is no RECTMAT or RADMAT",
+                               w->name, name);
+#if FBRL_CELL_PICTURE
+    for (k = 0; k < cw->nracks && strcmp(cw->racks[k].name, name) != 0; k++)
+        ;
+    if (k == FBRL_CELL_RACKS)
+        return fbrl_vmx_throwf(cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "%s: at most %d racks", w->name,
+                               FBRL_CELL_RACKS);
+    memcpy(cw->racks[k].name, name, sizeof name);
+    cw->racks[k].rows = (int)v[0].i;
+    cw->racks[k].cols = (int)v[1].i;
+    if (k == cw->nracks)
+        cw->nracks++;
+#else
+    (void)k;
+#endif
     return FBRL_OK;
 }
 
@@ -315,6 +360,10 @@ static const cw_word words[] = {
     {"CELL-GUARD-OFF", w_guard, 0,
      FBRL_DOC("( -- )", "send motions unchecked (the guard is off until CELL-GUARD-ON)")},
     {"CELL-CLEAR", w_clear, 0, FBRL_DOC("( -- )", "forget the cell's table, obstacles and blocks")},
+    {"CELL-RACK", w_rack, 0,
+     FBRL_DOC(
+         "( rows cols -- ) ( PAR: matrix )",
+         "the picture draws every position of that RECTMAT or RADMAT (rows or rings x columns or radials)")},
     {".CELL", w_show, 0, FBRL_DOC("( -- )", "list the cell and the closest approach so far")},
     {"CELL-SVG", w_svg, 0,
      FBRL_DOC("( c-addr u -- ) or ( PAR: file )", "write an SVG picture of the cell and the tool's path")},
@@ -330,7 +379,7 @@ static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
 /* ---- the guard ---- */
 
 /* Carry every block's obstacles to where its calibration puts the block now. */
-static void place_blocks(fbrl_cell_words *cw)
+void cw_place_blocks(fbrl_cell_words *cw)
 {
     for (size_t k = 0; cw->g && k < cw->model.nblocks; k++) {
         fbrl_cell xt;
@@ -356,13 +405,46 @@ static fbrl_robot_guard_state guard_state(void *ctx)
     return cw->guard ? FBRL_ROBOT_GUARD_ON : FBRL_ROBOT_GUARD_OFF;
 }
 
+/* A refused motion for the picture: the tool point from p0 (joints q0) towards target (q1
+ * for a joint move, NULL along a line) up to fraction f of the way, and the contact h. */
+static void keep_refusal(fbrl_cell_words *cw, const fbrl_robot_move *m, const double *q0, const double *q1,
+                         const double p0[3], const double target[3], double f, const fbrl_cell_hit *h)
+{
+#if FBRL_CELL_PICTURE
+    fbrl_cell_refusal *rf;
+    if (cw->nrefused >= FBRL_CELL_LOG_MAX)
+        return;
+    rf = &cw->refused[cw->nrefused++];
+    memset(rf, 0, sizeof *rf);
+    for (unsigned k = 0; k < FBRL_CELL_REFUSED_PTS; k++) {
+        double t = f * k / (FBRL_CELL_REFUSED_PTS - 1), pose[6], q[FBRL_CELL_AXES];
+        for (int i = 0; q1 && i < FBRL_CELL_AXES; i++)
+            q[i] = q0[i] + (q1[i] - q0[i]) * t;
+        if (q1)
+            fbrl_arm_fk(cw->model.arm, q, cw->model.tcp, pose);
+        for (int i = 0; !q1 && i < 3; i++)
+            pose[i] = p0[i] + (target[i] - p0[i]) * t;
+        memcpy(rf->pts[k], pose, sizeof rf->pts[k]);
+    }
+    rf->npts = FBRL_CELL_REFUSED_PTS;
+    rf->hit = h != NULL;
+    rf->obj = h ? h->obj : FBRL_CELL_NONE;
+    if (h)
+        memcpy(rf->at, h->at, sizeof rf->at);
+    snprintf(rf->word, sizeof rf->word, "%s", m->word);
+#else
+    (void)cw, (void)m, (void)q0, (void)q1, (void)p0, (void)target, (void)f, (void)h;
+#endif
+}
+
 static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what)
 {
     char msg[FBRL_CELL_MSG_MAX];
     snprintf(msg, sizeof msg, "%s: %s; nothing was sent", m->word, what);
     if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX) { /* the report keeps its head */
         char *keep = cw->stats.refusals[cw->stats.nrefusals++];
-        size_t n = strlen(msg) < sizeof cw->stats.refusals[0] ? strlen(msg) : sizeof cw->stats.refusals[0] - 1;
+        size_t n =
+            strlen(msg) < sizeof cw->stats.refusals[0] ? strlen(msg) : sizeof cw->stats.refusals[0] - 1;
         memcpy(keep, msg, n);
         keep[n] = '\0';
     }
@@ -451,7 +533,7 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         return fbrl_robot_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED), what);
     }
     memcpy(cw->q, q, sizeof cw->q);
-    place_blocks(cw);
+    cw_place_blocks(cw);
     memcpy(q0, cw->q, sizeof q0);
     memcpy(q1, q0, sizeof q1);
     fbrl_arm_fk(arm, q0, cw->model.tcp, p0);
@@ -487,20 +569,25 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
     if (to_pose && !line && fbrl_arm_ik(arm, target, cw->model.tcp, q0, q1, NULL) != FBRL_OK) {
         snprintf(what, sizeof what, "the guard cannot check it: X %s Y %s Z %s in is beyond the arm's reach",
                  num(a, sizeof a, target[0]), num(b, sizeof b, target[1]), num(c, sizeof c, target[2]));
+        keep_refusal(cw, m, q0, NULL, p0, target, 1.0, NULL);
         return refuse(cw, m, what);
     }
     if (!to_pose && line)
         fbrl_arm_fk(arm, q1, cw->model.tcp, target);
     st = line ? fbrl_cell_check_line(&cw->model, q0, target, h)
               : fbrl_cell_check_joints(&cw->model, q0, q1, h);
-    if (st != FBRL_OK)
+    if (st != FBRL_OK) {
+        keep_refusal(cw, m, q0, line ? NULL : q1, p0, target, 1.0, NULL);
         return refuse(cw, m,
                       "the guard cannot check it: the straight line leaves the arm's reach (move in steps, "
                       "or joint-interpolated)");
+    }
     if (h->hit) {
         snprintf(what, sizeof what, "would hit %s with the %s at X %s Y %s Z %s in (%d%% of the way)",
-                 fbrl_cell_obj_name(&cw->model, h->obj), fbrl_arm_part_name(h->part), num(a, sizeof a, h->at[0]),
-                 num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]), (int)(h->fraction * 100.0 + 0.5));
+                 fbrl_cell_obj_name(&cw->model, h->obj), fbrl_arm_part_name(h->part),
+                 num(a, sizeof a, h->at[0]), num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]),
+                 (int)(h->fraction * 100.0 + 0.5));
+        keep_refusal(cw, m, q0, line ? NULL : q1, p0, target, h->fraction, h);
         return refuse(cw, m, what);
     }
     memcpy(cw->pending, h->q_end, sizeof cw->pending);
@@ -573,241 +660,3 @@ void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx)
 }
 
 const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw) { return cw ? &cw->stats : NULL; }
-
-/* ---- the picture ---- */
-
-#define SVG_SCALE 20.0   /* px per inch */
-#define SVG_HALF  24.0   /* in: each view shows the arm's reach around its base */
-#define SVG_Z_LO  (-3.5) /* in: the side view's height range */
-#define SVG_Z_HI  27.5
-
-#define SVG_LABELS   96   /* labels a view keeps clear of each other (more are drawn where they fall) */
-#define SVG_CHAR_W   6    /* px: a 10 px sans-serif character, a little wide to be safe */
-#define SVG_LINE_H   11   /* px: one label line */
-#define SVG_NUDGES   7    /* tries: where the label belongs, then a line below, above, two below ... */
-
-/* A label's place on the page (px), kept so the next ones can step aside. */
-typedef struct svg_box {
-    short x0, y0, x1, y1;
-} svg_box;
-
-typedef struct svg_ctx {
-    fbrl_cell_write_fn fn;
-    void *ctx;
-    svg_box placed[SVG_LABELS];
-    unsigned nplaced;
-} svg_ctx;
-
-static void out(svg_ctx *s, const char *t) { s->fn(s->ctx, t, strlen(t)); }
-
-/* A view: x across; up = y (top view) or z (side view). Its origin on the page. */
-typedef struct view {
-    double ox, oy;
-    int side;
-} view;
-
-static double px(const view *v, double x) { return v->ox + x * SVG_SCALE; }
-static double py(const view *v, const double p[3]) { return v->oy - (v->side ? p[2] : p[1]) * SVG_SCALE; }
-
-static void rect(svg_ctx *s, const view *v, const double a[3], const double b[3], const char *cls,
-                 const char *name)
-{
-    char line[400], x[24], y[24], w[24], h[24];
-    double x0 = px(v, fmin(a[0], b[0])), x1 = px(v, fmax(a[0], b[0]));
-    double y0 = fmin(py(v, a), py(v, b)), y1 = fmax(py(v, a), py(v, b));
-    snprintf(line, sizeof line,
-             "<rect class=\"%s\" x=\"%s\" y=\"%s\" width=\"%s\" height=\"%s\"><title>%s</title></rect>\n",
-             cls, num(x, sizeof x, x0), num(y, sizeof y, y0), num(w, sizeof w, x1 - x0),
-             num(h, sizeof h, y1 - y0), name);
-    out(s, line);
-}
-
-static int overlaps(const svg_ctx *s, const svg_box *b)
-{
-    for (unsigned k = 0; k < s->nplaced; k++) {
-        const svg_box *o = &s->placed[k];
-        if (b->x0 < o->x1 && o->x0 < b->x1 && b->y0 < o->y1 && o->y0 < b->y1)
-            return 1;
-    }
-    return 0;
-}
-
-/* A label at (x, y), its baseline; where it would cover one already drawn it moves down
- * or up a line at a time (names that stand close, VIAL and REAGENT-VIAL, stay legible). */
-static void label(svg_ctx *s, double x, double y, const char *cls, const char *text)
-{
-    char line[300], a[24], b[24];
-    double w = (double)strlen(text) * SVG_CHAR_W;
-    for (int k = 0; k < SVG_NUDGES && s->nplaced < SVG_LABELS; k++) {
-        double dy = (double)((k + 1) / 2) * SVG_LINE_H * (k % 2 ? 1 : -1);
-        svg_box bx = {(short)x, (short)(y + dy - SVG_LINE_H + 2), (short)(x + w), (short)(y + dy + 2)};
-        if (!overlaps(s, &bx) || k == SVG_NUDGES - 1) {
-            if (!overlaps(s, &bx))
-                y += dy;
-            bx.y0 = (short)(y - SVG_LINE_H + 2), bx.y1 = (short)(y + 2);
-            s->placed[s->nplaced++] = bx;
-            break;
-        }
-    }
-    snprintf(line, sizeof line, "<text class=\"%s\" x=\"%s\" y=\"%s\">%s</text>\n", cls, num(a, sizeof a, x),
-             num(b, sizeof b, y), text);
-    out(s, line);
-}
-
-/* An obstacle's corners where its block stands now: the box's eight corners carried along,
- * drawn by their extent (a turned block shows its bounding box). */
-static void obj_extent(const fbrl_cell_words *cw, const fbrl_cell_obj *o, double lo[3], double hi[3])
-{
-    double l[3], h[3];
-    if (o->kind == FBRL_CELL_CYLINDER) {
-        l[0] = o->c[0] - o->r, l[1] = o->c[1] - o->r, h[0] = o->c[0] + o->r, h[1] = o->c[1] + o->r;
-        l[2] = o->lo[2], h[2] = o->hi[2];
-    } else {
-        memcpy(l, o->lo, sizeof l);
-        memcpy(h, o->hi, sizeof h);
-    }
-    for (int i = 0; i < 3; i++)
-        lo[i] = INFINITY, hi[i] = -INFINITY;
-    for (int k = 0; k < 8; k++) {
-        double p[3] = {k & 1 ? h[0] : l[0], k & 2 ? h[1] : l[1], k & 4 ? h[2] : l[2]}, q[3];
-        if (o->block >= 0) {
-            const fbrl_calib *m = &cw->model.block[o->block];
-            for (int i = 0; i < 3; i++)
-                q[i] = m->r[i][0] * p[0] + m->r[i][1] * p[1] + m->r[i][2] * p[2] + m->t[i];
-        } else {
-            memcpy(q, p, sizeof q);
-        }
-        for (int i = 0; i < 3; i++)
-            lo[i] = fmin(lo[i], q[i]), hi[i] = fmax(hi[i], q[i]);
-    }
-}
-
-typedef struct loc_draw {
-    svg_ctx *s;
-    fbrl_cell_words *cw;
-    const view *v;
-    unsigned n;
-} loc_draw;
-
-static int draw_loc(void *ctx, const char *name, size_t len)
-{
-    loc_draw *d = ctx;
-    fbrl_cell xt;
-    fbrl_glossary_kind kind;
-    void *obj;
-    char line[300], a[24], b[24], nm[FBRL_CELL_NAME_MAX + 1];
-    if (d->n >= 200 || fbrl_vmx_find(d->cw->vm, name, len, &xt) != FBRL_OK ||
-        fbrl_glossary_object(d->cw->g, xt, &kind, &obj) != FBRL_OK ||
-        (kind != FBRL_GLOSSARY_LOC && kind != FBRL_GLOSSARY_RECTMAT && kind != FBRL_GLOSSARY_RADMAT))
-        return 0;
-    const fbrl_loc *l = obj; /* a matrix starts with its base location */
-    double p[3] = {l->x, l->y, l->z};
-    size_t n = len < FBRL_CELL_NAME_MAX ? len : FBRL_CELL_NAME_MAX;
-    for (size_t k = 0; k < n; k++) /* names are plain words; keep the SVG text well formed */
-        nm[k] = name[k] == '<' || name[k] == '>' || name[k] == '&' || name[k] == '"' ? '_' : name[k];
-    nm[n] = '\0';
-    if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]))
-        return 0;
-    snprintf(line, sizeof line,
-             "<circle class=\"%s\" cx=\"%s\" cy=\"%s\" r=\"3\"><title>%s</title></circle>\n",
-             kind == FBRL_GLOSSARY_LOC ? "loc" : "matrix", num(a, sizeof a, px(d->v, p[0])),
-             num(b, sizeof b, py(d->v, p)), nm);
-    out(d->s, line);
-    label(d->s, px(d->v, p[0]) + 4, py(d->v, p) - 4, kind == FBRL_GLOSSARY_LOC ? "loclabel" : "matlabel", nm);
-    d->n++;
-    return 0;
-}
-
-static void draw_view(svg_ctx *s, fbrl_cell_words *cw, const view *v)
-{
-    char line[400], a[24], b[24];
-    s->nplaced = 0; /* each view places its own labels */
-    label(s, v->ox - SVG_HALF * SVG_SCALE + 6, v->oy - (v->side ? 28 : SVG_HALF) * SVG_SCALE + 16, "title",
-          v->side ? "side view (x across, z up)" : "top view (x across, y up)");
-    if (v->side && cw->model.have_table) {
-        double p[3] = {0, 0, cw->model.table_z};
-        snprintf(line, sizeof line, "<line class=\"table\" x1=\"%s\" y1=\"%s\" x2=\"%s\" y2=\"%s\"/>\n",
-                 num(a, sizeof a, v->ox - SVG_HALF * SVG_SCALE), num(b, sizeof b, py(v, p)),
-                 num(a + 12, sizeof a - 12, v->ox + SVG_HALF * SVG_SCALE),
-                 num(b + 12, sizeof b - 12, py(v, p)));
-        out(s, line);
-    }
-    /* the arm's base */
-    double base[3] = {0, 0, 0};
-    snprintf(line, sizeof line,
-             "<circle class=\"base\" cx=\"%s\" cy=\"%s\" r=\"8\"><title>arm base</title></circle>\n",
-             num(a, sizeof a, px(v, 0)), num(b, sizeof b, py(v, base)));
-    out(s, line);
-    for (size_t k = 0; k < cw->model.n; k++) {
-        const fbrl_cell_obj *o = &cw->model.obj[k];
-        double lo[3], hi[3];
-        obj_extent(cw, o, lo, hi);
-        /* what lies outside the view is cut off at its edge */
-        for (int i = 0; i < 3; i++) {
-            double vlo = i == 2 ? SVG_Z_LO : -SVG_HALF, vhi = i == 2 ? SVG_Z_HI : SVG_HALF;
-            lo[i] = fmax(vlo, fmin(vhi, lo[i]));
-            hi[i] = fmax(vlo, fmin(vhi, hi[i]));
-        }
-        rect(s, v, lo, hi,
-             o->kind == FBRL_CELL_KEEPOUT    ? "keepout"
-             : o->kind == FBRL_CELL_CYLINDER ? "cylinder"
-                                             : "box",
-             o->name);
-        label(s, px(v, lo[0]) + 2, fmin(py(v, lo), py(v, hi)) - 3, "objlabel", o->name);
-    }
-    if (cw->g) {
-        loc_draw d = {s, cw, v, 0};
-        fbrl_vm_words(cw->vm, draw_loc, &d);
-    }
-    if (cw->npath > 1) {
-        out(s, "<polyline class=\"path\" points=\"");
-        for (size_t k = 0; k < cw->npath; k++) {
-            snprintf(line, sizeof line, "%s,%s ", num(a, sizeof a, px(v, cw->path[k][0])),
-                     num(b, sizeof b, py(v, cw->path[k])));
-            out(s, line);
-        }
-        out(s, "\"/>\n");
-    }
-    if (isfinite(cw->stats.clearance)) {
-        char t[120], c[24];
-        snprintf(line, sizeof line, "<circle class=\"closest\" cx=\"%s\" cy=\"%s\" r=\"6\"/>\n",
-                 num(a, sizeof a, px(v, cw->stats.near[0])), num(b, sizeof b, py(v, cw->stats.near)));
-        out(s, line);
-        snprintf(t, sizeof t, "closest %s in (%s)", num(c, sizeof c, cw->stats.clearance),
-                 fbrl_cell_obj_name(&cw->model, cw->stats.near_obj));
-        label(s, px(v, cw->stats.near[0]) + 8, py(v, cw->stats.near) + 14, "closestlabel", t);
-    }
-}
-
-fbrl_status fbrl_cell_svg(fbrl_cell_words *cw, fbrl_cell_write_fn fn, void *ctx)
-{
-    char line[300], w[24], h[24];
-    svg_ctx s;
-    memset(&s, 0, sizeof s);
-    s.fn = fn;
-    s.ctx = ctx;
-    if (!cw || !fn)
-        return FBRL_EINVAL;
-    place_blocks(cw);
-    double width = 2 * SVG_HALF * SVG_SCALE, top_h = 2 * SVG_HALF * SVG_SCALE, side_h = 32 * SVG_SCALE;
-    snprintf(line, sizeof line,
-             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
-             "width=\"%s\" height=\"%s\" viewBox=\"0 0 %s %s\">\n",
-             num(w, sizeof w, width), num(h, sizeof h, top_h + side_h), num(w + 12, sizeof w - 12, width),
-             num(h + 12, sizeof h - 12, top_h + side_h));
-    out(&s, line);
-    out(&s, "<style>rect.box{fill:#c8c8c8;stroke:#333}rect.cylinder{fill:#d8c8a8;stroke:#333}"
-            "rect.keepout{fill:#f4b0b0;fill-opacity:0.5;stroke:#c00;stroke-dasharray:4 2}"
-            ".table{stroke:#630;stroke-width:3}.base{fill:#333}.loc{fill:#06c}.matrix{fill:#0a0}"
-            ".path{fill:none;stroke:#f80;stroke-width:1.5}.closest{fill:none;stroke:#d00;stroke-width:2}"
-            "text{font:10px sans-serif}.title{font-weight:bold}</style>\n");
-    out(&s, "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n");
-    out(&s, "<g id=\"top\">\n");
-    view top = {SVG_HALF * SVG_SCALE, SVG_HALF * SVG_SCALE, 0};
-    draw_view(&s, cw, &top);
-    out(&s, "</g>\n<g id=\"side\">\n");
-    view side = {SVG_HALF * SVG_SCALE, top_h + 28 * SVG_SCALE, 1};
-    draw_view(&s, cw, &side);
-    out(&s, "</g>\n</svg>\n");
-    return FBRL_OK;
-}

@@ -31,3 +31,14 @@ if(TARGET fbrlmon AND TARGET fbrlsim)
   set_tests_properties(dry_run_vs_real PROPERTIES LABELS "e2e;slow" TIMEOUT 300
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+
+# The picture (CELL-SVG, the dry run's) parsed as a person reads it: its frame fits the cell,
+# no labels overlap, a scale bar true to the scale, a legend, racks drawn whole and a refused
+# motion drawn in red naming its obstacle (tests/e2e/svg_check.py; label e2e).
+if(TARGET fbrlmon AND Python3_Interpreter_FOUND)
+  add_test(NAME cell_picture_e2e COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/svg_test.sh $<TARGET_FILE:fbrlmon>
+    ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/e2e-cell-picture)
+  set_tests_properties(cell_picture_e2e PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()
+

@@ -26,3 +26,14 @@ T{ 19E0 -1E0 3E0 21E0 1E0 4E0 CELL-BOX NEGATIVE -> }T
 T{ CELL-CLEAR S" 19E0 -1E0 0E0 21E0 1E0 2E0 CELL-BOX COVER" ' EVALUATE CATCH NIP NIP -> -302 }T
 T{ S" x.svg" ' CELL-SVG CATCH NIP NIP -> -21 }T      \ no file output in this host
 T{ .CELL -> }T
+\ racks: the picture draws every position of a RECTMAT or RADMAT, given its rows and columns
+CREATE-LOC R0  10E0 -2E0 3E0 0E0 -90E0 0E0 R0 DEFINE-LOC
+R0 0.75E0 0.75E0 0E0 RECTMAT TUBES
+R0 0.1E0 1E0 0E0 RADMAT CAROUSEL
+T{ 4 6 CELL-RACK TUBES -> }T
+T{ 2 8 CELL-RACK carousel -> }T
+T{ 4 5 CELL-RACK TUBES -> }T                            \ described again: the new size
+T{ S" 4 6 CELL-RACK R0" ' EVALUATE CATCH NIP NIP -> -324 }T      \ a location, not a matrix
+T{ S" 4 6 CELL-RACK NOTHING" ' EVALUATE CATCH NIP NIP -> -324 }T
+T{ S" 0 6 CELL-RACK TUBES" ' EVALUATE CATCH NIP NIP -> -302 }T   \ 1 to 64 rows and columns
+T{ S" 4 65 CELL-RACK TUBES" ' EVALUATE CATCH NIP NIP -> -302 }T
