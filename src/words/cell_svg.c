@@ -19,28 +19,27 @@
 
 #if FBRL_CELL_PICTURE
 
-#define SVG_FIT_W  760.0 /* px: the widest a view's drawing gets */
-#define SVG_FIT_H  600.0 /* px: the tallest (a tall cell is drawn smaller) */
-#define SVG_MIN_W  560.0 /* px: the page is never narrower (three legend columns) */
-#define SVG_MARGIN 36.0  /* px around each view's drawing: room for its labels */
-#define SVG_PAD    0.5   /* in: space around what is drawn */
-#define SVG_KEEPOUT \
-    3.0                   /* in: a keep-out zone is shown at most this far beyond the rest (the
-                           * operator's side would otherwise shrink the cell to a corner) */
-#define SVG_TITLE_H 22.0  /* px: a view's title line */
-#define SVG_CHAR_W  7.0   /* px per character of a 10 px label: 0.7 em, wider than sans-serif capitals */
-#define SVG_LINE_H  13.0  /* px: a label's box, 10 px and descenders */
-#define SVG_LABELS  384   /* labels kept clear of each other; more are left to their tooltips */
-#define SVG_STEPS   8     /* lines above and below the place a label may move */
-#define SVG_LEG_COL 180.0 /* px: a legend column */
-#define SVG_LEG_ROW 18.0  /* px: a legend row */
-#define SVG_RED     "#d00000"
+#define SVG_FIT_W    760.0 /* px: the widest a view's drawing gets */
+#define SVG_FIT_H    600.0 /* px: the tallest (a tall cell is drawn smaller) */
+#define SVG_MIN_W    560.0 /* px: the page is never narrower (three legend columns) */
+#define SVG_MARGIN   36.0  /* px around each view's drawing: room for its labels */
+#define SVG_PAD      0.5   /* in: space around what is drawn */
+#define SVG_MIN_SPAN 6.0   /* in: the least a view shows across and up (an empty cell is no dot) */
+#define SVG_KEEPOUT  3.0   /* in: a keep-out zone is shown at most this far beyond the rest */
+#define SVG_TITLE_H  22.0  /* px: a view's title line */
+#define SVG_CHAR_W   7.0   /* px per character of a 10 px label: 0.7 em, wider than sans-serif capitals */
+#define SVG_LINE_H   13.0  /* px: a label's box, 10 px and descenders */
+#define SVG_LABELS   384   /* labels kept clear of each other; more are left to their tooltips */
+#define SVG_STEPS    8     /* lines above and below the place a label may move */
+#define SVG_LEG_COL  180.0 /* px: a legend column */
+#define SVG_LEG_ROW  18.0  /* px: a legend row */
+#define SVG_RED      "#d00000"
 
-/* A label's box on the page, whole px rounded outwards (small: the boxes live on the stack). */
 typedef struct bounds {
     double lo[3], hi[3];
 } bounds;
 
+/* A label's box on the page, whole px rounded outwards (small: the boxes live on the stack). */
 typedef struct svg_box {
     short x0, y0, x1, y1;
 } svg_box;
@@ -313,14 +312,18 @@ static void frame(fbrl_cell_words *cw, bounds *b)
         if (cw->model.obj[k].kind != FBRL_CELL_KEEPOUT)
             continue;
         obj_extent(cw, &cw->model.obj[k], o.lo, o.hi);
-        for (int i = 0; i < 3; i++) { /* a zone wholly beyond the rest shows its near SVG_KEEPOUT */
+        /* the operator's side would shrink the cell to a corner: a zone wholly beyond the rest
+         * shows its near SVG_KEEPOUT */
+        for (int i = 0; i < 3; i++) {
             o.lo[i] = fmax(o.lo[i], fmin(in.lo[i], o.hi[i]) - SVG_KEEPOUT);
             o.hi[i] = fmin(o.hi[i], fmax(in.hi[i], o.lo[i]) + SVG_KEEPOUT);
         }
         grow(b, o.lo), grow(b, o.hi);
     }
-    for (int i = 0; i < 3; i++)
-        b->lo[i] -= SVG_PAD, b->hi[i] += SVG_PAD;
+    for (int i = 0; i < 3; i++) {
+        double grow_by = fmax(0.0, SVG_MIN_SPAN - (b->hi[i] - b->lo[i])) / 2;
+        b->lo[i] -= SVG_PAD + grow_by, b->hi[i] += SVG_PAD + grow_by;
+    }
 }
 
 /* An obstacle's extent cut at the frame (only a keep-out zone reaches beyond it): 1 if cut. */
