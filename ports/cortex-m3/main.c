@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "board.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
 #include "fbrl/robot.h"

@@ -231,9 +231,9 @@ static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3])
     return FBRL_OK;
 }
 
-static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_get_cal_points(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_vm *vm = r->vm;
+    RB_WORD(vm, ctx, word);
     fbrl_loc pts[3];
     fbrl_calpts *cal;
     char msg[128];
