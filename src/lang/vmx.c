@@ -39,9 +39,9 @@ fbrl_status fbrl_vmx_define_table(fbrl_vm *vm, const fbrl_vmx_reg *rows, size_t 
     if (!vm || (!rows && n))
         return FBRL_EINVAL;
     for (size_t i = 0; i < n; i++) {
-        fbrl_status st = fbrl_vmx_define(vm, rows[i].name, rows[i].fn, ctx, &rows[i],
-                                         rows[i].flags & ~FBRL_VMX_PARSE, FBRL_DOC_STACK(rows[i]),
-                                         FBRL_DOC_HELP(rows[i]));
+        fbrl_status st =
+            fbrl_vmx_define(vm, rows[i].name, rows[i].fn, ctx, &rows[i], rows[i].flags & ~FBRL_VMX_PARSE,
+                            FBRL_DOC_STACK(rows[i]), FBRL_DOC_HELP(rows[i]));
         if (st != FBRL_OK)
             return st;
     }
@@ -434,8 +434,8 @@ fbrl_status fbrl_vmx_check(fbrl_vm *vm, const void *word, fbrl_vmx_val *v)
     const fbrl_vmx_reg *w = word;
     if (!w || !w->spec)
         return FBRL_EINVAL;
-    return fbrl_vmx_args(vm, w->name, w->spec, NULL, (w->flags & FBRL_VMX_PARSE) ? FBRL_VMX_LINE : FBRL_VMX_STACKS,
-                         v);
+    return fbrl_vmx_args(vm, w->name, w->spec, NULL,
+                         (w->flags & FBRL_VMX_PARSE) ? FBRL_VMX_LINE : FBRL_VMX_STACKS, v);
 }
 
 fbrl_status fbrl_vmx_push(fbrl_vm *vm, fbrl_cell v)

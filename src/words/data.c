@@ -52,11 +52,11 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
 
 /* A word's parameters (its row's spec, vmx.h's fbrl_vmx_check), its ctx unused: every
  * data word begins with this. */
-#define DATA_ARGS(v)                                      \
-    fbrl_status st = fbrl_vmx_check(vm, word, v);         \
-    (void)ctx;                                            \
-    if (st != FBRL_OK)                                    \
-        return st
+#define DATA_ARGS(v)                              \
+    fbrl_status st = fbrl_vmx_check(vm, word, v); \
+    (void)ctx;                                    \
+    if (st != FBRL_OK)                            \
+    return st
 
 /* Takes ( q -- ) (its row's spec "A") and checks it is a queue. */
 static fbrl_ring *pop_queue(fbrl_vm *vm, const void *word, fbrl_status *st)
@@ -492,7 +492,8 @@ static const fbrl_vmx_reg words[] = {
               "make a two-dimensional array")},
     {"STRING", w_string, "I", 0, 0, 0,
      FBRL_DOC("( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters")},
-    {"STRING-CNT", w_str1, "A", 0, 0, S_CNT, FBRL_DOC("( str -- cnt )", "number of characters in the string")},
+    {"STRING-CNT", w_str1, "A", 0, 0, S_CNT,
+     FBRL_DOC("( str -- cnt )", "number of characters in the string")},
     {"STRING-SIZE", w_str1, "A", 0, 0, S_SIZE,
      FBRL_DOC("( str -- size )", "number of characters reserved for the string")},
     {"TYPE-STRING", w_str1, "A", 0, 0, S_TYPE, FBRL_DOC("( str -- )", "print the string")},

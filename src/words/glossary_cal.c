@@ -102,8 +102,7 @@ static fbrl_status set_get_cal(fbrl_vm *vm, const void *word_row, int set)
     fbrl_loc *loc;
     fbrl_status st;
     if ((st = gl_args(vm, word_row, a, NULL)) || (st = cal_at(vm, a[0], word, &c)) ||
-        (st = slot_index(vm, a[1], word)) ||
-        (st = gl_loc(vm, a[2], set, word, &loc)))
+        (st = slot_index(vm, a[1], word)) || (st = gl_loc(vm, a[2], set, word, &loc)))
         return st;
     /* through a copy: loc may overlap a slot in part */
     fbrl_loc tmp;
@@ -343,13 +342,17 @@ static const gl_word cal_words[] = {
      FBRL_DOC("( -- )", "map outgoing locations through the WITH-CAL structure (and unmap taught ones)")},
     {"MAP-OFF", w_map_off, "", 0, 0, 0, FBRL_DOC("( -- )", "stop mapping locations (the default)")},
     {"MAPPING?", w_mapping_q, "", 0, 0, 0, FBRL_DOC("( -- flag )", "true if MAP-ON")},
-    {"WITH-CAL", w_with_cal, "A", 0, 0, 0, FBRL_DOC("( cal-stru -- )", "select the calibration structure mapping uses")},
+    {"WITH-CAL", w_with_cal, "A", 0, 0, 0,
+     FBRL_DOC("( cal-stru -- )", "select the calibration structure mapping uses")},
     {"CREATE-CAL", w_create_cal, "", 0, 0, 0,
      FBRL_DOC("( \"name\" -- ) ( run: -- cal )",
               "make a calibration: three location slots 1 2 3 (P1 origin, P2 on x, P3 in the plane)")},
-    {"CAL-ADDR", w_cal_addr, "AI", 0, 0, 0, FBRL_DOC("( cal index -- loc )", "address of location slot index (1..3)")},
-    {"SET-CAL", w_set_cal, "AIA", 0, 0, 0, FBRL_DOC("( cal index loc -- )", "copy loc into slot index (1..3)")},
-    {"GET-CAL", w_get_cal, "AIA", 0, 0, 0, FBRL_DOC("( cal index loc -- )", "copy slot index (1..3) into loc")},
+    {"CAL-ADDR", w_cal_addr, "AI", 0, 0, 0,
+     FBRL_DOC("( cal index -- loc )", "address of location slot index (1..3)")},
+    {"SET-CAL", w_set_cal, "AIA", 0, 0, 0,
+     FBRL_DOC("( cal index loc -- )", "copy loc into slot index (1..3)")},
+    {"GET-CAL", w_get_cal, "AIA", 0, 0, 0,
+     FBRL_DOC("( cal index loc -- )", "copy slot index (1..3) into loc")},
     {"CREATE-CAL-STRU", w_create_cal_stru, "", 0, 0, 0,
      FBRL_DOC("( \"name\" -- ) ( run: -- cal-stru )",
               "make a calibration structure (the block's rigid motion; identity until CALIBRATE)")},
@@ -369,7 +372,8 @@ static const gl_word cal_words[] = {
     {"CALIBRATE", w_calibrate, "AAA", 0, 0, 0,
      FBRL_DOC("( recal-cal cal-cal cal-stru -- )",
               "compute the motion from the block taught in cal-cal to the block taught in recal-cal")},
-    {"(MAP)", w_map, "AA", 0, 0, 0, FBRL_DOC("( cal-stru loc -- )", "map loc from the original block to the moved block")},
+    {"(MAP)", w_map, "AA", 0, 0, 0,
+     FBRL_DOC("( cal-stru loc -- )", "map loc from the original block to the moved block")},
     {"UNMAP", w_unmap, "AA", 0, 0, 0,
      FBRL_DOC("( cal-stru loc -- )", "map loc from the moved block back to the original block")},
     {"CALIBRATE-N", w_calibrate_n, "IAAA", 0, 0, 0,

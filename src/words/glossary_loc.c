@@ -32,7 +32,8 @@ static fbrl_status w_create_loc(fbrl_vm *vm, void *arg, const void *word)
                            GL_LOC_STACK, GL_LOC_HELP, NULL, NULL);
 }
 
-static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl_loc_axis ax, const char *word)
+static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl_loc_axis ax,
+                            const char *word)
 {
     fbrl_cell a;
     fbrl_loc *loc;
@@ -46,7 +47,8 @@ static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl
     return fbrl_vm_fpush(vm, v);
 }
 
-static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl_loc_axis ax, const char *word)
+static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl_loc_axis ax,
+                            const char *word)
 {
     fbrl_cell a;
     fbrl_loc *loc;
@@ -61,14 +63,14 @@ static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl
     return FBRL_OK;
 }
 
-#define AXIS(L, AX)                                                                             \
-    static fbrl_status w_get##L(fbrl_vm *vm, void *g, const void *word)                        \
-    {                                                                                           \
-        return get_axis(vm, g, word, AX, "GET" #L);                                             \
-    }                                                                                           \
-    static fbrl_status w_set##L(fbrl_vm *vm, void *g, const void *word)                        \
-    {                                                                                           \
-        return set_axis(vm, g, word, AX, "SET" #L);                                             \
+#define AXIS(L, AX)                                                     \
+    static fbrl_status w_get##L(fbrl_vm *vm, void *g, const void *word) \
+    {                                                                   \
+        return get_axis(vm, g, word, AX, "GET" #L);                     \
+    }                                                                   \
+    static fbrl_status w_set##L(fbrl_vm *vm, void *g, const void *word) \
+    {                                                                   \
+        return set_axis(vm, g, word, AX, "SET" #L);                     \
     }
 AXIS(X, FBRL_LOC_X)
 AXIS(Y, FBRL_LOC_Y)
@@ -343,27 +345,48 @@ static fbrl_status convert(fbrl_vm *vm, fbrl_glossary *g, const void *row, int h
         return gl_throw_st(vm, st, word);
     return fbrl_vm_fpush(vm, v);
 }
-static fbrl_status w_cm_in(fbrl_vm *vm, void *g, const void *word) { return convert(vm, g, word, CONV_CM_IN, "CM->IN"); }
-static fbrl_status w_in_cm(fbrl_vm *vm, void *g, const void *word) { return convert(vm, g, word, CONV_IN_CM, "IN->CM"); }
-static fbrl_status w_metric_in(fbrl_vm *vm, void *g, const void *word) { return convert(vm, g, word, CONV_IN, "METRIC-IN"); }
-static fbrl_status w_metric_out(fbrl_vm *vm, void *g, const void *word) { return convert(vm, g, word, CONV_OUT, "METRIC-OUT"); }
+static fbrl_status w_cm_in(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_CM_IN, "CM->IN");
+}
+static fbrl_status w_in_cm(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_IN_CM, "IN->CM");
+}
+static fbrl_status w_metric_in(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_IN, "METRIC-IN");
+}
+static fbrl_status w_metric_out(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_OUT, "METRIC-OUT");
+}
 
 static const gl_word loc_words[] = {
     {"CREATE-LOC", w_create_loc, "", 0, 0, 0,
      FBRL_DOC("( \"name\" -- ) ( run: -- loc )",
               "make a location template (6 floats X Y Z O A T, 48 bytes, zeroed); name pushes its address")},
-    {"GETX", w_getX, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- x )", "x of the location (cm when METRIC-ON)")},
-    {"GETY", w_getY, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- y )", "y of the location (cm when METRIC-ON)")},
-    {"GETZ", w_getZ, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- z )", "z of the location (cm when METRIC-ON)")},
+    {"GETX", w_getX, "A", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: -- x )", "x of the location (cm when METRIC-ON)")},
+    {"GETY", w_getY, "A", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: -- y )", "y of the location (cm when METRIC-ON)")},
+    {"GETZ", w_getZ, "A", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: -- z )", "z of the location (cm when METRIC-ON)")},
     {"GETO", w_getO, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- o )", "yaw (O) of the location, degrees")},
     {"GETA", w_getA, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- a )", "pitch (A) of the location, degrees")},
     {"GETT", w_getT, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- t )", "roll (T) of the location, degrees")},
-    {"SETX", w_setX, "RA", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: x -- )", "set x of the location (cm when METRIC-ON)")},
-    {"SETY", w_setY, "RA", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: y -- )", "set y of the location (cm when METRIC-ON)")},
-    {"SETZ", w_setZ, "RA", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: z -- )", "set z of the location (cm when METRIC-ON)")},
-    {"SETO", w_setO, "RA", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: o -- )", "set yaw (O) of the location, degrees")},
-    {"SETA", w_setA, "RA", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: a -- )", "set pitch (A) of the location, degrees")},
-    {"SETT", w_setT, "RA", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: t -- )", "set roll (T) of the location, degrees")},
+    {"SETX", w_setX, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: x -- )", "set x of the location (cm when METRIC-ON)")},
+    {"SETY", w_setY, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: y -- )", "set y of the location (cm when METRIC-ON)")},
+    {"SETZ", w_setZ, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: z -- )", "set z of the location (cm when METRIC-ON)")},
+    {"SETO", w_setO, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: o -- )", "set yaw (O) of the location, degrees")},
+    {"SETA", w_setA, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: a -- )", "set pitch (A) of the location, degrees")},
+    {"SETT", w_setT, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: t -- )", "set roll (T) of the location, degrees")},
     {"SET-LOC", w_set_loc, "AA", 0, 0, 0, FBRL_DOC("( loc1 loc2 -- )", "copy location loc2 into loc1")},
     {"DEFINE-LOC", w_define_loc, "RRRRRRA", 0, 0, 0,
      FBRL_DOC("( loc -- ) ( F: x y z o a t -- )",
@@ -386,7 +409,8 @@ static const gl_word loc_words[] = {
      FBRL_DOC("( xt -- )", "print a RECTMAT's base and steps (' name SHOW-AUTOMAT)")},
     {"SHOW-RADMAT", w_show_radmat, "I", 0, 0, 0,
      FBRL_DOC("( xt -- )", "print a RADMAT's base, steps, radius and angle (' name SHOW-RADMAT)")},
-    {"METRIC-ON", w_metric_on, "", 0, 0, 0, FBRL_DOC("( -- )", "location lengths in centimetres at the user side")},
+    {"METRIC-ON", w_metric_on, "", 0, 0, 0,
+     FBRL_DOC("( -- )", "location lengths in centimetres at the user side")},
     {"METRIC-OFF", w_metric_off, "", 0, 0, 0,
      FBRL_DOC("( -- )", "location lengths in inches at the user side (the default)")},
     {"METRIC?", w_metric_q, "", 0, 0, 0, FBRL_DOC("( -- flag )", "true if METRIC-ON")},

@@ -388,7 +388,8 @@ static const fbrl_vmx_reg words[] = {
      FBRL_DOC("( method -- )", "share another method's parameters (a method composed of its steps)")},
     {"END-METHOD", w_end_method, "", 0, 0, 0, FBRL_DOC("( -- )", "end the method's declaration")},
     {"METHODS", w_methods, "", 0, 0, 0, FBRL_DOC("( -- )", "list the declared methods")},
-    {".METHOD", w_dot_method, "A", FBRL_VMX_PARSE, 0, 0, FBRL_DOC("( method -- )", "show a method's parameters and steps")},
+    {".METHOD", w_dot_method, "A", FBRL_VMX_PARSE, 0, 0,
+     FBRL_DOC("( method -- )", "show a method's parameters and steps")},
     {"PARAM!", w_param_store, "I", 0, 0, 0,
      FBRL_DOC("( n \"name\" -- )", "set a method parameter, its range checked")},
 };

@@ -40,14 +40,14 @@ typedef char rb_word_cmds_fit[FBRL_RAPL_NCMDS - 1 <= INT16_MAX ? 1 : -1];
 /* Every robot word begins so (as a Lua function with luaL_check*): its robot (ctx), its row
  * (word) and its parameters v fetched by the one rule (rb_params); a failure is thrown and
  * returned before the word does anything. */
-#define RB_WORD(vm, ctx, word)                      \
-    fbrl_robot *r = (ctx);                          \
-    const rb_word *w = (word);                      \
-    rb_val v[RB_MAXP];                              \
-    fbrl_status rb_word_st_ = rb_fetch(r, w, v);    \
-    (void)(vm);                                     \
-    (void)v;                                        \
-    if (rb_word_st_ != FBRL_OK)                     \
+#define RB_WORD(vm, ctx, word)                   \
+    fbrl_robot *r = (ctx);                       \
+    const rb_word *w = (word);                   \
+    rb_val v[RB_MAXP];                           \
+    fbrl_status rb_word_st_ = rb_fetch(r, w, v); \
+    (void)(vm);                                  \
+    (void)v;                                     \
+    if (rb_word_st_ != FBRL_OK)                  \
     return rb_word_st_
 
 /* Throw a Forth exception with a message (the message is copied). */

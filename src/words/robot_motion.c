@@ -22,7 +22,7 @@ static fbrl_status w_plain(fbrl_vm *vm, void *ctx, const void *word)
     memset(&m, 0, sizeof m);
     m.kind = w->code == FBRL_RAPL_READY  ? FBRL_ROBOT_MOVE_READY
              : w->code == FBRL_RAPL_HOME ? FBRL_ROBOT_MOVE_HOME
-                                        : FBRL_ROBOT_MOVE_OTHER;
+                                         : FBRL_ROBOT_MOVE_OTHER;
     memset(&o, 0, sizeof o);
     o.cmd = (fbrl_rapl_cmd)w->code;
     return rb_motion(r, w, &m, &o);

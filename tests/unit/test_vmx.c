@@ -249,7 +249,7 @@ static void a_word_set_is_a_table(void **state)
     assert_int_equal(calls, 3);
     /* a bad row stops the table there; NULLs are refused */
     static const fbrl_vmx_reg bad[] = {{"T-OK", w_lit99, "", 0, 0, 0, FBRL_DOC("", "")},
-                                      {"T BAD", w_lit99, "", 0, 0, 0, FBRL_DOC("", "")}};
+                                       {"T BAD", w_lit99, "", 0, 0, 0, FBRL_DOC("", "")}};
     assert_int_equal(fbrl_vmx_define_table(f->vm, bad, 2, NULL), FBRL_ENAME);
     assert_int_equal(fbrl_vmx_find(f->vm, "T-OK", 4, &xt), FBRL_OK);
     assert_int_equal(fbrl_vmx_define_table(NULL, rows, 1, NULL), FBRL_EINVAL);
