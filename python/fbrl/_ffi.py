@@ -219,8 +219,6 @@ fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
-typedef struct fbrl_cell_words fbrl_cell_words;
-fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
 typedef struct fbrl_robot_stop {
     fbrl_status result;
     int was_moving;
@@ -294,20 +292,6 @@ for _name in DECLARED:
     if _have != _want or ffi.string(lib.fbrl_abi_name(ABI[_name])).decode() != _name:
         raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"
                           % (_name, _have, _want))
-
-
-def _code_of(name):
-    """The library's fbrl_abi_type code of a struct, found by its name."""
-    for code in range(256):
-        n = lib.fbrl_abi_name(code)
-        if n == ffi.NULL:
-            break
-        if ffi.string(n).decode() == name:
-            return code
-    raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % name)
-
-
-ABI.setdefault("fbrl_cell_words", _code_of("fbrl_cell_words"))  # appended to fbrl/abi.h after the table
 
 
 def alloc(type_name):
