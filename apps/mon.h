@@ -5,7 +5,7 @@
 #define FBRLMON_MON_H
 
 #include <stddef.h>
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
 #include "fbrl/method.h"

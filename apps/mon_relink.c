@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "fbrl/vm_throw.h"
+#include "fbrl/vmx.h"
 #include "mon_conn.h"
 
 /* What the controller says about itself now, in one line to the console. */
@@ -89,8 +90,9 @@ static fbrl_status auto_relink(void *ctx, fbrl_robot *r)
     return st;
 }
 
-static fbrl_status w_reconnect(fbrl_vm *vm, void *arg)
+static fbrl_status w_reconnect(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     char err[300], msg[340];
     fbrl_status st = mon_relink(m, err, sizeof err);
@@ -102,14 +104,16 @@ static fbrl_status w_reconnect(fbrl_vm *vm, void *arg)
 
 /* (RESUME) ( a -- a u ): the failed plan file's name into the buffer at a; its next
  * open skips to the failed line. */
-static fbrl_status w_resume(fbrl_vm *vm, void *arg)
+static fbrl_status w_resume(fbrl_vm *vm, void *arg, const void *word)
 {
     mon *m = arg;
-    fbrl_cell a;
+    fbrl_vmx_val v[1];
     size_t n = strlen(m->resume_file);
     char *p;
-    if (fbrl_vm_pop(vm, &a) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_cell a = v[0].i;
     if (n == 0 || m->resume_line == 0)
         return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, "RESUME: no plan file has failed in this session");
     p = fbrl_vm_addr(vm, a, sizeof m->resume_file);
@@ -133,13 +137,14 @@ fbrl_status mon_relink_install(mon *m)
         "CREATE (RESUME-FILE) 256 ALLOT\n"
         ": RESUME ( -- ) \\ run the plan file that failed last again, from the line that failed\n"
         "  (RESUME-FILE) (RESUME) INCLUDED ;\n";
-    fbrl_status st =
-        fbrl_vm_define(m->vm, "RECONNECT", w_reconnect, m, "( -- )",
-                       "open the controller's port again, NOHELP, and report its state (STATUS)");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(
-            m->vm, "(RESUME)", w_resume, m, "( a -- a u )",
-            "RESUME's helper: the failed file's name at a; its next open starts at the failed line");
+    static const fbrl_vmx_reg words[] = {
+        {"RECONNECT", w_reconnect, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "open the controller's port again, NOHELP, and report its state (STATUS)")},
+        {"(RESUME)", w_resume, "A", 0, 0, 0,
+         FBRL_DOC("( a -- a u )",
+                  "RESUME's helper: the failed file's name at a; its next open starts at the failed line")},
+    };
+    fbrl_status st = fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], m);
     if (st == FBRL_OK)
         st = fbrl_vm_eval(m->vm, def, sizeof def - 1);
     if (st == FBRL_OK)

@@ -456,11 +456,13 @@ int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *c
     snprintf(r->operator_id, sizeof r->operator_id, "%s", who ? who : "");
     snprintf(r->controller, sizeof r->controller, "%s", controller ? controller : "");
     fbrl_robot_set_events(&m->robot, on_event, r);
+    static const fbrl_vmx_reg words[] = {
+        {"RUN-LOG", w_run_log, "", 0, 0, 0,
+         FBRL_DOC("( \"file\" -- )", "every following RUN-METHOD appends its run log (JSON lines) to file")},
+        {"NO-RUN-LOG", w_no_run_log, "", 0, 0, 0, FBRL_DOC("( -- )", "stop writing run logs")},
+    };
     if (fbrl_run_observe(&m->run, observe, r) != FBRL_OK ||
-        fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
-                        "every following RUN-METHOD appends its run log (JSON lines) to file") != FBRL_OK ||
-        fbrl_vmx_define(m->vm, "NO-RUN-LOG", w_no_run_log, r, NULL, 0, "( -- )", "stop writing run logs") !=
-            FBRL_OK)
+        fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], r) != FBRL_OK)
         return -1;
     return 0;
 }

@@ -235,7 +235,7 @@ fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const c
 fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
 int fbrl_robot_still_line(const char *line, size_t len, int flawed);
 int fbrl_robot_last_error(const fbrl_robot *r);
-/* the work cell's words and the guard on every robot motion (fbrl/cell.h); the guard's record
+/* the work cell's words and the guard on every robot motion (fbrl/cell_words.h); the guard's record
  * starts with these two counters */
 typedef struct fbrl_cell_stats_head {
     unsigned long moves;

@@ -497,7 +497,4 @@ int fbrl__task_words(fbrl_vm *vm);
 /* prelude.c */
 extern const char fbrl__prelude[];
 
-/* src/words/data.c: the data words every VM has */
-static inline fbrl_status fbrl__fbrl_words(fbrl_vm *vm) { return fbrl_vmx_data_words(vm); }
-
 #endif

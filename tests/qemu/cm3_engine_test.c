@@ -15,6 +15,7 @@
 
 #include "fbrl/glossary.h"
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 #include "support/vm_host.h"
 
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
@@ -57,6 +58,7 @@ static fixture *new_vm(void)
     vmh_use_files(&cfg.host);
     vmh_use_clock(&cfg.host);
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vmx_data_words(f->vm), FBRL_OK); /* fbrl.fs tests them too */
     return f;
 }
 

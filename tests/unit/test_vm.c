@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 #include "support/vm_host.h"
 #include "mon_files.h"
 
@@ -77,6 +78,7 @@ static fixture *new_vm_clock(size_t mem_size, uint64_t (*now_us)(void *), void (
         cfg.host.now_us = now_us, cfg.host.sleep_ms = sleep_ms;
     cfg.host.files = mon_files(); /* fbrlmon's file system for the standard FILE words */
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vmx_data_words(f->vm), FBRL_OK); /* fbrl.fs tests them too */
     return f;
 }
 
