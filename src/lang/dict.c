@@ -45,7 +45,7 @@ fbrl_hdr *fbrl__rom_hdr(uint32_t op)
     rom_next = (rom_next + 1) % FBRL_ROM_VIEWS;
     memset(h, 0, sizeof *h);
     h->kind = K_PRIM;
-    h->op = (uint16_t)op;
+    H_OP(h) = (uint16_t)op;
     h->flags = rom_prims[op].flags;
     h->len = rom_prims[op].len;
     h->name = ROM_NAME(op);
@@ -108,7 +108,20 @@ static uint32_t hash_name(const char *s, size_t n)
         h = (h ^ upc(s[i])) * 16777619u;
     return h ^ (h >> 15);
 }
-#define BUCKET(h) ((h) & (FBRL_HASH - 1))
+/* The index of the RAM headers' names: a hash whose buckets live in the headers themselves,
+ * bucket b's first header in the head field of the b-th RAM header. The number of buckets
+ * is the largest power of two not above the number of RAM headers, so chains stay one or
+ * two headers long on average however large the dictionary grows; when the headers reach
+ * twice the buckets, the index doubles (rebuilt in one pass over the headers, so each
+ * word costs O(1) on average). The index takes no memory of its own: the headers grow
+ * down in the VM's block, out of reach of Forth code, and carry it. */
+#define NRAM(vm) ((vm)->nwords - HDR_ROM)
+static fbrl_hlink *bucket(const fbrl_vm *vm, uint32_t hn)
+{
+    return &HDR(vm, HDR_ROM + (hn & (vm->nbuckets - 1)))->head;
+}
+/* The first header (index+1) of hn's chain, 0: none. */
+#define CHAIN(vm, hn) ((vm)->nbuckets ? *bucket((vm), (hn)) : 0u)
 /* A header's hash, and whether it can be that of hash hn (FBRL_SMALL_HEADERS keeps none:
  * the name comparison decides). */
 #ifdef FBRL_SMALL_HEADERS
@@ -156,7 +169,7 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
     if (len == 0 || len > FBRL_NAME_MAX || vm->norder == 0)
         return -1;
     int best = -1, brank = vm->norder;
-    uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
+    uint32_t hn = hash_name(name, len), i = CHAIN(vm, hn);
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
         if (HASH_MAY(h, hn) && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
@@ -185,7 +198,7 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
 {
     if (len == 0 || len > FBRL_NAME_MAX)
         return -1;
-    uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
+    uint32_t hn = hash_name(name, len), i = CHAIN(vm, hn);
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
         if (HASH_MAY(h, hn) && h->wl == wl && h->len == len && !(h->flags & FH) &&
@@ -202,15 +215,22 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
 
 int fbrl__name_eq(const char *a, const char *b, size_t n) { return name_eq(a, b, n); }
 
+/* The index for the headers there are now (new_header_at when they reach twice the buckets,
+ * and whenever words are forgotten). */
 static void rebuild_hash(fbrl_vm *vm)
 {
+    uint32_t n = NRAM(vm), nb = n ? 1 : 0;
+    while (nb && nb <= n / 2)
+        nb *= 2;
     vm->data_hi = (unsigned char *)HDR_LOW(vm);
-    memset(vm->hash, 0, sizeof vm->hash);
-    for (uint32_t i = HDR_ROM; i < vm->nwords; i++) {
+    vm->nbuckets = nb;
+    for (uint32_t b = 0; b < nb; b++)
+        HDR(vm, HDR_ROM + b)->head = 0;
+    for (uint32_t i = HDR_ROM; i < vm->nwords; i++) { /* oldest first: chains run newest first */
         fbrl_hdr *h = HDR(vm, i);
-        unsigned b = BUCKET(HASH_OF(h));
-        h->next = vm->hash[b];
-        vm->hash[b] = (fbrl_hlink)(i + 1);
+        fbrl_hlink *b = bucket(vm, HASH_OF(h));
+        h->next = *b;
+        *b = (fbrl_hlink)(i + 1);
     }
 }
 
@@ -224,7 +244,7 @@ uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h)
 {
 #ifdef FBRL_ROM_PRIMS
     if (h >= rom_views && h < rom_views + FBRL_ROM_VIEWS)
-        return h->op; /* a primitive's index is its op */
+        return H_OP(h); /* a primitive's index is its op */
 #endif
     return (uint32_t)(vm->hdr_top - 1 - h) + HDR_ROM;
 }
@@ -281,11 +301,15 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
     h->hash = hn;
 #endif
     fbrl__note_header(vm, h);
-    unsigned b = BUCKET(hn);
-    h->next = vm->hash[b];
-    vm->hash[b] = (fbrl_hlink)(vm->nwords + 1);
     vm->nwords++;
-    vm->data_hi = (unsigned char *)h;
+    if (NRAM(vm) >= 2 * vm->nbuckets) { /* the index doubles (and takes h in) */
+        rebuild_hash(vm);
+    } else {
+        fbrl_hlink *b = bucket(vm, hn);
+        h->next = *b;
+        *b = (fbrl_hlink)vm->nwords;
+        vm->data_hi = (unsigned char *)h;
+    }
     *out = h;
     return 0;
 }
@@ -435,9 +459,9 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
         return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
     case K_PRIM:
-        if (h->op == OP_EXIT && vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
+        if (H_OP(h) == OP_EXIT && vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
             return r; /* EXIT from a definition with locals drops their frame first */
-        return fbrl__compile_op(vm, h->op);
+        return fbrl__compile_op(vm, H_OP(h));
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL)))
             return r;
@@ -758,7 +782,7 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
     int r = new_header(vm, name, len, old->kind, old->flags & (FI | FC | FS), &h);
     if (r)
         return r;
-    fbrl_hlink next = h->next;
+    fbrl_hlink next = h->next, head = h->head; /* its place in the index stays */
     uint8_t wl = h->wl;
 #ifdef FBRL_SMALL_HEADERS
     const char *own = h->name; /* new_header copied the name to HERE */
@@ -773,6 +797,7 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
 #endif
     h->len = (uint8_t)len;
     h->next = next;
+    h->head = head;
     h->wl = wl;
     h->flags = (uint8_t)(old->flags & (FI | FC | FS));
     return 0;
@@ -813,7 +838,7 @@ static int found_as_itself(const fbrl_vm *vm, uint32_t i)
     if (k >= 0 && (i < HDR_ROM ? (uint32_t)k != i : order_rank(vm, 0) < rw))
         return 0;
 #endif
-    for (uint32_t j = vm->hash[BUCKET(wh)]; j; j = HDR(vm, j - 1)->next) {
+    for (uint32_t j = CHAIN(vm, wh); j; j = HDR(vm, j - 1)->next) {
         const fbrl_hdr *h = HDR(vm, j - 1);
         if (j - 1 == i || !HASH_MAY(h, wh) || h->len != w->len || (h->flags & FH) ||
             !name_eq(h->name, w->name, w->len))
@@ -853,7 +878,7 @@ int fbrl__install_prims(fbrl_vm *vm)
             continue;
         if (new_header_at(vm, ops[op].name, strlen(ops[op].name), K_PRIM, ops[op].flags, 1, &h))
             return FBRL_THROW_DICT_OVERFLOW;
-        h->op = (uint16_t)op;
+        H_OP(h) = (uint16_t)op;
 #ifndef FBRL_NO_HELP
         h->stack = ops[op].stack;
         h->help = ops[op].help;

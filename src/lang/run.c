@@ -1593,7 +1593,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (!h)
                 THROW(fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token"));
             switch (h->kind) {
-            case K_PRIM: w = h->op; DISPATCH();
+            case K_PRIM: w = H_OP(h); DISPATCH();
             case K_COLON:
                 ENTER(h->body);
                 RROOM(1);

@@ -299,6 +299,74 @@ static fbrl_status c_parse(fbrl_vm *vm, void *arg)
     return fbrl_vm_push(vm, (fbrl_cell)len);
 }
 
+/* The dictionary's index grows with it (dict.c): 30,000 words, shadowed names, synonyms made
+ * just as the index doubles, a MARKER that shrinks it again: find gives the newest word of
+ * each name all along, and forgotten words are gone. */
+static int is_power_of_two(size_t n) { return n && !(n & (n - 1)); }
+
+static void dictionary_index_grows(void **state)
+{
+    (void)state;
+    enum { N = 30000 };
+    static fbrl_cell want[N], want_half[N];
+    fixture *f = new_vm(16 << 20);
+    char src[128];
+    size_t synonyms_at_doubling = 0;
+    for (int k = 0; k < N; k++) {
+        snprintf(src, sizeof src, ": W%d %d ;", k, k);
+        assert_int_equal(ev(f, src), FBRL_OK);
+        want[k] = k;
+        if (is_power_of_two(fbrl_vm_word_count(f->vm) + 1)) { /* the next header doubles the index */
+            snprintf(src, sizeof src, "SYNONYM S%d W%d", k, k);
+            assert_int_equal(ev(f, src), FBRL_OK);
+            synonyms_at_doubling++;
+            for (int i = 0; i <= k; i++) { /* before anything else grows it */
+                snprintf(src, sizeof src, "W%d", i);
+                assert_int_equal(eval_pop(f->vm, src), want[i]);
+            }
+        }
+        if (k % 7 == 3) { /* a newer word of an older name shadows it */
+            snprintf(src, sizeof src, ": W%d %d ;", k / 2, -k);
+            assert_int_equal(ev(f, src), FBRL_OK);
+            want[k / 2] = -k;
+        }
+        if (k == N / 2) {
+            assert_int_equal(ev(f, "MARKER HALF"), FBRL_OK);
+            memcpy(want_half, want, sizeof want);
+        }
+    }
+    assert_true(synonyms_at_doubling >= 4);
+    for (int k = 0; k < N; k++) {
+        snprintf(src, sizeof src, "W%d", k);
+        assert_int_equal(eval_pop(f->vm, src), want[k]);
+        snprintf(src, sizeof src, "S%d", k);
+        if (fbrl_vm_help(f->vm, src, NULL, NULL) == FBRL_OK)
+            assert_int_equal(eval_pop(f->vm, src), k); /* W(k) as it was when the synonym was made */
+    }
+    /* forget the second half: its words are gone, the first half's are found as they were */
+    size_t before = fbrl_vm_word_count(f->vm);
+    assert_int_equal(ev(f, "HALF"), FBRL_OK);
+    assert_true(fbrl_vm_word_count(f->vm) < before / 2 + 1000);
+    for (int k = 0; k < N; k++) {
+        snprintf(src, sizeof src, "W%d", k);
+        if (k > N / 2)
+            assert_int_equal(fbrl_vm_help(f->vm, src, NULL, NULL), FBRL_ENOENT);
+        else
+            assert_int_equal(eval_pop(f->vm, src), want_half[k]);
+    }
+    /* and it grows again */
+    for (int k = 0; k < N / 2; k++) {
+        snprintf(src, sizeof src, ": X%d %d ;", k, 3 * k);
+        assert_int_equal(ev(f, src), FBRL_OK);
+    }
+    for (int k = 0; k < N / 2; k++) {
+        snprintf(src, sizeof src, "X%d", k);
+        assert_int_equal(eval_pop(f->vm, src), 3 * k);
+    }
+    assert_int_equal(eval_pop(f->vm, "1 2 + DUP *"), 9); /* the built-in words too */
+    free_vm(f);
+}
+
 static void c_words(void **state)
 {
     (void)state;
@@ -1191,6 +1259,7 @@ int main(void)
         cmocka_unit_test(size_for_is_enough),
         cmocka_unit_test(zeroed_memory_is_used_lazily),
         cmocka_unit_test(two_vms_are_independent),
+        cmocka_unit_test(dictionary_index_grows),
         cmocka_unit_test(c_words),
         cmocka_unit_test(api_stacks),
         cmocka_unit_test(errors_carry_word_file_line),
