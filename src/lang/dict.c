@@ -360,10 +360,31 @@ int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
  * HERE still ends it (peep_end == here). Everything else that moves HERE clears
  * peep_end, and so do the control-flow words and HERE itself, because a branch
  * target (a label at HERE) must never end up inside a fused instruction. */
-static void peep_set(fbrl_vm *vm, unsigned char *at)
+static void peep_set(fbrl_vm *vm, unsigned char *at, unsigned char *prev)
 {
+    vm->peep_prev = prev;
     vm->peep = at;
     vm->peep_end = vm->here;
+}
+/* The instruction that ends at HERE and may be fused with, or NULL (asked before emitting). */
+static unsigned char *peep_last(const fbrl_vm *vm) { return vm->peep_end == vm->here ? vm->peep : NULL; }
+
+/* A comparison and its branch after DUP (DUP 2 < IF) or 2DUP (2DUP < IF): the op that
+ * keeps what it compares, or 0. */
+static int fuse_keep(fbrl_cell before, int op)
+{
+    static const struct {
+        uint16_t before, op, fused;
+    } triples[] = {
+        {OP_DUP, OP_LITEQZBR, OP_DUPLITEQZBR},   {OP_DUP, OP_LITNEZBR, OP_DUPLITNEZBR},
+        {OP_DUP, OP_LITLTZBR, OP_DUPLITLTZBR},   {OP_DUP, OP_LITGTZBR, OP_DUPLITGTZBR},
+        {OP_TWODUP, OP_EQZBR, OP_TWODUPEQZBR},   {OP_TWODUP, OP_NEZBR, OP_TWODUPNEZBR},
+        {OP_TWODUP, OP_LTZBR, OP_TWODUPLTZBR},   {OP_TWODUP, OP_GTZBR, OP_TWODUPGTZBR},
+    };
+    for (size_t i = 0; i < sizeof triples / sizeof triples[0]; i++)
+        if (triples[i].before == before && triples[i].op == op)
+            return triples[i].fused;
+    return 0;
 }
 
 void fbrl__peep_reset(fbrl_vm *vm) { vm->peep_end = NULL; }
@@ -407,6 +428,14 @@ static int fuse(fbrl_cell prev, int op)
         {OP_GT, OP_ZBRANCH, OP_GTZBR},       {OP_ZEQ, OP_ZBRANCH, OP_ZEQZBR},
         {OP_LITEQ, OP_ZBRANCH, OP_LITEQZBR}, {OP_LITNE, OP_ZBRANCH, OP_LITNEZBR},
         {OP_LITLT, OP_ZBRANCH, OP_LITLTZBR}, {OP_LITGT, OP_ZBRANCH, OP_LITGTZBR},
+        {OP_I, OP_FETCH, OP_IFETCH},         {OP_I, OP_CFETCH, OP_ICFETCH},
+        {OP_I, OP_TWOFETCH, OP_ITWOFETCH},   {OP_I, OP_STORE, OP_ISTORE},
+        {OP_I, OP_CSTORE, OP_ICSTORE},       {OP_I, OP_TWOSTORE, OP_ITWOSTORE},
+        {OP_LIT, OP_PPLOOP, OP_LITPPLOOP},   {OP_DUP, OP_PPLOOP, OP_DUPPPLOOP},
+        {OP_OVER, OP_FETCH, OP_OVERFETCH},   {OP_PICK2, OP_FETCH, OP_PICK2FETCH},
+        {OP_STAR, OP_PLUS, OP_STARPLUS},
+        {OP_LITPLUS, OP_FETCH, OP_LITPLUSFETCH}, {OP_LITPLUS, OP_CFETCH, OP_LITPLUSCFETCH},
+        {OP_LITPLUS, OP_STORE, OP_LITPLUSSTORE}, {OP_LITPLUS, OP_CSTORE, OP_LITPLUSCSTORE},
     };
     for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
         if (pairs[i].prev == prev && pairs[i].op == op)
@@ -414,7 +443,8 @@ static int fuse(fbrl_cell prev, int op)
     return 0;
 }
 
-/* Compile one op (a primitive, or OP_ZBRANCH whose target the caller emits next). */
+/* Compile one op (a primitive, or OP_ZBRANCH or OP_PPLOOP, whose target the caller emits
+ * next). */
 int fbrl__compile_op(fbrl_vm *vm, int op)
 {
     if (vm->peep_end && vm->peep_end == vm->here) {
@@ -423,13 +453,13 @@ int fbrl__compile_op(fbrl_vm *vm, int op)
         fbrl_cell prev, v;
         int f;
         memcpy(&prev, p, sizeof prev);
-        if (prev == OP_LIT) {
+        if (prev == OP_LIT || prev == OP_DROPLIT) {
             memcpy(&v, p + CELL, sizeof v);
             if (fold_lit(op, &v)) {
                 memcpy(p + CELL, &v, sizeof v);
                 return 0;
             }
-            if (op == OP_PICK && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
+            if (op == OP_PICK && prev == OP_LIT && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
                 prev = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
                 memcpy(p, &prev, sizeof prev);
                 vm->here -= CELL;
@@ -440,13 +470,28 @@ int fbrl__compile_op(fbrl_vm *vm, int op)
         if ((f = fuse(prev, op))) {
             prev = f;
             memcpy(p, &prev, sizeof prev);
+            unsigned char *q = vm->peep_prev;
+            fbrl_cell before = 0;
+            if (q)
+                memcpy(&before, q, sizeof before);
+            if ((f = fuse_keep(before, (int)prev))) {
+                /* DUP | LITxZBR lit  ->  DUPLITxZBR lit;  2DUP | xZBR  ->  2DUPxZBR (the
+                 * caller emits the target next): the fused op and its literal move down */
+                prev = f;
+                memcpy(q, &prev, sizeof prev);
+                memmove(q + CELL, p + CELL, (size_t)(vm->here - (p + CELL)));
+                vm->here -= CELL;
+                vm->peep = q;
+                vm->peep_prev = NULL;
+                vm->peep_end = vm->here;
+            }
             return 0;
         }
     }
-    unsigned char *at = vm->here;
+    unsigned char *at = vm->here, *prev = peep_last(vm);
     int r = fbrl__emit(vm, op);
     if (!r)
-        peep_set(vm, at);
+        peep_set(vm, at, prev);
     return r;
 }
 
@@ -480,11 +525,23 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
 
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v)
 {
-    unsigned char *at = vm->here;
+    if (vm->peep_end && vm->peep_end == vm->here) { /* DROP 1  ->  DROPLIT 1 */
+        fbrl_cell prev;
+        memcpy(&prev, vm->peep, sizeof prev);
+        if (prev == OP_DROP) {
+            prev = OP_DROPLIT;
+            memcpy(vm->peep, &prev, sizeof prev);
+            int r = fbrl__emit(vm, v);
+            if (!r)
+                vm->peep_end = vm->here;
+            return r;
+        }
+    }
+    unsigned char *at = vm->here, *prev = peep_last(vm);
     int r = fbrl__emit(vm, OP_LIT);
     if (r || (r = fbrl__emit(vm, v)))
         return r;
-    peep_set(vm, at);
+    peep_set(vm, at, prev);
     return 0;
 }
 
@@ -632,6 +689,7 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
         discard_definition(vm);
     vm->def_here = vm->here;
     vm->def_nwords = vm->nwords;
+    vm->nbr_orig = vm->nexit_orig = 0; /* words.c: no BRANCH of this definition yet */
     if (noname) {
         if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr))
             return FBRL_THROW_DICT_OVERFLOW;
@@ -672,6 +730,7 @@ int fbrl__semicolon(fbrl_vm *vm)
     if (vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
         return r;
     vm->nlocals = vm->lpend = 0;
+    fbrl__exit_branches(vm);
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);

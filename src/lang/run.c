@@ -33,42 +33,58 @@
 #endif
 
 #define SAVE() (*sp = tos, vm->sp = sp + 1, *fp = ftos, vm->fp = fp + 1, vm->rp = rp)
-#define LOAD()                                                             \
-    (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp, \
-     data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo))
+#define LOAD() (sp = vm->sp - 1, tos = *sp, fp = vm->fp - 1, ftos = *fp, rp = vm->rp, SPANS())
+/* the data region's end moved (a helper ran): the address checks' limits */
+#define SPANS()                                                                                  \
+    (lim.span[1] = (fbrl_ucell)(vm->data_hi - vm->data_lo) - 1, lim.span[2] = lim.span[1] - 1, \
+     lim.span[4] = lim.span[1] - 3, lim.span[8] = lim.span[1] - 7, lim.span[16] = lim.span[1] - 15)
 #define THROW(c)       \
     do {               \
         code = (c);    \
         goto do_throw; \
     } while (0)
+/* What every check compares with, worked out once per fbrl__run (the stacks) or after each
+ * helper (the data region's end, which only a helper moves): a check is one compare with a
+ * value the compiler keeps at hand, not a sum worked out again in every primitive. */
+typedef struct run_limits {
+    fbrl_cell *need[7], *room[7];   /* data stack: the lowest sp holding n cells; sp must be below room[n] to push n */
+    fbrl_cell *rneed[7], *rroom[7]; /* return stack: rp at least rneed[n] to pop n, at most rroom[n] to push n */
+    double *fneed[4], *froom[4];    /* float stack, as the data stack */
+    fbrl_ucell span[17];            /* span[n] (n = 1, 2, 4, 8, 16): the highest offset from data_lo an n-byte access may start at */
+    fbrl_ucell code_cells;          /* cells from data_lo to the end of the block: where code may be */
+} run_limits;
 /* depth checks: NEED(n) at least n cells, ROOM(n) space for n more */
 /* (each error has its own label, so the hot path does not set up a throw code) */
-#define NEED(n)             \
-    if (sp < ds0 + ((n)-1)) \
+#define NEED(n)              \
+    if (sp < lim.need[(n)]) \
     goto e_underflow
-#define ROOM(n)          \
-    if (sp >= dse - (n)) \
+#define ROOM(n)               \
+    if (sp >= lim.room[(n)]) \
     goto e_overflow
-#define RNEED(n)        \
-    if (rp < rs0 + (n)) \
+#define RNEED(n)               \
+    if (rp < lim.rneed[(n)]) \
     goto e_r_underflow
-#define RROOM(n)        \
-    if (rp > rse - (n)) \
+#define RROOM(n)               \
+    if (rp > lim.rroom[(n)]) \
     goto e_r_overflow
-#define FNEED(n)            \
-    if (fp < fs0 + ((n)-1)) \
+#define FNEED(n)               \
+    if (fp < lim.fneed[(n)]) \
     goto e_f_underflow
-#define FROOM(n)         \
-    if (fp >= fse - (n)) \
+#define FROOM(n)                \
+    if (fp >= lim.froom[(n)]) \
     goto e_f_overflow
 #define CHK(a, n)                     \
     if (!fbrl__addr_ok(vm, (a), (n))) \
     goto e_address
-/* the same for a small constant n, against the cached size of the data region */
-#define CHKC(a, n)                                             \
-    if ((fbrl_ucell)(a)-code_lo > data_span - (fbrl_ucell)(n)) \
+/* the same for a constant n of 1, 2, 4, 8 or 16 bytes */
+#define CHKC(a, n)                                  \
+    if ((fbrl_ucell)(a) - (fbrl_ucell)vm->data_lo > lim.span[(n)]) \
     goto e_address
-#define CODE_OK(t) ((fbrl_ucell)(t)-code_lo < code_span && !((fbrl_ucell)(t) & ((fbrl_ucell)CELL - 1)))
+/* A jump target: inside the block from data_lo, and cell-aligned. Rotated right by the
+ * cell's bits, an unaligned offset is as large as an offset past the end: one compare. */
+#define CELL_SHIFT (sizeof(fbrl_cell) == 8 ? 3 : 2)
+#define ROTR(x) (((x) >> CELL_SHIFT) | ((x) << (CELL_BITS - CELL_SHIFT)))
+#define CODE_OK(t) (ROTR((fbrl_ucell)(t) - (fbrl_ucell)vm->data_lo) < lim.code_cells)
 #define JUMP(t)                     \
     do {                            \
         fbrl_cell t_ = (t);         \
@@ -112,14 +128,14 @@
 #define PUSH(x)             \
     do {                    \
         fbrl_cell v_ = (x); \
-        *sp++ = tos;        \
+        sp[0] = tos; sp += 1;        \
         tos = v_;           \
     } while (0)
 #define DROP1() (tos = *--sp)
 #define FPUSH(x)         \
     do {                 \
         double f_ = (x); \
-        *fp++ = ftos;    \
+        fp[0] = ftos; fp += 1;    \
         ftos = f_;       \
     } while (0)
 #define FDROP1() (ftos = *--fp)
@@ -149,12 +165,13 @@
 #define DISPATCH()          \
     do {                    \
         if (U(w) < OP__END) \
-            goto *optab[w]; \
+            goto *tab[w];   \
         goto execute_xt;    \
     } while (0)
 #define NEXT        \
     do {            \
-        w = *ip++;  \
+        w = ip[0];  \
+        ip += 1;    \
         DISPATCH(); \
     } while (0)
 #else
@@ -209,9 +226,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     fbrl_cell *const ds0 = vm->ds0, *const dse = vm->ds_end;
     fbrl_cell *const rs0 = vm->rs0, *const rse = vm->rs_end;
     double *const fs0 = vm->fs0, *const fse = vm->fs_end;
-    const fbrl_ucell code_lo = (fbrl_ucell)vm->data_lo;
-    const fbrl_ucell code_span = (fbrl_ucell)(vm->mem_end - vm->data_lo);
-    fbrl_ucell data_span; /* addressable bytes (data_hi moves only in helpers: LOAD) */
+    run_limits lim;
     const fbrl_cell *ip = (const fbrl_cell *)vm->guard_addr; /* the HALT cell */
     fbrl_cell w = xt, entry, a, b;
     fbrl_ucell ua, ub;
@@ -220,15 +235,33 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     double fa;
     int code = 0;
 #if FBRL_CGOTO
-    static const void *const optab[OP__END] = {
+    static const void *const optab[OP__END + 1] = {
 #define OP(id, name, flags, stack, help) &&L_##id,
 #include "ops.def"
 #undef OP
-    };
+        &&execute_xt};
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+    /* the table's address in a register of its own (GCC reloaded it from the stack on the
+     * hot paths of some primitives); r15 is callee-saved, so C helpers leave it alone */
+    register const void *const *tab __asm__("r15") = optab;
+#else
+    const void *const *tab = optab;
+#endif
 #endif
 
     if (vm->nest >= 64)
         return FBRL_THROW_RSTACK_OVERFLOW;
+    for (int n = 0; n < 7; n++) {
+        lim.need[n] = ds0 + n - 1;
+        lim.room[n] = dse - n;
+        lim.rneed[n] = rs0 + n;
+        lim.rroom[n] = rse - n;
+    }
+    for (int n = 0; n < 4; n++) {
+        lim.fneed[n] = fs0 + n - 1;
+        lim.froom[n] = fse - n;
+    }
+    lim.code_cells = (fbrl_ucell)(vm->mem_end - vm->data_lo) / (fbrl_ucell)CELL;
     LOAD();
     entry = rp - rs0;
     vm->nest++;
@@ -266,18 +299,18 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             PUSH(*ip++);
             NEXT;
             CASE(FLIT) FROOM(1);
-            *fp++ = ftos;
-            memcpy(fp, ip, sizeof(double));
-            ftos = *fp;
+            fp[0] = ftos;
+            fp += 1;
+            memcpy(&ftos, ip, sizeof(double));
             ip += FCELLS;
             NEXT;
             CASE(CALL) ENTER(*ip);
             RROOM(1);
             a = *ip++;
-            *rp++ = (fbrl_cell)ip;
+            rp[0] = (fbrl_cell)ip; rp += 1;
             JUMP(a);
             NEXT;
-            CASE(EXIT) RNEED(1);
+            CASE(EXIT) CASE(EXITBR) RNEED(1);
             JUMP(*--rp);
             NEXT;
             CASE(BRANCH) POLL();
@@ -325,22 +358,31 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 JUMP(*ip);
             }
             NEXT;
+            CASE(LITPPLOOP)
+            RNEED(3);
+            ub = U(*ip++);
+            goto pploop;
+            CASE(DUPPPLOOP)
+            NEED(1);
+            RNEED(3);
+            ub = U(tos);
+            goto pploop;
             CASE(PPLOOP)
-            {
-                NEED(1);
-                RNEED(3);
-                fbrl_ucell d = U(rp[-1]) - U(rp[-2]), n = U(tos), nd = d + n;
-                DROP1();
-                if ((fbrl_cell)((d ^ nd) & (d ^ n)) < 0) {
-                    rp -= 3;
-                    ip++;
-                } else {
-                    POLL();
-                    rp[-1] = (fbrl_cell)(U(rp[-1]) + n);
-                    JUMP(*ip);
-                }
-                NEXT;
+            NEED(1);
+            RNEED(3);
+            ub = U(tos);
+            DROP1();
+        pploop: /* ub: the increment */
+            ua = U(rp[-1]) - U(rp[-2]);
+            if ((fbrl_cell)((ua ^ (ua + ub)) & (ua ^ ub)) < 0) {
+                rp -= 3;
+                ip++;
+            } else {
+                POLL();
+                rp[-1] = (fbrl_cell)(U(rp[-1]) + ub);
+                JUMP(*ip);
             }
+            NEXT;
             CASE(I) RNEED(1);
             ROOM(1);
             PUSH(rp[-1]);
@@ -497,7 +539,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(DUPFETCH) NEED(1);
             ROOM(1);
             CHKC(T, CELL);
-            *sp++ = tos;
+            sp[0] = tos; sp += 1;
             T = ld(T);
             NEXT;
             CASE(EQZBR) NEED(2);
@@ -539,6 +581,30 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(LITGTZBR) NEED(1);
             a = T > *ip++;
             DROP1();
+            goto zbr_a;
+            CASE(TWODUPEQZBR) NEED(2);
+            a = S == T;
+            goto zbr_a;
+            CASE(TWODUPNEZBR) NEED(2);
+            a = S != T;
+            goto zbr_a;
+            CASE(TWODUPLTZBR) NEED(2);
+            a = S < T;
+            goto zbr_a;
+            CASE(TWODUPGTZBR) NEED(2);
+            a = S > T;
+            goto zbr_a;
+            CASE(DUPLITEQZBR) NEED(1);
+            a = T == *ip++;
+            goto zbr_a;
+            CASE(DUPLITNEZBR) NEED(1);
+            a = T != *ip++;
+            goto zbr_a;
+            CASE(DUPLITLTZBR) NEED(1);
+            a = T < *ip++;
+            goto zbr_a;
+            CASE(DUPLITGTZBR) NEED(1);
+            a = T > *ip++;
         zbr_a:
             if (a == 0) {
                 POLL();
@@ -547,10 +613,98 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 ip++;
             NEXT;
 
+            CASE(DROPLIT) NEED(1);
+            T = *ip++;
+            NEXT;
+            CASE(IFETCH) RNEED(1);
+            ROOM(1);
+            a = rp[-1];
+            CHKC(a, CELL);
+            PUSH(ld(a));
+            NEXT;
+            CASE(ICFETCH) RNEED(1);
+            ROOM(1);
+            a = rp[-1];
+            CHKC(a, 1);
+            PUSH(*(unsigned char *)a);
+            NEXT;
+            CASE(ITWOFETCH) RNEED(1);
+            ROOM(2);
+            a = rp[-1];
+            CHKC(a, 2 * CELL);
+            sp[0] = tos;
+            sp[1] = ld(a + CELL);
+            sp += 2;
+            T = ld(a);
+            NEXT;
+            CASE(ISTORE) NEED(1);
+            RNEED(1);
+            a = rp[-1];
+            CHKC(a, CELL);
+            st(a, T);
+            DROP1();
+            NEXT;
+            CASE(ICSTORE) NEED(1);
+            RNEED(1);
+            a = rp[-1];
+            CHKC(a, 1);
+            *(unsigned char *)a = (unsigned char)T;
+            DROP1();
+            NEXT;
+            CASE(ITWOSTORE) NEED(2);
+            RNEED(1);
+            a = rp[-1];
+            CHKC(a, 2 * CELL);
+            st(a, T);
+            st(a + CELL, S);
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(LITPLUSFETCH) NEED(1);
+            a = (fbrl_cell)(U(T) + U(*ip++));
+            CHKC(a, CELL);
+            T = ld(a);
+            NEXT;
+            CASE(LITPLUSCFETCH) NEED(1);
+            a = (fbrl_cell)(U(T) + U(*ip++));
+            CHKC(a, 1);
+            T = *(unsigned char *)a;
+            NEXT;
+            CASE(LITPLUSSTORE) NEED(2);
+            a = (fbrl_cell)(U(T) + U(*ip++));
+            CHKC(a, CELL);
+            st(a, S);
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(LITPLUSCSTORE) NEED(2);
+            a = (fbrl_cell)(U(T) + U(*ip++));
+            CHKC(a, 1);
+            *(unsigned char *)a = (unsigned char)S;
+            sp -= 2;
+            tos = *sp;
+            NEXT;
+            CASE(OVERFETCH) NEED(2);
+            ROOM(1);
+            a = S;
+            CHKC(a, CELL);
+            PUSH(ld(a));
+            NEXT;
+            CASE(PICK2FETCH) NEED(3);
+            ROOM(1);
+            a = S3;
+            CHKC(a, CELL);
+            PUSH(ld(a));
+            NEXT;
+            CASE(STARPLUS) NEED(3);
+            T = (fbrl_cell)(U(S3) + U(S) * U(T));
+            sp -= 2;
+            NEXT;
+
             /* stack */
             CASE(DUP) NEED(1);
             ROOM(1);
-            *sp++ = tos;
+            sp[0] = tos; sp += 1;
             NEXT;
             CASE(DROP) NEED(1);
             DROP1();
@@ -583,7 +737,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             ROOM(1);
             a = S;
             S = T;
-            *sp++ = a;
+            sp[0] = a; sp += 1;
             NEXT;
             CASE(PICK)
             NEED(1);
@@ -605,7 +759,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(QDUP) NEED(1);
             if (T) {
                 ROOM(1);
-                *sp++ = tos;
+                sp[0] = tos; sp += 1;
             }
             NEXT;
             CASE(TWODUP) NEED(2);
@@ -655,7 +809,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             NEXT;
             CASE(TOR) NEED(1);
             RROOM(1);
-            *rp++ = tos;
+            rp[0] = tos; rp += 1;
             DROP1();
             NEXT;
             CASE(RFROM) RNEED(1);
@@ -1000,7 +1154,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             ROOM(1);
             CHKC(T, 2 * CELL);
             a = T;
-            *sp++ = ld(a + CELL);
+            sp[0] = ld(a + CELL); sp += 1;
             T = ld(a);
             NEXT;
             CASE(TWOSTORE) NEED(3);
@@ -1106,7 +1260,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             ROOM(1);
             CHKC(T, 1);
             a = T;
-            *sp++ = a + 1;
+            sp[0] = a + 1; sp += 1;
             T = *(unsigned char *)a;
             NEXT;
             CASE(COMPARE) CASE(SEARCH) CASE(SLASHSTRING) CASE(MTRAILING) CALLC(fbrl__w_string(vm, (int)w));
@@ -1322,7 +1476,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CASE(FSINCOS) FNEED(1);
             FROOM(1);
             fa = ftos;
-            *fp++ = sin(fa);
+            fp[0] = sin(fa); fp += 1;
             ftos = cos(fa);
             NEXT;
 #ifndef FBRL_NO_FTRANS
@@ -1483,7 +1637,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             }
             CASE(FDUP) FNEED(1);
             FROOM(1);
-            *fp++ = ftos;
+            fp[0] = ftos; fp += 1;
             NEXT;
             CASE(FDROP) FNEED(1);
             FDROP1();
@@ -1510,7 +1664,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             FROOM(1);
             fa = fp[-1];
             fp[-1] = ftos;
-            *fp++ = fa;
+            fp[0] = fa; fp += 1;
             NEXT;
             CASE(FPICK)
             NEED(1);
@@ -1597,7 +1751,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             case K_COLON:
                 ENTER(h->body);
                 RROOM(1);
-                *rp++ = (fbrl_cell)ip;
+                rp[0] = (fbrl_cell)ip; rp += 1;
                 JUMP(h->body);
                 NEXT;
             case K_VAR:
@@ -1609,7 +1763,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                 PUSH(h->body);
                 if (H_DOES(h)) {
                     RROOM(1);
-                    *rp++ = (fbrl_cell)ip;
+                    rp[0] = (fbrl_cell)ip; rp += 1;
                     JUMP(H_DOES(h));
                 }
                 NEXT;
@@ -1679,7 +1833,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                     THROW(fbrl__throw_msg(vm, FBRL_THROW_COMPILER_NESTING,
                                           "a MARKER cannot run inside a definition"));
                 fbrl__forget(vm, (unsigned char *)h->body, (uint32_t)H_END(h), (size_t)H_DOES(h));
-                data_span = (fbrl_ucell)(vm->data_hi - vm->data_lo);
+                SPANS();
                 NEXT;
             default: THROW(FBRL_THROW_UNSUPPORTED);
             }

@@ -303,6 +303,12 @@ struct fbrl_vm {
     fbrl_cell guard_addr;    /* address of the guard cells (HALT, CATCHEND, BAD...) */
     unsigned char *peep;     /* last instruction the compiler may fuse with (dict.c) */
     unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
+    unsigned char *peep_prev; /* the instruction right before peep, NULL: none to fuse with */
+    /* words.c: the open definition's forward BRANCHes (ELSE, AHEAD, ENDOF; the last few),
+     * and those resolved to exit_here: ; makes them EXITBR when its EXIT lands there */
+    fbrl_cell br_orig[8], exit_orig[8];
+    unsigned nbr_orig, nexit_orig;
+    unsigned char *exit_here;
     int run_code;            /* run.c: the code of an error exit */
     const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word or step hook runs */
     fbrl_vm_step_fn step_fn; /* fbrl_vm_step_hook (debug.c) */

@@ -133,11 +133,14 @@ static int cf_pop(fbrl_vm *vm, int tag, fbrl_cell *a)
     return 0;
 }
 
-/* A branch op and its target; 0BRANCH may fuse with the comparison before it. */
+/* A branch op and its target; 0BRANCH may fuse with the comparison before it, +LOOP with
+ * the literal or DUP that gives its increment. */
 static int branch_op(fbrl_vm *vm, int op)
 {
-    return op == OP_ZBRANCH ? fbrl__compile_op(vm, op) : fbrl__emit(vm, op);
+    return op == OP_ZBRANCH || op == OP_PPLOOP ? fbrl__compile_op(vm, op) : fbrl__emit(vm, op);
 }
+
+#define NBR ((unsigned)(sizeof vm->br_orig / sizeof vm->br_orig[0]))
 
 static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 {
@@ -145,6 +148,8 @@ static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
     if (r)
         return r;
     *orig = (fbrl_cell)vm->here;
+    if (op == OP_BRANCH)
+        vm->br_orig[vm->nbr_orig++ % NBR] = *orig;
     return fbrl__emit(vm, 0);
 }
 
@@ -154,7 +159,38 @@ static int resolve(fbrl_vm *vm, fbrl_cell orig)
     if (!fbrl__addr_ok(vm, orig, CELL))
         return FBRL_THROW_BAD_ADDRESS;
     memcpy((void *)orig, &t, sizeof t);
+    for (unsigned i = 0; i < NBR && i < vm->nbr_orig; i++) {
+        if (vm->br_orig[(vm->nbr_orig - 1 - i) % NBR] != orig)
+            continue;
+        if (vm->exit_here != vm->here) { /* a forward BRANCH to HERE: an exit if ; follows */
+            vm->exit_here = vm->here;
+            vm->nexit_orig = 0;
+        }
+        if (vm->nexit_orig < NBR)
+            vm->exit_orig[vm->nexit_orig++] = orig;
+        break;
+    }
     return 0;
+}
+
+/* ; is about to compile its EXIT at HERE: a BRANCH that jumps there (ELSE ... THEN ;)
+ * becomes EXITBR, an EXIT that keeps the branch's target for SEE. */
+void fbrl__exit_branches(fbrl_vm *vm)
+{
+    if (vm->exit_here == vm->here) {
+        for (unsigned i = 0; i < vm->nexit_orig; i++) {
+            fbrl_cell at = vm->exit_orig[i] - CELL, op;
+            if (!fbrl__addr_ok(vm, at, CELL))
+                continue;
+            memcpy(&op, (void *)at, sizeof op);
+            if (op == OP_BRANCH) {
+                op = OP_EXITBR;
+                memcpy((void *)at, &op, sizeof op);
+            }
+        }
+    }
+    vm->nbr_orig = vm->nexit_orig = 0;
+    vm->exit_here = NULL;
 }
 
 static int back(fbrl_vm *vm, int op, fbrl_cell dest)
@@ -484,7 +520,7 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
         int16_t op;
         uint8_t lit, br; /* 1: a literal, a branch follow the op (bytes: a row is 8 bytes, not 12) */
         const char *words;
-    } fused[] = {
+    } fused[] = { /* words: # is where the literal goes (first when there is no #); br 2: a loop's target */
         {OP_LITPLUS, 1, 0, "+"},
         {OP_LITMINUS, 1, 0, "-"},
         {OP_LITSTAR, 1, 0, "*"},
@@ -508,28 +544,62 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
         {OP_LITNEZBR, 1, 1, "<>"},
         {OP_LITLTZBR, 1, 1, "<"},
         {OP_LITGTZBR, 1, 1, ">"},
+        {OP_DUPLITEQZBR, 1, 1, "DUP # ="},
+        {OP_DUPLITNEZBR, 1, 1, "DUP # <>"},
+        {OP_DUPLITLTZBR, 1, 1, "DUP # <"},
+        {OP_DUPLITGTZBR, 1, 1, "DUP # >"},
+        {OP_DROPLIT, 1, 0, "DROP #"},
+        {OP_IFETCH, 0, 0, "I @"},
+        {OP_ICFETCH, 0, 0, "I C@"},
+        {OP_ITWOFETCH, 0, 0, "I 2@"},
+        {OP_ISTORE, 0, 0, "I !"},
+        {OP_ICSTORE, 0, 0, "I C!"},
+        {OP_ITWOSTORE, 0, 0, "I 2!"},
+        {OP_LITPPLOOP, 1, 2, "+LOOP"},
+        {OP_DUPPPLOOP, 0, 2, "DUP +LOOP"},
+        {OP_OVERFETCH, 0, 0, "OVER @"},
+        {OP_PICK2FETCH, 0, 0, "2 PICK @"},
+        {OP_STARPLUS, 0, 0, "* +"},
+        {OP_TWODUPEQZBR, 0, 1, "2DUP ="},
+        {OP_TWODUPNEZBR, 0, 1, "2DUP <>"},
+        {OP_TWODUPLTZBR, 0, 1, "2DUP <"},
+        {OP_TWODUPGTZBR, 0, 1, "2DUP >"},
+        {OP_LITPLUSFETCH, 1, 0, "+ @"},
+        {OP_LITPLUSCFETCH, 1, 0, "+ C@"},
+        {OP_LITPLUSSTORE, 1, 0, "+ !"},
+        {OP_LITPLUSCSTORE, 1, 0, "+ C!"},
     };
     for (size_t i = 0; i < sizeof fused / sizeof fused[0]; i++) {
-        fbrl_cell a;
+        fbrl_cell a = 0;
         if (fused[i].op != w)
             continue;
+        const char *words = fused[i].words, *at = strchr(words, '#');
         if (fused[i].lit) {
             if (!fbrl__addr_ok(vm, *pc, CELL))
                 return 1;
             memcpy(&a, (void *)*pc, sizeof a);
             *pc += CELL;
+        }
+        if (fused[i].lit && !at) {
             put_num(vm, a);
             fbrl__puts(vm, " ");
         }
-        fbrl__puts(vm, fused[i].words);
+        if (at) {
+            fbrl__write(vm, words, (size_t)(at - words));
+            put_num(vm, a);
+            words = at + 1;
+        }
+        fbrl__puts(vm, words);
         if (fused[i].br) {
             if (!fbrl__addr_ok(vm, *pc, CELL))
                 return 1;
             memcpy(&a, (void *)*pc, sizeof a);
             *pc += CELL;
-            fbrl__puts(vm, " 0BRANCH(");
-            put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
-            fbrl__puts(vm, ")");
+            if (fused[i].br == 1) {
+                fbrl__puts(vm, " 0BRANCH(");
+                put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
+                fbrl__puts(vm, ")");
+            }
         }
         return 1;
     }
@@ -586,8 +656,9 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             pc += CELL;
             break;
         case OP_BRANCH:
+        case OP_EXITBR: /* a BRANCH to the end (words.c fbrl__exit_branches) */
         case OP_ZBRANCH:
-            fbrl__puts(vm, w == OP_BRANCH ? "BRANCH(" : "0BRANCH(");
+            fbrl__puts(vm, w == OP_ZBRANCH ? "0BRANCH(" : "BRANCH(");
             put_num(vm, (fbrl_cell)(U(a) - U(pc) - U(CELL)) / CELL);
             fbrl__puts(vm, ")");
             pc += CELL;

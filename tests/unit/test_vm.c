@@ -772,6 +772,89 @@ static void fused_code_keeps_meaning(void **state)
     free_vm(f);
 }
 
+/* Run `input NAME` and keep what it left: the status, the THROW code, the stack (bottom
+ * first) and the 32 bytes at BUF. The stack is emptied after. */
+typedef struct run_result {
+    fbrl_status st;
+    int code, depth;
+    fbrl_cell cells[16];
+    unsigned char buf[32];
+} run_result;
+
+static run_result run_word(fixture *f, const char *input, const char *name)
+{
+    run_result r;
+    char src[256];
+    memset(&r, 0, sizeof r);
+    snprintf(src, sizeof src, "BUF 32 ERASE %s %s", input, name);
+    r.st = ev(f, src);
+    r.code = r.st == FBRL_OK ? 0 : fbrl_vm_last_error(f->vm)->throw_code;
+    r.depth = (int)fbrl_vm_depth(f->vm);
+    assert_true(r.depth <= 16);
+    for (int i = r.depth - 1; i >= 0; i--)
+        r.cells[i] = pop1(f);
+    fbrl_cell buf = eval_pop(f->vm, "BUF");
+    memcpy(r.buf, (const void *)buf, sizeof r.buf);
+    return r;
+}
+
+/* The superinstructions (a DUP or 2DUP before a compare and branch, DROP and a literal,
+ * I before a fetch or store, a literal or DUP before +LOOP, OVER/2 PICK before @, * +, a
+ * literal + before a fetch or store, an ELSE branch that lands on ;) against the same
+ * words kept apart by HERE (which ends every fusion): the same stack, memory and errors. */
+static void superinstructions_keep_meaning(void **state)
+{
+    (void)state;
+    static const char *const bodies[] = {
+        "DUP 5 = IF 1 ELSE 2 THEN",  "DUP 5 <> IF 1 ELSE 2 THEN", "DUP 5 < IF 1 ELSE 2 THEN",
+        "DUP 5 > IF 1 ELSE 2 THEN",  "2DUP = IF 1 ELSE 2 THEN",   "2DUP <> IF 1 ELSE 2 THEN",
+        "2DUP < IF 1 ELSE 2 THEN",   "2DUP > IF 1 ELSE 2 THEN",   "DROP 7",
+        "DUP 1+ SWAP DO I @ LOOP",   "DUP 1+ SWAP DO I C@ LOOP",  "DUP 1+ SWAP DO I 2@ LOOP",
+        "DUP 1+ SWAP DO 123 I ! LOOP", "DUP 1+ SWAP DO 45 I C! LOOP", "DUP 1+ SWAP DO 6 7 I 2! LOOP",
+        "10 0 DO I + 3 +LOOP",       "-10 0 DO I + -2 +LOOP",     "10 0 DO I + 2 DUP +LOOP",
+        "OVER @",                    "2 PICK @",                  "* +",
+        "8 + @",                     "3 + C@",                    "8 + !",
+        "3 + C!",                    "IF 1 ELSE 2 THEN",          "CASE 1 OF 10 ENDOF 2 OF 20 ENDOF 30 SWAP ENDCASE",
+    };
+    static const char *const inputs[] = {
+        "",          "0",         "5",           "9",         "BUF",     "3 4",   "4 4",
+        "5 3",       "10",        "-10",         "BUF 5 BUF", "0 BUF",   "1 2 3", "-1 BUF 0",
+        "BUF 1 BUF", "77 BUF",    "77 BUF 4000000000000 +", "2",
+    };
+    fixture *f = new_vm(1 << 20);
+    char src[512];
+    assert_int_equal(ev(f, "CREATE BUF 32 ALLOT"), FBRL_OK);
+    for (size_t b = 0; b < sizeof bodies / sizeof bodies[0]; b++) {
+        /* SU: the same words, each followed by HERE DROP at compile time */
+        char apart[400] = "", word[64];
+        const char *p = bodies[b];
+        int n;
+        while (sscanf(p, "%63s%n", word, &n) == 1) {
+            strcat(apart, word);
+            strcat(apart, " [ HERE DROP ] ");
+            p += n;
+        }
+        /* each fused form is really there: the fused code is shorter (but for ELSE
+         * landing on ; and ENDOF, whose branch becomes an exit of the same size) */
+        snprintf(src, sizeof src, "HERE : SF %s ; HERE SWAP -  HERE : SU %s ; HERE SWAP -", bodies[b], apart);
+        fbrl_cell plain_size = eval_pop(f->vm, src), fused_size = pop1(f);
+        if (strncmp(bodies[b], "IF ", 3) != 0 && strncmp(bodies[b], "CASE", 4) != 0 && fused_size >= plain_size)
+            fail_msg("\"%s\" was not fused (%ld bytes, apart %ld)", bodies[b], (long)fused_size, (long)plain_size);
+        for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; i++) {
+            run_result fused = run_word(f, inputs[i], "SF"), plain = run_word(f, inputs[i], "SU");
+            if (memcmp(&fused, &plain, sizeof fused) != 0)
+                fail_msg("\"%s\" on \"%s\": fused st %d code %d depth %d top %ld, apart st %d code %d depth %d top %ld",
+                         bodies[b], inputs[i], fused.st, fused.code, fused.depth,
+                         (long)(fused.depth ? fused.cells[fused.depth - 1] : 0), plain.st, plain.code, plain.depth,
+                         (long)(plain.depth ? plain.cells[plain.depth - 1] : 0));
+        }
+    }
+    /* SEE shows them as the words they came from */
+    expect_output(f, ": S1 DUP 3 < IF DROP 0 THEN ; SEE S1", ": S1 DUP 3 < 0BRANCH(2) DROP 0 ;\n");
+    expect_output(f, ": S2 10 0 DO I @ DUP +LOOP ; SEE S2", ": S2 10 0 DO I @ DUP +LOOP ;\n");
+    free_vm(f);
+}
+
 static void hostile_programs_fail_cleanly(void **state)
 {
     (void)state;
@@ -1268,6 +1351,7 @@ int main(void)
         cmocka_unit_test(multi_line_definitions_and_bye),
         cmocka_unit_test(every_word_has_help),
         cmocka_unit_test(fused_code_keeps_meaning),
+        cmocka_unit_test(superinstructions_keep_meaning),
         cmocka_unit_test(hostile_programs_fail_cleanly),
         cmocka_unit_test(corrupted_code_is_contained),
         cmocka_unit_test(tasks_in_the_engine),
