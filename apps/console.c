@@ -28,6 +28,7 @@
 #include "fbrl/vmx.h"
 #include "mon.h"
 #include "mon_recover.h"
+#include "console_users.h"
 #include "mon_runlog.h"
 #include "mon_ws.h"
 
@@ -97,8 +98,9 @@ typedef struct console {
     char errs[ERR_LINES][160];
     char advice[ERR_LINES][160];
     char hint[160];
-    /* a line being typed: Forth (programmer), or the PIN */
-    int typing; /* 0 none, 1 Forth, 2 PIN, 3 level choice, 4 a new method's name */
+    /* a line being typed: Forth (programmer), or signing in */
+    int typing; /* 0 none, 1 Forth, 3 level choice, 4 a new method's name, 5 sign-in name, 6 password */
+    char who[FBRL_AUDIT_NAME_MAX + 1]; /* the name being signed in */
     /* composing a method from the chosen method's steps (method developer) */
     size_t csel, picked[FBRL_METHOD_MAX_STEPS], npicked;
     /* the work-cell view: locations and devices by name (method developer) */
@@ -106,7 +108,6 @@ typedef struct console {
     size_t ncell, ctop, cpick; /* cpick: the selected row */
     int outside;               /* curses is off (TEACH has the terminal): nothing is drawn */
     enum con_screen cell_back; /* the screen Esc goes back to */
-    int want_level;
     char typed[128];
     size_t tlen;
     FILE *out;
@@ -706,12 +707,16 @@ static void draw(console *c)
     }
     put_row(20, " %s", c->errs[0]);
     put_row(21, "   %s", c->errs[0][0] ? c->advice[0] : "");
+    if (c->typing >= 5) /* why the last sign-in failed, or what to do */
+        put_row(21, " %s", c->hint);
     if (c->typing == 1)
         put_row(22, "ok> %s", c->typed);
-    else if (c->typing == 2)
-        put_row(22, "PIN for %s: %.*s", level_names[c->want_level], (int)c->tlen, "****************");
     else if (c->typing == 3)
-        put_row(22, "level: 1 operator  2 developer  3 programmer ?");
+        put_row(22, "level: 1 operator  2 developer  3 programmer%s ?", cu_lab() ? "  s sign out" : "");
+    else if (c->typing == 5)
+        put_row(22, "sign in: name: %s", c->typed);
+    else if (c->typing == 6)
+        put_row(22, "sign in: password for %s: %.*s", c->who, (int)(c->tlen < 16 ? c->tlen : 16), "****************");
     else if (c->typing == 4)
         put_row(22, "name of the new method: %s", c->typed);
     else
@@ -827,6 +832,7 @@ static void save_composed(console *c, const char *typed)
         if (strcmp(c->lib[i].name, name) == 0)
             c->sel = i;
     textf(c->hint, sizeof c->hint, "saved %s as %s.fbrl in the library: Enter opens it", name, file);
+    cu_action("compose", name, path);
 }
 
 static void compose_key(console *c, int ch)
@@ -852,7 +858,7 @@ static void compose_key(console *c, int ch)
  * gets the terminal, as at the prompt; Enter there stores the arm's position into it. */
 static void teach_place(console *c, const char *row)
 {
-    char name[FBRL_VMX_NAME_MAX + 1], text[FBRL_VMX_NAME_MAX + 8];
+    char name[FBRL_VMX_NAME_MAX + 1], text[FBRL_VMX_NAME_MAX + 8], before[MIN_COLS];
     size_t n = strcspn(row + 1, " ");
     FILE *out = c->m->host.out;
     int tty = c->m->host.out_is_tty, width = c->m->host.width;
@@ -862,6 +868,7 @@ static void teach_place(console *c, const char *row)
     }
     memcpy(name, row + 1, n);
     name[n] = '\0';
+    textf(before, sizeof before, "%s", row);
     textf(text, sizeof text, "TEACH %s", name);
     def_prog_mode();
     endwin();
@@ -890,8 +897,15 @@ static void teach_place(console *c, const char *row)
     }
     scan_cell(c);
     for (size_t i = 0; i < c->ncell; i++)
-        if (strncmp(c->cell[i] + 1, name, n) == 0 && c->cell[i][1 + n] == ' ')
+        if (strncmp(c->cell[i] + 1, name, n) == 0 && c->cell[i][1 + n] == ' ') {
             c->cpick = i, c->ctop = i >= 12 ? i - 11 : 0;
+            if (strcmp(c->cell[i], before) != 0) { /* taught: the place as it was and is */
+                char detail[2 * MIN_COLS + 16];
+                const char *was = strstr(before, " place "), *now = strstr(c->cell[i], " place ");
+                textf(detail, sizeof detail, "was %s; now %s", was ? was + 7 : before, now ? now + 7 : c->cell[i]);
+                cu_action("teach", name, detail);
+            }
+        }
     textf(c->hint, sizeof c->hint, "TEACH %s %s", name, st == FBRL_OK ? "done" : "did not store it");
 }
 
@@ -899,37 +913,47 @@ static void teach_place(console *c, const char *row)
 
 static void start_run(console *c);
 
+/* Down is free; up as far as the signed-in user's role allows (the lab's users: --lab). */
 static void set_level(console *c, int want)
 {
-    const char *pin = getenv("FBRL_CONSOLE_PIN");
-    if (want <= c->level) {
-        c->level = want;
-        textf(c->hint, sizeof c->hint, "level: %s", level_names[want]);
-        return;
-    }
-    if (pin == NULL || pin[0] == '\0') {
-        textf(c->hint, sizeof c->hint,
-              "switching up needs a PIN: none is set (FBRL_CONSOLE_PIN), or start with --level %s",
+    if (want > c->level && !cu_lab()) {
+        textf(c->hint, sizeof c->hint, "switching up needs the lab's users (--lab DIR), or start with --level %s",
               level_names[want]);
         return;
     }
-    c->want_level = want;
-    c->typing = 2;
+    if (want > cu_level_max() && want > c->level) {
+        textf(c->hint, sizeof c->hint, "%s's role (%s) allows the %s level: F9 s signs out for another user",
+              c->log->operator_id, cu_role(), level_names[cu_level_max()]);
+        return;
+    }
+    c->level = want;
+    textf(c->hint, sizeof c->hint, "level: %s", level_names[want]);
+    cu_action("level", level_names[want], NULL);
+}
+
+static void ask_sign_in(console *c, const char *why)
+{
+    c->typing = 5;
     c->tlen = 0;
     c->typed[0] = '\0';
+    c->level = LEVEL_OPERATOR;
+    textf(c->hint, sizeof c->hint, "%s", why);
 }
 
 static void typed_done(console *c)
 {
     int mode = c->typing;
     c->typing = 0;
-    if (mode == 2) {
-        const char *pin = getenv("FBRL_CONSOLE_PIN");
-        if (pin != NULL && strcmp(pin, c->typed) == 0) {
-            c->level = c->want_level;
-            textf(c->hint, sizeof c->hint, "level: %s", level_names[c->level]);
+    if (mode == 5) {
+        textf(c->who, sizeof c->who, "%s", c->typed);
+        c->typing = c->tlen ? 6 : 5;
+    } else if (mode == 6) {
+        char msg[200];
+        if (cu_sign_in(c->who, c->typed, msg, sizeof msg) == 0) {
+            c->level = cu_level_max();
+            textf(c->hint, sizeof c->hint, "%s", msg);
         } else {
-            textf(c->hint, sizeof c->hint, "wrong PIN: the level stays %s", level_names[c->level]);
+            ask_sign_in(c, msg);
         }
     } else if (mode == 4) {
         save_composed(c, c->typed);
@@ -937,6 +961,7 @@ static void typed_done(console *c)
         char text[sizeof c->typed];
         memcpy(text, c->typed, c->tlen + 1);
         push_msg(c, text);
+        cu_action("forth", text, NULL);
         c->in_vm++;
         fbrl_status st = fbrl_vm_eval(c->m->vm, text, strlen(text));
         c->in_vm--;
@@ -949,20 +974,26 @@ static void typed_done(console *c)
         flush_partial(c);
         c->typing = 1; /* the prompt stays until Esc */
     }
+    memset(c->typed, 0, sizeof c->typed); /* a password too */
     c->tlen = 0;
-    c->typed[0] = '\0';
 }
 
 static void type_key(console *c, int ch)
 {
-    size_t cap = c->typing == 3 ? 1 : sizeof c->typed - 1;
+    size_t cap = c->typing == 3 ? 1 : c->typing == 5 ? FBRL_AUDIT_NAME_MAX - 1 : sizeof c->typed - 1;
     if (c->typing == 3) {
         c->typing = 0;
         if (ch >= '1' && ch <= '3')
             set_level(c, ch - '1');
+        else if ((ch == 's' || ch == 'S') && cu_lab()) {
+            cu_sign_out("signed out");
+            ask_sign_in(c, "signed out: the next user signs in");
+        }
         return;
     }
-    if (ch == KEY_ESCAPE) {
+    if (ch == KEY_ESCAPE && c->typing >= 5) { /* no way around signing in: start again */
+        ask_sign_in(c, "sign in: your name, Enter, then your password");
+    } else if (ch == KEY_ESCAPE) {
         c->typing = 0;
         c->tlen = 0;
         c->typed[0] = '\0';
@@ -1120,6 +1151,17 @@ static void key(console *c, int ch)
 {
     if (ch == ERR || ch == KEY_RESIZE)
         return;
+    cu_touch();
+    if (cu_lab() && !cu_signed_in() && !running(c)) { /* nothing but signing in (or F10) */
+        if (ch == KEY_F(10))
+            c->quit = 1;
+        else {
+            if (c->typing < 5)
+                ask_sign_in(c, "sign in: your name, Enter, then your password");
+            type_key(c, ch);
+        }
+        return;
+    }
     if (c->in_vm && !running(c) && c->state != ST_PAUSED) {
         if (ch == KEY_CTRL_C) /* the engine runs a typed line or loads a file: only Ctrl-C */
             fbrl_vm_interrupt(c->m->vm);
@@ -1370,7 +1412,10 @@ static void log_failed(void *ctx, const char *message)
 {
     console *c = ctx;
     push_error(c, "run log", message);
-    textf(c->advice[0], sizeof c->advice[0], "-> the run goes on without a full log: free space, then check the log");
+    if (message == c->log->audit.err) /* the run was refused before it began */
+        textf(c->advice[0], sizeof c->advice[0], "-> nothing ran: see why above");
+    else
+        textf(c->advice[0], sizeof c->advice[0], "-> the run goes on without a full log: free space, then check the log");
 }
 
 /* ---- running ---- */
@@ -1385,12 +1430,28 @@ static void start_run(console *c)
         return;
     }
     textf(c->log->source, sizeof c->log->source, "%s", c->entry ? c->entry->path : "");
+    for (size_t k = 0; k < c->meth->nparams; k++) { /* a parameter changed: who, from what, to what */
+        long old = 0;
+        char what[2 * FBRL_METHOD_NAME_MAX + 2], detail[96];
+        if (fbrl_method_param_get(&c->m->methods, c->meth, k, &old) == FBRL_OK && old != v[k]) {
+            textf(what, sizeof what, "%s %s", c->meth->name, c->meth->params[k].name);
+            textf(detail, sizeof detail, "%ld -> %ld %s", old, v[k], c->meth->params[k].unit);
+            cu_action("parameter", what, detail);
+        }
+    }
+    c->log->audit.err[0] = '\0';
     c->in_vm++;
     fbrl_status st = fbrl_run_start(&c->m->run, c->meth->name, v, c->meth->nparams, &bad);
     c->in_vm--;
     flush_partial(c);
     fill_form(c); /* the values as set */
-    if (st != FBRL_OK) { /* it did not begin: the reason shown, the form back */
+    if (st != FBRL_OK && c->log->audit.err[0]) { /* refused before it began: why, nothing ran */
+        push_error(c, NULL, c->log->audit.err);
+        textf(c->advice[0], sizeof c->advice[0], "-> nothing ran");
+        textf(c->hint, sizeof c->hint, "the run did not start: see the errors");
+        c->screen = SCREEN_FORM;
+        c->state = ST_IDLE;
+    } else if (st != FBRL_OK) { /* it did not begin: the reason shown, the form back */
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, NULL, st == FBRL_ETHROW ? msg : fbrl_status_str(st));
@@ -1475,13 +1536,19 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     scan_library(c);
     if (c->nlib > 0 && !c->hint[0])
         textf(c->hint, sizeof c->hint, "choose a method and press Enter");
+    cu_start(log);
+    if (cu_lab())
+        ask_sign_in(c, "sign in: your name, Enter, then your password");
     while (!c->quit && !fbrl_vm_bye(m->vm)) {
         draw(c);
         nodelay(stdscr, FALSE);
         timeout(1000); /* the clock and the arm panel stay fresh */
         key(c, getch());
+        if (cu_idle(running(c)))
+            ask_sign_in(c, "signed out: the console was idle; sign in again");
     }
     endwin();
+    cu_end();
 
     fbrl_run_unobserve(&m->run, observe, c);
     log->error_hook = NULL;

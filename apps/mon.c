@@ -133,7 +133,7 @@ void mon_close(mon *m)
     mon_trace_close(m);
     free(m->typed_src);
     m->typed_src = NULL;
-    m->typed_len = m->typed_cap = 0;
+    m->typed_len = m->typed_cap = m->typed_open = 0;
 }
 
 /* Write s to stderr with control characters shown as '?', so a report is
@@ -256,10 +256,12 @@ int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned l
     m->counting = counts;
     fbrl_status st = fbrl_vm_eval(m->vm, text, len);
     m->counting = counting;
-    /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS. */
-    if (st == FBRL_OK && (where == NULL || strcmp(where, "stdin") == 0) &&
-        (compiling || fbrl_vm_compiling(m->vm) || fbrl_vm_word_count(m->vm) > words))
-        mon_debug_typed(m, text, len);
+    mon_step_end(m);
+    /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS: the
+     * lines of a definition count once it ended without an error. */
+    if (where == NULL || strcmp(where, "stdin") == 0)
+        mon_debug_typed(m, text, len, st == FBRL_OK, compiling, fbrl_vm_compiling(m->vm),
+                        fbrl_vm_word_count(m->vm) > words);
     if (st == FBRL_OK)
         return 0;
     report(m, st, where, line);
@@ -274,6 +276,7 @@ int mon_include(mon *m, const char *path)
     m->counting = 1;
     fbrl_status st = fbrl_vm_include(m->vm, path);
     m->counting = counting;
+    mon_step_end(m);
     if (st == FBRL_OK)
         return 0; /* (the engine itself refuses a file that ends inside a definition) */
     report(m, st, path, 0);

@@ -54,6 +54,7 @@ typedef struct mon {
     unsigned long resume_line;
     char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
     size_t typed_len, typed_cap;
+    size_t typed_open; /* of typed_len, the last bytes: a definition not yet ended */
     char edit_ws[256];    /* EDIT: where the session's work waits while the file loads */
     mon_step step;        /* the debugger (mon_step.c) */
     mon_trace trace;      /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */

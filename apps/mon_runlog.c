@@ -37,29 +37,16 @@ static void write_failed(mon_runlog *r, const char *what, int err)
         fprintf(stderr, "fbrlmon: error: %s\n", r->write_error);
 }
 
-/* One record, whole or not at all: a write the file system cut short (full, over a size
- * limit) is taken back off the file, so the log ends on a whole record. */
-static int file_write(void *ctx, const char *s, size_t n)
+/* The run log's file is the audit chain (mon_audit.c): each record appended and synced;
+ * a write that failed is told once and the chain's writer stops. */
+static int chain_write(void *ctx, const char *s, size_t n)
 {
     mon_runlog *r = ctx;
-    struct stat sb;
-    off_t at = fstat(r->fd, &sb) == 0 ? sb.st_size : -1;
-    size_t done = 0;
-    while (done < n) {
-        ssize_t k = write(r->fd, s + done, n - done);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k <= 0) {
-            int err = k < 0 ? errno : ENOSPC;
-            if (done > 0 && at >= 0 && S_ISREG(sb.st_mode))
-                (void)!ftruncate(r->fd, at);
-            write_failed(r, done > 0 ? "a record was cut short and taken back" : "a record was not written",
-                         err);
-            return -1;
-        }
-        done += (size_t)k;
-    }
-    return 0;
+    errno = 0;
+    if (mon_audit_sink(&r->audit, s, n) == 0)
+        return 0;
+    write_failed(r, "a record was not written", errno ? errno : EIO); /* the store kept the write's errno */
+    return -1;
 }
 
 /* Plain words for the errors an operator meets; the message itself comes first. */
@@ -172,6 +159,21 @@ static int log_begin(mon_runlog *r, const fbrl_method *meth)
         p[k].value = 0;
         fbrl_method_param_get(&r->m->methods, meth, k, &p[k].value);
     }
+    /* the audit chain verified and the method's release checked (in a lab) before the
+     * controller hears anything of the run */
+    snprintf(r->audit.path, sizeof r->audit.path, "%s", r->path);
+    if (!r->audit.user[0])
+        mon_audit_set_user(&r->audit, r->operator_id, 0, FBRL_ROLE_OPERATOR);
+    int refused = mon_audit_run_begin(&r->audit, meth, r->source);
+    if (refused != 0) {
+        if (refused == -1)
+            r->m->errors++; /* no trail for the run: an error of fbrlmon (its exit status) */
+        if (r->error_hook)
+            r->error_hook(r->error_hook_ctx, r->audit.err);
+        else
+            fprintf(stderr, "fbrlmon: error: %s\n", r->audit.err);
+        return 1;
+    }
     localtime_r(&now, &tm);
     strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S%z", &tm);
     calibration_text(r->m, cal, sizeof cal);
@@ -193,15 +195,9 @@ static int log_begin(mon_runlog *r, const fbrl_method *meth)
     h.calibration = cal;
     h.params = p;
     h.nparams = meth->nparams;
-    r->fd = open(r->path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
-    if (r->fd < 0) {
-        write_failed(r, "cannot be opened", errno);
-        return 1;
-    }
     memset(&r->log, 0, sizeof r->log);
-    if (fbrl_runlog_begin(&r->log, file_write, r, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
-        close(r->fd);
-        r->fd = -1;
+    if (fbrl_runlog_begin(&r->log, chain_write, r, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
+        mon_audit_run_end(&r->audit);
         return 1;
     }
     for (int k = 0; k < r->npending; k++)
@@ -233,9 +229,7 @@ static void log_end(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
             out[n].reason = s.outcomes[i].reason;
         }
     fbrl_runlog_end(&r->log, fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), out, n);
-    if (close(r->fd) != 0)
-        write_failed(r, "closing it", errno);
-    r->fd = -1;
+    mon_audit_run_end(&r->audit); /* sealed */
 }
 
 /* A run that did not complete, told on stderr (fbrlmon without the console): the outcome,
@@ -373,6 +367,11 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
     if (!fbrl_runlog_is_open(&r->log) && r->event_hook == NULL)
         return;
+    if (ev->line != NULL) { /* a motion sent around the guard on purpose (fbrl_link_unguarded) */
+        if (fbrl_runlog_is_open(&r->log))
+            fbrl_runlog_note(&r->log, "unguarded", NULL, ev->line);
+        return;
+    }
     memset(&f, 0, sizeof f);
     f.m = r->m;
     f.addr = ev->device;
@@ -453,7 +452,6 @@ int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *c
     const char *who = getenv("USER");
     memset(r, 0, sizeof *r);
     r->m = m;
-    r->fd = -1;
     r->program = program;
     snprintf(r->operator_id, sizeof r->operator_id, "%s", who ? who : "");
     snprintf(r->controller, sizeof r->controller, "%s", controller ? controller : "");

@@ -15,6 +15,7 @@
 #include "fbrl/robot.h"
 #include "fbrl/run.h"
 #include "fbrl/runlog.h"
+#include "mon_audit.h"
 
 struct mon;
 
@@ -23,7 +24,7 @@ struct mon;
 typedef struct mon_runlog {
     struct mon *m;
     fbrl_runlog log;
-    int fd;                           /* the file, open while a run is logged (-1 none) */
+    mon_audit audit;                  /* the file: a hash-chained audit trail, open while a run is logged */
     char path[MON_RUNLOG_PATH_MAX];   /* "" = no log */
     char source[MON_RUNLOG_PATH_MAX]; /* the method's file, for the header ("" unknown) */
     char operator_id[64];

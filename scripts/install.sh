@@ -28,7 +28,7 @@ fi
 cmake --install "$build" --prefix "$prefix" >/dev/null
 echo "installed fbrlmon, fbrlsim and libfbrl under $prefix"
 libdir=$prefix/$(sed -n 's/^CMAKE_INSTALL_LIBDIR:[A-Z]*=//p' "$build/CMakeCache.txt")
-lib=$(readelf -d "$dest$libdir/libfbrl.so" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p') # libfbrl.so.0
+lib=$(readelf -d "$dest$libdir/libfbrl.so" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p') # libfbrl.so.1
 
 # The Python package, for Debian's python3: into the directory of PREFIX it already reads
 # (/usr/local: lib/python3.X/dist-packages; ~/.local: the user's site-packages), with a

@@ -76,8 +76,6 @@ static uint64_t now_us(const fbrl_link *l)
 
 static uint64_t ms(uint32_t v) { return (uint64_t)v * 1000u; }
 
-const fbrl_link_arm fbrl_link_arm_a255 = {5, {200.0, 200.0, 200.0, 44.44, 22.22}, 10.0, 10.0, 10.0, 2.0};
-
 fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg)
 {
     if (!l || !u || !u->ops || !u->ops->now_us)
@@ -498,51 +496,42 @@ static int same_status(const fbrl_rapl_status_info *a, const fbrl_rapl_status_in
 }
 
 #define DEG_TO_RAD  0.017453292519943295
-#define POS_TOL_IN  0.002  /* world x y z against the joints: print rounding is ~1e-4 */
-#define POS_TOL_DEG 0.0003 /* pitch = the sum of three joints, each rounded to 5e-5 */
-#define TOOL_MAX_IN 100.0  /* a longer tool along the tool axis is not believed */
-
-static double wrap180(double d)
-{
-    d = fmod(d, 360.0);
-    if (d > 180.0)
-        d -= 360.0;
-    else if (d <= -180.0)
-        d += 360.0;
-    return d;
-}
+#define POS_TOL_IN  0.002 /* world x y z against the joints: print rounding is ~1e-4 */
+#define POS_TOL_JNT 5e-5  /* an angle printed to 4 decimals: each joint, and each world angle */
+#define TOOL_MAX_IN 100.0 /* a longer tool along the tool axis is not believed */
 
 /* A position block is self-checking (docs/link.md 3.5): its pulses, joint angles and
  * world coordinates are printed from one sample of the arm, so they agree through the
- * pulses per degree and the arm's kinematics. A damaged digit breaks that agreement
- * (beyond the print resolution), so such a block is believed at once, even while the
- * arm moves and no two reads are alike. The tool point may lie any distance along the
- * tool axis (TOOL), so only the part of x y z across that axis is checked. */
+ * pulses per degree and the arm's kinematics (fbrl/arm.h). A damaged digit breaks that
+ * agreement (beyond the print resolution), so such a block is believed at once, even while
+ * the arm moves and no two reads are alike. The tool point may lie any distance along the
+ * tool axis (TOOL), so only the part of x y z across that axis is checked; a world angle
+ * sums the joints' rounding, one per joint at most. */
 static int pos_consistent(const fbrl_link *l)
 {
-    const fbrl_link_arm *m = l->cfg.arm ? l->cfg.arm : &fbrl_link_arm_a255;
+    const fbrl_arm *m = l->cfg.arm ? l->cfg.arm : fbrl_arm_model(0);
     const fbrl_rapl_pos *p = &l->pos;
     unsigned n = m->naxes;
-    if (n != 5 || l->cfg.naxes != n || p->npulses < n || p->njoints < n || p->nworld < 6)
+    double pose[6], tol = (n + 1) * POS_TOL_JNT;
+    if (l->cfg.naxes != n || p->npulses < n || p->njoints < n || p->nworld < 6)
         return 0;
     for (unsigned k = 0; k < n; k++) {
         double want = p->joints[k] * m->ppd[k];
-        if (fabs((double)p->pulses[k] - want) > 0.5 + 5e-5 * m->ppd[k] + 1e-6)
+        if (fabs((double)p->pulses[k] - want) > 0.5 + POS_TOL_JNT * m->ppd[k] + 1e-6)
             return 0;
     }
-    const double *q = p->joints, *w = p->world;
-    double a2 = q[1] * DEG_TO_RAD, a3 = (q[1] + q[2]) * DEG_TO_RAD, pitch = q[1] + q[2] + q[3];
-    double pr = pitch * DEG_TO_RAD, c0 = cos(q[0] * DEG_TO_RAD), s0 = sin(q[0] * DEG_TO_RAD);
-    double r = m->upper * cos(a2) + m->fore * cos(a3) + m->flange * cos(pr);
-    double z = m->base_h + m->upper * sin(a2) + m->fore * sin(a3) + m->flange * sin(pr);
-    double d[3] = {w[0] - r * c0, w[1] - r * s0, w[2] - z};
-    double axis[3] = {cos(pr) * c0, cos(pr) * s0, sin(pr)};
+    if (fbrl_arm_fk(m, p->joints, 0.0, pose) != FBRL_OK)
+        return 0;
+    const double *w = p->world;
+    double yaw = pose[3] * DEG_TO_RAD, pr = pose[4] * DEG_TO_RAD;
+    double d[3] = {w[0] - pose[0], w[1] - pose[1], w[2] - pose[2]};
+    double axis[3] = {cos(pr) * cos(yaw), cos(pr) * sin(yaw), sin(pr)};
     double t = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2], across = 0.0;
     for (int k = 0; k < 3; k++)
         across += (d[k] - t * axis[k]) * (d[k] - t * axis[k]);
     return sqrt(across) <= POS_TOL_IN && t >= -POS_TOL_IN && t <= TOOL_MAX_IN &&
-           fabs(wrap180(w[3] - q[0])) <= POS_TOL_DEG && fabs(wrap180(w[4] - pitch)) <= POS_TOL_DEG &&
-           fabs(wrap180(w[5] - q[4])) <= POS_TOL_DEG;
+           fabs(fbrl_arm_wrap(w[3] - pose[3])) <= tol && fabs(fbrl_arm_wrap(w[4] - pose[4])) <= tol &&
+           fabs(fbrl_arm_wrap(w[5] - pose[5])) <= tol;
 }
 
 /* Count agreeing reads: same values and the same number of reply bytes (a dropped
@@ -1255,8 +1244,12 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     if (l->busy)
         return FBRL_ESTATE;
     fbrl_status st = check_line(line, &n);
+    int unguarded = l->unguarded;
+    l->unguarded = 0; /* for this one line only, whatever becomes of it */
     if (st != FBRL_OK)
         return st;
+    if (l->gate && (st = l->gate(l->gate_ctx, line, n, unguarded)) != FBRL_OK)
+        return st; /* the guard's: nothing of it is typed */
     for (size_t k = 0; k < n; k++)
         l->line[k] = upper(line[k]);
     l->line[n] = '\0';
@@ -1855,6 +1848,23 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
         *old_ctx = l->cfg.line_ctx;
     l->cfg.on_line = fn;
     l->cfg.line_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_set_gate(fbrl_link *l, fbrl_link_gate_fn fn, void *ctx)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    l->gate = fn;
+    l->gate_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_unguarded(fbrl_link *l)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    l->unguarded = 1;
     return FBRL_OK;
 }
 

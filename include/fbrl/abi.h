@@ -48,7 +48,10 @@ extern "C" {
     X(RUN, fbrl_run)                           \
     X(RUN_SNAP, fbrl_run_snap)                 \
     X(RUN_EVENT, fbrl_run_event)               \
-    X(METHOD, fbrl_method)
+    X(METHOD, fbrl_method)                     \
+    X(USERS, fbrl_users)                       \
+    X(USER, fbrl_user)                         \
+    X(CELL_WORDS, fbrl_cell_words)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,
 typedef enum fbrl_abi_type { FBRL_ABI_TYPES(FBRL_ABI_ENUM_) FBRL_ABI_TYPE_COUNT } fbrl_abi_type;

@@ -45,11 +45,19 @@ typedef enum fbrl_status {
     FBRL_EOFFLINE = -30,      /* no controller connected */
     FBRL_ENOTFILE = -31,      /* not a regular file (a device, FIFO or directory) */
     FBRL_EPERM = -32,         /* the operating system refused access (e.g. a port's mode) */
-    FBRL_EMAYBE = -33         /* link: the command may have run; the link cannot prove
+    FBRL_EMAYBE = -33,        /* link: the command may have run; the link cannot prove
                                 * either way (docs/link.md 3.9): do not repeat it blindly */
+    FBRL_EAUTH = -34,         /* users: unknown name or wrong password */
+    FBRL_ELOCKED = -35,       /* users: account locked (too many wrong passwords) or disabled */
+    FBRL_EDISKFULL = -36,     /* no room left for the file: the disk (or quota) is full, or
+                                * the file may grow no more (a size limit) */
+    FBRL_ELOOP = -37,         /* symbolic links that lead round in a loop (or too many) */
+    FBRL_EREADONLY = -38,     /* a read-only file, or a file system mounted read-only */
+    FBRL_EGUARD = -39         /* a motion the work cell's guard refused, or one that did not
+                                * pass it (docs/workcell.md "The guard"): nothing was sent */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EMAYBE
+#define FBRL_STATUS_MIN FBRL_EGUARD
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 FBRL_API const char *fbrl_status_str(fbrl_status st);

@@ -32,6 +32,7 @@ typedef struct fbrl_glossary fbrl_glossary;
 typedef struct fbrl_robot fbrl_robot;
 typedef struct fbrl_vm fbrl_vm;
 typedef struct fbrl_file fbrl_file;
+typedef struct fbrl_cell_words fbrl_cell_words;
 
 /* ports */
 void fbrl_port_options_init(fbrl_port_options *o);
@@ -108,6 +109,7 @@ const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
 fbrl_status fbrl_link_get_form(const fbrl_link *l, int *form);
 fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, int form, int cmd, const fbrl_rapl_arg *args,
                              size_t nargs, int straight);
+fbrl_status fbrl_link_unguarded(fbrl_link *l);
 fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value);
 fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value);
 fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
@@ -116,6 +118,7 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
 fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx, fbrl_link_exec_fn *old_fn,
                                        void **old_ctx);
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
+int fbrl_link_units(const fbrl_link *l);
 int fbrl_link_fate_of(fbrl_status result);
 fbrl_status fbrl_rapl_cmd_find(const char *keyword, int *cmd);
 const char *fbrl_rapl_error_text(int code);
@@ -203,6 +206,7 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 void fbrl_vm_interrupt(fbrl_vm *vm);
+int fbrl_vm_interrupt_pending(const fbrl_vm *vm);
 int fbrl_vm_bye(const fbrl_vm *vm);
 void fbrl_vm_reset(fbrl_vm *vm);
 fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);
@@ -231,6 +235,14 @@ fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const c
 fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
 int fbrl_robot_still_line(const char *line, size_t len, int flawed);
 int fbrl_robot_last_error(const fbrl_robot *r);
+/* the work cell's words and the guard on every robot motion (fbrl/cell.h); the guard's record
+ * starts with these two counters */
+typedef struct fbrl_cell_stats_head {
+    unsigned long moves;
+    unsigned long refused;
+} fbrl_cell_stats_head;
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
+const fbrl_cell_stats_head *fbrl_cell_stats_get(const fbrl_cell_words *cw);
 uint64_t fbrl_clock_now_us(void);
 """
 
@@ -241,7 +253,7 @@ ABI = {
     "fbrl_rapl_reader": 9, "fbrl_rapl_pos": 10, "fbrl_loc": 11, "fbrl_calib": 12, "fbrl_calpts": 13,
     "fbrl_units": 14, "fbrl_file": 15, "fbrl_glossary": 16, "fbrl_robot": 17, "fbrl_robot_stop": 18,
     "fbrl_vm_config": 19, "fbrl_vm_error": 20, "fbrl_workspace": 21, "fbrl_workspace_counts": 22,
-    "fbrl_uart_8250": 23, "fbrl_port_entry": 24,
+    "fbrl_uart_8250": 23, "fbrl_port_entry": 24, "fbrl_cell_words": 33,
 }
 # The structs declared in full above: their layout must be the library's.
 DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error",
@@ -255,14 +267,14 @@ def _load():
     """FBRL_LIBRARY names the shared library (the tests point it at the build tree);
     otherwise the one scripts/install.sh installed with this package (_installed.py: by
     path, so no ldconfig or LD_LIBRARY_PATH is needed); otherwise the system's
-    libfbrl.so.0 (the libfbrl0 package)."""
+    libfbrl.so.1 (the libfbrl1 package)."""
     names = [os.environ["FBRL_LIBRARY"]] if os.environ.get("FBRL_LIBRARY") else []
     try:
         from ._installed import LIBRARY
         names.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), LIBRARY))
     except ImportError:
         pass  # not installed by install.sh: the source tree or the Debian package
-    names += ["libfbrl.so.0", ctypes.util.find_library("fbrl") or "libfbrl.so"]
+    names += ["libfbrl.so.1", ctypes.util.find_library("fbrl") or "libfbrl.so"]
     err = None
     for name in names:
         try:

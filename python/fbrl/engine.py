@@ -13,6 +13,7 @@ FBRL_OK = 0
 
 DICT_BYTES_DEFAULT = 1 << 20
 FILE_STORAGE_BYTES = 1 << 20  # the glossary's data-file buffers (OPEN-FILE)
+SLEEP_SLICE_S = 0.05  # a timed wait looks for an interrupt this often
 
 
 class Engine:
@@ -70,6 +71,10 @@ class Engine:
               "Engine glossary")
         check(lib.fbrl_robot_install(self._vm, self._robot.ptr, link.ptr if link else ffi.NULL,
                                      self._glossary.ptr), "Engine robot words")
+        # the work cell's words and the guard on every motion (docs/workcell.md)
+        self._cell = alloc("fbrl_cell_words")
+        check(lib.fbrl_cell_install(self._vm, self._cell.ptr, self._robot.ptr, self._glossary.ptr),
+              "Engine cell words")
 
     def __enter__(self):
         return self
@@ -79,10 +84,20 @@ class Engine:
         return False
 
     def close(self):
-        """Closes the source files an interrupted INCLUDED left open."""
+        """Closes the source files an interrupted INCLUDED left open, and takes the robot
+        words' gate off the link (the link goes on without this engine)."""
         for f in self._files.values():
             f.close()
         self._files.clear()
+        if getattr(self, "link", None) is not None and hasattr(self, "_robot"):
+            lib.fbrl_robot_set_link(self._robot.ptr, ffi.NULL)
+            self.link = None
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:  # at interpreter exit the module's globals may be gone already
+            pass
 
     # host callbacks: an exception in one is an error status for the engine and is kept
     # for the caller (raised, or the cause of the error eval() raises), never lost
@@ -99,10 +114,19 @@ class Engine:
         self._out.append(ffi.unpack(s, n).decode("latin-1"))
 
     def _sleep_ms(self, user, ms):
-        if self._sig is not None:
-            self._sig.sleep(ms / 1000.0)  # Ctrl-C ends it at once
-        else:
-            time.sleep(ms / 1000.0)
+        # in slices, so interrupt() from another thread ends a timed wait within one; Ctrl-C
+        # ends it at once
+        end = time.monotonic() + ms / 1000.0
+        while not lib.fbrl_vm_interrupt_pending(self._vm):
+            left = end - time.monotonic()
+            if left <= 0:
+                break
+            if self._sig is not None:
+                self._sig.sleep(min(left, SLEEP_SLICE_S))
+                if self._sig.fired:
+                    break
+            else:
+                time.sleep(min(left, SLEEP_SLICE_S))
 
     def _file_open(self, user, path, handle):
         """Only a regular file, as fbrlmon (a device never ends, a FIFO blocks); the name's
@@ -227,6 +251,24 @@ class Engine:
         is read (not a device or a FIFO), a line at a time, each at most the engine's line."""
         name = _args.path(path, "include")
         return self._evaluate("include " + os.fsdecode(name), lambda: lib.fbrl_vm_include(self._vm, name))
+
+    def set_link(self, link):
+        """Drive another controller (or none: None) from now on, e.g. after the port was
+        reopened; the dictionary, the cell and the places stay as they are."""
+        check(lib.fbrl_robot_set_link(self._robot.ptr, link.ptr if link else ffi.NULL), "set_link")
+        self.link = link
+        self._link_motions = link._motions if link else 0
+
+    def interrupt(self):
+        """Ask a running eval()/include() to stop (THROW -28 at its next word; a wait for the
+        arm returns early). The one call that is safe from another thread."""
+        lib.fbrl_vm_interrupt(self._vm)
+
+    @property
+    def guard(self):
+        """The collision guard's record: (motions checked and sent, motions refused)."""
+        st = lib.fbrl_cell_stats_get(self._cell.ptr)
+        return st.moves, st.refused
 
     @property
     def bye(self):

@@ -14,6 +14,7 @@ from .stop import Stop
 FBRL_OK = 0
 FBRL_RAPL_STATUS, FBRL_RAPL_W2, FBRL_RAPL_W5 = 37, 45, 48  # fbrl_rapl_cmd codes (stable)
 _ARG_INT, _ARG_REAL, _ARG_STR = 0, 1, 2
+_UNITS = {0: "inch", 1: "mm"}  # FBRL_LINK_UNITS_INCH, _MM (fbrl/link.h); -1: not known
 _LINE_MOTION, _LINE_FINISH, _LINE_HALT = 0x1, 0x2, 0x4  # FBRL_ROBOT_LINE_* (fbrl/robot.h)
 RAPL_LINE_MAX = 96  # FBRL_RAPL_LINE_MAX: the encoder's longest line and its NUL fit
 POLL_SLICE_MS = 50  # the longest C waits before Python looks for Ctrl-C again
@@ -257,6 +258,12 @@ class Link:
             raise ControllerError(st, what, code[0], ffi.string(text[0]).decode() if text[0] else None, fate)
         raise Error(st, what, fate=fate)
 
+    @property
+    def units(self):
+        """The controller's units of length as the link last learned them (a STATUS, or METRIC
+        sent): "inch", "mm", or None when not known yet (fbrl_link_units)."""
+        return _UNITS.get(lib.fbrl_link_units(self._link.ptr))
+
     # waiting where Ctrl-C can stop the arm
     @contextlib.contextmanager
     def _stopping(self):
@@ -310,24 +317,33 @@ class Link:
             self._sig.sleep(STILL_POLL_S)
             self._sig.check()
 
-    def _send(self, line, what, start):
-        """A command line: first, if it moves the arm or waits for it, the wait for rest."""
+    def _send(self, line, what, start, unguarded=False):
+        """A command line: first, if it moves the arm or waits for it, the wait for rest.
+        unguarded: the line goes around the work cell's guard (fbrl_link_unguarded), set
+        just before it starts so that the wait's own W5 readings do not take it."""
         effect = ffi.new("unsigned *")
         lib.fbrl_robot_line_effect(line, effect, ffi.NULL)
+
+        def go():
+            if unguarded:
+                lib.fbrl_link_unguarded(self._link.ptr)
+            return start()
         with self._stopping():
             if effect[0] & (_LINE_MOTION | _LINE_FINISH):
                 self._await_still()
-            return self._check(self._run(what, start), what)
+            return self._check(self._run(what, go), what)
 
     def connect(self):
         """The start-up handshake: a known, empty command line; NOHELP."""
         with self._stopping():
             self._check(lib.fbrl_link_connect(self._link.ptr), "connect")
 
-    def command(self, keyword, *args, straight=False):
+    def command(self, keyword, *args, straight=False, unguarded=False):
         """Run one RAPL command from the library's table, e.g. command("MOVE", "P1"),
         command("SPEED", 50), command("APPRO", "P1", 2.0). Ints, floats and names (str);
-        anything else is a TypeError."""
+        anything else is a TypeError. On a link an Engine with a described work cell shares,
+        a motion is refused (FBRL_EGUARD, nothing sent) unless unguarded=True sends it around
+        the guard, which the engine's robot is told (docs/workcell.md "The guard")."""
         cmd = ffi.new("int *")
         st = lib.fbrl_rapl_cmd_find(_args.text(keyword, "RAPL command"), cmd)
         if st < 0:
@@ -354,17 +370,19 @@ class Link:
         what = line.decode() if st == FBRL_OK else " ".join([keyword] + [str(a) for a in args])
         if st < 0:
             self._check(st, what)  # refused before anything was sent
-        self._send(line, what, lambda: lib.fbrl_link_start_cmd(self._link.ptr, cmd[0], cargs, len(args), straight))
+        self._send(line, what, lambda: lib.fbrl_link_start_cmd(self._link.ptr, cmd[0], cargs, len(args), straight),
+                   unguarded)
 
-    def raw(self, line):
+    def raw(self, line, unguarded=False):
         """Run a raw command line; returns the lines it printed. A line the link would not
-        send (a NUL, a control character, '?', over 80 characters) is a ValueError."""
+        send (a NUL, a control character, '?', over 80 characters) is a ValueError.
+        unguarded: as command()."""
         data = _args.text(line, "raw line")
         if lib.fbrl_link_line_check(data, len(data)) != FBRL_OK:
             raise ValueError("raw line %r: not a line the link sends (printable ASCII, 1 to 80 characters, no '?';"
                              " docs/link.md)" % (line,))
         what = data.decode()
-        self._send(data, what, lambda: lib.fbrl_link_start_raw(self._link.ptr, data))
+        self._send(data, what, lambda: lib.fbrl_link_start_raw(self._link.ptr, data), unguarded)
         return [t.decode("latin-1") for t, flawed in self._lines]
 
     # robot commands

@@ -466,6 +466,20 @@ int fbrl__compile_op(fbrl_vm *vm, int op)
                 vm->peep_end = vm->here;
                 return 0;
             }
+            if (prev == OP_DROPLIT && fuse(OP_LIT, op)) {
+                /* DROPLIT v | op  ->  DROP | LIT v | op: the literal's own pair (V @, 1 +)
+                 * saves as much, and a debugger steps over DROP and V @ as written */
+                int r = fbrl__emit(vm, v);
+                if (r)
+                    return r;
+                prev = OP_DROP;
+                memcpy(p, &prev, sizeof prev);
+                prev = OP_LIT;
+                memcpy(p + CELL, &prev, sizeof prev);
+                vm->peep_prev = p;
+                vm->peep = p += CELL;
+                vm->peep_end = vm->here;
+            }
         }
         if ((f = fuse(prev, op))) {
             prev = f;
@@ -722,6 +736,27 @@ fail:
     return r;
 }
 
+/* ; is about to compile its EXIT at HERE (words.c resolve() noted the forward BRANCHes
+ * that land there): a BRANCH that jumps there (ELSE ... THEN ;)
+ * becomes EXITBR, an EXIT that keeps the branch's target for SEE. */
+static void exit_branches(fbrl_vm *vm)
+{
+    if (vm->exit_here == vm->here) {
+        for (unsigned i = 0; i < vm->nexit_orig; i++) {
+            fbrl_cell at = vm->exit_orig[i] - CELL, op;
+            if (!fbrl__addr_ok(vm, at, CELL))
+                continue;
+            memcpy(&op, (void *)at, sizeof op);
+            if (op == OP_BRANCH) {
+                op = OP_EXITBR;
+                memcpy((void *)at, &op, sizeof op);
+            }
+        }
+    }
+    vm->nbr_orig = vm->nexit_orig = 0;
+    vm->exit_here = NULL;
+}
+
 int fbrl__semicolon(fbrl_vm *vm)
 {
     int r;
@@ -730,7 +765,7 @@ int fbrl__semicolon(fbrl_vm *vm)
     if (vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
         return r;
     vm->nlocals = vm->lpend = 0;
-    fbrl__exit_branches(vm);
+    exit_branches(vm);
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);

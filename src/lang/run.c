@@ -97,6 +97,7 @@ typedef struct run_limits {
         SAVE();            \
         code = (expr);     \
         LOAD();            \
+        STEPWORDS();       \
         if (code)          \
             goto do_throw; \
     } while (0)
@@ -114,6 +115,7 @@ typedef struct run_limits {
             vm->ip = ip;                        \
             int stop_ = fbrl__step(vm, (body)); \
             LOAD();                             \
+            STEPWORDS();                        \
             if (stop_)                          \
                 THROW(stop_);                   \
         }                                       \
@@ -159,13 +161,24 @@ typedef struct run_limits {
         fp--;                          \
     } while (0)
 
+/* The word hook (fbrl_vm_word_hook, a debugger's single steps) sees each word before it
+ * runs. With computed goto the dispatch goes through tab: optab, or while the hook is set
+ * steptab, whose every entry (xts too: entry OP__END) leads to the hook first; so the hot
+ * path has no test of its own. The portable switch tests a flag. Looked at again after
+ * each C call and step hook (which may set or clear the word hook). */
 #if FBRL_CGOTO
 #define CASE(id) L_##id:
 #define DEFAULT
-#define DISPATCH()          \
+#define DISPATCH()               \
+    do {                         \
+        if (U(w) < OP__END)      \
+            goto *tab[w];        \
+        goto *tab[OP__END];      \
+    } while (0)
+#define DISPATCH_PLAIN()    \
     do {                    \
         if (U(w) < OP__END) \
-            goto *tab[w];   \
+            goto *optab[w]; \
         goto execute_xt;    \
     } while (0)
 #define NEXT        \
@@ -174,11 +187,18 @@ typedef struct run_limits {
         ip += 1;    \
         DISPATCH(); \
     } while (0)
+#if FBRL_WORD_HOOK
+#define STEPWORDS() (tab = vm->word_fn && !vm->in_step ? steptab : optab)
 #else
-#define CASE(id)   case OP_##id:
-#define DEFAULT    default:
-#define DISPATCH() goto dispatch
-#define NEXT       continue
+#define STEPWORDS() ((void)0)
+#endif
+#else
+#define CASE(id)         case OP_##id:
+#define DEFAULT          default:
+#define DISPATCH()       goto dispatch
+#define DISPATCH_PLAIN() goto dispatch
+#define NEXT             continue
+#define STEPWORDS()      (stepping = FBRL_WORD_HOOK && vm->word_fn && !vm->in_step)
 #endif
 
 static fbrl_cell ld(fbrl_cell a)
@@ -240,6 +260,9 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 #include "ops.def"
 #undef OP
         &&execute_xt};
+#if FBRL_WORD_HOOK
+    static const void *const steptab[OP__END + 1] = {[0 ... OP__END] = &&step_word};
+#endif
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
     /* the table's address in a register of its own (GCC reloaded it from the stack on the
      * hot paths of some primitives); r15 is callee-saved, so C helpers leave it alone */
@@ -247,6 +270,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
 #else
     const void *const *tab = optab;
 #endif
+#else
+    int stepping = 0;
 #endif
 
     if (vm->nest >= 64)
@@ -263,13 +288,14 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     }
     lim.code_cells = (fbrl_ucell)(vm->mem_end - vm->data_lo) / (fbrl_ucell)CELL;
     LOAD();
+    STEPWORDS();
     entry = rp - rs0;
     vm->nest++;
     if (vm->resume_ip) { /* task.c: a task's slice goes on where it stopped (xt: the word to run again) */
         ip = vm->resume_ip;
         vm->resume_ip = NULL;
         entry = 0;
-        DISPATCH();
+        DISPATCH_PLAIN();
     }
     goto execute_xt;
 
@@ -279,6 +305,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         DISPATCH();
         {
 #else
+        if (stepping)
+            goto step_word;
     dispatch:
         switch ((fbrl_ucell)w) {
 #endif
@@ -1747,7 +1775,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (!h)
                 THROW(fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token"));
             switch (h->kind) {
-            case K_PRIM: w = H_OP(h); DISPATCH();
+            case K_PRIM: w = H_OP(h); DISPATCH_PLAIN(); /* its step was the xt's */
             case K_COLON:
                 ENTER(h->body);
                 RROOM(1);
@@ -1822,6 +1850,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                     THROW(FBRL_THROW_STACK_UNDERFLOW);
                 }
                 LOAD();
+                STEPWORDS(); /* BREAK, UNBREAK ... set the word hook */
                 if (st != FBRL_OK)
                     THROW(st == FBRL_ETHROW ? (vm->pending_throw ? vm->pending_throw : -1)
                                             : FBRL_THROW_STATUS(st));
@@ -1866,6 +1895,20 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         goto e_stored;
     e_stored:
         code = vm->run_code;
+        goto do_throw;
+#if FBRL_WORD_HOOK || !FBRL_CGOTO
+    step_word: /* the word hook, before the word w (ip: after it) */
+        if (FBRL_WORD_HOOK && vm->word_fn && !vm->in_step) {
+            SAVE();
+            vm->ip = ip;
+            code = fbrl__step_word(vm, w);
+            LOAD();
+            STEPWORDS();
+            if (code)
+                goto do_throw;
+        }
+        DISPATCH_PLAIN();
+#endif
     do_throw:
         if (code == THROW_BYE || code == THROW_QUIT)
             goto out;
@@ -1913,3 +1956,4 @@ out:
 #if FBRL_CGOTO
 #pragma GCC diagnostic pop
 #endif
+#undef tab

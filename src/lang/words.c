@@ -173,26 +173,6 @@ static int resolve(fbrl_vm *vm, fbrl_cell orig)
     return 0;
 }
 
-/* ; is about to compile its EXIT at HERE: a BRANCH that jumps there (ELSE ... THEN ;)
- * becomes EXITBR, an EXIT that keeps the branch's target for SEE. */
-void fbrl__exit_branches(fbrl_vm *vm)
-{
-    if (vm->exit_here == vm->here) {
-        for (unsigned i = 0; i < vm->nexit_orig; i++) {
-            fbrl_cell at = vm->exit_orig[i] - CELL, op;
-            if (!fbrl__addr_ok(vm, at, CELL))
-                continue;
-            memcpy(&op, (void *)at, sizeof op);
-            if (op == OP_BRANCH) {
-                op = OP_EXITBR;
-                memcpy((void *)at, &op, sizeof op);
-            }
-        }
-    }
-    vm->nbr_orig = vm->nexit_orig = 0;
-    vm->exit_here = NULL;
-}
-
 static int back(fbrl_vm *vm, int op, fbrl_cell dest)
 {
     int r = branch_op(vm, op);
@@ -513,97 +493,43 @@ static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
         fbrl__puts(vm, ":NONAME");
 }
 
-/* A superinstruction shows as the words it was compiled from. */
+/* A superinstruction shows as the words it was compiled from (fbrl__fused_words). */
 static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 {
-    static const struct {
-        int16_t op;
-        uint8_t lit, br; /* 1: a literal, a branch follow the op (bytes: a row is 8 bytes, not 12) */
-        const char *words;
-    } fused[] = { /* words: # is where the literal goes (first when there is no #); br 2: a loop's target */
-        {OP_LITPLUS, 1, 0, "+"},
-        {OP_LITMINUS, 1, 0, "-"},
-        {OP_LITSTAR, 1, 0, "*"},
-        {OP_LITAND, 1, 0, "AND"},
-        {OP_LITEQ, 1, 0, "="},
-        {OP_LITNE, 1, 0, "<>"},
-        {OP_LITLT, 1, 0, "<"},
-        {OP_LITGT, 1, 0, ">"},
-        {OP_LITFETCH, 1, 0, "@"},
-        {OP_PICK2, 0, 0, "2 PICK"},
-        {OP_OVERPLUS, 0, 0, "OVER +"},
-        {OP_IPLUS, 0, 0, "I +"},
-        {OP_CELLPLUSFETCH, 0, 0, "CELL+ @"},
-        {OP_DUPFETCH, 0, 0, "DUP @"},
-        {OP_EQZBR, 0, 1, "="},
-        {OP_NEZBR, 0, 1, "<>"},
-        {OP_LTZBR, 0, 1, "<"},
-        {OP_GTZBR, 0, 1, ">"},
-        {OP_ZEQZBR, 0, 1, "0="},
-        {OP_LITEQZBR, 1, 1, "="},
-        {OP_LITNEZBR, 1, 1, "<>"},
-        {OP_LITLTZBR, 1, 1, "<"},
-        {OP_LITGTZBR, 1, 1, ">"},
-        {OP_DUPLITEQZBR, 1, 1, "DUP # ="},
-        {OP_DUPLITNEZBR, 1, 1, "DUP # <>"},
-        {OP_DUPLITLTZBR, 1, 1, "DUP # <"},
-        {OP_DUPLITGTZBR, 1, 1, "DUP # >"},
-        {OP_DROPLIT, 1, 0, "DROP #"},
-        {OP_IFETCH, 0, 0, "I @"},
-        {OP_ICFETCH, 0, 0, "I C@"},
-        {OP_ITWOFETCH, 0, 0, "I 2@"},
-        {OP_ISTORE, 0, 0, "I !"},
-        {OP_ICSTORE, 0, 0, "I C!"},
-        {OP_ITWOSTORE, 0, 0, "I 2!"},
-        {OP_LITPPLOOP, 1, 2, "+LOOP"},
-        {OP_DUPPPLOOP, 0, 2, "DUP +LOOP"},
-        {OP_OVERFETCH, 0, 0, "OVER @"},
-        {OP_PICK2FETCH, 0, 0, "2 PICK @"},
-        {OP_STARPLUS, 0, 0, "* +"},
-        {OP_TWODUPEQZBR, 0, 1, "2DUP ="},
-        {OP_TWODUPNEZBR, 0, 1, "2DUP <>"},
-        {OP_TWODUPLTZBR, 0, 1, "2DUP <"},
-        {OP_TWODUPGTZBR, 0, 1, "2DUP >"},
-        {OP_LITPLUSFETCH, 1, 0, "+ @"},
-        {OP_LITPLUSCFETCH, 1, 0, "+ C@"},
-        {OP_LITPLUSSTORE, 1, 0, "+ !"},
-        {OP_LITPLUSCSTORE, 1, 0, "+ C!"},
-    };
-    for (size_t i = 0; i < sizeof fused / sizeof fused[0]; i++) {
-        fbrl_cell a = 0;
-        if (fused[i].op != w)
-            continue;
-        const char *words = fused[i].words, *at = strchr(words, '#');
-        if (fused[i].lit) {
-            if (!fbrl__addr_ok(vm, *pc, CELL))
-                return 1;
-            memcpy(&a, (void *)*pc, sizeof a);
-            *pc += CELL;
-        }
-        if (fused[i].lit && !at) {
-            put_num(vm, a);
-            fbrl__puts(vm, " ");
-        }
-        if (at) {
-            fbrl__write(vm, words, (size_t)(at - words));
-            put_num(vm, a);
-            words = at + 1;
-        }
-        fbrl__puts(vm, words);
-        if (fused[i].br) {
-            if (!fbrl__addr_ok(vm, *pc, CELL))
-                return 1;
-            memcpy(&a, (void *)*pc, sizeof a);
-            *pc += CELL;
-            if (fused[i].br == 1) {
-                fbrl__puts(vm, " 0BRANCH(");
-                put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
-                fbrl__puts(vm, ")");
-            }
-        }
-        return 1;
+    int lit, br;
+    fbrl_cell a = 0;
+    const char *words = fbrl__fused_words((int)w, &lit, &br), *at;
+    if (!words)
+        return 0;
+    at = strchr(words, '#');
+    if (lit) {
+        if (!fbrl__addr_ok(vm, *pc, CELL))
+            return 1;
+        memcpy(&a, (void *)*pc, sizeof a);
+        *pc += CELL;
     }
-    return 0;
+    if (lit && !at) {
+        put_num(vm, a);
+        fbrl__puts(vm, " ");
+    }
+    if (at) {
+        fbrl__write(vm, words, (size_t)(at - words));
+        put_num(vm, a);
+        words = at + 1;
+    }
+    fbrl__puts(vm, words);
+    if (br) {
+        if (!fbrl__addr_ok(vm, *pc, CELL))
+            return 1;
+        memcpy(&a, (void *)*pc, sizeof a);
+        *pc += CELL;
+        if (br == 1) { /* a loop's target (br 2) is shown by nothing, as after +LOOP */
+            fbrl__puts(vm, " 0BRANCH(");
+            put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
+            fbrl__puts(vm, ")");
+        }
+    }
+    return 1;
 }
 
 static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
@@ -656,7 +582,7 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             pc += CELL;
             break;
         case OP_BRANCH:
-        case OP_EXITBR: /* a BRANCH to the end (words.c fbrl__exit_branches) */
+        case OP_EXITBR: /* a BRANCH to the end (dict.c exit_branches) */
         case OP_ZBRANCH:
             fbrl__puts(vm, w == OP_ZBRANCH ? "0BRANCH(" : "BRANCH(");
             put_num(vm, (fbrl_cell)(U(a) - U(pc) - U(CELL)) / CELL);
@@ -1378,7 +1304,7 @@ static int ms_beside_tasks(fbrl_vm *vm)
             vm->sp--;
             return 0;
         }
-        if ((r = vm->task_pause(vm, due)))
+        if ((r = vm->task_pause(vm, due, 0)))
             return r;
     }
 }
@@ -1395,7 +1321,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
             return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         if (vm->ntasks && vm->host.key_ready && vm->host.now_us) /* other tasks run until a key comes */
             for (fbrl__wait_begin(vm); !vm->host.key_ready(vm->host.user);)
-                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US)))
+                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US, 0)))
                     return r;
         r = vm->host.key(vm->host.user);
         if (r < 0)

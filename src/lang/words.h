@@ -21,7 +21,6 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt);
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v);
 int fbrl__compile_op(fbrl_vm *vm, int op);
 void fbrl__peep_reset(fbrl_vm *vm);
-void fbrl__exit_branches(fbrl_vm *vm); /* words.c: ; ends the code here */
 int fbrl__compile_flit(fbrl_vm *vm, double d);
 int fbrl__compile_str(fbrl_vm *vm, int op, const char *s, size_t n);
 int fbrl__new_word(fbrl_vm *vm, const char *name, size_t len, int kind, const char *stack, const char *help,

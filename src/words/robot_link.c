@@ -117,6 +117,32 @@ fbrl_status rb_units(fbrl_robot *r, const rb_word *w)
     return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), msg);
 }
 
+/* What to do about an error, as things stand here: after the controller's 190-COLLISION
+ * that depends on the guard (no cell described, the guard off, or a cell that lacks what
+ * the arm met). "" when there is nothing to add, and under FBRL_NO_HELP, which leaves the
+ * controller's error advice out (fbrl_rapl_error_help). */
+static const char *rb_advice(const fbrl_robot *r, int code)
+{
+#ifdef FBRL_NO_HELP
+    (void)r;
+    (void)code;
+    return "";
+#else
+    if (fbrl_rapl_error_class(code) != FBRL_RAPL_ERRC_COLLISION)
+        return "";
+    fbrl_robot_guard_state g = !r->guard.check ? FBRL_ROBOT_GUARD_EMPTY
+                               : r->guard.state ? r->guard.state(r->guard.ctx)
+                                                : FBRL_ROBOT_GUARD_ON;
+    if (g == FBRL_ROBOT_GUARD_EMPTY)
+        return ": describe the cell on the host too (CELL-BOX ...), so that the guard refuses such a move "
+               "before it is sent";
+    if (g == FBRL_ROBOT_GUARD_OFF)
+        return ": the guard is off (CELL-GUARD-OFF); CELL-GUARD-ON checks every motion before it is sent";
+    return ": the guard let it pass, so the host's cell lacks what the arm met: describe it as the "
+           "controller's cell has it";
+#endif
+}
+
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
     char msg[240];
@@ -136,8 +162,8 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
             snprintf(msg, sizeof msg, "%s: controller error, code unknown (its error line came damaged)",
                      w->name);
         else
-            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text,
-                     help ? " (" : "", help ? help : "", help ? ")" : "");
+            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s%s", w->name, code, text,
+                     help ? " (" : "", help ? help : "", help ? ")" : "", rb_advice(r, code));
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EMAYBE) {
@@ -283,14 +309,23 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     if ((motion || cmd == FBRL_RAPL_OPEN || cmd == FBRL_RAPL_CLOSE || cmd == FBRL_RAPL_GRIP) &&
         (st = fbrl_vmx_claim_wait(r->vm, FBRL_VMX_ARM)) != FBRL_OK)
         return st;
-    if (cmd == FBRL_RAPL_OUTPUT)
-        note_outputs(r, a, n);
     /* a motion or FINISH behind a running motion would make the controller wait, deaf
      * to HALT: wait here instead, where Ctrl-C can stop the arm */
     if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) {
         r->have_target = 0;
         return st;
     }
+    return rb_send(r, w, cmd, a, n, straight, 0);
+}
+
+fbrl_status rb_send(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
+                    int straight, int checked)
+{
+    fbrl_status st;
+    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
+    int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);
+    if (cmd == FBRL_RAPL_OUTPUT)
+        note_outputs(r, a, n);
     if (!ci || !(ci->flags & FBRL_RAPL_F_WAITS)) { /* the table: its prompt never comes late */
         fbrl_status res = fbrl_link_cmd(r->link, cmd, a, n, straight);
         if (res == FBRL_OK && cmd == FBRL_RAPL_HALT)
@@ -306,8 +341,11 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
     if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX)
         res = FBRL_ERANGE;
+    if (res == FBRL_OK && checked)
+        r->armed = text; /* the gate lets this one line through */
     if (res == FBRL_OK)
         res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
+    r->armed = NULL;
     if (res == FBRL_OK && motion) {
         /* sent (its fate may stay unknown): count it as running until W5 says not */
         r->moving = 1;
@@ -322,7 +360,7 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
         r->moving = 0; /* refused: nothing started */
     if (res == FBRL_OK && cmd == FBRL_RAPL_FINISH)
         r->moving = 0;
-    if (res == FBRL_OK && r->tell && motion)
+    if (res == FBRL_OK && r->tell && motion && !r->c_msg) /* a C caller shows its own */
         tell_motion(r, w, text);
     r->have_target = 0;
     return rb_link_result(r, w, res);
@@ -384,108 +422,22 @@ fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link
     return rb_link_result(r, w, res);
 }
 
-/* Is line a read-only query the link would read twice (W0 W2 W4 STATUS TYPEI TYPEV)? */
-static int display_query(const char *line)
-{
-    char word[12];
-    size_t k = 0;
-    fbrl_rapl_cmd c;
-    while (*line == ' ')
-        line++;
-    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = '\0';
-    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK)
-        return 0;
-    fbrl_rapl_reply kind = fbrl_rapl_cmd_info(c)->reply; /* the table says what it prints */
-    return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
-}
-
-/* What a line is, from its first word: a motion, FINISH, HALT, OUTPUT (the outputs it
- * switches on), or a command the host cannot name (which might move the arm). */
-fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on)
-{
-    char word[16];
-    size_t k = 0;
-    fbrl_rapl_cmd cmd;
-    uint32_t on = 0;
-    if (!line || !effect)
-        return FBRL_EINVAL;
-    *effect = 0;
-    while (*line == ' ')
-        line++;
-    while (k + 1 < sizeof word && line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=') {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = 0;
-    if (line[k] != '=' && fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK)
-        *effect = FBRL_ROBOT_LINE_MOTION;
-    else if (line[k] != '=') { /* not an assignment */
-        if ((fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN)
-            *effect = FBRL_ROBOT_LINE_MOTION;
-        else if (cmd == FBRL_RAPL_FINISH)
-            *effect = FBRL_ROBOT_LINE_FINISH;
-        else if (cmd == FBRL_RAPL_HALT)
-            *effect = FBRL_ROBOT_LINE_HALT;
-        if (cmd == FBRL_RAPL_OUTPUT)
-            for (const char *p = line + k; *p; p++)
-                if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
-                    long v = 0;
-                    while (*p >= '0' && *p <= '9' && v <= FBRL_ROBOT_IO_MAX)
-                        v = v * 10 + (*p++ - '0');
-                    if (v >= 1 && v <= FBRL_ROBOT_IO_MAX)
-                        on |= 1u << (v - 1);
-                    if (!*p)
-                        break;
-                }
-    }
-    if (outputs_on)
-        *outputs_on = on;
-    return FBRL_OK;
-}
-
-static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
-{
-    unsigned e = 0;
-    uint32_t on = 0;
-    (void)fbrl_robot_line_effect(line, &e, &on);
-    r->outputs_on |= on;
-    *motion = (e & FBRL_ROBOT_LINE_MOTION) != 0;
-    *finish = (e & FBRL_ROBOT_LINE_FINISH) != 0;
-}
-
-fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
+fbrl_status rb_raw_send(fbrl_robot *r, const rb_word *w, const char *line, int print, int motion)
 {
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
-    int motion, finish;
-    if (print && display_query(line))
-        return rb_show(r, w, line, NULL, NULL);
-    fbrl_status st = rb_online(r);
-    if (st != FBRL_OK)
-        return st;
-    raw_kind(r, line, &motion, &finish);
-    fbrl_robot_move m;
-    memset(&m, 0, sizeof m);
-    m.kind = FBRL_ROBOT_MOVE_OTHER; /* the host cannot tell where a raw line takes the arm */
-    if (motion && (st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
-    if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK)
-        return st;
+    fbrl_status st;
     if (motion) {
+        r->armed = line; /* checked: the gate lets it through */
         r->moving = 1;
         snprintf(r->motion, sizeof r->motion, "%s", line);
     }
     if (print)
         borrow_lines(r, &fn, &ctx);
     st = fbrl_link_raw(r->link, line);
+    r->armed = NULL;
     if (print)
         return_lines(r, fn, ctx);
-    if (motion)
-        (void)rb_guard_done(r, &m, st);
     return rb_link_result(r, w, st);
 }
 

@@ -6,8 +6,9 @@
 #   1. a method library holding a *.fbrl that is a symlink to /dev/zero, one that is a FIFO
 #      and one of 8 MB whose METHOD line comes after the head the console reads: the console
 #      shows its screen within a second, lists the real method, and says what it left out;
-#   2. a run log that cannot be written (--run-log /dev/full): the run is refused, the error
-#      is on the operator's screen with the reason, and fbrlmon's exit status is 1.
+#   2. a run log that cannot be written (--run-log /dev/full, no file an audit chain can be
+#      kept in): the run is refused, the error is on the operator's screen with the reason,
+#      and fbrlmon's exit status is 1.
 mon=$1 sim=$2 work=$3 src=$4
 here=$(cd "$(dirname "$0")" && pwd)
 command -v tmux >/dev/null 2>&1 || { echo "SKIP: no tmux"; exit 77; }
@@ -40,7 +41,7 @@ key Enter
 wait_for "Parameters of SAMPLE-PREP" || exit 1
 before=$(grep -vc '^#' sim.log)
 key F5
-wait_long "run log: run log /dev/full: a record was not written: No space left on device" 10
+wait_long "/dev/full: the audit trail cannot be opened: not a regular file" 10
 wait_long "the run did not start: see the errors" 5
 wait_long "Parameters of SAMPLE-PREP" 5
 pane >screen-full.txt

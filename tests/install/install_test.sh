@@ -123,14 +123,14 @@ grep -qx HOME "$tmp/sim.log" || fail "no HOME in fbrlsim's log"
 out=$(install_sh /usr/local DESTDIR="$tmp/root" FAKE_SEARCHED=/usr/local/lib)
 want=$($py -c 'import sys; print([p for p in sys.path if p.startswith("/usr/local/lib/python3") and p.endswith("-packages")][0])')
 [ -f "$tmp/root$want/fbrl/_ffi.py" ] || fail "DESTDIR: no Python package in $want: $out"
-[ -e "$tmp/root/usr/local/lib/libfbrl.so.0" ] || fail "DESTDIR: no library in /usr/local/lib"
+[ -e "$tmp/root/usr/local/lib/libfbrl.so.1" ] || fail "DESTDIR: no library in /usr/local/lib"
 [ ! -e "$tmp/ldconfig.log" ] || fail "DESTDIR: ldconfig ran"
 
 # 3. as root into a directory the dynamic linker searches: ldconfig refreshes its cache
 if [ "$(id -u)" -eq 0 ]; then
     out=$(install_sh "$tmp/opt" FAKE_SEARCHED="$tmp/opt/lib")
     [ "$(cat "$tmp/ldconfig.log" 2>/dev/null)" = "ldconfig " ] || fail "root, searched: ldconfig did not run: $out"
-    echo "$out" | grep -q "ldconfig: programs find libfbrl.so.0 in $tmp/opt/lib" || fail "no word of ldconfig: $out"
+    echo "$out" | grep -q "ldconfig: programs find libfbrl.so.1 in $tmp/opt/lib" || fail "no word of ldconfig: $out"
     ldnote="ldconfig ran as root for a searched directory"
 else
     ldnote="ldconfig (root only) not tried"

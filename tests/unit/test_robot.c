@@ -254,6 +254,33 @@ static void safe_stop_offline(void **state)
     assert_int_equal(fbrl_robot_set_relink(NULL, NULL, NULL), FBRL_EINVAL);
 }
 
+/* A motion from C (fbrl_robot_motion): the robot words' gate without the VM's throw: the
+ * status and the message a word would have thrown; the VM is left as it was. */
+static void motion_from_c_offline(void **state)
+{
+    fixture *f = *state;
+    fbrl_robot_move m;
+    char msg[160];
+    memset(&m, 0, sizeof m);
+    m.kind = FBRL_ROBOT_MOVE_JOG;
+    m.word = "JOG";
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, msg, sizeof msg), FBRL_EOFFLINE);
+    assert_string_equal(msg, "no controller connected: start fbrlmon with --sim or --port");
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, NULL, 0), FBRL_EOFFLINE);
+    m.kind = FBRL_ROBOT_MOVE_OTHER;
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, msg, sizeof msg), FBRL_EINVAL);
+    m.kind = FBRL_ROBOT_MOVE_MOTOR;
+    m.v[0] = 1, m.v[1] = 0.5; /* pulses are whole */
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, msg, sizeof msg), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_motion(NULL, &m, msg, sizeof msg), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_motion(&f->r, NULL, msg, sizeof msg), FBRL_EINVAL);
+    assert_int_equal(ev(f, "1 2 + ."), FBRL_OK); /* nothing thrown is left pending */
+    assert_non_null(strstr(f->out, "3 "));
+    /* a guard's refusal from inside a word is thrown as the word's error */
+    assert_int_equal(fbrl_robot_fail(&f->r, FBRL_ROBOT_THROW_REFUSED, "X: would hit Y"), FBRL_ETHROW);
+    assert_int_equal(fbrl_robot_fail(NULL, FBRL_ROBOT_THROW_REFUSED, "X"), FBRL_EINVAL);
+}
+
 /* For a host that drives the link itself: the stop without a context says offline; a
  * line's effect is what the robot words take it for (a motion, FINISH, HALT, the outputs
  * OUTPUT switches on; an unknown command may move the arm, an assignment never does);
@@ -647,6 +674,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(every_word_has_help, setup, teardown),
         cmocka_unit_test_setup_teardown(offline_words_throw_a_clear_error, setup, teardown),
         cmocka_unit_test_setup_teardown(print_loc_needs_the_port, setup, teardown),
+        cmocka_unit_test_setup_teardown(motion_from_c_offline, setup, teardown),
         cmocka_unit_test_setup_teardown(safe_stop_offline, setup, teardown),
         cmocka_unit_test_setup_teardown(host_side_helpers, setup, teardown),
         cmocka_unit_test_setup_teardown(arguments_are_checked_before_anything_is_sent, setup, teardown),
