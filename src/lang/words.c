@@ -133,11 +133,14 @@ static int cf_pop(fbrl_vm *vm, int tag, fbrl_cell *a)
     return 0;
 }
 
-/* A branch op and its target; 0BRANCH may fuse with the comparison before it. */
+/* A branch op and its target; 0BRANCH may fuse with the comparison before it, +LOOP with
+ * the literal or DUP that gives its increment. */
 static int branch_op(fbrl_vm *vm, int op)
 {
-    return op == OP_ZBRANCH ? fbrl__compile_op(vm, op) : fbrl__emit(vm, op);
+    return op == OP_ZBRANCH || op == OP_PPLOOP ? fbrl__compile_op(vm, op) : fbrl__emit(vm, op);
 }
+
+#define NBR ((unsigned)(sizeof vm->br_orig / sizeof vm->br_orig[0]))
 
 static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
 {
@@ -145,6 +148,8 @@ static int forward(fbrl_vm *vm, int op, fbrl_cell *orig)
     if (r)
         return r;
     *orig = (fbrl_cell)vm->here;
+    if (op == OP_BRANCH)
+        vm->br_orig[vm->nbr_orig++ % NBR] = *orig;
     return fbrl__emit(vm, 0);
 }
 
@@ -154,6 +159,17 @@ static int resolve(fbrl_vm *vm, fbrl_cell orig)
     if (!fbrl__addr_ok(vm, orig, CELL))
         return FBRL_THROW_BAD_ADDRESS;
     memcpy((void *)orig, &t, sizeof t);
+    for (unsigned i = 0; i < NBR && i < vm->nbr_orig; i++) {
+        if (vm->br_orig[(vm->nbr_orig - 1 - i) % NBR] != orig)
+            continue;
+        if (vm->exit_here != vm->here) { /* a forward BRANCH to HERE: an exit if ; follows */
+            vm->exit_here = vm->here;
+            vm->nexit_orig = 0;
+        }
+        if (vm->nexit_orig < NBR)
+            vm->exit_orig[vm->nexit_orig++] = orig;
+        break;
+    }
     return 0;
 }
 
@@ -481,17 +497,25 @@ static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
 static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 {
     int lit, br;
-    fbrl_cell a;
-    const char *words = fbrl__fused_words((int)w, &lit, &br);
+    fbrl_cell a = 0;
+    const char *words = fbrl__fused_words((int)w, &lit, &br), *at;
     if (!words)
         return 0;
+    at = strchr(words, '#');
     if (lit) {
         if (!fbrl__addr_ok(vm, *pc, CELL))
             return 1;
         memcpy(&a, (void *)*pc, sizeof a);
         *pc += CELL;
+    }
+    if (lit && !at) {
         put_num(vm, a);
         fbrl__puts(vm, " ");
+    }
+    if (at) {
+        fbrl__write(vm, words, (size_t)(at - words));
+        put_num(vm, a);
+        words = at + 1;
     }
     fbrl__puts(vm, words);
     if (br) {
@@ -499,9 +523,11 @@ static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
             return 1;
         memcpy(&a, (void *)*pc, sizeof a);
         *pc += CELL;
-        fbrl__puts(vm, " 0BRANCH(");
-        put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
-        fbrl__puts(vm, ")");
+        if (br == 1) { /* a loop's target (br 2) is shown by nothing, as after +LOOP */
+            fbrl__puts(vm, " 0BRANCH(");
+            put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
+            fbrl__puts(vm, ")");
+        }
     }
     return 1;
 }
@@ -556,8 +582,9 @@ static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
             pc += CELL;
             break;
         case OP_BRANCH:
+        case OP_EXITBR: /* a BRANCH to the end (dict.c exit_branches) */
         case OP_ZBRANCH:
-            fbrl__puts(vm, w == OP_BRANCH ? "BRANCH(" : "0BRANCH(");
+            fbrl__puts(vm, w == OP_ZBRANCH ? "0BRANCH(" : "BRANCH(");
             put_num(vm, (fbrl_cell)(U(a) - U(pc) - U(CELL)) / CELL);
             fbrl__puts(vm, ")");
             pc += CELL;

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* cm3_engine_test.c - the language engine as the Cortex-M3 firmware builds it
- * (FBRL_SMALL_HEADERS, FBRL_NO_HELP, 256-byte lines, 4 nested sources, 128 hash buckets,
+ * (FBRL_SMALL_HEADERS, FBRL_NO_HELP, 256-byte lines, 4 nested sources,
  * 2 S" buffers: ports/cortex-m3/CMakeLists.txt), run on the host against the Forth
  * conformance suite in tests/forth and the cases those options change: names that live
  * in the dictionary, MARKER and FORGET taking them away, HELP without texts. The QEMU
