@@ -449,6 +449,8 @@ int main(int argc, char **argv)
             opt.conn.kind = MON_CONN_OFFLINE;
             mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
         }
+        if (g_conn.note[0])
+            fprintf(stderr, "fbrlmon: %s\n", g_conn.note);
     }
     if (mon_open(&m, opt.dict_bytes, g_conn.open ? &g_conn.link : NULL) != 0) {
         mon_conn_close(&g_conn);

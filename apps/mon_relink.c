@@ -66,6 +66,10 @@ fbrl_status mon_relink(mon *m, char *err, size_t errlen)
         return st;
     fbrl_robot_set_link(&m->robot, &m->conn->link); /* not lost; motion state unknown */
     tell_state(m);
+    if (m->conn->note[0]) {
+        fprintf(m->host.out, "%s\n", m->conn->note);
+        fflush(m->host.out);
+    }
     return FBRL_OK;
 }
 

@@ -65,6 +65,7 @@ void fbrl_link_config_init(fbrl_link_config *c)
     c->on_line = 0;
     c->line_ctx = 0;
     c->aci = 0;
+    c->check_units = 1;
 }
 
 static uint64_t now_us(const fbrl_link *l)
@@ -1461,6 +1462,25 @@ static fbrl_status aci_to_terminal(fbrl_link *l)
     return FBRL_OK;
 }
 
+/* The controller's units, at connect (docs/link.md 1): STATUS shown as it comes, once
+ * (some 700 bytes, 0.75 s at 9600 baud), whose undamaged last line says them; only when
+ * that line came damaged or not at all is STATUS read as a value (query_reads agreeing
+ * reads; no units line there means inches). Its lines are not the caller's to see. */
+static fbrl_status read_units(fbrl_link *l)
+{
+    fbrl_link_line_fn fn = l->cfg.on_line;
+    void *ctx = l->cfg.line_ctx;
+    l->cfg.on_line = 0;
+    fbrl_status st = start(l, "STATUS", FBRL_LINK_REPLY_LINES, l->cfg.reply_timeout_ms, 1);
+    if (st == FBRL_OK)
+        st = run(l);
+    l->cfg.on_line = fn;
+    l->cfg.line_ctx = ctx;
+    if (st == FBRL_OK && l->units == FBRL_LINK_UNITS_UNKNOWN)
+        st = fbrl_link_status(l, 0);
+    return st;
+}
+
 fbrl_status fbrl_link_connect(fbrl_link *l)
 {
     if (!l || !l->u)
@@ -1473,7 +1493,14 @@ fbrl_status fbrl_link_connect(fbrl_link *l)
             return sw;
     }
     fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms, 1);
-    return st == FBRL_OK ? run(l) : st;
+    if (st == FBRL_OK)
+        st = run(l);
+    if (st != FBRL_OK || !l->cfg.check_units)
+        return st;
+    st = read_units(l);
+    if (st != FBRL_OK)
+        return st;
+    return l->units == FBRL_LINK_UNITS_MM ? FBRL_EUNITS : FBRL_OK;
 }
 
 fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,

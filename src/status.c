@@ -37,7 +37,8 @@
     X(FBRL_EOFFLINE, "no controller connected")                           \
     X(FBRL_ENOTFILE, "not a regular file (a device, FIFO or directory)")  \
     X(FBRL_EPERM, "permission denied")                                    \
-    X(FBRL_EMAYBE, "the command may have run (the link cannot tell)")
+    X(FBRL_EMAYBE, "the command may have run (the link cannot tell)")     \
+    X(FBRL_EUNITS, "the controller works in millimetres (METRIC); switch it to inches: NOMETRIC")
 
 /* Two tables indexed by -st (a place given twice is a warning), so that a program that asks
  * only for texts (the firmware) links no names. */

@@ -111,6 +111,10 @@ typedef struct fbrl_link_config {
      * controller already in terminal mode takes the switch's first bytes as typed
      * text; the link erases them again. */
     int aci;
+    /* fbrl_link_connect() reads the controller's units (STATUS) and refuses millimetres
+     * with FBRL_EUNITS (default 1; docs/link.md 1). 0 leaves them unknown until a STATUS
+     * runs (a program that sends no lengths, a benchmark). */
+    int check_units;
 } fbrl_link_config;
 
 FBRL_API void fbrl_link_config_init(fbrl_link_config *c);
@@ -225,8 +229,7 @@ typedef struct fbrl_link {
 /* The controller's units of length (fbrl_link_units): learned from a STATUS that the
  * link read whole (its last line, "INCH UNITS." or "METRIC UNITS."; a STATUS without that
  * line means inches, the controller's default) and from METRIC or NOMETRIC when they ran.
- * Unknown after fbrl_link_init and fbrl_link_connect (a controller may have been switched
- * while nobody listened). */
+ * fbrl_link_connect reads them (cfg.check_units); unknown after fbrl_link_init. */
 #define FBRL_LINK_UNITS_UNKNOWN (-1)
 #define FBRL_LINK_UNITS_INCH    0
 #define FBRL_LINK_UNITS_MM      1
@@ -237,7 +240,12 @@ FBRL_API int fbrl_link_units(const fbrl_link *l);
 FBRL_API fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg);
 
 /* Start-up handshake: bring the controller's line to a known state (erasing whatever
- * was typed) and send NOHELP. Blocking (through the uart's timeouts). */
+ * was typed), send NOHELP and read the controller's units (STATUS, unless
+ * cfg.check_units is 0). Blocking (through the uart's timeouts). FBRL_EUNITS: the
+ * controller works in millimetres; the link is connected all the same (so a caller can
+ * send NOMETRIC), fbrl_link_units() says FBRL_LINK_UNITS_MM. The link never switches the
+ * controller itself: its units are the controller's state, which programs stored on it
+ * and its pendant rely on (docs/link.md 1). */
 FBRL_API fbrl_status fbrl_link_connect(fbrl_link *l);
 
 /* ---- one command, step by step (several links from one thread) ---- */

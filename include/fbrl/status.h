@@ -45,11 +45,13 @@ typedef enum fbrl_status {
     FBRL_EOFFLINE = -30,      /* no controller connected */
     FBRL_ENOTFILE = -31,      /* not a regular file (a device, FIFO or directory) */
     FBRL_EPERM = -32,         /* the operating system refused access (e.g. a port's mode) */
-    FBRL_EMAYBE = -33         /* link: the command may have run; the link cannot prove
+    FBRL_EMAYBE = -33,        /* link: the command may have run; the link cannot prove
                                 * either way (docs/link.md 3.9): do not repeat it blindly */
+    FBRL_EUNITS = -34         /* link: the controller works in millimetres (METRIC), the
+                                * host's lengths are inches (docs/link.md 1) */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EMAYBE
+#define FBRL_STATUS_MIN FBRL_EUNITS
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 FBRL_API const char *fbrl_status_str(fbrl_status st);
