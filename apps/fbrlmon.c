@@ -458,6 +458,7 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
     m.conn = g_conn.open ? &g_conn : NULL;
+    m.runlog = &g_runlog.log;
     if (mon_relink_install(&m) != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot define RECONNECT and RESUME\n");
         mon_close(&m);

@@ -56,6 +56,7 @@ typedef struct mon {
     mon_step step;        /* the debugger (mon_step.c) */
     mon_trace trace;      /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */
     fbrl_recover recover; /* ON-FAILURE, ATTEMPT (mon_recover.c) */
+    struct fbrl_runlog *runlog; /* the run log RECONNECT notes in while a run is logged */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -163,7 +163,9 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
 #endif
         lc.on_exec = o->on_exec; /* the run log (mon_runlog.c), or the dry run's report */
         lc.exec_ctx = o->exec_ctx;
-        c->lcfg = lc; /* mon_conn_reopen uses it again */
+        fbrl_link_modes_init(&c->modes);
+        lc.modes = &c->modes; /* sent again after a reconnect (mon_relink.c) */
+        c->lcfg = lc;         /* mon_conn_reopen uses it again */
         st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
     }
     if (st == FBRL_OK)

@@ -50,6 +50,7 @@ typedef struct mon_conn {
     const char *url; /* what was opened, and how (for mon_conn_reopen) */
     fbrl_port_options opts;
     fbrl_link_config lcfg;
+    fbrl_link_modes modes; /* the session's modes (lcfg.modes): kept across reconnects */
     /* what the user must know about the controller just connected ("" nothing): it works
      * in millimetres (the connect refused its units, docs/link.md 1) */
     char note[FBRL_PORT_NAME_MAX + 200];

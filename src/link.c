@@ -16,7 +16,7 @@
  *    way is never taken for the answer to the latest one.
  * None of the bytes the link sends can turn into CR or LF by a single bit flip except
  * '-' (see docs/link.md): letters go out in lower case for that reason. */
-#include "fbrl/link.h"
+#include "link_internal.h"
 
 #include <math.h>
 
@@ -66,6 +66,7 @@ void fbrl_link_config_init(fbrl_link_config *c)
     c->line_ctx = 0;
     c->aci = 0;
     c->check_units = 1;
+    c->modes = 0;
 }
 
 static uint64_t now_us(const fbrl_link *l)
@@ -128,20 +129,20 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 /* Out of attempts: the echo never matched, or nothing at all came back. */
 static fbrl_status gave_up(const fbrl_link *l) { return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT; }
 
-static int line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **eq);
-
 /* Whether a line is command want (by its keyword or its /NNN token). */
 static int line_is(const char *line, fbrl_rapl_cmd want)
 {
     fbrl_rapl_cmd c;
-    const char *eq = 0;
-    return line_cmd(line, &c, &eq) == 1 && c == want;
+    return fbrl_rapl_line_cmd(line, &c, 0) == FBRL_OK && c == want;
 }
 
-/* METRIC and NOMETRIC switch the controller's units: the link follows what ran (a line
- * that may have run leaves them unknown). */
+/* A line of the caller's ran with this result: a mode it set is noted (cfg.modes) in the
+ * units its lengths were typed in; METRIC and NOMETRIC switch the controller's units, and
+ * the link follows what ran (a line that may have run leaves them unknown). */
 static void follow_units(fbrl_link *l, fbrl_status result)
 {
+    if (result == FBRL_OK && l->cfg.modes)
+        fbrli_link_modes_note(l->cfg.modes, l->line, l->units);
     int metric = line_is(l->line, FBRL_RAPL_METRIC);
     if (!metric && !line_is(l->line, FBRL_RAPL_NOMETRIC))
         return;
@@ -1280,51 +1281,14 @@ static int is_name_char(char c)
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
 }
 
-/* The command a line starts with: 1 = *cmd found (keyword or /NNN token), 2 = a
- * variable assignment (*eq = the '='), 0 = not known here. */
-static int line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **eq)
-{
-    char word[12];
-    size_t k = 0;
-    while (*line == ' ')
-        line++;
-    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = '\0';
-    const char *rest = line + k;
-    while (*rest == ' ')
-        rest++;
-    if (*rest == '=') {
-        *eq = rest;
-        return 2;
-    }
-    if (word[0] == '/') {
-        int tok = 0;
-        for (size_t d = 1; d < k; d++)
-            tok = (word[d] >= '0' && word[d] <= '9') ? tok * 10 + (word[d] - '0') : -1000;
-        for (int c = 0; c < FBRL_RAPL_NCMDS && tok > 0; c++)
-            if (fbrl_rapl_cmd_info((fbrl_rapl_cmd)c)->token == tok) {
-                *cmd = (fbrl_rapl_cmd)c;
-                return 1;
-            }
-        return 0;
-    }
-    return fbrl_rapl_cmd_find(word, cmd) == FBRL_OK;
-}
-
 int fbrl_link_line_safe(const char *line)
 {
     fbrl_rapl_cmd c;
     const char *eq = 0;
-    if (!line)
+    if (fbrl_rapl_line_cmd(line, &c, &eq) != FBRL_OK)
         return 0;
-    int known = line_cmd(line, &c, &eq);
-    if (known == 1)
+    if (c != FBRL_RAPL_ASSIGN)
         return (fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_SAFE) != 0;
-    if (known != 2)
-        return 0;
     /* NAME=value: safe unless the value names NAME (V1=V1+1 counts) */
     const char *name = line;
     while (*name == ' ')
@@ -1351,9 +1315,7 @@ int fbrl_link_line_safe(const char *line)
 static uint32_t timeout_for_line(const fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
-    const char *eq;
-    int known = line_cmd(line, &c, &eq);
-    if (known == 2 || (known == 1 && !(fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_WAITS)))
+    if (fbrl_rapl_line_cmd(line, &c, 0) == FBRL_OK && !(fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_WAITS))
         return l->cfg.reply_timeout_ms;
     return l->cfg.wait_timeout_ms;
 }
@@ -1527,14 +1489,10 @@ fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *
 fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
-    const char *eq;
     fbrl_link_reply kind = FBRL_LINK_REPLY_LINES;
     if (!l || !line)
         return FBRL_EINVAL;
-    int known = line_cmd(line, &c, &eq);
-    if (known == 2)
-        kind = FBRL_LINK_REPLY_NONE;
-    else if (known == 1)
+    if (fbrl_rapl_line_cmd(line, &c, 0) == FBRL_OK)
         kind = fbrl_rapl_cmd_info(c)->reply;
     if (kind == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
@@ -1644,6 +1602,26 @@ fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
 {
     fbrl_status st = fbrl_link_start_stream(l, cmd, lines);
     return st == FBRL_OK ? run(l) : st;
+}
+
+fbrl_status fbrl_link_modes_resend(fbrl_link *l, size_t *sent)
+{
+    size_t n = 0;
+    fbrl_status st = FBRL_OK;
+    if (sent)
+        *sent = 0;
+    if (!l)
+        return FBRL_EINVAL;
+    fbrl_link_modes *m = l->cfg.modes;
+    l->cfg.modes = 0; /* GAIN 0,v would clear the other gains before they are sent */
+    for (const char *line; st == FBRL_OK && (line = fbrl_link_modes_line(m, n)) != 0; n += st == FBRL_OK) {
+        int typed = fbrli_link_modes_units(m, n);
+        st = typed != FBRLI_NO_LENGTHS && typed != l->units ? FBRL_EUNITS : fbrl_link_raw(l, line);
+    }
+    l->cfg.modes = m;
+    if (sent)
+        *sent = n;
+    return st;
 }
 
 /* ---- many links from one thread (fbrl_link_poll_many) ---- */

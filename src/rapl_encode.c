@@ -104,23 +104,65 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 static int is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 
-fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd)
+/* The command whose keyword is the n characters at s (case-insensitive, the whole span). */
+static fbrl_status find_span(const char *s, size_t n, fbrl_rapl_cmd *cmd)
 {
-    if (!keyword || !cmd)
-        return FBRL_EINVAL;
     for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
-        const char *k = table[c].keyword, *s = keyword;
+        const char *k = table[c].keyword;
+        size_t i = 0;
         if (!*k)
             continue;
-        while (*k && upper(*s) == *k) {
-            k++;
-            s++;
-        }
-        if (!*k && !*s) {
+        while (i < n && k[i] && upper(s[i]) == k[i])
+            i++;
+        if (i == n && !k[i]) {
             *cmd = (fbrl_rapl_cmd)c;
             return FBRL_OK;
         }
     }
+    return FBRL_ENOENT;
+}
+
+fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd)
+{
+    size_t n = 0;
+    if (!keyword || !cmd)
+        return FBRL_EINVAL;
+    while (keyword[n])
+        n++;
+    return find_span(keyword, n, cmd);
+}
+
+fbrl_status fbrl_rapl_line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **args)
+{
+    size_t n = 0;
+    if (!line || !cmd)
+        return FBRL_EINVAL;
+    while (*line == ' ')
+        line++;
+    while (line[n] && line[n] != ' ' && line[n] != ',' && line[n] != '=')
+        n++;
+    const char *rest = line + n;
+    while (*rest == ' ')
+        rest++;
+    if (args)
+        *args = rest;
+    if (*rest == '=' && n > 0) { /* checked before the keywords: GRIP=2 sets a variable */
+        *cmd = FBRL_RAPL_ASSIGN;
+        return FBRL_OK;
+    }
+    if (line[0] != '/')
+        return find_span(line, n, cmd);
+    unsigned tok = 0;
+    for (size_t d = 1; d < n; d++) {
+        if (!is_digit(line[d]) || tok > 999u)
+            return FBRL_ENOENT;
+        tok = tok * 10u + (unsigned)(line[d] - '0');
+    }
+    for (int c = 0; c < FBRL_RAPL_NCMDS && n > 1; c++)
+        if (table[c].token && table[c].token == tok) {
+            *cmd = (fbrl_rapl_cmd)c;
+            return FBRL_OK;
+        }
     return FBRL_ENOENT;
 }
 

@@ -74,6 +74,29 @@ typedef struct fbrl_link_arm {
 /* The CRS A255 (DESIGN 6): the default. */
 extern FBRL_API const fbrl_link_arm fbrl_link_arm_a255;
 
+/* The modes a session set (docs/link.md 1, "Modes"): settings the controller keeps until
+ * they change and loses when it restarts. The link notes every one that ran (FBRL_OK) into
+ * cfg.modes, so that after a reconnect fbrl_link_modes_resend() sends them again before
+ * the first motion: the units (METRIC, NOMETRIC), the tool (TOOL, with the POINT that last
+ * defined its location), the speed (SPEED), the pendant lamp (FLASH, NOFLASH) and the
+ * motors' gains (GAIN n,value). Not modes: LIMP (the arm's servos: a restarted controller
+ * must be homed, which needs them), LOCK (READY clears it), MANUAL and TEACH (the
+ * pendant's, an operator's), ARM, ENABLE, DISABLE (arm power: an operator's decision after
+ * a restart), CONFIG (the serial line itself) and the outputs (they switch devices).
+ * Caller-owned; every field is private. */
+#define FBRL_LINK_MODES_MAX 14
+typedef struct fbrl_link_modes {
+    char line[FBRL_LINK_MODES_MAX][FBRL_LINK_LINE_MAX + 1]; /* by slot, "" = not set */
+    char point[FBRL_LINK_LINE_MAX + 1];                     /* the last POINT that ran */
+    int point_units, tool_units;                            /* the units their lengths were typed in */
+} fbrl_link_modes;
+
+/* Empty: no mode set yet. */
+FBRL_API void fbrl_link_modes_init(fbrl_link_modes *m);
+/* Mode line i (0, 1, ...) in the order fbrl_link_modes_resend() sends them; NULL past the
+ * last. */
+FBRL_API const char *fbrl_link_modes_line(const fbrl_link_modes *m, size_t i);
+
 typedef struct fbrl_link_config {
     fbrl_rapl_form form;       /* keyword (default) or /NNN token form */
     int lower_case;            /* send letters in lower case (default 1; see docs/link.md) */
@@ -115,6 +138,10 @@ typedef struct fbrl_link_config {
      * with FBRL_EUNITS (default 1; docs/link.md 1). 0 leaves them unknown until a STATUS
      * runs (a program that sends no lengths, a benchmark). */
     int check_units;
+    /* Where the link notes the modes that ran (NULL = nowhere, the default). The storage
+     * is the session's, not the connection's: a link initialised again after a reconnect
+     * with the same cfg keeps noting into it, and fbrl_link_modes_resend() sends it. */
+    fbrl_link_modes *modes;
 } fbrl_link_config;
 
 FBRL_API void fbrl_link_config_init(fbrl_link_config *c);
@@ -311,6 +338,14 @@ FBRL_API fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
 /* Continuous readout (W1 W3 W5 WE1 WE3 WE5): read `lines` value lines, each passed to
  * cfg.on_line, then stop the stream. */
 FBRL_API fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
+
+/* After a reconnect, before the first motion: send every mode in cfg.modes again, in the
+ * order of fbrl_link_modes_line(), each as it last ran (nothing without cfg.modes). Stops
+ * at the first that does not succeed and returns its result; *sent (may be NULL) = how many
+ * were sent before it, so fbrl_link_modes_line(modes, *sent) names the one that failed.
+ * FBRL_EUNITS (nothing sent for it) when the tool's location was typed in other units than
+ * the controller's now. Resending notes nothing new. */
+FBRL_API fbrl_status fbrl_link_modes_resend(fbrl_link *l, size_t *sent);
 
 /* Before writing raw bytes to the uart yourself (outside the link): erase whatever the
  * link may have left on the controller's line (a probe leaves three marker characters

@@ -156,6 +156,14 @@ FBRL_API const fbrl_rapl_cmdinfo *fbrl_rapl_cmd_info(fbrl_rapl_cmd cmd);
 /* Look a keyword up (case-insensitive, whole word). FBRL_ENOENT when unknown. */
 FBRL_API fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd);
 
+/* Which command a line starts with: its first word (up to a space, ',' or '=', leading
+ * spaces skipped) as a keyword or a /NNN token, or FBRL_RAPL_ASSIGN when a '=' follows it
+ * (NAME=value: checked first, so GRIP=2 sets a variable, as the controller reads it).
+ * *args (may be NULL) = where the rest begins, spaces skipped (an assignment's '=').
+ * FBRL_ENOENT when the line starts with no command of the table (text the library cannot
+ * name), FBRL_EINVAL for NULL. The one place every part of the library asks this. */
+FBRL_API fbrl_status fbrl_rapl_line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **args);
+
 typedef enum fbrl_rapl_argkind { FBRL_RAPL_ARG_INT, FBRL_RAPL_ARG_REAL, FBRL_RAPL_ARG_STR } fbrl_rapl_argkind;
 
 /* One argument. Use the helpers below to build them. */

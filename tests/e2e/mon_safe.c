@@ -365,7 +365,7 @@ static void reconnect_tests(pid_t *sim)
     static session s;
     static const double step_y[3] = {2.0, 0.0, -2.0}; /* C1 C2 C3: x 13, z 8 */
     char *argv[6];
-    size_t from, i;
+    size_t from, i, restarted, speed = (size_t)-1;
     int k;
     long t_kill;
 
@@ -399,8 +399,10 @@ static void reconnect_tests(pid_t *sim)
         failf(&s, "%s: the loss was reported only after %.0f ms", "kill", (double)(now_ms() - t_kill));
     expect(&s, "ok> ", "the session goes on");
 
-    *sim = start_sim();
+    restarted = log_mark();
+    *sim = start_sim(); /* a restarted controller: its speed is its default again */
     type(&s, "RECONNECT\r");
+    expect(&s, "the session's modes sent again: SPEED 20", "RECONNECT sends the plan's speed again");
     expect(&s, "reconnected to ", "RECONNECT");
     expect(&s, "controller NOT HOMED (HOME before moving), arm standing, outputs on:", "the state told");
     expect(&s, "ok> ", "prompt");
@@ -409,9 +411,15 @@ static void reconnect_tests(pid_t *sim)
     expect(&s, "plan5 done", "the plan goes on to its end");
     expect(&s, "ok> ", "prompt");
 
+    /* the restarted controller got the plan's speed before its first motion (HOME) */
+    read_log();
+    for (i = restarted; i < g_nlines && !is_motion(g_lines[i]); i++)
+        if (strcmp(g_lines[i], "SPEED 20") == 0)
+            speed = i;
+    if (speed == (size_t)-1 && !g_failed)
+        failf(&s, "%s: no SPEED 20 before the first motion after the restart", "RESUME", 0);
     /* every step exactly once (the first run's lines and the resumed run's): the
      * scratch point's POINT, read by its numbers (the encoder writes them short) */
-    read_log();
     for (k = 0; k < 3; k++) {
         int n = 0;
         for (i = from; i < g_nlines; i++) {

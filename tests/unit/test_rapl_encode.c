@@ -168,6 +168,53 @@ static void every_command_encodes_in_both_forms(void **state)
         assert_true(seen[c]);
 }
 
+/* fbrl_rapl_line_cmd: the first word of a line, by keyword or token; an assignment first. */
+static void lines_name_their_command(void **state)
+{
+    (void)state;
+    fbrl_rapl_cmd c = FBRL_RAPL_NCMDS;
+    const char *args = NULL;
+    assert_int_equal(fbrl_rapl_line_cmd("  output 3,-4", &c, &args), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_OUTPUT);
+    assert_string_equal(args, "3,-4");
+    assert_int_equal(fbrl_rapl_line_cmd("/089 3", &c, &args), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_OUTPUT);
+    assert_string_equal(args, "3");
+    assert_int_equal(fbrl_rapl_line_cmd("MOVE,P1", &c, &args), FBRL_OK); /* a ',' ends the word */
+    assert_int_equal(c, FBRL_RAPL_MOVE);
+    assert_int_equal(fbrl_rapl_line_cmd("GRIP = 2", &c, &args), FBRL_OK); /* a variable named GRIP */
+    assert_int_equal(c, FBRL_RAPL_ASSIGN);
+    assert_string_equal(args, "= 2");
+    assert_int_equal(fbrl_rapl_line_cmd("V1=V1+1", &c, &args), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_ASSIGN);
+    assert_int_equal(fbrl_rapl_line_cmd("STATUS", &c, NULL), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_STATUS);
+    c = FBRL_RAPL_NCMDS;
+    assert_int_equal(fbrl_rapl_line_cmd("=5", &c, NULL), FBRL_ENOENT); /* no name: no assignment */
+    assert_int_equal(fbrl_rapl_line_cmd("STATUSX", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("/0089", &c, NULL), FBRL_OK); /* the controller reads a number */
+    assert_int_equal(fbrl_rapl_line_cmd("/12345678901", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("/", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("/08x", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd(NULL, &c, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_line_cmd("HOME", NULL, NULL), FBRL_EINVAL);
+    for (int k = 0; k < FBRL_RAPL_NCMDS; k++) { /* every keyword and token names its command */
+        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)k);
+        char text[16];
+        if (ci->keyword[0]) {
+            snprintf(text, sizeof text, "%s 1", ci->keyword);
+            assert_int_equal(fbrl_rapl_line_cmd(text, &c, NULL), FBRL_OK);
+            assert_int_equal(c, k);
+        }
+        if (ci->token) {
+            snprintf(text, sizeof text, "/%03u", (unsigned)ci->token);
+            assert_int_equal(fbrl_rapl_line_cmd(text, &c, NULL), FBRL_OK);
+            assert_int_equal(c, k);
+        }
+    }
+}
+
 static void table_is_complete_and_lookups_work(void **state)
 {
     (void)state;
@@ -495,6 +542,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_command_encodes_in_both_forms),
         cmocka_unit_test(table_is_complete_and_lookups_work),
+        cmocka_unit_test(lines_name_their_command),
         cmocka_unit_test(table_facts_agree),
         cmocka_unit_test(reals_are_short_and_have_no_exponent),
         cmocka_unit_test(short_reals_read_back_as_four_decimals),
