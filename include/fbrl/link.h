@@ -347,6 +347,48 @@ FBRL_API fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned 
  * the controller's now. Resending notes nothing new. */
 FBRL_API fbrl_status fbrl_link_modes_resend(fbrl_link *l, size_t *sent);
 
+/* ---- the safe stop ---- */
+
+/* The controller's digital inputs and outputs are numbered 1..FBRL_LINK_IO_MAX. */
+#define FBRL_LINK_IO_MAX 16
+
+/* What fbrl_link_safe_stop() found and did (bit n-1 = output n).
+ *  result        FBRL_OK: HALT ran; else why the stop is incomplete: FBRL_EBUSY (a command
+ *                the controller was running did not end within drain_ms, so HALT could not
+ *                be typed), FBRL_EDISCONNECTED, FBRL_ECONTROLLER (HALT refused), or the
+ *                status of a HALT that did not run
+ *  status_result the STATUS read after HALT (FBRL_ESTATE: none was sent); have_status:
+ *                it was read, and homed is its; have_outputs: it showed the outputs (a
+ *                RAPL-II STATUS has no OUTPUTS line; fbrlsim prints one with --status-extra)
+ *  switched_off  outputs this stop switched off (their OUTPUT -n ran)
+ *  off_failed    outputs it tried to switch off and could not (or may have)
+ *  left_on       outputs known to be on after it (STATUS showed them on and the caller had
+ *                not switched them on, or switching off did not run)
+ *  unknown       outputs whose state is not known after it: without an OUTPUTS line every
+ *                one it did not switch off; with one, those whose OUTPUT -n may have run
+ *  where         W2's WORLD x y z yaw pitch roll after HALT (have_where), in the
+ *                controller's units */
+typedef struct fbrl_link_stop {
+    fbrl_status result;
+    int halted;
+    fbrl_status status_result;
+    int have_status, homed, have_outputs;
+    uint32_t switched_off, off_failed, left_on, unknown;
+    int have_where;
+    double where[6];
+} fbrl_link_stop;
+
+/* Make the cell safe (after Ctrl-C, an abort, a caller's halt()): let a command the
+ * controller already has end (at most drain_ms: the controller reads nothing else until
+ * it answers), HALT the arm, read STATUS, switch off every output of outputs_on (bit n-1
+ * = output n: those the caller switched on) that STATUS shows on, or every one of them
+ * when STATUS does not show outputs, and read W2 for the report. Outputs the caller did
+ * not switch on are left as they are, and named in out->unknown when the controller does
+ * not show them. Blocking, bounded by the link's timeouts; the result is also out->result.
+ * docs/link.md 1, "The safe stop". */
+FBRL_API fbrl_status fbrl_link_safe_stop(fbrl_link *l, uint32_t outputs_on, uint32_t drain_ms,
+                                         fbrl_link_stop *out);
+
 /* Before writing raw bytes to the uart yourself (outside the link): erase whatever the
  * link may have left on the controller's line (a probe leaves three marker characters
  * there), so that a CR or LF you send runs only your own text. Sends one CAN unless the

@@ -16,6 +16,10 @@
  *     robot word typed at the prompt after a loss reconnects by itself.
  *  3. A port the user may not open: "permission denied" and the dialout group (as the
  *     user nobody when the test runs as root, since root opens anything).
+ *  4. Ctrl-C against a controller whose STATUS does not show its outputs (fbrlsim without
+ *     --status-extra, as a RAPL-II controller): the valve the session switched on is
+ *     switched off, every other output is named as not known and why, and fbrlsim's own
+ *     output state (its control channel) and log agree.
  *
  *   mon_safe FBRLMON FBRLSIM TMPDIR      exit 0 on success; the transcript is printed on failure */
 #define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
@@ -464,6 +468,114 @@ static void reconnect_tests(pid_t *sim)
             "mon_safe: killed and restarted fbrlsim: reported, reconnected, resumed; each step ran once\n");
 }
 
+/* 4. Ctrl-C against a controller whose STATUS has no OUTPUTS line. */
+static void plain_status_test(void)
+{
+    static session s;
+    char link2[1100], log2[sizeof g_log], fifo[1100], ctlout[1100], saved_log[sizeof g_log], buf[256] = "";
+    char *argv[6];
+    size_t from;
+    pid_t pid;
+    int k, fd;
+    FILE *f;
+
+    snprintf(link2, sizeof link2, "%s/robot2", g_dir);
+    snprintf(log2, sizeof log2, "%.900s/sim2.log", g_dir);
+    snprintf(fifo, sizeof fifo, "%s/ctl2", g_dir);
+    snprintf(ctlout, sizeof ctlout, "%s/ctl2.out", g_dir);
+    remove(log2);
+    remove(ctlout);
+    remove(fifo);
+    if (mkfifo(fifo, 0600) != 0) {
+        perror("mon_safe: mkfifo");
+        g_failed = 1;
+        return;
+    }
+    {
+        int pfd[2];
+        char c;
+        if (pipe(pfd) != 0)
+            return;
+        pid = fork();
+        if (pid == 0) {
+            dup2(pfd[1], 1);
+            close(pfd[0]);
+            close(pfd[1]);
+            execl(g_simbin, g_simbin, "--link", link2, "--log", log2, "--control", fifo, "--control-out",
+                  ctlout, (char *)NULL);
+            _exit(127);
+        }
+        close(pfd[1]);
+        while (read(pfd[0], &c, 1) == 1 && c != '\n')
+            ;
+        close(pfd[0]);
+    }
+    memcpy(saved_log, g_log, sizeof saved_log); /* the log helpers read g_log */
+    memcpy(g_log, log2, sizeof g_log);
+
+    /* another session switched output 9 on */
+    {
+        pid_t p = fork();
+        int ws;
+        if (p == 0) {
+            int null = open("/dev/null", O_RDWR);
+            dup2(null, 0);
+            dup2(null, 1);
+            execl(g_mon, g_mon, "--port", link2, "-e", "9 OUTPORT BYE", (char *)NULL);
+            _exit(127);
+        }
+        if (p < 0 || waitpid(p, &ws, 0) != p || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) {
+            fprintf(stderr, "FAIL: the first session (9 OUTPORT) did not run\n");
+            g_failed = 1;
+        }
+    }
+    argv[0] = (char *)g_mon;
+    argv[1] = "--port";
+    argv[2] = link2;
+    argv[3] = "plan1.fbrl";
+    argv[4] = NULL;
+    from = log_mark();
+    if (!g_failed && start_mon_argv(&s, TIMEOUT_MS, g_dir, argv) == 0) {
+        ctrl_c_after(&s, from, "MOVE FBRLT1");
+        expect(&s, "stopped (plan1.fbrl:6 in MOV): arm halted while moving (MOVE FBRLT1)", "the stop report");
+        expect(&s,
+               "outputs switched off: 5; not known: 1-4 6-16 (this controller's STATUS does not show its "
+               "outputs, and this session did not switch them on: check them at the controller)",
+               "the valve switched off, the others named as not known and why");
+        expect(&s, "ok> ", "the session goes on at the prompt");
+        check_halt(&s, from, "Ctrl-C, no OUTPUTS line");
+        read_log();
+        for (k = 0; (size_t)k < g_nlines && strcmp(g_lines[k], "OUTPUT -5") != 0; k++)
+            ;
+        if ((size_t)k == g_nlines)
+            failf(&s, "%s: OUTPUT -5 is not in fbrlsim's log", "Ctrl-C, no OUTPUTS line", 0);
+        /* fbrlsim's own outputs: the valve off, output 9 as the other session left it */
+        fd = open(fifo, O_WRONLY);
+        if (fd < 0 || write(fd, "GET OUTPUTS\n", 12) != 12)
+            failf(&s, "%s: cannot write fbrlsim's control channel", "GET OUTPUTS", 0);
+        if (fd >= 0)
+            close(fd);
+        for (k = 0; k < 100 && strstr(buf, "OUTPUTS ") == NULL; k++) {
+            settle(&s, 50);
+            f = fopen(ctlout, "r");
+            if (f != NULL) {
+                size_t n = fread(buf, 1, sizeof buf - 1, f);
+                buf[n] = '\0';
+                fclose(f);
+            }
+        }
+        if (strstr(buf, "OUTPUTS 0000000010000000") == NULL)
+            failf(&s, "%s: fbrlsim's outputs after the stop: %s", buf, 0);
+        type(&s, "BYE\r");
+        finish(&s);
+        if (!g_failed)
+            printf("mon_safe: Ctrl-C without an OUTPUTS line: the valve off, the others named unknown\n");
+    }
+    memcpy(g_log, saved_log, sizeof saved_log);
+    kill(pid, SIGTERM);
+    waitpid(pid, NULL, 0);
+}
+
 /* 3. A port without permission. */
 static void permission_test(void)
 {
@@ -536,6 +648,8 @@ int main(int argc, char **argv)
     ctrl_c_tests();
     if (!g_failed)
         reconnect_tests(&sim);
+    if (!g_failed)
+        plain_status_test();
     if (!g_failed)
         permission_test();
     kill(sim, SIGTERM);

@@ -248,8 +248,8 @@ static void safe_stop_offline(void **state)
     throws(f, "7 OUTPORT", OFFLINE_CODE);
     assert_int_equal(fbrl_robot_safe_stop(&f->r, &so), FBRL_EOFFLINE);
     assert_int_equal(so.result, FBRL_EOFFLINE);
-    assert_int_equal(so.halted, 0);
-    assert_int_equal(so.switched_off, 0);
+    assert_int_equal(so.stop.halted, 0);
+    assert_int_equal(so.stop.switched_off, 0);
     assert_int_equal(fbrl_robot_lost(&f->r), 0);
     assert_int_equal(fbrl_robot_set_relink(NULL, NULL, NULL), FBRL_EINVAL);
 }
