@@ -185,8 +185,10 @@ static void journal(fbrl_link *l, fbrl_status result)
 
 static void report_n(fbrl_link *l, unsigned n, fbrl_status result)
 {
+    l->own_report = 1; /* not the command's runs (fbrl_link_get_runs) */
     for (unsigned k = 0; k < n && l->cfg.on_exec; k++)
         l->cfg.on_exec(l->cfg.exec_ctx, "STATUS", 6, result);
+    l->own_report = 0;
 }
 
 /* The settling STATUS reads are over: the command is reported first, then the reads,
@@ -228,8 +230,10 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
             l->known_err = ERR_UNKNOWN;
             settle_end(l, res);
         } else if (l->ran || l->maybe || l->cr_pending) {
-            if (l->cr_pending)
+            if (l->cr_pending) {
+                l->maybe_runs++;
                 journal(l, FBRL_EMAYBE);
+            }
             res = FBRL_EMAYBE;
             l->known_err = ERR_UNKNOWN;
         }
@@ -662,9 +666,12 @@ static fbrl_status settle_read(fbrl_link *l)
         set_error(l, last);
     if (res == FBRL_EMAYBE)
         l->seen = SEEN_SAME_ERROR;
-    settle_end(l, res);
+    int again = res == FBRL_EMAYBE && l->safe && !l->settle_shaped && l->attempts < l->cfg.max_attempts;
+    /* it ran (it is settled because its reply came damaged): run again, that run is one
+     * whose reply was damaged, as a query's (3.9) */
+    settle_end(l, again ? FBRL_EPROTOCOL : res);
     l->known_err = last;
-    if (res == FBRL_EMAYBE && l->safe && !l->settle_shaped && l->attempts < l->cfg.max_attempts) {
+    if (again) {
         /* safe to repeat: run it again, and its clean reply tells (3.5) */
         l->stats.requeries++;
         return retype(l);
@@ -692,6 +699,7 @@ static fbrl_status executed(fbrl_link *l)
     if (l->stage == ST_ERRQ)
         return settle_read(l);
     l->ran = 1;
+    l->runs++;
     int complete = reply_complete(l);
     if (l->err_state == ERR_VALID) {
         /* its text matches its code: no damage can make one */
@@ -826,6 +834,7 @@ static fbrl_status verify_done(fbrl_link *l, int ctrl_len)
     }
     l->seen = SEEN_AMBIGUOUS;
     if (l->safe) {
+        l->maybe_runs += l->stage == ST_MAIN; /* (a settling STATUS's is not the command's) */
         journal(l, FBRL_EMAYBE);
         l->maybe = 1;
         return retype(l);
@@ -850,7 +859,10 @@ static void count_reply_byte(fbrl_link *l, uint8_t b)
         l->seen = SEEN_STARTED;
     if (l->after_cr++ == 0)
         l->first_byte = b;
-    if (b == '\r' || b == '\n')
+    /* The controller's CR LF proves the line ended. While a verify probe is out on an 8N1
+     * line, an LF alone may be the probe's BS (0x08) with one bit flipped whose '?' before it
+     * was lost: it proves nothing then (the probe's own echo decides, 3.2). */
+    if (b == '\r' || (b == '\n' && (l->phase != PH_VERIFY || l->parity || l->last_byte == '\r')))
         l->eol_seen = 1;
     if (b == '>' && l->last_byte == '>')
         l->gtgt = 1;
@@ -1265,6 +1277,7 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->result = FBRL_OK;
     l->safe = safe;
     l->ran = l->maybe = l->cr_pending = 0;
+    l->runs = l->maybe_runs = 0;
     l->seen = SEEN_NONE;
     l->cause = FBRL_OK;
     l->busy = 1;
@@ -1424,23 +1437,46 @@ static fbrl_status aci_to_terminal(fbrl_link *l)
     return FBRL_OK;
 }
 
-/* The controller's units, at connect (docs/link.md 1): STATUS shown as it comes, once
- * (some 700 bytes, 0.75 s at 9600 baud), whose undamaged last line says them; only when
- * that line came damaged or not at all is STATUS read as a value (query_reads agreeing
- * reads; no units line there means inches). Its lines are not the caller's to see. */
+/* The connect's STATUS lines: only an undamaged one is parsed (its units line decides). */
+static void units_line(void *ctx, const char *s, size_t n, int flawed)
+{
+    if (!flawed)
+        (void)fbrl_rapl_status_line(ctx, s, n);
+}
+
+/* The controller's units, at connect (docs/link.md 1): STATUS shown as it comes (some 700
+ * bytes, 0.75 s at 9600 baud), its lines not the caller's. An undamaged units line decides,
+ * wherever it came (also in a settling read): no damage makes one of the other. STATUS is
+ * read-only, so a reply whose units line came damaged is simply read again; one that came
+ * whole without that line means inches (the controller's default). */
 static fbrl_status read_units(fbrl_link *l)
 {
     fbrl_link_line_fn fn = l->cfg.on_line;
     void *ctx = l->cfg.line_ctx;
-    l->cfg.on_line = 0;
-    fbrl_status st = start(l, "STATUS", FBRL_LINK_REPLY_LINES, l->cfg.reply_timeout_ms, 1);
-    if (st == FBRL_OK)
-        st = run(l);
+    fbrl_rapl_status_info si;
+    fbrl_status st = FBRL_OK;
+    l->cfg.on_line = units_line;
+    l->cfg.line_ctx = &si;
+    for (unsigned k = 0; k < l->cfg.max_attempts; k++) {
+        uint64_t settled = l->stats.settled;
+        fbrl_rapl_status_init(&si);
+        st = start(l, "STATUS", FBRL_LINK_REPLY_LINES, l->cfg.reply_timeout_ms, 1);
+        if (st == FBRL_OK)
+            st = run(l);
+        if (si.have & FBRL_RAPL_ST_UNITS) {
+            l->units = si.metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+            break;
+        }
+        if (st == FBRL_OK && l->stats.settled == settled) {
+            l->units = FBRL_LINK_UNITS_INCH; /* whole, and no units line */
+            break;
+        }
+        if (st != FBRL_OK && st != FBRL_EMAYBE && st != FBRL_EPROTOCOL && st != FBRL_ECONTROLLER)
+            break; /* did not run: the controller does not answer */
+    }
     l->cfg.on_line = fn;
     l->cfg.line_ctx = ctx;
-    if (st == FBRL_OK && l->units == FBRL_LINK_UNITS_UNKNOWN)
-        st = fbrl_link_status(l, 0);
-    return st;
+    return l->units != FBRL_LINK_UNITS_UNKNOWN ? FBRL_OK : st != FBRL_OK ? st : FBRL_EPROTOCOL;
 }
 
 fbrl_status fbrl_link_connect(fbrl_link *l)
@@ -1804,6 +1840,19 @@ fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out)
     out->cause = l->cause;
     out->code = l->result == FBRL_ECONTROLLER ? l->err_code : -1;
     out->seen = seen_text(l->seen);
+    out->runs = l->runs;
+    out->maybe_runs = l->maybe_runs;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    if (runs)
+        *runs = l->own_report ? 0 : l->runs;
+    if (maybe_runs)
+        *maybe_runs = l->own_report ? 0 : l->maybe_runs;
     return FBRL_OK;
 }
 

@@ -13,11 +13,14 @@
 
 /* The one command table, indexed by fbrl_rapl_cmd: every fact about a command lives
  * here (keyword, /NNN token, arguments, motion, waiting, safe to repeat, reply). Tokens
- * are the RAPL-II manual's /NNN numbers (DESIGN 5); 0 = none known. Not safe to repeat
- * (no SAF): relative motions (APPRO DEPART JOG JOINT MI MOTOR), program runs, SHIFT(A)
- * (adds to a location) and the deletions (a second one reports "undefined"). */
+ * are the RAPL-II manual's /NNN numbers (DESIGN 5); 0 = none known. Safe to repeat (SAF)
+ * is decided by what a second run does: not safe are relative motions (APPRO DEPART JOG
+ * JOINT MI MOTOR), program runs, SHIFT(A) (adds to a location), the deletions (a second
+ * one reports "undefined"), the commands that store where the arm is (HERE ACTUAL, XCAL
+ * XZERO for the extra axis: a second run while it moves stores another place) and WAIT (a
+ * second one waits again, for an input that may have come and gone). */
 static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
-    [FBRL_RAPL_ACTUAL] = {"ACTUAL", 152, "L", 0, SAF, NONE},
+    [FBRL_RAPL_ACTUAL] = {"ACTUAL", 152, "L", 0, 0, NONE},
     [FBRL_RAPL_ALIGN] = {"ALIGN", 1, "", 0, MOT | SAF, NONE},
     [FBRL_RAPL_APPRO] = {"APPRO", 2, "LR", 0, MOT | STR, NONE},
     [FBRL_RAPL_ARM] = {"ARM", 142, "W", "ON|OFF", SAF, NONE},
@@ -29,7 +32,7 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_GAIN] = {"GAIN", 150, "I[R", 0, SAF, LINES},
     [FBRL_RAPL_GRIP] = {"GRIP", 39, "R[I", 0, SAF, NONE},
     [FBRL_RAPL_HALT] = {"HALT", 154, "", 0, SAF, NONE},
-    [FBRL_RAPL_HERE] = {"HERE", 24, "L", 0, SAF, NONE},
+    [FBRL_RAPL_HERE] = {"HERE", 24, "L", 0, 0, NONE},
     [FBRL_RAPL_HOME] = {"HOME", 20, "", 0, MOT | SAF, NONE},
     [FBRL_RAPL_JOG] = {"JOG", 5, "RRR", 0, MOT, NONE},
     [FBRL_RAPL_JOINT] = {"JOINT", 6, "IR", 0, MOT, NONE},
@@ -66,13 +69,13 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_W3] = {"W3", 33, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
     [FBRL_RAPL_W4] = {"W4", 35, "", 0, SAF, POS},
     [FBRL_RAPL_W5] = {"W5", 37, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_WAIT] = {"WAIT", 94, "I*", 0, WTS | SAF, NONE},
+    [FBRL_RAPL_WAIT] = {"WAIT", 94, "I*", 0, WTS, NONE},
     [FBRL_RAPL_WE1] = {"WE1", 28, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
     [FBRL_RAPL_WE3] = {"WE3", 32, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
     [FBRL_RAPL_WE5] = {"WE5", 36, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_XCAL] = {"XCAL", 157, "I", 0, SAF, NONE},
+    [FBRL_RAPL_XCAL] = {"XCAL", 157, "I", 0, 0, NONE},
     [FBRL_RAPL_XHOME] = {"XHOME", 158, "I", 0, SAF, NONE},
-    [FBRL_RAPL_XZERO] = {"XZERO", 159, "I", 0, SAF, NONE},
+    [FBRL_RAPL_XZERO] = {"XZERO", 159, "I", 0, 0, NONE},
     /* a constant value; a raw line whose value reads its own target (V1=V1+1) is not safe */
     [FBRL_RAPL_ASSIGN] = {"", 0, "V=R", 0, SAF, NONE}, /* RAPL-II /070; fbrlsim: no token */
     [FBRL_RAPL_DLOCN] = {"DLOCN", 48, "L", 0, 0, NONE},

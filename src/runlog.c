@@ -184,6 +184,12 @@ fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long sample, 
 
 fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code)
 {
+    return fbrl_runlog_command_run(l, line, len, result, code, 1);
+}
+
+fbrl_status fbrl_runlog_command_run(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code,
+                                    unsigned run)
+{
     fbrl_status st = opened(l);
     const char *how = "ran";
     if (st != FBRL_OK || line == NULL)
@@ -203,6 +209,8 @@ fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fb
     field_str(l, "status", how);
     if (result == FBRL_ECONTROLLER && code >= 0)
         field_long(l, "code", code);
+    if (run > 1)
+        field_long(l, "run", (long)run);
     return finish(l);
 }
 

@@ -180,6 +180,11 @@ typedef struct fbrl_link_outcome {
     int code;           /* REFUSED: the controller's code, -1 unknown */
     const char *seen;   /* what the controller was last seen doing, in plain words
                           * ("it had started the line; its reply was cut off"); never NULL */
+    unsigned runs;       /* times the line ran on the controller, proven: 1, or more when the
+                          * link typed it again (a safe command whose reply came damaged and
+                          * whose STATUS could not tell; a query read until replies agree) */
+    unsigned maybe_runs; /* further times it may have run: a CR whose effect the link could
+                          * not prove either way (docs/link.md 3.9) */
 } fbrl_link_outcome;
 
 /* A session. Caller-owned; every field is private. */
@@ -250,6 +255,8 @@ typedef struct fbrl_link {
     size_t main_len;
     fbrl_link_reply main_kind;
     unsigned main_attempts;
+    unsigned runs, maybe_runs; /* of the command (fbrl_link_outcome) */
+    int own_report;            /* reporting the link's own STATUS reads to cfg.on_exec */
     int units; /* FBRL_LINK_UNITS_*: what the controller's lengths are, as last learned */
 } fbrl_link;
 
@@ -439,6 +446,12 @@ FBRL_API fbrl_link_fate fbrl_link_fate_of(fbrl_status result);
 
 /* The last command's outcome (FBRL_ESTATE while one runs). */
 FBRL_API fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out);
+
+/* How many times the command's line has run so far (fbrl_link_outcome.runs, maybe_runs):
+ * after it ended, and inside cfg.on_exec for the line being reported (that run counted:
+ * runs + maybe_runs is its number, 2 for a line the link typed again), 0 and 0 there for
+ * the link's own STATUS reads. A run log uses it to mark a line that ran again. */
+FBRL_API fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs);
 
 /* Is this line safe to type twice (docs/link.md 3.9)? Table commands say it in the
  * encoder's table; an assignment is safe unless its value reads its own target

@@ -129,8 +129,10 @@ typedef enum fbrl_rapl_reply {
 #define FBRL_RAPL_F_SAFE \
     0x10u /* safe to repeat: running it twice ends as running it
                                     * once (absolute moves and settings, read-only queries).
-                                    * Relative motions, counters, deletions and program runs
-                                    * are not: the link never types those twice (docs/link.md) */
+                                    * Relative motions, counters, deletions, program runs,
+                                    * HERE ACTUAL XCAL XZERO (they store where the arm is)
+                                    * and WAIT are not: the link never types those twice
+                                    * (docs/link.md 3.9) */
 
 /* One table entry. The signature has one character per argument:
  *   L location name ('#' prefix allowed)   V variable name   N program name

@@ -107,6 +107,7 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
                                        fbrl_link_line_fn *old_fn, void **old_ctx);
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
 int fbrl_link_fate_of(fbrl_status result);
+fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs);
 fbrl_status fbrl_rapl_cmd_find(const char *keyword, int *cmd);
 const char *fbrl_rapl_error_text(int code);
 

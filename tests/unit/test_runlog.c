@@ -115,6 +115,29 @@ static void a_run_writes_every_record(void **state)
     assert_int_equal(fbrl_runlog_note(&l, "pause", NULL), FBRL_ESTATE);
 }
 
+/* A command the link typed again (docs/link.md 3.9): its second run says so, the first not. */
+static void a_repeated_command_says_which_run(void **state)
+{
+    (void)state;
+    static sink k;
+    fbrl_runlog l;
+    char line[512];
+    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    memset(&k, 0, sizeof k);
+    memset(&l, 0, sizeof l);
+    k.fail_after = -1;
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, sink_clock, &k, &h), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command_run(&l, "SPEED 5", 7, FBRL_EPROTOCOL, -1, 1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command_run(&l, "SPEED 5", 7, FBRL_OK, -1, 2), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command_run(&l, "SPEED 6", 7, FBRL_OK, -1, 0), FBRL_OK);
+    assert_string_equal(nth_line(&k, 1, line, sizeof line),
+                        "{\"t\":0,\"type\":\"command\",\"line\":\"SPEED 5\",\"status\":\"reply-damaged\"}");
+    assert_string_equal(nth_line(&k, 2, line, sizeof line),
+                        "{\"t\":0,\"type\":\"command\",\"line\":\"SPEED 5\",\"status\":\"ran\",\"run\":2}");
+    assert_string_equal(nth_line(&k, 3, line, sizeof line),
+                        "{\"t\":0,\"type\":\"command\",\"line\":\"SPEED 6\",\"status\":\"ran\"}");
+}
+
 /* A long text is cut inside the line limit and stays valid JSON (ends with ..."}). */
 static void long_texts_are_cut(void **state)
 {
@@ -164,6 +187,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(a_run_writes_every_record),
+        cmocka_unit_test(a_repeated_command_says_which_run),
         cmocka_unit_test(long_texts_are_cut),
         cmocka_unit_test(a_failing_sink_is_reported),
     };
