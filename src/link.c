@@ -350,11 +350,6 @@ static void begin_reply(fbrl_link *l)
     fbrl_rapl_reader_init(&l->rd);
     l->lead = 0;
     l->phase = PH_REPLY;
-    l->after_cr = 0;
-    l->eol_seen = 0;
-    l->gtgt = 0;
-    l->last_byte = 0;
-    l->first_byte = -1;
     l->prompt_seen = 0;
     l->probe_out = PR_NONE;
     l->probe_seen = 0;
@@ -371,11 +366,6 @@ static void begin_reply(fbrl_link *l)
     l->cr_pending = 1;
     l->first_probe = 0;
     l->pe_state = PE_START;
-    l->rp_first = 1;
-    l->rp_bad = 0;
-    l->rp_eols = 0;
-    l->rp_lines = 0;
-    l->prompt_direct = 0;
     l->seen = SEEN_SILENT;
 }
 
@@ -391,9 +381,6 @@ static int error_shaped(const char *s, size_t n)
 static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
 {
     int code;
-    l->rp_lines++;
-    if (flawed)
-        l->rp_bad = 1;
     char text[sizeof l->err_text];
     fbrl_status est = fbrl_rapl_parse_error(s, n, &code, text, sizeof text);
     if (est == FBRL_OK && !flawed) {
@@ -455,12 +442,15 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
     }
 }
 
+/* A byte of the command's reply (before any probe's echo): the reader cuts the lines and
+ * keeps the framing. */
 static void feed_reply(fbrl_link *l, uint8_t b)
 {
+    if (l->seen == SEEN_SILENT)
+        l->seen = SEEN_STARTED;
     fbrl_rapl_event ev = fbrl_rapl_reader_feed(&l->rd, b);
     if (ev == FBRL_RAPL_EV_PROMPT) {
         l->prompt_seen = 1;
-        l->prompt_direct = 1;
     } else if (ev == FBRL_RAPL_EV_LINE) {
         size_t n;
         int flawed;
@@ -561,7 +551,7 @@ static int confirmed(fbrl_link *l)
         l->stats.self_checked++;
         return 1;
     }
-    if (l->have_prev && l->after_cr == l->prev_len) {
+    if (l->have_prev && l->rd.bytes == l->prev_len) {
         switch (l->kind) {
         case FBRL_LINK_REPLY_POS: same = same_pos(&l->pos, &l->prev_pos); break;
         case FBRL_LINK_REPLY_STATUS: same = same_status(&l->st, &l->prev_st, l->stage == ST_ERRQ); break;
@@ -575,7 +565,7 @@ static int confirmed(fbrl_link *l)
         l->prev_st = l->st;
         l->prev_i = l->ival;
         l->prev_r = l->rval;
-        l->prev_len = l->after_cr;
+        l->prev_len = l->rd.bytes;
         l->have_prev = 1;
         return l->cfg.query_reads <= 1;
     }
@@ -588,11 +578,11 @@ static int confirmed(fbrl_link *l)
  * else shows "CR LF >>", or "CR LF NNN-TEXT. CR LF >>" when refused: nothing else. */
 static int reply_complete(const fbrl_link *l)
 {
-    if (!l->prompt_direct || !l->rp_first || l->rp_bad || l->out_bad)
+    const fbrl_rapl_reader *r = &l->rd;
+    if (!fbrl_rapl_reader_whole(r) || l->out_bad)
         return 0;
     if (l->kind == FBRL_LINK_REPLY_NONE)
-        return l->rp_eols == 1u + l->rp_lines && l->rp_lines <= 1 &&
-               (l->rp_lines == 0 || l->err_state == ERR_VALID);
+        return r->eols == 1u + r->lines && r->lines <= 1 && (r->lines == 0 || l->err_state == ERR_VALID);
     return 1;
 }
 
@@ -745,6 +735,16 @@ static fbrl_status executed(fbrl_link *l)
     return retype(l);
 }
 
+/* The controller's CR LF proves the line ended (the reader has the line ends). While a
+ * verify probe is out on an 8N1 line, an LF alone may be the probe's BS (0x08) with one
+ * bit flipped whose '?' before it was lost: it proves nothing then (the probe's own echo
+ * decides, 3.2). The verify probe is sent only while no line end had come. */
+static int eol_seen(const fbrl_link *l)
+{
+    unsigned lf_ok = l->parity || l->phase != PH_VERIFY ? FBRL_RAPL_END_LF : 0u;
+    return (l->rd.ends & (FBRL_RAPL_END_CR | FBRL_RAPL_END_CRLF | lf_ok)) != 0;
+}
+
 /* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR
  * LF, its prompt, or three bytes or more. A line that did not end can show at most two
  * stray bytes: a damaged CR echoed as a character, and the first byte of the probe
@@ -754,7 +754,8 @@ static fbrl_status executed(fbrl_link *l)
  * proof. That matters: "CR LF >>" can lose CR, LF and one '>'. */
 static int cr_took_effect(const fbrl_link *l)
 {
-    return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= (l->parity ? 1u : 3u);
+    const fbrl_rapl_reader *r = &l->rd;
+    return l->prompt_seen || eol_seen(l) || r->gtgt || r->bytes >= (l->parity ? 1u : 3u);
 }
 
 /* The verify probe's echo, byte by byte (PE_*): "?", k1 triples, "?", one triple, the
@@ -842,31 +843,6 @@ static fbrl_status verify_done(fbrl_link *l, int ctrl_len)
     l->stats.cr_unconfirmed--;
     l->stats.not_retyped++;
     return finish(l, FBRL_EPROTOCOL);
-}
-
-/* A byte of the command's reply (before any probe echo). */
-static void count_reply_byte(fbrl_link *l, uint8_t b)
-{
-    /* framing (reply_complete()): the reply starts with CR LF, every CR is followed by
-     * LF and every LF follows a CR */
-    if (l->after_cr < 2 && b != (l->after_cr == 0 ? '\r' : '\n'))
-        l->rp_first = 0;
-    if ((l->last_byte == '\r') != (b == '\n') && l->after_cr > 0)
-        l->rp_bad = 1;
-    if (b == '\n')
-        l->rp_eols++;
-    if (l->seen == SEEN_SILENT)
-        l->seen = SEEN_STARTED;
-    if (l->after_cr++ == 0)
-        l->first_byte = b;
-    /* The controller's CR LF proves the line ended. While a verify probe is out on an 8N1
-     * line, an LF alone may be the probe's BS (0x08) with one bit flipped whose '?' before it
-     * was lost: it proves nothing then (the probe's own echo decides, 3.2). */
-    if (b == '\r' || (b == '\n' && (l->phase != PH_VERIFY || l->parity || l->last_byte == '\r')))
-        l->eol_seen = 1;
-    if (b == '>' && l->last_byte == '>')
-        l->gtgt = 1;
-    l->last_byte = b;
 }
 
 /* Enough stream lines came: stop the readout. Any byte ends a stream and is consumed.
@@ -1004,7 +980,6 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             }
             return FBRL_OK;
         }
-        count_reply_byte(l, b);
         feed_reply(l, b);
         if (l->kind == FBRL_LINK_REPLY_STREAM && !l->prompt_seen &&
             l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent)
@@ -1023,7 +998,6 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     case PH_VERIFY:
         if (!l->probe_seen && b != '?' && b != BS) {
             /* still the command's reply (or its absence): bytes before the probe's echo */
-            count_reply_byte(l, b);
             feed_reply(l, b);
             return FBRL_OK;
         }
@@ -1046,7 +1020,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 static int prompt_begun(const fbrl_link *l)
 {
     return l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
-           l->rp_first && l->eol_seen && !l->rd.done && l->rd.len == 1 && l->rd.line[0] == '>' &&
+           l->rd.began && eol_seen(l) && !l->rd.done && l->rd.len == 1 && l->rd.line[0] == '>' &&
            !l->rd.flawed;
 }
 
@@ -1056,7 +1030,6 @@ static int prompt_begun(const fbrl_link *l)
  * between one command's prompt and the next one's echo. */
 static fbrl_status early_prompt(fbrl_link *l)
 {
-    count_reply_byte(l, '>');
     feed_reply(l, '>');
     l->owed = 1;
     l->ctrl_len = 0;
@@ -1202,10 +1175,8 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
                 got = 0;
             } else if (l->phase == PH_REPLY || l->phase == PH_VERIFY) {
                 l->out_bad = 1; /* a query is asked again; an error line is checked anyway */
-                if (l->phase == PH_REPLY && l->probe_out == PR_NONE) {
-                    l->after_cr++; /* a byte came after the CR, before any probe */
-                    l->rp_bad = 1;
-                }
+                if (l->phase == PH_REPLY && l->probe_out == PR_NONE)
+                    fbrl_rapl_reader_lost(&l->rd); /* a byte came after the CR, before any probe */
             }
         }
         size_t k = 0;
@@ -1687,8 +1658,8 @@ static size_t awaited(const fbrl_link *l)
     if (l->phase == PH_TYPE && l->expect > l->match)
         return l->match == 0 ? l->expect + 1 - (size_t)l->lead : l->expect - l->match - 1;
     if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
-        l->after_cr < MIN_REPLY_BYTES)
-        return l->after_cr == 0 ? 1 + MIN_REPLY_BYTES : MIN_REPLY_BYTES - l->after_cr - 1;
+        l->rd.bytes < MIN_REPLY_BYTES)
+        return l->rd.bytes == 0 ? 1 + MIN_REPLY_BYTES : MIN_REPLY_BYTES - l->rd.bytes - 1;
     return 0;
 }
 

@@ -213,9 +213,8 @@ typedef struct fbrl_link {
     int heard; /* any byte from the controller this command */
     uint64_t t_last, t_deadline, t_probe;
     /* reply analysis */
-    fbrl_rapl_reader rd;
-    size_t after_cr;
-    int eol_seen, gtgt, last_byte, first_byte, prompt_seen, probe_out, probe_seen;
+    fbrl_rapl_reader rd; /* the reply, with its framing */
+    int last_byte, prompt_seen, probe_out, probe_seen;
     unsigned char tail[7];
     int err_state, err_code, out_bad, nvalues;
     unsigned stream_got;
@@ -243,8 +242,6 @@ typedef struct fbrl_link {
     int first_probe; /* the verify probe is the first since the CR */
     int pe_state;    /* the verify probe's echo, parsed */
     unsigned pe_k1, pe_sub;
-    int rp_first, rp_bad, prompt_direct; /* the reply's framing: CR LF, lines, prompt */
-    unsigned rp_eols, rp_lines;
     int known_err;                                /* the controller's LAST ERROR as last proven
                                               * (-1 NONE), -2 unknown */
     int settle_shaped;                            /* the reply being settled had an error shape */
