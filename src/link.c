@@ -27,8 +27,6 @@
 enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
 enum { ST_MAIN, ST_ERRQ };
 enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
-/* The verify probe's echo "? (k1 triples) ? BS SP BS m m m", parsed byte by byte. */
-enum { PE_START, PE_T1, PE_T2, PE_MARK, PE_DONE, PE_BAD = -1 };
 /* known_err: the controller's LAST ERROR is not known */
 #define ERR_UNKNOWN (-2)
 /* What the controller was last seen doing (fbrl_link_outcome.seen). */
@@ -250,53 +248,18 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
     return res;
 }
 
-/* Marker characters: any two differ in at least two bits, so one flipped bit cannot turn
- * one into another. A probe ends with three of them, the probe's number in base 6, so
- * the echo of any of the 215 probes before it is never taken for its answer. */
-static const char markers[] = "!$@^|'";
-#define NMARK 6u
-
-/* "? CAN ? CAN m m m": erases whatever the line holds and leaves exactly the three
- * marker characters on it. Answered once the controller reads input again, so it also
- * shows the controller is idle at its prompt. */
+/* A probe (link_probe.c; docs/link.md 3.3): it erases whatever the line holds and leaves
+ * exactly its three markers on it. Answered once the controller reads input again, so it
+ * also shows the controller is idle at its prompt. With flow control off it begins with
+ * XON, which releases a controller that a flipped '3' (0x33 -> XOFF) had paused. */
 static fbrl_status send_probe(fbrl_link *l)
 {
-    uint8_t probe[] = {XON, '?', CAN, '?', CAN, 0, 0, 0};
-    unsigned v = l->marker_idx++ % (NMARK * NMARK * NMARK);
-    for (int k = 2; k >= 0; k--) {
-        l->marker[k] = markers[v % NMARK];
-        probe[5 + k] = (uint8_t)l->marker[k];
-        v /= NMARK;
-    }
+    uint8_t probe[FBRLI_PROBE_MAX];
+    size_t n = fbrli_probe_make(&l->probe, probe, l->xon_ok);
     l->stats.probes++;
     l->probes_here++;
     l->t_probe = now_us(l);
-    for (int k = 0; k < 7; k++)
-        l->tail[k] = 0;
-    return l->xon_ok ? send(l, probe, sizeof probe) : send(l, probe + 1, sizeof probe - 1);
-}
-
-static void push_tail(fbrl_link *l, uint8_t b)
-{
-    for (int k = 0; k < 6; k++)
-        l->tail[k] = l->tail[k + 1];
-    l->tail[6] = b;
-}
-
-/* The latest probe's closing characters have just arrived (they are the last bytes it
- * sent, so its echo is over), whatever came before them. */
-static int marker_seen(const fbrl_link *l)
-{
-    return l->tail[4] == (uint8_t)l->marker[0] && l->tail[5] == (uint8_t)l->marker[1] &&
-           l->tail[6] == (uint8_t)l->marker[2];
-}
-
-/* The latest probe's echo has just ended, undamaged. */
-static int probe_answered(const fbrl_link *l)
-{
-    return l->tail[0] == '?' && l->tail[1] == BS && l->tail[2] == ' ' && l->tail[3] == BS &&
-           l->tail[4] == (uint8_t)l->marker[0] && l->tail[5] == (uint8_t)l->marker[1] &&
-           l->tail[6] == (uint8_t)l->marker[2];
+    return send(l, probe, n);
 }
 
 static fbrl_status begin_erase(fbrl_link *l)
@@ -365,7 +328,6 @@ static void begin_reply(fbrl_link *l)
     /* the CR goes out now: until proof either way, this line may run */
     l->cr_pending = 1;
     l->first_probe = 0;
-    l->pe_state = PE_START;
     l->seen = SEEN_SILENT;
 }
 
@@ -758,42 +720,12 @@ static int cr_took_effect(const fbrl_link *l)
     return l->prompt_seen || eol_seen(l) || r->gtgt || r->bytes >= (l->parity ? 1u : 3u);
 }
 
-/* The verify probe's echo, byte by byte (PE_*): "?", k1 triples, "?", one triple, the
- * three markers. Anything else makes it useless as evidence (PE_BAD). */
-static void pe_feed(fbrl_link *l, uint8_t b)
+/* The first probe after the CR, parsed whole, erased the text (and a damaged CR echoed
+ * as a character) besides its own '?': the line was still there when it arrived. */
+static int text_was_there(const fbrl_link *l)
 {
-    static const char triple[] = "\b \b";
-    switch (l->pe_state) {
-    case PE_START:
-        l->pe_state = b == '?' ? PE_T1 : PE_BAD;
-        l->pe_k1 = l->pe_sub = 0;
-        break;
-    case PE_T1:
-        if (l->pe_sub == 0 && b == '?') {
-            l->pe_state = PE_T2;
-        } else if (b != (uint8_t)triple[l->pe_sub]) {
-            l->pe_state = PE_BAD;
-        } else if (++l->pe_sub == 3) {
-            l->pe_sub = 0;
-            l->pe_k1++;
-        }
-        break;
-    case PE_T2:
-        if (b != (uint8_t)triple[l->pe_sub])
-            l->pe_state = PE_BAD;
-        else if (++l->pe_sub == 3)
-            l->pe_state = PE_MARK, l->pe_sub = 0;
-        break;
-    case PE_MARK:
-        if (b != (uint8_t)l->marker[l->pe_sub])
-            l->pe_state = PE_BAD;
-        else if (++l->pe_sub == 3)
-            l->pe_state = PE_DONE;
-        break;
-    default:
-        l->pe_state = PE_BAD; /* bytes after the answer */
-        break;
-    }
+    long k = l->first_probe ? fbrli_probe_erased(&l->probe) : -1;
+    return k >= 0 && ((size_t)k == l->len + 1 || (size_t)k == l->len + 2);
 }
 
 /* Did the CR take effect? 1 ran, 0 did not, -1 cannot be proven (docs/link.md 3.2).
@@ -806,13 +738,9 @@ static int verify_decides(const fbrl_link *l)
 {
     if (cr_took_effect(l))
         return 1;
-    if (l->first_probe && l->pe_state == PE_DONE) {
-        if (l->pe_k1 == 1)
-            return 1;
-        if (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)
-            return 0;
-    }
-    return -1;
+    if (l->first_probe && fbrli_probe_erased(&l->probe) == 1)
+        return 1;
+    return text_was_there(l) ? 0 : -1;
 }
 
 /* A probe after the CR has been answered (ctrl_len 3) or its echo came damaged (-1):
@@ -927,12 +855,12 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
                 return FBRL_OK;
         }
         saw_foreign(l, b);
-        push_tail(l, b);
-        if (probe_answered(l)) {
+        fbrli_probe_echo(&l->probe, b, 0);
+        if (fbrli_probe_answered(&l->probe)) {
             l->ctrl_len = 3;
             return begin_type(l);
         }
-        if (marker_seen(l)) {
+        if (fbrli_probe_ended(&l->probe)) {
             /* the probe's echo ended damaged: no need to wait for silence */
             if (l->attempts >= l->cfg.max_attempts)
                 return finish(l, gave_up(l));
@@ -958,13 +886,10 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         if (l->probe_out == PR_IDLE && (b == '?' || l->probe_seen)) {
             /* the idle probe's echo: the controller reads input again, so it is idle */
             l->probe_seen = 1;
-            push_tail(l, b);
-            if (l->first_probe)
-                pe_feed(l, b);
-            if (probe_answered(l)) {
+            fbrli_probe_echo(&l->probe, b, l->first_probe);
+            if (fbrli_probe_answered(&l->probe)) {
                 l->ctrl_len = 3;
-                if (l->first_probe && l->pe_state == PE_DONE && !l->prompt_seen &&
-                    (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)) {
+                if (!l->prompt_seen && text_was_there(l)) {
                     /* the "proof" was a damaged CR echoed back as CR or LF by a second flip
                      * (3.6): the text is still on the line, the CR took no effect */
                     l->stats.cr_unconfirmed++;
@@ -1002,10 +927,8 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             return FBRL_OK;
         }
         l->probe_seen = 1;
-        push_tail(l, b);
-        if (l->first_probe)
-            pe_feed(l, b);
-        if (probe_answered(l))
+        fbrli_probe_echo(&l->probe, b, l->first_probe);
+        if (fbrli_probe_answered(&l->probe))
             return verify_done(l, 3);
         return FBRL_OK;
     default: return FBRL_OK; /* idle: stray bytes */
@@ -1082,7 +1005,6 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
             if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
                 /* the first one also checks the proof (on_byte) */
                 l->first_probe = l->probes_here == 0 && l->kind != FBRL_LINK_REPLY_STREAM;
-                l->pe_state = PE_START;
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
                 return send_probe(l);
@@ -1096,7 +1018,6 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->probe_seen = 0;
         l->probes_here = 0;
         l->first_probe = 1;
-        l->pe_state = PE_START;
         return send_probe(l);
     case PH_CLEAN: return clean_done(l, -1);
     case PH_VERIFY:

@@ -5,6 +5,24 @@
 
 #include "fbrl/link.h"
 
+/* ---- link_probe.c: the probe and the parse of its echo (docs/link.md 3.3) ---- */
+
+#define FBRLI_PROBE_MAX 8 /* bytes of a probe: [XON] ? CAN ? CAN m m m */
+
+/* The next probe's bytes into out (with its leading XON when xon): new markers; its echo
+ * not seen yet. How many bytes. */
+size_t fbrli_probe_make(fbrl_link_probe *p, uint8_t out[FBRLI_PROBE_MAX], int xon);
+/* A byte of the probe's echo (parse_it: also parse it as the answer to the first probe
+ * after a CR). */
+void fbrli_probe_echo(fbrl_link_probe *p, uint8_t b, int parse_it);
+/* The latest probe's markers have just come (its echo is over), damaged before or not. */
+int fbrli_probe_ended(const fbrl_link_probe *p);
+/* Its echo has just ended undamaged: the line holds exactly its markers. */
+int fbrli_probe_answered(const fbrl_link_probe *p);
+/* Parsed whole: the characters its first CAN erased (1: its own '?', the line was empty;
+ * more: what the line held before it, plus that '?'); -1 when the echo was not whole. */
+long fbrli_probe_erased(const fbrl_link_probe *p);
+
 /* ---- link_modes.c ---- */
 
 /* A line ran (FBRL_OK) while the controller's units were `units`: keep it if it sets a

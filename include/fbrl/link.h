@@ -187,6 +187,16 @@ typedef struct fbrl_link_outcome {
                           * not prove either way (docs/link.md 3.9) */
 } fbrl_link_outcome;
 
+/* The link's probe (private, link_probe.c): its markers, the last bytes of its echo and
+ * the parse of that echo. */
+typedef struct fbrl_link_probe {
+    char marker[3];
+    unsigned next;
+    unsigned char tail[7];
+    int state;
+    unsigned erased, sub;
+} fbrl_link_probe;
+
 /* A session. Caller-owned; every field is private. */
 typedef struct fbrl_link {
     fbrl_uart *u;
@@ -194,8 +204,7 @@ typedef struct fbrl_link {
     int xon_ok;           /* flow NONE: probes may carry an XON byte */
     uint64_t parity_seen; /* the uart's parity error count, last looked at */
     int parity;           /* the line has parity: damaged bytes are dropped */
-    char marker[3];       /* the latest probe's closing characters */
-    unsigned marker_idx;
+    fbrl_link_probe probe;
     /* the command */
     char line[FBRL_LINK_LINE_MAX + 1]; /* canonical (upper-case) text */
     size_t len;
@@ -215,7 +224,6 @@ typedef struct fbrl_link {
     /* reply analysis */
     fbrl_rapl_reader rd; /* the reply, with its framing */
     int last_byte, prompt_seen, probe_out, probe_seen;
-    unsigned char tail[7];
     int err_state, err_code, out_bad, nvalues;
     unsigned stream_got;
     int stop_sent;
@@ -240,8 +248,6 @@ typedef struct fbrl_link {
     int maybe;       /* an earlier CR of it may have taken effect */
     int cr_pending;  /* this attempt's CR: neither reported nor disproven */
     int first_probe; /* the verify probe is the first since the CR */
-    int pe_state;    /* the verify probe's echo, parsed */
-    unsigned pe_k1, pe_sub;
     int known_err;                                /* the controller's LAST ERROR as last proven
                                               * (-1 NONE), -2 unknown */
     int settle_shaped;                            /* the reply being settled had an error shape */
