@@ -27,8 +27,6 @@
 enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
 enum { ST_MAIN, ST_ERRQ };
 enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
-/* known_err: the controller's LAST ERROR is not known */
-#define ERR_UNKNOWN (-2)
 /* What the controller was last seen doing (fbrl_link_outcome.seen). */
 enum {
     SEEN_NONE,
@@ -105,7 +103,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     l->ctrl_len = -1;
     l->phase = PH_IDLE;
     l->err_code = -1;
-    l->known_err = ERR_UNKNOWN;
+    l->known_err = FBRLI_ERR_UNKNOWN;
     return FBRL_OK;
 }
 
@@ -168,12 +166,7 @@ static void journal(fbrl_link *l, fbrl_status result)
 {
     l->cr_pending = 0;
     if (l->stage == ST_ERRQ) {
-        if (result == FBRL_OK)
-            l->settle_ok++;
-        else if (result == FBRL_EMAYBE)
-            l->settle_maybe++;
-        else
-            l->settle_bad++;
+        fbrli_settle_ran(&l->settle, result);
         return;
     }
     follow_units(l, result);
@@ -193,19 +186,15 @@ static void report_n(fbrl_link *l, unsigned n, fbrl_status result)
  * in the order the controller ran them; the link is back at the command. */
 static void settle_end(fbrl_link *l, fbrl_status result)
 {
-    for (size_t k = 0; k <= l->main_len; k++)
-        l->line[k] = l->main_line[k];
-    l->len = l->main_len;
-    l->kind = l->main_kind;
-    l->attempts = l->main_attempts;
+    fbrli_settle_end(&l->settle, l->line, &l->len, &l->kind, &l->attempts);
     l->stage = ST_MAIN;
     l->cr_pending = 0;
     follow_units(l, result);
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
-    report_n(l, l->settle_bad, FBRL_EPROTOCOL);
-    report_n(l, l->settle_maybe, FBRL_EMAYBE);
-    report_n(l, l->settle_ok, FBRL_OK);
+    report_n(l, l->settle.bad, FBRL_EPROTOCOL);
+    report_n(l, l->settle.maybe, FBRL_EMAYBE);
+    report_n(l, l->settle.ok, FBRL_OK);
 }
 
 /* The command has ended. A failure after a CR that may have taken effect is never
@@ -221,11 +210,11 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
             /* the command ran; its damaged reply could not be settled */
             if (l->cr_pending)
                 journal(l, FBRL_EMAYBE);
-            res = l->settle_shaped ? FBRL_ECONTROLLER : FBRL_EMAYBE;
+            res = l->settle.shaped ? FBRL_ECONTROLLER : FBRL_EMAYBE;
             l->err_code = -1;
             l->err_text[0] = '\0';
             l->seen = SEEN_UNSETTLED;
-            l->known_err = ERR_UNKNOWN;
+            l->known_err = FBRLI_ERR_UNKNOWN;
             settle_end(l, res);
         } else if (l->ran || l->maybe || l->cr_pending) {
             if (l->cr_pending) {
@@ -233,7 +222,7 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
                 journal(l, FBRL_EMAYBE);
             }
             res = FBRL_EMAYBE;
-            l->known_err = ERR_UNKNOWN;
+            l->known_err = FBRLI_ERR_UNKNOWN;
         }
     }
     if (res == FBRL_EMAYBE)
@@ -568,13 +557,7 @@ static fbrl_status run_status_query(fbrl_link *l)
 /* A command's reply was damaged: read STATUS to settle it (docs/link.md 3.5). */
 static fbrl_status begin_settle(fbrl_link *l)
 {
-    for (size_t k = 0; k <= l->len; k++)
-        l->main_line[k] = l->line[k];
-    l->main_len = l->len;
-    l->main_kind = l->kind;
-    l->main_attempts = l->attempts;
-    l->settle_shaped = l->err_state == ERR_GARBLED;
-    l->settle_ok = l->settle_bad = l->settle_maybe = 0;
+    fbrli_settle_begin(&l->settle, l->line, l->len, l->kind, l->attempts, l->err_state == ERR_GARBLED);
     l->stats.settled++;
     l->stats.error_queries++;
     return run_status_query(l);
@@ -590,10 +573,8 @@ static void set_error(fbrl_link *l, int code)
     l->err_text[k] = '\0';
 }
 
-/* STATUS's LAST ERROR settles a damaged reply: a code other than the one the link last
- * proved is this command's refusal; NONE means no command ever failed, so it
- * succeeded; the same code as before cannot tell success from the same refusal again,
- * and the command is reported "may have run" rather than guessed. */
+/* STATUS's LAST ERROR settles a damaged reply (fbrli_settle_verdict); a command safe to
+ * repeat that it cannot settle is run again. */
 static fbrl_status settle_read(fbrl_link *l)
 {
     if (!(l->st.have & FBRL_RAPL_ST_ERROR)) {
@@ -604,21 +585,13 @@ static fbrl_status settle_read(fbrl_link *l)
         return retype(l);
     }
     journal(l, FBRL_OK);
-    int last = l->st.last_error, before = l->known_err;
-    fbrl_status res;
-    if (l->settle_shaped)
-        res = last >= 0 ? FBRL_ECONTROLLER : FBRL_EMAYBE;
-    else if (last < 0)
-        res = FBRL_OK;
-    else if (before != ERR_UNKNOWN && last != before)
-        res = FBRL_ECONTROLLER;
-    else
-        res = FBRL_EMAYBE;
+    int last = l->st.last_error;
+    fbrl_status res = fbrli_settle_verdict(&l->settle, last, l->known_err);
     if (res == FBRL_ECONTROLLER)
         set_error(l, last);
     if (res == FBRL_EMAYBE)
         l->seen = SEEN_SAME_ERROR;
-    int again = res == FBRL_EMAYBE && l->safe && !l->settle_shaped && l->attempts < l->cfg.max_attempts;
+    int again = res == FBRL_EMAYBE && l->safe && !l->settle.shaped && l->attempts < l->cfg.max_attempts;
     /* it ran (it is settled because its reply came damaged): run again, that run is one
      * whose reply was damaged, as a query's (3.9) */
     settle_end(l, again ? FBRL_EPROTOCOL : res);
@@ -830,7 +803,7 @@ static fbrl_status clean_done(fbrl_link *l, int ctrl_len)
 static void saw_foreign(fbrl_link *l, uint8_t b)
 {
     if (b == '\r' || b == '\n' || (b == '>' && l->last_byte == '>'))
-        l->known_err = ERR_UNKNOWN;
+        l->known_err = FBRLI_ERR_UNKNOWN;
     l->last_byte = b;
 }
 

@@ -23,6 +23,25 @@ int fbrli_probe_answered(const fbrl_link_probe *p);
  * more: what the line held before it, plus that '?'); -1 when the echo was not whole. */
 long fbrli_probe_erased(const fbrl_link_probe *p);
 
+/* ---- link_settle.c: settling a damaged reply by STATUS (docs/link.md 3.5) ---- */
+
+/* The controller's LAST ERROR is not known (fbrl_link.known_err; -1 is NONE). */
+#define FBRLI_ERR_UNKNOWN (-2)
+
+/* The command whose reply is settled, kept while STATUS is read for it; shaped: its
+ * reply had an error line's shape. */
+void fbrli_settle_begin(fbrl_link_settle *s, const char *line, size_t len, fbrl_link_reply kind,
+                        unsigned attempts, int shaped);
+/* One STATUS read for it ran with this result (reported after the command). */
+void fbrli_settle_ran(fbrl_link_settle *s, fbrl_status result);
+/* The command back, as it was before the reads. */
+void fbrli_settle_end(const fbrl_link_settle *s, char *line, size_t *len, fbrl_link_reply *kind,
+                      unsigned *attempts);
+/* Its result from STATUS's LAST ERROR (-1 NONE) and the last the link proved before it:
+ * FBRL_OK, FBRL_ECONTROLLER (refused: that code), FBRL_EMAYBE (success and the same
+ * refusal look alike). */
+fbrl_status fbrli_settle_verdict(const fbrl_link_settle *s, int last_error, int known_err);
+
 /* ---- link_modes.c ---- */
 
 /* A line ran (FBRL_OK) while the controller's units were `units`: keep it if it sets a

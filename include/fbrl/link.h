@@ -197,6 +197,17 @@ typedef struct fbrl_link_probe {
     unsigned erased, sub;
 } fbrl_link_probe;
 
+/* The settling of a damaged reply (private, link_settle.c): the command while STATUS is
+ * read for it, and those reads (ran, damaged, may have run). */
+typedef struct fbrl_link_settle {
+    char line[FBRL_LINK_LINE_MAX + 1];
+    size_t len;
+    fbrl_link_reply kind;
+    unsigned attempts;
+    int shaped;
+    unsigned ok, bad, maybe;
+} fbrl_link_settle;
+
 /* A session. Caller-owned; every field is private. */
 typedef struct fbrl_link {
     fbrl_uart *u;
@@ -250,14 +261,9 @@ typedef struct fbrl_link {
     int first_probe; /* the verify probe is the first since the CR */
     int known_err;                                /* the controller's LAST ERROR as last proven
                                               * (-1 NONE), -2 unknown */
-    int settle_shaped;                            /* the reply being settled had an error shape */
-    unsigned settle_ok, settle_bad, settle_maybe; /* STATUS runs while settling */
     int seen;                                     /* what the controller was last seen doing */
     fbrl_status cause;
-    char main_line[FBRL_LINK_LINE_MAX + 1]; /* the command while STATUS settles it */
-    size_t main_len;
-    fbrl_link_reply main_kind;
-    unsigned main_attempts;
+    fbrl_link_settle settle;
     unsigned runs, maybe_runs; /* of the command (fbrl_link_outcome) */
     int own_report;            /* reporting the link's own STATUS reads to cfg.on_exec */
     int units; /* FBRL_LINK_UNITS_*: what the controller's lengths are, as last learned */
