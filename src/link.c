@@ -1,5 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* link.c - echo-verified RAPL session over an fbrl_uart (no OS header).
+/* link.c - the command machine of the echo-verified RAPL session over an fbrl_uart (no
+ * OS header): typing a command with echo checks, judging what the CR did, reading the
+ * reply, and the command's fate (docs/link.md 3).
  *
  * The controller (docs/rapl-commands.md 1) echoes every printable byte upper-cased,
  * erases with BS SP BS (one "triple" per erased character), ignores other control
@@ -10,12 +12,17 @@
  *  - after the CR, proof of execution is the controller's CR LF, its prompt, or three
  *    or more bytes (a line that did not end shows at most two stray bytes); without
  *    proof, a probe decides, and a CR is never sent twice;
- *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN mmm" whose
- *    echo "? (triples) ? BS SP BS mmm" proves the line now holds exactly "mmm". The
- *    markers change from probe to probe, so the echo of an older probe still on its
- *    way is never taken for the answer to the latest one.
+ *  - whenever the line's content is unknown it sends a probe (link_probe.c) whose echo
+ *    proves the line now holds exactly its three markers.
  * None of the bytes the link sends can turn into CR or LF by a single bit flip except
- * '-' (see docs/link.md): letters go out in lower case for that reason. */
+ * '-' (see docs/link.md): letters go out in lower case for that reason.
+ *
+ * The link's other files, each one idea: the reply's lines and framing are the reply
+ * reader's (rapl_reply.c); link_probe.c the probe; link_settle.c settling a damaged reply
+ * by STATUS; link_calls.c the blocking calls and the connect; link_aci.c the ACI switch;
+ * link_many.c many links from one thread; link_outcome.c what a command ended with;
+ * link_modes.c the session's modes; link_stop.c the safe stop; link_config.c the
+ * settings. */
 #include "link_internal.h"
 
 #include <math.h>
@@ -24,55 +31,14 @@
 #define BS  0x08
 #define XON 0x11
 
-enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
-enum { ST_MAIN, ST_ERRQ };
 enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
-/* What the controller was last seen doing (fbrl_link_outcome.seen). */
-enum {
-    SEEN_NONE,
-    SEEN_SILENT,
-    SEEN_AMBIGUOUS,
-    SEEN_STARTED,
-    SEEN_BUSY,
-    SEEN_UNREADABLE,
-    SEEN_UNSETTLED,
-    SEEN_SAME_ERROR
-};
-/* probe_out: what was sent after the CR and not yet answered */
-enum { PR_NONE, PR_IDLE, PR_VERIFY };
 
-void fbrl_link_config_init(fbrl_link_config *c)
-{
-    if (!c)
-        return;
-    c->form = FBRL_RAPL_KEYWORD;
-    c->lower_case = 1;
-    c->echo_timeout_ms = 100;
-    c->reply_timeout_ms = 5000;
-    c->wait_timeout_ms = 120000;
-    c->max_attempts = 12;
-    c->query_reads = 2;
-    c->naxes = 5;
-    c->arm = 0;
-    c->now_us = 0;
-    c->clock_ctx = 0;
-    c->on_exec = 0;
-    c->exec_ctx = 0;
-    c->on_line = 0;
-    c->line_ctx = 0;
-    c->aci = 0;
-    c->check_units = 1;
-    c->modes = 0;
-}
-
-static uint64_t now_us(const fbrl_link *l)
+uint64_t fbrli_link_now_us(const fbrl_link *l)
 {
     if (l->cfg.now_us)
         return l->cfg.now_us(l->cfg.clock_ctx);
     return l->u->ops->now_us(l->u->ctx);
 }
-
-static uint64_t ms(uint32_t v) { return (uint64_t)v * 1000u; }
 
 const fbrl_link_arm fbrl_link_arm_a255 = {5, {200.0, 200.0, 200.0, 44.44, 22.22}, 10.0, 10.0, 10.0, 2.0};
 
@@ -111,11 +77,11 @@ int fbrl_link_busy(const fbrl_link *l) { return l && l->busy; }
 
 /* ---- sending ---- */
 
-static fbrl_status send(fbrl_link *l, const uint8_t *p, size_t n)
+fbrl_status fbrli_link_send(fbrl_link *l, const uint8_t *p, size_t n)
 {
     size_t done = 0;
     fbrl_status st = fbrl_uart_write(l->u, p, n, &done, l->cfg.echo_timeout_ms);
-    l->t_last = now_us(l);
+    l->t_last = fbrli_link_now_us(l);
     return st;
 }
 
@@ -247,8 +213,8 @@ static fbrl_status send_probe(fbrl_link *l)
     size_t n = fbrli_probe_make(&l->probe, probe, l->xon_ok);
     l->stats.probes++;
     l->probes_here++;
-    l->t_probe = now_us(l);
-    return send(l, probe, n);
+    l->t_probe = fbrli_link_now_us(l);
+    return fbrli_link_send(l, probe, n);
 }
 
 static fbrl_status begin_erase(fbrl_link *l)
@@ -294,7 +260,7 @@ static fbrl_status begin_type(fbrl_link *l)
     l->expect = (size_t)l->lead + 3 * triples + l->len;
     l->phase = PH_TYPE;
     l->ctrl_len = -1; /* unknown until the echo is complete */
-    return send(l, out, n);
+    return fbrli_link_send(l, out, n);
 }
 
 static void begin_reply(fbrl_link *l)
@@ -313,7 +279,7 @@ static void begin_reply(fbrl_link *l)
     l->stop_sent = 0;
     fbrl_rapl_pos_init(&l->pos);
     fbrl_rapl_status_init(&l->st);
-    l->t_deadline = now_us(l) + ms(l->timeout_ms);
+    l->t_deadline = fbrli_link_now_us(l) + fbrli_ms(l->timeout_ms);
     /* the CR goes out now: until proof either way, this line may run */
     l->cr_pending = 1;
     l->first_probe = 0;
@@ -759,7 +725,7 @@ static fbrl_status stop_stream(fbrl_link *l)
     l->stop_sent++;
     if (l->stop_sent == 1 && l->probes_here == 0) {
         static const uint8_t cr = '\r';
-        return send(l, &cr, 1);
+        return fbrli_link_send(l, &cr, 1);
     }
     l->probe_out = PR_IDLE;
     l->probe_seen = 0;
@@ -780,7 +746,7 @@ static fbrl_status begin_clean(fbrl_link *l)
     l->match = 0;
     l->expect = 3u * MARKER_LEN;
     l->ctrl_len = -1;
-    fbrl_status st = send(l, &can, 1);
+    fbrl_status st = fbrli_link_send(l, &can, 1);
     if (st != FBRL_OK)
         return st;
     l->stats.cleans++;
@@ -811,12 +777,13 @@ static void saw_foreign(fbrl_link *l, uint8_t b)
  * does not make a silent controller one whose echo went wrong (gave_up()). */
 static int is_owed_gt(const fbrl_link *l, uint8_t b)
 {
-    return b == '>' && ((l->phase == PH_ERASE && l->owed) || (l->phase == PH_TYPE && l->lead && l->match == 0));
+    return b == '>' &&
+           ((l->phase == PH_ERASE && l->owed) || (l->phase == PH_TYPE && l->lead && l->match == 0));
 }
 
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
-    l->t_last = now_us(l);
+    l->t_last = fbrli_link_now_us(l);
     if (!is_owed_gt(l, b))
         l->heard = 1;
     switch (l->phase) {
@@ -852,7 +819,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         if (++l->match == l->expect) {
             static const uint8_t cr = '\r';
             begin_reply(l);
-            return send(l, &cr, 1);
+            return fbrli_link_send(l, &cr, 1);
         }
         return FBRL_OK;
     case PH_REPLY:
@@ -949,7 +916,7 @@ static int parity_error(fbrl_link *l)
  * motion answers none, so the interval doubles (4, 8, 16 ... echo timeouts, at most 2 s). */
 static uint64_t probe_interval(const fbrl_link *l)
 {
-    uint64_t iv = ms(4 * l->cfg.echo_timeout_ms);
+    uint64_t iv = fbrli_ms(4 * l->cfg.echo_timeout_ms);
     for (unsigned k = 1; k < l->probes_here && iv < 2000000u; k++)
         iv *= 2;
     return iv < 2000000u ? iv : 2000000u;
@@ -1017,10 +984,10 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
         *done = 1;
         return l->result;
     }
-    uint64_t start = now_us(l), budget = ms(timeout_ms);
+    uint64_t start = fbrli_link_now_us(l), budget = fbrli_ms(timeout_ms);
     for (;;) {
-        uint64_t t = now_us(l);
-        uint64_t quiet_end = l->t_last + ms(l->cfg.echo_timeout_ms);
+        uint64_t t = fbrli_link_now_us(l);
+        uint64_t quiet_end = l->t_last + fbrli_ms(l->cfg.echo_timeout_ms);
         if ((l->phase == PH_REPLY || l->phase == PH_VERIFY) && t >= l->t_deadline) {
             l->ctrl_len = -1;
             if (l->seen == SEEN_STARTED && l->probes_here > 0)
@@ -1117,7 +1084,8 @@ static fbrl_status check_line(const char *line, size_t *len)
     return FBRL_OK;
 }
 
-static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms, int safe)
+fbrl_status fbrli_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms,
+                             int safe)
 {
     size_t n;
     if (!l || !l->u)
@@ -1154,39 +1122,7 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     return l->ctrl_len >= 0 ? begin_type(l) : begin_erase(l);
 }
 
-static int is_name_char(char c)
-{
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-}
-
-int fbrl_link_line_safe(const char *line)
-{
-    fbrl_rapl_cmd c;
-    const char *eq = 0;
-    if (fbrl_rapl_line_cmd(line, &c, &eq) != FBRL_OK)
-        return 0;
-    if (c != FBRL_RAPL_ASSIGN)
-        return (fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_SAFE) != 0;
-    /* NAME=value: safe unless the value names NAME (V1=V1+1 counts) */
-    const char *name = line;
-    while (*name == ' ')
-        name++;
-    size_t n = 0;
-    while (is_name_char(name[n]))
-        n++;
-    if (n == 0)
-        return 0;
-    for (const char *p = eq + 1; *p; p++) {
-        if (is_name_char(*p) && (p == eq + 1 || !is_name_char(p[-1]))) {
-            size_t k = 0;
-            while (k < n && is_name_char(p[k]) && upper(p[k]) == upper(name[k]))
-                k++;
-            if (k == n && !is_name_char(p[k]))
-                return 0;
-        }
-    }
-    return 1;
-}
+int fbrl_link_line_safe(const char *line) { return fbrl_rapl_line_safe(line); }
 
 /* The deadline for the prompt: long for what the table says may wait, and for lines
  * the link cannot classify. */
@@ -1202,285 +1138,7 @@ fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind
 {
     if (!l || !line || (int)kind < 0 || kind > FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL;
-    return start(l, line, kind, timeout_for_line(l, line), fbrl_link_line_safe(line));
-}
-
-static fbrl_status run(fbrl_link *l)
-{
-    for (;;) {
-        int done = 0;
-        fbrl_status st = fbrl_link_poll(l, 1000, &done);
-        if (done)
-            return st;
-    }
-}
-
-/* ---- the ACI switch (connect only; research notes 2.5, S2's ACI_to_Term) ---- */
-
-#define ACI_SLAVE   0x21 /* slave 1 + 0x20 */
-#define ACI_TO_TERM 0x48
-#define ACI_PKT_LEN 13 /* SOH dst src op cmd, 6 data, ETX, checksum */
-
-/* Reads exactly n bytes within timeout_ms; how many came. */
-static size_t aci_read(fbrl_link *l, uint8_t *buf, size_t n, uint32_t timeout_ms)
-{
-    uint64_t end = now_us(l) + (uint64_t)timeout_ms * 1000u;
-    size_t got = 0;
-    while (got < n) {
-        uint64_t t = now_us(l);
-        size_t k = 0;
-        if (t >= end)
-            break;
-        if (fbrl_uart_read(l->u, buf + got, n - got, &k, (uint32_t)((end - t + 999) / 1000)) != FBRL_OK && !k)
-            break;
-        got += k;
-    }
-    return got;
-}
-
-static int aci_step(fbrl_link *l, const uint8_t *out, size_t n, const uint8_t *want, size_t wn)
-{
-    uint8_t got[8];
-    if (send(l, out, n) != FBRL_OK)
-        return 0;
-    if (aci_read(l, got, wn, l->cfg.reply_timeout_ms) != wn)
-        return 0;
-    for (size_t i = 0; i < wn; i++)
-        if (got[i] != want[i])
-            return 0;
-    return 1;
-}
-
-/* Switches a controller in ACI mode to terminal mode. One in terminal mode echoes the
- * selection 'R' '!' (not its ENQ) instead of acknowledging it: the two are erased. */
-static fbrl_status aci_to_terminal(fbrl_link *l)
-{
-    static const uint8_t sel[] = {'R', ACI_SLAVE, 0x05};
-    static const uint8_t pkt_ack[] = {0x06, 0x02, 0x03, 0x00}, ack[] = {0x06}, eot[] = {0x04};
-    static const uint8_t erase[] = {0x08, 0x08};
-    uint8_t pkt[ACI_PKT_LEN] = {0x01, ACI_SLAVE, ACI_SLAVE, 0x00, ACI_TO_TERM, 0, 0, 0, 0, 0, 0, 0x03, 0};
-    uint8_t junk[16], b, last;
-    unsigned sum = 0;
-    int seen = 0, heard = 0, acked = 0; /* seen: 1 after 'R', 2 after 'R' '!' */
-    size_t k;
-    while (fbrl_uart_read(l->u, junk, sizeof junk, &k, 0) == FBRL_OK && k)
-        ; /* what came before (a greeting, old output) is not the answer */
-    if (send(l, sel, sizeof sel) != FBRL_OK)
-        return FBRL_EIO;
-    uint64_t end = now_us(l) + (uint64_t)l->cfg.reply_timeout_ms * 1000u;
-    for (;;) {
-        uint64_t t = now_us(l);
-        /* after "R!" the ACK comes at once or never (a terminal-mode echo) */
-        uint32_t wait = seen == 2 ? l->cfg.echo_timeout_ms : t < end ? (uint32_t)((end - t + 999) / 1000) : 0;
-        if (!wait || aci_read(l, &b, 1, wait) != 1)
-            break;
-        heard = 1;
-        if (seen == 2 && b == 0x06) {
-            acked = 1;
-            break;
-        }
-        seen = b == 'R' ? 1 : seen == 1 && b == ACI_SLAVE ? 2 : 0;
-    }
-    if (!acked) {
-        if (!heard)
-            return FBRL_ETIMEOUT; /* nothing answers */
-        /* terminal mode: "R!" was typed; erase it and let its echo pass */
-        if (send(l, erase, sizeof erase) != FBRL_OK)
-            return FBRL_EIO;
-        while (fbrl_uart_read(l->u, junk, sizeof junk, &k, l->cfg.echo_timeout_ms) == FBRL_OK && k)
-            ;
-        return FBRL_OK;
-    }
-    for (size_t i = 1; i < ACI_PKT_LEN - 2; i++) /* the bytes between SOH and ETX, mod 256 */
-        sum += pkt[i];
-    pkt[ACI_PKT_LEN - 1] = (uint8_t)(sum & 0xFFu);
-    if (!aci_step(l, pkt, sizeof pkt, pkt_ack, sizeof pkt_ack) ||
-        !aci_step(l, ack, sizeof ack, eot, sizeof eot))
-        return FBRL_EPROTOCOL;
-    if (send(l, eot, sizeof eot) != FBRL_OK || aci_read(l, &last, 1, l->cfg.reply_timeout_ms) != 1)
-        return FBRL_EPROTOCOL; /* the controller's last byte of the switch, discarded */
-    return FBRL_OK;
-}
-
-/* The connect's STATUS lines: only an undamaged one is parsed (its units line decides). */
-static void units_line(void *ctx, const char *s, size_t n, int flawed)
-{
-    if (!flawed)
-        (void)fbrl_rapl_status_line(ctx, s, n);
-}
-
-/* The controller's units, at connect (docs/link.md 1): STATUS shown as it comes (some 700
- * bytes, 0.75 s at 9600 baud), its lines not the caller's. An undamaged units line decides,
- * wherever it came (also in a settling read): no damage makes one of the other. STATUS is
- * read-only, so a reply whose units line came damaged is simply read again; one that came
- * whole without that line means inches (the controller's default). */
-static fbrl_status read_units(fbrl_link *l)
-{
-    fbrl_link_line_fn fn = l->cfg.on_line;
-    void *ctx = l->cfg.line_ctx;
-    fbrl_rapl_status_info si;
-    fbrl_status st = FBRL_OK;
-    l->cfg.on_line = units_line;
-    l->cfg.line_ctx = &si;
-    for (unsigned k = 0; k < l->cfg.max_attempts; k++) {
-        uint64_t settled = l->stats.settled;
-        fbrl_rapl_status_init(&si);
-        st = start(l, "STATUS", FBRL_LINK_REPLY_LINES, l->cfg.reply_timeout_ms, 1);
-        if (st == FBRL_OK)
-            st = run(l);
-        if (si.have & FBRL_RAPL_ST_UNITS) {
-            l->units = si.metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
-            break;
-        }
-        if (st == FBRL_OK && l->stats.settled == settled) {
-            l->units = FBRL_LINK_UNITS_INCH; /* whole, and no units line */
-            break;
-        }
-        if (st != FBRL_OK && st != FBRL_EMAYBE && st != FBRL_EPROTOCOL && st != FBRL_ECONTROLLER)
-            break; /* did not run: the controller does not answer */
-    }
-    l->cfg.on_line = fn;
-    l->cfg.line_ctx = ctx;
-    return l->units != FBRL_LINK_UNITS_UNKNOWN ? FBRL_OK : st != FBRL_OK ? st : FBRL_EPROTOCOL;
-}
-
-fbrl_status fbrl_link_connect(fbrl_link *l)
-{
-    if (!l || !l->u)
-        return FBRL_EINVAL;
-    l->ctrl_len = -1;
-    l->units = FBRL_LINK_UNITS_UNKNOWN;
-    if (l->cfg.aci) {
-        fbrl_status sw = aci_to_terminal(l);
-        if (sw != FBRL_OK)
-            return sw;
-    }
-    fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms, 1);
-    if (st == FBRL_OK)
-        st = run(l);
-    if (st != FBRL_OK || !l->cfg.check_units)
-        return st;
-    st = read_units(l);
-    if (st != FBRL_OK)
-        return st;
-    return l->units == FBRL_LINK_UNITS_MM ? FBRL_EUNITS : FBRL_OK;
-}
-
-fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                          int straight)
-{
-    char text[FBRL_RAPL_LINE_MAX];
-    size_t n;
-    if (!l)
-        return FBRL_EINVAL;
-    fbrl_status st = fbrl_rapl_encode(text, sizeof text, &n, l->cfg.form, cmd, args, nargs, straight);
-    if (st != FBRL_OK)
-        return st;
-    if (n > FBRL_LINK_LINE_MAX)
-        return FBRL_ERANGE;
-    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
-    if (ci->reply == FBRL_LINK_REPLY_STREAM)
-        return FBRL_EINVAL; /* fbrl_link_stream() */
-    st = start(l, text, ci->reply,
-               (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
-               (ci->flags & FBRL_RAPL_F_SAFE) != 0);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
-{
-    fbrl_rapl_cmd c;
-    fbrl_link_reply kind = FBRL_LINK_REPLY_LINES;
-    if (!l || !line)
-        return FBRL_EINVAL;
-    if (fbrl_rapl_line_cmd(line, &c, 0) == FBRL_OK)
-        kind = fbrl_rapl_cmd_info(c)->reply;
-    if (kind == FBRL_LINK_REPLY_STREAM)
-        return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
-    fbrl_status st = fbrl_link_start(l, line, kind);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_finish(fbrl_link *l) { return fbrl_link_cmd(l, FBRL_RAPL_FINISH, 0, 0, 0); }
-
-fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out)
-{
-    if (cmd != FBRL_RAPL_W0 && cmd != FBRL_RAPL_W2 && cmd != FBRL_RAPL_W4)
-        return FBRL_EINVAL;
-    fbrl_status st = fbrl_link_cmd(l, cmd, 0, 0, 0);
-    if (st == FBRL_OK && out)
-        *out = l->pos;
-    return st;
-}
-
-fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out)
-{
-    fbrl_status st = fbrl_link_cmd(l, FBRL_RAPL_STATUS, 0, 0, 0);
-    if (st == FBRL_OK && out)
-        *out = l->st;
-    return st;
-}
-
-int fbrl_link_units(const fbrl_link *l) { return l ? l->units : FBRL_LINK_UNITS_UNKNOWN; }
-
-static fbrl_status type_value(fbrl_link *l, const char *kw, const char *expr, fbrl_link_reply kind)
-{
-    char text[FBRL_LINK_LINE_MAX + 1];
-    size_t n = 0;
-    if (!l || !expr)
-        return FBRL_EINVAL;
-    while (*kw)
-        text[n++] = *kw++;
-    text[n++] = ' ';
-    for (; *expr; expr++) {
-        if (n >= FBRL_LINK_LINE_MAX || *expr == ',')
-            return FBRL_EINVAL;
-        text[n++] = *expr;
-    }
-    text[n] = '\0';
-    fbrl_status st = start(l, text, kind, l->cfg.reply_timeout_ms, 1); /* read-only */
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value)
-{
-    if (!value)
-        return FBRL_EINVAL;
-    fbrl_status st = type_value(l, "TYPEI", expr, FBRL_LINK_REPLY_INT);
-    if (st == FBRL_OK)
-        *value = l->ival;
-    return st;
-}
-
-fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value)
-{
-    if (!value)
-        return FBRL_EINVAL;
-    fbrl_status st = type_value(l, "TYPEV", expr, FBRL_LINK_REPLY_REAL);
-    if (st == FBRL_OK)
-        *value = l->rval;
-    return st;
-}
-
-fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on)
-{
-    char expr[8] = "SIG(";
-    long v;
-    if (!on || n < 1 || n > 16)
-        return n < 1 || n > 16 ? FBRL_ERANGE : FBRL_EINVAL;
-    size_t k = 4;
-    if (n >= 10)
-        expr[k++] = (char)('0' + n / 10);
-    expr[k++] = (char)('0' + n % 10);
-    expr[k++] = ')';
-    expr[k] = '\0';
-    fbrl_status st = fbrl_link_typei(l, expr, &v);
-    if (st == FBRL_OK) {
-        if (v != 0 && v != 1)
-            return FBRL_EPROTOCOL;
-        *on = (int)v;
-    }
-    return st;
+    return fbrli_link_start(l, line, kind, timeout_for_line(l, line), fbrl_link_line_safe(line));
 }
 
 fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
@@ -1496,229 +1154,7 @@ fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lin
     if (st != FBRL_OK)
         return st;
     l->stream_lines = lines;
-    return start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u, 1);
-}
-
-fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
-{
-    fbrl_status st = fbrl_link_start_stream(l, cmd, lines);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_modes_resend(fbrl_link *l, size_t *sent)
-{
-    size_t n = 0;
-    fbrl_status st = FBRL_OK;
-    if (sent)
-        *sent = 0;
-    if (!l)
-        return FBRL_EINVAL;
-    fbrl_link_modes *m = l->cfg.modes;
-    l->cfg.modes = 0; /* GAIN 0,v would clear the other gains before they are sent */
-    for (const char *line; st == FBRL_OK && (line = fbrl_link_modes_line(m, n)) != 0; n += st == FBRL_OK) {
-        int typed = fbrli_link_modes_units(m, n);
-        st = typed != FBRLI_NO_LENGTHS && typed != l->units ? FBRL_EUNITS : fbrl_link_raw(l, line);
-    }
-    l->cfg.modes = m;
-    if (sent)
-        *sent = n;
-    return st;
-}
-
-/* ---- many links from one thread (fbrl_link_poll_many) ---- */
-
-/* When fbrl_link_poll() acts on l with no byte arriving: the silence and deadline checks
- * at its top. */
-static uint64_t due_at(const fbrl_link *l)
-{
-    uint64_t t = l->t_last + ms(l->cfg.echo_timeout_ms);
-    if ((l->phase == PH_REPLY || l->phase == PH_VERIFY) && l->t_deadline < t)
-        t = l->t_deadline;
-    return t;
-}
-
-/* Byte times that must pass, counted from t_last, before all l waits for can be in on
- * a line that carries one character per byte time:
- *  - typing, nothing back yet (t_last = the send): the first character must reach the
- *    controller before its echo starts, then the whole echo crosses: expect + 1 (expect
- *    when it starts with an owed '>', already on its way);
- *  - after the CR, nothing back yet: the CR, then the shortest reply the link can finish
- *    on ("CR LF >", 3.10);
- *  - part of either in: the rest, less one (the next byte may be on its way already).
- * 0 otherwise: any byte may be the one l waits for. */
-#define MIN_REPLY_BYTES 3u
-static size_t awaited(const fbrl_link *l)
-{
-    if (l->phase == PH_TYPE && l->expect > l->match)
-        return l->match == 0 ? l->expect + 1 - (size_t)l->lead : l->expect - l->match - 1;
-    if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
-        l->rd.bytes < MIN_REPLY_BYTES)
-        return l->rd.bytes == 0 ? 1 + MIN_REPLY_BYTES : MIN_REPLY_BYTES - l->rd.bytes - 1;
-    return 0;
-}
-
-/* Microseconds one character takes on l's line (start, data, parity and stop bits). */
-static uint64_t byte_us(const fbrl_link *l)
-{
-    fbrl_uart_config c;
-    if (fbrl_uart_get_config(l->u, &c) != FBRL_OK || c.baud == 0)
-        return 0;
-    unsigned bits = 1u + c.data_bits + (c.parity != FBRL_PARITY_NONE) + c.stop_bits;
-    return (uint64_t)bits * 1000000u / c.baud;
-}
-
-/* Nothing l waits for can be complete before this: the line carries one character per
- * byte time. Until then l's port is not watched (no wake-up per byte). Half a byte time
- * more: characters arrive a little after their line time (the sender is scheduled too),
- * and a look just before the last one only costs a second wake-up for it. */
-static uint64_t not_before(const fbrl_link *l)
-{
-    size_t r = awaited(l);
-    uint64_t bt = byte_us(l);
-    return r > 0 ? l->t_last + (uint64_t)r * bt + bt / 2 : 0;
-}
-
-fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index)
-{
-    if (!links || !index)
-        return FBRL_EINVAL;
-    *index = n;
-    if (n > FBRL_LINK_POLL_MANY_MAX)
-        return FBRL_EINVAL;
-    const fbrl_link *first = 0;
-    for (size_t k = 0; k < n && !first; k++)
-        if (links[k] && links[k]->busy)
-            first = links[k];
-    if (!first)
-        return FBRL_EEMPTY;
-    fbrl_uart *ports[FBRL_LINK_POLL_MANY_MAX];
-    unsigned char flags[FBRL_LINK_POLL_MANY_MAX];
-    size_t which[FBRL_LINK_POLL_MANY_MAX], order[FBRL_LINK_POLL_MANY_MAX];
-    uint64_t end = now_us(first) + ms(timeout_ms);
-    int waited = 0;
-    for (;;) {
-        /* Serve every link that has bytes or a timer due, the one idle longest first (its
-         * last activity, t_last, is the oldest): no link waits behind the same others
-         * twice, whatever its place in the array. */
-        uint64_t t = now_us(first);
-        size_t nw = 0;
-        for (size_t k = 0; k < n; k++) {
-            const fbrl_link *l = links[k];
-            if (!l || !l->busy || (fbrl_uart_rx_available(l->u) == 0 && due_at(l) > t))
-                continue;
-            size_t j = nw++;
-            for (; j > 0 && links[order[j - 1]]->t_last > l->t_last; j--)
-                order[j] = order[j - 1];
-            order[j] = k;
-        }
-        for (size_t j = 0; j < nw; j++) {
-            int done = 0;
-            fbrl_status st = fbrl_link_poll(links[order[j]], 0, &done);
-            if (done) {
-                *index = order[j];
-                return st;
-            }
-        }
-        if (waited && t >= end)
-            return FBRL_ETIMEOUT;
-        /* Wait on all ports at once until the first one can have what its link awaits,
-         * or the first timer; ports whose replies cannot be complete yet only move
-         * output. After serving some links, only collect what arrived meanwhile. */
-        uint64_t wake = end;
-        size_t np = 0;
-        for (size_t k = 0; k < n; k++) {
-            const fbrl_link *l = links[k];
-            if (!l || !l->busy)
-                continue;
-            uint64_t due = due_at(l), nb = not_before(l);
-            if (due < wake)
-                wake = due;
-            if (nb > t && nb < wake)
-                wake = nb;
-            ports[np] = l->u;
-            flags[np] = nb <= t ? FBRL_UART_WAIT_RX : 0;
-            which[np++] = k;
-        }
-        uint64_t left = nw > 0 || wake <= t ? 0 : wake - t;
-        fbrl_status st =
-            fbrl_uart_wait_any(ports, np, left > UINT32_MAX ? UINT32_MAX : (uint32_t)left, flags);
-        waited = 1;
-        if (st != FBRL_OK) {
-            /* the ports cannot be waited on together: let each link meet the error */
-            for (size_t j = 0; j < np; j++) {
-                int done = 0;
-                fbrl_status s2 = fbrl_link_poll(links[which[j]], 0, &done);
-                if (done) {
-                    *index = which[j];
-                    return s2;
-                }
-            }
-        }
-    }
-}
-
-fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    int have = l->result == FBRL_ECONTROLLER;
-    if (code)
-        *code = have ? l->err_code : -1;
-    if (text)
-        *text = !have ? "" : l->err_code >= 0 ? l->err_text : "code unknown";
-    return FBRL_OK;
-}
-
-fbrl_link_fate fbrl_link_fate_of(fbrl_status result)
-{
-    switch (result) {
-    case FBRL_OK: return FBRL_LINK_RAN;
-    case FBRL_ECONTROLLER: return FBRL_LINK_REFUSED;
-    case FBRL_EMAYBE: return FBRL_LINK_MAY_HAVE_RUN;
-    default: return FBRL_LINK_NOT_RUN;
-    }
-}
-
-/* Short: fbrlmon puts it in a one-line message. */
-static const char *seen_text(int seen)
-{
-    switch (seen) {
-    case SEEN_SILENT: return "nothing came back after its CR";
-    case SEEN_AMBIGUOUS: return "its CR may not have arrived (reply and probe damaged)";
-    case SEEN_STARTED: return "it started; its reply stopped before the prompt";
-    case SEEN_BUSY: return "it started and was still busy";
-    case SEEN_UNREADABLE: return "it ran; no reply could be believed (damaged, or never twice the same)";
-    case SEEN_UNSETTLED: return "it ran; reply damaged, STATUS unreadable";
-    case SEEN_SAME_ERROR: return "it ran; reply damaged, STATUS shows the earlier error";
-    default: return "it was not sent";
-    }
-}
-
-fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out)
-{
-    if (!l || !out)
-        return FBRL_EINVAL;
-    if (l->busy)
-        return FBRL_ESTATE;
-    out->fate = l->stats.commands ? fbrl_link_fate_of(l->result) : FBRL_LINK_FATE_NONE;
-    out->status = l->result;
-    out->cause = l->cause;
-    out->code = l->result == FBRL_ECONTROLLER ? l->err_code : -1;
-    out->seen = seen_text(l->seen);
-    out->runs = l->runs;
-    out->maybe_runs = l->maybe_runs;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    if (runs)
-        *runs = l->own_report ? 0 : l->runs;
-    if (maybe_runs)
-        *maybe_runs = l->own_report ? 0 : l->maybe_runs;
-    return FBRL_OK;
+    return fbrli_link_start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u, 1);
 }
 
 fbrl_status fbrl_link_clear_line(fbrl_link *l)
@@ -1738,88 +1174,7 @@ fbrl_status fbrl_link_clear_line(fbrl_link *l)
         if (got != 1 || b != '>')
             l->ctrl_len = -1;
     }
-    fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : send(l, &can, 1);
+    fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : fbrli_link_send(l, &can, 1);
     l->ctrl_len = -1;
     return st;
-}
-
-fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
-                                       fbrl_link_line_fn *old_fn, void **old_ctx)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    if (old_fn)
-        *old_fn = l->cfg.on_line;
-    if (old_ctx)
-        *old_ctx = l->cfg.line_ctx;
-    l->cfg.on_line = fn;
-    l->cfg.line_ctx = ctx;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
-                                       fbrl_link_exec_fn *old_fn, void **old_ctx)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    if (old_fn)
-        *old_fn = l->cfg.on_exec;
-    if (old_ctx)
-        *old_ctx = l->cfg.exec_ctx;
-    l->cfg.on_exec = fn;
-    l->cfg.exec_ctx = ctx;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
-{
-    if (!l || !form)
-        return FBRL_EINVAL;
-    *form = l->cfg.form;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes)
-{
-    if (!l || !naxes)
-        return FBRL_EINVAL;
-    *naxes = l->cfg.naxes;
-    return FBRL_OK;
-}
-
-const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
-const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
-
-/* The last command has finished, succeeded and gave a reply of this kind. */
-static int reply_is(const fbrl_link *l, fbrl_link_reply kind)
-{
-    return !l->busy && l->result == FBRL_OK && l->kind == kind;
-}
-
-fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v)
-{
-    if (!l || !v)
-        return FBRL_EINVAL;
-    if (!reply_is(l, FBRL_LINK_REPLY_INT))
-        return FBRL_ESTATE;
-    *v = l->ival;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v)
-{
-    if (!l || !v)
-        return FBRL_EINVAL;
-    if (!reply_is(l, FBRL_LINK_REPLY_REAL))
-        return FBRL_ESTATE;
-    *v = l->rval;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out)
-{
-    if (!l || !out)
-        return FBRL_EINVAL;
-    *out = l->stats;
-    return FBRL_OK;
 }

@@ -5,6 +5,43 @@
 
 #include "fbrl/link.h"
 
+/* ---- link.c: the command machine ---- */
+
+/* What the link is doing with the command (fbrl_link.phase). */
+enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
+/* Which line it runs: the caller's, or a STATUS that settles its damaged reply. */
+enum { ST_MAIN, ST_ERRQ };
+/* What was sent after the CR and not answered yet (fbrl_link.probe_out). */
+enum { PR_NONE, PR_IDLE, PR_VERIFY };
+/* What the controller was last seen doing (fbrl_link.seen, fbrl_link_outcome.seen). */
+enum {
+    SEEN_NONE,
+    SEEN_SILENT,
+    SEEN_AMBIGUOUS,
+    SEEN_STARTED,
+    SEEN_BUSY,
+    SEEN_UNREADABLE,
+    SEEN_UNSETTLED,
+    SEEN_SAME_ERROR
+};
+
+static inline uint64_t fbrli_ms(uint32_t v) { return (uint64_t)v * 1000u; }
+/* The link's clock: cfg.now_us, or the uart backend's. */
+uint64_t fbrli_link_now_us(const fbrl_link *l);
+/* Write bytes to the uart (within echo_timeout_ms); the link's last activity is now. */
+fbrl_status fbrli_link_send(fbrl_link *l, const uint8_t *p, size_t n);
+/* Begin a command (fbrl_link_start with the prompt's deadline and whether it is safe to
+ * type twice given, as the table says them). */
+fbrl_status fbrli_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms,
+                             int safe);
+
+/* ---- link_aci.c ---- */
+
+/* Switch a controller in ACI mode to terminal mode (one already in terminal mode: the
+ * switch's first bytes are erased again). FBRL_ETIMEOUT nothing answers, FBRL_EPROTOCOL a
+ * wrong answer, FBRL_EIO the port failed. */
+fbrl_status fbrli_link_aci_switch(fbrl_link *l);
+
 /* ---- link_probe.c: the probe and the parse of its echo (docs/link.md 3.3) ---- */
 
 #define FBRLI_PROBE_MAX 8 /* bytes of a probe: [XON] ? CAN ? CAN m m m */

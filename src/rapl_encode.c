@@ -169,6 +169,37 @@ fbrl_status fbrl_rapl_line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char 
     return FBRL_ENOENT;
 }
 
+static int is_name_char(char c) { return is_alpha(c) || is_digit(c) || c == '_'; }
+
+int fbrl_rapl_line_safe(const char *line)
+{
+    fbrl_rapl_cmd c;
+    const char *eq = 0;
+    if (fbrl_rapl_line_cmd(line, &c, &eq) != FBRL_OK)
+        return 0;
+    if (c != FBRL_RAPL_ASSIGN)
+        return (fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_SAFE) != 0;
+    /* NAME=value: safe unless the value names NAME (V1=V1+1 counts) */
+    const char *name = line;
+    while (*name == ' ')
+        name++;
+    size_t n = 0;
+    while (is_name_char(name[n]))
+        n++;
+    if (n == 0)
+        return 0;
+    for (const char *p = eq + 1; *p; p++) {
+        if (is_name_char(*p) && (p == eq + 1 || !is_name_char(p[-1]))) {
+            size_t k = 0;
+            while (k < n && is_name_char(p[k]) && upper(p[k]) == upper(name[k]))
+                k++;
+            if (k == n && !is_name_char(p[k]))
+                return 0;
+        }
+    }
+    return 1;
+}
+
 fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok)
 {
     if (!name)
@@ -182,7 +213,7 @@ fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok)
         return FBRL_ENAME;
     size_t n = 0;
     for (; name[n]; n++)
-        if (n >= NAME_MAX_CHARS || !(is_alpha(name[n]) || is_digit(name[n]) || name[n] == '_'))
+        if (n >= NAME_MAX_CHARS || !is_name_char(name[n]))
             return FBRL_ENAME;
     return FBRL_OK;
 }

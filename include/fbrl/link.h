@@ -174,11 +174,11 @@ typedef struct fbrl_link_stats {
 /* The last command's outcome, for messages. */
 typedef struct fbrl_link_outcome {
     fbrl_link_fate fate;
-    fbrl_status status; /* the command's result */
-    fbrl_status cause;  /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
+    fbrl_status status;  /* the command's result */
+    fbrl_status cause;   /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
                           * FBRL_EPROTOCOL ...); FBRL_OK when it did */
-    int code;           /* REFUSED: the controller's code, -1 unknown */
-    const char *seen;   /* what the controller was last seen doing, in plain words
+    int code;            /* REFUSED: the controller's code, -1 unknown */
+    const char *seen;    /* what the controller was last seen doing, in plain words
                           * ("it had started the line; its reply was cut off"); never NULL */
     unsigned runs;       /* times the line ran on the controller, proven: 1, or more when the
                           * link typed it again (a safe command whose reply came damaged and
@@ -253,20 +253,18 @@ typedef struct fbrl_link {
     fbrl_status result;
     int busy;
     fbrl_link_stats stats;
-    /* fates (docs/link.md 3.9) */
-    int safe;        /* the command may be typed again */
-    int ran;         /* a CR of it took effect (proven) */
-    int maybe;       /* an earlier CR of it may have taken effect */
-    int cr_pending;  /* this attempt's CR: neither reported nor disproven */
-    int first_probe; /* the verify probe is the first since the CR */
-    int known_err;                                /* the controller's LAST ERROR as last proven
-                                              * (-1 NONE), -2 unknown */
-    int seen;                                     /* what the controller was last seen doing */
+    /* fates (docs/link.md 3.9): the command may be typed again (safe); a CR of it took
+     * effect (ran) or an earlier one may have (maybe); this attempt's CR is neither
+     * reported nor disproven (cr_pending); the verify probe is the first since the CR */
+    int safe, ran, maybe, cr_pending, first_probe;
+    /* the controller's LAST ERROR as last proven (-1 NONE, -2 unknown); what it was last
+     * seen doing; why the command did not end normally */
+    int known_err, seen;
     fbrl_status cause;
     fbrl_link_settle settle;
     unsigned runs, maybe_runs; /* of the command (fbrl_link_outcome) */
     int own_report;            /* reporting the link's own STATUS reads to cfg.on_exec */
-    int units; /* FBRL_LINK_UNITS_*: what the controller's lengths are, as last learned */
+    int units;                 /* FBRL_LINK_UNITS_*: the controller's, as last learned */
 } fbrl_link;
 
 /* The controller's units of length (fbrl_link_units): learned from a STATUS that the

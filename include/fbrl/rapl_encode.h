@@ -166,6 +166,11 @@ FBRL_API fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd)
  * name), FBRL_EINVAL for NULL. The one place every part of the library asks this. */
 FBRL_API fbrl_status fbrl_rapl_line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **args);
 
+/* Is this line safe to type twice (docs/link.md 3.9)? A table command says it in the table
+ * (FBRL_RAPL_F_SAFE); an assignment is safe unless its value reads its own target
+ * (V1=V1+1, a counter); anything the table cannot name is not. */
+FBRL_API int fbrl_rapl_line_safe(const char *line);
+
 typedef enum fbrl_rapl_argkind { FBRL_RAPL_ARG_INT, FBRL_RAPL_ARG_REAL, FBRL_RAPL_ARG_STR } fbrl_rapl_argkind;
 
 /* One argument. Use the helpers below to build them. */

@@ -376,17 +376,8 @@ fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link
 /* Is line a read-only query the link would read twice (W0 W2 W4 STATUS TYPEI TYPEV)? */
 static int display_query(const char *line)
 {
-    char word[12];
-    size_t k = 0;
     fbrl_rapl_cmd c;
-    while (*line == ' ')
-        line++;
-    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = '\0';
-    if (fbrl_rapl_cmd_find(word, &c) != FBRL_OK)
+    if (fbrl_rapl_line_cmd(line, &c, NULL) != FBRL_OK)
         return 0;
     fbrl_rapl_reply kind = fbrl_rapl_cmd_info(c)->reply; /* the table says what it prints */
     return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
@@ -396,27 +387,19 @@ static int display_query(const char *line)
  * noted), or a command the host cannot name (which might move the arm). */
 static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
 {
-    char word[16];
-    size_t k = 0;
     fbrl_rapl_cmd cmd;
-    while (*line == ' ')
-        line++;
-    while (k + 1 < sizeof word && line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=') {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = 0;
+    const char *args;
     *motion = *finish = 0;
-    if (line[k] == '=')
-        return; /* an assignment */
-    if (fbrl_rapl_cmd_find(word, &cmd) != FBRL_OK) {
+    if (fbrl_rapl_line_cmd(line, &cmd, &args) != FBRL_OK) {
         *motion = 1;
         return;
     }
+    if (cmd == FBRL_RAPL_ASSIGN)
+        return;
     *motion = (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN;
     *finish = cmd == FBRL_RAPL_FINISH;
     if (cmd == FBRL_RAPL_OUTPUT)
-        for (const char *p = line + k; *p; p++)
+        for (const char *p = args - 1; *p; p++)
             if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
                 long v = 0;
                 while (*p >= '0' && *p <= '9')

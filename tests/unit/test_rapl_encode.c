@@ -199,6 +199,16 @@ static void lines_name_their_command(void **state)
     assert_int_equal(fbrl_rapl_line_cmd("", &c, NULL), FBRL_ENOENT);
     assert_int_equal(fbrl_rapl_line_cmd(NULL, &c, NULL), FBRL_EINVAL);
     assert_int_equal(fbrl_rapl_line_cmd("HOME", NULL, NULL), FBRL_EINVAL);
+    /* safe to type twice: the table, or an assignment that does not read its target */
+    assert_true(fbrl_rapl_line_safe("MOVE P1"));
+    assert_false(fbrl_rapl_line_safe("JOG 0,0,1"));
+    assert_false(fbrl_rapl_line_safe("HERE H1"));
+    assert_true(fbrl_rapl_line_safe("V1 = 2.5"));
+    assert_false(fbrl_rapl_line_safe("V1=V1+1"));
+    assert_false(fbrl_rapl_line_safe("v1=2*V1"));
+    assert_true(fbrl_rapl_line_safe("V1=V10+1"));
+    assert_false(fbrl_rapl_line_safe("FROB 1"));
+    assert_false(fbrl_rapl_line_safe(NULL));
     for (int k = 0; k < FBRL_RAPL_NCMDS; k++) { /* every keyword and token names its command */
         const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)k);
         char text[16];
@@ -271,10 +281,10 @@ static void table_facts_agree(void **state)
     /* the commands a second run changes (issues 9 and 28): relative ones, counters, deletions,
      * program runs, those that store where the arm is, WAIT */
     static const fbrl_rapl_cmd never_twice[] = {
-        FBRL_RAPL_JOG,   FBRL_RAPL_DEPART, FBRL_RAPL_APPRO,  FBRL_RAPL_MI,   FBRL_RAPL_JOINT,
-        FBRL_RAPL_MOTOR, FBRL_RAPL_RUN,    FBRL_RAPL_SHIFTA, FBRL_RAPL_SHIFT, FBRL_RAPL_DLOCN,
-        FBRL_RAPL_DVAR,  FBRL_RAPL_HERE,   FBRL_RAPL_ACTUAL, FBRL_RAPL_XCAL, FBRL_RAPL_XZERO,
-        FBRL_RAPL_WAIT};
+        FBRL_RAPL_JOG,    FBRL_RAPL_DEPART, FBRL_RAPL_APPRO, FBRL_RAPL_MI,
+        FBRL_RAPL_JOINT,  FBRL_RAPL_MOTOR,  FBRL_RAPL_RUN,   FBRL_RAPL_SHIFTA,
+        FBRL_RAPL_SHIFT,  FBRL_RAPL_DLOCN,  FBRL_RAPL_DVAR,  FBRL_RAPL_HERE,
+        FBRL_RAPL_ACTUAL, FBRL_RAPL_XCAL,   FBRL_RAPL_XZERO, FBRL_RAPL_WAIT};
     for (size_t k = 0; k < sizeof never_twice / sizeof never_twice[0]; k++)
         assert_false(fbrl_rapl_cmd_info(never_twice[k])->flags & FBRL_RAPL_F_SAFE);
     assert_int_equal(unsafe, (int)(sizeof never_twice / sizeof never_twice[0]));
