@@ -209,6 +209,26 @@ static void write_file(const char *name, const char *text)
     }
 }
 
+/* Another fbrlmon session on `link` switches output 9 on and ends: 0, or -1 (failed). */
+static int other_session_output_9(const char *link)
+{
+    pid_t pid = fork();
+    int ws;
+    if (pid == 0) {
+        int null = open("/dev/null", O_RDWR);
+        dup2(null, 0);
+        dup2(null, 1);
+        execl(g_mon, g_mon, "--port", link, "-e", "9 OUTPORT BYE", (char *)NULL);
+        _exit(127);
+    }
+    if (pid < 0 || waitpid(pid, &ws, 0) != pid || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) {
+        fprintf(stderr, "FAIL: the first session (9 OUTPORT) did not run\n");
+        g_failed = 1;
+        return -1;
+    }
+    return 0;
+}
+
 #define A_XYZ 12.0, 3.0, 8.0
 #define B_XYZ 12.0, -3.0, 8.0
 
@@ -248,22 +268,8 @@ static void ctrl_c_tests(void)
                              ".( plan4 done) CR\n");
 
     /* another session switched output 9 on: the safe stop leaves it alone */
-    {
-        pid_t pid = fork();
-        int ws;
-        if (pid == 0) {
-            int null = open("/dev/null", O_RDWR);
-            dup2(null, 0);
-            dup2(null, 1);
-            execl(g_mon, g_mon, "--port", g_link, "-e", "9 OUTPORT BYE", (char *)NULL);
-            _exit(127);
-        }
-        if (pid < 0 || waitpid(pid, &ws, 0) != pid || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) {
-            fprintf(stderr, "FAIL: the first session (9 OUTPORT) did not run\n");
-            g_failed = 1;
-            return;
-        }
-    }
+    if (other_session_output_9(g_link) != 0)
+        return;
 
     /* a plan file on the command line (it runs in the directory of cell.fbrl) */
     snprintf(plan1, sizeof plan1, "%s/plan1.fbrl", g_dir);
@@ -514,21 +520,7 @@ static void plain_status_test(void)
     memcpy(g_log, log2, sizeof g_log);
 
     /* another session switched output 9 on */
-    {
-        pid_t p = fork();
-        int ws;
-        if (p == 0) {
-            int null = open("/dev/null", O_RDWR);
-            dup2(null, 0);
-            dup2(null, 1);
-            execl(g_mon, g_mon, "--port", link2, "-e", "9 OUTPORT BYE", (char *)NULL);
-            _exit(127);
-        }
-        if (p < 0 || waitpid(p, &ws, 0) != p || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) {
-            fprintf(stderr, "FAIL: the first session (9 OUTPORT) did not run\n");
-            g_failed = 1;
-        }
-    }
+    (void)other_session_output_9(link2);
     argv[0] = (char *)g_mon;
     argv[1] = "--port";
     argv[2] = link2;
