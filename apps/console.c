@@ -1,22 +1,26 @@
 /* SPDX-License-Identifier: MIT */
 /* console.c - the operator console (fbrlmon --console), on ncurses.
  *
- * One thread: the method runs in the FBRL engine (RUN-METHOD), and the screen is kept
- * alive from inside it: between steps (the method observer), at every command the
- * controller executed (the link's on_exec), in every host sleep slice (mon_host.tick)
- * and in the robot words' progress of long waits. Keys read there only set requests:
- * pause (after the current step), abort (fbrl_vm_interrupt: the running word throws -28;
- * then the safe stop and the method's ON-ABORT). docs/console.md. */
+ * One thread: the method runs in the FBRL engine (the method run, fbrl/run.h), and the
+ * screen is kept alive from inside it: at the run's events (the console observes the run
+ * as the run log does), while the run waits (paused, a question), at every command the
+ * controller executed (the link's on_exec), in every host sleep slice (mon_host.tick) and
+ * in the robot words' progress of long waits. Keys read there are requests to the run:
+ * pause (after the current step), resume, abort (the running word stops at once; the run
+ * makes the safe stop and runs the method's ON-ABORT), an answer. What the screen shows
+ * of a run is the run's snapshot. docs/console.md. */
 #define _GNU_SOURCE /* fopencookie: the engine's output into the console's message pane */
 #include "console.h"
 
 #include <ctype.h>
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <curses.h>
 
@@ -24,9 +28,12 @@
 #include "fbrl/vmx.h"
 #include "mon.h"
 #include "mon_recover.h"
+#include "console_users.h"
 #include "mon_runlog.h"
+#include "mon_ws.h"
 
 #define LIB_MAX       64 /* method files shown */
+#define LIB_HEAD_BYTES 65536 /* the head of a method file looked at for its METHOD line */
 #define MSG_LINES     4  /* method output lines shown */
 #define ERR_LINES     2  /* last errors shown (each with what to do) */
 #define FIELD_MAX     12 /* characters of a parameter's field */
@@ -43,9 +50,10 @@ enum level { LEVEL_OPERATOR, LEVEL_DEVELOPER, LEVEL_PROGRAMMER };
 static const char *const level_names[] = {"operator", "developer", "programmer"};
 
 enum con_screen { SCREEN_LIBRARY, SCREEN_FORM, SCREEN_RUN, SCREEN_COMPOSE, SCREEN_CELL };
-enum state { ST_IDLE, ST_RUNNING, ST_PAUSING, ST_PAUSED, ST_ABORTING, ST_DONE, ST_ABORTED, ST_FAILED };
-static const char *const state_names[] = {
-    "READY", "RUNNING", "PAUSING (after this step)", "PAUSED", "ABORTING", "DONE", "ABORTED", "FAILED"};
+enum state { ST_IDLE, ST_RUNNING, ST_PAUSING, ST_PAUSED, ST_ABORTING, ST_DONE, ST_ABORTED, ST_FAILED, ST_PARTIAL };
+static const char *const state_names[] = {"READY",   "RUNNING", "PAUSING (after this step)",
+                                          "PAUSED",  "ABORTING", "DONE",
+                                          "ABORTED", "FAILED",   "PARTIAL"};
 
 typedef struct lib_entry {
     char path[MON_RUNLOG_PATH_MAX];
@@ -70,14 +78,9 @@ typedef struct console {
     char field[FBRL_METHOD_MAX_PARAMS][FIELD_MAX + 1];
     size_t fsel;
     int fresh; /* the selected field was just entered: the first character typed replaces it */
-    /* the run */
-    size_t step;
-    long sample, total_units, done_units;
-    uint64_t t_run0, t_unit0, t_end;
-    double est_ms[FBRL_METHOD_MAX_STEPS]; /* one run of each step, measured (0 unknown) */
-    long step_done[FBRL_METHOD_MAX_STEPS];
-    int step_failed[FBRL_METHOD_MAX_STEPS];
-    int want_pause, want_abort, abort_confirm;
+    /* the run: what it shows is the run's snapshot; the state follows its events */
+    fbrl_run_snap snap;
+    int abort_asked, abort_confirm, asking;
     int in_vm; /* the engine runs a line of the console's (Forth line, loading, a run) */
     uint64_t last_draw;
     /* the live view, from what the controller executed */
@@ -95,8 +98,9 @@ typedef struct console {
     char errs[ERR_LINES][160];
     char advice[ERR_LINES][160];
     char hint[160];
-    /* a line being typed: Forth (programmer), or the PIN */
-    int typing; /* 0 none, 1 Forth, 2 PIN, 3 level choice, 4 a new method's name */
+    /* a line being typed: Forth (programmer), or signing in */
+    int typing; /* 0 none, 1 Forth, 3 level choice, 4 a new method's name, 5 sign-in name, 6 password */
+    char who[FBRL_AUDIT_NAME_MAX + 1]; /* the name being signed in */
     /* composing a method from the chosen method's steps (method developer) */
     size_t csel, picked[FBRL_METHOD_MAX_STEPS], npicked;
     /* the work-cell view: locations and devices by name (method developer) */
@@ -104,7 +108,6 @@ typedef struct console {
     size_t ncell, ctop, cpick; /* cpick: the selected row */
     int outside;               /* curses is off (TEACH has the terminal): nothing is drawn */
     enum con_screen cell_back; /* the screen Esc goes back to */
-    int want_level;
     char typed[128];
     size_t tlen;
     FILE *out;
@@ -226,15 +229,29 @@ static void engine_error(console *c, char *buf, size_t cap)
 /* ---- the method library: a folder of method files ---- */
 
 /* The first "METHOD name text" line of a file, read as text (the file is loaded only when
- * it is chosen). */
+ * it is chosen): 1 found, 0 none, -1 not a regular file (a device such as /dev/zero, a
+ * FIFO: opened without waiting for a writer, and never read). Only the head is read. */
 static int scan_method_file(const char *path, lib_entry *e)
 {
-    FILE *f = fopen(path, "r");
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat sb;
+    FILE *f;
     char line[512];
+    long head = 0;
     int found = 0;
-    if (f == NULL)
+    if (fd < 0)
         return 0;
-    while (!found && fgets(line, sizeof line, f) != NULL) {
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode)) {
+        close(fd);
+        return -1;
+    }
+    f = fdopen(fd, "r");
+    if (f == NULL) {
+        close(fd);
+        return 0;
+    }
+    while (!found && head < LIB_HEAD_BYTES && fgets(line, sizeof line, f) != NULL) {
+        head += (long)strlen(line);
         char *p = line;
         while (*p == ' ' || *p == '\t')
             p++;
@@ -270,6 +287,8 @@ static void scan_library(console *c)
     const char *dir = c->o->methods ? c->o->methods : "methods";
     DIR *d = opendir(dir);
     struct dirent *de;
+    char odd[64] = "";
+    size_t nodd = 0;
     c->nlib = 0;
     if (d == NULL) {
         textf(c->hint, sizeof c->hint, "method library %s: %s", dir, strerror(errno));
@@ -281,12 +300,18 @@ static void scan_library(console *c)
         if (n < 6 || strcmp(de->d_name + n - 5, ".fbrl") != 0)
             continue;
         textf(path, sizeof path, "%s/%s", dir, de->d_name);
-        if (scan_method_file(path, &c->lib[c->nlib]))
+        int got = scan_method_file(path, &c->lib[c->nlib]);
+        if (got > 0)
             c->nlib++;
+        else if (got < 0 && nodd++ == 0)
+            textf(odd, sizeof odd, "%s", de->d_name);
     }
     closedir(d);
     qsort(c->lib, c->nlib, sizeof c->lib[0], by_name);
-    if (c->nlib == 0)
+    if (nodd > 0) /* said, so a method that is missing from the list is explained */
+        textf(c->hint, sizeof c->hint, "left out %s%s: not a regular file", odd,
+              nodd > 1 ? " and others" : "");
+    else if (c->nlib == 0)
         textf(c->hint, sizeof c->hint, "no method files (*.fbrl with a METHOD line) in %s", dir);
 }
 
@@ -315,15 +340,28 @@ static void fill_form(console *c)
     c->fresh = 1;
 }
 
+/* A taught place the method file defined again keeps its taught value: said under Messages. */
+static void kept_taught(void *ctx, const char *name, const fbrl_loc *taught, const fbrl_loc *file)
+{
+    console *c = ctx;
+    char line[MIN_COLS + 1];
+    textf(line, sizeof line, "kept taught %s X%.2f Y%.2f Z%.2f (file: X%.2f Y%.2f Z%.2f)", name, taught->x,
+          taught->y, taught->z, file->x, file->y, file->z);
+    push_msg(c, line);
+}
+
 static void choose_method(console *c, const lib_entry *e)
 {
     const fbrl_method *meth = fbrl_method_find(&c->m->methods, e->name);
+    size_t kept = 0;
     if (meth == NULL || !meth->complete) {
         textf(c->hint, sizeof c->hint, "loading %s ...", e->path);
         fflush(c->out);
+        mon_ws_protect(c->m); /* the method file's DEFINE-LOC does not overwrite a taught place */
         c->in_vm++;
         fbrl_status st = fbrl_vm_include(c->m->vm, e->path);
         c->in_vm--;
+        kept = mon_ws_restore(c->m, kept_taught, c);
         if (st != FBRL_OK) {
             char msg[400];
             engine_error(c, msg, sizeof msg);
@@ -345,7 +383,11 @@ static void choose_method(console *c, const lib_entry *e)
     fill_form(c);
     c->screen = SCREEN_FORM;
     c->state = ST_IDLE;
-    textf(c->hint, sizeof c->hint, "fill in the parameters, then F5 to start");
+    if (kept > 0)
+        textf(c->hint, sizeof c->hint, "%zu taught place%s kept over the method file's (see Messages); F5 starts",
+              kept, kept == 1 ? "" : "s");
+    else
+        textf(c->hint, sizeof c->hint, "fill in the parameters, then F5 to start");
 }
 
 /* ---- the parameter form: each field checked against its range ---- */
@@ -379,10 +421,10 @@ static int check_field(const fbrl_method_param *p, const char *text, long *v, ch
     return 0;
 }
 
-/* Every field checked; the first bad one selected and named. 0 if all are good (then set). */
-static int commit_form(console *c)
+/* Every field checked; the first bad one selected and named. 0 and the values in v if all
+ * are good (the run sets them). */
+static int commit_form(console *c, long *v)
 {
-    long v[FBRL_METHOD_MAX_PARAMS];
     char msg[160];
     for (size_t k = 0; k < c->meth->nparams; k++)
         if (check_field(&c->meth->params[k], c->field[k], &v[k], msg, sizeof msg) != 0) {
@@ -391,8 +433,6 @@ static int commit_form(console *c)
             textf(c->hint, sizeof c->hint, "refused: %s", msg);
             return -1;
         }
-    for (size_t k = 0; k < c->meth->nparams; k++)
-        fbrl_method_param_set(&c->m->methods, c->meth, k, v[k]);
     return 0;
 }
 
@@ -461,72 +501,63 @@ static void draw_live(console *c)
         put_at(row++, RIGHT_COL, "|");
 }
 
-/* Estimated time left: what is left of the current step run, and the measured time of one
- * run of every step still to come (a step not yet measured counts as the average). */
-static int remaining_ms(console *c, double *left)
+/* The samples and their outcomes so far, on one line of the left half: "1 ok 2 FAILED ...". */
+static void draw_samples(console *c, int row)
 {
-    double sum = 0, known = 0;
-    long nknown = 0;
-    const fbrl_method *m = c->meth;
-    for (size_t k = 0; k < m->nsteps; k++)
-        if (c->est_ms[k] > 0)
-            known += c->est_ms[k], nknown++;
-    if (nknown == 0)
-        return -1;
-    for (size_t k = 0; k < m->nsteps; k++) {
-        double one = c->est_ms[k] > 0 ? c->est_ms[k] : known / (double)nknown;
-        long runs = fbrl_method_step_runs(&c->m->methods, m, k);
-        long todo = runs - c->step_done[k];
-        if (c->state != ST_DONE && k == c->step && todo > 0 && c->state != ST_PAUSED) {
-            double in = (double)(now_us() - c->t_unit0) / 1000.0;
-            sum += one - in > 0 ? one - in : 0;
-            todo--;
+    const fbrl_run_snap *s = &c->snap;
+    char line[RIGHT_COL + 1];
+    size_t n;
+    if (s->samples <= 0)
+        return;
+    n = (size_t)snprintf(line, sizeof line, " samples %ld/%ld done:", s->samples_done, s->samples);
+    for (long i = 0; i < s->samples && n + 1 < sizeof line; i++) {
+        static const char *const marks[] = {"..", "ok", "FAILED", "skipped"};
+        uint8_t o = s->outcomes[i].outcome;
+        int k = snprintf(line + n, sizeof line - n, " %ld %s", i + 1, o < 4 ? marks[o] : "?");
+        if (k < 0 || (size_t)k >= sizeof line - n) { /* no room for the rest: say so */
+            memcpy(line + sizeof line - 5, " ...", 5);
+            break;
         }
-        if (todo > 0)
-            sum += one * (double)todo;
+        n += (size_t)k;
     }
-    *left = sum;
-    return 0;
+    put_row(row, "%s", line);
 }
 
 static void draw_run(console *c)
 {
-    const fbrl_method *m = c->meth;
+    const fbrl_run_snap *s = &c->snap;
     char el[16], left[16];
-    double ms_left;
-    uint64_t end = c->state >= ST_DONE ? c->t_end : now_us();
-    fmt_time(el, sizeof el, c->t_run0 ? (double)(end - c->t_run0) / 1000.0 : 0);
+    long nsteps = s->nsteps < 12 ? s->nsteps : 12;
+    int live = c->state != ST_IDLE && c->state < ST_DONE;
+    fmt_time(el, sizeof el, (double)s->elapsed_ms);
     if (c->state >= ST_DONE)
         textf(left, sizeof left, "0:00");
-    else if (remaining_ms(c, &ms_left) == 0)
-        fmt_time(left, sizeof left, ms_left), memmove(left + 1, left, strlen(left) + 1), left[0] = '~';
+    else if (s->remaining_ms >= 0)
+        fmt_time(left, sizeof left, (double)s->remaining_ms), memmove(left + 1, left, strlen(left) + 1),
+            left[0] = '~';
     else
         textf(left, sizeof left, "--:--");
     attron(A_BOLD);
     put_row(1, " %-26s elapsed %s  remaining %s", state_names[c->state], el, left);
     attroff(A_BOLD);
-    for (size_t k = 0; k < m->nsteps && k < 12; k++) {
-        long runs = fbrl_method_step_runs(&c->m->methods, m, k);
-        const char *mark = c->step_failed[k]                     ? "!!"
-                           : c->step_done[k] >= runs             ? "ok"
-                           : k == c->step && c->state != ST_IDLE ? "->"
-                                                                 : "  ";
+    for (long k = 0; k < nsteps; k++) {
+        const char *mark = s->step_failed[k]              ? "!!"
+                           : s->step_done[k] >= s->step_runs[k] ? "ok"
+                           : k == s->step && live          ? "->"
+                                                           : "  ";
         char prog[24] = "";
-        if (m->steps[k].per_sample)
-            textf(prog, sizeof prog, "sample %ld/%ld",
-                  c->step_done[k] + (k == c->step && c->step_done[k] < runs && c->state <= ST_ABORTING &&
-                                             c->state != ST_IDLE
-                                         ? 1
-                                         : 0),
-                  runs);
-        if (k == c->step && c->state != ST_IDLE && c->state < ST_DONE)
+        if (s->per_sample[k]) /* progress counts samples done, not samples started */
+            textf(prog, sizeof prog, "sample %ld/%ld", s->step_done[k], s->step_runs[k]);
+        if (k == s->step && live)
             attron(A_REVERSE);
-        put_row(2 + (int)k, " %s %2zu %-14.14s %-16s", mark, k + 1, m->steps[k].name, prog);
-        if (k == c->step && c->state != ST_IDLE && c->state < ST_DONE)
+        put_row(2 + (int)k, " %s %2ld %-14.14s %-16s", mark, k + 1, s->step_name[k], prog);
+        if (k == s->step && live)
             attroff(A_REVERSE);
     }
-    for (size_t k = m->nsteps; k < 12; k++)
+    for (long k = nsteps; k < 12; k++)
         put_row(2 + (int)k, " ");
+    if (nsteps < 12)
+        draw_samples(c, 2 + (int)nsteps + (nsteps < 11));
 }
 
 static void draw_library(console *c)
@@ -643,6 +674,13 @@ static void draw(console *c)
         refresh();
         return;
     }
+    if (c->screen == SCREEN_RUN && fbrl_run_snapshot(&c->m->run, &c->snap) == FBRL_OK && running(c)) {
+        /* a request the run has not taken yet shows at once (the run's own view) */
+        if (c->snap.state == FBRL_RUN_PAUSING)
+            c->state = ST_PAUSING;
+        else if (c->snap.state == FBRL_RUN_ABORTING)
+            c->state = ST_ABORTING;
+    }
     attron(A_REVERSE);
     put_row(0, " FBRL console | %-16s | level: %-10s | operator: %s", c->meth ? c->meth->name : "no method",
             level_names[c->level], c->log->operator_id[0] ? c->log->operator_id : "-");
@@ -669,12 +707,16 @@ static void draw(console *c)
     }
     put_row(20, " %s", c->errs[0]);
     put_row(21, "   %s", c->errs[0][0] ? c->advice[0] : "");
+    if (c->typing >= 5) /* why the last sign-in failed, or what to do */
+        put_row(21, " %s", c->hint);
     if (c->typing == 1)
         put_row(22, "ok> %s", c->typed);
-    else if (c->typing == 2)
-        put_row(22, "PIN for %s: %.*s", level_names[c->want_level], (int)c->tlen, "****************");
     else if (c->typing == 3)
-        put_row(22, "level: 1 operator  2 developer  3 programmer ?");
+        put_row(22, "level: 1 operator  2 developer  3 programmer%s ?", cu_lab() ? "  s sign out" : "");
+    else if (c->typing == 5)
+        put_row(22, "sign in: name: %s", c->typed);
+    else if (c->typing == 6)
+        put_row(22, "sign in: password for %s: %.*s", c->who, (int)(c->tlen < 16 ? c->tlen : 16), "****************");
     else if (c->typing == 4)
         put_row(22, "name of the new method: %s", c->typed);
     else
@@ -790,6 +832,7 @@ static void save_composed(console *c, const char *typed)
         if (strcmp(c->lib[i].name, name) == 0)
             c->sel = i;
     textf(c->hint, sizeof c->hint, "saved %s as %s.fbrl in the library: Enter opens it", name, file);
+    cu_action("compose", name, path);
 }
 
 static void compose_key(console *c, int ch)
@@ -815,7 +858,7 @@ static void compose_key(console *c, int ch)
  * gets the terminal, as at the prompt; Enter there stores the arm's position into it. */
 static void teach_place(console *c, const char *row)
 {
-    char name[FBRL_VMX_NAME_MAX + 1], text[FBRL_VMX_NAME_MAX + 8];
+    char name[FBRL_VMX_NAME_MAX + 1], text[FBRL_VMX_NAME_MAX + 8], before[MIN_COLS];
     size_t n = strcspn(row + 1, " ");
     FILE *out = c->m->host.out;
     int tty = c->m->host.out_is_tty, width = c->m->host.width;
@@ -825,6 +868,7 @@ static void teach_place(console *c, const char *row)
     }
     memcpy(name, row + 1, n);
     name[n] = '\0';
+    textf(before, sizeof before, "%s", row);
     textf(text, sizeof text, "TEACH %s", name);
     def_prog_mode();
     endwin();
@@ -848,11 +892,20 @@ static void teach_place(console *c, const char *row)
         char msg[400];
         engine_error(c, msg, sizeof msg);
         push_error(c, "TEACH", msg);
+    } else {
+        mon_ws_taught(c->m, name); /* a method file opened later does not overwrite it */
     }
     scan_cell(c);
     for (size_t i = 0; i < c->ncell; i++)
-        if (strncmp(c->cell[i] + 1, name, n) == 0 && c->cell[i][1 + n] == ' ')
+        if (strncmp(c->cell[i] + 1, name, n) == 0 && c->cell[i][1 + n] == ' ') {
             c->cpick = i, c->ctop = i >= 12 ? i - 11 : 0;
+            if (strcmp(c->cell[i], before) != 0) { /* taught: the place as it was and is */
+                char detail[2 * MIN_COLS + 16];
+                const char *was = strstr(before, " place "), *now = strstr(c->cell[i], " place ");
+                textf(detail, sizeof detail, "was %s; now %s", was ? was + 7 : before, now ? now + 7 : c->cell[i]);
+                cu_action("teach", name, detail);
+            }
+        }
     textf(c->hint, sizeof c->hint, "TEACH %s %s", name, st == FBRL_OK ? "done" : "did not store it");
 }
 
@@ -860,37 +913,47 @@ static void teach_place(console *c, const char *row)
 
 static void start_run(console *c);
 
+/* Down is free; up as far as the signed-in user's role allows (the lab's users: --lab). */
 static void set_level(console *c, int want)
 {
-    const char *pin = getenv("FBRL_CONSOLE_PIN");
-    if (want <= c->level) {
-        c->level = want;
-        textf(c->hint, sizeof c->hint, "level: %s", level_names[want]);
-        return;
-    }
-    if (pin == NULL || pin[0] == '\0') {
-        textf(c->hint, sizeof c->hint,
-              "switching up needs a PIN: none is set (FBRL_CONSOLE_PIN), or start with --level %s",
+    if (want > c->level && !cu_lab()) {
+        textf(c->hint, sizeof c->hint, "switching up needs the lab's users (--lab DIR), or start with --level %s",
               level_names[want]);
         return;
     }
-    c->want_level = want;
-    c->typing = 2;
+    if (want > cu_level_max() && want > c->level) {
+        textf(c->hint, sizeof c->hint, "%s's role (%s) allows the %s level: F9 s signs out for another user",
+              c->log->operator_id, cu_role(), level_names[cu_level_max()]);
+        return;
+    }
+    c->level = want;
+    textf(c->hint, sizeof c->hint, "level: %s", level_names[want]);
+    cu_action("level", level_names[want], NULL);
+}
+
+static void ask_sign_in(console *c, const char *why)
+{
+    c->typing = 5;
     c->tlen = 0;
     c->typed[0] = '\0';
+    c->level = LEVEL_OPERATOR;
+    textf(c->hint, sizeof c->hint, "%s", why);
 }
 
 static void typed_done(console *c)
 {
     int mode = c->typing;
     c->typing = 0;
-    if (mode == 2) {
-        const char *pin = getenv("FBRL_CONSOLE_PIN");
-        if (pin != NULL && strcmp(pin, c->typed) == 0) {
-            c->level = c->want_level;
-            textf(c->hint, sizeof c->hint, "level: %s", level_names[c->level]);
+    if (mode == 5) {
+        textf(c->who, sizeof c->who, "%s", c->typed);
+        c->typing = c->tlen ? 6 : 5;
+    } else if (mode == 6) {
+        char msg[200];
+        if (cu_sign_in(c->who, c->typed, msg, sizeof msg) == 0) {
+            c->level = cu_level_max();
+            textf(c->hint, sizeof c->hint, "%s", msg);
         } else {
-            textf(c->hint, sizeof c->hint, "wrong PIN: the level stays %s", level_names[c->level]);
+            ask_sign_in(c, msg);
         }
     } else if (mode == 4) {
         save_composed(c, c->typed);
@@ -898,6 +961,7 @@ static void typed_done(console *c)
         char text[sizeof c->typed];
         memcpy(text, c->typed, c->tlen + 1);
         push_msg(c, text);
+        cu_action("forth", text, NULL);
         c->in_vm++;
         fbrl_status st = fbrl_vm_eval(c->m->vm, text, strlen(text));
         c->in_vm--;
@@ -910,20 +974,26 @@ static void typed_done(console *c)
         flush_partial(c);
         c->typing = 1; /* the prompt stays until Esc */
     }
+    memset(c->typed, 0, sizeof c->typed); /* a password too */
     c->tlen = 0;
-    c->typed[0] = '\0';
 }
 
 static void type_key(console *c, int ch)
 {
-    size_t cap = c->typing == 3 ? 1 : sizeof c->typed - 1;
+    size_t cap = c->typing == 3 ? 1 : c->typing == 5 ? FBRL_AUDIT_NAME_MAX - 1 : sizeof c->typed - 1;
     if (c->typing == 3) {
         c->typing = 0;
         if (ch >= '1' && ch <= '3')
             set_level(c, ch - '1');
+        else if ((ch == 's' || ch == 'S') && cu_lab()) {
+            cu_sign_out("signed out");
+            ask_sign_in(c, "signed out: the next user signs in");
+        }
         return;
     }
-    if (ch == KEY_ESCAPE) {
+    if (ch == KEY_ESCAPE && c->typing >= 5) { /* no way around signing in: start again */
+        ask_sign_in(c, "sign in: your name, Enter, then your password");
+    } else if (ch == KEY_ESCAPE) {
         c->typing = 0;
         c->tlen = 0;
         c->typed[0] = '\0';
@@ -940,17 +1010,25 @@ static void type_key(console *c, int ch)
 static void request_abort(console *c)
 {
     c->abort_confirm = 0;
-    c->want_abort = 1;
+    if (fbrl_run_abort(&c->m->run, c->log->operator_id) != FBRL_OK)
+        return; /* it has just ended */
+    c->abort_asked = 1;
     c->state = ST_ABORTING;
     textf(c->hint, sizeof c->hint, "aborting: the arm goes to its safe place, the outputs go off");
-    fbrl_vm_interrupt(c->m->vm); /* the running word throws -28 */
 }
 
-/* Keys while a method runs: only pause, resume and abort. */
+/* Keys while a method runs: pause, resume, abort, and the answer to a question. */
 static void run_key(console *c, int ch)
 {
+    int up = ch >= 0 && ch < 256 ? toupper(ch) : 0;
     if (ch == KEY_CTRL_C) {
         request_abort(c);
+    } else if (c->asking && (up == 'R' || up == 'S' || up == 'A')) {
+        fbrl_run_choice choice = up == 'R' ? FBRL_RUN_RETRY : up == 'S' ? FBRL_RUN_SKIP : FBRL_RUN_STOP;
+        if (fbrl_run_answer(&c->m->run, choice, c->log->operator_id) == FBRL_OK) {
+            c->asking = 0;
+            textf(c->hint, sizeof c->hint, "answered: %s", up == 'R' ? "retry" : up == 'S' ? "skip" : "abort");
+        }
     } else if (c->abort_confirm) {
         if (ch == 'y' || ch == 'Y' || ch == KEY_F(8))
             request_abort(c);
@@ -962,13 +1040,15 @@ static void run_key(console *c, int ch)
         c->abort_confirm = 1;
         textf(c->hint, sizeof c->hint, "Abort the run? y or F8 = abort, any other key = go on");
     } else if ((ch == KEY_F(6) || ch == 'p') && c->state == ST_RUNNING) {
-        c->want_pause = 1;
-        c->state = ST_PAUSING;
-        textf(c->hint, sizeof c->hint, "pausing after the current step ...");
+        if (fbrl_run_pause(&c->m->run, c->log->operator_id) == FBRL_OK) {
+            c->state = ST_PAUSING;
+            textf(c->hint, sizeof c->hint, "pausing after the current step ...");
+        }
     } else if ((ch == KEY_F(7) || ch == 'r') && (c->state == ST_PAUSED || c->state == ST_PAUSING)) {
-        c->want_pause = 0;
-        c->state = ST_RUNNING;
-        textf(c->hint, sizeof c->hint, "resumed");
+        if (fbrl_run_resume(&c->m->run, c->log->operator_id) == FBRL_OK) {
+            c->state = ST_RUNNING;
+            textf(c->hint, sizeof c->hint, "resumed");
+        }
     }
 }
 
@@ -1071,6 +1151,17 @@ static void key(console *c, int ch)
 {
     if (ch == ERR || ch == KEY_RESIZE)
         return;
+    cu_touch();
+    if (cu_lab() && !cu_signed_in() && !running(c)) { /* nothing but signing in (or F10) */
+        if (ch == KEY_F(10))
+            c->quit = 1;
+        else {
+            if (c->typing < 5)
+                ask_sign_in(c, "sign in: your name, Enter, then your password");
+            type_key(c, ch);
+        }
+        return;
+    }
     if (c->in_vm && !running(c) && c->state != ST_PAUSED) {
         if (ch == KEY_CTRL_C) /* the engine runs a typed line or loads a file: only Ctrl-C */
             fbrl_vm_interrupt(c->m->vm);
@@ -1134,7 +1225,8 @@ static void watch_arm(void *ctx, fbrl_robot *r)
         return;
     c->pos = p;
     c->have_pos = 1;
-    fmt_time(t, sizeof t, c->t_run0 ? (double)(now_us() - c->t_run0) / 1000.0 : 0);
+    fbrl_run_snapshot(&c->m->run, &c->snap);
+    fmt_time(t, sizeof t, (double)c->snap.elapsed_ms);
     textf(c->pos_when, sizeof c->pos_when, "(moving, at %s)", t);
     pump(c, 1);
 }
@@ -1143,7 +1235,7 @@ static int hook_tick(void *ctx)
 {
     console *c = ctx;
     pump(c, 0);
-    return c->want_abort;
+    return c->abort_asked;
 }
 
 static void hook_progress(void *ctx, const char *text)
@@ -1188,9 +1280,8 @@ static void hook_exec(void *ctx, const char *line, size_t len, fbrl_status resul
 }
 
 /* A run starts (from F5, or RUN-METHOD typed on the Forth line): the run view. */
-static int obs_begin(void *ctx, const fbrl_method *m)
+static void run_begins(console *c, const fbrl_method *m)
 {
-    console *c = ctx;
     if (m != c->meth) {
         c->meth = m;
         c->entry = NULL;
@@ -1200,161 +1291,175 @@ static int obs_begin(void *ctx, const fbrl_method *m)
     }
     c->screen = SCREEN_RUN;
     c->state = ST_RUNNING;
-    c->want_pause = c->want_abort = c->abort_confirm = 0;
-    c->step = 0;
-    c->sample = -1;
-    c->done_units = 0;
-    c->t_run0 = c->t_unit0 = now_us();
-    c->t_end = 0;
-    memset(c->step_done, 0, sizeof c->step_done);
-    memset(c->step_failed, 0, sizeof c->step_failed);
-    memset(c->errs, 0, sizeof c->errs); /* the last errors are this run's */
+    c->abort_asked = c->abort_confirm = c->asking = 0;
+    memset(c->errs, 0, sizeof c->errs); /* the last errors and the messages are this run's */
+    memset(c->msgs, 0, sizeof c->msgs);
     textf(c->hint, sizeof c->hint, "running %s", m->name);
     draw(c);
-    return 0;
 }
 
-static void obs_step(void *ctx, const fbrl_method *m, size_t step, long sample, fbrl_method_phase ph,
-                     const char *error)
+/* The run is over: where the arm stands (still inside the run, so in its log), the outcome
+ * on the state line and the hint, and every sample that did not succeed under Messages. */
+static void run_ends(console *c, fbrl_run *run, const fbrl_run_event *ev)
 {
-    console *c = ctx;
-    (void)m;
-    if (ph == FBRL_METHOD_STEP_BEGIN) {
-        c->step = step;
-        c->sample = sample;
-        c->t_unit0 = now_us();
-    } else if (ph == FBRL_METHOD_STEP_OK) {
-        c->step_done[step]++;
-        c->done_units++;
-        c->est_ms[step] = (double)(now_us() - c->t_unit0) / 1000.0;
-    } else {
-        char where[64];
-        c->step_failed[step] = 1;
-        if (sample >= 0)
-            textf(where, sizeof where, "%s, sample %ld", m->steps[step].name, sample + 1);
-        else
-            textf(where, sizeof where, "%s", m->steps[step].name);
-        push_error(c, where, error ? error : "failed");
-    }
-    pump(c, 1);
-}
-
-static int obs_between(void *ctx, const fbrl_method *m, size_t step, long sample)
-{
-    console *c = ctx;
-    (void)m, (void)sample;
-    c->step = step;
-    pump(c, 1);
-    if (c->want_pause && !c->want_abort) {
-        c->state = ST_PAUSED;
-        textf(c->hint, sizeof c->hint, "paused before step %zu (%s): F7 resumes, F8 aborts", step + 1,
-              m->steps[step].name);
-        read_arm(c, "(paused)");
-        while (c->want_pause && !c->want_abort) {
-            nodelay(stdscr, FALSE);
-            timeout(200);
-            int ch = getch();
-            key(c, ch);
-            draw(c);
+    fbrl_run_snap *s = &c->snap;
+    long ok = 0, failed = 0, skipped = 0;
+    char line[MIN_COLS + 1];
+    read_arm(c, ev->outcome == FBRL_RUN_ABORTED ? "(safe place)" /* after the safe stop and ON-ABORT */
+                : ev->text != NULL                  ? "(halted)"     /* stopped by a failed step */
+                                                    : "(finished)");
+    fbrl_run_snapshot(run, s);
+    flush_partial(c);
+    if (ev->text != NULL && ev->outcome != FBRL_RUN_COMPLETED && !c->errs[0][0])
+        push_error(c, ev->method->name, ev->text); /* (a failed step has said it already) */
+    for (long i = 0; i < s->samples; i++) {
+        const fbrl_run_sample *o = &s->outcomes[i];
+        ok += o->outcome == FBRL_SAMPLE_SUCCEEDED;
+        failed += o->outcome == FBRL_SAMPLE_FAILED;
+        skipped += o->outcome == FBRL_SAMPLE_SKIPPED;
+        if (o->outcome == FBRL_SAMPLE_FAILED || o->outcome == FBRL_SAMPLE_SKIPPED) {
+            textf(line, sizeof line, "sample %ld %s: %s", i + 1,
+                  fbrl_run_sample_name((fbrl_run_sample_outcome)o->outcome), o->reason);
+            push_msg(c, line);
         }
+    }
+    c->abort_asked = c->abort_confirm = c->asking = 0;
+    c->state = ev->outcome == FBRL_RUN_COMPLETED ? ST_DONE
+               : ev->outcome == FBRL_RUN_ABORTED ? ST_ABORTED
+               : ev->outcome == FBRL_RUN_PARTIAL ? ST_PARTIAL
+                                                 : ST_FAILED;
+    /* one line: the outcome, the samples, then what matters next (the samples line and
+     * Messages say which failed and why) */
+    if (s->samples > 0)
+        textf(line, sizeof line, ": %ld of %ld samples succeeded", ok, s->samples);
+    else
+        line[0] = '\0';
+    if (ev->outcome == FBRL_RUN_ABORTED)
+        textf(c->hint, sizeof c->hint, "%s aborted%s; arm at safe place, outputs off", ev->method->name, line);
+    else if (ev->outcome == FBRL_RUN_COMPLETED)
+        textf(c->hint, sizeof c->hint, "%s completed%s; F5 runs it again", ev->method->name, line);
+    else if (ev->text != NULL)
+        textf(c->hint, sizeof c->hint, "%s %s%s; arm halted, outputs off", ev->method->name,
+              fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line);
+    else
+        textf(c->hint, sizeof c->hint, "%s %s%s (%ld failed, %ld skipped)", ev->method->name,
+              fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), line, failed, skipped);
+}
+
+/* The console observes the run (as the run log does): what it shows follows the events. */
+static int observe(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
+{
+    console *c = ctx;
+    char where[64];
+    switch (ev->kind) {
+    case FBRL_RUN_EV_BEGIN: run_begins(c, ev->method); break;
+    case FBRL_RUN_EV_STEP_END:
+        if (ev->text != NULL) {
+            if (ev->sample >= 0)
+                textf(where, sizeof where, "%s, sample %ld", ev->method->steps[ev->step].name, ev->sample + 1);
+            else
+                textf(where, sizeof where, "%s", ev->method->steps[ev->step].name);
+            push_error(c, where, ev->text);
+        }
+        break;
+    case FBRL_RUN_EV_QUESTION: /* a corrective action's ASK: R, S or A answers */
+        c->asking = 1;
+        push_error(c, "asked", ev->text);
+        textf(c->advice[0], sizeof c->advice[0], "-> R retries the step, S skips this sample, A aborts the run");
+        textf(c->hint, sizeof c->hint, "R retry, S skip this sample, A abort: %s", ev->text);
+        break;
+    case FBRL_RUN_EV_ANSWER: c->asking = 0; break;
+    case FBRL_RUN_EV_PAUSE:
+        c->state = ST_PAUSED;
+        textf(c->hint, sizeof c->hint, "paused before step %ld (%s): F7 resumes, F8 aborts", ev->step + 1,
+              ev->method->steps[ev->step].name);
+        read_arm(c, "(paused)");
+        break;
+    case FBRL_RUN_EV_RESUME:
         if (c->state == ST_PAUSED)
             c->state = ST_RUNNING;
-    }
-    if (c->want_abort) {
-        fbrl_vmx_take_interrupt(c->m->vm); /* the abort is this answer, not a later throw */
-        return 1;
-    }
-    return 0;
-}
-
-/* After an abort or a failure: the safe stop (arm halted, outputs off); after an abort
- * the method's ON-ABORT takes the arm to its safe place. */
-static void obs_end(void *ctx, const fbrl_method *m, const char *outcome, const char *error)
-{
-    console *c = ctx;
-    if (error != NULL && strcmp(outcome, "completed") != 0 && !c->errs[0][0])
-        push_error(c, m->name, error); /* (a failed step has said it already) */
-    if (strcmp(outcome, "completed") != 0) {
-        fbrl_robot_stop stop;
-        fbrl_vmx_take_interrupt(c->m->vm);
-        c->want_abort = 0;
-        fbrl_robot_safe_stop(&c->m->robot, &stop);
-        if (stop.result != FBRL_OK)
-            push_error(c, "safe stop", fbrl_status_str(stop.result));
-        if (strcmp(outcome, "aborted") == 0 && m->abort_xt != 0) {
-            char text[48], msg[200];
-            int code = 0;
-            textf(text, sizeof text, "#%ld EXECUTE", (long)m->abort_xt);
-            textf(c->hint, sizeof c->hint, "aborted: the arm goes to its safe place ...");
-            pump(c, 1);
-            if (fbrl_vmx_evaluate_catch(c->m->vm, text, strlen(text), &code, msg, sizeof msg) != FBRL_OK ||
-                code != 0)
-                push_error(c, "ON-ABORT", msg);
-        }
-        read_arm(c, strcmp(outcome, "aborted") == 0 ? "(safe place)" : "(halted)");
-        if (fbrl_runlog_is_open(&c->log->log))
-            fbrl_runlog_note(&c->log->log, "safe-stop",
-                             stop.result == FBRL_OK ? "arm halted, outputs switched off" : "incomplete");
-    } else {
-        read_arm(c, "(finished)");
-    }
-    c->t_end = now_us();
-    c->want_abort = c->want_pause = 0;
-    if (strcmp(outcome, "completed") == 0) {
-        c->state = ST_DONE;
-        textf(c->hint, sizeof c->hint, "%s completed: F5 runs it again", m->name);
-    } else if (strcmp(outcome, "aborted") == 0) {
-        c->state = ST_ABORTED;
-        textf(c->hint, sizeof c->hint, "%s aborted: arm at its safe place, outputs off", m->name);
-    } else {
-        c->state = ST_FAILED;
-        textf(c->hint, sizeof c->hint, "%s failed: arm halted, outputs off", m->name);
-    }
-}
-
-/* A corrective action's ASK (fbrl_recover): the question with its choices on the hint
- * line, answered with R, S or A (Ctrl-C: abort). */
-static int console_ask(void *ctx, const char *question)
-{
-    console *c = ctx;
-    int ch = 0;
-    push_error(c, "asked", question);
-    textf(c->advice[0], sizeof c->advice[0], "-> R retries the step, S skips this sample, A aborts the run");
-    while (ch != 'R' && ch != 'S' && ch != 'A') {
-        textf(c->hint, sizeof c->hint, "R retry, S skip this sample, A abort: %s", question);
+        break;
+    case FBRL_RUN_EV_ABORT:
+        c->state = ST_ABORTING;
+        textf(c->hint, sizeof c->hint, "aborted: the arm goes to its safe place ...");
+        break;
+    case FBRL_RUN_EV_SAFE_STOP:
+        if (ev->status != FBRL_OK)
+            push_error(c, "safe stop", fbrl_status_str(ev->status));
+        break;
+    case FBRL_RUN_EV_ON_ABORT:
+        if (ev->text != NULL)
+            push_error(c, "ON-ABORT", ev->text);
+        break;
+    case FBRL_RUN_EV_END: run_ends(c, run, ev); break;
+    case FBRL_RUN_EV_WAIT: { /* paused or asking: the keys, the screen */
+        int ch;
         draw(c);
         nodelay(stdscr, FALSE);
         timeout(200);
         ch = getch();
-        ch = ch == KEY_CTRL_C ? 'A' : ch >= 0 && ch < 256 ? toupper(ch) : 0;
+        key(c, ch);
+        return 1;
     }
-    textf(c->hint, sizeof c->hint, "answered: %s", ch == 'R' ? "retry" : ch == 'S' ? "skip" : "abort");
-    return ch;
+    default: break;
+    }
+    pump(c, 1);
+    return 0;
+}
+
+/* The run log could not be written: the operator sees it at once. */
+static void log_failed(void *ctx, const char *message)
+{
+    console *c = ctx;
+    push_error(c, "run log", message);
+    if (message == c->log->audit.err) /* the run was refused before it began */
+        textf(c->advice[0], sizeof c->advice[0], "-> nothing ran: see why above");
+    else
+        textf(c->advice[0], sizeof c->advice[0], "-> the run goes on without a full log: free space, then check the log");
 }
 
 /* ---- running ---- */
 
 static void start_run(console *c)
 {
-    char text[FBRL_METHOD_NAME_MAX + 16];
-    if (commit_form(c) != 0) {
+    long v[FBRL_METHOD_MAX_PARAMS];
+    size_t bad = 0;
+    if (commit_form(c, v) != 0) {
         c->screen = SCREEN_FORM;
         c->state = ST_IDLE;
         return;
     }
-    fill_form(c); /* the values as set */
     textf(c->log->source, sizeof c->log->source, "%s", c->entry ? c->entry->path : "");
-    textf(text, sizeof text, "%s RUN-METHOD", c->meth->name);
+    for (size_t k = 0; k < c->meth->nparams; k++) { /* a parameter changed: who, from what, to what */
+        long old = 0;
+        char what[2 * FBRL_METHOD_NAME_MAX + 2], detail[96];
+        if (fbrl_method_param_get(&c->m->methods, c->meth, k, &old) == FBRL_OK && old != v[k]) {
+            textf(what, sizeof what, "%s %s", c->meth->name, c->meth->params[k].name);
+            textf(detail, sizeof detail, "%ld -> %ld %s", old, v[k], c->meth->params[k].unit);
+            cu_action("parameter", what, detail);
+        }
+    }
+    c->log->audit.err[0] = '\0';
     c->in_vm++;
-    fbrl_status st = fbrl_vm_eval(c->m->vm, text, strlen(text));
+    fbrl_status st = fbrl_run_start(&c->m->run, c->meth->name, v, c->meth->nparams, &bad);
     c->in_vm--;
-    fbrl_vmx_take_interrupt(c->m->vm);
     flush_partial(c);
-    if (st != FBRL_OK && running(c)) { /* refused before it began (the run log, ...) */
+    fill_form(c); /* the values as set */
+    if (st != FBRL_OK && c->log->audit.err[0]) { /* refused before it began: why, nothing ran */
+        push_error(c, NULL, c->log->audit.err);
+        textf(c->advice[0], sizeof c->advice[0], "-> nothing ran");
+        textf(c->hint, sizeof c->hint, "the run did not start: see the errors");
+        c->screen = SCREEN_FORM;
+        c->state = ST_IDLE;
+    } else if (st != FBRL_OK) { /* it did not begin: the reason shown, the form back */
         char msg[400];
         engine_error(c, msg, sizeof msg);
-        push_error(c, NULL, msg);
-        c->state = ST_FAILED;
+        push_error(c, NULL, st == FBRL_ETHROW ? msg : fbrl_status_str(st));
+        if (c->log->write_failed) /* the run log could not be written: that is the reason */
+            push_error(c, "run log", c->log->write_error);
+        c->screen = SCREEN_FORM;
+        c->state = ST_IDLE;
+        textf(c->hint, sizeof c->hint, "the run did not start: see the errors");
     }
     draw(c);
 }
@@ -1383,7 +1488,6 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     cookie_io_functions_t io = {NULL, cookie_write, NULL, NULL};
     FILE *old_out = m->host.out;
     int old_tty = m->host.out_is_tty;
-    fbrl_method_observer obs = {NULL, obs_begin, obs_step, obs_between, obs_end};
 
     if (!isatty(STDIN_FILENO) || !isatty(STDOUT_FILENO)) {
         fprintf(stderr, "fbrlmon: --console needs a terminal\n");
@@ -1402,6 +1506,14 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
         return -1;
     }
     setvbuf(c->out, NULL, _IONBF, 0);
+    /* first the console, then the run log: the console's last reading of the arm at the
+     * end of a run is a command of that run, in its log */
+    if (fbrl_run_observe(&m->run, observe, c) != FBRL_OK || mon_runlog_observe_again(log) != 0) {
+        fprintf(stderr, "fbrlmon: --console: cannot watch the method runs\n");
+        fbrl_run_unobserve(&m->run, observe, c);
+        fclose(c->out);
+        return -1;
+    }
     m->host.out = c->out;
     m->host.out_is_tty = 0;
     m->host.width = 0;
@@ -1409,11 +1521,11 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     m->host.tick_ctx = c;
     fbrl_robot_set_console(&m->robot, hook_progress, c, 0);
     fbrl_robot_set_watch(&m->robot, watch_arm, c);
-    fbrl_recover_set_ask(&m->recover, console_ask, c);
     log->exec_hook = hook_exec;
     log->exec_hook_ctx = c;
-    obs.ctx = c;
-    log->chain = obs;
+    log->error_hook = log_failed;
+    log->error_hook_ctx = c;
+    log->quiet = 1;
 
     initscr();
     raw();
@@ -1422,19 +1534,26 @@ int console_run(mon *m, mon_runlog *log, const console_options *o)
     set_escdelay(100); /* Esc leaves the Forth line at once, not after a second */
     curs_set(0);
     scan_library(c);
-    if (c->nlib > 0)
+    if (c->nlib > 0 && !c->hint[0])
         textf(c->hint, sizeof c->hint, "choose a method and press Enter");
+    cu_start(log);
+    if (cu_lab())
+        ask_sign_in(c, "sign in: your name, Enter, then your password");
     while (!c->quit && !fbrl_vm_bye(m->vm)) {
         draw(c);
         nodelay(stdscr, FALSE);
         timeout(1000); /* the clock and the arm panel stay fresh */
         key(c, getch());
+        if (cu_idle(running(c)))
+            ask_sign_in(c, "signed out: the console was idle; sign in again");
     }
     endwin();
+    cu_end();
 
-    memset(&log->chain, 0, sizeof log->chain);
+    fbrl_run_unobserve(&m->run, observe, c);
+    log->error_hook = NULL;
+    log->quiet = 0;
     log->exec_hook = NULL;
-    fbrl_recover_set_ask(&m->recover, mon_recover_ask, m);
     fbrl_robot_set_console(&m->robot, NULL, NULL, 0);
     fbrl_robot_set_watch(&m->robot, NULL, NULL);
     m->host.tick = NULL;

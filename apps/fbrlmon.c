@@ -4,12 +4,14 @@
  *   fbrlmon [options] [FILE...]
  *
  * Evaluates -e texts and FILEs in command-line order; then, when standard input
- * is a terminal, an interactive session (line editing, history, completion);
+ * is a terminal, an interactive session (line editing, history, completion) -
+ * unless FILEs or -e texts ran with the output not on a terminal (a run, ended);
  * otherwise standard input line by line. See docs/fbrlmon.md. */
 #include <errno.h>
 #include <limits.h>
 #include <getopt.h>
 #include <locale.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +22,7 @@
 #include "mon_conn.h"
 #include "mon_dry.h"
 #include "mon_relink.h"
+#include "lab.h"
 #include "mon_runlog.h"
 #include "console.h"
 #include "mon_safe.h"
@@ -48,13 +51,15 @@ typedef struct options {
     const char *svg; /* --svg FILE */
     mon_dry_options dry;
     console_options console; /* --console, --methods, --level; --run-log, --operator */
+    const char *lab;         /* --lab DIR: the lab's users and audit trail (docs/compliance.md) */
 } options;
 
 static void usage(FILE *f)
 {
     fputs("usage: fbrlmon [options] [FILE...]\n"
           "Evaluate FBRL (Forth) source FILEs in order, then read commands from a\n"
-          "terminal (interactive session) or from piped standard input.\n"
+          "terminal (interactive session) or from piped standard input. FILEs or -e\n"
+          "with the output redirected (fbrlmon plan.fbrl > log) run and end.\n"
           "\n"
           "options:\n"
           "  -e TEXT          evaluate TEXT (in order with the FILEs; also -eTEXT)\n"
@@ -65,11 +70,22 @@ static void usage(FILE *f)
           "  --stop-bits N    1 or 2 (default 1)\n"
           "  --flow F         none or xonxoff (default xonxoff)\n"
           "  --low-latency on|off  USB-serial low-latency mode (default on)\n"
-          "  --axes N         the arm's axes (default 5; the emulator's own with --sim)\n"
+          "  --axes N         the axes in the controller's readouts (default: the arm's)\n",
+          f);
+    {
+        char names[64];
+        fbrl_arm_names(names, sizeof names, '|');
+        fprintf(f,
+                "  --arm %-10s the arm (default %s): its kinematics, limits, pulses per\n"
+                "                   degree and READY for the link's position check, the cell's\n"
+                "                   guard and the robot words; the emulator is that arm\n",
+                names, fbrl_arm_model(0)->name);
+    }
+    fputs(
 #ifdef FBRLMON_HAVE_SIM
           "  --sim            built-in emulated controller (the default without --port)\n"
           "  --sim-state FILE the emulator's persistent memory (default: none kept)\n"
-          "  --sim-model M    the emulated arm: a255 (default) or a465 (6 axes)\n"
+          "  --sim-model M    the same as --arm (its older name)\n"
           "  --sim-inputs FILE the emulator's inputs over time, lines \"T IN n v\"\n"
           "                   (fbrlsim --inputs; default: all inputs off)\n"
 #endif
@@ -85,6 +101,8 @@ static void usage(FILE *f)
           "  --keep-files     the dry run writes the plan's files (default: a scratch dir)\n"
           "  --run-log FILE   every RUN-METHOD appends its run log (JSON lines) to FILE\n"
           "  --operator NAME  the operator named in run logs (default: $USER)\n"
+          "  --lab DIR        the lab's users and audit trail: runs need a\n"
+          "                   signed-in user and a Released method (docs/compliance.md)\n"
           "  --console        the operator console (full screen) after the FILEs\n"
           "  --methods DIR    the console's method library (default: methods)\n"
           "  --level L        the console's level: operator (default), developer or\n"
@@ -97,7 +115,8 @@ static void usage(FILE *f)
           "  -V, --version    show the version and exit\n"
           "\n"
           "exit status: 0 no error, 1 an error aborted a file, -e text or piped line,\n"
-          "             2 bad command line, 3 could not start\n",
+          "             2 bad command line, 3 could not start, 4 a method run did not\n"
+          "             complete (its run log says how each sample ended)\n",
           f);
 }
 
@@ -130,6 +149,7 @@ enum {
     OPT_FLOW,
     OPT_LOW_LATENCY,
     OPT_AXES,
+    OPT_ARM,
     OPT_SIM,
     OPT_SIM_STATE,
     OPT_SIM_MODEL,
@@ -146,7 +166,8 @@ enum {
     OPT_RUN_LOG,
     OPT_OPERATOR,
     OPT_METHODS,
-    OPT_LEVEL
+    OPT_LEVEL,
+    OPT_LAB
 };
 
 /* "-" first: FILEs come back as option 1 in command-line order (they run in order
@@ -161,6 +182,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"flow", required_argument, NULL, OPT_FLOW},
                                              {"low-latency", required_argument, NULL, OPT_LOW_LATENCY},
                                              {"axes", required_argument, NULL, OPT_AXES},
+                                             {"arm", required_argument, NULL, OPT_ARM},
 #ifdef FBRLMON_HAVE_SIM
                                              {"sim", no_argument, NULL, OPT_SIM},
                                              {"dry-run", no_argument, NULL, OPT_DRY_RUN},
@@ -170,6 +192,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"console", no_argument, NULL, OPT_CONSOLE},
                                              {"run-log", required_argument, NULL, OPT_RUN_LOG},
                                              {"operator", required_argument, NULL, OPT_OPERATOR},
+                                             {"lab", required_argument, NULL, OPT_LAB},
                                              {"methods", required_argument, NULL, OPT_METHODS},
                                              {"level", required_argument, NULL, OPT_LEVEL},
                                              {"sim-state", required_argument, NULL, OPT_SIM_STATE},
@@ -208,9 +231,11 @@ static int set_valued(options *o, int c, const char *v)
         return 0;
     case OPT_WORKSPACE: o->workspace = v; return 0;
     case OPT_SIM_STATE: o->conn.sim_state = v; return 0;
-    case OPT_SIM_MODEL: o->conn.sim_model = v; return 0;
+    case OPT_ARM:
+    case OPT_SIM_MODEL: return (o->conn.arm = fbrl_arm_find(v)) != NULL ? 0 : -1;
     case OPT_SIM_INPUTS: o->conn.sim_inputs = v; return 0;
     case OPT_PRINTER: o->printer = v; return 0;
+    case OPT_LAB: o->lab = v; return 0;
     case OPT_SVG: o->svg = v; return 0;
     case OPT_RUN_LOG:
     case OPT_OPERATOR:
@@ -298,13 +323,22 @@ static int parse_args(int argc, char **argv, options *o, int *status)
             goto bad;
         default:
             if (set_valued(o, c, optarg) != 0) {
-                fprintf(stderr, "fbrlmon: %s: bad value '%s'\n", option_name(c, name, sizeof name), optarg);
+                int arm = c == OPT_ARM || c == OPT_SIM_MODEL;
+                char names[64];
+                fbrl_arm_names(names, sizeof names, '|');
+                fprintf(stderr, "fbrlmon: %s: bad value '%s'%s%s%s\n", option_name(c, name, sizeof name), optarg,
+                        arm ? " (" : "", arm ? names : "", arm ? ")" : "");
                 goto bad;
             }
             if (c == OPT_PORT)
                 explicit_conn = 1;
             break;
         }
+    }
+    if (o->conn.arm != NULL && o->conn.axes != 0 && o->conn.axes != o->conn.arm->naxes) {
+        fprintf(stderr, "fbrlmon: --axes %u does not fit the %s (%u axes)\n", o->conn.axes, o->conn.arm->name,
+                o->conn.arm->naxes);
+        goto bad;
     }
     for (; optind < argc; optind++) { /* after "--": FILEs only */
         o->actions[o->n_actions].is_text = 0;
@@ -329,6 +363,7 @@ bad:
 
 static mon_conn g_conn;     /* fixed address while open, as the uart backend needs */
 static mon_runlog g_runlog; /* the link reports every executed line to it */
+static lab g_lab;          /* --lab: its users and chain */
 
 /* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
  * (a printer or a second line shows it as it is printed). */
@@ -406,13 +441,16 @@ int main(int argc, char **argv)
 {
     options opt;
     static mon m; /* fixed address for the words; large */
-    int status = MON_EXIT_OK, stopped = 0;
+    int status = MON_EXIT_OK, stopped = 0, run_only;
     size_t i;
     FILE *printer = NULL;
 
     /* The user's locale (the terminal's character set for line editing). libfbrl reads
      * and prints numbers the same in every locale, and so does fbrlmon (fbrl_num). */
     setlocale(LC_ALL, "");
+    /* a file size limit (ulimit -f) is an error the write reports (EFBIG: "no space left"),
+     * not the end of the run with a temporary file left behind */
+    signal(SIGXFSZ, SIG_IGN);
     memset(&opt, 0, sizeof opt);
     if (parse_args(argc, argv, &opt, &status) != 0) {
         free(opt.actions);
@@ -459,6 +497,8 @@ int main(int argc, char **argv)
     }
     m.conn = g_conn.open ? &g_conn : NULL;
     m.runlog = &g_runlog.log;
+    /* the guard computes the arm the link checks positions of (and the emulator is) */
+    fbrl_cell_set_arm(&m.cell->model, g_conn.arm ? g_conn.arm : fbrl_arm_model(0), 0.0);
     if (mon_relink_install(&m) != FBRL_OK) {
         fprintf(stderr, "fbrlmon: cannot define RECONNECT and RESUME\n");
         mon_close(&m);
@@ -480,6 +520,18 @@ int main(int argc, char **argv)
         mon_runlog_set_path(&g_runlog, opt.console.run_log);
         if (opt.console.operator_id != NULL)
             snprintf(g_runlog.operator_id, sizeof g_runlog.operator_id, "%s", opt.console.operator_id);
+        if (opt.lab != NULL) {
+            /* the lab: its users sign in; its chain is the run log unless --run-log names one */
+            if (lab_init(&g_lab, opt.lab, NULL, opt.console.run_log) != 0 || lab_load_users(&g_lab) != 0) {
+                fprintf(stderr, "fbrlmon: %s\n", g_lab.err);
+                mon_close(&m);
+                mon_conn_close(&g_conn);
+                free(opt.actions);
+                return MON_EXIT_CONNECT;
+            }
+            g_runlog.audit.lab = &g_lab;
+            mon_runlog_set_path(&g_runlog, g_lab.chain_path);
+        }
     }
 
     if (opt.printer != NULL) {
@@ -503,7 +555,7 @@ int main(int argc, char **argv)
     }
 
     if (opt.dry_run)
-        mon_dry_start(&m);
+        mon_dry_start(&m, &g_runlog);
     /* Ctrl-C in a file or -e text: the safe stop, and the rest of the command line is
      * skipped (docs/fbrlmon.md "Ctrl-C") */
     for (i = 0; i < opt.n_actions && !fbrl_vm_bye(m.vm) && !stopped; i++) {
@@ -522,6 +574,7 @@ int main(int argc, char **argv)
         stopped = mon_safe_end(&m, a->is_text ? "-e" : a->arg, a->is_text ? 1 : 0);
     }
 
+    run_only = m.host.in_is_tty && opt.n_actions > 0 && !m.host.out_is_tty;
     if (opt.dry_run && mon_dry_finish(&m, NULL, stdout, opt.svg) != 0)
         m.errors++;
     /* after a Ctrl-C, only a terminal goes on (at the prompt); piped input ends */
@@ -529,7 +582,10 @@ int main(int argc, char **argv)
         if (console_run(&m, &g_runlog, &opt.console) != 0)
             m.errors++;
     } else if (!opt.dry_run && !fbrl_vm_bye(m.vm) && !mon_safe_quit() && (!stopped || m.host.in_is_tty)) {
-        if (m.host.in_is_tty) {
+        if (run_only) {
+            /* FILEs or -e texts with the output going elsewhere (fbrlmon plan.fbrl > run.log):
+             * a run, not a session; nobody would see a prompt, so the terminal is not read */
+        } else if (m.host.in_is_tty) {
             char desc[512], hello[640];
             mon_conn_describe(&g_conn, desc, sizeof desc);
             snprintf(hello, sizeof hello, "fbrlmon %s - %s. HELP name, WORDS; BYE or Ctrl-D ends.", fbrl_version(),
@@ -566,7 +622,9 @@ int main(int argc, char **argv)
     if (printer != NULL && fclose(printer) != 0)
         fprintf(stderr, "fbrlmon: --printer: %s\n", strerror(errno));
     status = m.errors ? MON_EXIT_ERROR : MON_EXIT_OK;
-    if (mon_safe_quit() || (stopped && !m.host.in_is_tty))
+    if (m.runs_incomplete) /* the more telling: a run's outcome is in its run log */
+        status = MON_EXIT_RUN;
+    if (mon_safe_quit() || (stopped && (!m.host.in_is_tty || run_only)))
         status = MON_EXIT_INTERRUPT;
     mon_conn_close(&g_conn);
     free(opt.actions);

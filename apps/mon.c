@@ -94,6 +94,8 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
         st = mon_trace_install(m);
     if (st == FBRL_OK)
         st = mon_recover_install(m);
+    if (st == FBRL_OK) /* after the corrective actions: the run asks and notes through them */
+        st = fbrl_run_install(&m->run, m->vm, &m->methods, &m->recover, &m->robot);
     if (st == FBRL_OK && m->host.out_is_tty) /* long waits show their progress at a terminal */
         fbrl_robot_set_console(&m->robot, mon_host_progress, &m->host, 0);
     if (st != FBRL_OK) {
@@ -131,7 +133,7 @@ void mon_close(mon *m)
     mon_trace_close(m);
     free(m->typed_src);
     m->typed_src = NULL;
-    m->typed_len = m->typed_cap = 0;
+    m->typed_len = m->typed_cap = m->typed_open = 0;
 }
 
 /* Write s to stderr with control characters shown as '?', so a report is
@@ -250,12 +252,16 @@ static void report(mon *m, fbrl_status st, const char *where, unsigned long line
 int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned long line, int counts)
 {
     size_t words = fbrl_vm_word_count(m->vm);
-    int compiling = fbrl_vm_compiling(m->vm);
+    int compiling = fbrl_vm_compiling(m->vm), counting = m->counting;
+    m->counting = counts;
     fbrl_status st = fbrl_vm_eval(m->vm, text, len);
-    /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS. */
-    if (st == FBRL_OK && (where == NULL || strcmp(where, "stdin") == 0) &&
-        (compiling || fbrl_vm_compiling(m->vm) || fbrl_vm_word_count(m->vm) > words))
-        mon_debug_typed(m, text, len);
+    m->counting = counting;
+    mon_step_end(m);
+    /* The prompt's definitions (typed or piped), for LOCATE and SAVE-DEFINITIONS: the
+     * lines of a definition count once it ended without an error. */
+    if (where == NULL || strcmp(where, "stdin") == 0)
+        mon_debug_typed(m, text, len, st == FBRL_OK, compiling, fbrl_vm_compiling(m->vm),
+                        fbrl_vm_word_count(m->vm) > words);
     if (st == FBRL_OK)
         return 0;
     report(m, st, where, line);
@@ -266,7 +272,11 @@ int mon_eval(mon *m, const char *text, size_t len, const char *where, unsigned l
 
 int mon_include(mon *m, const char *path)
 {
+    int counting = m->counting;
+    m->counting = 1;
     fbrl_status st = fbrl_vm_include(m->vm, path);
+    m->counting = counting;
+    mon_step_end(m);
     if (st == FBRL_OK)
         return 0; /* (the engine itself refuses a file that ends inside a definition) */
     report(m, st, path, 0);

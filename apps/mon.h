@@ -11,6 +11,7 @@
 #include "fbrl/method.h"
 #include "fbrl/recover.h"
 #include "fbrl/robot.h"
+#include "fbrl/run.h"
 #include "fbrl/vm.h"
 #include "fbrl/workspace.h"
 #include "mon_host.h"
@@ -22,6 +23,7 @@
 #define MON_EXIT_ERROR   1 /* an error aborted a file, -e text or a line of piped input */
 #define MON_EXIT_USAGE   2 /* bad command line */
 #define MON_EXIT_CONNECT 3 /* could not start: no memory for the VM, port would not open */
+#define MON_EXIT_RUN     4 /* a method run from a file, -e text or piped input did not complete */
 
 /* Storage for the typed data files the file words keep open (split among them). */
 #define MON_FILE_STORAGE (8u * 1024u * 1024u)
@@ -52,10 +54,14 @@ typedef struct mon {
     unsigned long resume_line;
     char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
     size_t typed_len, typed_cap;
+    size_t typed_open; /* of typed_len, the last bytes: a definition not yet ended */
     char edit_ws[256];    /* EDIT: where the session's work waits while the file loads */
     mon_step step;        /* the debugger (mon_step.c) */
     mon_trace trace;      /* TRACE-ON, TRACE-WORDS (mon_trace.c, mon_step.c) */
     fbrl_recover recover; /* ON-FAILURE, ATTEMPT (mon_recover.c) */
+    fbrl_run run;         /* RUN-METHOD: the method run the console and the run log observe */
+    int counting;         /* evaluating a file, -e text or piped input (errors count) */
+    unsigned long runs_incomplete; /* of those: method runs whose outcome was not completed */
     struct fbrl_runlog *runlog; /* the run log RECONNECT notes in while a run is logged */
 } mon;
 

@@ -59,7 +59,7 @@ static fbrl_status sim_start(void *ctx, const char *arg, char *path, size_t cap)
     fbrl_sim_options_init(&so);
     so.state_path = arg[0] ? arg : c->sim_state;
     so.inputs_path = c->sim_inputs;
-    so.model = c->sim_model;
+    so.model = c->arm ? c->arm->name : NULL;
     so.clock = c->sim_clock;
     so.skip = c->sim_skip;
     so.clock_ctx = c->sim_clock_ctx;
@@ -122,7 +122,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     c->kind = o->kind;
     c->sim_state = o->sim_state;
     c->sim_inputs = o->sim_inputs;
-    c->sim_model = o->sim_model;
+    c->arm = o->arm;
     c->sim_clock = o->sim_clock;
     c->sim_skip = o->sim_skip;
     c->sim_clock_ctx = o->sim_clock_ctx;
@@ -155,12 +155,14 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         /* The link reads W2 and STATUS rows for as many axes as the arm has. */
         fbrl_link_config lc;
         fbrl_link_config_init(&lc);
-        if (o->axes)
-            lc.naxes = o->axes;
 #ifdef FBRLMON_HAVE_SIM
-        else if (c->sim != NULL)
-            lc.naxes = (unsigned)fbrl_sim_axes(c->sim);
+        if (c->sim != NULL)
+            c->arm = fbrl_sim_arm(c->sim); /* --arm's, or the one its memory holds */
 #endif
+        if (c->arm == NULL)
+            c->arm = fbrl_arm_model(0);
+        lc.arm = c->arm;
+        lc.naxes = o->axes ? o->axes : c->arm->naxes;
         lc.on_exec = o->on_exec; /* the run log (mon_runlog.c), or the dry run's report */
         lc.exec_ctx = o->exec_ctx;
         fbrl_link_modes_init(&c->modes);

@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 #include <stdio.h>
+#include "fbrl/arm.h"
 #include "fbrl/link.h"
 #include "fbrl/port.h"
 
@@ -23,8 +24,9 @@ typedef struct mon_conn_options {
     fbrl_port_options line; /* baud, data bits, parity, stop bits, flow, low latency */
     const char *sim_state;  /* MON_CONN_SIM: emulator's persistent memory, or NULL */
     const char *sim_inputs; /* MON_CONN_SIM: fbrlsim --inputs file (timed "T IN n v"), or NULL */
-    const char *sim_model;  /* MON_CONN_SIM: the emulated arm ("a255", "a465"), or NULL */
-    unsigned axes;          /* the arm's axes in W2/STATUS; 0: the emulator's, else 5 */
+    const fbrl_arm *arm;    /* the arm (--arm); NULL: the emulator's own (its state file's), else
+                             * the A255 */
+    unsigned axes;          /* the axes in W2/STATUS; 0: the arm's */
     double (*sim_clock)(void *ctx); /* MON_CONN_SIM: the emulator's clock (the dry run's), or NULL */
     void (*sim_skip)(void *ctx, double s);
     void *sim_clock_ctx;
@@ -40,7 +42,8 @@ typedef struct mon_conn {
 #ifdef FBRLMON_HAVE_SIM
     fbrl_sim *sim;
 #endif
-    const char *sim_state, *sim_inputs, *sim_model;
+    const char *sim_state, *sim_inputs;
+    const fbrl_arm *arm; /* the arm the link checks positions of (and the emulator is) */
     double (*sim_clock)(void *ctx);
     void (*sim_skip)(void *ctx, double s);
     void *sim_clock_ctx;

@@ -40,22 +40,43 @@ static int loads_source(const char *text, size_t len)
     return 0;
 }
 
-void mon_debug_typed(mon *m, const char *text, size_t len)
+static int keep_line(mon *m, const char *text, size_t len);
+
+void mon_debug_typed(mon *m, const char *text, size_t len, int ok, int open_before, int open_after,
+                     int defined)
 {
-    if (loads_source(text, len))
+    if (!ok) { /* an error abandons the open definition: its lines go (the line's too) */
+        if (open_before) {
+            m->typed_len -= m->typed_open;
+            m->typed_open = 0;
+        }
         return;
+    }
+    if (!(open_before || open_after || defined) || loads_source(text, len))
+        return;
+    if (keep_line(m, text, len) == 0)
+        m->typed_open = open_after ? m->typed_open + len + 1 : 0;
+}
+
+/* Append a line (and its end) to the kept text; -1 when there is no memory for it. */
+static int keep_line(mon *m, const char *text, size_t len)
+{
     if (len + 1 > m->typed_cap - m->typed_len) {
         size_t cap = (m->typed_cap ? m->typed_cap * 2 : 4096) + len + 1;
         char *p = realloc(m->typed_src, cap);
         if (!p) /* keep what is there; SAVE-DEFINITIONS says what it has */
-            return;
+            return -1;
         m->typed_src = p;
         m->typed_cap = cap;
     }
     memcpy(m->typed_src + m->typed_len, text, len);
     m->typed_len += len;
     m->typed_src[m->typed_len++] = '\n';
+    return 0;
 }
+
+/* The kept text's definitions that ended (an open one's lines follow them). */
+static size_t ended(const mon *m) { return m->typed_len - m->typed_open; }
 
 /* Does the line at p define name (": NAME", case-insensitive)? */
 static int defines(const char *p, const char *e, const char *name)
@@ -77,7 +98,7 @@ static int defines(const char *p, const char *e, const char *name)
 /* The typed lines from the last one defining name up to its ';' (NULL: none). */
 static const char *typed_definition(const mon *m, const char *name, size_t *len)
 {
-    const char *found = NULL, *p = m->typed_src, *end = m->typed_src + m->typed_len;
+    const char *found = NULL, *p = m->typed_src, *end = m->typed_src + ended(m);
     while (p && p < end) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         const char *e = nl ? nl : end;
@@ -304,11 +325,11 @@ static fbrl_status w_save_definitions(fbrl_vm *vm, void *arg)
         snprintf(msg, sizeof msg, "SAVE-DEFINITIONS: %s exists; nothing written (choose a new name)", path);
         return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, msg);
     }
-    if (m->typed_len == 0)
+    if (ended(m) == 0)
         return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, "SAVE-DEFINITIONS: nothing was defined at the prompt");
     FILE *f = fopen(path, "w");
     int bad = !f || fprintf(f, "\\ %s - definitions typed at the fbrlmon prompt\n", path) < 0 ||
-              fwrite(m->typed_src, 1, m->typed_len, f) != m->typed_len;
+              fwrite(m->typed_src, 1, ended(m), f) != ended(m);
     if (f && fclose(f) != 0)
         bad = 1;
     if (bad) {

@@ -15,7 +15,11 @@ fbrl_status mon_debug_install(mon *m);
 /* Print a file's lines from first, each with its number, up to the one that holds ';'
  * (a definition's end) or max lines; -1 if none could be read. */
 int mon_debug_show_lines(FILE *out, const char *path, unsigned long first, int max);
-/* Keep a line typed at the prompt that defined words, for LOCATE and SAVE-DEFINITIONS. */
-void mon_debug_typed(mon *m, const char *text, size_t len);
+/* A line typed at the prompt was evaluated (ok: without an error; open_before, open_after:
+ * a definition was open before it, is open after it; defined: it made words). Lines that
+ * defined words are kept for LOCATE and SAVE-DEFINITIONS; those of a definition only once
+ * it ended, and none of one that an error abandoned. */
+void mon_debug_typed(mon *m, const char *text, size_t len, int ok, int open_before, int open_after,
+                     int defined);
 
 #endif

@@ -31,6 +31,9 @@ static struct {
 } g_clk = {PTHREAD_MUTEX_INITIALIZER, 0, 0, 0, 0, 0, 0};
 
 static mon_dry_report g_rep;
+static double g_step_t0, g_step_sum[FBRL_METHOD_MAX_STEPS]; /* simulated s */
+static long g_step_n[FBRL_METHOD_MAX_STEPS];
+static long g_step = -1, g_sample = -1; /* where the method run is */
 static double g_on_at[FBRL_ROBOT_IO_MAX + 1]; /* when each output went on (-1: off) */
 static unsigned long g_cmds_at_wait;          /* commands seen when the last wait was listed */
 static char g_scratch[PATH_MAX], g_cwd[PATH_MAX];
@@ -195,9 +198,60 @@ int mon_dry_setup(const mon_dry_options *o, mon_conn_options *conn)
     return 0;
 }
 
-void mon_dry_start(mon *m)
+static void fmt_s(char *buf, size_t cap, double s);
+
+/* A time-out (WAIT-INPUT that gave up) is listed where its wait began, with the step. */
+static void on_device(void *ctx, const fbrl_robot_event *ev, const char *device)
+{
+    char where[96] = "", a[32];
+    (void)ctx;
+    if (!g_clk.on || strcmp(ev->word, "WAIT-INPUT") != 0 || ev->seen || ev->status != FBRL_OK)
+        return;
+    if (g_step >= 0 && g_rep.run.nsteps > g_step && g_sample >= 0)
+        snprintf(where, sizeof where, " (%s, sample %ld)", g_rep.run.step_name[g_step], g_sample + 1);
+    else if (g_step >= 0 && g_rep.run.nsteps > g_step)
+        snprintf(where, sizeof where, " (%s)", g_rep.run.step_name[g_step]);
+    fmt_s(a, sizeof a, ev->planned_ms / 1000.0);
+    char text[200];
+    snprintf(text, sizeof text, "time-out: WAIT-INPUT %s %s not seen within %s s%s", device,
+             ev->amount != 0 ? "on" : "off", a, where);
+    add_event(MON_DRY_TIMEOUT, since_start() - ev->actual_ms / 1000.0, ev->actual_ms / 1000.0, 0, text);
+    g_rep.timeouts++;
+}
+
+/* The method run: each step's simulated time, and its predicted outcomes at the end. */
+static int on_run(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
+{
+    (void)ctx;
+    if (!g_clk.on)
+        return 0;
+    if (ev->kind == FBRL_RUN_EV_BEGIN) {
+        memset(g_step_sum, 0, sizeof g_step_sum);
+        memset(g_step_n, 0, sizeof g_step_n);
+        fbrl_run_snapshot(run, &g_rep.run);
+    } else if (ev->kind == FBRL_RUN_EV_STEP_BEGIN) {
+        g_step = ev->step;
+        g_sample = ev->sample;
+        g_step_t0 = since_start();
+    } else if (ev->kind == FBRL_RUN_EV_STEP_END) {
+        g_step_sum[ev->step] += since_start() - g_step_t0;
+        g_step_n[ev->step]++;
+    } else if (ev->kind == FBRL_RUN_EV_END) {
+        fbrl_run_snapshot(run, &g_rep.run);
+        for (long k = 0; k < g_rep.run.nsteps; k++)
+            g_rep.step_ms[k] = g_step_n[k] ? g_step_sum[k] * 1000.0 / (double)g_step_n[k] : 0;
+        g_rep.have_run = 1;
+        g_step = g_sample = -1;
+    }
+    return 0;
+}
+
+void mon_dry_start(mon *m, mon_runlog *log)
 {
     g_mon = m;
+    log->event_hook = on_device;
+    log->event_hook_ctx = NULL;
+    fbrl_run_observe(&m->run, on_run, NULL);
     g_clk.start = clk_now();
     g_clk.wall0 = real_now();
     g_clk.on = 1;
@@ -213,6 +267,28 @@ static void fmt_s(char *buf, size_t cap, double s)
 {
     if (fbrl_num_fixed(buf, cap, s, 0, 3, 0, NULL) != FBRL_OK)
         snprintf(buf, cap, "?");
+}
+
+/* The predicted run: its outcome, each sample's, each step's time (what fbrl_run_predict
+ * takes, so a front end can show the time left from the start). */
+static void report_run(FILE *out)
+{
+    const fbrl_run_snap *s = &g_rep.run;
+    char a[32], b[32];
+    fprintf(out, "predicted run of %s: %s\n", s->method, fbrl_run_outcome_name((fbrl_run_outcome)s->outcome));
+    for (long i = 0; i < s->samples; i++)
+        fprintf(out, "  sample %ld: %s%s%s\n", i + 1,
+                fbrl_run_sample_name((fbrl_run_sample_outcome)s->outcomes[i].outcome),
+                s->outcomes[i].reason[0] ? ": " : "", s->outcomes[i].reason);
+    for (long k = 0; k < s->nsteps; k++) {
+        if (g_step_n[k] == 0) {
+            fprintf(out, "  step %-14s not run\n", s->step_name[k]);
+            continue;
+        }
+        fmt_s(a, sizeof a, g_rep.step_ms[k] / 1000.0);
+        fmt_s(b, sizeof b, g_rep.step_ms[k] * (double)g_step_n[k] / 1000.0);
+        fprintf(out, "  step %-14s %ld x %s s = %s s\n", s->step_name[k], g_step_n[k], a, b);
+    }
 }
 
 int mon_dry_finish(mon *m, mon_dry_report *r, FILE *out, const char *svg)
@@ -239,7 +315,8 @@ int mon_dry_finish(mon *m, mon_dry_report *r, FILE *out, const char *svg)
     fmt_s(b, sizeof b, g_rep.wall);
     fprintf(out, "---- dry run ----\n");
     fprintf(out, "simulated duration %s s (the dry run took %s s)\n", a, b);
-    fprintf(out, "commands %lu, moves %lu, errors %lu\n", g_rep.commands, g_rep.moves, g_rep.errors);
+    fprintf(out, "commands %lu, moves %lu, errors %lu, time-outs %lu\n", g_rep.commands, g_rep.moves, g_rep.errors,
+            g_rep.timeouts);
     if (cs && isfinite(cs->clearance)) {
         fmt_s(a, sizeof a, cs->clearance);
         fmt_s(b, sizeof b, cs->near[0]);
@@ -260,9 +337,13 @@ int mon_dry_finish(mon *m, mon_dry_report *r, FILE *out, const char *svg)
             fprintf(out, "%10s s  output %d pulse %s s\n", a, e->output, b);
         else if (e->kind == MON_DRY_WAIT)
             fprintf(out, "%10s s  wait %s s\n", a, b);
+        else if (e->kind == MON_DRY_TIMEOUT)
+            fprintf(out, "%10s s  %s\n", a, e->text);
         else
             fprintf(out, "%10s s  error: %s\n", a, e->text);
     }
+    if (g_rep.have_run) /* what a real run of the method is predicted to do */
+        report_run(out);
     if (g_scratch[0]) {
         if (chdir(g_cwd) != 0)
             fprintf(stderr, "fbrlmon: --dry-run: back to %s: %s\n", g_cwd, strerror(errno));

@@ -3,6 +3,7 @@
  * POSIX; the engine reaches it only through fbrl_vm_host.files). A handle is a mon_fh:
  * C streams need a seek between a read and a write, so every operation seeks first. */
 #include "mon_files.h"
+#include "fbrl/fileio.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -15,7 +16,8 @@ typedef struct mon_fh {
     FILE *f;
 } mon_fh;
 
-static fbrl_status st_of_errno(void) { return errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO; }
+/* what the OS said, named as the library names it (permission, a full disk, a link loop ...) */
+static fbrl_status st_of_errno(void) { return errno ? fbrl_file_status_of_errno(errno) : FBRL_EIO; }
 
 static fbrl_status fs_open(void *user, const char *path, unsigned fam, int create, void **handle)
 {
@@ -27,7 +29,7 @@ static fbrl_status fs_open(void *user, const char *path, unsigned fam, int creat
         mode = (fam & FBRL_FAM_WRITE) ? "r+b" : "rb"; /* W/O must not empty an existing file */
     struct stat sb;
     if (!create && stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
-        return FBRL_EIO; /* a directory or a device is no file to read lines from */
+        return FBRL_ENOTFILE; /* a directory or a device is no file to read lines from */
     mon_fh *h = malloc(sizeof *h);
     if (!h)
         return FBRL_ENOSPC;
@@ -45,9 +47,11 @@ static fbrl_status fs_close(void *user, void *handle)
 {
     mon_fh *h = handle;
     (void)user;
-    int bad = fclose(h->f) != 0;
+    errno = 0;
+    int bad = fclose(h->f) != 0; /* a buffered write's full disk shows here */
+    fbrl_status st = bad ? st_of_errno() : FBRL_OK;
     free(h);
-    return bad ? FBRL_EIO : FBRL_OK;
+    return st;
 }
 
 static int here(mon_fh *h) { return fseeko(h->f, 0, SEEK_CUR) == 0; }
@@ -68,7 +72,12 @@ static fbrl_status fs_write(void *user, void *handle, const void *buf, size_t n)
     (void)user;
     if (!here(h))
         return FBRL_EIO;
-    return fwrite(buf, 1, n, h->f) == n ? FBRL_OK : (clearerr(h->f), FBRL_EIO);
+    errno = 0;
+    if (fwrite(buf, 1, n, h->f) == n)
+        return FBRL_OK;
+    fbrl_status st = st_of_errno();
+    clearerr(h->f);
+    return st;
 }
 
 static fbrl_status fs_seek(void *user, void *handle, uint64_t pos)
@@ -94,8 +103,9 @@ static fbrl_status fs_size(void *user, void *handle, uint64_t *size)
     mon_fh *h = handle;
     struct stat sb;
     (void)user;
+    errno = 0;
     if (fflush(h->f) != 0 || fstat(fileno(h->f), &sb) != 0)
-        return FBRL_EIO;
+        return st_of_errno();
     *size = (uint64_t)sb.st_size;
     return FBRL_OK;
 }

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* mon_host.c - OS services for the engine inside fbrlmon (the app may use the OS). */
 #include "mon_host.h"
+#include "fbrl/fileio.h"
 #include "mon_files.h"
 
 #include <errno.h>
@@ -193,7 +194,7 @@ static fbrl_status host_file_open(void *user, const char *path, void **handle)
         struct stat sb;
         int fd = open(path, O_RDONLY | O_NONBLOCK);
         if (fd < 0) {
-            fbrl_status st = errno == ENOENT || errno == ENOTDIR ? FBRL_ENOENT : FBRL_EIO;
+            fbrl_status st = fbrl_file_status_of_errno(errno); /* permission, a link loop ... */
             free(mf);
             return st;
         }

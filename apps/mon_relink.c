@@ -56,7 +56,7 @@ static void resend_modes(mon *m)
     fflush(m->host.out);
     m->host.column = 0;
     if (m->runlog != NULL && fbrl_runlog_is_open(m->runlog))
-        fbrl_runlog_note(m->runlog, "modes-resent", text);
+        fbrl_runlog_note(m->runlog, "modes-resent", NULL, text);
 }
 
 /* What the controller says about itself now, in one line to the console. */

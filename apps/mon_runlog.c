@@ -1,16 +1,18 @@
 /* SPDX-License-Identifier: MIT */
-/* mon_runlog.c - the run log's file, header and method observer; RUN-LOG and NO-RUN-LOG. */
+/* mon_runlog.c - the run log's file, header and run observer; RUN-LOG and NO-RUN-LOG. */
 #include "mon_runlog.h"
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "fbrl/vmx.h"
 #include "mon.h"
-#include "mon_recover.h"
 
 uint64_t mon_runlog_now_us(void *ctx)
 {
@@ -20,10 +22,31 @@ uint64_t mon_runlog_now_us(void *ctx)
     return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
 }
 
-static int file_write(void *ctx, const char *s, size_t n)
+/* The log could not be written: told once per run, and an error of fbrlmon (its exit
+ * status). */
+static void write_failed(mon_runlog *r, const char *what, int err)
 {
-    FILE *f = ctx;
-    return fwrite(s, 1, n, f) == n && fflush(f) == 0 ? 0 : -1;
+    if (r->write_failed)
+        return;
+    r->write_failed = 1;
+    snprintf(r->write_error, sizeof r->write_error, "run log %s: %s: %s", r->path, what, strerror(err));
+    r->m->errors++;
+    if (r->error_hook)
+        r->error_hook(r->error_hook_ctx, r->write_error);
+    else
+        fprintf(stderr, "fbrlmon: error: %s\n", r->write_error);
+}
+
+/* The run log's file is the audit chain (mon_audit.c): each record appended and synced;
+ * a write that failed is told once and the chain's writer stops. */
+static int chain_write(void *ctx, const char *s, size_t n)
+{
+    mon_runlog *r = ctx;
+    errno = 0;
+    if (mon_audit_sink(&r->audit, s, n) == 0)
+        return 0;
+    write_failed(r, "a record was not written", errno ? errno : EIO); /* the store kept the write's errno */
+    return -1;
 }
 
 /* Plain words for the errors an operator meets; the message itself comes first. */
@@ -117,101 +140,181 @@ static void read_version(mon_runlog *r)
     fbrl_link_set_line_handler(l, old_fn, old_ctx, NULL, NULL);
 }
 
-static int o_begin(void *ctx, const fbrl_method *meth)
+/* A run begins: the file opened, the header written (the run is refused, 1, when not). */
+static int log_begin(mon_runlog *r, const fbrl_method *meth)
 {
-    mon_runlog *r = ctx;
     fbrl_runlog_param p[FBRL_METHOD_MAX_PARAMS];
     fbrl_runlog_header h;
     char when[32], cal[128], ctl[sizeof r->version + sizeof r->controller + 2];
     time_t now = time(NULL);
     struct tm tm;
     r->step_t0_us = 0;
-    if (r->path[0]) {
-        memset(&h, 0, sizeof h);
-        for (size_t k = 0; k < meth->nparams; k++) {
-            p[k].name = meth->params[k].name;
-            p[k].unit = meth->params[k].unit;
-            p[k].value = 0;
-            fbrl_method_param_get(&r->m->methods, meth, k, &p[k].value);
-        }
-        localtime_r(&now, &tm);
-        strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S%z", &tm);
-        calibration_text(r->m, cal, sizeof cal);
-        r->opening = 1;
-        r->npending = 0;
-        read_version(r);
-        r->opening = 0;
-        if (r->version[0] && r->controller[0] && strlen(r->version) + 2 < sizeof ctl) {
-            snprintf(ctl, sizeof ctl, "%s; %s", r->version, r->controller);
-            h.controller = ctl;
-        } else {
-            h.controller = r->version[0] ? r->version : r->controller[0] ? r->controller : NULL;
-        }
-        h.method = meth->name;
-        h.source = r->source[0] ? r->source : NULL;
-        h.operator_id = r->operator_id;
-        h.started = when;
-        h.program = r->program;
-        h.calibration = cal;
-        h.params = p;
-        h.nparams = meth->nparams;
-        r->f = fopen(r->path, "a");
-        if (r->f == NULL)
-            return -1;
-        memset(&r->log, 0, sizeof r->log);
-        if (fbrl_runlog_begin(&r->log, file_write, r->f, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
-            fclose(r->f);
-            r->f = NULL;
-            return -1;
-        }
-        for (int k = 0; k < r->npending; k++)
-            fbrl_runlog_command(&r->log, r->pending[k], strlen(r->pending[k]), r->pending_st[k], -1);
+    r->write_failed = 0;
+    if (!r->path[0])
+        return 0;
+    memset(&h, 0, sizeof h);
+    for (size_t k = 0; k < meth->nparams; k++) {
+        p[k].name = meth->params[k].name;
+        p[k].unit = meth->params[k].unit;
+        p[k].value = 0;
+        fbrl_method_param_get(&r->m->methods, meth, k, &p[k].value);
     }
-    return r->chain.run_begin ? r->chain.run_begin(r->chain.ctx, meth) : 0;
+    /* the audit chain verified and the method's release checked (in a lab) before the
+     * controller hears anything of the run */
+    snprintf(r->audit.path, sizeof r->audit.path, "%s", r->path);
+    if (!r->audit.user[0])
+        mon_audit_set_user(&r->audit, r->operator_id, 0, FBRL_ROLE_OPERATOR);
+    int refused = mon_audit_run_begin(&r->audit, meth, r->source);
+    if (refused != 0) {
+        if (refused == -1)
+            r->m->errors++; /* no trail for the run: an error of fbrlmon (its exit status) */
+        if (r->error_hook)
+            r->error_hook(r->error_hook_ctx, r->audit.err);
+        else
+            fprintf(stderr, "fbrlmon: error: %s\n", r->audit.err);
+        return 1;
+    }
+    localtime_r(&now, &tm);
+    strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%S%z", &tm);
+    calibration_text(r->m, cal, sizeof cal);
+    r->opening = 1;
+    r->npending = 0;
+    read_version(r);
+    r->opening = 0;
+    if (r->version[0] && r->controller[0] && strlen(r->version) + 2 < sizeof ctl) {
+        snprintf(ctl, sizeof ctl, "%s; %s", r->version, r->controller);
+        h.controller = ctl;
+    } else {
+        h.controller = r->version[0] ? r->version : r->controller[0] ? r->controller : NULL;
+    }
+    h.method = meth->name;
+    h.source = r->source[0] ? r->source : NULL;
+    h.operator_id = r->operator_id;
+    h.started = when;
+    h.program = r->program;
+    h.calibration = cal;
+    h.params = p;
+    h.nparams = meth->nparams;
+    memset(&r->log, 0, sizeof r->log);
+    if (fbrl_runlog_begin(&r->log, chain_write, r, mon_runlog_now_us, NULL, &h) != FBRL_OK) {
+        mon_audit_run_end(&r->audit);
+        return 1;
+    }
+    for (int k = 0; k < r->npending; k++)
+        fbrl_runlog_command(&r->log, r->pending[k], strlen(r->pending[k]), r->pending_st[k], -1);
+    return 0;
 }
 
-static void o_step(void *ctx, const fbrl_method *meth, size_t step, long sample, fbrl_method_phase ph,
-                   const char *error)
+/* "Buffer, sample 2" (samples numbered from 1, as people do), or the step alone. */
+static const char *where_of(const fbrl_run_event *ev, char *buf, size_t cap)
 {
-    mon_runlog *r = ctx;
-    const char *name = meth->steps[step].name;
-    long n = sample >= 0 ? sample + 1 : -1; /* the log numbers samples from 1, as people do */
-    if (fbrl_runlog_is_open(&r->log)) {
-        if (ph == FBRL_METHOD_STEP_BEGIN) {
-            fbrl_runlog_step_start(&r->log, name, n);
-        } else {
-            if (ph == FBRL_METHOD_STEP_FAILED) {
-                char where[64];
-                if (n > 0)
-                    snprintf(where, sizeof where, "%s, sample %ld", name, n);
-                else
-                    snprintf(where, sizeof where, "%s", name);
-                fbrl_runlog_error(&r->log, where, error, mon_runlog_advice(error));
-            }
-            fbrl_runlog_step_end(&r->log, name, n, ph == FBRL_METHOD_STEP_FAILED ? error : NULL);
+    const char *step = ev->step >= 0 ? ev->method->steps[ev->step].name : ev->method->name;
+    if (ev->sample >= 0)
+        snprintf(buf, cap, "%s, sample %ld", step, ev->sample + 1);
+    else
+        snprintf(buf, cap, "%s", step);
+    return buf;
+}
+
+/* The run is over: the summary with every sample's outcome, the file closed. */
+static void log_end(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
+{
+    static fbrl_run_snap s; /* large: one run log per process */
+    fbrl_runlog_outcome out[FBRL_RUN_MAX_SAMPLES];
+    size_t n = 0;
+    if (fbrl_run_snapshot(run, &s) == FBRL_OK)
+        for (long i = 0; i < s.samples && i < FBRL_RUN_MAX_SAMPLES; i++, n++) {
+            out[n].sample = i + 1;
+            out[n].outcome = fbrl_run_sample_name((fbrl_run_sample_outcome)s.outcomes[i].outcome);
+            out[n].reason = s.outcomes[i].reason;
         }
-    }
-    if (r->chain.step)
-        r->chain.step(r->chain.ctx, meth, step, sample, ph, error);
+    fbrl_runlog_end(&r->log, fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), out, n);
+    mon_audit_run_end(&r->audit); /* sealed */
 }
 
-static int o_between(void *ctx, const fbrl_method *meth, size_t step, long sample)
+/* A run that did not complete, told on stderr (fbrlmon without the console): the outcome,
+ * and every sample that did not succeed with why. */
+static void tell_outcome(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
 {
-    mon_runlog *r = ctx;
-    return r->chain.between ? r->chain.between(r->chain.ctx, meth, step, sample) : 0;
+    static fbrl_run_snap s;
+    long ok = 0;
+    if (ev->outcome == FBRL_RUN_COMPLETED || r->quiet || fbrl_run_snapshot(run, &s) != FBRL_OK)
+        return;
+    for (long i = 0; i < s.samples; i++)
+        ok += s.outcomes[i].outcome == FBRL_SAMPLE_SUCCEEDED;
+    mon_host_newline(&r->m->host);
+    fprintf(stderr, "fbrlmon: %s: %s", s.method, fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome));
+    if (s.samples > 0)
+        fprintf(stderr, ": %ld of %ld samples succeeded", ok, s.samples);
+    if (ev->text != NULL)
+        fprintf(stderr, " (%s)", ev->text);
+    fprintf(stderr, "%s%s\n", r->path[0] ? "; run log " : "", r->path);
+    for (long i = 0; i < s.samples; i++)
+        if (s.outcomes[i].outcome == FBRL_SAMPLE_FAILED || s.outcomes[i].outcome == FBRL_SAMPLE_SKIPPED)
+            fprintf(stderr, "  sample %ld %s: %s\n", i + 1,
+                    fbrl_run_sample_name((fbrl_run_sample_outcome)s.outcomes[i].outcome), s.outcomes[i].reason);
+    fflush(stderr);
 }
 
-static void o_end(void *ctx, const fbrl_method *meth, const char *outcome, const char *error)
+static int observe(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
 {
+    static const char *const choices[] = {"", "retry", "skip the sample", "abort"};
     mon_runlog *r = ctx;
-    if (r->chain.run_end) /* first: the console's safe stop belongs to the run */
-        r->chain.run_end(r->chain.ctx, meth, outcome, error);
-    if (fbrl_runlog_is_open(&r->log))
-        fbrl_runlog_end(&r->log, outcome);
-    if (r->f != NULL) {
-        fclose(r->f);
-        r->f = NULL;
+    fbrl_runlog *l = &r->log;
+    char where[96], text[320];
+    if (ev->kind == FBRL_RUN_EV_END && ev->outcome != FBRL_RUN_COMPLETED && r->m->counting)
+        r->m->runs_incomplete++; /* fbrlmon's exit status: a run from a file, -e or a pipe */
+    if (ev->kind == FBRL_RUN_EV_END)
+        tell_outcome(r, run, ev);
+    if (ev->kind == FBRL_RUN_EV_BEGIN)
+        return log_begin(r, ev->method);
+    if (!fbrl_runlog_is_open(l))
+        return 0;
+    switch (ev->kind) {
+    case FBRL_RUN_EV_STEP_BEGIN:
+        fbrl_runlog_step_start(l, ev->method->steps[ev->step].name, ev->sample >= 0 ? ev->sample + 1 : -1);
+        break;
+    case FBRL_RUN_EV_STEP_END:
+        if (ev->text)
+            fbrl_runlog_error(l, where_of(ev, where, sizeof where), ev->text, mon_runlog_advice(ev->text));
+        fbrl_runlog_step_end(l, ev->method->steps[ev->step].name, ev->sample >= 0 ? ev->sample + 1 : -1,
+                             ev->text);
+        break;
+    case FBRL_RUN_EV_SAMPLE:
+        fbrl_runlog_sample(l, ev->sample + 1, fbrl_run_sample_name((fbrl_run_sample_outcome)ev->outcome),
+                           ev->text);
+        break;
+    case FBRL_RUN_EV_RECOVERY: /* a corrective action taken (ON-FAILURE) */
+        if (ev->sample >= 0)
+            snprintf(where, sizeof where, "%s, sample %ld", ev->where, ev->sample + 1);
+        else
+            snprintf(where, sizeof where, "%s", ev->where);
+        snprintf(text, sizeof text, "%s: %s", ev->kind_name, ev->text);
+        fbrl_runlog_error(l, where, text, ev->action);
+        snprintf(text, sizeof text, "%s: %s (%s): %s", where, ev->kind_name, ev->text, ev->action);
+        fbrl_runlog_note(l, "recovery", NULL, text);
+        break;
+    case FBRL_RUN_EV_QUESTION: fbrl_runlog_note(l, "question", NULL, ev->text); break;
+    case FBRL_RUN_EV_ANSWER:
+        fbrl_runlog_note(l, "answer", ev->who, ev->choice >= 1 && ev->choice <= 3 ? choices[ev->choice] : "");
+        break;
+    case FBRL_RUN_EV_PAUSE:
+        snprintf(text, sizeof text, "before %s", where_of(ev, where, sizeof where));
+        fbrl_runlog_note(l, "pause", ev->who, text);
+        break;
+    case FBRL_RUN_EV_RESUME: fbrl_runlog_note(l, "resume", ev->who, NULL); break;
+    case FBRL_RUN_EV_ABORT: fbrl_runlog_note(l, "abort", ev->who, NULL); break;
+    case FBRL_RUN_EV_SAFE_STOP: fbrl_runlog_note(l, "safe-stop", NULL, ev->text); break;
+    case FBRL_RUN_EV_ON_ABORT:
+        if (ev->text)
+            fbrl_runlog_error(l, "ON-ABORT", ev->text, "check where the arm is before the next run");
+        else
+            fbrl_runlog_note(l, "on-abort", NULL, "the method's way to its safe place ran");
+        break;
+    case FBRL_RUN_EV_END: log_end(r, run, ev); break;
+    default: break;
     }
+    return 0;
 }
 
 void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result)
@@ -265,8 +368,13 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     dev_find f;
     char what[96];
     const char *failed = ev->status == FBRL_OK ? "" : " (failed)";
-    if (!fbrl_runlog_is_open(&r->log))
+    if (!fbrl_runlog_is_open(&r->log) && r->event_hook == NULL)
         return;
+    if (ev->line != NULL) { /* a motion sent around the guard on purpose (fbrl_link_unguarded) */
+        if (fbrl_runlog_is_open(&r->log))
+            fbrl_runlog_note(&r->log, "unguarded", NULL, ev->line);
+        return;
+    }
     memset(&f, 0, sizeof f);
     f.m = r->m;
     f.addr = ev->device;
@@ -274,6 +382,10 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
         fbrl_vm_words(r->m->vm, find_dev, &f);
     if (!f.name[0])
         snprintf(f.name, sizeof f.name, "port %d", ev->port);
+    if (r->event_hook)
+        r->event_hook(r->event_hook_ctx, ev, f.name);
+    if (!fbrl_runlog_is_open(&r->log))
+        return;
     if (strcmp(ev->word, "WAIT-UNTIL") == 0) {
         snprintf(what, sizeof what, "WAIT-UNTIL%s", failed);
         fbrl_runlog_wait(&r->log, what, ev->planned_ms, ev->actual_ms);
@@ -292,20 +404,11 @@ static void on_event(void *ctx, const fbrl_robot_event *ev)
     }
 }
 
-/* A corrective action taken (fbrl_recover's note): into the run log, then to the terminal. */
-static void on_recovery(void *ctx, const char *step, const char *kind, const char *what, const char *action,
-                        long sample)
+int mon_runlog_observe_again(mon_runlog *r)
 {
-    mon_runlog *r = ctx;
-    if (fbrl_runlog_is_open(&r->log)) {
-        char where[64], text[200];
-        snprintf(where, sizeof where, sample > 0 ? "%s, sample %ld" : "%s", step, sample);
-        snprintf(text, sizeof text, "%s: %s", kind, what);
-        fbrl_runlog_error(&r->log, where, text, action);
-        snprintf(text, sizeof text, "%s: %s (%s): %s", where, kind, what, action);
-        fbrl_runlog_note(&r->log, "recovery", text);
-    }
-    mon_recover_note(r->m, step, kind, what, action, sample);
+    if (fbrl_run_unobserve(&r->m->run, observe, r) != FBRL_OK || fbrl_run_observe(&r->m->run, observe, r) != FBRL_OK)
+        return -1;
+    return 0;
 }
 
 void mon_runlog_set_path(mon_runlog *r, const char *path)
@@ -349,18 +452,15 @@ static fbrl_status w_no_run_log(fbrl_vm *vm, void *ctx, const void *word)
 
 int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *controller)
 {
-    fbrl_method_observer o = {NULL, o_begin, o_step, o_between, o_end};
     const char *who = getenv("USER");
     memset(r, 0, sizeof *r);
     r->m = m;
     r->program = program;
     snprintf(r->operator_id, sizeof r->operator_id, "%s", who ? who : "");
     snprintf(r->controller, sizeof r->controller, "%s", controller ? controller : "");
-    o.ctx = r;
-    fbrl_method_set_observer(&m->methods, &o);
     fbrl_robot_set_events(&m->robot, on_event, r);
-    fbrl_recover_set_note(&m->recover, on_recovery, r);
-    if (fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
+    if (fbrl_run_observe(&m->run, observe, r) != FBRL_OK ||
+        fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
                         "every following RUN-METHOD appends its run log (JSON lines) to file") != FBRL_OK ||
         fbrl_vmx_define(m->vm, "NO-RUN-LOG", w_no_run_log, r, NULL, 0, "( -- )", "stop writing run logs") !=
             FBRL_OK)

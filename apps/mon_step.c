@@ -21,7 +21,8 @@
 /* What to stop at next, besides breakpoints. */
 enum { STEP_RUN, STEP_INTO, STEP_OVER, STEP_FINISH };
 
-static void put_stop(mon *m, const fbrl_vm_stop *s)
+/* at_word: a word about to run (the word hook), else a definition starting (step hook) */
+static void put_stop(mon *m, const fbrl_vm_stop *s, int at_word)
 {
     FILE *out = m->host.out;
     mon_host_newline(&m->host);
@@ -29,7 +30,7 @@ static void put_stop(mon *m, const fbrl_vm_stop *s)
     if (s->file[0])
         fprintf(out, " (%s:%lu)", s->file, s->line);
     if (s->caller[0])
-        fprintf(out, ", called by %s", s->caller);
+        fprintf(out, at_word ? ", in %s" : ", called by %s", s->caller);
     if (s->call_file[0] && s->call_line)
         fprintf(out, " at %s:%lu", s->call_file, s->call_line);
     fputc('\n', out);
@@ -84,20 +85,12 @@ static void eval_at_stop(mon *m, fbrl_vm *vm, const char *text, size_t len)
         fbrl_vm_fpush(vm, floats[i]);
 }
 
-static int matches(const mon_break *b, const fbrl_vm_stop *s)
+/* Does breakpoint b (FILE:LINE, FILE the path or its end after a '/') name file:line? */
+static int at_line(const mon_break *b, const char *file, unsigned long line)
 {
-    if (b->line == 0)
-        return strcasecmp(b->where, s->word) == 0;
-    size_t n = strlen(b->where);
-    const char *files[2] = {s->call_file, s->file};
-    unsigned long lines[2] = {s->call_line, s->line};
-    for (int k = 0; k < 2; k++) { /* the call's line, or the line the word starts on */
-        size_t fl = strlen(files[k]);
-        if (lines[k] == b->line && fl >= n && strcmp(files[k] + fl - n, b->where) == 0 &&
-            (fl == n || files[k][fl - n - 1] == '/'))
-            return 1;
-    }
-    return 0;
+    size_t n = strlen(b->where), fl = strlen(file);
+    return b->line && line == b->line && fl >= n && strcmp(file + fl - n, b->where) == 0 &&
+           (fl == n || file[fl - n - 1] == '/');
 }
 
 static void update_hook(mon *m);
@@ -124,23 +117,16 @@ static void trace_word(mon *m, fbrl_vm *vm, const fbrl_vm_stop *s)
     fflush(out);
 }
 
-static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
+/* A stop: show where, then take the keys (or Forth to run at the stop) until one goes on. */
+static int stop_here(mon *m, fbrl_vm *vm, const fbrl_vm_stop *s, int at_word)
 {
-    mon *m = ctx;
     mon_step *d = &m->step;
-    if (m->trace.words)
-        trace_word(m, vm, s);
-    int stop = d->mode == STEP_INTO || (d->mode == STEP_OVER && s->depth <= d->depth) ||
-               (d->mode == STEP_FINISH && s->depth < d->depth);
-    for (size_t i = 0; !stop && i < d->nbreaks; i++)
-        stop = matches(&d->breaks[i], s);
-    if (!stop)
-        return 0;
-    put_stop(m, s);
+    put_stop(m, s, at_word);
     put_stacks(m, vm);
     if (!d->hinted) {
-        fputs("at a stop: s step into, n next, f finish, c continue, q quit debugging, a abort;\n"
-              "other text runs as Forth on a copy of the stacks (W2 .S TEACH ...)\n",
+        fputs("at a stop: s step (into a definition), n next word, f finish the definition,\n"
+              "c continue, q quit debugging, a abort; other text runs as Forth on a copy of the\n"
+              "stacks (W2 .S TEACH ...)\n",
               m->host.out);
         d->hinted = 1;
     }
@@ -164,35 +150,83 @@ static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
             line++, len--;
         char c = len == 1 ? (char)tolower((unsigned char)line[0]) : 0;
         switch (c) {
-        case 's': d->mode = STEP_INTO; return 0;
-        case 'n':
+        case 's': d->mode = STEP_INTO; break;
+        case 'n': /* the next word here; at a definition's start, the word after its call */
             d->mode = STEP_OVER;
-            d->depth = s->depth;
-            return 0;
+            d->depth = at_word ? s->depth : s->depth - 1;
+            break;
         case 'f':
             d->mode = STEP_FINISH;
             d->depth = s->depth;
-            return 0;
-        case 'c': d->mode = STEP_RUN; return 0;
+            break;
+        case 'c': d->mode = STEP_RUN; break;
         case 'q':
             d->mode = STEP_RUN;
             d->nbreaks = 0;
-            update_hook(m);
             fputs("debugger off: the plan runs on\n", m->host.out);
-            return 0;
+            break;
         case 'a': fputs("aborted at the stop\n", m->host.out); return FBRL_THROW_ABORT;
         default:
             if (len > 0)
                 eval_at_stop(m, vm, line, len);
+            continue;
         }
+        update_hook(m);
+        return 0;
     }
 }
 
-/* The hook only while there is a breakpoint or a step pending. */
+/* The step hook: a colon definition starts. Breakpoints on a word stop here, and on a
+ * FILE:LINE where a definition starts; TRACE-WORDS traces it. Steps stop at words. */
+static int on_step(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
+{
+    mon *m = ctx;
+    mon_step *d = &m->step;
+    int stop = 0;
+    if (m->trace.words)
+        trace_word(m, vm, s);
+    for (size_t i = 0; !stop && i < d->nbreaks; i++)
+        stop = d->breaks[i].line ? at_line(&d->breaks[i], s->file, s->line)
+                                 : strcasecmp(d->breaks[i].where, s->word) == 0;
+    /* its first word, on the same line, is no new line for a line breakpoint */
+    d->last_file = s->file, d->last_line = s->line, d->last_depth = s->depth;
+    return stop ? stop_here(m, vm, s, 0) : 0;
+}
+
+/* The word hook: a word is about to run. Steps stop here; a FILE:LINE breakpoint stops at
+ * the first word of its line each time the line is reached. */
+static int on_word(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *s)
+{
+    mon *m = ctx;
+    mon_step *d = &m->step;
+    int stop = d->mode == STEP_INTO || (d->mode == STEP_OVER && s->depth <= d->depth) ||
+               (d->mode == STEP_FINISH && s->depth < d->depth);
+    int same_line = s->call_file == d->last_file && s->call_line == d->last_line && s->depth == d->last_depth;
+    d->last_file = s->call_file, d->last_line = s->call_line, d->last_depth = s->depth;
+    for (size_t i = 0; !stop && !same_line && i < d->nbreaks; i++)
+        stop = at_line(&d->breaks[i], s->call_file, s->call_line);
+    return stop ? stop_here(m, vm, s, 1) : 0;
+}
+
+/* The hooks only while there is something to stop for: the step hook for breakpoints and
+ * TRACE-WORDS, the word hook (slower) for steps and line breakpoints. */
 static void update_hook(mon *m)
 {
-    int want = m->step.nbreaks > 0 || m->step.mode != STEP_RUN || m->trace.words;
-    fbrl_vm_step_hook(m->vm, want ? on_step : NULL, want ? m : NULL);
+    const mon_step *d = &m->step;
+    int lines = 0;
+    for (size_t i = 0; i < d->nbreaks; i++)
+        lines |= d->breaks[i].line != 0;
+    int enter = d->nbreaks > 0 || m->trace.words, words = lines || d->mode != STEP_RUN;
+    fbrl_vm_step_hook(m->vm, enter ? on_step : NULL, enter ? m : NULL);
+    fbrl_vm_word_hook(m->vm, words ? on_word : NULL, words ? m : NULL);
+}
+
+void mon_step_end(mon *m)
+{
+    if (m->step.mode == STEP_RUN)
+        return;
+    m->step.mode = STEP_RUN; /* what was stepped ended: the next line runs on */
+    update_hook(m);
 }
 
 static fbrl_status parse_where(fbrl_vm *vm, const char *who, mon_break *b)
@@ -263,6 +297,8 @@ static fbrl_status w_unbreak(fbrl_vm *vm, void *arg)
             d->breaks[kept++] = d->breaks[i];
     }
     d->nbreaks = kept;
+    if (all) /* nothing stops any more, a step under way included */
+        d->mode = STEP_RUN;
     update_hook(m);
     if (kept == was && was > 0 && !all)
         return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, "UNBREAK: no such breakpoint (BREAKS lists them)");

@@ -18,12 +18,18 @@ typedef struct mon_step {
     mon_break breaks[MON_STEP_BREAKS];
     size_t nbreaks;
     int mode;     /* what to stop at next (mon_step.c) */
-    size_t depth; /* the return stack depth that stop compares with */
+    size_t depth; /* the depth (definitions running) that stop compares with */
     int hinted;   /* the keys were explained at the first stop */
+    /* where the last word was: a line breakpoint stops where its line begins */
+    const char *last_file;
+    unsigned long last_line;
+    size_t last_depth;
 } mon_step;
 
 struct mon;
 /* Define the words in m->vm. */
 fbrl_status mon_step_install(struct mon *m);
+/* A line typed (or a file) ended: a step under way ends with it. */
+void mon_step_end(struct mon *m);
 
 #endif

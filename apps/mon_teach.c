@@ -6,10 +6,11 @@
  * The arrow keys jog the tool point in X and Y, Page Up / Page Down in Z (RAPL JOG,
  * a straight-line offset that keeps the orientation); [ ] turn the pitch and , .
  * the roll (a straight MOVE to a scratch point, so the tool point stays put); o / c
- * open and close the gripper; 1..4, + and - choose the step. After every motion
- * the arm is waited for (FINISH) and read back (W2), so the status line always
- * shows where the arm really is; a controller error (029 out of reach ...) is shown
- * there too and TEACH goes on. Enter stores the position into the location through
+ * open and close the gripper; 1..4, + and - choose the step. Every motion passes the
+ * robot words' gate (fbrl_robot_motion): the work cell's guard refuses one that would hit
+ * before a byte is sent. After every motion the arm is waited for (FINISH) and read back
+ * (W2), so the status line always shows where the arm really is; a refusal or a
+ * controller error (029 out of reach ...) is shown there too and TEACH goes on. Enter stores the position into the location through
  * ARM-HERE (so BASE-OFFSET and MAP-ON apply exactly as to every read-back), Esc
  * leaves it untouched. docs/fbrlmon.md "TEACH" lists the keys. */
 #include "mon_teach.h"
@@ -29,9 +30,6 @@
 /* The longest single wait for a key: a Ctrl-C whose handler ran between the check of
  * the flag and poll() would not wake poll, so the flag is looked at again this often. */
 #define KEY_SLICE_MS 100
-
-/* The controller location TEACH points for pitch and roll moves. */
-#define TEACH_POINT "FBRLTP"
 
 enum { NSTEP = 4 };
 static const double step_in[NSTEP] = {0.01, 0.1, 0.5, 1.0};   /* inches */
@@ -310,46 +308,50 @@ static int read_pos(teach *t)
 
 static void read_grip(teach *t) { t->have_grip = fbrl_link_typev(t->link, "GRIPPER", &t->grip) == FBRL_OK; }
 
+/* A motion through the robot words' gate (fbrl_robot_motion): the work cell's guard checks
+ * it from where the arm stands (it reads the arm itself) and refuses one that would hit,
+ * with the obstacle in the message, before a byte is sent; a controller error is shown the
+ * same way. Then the arm is read back, whether or not it moved. */
+static void move(teach *t, fbrl_robot_move *mv)
+{
+    t->msg[0] = '\0';
+    (void)fbrl_robot_motion(&t->m->robot, mv, t->msg, sizeof t->msg);
+    read_pos(t);
+}
+
 /* X Y Z: a straight-line JOG by the step (in inches on the wire). */
 static void jog(teach *t, int axis, int sign)
 {
-    double d[3] = {0, 0, 0}, s = t->metric ? step_cm[t->level] / 2.54 : step_in[t->level];
-    fbrl_rapl_arg a[3];
-    d[axis] = sign * s;
-    a[0] = fbrl_rapl_real(d[0]);
-    a[1] = fbrl_rapl_real(d[1]);
-    a[2] = fbrl_rapl_real(d[2]);
-    t->msg[0] = '\0';
-    failed(t, fbrl_link_cmd(t->link, FBRL_RAPL_JOG, a, 3, 0), "JOG");
-    read_pos(t); /* whether or not it moved, the position shown is the one read now */
+    fbrl_robot_move mv;
+    memset(&mv, 0, sizeof mv);
+    mv.kind = FBRL_ROBOT_MOVE_JOG;
+    mv.straight = 1;
+    mv.word = "JOG";
+    mv.v[axis] = sign * (t->metric ? step_cm[t->level] / 2.54 : step_in[t->level]);
+    move(t, &mv);
 }
 
-/* Pitch or roll: point the scratch location at the present position with the angle
- * changed and move there in a straight line (the tool point stays where it is). */
+/* Pitch or roll: a straight move to the present position with the angle changed (the tool
+ * point stays where it is). */
 static void turn(teach *t, int which, int sign)
 {
-    double q[6];
-    fbrl_rapl_arg a[7];
-    int k;
+    fbrl_robot_move mv;
     t->msg[0] = '\0';
     if (!t->have_pos && read_pos(t) != 0)
         return;
-    memcpy(q, t->pos, sizeof q);
-    q[which] += sign * step_deg[t->level];
+    memset(&mv, 0, sizeof mv);
+    mv.kind = FBRL_ROBOT_MOVE_POSE;
+    mv.straight = 1;
+    mv.word = which == 4 ? "PITCH" : "ROLL";
+    memcpy(mv.v, t->pos, sizeof mv.v);
+    mv.v[which] += sign * step_deg[t->level];
     if (which == 5) { /* roll wraps; pitch past its limit is the controller's error to give */
-        if (q[5] > 180.0)
-            q[5] -= 360.0;
-        if (q[5] <= -180.0)
-            q[5] += 360.0;
+        if (mv.v[5] > 180.0)
+            mv.v[5] -= 360.0;
+        if (mv.v[5] <= -180.0)
+            mv.v[5] += 360.0;
     }
-    a[0] = fbrl_rapl_str(TEACH_POINT);
-    for (k = 0; k < 6; k++)
-        a[k + 1] = fbrl_rapl_real(q[k]);
-    if (!failed(t, fbrl_link_cmd(t->link, FBRL_RAPL_POINT, a, 7, 0), "POINT")) {
-        a[0] = fbrl_rapl_str(TEACH_POINT);
-        failed(t, fbrl_link_cmd(t->link, FBRL_RAPL_MOVE, a, 1, 1), "MOVE");
-    }
-    read_pos(t);
+    move(t, &mv);
 }
 
 static void gripper(teach *t, fbrl_rapl_cmd cmd)

@@ -1,9 +1,10 @@
 /* SPDX-License-Identifier: MIT */
-/* bench_cell.c - the motion guard's cost per move (docs/workcell.md; the bound is 50 us):
- * the ASPS cell of examples/asps_cell_objects.fbrl (table, 7 obstacles, one of them on a
- * moved block), and the moves of the sample plan's kind: joint moves between stations,
- * straight approaches and departs next to the blocks, and a worst case that skims 0.1 in
- * over the heating block the whole way (the smallest steps). */
+/* bench_cell.c - the motion guard's cost per move (docs/workcell.md; the bound is 50 us): the
+ * whole arm (upper arm, forearm, tool) in the ASPS cell of examples/asps_cell_objects.fbrl
+ * (table, 7 obstacles, one of them on a moved block), and the moves of the sample plan's
+ * kind: joint moves between stations, straight approaches and departs next to the blocks,
+ * and a worst case that skims 0.1 in over the heating block the whole way (the smallest
+ * steps); the A255's moves, then the A465's. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -34,7 +35,7 @@ static void add(const char *name, int kind, int block, double x0, double y0, dou
 }
 
 typedef struct move {
-    const char *what;
+    const char *arm, *what;
     double a[6], b[6];
     int straight;
 } move;
@@ -42,20 +43,34 @@ typedef struct move {
 int main(void)
 {
     static const move moves[] = {
-        {"joint: syringe stand -> tube A1", {7, 6, 7, 0, -90, 0}, {10, -2, 3.5, 0, -90, 0}, 0},
-        {"joint: tube A1 -> vial 1", {10, -2, 3.5, 0, -90, 0}, {7, 8.5, 5, 0, -90, 0}, 0},
-        {"joint: dispenser rest -> separator", {6, -8, 7, 0, -90, 0}, {15, 5, 6, 0, -90, 0}, 0},
-        {"joint: READY -> rinse rest", {12, 0, 20, 0, 0, 0}, {14, -6, 7, 0, -90, 0}, 0},
-        {"straight: approach into tube A1 (2 in)", {10, -2, 5, 0, -90, 0}, {10, -2, 3, 0, -90, 0}, 1},
-        {"straight: depart from the separator", {15, 5, 4, 0, -90, 0}, {15, 5, 6, 0, -90, 0}, 1},
-        {"straight: skim 0.1 in over the block",
+        {"a255", "joint: syringe stand -> tube A1", {7, 6, 7, 0, -90, 0}, {10, -2, 3.5, 0, -90, 0}, 0},
+        {"a255", "joint: tube A1 -> vial 1", {10, -2, 3.5, 0, -90, 0}, {7, 8.5, 5, 0, -90, 0}, 0},
+        {"a255", "joint: dispenser rest -> separator", {6, -8, 7, 0, -90, 0}, {15, 5, 6, 0, -90, 0}, 0},
+        {"a255", "joint: READY -> rinse rest", {12, 0, 20, 0, 0, 0}, {14, -6, 7, 0, -90, 0}, 0},
+        {"a255", "straight: approach into tube A1 (2 in)", {10, -2, 5, 0, -90, 0}, {10, -2, 3, 0, -90, 0}, 1},
+        {"a255", "straight: depart from the separator", {15, 5, 4, 0, -90, 0}, {15, 5, 6, 0, -90, 0}, 1},
+        {"a255",
+         "straight: skim 0.1 in over the block",
          {9.2, -2.8, 2.05, 0, -90, 0},
          {13.8, 2.8, 2.05, 0, -90, 0},
          1},
-        {"joint: skim over the block", {9.2, -2.8, 2.06, 0, -90, 0}, {13.8, 2.8, 2.06, 0, -90, 0}, 0},
+        {"a255", "joint: skim over the block", {9.2, -2.8, 2.06, 0, -90, 0}, {13.8, 2.8, 2.06, 0, -90, 0}, 0},
+        /* the A465 reaches the far side of the cell (its elbow stops at 110 degrees) */
+        {"a465", "joint: over the separator -> over rinse", {16, 4, 6, 0, -90, 0}, {16, -4, 6, 0, -90, 0}, 0},
+        {"a465", "joint: READY -> over the block", {15.98, 0, 25, 0, 0, 0}, {13.8, 0, 4, 0, -90, 0}, 0},
+        {"a465",
+         "straight: approach the block (1.5 in)",
+         {13.8, 0, 4, 0, -90, 0},
+         {13.8, 0, 2.5, 0, -90, 0},
+         1},
+        {"a465",
+         "straight: skim 0.1 in over the block",
+         {13.8, -2.8, 2.05, 0, -90, 0},
+         {13.8, 2.8, 2.05, 0, -90, 0},
+         1},
     };
     const size_t nm = sizeof moves / sizeof moves[0];
-    double hint[5] = {0, 90, -90, 0, 0}, worst = 0.0, total = 0.0;
+    double worst = 0.0, total = 0.0;
     int blk;
     fbrl_calib m;
 
@@ -74,15 +89,16 @@ int main(void)
     m.t[0] = 0.05, m.t[1] = -0.1; /* the block put back a little off */
     fbrl_cell_set_block(&cell, blk, &m);
 
-    printf("%-42s %9s %8s %6s %s\n", "move (ASPS cell, 7 obstacles + table)", "us/move", "samples", "hit",
+    printf("%-47s %9s %8s %6s %s\n", "move (ASPS cell, 7 obstacles + table)", "us/move", "samples", "hit",
            "ratio to 50 us");
     for (size_t k = 0; k < nm; k++) {
         const move *mv = &moves[k];
-        double q0[5], q1[5], t0, secs, us;
+        double q0[FBRL_ARM_AXES_MAX], q1[FBRL_ARM_AXES_MAX], t0, secs, us;
         fbrl_cell_hit h;
         long reps = 0;
-        if (fbrl_cell_ik(&cell.arm, mv->a, hint, q0) != FBRL_OK ||
-            fbrl_cell_ik(&cell.arm, mv->b, q0, q1) != FBRL_OK) {
+        fbrl_cell_set_arm(&cell, fbrl_arm_find(mv->arm), 0.0);
+        if (fbrl_arm_ik(cell.arm, mv->a, 0.0, cell.arm->ready, q0, NULL) != FBRL_OK ||
+            fbrl_arm_ik(cell.arm, mv->b, 0.0, q0, q1, NULL) != FBRL_OK) {
             fprintf(stderr, "%s: out of reach\n", mv->what);
             return 1;
         }
@@ -101,7 +117,8 @@ int main(void)
         total += us;
         if (us > worst)
             worst = us;
-        printf("%-42s %9.2f %8u %6s %.3f\n", mv->what, us, h.samples, h.hit ? "yes" : "no", us / BOUND_US);
+        printf("%s %-42s %9.2f %8u %6s %.3f\n", cell.arm->name, mv->what, us, h.samples, h.hit ? "yes" : "no",
+               us / BOUND_US);
     }
     printf("mean %.2f us, worst %.2f us per move (bound %.0f us: worst is %.1f%% of it)\n",
            total / (double)nm, worst, BOUND_US, 100.0 * worst / BOUND_US);

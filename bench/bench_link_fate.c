@@ -67,7 +67,10 @@ static void clean_line(const char *sim)
     fbrl_link_get_stats(&r.link, &s);
     rig_stop(&r);
     /* the same with an arm that never agrees: two equal replies needed */
-    static const fbrl_link_arm other = {5, {1, 1, 1, 1, 1}, 10, 10, 10, 2};
+    static fbrl_arm other;
+    other = *fbrl_arm_model(0);
+    for (unsigned k = 0; k < other.naxes; k++)
+        other.ppd[k] = 1.0;
     cfg.arm = &other;
     if (rig_start(&r, sim, args, 9600, FBRL_FLOW_NONE, &cfg) != 0 || fbrl_link_connect(&r.link) != FBRL_OK)
         exit(1);

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: MIT
-# bash completion for fbrlmon, fbrlsim and fbrl-dump (installed as
-# /usr/share/bash-completion/completions/fbrlmon, .../fbrlsim and .../fbrl-dump). The option names come
+# bash completion for fbrlmon, fbrlsim, fbrl-dump and fbrl-station (installed as
+# /usr/share/bash-completion/completions/fbrlmon, .../fbrlsim, .../fbrl-dump and .../fbrl-station). The option names come
 # from the program's own --help, so a new option completes without a change here; the
-# values below are those the programs accept.
+# values below are those the programs accept (the arm models also from --help).
 
 _fbrl_ports()
 {
@@ -45,8 +45,10 @@ _fbrl_complete()
             COMPREPLY=($(compgen -W 'on off' -- "$cur"))
             return
             ;;
-        --sim-model | --model)
-            COMPREPLY=($(compgen -W 'a255 a465' -- "$cur"))
+        --arm | --sim-model | --model)
+            # the arm models, as --help lists them ("--arm a255|a465")
+            COMPREPLY=($(compgen -W "$("$1" --help 2>/dev/null |
+                sed -n 's/^ *--\(arm\|model\) \([a-z0-9|]*\) .*/\2/p' | tr '|' ' ')" -- "$cur"))
             return
             ;;
         --data-bits)
@@ -61,11 +63,20 @@ _fbrl_complete()
             COMPREPLY=($(compgen -W '300 1200 2400 4800 9600 19200 38400 57600 115200' -- "$cur"))
             return
             ;;
-        -e | --dict | --axes | --tcp | --rx-buffer | --time-scale | --cmd-time | --faults)
+        -e | --dict | --axes | --tcp | --rx-buffer | --time-scale | --cmd-time | --faults | --sim-time-scale)
             return
             ;;
-        --sim-state | --sim-inputs | --workspace | --printer | --state | --log | --inputs | --control | --link)
+        --sila | --http)
+            COMPREPLY=($(compgen -W '127.0.0.1:50052 0.0.0.0:50052 off' -- "$cur"))
+            return
+            ;;
+        --sim-state | --sim-inputs | --workspace | --printer | --state | --log | --inputs | --control | --link | \
+            --sim-log)
             _filedir
+            return
+            ;;
+        --data | --methods)
+            _filedir -d
             return
             ;;
     esac
@@ -79,4 +90,4 @@ _fbrl_complete()
     # fbrlmon's operands are FBRL source files, fbrl-dump's a data file; fbrlsim takes none
     [[ $prog != fbrlsim ]] && _filedir
 }
-complete -F _fbrl_complete fbrlmon fbrlsim fbrl-dump
+complete -F _fbrl_complete fbrlmon fbrlsim fbrl-dump fbrl-station

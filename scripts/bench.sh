@@ -46,6 +46,13 @@ if [ -x "$here/bench/run_forth.sh" ]; then
     forth=$("$here/bench/run_forth.sh" "$here/build-bench") || status=1
     printf '%s\n' "$forth" | tee -a "$log"
 fi
+# fbrl-station on loopback: property reads and observable commands, TLS or not, 4 arms (docs/sila.md)
+if [ -x "$here/build-bench/apps/fbrl-station" ]; then
+    echo "== fbrl-station (bench/station_bench.py)" | tee -a "$log"
+    /usr/bin/python3 "$here/bench/station_bench.py" "$here/build-bench" >"$log.one" 2>&1 || status=1
+    tee -a "$log" <"$log.one"
+    rm -f "$log.one"
+fi
 
 echo
 echo "== Summary, $(date -u '+%Y-%m-%d %H:%M UTC'), $machine, load $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -5,13 +5,23 @@
 # Usage: deps.sh [EXTRA-PACKAGE...]   (extras are required too, e.g. gforth pforth for benchmarks)
 set -eu
 
-REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev qemu-system-x86 locales
+# Node and npm run fbrl-station's client test (tests/station/node, from its lock file): Debian's
+# nodejs and npm, unless a node and an npm are on PATH already (NodeSource's nodejs carries its
+# own npm and conflicts with Debian's npm package).
+NODE_PACKAGES="nodejs npm"
+if command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1; then NODE_PACKAGES=""; fi
+REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev libsodium-dev qemu-system-x86 locales
  libncurses-dev tmux gcc-arm-none-eabi picolibc-arm-none-eabi qemu-system-arm
  python3-cffi python3-pytest debhelper dpkg-dev fakeroot lintian abigail-tools scdoc
- librsvg2-bin bash-completion $*"
+ librsvg2-bin bash-completion
+ python3-grpcio python3-protobuf protobuf-compiler protobuf-compiler-grpc python3-zeroconf python3-cryptography
+ python3-lxml $NODE_PACKAGES $*"
 # what each is for: ncurses/tmux the operator console and its tests; the ARM toolchain,
 # picolibc and qemu-system-arm the Cortex-M firmware; cffi/pytest the Python bindings;
-# debhelper..scdoc the Debian packages, ABI check and man pages; rsvg the work-cell pictures.
+# debhelper..scdoc the Debian packages, ABI check and man pages; rsvg the work-cell pictures;
+# libsodium the audit trail, users and signatures (SHA-256, Argon2id, Ed25519).
+# grpcio..cryptography fbrl-station (SiLA 2: gRPC, the protobuf modules made at build time,
+# mDNS, its TLS certificate), lxml its tests (the standard's XML schema).
 # Optional: the build works without them (fewer features or tests).
 OPTIONAL="libserialport-dev clang libclang-rt-14-dev"
 
@@ -38,8 +48,9 @@ if [ -z "$missing$opt_missing" ]; then gen_de; exit 0; fi
 
 if ! command -v apt-get >/dev/null 2>&1; then
     echo "deps: cannot check or install packages here (no apt-get)." >&2
-    echo "deps: libfbrl needs: a C99 compiler, cmake, ninja or make, pkg-config, cmocka, libedit, qemu-system-i386," >&2
+    echo "deps: libfbrl needs: a C99 compiler, cmake, ninja or make, pkg-config, cmocka, libedit, libsodium, qemu-system-i386," >&2
     echo "deps: ncurses, tmux, arm-none-eabi gcc + picolibc, qemu-system-arm, python3 cffi + pytest, debhelper, lintian, abigail, scdoc, rsvg;" >&2
+    echo "deps: for fbrl-station: python3 grpcio, protobuf, zeroconf, cryptography, lxml, protoc + grpc_python_plugin, node + npm;" >&2
     echo "deps: optional: libserialport, clang with libFuzzer. Install them, then run the build again." >&2
     exit 1
 fi

@@ -13,6 +13,7 @@
 #include <stddef.h>
 
 #include "fbrl/status.h"
+#include "fbrl/arm.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -33,7 +34,8 @@ typedef struct fbrl_sim_options {
     const char *control_path; /* FIFO created for control lines "IN 3 1", or NULL */
     const char *faults;       /* "drop=P,corrupt=P,noise=P,stall=MS,seed=S" or NULL */
     int rx_buffer;            /* receive buffer size with baud pacing (128) */
-    const char *model;        /* the arm: "a255" or "a465"; NULL: the state file's, else A255 */
+    const char *model;        /* the arm: a name of fbrl/arm.h's table ("a255", "a465"); NULL: the
+                               * state file's, else the A255 */
     double cmd_time_ms;       /* the controller's own time to read a command line before it
                                * acts, in simulated ms (0: none; docs/fbrlsim.md) */
     char parity;              /* 'N' 'E' 'O': the host channel's parity (CONFIG 0 sets it
@@ -54,6 +56,8 @@ typedef struct fbrl_sim_options {
     int nak;                 /* send NAK (0x15) before every error line */
     int status_extra;        /* STATUS adds fbrlsim's own lines after the 2.60 sample's */
     int echo_as_typed;       /* echo lower case as typed (the line still runs upper-cased) */
+    int greet_pty;           /* send the prompt when a program opens the pty (a serial line's
+                                 * controller cannot see that: off by default) */
     int log_stamped;         /* --log lines: "T STATUS LINE" (simulated s, OK/NNN) */
     const char *control_out; /* file that control-line answers and refusals are appended
                                  * to; NULL: stdout for the program, nowhere embedded */
@@ -77,6 +81,8 @@ fbrl_status fbrl_sim_run(fbrl_sim *s);
 /* The emulated arm's axis count (5 for the A255, 6 for the A465): W2 and STATUS
  * show that many. Fixed after fbrl_sim_create. */
 int fbrl_sim_axes(const fbrl_sim *s);
+/* The emulated arm: its row of fbrl/arm.h's table. Fixed after fbrl_sim_create. */
+const fbrl_arm *fbrl_sim_arm(const fbrl_sim *s);
 
 /* Runs the loop in a new thread. */
 fbrl_status fbrl_sim_start(fbrl_sim *s);

@@ -33,10 +33,17 @@ static void usage(FILE *f)
           "  --cmd-time MS       the controller's own time to read a command line before it\n"
           "                      acts, in simulated ms (default 0)\n"
           "  --rx-buffer N       receive buffer size with --baud (default 128)\n"
-          "  --time-scale N      run simulated time N times faster than real time\n"
-          "  --model a255|a465   the arm: 5-axis A255 (default) or 6-axis A465; kept in\n"
-          "                      --state\n"
-          "  --state FILE        keep locations, variables, outputs and settings in FILE\n"
+          "  --time-scale N      run simulated time N times faster than real time\n",
+          f);
+    {
+        char names[64];
+        fbrl_arm_names(names, sizeof names, '|');
+        fprintf(f,
+                "  --model %-11s the arm (default %s; fbrlmon --arm, docs/robot.md); kept\n"
+                "                      in --state\n",
+                names, fbrl_arm_model(0)->name);
+    }
+    fputs("  --state FILE        keep locations, variables, outputs and settings in FILE\n"
           "  --log FILE          append one line per command executed\n"
           "  --cell FILE         the work cell (CELL-* words): a motion into it stops\n"
           "                      there with 190-COLLISION\n"
@@ -52,6 +59,8 @@ static void usage(FILE *f)
           "  --nak               send NAK (0x15) before every error line\n"
           "  --status-extra      STATUS adds fbrlsim's own lines (power, I/O, gripper ...)\n"
           "  --echo-as-typed     echo lower case as typed (default: echo upper-cased)\n"
+          "  --greet-pty         send the prompt when a program opens the pty (a\n"
+          "                      controller on a serial line cannot; TCP always greets)\n"
           "  --log-format F      plain (default): the line; stamped: 'T STATUS LINE'\n"
           "  --control-out FILE  append control-line answers and refusals to FILE\n"
           "                      (default: stdout)\n"
@@ -93,6 +102,7 @@ enum {
     OPT_NAK,
     OPT_STATUS_EXTRA,
     OPT_ECHO_AS_TYPED,
+    OPT_GREET_PTY,
     OPT_LOG_FORMAT,
     OPT_CONTROL_OUT
 };
@@ -118,6 +128,7 @@ static const struct option long_options[] = {{"link", required_argument, NULL, O
                                              {"nak", no_argument, NULL, OPT_NAK},
                                              {"status-extra", no_argument, NULL, OPT_STATUS_EXTRA},
                                              {"echo-as-typed", no_argument, NULL, OPT_ECHO_AS_TYPED},
+                                             {"greet-pty", no_argument, NULL, OPT_GREET_PTY},
                                              {"log-format", required_argument, NULL, OPT_LOG_FORMAT},
                                              {"control-out", required_argument, NULL, OPT_CONTROL_OUT},
                                              {"help", no_argument, NULL, 'h'},
@@ -187,6 +198,7 @@ static int parse_args(int argc, char **argv, fbrl_sim_options *o)
         case OPT_NAK: o->nak = 1; break;
         case OPT_STATUS_EXTRA: o->status_extra = 1; break;
         case OPT_ECHO_AS_TYPED: o->echo_as_typed = 1; break;
+        case OPT_GREET_PTY: o->greet_pty = 1; break;
         case OPT_CONTROL_OUT: o->control_out = v; break;
         case OPT_LOG_FORMAT:
             if (strcmp(v, "plain") != 0 && strcmp(v, "stamped") != 0) {

@@ -167,19 +167,20 @@ fail:
     return -1;
 }
 
-/* The motion from the joints now to qt (joint-interpolated, or straight to pose pb): where
- * it meets the cell, the fraction of the way (1: it does not). */
-double sim_cell_stop(fbrl_sim *s, const double *qt, const double *pb, double *qstop)
+/* The motion from the joints now to qt (joint-interpolated, or straight to pose pb of the
+ * tool point tool inches past the flange): where it meets the cell, the fraction of the
+ * way (1: it does not). */
+double sim_cell_stop(fbrl_sim *s, double tool, const double *qt, const double *pb, double *qstop)
 {
     fbrl_cell_hit h;
     fbrl_status st;
-    if (!s->cell_on || s->arm.model->kin != FBRL_SIM_KIN_5R)
+    if (!s->cell_on || fbrl_cell_set_arm(&s->cell, s->arm.model, tool) != FBRL_OK)
         return 1.0;
     st = pb ? fbrl_cell_check_line(&s->cell, s->arm.q, pb, &h)
             : fbrl_cell_check_joints(&s->cell, s->arm.q, qt, &h);
     /* a motion that starts in contact (after a collision) may back out of it */
     if (st != FBRL_OK || !h.hit || h.fraction <= 0.0)
         return 1.0;
-    memcpy(qstop, h.q_end, FBRL_CELL_AXES * sizeof *qstop);
+    memcpy(qstop, h.q_end, s->arm.model->naxes * sizeof *qstop);
     return h.fraction;
 }

@@ -52,17 +52,14 @@ int sim_eval(fbrl_sim *s, const char *text, double *v);
 /* sim_motion.c */
 double sim_tool_len(fbrl_sim *s);
 /* Location by token: pose always; joints too for a precision point (*is_prec). */
-int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SIM_ARM_MAX_AXES],
-                  int *is_prec);
+int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_ARM_AXES_MAX], int *is_prec);
 double sim_extra_now(fbrl_sim *s);
 void sim_halt(fbrl_sim *s);
-int sim_move_joints(fbrl_sim *s, const double target[FBRL_SIM_ARM_MAX_AXES]);
-int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[FBRL_SIM_ARM_MAX_AXES]);
+int sim_move_joints(fbrl_sim *s, const double target[FBRL_ARM_AXES_MAX]);
+int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[FBRL_ARM_AXES_MAX]);
 int sim_move_pose(fbrl_sim *s, const double pose[6]);
 int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown);
 void sim_current_pose(fbrl_sim *s, double pose[6]);
-/* The point dist back along a pose's tool axis. */
-void sim_back_off(const double pose[6], double waist, double dist, double out[6]);
 
 /* sim_h_motion.c, sim_h_mem.c, sim_h_io.c, sim_h_read.c, sim_cmd.c: the handlers */
 int sim_h_align(fbrl_sim *s, args *a, int *b);
@@ -111,6 +108,11 @@ int sim_h_output(fbrl_sim *s, args *a, int *b);
 int sim_h_wait(fbrl_sim *s, args *a, int *b);
 int sim_h_config(fbrl_sim *s, args *a, int *b);
 int sim_h_serial(fbrl_sim *s, args *a, int *b);
+/* sim_h_prog.c */
+int sim_h_free(fbrl_sim *s, args *a, int *b);
+int sim_h_dir(fbrl_sim *s, args *a, int *b);
+int sim_h_listp(fbrl_sim *s, args *a, int *b);
+int sim_h_edit(fbrl_sim *s, args *a, int *b);
 int sim_h_gain(fbrl_sim *s, args *a, int *b);
 int sim_h_arm(fbrl_sim *s, args *a, int *b);
 int sim_h_xcal(fbrl_sim *s, args *a, int *b);

@@ -97,11 +97,11 @@ static int query(fbrl_sim *s, const char *item, char *why, size_t whylen)
         return 0;
     sim_arm_update(s);
     if (k == 0) {
-        double q[FBRL_SIM_ARM_MAX_AXES], pose[6];
+        double q[FBRL_ARM_AXES_MAX], pose[6];
         char b[256];
         size_t n = 0;
         sim_joints_now(s, q);
-        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
+        fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
         n += (size_t)snprintf(b + n, sizeof b - n, "POSITION JOINTS");
         for (i = 0; i < sim_naxes(s); i++)
             n += (size_t)snprintf(b + n, sizeof b - n, " %+.4f", q[i] + 0.0);
@@ -191,7 +191,7 @@ int sim_control_why(fbrl_sim *s, const char *line, char *why, size_t whylen)
     if (!strcmp(w[0], "TEACH") && n == 1) {
         if (s && s->mem.teach && s->mem.teach_next <= 999) {
             char name[32];
-            double q[FBRL_SIM_ARM_MAX_AXES];
+            double q[FBRL_ARM_AXES_MAX];
             sim_loc *l;
             int i;
             snprintf(name, sizeof name, "%.5s%03d", s->mem.teach_name, s->mem.teach_next);
@@ -199,9 +199,9 @@ int sim_control_why(fbrl_sim *s, const char *line, char *why, size_t whylen)
                 sim_joints_now(s, q);
                 if (s->mem.teach == 2)
                     for (i = 0; i < sim_naxes(s); i++)
-                        l->p[i] = fbrl_sim_arm_pulses(s->arm.model, i, q[i]);
+                        l->p[i] = fbrl_arm_pulses(s->arm.model, i, q[i]);
                 else
-                    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), l->v);
+                    fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), l->v);
                 s->mem.teach_next++;
                 if (s->state_path)
                     sim_state_save(s);

@@ -65,11 +65,13 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     s->io.link_path = o->tcp_port < 0 ? dupstr(o->link_path) : NULL;
     s->opt.state_path = s->opt.log_path = s->opt.control_path = s->opt.link_path = NULL;
     s->opt.inputs_path = s->opt.faults = s->opt.control_out = NULL;
-    s->arm.model = o->model ? fbrl_sim_model_find(o->model) : &fbrl_sim_models[0];
+    s->arm.model = o->model ? fbrl_arm_find(o->model) : fbrl_arm_model(0);
     s->model_given = o->model != NULL;
     s->opt.model = NULL;
     if (!s->arm.model) {
-        sim_seterr(err, errlen, "unknown arm model '%s' (a255 or a465)", o->model);
+        char names[64];
+        fbrl_arm_names(names, sizeof names, '|');
+        sim_seterr(err, errlen, "unknown arm model '%s' (%s)", o->model, names);
         free(s->state_path);
         s->state_path = NULL;
         fbrl_sim_destroy(s);
@@ -113,7 +115,7 @@ fbrl_status fbrl_sim_create(fbrl_sim **out, const fbrl_sim_options *o, char *err
     fcntl(s->wake[0], F_SETFL, O_NONBLOCK);
     fcntl(s->wake[1], F_SETFL, O_NONBLOCK);
     if ((o->tcp_port >= 0 ? sim_io_open_tcp(&s->io, o->tcp_port, err, errlen)
-                          : sim_io_open_pty(&s->io, err, errlen)) != 0)
+                          : sim_io_open_pty(&s->io, o->greet_pty, err, errlen)) != 0)
         goto fail;
     if (s->control_path && sim_events_open_fifo(&s->events, s->control_path, err, errlen) != 0)
         goto fail;
@@ -132,6 +134,8 @@ fail:
 const char *fbrl_sim_path(const fbrl_sim *s) { return s ? s->io.path : ""; }
 
 int fbrl_sim_axes(const fbrl_sim *s) { return s ? sim_naxes(s) : 0; }
+
+const fbrl_arm *fbrl_sim_arm(const fbrl_sim *s) { return s ? s->arm.model : NULL; }
 
 /* The client went away: what was on the line and half-typed is lost with it. */
 static void client_gone(fbrl_sim *s)

@@ -6,6 +6,9 @@
 
 #include <string.h>
 
+/* GAIN's parameters as a lab's RAPL-II controller showed them (S11, docs/fbrlsim.md) */
+static const double gain_default[SIM_GAIN_PARAMS] = {8.0, 0.25, 100.0};
+
 void sim_defaults(fbrl_sim *s)
 {
     int i;
@@ -16,7 +19,7 @@ void sim_defaults(fbrl_sim *s)
     s->dev.grip = SIM_GRIP_MAX;
     s->dev.grip_force = 50.0;
     for (i = 0; i <= sim_naxes(s); i++)
-        s->arm.gain[i] = 1.0;
+        memcpy(s->dev.gain[i], gain_default, sizeof s->dev.gain[i]);
     memcpy(s->arm.q, s->arm.model->ready, (size_t)sim_naxes(s) * sizeof *s->arm.q);
     memcpy(s->arm.qt, s->arm.q, sizeof s->arm.q);
     for (i = 0; i < 2; i++) {

@@ -288,29 +288,42 @@ int sim_h_serial(fbrl_sim *s, args *a, int *b)
     return 0;
 }
 
+static void print_gain(fbrl_sim *s, int m)
+{
+    const double *g = s->dev.gain[m];
+    sim_out_printf(&s->term.out, "GAIN MOTOR %d: %+.4f,%+.4f,%+.4f\r\n", m, g[0], g[1], g[2]);
+}
+
+/* GAIN m[,p[,i,d]] [S1 /150: "a motor number of 0 will set all motors"; the three values
+ * as a lab set them, GAIN 0,5,.25,100 (S11)]: m alone shows motor m (0: every motor);
+ * one value sets the first parameter, three set all three [D: the layout shown]. */
 int sim_h_gain(fbrl_sim *s, args *a, int *b)
 {
     long m;
-    double v;
-    int e = sim_args_want(a, 1, 2), i;
+    double v[SIM_GAIN_PARAMS];
+    int e = sim_args_want(a, 1, 1 + SIM_GAIN_PARAMS), i, k;
     (void)b;
     if (e || (e = sim_arg_int(s, a, 0, &m)))
         return e;
     if (m < 0 || m > sim_naxes(s))
         return SIM_E_BAD_AXIS;
     if (a->n == 1) {
-        if (m == 0)
-            return SIM_E_BAD_AXIS;
-        sim_out_printf(&s->term.out, "GAIN MOTOR %ld: %+.4f\r\n", m, s->arm.gain[m]);
+        for (i = 1; i <= sim_naxes(s); i++)
+            if (m == 0 || m == i)
+                print_gain(s, i);
         return 0;
     }
-    if ((e = sim_arg_num(s, a, 1, &v)))
-        return e;
-    if (v < 0)
-        return SIM_E_ILLEGAL_ARG;
+    if (a->n != 2 && a->n != 1 + SIM_GAIN_PARAMS)
+        return SIM_E_ARG_MISSING; /* GAIN m,p,i: d is missing */
+    for (k = 0; k + 1 < a->n; k++) {
+        if ((e = sim_arg_num(s, a, k + 1, &v[k])))
+            return e;
+        if (v[k] < 0)
+            return SIM_E_ILLEGAL_ARG;
+    }
     for (i = 1; i <= sim_naxes(s); i++)
         if (m == 0 || m == i)
-            s->arm.gain[i] = v;
+            memcpy(s->dev.gain[i], v, (size_t)(a->n - 1) * sizeof v[0]);
     s->dirty = 1;
     return 0;
 }

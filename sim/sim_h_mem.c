@@ -12,7 +12,7 @@
 int sim_h_here(fbrl_sim *s, args *a, int *b)
 {
     char name[SIM_NAME_MAX + 1];
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     int prec, e = sim_args_want(a, 1, 1), i;
     sim_loc *l;
     (void)b;
@@ -21,9 +21,9 @@ int sim_h_here(fbrl_sim *s, args *a, int *b)
     sim_joints_now(s, q);
     if (prec)
         for (i = 0; i < sim_naxes(s); i++)
-            l->p[i] = fbrl_sim_arm_pulses(s->arm.model, i, q[i]);
+            l->p[i] = fbrl_arm_pulses(s->arm.model, i, q[i]);
     else
-        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), l->v);
+        fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), l->v);
     return 0;
 }
 
@@ -82,7 +82,7 @@ int sim_h_point(fbrl_sim *s, args *a, int *b)
 int sim_h_set(fbrl_sim *s, args *a, int *b)
 {
     char x[SIM_LINE_MAX + 1], y[SIM_LINE_MAX + 1], name[SIM_NAME_MAX + 1];
-    double pose[6], q[FBRL_SIM_ARM_MAX_AXES];
+    double pose[6], q[FBRL_ARM_AXES_MAX];
     int prec, sprec, e, i;
     sim_loc *l;
     (void)b;
@@ -90,15 +90,15 @@ int sim_h_set(fbrl_sim *s, args *a, int *b)
         (e = sim_loc_value(s, y, pose, q, &sprec)))
         return e;
     if (prec && !sprec) {
-        if ((e = fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q)) ||
-            (e = fbrl_sim_arm_check(s->arm.model, q)))
+        if ((e = sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q)) ||
+            (e = sim_arm_check(s->arm.model, q)))
             return e;
     }
     if ((e = sim_loc_new(s, name, prec, &l)))
         return e;
     if (prec)
         for (i = 0; i < sim_naxes(s); i++)
-            l->p[i] = fbrl_sim_arm_pulses(s->arm.model, i, q[i]);
+            l->p[i] = fbrl_arm_pulses(s->arm.model, i, q[i]);
     else
         memcpy(l->v, pose, sizeof pose);
     return 0;

@@ -25,12 +25,12 @@ int sim_h_align(fbrl_sim *s, args *a, int *b)
 
 int sim_h_appro(fbrl_sim *s, args *a, int *b)
 {
-    double pose[6], q[FBRL_SIM_ARM_MAX_AXES], t[6], d;
+    double pose[6], q[FBRL_ARM_AXES_MAX], t[6], d;
     int S = sim_args_take_s(a, 2), prec, e = sim_args_want(a, 2, 2);
     (void)b;
     if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)) || (e = sim_arg_len(s, a, 1, &d)))
         return e;
-    sim_back_off(pose, prec ? q[0] : s->arm.q[0], d, t);
+    fbrl_arm_back_off(s->arm.model, pose, prec ? q[0] : s->arm.q[0], d, t);
     return S ? sim_move_line(s, t, NULL) : sim_move_pose(s, t);
 }
 
@@ -42,13 +42,13 @@ int sim_h_depart(fbrl_sim *s, args *a, int *b)
     if (e || (e = sim_arg_len(s, a, 0, &d)))
         return e;
     sim_current_pose(s, pose);
-    sim_back_off(pose, s->arm.q[0], d, t);
+    fbrl_arm_back_off(s->arm.model, pose, s->arm.q[0], d, t);
     return S ? sim_move_line(s, t, NULL) : sim_move_pose(s, t);
 }
 
 int sim_h_move(fbrl_sim *s, args *a, int *b)
 {
-    double pose[6], q[FBRL_SIM_ARM_MAX_AXES];
+    double pose[6], q[FBRL_ARM_AXES_MAX];
     int S = sim_args_take_s(a, 1), prec, e = sim_args_want(a, 1, 1);
     (void)b;
     if (e || (e = sim_loc_value(s, a->v[0], pose, q, &prec)))
@@ -75,7 +75,7 @@ int sim_h_jog(fbrl_sim *s, args *a, int *b)
 
 int sim_h_joint(fbrl_sim *s, args *a, int *b)
 {
-    double q[FBRL_SIM_ARM_MAX_AXES], d;
+    double q[FBRL_ARM_AXES_MAX], d;
     long j;
     int e = sim_args_want(a, 2, 2);
     (void)b;
@@ -104,16 +104,16 @@ int sim_h_motor(fbrl_sim *s, args *a, int *b)
         s->dirty = 1;
         return 0;
     } else {
-        double q[FBRL_SIM_ARM_MAX_AXES];
+        double q[FBRL_ARM_AXES_MAX];
         memcpy(q, s->arm.q, sizeof q);
-        q[m - 1] += fbrl_sim_arm_degrees(s->arm.model, (int)m - 1, p);
+        q[m - 1] += fbrl_arm_degrees(s->arm.model, (int)m - 1, p);
         return sim_move_joints(s, q);
     }
 }
 
 static int h_mi_ma(fbrl_sim *s, args *a, int rel)
 {
-    double q[FBRL_SIM_ARM_MAX_AXES], pose[6];
+    double q[FBRL_ARM_AXES_MAX], pose[6];
     int S = sim_args_take_s(a, sim_naxes(s)), e = sim_args_want(a, sim_naxes(s), sim_naxes(s)), i;
     for (i = 0; !e && i < sim_naxes(s); i++) {
         double r;
@@ -124,9 +124,9 @@ static int h_mi_ma(fbrl_sim *s, args *a, int rel)
         return e;
     if (!S)
         return sim_move_joints(s, q);
-    if ((e = fbrl_sim_arm_check(s->arm.model, q)))
+    if ((e = sim_arm_check(s->arm.model, q)))
         return e;
-    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
+    fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
     return sim_move_line(s, pose, q);
 }
 
@@ -200,7 +200,7 @@ int sim_h_home(fbrl_sim *s, args *a, int *b)
 /* Lists of axis numbers for LIMP, LOCK, UNLOCK: flags[i] = on. */
 static int axis_list(fbrl_sim *s, args *a, int *flags, int on, int empty_all)
 {
-    int i, sel[FBRL_SIM_ARM_MAX_AXES] = {0};
+    int i, sel[FBRL_ARM_AXES_MAX] = {0};
     if (a->n == 0) {
         if (!empty_all)
             return SIM_E_ARG_MISSING;

@@ -9,18 +9,18 @@
 
 #define PI 3.14159265358979323846
 
-static void print_position(fbrl_sim *s, const char *title, const double q[FBRL_SIM_ARM_MAX_AXES])
+static void print_position(fbrl_sim *s, const char *title, const double q[FBRL_ARM_AXES_MAX])
 {
     sim_out *o = &s->term.out;
     double pose[6];
     int i;
-    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
+    fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
     sim_out_printf(o, "\r\n%s\r\nNAME       ", title);
     for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i < sim_naxes(s) - 1 ? "AX#%d        " : "AX#%d", i + 1);
     sim_out_printf(o, "\r\nPULSES   ");
     for (i = 0; i < sim_naxes(s); i++)
-        sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(s->arm.model, i, q[i]));
+        sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_arm_pulses(s->arm.model, i, q[i]));
     sim_out_printf(o, "\r\nNAME       ");
     for (i = 0; i < sim_naxes(s); i++)
         sim_out_printf(o, i < sim_naxes(s) - 1 ? "JT#%d      " : "JT#%d", i + 1);
@@ -35,7 +35,7 @@ static void print_position(fbrl_sim *s, const char *title, const double q[FBRL_S
 
 static int h_wonce(fbrl_sim *s, args *a, int which)
 {
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     int e = sim_args_want(a, 0, 0);
     if (e)
         return e;
@@ -127,7 +127,7 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
     const double dt = 0.01; /* simulated seconds for the velocity difference */
     int i;
     if (s->term.stream_kind < 10) {
-        double q[FBRL_SIM_ARM_MAX_AXES], q2[FBRL_SIM_ARM_MAX_AXES];
+        double q[FBRL_ARM_AXES_MAX], q2[FBRL_ARM_AXES_MAX];
         sim_joints_now(s, q);
         if (s->term.stream_kind == 5) {
             /* the difference over the last dt of simulated time, from the segment's own formula */
@@ -142,7 +142,7 @@ void sim_stream_line(fbrl_sim *s, sim_out *o)
                                lround((q[i] - q2[i]) * s->arm.model->ppd[i] / dt));
         } else {
             for (i = 0; i < sim_naxes(s); i++)
-                sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_sim_arm_pulses(s->arm.model, i, q[i]));
+                sim_out_printf(o, i ? " %+011ld" : "%+011ld", fbrl_arm_pulses(s->arm.model, i, q[i]));
         }
     } else if (s->term.stream_kind == 15) {
         double v = s->arm.xmoving && sim_now(s) < s->arm.xt1
@@ -160,8 +160,8 @@ static void status_extra(fbrl_sim *s, sim_out *o);
 int sim_h_status(fbrl_sim *s, args *a, int *b)
 {
     sim_out *o = &s->term.out;
-    double q[FBRL_SIM_ARM_MAX_AXES];
-    int e = sim_args_want(a, 0, 0), i, moving[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
+    int e = sim_args_want(a, 0, 0), i, moving[FBRL_ARM_AXES_MAX];
     (void)b;
     if (e)
         return e;
@@ -217,7 +217,7 @@ int sim_h_status(fbrl_sim *s, args *a, int *b)
     {
         /* backward when the tool point lies behind the base axis, seen along the waist */
         double pose[6], w = q[0] * 3.14159265358979323846 / 180.0;
-        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
+        fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
         sim_out_printf(o, "CURRENT ROBOT CONFIG : UPRIGHT/REACH %s/ELBOW UP/WRIST FREE\r\n",
                        pose[0] * cos(w) + pose[1] * sin(w) < -1e-9 ? "BACKWARD" : "FORWARD");
     }

@@ -6,7 +6,7 @@
 #include <pthread.h>
 #include <stdio.h>
 
-#include "arm.h"
+#include "fbrl/arm.h"
 #include "sim_errors.h"
 #include "fbrlsim.h"
 #include "fbrl/cell.h"
@@ -15,6 +15,7 @@
 #define SIM_NAME_MAX   8
 #define SIM_MAX_LOCS   100
 #define SIM_MAX_VARS   100
+#define SIM_MAX_PROGS  16 /* the program table (S1 ALLOC: "leaving 16 programs") */
 #define SIM_IO         16
 #define SIM_AIN        8       /* analog inputs (A/D channels), volts */
 #define SIM_GRIP_MAX   2.0     /* servo gripper fully open, in */
@@ -24,7 +25,7 @@ typedef struct sim_loc {
     char name[SIM_NAME_MAX + 1]; /* without '#' */
     int precision;               /* 1: pulses in p, 0: cartesian in v */
     double v[6];
-    long p[FBRL_SIM_ARM_MAX_AXES];
+    long p[FBRL_ARM_AXES_MAX];
 } sim_loc;
 
 typedef struct sim_var {
@@ -117,7 +118,7 @@ typedef struct sim_io {
     int master, slave; /* pty (slave kept open so the master never hangs up) */
     int lfd, conn;     /* TCP listener and client */
     int fd;            /* fd the line uses: master or conn, -1 if none */
-    int ino;           /* inotify on the pty slave: a client opened it, -1 none */
+    int ino;           /* --greet-pty: inotify on the pty slave (a client opened it), -1 none */
 } sim_io;
 
 /* sim_term.c: terminal mode (line editor, reply framing, streams). */
@@ -139,6 +140,8 @@ typedef struct sim_term {
     int cmd_logged;                   /* the running line is to be logged when it ends (stamped log) */
     char last_prog[SIM_NAME_MAX + 1]; /* STATUS's program line: the last program RUN */
     int last_prog_line, last_prog_err;
+    char edit_prog[SIM_NAME_MAX + 1]; /* EDIT's program (sim_h_prog.c) */
+    int editing;                      /* edit mode: typed lines go into edit_prog */
 } sim_term;
 
 /* sim_events.c: control lines from the FIFO and the --inputs script. */
@@ -173,21 +176,24 @@ typedef struct sim_mem {
 
 /* sim_motion.c: the arm, one motion segment at a time, evaluated from simulated time. */
 typedef struct sim_arm {
-    double q[FBRL_SIM_ARM_MAX_AXES];  /* joints at the segment's start (or at rest) */
-    double qt[FBRL_SIM_ARM_MAX_AXES]; /* joints at its end */
-    double pa[6], pb[6];              /* straight-line segment poses */
-    int collide;                      /* this segment ends at a collision: its command answers
+    double q[FBRL_ARM_AXES_MAX];  /* joints at the segment's start (or at rest) */
+    double qt[FBRL_ARM_AXES_MAX]; /* joints at its end */
+    double pa[6], pb[6];          /* straight-line segment poses */
+    int collide;                  /* this segment ends at a collision: its command answers
                                        * SIM_E_COLLISION once the arm stands */
     int moving, straight;
     double mt0, mt1;                       /* simulated start and end */
     double xpos, xtarget, xhome, xt0, xt1; /* extra axis, pulses */
     int xmoving, xhomed;
-    const fbrl_sim_model *model; /* the arm: geometry, limits, speeds, axes */
+    const fbrl_arm *model; /* the arm: geometry, limits, speeds, axes */
     double speed;
     int homed, power;
-    int locked[FBRL_SIM_ARM_MAX_AXES], limp[FBRL_SIM_ARM_MAX_AXES];
-    double gain[FBRL_SIM_ARM_MAX_AXES + 1];
+    int locked[FBRL_ARM_AXES_MAX], limp[FBRL_ARM_AXES_MAX];
 } sim_arm;
+
+/* GAIN: each motor's three servo parameters, in the order GAIN takes them; a lab's
+ * controller showed 8,.25,100 (docs/fbrlsim.md). They do not change the ideal servo model. */
+#define SIM_GAIN_PARAMS 3
 
 /* sim_h_io.c: what surrounds the arm: I/O, gripper, serial channels, pendant. */
 typedef struct sim_dev {
@@ -197,6 +203,7 @@ typedef struct sim_dev {
     sim_chan chan[2];
     int flash, manual;
     int metric; /* METRIC: lengths typed and shown in mm (kept in the state file) */
+    double gain[FBRL_ARM_AXES_MAX + 1][SIM_GAIN_PARAMS]; /* [motor 1..n] */
 } sim_dev;
 
 /* sim_cmd.c: the program being RUN. */
@@ -234,13 +241,14 @@ struct fbrl_sim {
 };
 
 /* The arm's axis count (its model's). */
-static inline int sim_naxes(const fbrl_sim *s) { return s->arm.model->naxes; }
+static inline int sim_naxes(const fbrl_sim *s) { return (int)s->arm.model->naxes; }
 
-/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb) meets
- * it: the fraction of the way and the joints there (1.0: clear). */
+/* sim_cell.c: the work cell (--cell); where a motion to qt (or straight to pose pb, of the
+ * tool point tool inches past the flange) meets it: the fraction of the way and the joints
+ * there (1.0: clear). */
 #define SIM_CELL_MAX 256
 int sim_cell_load(fbrl_sim *s, const char *path, char *err, size_t errlen);
-double sim_cell_stop(fbrl_sim *s, const double *qt, const double *pb, double *qstop);
+double sim_cell_stop(fbrl_sim *s, double tool, const double *qt, const double *pb, double *qstop);
 
 /* sim_clock.c */
 double sim_mono(void);
@@ -274,7 +282,7 @@ int sim_line_wants_write(const sim_line *l, double now);
 void sim_line_reset(sim_line *l);
 
 /* sim_io.c */
-int sim_io_open_pty(sim_io *io, char *err, size_t errlen);
+int sim_io_open_pty(sim_io *io, int greet, char *err, size_t errlen); /* greet: watch opens */
 int sim_io_open_tcp(sim_io *io, int port, char *err, size_t errlen);
 int sim_io_accept(sim_io *io);          /* 1: a new client */
 int sim_io_close_client(sim_io *io);    /* 1: a client was closed */
@@ -315,7 +323,11 @@ void sim_out_printf(sim_out *o, const char *fmt, ...)
 
 /* sim_motion.c */
 void sim_arm_update(fbrl_sim *s); /* finish motions whose time has come */
-void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES]);
+void sim_joints_now(fbrl_sim *s, double q[FBRL_ARM_AXES_MAX]);
+/* The arm's inverse kinematics and limits (fbrl/arm.h) as the controller reports them: 0,
+ * 029 (out of reach) or the joint's out-of-range code. */
+int sim_arm_ik(const fbrl_arm *m, const double pose[6], double tool, const double *hint, double *q);
+int sim_arm_check(const fbrl_arm *m, const double *q);
 
 /* sim_h_read.c */
 void sim_stream_line(fbrl_sim *s, sim_out *o); /* the next line of a W1/W3/W5 readout */
@@ -333,6 +345,9 @@ void sim_control_say(fbrl_sim *s, const char *fmt, ...)
 
 /* sim_mem.c */
 void sim_free_memory(fbrl_sim *s);
+
+/* sim_h_prog.c: a line typed in edit mode (EDIT); 0 or a RAPL error code */
+int sim_prog_edit(fbrl_sim *s, const char *line, int blank);
 
 /* sim_defaults.c */
 void sim_defaults(fbrl_sim *s); /* power-up settings for the arm model in s->arm.model */

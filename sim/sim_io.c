@@ -17,7 +17,7 @@
 #include <termios.h>
 #include <unistd.h>
 
-int sim_io_open_pty(sim_io *io, char *err, size_t errlen)
+int sim_io_open_pty(sim_io *io, int greet, char *err, size_t errlen)
 {
     struct termios tio;
     io->master = posix_openpt(O_RDWR | O_NOCTTY | O_CLOEXEC);
@@ -36,10 +36,10 @@ int sim_io_open_pty(sim_io *io, char *err, size_t errlen)
     tcsetattr(io->slave, TCSANOW, &tio);
     fcntl(io->master, F_SETFL, fcntl(io->master, F_GETFL) | O_NONBLOCK);
     io->fd = io->master;
-    /* A terminal program opening the device is the pty's "connect": the kernel tells
-     * us through inotify (our own open above came before the watch). Without it the
-     * emulator still works, it just cannot greet. */
-    io->ino = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    /* --greet-pty: a terminal program opening the device is the pty's "connect": the
+     * kernel tells us through inotify (our own open above came before the watch). A
+     * controller on a serial line cannot see that, so by default nothing is sent. */
+    io->ino = greet ? inotify_init1(IN_NONBLOCK | IN_CLOEXEC) : -1;
     if (io->ino >= 0 && inotify_add_watch(io->ino, io->path, IN_OPEN) < 0) {
         close(io->ino);
         io->ino = -1;

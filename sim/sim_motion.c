@@ -1,26 +1,24 @@
 /* SPDX-License-Identifier: MIT */
 /* sim_motion.c - the arm in motion: one segment at a time (joint-interpolated or
  * straight), evaluated from simulated time, so any readout at any moment shows
- * where the arm is. The kinematics are arm.c's; this file plans and times. */
+ * where the arm is. The kinematics are the library's (fbrl/arm.h); this file plans
+ * and times. */
 #include "sim_cmd.h"
 
 #include <math.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-
 double sim_tool_len(fbrl_sim *s) { return s->mem.tool_set ? s->mem.tool[2] : 0.0; }
 
-static void pulses_to_joints(const fbrl_sim *s, const long p[FBRL_SIM_ARM_MAX_AXES],
-                             double q[FBRL_SIM_ARM_MAX_AXES])
+static void pulses_to_joints(const fbrl_sim *s, const long p[FBRL_ARM_AXES_MAX], double q[FBRL_ARM_AXES_MAX])
 {
     int i;
     for (i = 0; i < sim_naxes(s); i++)
-        q[i] = fbrl_sim_arm_degrees(s->arm.model, i, p[i]);
+        q[i] = fbrl_arm_degrees(s->arm.model, i, p[i]);
 }
 
 /* Location by token: pose always; joints too for a precision point (*is_prec). */
-int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SIM_ARM_MAX_AXES], int *is_prec)
+int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_ARM_AXES_MAX], int *is_prec)
 {
     char name[SIM_NAME_MAX + 1];
     int prec, e = sim_name_parse(tok, &prec, name);
@@ -33,14 +31,27 @@ int sim_loc_value(fbrl_sim *s, const char *tok, double pose[6], double q[FBRL_SI
     *is_prec = prec;
     if (prec) {
         pulses_to_joints(s, l->p, q);
-        fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
+        fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
     } else {
         memcpy(pose, l->v, sizeof l->v);
     }
     return 0;
 }
 
-void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES])
+int sim_arm_ik(const fbrl_arm *m, const double pose[6], double tool, const double *hint, double *q)
+{
+    int axis;
+    fbrl_status st = fbrl_arm_ik(m, pose, tool, hint, q, &axis);
+    return st == FBRL_OK ? 0 : axis >= 0 ? sim_error_joint(axis) : SIM_E_TRANSFORM;
+}
+
+int sim_arm_check(const fbrl_arm *m, const double *q)
+{
+    int axis;
+    return fbrl_arm_check(m, q, &axis) == FBRL_OK ? 0 : sim_error_joint(axis);
+}
+
+void sim_joints_now(fbrl_sim *s, double q[FBRL_ARM_AXES_MAX])
 {
     double f, pose[6];
     if (!s->arm.moving) {
@@ -55,8 +66,8 @@ void sim_joints_now(fbrl_sim *s, double q[FBRL_SIM_ARM_MAX_AXES])
     if (f < 0)
         f = 0;
     if (s->arm.straight) {
-        fbrl_sim_arm_lerp(s->arm.pa, s->arm.pb, f, pose);
-        if (fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q) == 0)
+        fbrl_arm_lerp(s->arm.pa, s->arm.pb, f, pose);
+        if (fbrl_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q, NULL) == FBRL_OK)
             return;
     }
     {
@@ -92,7 +103,7 @@ void sim_arm_update(fbrl_sim *s)
 
 void sim_halt(fbrl_sim *s)
 {
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     sim_joints_now(s, q);
     memcpy(s->arm.q, q, sizeof q);
     s->arm.moving = 0;
@@ -101,8 +112,7 @@ void sim_halt(fbrl_sim *s)
     s->dirty = 1;
 }
 
-static double joint_time(fbrl_sim *s, const double a[FBRL_SIM_ARM_MAX_AXES],
-                         const double b[FBRL_SIM_ARM_MAX_AXES])
+static double joint_time(fbrl_sim *s, const double a[FBRL_ARM_AXES_MAX], const double b[FBRL_ARM_AXES_MAX])
 {
     double t = 0;
     int i;
@@ -114,7 +124,7 @@ static double joint_time(fbrl_sim *s, const double a[FBRL_SIM_ARM_MAX_AXES],
     return t;
 }
 
-static void begin(fbrl_sim *s, const double qt[FBRL_SIM_ARM_MAX_AXES], double t, int straight)
+static void begin(fbrl_sim *s, const double qt[FBRL_ARM_AXES_MAX], double t, int straight)
 {
     memcpy(s->arm.qt, qt, sizeof s->arm.qt);
     s->arm.straight = straight;
@@ -127,36 +137,36 @@ static void begin(fbrl_sim *s, const double qt[FBRL_SIM_ARM_MAX_AXES], double t,
 }
 
 /* Joint-interpolated move to joint angles; locked joints stay. */
-int sim_move_joints(fbrl_sim *s, const double target[FBRL_SIM_ARM_MAX_AXES])
+int sim_move_joints(fbrl_sim *s, const double target[FBRL_ARM_AXES_MAX])
 {
-    double qt[FBRL_SIM_ARM_MAX_AXES];
+    double qt[FBRL_ARM_AXES_MAX];
     int i, e;
     for (i = 0; i < sim_naxes(s); i++)
         qt[i] = s->arm.locked[i] ? s->arm.q[i] : target[i];
-    e = fbrl_sim_arm_check(s->arm.model, qt);
+    e = sim_arm_check(s->arm.model, qt);
     if (e)
         return e;
     {
         /* the work cell: the arm goes as far as the contact and stops there */
-        double qs[FBRL_SIM_ARM_MAX_AXES], f;
+        double qs[FBRL_ARM_AXES_MAX], f;
         memcpy(qs, qt, sizeof qs);
-        f = sim_cell_stop(s, qt, NULL, qs);
+        f = sim_cell_stop(s, sim_tool_len(s), qt, NULL, qs);
         begin(s, qs, joint_time(s, s->arm.q, qt) * (f < 1.0 ? f : 1.0), 0);
         s->arm.collide = f < 1.0;
     }
     return 0;
 }
 
-int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[FBRL_SIM_ARM_MAX_AXES])
+int sim_pose_joints(fbrl_sim *s, const double pose[6], double q[FBRL_ARM_AXES_MAX])
 {
-    int e = fbrl_sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q);
-    return e ? e : fbrl_sim_arm_check(s->arm.model, q);
+    int e = sim_arm_ik(s->arm.model, pose, sim_tool_len(s), s->arm.q, q);
+    return e ? e : sim_arm_check(s->arm.model, q);
 }
 
 /* Joint-interpolated move to a cartesian pose. */
 int sim_move_pose(fbrl_sim *s, const double pose[6])
 {
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     int e = sim_pose_joints(s, pose, q);
     return e ? e : sim_move_joints(s, q);
 }
@@ -164,11 +174,11 @@ int sim_move_pose(fbrl_sim *s, const double pose[6])
 /* Straight-line move to a pose (target joints qt if known, else from IK). */
 int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
 {
-    double qt[FBRL_SIM_ARM_MAX_AXES], from[6], t, d;
+    double qt[FBRL_ARM_AXES_MAX], from[6], t, d;
     int e, i;
     if (qknown) {
         memcpy(qt, qknown, sizeof qt);
-        e = fbrl_sim_arm_check(s->arm.model, qt);
+        e = sim_arm_check(s->arm.model, qt);
     } else {
         e = sim_pose_joints(s, pose, qt);
     }
@@ -177,16 +187,16 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
     for (i = 0; i < sim_naxes(s); i++)
         if (s->arm.locked[i] && fabs(qt[i] - s->arm.q[i]) > 1e-9)
             return SIM_E_STRAIGHT_LINE;
-    fbrl_sim_arm_fk(s->arm.model, s->arm.q, sim_tool_len(s), from);
-    fbrl_sim_arm_fk(s->arm.model, qt, sim_tool_len(s), s->arm.pb);
-    if (fbrl_sim_arm_check_line(s->arm.model, from, s->arm.pb, sim_tool_len(s), s->arm.q) != 0)
+    fbrl_arm_fk(s->arm.model, s->arm.q, sim_tool_len(s), from);
+    fbrl_arm_fk(s->arm.model, qt, sim_tool_len(s), s->arm.pb);
+    if (fbrl_arm_check_line(s->arm.model, from, s->arm.pb, sim_tool_len(s), s->arm.q) != FBRL_OK)
         return SIM_E_STRAIGHT_LINE;
     {
         /* the line must end in the target's own configuration (a precision point may
          * hold the other reach) */
-        double qe[FBRL_SIM_ARM_MAX_AXES];
-        if (fbrl_sim_arm_ik(s->arm.model, s->arm.pb, sim_tool_len(s), s->arm.q, qe) != 0 ||
-            fabs(fbrl_sim_arm_wrap(qe[0] - qt[0])) > 1e-6)
+        double qe[FBRL_ARM_AXES_MAX];
+        if (fbrl_arm_ik(s->arm.model, s->arm.pb, sim_tool_len(s), s->arm.q, qe, NULL) != FBRL_OK ||
+            fabs(fbrl_arm_wrap(qe[0] - qt[0])) > 1e-6)
             return SIM_E_STRAIGHT_LINE;
     }
     memcpy(s->arm.pa, from, sizeof from);
@@ -198,12 +208,12 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
         t = joint_time(s, s->arm.q, qt);
     {
         /* the work cell: the line ends at the contact */
-        double qs[FBRL_SIM_ARM_MAX_AXES], f;
+        double qs[FBRL_ARM_AXES_MAX], f;
         memcpy(qs, qt, sizeof qs);
-        f = sim_cell_stop(s, qt, s->arm.pb, qs);
+        f = sim_cell_stop(s, sim_tool_len(s), qt, s->arm.pb, qs);
         if (f < 1.0) {
             double end[6];
-            fbrl_sim_arm_lerp(from, s->arm.pb, f, end);
+            fbrl_arm_lerp(from, s->arm.pb, f, end);
             memcpy(s->arm.pb, end, sizeof end);
             begin(s, qs, t * f, 1);
             s->arm.collide = 1;
@@ -217,18 +227,7 @@ int sim_move_line(fbrl_sim *s, const double pose[6], const double *qknown)
 
 void sim_current_pose(fbrl_sim *s, double pose[6])
 {
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     sim_joints_now(s, q);
-    fbrl_sim_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
-}
-
-/* The point dist back along a pose's tool axis. */
-void sim_back_off(const double pose[6], double waist, double dist, double out[6])
-{
-    double w = (hypot(pose[0], pose[1]) > 1e-9 ? atan2(pose[1], pose[0]) : waist * PI / 180.0);
-    double p = pose[4] * PI / 180.0;
-    memcpy(out, pose, 6 * sizeof *out);
-    out[0] -= dist * cos(p) * cos(w);
-    out[1] -= dist * cos(p) * sin(w);
-    out[2] -= dist * sin(p);
+    fbrl_arm_fk(s->arm.model, q, sim_tool_len(s), pose);
 }

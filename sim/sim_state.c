@@ -73,7 +73,7 @@ static void sync_dir(const char *path)
 static void write_state(fbrl_sim *s, FILE *f)
 {
     int i, j;
-    double q[FBRL_SIM_ARM_MAX_AXES];
+    double q[FBRL_ARM_AXES_MAX];
     /* A motion in progress is saved at its end point: the arm is on its way there. */
     memcpy(q, s->arm.moving ? s->arm.qt : s->arm.q, sizeof q);
     fprintf(f, "%s\n", MAGIC);
@@ -98,7 +98,7 @@ static void write_state(fbrl_sim *s, FILE *f)
         fprintf(f, "CONFIG %d %ld %c %d %d %c %d\n", i, s->dev.chan[i].baud, s->dev.chan[i].parity,
                 s->dev.chan[i].data, s->dev.chan[i].stop, s->dev.chan[i].handshake, s->dev.chan[i].echo);
     for (i = 1; i <= sim_naxes(s); i++)
-        fprintf(f, "GAIN %d %.17g\n", i, s->arm.gain[i]);
+        fprintf(f, "GAIN %d %.17g %.17g %.17g\n", i, s->dev.gain[i][0], s->dev.gain[i][1], s->dev.gain[i][2]);
     for (i = 0; i < s->mem.nvars; i++)
         fprintf(f, "VAR %s %.17g\n", s->mem.vars[i].name, s->mem.vars[i].v);
     for (i = 0; i < s->mem.nlocs; i++) {
@@ -322,16 +322,16 @@ static int load_item(loader *ld, sim_prog **prog)
     const char *k = ld->tok[0];
     char name[SIM_NAME_MAX + 1];
     double d[8];
-    long v[FBRL_SIM_ARM_MAX_AXES + 1];
+    long v[FBRL_ARM_AXES_MAX + 1];
     int i;
 
     if (!strcmp(k, "MODEL")) {
-        const fbrl_sim_model *m;
+        const fbrl_arm *m;
         if (want_fields(ld, 2))
             return -1;
         if (ld->items > 0)
             return bad(ld, "MODEL must be the first item", NULL);
-        if (!(m = fbrl_sim_model_find(ld->tok[1])))
+        if (!(m = fbrl_arm_find(ld->tok[1])))
             return bad(ld, "unknown arm model", ld->tok[1]);
         if (s->model_given && m != s->arm.model) {
             sim_seterr(ld->err, ld->errlen, "%s:%d: this memory belongs to an %s, not the %s of --model",
@@ -340,7 +340,7 @@ static int load_item(loader *ld, sim_prog **prog)
         }
         s->arm.model = m;
         sim_defaults(s); /* READY and gains of this arm */
-    } else if (ld->items == 0 && s->arm.model != &fbrl_sim_models[0]) {
+    } else if (ld->items == 0 && s->arm.model != fbrl_arm_model(0)) {
         /* files from before models were kept hold an A255's memory */
         sim_seterr(ld->err, ld->errlen,
                    "%s:%d: no MODEL line: this memory belongs to an A255, not the %s of --model", ld->path,
@@ -360,9 +360,9 @@ static int load_item(loader *ld, sim_prog **prog)
         for (i = 0; i < sim_naxes(s); i++)
             if (real_field(ld, i + 1, -360.0, 360.0, &d[i]))
                 return -1;
-        if ((i = fbrl_sim_arm_check(s->arm.model, d)) != 0) {
+        if (fbrl_arm_check(s->arm.model, d, &i) != FBRL_OK) {
             sim_seterr(ld->err, ld->errlen, "%s:%d: joint %d outside its limits", ld->path, ld->lineno,
-                       i - 41);
+                       i + 1);
             return -1;
         }
         memcpy(s->arm.q, d, sizeof s->arm.q);
@@ -412,11 +412,14 @@ static int load_item(loader *ld, sim_prog **prog)
         c.stop = (int)v[2];
         c.echo = (int)v[3];
         s->dev.chan[v[0]] = c;
-    } else if (!strcmp(k, "GAIN")) {
-        if (want_fields(ld, 3) || int_field(ld, 1, 1, sim_naxes(s), &v[0]) ||
-            real_field(ld, 2, 0.0, HUGE_VAL, &d[0]))
+    } else if (!strcmp(k, "GAIN")) { /* GAIN m p i d; an older file's GAIN m p keeps i and d */
+        int n = ld->ntok == 3 ? 1 : SIM_GAIN_PARAMS;
+        if (want_fields(ld, 2 + n) || int_field(ld, 1, 1, sim_naxes(s), &v[0]))
             return -1;
-        s->arm.gain[v[0]] = d[0];
+        for (i = 0; i < n; i++)
+            if (real_field(ld, 2 + i, 0.0, HUGE_VAL, &d[i]))
+                return -1;
+        memcpy(s->dev.gain[v[0]], d, (size_t)n * sizeof d[0]);
     } else if (!strcmp(k, "VAR")) {
         if (want_fields(ld, 3) || name_field(ld, 1, name) || real_field(ld, 2, -HUGE_VAL, HUGE_VAL, &d[0]))
             return -1;
@@ -456,6 +459,8 @@ static int load_item(loader *ld, sim_prog **prog)
         for (i = 0; i < s->mem.nprogs; i++)
             if (!strcmp(s->mem.progs[i].name, name))
                 return bad(ld, "program defined twice:", name);
+        if (s->mem.nprogs == SIM_MAX_PROGS)
+            return bad(ld, "too many programs (the program table holds 16)", NULL);
         np = realloc(s->mem.progs, (size_t)(s->mem.nprogs + 1) * sizeof *np);
         if (!np)
             return bad(ld, "out of memory", NULL);

@@ -91,6 +91,15 @@ static void submit(fbrl_sim *s)
     for (i = 0; t->cur[i]; i++)
         if (t->cur[i] != ' ')
             blank = 0;
+    if (t->editing) { /* EDIT: the line is the program's next line, kept and not run */
+        int e = overlong ? SIM_E_LINE_TOO_LONG : sim_prog_edit(s, t->cur, blank);
+        if (s->log && !blank && !e) { /* not a command the controller ran: '#' first */
+            fprintf(s->log, "# EDIT %s: %s\n", t->edit_prog, t->cur);
+            fflush(s->log);
+        }
+        finish(s, e ? e : -1);
+        return;
+    }
     if (blank && !overlong) {
         emit_str(s, ">>");
         return;

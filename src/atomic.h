@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* atomic.h - the acquire/release loads and stores that the SPSC rings and the UART
- * core need, in one place (internal header, not installed).
+ * core need, and the compare-and-swap of the run's request lock (src/method_run.c), in one
+ * place (internal header, not installed).
  *
  * Every shared value is a size_t with a single writer, so a load-acquire paired with
  * a store-release is all the ordering required:
@@ -20,6 +21,11 @@ static inline size_t fbrl_load_acq(const size_t *p) { return __atomic_load_n(p, 
 static inline size_t fbrl_load_rlx(const size_t *p) { return __atomic_load_n(p, __ATOMIC_RELAXED); }
 static inline void fbrl_store_rel(size_t *p, size_t v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
 static inline void fbrl_store_rlx(size_t *p, size_t v) { __atomic_store_n(p, v, __ATOMIC_RELAXED); }
+/* *p from expect to v if it is expect (acquire): 1 if it was */
+static inline int fbrl_cas_acq(size_t *p, size_t expect, size_t v)
+{
+    return __atomic_compare_exchange_n(p, &expect, v, 0, __ATOMIC_ACQUIRE, __ATOMIC_RELAXED);
+}
 
 #else
 
@@ -45,6 +51,15 @@ static inline void fbrl_store_rel(size_t *p, size_t v)
     *(volatile size_t *)p = v;
 }
 static inline void fbrl_store_rlx(size_t *p, size_t v) { *(volatile size_t *)p = v; }
+/* without the builtins: one CPU only (an interrupt handler never takes the run's lock) */
+static inline int fbrl_cas_acq(size_t *p, size_t expect, size_t v)
+{
+    if (*(volatile size_t *)p != expect)
+        return 0;
+    *(volatile size_t *)p = v;
+    FBRL_FENCE_ACQ_();
+    return 1;
+}
 
 #endif
 #endif

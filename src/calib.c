@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
+#include "fbrl/arm.h"
 #include "fbrl/calib.h"
 #include "fbrl/crc32.h"
 #include "le.h"
@@ -70,16 +71,6 @@ static int is_rigid(const fbrl_calib *c)
           r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
           r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
     return det > 0.0;
-}
-
-static double wrap180(double deg)
-{
-    double w = fmod(deg, 360.0);
-    if (w <= -180.0)
-        w += 360.0;
-    else if (w > 180.0)
-        w -= 360.0;
-    return w;
 }
 
 /* ---- calibration points ---- */
@@ -477,7 +468,7 @@ fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint, do
     p = atan2(r[6], horiz);
     /* A vertical tool axis has no heading; then take the caller's yaw and let roll
      * carry the turn. */
-    y = horiz > 1e-10 ? atan2(r[3], r[0]) : FBRL_RAD(wrap180(yaw_hint));
+    y = horiz > 1e-10 ? atan2(r[3], r[0]) : FBRL_RAD(fbrl_arm_wrap(yaw_hint));
     /* Roll from Rx(roll) = Ry(pitch) Rz(-yaw) R, column 1: consistent with the yaw just
      * chosen, so the three angles rebuild R even close to the vertical. */
     cy = cos(y);
@@ -487,9 +478,9 @@ fbrl_status fbrl_calib_matrix_to_orient(const fbrl_rot *rot, double yaw_hint, do
     u0 = cy * r[1] + sy * r[4];
     q11 = -sy * r[1] + cy * r[4];
     q21 = -sp * u0 + cp * r[7];
-    *yaw = wrap180(FBRL_DEG(y));
+    *yaw = fbrl_arm_wrap(FBRL_DEG(y));
     *pitch = FBRL_DEG(p);
-    *roll = wrap180(FBRL_DEG(atan2(q21, q11)));
+    *roll = fbrl_arm_wrap(FBRL_DEG(atan2(q21, q11)));
     return FBRL_OK;
 }
 
@@ -594,9 +585,9 @@ fbrl_status fbrl_calib_map_arm(const fbrl_calib *c, const double axis[2], const 
     res.x = q[0];
     res.y = q[1];
     res.z = q[2];
-    res.o = wrap180(w1);
-    res.a = wrap180(FBRL_DEG(pitch));
-    res.t = wrap180(FBRL_DEG(roll));
+    res.o = fbrl_arm_wrap(w1);
+    res.a = fbrl_arm_wrap(FBRL_DEG(pitch));
+    res.t = fbrl_arm_wrap(FBRL_DEG(roll));
     if (off)
         *off = FBRL_DEG(dev);
     *out = res;

@@ -8,34 +8,19 @@
 #define CELL_MAGIC 0x43454C4Cu /* "CELL" */
 #define PI         3.14159265358979323846
 #define RAD(d)     ((d) * (PI / 180.0))
-#define DEG(r)     ((r) * (180.0 / PI))
 
-#define LIMIT_EPS 1e-9  /* degrees: a joint this far past a limit (rounding) is inside */
-#define AXIS_EPS  1e-9  /* in: closer to the base axis than this, the waist is free */
-#define REACH_EPS 1e-12 /* a fully stretched arm still reaches */
-#define GOLDEN_IT 48    /* golden-section steps for a segment against a cylinder */
+#define AXIS_EPS  1e-9 /* in: closer to a cylinder's axis than this, its direction is free */
+#define GOLDEN_IT 48   /* golden-section steps for a segment against a cylinder */
 /* in: the step near an obstacle. A point that moves at most this far per step cannot pass
  * through a slab at least this thick without a sample inside it (and the bound on the
- * motion is generous: the envelope moves less). */
+ * motion is generous: the body moves less). */
 #define MIN_STEP    (FBRL_CELL_THIN * 0.9)
 #define MAX_SAMPLES 100000u /* a path check gives up (FBRL_ERANGE) beyond this */
 #define LINE_HALVE  30      /* step halvings on a straight line before it counts as a jump */
 #define LINE_SLACK  1.25    /* margin for the bend of a straight line's joint path between samples */
-
-const fbrl_cell_arm fbrl_cell_arm_a255 = {
-    10.0, 10.0, 10.0, 2.0, {-175.0, 0.0, -130.0, -110.0, -180.0}, {175.0, 110.0, 0.0, 110.0, 180.0}};
+#define LINE_GUESS  1.1     /* a straight line's next step aims this much below the length allowed */
 
 static int ok(const fbrl_cell_model *c) { return c && c->magic == CELL_MAGIC; }
-
-static double wrap180(double a)
-{
-    a = fmod(a, 360.0);
-    if (a > 180.0)
-        a -= 360.0;
-    else if (a <= -180.0)
-        a += 360.0;
-    return a;
-}
 
 static int upcase(int ch) { return ch >= 'a' && ch <= 'z' ? ch - 'a' + 'A' : ch; }
 
@@ -58,7 +43,7 @@ fbrl_status fbrl_cell_init(fbrl_cell_model *c, fbrl_cell_obj *storage, size_t ca
     c->magic = CELL_MAGIC;
     c->obj = storage;
     c->cap = cap;
-    c->arm = fbrl_cell_arm_a255;
+    c->arm = fbrl_arm_model(0);
     return FBRL_OK;
 }
 
@@ -96,13 +81,17 @@ fbrl_status fbrl_cell_set_tool(fbrl_cell_model *c, double len, double radius)
     return FBRL_OK;
 }
 
-fbrl_status fbrl_cell_set_arm(fbrl_cell_model *c, const fbrl_cell_arm *arm)
+fbrl_status fbrl_cell_set_arm(fbrl_cell_model *c, const fbrl_arm *arm, double tcp)
 {
     if (!ok(c) || !arm)
         return FBRL_EINVAL;
-    if (!(arm->upper > 0) || !(arm->fore > 0) || !(arm->flange >= 0) || !isfinite(arm->base_h))
+    if (!isfinite(tcp))
+        return FBRL_ENONFINITE;
+    if (arm->naxes > FBRL_CELL_AXES || !(arm->upper > 0) || !(arm->fore > 0) || !(arm->flange >= 0) ||
+        !(arm->r_upper >= 0) || !(arm->r_fore >= 0) || !isfinite(arm->base_h) || tcp < 0)
         return FBRL_ERANGE;
-    c->arm = *arm;
+    c->arm = arm;
+    c->tcp = tcp;
     return FBRL_OK;
 }
 
@@ -402,236 +391,210 @@ fbrl_status fbrl_cell_point_clearance(const fbrl_cell_model *c, const double p[3
     return FBRL_OK;
 }
 
-/* ---- kinematics (A255 type, DESIGN 6) ---- */
+/* ---- the arm's body at a pose ---- */
 
-fbrl_status fbrl_cell_fk(const fbrl_cell_arm *m, const double q[FBRL_CELL_AXES], double pose[6])
+/* The whole arm at joints q: upper arm, forearm (with the wrist housing) and the tool from the
+ * wrist centre through the tool point to tool_len beyond it (fbrl_arm_body). */
+static void body(const fbrl_cell_model *c, const double *q, fbrl_arm_capsule s[FBRL_ARM_PARTS])
 {
-    if (!m || !q || !pose)
-        return FBRL_EINVAL;
-    double a2 = RAD(q[1]), a3 = RAD(q[1] + q[2]), p = RAD(q[1] + q[2] + q[3]);
-    double r = m->upper * cos(a2) + m->fore * cos(a3) + m->flange * cos(p);
-    double z = m->base_h + m->upper * sin(a2) + m->fore * sin(a3) + m->flange * sin(p);
-    pose[0] = r * cos(RAD(q[0]));
-    pose[1] = r * sin(RAD(q[0]));
-    pose[2] = z;
-    pose[3] = q[0];
-    pose[4] = wrap180(q[1] + q[2] + q[3]);
-    pose[5] = q[4];
-    return FBRL_OK;
+    fbrl_arm_body(c->arm, q, c->tcp + c->tool_len, c->tool_r, s);
 }
 
-static int in_limits(const fbrl_cell_arm *m, const double q[FBRL_CELL_AXES])
-{
-    for (int i = 0; i < FBRL_CELL_AXES; i++)
-        if (!isfinite(q[i]) || q[i] < m->min[i] - LIMIT_EPS || q[i] > m->max[i] + LIMIT_EPS)
-            return 0;
-    return 1;
-}
-
-/* The joints with the waist at `waist` and the tool point at signed distance s from the
- * base axis along the waist's direction (elbow down: the only branch in -130..0). */
-static int solve(const fbrl_cell_arm *m, const double pose[6], double waist, double s,
-                 double q[FBRL_CELL_AXES])
-{
-    double p = RAD(pose[4]), l2 = m->upper, l3 = m->fore;
-    double rw = s - m->flange * cos(p), zw = pose[2] - m->base_h - m->flange * sin(p);
-    double c3 = (rw * rw + zw * zw - l2 * l2 - l3 * l3) / (2.0 * l2 * l3), t3, t2;
-    if (!isfinite(c3) || fabs(c3) > 1.0 + REACH_EPS)
-        return 0;
-    c3 = c3 > 1.0 ? 1.0 : c3 < -1.0 ? -1.0 : c3;
-    t3 = -acos(c3);
-    t2 = atan2(zw, rw) - atan2(l3 * sin(t3), l2 + l3 * cos(t3));
-    q[0] = wrap180(waist);
-    q[1] = DEG(t2);
-    q[2] = DEG(t3);
-    q[3] = wrap180(pose[4] - q[1] - q[2]);
-    q[4] = wrap180(pose[5]);
-    return in_limits(m, q);
-}
-
-fbrl_status fbrl_cell_ik(const fbrl_cell_arm *m, const double pose[6], const double hint[FBRL_CELL_AXES],
-                         double q[FBRL_CELL_AXES])
-{
-    double alt[FBRL_CELL_AXES], r, waist;
-    if (!m || !pose || !hint || !q)
-        return FBRL_EINVAL;
-    for (int i = 0; i < 6; i++)
-        if (!isfinite(pose[i]))
-            return FBRL_ENONFINITE;
-    r = hypot(pose[0], pose[1]);
-    waist = r < AXIS_EPS ? hint[0] : DEG(atan2(pose[1], pose[0]));
-    if (solve(m, pose, waist, r, q))
-        return FBRL_OK;
-    if (solve(m, pose, waist + 180.0, -r, alt)) { /* backward over the shoulder */
-        memcpy(q, alt, sizeof alt);
-        return FBRL_OK;
-    }
-    return FBRL_ERANGE;
-}
-
-void fbrl_cell_back_off(const double pose[6], double waist, double dist, double out[6])
-{
-    double w = hypot(pose[0], pose[1]) > AXIS_EPS ? atan2(pose[1], pose[0]) : RAD(waist);
-    double p = RAD(pose[4]);
-    memcpy(out, pose, 6 * sizeof *out);
-    out[0] -= dist * cos(p) * cos(w);
-    out[1] -= dist * cos(p) * sin(w);
-    out[2] -= dist * sin(p);
-}
-
-/* ---- the envelope at a pose ---- */
-
-/* The capsule's axis: the wrist pitch axis to the tool's far end. */
-static void envelope(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], double a[3], double b[3])
-{
-    const fbrl_cell_arm *m = &c->arm;
-    double a2 = RAD(q[1]), a3 = RAD(q[1] + q[2]), p = RAD(q[1] + q[2] + q[3]);
-    double cw = cos(RAD(q[0])), sw = sin(RAD(q[0]));
-    double rw = m->upper * cos(a2) + m->fore * cos(a3),
-           zw = m->base_h + m->upper * sin(a2) + m->fore * sin(a3);
-    double reach = m->flange + c->tool_len;
-    a[0] = rw * cw, a[1] = rw * sw, a[2] = zw;
-    b[0] = (rw + reach * cos(p)) * cw, b[1] = (rw + reach * cos(p)) * sw, b[2] = zw + reach * sin(p);
-}
-
-/* What a path check remembers between samples: for each obstacle a lower bound of its
- * clearance (its distance when last measured, less how far the envelope may have moved
- * since). An obstacle far from the envelope is measured again only when its bound comes
- * near the smallest one: on a path past one obstacle the others cost nothing. */
-#define TRACK_MAX    64  /* obstacles tracked (beyond: measured at every sample) */
-#define TRACK_NEAR   1.0 /* in: obstacles bounded closer than this are always measured */
-#define TRACK_FACTOR 2.0 /* ... and those within this factor of the nearest bound */
+/* What a path check remembers between samples: for each part of the arm and each obstacle a
+ * lower bound of their clearance (the distance when last measured, less how far the body may
+ * have moved since). A sample measures the pairs nearest first and stops at the first bound
+ * above the least distance found: on a path past one obstacle the others, and the parts far
+ * from it, cost nothing. */
+#define TRACK_MAX FBRL_CELL_MAX_OBJ /* obstacles tracked, the words' cell's (beyond: every sample) */
 typedef struct track {
-    double lb[TRACK_MAX];
-    int fresh; /* no sample yet: measure everything */
+    double lb[FBRL_ARM_PARTS][TRACK_MAX];
+    int fresh; /* no sample yet: no bounds */
 } track;
 
-static double measure(const fbrl_cell_model *c, size_t k, const double a[3], const double b[3],
-                      double near[3])
+/* A lower bound of a capsule's distance to the box lo..hi, cheap: the gap between the box and
+ * the capsule's own bounding box. */
+static double box_gap(const double lo[3], const double hi[3], const double a[3], const double b[3], double r)
+{
+    double g = 0.0;
+    for (int i = 0; i < 3; i++) {
+        double cl = a[i] < b[i] ? a[i] : b[i], ch = a[i] < b[i] ? b[i] : a[i];
+        double d = cl > hi[i] ? cl - hi[i] : lo[i] > ch ? lo[i] - ch : 0.0;
+        g += d * d;
+    }
+    return sqrt(g) - r;
+}
+
+/* The box around obstacle o (a cylinder's is nearer than the cylinder). */
+static void bounds(const fbrl_cell_obj *o, double lo[3], double hi[3])
+{
+    if (o->kind == FBRL_CELL_CYLINDER) {
+        lo[0] = o->c[0] - o->r, lo[1] = o->c[1] - o->r, lo[2] = o->lo[2];
+        hi[0] = o->c[0] + o->r, hi[1] = o->c[1] + o->r, hi[2] = o->hi[2];
+    } else {
+        memcpy(lo, o->lo, 3 * sizeof *lo);
+        memcpy(hi, o->hi, 3 * sizeof *hi);
+    }
+}
+
+/* A cheap lower bound of the part's distance to obstacle k. */
+static double rough(const fbrl_cell_model *c, size_t k, const fbrl_arm_capsule *s)
 {
     const fbrl_cell_obj *o = &c->obj[k];
-    double oa[3], ob[3], nb[3], d;
-    to_obj(c, o, a, oa);
-    to_obj(c, o, b, ob);
-    d = (o->kind == FBRL_CELL_CYLINDER ? seg_cyl(o, oa, ob, nb) : seg_box(o->lo, o->hi, oa, ob, nb)) -
-        c->tool_r;
+    double oa[3], ob[3], lo[3], hi[3];
+    to_obj(c, o, s->a, oa);
+    to_obj(c, o, s->b, ob);
+    bounds(o, lo, hi);
+    return box_gap(lo, hi, oa, ob, s->r);
+}
+
+/* The part's distance to obstacle k (negative: inside) and the obstacle's nearest point; or,
+ * when a cheaper lower bound already exceeds `above`, that bound (*exact = 0). */
+static double measure(const fbrl_cell_model *c, size_t k, const fbrl_arm_capsule *s, double above,
+                      double near[3], int *exact)
+{
+    const fbrl_cell_obj *o = &c->obj[k];
+    double oa[3], ob[3], nb[3], lo[3], hi[3], d;
+    to_obj(c, o, s->a, oa);
+    to_obj(c, o, s->b, ob);
+    bounds(o, lo, hi);
+    *exact = 0;
+    if ((d = box_gap(lo, hi, oa, ob, s->r)) > above)
+        return d;
+    d = seg_box(lo, hi, oa, ob, nb) - s->r;
+    if (o->kind == FBRL_CELL_CYLINDER) {
+        if (d > above) /* the exact distance to a cylinder costs more */
+            return d;
+        d = seg_cyl(o, oa, ob, nb) - s->r;
+    }
+    *exact = 1;
     from_obj(c, o, nb, near);
     return d;
 }
 
-/* Clearance of the envelope at q: the least over the table and every obstacle (a lower
- * bound for obstacles t says are far; exact for the nearest). */
-static double clearance(const fbrl_cell_model *c, const double a[3], const double b[3], track *t,
-                        size_t *which, double near[3])
+/* What a clearance found nearest: the obstacle (or the table), the part, the point. */
+typedef struct nearest {
+    double d;
+    size_t obj;
+    int part;
+    double at[3];
+} nearest;
+
+static void note(nearest *n, double d, size_t obj, int part, const double at[3])
 {
-    double best = INFINITY, nb[3], floor_lb = INFINITY;
-    *which = FBRL_CELL_NONE;
-    if (c->have_table) {
-        int lower = a[2] < b[2];
-        best = (lower ? a[2] : b[2]) - c->table_z - c->tool_r;
-        memcpy(near, lower ? a : b, sizeof nb);
-        near[2] = c->table_z;
-        *which = FBRL_CELL_TABLE;
+    if (d < n->d) {
+        n->d = d, n->obj = obj, n->part = part;
+        memcpy(n->at, at, sizeof n->at);
     }
-    if (t && !t->fresh)
-        for (size_t k = 0; k < c->n && k < TRACK_MAX; k++)
-            if (t->lb[k] < floor_lb)
-                floor_lb = t->lb[k];
-    for (size_t k = 0; k < c->n; k++) {
-        double d;
-        if (t && !t->fresh && k < TRACK_MAX && t->lb[k] > TRACK_NEAR && t->lb[k] > TRACK_FACTOR * floor_lb &&
-            t->lb[k] > best) {
-            continue; /* far: its bound stands for it, and it cannot be the least */
+}
+
+/* Clearance of the body: the least over its parts against the table and every obstacle. The
+ * pairs whose bound lies below the least so far are taken nearest bound first, each measured
+ * exactly only while its bound still lies below the least distance found; the others keep
+ * their bound (in t). Without bounds (a fresh track, or none) each pair's is a cheap one. */
+static void clearance(const fbrl_cell_model *c, const fbrl_arm_capsule *s, track *t, nearest *n)
+{
+    double nb[3], bound[FBRL_ARM_PARTS * TRACK_MAX];
+    unsigned short pair[FBRL_ARM_PARTS * TRACK_MAX]; /* part * TRACK_MAX + obstacle */
+    size_t nt = c->n < TRACK_MAX ? c->n : TRACK_MAX, np = 0;
+    int exact, bounded = t && !t->fresh;
+    n->d = INFINITY, n->obj = FBRL_CELL_NONE, n->part = FBRL_ARM_TOOL;
+    for (int j = FBRL_ARM_PARTS - 1; j >= 0 && c->have_table; j--) {
+        const fbrl_arm_capsule *p = &s[j];
+        const double *low = p->a[2] < p->b[2] ? p->a : p->b;
+        double at[3] = {low[0], low[1], c->table_z};
+        note(n, low[2] - c->table_z - p->r, FBRL_CELL_TABLE, j, at);
+    }
+    for (size_t k = nt; k < c->n; k++) /* untracked: every part, every sample */
+        for (int j = FBRL_ARM_PARTS - 1; j >= 0; j--) {
+            double d = measure(c, k, &s[j], n->d, nb, &exact);
+            if (exact)
+                note(n, d, k, j, nb);
         }
-        if (c->obj[k].kind == FBRL_CELL_CYLINDER) {
-            /* the box around the cylinder is nearer than the cylinder: if even that is further
-             * than the least so far, its distance is bound enough (the exact one costs more) */
-            const fbrl_cell_obj *o = &c->obj[k];
-            double lo[3] = {o->c[0] - o->r, o->c[1] - o->r, o->lo[2]},
-                   hi[3] = {o->c[0] + o->r, o->c[1] + o->r, o->hi[2]};
-            double oa[3], ob[3], bd;
-            to_obj(c, o, a, oa);
-            to_obj(c, o, b, ob);
-            bd = seg_box(lo, hi, oa, ob, nb) - c->tool_r;
-            if (bd > best) {
-                if (t && k < TRACK_MAX)
-                    t->lb[k] = bd;
+    for (int j = FBRL_ARM_PARTS - 1; j >= 0; j--) /* the candidates, by bound (insertion) */
+        for (size_t k = 0; k < nt; k++) {
+            double b = bounded ? t->lb[j][k] : rough(c, k, &s[j]);
+            if (t && !bounded) /* a fresh track: every pair gets its cheap bound, at least */
+                t->lb[j][k] = b;
+            if (b >= n->d)
                 continue;
+            size_t at = np++;
+            for (; at > 0 && bound[at - 1] > b; at--) {
+                bound[at] = bound[at - 1];
+                pair[at] = pair[at - 1];
             }
+            bound[at] = b;
+            pair[at] = (unsigned short)(j * TRACK_MAX + (int)k);
         }
-        d = measure(c, k, a, b, nb);
-        if (t && k < TRACK_MAX)
-            t->lb[k] = d;
-        if (d < best) {
-            best = d;
-            *which = k;
-            memcpy(near, nb, sizeof nb);
-        }
+    for (size_t i = 0; i < np && bound[i] < n->d; i++) {
+        int j = pair[i] / TRACK_MAX;
+        size_t k = pair[i] % TRACK_MAX;
+        double d = measure(c, k, &s[j], n->d, nb, &exact);
+        if (t)
+            t->lb[j][k] = d;
+        if (exact)
+            note(n, d, k, j, nb);
     }
     if (t)
         t->fresh = 0;
-    return best;
 }
 
-/* The envelope moved at most dist since the bounds were taken. */
-static void track_moved(track *t, size_t n, double dist)
+/* Each part of the body moved at most dist[part] since the bounds were taken. */
+static void track_moved(track *t, size_t n, const double dist[FBRL_ARM_PARTS])
 {
-    for (size_t k = 0; t && k < n && k < TRACK_MAX; k++)
-        t->lb[k] -= dist;
+    for (int j = 0; t && j < FBRL_ARM_PARTS; j++)
+        for (size_t k = 0; k < n && k < TRACK_MAX; k++)
+            t->lb[j][k] -= dist[j];
 }
 
-/* How far (in) any point of the envelope can move per degree of each joint: its largest
- * distance from that joint's axis (roll turns the capsule about its own axis: nothing). */
-static void lever(const fbrl_cell_model *c, double k[FBRL_CELL_AXES])
+/* How far each part of the body moves at most over the joint move a -> b. A capsule is its
+ * axis grown by its radius, so a capsule whose axis' ends each moved at most d lies within d
+ * of where it was (every point of the axis is a mix of its ends, and the radius only adds the
+ * same ball to both): the ends of the axes are what counts, and fbrl_arm_levers bounds how
+ * far they go per joint (the part's far end, point part + 1 of the chain, goes furthest). */
+static void moved(const fbrl_cell_model *c, const double *a, const double *b, double len[FBRL_ARM_PARTS])
 {
-    const fbrl_cell_arm *m = &c->arm;
-    double tool = m->flange + c->tool_len + c->tool_r;
-    k[0] = k[1] = RAD(m->upper + m->fore + tool);
-    k[2] = RAD(m->fore + tool);
-    k[3] = RAD(tool);
-    k[4] = 0.0;
-}
-
-static double moved(const double k[FBRL_CELL_AXES], const double a[FBRL_CELL_AXES],
-                    const double b[FBRL_CELL_AXES])
-{
-    double s = 0.0;
-    for (int i = 0; i < FBRL_CELL_AXES; i++)
-        s += k[i] * fabs(b[i] - a[i]);
-    return s;
+    double k[FBRL_CELL_AXES];
+    for (int j = 0; j < FBRL_ARM_PARTS; j++) {
+        fbrl_arm_levers(c->arm, j + 1, c->tcp + c->tool_len, k);
+        len[j] = 0.0;
+        for (unsigned i = 0; i < c->arm->naxes; i++)
+            len[j] += k[i] * RAD(fabs(b[i] - a[i]));
+    }
 }
 
 static void begin(fbrl_cell_hit *h)
 {
     memset(h, 0, sizeof *h);
     h->obj = h->near_obj = FBRL_CELL_NONE;
+    h->part = FBRL_ARM_TOOL;
     h->clearance = INFINITY;
 }
 
-/* One sample: note the clearance; 1 if it hits. */
-/* ab: the envelope's axis at q (a then b), or NULL to compute it. */
-static int sample(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], double f, fbrl_cell_hit *h,
-                  double *d, track *t, const double *ab)
+/* One sample: note the clearance; 1 if it hits. s: the body at q, or NULL to compute it. */
+static int sample(const fbrl_cell_model *c, const double *q, double f, fbrl_cell_hit *h, double *d, track *t,
+                  const fbrl_arm_capsule *s)
 {
-    size_t which;
-    double near[3], e[6];
-    if (!ab) {
-        envelope(c, q, e, e + 3);
-        ab = e;
+    nearest n;
+    fbrl_arm_capsule e[FBRL_ARM_PARTS];
+    if (!s) {
+        body(c, q, e);
+        s = e;
     }
-    *d = clearance(c, ab, ab + 3, t, &which, near);
+    clearance(c, s, t, &n);
+    *d = n.d;
     h->samples++;
-    if (*d < h->clearance) {
-        h->clearance = *d;
-        h->near_obj = which;
-        memcpy(h->near, near, sizeof near);
+    if (n.d < h->clearance) {
+        h->clearance = n.d;
+        h->near_obj = n.obj;
+        h->part = n.part;
+        memcpy(h->near, n.at, sizeof n.at);
     }
-    if (*d <= 0.0 && which != FBRL_CELL_NONE) {
+    if (n.d <= 0.0 && n.obj != FBRL_CELL_NONE) {
         h->hit = 1;
-        h->obj = which;
+        h->obj = n.obj;
         h->fraction = f;
-        memcpy(h->at, near, sizeof near);
-        memcpy(h->q_end, q, sizeof h->q_end);
+        memcpy(h->at, n.at, sizeof n.at);
+        memcpy(h->q_end, q, c->arm->naxes * sizeof *q);
         return 1;
     }
     return 0;
@@ -639,111 +602,127 @@ static int sample(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], doub
 
 static double step_for(double d) { return d > MIN_STEP ? d : MIN_STEP; }
 
-fbrl_status fbrl_cell_check_pose(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], fbrl_cell_hit *h)
+fbrl_status fbrl_cell_check_pose(const fbrl_cell_model *c, const double *q, fbrl_cell_hit *h)
 {
     double d;
     if (!ok(c) || !q || !h)
         return FBRL_EINVAL;
     begin(h);
-    memcpy(h->q_end, q, sizeof h->q_end);
+    memcpy(h->q_end, q, c->arm->naxes * sizeof *q);
     (void)sample(c, q, 0.0, h, &d, NULL, NULL);
     return FBRL_OK;
 }
 
-fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
-                                   const double q1[FBRL_CELL_AXES], fbrl_cell_hit *h)
+fbrl_status fbrl_cell_check_joints(const fbrl_cell_model *c, const double *q0, const double *q1,
+                                   fbrl_cell_hit *h)
 {
-    double k[FBRL_CELL_AXES], len, f = 0.0, d, q[FBRL_CELL_AXES];
+    double len[FBRL_ARM_PARTS], f = 0.0, d, q[FBRL_CELL_AXES], step[FBRL_ARM_PARTS];
     track t;
     if (!ok(c) || !q0 || !q1 || !h)
         return FBRL_EINVAL;
+    unsigned n = c->arm->naxes;
     begin(h);
     t.fresh = 1;
-    lever(c, k);
-    len = moved(k, q0, q1); /* in of motion of the fastest envelope point over the whole move */
+    moved(c, q0, q1, len); /* in of motion of each part over the whole move; the tool's is most */
     for (;;) {
-        for (int i = 0; i < FBRL_CELL_AXES; i++)
+        for (unsigned i = 0; i < n; i++)
             q[i] = q0[i] + (q1[i] - q0[i]) * f;
         if (sample(c, q, f, h, &d, &t, NULL))
             return FBRL_OK;
-        if (f >= 1.0 || len <= 0.0)
+        if (f >= 1.0 || len[FBRL_ARM_TOOL] <= 0.0)
             break;
         if (h->samples >= MAX_SAMPLES)
             return FBRL_ERANGE;
-        double nf = f + step_for(d) / len;
+        double nf = f + step_for(d) / len[FBRL_ARM_TOOL];
         if (nf > 1.0)
             nf = 1.0;
-        track_moved(&t, c->n, (nf - f) * len);
+        for (int j = 0; j < FBRL_ARM_PARTS; j++)
+            step[j] = (nf - f) * len[j];
+        track_moved(&t, c->n, step);
         f = nf;
     }
-    memcpy(h->q_end, q1, sizeof h->q_end);
+    memcpy(h->q_end, q1, n * sizeof *q1);
     return FBRL_OK;
 }
 
-/* How far any point of the envelope moves between two nearby poses of a straight line: its
- * axis' ends move that far, its surface as much more as the axis turns (waist, pitch), and
- * LINE_SLACK for the bend of the path between the two samples. */
-static double env_moved(const fbrl_cell_model *c, const double q[FBRL_CELL_AXES], const double ab[6],
-                        const double qn[FBRL_CELL_AXES], double abn[6])
+/* How far each part of the body moves between two nearby samples of a straight line: as far
+ * as the ends of its capsule's axis (see moved), times LINE_SLACK for the bend of the joints'
+ * path between the two samples; the most of them. */
+static double body_moved(const fbrl_arm_capsule *s, const fbrl_arm_capsule *sn, double part[FBRL_ARM_PARTS])
 {
-    const double *a = ab, *b = ab + 3;
-    double *an = abn, *bn = abn + 3, da = 0.0, db = 0.0;
-    envelope(c, qn, an, bn);
-    for (int i = 0; i < 3; i++) {
-        da += (an[i] - a[i]) * (an[i] - a[i]);
-        db += (bn[i] - b[i]) * (bn[i] - b[i]);
+    double most = 0.0;
+    for (int j = 0; j < FBRL_ARM_PARTS; j++) {
+        double m = 0.0;
+        for (int e = 0; e < 2; e++) {
+            const double *p = e ? s[j].b : s[j].a, *pn = e ? sn[j].b : sn[j].a;
+            double d = (pn[0] - p[0]) * (pn[0] - p[0]) + (pn[1] - p[1]) * (pn[1] - p[1]) +
+                       (pn[2] - p[2]) * (pn[2] - p[2]);
+            m = d > m ? d : m;
+        }
+        part[j] = LINE_SLACK * sqrt(m);
+        most = part[j] > most ? part[j] : most;
     }
-    double turn = fabs(qn[0] - q[0]) + fabs((qn[1] + qn[2] + qn[3]) - (q[1] + q[2] + q[3]));
-    return LINE_SLACK * (sqrt(da > db ? da : db) + c->tool_r * RAD(turn));
+    return most;
 }
 
-fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double q0[FBRL_CELL_AXES],
-                                 const double pose1[6], fbrl_cell_hit *h)
+fbrl_status fbrl_cell_check_line(const fbrl_cell_model *c, const double *q0, const double pose1[6],
+                                 fbrl_cell_hit *h)
 {
-    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], dist, ab[6], abn[6], step = 0.0;
+    double p0[6], pose[6], f = 0.0, d, q[FBRL_CELL_AXES], qn[FBRL_CELL_AXES], rate, turn, most = 0.0,
+                           step[FBRL_ARM_PARTS];
+    fbrl_arm_capsule s[FBRL_ARM_PARTS], sn[FBRL_ARM_PARTS];
     track t;
     if (!ok(c) || !q0 || !pose1 || !h)
         return FBRL_EINVAL;
+    unsigned n = c->arm->naxes;
+    size_t bytes = n * sizeof *q;
     begin(h);
     t.fresh = 1;
-    fbrl_cell_fk(&c->arm, q0, p0);
-    memcpy(q, q0, sizeof q);
-    envelope(c, q, ab, ab + 3);
-    dist = sqrt((pose1[0] - p0[0]) * (pose1[0] - p0[0]) + (pose1[1] - p0[1]) * (pose1[1] - p0[1]) +
-                (pose1[2] - p0[2]) * (pose1[2] - p0[2])) +
-           RAD(fabs(pose1[4] - p0[4])) * (c->arm.flange + c->tool_len + c->tool_r);
+    fbrl_arm_fk(c->arm, q0, c->tcp, p0);
+    memcpy(q, q0, bytes);
+    body(c, q, s);
+    /* how far the body goes per unit of the line, for the first step's length: a guess from the
+     * tool's way, then as measured at the step before (halving corrects a step too long) */
+    turn = fabs(pose1[4] - p0[4]) + fabs(pose1[5] - p0[5]) +
+           (c->arm->form == FBRL_ARM_6R ? fabs(pose1[3] - p0[3]) : 0.0); /* a 5R's yaw is not its own */
+    rate =
+        LINE_SLACK * (sqrt((pose1[0] - p0[0]) * (pose1[0] - p0[0]) + (pose1[1] - p0[1]) * (pose1[1] - p0[1]) +
+                           (pose1[2] - p0[2]) * (pose1[2] - p0[2])) +
+                      RAD(turn) * (c->arm->flange + c->tcp + c->tool_len + c->tool_r));
     for (;;) {
-        if (sample(c, q, f, h, &d, &t, ab))
+        if (sample(c, q, f, h, &d, &t, s))
             return FBRL_OK;
         if (f >= 1.0)
             break;
         if (h->samples >= MAX_SAMPLES)
             return FBRL_ERANGE;
         /* the step the clearance allows, halved until the joints' motion keeps to it */
-        double allow = step_for(d), df = dist > 0 ? allow / (dist * LINE_SLACK * LINE_SLACK) : 1.0, nf = 0.0;
+        double allow = step_for(d), df = rate > 0 ? allow / (rate * LINE_GUESS) : 1.0, nf = 0.0;
         int tries;
         for (tries = 0; tries < LINE_HALVE; tries++, df *= 0.5) {
             nf = f + df > 1.0 ? 1.0 : f + df;
-            for (int i = 0; i < 6; i++)
-                pose[i] = p0[i] + (pose1[i] - p0[i]) * nf;
-            if (fbrl_cell_ik(&c->arm, pose, q, qn) != FBRL_OK) {
-                memcpy(h->q_end, q, sizeof h->q_end);
+            fbrl_arm_lerp(p0, pose1, nf, pose);
+            if (fbrl_arm_ik(c->arm, pose, c->tcp, q, qn, NULL) != FBRL_OK) {
+                memcpy(h->q_end, q, bytes);
                 h->fraction = f;
                 return FBRL_ERANGE; /* the controller refuses such a line (068) */
             }
-            if ((step = env_moved(c, q, ab, qn, abn)) <= allow)
+            body(c, qn, sn);
+            if ((most = body_moved(s, sn, step)) <= allow)
                 break;
         }
         if (tries == LINE_HALVE) {
-            memcpy(h->q_end, q, sizeof h->q_end);
+            memcpy(h->q_end, q, bytes);
             h->fraction = f;
             return FBRL_ERANGE; /* a joint jumps: not a line the arm can follow */
         }
         track_moved(&t, c->n, step);
-        memcpy(q, qn, sizeof q);
-        memcpy(ab, abn, sizeof ab);
+        memcpy(q, qn, bytes);
+        memcpy(s, sn, sizeof s);
+        if (nf > f && most > 0.0)
+            rate = most / (nf - f);
         f = nf;
     }
-    memcpy(h->q_end, q, sizeof h->q_end);
+    memcpy(h->q_end, q, bytes);
     return FBRL_OK;
 }

@@ -1,8 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /* fileio_posix.c - the data files' store in a POSIX file system (fileio_store.h): reads
- * through open/read, atomic replace as temporary, fsync, rename, fsync of the directory. */
+ * through open/read, atomic replace as temporary, fsync, rename, fsync of the directory.
+ * A path that is a symbolic link is written through: its target is replaced, the link
+ * stays. Failures are named (permission, a full disk, a link loop, read-only). */
 #include "fbrl/fileio.h"
 #include "fileio_store.h"
+#include "posix_io.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -13,16 +16,31 @@
 #include <unistd.h>
 
 #define TMP_TRIES 1000u
+#define LINKS_MAX 40u /* links followed to a file before it counts as a loop (Linux's limit) */
 
-static fbrl_status from_errno(int e)
+fbrl_status fbrl_file_status_of_errno(int e)
 {
     switch (e) {
+    case 0: return FBRL_OK;
     case ENOENT:
     case ENOTDIR: return FBRL_ENOENT;
     case ENAMETOOLONG: return FBRL_ENAME;
+    case EACCES:
+    case EPERM: return FBRL_EPERM;
+    case ENOSPC:
+#ifdef EDQUOT
+    case EDQUOT:
+#endif
+    case EFBIG: return FBRL_EDISKFULL;
+    case ELOOP: return FBRL_ELOOP;
+    case EROFS:
+    case ETXTBSY: return FBRL_EREADONLY;
+    case EISDIR: return FBRL_ENOTFILE;
     default: return FBRL_EIO;
     }
 }
+
+static fbrl_status from_errno(int e) { return fbrl_file_status_of_errno(e); }
 
 /* Read up to n bytes (fewer only at end of file). */
 static fbrl_status read_full(int fd, unsigned char *p, size_t n, size_t *got)
@@ -42,25 +60,26 @@ static fbrl_status read_full(int fd, unsigned char *p, size_t n, size_t *got)
     return FBRL_OK;
 }
 
-static fbrl_status write_full(int fd, const unsigned char *p, size_t n)
+fbrl_status fbrl__posix_write_full(int fd, const void *data, size_t n)
 {
+    const unsigned char *p = data;
     while (n > 0) {
         ssize_t r = write(fd, p, n);
         if (r < 0 && errno == EINTR)
             continue;
         if (r <= 0)
-            return FBRL_EIO;
+            return r < 0 ? from_errno(errno) : FBRL_EIO;
         p += r;
         n -= (size_t)r;
     }
     return FBRL_OK;
 }
 
-static fbrl_status sync_fd(int fd)
+fbrl_status fbrl__posix_sync(int fd)
 {
     while (fsync(fd) != 0)
         if (errno != EINTR)
-            return FBRL_EIO;
+            return from_errno(errno); /* a delayed allocation may find the disk full here */
     return FBRL_OK;
 }
 
@@ -114,13 +133,67 @@ static void tmp_name(const char *path, uint32_t n, char *out)
     memcpy(out + k, ".tmp", 5);
 }
 
+/* The file path names, its symbolic links followed (the file need not exist: a link to a
+ * file not yet made names where it goes), into out[FBRL_FILE_PATH_MAX]. */
+static fbrl_status follow_links(const char *path, char *out)
+{
+    char link[FBRL_FILE_PATH_MAX], dir[FBRL_FILE_PATH_MAX];
+    struct stat sb;
+    if (strlen(path) >= FBRL_FILE_PATH_MAX)
+        return FBRL_ENAME;
+    strcpy(out, path);
+    for (unsigned hops = 0;; hops++) {
+        if (lstat(out, &sb) != 0)
+            return errno == ENOENT ? FBRL_OK : from_errno(errno);
+        if (!S_ISLNK(sb.st_mode))
+            return FBRL_OK;
+        if (hops == LINKS_MAX)
+            return FBRL_ELOOP;
+        ssize_t n = readlink(out, link, sizeof link - 1);
+        if (n < 0)
+            return from_errno(errno);
+        if ((size_t)n >= sizeof link - 1)
+            return FBRL_ENAME;
+        link[n] = '\0';
+        if (link[0] == '/') {
+            strcpy(out, link);
+            continue;
+        }
+        dir_of(out, dir); /* a relative target is relative to the link's directory */
+        if (strlen(dir) + 1 + (size_t)n >= FBRL_FILE_PATH_MAX)
+            return FBRL_ENAME;
+        strcat(strcat(strcpy(out, dir), "/"), link);
+    }
+}
+
+/* A file whose permission bits let nobody write it was made read-only on purpose: saving
+ * does not replace it behind its owner's back (the directory alone would allow it). */
+static fbrl_status writable(const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return errno == ENOENT ? FBRL_OK : from_errno(errno);
+    if (!S_ISREG(sb.st_mode))
+        return FBRL_ENOTFILE;
+    if ((sb.st_mode & 0222) == 0)
+        return FBRL_EREADONLY;
+    if (access(path, W_OK) != 0 && errno != ENOENT)
+        return from_errno(errno);
+    return FBRL_OK;
+}
+
 /* fileio_store.h. Replace path by header+data: temporary, fsync, rename, fsync directory. keep_mode >= 0 sets
  * the new file's permission bits (the old file's); otherwise open()'s 0666 & ~umask stands. */
-fbrl_status fbrl__fstore_replace(const char *path, long keep_mode, const unsigned char *hdr,
+fbrl_status fbrl__fstore_replace(const char *given, long keep_mode, const unsigned char *hdr,
                                  const unsigned char *data, size_t len)
 {
-    char tmp[TMP_PATH_MAX];
+    char tmp[TMP_PATH_MAX], path[FBRL_FILE_PATH_MAX];
     int fd = -1;
+    fbrl_status st = follow_links(given, path);
+    if (st == FBRL_OK)
+        st = writable(path);
+    if (st != FBRL_OK)
+        return st;
     for (uint32_t n = 0; n < TMP_TRIES && fd < 0; n++) {
         tmp_name(path, n, tmp);
         fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
@@ -130,17 +203,16 @@ fbrl_status fbrl__fstore_replace(const char *path, long keep_mode, const unsigne
     if (fd < 0)
         return FBRL_EIO;
 
-    fbrl_status st = FBRL_OK;
     if (keep_mode >= 0 && fchmod(fd, (mode_t)keep_mode) != 0)
-        st = FBRL_EIO;
+        st = from_errno(errno);
     if (st == FBRL_OK)
-        st = write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
+        st = fbrl__posix_write_full(fd, hdr, FBRL_FILE_HEADER_SIZE);
     if (st == FBRL_OK)
-        st = write_full(fd, data, len);
+        st = fbrl__posix_write_full(fd, data, len);
     if (st == FBRL_OK)
-        st = sync_fd(fd);
+        st = fbrl__posix_sync(fd);
     if (close(fd) != 0 && st == FBRL_OK)
-        st = FBRL_EIO;
+        st = from_errno(errno);
     if (st == FBRL_OK && rename(tmp, path) != 0)
         st = from_errno(errno);
     if (st != FBRL_OK) {
@@ -154,9 +226,9 @@ fbrl_status fbrl__fstore_replace(const char *path, long keep_mode, const unsigne
     dir_of(path, dir);
     int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (dfd < 0)
-        return FBRL_EIO;
+        return from_errno(errno);
     if (fsync(dfd) != 0 && errno != EINVAL)
-        st = FBRL_EIO;
+        st = from_errno(errno);
     close(dfd);
     return st;
 }
@@ -178,10 +250,12 @@ static int is_temporary(const char *name, const char *base, size_t blen)
     return strcmp(p, "tmp") == 0;
 }
 
-fbrl_status fbrl__fstore_sweep(const char *path, unsigned *removed)
+fbrl_status fbrl__fstore_sweep(const char *given, unsigned *removed)
 {
-    fbrl_status st = FBRL_OK;
-    char dir[FBRL_FILE_PATH_MAX];
+    char dir[FBRL_FILE_PATH_MAX], path[FBRL_FILE_PATH_MAX];
+    fbrl_status st = follow_links(given, path); /* the temporaries are beside the target */
+    if (st != FBRL_OK)
+        return st;
     dir_of(path, dir);
     const char *slash = strrchr(path, '/');
     const char *base = slash ? slash + 1 : path;
@@ -201,7 +275,7 @@ fbrl_status fbrl__fstore_sweep(const char *path, unsigned *removed)
             if (removed)
                 (*removed)++;
         } else if (errno != ENOENT) {
-            st = FBRL_EIO;
+            st = from_errno(errno);
         }
     }
     closedir(dp);
@@ -221,14 +295,16 @@ fbrl_status fbrl__fstore_open(const char *path, void **handle, uint64_t *size, u
 {
     int fd;
     struct stat sb;
+    fbrl_status st;
     do {
         fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     } while (fd < 0 && errno == EINTR);
     if (fd < 0)
         return from_errno(errno);
     if (fstat(fd, &sb) != 0) {
+        st = from_errno(errno);
         close(fd);
-        return FBRL_EIO;
+        return st;
     }
     if (!S_ISREG(sb.st_mode)) {
         close(fd);

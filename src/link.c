@@ -40,8 +40,6 @@ uint64_t fbrli_link_now_us(const fbrl_link *l)
     return l->u->ops->now_us(l->u->ctx);
 }
 
-const fbrl_link_arm fbrl_link_arm_a255 = {5, {200.0, 200.0, 200.0, 44.44, 22.22}, 10.0, 10.0, 10.0, 2.0};
-
 fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg)
 {
     if (!l || !u || !u->ops || !u->ops->now_us)
@@ -114,16 +112,21 @@ static void follow_units(fbrl_link *l, fbrl_status result)
         l->units = FBRL_LINK_UNITS_UNKNOWN;
 }
 
-/* A STATUS ran whole: its last line says the units. Read as a value (verified by a second
- * reading) a STATUS without that line means inches, the controller's default; shown as it
- * came (a damaged line is not parsed), only the line itself counts. */
-static void learn_units(fbrl_link *l)
+int fbrli_link_learn_units(fbrl_link *l, const fbrl_rapl_status_info *si, int whole)
 {
-    if (l->st.have & FBRL_RAPL_ST_UNITS)
-        l->units = l->st.metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
-    else if (l->kind == FBRL_LINK_REPLY_STATUS)
+    if (si->have & FBRL_RAPL_ST_UNITS)
+        l->units = si->metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+    else if (whole)
         l->units = FBRL_LINK_UNITS_INCH;
+    else
+        return 0;
+    return 1;
 }
+
+/* A STATUS ran: its last line says the units. Read as a value (verified by a second
+ * reading) it came whole; shown as it came (a damaged line is not parsed), only the line
+ * itself counts. */
+static void learn_units(fbrl_link *l) { (void)fbrli_link_learn_units(l, &l->st, l->kind == FBRL_LINK_REPLY_STATUS); }
 
 /* The run log (cfg.on_exec) of one run of the current line. While STATUS settles a
  * command's damaged reply, its runs are only counted: the command itself ran before
@@ -411,51 +414,42 @@ static int same_status(const fbrl_rapl_status_info *a, const fbrl_rapl_status_in
 }
 
 #define DEG_TO_RAD  0.017453292519943295
-#define POS_TOL_IN  0.002  /* world x y z against the joints: print rounding is ~1e-4 */
-#define POS_TOL_DEG 0.0003 /* pitch = the sum of three joints, each rounded to 5e-5 */
-#define TOOL_MAX_IN 100.0  /* a longer tool along the tool axis is not believed */
-
-static double wrap180(double d)
-{
-    d = fmod(d, 360.0);
-    if (d > 180.0)
-        d -= 360.0;
-    else if (d <= -180.0)
-        d += 360.0;
-    return d;
-}
+#define POS_TOL_IN  0.002 /* world x y z against the joints: print rounding is ~1e-4 */
+#define POS_TOL_JNT 5e-5  /* an angle printed to 4 decimals: each joint, and each world angle */
+#define TOOL_MAX_IN 100.0 /* a longer tool along the tool axis is not believed */
 
 /* A position block is self-checking (docs/link.md 3.5): its pulses, joint angles and
  * world coordinates are printed from one sample of the arm, so they agree through the
- * pulses per degree and the arm's kinematics. A damaged digit breaks that agreement
- * (beyond the print resolution), so such a block is believed at once, even while the
- * arm moves and no two reads are alike. The tool point may lie any distance along the
- * tool axis (TOOL), so only the part of x y z across that axis is checked. */
+ * pulses per degree and the arm's kinematics (fbrl/arm.h). A damaged digit breaks that
+ * agreement (beyond the print resolution), so such a block is believed at once, even while
+ * the arm moves and no two reads are alike. The tool point may lie any distance along the
+ * tool axis (TOOL), so only the part of x y z across that axis is checked; a world angle
+ * sums the joints' rounding, one per joint at most. */
 static int pos_consistent(const fbrl_link *l)
 {
-    const fbrl_link_arm *m = l->cfg.arm ? l->cfg.arm : &fbrl_link_arm_a255;
+    const fbrl_arm *m = l->cfg.arm ? l->cfg.arm : fbrl_arm_model(0);
     const fbrl_rapl_pos *p = &l->pos;
     unsigned n = m->naxes;
-    if (n != 5 || l->cfg.naxes != n || p->npulses < n || p->njoints < n || p->nworld < 6)
+    double pose[6], tol = (n + 1) * POS_TOL_JNT;
+    if (l->cfg.naxes != n || p->npulses < n || p->njoints < n || p->nworld < 6)
         return 0;
     for (unsigned k = 0; k < n; k++) {
         double want = p->joints[k] * m->ppd[k];
-        if (fabs((double)p->pulses[k] - want) > 0.5 + 5e-5 * m->ppd[k] + 1e-6)
+        if (fabs((double)p->pulses[k] - want) > 0.5 + POS_TOL_JNT * m->ppd[k] + 1e-6)
             return 0;
     }
-    const double *q = p->joints, *w = p->world;
-    double a2 = q[1] * DEG_TO_RAD, a3 = (q[1] + q[2]) * DEG_TO_RAD, pitch = q[1] + q[2] + q[3];
-    double pr = pitch * DEG_TO_RAD, c0 = cos(q[0] * DEG_TO_RAD), s0 = sin(q[0] * DEG_TO_RAD);
-    double r = m->upper * cos(a2) + m->fore * cos(a3) + m->flange * cos(pr);
-    double z = m->base_h + m->upper * sin(a2) + m->fore * sin(a3) + m->flange * sin(pr);
-    double d[3] = {w[0] - r * c0, w[1] - r * s0, w[2] - z};
-    double axis[3] = {cos(pr) * c0, cos(pr) * s0, sin(pr)};
+    if (fbrl_arm_fk(m, p->joints, 0.0, pose) != FBRL_OK)
+        return 0;
+    const double *w = p->world;
+    double yaw = pose[3] * DEG_TO_RAD, pr = pose[4] * DEG_TO_RAD;
+    double d[3] = {w[0] - pose[0], w[1] - pose[1], w[2] - pose[2]};
+    double axis[3] = {cos(pr) * cos(yaw), cos(pr) * sin(yaw), sin(pr)};
     double t = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2], across = 0.0;
     for (int k = 0; k < 3; k++)
         across += (d[k] - t * axis[k]) * (d[k] - t * axis[k]);
     return sqrt(across) <= POS_TOL_IN && t >= -POS_TOL_IN && t <= TOOL_MAX_IN &&
-           fabs(wrap180(w[3] - q[0])) <= POS_TOL_DEG && fabs(wrap180(w[4] - pitch)) <= POS_TOL_DEG &&
-           fabs(wrap180(w[5] - q[4])) <= POS_TOL_DEG;
+           fabs(fbrl_arm_wrap(w[3] - pose[3])) <= tol && fabs(fbrl_arm_wrap(w[4] - pose[4])) <= tol &&
+           fabs(fbrl_arm_wrap(w[5] - pose[5])) <= tol;
 }
 
 /* Count agreeing reads: same values and the same number of reply bytes (a dropped
@@ -1070,18 +1064,27 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
     }
 }
 
+fbrl_status fbrl_link_line_check(const char *line, size_t len)
+{
+    if (!line || len == 0 || len > FBRL_LINK_LINE_MAX)
+        return FBRL_EINVAL;
+    for (size_t k = 0; k < len; k++)
+        if (line[k] < 0x20 || line[k] > 0x7e || line[k] == '?')
+            return FBRL_EINVAL;
+    return FBRL_OK;
+}
+
 static fbrl_status check_line(const char *line, size_t *len)
 {
     size_t n = 0;
     if (!line)
         return FBRL_EINVAL;
-    for (; line[n]; n++)
-        if (n >= FBRL_LINK_LINE_MAX || line[n] < 0x20 || line[n] > 0x7e || line[n] == '?')
-            return FBRL_EINVAL;
-    if (n == 0)
-        return FBRL_EINVAL;
-    *len = n;
-    return FBRL_OK;
+    while (n <= FBRL_LINK_LINE_MAX && line[n])
+        n++;
+    fbrl_status st = fbrl_link_line_check(line, n);
+    if (st == FBRL_OK)
+        *len = n;
+    return st;
 }
 
 fbrl_status fbrli_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms,
@@ -1093,8 +1096,12 @@ fbrl_status fbrli_link_start(fbrl_link *l, const char *line, fbrl_link_reply kin
     if (l->busy)
         return FBRL_ESTATE;
     fbrl_status st = check_line(line, &n);
+    int unguarded = l->unguarded;
+    l->unguarded = 0; /* for this one line only, whatever becomes of it */
     if (st != FBRL_OK)
         return st;
+    if (l->gate && (st = l->gate(l->gate_ctx, line, n, unguarded)) != FBRL_OK)
+        return st; /* the guard's: nothing of it is typed */
     for (size_t k = 0; k < n; k++)
         l->line[k] = upper(line[k]);
     l->line[n] = '\0';

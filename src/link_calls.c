@@ -41,14 +41,8 @@ static fbrl_status read_units(fbrl_link *l)
         st = fbrli_link_start(l, "STATUS", FBRL_LINK_REPLY_LINES, l->cfg.reply_timeout_ms, 1);
         if (st == FBRL_OK)
             st = run(l);
-        if (si.have & FBRL_RAPL_ST_UNITS) {
-            l->units = si.metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+        if (fbrli_link_learn_units(l, &si, st == FBRL_OK && l->stats.settled == settled))
             break;
-        }
-        if (st == FBRL_OK && l->stats.settled == settled) {
-            l->units = FBRL_LINK_UNITS_INCH; /* whole, and no units line */
-            break;
-        }
         if (st != FBRL_OK && st != FBRL_EMAYBE && st != FBRL_EPROTOCOL && st != FBRL_ECONTROLLER)
             break; /* did not run: the controller does not answer */
     }
@@ -79,8 +73,8 @@ fbrl_status fbrl_link_connect(fbrl_link *l)
     return l->units == FBRL_LINK_UNITS_MM ? FBRL_EUNITS : FBRL_OK;
 }
 
-fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                          int straight)
+fbrl_status fbrl_link_start_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                int straight)
 {
     char text[FBRL_RAPL_LINE_MAX];
     size_t n;
@@ -94,13 +88,19 @@ fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *
     const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
     if (ci->reply == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() */
-    st = fbrli_link_start(l, text, ci->reply,
-                          (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
-                          (ci->flags & FBRL_RAPL_F_SAFE) != 0);
+    return fbrli_link_start(l, text, ci->reply,
+                            (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
+                            (ci->flags & FBRL_RAPL_F_SAFE) != 0);
+}
+
+fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                          int straight)
+{
+    fbrl_status st = fbrl_link_start_cmd(l, cmd, args, nargs, straight);
     return st == FBRL_OK ? run(l) : st;
 }
 
-fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
+fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
     fbrl_link_reply kind = FBRL_LINK_REPLY_LINES;
@@ -110,7 +110,12 @@ fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
         kind = fbrl_rapl_cmd_info(c)->reply;
     if (kind == FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
-    fbrl_status st = fbrl_link_start(l, line, kind);
+    return fbrl_link_start(l, line, kind);
+}
+
+fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
+{
+    fbrl_status st = fbrl_link_start_raw(l, line);
     return st == FBRL_OK ? run(l) : st;
 }
 

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* link_config.c - the link's settings: the defaults (fbrl_link_config_init) and those a
- * caller changes after init (the line and run-log handlers), and what it may ask of them.
- * No OS header. */
+ * caller changes after init (the line and run-log handlers, the gate), and what it may ask
+ * of them. No OS header. */
 #include "link_internal.h"
 
 void fbrl_link_config_init(fbrl_link_config *c)
@@ -39,6 +39,23 @@ fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void 
         *old_ctx = l->cfg.line_ctx;
     l->cfg.on_line = fn;
     l->cfg.line_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_set_gate(fbrl_link *l, fbrl_link_gate_fn fn, void *ctx)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    l->gate = fn;
+    l->gate_ctx = ctx;
+    return FBRL_OK;
+}
+
+fbrl_status fbrl_link_unguarded(fbrl_link *l)
+{
+    if (!l)
+        return FBRL_EINVAL;
+    l->unguarded = 1;
     return FBRL_OK;
 }
 

@@ -34,6 +34,10 @@ fbrl_status fbrli_link_send(fbrl_link *l, const uint8_t *p, size_t n);
  * type twice given, as the table says them). */
 fbrl_status fbrli_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms,
                              int safe);
+/* The one place the controller's units (fbrl_link_units) are learned from a STATUS: its
+ * units line when si has one; without it inches (the controller's default) when the reply
+ * came whole, else nothing is learned. Whether the units are known now. */
+int fbrli_link_learn_units(fbrl_link *l, const fbrl_rapl_status_info *si, int whole);
 
 /* ---- link_aci.c ---- */
 

@@ -295,9 +295,7 @@ static const char *const error_help[] = {
     [67] = "that axis slot is taken already",
     [68] = "the straight line passes outside the arm's reach - move in steps, or joint-interpolated (without "
            "-STRT)",
-    [190] =
-        "the arm met the work cell and stopped there (fbrlsim --cell) - describe the cell on the host too "
-        "(CELL-BOX ...) so that the guard refuses such a move before it is sent",
+    [190] = "the arm met the work cell and stopped there (fbrlsim --cell)",
 };
 
 const char *fbrl_rapl_error_help(int code)

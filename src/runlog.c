@@ -1,20 +1,25 @@
 /* SPDX-License-Identifier: MIT */
-/* runlog.c - the run log: JSON Lines records built in a fixed buffer, one sink write each. */
+/* runlog.c - the run log: JSON Lines records built in a fixed buffer, one sink write each;
+ * a poll repeated while the controller is waited for is one record with its count. */
 #include "fbrl/runlog.h"
 
 #include <stdio.h>
 #include <string.h>
 
 #define CUT_MARK "..."
+/* What a summary keeps free for what follows its samples ("]", the count left out, "}") */
+#define SUMMARY_TAIL 64
+/* The lines the human summary names one by one (samples that did not succeed) */
+#define TEXT_SAMPLES 10
 
 /* ---- one record in l->line ---- */
 
 static void put_raw(fbrl_runlog *l, const char *s, size_t n)
 {
     /* room is kept for the closing "}\n" */
-    size_t room = FBRL_RUNLOG_LINE_MAX - 2 - l->len;
+    size_t room = l->cap - 2 - l->len;
     if (n > room)
-        n = room;
+        n = room, l->full = 1;
     memcpy(l->line + l->len, s, n);
     l->len += n;
 }
@@ -46,8 +51,9 @@ static void put_str(fbrl_runlog *l, const char *s, size_t n)
         } else {
             esc[k++] = (char)c;
         }
-        if (l->len + k + tail + 2 > FBRL_RUNLOG_LINE_MAX) {
+        if (l->len + k + tail + 2 > l->cap) {
             put(l, CUT_MARK);
+            l->full = 1;
             break;
         }
         put_raw(l, esc, k);
@@ -82,14 +88,42 @@ static uint64_t now_ms(const fbrl_runlog *l)
     return t >= l->t0_us ? (t - l->t0_us) / 1000u : 0;
 }
 
-/* Start a record: {"t":ms,"type":"..." */
-static void start(fbrl_runlog *l, const char *type)
+static fbrl_status finish(fbrl_runlog *l);
+
+/* Start a record at t ms: {"t":ms,"type":"..." */
+static void start_at(fbrl_runlog *l, const char *type, uint64_t t)
 {
     char num[32];
-    snprintf(num, sizeof num, "{\"t\":%llu", (unsigned long long)now_ms(l));
+    snprintf(num, sizeof num, "{\"t\":%llu", (unsigned long long)t);
     l->len = 0;
+    l->cap = FBRL_RUNLOG_LINE_MAX;
+    l->full = 0;
     put(l, num);
     field_str(l, "type", type);
+}
+
+/* The poll being folded, written (before any other record, and at the end). */
+static fbrl_status flush_poll(fbrl_runlog *l)
+{
+    unsigned long n = l->poll_count;
+    if (n == 0)
+        return FBRL_OK;
+    l->poll_count = 0;
+    start_at(l, "command", l->poll_t0);
+    field_str(l, "line", l->poll);
+    field_str(l, "status", "ran");
+    if (n > 1) {
+        field_long(l, "count", (long)n);
+        field_long(l, "last_t", (long)l->poll_t1);
+    }
+    return finish(l);
+}
+
+/* Start a record now (a poll being folded goes first). */
+static void start(fbrl_runlog *l, const char *type)
+{
+    flush_poll(l);
+    start_at(l, type, now_ms(l));
 }
 
 static fbrl_status finish(fbrl_runlog *l)
@@ -182,6 +216,19 @@ fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long sample, 
     return finish(l);
 }
 
+/* A query the robot words repeat while they wait: the velocity (W5) while a motion ends,
+ * an input (TYPEI SIG(n)) until it changes, a variable (TYPEI, TYPEV). */
+static int is_poll(const char *line, size_t len)
+{
+    static const char *const polls[] = {"W5", "TYPEI ", "TYPEV "};
+    for (size_t i = 0; i < sizeof polls / sizeof polls[0]; i++) {
+        size_t n = strlen(polls[i]);
+        if (len >= n && memcmp(line, polls[i], n) == 0 && (polls[i][n - 1] == ' ' || len == n))
+            return len <= FBRL_RUNLOG_POLL_MAX;
+    }
+    return 0;
+}
+
 fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code)
 {
     return fbrl_runlog_command_run(l, line, len, result, code, 1);
@@ -194,6 +241,21 @@ fbrl_status fbrl_runlog_command_run(fbrl_runlog *l, const char *line, size_t len
     const char *how = "ran";
     if (st != FBRL_OK || line == NULL)
         return st != FBRL_OK ? st : FBRL_EINVAL;
+    if (result == FBRL_OK && is_poll(line, len)) {
+        uint64_t t = now_ms(l);
+        l->commands++;
+        if (l->poll_count > 0 && strlen(l->poll) == len && memcmp(l->poll, line, len) == 0) {
+            l->poll_count++;
+            l->poll_t1 = t;
+            return FBRL_OK;
+        }
+        st = flush_poll(l);
+        memcpy(l->poll, line, len);
+        l->poll[len] = '\0';
+        l->poll_count = 1;
+        l->poll_t0 = l->poll_t1 = t;
+        return st;
+    }
     if (result == FBRL_ECONTROLLER)
         how = "refused", l->refused++;
     else if (result == FBRL_EMAYBE)
@@ -262,14 +324,28 @@ fbrl_status fbrl_runlog_error(fbrl_runlog *l, const char *where, const char *mes
     return finish(l);
 }
 
-fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *text)
+fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *who, const char *text)
 {
     fbrl_status st = opened(l);
     if (st != FBRL_OK || event == NULL)
         return st != FBRL_OK ? st : FBRL_EINVAL;
     start(l, "note");
     field_str(l, "event", event);
+    if (who != NULL)
+        field_str(l, "operator", who);
     field_str(l, "text", text);
+    return finish(l);
+}
+
+fbrl_status fbrl_runlog_sample(fbrl_runlog *l, long sample, const char *outcome, const char *reason)
+{
+    fbrl_status st = opened(l);
+    if (st != FBRL_OK || outcome == NULL)
+        return st != FBRL_OK ? st : FBRL_EINVAL;
+    start(l, "sample");
+    field_long(l, "sample", sample);
+    field_str(l, "outcome", outcome);
+    field_str(l, "reason", reason ? reason : "");
     return finish(l);
 }
 
@@ -280,12 +356,40 @@ static fbrl_status text_line(fbrl_runlog *l, const char *text)
     return finish(l);
 }
 
-fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome)
+/* The samples into the summary being made, as many as fit; the rest counted. */
+static void put_samples(fbrl_runlog *l, const fbrl_runlog_outcome *samples, size_t n)
+{
+    size_t i;
+    put(l, ",\"samples\":[");
+    l->cap = FBRL_RUNLOG_LINE_MAX - SUMMARY_TAIL;
+    for (i = 0; i < n; i++) {
+        size_t mark = l->len;
+        char num[24];
+        snprintf(num, sizeof num, "%ld", samples[i].sample);
+        put(l, i ? ",{\"sample\":" : "{\"sample\":");
+        put(l, num);
+        field_str(l, "outcome", samples[i].outcome ? samples[i].outcome : "");
+        field_str(l, "reason", samples[i].reason ? samples[i].reason : "");
+        put(l, "}");
+        if (l->full) { /* this one does not fit whole: it and the rest are counted */
+            l->len = mark;
+            l->full = 0;
+            break;
+        }
+    }
+    l->cap = FBRL_RUNLOG_LINE_MAX;
+    put(l, "]");
+    if (i < n)
+        field_long(l, "samples_left_out", (long)(n - i));
+}
+
+fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome, const fbrl_runlog_outcome *samples, size_t n)
 {
     fbrl_status st = opened(l);
     char buf[256];
     uint64_t ms;
-    if (st != FBRL_OK || outcome == NULL)
+    unsigned long ok = 0, failed = 0, skipped = 0, named = 0;
+    if (st != FBRL_OK || outcome == NULL || (samples == NULL && n != 0))
         return st != FBRL_OK ? st : FBRL_EINVAL;
     ms = now_ms(l);
     start(l, "summary");
@@ -298,12 +402,39 @@ fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome)
     field_long(l, "devices", (long)l->devices);
     field_long(l, "waits", (long)l->waits);
     field_long(l, "errors", (long)l->errors);
+    put_samples(l, samples, n);
     st = finish(l);
     /* the human summary: what a person reads first */
     snprintf(buf, sizeof buf, "%s: %s after %lu.%01lu s", l->method, outcome, (unsigned long)(ms / 1000u),
              (unsigned long)(ms % 1000u / 100u));
     if (st == FBRL_OK)
         st = text_line(l, buf);
+    for (size_t i = 0; i < n; i++) {
+        const char *o = samples[i].outcome ? samples[i].outcome : "";
+        ok += strcmp(o, "succeeded") == 0;
+        failed += strcmp(o, "failed") == 0;
+        skipped += strcmp(o, "skipped") == 0;
+    }
+    if (n > 0) {
+        snprintf(buf, sizeof buf, "%lu sample%s: %lu succeeded, %lu failed, %lu skipped", (unsigned long)n,
+                 n == 1 ? "" : "s", ok, failed, skipped);
+        if (st == FBRL_OK)
+            st = text_line(l, buf);
+    }
+    for (size_t i = 0; i < n && st == FBRL_OK; i++) {
+        const char *o = samples[i].outcome ? samples[i].outcome : "";
+        if (strcmp(o, "succeeded") == 0)
+            continue;
+        if (++named > TEXT_SAMPLES) {
+            snprintf(buf, sizeof buf, "... and %lu more (the summary record lists every sample)",
+                     failed + skipped - TEXT_SAMPLES);
+            st = text_line(l, buf);
+            break;
+        }
+        snprintf(buf, sizeof buf, "sample %ld %s: %.200s", samples[i].sample, o,
+                 samples[i].reason && samples[i].reason[0] ? samples[i].reason : "(no reason given)");
+        st = text_line(l, buf);
+    }
     snprintf(buf, sizeof buf, "%lu steps done (%lu failed), %lu commands (%lu refused, %lu may have run)",
              l->steps, l->aborted_steps, l->commands, l->refused, l->maybe);
     if (st == FBRL_OK)

@@ -37,7 +37,13 @@
     X(FBRL_EOFFLINE, "no controller connected")                           \
     X(FBRL_ENOTFILE, "not a regular file (a device, FIFO or directory)")  \
     X(FBRL_EPERM, "permission denied")                                    \
-    X(FBRL_EMAYBE, "the command may have run (the link cannot tell)")     \
+    X(FBRL_EMAYBE, "the command may have run (the link cannot tell)")    \
+    X(FBRL_EAUTH, "name or password not accepted")                        \
+    X(FBRL_ELOCKED, "account locked or disabled")                         \
+    X(FBRL_EDISKFULL, "no space left on the disk (or the file may grow no more)") \
+    X(FBRL_ELOOP, "a loop of symbolic links")                             \
+    X(FBRL_EREADONLY, "read-only file or file system")                   \
+    X(FBRL_EGUARD, "refused by the motion guard (nothing was sent)")       \
     X(FBRL_EUNITS, "the controller works in millimetres (METRIC); switch it to inches: NOMETRIC")
 
 /* Two tables indexed by -st (a place given twice is a warning), so that a program that asks

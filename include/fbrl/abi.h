@@ -42,7 +42,16 @@ extern "C" {
     X(WORKSPACE, fbrl_workspace)               \
     X(WORKSPACE_COUNTS, fbrl_workspace_counts) \
     X(UART_8250, fbrl_uart_8250)               \
-    X(PORT_ENTRY, fbrl_port_entry)
+    X(PORT_ENTRY, fbrl_port_entry)             \
+    X(METHOD_SET, fbrl_method_set)             \
+    X(RECOVER, fbrl_recover)                   \
+    X(RUN, fbrl_run)                           \
+    X(RUN_SNAP, fbrl_run_snap)                 \
+    X(RUN_EVENT, fbrl_run_event)               \
+    X(METHOD, fbrl_method)                     \
+    X(USERS, fbrl_users)                       \
+    X(USER, fbrl_user)                         \
+    X(CELL_WORDS, fbrl_cell_words)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,
 typedef enum fbrl_abi_type { FBRL_ABI_TYPES(FBRL_ABI_ENUM_) FBRL_ABI_TYPE_COUNT } fbrl_abi_type;

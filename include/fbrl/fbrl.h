@@ -20,6 +20,7 @@
 #include "fbrl/rapl_reply.h"
 #include "fbrl/link.h"
 #include "fbrl/num.h"
+#include "fbrl/arm.h"
 #include "fbrl/loc.h"
 #include "fbrl/units.h"
 #include "fbrl/matrix.h"
@@ -31,5 +32,9 @@
 #include "fbrl/runlog.h"
 #include "fbrl/method.h"
 #include "fbrl/recover.h"
+#include "fbrl/run.h"
+#include "fbrl/audit.h"
+#include "fbrl/users.h"
+#include "fbrl/release.h"
 
 #endif

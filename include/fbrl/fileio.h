@@ -142,6 +142,13 @@ FBRL_API fbrl_status fbrl_file_discard(fbrl_file *f);
  * file). `removed` (may be NULL) receives the number removed. */
 FBRL_API fbrl_status fbrl_file_remove_temporaries(const char *path, unsigned *removed);
 
+/* The status an operating-system error number (POSIX errno) reads as, so a program's own
+ * file errors say what the library's say: FBRL_EPERM (EACCES, EPERM), FBRL_EDISKFULL
+ * (ENOSPC, EDQUOT, EFBIG), FBRL_ELOOP, FBRL_EREADONLY (EROFS, ETXTBSY), FBRL_ENOENT (ENOENT,
+ * ENOTDIR), FBRL_ENAME (ENAMETOOLONG), FBRL_ENOTFILE (EISDIR), FBRL_OK for 0, else
+ * FBRL_EIO. Where the library has a file system (not in the firmware). */
+FBRL_API fbrl_status fbrl_file_status_of_errno(int err);
+
 /* Typed shorthands for fbrl_file_write/read with the built-in types. */
 FBRL_API fbrl_status fbrl_file_write_chr(fbrl_file *f, unsigned char v);
 FBRL_API fbrl_status fbrl_file_write_integer(fbrl_file *f, int16_t v);

@@ -21,6 +21,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "fbrl/status.h"
+#include "fbrl/arm.h"
 #include "fbrl/uart.h"
 #include "fbrl/rapl_encode.h"
 #include "fbrl/rapl_reply.h"
@@ -62,18 +63,6 @@ typedef enum fbrl_link_fate {
     FBRL_LINK_MAY_HAVE_RUN = 4
 } fbrl_link_fate;
 
-/* The arm behind the controller, for checking a position block read while the arm moves
- * (docs/link.md 3.5): pulses per degree per axis and an A255-type geometry (shoulder
- * height, upper arm, forearm, wrist pitch axis to flange, inches). */
-typedef struct fbrl_link_arm {
-    unsigned naxes;
-    double ppd[FBRL_RAPL_MAX_AXES];
-    double base_h, upper, fore, flange;
-} fbrl_link_arm;
-
-/* The CRS A255 (DESIGN 6): the default. */
-extern FBRL_API const fbrl_link_arm fbrl_link_arm_a255;
-
 /* The modes a session set (docs/link.md 1, "Modes"): settings the controller keeps until
  * they change and loses when it restarts. The link notes every one that ran (FBRL_OK) into
  * cfg.modes, so that after a reconnect fbrl_link_modes_resend() sends them again before
@@ -109,11 +98,11 @@ typedef struct fbrl_link_config {
     unsigned query_reads;      /* identical consecutive replies a read-only query needs
                                 * (1..3, default 2; see docs/link.md for the odds) */
     unsigned naxes;            /* axes in W0/W2/W4 and STATUS rows (5) */
-    /* The arm model a position block is checked against (NULL = fbrl_link_arm_a255). A
-     * block whose pulses, joints and world agree is believed at once, even while the arm
-     * moves; one that does not (another arm, a tool with an offset) needs query_reads
-     * agreeing replies, as other queries do. */
-    const fbrl_link_arm *arm;
+    /* The arm a position block is checked against (fbrl/arm.h; NULL = the A255): its pulses
+     * per degree and kinematics. A block whose pulses, joints and world agree is believed at
+     * once, even while the arm moves; one that does not (another arm, a tool with an offset
+     * across its axis) needs query_reads agreeing replies, as other queries do. */
+    const fbrl_arm *arm;
     /* Clock; NULL = the uart backend's now_us. */
     uint64_t (*now_us)(void *ctx);
     void *clock_ctx;
@@ -265,6 +254,10 @@ typedef struct fbrl_link {
     unsigned runs, maybe_runs; /* of the command (fbrl_link_outcome) */
     int own_report;            /* reporting the link's own STATUS reads to cfg.on_exec */
     int units;                 /* FBRL_LINK_UNITS_*: the controller's, as last learned */
+    /* the gate every line passes before it is typed (fbrl_link_set_gate) */
+    fbrl_status (*gate)(void *ctx, const char *line, size_t len, int unguarded);
+    void *gate_ctx;
+    int unguarded; /* fbrl_link_unguarded: the next line goes around the gate's refusal */
 } fbrl_link;
 
 /* The controller's units of length (fbrl_link_units): learned from a STATUS that the
@@ -294,6 +287,17 @@ FBRL_API fbrl_status fbrl_link_connect(fbrl_link *l);
 /* Start a command line (printable ASCII, at most FBRL_LINK_LINE_MAX, no '?': the probes
  * use it). FBRL_ESTATE if a command is still running. */
 FBRL_API fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind);
+
+/* The check fbrl_link_start() makes of a line, on len bytes: FBRL_OK for 1..FBRL_LINK_LINE_MAX
+ * printable ASCII characters without '?', else FBRL_EINVAL. A NUL among the len bytes fails:
+ * a caller holding counted strings (Python) learns that C would stop there. */
+FBRL_API fbrl_status fbrl_link_line_check(const char *line, size_t len);
+
+/* fbrl_link_cmd() and fbrl_link_raw() started, not run: fbrl_link_poll() runs them, so a
+ * caller can look for Ctrl-C between two polls (the Python bindings do). */
+FBRL_API fbrl_status fbrl_link_start_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
+                                         int straight);
+FBRL_API fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line);
 
 /* Make progress for at most timeout_ms (0 = only what is already there). *done = 1
  * when the command has ended; the return value is then its result. While it runs the
@@ -419,6 +423,20 @@ typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int f
  * can borrow the lines for one command and put the owner's handler back. */
 FBRL_API fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
                                                 fbrl_link_line_fn *old_fn, void **old_ctx);
+
+/* The gate every command line passes just before its first byte is typed (the motion
+ * guard's: a robot context installs its own, fbrl_robot_set_link; docs/workcell.md "The
+ * guard"): fn(ctx, line, len, unguarded) returns FBRL_OK to let the line go, or the
+ * command's result (FBRL_EGUARD: a motion the guard did not check) and nothing is sent.
+ * unguarded is 1 when the caller went around the guard on purpose (fbrl_link_unguarded).
+ * fn NULL: no gate (a link alone knows no work cell). */
+typedef fbrl_status (*fbrl_link_gate_fn)(void *ctx, const char *line, size_t len, int unguarded);
+FBRL_API fbrl_status fbrl_link_set_gate(fbrl_link *l, fbrl_link_gate_fn fn, void *ctx);
+/* The explicit way around the guard for a caller of the link's own commands: the next
+ * command (fbrl_link_cmd, fbrl_link_raw, fbrl_link_start ...) is sent even when it is a
+ * motion the guard did not check; the gate is still told (it records the motion in the
+ * run log and reads the arm afresh before its next check). */
+FBRL_API fbrl_status fbrl_link_unguarded(fbrl_link *l);
 
 /* cfg.on_exec later: every line the controller executed. The previous handler goes to
  * *old_fn / *old_ctx (when not NULL) so a new one can pass each line on to it (a trace

@@ -13,9 +13,9 @@
  *
  * A parameter is a word that pushes its value (checked against its range whenever it is
  * set); a step is a word run once (STEP) or once per sample with the sample's index 0..
- * (SAMPLE-STEP). RUN-METHOD runs the steps in order and tells an observer (the console,
- * the run log) when each starts and ends, and asks it between steps whether to go on.
- * docs/console.md describes the words and the method library. */
+ * (SAMPLE-STEP). A run of a method (RUN-METHOD: the steps in order, per-sample and per-run
+ * outcomes, pause, resume, abort) is fbrl/run.h's. docs/console.md describes the words and
+ * the method library. */
 #ifndef FBRL_METHOD_H
 #define FBRL_METHOD_H
 
@@ -64,41 +64,18 @@ typedef struct fbrl_method {
     fbrl_cell addr;     /* the method word's data field */
 } fbrl_method;
 
-/* What a run looks like from outside. Any callback may be NULL. */
-typedef enum fbrl_method_phase {
-    FBRL_METHOD_STEP_BEGIN,
-    FBRL_METHOD_STEP_OK,
-    FBRL_METHOD_STEP_FAILED
-} fbrl_method_phase;
-
-typedef struct fbrl_method_observer {
-    void *ctx;
-    /* before the first step; non-zero refuses the run (RUN-METHOD throws) */
-    int (*run_begin)(void *ctx, const fbrl_method *m);
-    /* sample: -1 for a step run once, else the index (0..); error: NULL unless FAILED */
-    void (*step)(void *ctx, const fbrl_method *m, size_t step, long sample, fbrl_method_phase phase,
-                 const char *error);
-    /* before each step (also the first): non-zero aborts the run (THROW -28); may wait
-     * (pause after the current step) */
-    int (*between)(void *ctx, const fbrl_method *m, size_t step, long sample);
-    /* after the last step or a failure: outcome "completed", "aborted" or "failed" */
-    void (*run_end)(void *ctx, const fbrl_method *m, const char *outcome, const char *error);
-} fbrl_method_observer;
-
 /* The word set's state: caller-owned, at a fixed address while the VM runs. */
 typedef struct fbrl_method_set {
     fbrl_vm *vm;
     fbrl_method methods[FBRL_METHOD_MAX];
     size_t count;
-    fbrl_method *current; /* being declared (METHOD .. END-METHOD) */
-    fbrl_method *running;
-    fbrl_method_observer obs;
+    fbrl_method *current;       /* being declared (METHOD .. END-METHOD) */
+    const fbrl_method *running; /* set by the run (fbrl/run.h) while it runs */
 } fbrl_method_set;
 
-/* Bind METHOD PARAM SAMPLES-PARAM STEP SAMPLE-STEP ON-ABORT END-METHOD RUN-METHOD
- * METHODS .METHOD PARAM! into vm. */
+/* Bind METHOD PARAM SAMPLES-PARAM STEP SAMPLE-STEP ON-ABORT USE-PARAMS END-METHOD METHODS
+ * .METHOD PARAM! into vm (RUN-METHOD is fbrl_run_install's). */
 FBRL_API fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s);
-FBRL_API void fbrl_method_set_observer(fbrl_method_set *s, const fbrl_method_observer *obs);
 
 /* The declared methods (complete or not) by index, or by name (case-insensitive); NULL if none. */
 FBRL_API const fbrl_method *fbrl_method_at(const fbrl_method_set *s, size_t i);

@@ -65,6 +65,9 @@ typedef int (*fbrl_recover_ask_fn)(void *ctx, const char *question);
  * "ask: skip", "stop") and the sample number (0: none). */
 typedef void (*fbrl_recover_note_fn)(void *ctx, const char *step, const char *kind, const char *what,
                                      const char *action, long sample);
+/* Told when RUN-SAMPLE gave a sample up (a rule's SKIP or the operator's Skip), with why:
+ * the method run marks the sample skipped (fbrl/run.h). */
+typedef void (*fbrl_recover_skip_fn)(void *ctx, const char *reason);
 
 typedef struct fbrl_recover_rule {
     fbrl_cell step; /* the step's xt; 0: any step */
@@ -87,6 +90,9 @@ typedef struct fbrl_recover {
     void *ask_ctx;
     fbrl_recover_note_fn note;
     void *note_ctx;
+    fbrl_recover_skip_fn skip;
+    void *skip_ctx;
+    char skip_reason[128]; /* the last skip's message */
 } fbrl_recover;
 
 /* Define ON-FAILURE FAILURE ATTEMPT RUN-SAMPLE RECOVERY-RULES in vm; rc must live as long.
@@ -95,6 +101,7 @@ FBRL_API fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_ro
 /* How ASK reaches the operator (NULL: ASK stops safely) and who is told of each action. */
 FBRL_API fbrl_status fbrl_recover_set_ask(fbrl_recover *rc, fbrl_recover_ask_fn fn, void *ctx);
 FBRL_API fbrl_status fbrl_recover_set_note(fbrl_recover *rc, fbrl_recover_note_fn fn, void *ctx);
+FBRL_API fbrl_status fbrl_recover_set_skip(fbrl_recover *rc, fbrl_recover_skip_fn fn, void *ctx);
 /* The kind of a THROW code (with the robot's last controller error), FBRL_RECOVER_NONE if
  * no rule can name it; its name ("GRIP-EMPTY") and plain words. */
 FBRL_API fbrl_recover_kind fbrl_recover_classify(const fbrl_recover *rc, int throw_code);

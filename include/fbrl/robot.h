@@ -59,7 +59,8 @@ typedef void (*fbrl_robot_watch_fn)(void *ctx, struct fbrl_robot *r);
 #define FBRL_ROBOT_WATCH_MS 1000u
 
 /* A device action or a timed wait, as it happened (for a run log): told once per word
- * (ON OFF PULSE DISPENSE WAIT-INPUT WAIT-UNTIL) when it ends, also when it failed. */
+ * (ON OFF PULSE DISPENSE WAIT-INPUT WAIT-UNTIL) when it ends, also when it failed; and
+ * "UNGUARDED" when a motion line went around the guard (fbrl_link_unguarded): line. */
 typedef struct fbrl_robot_event {
     const char *word;   /* the word's name */
     fbrl_cell device;   /* what the device's name pushes (0: WAIT-UNTIL) */
@@ -69,6 +70,7 @@ typedef struct fbrl_robot_event {
     long actual_ms;     /* the time it took (host clock) */
     int seen;           /* WAIT-INPUT: 1 the input came, 0 the time ran out */
     fbrl_status status; /* FBRL_OK, or how the word failed (FBRL_ETHROW: interrupted ...) */
+    const char *line;   /* "UNGUARDED": the motion line sent around the guard; else NULL */
 } fbrl_robot_event;
 typedef void (*fbrl_robot_event_fn)(void *ctx, const fbrl_robot_event *ev);
 
@@ -99,18 +101,35 @@ typedef struct fbrl_robot_move {
     const char *word; /* the FBRL word sending it */
 } fbrl_robot_move;
 
-/* A guard on every motion: check runs before the first byte of the motion leaves the host
- * (FBRL_OK lets it go; anything else is the word's result: the guard throws with its own
- * message, fbrl_vmx_throwf); done runs after the motion command, with its result
- * (FBRL_OK: the controller took it). */
+/* What a guard can check now (fbrl_robot_guard.state). */
+typedef enum fbrl_robot_guard_state {
+    FBRL_ROBOT_GUARD_EMPTY = 0, /* nothing described: nothing to check */
+    FBRL_ROBOT_GUARD_OFF = 1,   /* a cell is described and the guard switched off (CELL-GUARD-OFF) */
+    FBRL_ROBOT_GUARD_ON = 2     /* every motion is checked */
+} fbrl_robot_guard_state;
+
+/* The guard every motion passes (docs/workcell.md "The guard"). The robot layer makes each
+ * motion one step that no other task can enter: it waits for the arm (other tasks' claims,
+ * the last motion's end), then calls check, defines the scratch point and sends the motion,
+ * then calls done with the motion command's result (FBRL_OK: the controller took it), all
+ * without letting another task run. check may read the arm (fbrl_robot_joints: the arm
+ * stands by then) and returns FBRL_OK to let the motion go; it refuses with
+ * fbrl_robot_fail(r, FBRL_ROBOT_THROW_REFUSED, message) (nothing is sent). state says
+ * whether a motion the robot layer did not check (a line sent on the link directly,
+ * fbrl_link_set_gate) must be refused (FBRL_ROBOT_GUARD_ON); NULL: as ON. */
 typedef struct fbrl_robot_guard {
     fbrl_status (*check)(void *ctx, struct fbrl_robot *r, const fbrl_robot_move *m);
     void (*done)(void *ctx, struct fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result);
     void *ctx;
+    fbrl_robot_guard_state (*state)(void *ctx);
 } fbrl_robot_guard;
 
+/* What a guard throws when it refuses a motion (catchable; the work cell's -302). */
+#define FBRL_ROBOT_THROW_REFUSED FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE)
+
 /* A robot context: caller-owned, fields private. Keep it at a fixed address while the
- * VM uses it (the words point at it). */
+ * VM uses it (the words point at it) and while its link is in use (the link's gate points
+ * at it: fbrl_robot_set_link(r, NULL) lets the link go on without it). */
 typedef struct fbrl_robot {
     fbrl_vm *vm;
     fbrl_link *link;  /* NULL = offline */
@@ -135,6 +154,7 @@ typedef struct fbrl_robot {
      * controller's line while the link has sent nothing since (raw_link_mark) */
     int raw_open;
     uint64_t raw_link_mark;
+    size_t raw_len; /* that line's length; its text after the tib (FBRL_ROBOT_TIB) */
     /* the controller's last error code seen by a robot word (-1 none) */
     int last_error;
     /* safety (docs/robot.md, "Stopping safely"): a motion was sent and not yet seen to
@@ -161,11 +181,20 @@ typedef struct fbrl_robot {
     fbrl_loc target; /* tell: the location a motion word is sending the arm to */
     int have_target;
     /* the guard on every motion (fbrl_robot_set_guard), and a count that changes whenever
-     * the arm may have gone where the host cannot tell (a link set, HALT, a safe stop) */
+     * the arm may have gone where the host cannot tell (a link set, HALT, a safe stop, a
+     * motion the guard did not check) */
     fbrl_robot_guard guard;
     unsigned long where_epoch;
+    /* the link's gate (fbrl_link_set_gate): the one motion line the robot layer checked and
+     * is sending now (NULL none) */
+    const char *armed;
+    /* a C caller's motion (fbrl_robot_motion): errors go to its message, not thrown */
+    char *c_msg;
+    size_t c_cap;
+    int c_code;    /* the Forth code the error would have thrown (0 none) */
+    int c_refused; /* the guard refused it */
     /* scratch storage in the VM's data space (made at install) */
-    fbrl_cell tib; /* FBRL_ROBOT_TIB bytes */
+    fbrl_cell tib; /* FBRL_ROBOT_TIB bytes, then FBRL_LINK_LINE_MAX for the raw line */
 } fbrl_robot;
 
 /* Bind every robot word into vm. link NULL = offline (the words exist and throw when
@@ -174,7 +203,11 @@ typedef struct fbrl_robot {
 FBRL_API fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 
 /* Connect (or, with NULL, disconnect) a controller later, e.g. after the monitor
- * opened a port. The link should already be connected (fbrl_link_connect). */
+ * opened a port. The link should already be connected (fbrl_link_connect). The robot
+ * puts its gate on the link (fbrl_link_set_gate) and takes it off the link it leaves: a
+ * motion line that did not pass the guard is refused there (FBRL_EGUARD) while the guard
+ * is on, unless its caller went around the guard explicitly (fbrl_link_unguarded; told to
+ * the event callback as "UNGUARDED"). */
 FBRL_API fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
 
 /* What fbrl_robot_safe_stop() found and did: result FBRL_OK, or why the stop is incomplete
@@ -194,6 +227,30 @@ typedef struct fbrl_robot_stop {
  * must not be NULL. */
 #define FBRL_ROBOT_STOP_DRAIN_MS 5000u
 FBRL_API fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out);
+
+/* ---- for a host that sends the commands on a link itself (the Python bindings) ---- */
+
+/* The same stop without a robot context, in the same report: fbrl_link_safe_stop() with
+ * the outputs the host switched on (bit n-1 = output n) and motion, the last motion line it
+ * sent and has not seen end (NULL: none), named in the report. FBRL_EOFFLINE for a NULL
+ * link. */
+FBRL_API fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const char *motion,
+                                               fbrl_robot_stop *out);
+
+/* What a command line does to the cell, as the robot words class a raw line by its first
+ * word (docs/robot.md, "Stopping safely"): *effect gets the bits below (0: none of them),
+ * *outputs_on (may be NULL) the outputs an OUTPUT line switches on (bit n-1 = output n). */
+#define FBRL_ROBOT_LINE_MOTION 0x1u /* it may move the arm: a motion, RUN, or a command the
+                                     * library does not know */
+#define FBRL_ROBOT_LINE_FINISH 0x2u /* FINISH: its prompt comes once the motion has ended */
+#define FBRL_ROBOT_LINE_HALT   0x4u /* HALT: the arm stops where it is */
+FBRL_API fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
+
+/* Does a value line of the W5 readout (len bytes) show the arm at rest, every commanded
+ * velocity zero? A title line or a damaged one (flawed != 0) does not (0). The test the
+ * robot words make before a motion or FINISH, so the controller never waits inside one,
+ * deaf to HALT. */
+FBRL_API int fbrl_robot_still_line(const char *line, size_t len, int flawed);
 
 /* A function that reconnects the controller (reopens the port, fbrl_link_init,
  * fbrl_link_connect, fbrl_robot_set_link) and tells the user its state. The next robot
@@ -237,12 +294,34 @@ FBRL_API size_t fbrl_robot_devices_free(const fbrl_robot *r);
 
 /* Set (or with NULL remove) the guard every motion word consults (fbrl/cell.h installs one). */
 FBRL_API fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g);
+/* A guard's (or a robot word's) error: thrown in the VM as code with msg, or, inside
+ * fbrl_robot_motion(), handed to its caller as the message. Returns FBRL_ETHROW. */
+FBRL_API fbrl_status fbrl_robot_fail(fbrl_robot *r, int code, const char *msg);
+/* A motion from C (TEACH, a console, a station), through the same gate as the robot words:
+ * m->kind says what (FBRL_ROBOT_MOVE_POSE: POINT a scratch location at v[0..5], in the arm's
+ * frame, then MOVE there, or APPRO when dist != 0; DEPART; JOG; JOINTS (MA) and DJOINTS (MI)
+ * in degrees; MOTOR; READY; HOME), m->straight adds ,S where the command takes it, m->word
+ * names it in messages (NULL: "MOTION"). Returns once the controller has taken the motion
+ * (the next motion waits for its end): FBRL_OK; FBRL_EGUARD when the guard refused it
+ * (nothing was sent); FBRL_ECONTROLLER when the controller refused it (fbrl_robot_last_error
+ * has the code); FBRL_EINVAL for a kind it cannot send; else the status that stopped it
+ * (FBRL_EOFFLINE, FBRL_EDISCONNECTED, FBRL_EMAYBE ...). msg (cap bytes, may be NULL) gets the
+ * message a robot word would have thrown ("JOG: would hit POST at ...; nothing was sent"),
+ * or "" on success. Not from inside a robot word. */
+FBRL_API fbrl_status fbrl_robot_motion(fbrl_robot *r, const fbrl_robot_move *m, char *msg, size_t cap);
 /* Changes whenever the arm may have moved where the host cannot follow it. */
 FBRL_API unsigned long fbrl_robot_where_epoch(const fbrl_robot *r);
 /* The arm's joint angles (degrees) read from the controller (W2) once the motion in progress
  * has ended; *n gets how many (up to FBRL_RAPL_MAX_AXES). Throws in the VM on error
  * (FBRL_ETHROW-like statuses as the robot words return them), naming word. */
 FBRL_API fbrl_status fbrl_robot_joints(fbrl_robot *r, const char *word, double *q, unsigned *n);
+/* The same reading whole: pulses, joints and world (W2). */
+FBRL_API fbrl_status fbrl_robot_position(fbrl_robot *r, const char *word, fbrl_rapl_pos *p);
+/* The arm's motor pulses once the motion in progress has ended: one line of W1, about a
+ * quarter of W2 on the wire (*n values, up to FBRL_RAPL_MAX_AXES). FBRL_EPROTOCOL, without
+ * a throw, when the reading was not one clean line (read W2 instead); other errors throw
+ * as fbrl_robot_joints. */
+FBRL_API fbrl_status fbrl_robot_pulses(fbrl_robot *r, const char *word, long *pulses, unsigned *n);
 
 /* BASE-OFFSET: dX dY dZ (inches) dO (degrees). set refuses a non-finite value (FBRL_ENONFINITE). */
 FBRL_API fbrl_status fbrl_robot_base_offset(const fbrl_robot *r, double base[4]);

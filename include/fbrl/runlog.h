@@ -3,10 +3,12 @@
  *
  * A run of a method writes a header (method, parameters, operator, time, controller and
  * program versions, calibration in force), then in order every step's start and end,
- * every command the controller executed with its reply status, device actions and timed
- * waits (planned and actual milliseconds), notes (pause, resume, abort) and errors, and
- * at the end a summary: counts, the outcome, and a few lines of plain text for a person.
- * docs/console.md lists every field.
+ * every command the controller executed with its reply status (a poll repeated while it
+ * waits, W5 or TYPEI, as one record with its count), device actions and timed waits
+ * (planned and actual milliseconds), each sample's outcome, notes (pause, resume, abort,
+ * with who asked) and errors, and at the end a summary: the outcome, every sample's
+ * outcome, counts, and a few lines of plain text for a person. docs/console.md lists
+ * every field.
  *
  * The log writes through the caller's sink (a file, a buffer) and reads the caller's
  * clock; it never allocates, prints or opens anything itself. Any part of a program (the
@@ -29,8 +31,11 @@ typedef int (*fbrl_runlog_write_fn)(void *ctx, const char *s, size_t n);
 /* Monotonic microseconds. */
 typedef uint64_t (*fbrl_runlog_clock_fn)(void *ctx);
 
-/* The longest record line (longer texts are cut, with "..." at the cut). */
-#define FBRL_RUNLOG_LINE_MAX 1024
+/* The longest record line (longer texts are cut, with "..." at the cut; a summary with
+ * more samples than fit names how many it left out). */
+#define FBRL_RUNLOG_LINE_MAX 8192
+/* The longest poll line folded (longer ones are each a record). */
+#define FBRL_RUNLOG_POLL_MAX 32
 /* Parameters one header can name. */
 #define FBRL_RUNLOG_MAX_PARAMS 32
 
@@ -52,6 +57,14 @@ typedef struct fbrl_runlog_header {
     size_t nparams;
 } fbrl_runlog_header;
 
+/* A sample's outcome for the summary: its number (1..), "succeeded", "failed" or
+ * "skipped", and why (may be NULL or ""). */
+typedef struct fbrl_runlog_outcome {
+    long sample;
+    const char *outcome;
+    const char *reason;
+} fbrl_runlog_outcome;
+
 /* Caller-owned; fields private. */
 typedef struct fbrl_runlog {
     fbrl_runlog_write_fn write;
@@ -65,7 +78,12 @@ typedef struct fbrl_runlog {
     unsigned long commands, refused, not_run, maybe, steps, errors, waits, devices;
     unsigned long aborted_steps;
     char line[FBRL_RUNLOG_LINE_MAX + 2];
-    size_t len;
+    size_t len, cap; /* cap: where the record being made must end */
+    int full;        /* the record met cap: something was cut */
+    /* the poll being folded: its line, how often, when first and last */
+    char poll[FBRL_RUNLOG_POLL_MAX + 1];
+    unsigned long poll_count;
+    uint64_t poll_t0, poll_t1;
 } fbrl_runlog;
 
 /* Open the log and write its header record ("type":"header"). FBRL_EINVAL for NULLs or
@@ -85,7 +103,9 @@ FBRL_API fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long
 
 /* A command line the controller executed (or may have: FBRL_EMAYBE), with its result as
  * the link reported it (fbrl_link_config.on_exec has this shape). "status" is "ran",
- * "refused" (with the controller's "code" when code >= 0), "may-have-run" or "not-run". */
+ * "refused" (with the controller's "code" when code >= 0), "may-have-run" or "not-run".
+ * A poll (W5, TYPEI ...) that ran as the one before it is folded into that one's record,
+ * written when another record comes: "count" times, the last at "last_t". */
 FBRL_API fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result,
                                          int code);
 /* The same for the run-th run of one command (fbrl_link_get_runs: the link typed it again,
@@ -104,12 +124,19 @@ FBRL_API fbrl_status fbrl_runlog_wait(fbrl_runlog *l, const char *what, long pla
 FBRL_API fbrl_status fbrl_runlog_error(fbrl_runlog *l, const char *where, const char *message,
                                        const char *advice);
 
-/* A note: "pause", "resume", "abort", "safe-stop" ... with free text (may be NULL). */
-FBRL_API fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *text);
+/* A note: "pause", "resume", "abort", "safe-stop" ... with who asked for it ("operator",
+ * NULL: none) and free text (may be NULL). */
+FBRL_API fbrl_status fbrl_runlog_note(fbrl_runlog *l, const char *event, const char *who, const char *text);
 
-/* Close the log: a "summary" record (outcome "completed", "aborted" or "failed", the
- * counts, elapsed ms) and then the human summary as "text" records, one line each. */
-FBRL_API fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome);
+/* A sample has its outcome ("sample": 1.., "outcome", "reason"). */
+FBRL_API fbrl_status fbrl_runlog_sample(fbrl_runlog *l, long sample, const char *outcome, const char *reason);
+
+/* Close the log: a "summary" record (outcome "completed", "partial", "failed" or
+ * "aborted", elapsed ms, the counts, then "samples": samples[0..n) as {sample, outcome,
+ * reason}) and the human summary as "text" records, one line each. The status is the
+ * first failed write of the whole log (FBRL_EIO: it misses records), else FBRL_OK. */
+FBRL_API fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome, const fbrl_runlog_outcome *samples,
+                                     size_t n);
 
 #ifdef __cplusplus
 }

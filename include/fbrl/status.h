@@ -47,7 +47,15 @@ typedef enum fbrl_status {
     FBRL_EPERM = -32,         /* the operating system refused access (e.g. a port's mode) */
     FBRL_EMAYBE = -33,        /* link: the command may have run; the link cannot prove
                                 * either way (docs/link.md 3.9): do not repeat it blindly */
-    FBRL_EUNITS = -34         /* link: the controller works in millimetres (METRIC), the
+    FBRL_EAUTH = -34,         /* users: unknown name or wrong password */
+    FBRL_ELOCKED = -35,       /* users: account locked (too many wrong passwords) or disabled */
+    FBRL_EDISKFULL = -36,     /* no room left for the file: the disk (or quota) is full, or
+                                * the file may grow no more (a size limit) */
+    FBRL_ELOOP = -37,         /* symbolic links that lead round in a loop (or too many) */
+    FBRL_EREADONLY = -38,     /* a read-only file, or a file system mounted read-only */
+    FBRL_EGUARD = -39,        /* a motion the work cell's guard refused, or one that did not
+                                * pass it (docs/workcell.md "The guard"): nothing was sent */
+    FBRL_EUNITS = -40         /* link: the controller works in millimetres (METRIC), the
                                 * host's lengths are inches (docs/link.md 1) */
 } fbrl_status;
 

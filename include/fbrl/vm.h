@@ -135,15 +135,18 @@ FBRL_API const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
  * word, the engine's own Forth) has *file "" and *line 0. FBRL_ENOENT if there is none. */
 FBRL_API fbrl_status fbrl_vm_locate(const fbrl_vm *vm, const char *name, const char **file,
                                     unsigned long *line);
-/* A colon definition about to run, as a step hook sees it. */
+/* A colon definition about to run, as a step hook sees it; or a word about to run, as a
+ * word hook sees it (fbrl_vm_word_hook). */
 typedef struct fbrl_vm_stop {
-    const char *word;        /* the definition ("" for :NONAME code) */
-    const char *file;        /* where it is defined ("" typed or evaluated) */
+    const char *word;        /* the definition ("" for :NONAME code); the word hook's word as
+                                the source wrote it ("7", "DUP", "0BRANCH", "GO") */
+    const char *file;        /* where it is defined ("" typed or evaluated, or built in) */
     unsigned long line;      /* its first line */
     const char *caller;      /* the definition calling it ("" when typed or run from C) */
-    const char *call_file;   /* where the call is */
+    const char *call_file;   /* where the call is (the word hook: where the word is) */
     unsigned long call_line; /* 0: not known (typed, or C) */
-    size_t depth;            /* return stack cells in use: deeper calls have more */
+    size_t depth;            /* colon definitions running, the one starting (or holding the
+                                word) included: deeper calls have more */
 } fbrl_vm_stop;
 /* Called before each colon definition runs while set: return 0 to let it run, or a THROW
  * code to throw there (e.g. -1 to abort the evaluation). It may evaluate text with
@@ -153,6 +156,14 @@ typedef int (*fbrl_vm_step_fn)(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *stop)
 /* Set (fn) or clear (NULL) the step hook: the base of a debugger. A program runs slower
  * while one is set. FBRL_EINVAL for a NULL vm. */
 FBRL_API fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
+/* Set (fn) or clear (NULL) the word hook: while set, fn is called before each word a colon
+ * definition runs (built-in words, numbers and control words included, as gforth's dbg
+ * steps) and before each word the interpreter runs: a debugger's single steps and line
+ * breakpoints. stop->word is the word; file and line where it is defined (""/0 built in);
+ * caller, call_file and call_line the definition it is in and the word's line ("" and the
+ * text's file and line for an interpreted word). fn returns as a step hook's. A program
+ * runs several times slower while one is set. FBRL_EINVAL for a NULL vm. */
+FBRL_API fbrl_status fbrl_vm_word_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx);
 
 /* Where the running program is, for a C word (e.g. a robot word telling which line sent
  * a command): the colon definition that called it and the file and line of that call; or,

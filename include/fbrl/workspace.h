@@ -12,6 +12,9 @@
  * matrix or device the session could not hold) before the first object changes; a
  * refused file leaves the session exactly as it was.
  *
+ * What a save would change in a workspace file, object by object, is fbrl_workspace_diff:
+ * a program asks before it overwrites what was taught (fbrlmon's exit prompt).
+ *
  * Words (fbrl_workspace_install): SAVE-WORKSPACE, LOAD-WORKSPACE, WORKSPACE,
  * WORKSPACE-CHANGED?. No allocation: the caller gives the file buffer. */
 #ifndef FBRL_WORKSPACE_H
@@ -93,6 +96,32 @@ FBRL_API fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, f
 /* *changed = 1 if the named objects or settings differ from the last save or load (or
  * from install, when neither happened). *n (may be NULL) gets the counts now. */
 FBRL_API fbrl_status fbrl_workspace_changed(fbrl_workspace *ws, int *changed, fbrl_workspace_counts *n);
+
+/* One difference between the session and a workspace file (fbrl_workspace_diff). */
+typedef enum fbrl_workspace_change {
+    FBRL_WORKSPACE_ADDED = 1, /* in the session, not in the file */
+    FBRL_WORKSPACE_CHANGED,   /* in both, with other numbers */
+    FBRL_WORKSPACE_DROPPED    /* in the file, not in the session (or another kind there): a save loses it */
+} fbrl_workspace_change;
+
+typedef struct fbrl_workspace_delta {
+    fbrl_workspace_change change;
+    const char *name;       /* "" for the settings (WITH-CAL, MAP-ON, BASE-OFFSET) */
+    const char *kind;       /* "a location", "a RECTMAT" ... "the settings" */
+    uint16_t tag;           /* FBRL_WORKSPACE_TAG_... */
+    size_t n;               /* how many numbers */
+    const double *was, *now; /* the file's and the session's numbers (NULL: none), as saved */
+} fbrl_workspace_delta;
+
+typedef void (*fbrl_workspace_diff_fn)(void *ctx, const fbrl_workspace_delta *d);
+
+/* Compare the session with the workspace file path, as a save would write it: fn once per
+ * difference (the session's objects in the order a save writes them, then what the file
+ * holds and the session does not); *count (may be NULL) gets how many. Changes nothing.
+ * Errors: those of fbrl_file_open (FBRL_ENOENT: no such file), FBRL_EFORMAT (not a
+ * workspace, or a bad record). */
+FBRL_API fbrl_status fbrl_workspace_diff(fbrl_workspace *ws, const char *path, fbrl_workspace_diff_fn fn,
+                                         void *ctx, unsigned *count);
 
 /* The file last saved or loaded ("" if none; never NULL). */
 FBRL_API const char *fbrl_workspace_path(const fbrl_workspace *ws);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "board.h"
+#include "fbrl/cell.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
 #include "fbrl/robot.h"
@@ -44,7 +45,7 @@
  * of the C words (the primitives' are in flash: FBRL_ROM_PRIMS) and FW_DICT_BYTES for
  * programs (checked at boot against fbrl_vm_size_for()). All the RAM the rest leaves. */
 #ifndef FW_VM_BYTES
-#define FW_VM_BYTES (44u * 1024u + 768u)
+#define FW_VM_BYTES (42u * 1024u + 512u)
 #endif
 
 static unsigned char vm_mem[FW_VM_BYTES] __attribute__((aligned(16)));
@@ -57,6 +58,7 @@ static fbrl_link link;
 static fbrl_link_config link_cfg;
 static fbrl_glossary glossary;
 static fbrl_robot robot;
+static fbrl_cell_words cell; /* the work cell and the guard on every motion (docs/workcell.md) */
 static fbrl_vm *vm;
 static char line[FW_LINE_MAX];
 
@@ -357,6 +359,8 @@ int main(void)
         st = fbrl_robot_install(vm, &robot, &link, &glossary);
     if (st == FBRL_OK)
         st = fbrl_robot_set_relink(&robot, relink, NULL);
+    if (st == FBRL_OK) /* CELL-BOX ...: every motion is checked against the cell before it is sent */
+        st = fbrl_cell_install(vm, &cell, &robot, &glossary);
     if (st == FBRL_OK)
         st = fbrl_vm_define(vm, "XONXOFF", w_xonxoff, NULL, "( flag -- )",
                             "flow control on the controller's line: XON/XOFF (true, the default) or none");

@@ -6,7 +6,8 @@
 # figures checked against the budgets. With one map, both come from it.
 # Flash = code, read-only data and the initial values of .data/.tdata; RAM = .data,
 # .tdata, .tbss, .bss and the stack.
-BEGIN { FLASH_BUDGET = 128 * 1024; RAM_BUDGET = 64 * 1024; inmap = 0; nfile = 0 }
+# The budgets (issue 31): 192 KB of the LM3S6965's 256 KB of flash, all its 64 KB of RAM.
+BEGIN { FLASH_BUDGET = 192 * 1024; RAM_BUDGET = 64 * 1024; inmap = 0; nfile = 0 }
 FNR == 1 { nfile++; inmap = 0; out = ""; pending = 0 }
 /^Linker script and memory map/ { inmap = 1; next }
 !inmap { next }

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """sample_prep.py PORT - the short sample-preparation run of examples/sample_prep.c, in
-Python: the same steps, the same commands to the controller, the same output.
+Python: the same steps, the same commands to the controller, the same output; the Python
+link also reads W5 before a motion or FINISH while the arm may still move, so that Ctrl-C
+can always halt it (docs/python.md, "Stopping the arm").
 
   1. link:  connect (NOHELP), HOME, READY, SPEED 50
   2. FBRL:  the heating block's tubes (RECTMAT) and locating pins; teach where the pins

@@ -19,12 +19,15 @@ from ._errors import Error, ControllerError, check, status_name, status_text, FA
 from .loc import Location, Calibration
 from .datafile import DataFile, CHR, INTEGER, LONG, REAL, LOCATION, user_type
 from .link import Port, Link, Position, Status, PortInfo, list_ports
+from .stop import Stop
 from .engine import Engine
+from .run import Run
+from .users import Users
 
 __all__ = [
     "Error", "ControllerError", "Location", "Calibration", "DataFile", "CHR", "INTEGER", "LONG",
     "REAL", "LOCATION", "user_type", "Port", "Link", "Position", "Status", "Engine", "version",
-    "status_name", "status_text", "FATES", "PortInfo", "list_ports",
+    "status_name", "status_text", "FATES", "PortInfo", "list_ports", "Stop", "Users",
 ]
 
 __version__ = ffi.string(lib.fbrl_version()).decode()

@@ -18,6 +18,20 @@ def status_text(st):
     return ffi.string(lib.fbrl_status_str(st)).decode()
 
 
+_CODES = {}
+
+
+def status_code(name):
+    """A status code by its name ("FBRL_EMAYBE"), from the library's own table: no code is
+    written twice."""
+    if not _CODES:
+        for st in range(0, -200, -1):
+            n = ffi.string(lib.fbrl_status_name(st)).decode()
+            if n.startswith("FBRL_") and n not in _CODES:
+                _CODES[n] = st
+    return _CODES[name]
+
+
 class Error(Exception):
     """A libfbrl call failed.
 

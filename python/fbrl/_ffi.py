@@ -32,6 +32,7 @@ typedef struct fbrl_glossary fbrl_glossary;
 typedef struct fbrl_robot fbrl_robot;
 typedef struct fbrl_vm fbrl_vm;
 typedef struct fbrl_file fbrl_file;
+typedef struct fbrl_cell_words fbrl_cell_words;
 
 /* ports */
 void fbrl_port_options_init(fbrl_port_options *o);
@@ -78,6 +79,7 @@ typedef struct fbrl_rapl_status_info {
     char limp[8], axis_homed[8];
     uint32_t inputs, outputs;
     unsigned have;
+    int metric;
 } fbrl_rapl_status_info;
 /* The settings at the start of fbrl_link_config (fbrl/link.h keeps their order): the rest
  * of the struct stays opaque and keeps fbrl_link_config_init()'s defaults. */
@@ -92,20 +94,31 @@ typedef struct fbrl_link_config_head {
     unsigned naxes;
 } fbrl_link_config_head;
 typedef void (*fbrl_link_line_fn)(void *ctx, const char *line, size_t len, int flawed);
+typedef void (*fbrl_link_exec_fn)(void *ctx, const char *line, size_t len, fbrl_status result);
 void fbrl_link_config_init(fbrl_link_config *c);
 fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg);
 fbrl_status fbrl_link_connect(fbrl_link *l);
-fbrl_status fbrl_link_cmd(fbrl_link *l, int cmd, const fbrl_rapl_arg *args, size_t nargs, int straight);
-fbrl_status fbrl_link_raw(fbrl_link *l, const char *line);
-fbrl_status fbrl_link_finish(fbrl_link *l);
-fbrl_status fbrl_link_where(fbrl_link *l, int cmd, fbrl_rapl_pos *out);
-fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out);
+fbrl_status fbrl_link_line_check(const char *line, size_t len);
+fbrl_status fbrl_link_start_cmd(fbrl_link *l, int cmd, const fbrl_rapl_arg *args, size_t nargs, int straight);
+fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line);
+fbrl_status fbrl_link_start_stream(fbrl_link *l, int cmd, unsigned lines);
+fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done);
+int fbrl_link_busy(const fbrl_link *l);
+const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l);
+const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l);
+fbrl_status fbrl_link_get_form(const fbrl_link *l, int *form);
+fbrl_status fbrl_rapl_encode(char *buf, size_t cap, size_t *len, int form, int cmd, const fbrl_rapl_arg *args,
+                             size_t nargs, int straight);
+fbrl_status fbrl_link_unguarded(fbrl_link *l);
 fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value);
 fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value);
 fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
 fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
                                        fbrl_link_line_fn *old_fn, void **old_ctx);
+fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx, fbrl_link_exec_fn *old_fn,
+                                       void **old_ctx);
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
+int fbrl_link_units(const fbrl_link *l);
 int fbrl_link_fate_of(fbrl_status result);
 fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs);
 fbrl_status fbrl_rapl_cmd_find(const char *keyword, int *cmd);
@@ -194,6 +207,7 @@ fbrl_status fbrl_vm_eval(fbrl_vm *vm, const char *text, size_t len);
 fbrl_status fbrl_vm_include(fbrl_vm *vm, const char *path);
 const fbrl_vm_error *fbrl_vm_last_error(const fbrl_vm *vm);
 void fbrl_vm_interrupt(fbrl_vm *vm);
+int fbrl_vm_interrupt_pending(const fbrl_vm *vm);
 int fbrl_vm_bye(const fbrl_vm *vm);
 void fbrl_vm_reset(fbrl_vm *vm);
 fbrl_status fbrl_vm_push(fbrl_vm *vm, fbrl_cell v);
@@ -206,7 +220,33 @@ fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+typedef struct fbrl_link_stop {
+    fbrl_status result;
+    int halted;
+    fbrl_status status_result;
+    int have_status, homed, have_outputs;
+    uint32_t switched_off, off_failed, left_on, unknown;
+    int have_where;
+    double where[6];
+} fbrl_link_stop;
+typedef struct fbrl_robot_stop {
+    fbrl_status result;
+    int was_moving;
+    char motion[81];
+    fbrl_link_stop stop;
+} fbrl_robot_stop;
+fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const char *motion, fbrl_robot_stop *out);
+fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
+int fbrl_robot_still_line(const char *line, size_t len, int flawed);
 int fbrl_robot_last_error(const fbrl_robot *r);
+/* the work cell's words and the guard on every robot motion (fbrl/cell.h); the guard's record
+ * starts with these two counters */
+typedef struct fbrl_cell_stats_head {
+    unsigned long moves;
+    unsigned long refused;
+} fbrl_cell_stats_head;
+fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
+const fbrl_cell_stats_head *fbrl_cell_stats_get(const fbrl_cell_words *cw);
 uint64_t fbrl_clock_now_us(void);
 """
 
@@ -217,10 +257,11 @@ ABI = {
     "fbrl_rapl_reader": 9, "fbrl_rapl_pos": 10, "fbrl_loc": 11, "fbrl_calib": 12, "fbrl_calpts": 13,
     "fbrl_units": 14, "fbrl_file": 15, "fbrl_glossary": 16, "fbrl_robot": 17, "fbrl_robot_stop": 18,
     "fbrl_vm_config": 19, "fbrl_vm_error": 20, "fbrl_workspace": 21, "fbrl_workspace_counts": 22,
-    "fbrl_uart_8250": 23, "fbrl_port_entry": 24,
+    "fbrl_uart_8250": 23, "fbrl_port_entry": 24, "fbrl_cell_words": 33,
 }
 # The structs declared in full above: their layout must be the library's.
-DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error")
+DECLARED = ("fbrl_port_entry", "fbrl_rapl_pos", "fbrl_loc", "fbrl_calib", "fbrl_calpts", "fbrl_vm_config", "fbrl_vm_error",
+            "fbrl_robot_stop")
 
 ffi = FFI()
 ffi.cdef(CDEF)
@@ -228,9 +269,16 @@ ffi.cdef(CDEF)
 
 def _load():
     """FBRL_LIBRARY names the shared library (the tests point it at the build tree);
-    otherwise the system's libfbrl.so.0 (the libfbrl0 package)."""
+    otherwise the one scripts/install.sh installed with this package (_installed.py: by
+    path, so no ldconfig or LD_LIBRARY_PATH is needed); otherwise the system's
+    libfbrl.so.1 (the libfbrl1 package)."""
     names = [os.environ["FBRL_LIBRARY"]] if os.environ.get("FBRL_LIBRARY") else []
-    names += ["libfbrl.so.0", ctypes.util.find_library("fbrl") or "libfbrl.so"]
+    try:
+        from ._installed import LIBRARY
+        names.append(os.path.join(os.path.dirname(os.path.abspath(__file__)), LIBRARY))
+    except ImportError:
+        pass  # not installed by install.sh: the source tree or the Debian package
+    names += ["libfbrl.so.1", ctypes.util.find_library("fbrl") or "libfbrl.so"]
     err = None
     for name in names:
         try:

@@ -11,8 +11,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))  # python/: the package under test
 
 SIM_START_SECONDS = 10
-TIME_SCALE = "100"
-LOADED_HOST_ECHO_MS = 500  # a loaded test machine may stall us; the controller is not slow  # simulated time 100 times faster: motions take milliseconds
+TIME_SCALE = "100"  # simulated time 100 times faster: motions take milliseconds
+LOADED_HOST_ECHO_MS = 500  # a loaded test machine may stall us; the controller is not slow
 
 
 def _fbrlsim():
@@ -26,10 +26,11 @@ def _fbrlsim():
 class Sim:
     """An fbrlsim process: .port is its pty, .log() the command lines it executed."""
 
-    def __init__(self, tmp_path, *args):
+    def __init__(self, tmp_path, *args, time_scale=TIME_SCALE, status_extra=True):
         self.log_path = str(tmp_path / "sim.log")
-        self.proc = subprocess.Popen([_fbrlsim(), "--status-extra", "--log", self.log_path, "--time-scale", TIME_SCALE] + list(args),
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        extra = ["--status-extra"] if status_extra else []  # without it STATUS is RAPL-II's: no OUTPUTS line
+        self.proc = subprocess.Popen([_fbrlsim()] + extra + ["--log", self.log_path, "--time-scale", time_scale]
+                                     + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + SIM_START_SECONDS
         self.port = self.proc.stdout.readline().strip()
         if not self.port.startswith("/dev/") or time.monotonic() > deadline:
@@ -67,3 +68,12 @@ def link(sim):
     import fbrl
     with fbrl.Port(sim.port) as port:
         yield fbrl.Link(port, echo_timeout_ms=LOADED_HOST_ECHO_MS)
+
+
+@pytest.fixture
+def realtime_sim(tmp_path):
+    """fbrlsim in real time on a strict 9600-baud line, its log stamped (seconds since it
+    started, the result, the line): for waits and stops whose timing is the point."""
+    s = Sim(tmp_path, "--baud", "9600", "--log-format", "stamped", time_scale="1")
+    yield s
+    s.stop()

@@ -9,7 +9,7 @@
 
 /* The source position compilation is at: the innermost file or typed text; an
  * EVALUATEd string counts as the line that evaluated it. */
-static void position(const fbrl_vm *vm, uint32_t *file, uint32_t *line)
+void fbrl__position(const fbrl_vm *vm, uint32_t *file, uint32_t *line)
 {
     *file = 0;
     *line = 0;
@@ -28,14 +28,14 @@ void fbrl__note_header(fbrl_vm *vm, fbrl_hdr *h)
 #ifdef FBRL_SMALL_HEADERS
     (void)vm, (void)h;
 #else
-    position(vm, &h->file, &h->line);
+    fbrl__position(vm, &h->file, &h->line);
 #endif
 }
 
 void fbrl__note_line(fbrl_vm *vm)
 {
     uint32_t file, line;
-    position(vm, &file, &line);
+    fbrl__position(vm, &file, &line);
     fbrl_cell here = (fbrl_cell)vm->here;
     if (vm->nlines > 0) {
         fbrl_line *last = &vm->lines[vm->nlines - 1];
@@ -68,7 +68,7 @@ const char *fbrl__file_name(const fbrl_vm *vm, uint32_t file)
 }
 
 /* The colon definition whose code holds addr, or NULL. */
-static const fbrl_hdr *word_at(const fbrl_vm *vm, fbrl_cell addr)
+const fbrl_hdr *fbrl__word_at(const fbrl_vm *vm, fbrl_cell addr)
 {
     for (uint32_t i = vm->nwords; i-- > 0;) {
         const fbrl_hdr *h = HDR(vm, i);
@@ -80,7 +80,7 @@ static const fbrl_hdr *word_at(const fbrl_vm *vm, fbrl_cell addr)
 }
 
 /* The source line of the code at addr inside h: the last line noted at or before it. */
-static void line_at(const fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr, fbrl_bt *f)
+void fbrl__line_at(const fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr, fbrl_bt *f)
 {
     f->file = HDR_FILE(h);
     f->line = HDR_LINE(h);
@@ -98,7 +98,7 @@ static void line_at(const fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr, fbrl_b
     }
 }
 
-static void add_name(const fbrl_hdr *h, fbrl_bt *f)
+void fbrl__add_name(const fbrl_hdr *h, fbrl_bt *f)
 {
     memcpy(f->word, h->name, h->len);
     f->word[h->len] = 0;
@@ -109,8 +109,8 @@ static void add_name(const fbrl_hdr *h, fbrl_bt *f)
 static void add_frame(fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr)
 {
     fbrl_bt f;
-    add_name(h, &f);
-    line_at(vm, h, addr, &f);
+    fbrl__add_name(h, &f);
+    fbrl__line_at(vm, h, addr, &f);
     if (vm->nbt < FBRL_BT_MAX) {
         vm->bt[vm->nbt++] = f;
         return;
@@ -133,6 +133,14 @@ static int is_return(const fbrl_vm *vm, fbrl_cell ra)
     return c[-2] == OP_CALL || xt < vm->nwords || c[-1] == OP_EXECUTE || c[-1] == OP_CATCH;
 }
 
+int fbrl__frames(const fbrl_vm *vm)
+{
+    int n = 0;
+    for (const fbrl_cell *r = vm->rs0; r < vm->rp; r++)
+        n += is_return(vm, *r) || *r == vm->guard_addr || *r == vm->guard_addr + CELL;
+    return n;
+}
+
 /* ip: just after the instruction that threw (inside the innermost word). The return
  * stack below vm->rp holds the callers' return addresses among loop parameters and >R
  * values: a cell counts when it is a return address into a colon definition. */
@@ -141,12 +149,12 @@ void fbrl__backtrace(fbrl_vm *vm, const fbrl_cell *ip)
     vm->bt_captured = 1;
     vm->nbt = 0;
     vm->bt_omitted = 0;
-    const fbrl_hdr *h = word_at(vm, (fbrl_cell)ip - CELL);
+    const fbrl_hdr *h = fbrl__word_at(vm, (fbrl_cell)ip - CELL);
     if (h)
         add_frame(vm, h, (fbrl_cell)ip - CELL);
     for (const fbrl_cell *r = vm->rp; r-- > vm->rs0;) {
         fbrl_cell ra = *r;
-        if (!is_return(vm, ra) || (h = word_at(vm, ra - CELL)) == NULL)
+        if (!is_return(vm, ra) || (h = fbrl__word_at(vm, ra - CELL)) == NULL)
             continue;
         add_frame(vm, h, ra - CELL);
     }
@@ -194,24 +202,24 @@ fbrl_status fbrl_vm_step_hook(fbrl_vm *vm, fbrl_vm_step_fn fn, void *ctx)
 
 int fbrl__step(fbrl_vm *vm, fbrl_cell body)
 {
-    const fbrl_hdr *h = word_at(vm, body);
+    const fbrl_hdr *h = fbrl__word_at(vm, body);
     fbrl_bt callee = {"", 0, 0}, caller = {"", 0, 0};
     fbrl_vm_stop st;
     if (h)
-        add_name(h, &callee);
+        fbrl__add_name(h, &callee);
     st.word = callee.word;
     st.file = h ? fbrl__file_name(vm, HDR_FILE(h)) : "";
     st.line = h ? HDR_LINE(h) : 0;
     /* vm->ip: just after the call (OP_CALL body, or EXECUTE's cell) */
-    const fbrl_hdr *c = word_at(vm, (fbrl_cell)vm->ip - CELL);
+    const fbrl_hdr *c = fbrl__word_at(vm, (fbrl_cell)vm->ip - CELL);
     if (c) {
-        add_name(c, &caller);
-        line_at(vm, c, (fbrl_cell)vm->ip - CELL, &caller);
+        fbrl__add_name(c, &caller);
+        fbrl__line_at(vm, c, (fbrl_cell)vm->ip - CELL, &caller);
     }
     st.caller = caller.word;
     st.call_file = fbrl__file_name(vm, caller.file);
     st.call_line = caller.line;
-    st.depth = (size_t)(vm->rp - vm->rs0);
+    st.depth = (size_t)fbrl__frames(vm) + 1; /* as the definition's own words will see it */
     vm->in_step = 1;
     int r = vm->step_fn(vm->step_ctx, vm, &st);
     vm->in_step = 0;
@@ -225,14 +233,14 @@ fbrl_status fbrl_vm_where(fbrl_vm *vm, const char **word, const char **file, uns
     fbrl_bt here; /* copied to vm->where: the name outlives the call */
     uint32_t f = 0, l = 0;
     here.word[0] = 0;
-    const fbrl_hdr *h = vm->running && vm->ip ? word_at(vm, (fbrl_cell)vm->ip - CELL) : NULL;
+    const fbrl_hdr *h = vm->running && vm->ip ? fbrl__word_at(vm, (fbrl_cell)vm->ip - CELL) : NULL;
     if (h) {
-        add_name(h, &here);
-        line_at(vm, h, (fbrl_cell)vm->ip - CELL, &here);
+        fbrl__add_name(h, &here);
+        fbrl__line_at(vm, h, (fbrl_cell)vm->ip - CELL, &here);
         f = here.file;
         l = here.line;
     } else if (vm->running) {
-        position(vm, &f, &l);
+        fbrl__position(vm, &f, &l);
     }
     vm->where = here;
     *word = vm->where.word;

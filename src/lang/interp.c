@@ -51,6 +51,11 @@ static int interpret_word(fbrl_vm *vm, const char *name, size_t len)
             fbrl__note_line(vm);
             return fbrl__compile_xt(vm, xt);
         }
+        if (FBRL_WORD_HOOK && *vm->state == 0 && vm->word_fn) { /* a debugger sees these too */
+            int stop = fbrl__step_top(vm, xt);
+            if (stop)
+                return stop;
+        }
         return fbrl__run(vm, xt);
     }
     fbrl_cell v[2];

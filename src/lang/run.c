@@ -81,6 +81,7 @@
         SAVE();            \
         code = (expr);     \
         LOAD();            \
+        STEPWORDS();       \
         if (code)          \
             goto do_throw; \
     } while (0)
@@ -98,6 +99,7 @@
             vm->ip = ip;                        \
             int stop_ = fbrl__step(vm, (body)); \
             LOAD();                             \
+            STEPWORDS();                        \
             if (stop_)                          \
                 THROW(stop_);                   \
         }                                       \
@@ -143,10 +145,21 @@
         fp--;                          \
     } while (0)
 
+/* The word hook (fbrl_vm_word_hook, a debugger's single steps) sees each word before it
+ * runs. With computed goto the dispatch goes through tab: optab, or while the hook is set
+ * steptab, whose every entry (xts too: entry OP__END) leads to the hook first; so the hot
+ * path has no test of its own. The portable switch tests a flag. Looked at again after
+ * each C call and step hook (which may set or clear the word hook). */
 #if FBRL_CGOTO
 #define CASE(id) L_##id:
 #define DEFAULT
-#define DISPATCH()          \
+#define DISPATCH()               \
+    do {                         \
+        if (U(w) < OP__END)      \
+            goto *tab[w];        \
+        goto *tab[OP__END];      \
+    } while (0)
+#define DISPATCH_PLAIN()    \
     do {                    \
         if (U(w) < OP__END) \
             goto *optab[w]; \
@@ -157,11 +170,18 @@
         w = *ip++;  \
         DISPATCH(); \
     } while (0)
+#if FBRL_WORD_HOOK
+#define STEPWORDS() (tab = vm->word_fn && !vm->in_step ? steptab : optab)
 #else
-#define CASE(id)   case OP_##id:
-#define DEFAULT    default:
-#define DISPATCH() goto dispatch
-#define NEXT       continue
+#define STEPWORDS() ((void)0)
+#endif
+#else
+#define CASE(id)         case OP_##id:
+#define DEFAULT          default:
+#define DISPATCH()       goto dispatch
+#define DISPATCH_PLAIN() goto dispatch
+#define NEXT             continue
+#define STEPWORDS()      (stepping = FBRL_WORD_HOOK && vm->word_fn && !vm->in_step)
 #endif
 
 static fbrl_cell ld(fbrl_cell a)
@@ -220,23 +240,32 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
     double fa;
     int code = 0;
 #if FBRL_CGOTO
-    static const void *const optab[OP__END] = {
+    static const void *const optab[OP__END + 1] = {
 #define OP(id, name, flags, stack, help) &&L_##id,
 #include "ops.def"
 #undef OP
-    };
+        &&execute_xt};
+#if FBRL_WORD_HOOK
+    static const void *const steptab[OP__END + 1] = {[0 ... OP__END] = &&step_word};
+    const void *const *tab = optab;
+#else
+#define tab optab
+#endif
+#else
+    int stepping = 0;
 #endif
 
     if (vm->nest >= 64)
         return FBRL_THROW_RSTACK_OVERFLOW;
     LOAD();
+    STEPWORDS();
     entry = rp - rs0;
     vm->nest++;
     if (vm->resume_ip) { /* task.c: a task's slice goes on where it stopped (xt: the word to run again) */
         ip = vm->resume_ip;
         vm->resume_ip = NULL;
         entry = 0;
-        DISPATCH();
+        DISPATCH_PLAIN();
     }
     goto execute_xt;
 
@@ -246,6 +275,8 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         DISPATCH();
         {
 #else
+        if (stepping)
+            goto step_word;
     dispatch:
         switch ((fbrl_ucell)w) {
 #endif
@@ -1593,7 +1624,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             if (!h)
                 THROW(fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token"));
             switch (h->kind) {
-            case K_PRIM: w = h->op; DISPATCH();
+            case K_PRIM: w = h->op; DISPATCH_PLAIN(); /* its step was the xt's */
             case K_COLON:
                 ENTER(h->body);
                 RROOM(1);
@@ -1668,6 +1699,7 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
                     THROW(FBRL_THROW_STACK_UNDERFLOW);
                 }
                 LOAD();
+                STEPWORDS(); /* BREAK, UNBREAK ... set the word hook */
                 if (st != FBRL_OK)
                     THROW(st == FBRL_ETHROW ? (vm->pending_throw ? vm->pending_throw : -1)
                                             : FBRL_THROW_STATUS(st));
@@ -1712,6 +1744,20 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
         goto e_stored;
     e_stored:
         code = vm->run_code;
+        goto do_throw;
+#if FBRL_WORD_HOOK || !FBRL_CGOTO
+    step_word: /* the word hook, before the word w (ip: after it) */
+        if (FBRL_WORD_HOOK && vm->word_fn && !vm->in_step) {
+            SAVE();
+            vm->ip = ip;
+            code = fbrl__step_word(vm, w);
+            LOAD();
+            STEPWORDS();
+            if (code)
+                goto do_throw;
+        }
+        DISPATCH_PLAIN();
+#endif
     do_throw:
         if (code == THROW_BYE || code == THROW_QUIT)
             goto out;
@@ -1759,3 +1805,4 @@ out:
 #if FBRL_CGOTO
 #pragma GCC diagnostic pop
 #endif
+#undef tab

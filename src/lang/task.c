@@ -20,12 +20,11 @@
 #define TASK_DS           64 /* cells of each task's stacks */
 #define TASK_RS           64
 #define TASK_FS           16
-#define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
 #define US_PER_MS         1000u
 #define TASK_SPARE        16        /* bytes below the data and float stacks (run.c's cached top) */
 #define TASK_MAX_MS       86400000L /* the longest timed step: one day */
-#define SLEEP_MARGIN_MS   5
-#define NO_WAKE           UINT64_MAX
+#define SLEEP_MAX_MS      1000u /* the longest sleep before the wait looks again (Ctrl-C, a task) */
+#define NO_WAKE           FBRL_TASK_NEVER
 #define TASK_MEM                                                                           \
     (TASK_SPARE + TASK_DS * sizeof(fbrl_cell) + TASK_RS * sizeof(fbrl_cell) + TASK_SPARE + \
      TASK_FS * sizeof(double))
@@ -160,6 +159,18 @@ static void release_all(fbrl_vm *vm, int i, int failed)
     }
 }
 
+/* A task ended or released a claim: the tasks that wait for another task (AWAIT, CLAIM)
+ * look again at once; nothing else wakes them, so they cost nothing while they wait. */
+static void signal_tasks(fbrl_vm *vm)
+{
+    vm->task_signals++;
+    for (int i = 1; i < FBRL_TASKS_MAX; i++) {
+        fbrl_task *t = &vm->tasks[i];
+        if (t->state == TK_WAIT && t->on_signal)
+            t->wake_us = 0, t->on_signal = 0;
+    }
+}
+
 static void end_task(fbrl_vm *vm, int i, int state)
 {
     fbrl_task *t = &vm->tasks[i];
@@ -168,21 +179,39 @@ static void end_task(fbrl_vm *vm, int i, int state)
     if (was_live && vm->ntasks > 0)
         vm->ntasks--;
     release_all(vm, i, state == TK_FAILED);
+    signal_tasks(vm);
+}
+
+static void slice(fbrl_vm *vm, int i);
+
+/* End task i; 1 if it was live. tidy: a task waiting inside a word (a PULSE with its output
+ * on) runs once more, its stop asked: the wait says "stopped" and the word tidies up (the
+ * output off) before the task ends at that wait, or at its next. Ctrl-C (not tidy) ends it
+ * at once: the host's safe stop makes the cell safe. */
+static int stop_task(fbrl_vm *vm, int i, int tidy)
+{
+    fbrl_task *t = &vm->tasks[i];
+    if (t->state == TK_WAIT && t->resuming && tidy) {
+        t->stop_req = 1;
+        slice(vm, i);
+        if (t->state == TK_READY || t->state == TK_WAIT)
+            end_task(vm, i, TK_STOPPED);
+        return 1;
+    }
+    if (t->state == TK_READY || t->state == TK_WAIT) {
+        end_task(vm, i, TK_STOPPED);
+        return 1;
+    }
+    if (t->state == TK_RUN) /* waiting in place under the running task: it ends when it gets back */
+        t->stop_req = 1;
+    return t->state == TK_RUN;
 }
 
 static void stop_all(fbrl_vm *vm, const char *why)
 {
     int n = 0;
-    for (int i = 1; i < FBRL_TASKS_MAX; i++) {
-        fbrl_task *t = &vm->tasks[i];
-        if (t->state == TK_READY || t->state == TK_WAIT) {
-            end_task(vm, i, TK_STOPPED);
-            n++;
-        } else if (t->state == TK_RUN) {
-            t->stop_req = 1;
-            n++;
-        }
-    }
+    for (int i = 1; i < FBRL_TASKS_MAX; i++)
+        n += stop_task(vm, i, why == NULL);
     if (n && why) {
         char line[96];
         snprintf(line, sizeof line, "tasks stopped (%s)\n", why);
@@ -216,6 +245,7 @@ static void slice(fbrl_vm *vm, int i)
     vm->resume_ip = t->ip;
     vm->resuming = t->resuming;
     t->resuming = 0;
+    t->on_signal = 0;
     vm->pending_msg = NULL;
     int code = fbrl__run(vm, t->w);
     ctx_save(vm, t);
@@ -300,27 +330,29 @@ static uint64_t next_wake(const fbrl_vm *vm, uint64_t limit)
     return limit;
 }
 
+/* Sleep until when (or SLEEP_MAX_MS, then the caller looks again): whole ms, rounded up,
+ * so a wait never spins on the last part of a ms; it ends up to a ms late. */
 static void sleep_until(fbrl_vm *vm, uint64_t when)
 {
     uint64_t now = now_us(vm);
-    if (when > now + US_PER_MS && vm->host.sleep_ms) {
-        /* a host's sleep may oversleep: the last few ms are slept one at a time, and the
-         * last part of a ms not at all (the caller looks again) */
-        uint64_t ms = (when - now) / US_PER_MS;
-        ms = ms > SLEEP_MARGIN_MS * 2 ? ms - SLEEP_MARGIN_MS : 1;
-        vm->host.sleep_ms(vm->host.user, (uint32_t)(ms > 1000 ? 1000 : ms));
+    if (when > now && vm->host.sleep_ms) {
+        uint64_t ms = (when - now + US_PER_MS - 1) / US_PER_MS;
+        vm->host.sleep_ms(vm->host.user, (uint32_t)(ms > SLEEP_MAX_MS ? SLEEP_MAX_MS : ms));
     }
 }
 
-/* The waits' one way of letting others run (vm->task_pause): 0 when wake_us has come,
- * THROW_YIELD for a background task's slice to end, or a throw. */
-static int task_pause(fbrl_vm *vm, uint64_t wake_us)
+/* The waits' one way of letting others run (vm->task_pause): 0 when wake_us has come (or,
+ * on_signal, when another task ended or released a claim), THROW_YIELD for a background
+ * task's slice to end, or a throw. */
+static int task_pause(fbrl_vm *vm, uint64_t wake_us, int on_signal)
 {
     fbrl_task *me = &vm->tasks[vm->cur_task];
+    unsigned long seen = vm->task_signals;
     if (me->stop_req)
         return THROW_STOP;
     if (vm->cur_task != 0 && vm->slice_nest == vm->nest) {
         me->wake_us = wake_us;
+        me->on_signal = on_signal;
         return THROW_YIELD;
     }
     for (;;) { /* in place: the main task, or a task waiting inside a C word */
@@ -331,6 +363,8 @@ static int task_pause(fbrl_vm *vm, uint64_t wake_us)
         run_round(vm);
         if (me->stop_req)
             return THROW_STOP;
+        if (on_signal && vm->task_signals != seen)
+            return 0;
         uint64_t now = now_us(vm);
         if (now >= wake_us || !vm->host.now_us)
             return 0;
@@ -375,17 +409,38 @@ static fbrl_status need_clock(fbrl_vm *vm)
                : tk_throw(vm, FBRL_THROW_UNSUPPORTED, "no clock in this host");
 }
 
-/* TASK ( "name" -- ): a task with its own stacks; name ( -- task ) */
+/* The slot of the task "name" already names when it is not running (a file loaded again,
+ * EDIT: its TASK lines make the same tasks again), or 0. The input is left as it was. */
+static int same_task(fbrl_vm *vm)
+{
+    fbrl_cell in = *vm->toin, v;
+    const char *name;
+    size_t len;
+    fbrl__parse_name(vm, &name, &len);
+    int k = fbrl__find(vm, name, len);
+    *vm->toin = in;
+    if (k < 0 || HDR(vm, k)->kind != K_CONST || !fbrl__addr_ok(vm, HDR(vm, k)->body, sizeof v))
+        return 0;
+    memcpy(&v, (const void *)HDR(vm, k)->body, sizeof v);
+    if (v < 1 || v >= FBRL_TASKS_MAX || vm->tasks[v].word != (uint32_t)k + 1)
+        return 0;
+    int s = vm->tasks[v].state;
+    return s == TK_READY || s == TK_WAIT || s == TK_RUN ? 0 : (int)v;
+}
+
+/* TASK ( "name" -- ): a task with its own stacks; name ( -- task ). A name that already
+ * is a task that is not running gets that task's slot (loading a file again leaks none). */
 static fbrl_status w_task(fbrl_vm *vm, void *arg)
 {
     (void)arg;
     int i, r;
     fbrl_hdr *h;
-    for (i = 1; i < FBRL_TASKS_MAX; i++) {
-        fbrl_task *t = &vm->tasks[i];
-        if (!t->word || ((t->state == TK_IDLE || t->state >= TK_DONE) && forgotten(vm, t)))
-            break;
-    }
+    if ((i = same_task(vm)) == 0)
+        for (i = 1; i < FBRL_TASKS_MAX; i++) {
+            fbrl_task *t = &vm->tasks[i];
+            if (!t->word || ((t->state == TK_IDLE || t->state >= TK_DONE) && forgotten(vm, t)))
+                break;
+        }
     if (i == FBRL_TASKS_MAX)
         return tk_throw(vm, FBRL_THROW_UNSUPPORTED, "TASK: no room for another task (16 at most)");
     unsigned char *here0 = vm->here;
@@ -459,13 +514,9 @@ static fbrl_status w_stop(fbrl_vm *vm, void *arg)
     fbrl_status st;
     if ((st = tk_pop(vm, &v)) || (st = task_arg(vm, v, &i)))
         return st;
-    fbrl_task *t = &vm->tasks[i];
     if (i == vm->cur_task)
         return tk_throw(vm, THROW_STOP, NULL);
-    if (t->state == TK_RUN)
-        t->stop_req = 1; /* waiting in place under the running task: it ends when it gets back */
-    else if (t->state == TK_READY || t->state == TK_WAIT)
-        end_task(vm, i, TK_STOPPED);
+    stop_task(vm, i, 1);
     return FBRL_OK;
 }
 
@@ -484,7 +535,7 @@ static fbrl_status w_pause(fbrl_vm *vm, void *arg)
         return FBRL_OK;
     if (fbrl__wait_begin(vm)->resumed)
         return FBRL_OK;
-    int code = task_pause(vm, now_us(vm));
+    int code = task_pause(vm, now_us(vm), 0);
     return code ? tk_throw(vm, code, NULL) : FBRL_OK;
 }
 
@@ -510,7 +561,7 @@ static fbrl_status w_await(fbrl_vm *vm, void *arg)
         int s = vm->tasks[i].state;
         if (s != TK_READY && s != TK_WAIT && s != TK_RUN)
             return FBRL_OK;
-        int code = task_pause(vm, now_us(vm) + FBRL_TASK_POLL_US);
+        int code = task_pause(vm, NO_WAKE, 1); /* until a task ends */
         if (code)
             return tk_throw(vm, code, NULL);
     }
@@ -590,7 +641,7 @@ static fbrl_status claim(fbrl_vm *vm, fbrl_cell key)
             ;
         if (k == c->nq)
             c->queue[c->nq++] = me; /* claims wait in order */
-        int code = task_pause(vm, now_us(vm) + FBRL_TASK_POLL_US);
+        int code = task_pause(vm, NO_WAKE, 1); /* until the holder releases it */
         if (code) {
             if (code != THROW_YIELD)
                 unqueue(c, me), claim_tidy(c);
@@ -618,6 +669,7 @@ static fbrl_status release(fbrl_vm *vm, fbrl_cell key)
         c->owner = -1;
         c->depth = 0;
         claim_tidy(c);
+        signal_tasks(vm); /* the next in its queue takes it */
     }
     return FBRL_OK;
 }
@@ -670,7 +722,7 @@ static fbrl_status wait_step(fbrl_vm *vm, uint64_t due_us)
             vm->sp--;
             return FBRL_OK;
         }
-        int code = task_pause(vm, due_us);
+        int code = task_pause(vm, due_us, 0);
         if (code)
             return tk_throw(vm, code, NULL);
     }
@@ -800,7 +852,8 @@ static const struct {
     {"START", w_start, 0, FBRL_DOC("( xt task -- )", "run xt as the task, beside the others")},
     {"START-WITH", w_start, 1,
      FBRL_DOC("( x1..xn n xt task -- )", "START, with n cells on the task's stack")},
-    {"STOP", w_stop, 0, FBRL_DOC("( task -- )", "end a task (what it claimed is released)")},
+    {"STOP", w_stop, 0,
+     FBRL_DOC("( task -- )", "end a task (what it claimed is released; a word it waits in tidies up)")},
     {"STOP-TASKS", w_stop_tasks, 0, FBRL_DOC("( -- )", "end every task but the main one")},
     {"PAUSE", w_pause, 0, FBRL_DOC("( -- )", "let the other tasks run")},
     {"ME", w_me, 0, FBRL_DOC("( -- task )", "the running task (0: the main one)")},

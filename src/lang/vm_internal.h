@@ -239,7 +239,7 @@ typedef struct fbrl_cf {
 #ifndef FBRL_TASKS_MAX
 #define FBRL_TASKS_MAX    16
 #endif
-#define FBRL_TASK_POLL_US 2000u /* how often a wait on another task (CLAIM, AWAIT) looks again */
+#define FBRL_TASK_NEVER   UINT64_MAX /* a wait with no deadline: only another task's signal ends it */
 #ifndef FBRL_CLAIMS_MAX
 #define FBRL_CLAIMS_MAX   16
 #endif
@@ -255,6 +255,7 @@ typedef struct fbrl_task {
     uint64_t wake_us;      /* TK_WAIT: run again at or after this host time */
     unsigned char *mem_lo; /* its stacks' memory in data space (dropped if forgotten) */
     int resuming;          /* its slice ended in a wait: the word runs again, its record kept */
+    int on_signal;         /* TK_WAIT: another task's signal (an end, a release) makes it due */
     int stop_req;          /* STOP while it waits in place: it ends when it gets back */
     fbrl_vmx_wait wait;
     fbrl_vmx_timer timer;
@@ -324,7 +325,9 @@ struct fbrl_vm {
     const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word or step hook runs */
     fbrl_vm_step_fn step_fn; /* fbrl_vm_step_hook (debug.c) */
     void *step_ctx;
-    int in_step;   /* inside step_fn: what it evaluates runs without stops */
+    fbrl_vm_step_fn word_fn; /* fbrl_vm_word_hook (debug.c): before each word */
+    void *word_ctx;
+    int in_step; /* inside step_fn or word_fn: what it evaluates runs without stops */
     fbrl_bt where; /* fbrl_vm_where's answer */
     fbrl_line lines[FBRL_LINE_TABLE];
     uint32_t nlines;
@@ -373,7 +376,10 @@ struct fbrl_vm {
     const fbrl_cell *resume_ip; /* set before fbrl__run resumes a task */
     const fbrl_cell *resume_at; /* set by fbrl__run when a slice yields: ip and the word */
     fbrl_cell resume_w;
-    int (*task_pause)(fbrl_vm *vm, uint64_t wake_us);
+    /* wait until wake_us, letting the other tasks run; on_signal: or until another task ends
+     * or releases a claim (the caller looks at its condition again) */
+    int (*task_pause)(fbrl_vm *vm, uint64_t wake_us, int on_signal);
+    unsigned long task_signals; /* counts those signals (task.c) */
 };
 
 /* Header i. FBRL_ROM_PRIMS (a small target short of RAM: the Cortex-M3 firmware): the
@@ -446,7 +452,25 @@ void fbrl__note_line(fbrl_vm *vm);                      /* before compiling from
 void fbrl__note_header(fbrl_vm *vm, fbrl_hdr *h);       /* a new word: its file and line */
 void fbrl__lines_forget(fbrl_vm *vm);                   /* code above HERE is gone */
 void fbrl__backtrace(fbrl_vm *vm, const fbrl_cell *ip); /* at a throw: keep the chain of words */
+void fbrl__position(const fbrl_vm *vm, uint32_t *file, uint32_t *line); /* compiling/interpreting */
+const fbrl_hdr *fbrl__word_at(const fbrl_vm *vm, fbrl_cell addr);       /* colon def holding addr */
+void fbrl__line_at(const fbrl_vm *vm, const fbrl_hdr *h, fbrl_cell addr, fbrl_bt *f);
+void fbrl__add_name(const fbrl_hdr *h, fbrl_bt *f);
+int fbrl__frames(const fbrl_vm *vm); /* colon definitions running (return addresses kept) */
 int fbrl__step(fbrl_vm *vm, fbrl_cell body); /* a colon definition starts: the step hook (vm->ip: the call) */
+/* FBRL_NO_WORD_HOOK (a small target without a debugger, the firmware): fbrl_vm_word_hook
+ * is refused and the inner interpreter has no step test at all. */
+#ifdef FBRL_NO_WORD_HOOK
+#define FBRL_WORD_HOOK 0
+#else
+#define FBRL_WORD_HOOK 1
+#endif
+int fbrl__step_word(fbrl_vm *vm, fbrl_cell w); /* a word of a definition: the word hook (vm->ip: after w) */
+int fbrl__step_top(fbrl_vm *vm, fbrl_cell xt); /* the interpreter runs xt: the word hook */
+/* The words a superinstruction was compiled from ("+" of a literal and +), whether a
+ * literal and a branch target follow the op; NULL for an op that is no superinstruction
+ * (SEE and the word hook show them so). */
+const char *fbrl__fused_words(int op, int *lit, int *br);
 const char *fbrl__file_name(const fbrl_vm *vm, uint32_t file);
 
 /* number.c: the text interpreter's number syntax: 1 single, 2 double (v[0] low, v[1] high),

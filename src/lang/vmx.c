@@ -584,7 +584,7 @@ fbrl_vmx_wait *fbrl_vmx_wait_state(fbrl_vm *vm) { return fbrl__wait_begin(vm); }
 
 fbrl_status fbrl_vmx_pause(fbrl_vm *vm, uint64_t wake_us)
 {
-    int code = vm->task_pause(vm, wake_us);
+    int code = vm->task_pause(vm, wake_us, 0);
     if (!code)
         return FBRL_OK;
     vm->pending_throw = code;
@@ -606,9 +606,10 @@ fbrl_status fbrl_vmx_claim_wait(fbrl_vm *vm, fbrl_cell key)
                 c = &vm->claims[k];
         if (!c || c->owner < 0 || c->owner == vm->cur_task)
             return FBRL_OK;
-        uint64_t now = vm->host.now_us ? vm->host.now_us(vm->host.user) : 0;
-        fbrl_status st = fbrl_vmx_pause(vm, now + FBRL_TASK_POLL_US);
-        if (st != FBRL_OK)
-            return st;
+        int code = vm->task_pause(vm, FBRL_TASK_NEVER, 1); /* until the holder releases it */
+        if (code) {
+            vm->pending_throw = code;
+            return FBRL_ETHROW;
+        }
     }
 }

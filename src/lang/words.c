@@ -477,63 +477,33 @@ static void put_name(fbrl_vm *vm, const fbrl_hdr *h)
         fbrl__puts(vm, ":NONAME");
 }
 
-/* A superinstruction shows as the words it was compiled from. */
+/* A superinstruction shows as the words it was compiled from (fbrl__fused_words). */
 static int see_fused(fbrl_vm *vm, fbrl_cell w, fbrl_cell *pc)
 {
-    static const struct {
-        int16_t op;
-        uint8_t lit, br; /* 1: a literal, a branch follow the op (bytes: a row is 8 bytes, not 12) */
-        const char *words;
-    } fused[] = {
-        {OP_LITPLUS, 1, 0, "+"},
-        {OP_LITMINUS, 1, 0, "-"},
-        {OP_LITSTAR, 1, 0, "*"},
-        {OP_LITAND, 1, 0, "AND"},
-        {OP_LITEQ, 1, 0, "="},
-        {OP_LITNE, 1, 0, "<>"},
-        {OP_LITLT, 1, 0, "<"},
-        {OP_LITGT, 1, 0, ">"},
-        {OP_LITFETCH, 1, 0, "@"},
-        {OP_PICK2, 0, 0, "2 PICK"},
-        {OP_OVERPLUS, 0, 0, "OVER +"},
-        {OP_IPLUS, 0, 0, "I +"},
-        {OP_CELLPLUSFETCH, 0, 0, "CELL+ @"},
-        {OP_DUPFETCH, 0, 0, "DUP @"},
-        {OP_EQZBR, 0, 1, "="},
-        {OP_NEZBR, 0, 1, "<>"},
-        {OP_LTZBR, 0, 1, "<"},
-        {OP_GTZBR, 0, 1, ">"},
-        {OP_ZEQZBR, 0, 1, "0="},
-        {OP_LITEQZBR, 1, 1, "="},
-        {OP_LITNEZBR, 1, 1, "<>"},
-        {OP_LITLTZBR, 1, 1, "<"},
-        {OP_LITGTZBR, 1, 1, ">"},
-    };
-    for (size_t i = 0; i < sizeof fused / sizeof fused[0]; i++) {
-        fbrl_cell a;
-        if (fused[i].op != w)
-            continue;
-        if (fused[i].lit) {
-            if (!fbrl__addr_ok(vm, *pc, CELL))
-                return 1;
-            memcpy(&a, (void *)*pc, sizeof a);
-            *pc += CELL;
-            put_num(vm, a);
-            fbrl__puts(vm, " ");
-        }
-        fbrl__puts(vm, fused[i].words);
-        if (fused[i].br) {
-            if (!fbrl__addr_ok(vm, *pc, CELL))
-                return 1;
-            memcpy(&a, (void *)*pc, sizeof a);
-            *pc += CELL;
-            fbrl__puts(vm, " 0BRANCH(");
-            put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
-            fbrl__puts(vm, ")");
-        }
-        return 1;
+    int lit, br;
+    fbrl_cell a;
+    const char *words = fbrl__fused_words((int)w, &lit, &br);
+    if (!words)
+        return 0;
+    if (lit) {
+        if (!fbrl__addr_ok(vm, *pc, CELL))
+            return 1;
+        memcpy(&a, (void *)*pc, sizeof a);
+        *pc += CELL;
+        put_num(vm, a);
+        fbrl__puts(vm, " ");
     }
-    return 0;
+    fbrl__puts(vm, words);
+    if (br) {
+        if (!fbrl__addr_ok(vm, *pc, CELL))
+            return 1;
+        memcpy(&a, (void *)*pc, sizeof a);
+        *pc += CELL;
+        fbrl__puts(vm, " 0BRANCH(");
+        put_num(vm, (fbrl_cell)(U(a) - U(*pc)) / CELL);
+        fbrl__puts(vm, ")");
+    }
+    return 1;
 }
 
 static void see_colon(fbrl_vm *vm, fbrl_hdr *h)
@@ -1307,7 +1277,7 @@ static int ms_beside_tasks(fbrl_vm *vm)
             vm->sp--;
             return 0;
         }
-        if ((r = vm->task_pause(vm, due)))
+        if ((r = vm->task_pause(vm, due, 0)))
             return r;
     }
 }
@@ -1324,7 +1294,7 @@ int fbrl__w_io(fbrl_vm *vm, int op)
             return fbrl__throw_msg(vm, FBRL_THROW_UNSUPPORTED, "no console input in this host");
         if (vm->ntasks && vm->host.key_ready && vm->host.now_us) /* other tasks run until a key comes */
             for (fbrl__wait_begin(vm); !vm->host.key_ready(vm->host.user);)
-                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US)))
+                if ((r = vm->task_pause(vm, vm->host.now_us(vm->host.user) + KEY_POLL_US, 0)))
                     return r;
         r = vm->host.key(vm->host.user);
         if (r < 0)

@@ -33,8 +33,14 @@
 #define gl_type_rad      fbrli_gl_type_rad
 #define gl_type_rect     fbrli_gl_type_rect
 #define gl_type_stru     fbrli_gl_type_stru
-#define rb_guard         fbrli_rb_guard
-#define rb_guard_done    fbrli_rb_guard_done
+#define rb_line_cmd      fbrli_rb_line_cmd
+#define rb_line_loses    fbrli_rb_line_loses
+#define rb_line_move     fbrli_rb_line_move
+#define rb_line_moves    fbrli_rb_line_moves
+#define rb_link_gate     fbrli_rb_link_gate
+#define rb_motion        fbrli_rb_motion
+#define rb_raw_send      fbrli_rb_raw_send
+#define rb_send          fbrli_rb_send
 #define rb_where_lost    fbrli_rb_where_lost
 #define rb_now_us        fbrli_rb_now_us
 #define rb_units         fbrli_rb_units

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* method.c - the method words: METHOD PARAM SAMPLES-PARAM STEP SAMPLE-STEP ON-ABORT
- * END-METHOD declare a method; RUN-METHOD runs it step by step under an observer;
- * METHODS .METHOD PARAM! show and set it at the prompt (include/fbrl/method.h). */
+ * USE-PARAMS END-METHOD declare a method; METHODS .METHOD PARAM! show and set it at the
+ * prompt (include/fbrl/method.h). A run of one is src/method_run.c's. */
 #include <ctype.h>
 #include <stdio.h>
 #include <string.h>
@@ -291,77 +291,6 @@ long fbrl_method_step_runs(const fbrl_method_set *s, const fbrl_method *m, size_
     return fbrl_method_param_get(s, m, (size_t)m->samples, &n) == FBRL_OK ? n : 0;
 }
 
-static fbrl_status run_steps(fbrl_method_set *s, fbrl_method *m, const char **outcome, char *why, size_t cap)
-{
-    const fbrl_method_observer *o = &s->obs;
-    for (size_t k = 0; k < m->nsteps; k++) {
-        long runs = fbrl_method_step_runs(s, m, k);
-        for (long i = 0; i < runs; i++) {
-            long sample = m->steps[k].per_sample ? i : -1;
-            if (o->between && o->between(o->ctx, m, k, sample)) {
-                *outcome = "aborted";
-                snprintf(why, cap, "RUN-METHOD: %s aborted by the operator", m->name);
-                return fbrl_vm_throw(s->vm, FBRL_THROW_INTERRUPT, why);
-            }
-            if (o->step)
-                o->step(o->ctx, m, k, sample, FBRL_METHOD_STEP_BEGIN, NULL);
-            /* EXECUTE under a catch, to have the step's own message for the observer (the
-             * caught text sees none of the stack beneath it: the arguments are in the text,
-             * decimal whatever BASE is) */
-            char run[64];
-            int code = 0;
-            if (sample >= 0)
-                snprintf(run, sizeof run, "#%ld #%ld EXECUTE", sample, (long)m->steps[k].xt);
-            else
-                snprintf(run, sizeof run, "#%ld EXECUTE", (long)m->steps[k].xt);
-            fbrl_status st = fbrl_vmx_evaluate_catch(s->vm, run, strlen(run), &code, why, cap);
-            if (st == FBRL_OK && code != 0) {
-                *outcome = code == FBRL_THROW_INTERRUPT ? "aborted" : "failed";
-                if (o->step)
-                    o->step(o->ctx, m, k, sample, FBRL_METHOD_STEP_FAILED, why);
-                return fbrl_vm_throw(s->vm, code, why);
-            }
-            if (st != FBRL_OK) {
-                snprintf(why, cap, "%s", fbrl_status_str(st));
-                if (o->step)
-                    o->step(o->ctx, m, k, sample, FBRL_METHOD_STEP_FAILED, why);
-                return st;
-            }
-            if (o->step)
-                o->step(o->ctx, m, k, sample, FBRL_METHOD_STEP_OK, NULL);
-        }
-    }
-    *outcome = "completed";
-    return FBRL_OK;
-}
-
-/* RUN-METHOD ( method -- ) */
-static fbrl_status w_run_method(fbrl_vm *vm, void *ctx, const void *word)
-{
-    fbrl_method_set *s = ctx;
-    fbrl_method *m = NULL;
-    const char *outcome = "failed";
-    char why[300] = "";
-    (void)word;
-    fbrl_status st = method_arg(s, "RUN-METHOD", &m);
-    if (st != FBRL_OK)
-        return st;
-    if (!m->complete)
-        return fail(vm, FBRL_THROW_BAD_NAME_ARG, "RUN-METHOD: %s is not complete (END-METHOD missing)%s",
-                    m->name, "");
-    if (s->running)
-        return fail(vm, FBRL_THROW_BAD_NAME_ARG, "RUN-METHOD: %s is running already%s", s->running->name, "");
-    if (s->obs.run_begin && s->obs.run_begin(s->obs.ctx, m) != 0)
-        return fail(vm, FBRL_THROW_FILE_IO, "RUN-METHOD: %s: the run could not start (its run log?)%s",
-                    m->name, "");
-    s->running = m;
-    st = run_steps(s, m, &outcome, why, sizeof why);
-    s->running = NULL;
-    if (s->obs.run_end)
-        s->obs.run_end(s->obs.ctx, m, outcome, st != FBRL_OK ? why : NULL);
-    return st;
-}
-
 static void say(fbrl_vm *vm, const char *s) { fbrl_vmx_puts(vm, s); }
 
 /* METHODS ( -- ) */
@@ -464,8 +393,6 @@ static const method_word words[] = {
     {"USE-PARAMS", w_use_params, NULL,
      FBRL_DOC("( method -- )", "share another method's parameters (a method composed of its steps)")},
     {"END-METHOD", w_end_method, NULL, FBRL_DOC("( -- )", "end the method's declaration")},
-    {"RUN-METHOD", w_run_method, NULL,
-     FBRL_DOC("( method -- )", "run the method's steps in order (run log, console)")},
     {"METHODS", w_methods, NULL, FBRL_DOC("( -- )", "list the declared methods")},
     {".METHOD", w_dot_method, NULL, FBRL_DOC("( method -- )", "show a method's parameters and steps")},
     {"PARAM!", w_param_store, NULL,
@@ -485,16 +412,6 @@ fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s)
             return st;
     }
     return FBRL_OK;
-}
-
-void fbrl_method_set_observer(fbrl_method_set *s, const fbrl_method_observer *obs)
-{
-    if (s == NULL)
-        return;
-    if (obs)
-        s->obs = *obs;
-    else
-        memset(&s->obs, 0, sizeof s->obs);
 }
 
 const fbrl_method *fbrl_method_at(const fbrl_method_set *s, size_t i)

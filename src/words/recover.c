@@ -244,8 +244,9 @@ static fbrl_status w_recover(fbrl_vm *vm, void *ctx, const void *word)
         return fbrl_vm_push(vm, 0);
     case FBRL_RECOVER_SKIP:
         note(rc, k, what, "skip the sample");
-        return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP, "%s failed (%s): sample skipped", rc->step,
-                               fbrl_recover_kind_name(k));
+        snprintf(rc->skip_reason, sizeof rc->skip_reason, "%s failed (%s): sample skipped", rc->step,
+                 fbrl_recover_kind_name(k));
+        return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP, "%s", rc->skip_reason);
     case FBRL_RECOVER_ASK:
         if (rc->ask) {
             char q[400];
@@ -260,9 +261,9 @@ static fbrl_status w_recover(fbrl_vm *vm, void *ctx, const void *word)
             }
             if (answer == 'S') {
                 note(rc, k, what, "ask: skip the sample");
-                return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP,
-                                       "%s failed (%s): the operator skipped the sample", rc->step,
-                                       fbrl_recover_kind_name(k));
+                snprintf(rc->skip_reason, sizeof rc->skip_reason, "%s failed (%s): the operator skipped the sample",
+                         rc->step, fbrl_recover_kind_name(k));
+                return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW_SKIP, "%s", rc->skip_reason);
             }
             note(rc, k, what, "ask: abort");
         } else {
@@ -281,6 +282,17 @@ static fbrl_status w_sample_next(fbrl_vm *vm, void *ctx, const void *word)
     (void)vm;
     (void)word;
     rc->sample++;
+    return FBRL_OK;
+}
+
+/* (SKIPPED) ( -- ): RUN-SAMPLE gave its sample up: tell who asked (the method run) */
+static fbrl_status w_skipped(fbrl_vm *vm, void *ctx, const void *word)
+{
+    fbrl_recover *rc = ctx;
+    (void)vm;
+    (void)word;
+    if (rc->skip)
+        rc->skip(rc->skip_ctx, rc->skip_reason);
     return FBRL_OK;
 }
 
@@ -367,6 +379,15 @@ fbrl_status fbrl_recover_set_note(fbrl_recover *rc, fbrl_recover_note_fn fn, voi
     return FBRL_OK;
 }
 
+fbrl_status fbrl_recover_set_skip(fbrl_recover *rc, fbrl_recover_skip_fn fn, void *ctx)
+{
+    if (!rc)
+        return FBRL_EINVAL;
+    rc->skip = fn;
+    rc->skip_ctx = ctx;
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_robot *robot)
 {
     static const char forth_fmt[] =
@@ -374,7 +395,7 @@ fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_robot *robo
         "  DUP (ATTEMPT-START) BEGIN DUP CATCH ?DUP WHILE OVER (RECOVER) ?DUP IF NIP THROW THEN REPEAT DROP "
         ";\n"
         ": RUN-SAMPLE ( xt -- flag ) \\ run one sample's steps: false if a corrective action skipped it\n"
-        "  (SAMPLE+) CATCH DUP %d = IF DROP FALSE ELSE THROW TRUE THEN ;\n";
+        "  (SAMPLE+) CATCH DUP %d = IF DROP (SKIPPED) FALSE ELSE THROW TRUE THEN ;\n";
     char forth[sizeof forth_fmt + 16];
     static const struct {
         const char *name;
@@ -390,6 +411,7 @@ fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_robot *robo
         {"(ATTEMPT-START)", w_attempt_start, 0, "( xt -- )", "ATTEMPT's helper: count the step's tries anew"},
         {"(RECOVER)", w_recover, 0, "( code xt -- 0 | code )", "ATTEMPT's helper: apply the step's rule"},
         {"(SAMPLE+)", w_sample_next, 0, "( -- )", "RUN-SAMPLE's helper: the next sample"},
+        {"(SKIPPED)", w_skipped, 0, "( -- )", "RUN-SAMPLE's helper: a sample given up"},
         {"(FAILURE)", w_failure_run, 0, "( kind -- )", "FAILURE's run-time part: throw the failure"},
     };
     if (!vm || !rc)

@@ -97,7 +97,7 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
     if (fbrl_vm_compiling(vm))
         return FBRL_ESTATE;
     /* GET-CAL-POINTS' line buffer lives in the data space: the words it runs parse it */
-    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB, NULL, NULL, FBRL_DOC_TEXT("( -- a )"),
+    if (fbrl_vmx_create(vm, "(ROBOT-TIB)", 11, NULL, FBRL_ROBOT_TIB + FBRL_LINK_LINE_MAX, NULL, NULL, FBRL_DOC_TEXT("( -- a )"),
                         FBRL_DOC_TEXT("robot words' line buffer"), &r->tib, NULL) != FBRL_OK)
         return FBRL_ENOMEM;
     fbrl_status st = FBRL_OK;
@@ -118,8 +118,13 @@ fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link)
 {
     if (!r)
         return FBRL_EINVAL;
+    if (r->link && r->link != link && r->link->gate == rb_link_gate && r->link->gate_ctx == r)
+        fbrl_link_set_gate(r->link, NULL, NULL); /* the link it leaves goes on without it */
+    if (link)
+        fbrl_link_set_gate(link, rb_link_gate, r); /* every line passes the motion guard */
     r->link = link;
     r->lost = 0;
+    r->armed = NULL;
     /* a controller we did not watch may be moving: the next motion asks it first */
     r->moving = link != NULL;
     r->motion[0] = 0;

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /* robot_cell.c - the work cell's FBRL words (docs/workcell.md) and the guard they put on
- * every robot motion: before a motion word sends its first byte, the path the arm will take
- * (from where it stands, known from the last guarded motion or read with W2) is checked
- * against the cell; a motion that would hit is refused, naming the obstacle and the point. */
+ * every robot motion: before a motion sends its first byte, the path the arm will take (from
+ * where it stands, read with W2 in the same step) is checked against the cell; a motion that
+ * would hit is refused, naming the obstacle and the point, and one the guard cannot compute
+ * is refused too. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -10,11 +11,6 @@
 #include "fbrl/cell.h"
 #include "fbrl/num.h"
 #include "fbrl/vmx.h"
-
-/* Encoder pulses per degree of the A255 (DESIGN 6), for MOTOR. */
-static const double a255_ppd[FBRL_CELL_AXES] = {200.0, 200.0, 200.0, 44.44, 22.22};
-/* READY (DESIGN 6). */
-static const double a255_ready[FBRL_CELL_AXES] = {0.0, 90.0, -90.0, 0.0, 0.0};
 
 typedef struct cw_word {
     const char *name;
@@ -229,7 +225,6 @@ static fbrl_status w_world(fbrl_cell_words *cw, const cw_word *w)
 static fbrl_status w_guard(fbrl_cell_words *cw, const cw_word *w)
 {
     cw->guard = w->arg;
-    cw->known = 0; /* switched back on: where the arm is gets read afresh */
     return FBRL_OK;
 }
 
@@ -353,14 +348,26 @@ static int active(const fbrl_cell_words *cw)
     return cw->guard && (cw->model.have_table || cw->model.n > 0);
 }
 
+static fbrl_robot_guard_state guard_state(void *ctx)
+{
+    const fbrl_cell_words *cw = ctx;
+    if (!cw->model.have_table && cw->model.n == 0)
+        return FBRL_ROBOT_GUARD_EMPTY;
+    return cw->guard ? FBRL_ROBOT_GUARD_ON : FBRL_ROBOT_GUARD_OFF;
+}
+
 static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what)
 {
-    char msg[160];
+    char msg[FBRL_CELL_MSG_MAX];
     snprintf(msg, sizeof msg, "%s: %s; nothing was sent", m->word, what);
-    if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX)
-        memcpy(cw->stats.refusals[cw->stats.nrefusals++], msg, sizeof msg);
+    if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX) { /* the report keeps its head */
+        char *keep = cw->stats.refusals[cw->stats.nrefusals++];
+        size_t n = strlen(msg) < sizeof cw->stats.refusals[0] ? strlen(msg) : sizeof cw->stats.refusals[0] - 1;
+        memcpy(keep, msg, n);
+        keep[n] = '\0';
+    }
     cw->stats.refused++;
-    return fbrl_vmx_throwf(cw->vm, FBRL_CELL_THROW_COLLISION, "%s", msg);
+    return fbrl_robot_fail(cw->r, FBRL_ROBOT_THROW_REFUSED, msg);
 }
 
 static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
@@ -368,49 +375,94 @@ static void note_path(fbrl_cell_words *cw, const double q[FBRL_CELL_AXES])
     double pose[6];
     if (cw->npath >= FBRL_CELL_PATH_MAX)
         return;
-    fbrl_cell_fk(&cw->model.arm, q, pose);
+    fbrl_arm_fk(cw->model.arm, q, cw->model.tcp, pose);
     memcpy(cw->path[cw->npath++], pose, 3 * sizeof(double));
 }
 
+/* Where the arm stands (it stands: robot_gate.c waited for it), read from the controller
+ * for every check: a stop the guard did not command (HALT, power off, an E-stop, the
+ * pendant, a lost connection) or a motion sent around it never leaves the guard checking
+ * from the wrong place. One W1 line (motor pulses) once a W2 has shown that pulses are
+ * joints times the arm's pulses per degree on this controller (again after anything that
+ * changes the where-epoch: a link set, HALT, ...); else, or when that line was not clean,
+ * the whole W2. The last motion's end counts as the start only when the pulses show the
+ * arm there (within a pulse on every axis): seen to end there. *n: the axes read. */
+/* Two pulse counts within one pulse of each other. */
+static int near_pulse(long a, long b) { return a - b <= 1 && b - a <= 1; }
+
+static fbrl_status where(fbrl_cell_words *cw, fbrl_robot *r, const char *word, double *q, unsigned *n)
+{
+    const fbrl_arm *arm = cw->model.arm;
+    fbrl_rapl_pos p;
+    fbrl_status st;
+    int expect = cw->expect;
+    cw->expect = 0;
+    if (cw->pulses_ok && cw->epoch == fbrl_robot_where_epoch(r)) {
+        long pulses[FBRL_RAPL_MAX_AXES];
+        st = fbrl_robot_pulses(r, word, pulses, n);
+        if (st == FBRL_OK && *n == arm->naxes) {
+            for (unsigned k = 0; k < *n; k++) {
+                q[k] = fbrl_arm_degrees(arm, k, pulses[k]);
+                expect = expect && near_pulse(pulses[k], fbrl_arm_pulses(arm, k, cw->pending[k]));
+            }
+            if (expect)
+                memcpy(q, cw->pending, arm->naxes * sizeof q[0]);
+            return FBRL_OK;
+        }
+        if (st != FBRL_OK && st != FBRL_EPROTOCOL)
+            return st;
+    }
+    if ((st = fbrl_robot_position(r, word, &p)) != FBRL_OK)
+        return st;
+    *n = p.njoints;
+    for (unsigned k = 0; k < p.njoints; k++)
+        q[k] = p.joints[k];
+    cw->pulses_ok = p.njoints == arm->naxes && p.npulses == arm->naxes;
+    for (unsigned k = 0; cw->pulses_ok && k < arm->naxes; k++) /* 4 decimals: within a pulse */
+        cw->pulses_ok = near_pulse(p.pulses[k], fbrl_arm_pulses(arm, k, p.joints[k]));
+    cw->epoch = fbrl_robot_where_epoch(r);
+    return FBRL_OK;
+}
+
+/* The check, one step with the motion's send (robot_gate.c): nothing else runs between. */
 static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *m)
 {
     fbrl_cell_words *cw = ctx;
+    const fbrl_arm *arm = cw->model.arm;
     double q0[FBRL_CELL_AXES], q1[FBRL_CELL_AXES], p0[6], target[6];
     fbrl_cell_hit *h = &cw->last;
     fbrl_status st;
     int line = m->straight;
-    char what[128], a[24], b[24], c[24];
+    char what[FBRL_CELL_MSG_MAX - 32], a[24], b[24], c[24];
+    cw->checked = 0;
     if (!active(cw) || m->kind == FBRL_ROBOT_MOVE_HOME)
         return FBRL_OK;
     if (m->kind == FBRL_ROBOT_MOVE_OTHER)
         return refuse(cw, m, "the guard cannot follow this motion (CELL-GUARD-OFF sends it unchecked)");
-    if (!cw->known || cw->epoch != fbrl_robot_where_epoch(r)) {
-        double q[16];
-        unsigned n = 0;
-        if ((st = fbrl_robot_joints(r, m->word, q, &n)) != FBRL_OK)
-            return st;
-        if (n != FBRL_CELL_AXES) /* the guard's kinematics are the A255's (DESIGN 6) */
-            return fbrl_vmx_throwf(
-                cw->vm, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED),
-                "%s: the guard knows 5-axis arms (A255); this arm has %u axes (CELL-GUARD-OFF "
-                "sends the motion unchecked)",
-                m->word, n);
-        memcpy(cw->q, q, sizeof cw->q);
-        cw->known = 1;
-        cw->epoch = fbrl_robot_where_epoch(r);
+    double q[FBRL_RAPL_MAX_AXES] = {0};
+    unsigned n = 0;
+    if ((st = where(cw, r, m->word, q, &n)) != FBRL_OK)
+        return st;
+    if (n != arm->naxes) { /* the controller is not the arm the guard computes */
+        snprintf(what, sizeof what,
+                 "%s: the guard computes the %s (%u axes); this controller reports %u (fbrlmon --arm names "
+                 "the arm; CELL-GUARD-OFF sends the motion unchecked)",
+                 m->word, arm->name, arm->naxes, n);
+        return fbrl_robot_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_EUNSUPPORTED), what);
     }
+    memcpy(cw->q, q, sizeof cw->q);
     place_blocks(cw);
     memcpy(q0, cw->q, sizeof q0);
     memcpy(q1, q0, sizeof q1);
-    fbrl_cell_fk(&cw->model.arm, q0, p0);
+    fbrl_arm_fk(arm, q0, cw->model.tcp, p0);
     memcpy(target, p0, sizeof target);
     switch (m->kind) {
     case FBRL_ROBOT_MOVE_POSE:
         memcpy(target, m->v, sizeof target);
         if (m->dist != 0.0)
-            fbrl_cell_back_off(m->v, q0[0], m->dist, target);
+            fbrl_arm_back_off(arm, m->v, q0[0], m->dist, target);
         break;
-    case FBRL_ROBOT_MOVE_DEPART: fbrl_cell_back_off(p0, q0[0], m->dist, target); break;
+    case FBRL_ROBOT_MOVE_DEPART: fbrl_arm_back_off(arm, p0, q0[0], m->dist, target); break;
     case FBRL_ROBOT_MOVE_JOG:
         for (int k = 0; k < 3; k++)
             target[k] += m->v[k];
@@ -418,48 +470,56 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         break;
     case FBRL_ROBOT_MOVE_JOINTS: memcpy(q1, m->v, sizeof q1); break;
     case FBRL_ROBOT_MOVE_DJOINTS:
-        for (int k = 0; k < FBRL_CELL_AXES; k++)
+        for (unsigned k = 0; k < arm->naxes; k++)
             q1[k] += m->v[k];
         break;
     case FBRL_ROBOT_MOVE_MOTOR:
-        if (m->v[0] >= 1 && m->v[0] <= FBRL_CELL_AXES)
-            q1[(int)m->v[0] - 1] += m->v[1] / a255_ppd[(int)m->v[0] - 1];
+        if (m->v[0] >= 1 && m->v[0] <= arm->naxes)
+            q1[(int)m->v[0] - 1] += fbrl_arm_degrees(arm, (unsigned)m->v[0] - 1, 1) * m->v[1];
         break;
-    case FBRL_ROBOT_MOVE_READY: memcpy(q1, a255_ready, sizeof q1); break;
+    case FBRL_ROBOT_MOVE_READY: memcpy(q1, arm->ready, sizeof q1); break;
     default: break;
     }
     int to_pose = m->kind == FBRL_ROBOT_MOVE_POSE || m->kind == FBRL_ROBOT_MOVE_DEPART ||
                   m->kind == FBRL_ROBOT_MOVE_JOG;
-    if (to_pose && !line && fbrl_cell_ik(&cw->model.arm, target, q0, q1) != FBRL_OK) {
-        cw->known = 0; /* out of reach: the controller says so (029, 04x) and stays put */
-        return FBRL_OK;
+    /* a target or a line the guard cannot compute cannot be checked: refused while a cell is
+     * described (a controller in millimetres reads such a target as another, reachable one) */
+    if (to_pose && !line && fbrl_arm_ik(arm, target, cw->model.tcp, q0, q1, NULL) != FBRL_OK) {
+        snprintf(what, sizeof what, "the guard cannot check it: X %s Y %s Z %s in is beyond the arm's reach",
+                 num(a, sizeof a, target[0]), num(b, sizeof b, target[1]), num(c, sizeof c, target[2]));
+        return refuse(cw, m, what);
     }
     if (!to_pose && line)
-        fbrl_cell_fk(&cw->model.arm, q1, target);
+        fbrl_arm_fk(arm, q1, cw->model.tcp, target);
     st = line ? fbrl_cell_check_line(&cw->model, q0, target, h)
               : fbrl_cell_check_joints(&cw->model, q0, q1, h);
-    if (st != FBRL_OK) {
-        cw->known = 0; /* a line the arm cannot follow: the controller refuses it (068) */
-        return FBRL_OK;
-    }
+    if (st != FBRL_OK)
+        return refuse(cw, m,
+                      "the guard cannot check it: the straight line leaves the arm's reach (move in steps, "
+                      "or joint-interpolated)");
     if (h->hit) {
-        snprintf(what, sizeof what, "would hit %s at X %s Y %s Z %s in (%d%% of the way)",
-                 fbrl_cell_obj_name(&cw->model, h->obj), num(a, sizeof a, h->at[0]),
+        snprintf(what, sizeof what, "would hit %s with the %s at X %s Y %s Z %s in (%d%% of the way)",
+                 fbrl_cell_obj_name(&cw->model, h->obj), fbrl_arm_part_name(h->part), num(a, sizeof a, h->at[0]),
                  num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]), (int)(h->fraction * 100.0 + 0.5));
         return refuse(cw, m, what);
     }
     memcpy(cw->pending, h->q_end, sizeof cw->pending);
+    cw->checked = 1;
     return FBRL_OK;
 }
 
+/* After the motion line, in the same step as its check: the record and the picture. Where
+ * the arm ends is not taken from here (the next check reads it). */
 static void guard_done(void *ctx, fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result)
 {
     fbrl_cell_words *cw = ctx;
     (void)r;
-    if (!active(cw) || result != FBRL_OK || m->kind == FBRL_ROBOT_MOVE_HOME || !cw->known) {
-        cw->known = 0;
+    if (!cw->checked || result != FBRL_OK) {
+        cw->checked = 0;
         return;
     }
+    cw->checked = 0;
+    cw->expect = 1; /* the next check sees whether it ended there */
     cw->stats.moves++;
     if (cw->last.clearance < cw->stats.clearance) {
         cw->stats.clearance = cw->last.clearance;
@@ -474,7 +534,6 @@ static void guard_done(void *ctx, fbrl_robot *r, const fbrl_robot_move *m, fbrl_
             q[i] = cw->q[i] + (cw->pending[i] - cw->q[i]) * k / 8.0;
         note_path(cw, q);
     }
-    memcpy(cw->q, cw->pending, sizeof cw->q);
 }
 
 fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g)
@@ -497,9 +556,11 @@ fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, f
         if (st != FBRL_OK)
             return st;
     }
+    memset(&gd, 0, sizeof gd);
     gd.check = guard_check;
     gd.done = guard_done;
     gd.ctx = cw;
+    gd.state = guard_state;
     return fbrl_robot_set_guard(r, &gd);
 }
 

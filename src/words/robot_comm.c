@@ -147,7 +147,42 @@ static fbrl_status raw_begin(fbrl_robot *r)
 {
     if (!r->link || (r->raw_open && r->raw_link_mark == link_mark(r->link)))
         return FBRL_OK;
+    r->raw_len = 0;
     return fbrl_link_clear_line(r->link);
+}
+
+/* The raw bytes as the controller's line editor takes them (BS and DEL erase): each line
+ * they end (CR or LF) runs, and passes the motion guard's gate first (rb_link_gate): while
+ * the guard is on, one that can move the arm is refused, and none of the bytes is sent (the
+ * guard cannot follow a motion typed byte by byte). *len gets the unfinished line's length
+ * (in line[]) once they are sent. */
+static fbrl_status raw_gate(fbrl_robot *r, const rb_word *w, const uint8_t *p, size_t n, char *line, size_t *len)
+{
+    size_t k = r->raw_open ? r->raw_len : 0;
+    memcpy(line, (const char *)r->tib + FBRL_ROBOT_TIB, k);
+    for (size_t i = 0; i < n; i++) {
+        if (p[i] == '\r' || p[i] == '\n') {
+            if (k > 0 && rb_link_gate(r, line, k, 0) != FBRL_OK) {
+                char msg[220];
+                /* what of it the controller has on its line never runs: erased */
+                r->raw_open = 0;
+                r->raw_len = 0;
+                (void)fbrl_link_clear_line(r->link);
+                snprintf(msg, sizeof msg,
+                         "%s: %.*s would move the arm unchecked by the guard (RAPL checks it); erased, "
+                         "nothing ran",
+                         w->name, (int)k, line);
+                return rb_fail(r, FBRL_ROBOT_THROW_REFUSED, msg);
+            }
+            k = 0;
+        } else if (p[i] == 0x08 || p[i] == 0x7f) {
+            k -= k > 0;
+        } else if (k < FBRL_LINK_LINE_MAX) {
+            line[k++] = (char)p[i];
+        }
+    }
+    *len = k;
+    return FBRL_OK;
 }
 
 /* After raw bytes: a CR or LF ends the raw line (the controller ran it). */
@@ -175,9 +210,16 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
                                "XON/XOFF bytes cannot be sent as data while XON/XOFF flow control is on");
     if ((st = raw_begin(r)) != FBRL_OK)
         return rb_fail_st(r, w, st, "port");
+    char line[FBRL_LINK_LINE_MAX + 1];
+    size_t len = 0;
+    if ((st = raw_gate(r, w, p, n, line, &len)) != FBRL_OK)
+        return st;
     st = fbrl_uart_write(u, p, n, NULL, COMM_TIMEOUT_MS);
-    if (st == FBRL_OK)
+    if (st == FBRL_OK) {
         raw_end(r, p, n);
+        memcpy((char *)r->tib + FBRL_ROBOT_TIB, line, len);
+        r->raw_len = len;
+    }
     if (st == FBRL_OK && w->arg)
         st = fbrl_uart_drain(u, COMM_TIMEOUT_MS);
     return st == FBRL_OK ? FBRL_OK : rb_fail_st(r, w, st, "port");

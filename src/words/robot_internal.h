@@ -2,11 +2,13 @@
 /* robot_internal.h - shared by the robot words' sources (private to the library):
  *   robot.c        binding the tables into a VM (fbrl_robot_install)
  *   robot_svc.c    errors, Ctrl-C, console, clock, the motion guard's hook
+ *   robot_rline.c  what a raw RAPL line is, and the motion it makes
  *   robot_link.c   commands to the controller through the link
  *   robot_param.c  parameters from the stacks or the input (I-6), their checks
  *   robot_loc.c    locations: mapping, base offset, scratch points, the arm's position
  *   robot_motion.c robot_rapl.c robot_teach.c robot_line.c robot_comm.c robot_io.c
  *   robot_import.c: the words
+ *   robot_gate.c   the one gate every motion passes (rb_motion, the link's gate, C callers)
  *   robot_safe.c   the safe stop after an abort (fbrl_robot_safe_stop)
  *   robot_guard.c  the arm's joints for a motion guard (fbrl_robot_joints)
  * Calls go downwards in that list (tables up to robot.c), never in a circle. */
@@ -66,8 +68,13 @@ fbrl_status rb_interrupted(fbrl_robot *r);
  * message holds the controller's code and text. */
 fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
                    int straight);
-/* Run a raw line; its output lines go to the console when print != 0. */
-fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
+/* Send a command, no waits (rb_cmd without its waits for claims and the arm; checked: the
+ * step rb_motion checked it, the link's gate lets it through). */
+fbrl_status rb_send(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
+                    int straight, int checked);
+/* Send a raw line (checked: as rb_send); its output lines go to the console when print != 0. */
+fbrl_status rb_raw_send(fbrl_robot *r, const rb_word *w, const char *line, int print, int checked);
+
 /* Wait until a motion this context sent has ended (the commanded velocity, W5, one line
  * a round, a round every RB_STILL_POLL_MS or as fast as the line allows, until it reads
  * zero; Ctrl-C throws), so that the next motion or FINISH never waits inside the
@@ -129,11 +136,37 @@ fbrl_status rb_from_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, fb
 fbrl_status rb_scratch_point(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, const char **name);
 fbrl_status rb_arm_where(fbrl_robot *r, const rb_word *w, int finish, fbrl_loc *arm);
 
-/* robot_svc.c: the guard's check before a motion sends anything (m->word is set), and
- * its notice after the motion command (returns result); the arm's position became unknown. */
-fbrl_status rb_guard(fbrl_robot *r, const rb_word *w, fbrl_robot_move *m);
-fbrl_status rb_guard_done(fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result);
+/* robot_svc.c: the arm's position became unknown to the host (fbrl_robot_where_epoch). */
 void rb_where_lost(fbrl_robot *r);
+
+/* robot_rline.c: what a raw RAPL line is (its first word), whether it can move the arm (a
+ * motion, RUN, or a word the host does not know), whether it leaves the arm where the host
+ * cannot tell (HALT, LIMP, MANUAL, TEACH), and the motion it makes as the guard sees it
+ * (FBRL_ROBOT_MOVE_OTHER: one the guard cannot follow, e.g. MOVE to a controller location). */
+typedef enum rb_line_kind { RB_LINE_EMPTY, RB_LINE_CMD, RB_LINE_ASSIGN, RB_LINE_UNKNOWN } rb_line_kind;
+rb_line_kind rb_line_cmd(const char *line, size_t len, fbrl_rapl_cmd *cmd);
+int rb_line_moves(rb_line_kind k, fbrl_rapl_cmd cmd);
+int rb_line_loses(rb_line_kind k, fbrl_rapl_cmd cmd);
+void rb_line_move(const char *line, size_t len, fbrl_robot_move *m);
+
+/* robot_gate.c: one motion as one step no other task can enter (waits first, then the
+ * guard's check, the scratch point and the motion line, then the guard's notice). o says
+ * what to send: cmd with a[n] (point != NULL: POINT a scratch location there first, a[0]
+ * becomes its name), or the raw line (print: its output lines to the console). */
+typedef struct rb_out {
+    fbrl_rapl_cmd cmd;
+    fbrl_rapl_arg *a;
+    size_t n;
+    int straight;
+    const fbrl_loc *point;
+    const char *raw;
+    int print;
+} rb_out;
+fbrl_status rb_motion(fbrl_robot *r, const rb_word *w, fbrl_robot_move *m, rb_out *o);
+/* The link's gate (fbrl_link_set_gate) a robot puts on its link. */
+fbrl_status rb_link_gate(void *ctx, const char *line, size_t len, int unguarded);
+/* A raw line from RAPL, SEND-CR, IMPORT-LOC ...: a motion through rb_motion, else sent. */
+fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print);
 
 /* robot_comm.c: resynchronise the link after raw output; point PRINT-LOC at the port */
 fbrl_status rb_resync(fbrl_robot *r);

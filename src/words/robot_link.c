@@ -117,6 +117,32 @@ fbrl_status rb_units(fbrl_robot *r, const rb_word *w)
     return rb_fail(r, FBRL_VM_THROW_OF_STATUS(FBRL_ESTATE), msg);
 }
 
+/* What to do about an error, as things stand here: after the controller's 190-COLLISION
+ * that depends on the guard (no cell described, the guard off, or a cell that lacks what
+ * the arm met). "" when there is nothing to add, and under FBRL_NO_HELP, which leaves the
+ * controller's error advice out (fbrl_rapl_error_help). */
+static const char *rb_advice(const fbrl_robot *r, int code)
+{
+#ifdef FBRL_NO_HELP
+    (void)r;
+    (void)code;
+    return "";
+#else
+    if (fbrl_rapl_error_class(code) != FBRL_RAPL_ERRC_COLLISION)
+        return "";
+    fbrl_robot_guard_state g = !r->guard.check ? FBRL_ROBOT_GUARD_EMPTY
+                               : r->guard.state ? r->guard.state(r->guard.ctx)
+                                                : FBRL_ROBOT_GUARD_ON;
+    if (g == FBRL_ROBOT_GUARD_EMPTY)
+        return ": describe the cell on the host too (CELL-BOX ...), so that the guard refuses such a move "
+               "before it is sent";
+    if (g == FBRL_ROBOT_GUARD_OFF)
+        return ": the guard is off (CELL-GUARD-OFF); CELL-GUARD-ON checks every motion before it is sent";
+    return ": the guard let it pass, so the host's cell lacks what the arm met: describe it as the "
+           "controller's cell has it";
+#endif
+}
+
 fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
 {
     char msg[240];
@@ -136,8 +162,8 @@ fbrl_status rb_link_result(fbrl_robot *r, const rb_word *w, fbrl_status st)
             snprintf(msg, sizeof msg, "%s: controller error, code unknown (its error line came damaged)",
                      w->name);
         else
-            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s", w->name, code, text,
-                     help ? " (" : "", help ? help : "", help ? ")" : "");
+            snprintf(msg, sizeof msg, "%s: controller error %03d-%s%s%s%s%s", w->name, code, text,
+                     help ? " (" : "", help ? help : "", help ? ")" : "", rb_advice(r, code));
         return rb_fail(r, FBRL_VM_THROW_OF_STATUS(st), msg);
     }
     if (st == FBRL_EMAYBE) {
@@ -166,16 +192,27 @@ typedef struct still_read {
     unsigned zeros; /* consecutive all-zero value lines, up to the last one */
 } still_read;
 
+int fbrl_robot_still_line(const char *line, size_t len, int flawed)
+{
+    long v[FBRL_RAPL_MAX_AXES];
+    size_t n = 0, k;
+    if (!line || flawed) /* a damaged line is no proof of rest */
+        return 0;
+    if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
+        return 0; /* title */
+    for (k = 0; k < n && v[k] == 0; k++)
+        ;
+    return k == n;
+}
+
 static void still_line(void *ctx, const char *line, size_t len, int flawed)
 {
     still_read *sr = ctx;
     long v[FBRL_RAPL_MAX_AXES];
-    size_t n = 0, k;
+    size_t n = 0;
     if (fbrl_rapl_parse_ints(line, len, v, FBRL_RAPL_MAX_AXES, &n) != FBRL_OK || n == 0)
-        return; /* title */
-    for (k = 0; k < n && v[k] == 0; k++)
-        ;
-    sr->zeros = !flawed && k == n ? sr->zeros + 1 : 0; /* a damaged line is no proof of rest */
+        return; /* a title leaves the count as it is */
+    sr->zeros = fbrl_robot_still_line(line, len, flawed) ? sr->zeros + 1 : 0;
 }
 
 fbrl_status rb_still(fbrl_robot *r, const rb_word *w)
@@ -272,14 +309,23 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     if ((motion || cmd == FBRL_RAPL_OPEN || cmd == FBRL_RAPL_CLOSE || cmd == FBRL_RAPL_GRIP) &&
         (st = fbrl_vmx_claim_wait(r->vm, FBRL_VMX_ARM)) != FBRL_OK)
         return st;
-    if (cmd == FBRL_RAPL_OUTPUT)
-        note_outputs(r, a, n);
     /* a motion or FINISH behind a running motion would make the controller wait, deaf
      * to HALT: wait here instead, where Ctrl-C can stop the arm */
     if ((motion || cmd == FBRL_RAPL_FINISH) && (st = rb_still(r, w)) != FBRL_OK) {
         r->have_target = 0;
         return st;
     }
+    return rb_send(r, w, cmd, a, n, straight, 0);
+}
+
+fbrl_status rb_send(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *a, size_t n,
+                    int straight, int checked)
+{
+    fbrl_status st;
+    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
+    int motion = ci && (ci->flags & FBRL_RAPL_F_MOTION);
+    if (cmd == FBRL_RAPL_OUTPUT)
+        note_outputs(r, a, n);
     if (!ci || !(ci->flags & FBRL_RAPL_F_WAITS)) { /* the table: its prompt never comes late */
         fbrl_status res = fbrl_link_cmd(r->link, cmd, a, n, straight);
         if (res == FBRL_OK && cmd == FBRL_RAPL_HALT)
@@ -295,8 +341,11 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
     fbrl_status res = fbrl_rapl_encode(text, sizeof text, &len, form, cmd, a, n, straight);
     if (res == FBRL_OK && len > FBRL_LINK_LINE_MAX)
         res = FBRL_ERANGE;
+    if (res == FBRL_OK && checked)
+        r->armed = text; /* the gate lets this one line through */
     if (res == FBRL_OK)
         res = fbrl_link_start(r->link, text, FBRL_LINK_REPLY_NONE);
+    r->armed = NULL;
     if (res == FBRL_OK && motion) {
         /* sent (its fate may stay unknown): count it as running until W5 says not */
         r->moving = 1;
@@ -311,7 +360,7 @@ fbrl_status rb_cmd(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd, const fbr
         r->moving = 0; /* refused: nothing started */
     if (res == FBRL_OK && cmd == FBRL_RAPL_FINISH)
         r->moving = 0;
-    if (res == FBRL_OK && r->tell && motion)
+    if (res == FBRL_OK && r->tell && motion && !r->c_msg) /* a C caller shows its own */
         tell_motion(r, w, text);
     r->have_target = 0;
     return rb_link_result(r, w, res);
@@ -373,73 +422,22 @@ fbrl_status rb_show(fbrl_robot *r, const rb_word *w, const char *line, fbrl_link
     return rb_link_result(r, w, res);
 }
 
-/* Is line a read-only query the link would read twice (W0 W2 W4 STATUS TYPEI TYPEV)? */
-static int display_query(const char *line)
-{
-    fbrl_rapl_cmd c;
-    if (fbrl_rapl_line_cmd(line, &c, NULL) != FBRL_OK)
-        return 0;
-    fbrl_rapl_reply kind = fbrl_rapl_cmd_info(c)->reply; /* the table says what it prints */
-    return kind >= FBRL_RAPL_REPLY_POS && kind <= FBRL_RAPL_REPLY_REAL;
-}
-
-/* What a raw line is, from its first word: a motion, FINISH, OUTPUT (its outputs are
- * noted), or a command the host cannot name (which might move the arm). */
-static void raw_kind(fbrl_robot *r, const char *line, int *motion, int *finish)
-{
-    fbrl_rapl_cmd cmd;
-    const char *args;
-    *motion = *finish = 0;
-    if (fbrl_rapl_line_cmd(line, &cmd, &args) != FBRL_OK) {
-        *motion = 1;
-        return;
-    }
-    if (cmd == FBRL_RAPL_ASSIGN)
-        return;
-    *motion = (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION) != 0 || cmd == FBRL_RAPL_RUN;
-    *finish = cmd == FBRL_RAPL_FINISH;
-    if (cmd == FBRL_RAPL_OUTPUT)
-        for (const char *p = args - 1; *p; p++)
-            if (*p >= '1' && *p <= '9' && (p[-1] == ' ' || p[-1] == ',' || p[-1] == '+')) {
-                long v = 0;
-                while (*p >= '0' && *p <= '9')
-                    v = v * 10 + (*p++ - '0');
-                fbrl_rapl_arg a = fbrl_rapl_int(v);
-                note_outputs(r, &a, 1);
-                if (!*p)
-                    break;
-            }
-}
-
-fbrl_status rb_raw(fbrl_robot *r, const rb_word *w, const char *line, int print)
+fbrl_status rb_raw_send(fbrl_robot *r, const rb_word *w, const char *line, int print, int motion)
 {
     void (*fn)(void *, const char *, size_t, int);
     void *ctx;
-    int motion, finish;
-    if (print && display_query(line))
-        return rb_show(r, w, line, NULL, NULL);
-    fbrl_status st = rb_online(r);
-    if (st != FBRL_OK)
-        return st;
-    raw_kind(r, line, &motion, &finish);
-    fbrl_robot_move m;
-    memset(&m, 0, sizeof m);
-    m.kind = FBRL_ROBOT_MOVE_OTHER; /* the host cannot tell where a raw line takes the arm */
-    if (motion && (st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
-    if ((motion || finish) && (st = rb_still(r, w)) != FBRL_OK)
-        return st;
+    fbrl_status st;
     if (motion) {
+        r->armed = line; /* checked: the gate lets it through */
         r->moving = 1;
         snprintf(r->motion, sizeof r->motion, "%s", line);
     }
     if (print)
         borrow_lines(r, &fn, &ctx);
     st = fbrl_link_raw(r->link, line);
+    r->armed = NULL;
     if (print)
         return_lines(r, fn, ctx);
-    if (motion)
-        (void)rb_guard_done(r, &m, st);
     return rb_link_result(r, w, st);
 }
 

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fbrl/arm.h"
 #include "fbrl/num.h"
 #include "robot_internal.h"
 
@@ -79,16 +80,6 @@ fbrl_status rb_loc_write(fbrl_robot *r, const rb_word *w, fbrl_cell addr, const 
     return FBRL_OK;
 }
 
-static double wrap180(double a)
-{
-    a = fmod(a, 360.0);
-    if (a > 180.0)
-        a -= 360.0;
-    if (a <= -180.0)
-        a += 360.0;
-    return a;
-}
-
 /* A location of the user's frame as the controller must see it: MAP-ON mapping (the
  * block's motion), then the BASE-OFFSET (where the user's world sits on the arm). */
 fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbrl_loc *arm)
@@ -112,7 +103,7 @@ fbrl_status rb_to_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *user, fbr
     arm->x = c * m.x - s * m.y + r->base[0];
     arm->y = s * m.x + c * m.y + r->base[1];
     arm->z = m.z + r->base[2];
-    arm->o = r->base[3] != 0.0 ? wrap180(m.o + r->base[3]) : m.o;
+    arm->o = r->base[3] != 0.0 ? fbrl_arm_wrap(m.o + r->base[3]) : m.o;
     arm->a = m.a;
     arm->t = m.t;
     return FBRL_OK;
@@ -127,7 +118,7 @@ fbrl_status rb_from_arm(fbrl_robot *r, const rb_word *w, const fbrl_loc *arm, fb
     m.x = c * dx + s * dy;
     m.y = -s * dx + c * dy;
     m.z = arm->z - r->base[2];
-    m.o = r->base[3] != 0.0 ? wrap180(arm->o - r->base[3]) : arm->o;
+    m.o = r->base[3] != 0.0 ? fbrl_arm_wrap(arm->o - r->base[3]) : arm->o;
     m.a = arm->a;
     m.t = arm->t;
     if (!map) {

@@ -14,19 +14,17 @@
 static fbrl_status w_plain(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_robot_move m;
-    fbrl_status st;
+    rb_out o;
     (void)v;
+    if (w->cmd != FBRL_RAPL_READY && w->cmd != FBRL_RAPL_HOME && w->cmd != FBRL_RAPL_ALIGN)
+        return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0); /* HALT: the link's gate notes it */
     memset(&m, 0, sizeof m);
     m.kind = w->cmd == FBRL_RAPL_READY  ? FBRL_ROBOT_MOVE_READY
              : w->cmd == FBRL_RAPL_HOME ? FBRL_ROBOT_MOVE_HOME
                                         : FBRL_ROBOT_MOVE_OTHER;
-    int motion = w->cmd == FBRL_RAPL_READY || w->cmd == FBRL_RAPL_HOME || w->cmd == FBRL_RAPL_ALIGN;
-    if (motion && (st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
-    st = rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0);
-    if (w->cmd == FBRL_RAPL_HALT)
-        rb_where_lost(r); /* stopped somewhere on the way */
-    return motion ? rb_guard_done(r, &m, st) : st;
+    memset(&o, 0, sizeof o);
+    o.cmd = (fbrl_rapl_cmd)w->cmd;
+    return rb_motion(r, w, &m, &o);
 }
 
 /* One axis / number. arg: 0 plain; 1 axis 1..n with 0 = all (no argument sent);
@@ -61,6 +59,7 @@ static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_robot_move m;
+    rb_out o;
     memset(&m, 0, sizeof m);
     if (w->cmd == FBRL_RAPL_MOTOR) {
         m.kind = FBRL_ROBOT_MOVE_MOTOR;
@@ -70,12 +69,12 @@ static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
         m.kind = FBRL_ROBOT_MOVE_DJOINTS;
         m.v[v[0].i - 1] = (double)v[1].i;
     }
-    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
     fbrl_rapl_arg a[2] = {fbrl_rapl_int((long)v[0].i), w->cmd == FBRL_RAPL_MOTOR
                                                            ? fbrl_rapl_int((long)v[1].i)
                                                            : fbrl_rapl_real((double)v[1].i)};
-    return rb_guard_done(r, &m, rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 2, 0));
+    memset(&o, 0, sizeof o);
+    o.cmd = (fbrl_rapl_cmd)w->cmd, o.a = a, o.n = 2;
+    return rb_motion(r, w, &m, &o);
 }
 
 /* GAIN ( motor# -- | F: value ) */
@@ -114,15 +113,16 @@ static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_robot_move m;
+    rb_out o;
     memset(&m, 0, sizeof m);
     m.kind = FBRL_ROBOT_MOVE_JOG;
     m.straight = 1;
     for (int k = 0; k < 3; k++)
         m.v[k] = rb_len_in(r, v[k].f);
-    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
     fbrl_rapl_arg a[3] = {fbrl_rapl_real(m.v[0]), fbrl_rapl_real(m.v[1]), fbrl_rapl_real(m.v[2])};
-    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_JOG, a, 3, 0));
+    memset(&o, 0, sizeof o);
+    o.cmd = FBRL_RAPL_JOG, o.a = a, o.n = 3;
+    return rb_motion(r, w, &m, &o);
 }
 
 /* MA / MI ( F: j1 .. jn -- ), one per axis of the arm; arg 1 = straight */
@@ -133,17 +133,18 @@ static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_robot_move m;
+    rb_out o;
     memset(&m, 0, sizeof m);
     m.kind = w->cmd == FBRL_RAPL_MA ? FBRL_ROBOT_MOVE_JOINTS : FBRL_ROBOT_MOVE_DJOINTS;
     m.straight = (int)w->arg;
     for (size_t k = 0; k < n && k < 6; k++)
         m.v[k] = v[k].f * (180.0 / 3.14159265358979323846);
-    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
     fbrl_rapl_arg a[FBRL_RAPL_ARM_AXES_MAX];
     for (size_t k = 0; k < n; k++)
         a[k] = fbrl_rapl_real(v[k].f);
-    return rb_guard_done(r, &m, rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, n, (int)w->arg));
+    memset(&o, 0, sizeof o);
+    o.cmd = (fbrl_rapl_cmd)w->cmd, o.a = a, o.n = n, o.straight = (int)w->arg;
+    return rb_motion(r, w, &m, &o);
 }
 
 /* DEPART / DEPART-STRT ( F: distance -- ) */
@@ -153,14 +154,15 @@ static fbrl_status w_depart(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_robot_move m;
+    rb_out o;
     memset(&m, 0, sizeof m);
     m.kind = FBRL_ROBOT_MOVE_DEPART;
     m.straight = (int)w->arg;
     m.dist = rb_len_in(r, v[0].f);
-    if ((st = rb_guard(r, w, &m)) != FBRL_OK)
-        return st;
     fbrl_rapl_arg a = fbrl_rapl_real(m.dist);
-    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_DEPART, &a, 1, (int)w->arg));
+    memset(&o, 0, sizeof o);
+    o.cmd = FBRL_RAPL_DEPART, o.a = &a, o.n = 1, o.straight = (int)w->arg;
+    return rb_motion(r, w, &m, &o);
 }
 
 /* The guard's view of a move to a location (at arm coordinates). */
@@ -179,50 +181,44 @@ static fbrl_robot_move *pose_move(fbrl_robot_move *m, const fbrl_loc *arm, doubl
 static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_loc user, arm;
-    const char *name;
+    fbrl_robot_move m;
+    fbrl_rapl_arg a[1];
+    rb_out o;
     fbrl_status st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK)
         st = rb_online(r);
-    fbrl_robot_move m;
     if (st == FBRL_OK)
         st = rb_to_arm(r, w, &user, &arm);
-    if (st == FBRL_OK)
-        st = rb_guard(r, w, pose_move(&m, &arm, 0.0, (int)w->arg));
-    if (st == FBRL_OK)
-        st = rb_still(r, w); /* the step starts once the arm stands */
-    if (st == FBRL_OK)
-        st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK)
         return st;
-    fbrl_rapl_arg a = fbrl_rapl_str(name);
+    memset(&o, 0, sizeof o);
+    o.cmd = FBRL_RAPL_MOVE, o.a = a, o.n = 1, o.straight = (int)w->arg, o.point = &arm;
     r->target = user, r->have_target = 1; /* what tell shows: the user's location */
-    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_MOVE, &a, 1, (int)w->arg));
+    return rb_motion(r, w, pose_move(&m, &arm, 0.0, (int)w->arg), &o);
 }
 
 /* APPROACH / APPROACH-STRT ( loc -- | F: distance -- ) */
 static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_loc user, arm;
-    const char *name;
+    fbrl_robot_move m;
+    fbrl_rapl_arg a[2];
+    rb_out o;
     fbrl_status st = rb_finite(r, w, &v[1], 1);
     if (st == FBRL_OK)
         st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK)
         st = rb_online(r);
-    fbrl_robot_move m;
     if (st == FBRL_OK)
         st = rb_to_arm(r, w, &user, &arm);
-    if (st == FBRL_OK)
-        st = rb_guard(r, w, pose_move(&m, &arm, rb_len_in(r, v[1].f), (int)w->arg));
-    if (st == FBRL_OK)
-        st = rb_still(r, w); /* the step starts once the arm stands */
-    if (st == FBRL_OK)
-        st = rb_scratch_point(r, w, &arm, &name);
     if (st != FBRL_OK)
         return st;
-    fbrl_rapl_arg a[2] = {fbrl_rapl_str(name), fbrl_rapl_real(m.dist)};
+    pose_move(&m, &arm, rb_len_in(r, v[1].f), (int)w->arg);
+    a[1] = fbrl_rapl_real(m.dist);
+    memset(&o, 0, sizeof o);
+    o.cmd = FBRL_RAPL_APPRO, o.a = a, o.n = 2, o.straight = (int)w->arg, o.point = &arm;
     /* above the location: no target shown */
-    return rb_guard_done(r, &m, rb_cmd(r, w, FBRL_RAPL_APPRO, a, 2, (int)w->arg));
+    return rb_motion(r, w, &m, &o);
 }
 
 /* ARM-HERE ( loc -- ): wait for the motion to end, read W2, store it unmapped */

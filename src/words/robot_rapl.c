@@ -185,6 +185,15 @@ static fbrl_status w_name1(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
+    if (w->cmd == FBRL_RAPL_RUN) { /* a program may move the arm: the guard cannot follow it */
+        fbrl_robot_move m;
+        rb_out o;
+        memset(&m, 0, sizeof m);
+        m.kind = FBRL_ROBOT_MOVE_OTHER;
+        memset(&o, 0, sizeof o);
+        o.cmd = FBRL_RAPL_RUN, o.a = &a, o.n = 1;
+        return rb_motion(r, w, &m, &o);
+    }
     return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, &a, 1, 0);
 }
 

@@ -29,3 +29,21 @@ fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out)
         r->lost = 1;
     return out->result;
 }
+
+/* The same report for a host that keeps the motion and the outputs itself (the Python
+ * bindings): the link's stop, with the motion it names. */
+fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const char *motion, fbrl_robot_stop *out)
+{
+    if (!out)
+        return FBRL_EINVAL;
+    memset(out, 0, sizeof *out);
+    if (motion) {
+        size_t n = strlen(motion);
+        n = n < sizeof out->motion ? n : sizeof out->motion - 1;
+        out->was_moving = 1;
+        memcpy(out->motion, motion, n);
+    }
+    if (!link)
+        return out->result = FBRL_EOFFLINE;
+    return out->result = fbrl_link_safe_stop(link, outputs, FBRL_ROBOT_STOP_DRAIN_MS, &out->stop);
+}

@@ -1,14 +1,27 @@
 /* SPDX-License-Identifier: MIT */
 /* robot_svc.c - what every robot word uses from the VM: throwing an error (with the
  * word's name), Ctrl-C while a word waits, console output and the host's clock; and the
- * motion guard's hook every motion word passes before it sends a byte. */
+ * motion guard's hook (robot_gate.c makes every motion pass it). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "robot_internal.h"
 
-fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg) { return fbrl_vm_throw(r->vm, code, msg); }
+fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg)
+{
+    if (r->c_msg) { /* a C caller's motion (fbrl_robot_motion): the first error is its message */
+        if (!r->c_code) {
+            r->c_code = code;
+            if (msg)
+                snprintf(r->c_msg, r->c_cap, "%s", msg);
+            else
+                snprintf(r->c_msg, r->c_cap, "error (THROW %d)", code);
+        }
+        return FBRL_ETHROW;
+    }
+    return fbrl_vm_throw(r->vm, code, msg);
+}
 
 fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const char *what)
 {
@@ -93,19 +106,6 @@ fbrl_status fbrl_robot_set_guard(fbrl_robot *r, const fbrl_robot_guard *g)
 unsigned long fbrl_robot_where_epoch(const fbrl_robot *r) { return r ? r->where_epoch : 0; }
 
 void rb_where_lost(fbrl_robot *r) { r->where_epoch++; }
-
-fbrl_status rb_guard(fbrl_robot *r, const rb_word *w, fbrl_robot_move *m)
-{
-    m->word = w->name;
-    return r->guard.check ? r->guard.check(r->guard.ctx, r, m) : FBRL_OK;
-}
-
-fbrl_status rb_guard_done(fbrl_robot *r, const fbrl_robot_move *m, fbrl_status result)
-{
-    if (r->guard.done)
-        r->guard.done(r->guard.ctx, r, m, result);
-    return result;
-}
 
 /* Beside other tasks (fbrl_vmx_tasking): wait until the host clock reaches until_us,
  * letting them run. FBRL_OK when the time has come; otherwise return the status at once

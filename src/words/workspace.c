@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* workspace.c - a session's named work in one data file (include/fbrl/workspace.h):
- * SAVE-WORKSPACE, LOAD-WORKSPACE, WORKSPACE, WORKSPACE-CHANGED?.
+ * SAVE-WORKSPACE, LOAD-WORKSPACE, WORKSPACE, WORKSPACE-CHANGED?, and what a save would
+ * change in a file (fbrl_workspace_diff).
  *
  * Saving walks the dictionary (fbrl_vm_words: every visible name once) and asks the
  * glossary and the robot what each word is; each object becomes one fileio user record
@@ -11,6 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 #include "fbrl/calib.h"
 #include "fbrl/crc32.h"
@@ -285,7 +287,7 @@ static void count(fbrl_workspace_counts *n, uint16_t tag)
 
 /* ---- the walk over the session: to the file, to the fingerprint, to the console ---- */
 
-enum { TO_CRC, TO_FILE, TO_CONSOLE };
+enum { TO_CRC, TO_FILE, TO_CONSOLE, TO_DIFF };
 
 typedef struct walk {
     fbrl_workspace *ws;
@@ -295,7 +297,12 @@ typedef struct walk {
     fbrl_workspace_counts n;
     fbrl_cell with_cal; /* WITH-CAL's data field */
     rec set;            /* the settings record; its name found on the way */
+    fbrl_workspace_diff_fn diff; /* TO_DIFF: told of each difference with the open file */
+    void *diff_ctx;
+    unsigned diffs;
 } walk;
+
+static void compare(walk *w, const rec *r);
 
 static void emit(walk *w, const rec *r)
 {
@@ -348,18 +355,23 @@ static int visit(void *ctx, const char *name, size_t len)
     count(&w->n, o.tag);
     if (w->to == TO_CONSOLE)
         show(w, &r);
+    else if (w->to == TO_DIFF)
+        compare(w, &r);
     else
         emit(w, &r);
     return w->st != FBRL_OK;
 }
 
-static fbrl_status walk_all(fbrl_workspace *ws, int to, walk *w)
+/* Every object of the session to `to` (TO_DIFF: fn told of each difference with the open file). */
+static fbrl_status walk_all(fbrl_workspace *ws, int to, walk *w, fbrl_workspace_diff_fn fn, void *ctx)
 {
     int map_on = 0;
     double base[4] = {0, 0, 0, 0};
     memset(w, 0, sizeof *w);
     w->ws = ws;
     w->to = to;
+    w->diff = fn;
+    w->diff_ctx = ctx;
     fbrl_glossary_mapping(ws->g, &w->with_cal, &map_on);
     if (ws->r)
         fbrl_robot_base_offset(ws->r, base);
@@ -376,7 +388,9 @@ static fbrl_status walk_all(fbrl_workspace *ws, int to, walk *w)
     w->set.tag = FBRL_WORKSPACE_TAG_SET;
     w->set.v[0] = map_on ? 1.0 : 0.0;
     memcpy(w->set.v + 1, base, sizeof base);
-    if (to != TO_CONSOLE)
+    if (to == TO_DIFF)
+        compare(w, &w->set);
+    else if (to != TO_CONSOLE)
         emit(w, &w->set);
     return w->st;
 }
@@ -384,7 +398,7 @@ static fbrl_status walk_all(fbrl_workspace *ws, int to, walk *w)
 static uint32_t fingerprint(fbrl_workspace *ws, fbrl_workspace_counts *n)
 {
     walk w;
-    walk_all(ws, TO_CRC, &w);
+    walk_all(ws, TO_CRC, &w, NULL, NULL);
     if (n)
         *n = w.n;
     return w.crc;
@@ -426,7 +440,7 @@ fbrl_status fbrl_workspace_save(fbrl_workspace *ws, const char *path, fbrl_works
         return FBRL_EFORMAT;
     }
     if ((st = fbrl_file_truncate(&ws->file)) == FBRL_OK)
-        st = walk_all(ws, TO_FILE, &w);
+        st = walk_all(ws, TO_FILE, &w, NULL, NULL);
     if (st == FBRL_OK)
         st = fbrl_file_close(&ws->file);
     if (st != FBRL_OK) {
@@ -642,6 +656,91 @@ fbrl_status fbrl_workspace_load(fbrl_workspace *ws, const char *path, fbrl_works
     return FBRL_OK;
 }
 
+/* ---- what a save would change in a file ---- */
+
+static void tell(walk *w, fbrl_workspace_change change, const rec *was, const rec *now)
+{
+    const rec *r = now ? now : was;
+    fbrl_workspace_delta d;
+    d.change = change;
+    d.name = r->tag == FBRL_WORKSPACE_TAG_SET ? "" : r->name;
+    d.kind = r->tag == FBRL_WORKSPACE_TAG_SET ? "the settings" : kind_name(r->tag);
+    d.tag = r->tag;
+    d.n = nvals(r->tag);
+    d.was = was ? was->v : NULL;
+    d.now = now ? now->v : NULL;
+    w->diffs++;
+    if (w->diff)
+        w->diff(w->diff_ctx, &d);
+}
+
+/* The file's record of r's name (and kind, for the settings), if it has one. */
+static int find_rec(fbrl_workspace *ws, const rec *r, rec *out)
+{
+    char why[8];
+    int got;
+    if (fbrl_file_reset(&ws->file) != FBRL_OK || next_rec(ws, 0, out, why, sizeof why) != 1)
+        return 0;
+    for (unsigned i = 1; (got = next_rec(ws, i, out, why, sizeof why)) == 1; i++) {
+        if (r->tag == FBRL_WORKSPACE_TAG_SET ? out->tag == FBRL_WORKSPACE_TAG_SET
+                                             : out->tag != FBRL_WORKSPACE_TAG_SET && strcasecmp(out->name, r->name) == 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* One object of the session against the file. */
+static void compare(walk *w, const rec *r)
+{
+    rec f;
+    if (!find_rec(w->ws, r, &f)) {
+        if (r->tag != FBRL_WORKSPACE_TAG_SET) /* a file without settings: nothing to lose there */
+            tell(w, FBRL_WORKSPACE_ADDED, NULL, r);
+        return;
+    }
+    if (f.tag != r->tag) { /* the file's object goes, the session's comes */
+        tell(w, FBRL_WORKSPACE_DROPPED, &f, NULL);
+        tell(w, FBRL_WORKSPACE_ADDED, NULL, r);
+    } else if (memcmp(f.v, r->v, nvals(r->tag) * sizeof r->v[0]) != 0 ||
+               (r->tag == FBRL_WORKSPACE_TAG_SET && strcasecmp(f.name, r->name) != 0)) {
+        tell(w, FBRL_WORKSPACE_CHANGED, &f, r);
+    }
+}
+
+fbrl_status fbrl_workspace_diff(fbrl_workspace *ws, const char *path, fbrl_workspace_diff_fn fn, void *ctx,
+                                unsigned *count)
+{
+    char why[8];
+    rec r;
+    walk w;
+    fbrl_cell xt;
+    int got;
+    if (!installed(ws) || !path)
+        return FBRL_EINVAL;
+    if (strlen(path) >= FBRL_FILE_PATH_MAX)
+        return FBRL_ENAME;
+    fbrl_status st = fbrl_file_open(&ws->file, path, ws->buf, ws->cap);
+    if (st != FBRL_OK)
+        return st;
+    if (next_rec(ws, 0, &r, why, sizeof why) != 1 || r.tag != FBRL_WORKSPACE_TAG_HEAD ||
+        strcmp(r.name, HEAD_NAME) != 0)
+        return fail(ws, FBRL_EFORMAT);
+    /* the session's objects, as a save writes them; each looked up in the file */
+    st = walk_all(ws, TO_DIFF, &w, fn, ctx);
+    /* what the file holds and the session does not: a save would drop it */
+    if (st == FBRL_OK && (st = fbrl_file_reset(&ws->file)) == FBRL_OK && next_rec(ws, 0, &r, why, sizeof why) == 1)
+        for (unsigned i = 1; (got = next_rec(ws, i, &r, why, sizeof why)) == 1; i++) {
+            if (r.tag == FBRL_WORKSPACE_TAG_SET)
+                continue;
+            if (fbrl_vmx_find(ws->vm, r.name, r.nlen, &xt) != FBRL_OK || classify(ws, xt).tag != r.tag)
+                tell(&w, FBRL_WORKSPACE_DROPPED, &r, NULL);
+        }
+    fbrl_file_discard(&ws->file);
+    if (count)
+        *count = w.diffs;
+    return st;
+}
+
 fbrl_status fbrl_workspace_changed(fbrl_workspace *ws, int *changed, fbrl_workspace_counts *n)
 {
     if (!installed(ws) || !changed)
@@ -732,7 +831,7 @@ static fbrl_status w_workspace(fbrl_vm *vm, void *ctx, const void *word)
     char what[128], line[FBRL_FILE_PATH_MAX + 200];
     int changed = 0;
     (void)word;
-    walk_all(ws, TO_CONSOLE, &w);
+    walk_all(ws, TO_CONSOLE, &w, NULL, NULL);
     fbrl_workspace_changed(ws, &changed, NULL);
     counts_text(&w.n, what, sizeof what);
     if (ws->path[0])

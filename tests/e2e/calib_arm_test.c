@@ -19,7 +19,7 @@
 #include <stdint.h>
 #include <string.h>
 #include <cmocka.h>
-#include "arm.h"
+#include "fbrl/arm.h"
 #include "fbrl/calib.h"
 
 #define PI     3.14159265358979323846
@@ -257,7 +257,7 @@ static void stable_under_teaching_error(void **state)
 }
 
 /* The jaw direction (the tool's y axis) of the arm at joint angles q, and its heading. */
-static double jaw_heading(const double q[FBRL_SIM_ARM_MAX_AXES], double *vertical)
+static double jaw_heading(const double q[FBRL_ARM_AXES_MAX], double *vertical)
 {
     mat f;
     arm_frame(q[0], q[1] + q[2] + q[3], q[4], f);
@@ -280,16 +280,16 @@ static void heading_turns_with_the_block(void **state)
         assert_int_equal(fbrl_calib_3point(&c, &cal, &recal), FBRL_OK);
         for (int k = 0; k < LOCS / 2; k++) { /* the straight-down ones */
             fbrl_loc in = random_loc(&b, k), out;
-            double q0[FBRL_SIM_ARM_MAX_AXES], q1[FBRL_SIM_ARM_MAX_AXES], v0, v1, off;
+            double q0[FBRL_ARM_AXES_MAX], q1[FBRL_ARM_AXES_MAX], v0, v1, off;
             assert_int_equal(fbrl_calib_map_arm(&c, NULL, &in, &out, &off), FBRL_OK);
             assert_true(off < 1e-9);
             double p0[6] = {in.x, in.y, in.z, in.o, in.a, in.t};
             double p1[6] = {out.x, out.y, out.z, out.o, out.a, out.t};
             tried++;
-            const fbrl_sim_model *a255 = fbrl_sim_model_find("a255");
-            const double zero[FBRL_SIM_ARM_MAX_AXES] = {0};
-            if (fbrl_sim_arm_ik(a255, p0, 0.0, zero, q0) != 0 ||
-                fbrl_sim_arm_ik(a255, p1, 0.0, zero, q1) != 0)
+            const fbrl_arm *a255 = fbrl_arm_find("a255");
+            const double zero[FBRL_ARM_AXES_MAX] = {0};
+            if (fbrl_arm_ik(a255, p0, 0.0, zero, q0, NULL) != FBRL_OK ||
+                fbrl_arm_ik(a255, p1, 0.0, zero, q1, NULL) != FBRL_OK)
                 continue;
             /* the emulator reaches forward: its waist points at the target */
             if (fabs(wrap(q0[0] - DEG(atan2(in.y, in.x)))) > 1e-9 ||

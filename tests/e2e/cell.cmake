@@ -9,6 +9,14 @@ if(TARGET fbrlmon AND TARGET fbrlsim)
     $<TARGET_FILE:fbrlsim> ${CMAKE_CURRENT_SOURCE_DIR}/e2e/cell ${PROJECT_BINARY_DIR}/e2e-cell)
   set_tests_properties(cell_guard_e2e PROPERTIES LABELS e2e TIMEOUT 120
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+  # The A465 (--arm a465) in the ASPS cell against fbrlsim --model a465 --cell: the move into
+  # the heating block refused before a byte is sent, the clear moves run; unguarded, fbrlsim
+  # stops it with 190 (its stamped log is the truth).
+  add_test(NAME cell_a465_e2e COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/cell_a465.sh $<TARGET_FILE:fbrlmon>
+    $<TARGET_FILE:fbrlsim> ${PROJECT_SOURCE_DIR}/examples ${CMAKE_CURRENT_SOURCE_DIR}/e2e/cell
+    ${PROJECT_BINARY_DIR}/e2e-cell-a465)
+  set_tests_properties(cell_a465_e2e PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
 
 # fbrlmon --dry-run of the sample-preparation plan: under 10 s, its report and picture

@@ -17,28 +17,40 @@ case $port in /dev/*) ;; *) echo "FAIL: no fbrlsim: $(cat "$work/sim.err")"; exi
 # guard on: every move refused, nothing of it sent
 "$mon" --port "$port" -e "INCLUDE $dir/cell.fbrl" "$dir/moves.fbrl" >"$work/on.out" 2>"$work/on.err" || fail "guard on: fbrlmon failed: $(cat "$work/on.err")"
 n=$(grep -c ': refused -302 ' "$work/on.out")
-[ "$n" = 4 ] || fail "guard on: $n of 4 moves refused: $(cat "$work/on.out")"
+[ "$n" = 5 ] || fail "guard on: $n of 5 moves refused: $(cat "$work/on.out")"
 # the log holds only the two moves to the start points (NEAR-NG, RIGHT): no motion of the four
 moves=$(grep -cE '^(MOVE|APPRO|DEPART|JOG)' "$work/sim.log")
 [ "$moves" = 2 ] || fail "guard on: $moves motions reached fbrlsim, want 2: $(grep -E '^(MOVE|POINT)' "$work/sim.log")"
 grep -q '^POINT FBRLT.,8,-8,-0.5' "$work/sim.log" && fail "guard on: the point below the table was sent"
+grep -q '^POINT FBRLT.,0,-16,4,' "$work/sim.log" && fail "guard on: the point past the rack was sent"
+# the tool's end stays clear of the tall rack: the refusal names the forearm
+"$mon" --port "$port" -e "INCLUDE $dir/cell.fbrl" "$dir/moves.fbrl" -e "HOME READY BEYOND MOV" >"$work/rack.out" 2>&1 &&
+    fail "BEYOND MOV at the top level did not fail"
+grep -q 'MOV: would hit TALL-RACK with the forearm at X .* Z 9.0000 in (.*% of the way); nothing was sent' \
+    "$work/rack.out" || fail "the rack's refusal: $(cat "$work/rack.out")"
 
 # guard off: fbrlsim stops each at the contact with 190
 : >"$work/sim.log"
 "$mon" --port "$port" -e "INCLUDE $dir/cell.fbrl CELL-GUARD-OFF" "$dir/moves.fbrl" >"$work/off.out" 2>"$work/off.err" || fail "guard off: fbrlmon failed: $(cat "$work/off.err")"
 n=$(grep -c 'controller 190' "$work/off.out")
-[ "$n" = 4 ] || fail "guard off: $n of 4 moves ended in 190-COLLISION: $(cat "$work/off.out")"
+[ "$n" = 5 ] || fail "guard off: $n of 5 moves ended in 190-COLLISION: $(cat "$work/off.out")"
 moves=$(grep -cE '^(MOVE|APPRO|DEPART|JOG)' "$work/sim.log")
-[ "$moves" = 6 ] || fail "guard off: $moves motions sent, want 6"
-# where each stopped (the line after it: "at X Y Z"): the envelope (0.5 in past the tool point,
-# 0.25 in thick) touching (a path is sampled at most FBRL_CELL_THIN / 2 past the contact): the table (z = 0.75), the keep-out zone (y = 5 - 0.25), the post (y = -1 - 0.25)
+[ "$moves" = 7 ] || fail "guard off: $moves motions sent, want 7"
+# where each stopped (the line after it: "at X Y Z" of the tool point), the arm touching (a path is
+# sampled at most 0.09 in, 0.9 FBRL_CELL_THIN, past the contact): the tool envelope (0.5 in past the tool
+# point, 0.25 in thick) the table (z = 0.75) and the post's top edge (z 6 to 6.8); the wrist housing (the
+# forearm's end, 1 in around the wrist centre 2 in above the tool point) the keep-out zone
+# (y = 5 - 1) and the post's top edge (y = -1 - 1, z 6); the forearm the rack's top while the tool
+# is past the rack (y < -13 - 0.25)
 awk -v f="$work/off.check" '
   /^table:/ { w = "table"; next } /^box:/ { w = "box"; next } /^keep-out:/ { w = "keep"; next } /^arc:/ { w = "arc"; next }
+  /^rack:/ { w = "rack"; next }
   /^at / { x = $2 + 0; y = $3 + 0; z = $4 + 0
-    if (w == "table" && (z < 0.70 || z > 0.80)) print "table: stopped at z " z
-    if (w == "keep" && (y < 4.70 || y > 4.80)) print "keep-out: stopped at y " y
-    if (w == "arc" && (y < -1.26 || y > -1.15)) print "arc: stopped at y " y
-    if (w == "box" && (x < 12.7 || x > 15.3 || z < 6.0 || z > 6.8)) print "box: stopped at " x " " z }' "$work/off.out" >"$work/off.check"
+    if (w == "table" && (z < 0.66 || z > 0.76)) print "table: stopped at z " z
+    if (w == "keep" && (y < 3.99 || y > 4.09)) print "keep-out: stopped at y " y
+    if (w == "arc" && (y < -2.01 || y > -1.91)) print "arc: stopped at y " y
+    if (w == "box" && (x < 12.7 || x > 15.3 || z < 6.0 || z > 6.8)) print "box: stopped at " x " " z
+    if (w == "rack" && !(y < -13.25 || z > 9.75)) print "rack: the tool stopped at y " y " z " z " (not past the rack)" }' "$work/off.out" >"$work/off.check"
 [ -s "$work/off.check" ] && fail "guard off: wrong place: $(cat "$work/off.check")"
 
 # a recalibrated block carries its box: clear before, refused after, nothing of it sent
@@ -49,10 +61,6 @@ grep -q '^moved block: refused -302 $' "$work/block.out" || fail "block: the mov
 grep -q '<title>HEATER</title>' "$work/block.svg" 2>/dev/null || fail "CELL-SVG at the prompt drew no HEATER"
 n=$(grep -c '^POINT FBRLT.,12,3.5,1,' "$work/sim.log")
 [ "$n" = 1 ] || fail "block: the location beside the block was sent $n times, want once (before the block moved)"
-
-# a 6-axis arm: the guard knows the A255's kinematics only and says so instead of guessing
-"$mon" --sim --sim-model a465 -e "0E0 CELL-TABLE HOME READY" >"$work/a465.out" 2>&1 && fail "a465: READY went unchecked"
-grep -q 'READY: the guard knows 5-axis arms (A255); this arm has 6 axes' "$work/a465.out" || fail "a465: $(cat "$work/a465.out")"
 
 # fbrlsim refuses a bad description, naming the line
 printf '0E0 CELL-TABLE\n0 0 0 1 1 1 CELL-BOX A\n0 0 0 1 1 1 CELL-BOX a\n' >"$work/bad1.fbrl"
@@ -67,5 +75,5 @@ done
 kill $simpid 2>/dev/null
 wait $simpid 2>/dev/null
 trap - EXIT
-[ $fails = 0 ] && echo "cell guard: 4 refused before sending, 4 stopped by fbrlsim at the contact, a moved block's box followed"
+[ $fails = 0 ] && echo "cell guard: 5 refused before sending (one by the forearm), 5 stopped by fbrlsim at the contact, a moved block's box followed"
 exit $fails

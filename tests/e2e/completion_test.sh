@@ -37,11 +37,18 @@ expect() {
 expect "fbrlmon --di" --dict
 expect "fbrlmon --sim-m" --sim-model
 expect "fbrlmon --sim-model " a255 a465
+expect "fbrlmon --ar" --arm
+expect "fbrlmon --arm " a255 a465
+expect "fbrlsim --model " a255 a465
 expect "fbrlmon --parity " none even odd
 expect "fbrlmon --flow x" xonxoff
 expect "fbrlmon --low-latency o" on off
 expect "fbrlmon --ver" --version
 expect "fbrlsim --ti" --time-scale
+if command -v fbrl-station >/dev/null 2>&1; then  # built when its Python modules are there
+    expect "fbrl-station --no-d" --no-discovery
+    expect "fbrl-station --sila " 127.0.0.1:50052 off
+fi
 expect "fbrlsim --parity " N E O
 expect "fbrlsim --model a4" a465
 expect "fbrlsim --ver" --version

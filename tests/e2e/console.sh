@@ -32,14 +32,25 @@ METHOD TUBE-CHECK  asks when a tube is missing
 ' TRY SAMPLE-STEP Check  is the tube there?
 END-METHOD
 EOF2
+# the lab: its users sign in (docs/compliance.md); tester is a programmer, Drafts may run
+users="$(dirname "$mon")/fbrl-users"
+printf 'admin pass 1\n' | "$users" --lab "$work/lab" setup admin >/dev/null || exit 1
+printf 'admin pass 1\ntester pass\n' | "$users" --lab "$work/lab" --as admin add tester programmer >/dev/null || exit 1
+printf 'admin pass 1\n' | "$users" --lab "$work/lab" --as admin set allow_drafts 1 >/dev/null || exit 1
 . "$here/tmux_session.sh"
 tmux -L "$sock" new-session -d -s said -x 80 -y 24 \
-    "FBRL_CONSOLE_PIN=4711 '$mon' --port '$work/robot' --console --methods '$work/lib/methods' --run-log '$work/run.jsonl' \
-     --operator tester -e '60 CONSTANT TIME-SCALE'; echo fbrlmon-exit=\$?; sleep 600"
+    "'$mon' --port '$work/robot' --console --methods '$work/lib/methods' --run-log '$work/run.jsonl' \
+     --lab '$work/lab' -e '60 CONSTANT TIME-SCALE'; echo fbrlmon-exit=\$?; sleep 600"
 key() { tmux -L "$sock" send-keys -t said "$@"; }
 shot() { tmux -L "$sock" capture-pane -p -t said >"screen-$1.txt"; }
 lines() { grep -vc '^#' sim.log; }
 
+# ---- signing in, then down to the operator's level
+wait_for "sign in: name:" || exit 1
+key -l tester; key Enter; key -l "tester pass"; key Enter
+wait_for "signed in: tester (programmer)" || exit 1
+key F9; key 1
+wait_for "level: operator"
 # ---- the library, the form
 wait_for "SAMPLE-PREP      ASPS sample preparation" || exit 1
 shot library
@@ -59,7 +70,7 @@ wait_for "refused: #SAMPLES is empty: enter a whole number 1..24 tubes"
 key -l 0; key F5
 wait_for "refused: #SAMPLES: 0 is outside the allowed range 1..24 tubes"
 [ "$(lines)" = "$before" ] || fail "a refused form sent commands: $(lines) lines, were $before"
-[ -e run.jsonl ] && fail "a refused form wrote a run log"
+grep -q '"type":"header"' run.jsonl && fail "a refused form wrote a run log"
 
 # ---- 3 samples, a 1-minute reaction (1 s with TIME-SCALE 60); start
 key -l 3; key Down Down Down; key -l 1
@@ -115,13 +126,11 @@ wait_for "prepared 3 of 3 samples; used: buffer 6 ml, reagent 300 ul, wash 9 ml"
 shot done
 grep -q "Reagent, sample 2: user interrupt" screen-done.txt && fail "the aborted run's error is still shown"
 
-# ---- levels: up only with the PIN; the programmer's Forth line
+# ---- levels: up as far as the signed-in user's role allows; the programmer's Forth line
 key F11
 sleep 0.3
 tmux -L "$sock" capture-pane -p -t said | grep -q "^ok> " && fail "an operator got the Forth line"
-key F9; key 3; key -l 1111; key Enter
-wait_for "wrong PIN: the level stays operator"
-key F9; key 3; key -l 4711; key Enter
+key F9; key 3
 wait_for "level: programmer"
 key F11
 key -l "6 7 * ."; key Enter
@@ -157,13 +166,7 @@ shot cell
 key Down Down Down Down Down Down Down Down Down Down
 teach_from=$(lines)
 key t
-wait_for "TEACH keys"
-jogs=$(grep -c '^JOG 0.1,0,0$' sim.log)
-key Right
-k=0
-while [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" = "$jogs" ] && [ $k -lt 100 ]; do sleep 0.1; k=$((k + 1)); done
-sleep 0.5
-key Enter
+teach_jog
 wait_for "TEACH SPOT done"
 teach_to=$(lines)
 # where the composed run left the arm (X 6 Y -8 Z 7, its last W2) plus the jog
@@ -180,8 +183,9 @@ key F5
 wait_long "R retry, S skip this sample, A abort" 10
 shot ask
 key s
-wait_long "TUBE-CHECK completed" 10
+wait_long "TUBE-CHECK failed: 0 of 1 samples succeeded (0 failed, 1 skipped)" 10
 wait_for "tube skipped"
+wait_for "sample 1 skipped: CHECK failed (PART-MISSING): the operator skipped the sample"
 key F9; key 1
 wait_for "level: operator"
 key F2; key F4
@@ -199,9 +203,18 @@ sim = [l.rstrip("\n") for l in open(sys.argv[2]) if not l.startswith("#")]
 heads = [r for r in recs if r["type"] == "header"]
 sums = [r for r in recs if r["type"] == "summary"]
 assert len(heads) == 4 and len(sums) == 4, (len(heads), len(sums))
-assert [s["outcome"] for s in sums] == ["aborted", "completed", "completed", "completed"], sums
+# the skipped tube was the run's only sample: none succeeded, the run failed
+assert [s["outcome"] for s in sums] == ["aborted", "completed", "completed", "failed"], sums
+assert [x["outcome"] for x in sums[1]["samples"]] == ["succeeded"] * 3, sums[1]
+assert sums[3]["samples"] == [{"sample": 1, "outcome": "skipped",
+                               "reason": "CHECK failed (PART-MISSING): the operator skipped the sample"}], sums[3]
+# the aborted run: the sample it worked on failed, the others were not done
+assert [x["outcome"] for x in sums[0]["samples"]].count("failed") == 1, sums[0]
+assert all(x["reason"] for x in sums[0]["samples"]), sums[0]
 asked = [r for r in recs[[i for i, r in enumerate(recs) if r["type"] == "header"][3]:] if r["type"] == "note"]
-assert len(asked) == 1 and asked[0]["event"] == "recovery" and "PART-MISSING" in asked[0]["text"], asked
+assert [r["event"] for r in asked] == ["question", "answer", "recovery"], asked
+assert asked[1]["operator"] == "tester" and asked[1]["text"] == "skip the sample", asked
+assert "PART-MISSING" in asked[2]["text"], asked
 # the composed method: its own name, SAMPLE-PREP's parameters, the three steps picked
 assert heads[2]["method"] == "QUICK-PREP" and heads[2]["source"].endswith("quick_prep.fbrl"), heads[2]
 third = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][2]:[i for i, r in enumerate(recs) if r["type"] == "header"][3]]
@@ -215,7 +228,9 @@ for h in heads:
     assert h["method"] == "SAMPLE-PREP" and h["operator"] == "tester", h
     assert h["program"].startswith("fbrlmon ") and h["source"].endswith("sample_prep.fbrl"), h
     assert h["controller"].startswith("RAPL-II Version 2.60 A255 Robot") and "; controller on " in h["controller"], h
-cmds = [r["line"] for r in recs if r["type"] == "command"]
+# a poll repeated while the controller is waited for is one record, with its count
+cmds = [r["line"] for r in recs if r["type"] == "command" for _ in range(r.get("count", 1))]
+assert any(r.get("count", 1) > 1 and r["line"] == "W5" for r in recs if r["type"] == "command"), "no W5 folded"
 assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
 # everything the controller executed after the connection's handshake (NOHELP, STATUS for
 # the units) was part of a run, but for TEACH (outside any run)
@@ -230,6 +245,9 @@ assert ends[0] == ("Recalibrate", None) and ends[-1] == ("Summary", None), ends
 first = recs[:[i for i, r in enumerate(recs) if r["type"] == "header"][1]]
 assert any(r["type"] == "error" and "interrupt" in r["message"] for r in first), "no error record for the abort"
 assert any(r["type"] == "note" and r["event"] == "safe-stop" for r in first)
+# who paused, resumed and aborted: the operator, by name
+notes = [(r["event"], r.get("operator")) for r in first if r["type"] == "note"]
+assert ("pause", "tester") in notes and ("resume", "tester") in notes and ("abort", "tester") in notes, notes
 # device actions and timed waits, planned against actual (a pulse cannot be shorter than
 # planned unless aborted; WAIT-INPUT's plan is its time limit)
 dev = [r for r in last if r["type"] == "device"]
@@ -264,7 +282,8 @@ RUN-LOG /nonexistent/dir/x.jsonl
 PLAN
 before=$(lines)
 "$mon" --port "$work/robot" plan.fbrl >plan.out 2>plan.err
-[ $? = 1 ] || fail "fbrlmon plan.fbrl: exit status $? (want 1: RUN-LOG to a missing folder)"
+st=$?
+[ $st = 4 ] || fail "fbrlmon plan.fbrl: exit status $st (want 4: the run's two samples were skipped)"
 grep -q "^plan.fbrl:15: error: RUN-LOG: /nonexistent/dir/x.jsonl: No such file or directory" plan.err ||
     fail "RUN-LOG's refusal: $(cat plan.err)"
 tail -n +$((before + 1)) sim.log | grep -v '^#' >plan.all
@@ -273,10 +292,14 @@ tail -n +3 plan.all >plan.sim
 python3 - <<'PY' || fail "RUN-LOG's log does not match"
 import json
 recs = [json.loads(l) for l in open("plan.jsonl")]
-cmds = [r["line"] for r in recs if r["type"] == "command"]
+cmds = [r["line"] for r in recs if r["type"] == "command" for _ in range(r.get("count", 1))]
 sim = [l.rstrip("\n") for l in open("plan.sim")]
 assert cmds == sim and "READY" in cmds and cmds.count("GRIP 1.5,30") == 2, (cmds, sim)
-assert recs[-4]["type"] == "summary" and recs[-4]["outcome"] == "completed", recs[-4]
+summary = [r for r in recs if r["type"] == "summary"][-1]
+assert summary["outcome"] == "failed", summary  # no sample succeeded: both were skipped
+assert [x["outcome"] for x in summary["samples"]] == ["skipped", "skipped"], summary
+texts = [r["text"] for r in recs if r["type"] == "text"]
+assert "2 samples: 0 succeeded, 0 failed, 2 skipped" in texts, texts
 # the corrective action (ON-FAILURE ... SKIP) is in the log: an error with the action, a note
 rec = [r for r in recs if r["type"] == "note" and r["event"] == "recovery"]
 assert len(rec) == 2 and rec[0]["text"].startswith("CHECK, sample 1: PART-MISSING"), rec

@@ -63,14 +63,30 @@ printf 'HOME READY\nBREAK TO-T1\nSHUTTLE\ns\ns\nW2\n.S\nc\n' |
 stop_sim
 grep -q '^stop: TO-T1 (plan.fbrl:6), called by SHUTTLE at plan.fbrl:9' stepped.out ||
     fail "no stop at TO-T1 called from line 9: $(cat stepped.out)"
-grep -q '^stop: GO (plan.fbrl:5), called by TO-T1 at plan.fbrl:6' stepped.out || fail "step into GO missing"
-grep -q '^stop: TO-T2 (plan.fbrl:7), called by SHUTTLE at plan.fbrl:10' stepped.out || fail "second step missing"
-grep -q '^ *10 *TO-T2 ;' stepped.out || fail "the source line of the call is not shown"
+# a step visits each word of TO-T1 (T1 GO ;), as gforth's dbg does
+grep -q '^stop: T1, in TO-T1 at plan.fbrl:6' stepped.out || fail "the step to T1 is missing: $(cat stepped.out)"
+grep -q '^stop: GO (plan.fbrl:5), in TO-T1 at plan.fbrl:6' stepped.out || fail "the step to GO missing"
+grep -q '^ *6 *: TO-T1 T1 GO ;' stepped.out || fail "the source line of the word is not shown"
 [ "$(grep -c '^W2' stepped.log)" = 1 ] || fail "the W2 typed at the stop did not reach the controller once"
 # W5 (is the motion over?) is asked as often as the motion takes: not part of what ran
 grep -v '^W[25]$' stepped.log >stepped.cmds
 grep -v '^W5$' plain.log >plain.cmds
 cmp -s plain.cmds stepped.cmds || fail "the stepped run's command log differs: $(diff plain.cmds stepped.cmds)"
+
+# 2c. steps visit built-in words: a word made only of them stops before each, the failing
+# one included; a FILE:LINE breakpoint stops on the line that fails (its first word), in a
+# definition or interpreted; after UNBREAK ALL nothing stops, a step under way included
+cp "$(cd "$(dirname "$0")" && pwd)/debug_built.fbrl" built.fbrl
+printf 'BREAK MATH\nMATH\ns\ns\ns\ns\ns\n' | "$mon" --offline built.fbrl >built.out 2>built.err
+for w in '6' '7 \*' '0' '/'; do
+    grep -q "^stop: $w, in MATH at built.fbrl:2" built.out || fail "no step stop at $w in MATH: $(cat built.out)"
+done
+grep -q 'built.fbrl:2: error: division by zero in MATH' built.err || fail "MATH did not fail after the steps"
+printf 'c\n' | "$mon" --offline -e 'BREAK built.fbrl:5' built.fbrl -e '7 SPLIT' >line.out 2>line.err
+grep -q '^stop: SWAP, in SPLIT at built.fbrl:5' line.out || fail "BREAK FILE:LINE did not stop on the failing line: $(cat line.out)"
+grep -q 'built.fbrl:5: error: division by zero in SPLIT' line.err || fail "SPLIT did not fail after the stop"
+printf 'BREAK SPLIT\n9 SPLIT 2DROP\ns\nUNBREAK ALL\nc\n9 SPLIT\n: AGAIN-1 1 ;\nAGAIN-1 .\n' | "$mon" --offline built.fbrl >unbreak.out 2>unbreak.err
+[ "$(grep -c '^stop: ' unbreak.out)" = 2 ] || fail "stops after the breakpoint was gone: $(cat unbreak.out)"
 
 # 2b. the trace's commands are the controller's command log, each with the line that sent it
 start_sim traced.log
@@ -104,6 +120,34 @@ stop_sim
 [ "$(cat editor.args 2>/dev/null)" = "+3 edit.fbrl" ] || fail "the editor was not opened at edit.fbrl line 3: $(cat editor.args)"
 grep -q '41 ' edit.out && grep -q '42 ' edit.out || fail "the edited definition did not run: $(cat edit.out)"
 grep -q '14\. 2\. ' edit.out || fail "HOLD lost its taught place (14 2): $(cat edit.out)"
+
+# 3b. EDIT a hundred times a file that makes three tasks: each load makes the same tasks
+# again (five loads used to end in "no room for another task")
+cat >tasks.fbrl <<'PLAN'
+\ tasks.fbrl
+TASK TA TASK TB TASK TC
+: NAP ( -- ) 1 MS ;
+' NAP TA START TA AWAIT
+PLAN
+i=0
+: >edit100.in
+while [ $i -lt 100 ]; do echo 'EDIT NAP' >>edit100.in; i=$((i + 1)); done
+echo 'TASKS' >>edit100.in
+EDITOR=true VISUAL= "$mon" --offline tasks.fbrl <edit100.in >edit100.out 2>edit100.err ||
+    fail "100 EDITs: $(grep -m 1 'error' edit100.err)"
+[ "$(grep -c 'loading .*tasks.fbrl again' edit100.out)" = 100 ] || fail "not 100 reloads: $(tail -n 3 edit100.out)"
+[ "$(grep -c '^T[ABC]  ' edit100.out)" = 3 ] || fail "TASKS after 100 EDITs does not list three tasks: $(cat edit100.out | tail -n 6)"
+
+# 3c. SAVE-DEFINITIONS keeps the definitions that compiled: one abandoned by an error on its
+# second line is left out, and the file it writes loads without an error
+rm -f saved.fbrl
+printf ': GOOD ( -- n ) 1 ;\n: HALF ( -- n ) 2\n  NOSUCH ;\n: MULTI ( -- n )\n  3 ;\nSAVE-DEFINITIONS saved.fbrl\n' |
+    "$mon" --offline >save.out 2>save.err
+grep -q 'stdin:3: error: undefined word NOSUCH' save.err || fail "the abandoned definition's error: $(cat save.err)"
+grep -q '^: GOOD' saved.fbrl && grep -q '^: MULTI' saved.fbrl || fail "SAVE-DEFINITIONS lost a definition: $(cat saved.fbrl)"
+grep -q 'HALF' saved.fbrl && fail "SAVE-DEFINITIONS wrote the abandoned definition: $(cat saved.fbrl)"
+"$mon" --offline saved.fbrl -e 'GOOD MULTI + .' </dev/null >load.out 2>load.err || fail "the saved file does not load: $(cat load.err)"
+grep -q '^4 ' load.out || fail "the saved definitions do not run: $(cat load.out)"
 
 # 4. bad use: one clear error each
 printf 'BREAK NO-SUCH-WORD\nEDIT DUP\n: TYPED 1 ;\nEDIT TYPED\n' | "$mon" --offline >bad.out 2>bad.err

@@ -11,16 +11,17 @@ fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 now() { date +%s.%N; }
 
-touch "$work/.start"
+# its own TMPDIR: another dry run (dry_run_vs_real runs at the same time) has its own scratch
+mkdir -p "$work/tmp"
 t0=$(now)
-"$mon" --dry-run --svg "$work/plan.svg" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" \
+TMPDIR=$work/tmp "$mon" --dry-run --svg "$work/plan.svg" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" \
     "$ex/sample_prep.fbrl" >"$work/dry.out" 2>"$work/dry.err" || fail "the dry run failed: $(cat "$work/dry.err")"
 t1=$(now)
 wall=$(echo "$t1 $t0" | awk '{ printf "%.3f", $1 - $2 }')
 awk -v w="$wall" 'BEGIN { exit !(w < 10) }' || fail "the dry run took $wall s (at most 10)"
 dur=$(sed -n 's/^simulated duration \([0-9.]*\) s.*/\1/p' "$work/dry.out")
 [ -n "$dur" ] || fail "no simulated duration: $(cat "$work/dry.out")"
-grep -q '^commands [0-9]*, moves 89, errors 0$' "$work/dry.out" || fail "moves/errors: $(grep '^commands' "$work/dry.out")"
+grep -q '^commands [0-9]*, moves 89, errors 0, time-outs 0$' "$work/dry.out" || fail "moves/errors: $(grep '^commands' "$work/dry.out")"
 grep -q '^smallest clearance [0-9.]* in to [A-Z-]* at X ' "$work/dry.out" || fail "no smallest clearance"
 # the plan's pulses: buffer pump (output 1) 2 per tube, syringe (6) 2 per tube, ...
 n=$(grep -c ' output 1 pulse 0.05' "$work/dry.out")
@@ -30,9 +31,8 @@ n=$(grep -c ' output 6 pulse 0.15' "$work/dry.out")
 n=$(grep -c ' wait 0.150 s$' "$work/dry.out")
 [ "$n" = 6 ] || fail "$n waits of the syringe's 150 ms, want 6"
 grep -q '^run time 5[0-9] s$' "$work/dry.out" || fail "the plan's own run time (TIME-OF-DAY) is not the simulated one"
-[ -z "$(ls "$work" | grep -v -e '^dry\.' -e '^plan\.svg$')" ] || fail "the dry run left files: $(ls "$work")"
-ls -d "${TMPDIR:-/tmp}"/fbrlmon-dry-* 2>/dev/null | while read -r d; do [ "$d" -nt "$work/.start" ] && echo "$d"; done >"$work/left"
-[ -s "$work/left" ] && fail "the scratch directory was left: $(cat "$work/left")"
+[ -z "$(ls "$work" | grep -v -e '^dry\.' -e '^plan\.svg$' -e '^tmp$')" ] || fail "the dry run left files: $(ls "$work")"
+[ -z "$(ls -A "$work/tmp")" ] || fail "the scratch directory was left: $(ls -A "$work/tmp")"
 
 # the picture
 svg=$work/plan.svg

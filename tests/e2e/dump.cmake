@@ -7,3 +7,13 @@ if(TARGET fbrl-dump AND TARGET fbrlmon AND Python3_Interpreter_FOUND)
   set_tests_properties(fbrl_dump PROPERTIES LABELS e2e TIMEOUT 120
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+
+# Errors that say what happened (tests/e2e/file_errors.sh): a link loop, saving through a
+# symlink, a read-only file and file system, permission denied, a full disk (a small tmpfs
+# when one can be mounted, else a file size limit).
+if(TARGET fbrlmon)
+  add_test(NAME file_errors COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/file_errors.sh $<TARGET_FILE:fbrlmon>
+    ${PROJECT_BINARY_DIR}/e2e-file-errors)
+  set_tests_properties(file_errors PROPERTIES LABELS e2e TIMEOUT 120
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()

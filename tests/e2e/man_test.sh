@@ -8,7 +8,7 @@ shift
 command -v man >/dev/null 2>&1 || { echo "man: man-db not installed: skipped"; exit 77; }
 fails=0
 fail() { fails=$((fails + 1)); echo "FAIL: $*"; }
-for page in fbrlmon.1 fbrlsim.1 fbrl-dump.1 libfbrl.3; do
+for page in fbrlmon.1 fbrlsim.1 fbrl-dump.1 fbrl-users.1 fbrl-audit.1 fbrl-station.1 libfbrl.3; do
     f=$mandir/$page
     [ -f "$f" ] || { fail "$page was not built"; continue; }
     out=$(MANWIDTH=80 man --warnings -l -P cat "$f" 2>"$mandir/$page.err") || fail "man -l $page failed"
@@ -35,5 +35,5 @@ for prog in "$@"; do
     fi
     echo "man: $name: $n long options in --help and in $name(1)"
 done
-echo "man: 4 pages, $fails failures"
+echo "man: 7 pages, $fails failures"
 [ $fails = 0 ]

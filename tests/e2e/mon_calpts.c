@@ -127,9 +127,10 @@ int main(int argc, char **argv)
         expect(&s, "saved 1 location, 0 matrices, 1 calibration, 0 devices to", "SAVE-WORKSPACE");
         expect(&s, "ok> ", "prompt");
         type(&s, "BYE\r");
-        expect(&s, "The workspace changed (2 locations, 0 matrices, 1 calibration, 0 devices). Save it to ",
+        expect(&s, "The workspace changed (2 locations, 0 matrices, 1 calibration, 0 devices). Saving it to ",
                "the offer to save at exit");
-        expect(&s, "cal.ws? [Y/n] ", "the offer names the file");
+        expect(&s, "  add    EXTRA a location: X 0.000 Y 0.000 Z 0.000", "the offer names what a save adds");
+        expect(&s, "cal.ws? [Y/n] ", "the offer names the file (adding only: yes by default)");
         type_now(&s, "y\r");
         expect(&s, "saved 2 locations, 0 matrices, 1 calibration, 0 devices to ", "saved at exit");
     }

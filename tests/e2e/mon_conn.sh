@@ -60,7 +60,7 @@ grep -q '^MOVE FBRLT1' sim.log || fail "MOVE did not reach the emulator (log: $(
 
 # RECONNECT inside a logged run: the session's modes are sent again (docs/link.md 1,
 # "Modes") and the run log says so in a note, beside the lines as commands
-rm -f modes.jsonl
+rm -f modes.jsonl modes.jsonl.head # a run log is a chain with its head file (docs/compliance.md)
 cat >modes.fbrl <<'PLAN'
 RUN-LOG modes.jsonl
 : FAST ( -- ) 30 SPEED  40 SPEED ;

@@ -167,15 +167,20 @@ static inline int file_count(const char *path, const char *text)
     return occurrences(buf, text);
 }
 
-/* Start fbrlsim on a pty with a command log (removed first); its first output line is the
- * pty's path, read within timeout_ms. Returns the emulator's pid, or -1. */
-static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, size_t cap, long timeout_ms)
+/* Start fbrlsim with args (after the program's name, NULL-terminated) on a pty; its first
+ * output line is the pty's path, read within timeout_ms. Returns the emulator's pid, or -1. */
+static inline pid_t start_sim_pty_args(const char *sim, const char *const *args, char *port, size_t cap,
+                                       long timeout_ms)
 {
-    int pfd[2];
+    const char *argv[32];
+    int pfd[2], na = 0;
     pid_t pid;
     size_t n = 0;
     long deadline = now_ms() + timeout_ms;
-    remove(log);
+    argv[na++] = sim;
+    for (; args && *args && na < 31; args++)
+        argv[na++] = *args;
+    argv[na] = NULL;
     if (pipe(pfd) != 0)
         return -1;
     pid = fork();
@@ -185,7 +190,7 @@ static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, 
         dup2(pfd[1], 1);
         close(pfd[0]);
         close(pfd[1]);
-        execl(sim, sim, "--status-extra", "--log", log, (char *)NULL);
+        execv(sim, (char *const *)argv);
         _exit(127);
     }
     close(pfd[1]);
@@ -205,6 +210,14 @@ static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, 
         return -1;
     }
     return pid;
+}
+
+/* Start fbrlsim on a pty with a command log (removed first) and its own STATUS lines. */
+static inline pid_t start_sim_pty(const char *sim, const char *log, char *port, size_t cap, long timeout_ms)
+{
+    const char *args[] = {"--status-extra", "--log", log, NULL};
+    remove(log);
+    return start_sim_pty_args(sim, args, port, cap, timeout_ms);
 }
 
 /* Write keys at once (for Ctrl-C while a line runs and the terminal is in line mode). */

@@ -7,7 +7,8 @@
 #   - a task started at the prompt goes on running while the prompt waits for keys: its
 #     output pulses reach the controller's log while nobody types, and the prompt answers
 #     meanwhile;
-#   - TASKS lists it with its state; STOP ends it, and its pulses stop too.
+#   - TASKS lists it with its state; STOP ends it, and its pulses stop too;
+#   - STOP in the middle of a pulse: the output is switched off before the task ends.
 mon=$1 sim=$2 work=$3
 here=$(cd "$(dirname "$0")" && pwd)
 command -v tmux >/dev/null 2>&1 || { echo "SKIP: no tmux"; exit 77; }
@@ -34,5 +35,12 @@ sleep 0.6
 n2=$(logged "OUTPUT 5")
 [ "$n1" = "$n2" ] || fail "pulses went on after STOP ($n1 then $n2)"
 [ "$(logged 'OUTPUT 5')" = "$(logged 'OUTPUT -5')" ] || fail "a pulse was left on"
+# STOP in the middle of a pulse: the task's PULSE switches its output off before it ends
+type_line "6 OUTPUT-DEVICE PUMP  TASK HOLDER  : HOLD ( -- ) BEGIN 2000 PUMP PULSE AGAIN ; DECIMAL"
+type_line "' HOLD HOLDER START"
+sleep 0.5 # inside the first 2 s pulse
+type_line "HOLDER STOP"
+[ "$(logged 'OUTPUT 6')" -ge 1 ] || fail "the long pulse never started"
+[ "$(logged 'OUTPUT 6')" = "$(logged 'OUTPUT -6')" ] || fail "STOP in a pulse left its output on"
 [ $fails = 0 ] || { screen; exit 1; }
 echo "mon_tasks: $n pulses in 1.5 s at the idle prompt; STOP ended them"

@@ -119,7 +119,8 @@ int main(int argc, char **argv)
             /* (with its meaning the message is longer than 80 columns leave: it is printed
              * on its own line above the status line) */
             if (strstr(s.buf + before,
-                       "! JOG: 029-TRANSFORM ILLEGAL. (the position is out of the arm's reach") != NULL &&
+                       "! JOG: controller error 029-TRANSFORM ILLEGAL (the position is out of the arm's reach") !=
+                    NULL &&
                 strstr(s.buf + before, "Z+26.500 in  pitch+1.0 roll+0.0") != NULL)
                 break;
         }
@@ -219,10 +220,11 @@ int main(int argc, char **argv)
         g_failed = 1;
     }
     /* the emulator's log: the jogs and the pitch move TEACH sent */
-    if (!g_failed && (file_count(log, "JOG ") < 4 || file_count(log, "POINT FBRLTP") < 1 ||
-                      file_count(log, "MOVE FBRLTP,S") < 1)) {
+    if (!g_failed && (file_count(log, "JOG ") < 4 || file_count(log, "POINT FBRLT") < 1 ||
+                      file_count(log, "MOVE FBRLT1,S") + file_count(log, "MOVE FBRLT2,S") < 1)) {
         fprintf(stderr, "FAIL: the emulator's log lacks TEACH's commands (JOG %d, POINT %d, MOVE %d)\n",
-                file_count(log, "JOG "), file_count(log, "POINT FBRLTP"), file_count(log, "MOVE FBRLTP,S"));
+                file_count(log, "JOG "), file_count(log, "POINT FBRLT"),
+                file_count(log, "MOVE FBRLT1,S") + file_count(log, "MOVE FBRLT2,S"));
         g_failed = 1;
     }
     if (g_failed)

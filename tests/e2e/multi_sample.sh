@@ -32,4 +32,19 @@ done
 seq=$(sed -n 's/^sequential.*makespan \([0-9]*\)\..*/\1/p' out.txt)
 par=$(sed -n 's/^as tasks.*makespan \([0-9]*\)\..*/\1/p' out.txt)
 [ -n "$seq" ] && [ -n "$par" ] && [ "$par" -lt "$seq" ] || { echo "FAIL: makespans '$seq' (sequential) '$par' (tasks)"; fails=1; }
+# The whole plan (6 samples, 15 min reactions: 6348 s simulated) as a dry run: every wait
+# is skipped, so it ends in seconds (docs/workcell.md; the waits cost nothing, docs/tasks.md).
+# Before waits slept to their deadline, AWAIT's 2 ms polls made it 10 min of full CPU.
+mkdir -p dry
+t0=$(date +%s.%N)
+TMPDIR=$work/dry "$mon" --dry-run --svg "$work/dry/plan.svg" "$here/examples/multi_sample.fbrl" </dev/null \
+    >dry.out 2>dry.err || { echo "FAIL: the dry run: $(cat dry.err)"; fails=1; }
+t1=$(date +%s.%N)
+wall=$(echo "$t1 $t0" | awk '{ printf "%.1f", $1 - $2 }')
+echo "dry run of the whole plan: $wall s wall; $(grep '^simulated duration' dry.out)"
+awk -v w="$wall" 'BEGIN { exit !(w < 10) }' || { echo "FAIL: the dry run took $wall s (at most 10)"; fails=1; }
+n=$(grep -c "latest reaction end" dry.out)
+[ "$n" = 2 ] || { echo "FAIL: the dry run reported $n runs, 2 expected"; cat dry.out; fails=1; }
+sim=$(sed -n 's/^simulated duration \([0-9]*\)\..*/\1/p' dry.out)
+[ -n "$sim" ] && [ "$sim" -gt 6000 ] || { echo "FAIL: simulated duration '$sim' s, over 6000 expected"; fails=1; }
 exit $fails

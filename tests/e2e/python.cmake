@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: MIT
 # The Python bindings (python/, label python): pytest against the built shared library and
-# a real fbrlsim, and the Python sample-prep example, whose controller log and output must
-# be exactly the C example's (examples/sample_prep_c*.expected). Needs a Python 3 with
+# a real fbrlsim, and the Python sample-prep example, whose output must be exactly the C
+# example's (examples/sample_prep_c.out.expected) and whose controller log the C example's
+# with the four W5 readings the Python link makes before a motion or FINISH while the arm
+# may move (python/examples/sample_prep.expected; docs/python.md). Needs a Python 3 with
 # cffi and pytest (Debian: python3-cffi, python3-pytest); without one the tests are not
 # added. Not in sanitizer builds: a sanitized library cannot be dlopen'ed by Python.
 if(FBRL_SANITIZE STREQUAL "" AND TARGET fbrlsim)
@@ -20,7 +22,7 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET fbrlsim)
       --basetemp=${PROJECT_BINARY_DIR}/python-tests ${PROJECT_SOURCE_DIR}/python/tests)
     add_test(NAME python_sample_prep COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_run.sh $<TARGET_FILE:fbrlsim>
       ${PROJECT_BINARY_DIR}/python-plan ${PROJECT_SOURCE_DIR}/examples/tube_present.inputs
-      ${PROJECT_SOURCE_DIR}/examples/sample_prep_c.expected ${PROJECT_SOURCE_DIR}/examples/sample_prep_c.out.expected
+      ${PROJECT_SOURCE_DIR}/python/examples/sample_prep.expected ${PROJECT_SOURCE_DIR}/examples/sample_prep_c.out.expected
       ${FBRL_PYTHON} ${PROJECT_SOURCE_DIR}/python/examples/sample_prep.py @PORT@)
     set_tests_properties(python_bindings python_sample_prep PROPERTIES LABELS python TIMEOUT 300
       ENVIRONMENT "${_py_env}")

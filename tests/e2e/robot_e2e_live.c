@@ -14,7 +14,7 @@
 #include <math.h>
 
 #include "rapl_harness.h"
-#include "arm.h"
+#include "fbrl/arm.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"
@@ -27,7 +27,7 @@
 #define SLACK_S       0.003 /* host scheduling around a reading's bracket */
 
 static vmh_text out;
-static const fbrl_sim_model *arm; /* fbrlsim's own A255 */
+static const fbrl_arm *arm; /* fbrlsim's own A255 */
 static fbrl_vm *vm;
 static int failures;
 
@@ -91,7 +91,7 @@ static double off_path(const motion *m, const double xyz[3], double f0, double f
         double f = f0 + (f1 - f0) * k / 400.0, q[AXES], pose[6];
         for (int j = 0; j < AXES; j++)
             q[j] = m->qa[j] + (m->qb[j] - m->qa[j]) * f;
-        fbrl_sim_arm_fk(arm, q, 0.0, pose);
+        fbrl_arm_fk(arm, q, 0.0, pose);
         double d = sqrt((pose[0] - xyz[0]) * (pose[0] - xyz[0]) + (pose[1] - xyz[1]) * (pose[1] - xyz[1]) +
                         (pose[2] - xyz[2]) * (pose[2] - xyz[2]));
         if (d < best)
@@ -134,9 +134,9 @@ int main(int argc, char **argv)
                         pb[6] = {9.0, 8.0, 12.0, 0.0, -90.0, 30.0};
     double qa[AXES], qb[AXES];
     static const double zero[AXES] = {0};
-    arm = fbrl_sim_model_find("A255");
-    if (!arm || arm->naxes != AXES || fbrl_sim_arm_ik(arm, pa, 0.0, zero, qa) ||
-        fbrl_sim_arm_ik(arm, pb, 0.0, qa, qb)) {
+    arm = fbrl_arm_find("A255");
+    if (!arm || arm->naxes != AXES || fbrl_arm_ik(arm, pa, 0.0, zero, qa, NULL) ||
+        fbrl_arm_ik(arm, pb, 0.0, qa, qb, NULL)) {
         fprintf(stderr, "test points unreachable\n");
         return 1;
     }
@@ -151,7 +151,10 @@ int main(int argc, char **argv)
     const char *args[] = {"--time-scale", scale, NULL};
     fbrl_link_config lc;
     fbrl_link_config_init(&lc);
-    static const fbrl_link_arm bogus = {5, {1, 1, 1, 1, 1}, 10, 10, 10, 2};
+    static fbrl_arm bogus; /* pulses that never agree with the joints */
+    bogus = *fbrl_arm_model(0);
+    for (unsigned k = 0; k < bogus.naxes; k++)
+        bogus.ppd[k] = 1.0;
     if (getenv("LIVE_NO_SELFCHECK"))
         lc.arm = &bogus; /* the older rule: two equal replies */
     rig r;

@@ -16,3 +16,12 @@ if(TARGET fbrlmon AND TARGET fbrlsim)
   set_tests_properties(mon_messages PROPERTIES LABELS e2e TIMEOUT 120 SKIP_RETURN_CODE 77
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+
+# Issue 27 item 6: fbrlmon FILE > run.log typed at a terminal runs the file and ends
+# (tests/e2e/terminal_run.sh; skipped without tmux).
+if(TARGET fbrlmon AND TARGET fbrlsim)
+  add_test(NAME mon_terminal_run COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/terminal_run.sh
+    $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> ${PROJECT_BINARY_DIR}/e2e-terminal-run)
+  set_tests_properties(mon_terminal_run PROPERTIES LABELS e2e TIMEOUT 120 SKIP_RETURN_CODE 77
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()

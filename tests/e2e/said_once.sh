@@ -65,12 +65,12 @@ wait_for "X-15.000 Y-12.000 Z+6.000 in  pitch-90.0 roll+170.0"
 tmux -L "$sock" send-keys -t said 4
 wait_for "step 1 in 10 deg"
 k=0
-while [ $k -lt 8 ] && [ "$(count '! JOG: 029-TRANSFORM ILLEGAL')" = 0 ]; do
+while [ $k -lt 8 ] && [ "$(count '! JOG: controller error 029-TRANSFORM ILLEGAL')" = 0 ]; do
     tmux -L "$sock" send-keys -t said Left   # outwards, until the arm cannot reach
     sleep 0.8
     k=$((k + 1))
 done
-[ "$(count '! JOG: 029-TRANSFORM ILLEGAL')" = 1 ] || { fail "TEACH: the refused jog is not on the 80x24 screen"; screen; }
+[ "$(count '! JOG: controller error 029-TRANSFORM ILLEGAL')" = 1 ] || { fail "TEACH: the refused jog is not on the 80x24 screen"; screen; }
 # the status line itself is never wrapped: whole on one screen row
 tmux -L "$sock" capture-pane -p -t said | grep -qx "X-15.000 Y-12.000 Z+6.000 in  pitch-90.0 roll+170.0  step 1 in 10 deg *" ||
     { fail "TEACH: the status line is not whole on one row"; screen; }

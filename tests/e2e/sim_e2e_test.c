@@ -30,6 +30,7 @@
 #include "fbrlsim.h"
 
 #define TIMEOUT 15.0 /* seconds: generous, the machine may be loaded */
+#define SILENCE_S 0.5 /* seconds of nothing that prove no unasked-for byte comes */
 
 typedef struct simp {
     pid_t pid;
@@ -41,7 +42,7 @@ static char g_dir[64];   /* per-run scratch directory */
 static pid_t g_pids[64]; /* emulators started, killed by the group teardown if a test failed */
 static int g_npids;
 static char g_buf[1 << 16];
-static int g_real; /* spawn as a user would: no --status-extra, and no greeting wanted (--aci) */
+static int g_real; /* spawn as a user would: no --status-extra (2: --aci, no prompt at all) */
 
 static double now_s(void)
 {
@@ -126,11 +127,14 @@ static void spawn(simp *p, const char *const *extra)
         }
         expect_greeting(p);
     } else {
+        /* a pty is greeted only when asked (--greet-pty): a serial line's controller cannot
+         * see a program open its port; the first reply of each test is its proof of silence */
         p->fd = open(p->path, O_RDWR | O_NOCTTY);
         assert_true(p->fd >= 0);
         raw_fd(p->fd);
-        if (g_real != 2)
-            expect_greeting(p);
+        for (i = 0; extra && extra[i]; i++)
+            if (strcmp(extra[i], "--greet-pty") == 0)
+                expect_greeting(p);
     }
 }
 
@@ -203,12 +207,21 @@ static size_t read_until(simp *p, char *buf, size_t cap, const char *suf, double
     return n;
 }
 
-/* A client is greeted with the prompt as soon as it connects (TCP) or opens the pty. */
+/* A client is greeted with the prompt as soon as it connects (TCP) or, with --greet-pty,
+ * opens the pty. */
 static void expect_greeting(simp *p)
 {
     size_t n = read_until(p, g_buf, sizeof g_buf, ">>", TIMEOUT);
     if (n != 2 || strcmp(g_buf, ">>") != 0)
         fail_msg("no prompt on connect: got '%s'", g_buf);
+}
+
+/* Nothing arrives for a while (SILENCE_S): no byte that nobody typed for. */
+static void expect_silence(simp *p)
+{
+    size_t n = read_until(p, g_buf, sizeof g_buf, NULL, SILENCE_S);
+    if (n != 0)
+        fail_msg("%zu bytes nobody typed for: '%s'", n, g_buf);
 }
 
 /* Sends a line with CR; returns everything up to and including the prompt. */
@@ -342,13 +355,31 @@ static void t_echo_prompt(void **st)
         strcat(want, "1,5\r\n041-ROBOT HAS NOT BEEN HOMED.\r\n>>");
         assert_string_equal(raw(&p, "JOINT,1,5"), want);
     }
-    /* a terminal program that opens the pty again is greeted again */
+    /* a terminal program that opens the pty again hears nothing until it types: a
+     * controller on a serial line cannot see a program open its port */
+    close(p.fd);
+    p.fd = open(p.path, O_RDWR | O_NOCTTY);
+    assert_true(p.fd >= 0);
+    raw_fd(p.fd);
+    expect_silence(&p);
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    stop(&p);
+}
+
+/* --greet-pty: each program that opens the pty is greeted, as a TCP client is. */
+static void t_greet_pty(void **st)
+{
+    static const char *const opts[] = {"--greet-pty", "--time-scale", "200", NULL};
+    simp p;
+    (void)st;
+    spawn(&p, opts); /* the first open's greeting is read there */
+    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
     close(p.fd);
     p.fd = open(p.path, O_RDWR | O_NOCTTY);
     assert_true(p.fd >= 0);
     raw_fd(p.fd);
     expect_greeting(&p);
-    assert_string_equal(raw(&p, "NOHELP"), "NOHELP\r\n>>");
+    assert_string_equal(raw(&p, "SPEED 30"), "SPEED 30\r\n>>");
     stop(&p);
 }
 
@@ -933,8 +964,8 @@ static void t_settings(void **st)
     assert_string_equal(raw(&p, "SPEED 21"), "SPEED 21\r\n>>");
     ok(&p, "GAIN 0,2.5");
     ok(&p, "GAIN 3,4");
-    assert_string_equal(cmd(&p, "GAIN 3"), "GAIN MOTOR 3: +4.0000\r\n");
-    assert_string_equal(cmd(&p, "GAIN 1"), "GAIN MOTOR 1: +2.5000\r\n");
+    assert_string_equal(cmd(&p, "GAIN 3"), "GAIN MOTOR 3: +4.0000,+0.2500,+100.0000\r\n");
+    assert_string_equal(cmd(&p, "GAIN 1"), "GAIN MOTOR 1: +2.5000,+0.2500,+100.0000\r\n");
     err(&p, "GAIN 7,1", 65);
     ok(&p, "FLASH 0.5");
     assert_string_equal(status_line(&p, "PENDANT"), "PENDANT LAMP IS FLASHING");
@@ -1050,6 +1081,86 @@ static void t_run(void **st)
     }
 }
 
+/* A person managing programs at the controller's terminal (S11's lab steps): FREE, EDIT
+ * and lines typed in edit mode (kept, never run: the command log is the proof), DIR,
+ * LISTP, RUN, the program table's 16, and all of it kept in the state file. */
+static void t_programs(void **st)
+{
+    simp p;
+    const char *state = tmp("progs.state"), *log = tmp("progs.log");
+    const char *const opts[] = {"--time-scale", "200", "--state", state, "--log", log, NULL};
+    char name[16];
+    int i;
+    (void)st;
+    start(&p, opts);
+    assert_string_equal(cmd(&p, "FREE"), "PROGRAMS  : 00000 OF 00016\r\n"
+                                         "VARIABLES : 00000 OF 00100\r\n"
+                                         "LOCATIONS : 00000 OF 00100\r\n");
+    err(&p, "EDIT", 13); /* no program named yet */
+    ok(&p, "POINT P1,14,2,8,0,-90,0");
+    ok(&p, "EDIT PICK");
+    /* not homed: each of these would answer 041 if it ran */
+    assert_string_equal(raw(&p, "APPRO P1,2"), "APPRO P1,2\r\n>>");
+    assert_string_equal(raw(&p, "MOVE P1"), "MOVE P1\r\n>>");
+    assert_string_equal(raw(&p, ""), "\r\n>>"); /* an empty line ends edit mode */
+    err(&p, "MOVE P1", 41);                     /* typed again: runs */
+    ok(&p, "EDIT");                             /* the same program, lines go on */
+    assert_string_equal(raw(&p, "V1=V1+1"), "V1=V1+1\r\n>>");
+    assert_string_equal(raw(&p, ""), "\r\n>>");
+    assert_string_equal(cmd(&p, "LISTP PICK"), "#00001 APPRO P1,2\r\n#00002 MOVE P1\r\n#00003 V1=V1+1\r\n");
+    assert_string_equal(cmd(&p, "DIR"), "PICK     00003 LINES 00027 BYTES\r\n");
+    assert_string_equal(cmd(&p, "FREE"), "PROGRAMS  : 00001 OF 00016\r\n"
+                                         "VARIABLES : 00000 OF 00100\r\n"
+                                         "LOCATIONS : 00001 OF 00100\r\n");
+    err(&p, "LISTP NOPE", 17);
+    err(&p, "LISTP PICK,1", 18); /* the printer channel: not there */
+    err(&p, "FREE 1", 18);
+    err(&p, "DIR 1", 18);
+    ok(&p, "V1=0");
+    ok(&p, "HOME");
+    ok(&p, "RUN PICK");
+    ok(&p, "FINISH");
+    assert_string_equal(cmd(&p, "TYPEI V1"), "1\r\n");
+    for (i = 2; i <= 16; i++) { /* the table holds 16 programs */
+        snprintf(name, sizeof name, "EDIT Q%d", i);
+        ok(&p, name);
+        assert_string_equal(raw(&p, ""), "\r\n>>");
+    }
+    err(&p, "EDIT Q17", 22);
+    assert_string_equal(cmd(&p, "DIR"), "PICK     00003 LINES 00027 BYTES\r\n"
+                                        "Q10      00000 LINES 00000 BYTES\r\n"
+                                        "Q11      00000 LINES 00000 BYTES\r\n"
+                                        "Q12      00000 LINES 00000 BYTES\r\n"
+                                        "Q13      00000 LINES 00000 BYTES\r\n"
+                                        "Q14      00000 LINES 00000 BYTES\r\n"
+                                        "Q15      00000 LINES 00000 BYTES\r\n"
+                                        "Q16      00000 LINES 00000 BYTES\r\n"
+                                        "Q2       00000 LINES 00000 BYTES\r\n"
+                                        "Q3       00000 LINES 00000 BYTES\r\n"
+                                        "Q4       00000 LINES 00000 BYTES\r\n"
+                                        "Q5       00000 LINES 00000 BYTES\r\n"
+                                        "Q6       00000 LINES 00000 BYTES\r\n"
+                                        "Q7       00000 LINES 00000 BYTES\r\n"
+                                        "Q8       00000 LINES 00000 BYTES\r\n"
+                                        "Q9       00000 LINES 00000 BYTES\r\n");
+    stop(&p);
+    start(&p, opts); /* kept in the state file */
+    assert_string_equal(cmd(&p, "LISTP PICK"), "#00001 APPRO P1,2\r\n#00002 MOVE P1\r\n#00003 V1=V1+1\r\n");
+    stop(&p);
+    {
+        /* the log: the lines kept in edit mode are marked, not logged as commands run */
+        char text[8192];
+        size_t n;
+        FILE *f = fopen(log, "r");
+        assert_non_null(f);
+        n = fread(text, 1, sizeof text - 1, f);
+        text[n] = 0;
+        fclose(f);
+        assert_non_null(strstr(text, "\n# EDIT PICK: APPRO P1,2\n# EDIT PICK: MOVE P1\nMOVE P1\nEDIT\n"));
+        assert_null(strstr(text, "\nAPPRO P1,2\n"));
+    }
+}
+
 /* ---- persistence ----------------------------------------------------- */
 
 static void t_persist(void **st)
@@ -1069,6 +1180,7 @@ static void t_persist(void **st)
     ok(&p, "SPEED 33");
     ok(&p, "GRIP 1.5");
     ok(&p, "CONFIG 1,4800,O,7,1,N,0");
+    ok(&p, "GAIN 2,5,.5,90");
     ok(&p, "MOVE P1");
     ok(&p, "FINISH");
     stop(&p);
@@ -1085,6 +1197,7 @@ static void t_persist(void **st)
     assert_string_equal(cmd(&p, "SERIAL"),
                         "CHANNEL 0: BAUD 9600 PARITY N DATA 8 STOP 1 HANDSHAKE X ECHO 1\r\n"
                         "CHANNEL 1: BAUD 4800 PARITY O DATA 7 STOP 1 HANDSHAKE N ECHO 0\r\n");
+    assert_string_equal(cmd(&p, "GAIN 2"), "GAIN MOTOR 2: +5.0000,+0.5000,+90.0000\r\n");
     /* the arm is where it stopped */
     where(&p, w, NULL, NULL);
     assert_true(fabs(w[0] - 10) < 0.001 && fabs(w[1] - 5) < 0.001 && fabs(w[2] - 4) < 0.001);
@@ -1174,6 +1287,9 @@ static void t_state_junk(void **st)
         "GAIN 9 1",
         "GAIN 1 -1",
         "GAIN 1 0x10",
+        "GAIN 1 8 0.25",
+        "GAIN 1 8 0.25 100 7",
+        "GAIN 1 8 -0.25 100",
         "VAR V1 -inf",
         "VAR V1 nan",
         "VAR 1X 3",
@@ -1946,7 +2062,7 @@ static void t_embed(void **st)
     p.fd = open(link, O_RDWR | O_NOCTTY);
     assert_true(p.fd >= 0);
     raw_fd(p.fd);
-    expect_greeting(&p); /* opening the pty is its connect */
+    expect_silence(&p); /* opening the pty sends nothing: a serial line cannot see it */
     ok(&p, "NOHELP");
     ok(&p, "HOME");
     ok(&p, "JOINT 1,45");
@@ -2365,7 +2481,6 @@ static void t_client_commands(void **st)
      * are S3's (not in the table) */
     static const char *const unknown[] = {"XREADY",
                                           "ALLOC 1,1,1,1",
-                                          "FREE",
                                           "MAGGRIP 5",
                                           "PRINT X",
                                           "PRINTI 1",
@@ -2388,9 +2503,6 @@ static void t_client_commands(void **st)
                                           "IGNORE 1",
                                           "AOUT 1,2",
                                           "DELETE P",
-                                          "EDIT P",
-                                          "DIR",
-                                          "LISTP P",
                                           "MEMRD 1",
                                           "PROCEED",
                                           "RENAME A,B",
@@ -2440,6 +2552,10 @@ static void t_client_commands(void **st)
     start(&p, opts);
     for (i = 0; i < sizeof unknown / sizeof unknown[0]; i++)
         err(&p, unknown[i], 12);
+    /* what the lab's steps use (S11) is answered (t_programs has the rest) */
+    assert_non_null(strstr(cmd(&p, "FREE"), "PROGRAMS  : 00000 OF 00016\r\n"));
+    assert_string_equal(cmd(&p, "DIR"), "");
+    err(&p, "LISTP P", 17);
     /* ENABLE/DISABLE ARM (S2), also by token */
     ok(&p, "HOME");
     ok(&p, "DISABLE ARM");
@@ -2461,15 +2577,24 @@ static void t_client_commands(void **st)
     close(fd);
     n += read_until(&p, g_buf + n, sizeof g_buf - n, "\r\n>>", TIMEOUT);
     assert_string_equal(g_buf, "ONPOWER\r\n>>");
-    /* GAIN: one motor, all motors (0), the query form */
-    ok(&p, "GAIN 0,2.5");
-    assert_string_equal(cmd(&p, "GAIN 3"), "GAIN MOTOR 3: +2.5000\r\n");
+    /* GAIN: the lab's values at power-up (S11), its form GAIN 0,5,.25,100 for every motor,
+     * one value for one motor, and GAIN 0 shows every motor (0 = all motors, S1) */
+    assert_string_equal(cmd(&p, "GAIN 4"), "GAIN MOTOR 4: +8.0000,+0.2500,+100.0000\r\n");
+    ok(&p, "GAIN 0,5,.25,100");
     ok(&p, "GAIN 2,1");
-    assert_string_equal(cmd(&p, "GAIN 2"), "GAIN MOTOR 2: +1.0000\r\n");
-    assert_string_equal(cmd(&p, "GAIN 5"), "GAIN MOTOR 5: +2.5000\r\n");
-    err(&p, "GAIN 0", 65);
+    ok(&p, "GAIN 3,6,0.5,90");
+    assert_string_equal(cmd(&p, "GAIN 0"), "GAIN MOTOR 1: +5.0000,+0.2500,+100.0000\r\n"
+                                          "GAIN MOTOR 2: +1.0000,+0.2500,+100.0000\r\n"
+                                          "GAIN MOTOR 3: +6.0000,+0.5000,+90.0000\r\n"
+                                          "GAIN MOTOR 4: +5.0000,+0.2500,+100.0000\r\n"
+                                          "GAIN MOTOR 5: +5.0000,+0.2500,+100.0000\r\n");
+    assert_string_equal(cmd(&p, "GAIN 2"), "GAIN MOTOR 2: +1.0000,+0.2500,+100.0000\r\n");
+    err(&p, "GAIN 1,1,2", 13);
+    err(&p, "GAIN 1,1,2,3,4", 14);
     err(&p, "GAIN 6,1", 65);
     err(&p, "GAIN 1,-1", 18);
+    err(&p, "GAIN 1,1,-1,2", 18);
+    assert_string_equal(cmd(&p, "GAIN 1"), "GAIN MOTOR 1: +5.0000,+0.2500,+100.0000\r\n");
     stop(&p);
 }
 
@@ -2829,13 +2954,14 @@ int main(int argc, char **argv)
         const struct CMUnitTest t[] = {__VA_ARGS__};                                    \
         rc |= _cmocka_run_group_tests(name, t, sizeof t / sizeof t[0], NULL, kill_all); \
     }
-    GROUP("line", cmocka_unit_test(t_echo_prompt), cmocka_unit_test(t_editing), cmocka_unit_test(t_errors))
+    GROUP("line", cmocka_unit_test(t_echo_prompt), cmocka_unit_test(t_greet_pty), cmocka_unit_test(t_editing),
+          cmocka_unit_test(t_errors))
     GROUP("motion", cmocka_unit_test(t_home_ready), cmocka_unit_test(t_moves),
           cmocka_unit_test(t_motion_errors), cmocka_unit_test(t_motion_timing), cmocka_unit_test(t_locations),
           cmocka_unit_test(t_teach))
     GROUP("io", cmocka_unit_test(t_io), cmocka_unit_test(t_inputs_script), cmocka_unit_test(t_gripper),
           cmocka_unit_test(t_variables), cmocka_unit_test(t_settings), cmocka_unit_test(t_streams_extra),
-          cmocka_unit_test(t_run))
+          cmocka_unit_test(t_run), cmocka_unit_test(t_programs))
     GROUP("persist", cmocka_unit_test(t_persist), cmocka_unit_test(t_state_junk),
           cmocka_unit_test(t_state_symlink), cmocka_unit_test(t_state_lowercase))
     GROUP("baud", cmocka_unit_test(t_baud), cmocka_unit_test(t_strict), cmocka_unit_test(t_cmd_time))

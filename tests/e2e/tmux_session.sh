@@ -2,7 +2,7 @@
 # tmux_session.sh - sourced by the e2e tests that drive fbrlmon on a real terminal: tmux
 # gives it a pty of a chosen size (session "said" on a private server), fbrlsim (started
 # here with --time-scale ${sim_scale:-20} and --log sim.log) is the controller on
-# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, pane, wait_for, wait_long, type_line, count, logged; the caller sets
+# $work/robot ($sim_args: more fbrlsim options). Defines fail, screen, pane, wait_for, wait_long, type_line, count, logged, teach_jog; the caller sets
 # $name (part of the tmux socket name) and starts the session.
 sock=fbrl-$name-$$
 fails=0
@@ -47,4 +47,15 @@ type_line() {
 }
 count() { screen | grep -cF -- "$1"; }
 logged() { grep -cxF -- "$1" sim.log; }
-
+# teach_jog: in fbrlmon's TEACH pendant, one jog of +0.1 in X (Right) that fbrlsim's log
+# shows, then Enter stores the arm's position into the place
+teach_jog() {
+    wait_for "TEACH keys" || return 1
+    n=$(grep -c '^JOG 0.1,0,0$' sim.log)
+    tmux -L "$sock" send-keys -t said Right
+    k=0
+    while [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" = "$n" ] && [ $k -lt 100 ]; do sleep 0.1; k=$((k + 1)); done
+    [ "$(grep -c '^JOG 0.1,0,0$' sim.log)" -gt "$n" ] || { fail "TEACH's jog never reached the controller"; return 1; }
+    sleep 0.5
+    tmux -L "$sock" send-keys -t said Enter
+}

@@ -4,11 +4,11 @@
 # (label package, docs/packaging.md):
 #   - a copy of the source tree (no build directories, no .git) in WORKDIR;
 #   - dpkg-buildpackage -us -uc -b there (DEB_BUILD_OPTIONS=nocheck: the suite already ran;
-#     parallel=2) must produce libfbrl0, libfbrl-dev, fbrl-tools and python3-fbrl;
+#     parallel=2) must produce libfbrlN (N the soname), libfbrl-dev, fbrl-tools, python3-fbrl and fbrl-station;
 #   - lintian on the .changes: no errors;
 #   - dpkg -c: each package holds the files it should;
-#   - unpacked into a fresh root, fbrlsim --version runs and the Python package imports
-#     against the packaged library.
+#   - unpacked into a fresh root, fbrlsim --version runs, the Python package imports
+#     against the packaged library and fbrl-station --version runs on both.
 # Exit 77 (skipped) when dpkg-buildpackage or lintian is not installed, or a build
 # dependency of debian/control is missing.
 src=$1 work=$2
@@ -25,6 +25,7 @@ fi
 rm -f "${TMPDIR:-/tmp}/fbrl-builddeps.$$"
 version=$(sed -n '1s/.*(\(.*\)).*/\1/p' "$src/debian/changelog")
 upstream=${version%-*}
+major=${upstream%%.*} # the soname's number: the library's package is libfbrl$major
 arch=$(dpkg --print-architecture)
 multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH)
 rm -rf "$work" && mkdir -p "$work" || exit 1
@@ -43,10 +44,11 @@ if ! (cd "$tree" && DEB_BUILD_OPTIONS="nocheck parallel=2" dpkg-buildpackage -us
     echo "FAIL: dpkg-buildpackage (log: $work/build.log)"
     exit 1
 fi
-for p in libfbrl0 libfbrl-dev fbrl-tools; do
+for p in libfbrl$major libfbrl-dev fbrl-tools; do
     [ -f "$work/${p}_${version}_$arch.deb" ] || fail "no ${p}_${version}_$arch.deb"
 done
 [ -f "$work/python3-fbrl_${version}_all.deb" ] || fail "no python3-fbrl_${version}_all.deb"
+[ -f "$work/fbrl-station_${version}_all.deb" ] || fail "no fbrl-station_${version}_all.deb"
 [ $fails = 0 ] || exit 1
 
 # lintian: errors fail; warnings are printed
@@ -68,7 +70,7 @@ has() {
     done
 }
 L=usr/lib/$multiarch
-has "libfbrl0_${version}_$arch.deb" "^\./$L/libfbrl\.so\.0(\.|$)" "^\./usr/share/doc/libfbrl0/copyright$"
+has "libfbrl${major}_${version}_$arch.deb" "^\./$L/libfbrl\.so\.$major(\.|$)" "^\./usr/share/doc/libfbrl$major/copyright$"
 has "libfbrl-dev_${version}_$arch.deb" "^\./usr/include/fbrl/fbrl\.h$" "^\./usr/include/fbrl/version\.h$" \
     "^\./usr/include/fbrl/export\.h$" "^\./usr/include/fbrlsim\.h$" "^\./$L/libfbrl\.so$" "^\./$L/libfbrl\.a$" \
     "^\./$L/libfbrlsim\.a$" "^\./$L/pkgconfig/fbrl\.pc$" "^\./$L/cmake/fbrl/fbrlConfig\.cmake$" \
@@ -80,6 +82,10 @@ has "fbrl-tools_${version}_$arch.deb" "^\./usr/bin/fbrlmon$" "^\./usr/bin/fbrlsi
     "^\./usr/share/bash-completion/completions/fbrlmon$" "^\./usr/share/bash-completion/completions/fbrlsim$"
 has "python3-fbrl_${version}_all.deb" "^\./usr/lib/python3/dist-packages/fbrl/__init__\.py$" \
     "^\./usr/lib/python3/dist-packages/fbrl/_ffi\.py$" "^\./usr/share/doc/python3-fbrl/examples/sample_prep\.py"
+has "fbrl-station_${version}_all.deb" "^\./usr/bin/fbrl-station$" "^\./usr/share/fbrl-station/fbrl_station/server\.py$" \
+    "^\./usr/share/fbrl-station/fbrl_station/features/ArmController\.sila\.xml$" \
+    "^\./usr/share/fbrl-station/fbrl_station/_gen/ArmController_pb2_grpc\.py$" \
+    "^\./usr/share/man/man1/fbrl-station\.1\.gz$" "^\./usr/share/doc/fbrl-station/sila\.md"
 # nothing internal: no build paths, no test programs
 for deb in "$work"/*.deb; do
     if dpkg -c "$deb" | grep -Eq 'obj-|/tests?/|__pycache__'; then
@@ -87,21 +93,29 @@ for deb in "$work"/*.deb; do
     fi
 done
 
-# a fresh root with all four unpacked
+# a fresh root with all five unpacked
 root=$work/root
 for deb in "$work"/*.deb; do dpkg -x "$deb" "$root" || fail "dpkg -x $deb"; done
 out=$("$root/usr/bin/fbrlsim" --version 2>&1) || fail "packaged fbrlsim --version: $out"
 echo "package: $out"
 case $out in "fbrlsim (libfbrl) $upstream") ;; *) fail "fbrlsim --version says '$out'" ;; esac
 if [ -x /usr/bin/python3 ] && /usr/bin/python3 -c 'import cffi' 2>/dev/null; then
-    v=$(cd "$work" && PYTHONPATH="$root/usr/lib/python3/dist-packages" FBRL_LIBRARY="$root/$L/libfbrl.so.0" \
+    v=$(cd "$work" && PYTHONPATH="$root/usr/lib/python3/dist-packages" FBRL_LIBRARY="$root/$L/libfbrl.so.$major" \
         /usr/bin/python3 -c 'import fbrl; print(fbrl.version())' 2>&1) || fail "python3 -c 'import fbrl': $v"
     [ "$v" = "$upstream" ] || fail "fbrl.version() says '$v'"
     echo "package: python3-fbrl imports, library version $v"
+    if /usr/bin/python3 -c 'import grpc, google.protobuf, zeroconf, cryptography' 2>/dev/null; then
+        v=$(cd "$work" && PYTHONPATH="$root/usr/share/fbrl-station:$root/usr/lib/python3/dist-packages" \
+            FBRL_LIBRARY="$root/$L/libfbrl.so.$major" /usr/bin/python3 -m fbrl_station --version 2>&1) ||
+            fail "packaged fbrl-station --version: $v"
+        [ "$v" = "fbrl-station (libfbrl) $upstream" ] || fail "fbrl-station --version says '$v'"
+        echo "package: $v"
+    fi
 fi
 # the packaged manual pages render
-for page in usr/share/man/man1/fbrlmon.1.gz usr/share/man/man1/fbrlsim.1.gz usr/share/man/man3/libfbrl.3.gz; do
+for page in usr/share/man/man1/fbrlmon.1.gz usr/share/man/man1/fbrlsim.1.gz usr/share/man/man1/fbrl-station.1.gz \
+    usr/share/man/man3/libfbrl.3.gz; do
     MANWIDTH=80 man -l -P cat "$root/$page" 2>/dev/null | grep -q '^NAME' || fail "man -l $page"
 done
-echo "package: 4 packages, $fails failures"
+echo "package: 5 packages, $fails failures"
 [ $fails = 0 ]

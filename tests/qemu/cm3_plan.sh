@@ -21,16 +21,15 @@ plan=$work/plan.fbrl
 DEADLINE_S=60
 DICT_MIN=16384 # the budget: a dictionary of at least 16 KB free for programs after boot
 
-# the plan as one text: TIME-SCALE, the cell, the method, then BYE (the firmware resets;
-# QEMU, run with -no-reboot, exits). The firmware also gets the data-file check
-# (cm3_files.fbrl: its storage region) and FW-STATS before its BYE. The cell's objects
-# (CELL-CLEAR INCLUDE asps_cell_objects.fbrl) are left out of both runs: the firmware has
-# no motion guard (docs/firmware.md, section 6), and for a plan the guard lets through it
-# changes no command.
+# the plan as one text: TIME-SCALE, the cell with its objects (the guard checks every motion
+# on both sides, docs/workcell.md), the method, then BYE (the firmware resets; QEMU, run with
+# -no-reboot, exits). The firmware also gets the data-file check (cm3_files.fbrl: its storage
+# region) and FW-STATS before its BYE.
 {
     echo "$scale CONSTANT TIME-SCALE"
     sed -e '/^INCLUDE asps_cell.fbrl/{r '"$examples"'/asps_cell.fbrl' -e 'd;}' "$examples/sample_prep.fbrl" |
-        sed -e '/INCLUDE asps_cell_objects\.fbrl/d'
+        sed -e '/INCLUDE asps_cell_objects\.fbrl/{s/INCLUDE asps_cell_objects\.fbrl//' \
+            -e 'r '"$examples"'/asps_cell_objects.fbrl' -e '}'
 } >"$plan"
 {
     cat "$plan" "$(dirname "$0")/cm3_files.fbrl"

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -979,6 +980,79 @@ static void failed_commit_keeps_handle_open(void **state)
     assert_int_equal(fbrl_file_close(&f), FBRL_OK);
 }
 
+/* What the OS said is named, not "input/output error": the errno table; a symbolic link
+ * is written through (the link stays, its target changes, a chain and a link to a file not
+ * made yet included); a link loop, a read-only file and a file size limit (EFBIG: the
+ * disk-full status) are refused with nothing changed. */
+static void os_errors_are_named_and_links_followed(void **state)
+{
+    (void)state;
+    static unsigned char buf[256];
+    fbrl_file f;
+    char real[PATH_LEN], link1[PATH_LEN], link2[PATH_LEN], loop1[PATH_LEN], loop2[PATH_LEN];
+    struct stat sb;
+    assert_int_equal(fbrl_file_status_of_errno(0), FBRL_OK);
+    assert_int_equal(fbrl_file_status_of_errno(EACCES), FBRL_EPERM);
+    assert_int_equal(fbrl_file_status_of_errno(EPERM), FBRL_EPERM);
+    assert_int_equal(fbrl_file_status_of_errno(ENOSPC), FBRL_EDISKFULL);
+    assert_int_equal(fbrl_file_status_of_errno(EFBIG), FBRL_EDISKFULL);
+    assert_int_equal(fbrl_file_status_of_errno(ELOOP), FBRL_ELOOP);
+    assert_int_equal(fbrl_file_status_of_errno(EROFS), FBRL_EREADONLY);
+    assert_int_equal(fbrl_file_status_of_errno(ENOENT), FBRL_ENOENT);
+    assert_int_equal(fbrl_file_status_of_errno(EIO), FBRL_EIO);
+
+    path_in(real, "real.fbd");
+    path_in(link1, "link1.fbd");
+    path_in(link2, "link2.fbd");
+    assert_int_equal(symlink("real.fbd", link1), 0);  /* a link to a file not made yet */
+    assert_int_equal(symlink("link1.fbd", link2), 0); /* and a chain of two */
+    assert_int_equal(fbrl_file_create(link2), FBRL_OK);
+    assert_int_equal(fbrl_file_open(&f, link2, buf, sizeof buf), FBRL_OK);
+    assert_int_equal(fbrl_file_write_chr(&f, 'L'), FBRL_OK);
+    assert_int_equal(fbrl_file_close(&f), FBRL_OK);
+    assert_int_equal(lstat(link1, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode));
+    assert_int_equal(lstat(link2, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode));
+    assert_int_equal(fbrl_file_open(&f, real, buf, sizeof buf), FBRL_OK);
+    unsigned char c = 0;
+    assert_int_equal(fbrl_file_read_chr(&f, &c), FBRL_OK);
+    assert_int_equal(c, 'L');
+    assert_int_equal(fbrl_file_discard(&f), FBRL_OK);
+
+    path_in(loop1, "loop1.fbd");
+    path_in(loop2, "loop2.fbd");
+    assert_int_equal(symlink("loop2.fbd", loop1), 0);
+    assert_int_equal(symlink("loop1.fbd", loop2), 0);
+    assert_int_equal(fbrl_file_create(loop1), FBRL_ELOOP);
+    assert_int_equal(fbrl_file_open(&f, loop1, buf, sizeof buf), FBRL_ELOOP);
+
+    assert_int_equal(chmod(real, 0444), 0); /* read-only: refused, even for root */
+    assert_int_equal(fbrl_file_open(&f, link2, buf, sizeof buf), FBRL_OK);
+    assert_int_equal(fbrl_file_write_chr(&f, 'X'), FBRL_OK);
+    assert_int_equal(fbrl_file_commit(&f), FBRL_EREADONLY);
+    assert_int_equal(fbrl_file_discard(&f), FBRL_OK);
+    assert_int_equal(fbrl_file_create(real), FBRL_EREADONLY);
+    assert_int_equal(chmod(real, 0644), 0);
+
+    /* a file size limit in a child (it must not end this test): EFBIG, named as no room */
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        struct rlimit rl = {0, 0};
+        signal(SIGXFSZ, SIG_IGN);
+        if (setrlimit(RLIMIT_FSIZE, &rl) != 0)
+            _exit(2);
+        fbrl_status st = fbrl_file_create(in_dir("big.fbd"));
+        _exit(st == FBRL_EDISKFULL ? 0 : 1);
+    }
+    int wst = 0;
+    assert_int_equal(waitpid(pid, &wst, 0), pid);
+    assert_true(WIFEXITED(wst));
+    assert_int_equal(WEXITSTATUS(wst), 0);
+    assert_int_equal(stat(in_dir("big.fbd"), &sb), -1); /* nothing left behind */
+}
+
 static void bad_input_is_refused(void **state)
 {
     (void)state;
@@ -1124,6 +1198,7 @@ int main(void)
         cmocka_unit_test(leftover_temporaries_do_not_block_writes),
         cmocka_unit_test(failed_commit_keeps_handle_open),
         cmocka_unit_test(bad_input_is_refused),
+        cmocka_unit_test(os_errors_are_named_and_links_followed),
     };
     return cmocka_run_group_tests(tests, make_dir, drop_dir);
 }

@@ -26,6 +26,7 @@
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/method.h"
+#include "fbrl/run.h"
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
@@ -40,6 +41,7 @@ typedef struct fixture {
     fbrl_robot r;
     fbrl_cell_words cell;
     fbrl_method_set methods;
+    fbrl_run run;
     vmh_text out;
 } fixture;
 
@@ -61,6 +63,7 @@ static int setup(void **state)
     assert_int_equal(fbrl_robot_install(f->vm, &f->r, NULL, &f->g), FBRL_OK);
     assert_int_equal(fbrl_cell_install(f->vm, &f->cell, &f->r, &f->g), FBRL_OK);
     assert_int_equal(fbrl_method_install(f->vm, &f->methods), FBRL_OK);
+    assert_int_equal(fbrl_run_install(&f->run, f->vm, &f->methods, NULL, &f->r), FBRL_OK);
     *state = f;
     return 0;
 }

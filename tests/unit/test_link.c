@@ -307,6 +307,53 @@ static void clean_command_runs_once(void **state)
     assert_int_equal(st.echo_mismatch, 0);
 }
 
+/* The gate (fbrl_link_set_gate) sees every line just before it is typed, with the one-shot
+ * unguarded flag; its refusal is the command's result and not a byte of the line goes out. */
+typedef struct gate_seen {
+    char line[64];
+    int unguarded, calls;
+} gate_seen;
+
+static fbrl_status refuse_jog(void *ctx, const char *line, size_t len, int unguarded)
+{
+    gate_seen *g = ctx;
+    snprintf(g->line, sizeof g->line, "%.*s", (int)len, line);
+    g->unguarded = unguarded;
+    g->calls++;
+    return strncmp(line, "JOG", 3) == 0 && !unguarded ? FBRL_EGUARD : FBRL_OK;
+}
+
+static void the_gate_sees_every_line_first(void **state)
+{
+    session *s = *state;
+    gate_seen g;
+    fbrl_link_stats before, after;
+    memset(&g, 0, sizeof g);
+    assert_int_equal(fbrl_link_set_gate(&s->l, refuse_jog, &g), FBRL_OK);
+    fbrl_link_get_stats(&s->l, &before);
+    fbrl_rapl_arg a[3] = {fbrl_rapl_real(0), fbrl_rapl_real(0), fbrl_rapl_real(-1)};
+    assert_int_equal(fbrl_link_cmd(&s->l, FBRL_RAPL_JOG, a, 3, 0), FBRL_EGUARD);
+    assert_string_equal(g.line, "JOG 0,0,-1");
+    assert_int_equal(g.unguarded, 0);
+    fbrl_link_get_stats(&s->l, &after);
+    assert_int_equal(after.attempts, before.attempts); /* nothing typed */
+    assert_false(fbrl_link_busy(&s->l));
+    assert_int_equal(fbrl_link_fate_of(FBRL_EGUARD), FBRL_LINK_NOT_RUN);
+    assert_int_equal(run(s, "speed 50", FBRL_LINK_REPLY_NONE), FBRL_OK); /* other lines pass */
+    assert_string_equal(g.line, "speed 50");
+    assert_int_equal(fbrl_link_unguarded(&s->l), FBRL_OK); /* once, explicitly: it goes */
+    assert_int_equal(run(s, "JOG 0,0,1", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    assert_int_equal(g.unguarded, 1);
+    assert_int_equal(run(s, "JOG 0,0,1", FBRL_LINK_REPLY_NONE), FBRL_EGUARD); /* for that line only */
+    assert_int_equal(g.unguarded, 0);
+    assert_int_equal(fbrl_link_set_gate(&s->l, NULL, NULL), FBRL_OK);
+    assert_int_equal(run(s, "JOG 0,0,1", FBRL_LINK_REPLY_NONE), FBRL_OK); /* no gate: a link knows no cell */
+    static const char *const want[] = {"NOHELP", "SPEED 50", "JOG 0,0,1", "JOG 0,0,1"};
+    assert_log(s, want, 4);
+    assert_int_equal(fbrl_link_set_gate(NULL, NULL, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_unguarded(NULL), FBRL_EINVAL);
+}
+
 /* The CR is lost, turned into a printable byte, or into an ignored control byte: the
  * line is found unexecuted by a probe, retyped, and runs exactly once. */
 static void damaged_cr_never_runs_twice(void **state)
@@ -876,6 +923,40 @@ static void bad_calls_are_refused(void **state)
     assert_int_equal(fbrl_link_start_stream(&s->l, FBRL_RAPL_W1, 0), FBRL_EINVAL);
 }
 
+/* The line check on counted bytes: what fbrl_link_start() refuses, and a NUL inside the
+ * count (C would stop there: "OUTPUT 3\0 junk" must not pass as "OUTPUT 3"). The started
+ * forms of fbrl_link_cmd and fbrl_link_raw run through fbrl_link_poll and run once. */
+static void line_check_and_started_commands(void **state)
+{
+    session *s = *state;
+    static const char nul[] = "OUTPUT 3\0 junk";
+    char longline[FBRL_LINK_LINE_MAX + 1];
+    memset(longline, 'A', sizeof longline);
+    assert_int_equal(fbrl_link_line_check("HOME", 4), FBRL_OK);
+    assert_int_equal(fbrl_link_line_check(nul, 8), FBRL_OK);
+    assert_int_equal(fbrl_link_line_check(nul, sizeof nul - 1), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check(longline, FBRL_LINK_LINE_MAX), FBRL_OK);
+    assert_int_equal(fbrl_link_line_check(longline, FBRL_LINK_LINE_MAX + 1), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("", 0), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check(NULL, 3), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("A?", 2), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("A\tB", 3), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_line_check("\xc3\xa9", 2), FBRL_EINVAL);
+
+    fbrl_rapl_arg sp = fbrl_rapl_int(20);
+    assert_int_equal(fbrl_link_start_cmd(&s->l, FBRL_RAPL_SPEED, &sp, 1, 0), FBRL_OK);
+    assert_int_equal(fbrl_link_start_raw(&s->l, "HOME"), FBRL_ESTATE); /* one at a time */
+    assert_int_equal(drive(s), FBRL_OK);
+    assert_int_equal(fbrl_link_start_raw(&s->l, "W2"), FBRL_OK); /* read as the table says */
+    assert_int_equal(drive(s), FBRL_OK);
+    assert_true(fbrl_link_last_pos(&s->l)->nworld == 6);
+    assert_int_equal(fbrl_link_start_raw(&s->l, "W1"), FBRL_EINVAL); /* streams: fbrl_link_stream */
+    assert_int_equal(fbrl_link_start_raw(NULL, "HOME"), FBRL_EINVAL);
+    assert_int_equal(fbrl_link_start_cmd(&s->l, FBRL_RAPL_W1, NULL, 0, 0), FBRL_EINVAL);
+    static const char *const want[] = {"NOHELP", "SPEED 20", "W2"}; /* a consistent block: read once */
+    assert_log(s, want, 3);
+}
+
 /* One thread, two robots: both commands progress and finish through poll_many. */
 static void one_thread_serves_two_links(void **state)
 {
@@ -919,6 +1000,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(clean_command_runs_once, setup, teardown),
+        cmocka_unit_test_setup_teardown(the_gate_sees_every_line_first, setup, teardown),
         cmocka_unit_test_setup_teardown(damaged_cr_never_runs_twice, setup, teardown),
         cmocka_unit_test_setup_teardown(lf_from_a_damaged_probe_is_no_proof, setup, teardown),
         cmocka_unit_test_setup_teardown(lost_last_echo_is_retyped, setup, teardown),
@@ -937,6 +1019,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_calls_are_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(one_thread_serves_two_links, setup, teardown),
+        cmocka_unit_test_setup_teardown(line_check_and_started_commands, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* test_method.c - the method words (tests/forth/method.fs) and their C side: the
- * declared methods, parameters set with their ranges checked, and a run watched step by
- * step through the observer (pause = a between() that says stop). */
+ * declared methods and parameters set with their ranges checked. The runs the Forth test
+ * makes are the run module's RUN-METHOD (tests/unit/test_run.c tests the run itself). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "fbrl/method.h"
+#include "fbrl/run.h"
 #include "fbrl/vm.h"
 #include "support/vm_host.h"
 
@@ -22,9 +23,7 @@ typedef struct fixture {
     vmh_text out;
     fbrl_vm *vm;
     fbrl_method_set set;
-    char events[2048]; /* what the observer saw */
-    int stop_before;   /* between() says stop before this many steps ran (0: never) */
-    int began;
+    fbrl_run run;
 } fixture;
 
 static fixture *new_vm(void)
@@ -42,6 +41,7 @@ static fixture *new_vm(void)
     vmh_use_files(&cfg.host);
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     assert_int_equal(fbrl_method_install(f->vm, &f->set), FBRL_OK);
+    assert_int_equal(fbrl_run_install(&f->run, f->vm, &f->set, NULL, NULL), FBRL_OK);
     return f;
 }
 
@@ -138,85 +138,19 @@ static void c_side_sees_the_declaration(void **state)
     free(f);
 }
 
-static void ev_add(fixture *f, const char *fmt, ...)
-{
-    va_list ap;
-    size_t n = strlen(f->events);
-    va_start(ap, fmt);
-    vsnprintf(f->events + n, sizeof f->events - n, fmt, ap);
-    va_end(ap);
-}
-
-static int o_begin(void *ctx, const fbrl_method *m)
-{
-    fixture *f = ctx;
-    ev_add(f, "begin %s;", m->name);
-    return 0;
-}
-static void o_step(void *ctx, const fbrl_method *m, size_t step, long sample, fbrl_method_phase ph,
-                   const char *e)
-{
-    fixture *f = ctx;
-    static const char *const names[] = {"start", "ok", "failed"};
-    ev_add(f, "%s %s %ld%s%s;", names[ph], m->steps[step].name, sample, e ? " " : "", e ? e : "");
-    f->began += ph == FBRL_METHOD_STEP_BEGIN;
-}
-static int o_between(void *ctx, const fbrl_method *m, size_t step, long sample)
-{
-    fixture *f = ctx;
-    (void)m, (void)step, (void)sample;
-    return f->stop_before > 0 && f->began >= f->stop_before;
-}
-static void o_end(void *ctx, const fbrl_method *m, const char *outcome, const char *error)
-{
-    fixture *f = ctx;
-    ev_add(f, "end %s %s%s%s;", m->name, outcome, error ? " " : "", error ? error : "");
-}
-
-static void a_run_is_observed_step_by_step(void **state)
+/* parameters cannot change while their method runs */
+static void parameters_are_fixed_while_it_runs(void **state)
 {
     (void)state;
     fixture *f = new_vm();
-    fbrl_method_observer o = {NULL, o_begin, o_step, o_between, o_end};
-    o.ctx = f;
     declare(f);
-    fbrl_method_set_observer(&f->set, &o);
-    const fbrl_method *m = fbrl_method_find(&f->set, "M");
-    assert_int_equal(fbrl_method_param_set(&f->set, m, 0, 2), FBRL_OK);
-    ok(f, "M RUN-METHOD DONE @");
-    fbrl_cell done = 0;
-    assert_int_equal(fbrl_vm_pop(f->vm, &done), FBRL_OK);
-    assert_int_equal(done, 22);
-    assert_string_equal(f->events, "begin M;start First -1;ok First -1;start Each 0;ok Each 0;start Each 1;"
-                                   "ok Each 1;start Last -1;ok Last -1;end M completed;");
-    /* stopped between steps: the run ends "aborted" with THROW -28, no further step */
-    f->events[0] = '\0';
-    f->began = 0;
-    f->stop_before = 2;
-    assert_int_not_equal(fbrl_vm_eval(f->vm, "M RUN-METHOD", 12), FBRL_OK);
-    assert_int_equal(fbrl_vm_last_error(f->vm)->throw_code, -28);
-    assert_string_equal(f->events, "begin M;start First -1;ok First -1;start Each 0;ok Each 0;"
-                                   "end M aborted RUN-METHOD: M aborted by the operator;");
-    /* a step that throws: failed, with its message */
-    f->events[0] = '\0';
-    f->began = 0;
-    f->stop_before = 0;
-    ok(f, ": BAD TRUE ABORT\" tube missing\" ;");
-    ok(f, "METHOD F  fails");
-    ok(f, "' BAD STEP Broken  broken");
-    ok(f, "END-METHOD");
-    assert_int_not_equal(fbrl_vm_eval(f->vm, "F RUN-METHOD", 12), FBRL_OK);
-    assert_string_equal(f->events,
-                        "begin F;start Broken -1;failed Broken -1 tube missing;end F failed tube missing;");
-    /* parameters cannot change while their method runs */
-    ok(f, ": SETN S\" 1 PARAM! N\" EVALUATE ;");
-    ok(f, "METHOD G  sets N while M... no: while G runs");
+    ok(f, "METHOD G  sets its own parameter while it runs");
     ok(f, "1 3 2 SAMPLES-PARAM GN n  n");
     ok(f, ": SETGN S\" 1 PARAM! GN\" EVALUATE ; ' SETGN STEP Set  set");
     ok(f, "END-METHOD");
-    f->events[0] = '\0';
     assert_int_not_equal(fbrl_vm_eval(f->vm, "G RUN-METHOD", 12), FBRL_OK);
-    assert_non_null(strstr(f->events, "GN: G is running"));
+    assert_non_null(strstr(fbrl_vm_last_error(f->vm)->message, "GN: G is running"));
+    assert_int_equal(fbrl_method_param_set(&f->set, fbrl_method_find(&f->set, "G"), 0, 1), FBRL_OK);
     free(f->mem);
     free(f);
 }
@@ -226,7 +160,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(forth_method_words),
         cmocka_unit_test(c_side_sees_the_declaration),
-        cmocka_unit_test(a_run_is_observed_step_by_step),
+        cmocka_unit_test(parameters_are_fixed_while_it_runs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

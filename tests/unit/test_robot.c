@@ -254,6 +254,85 @@ static void safe_stop_offline(void **state)
     assert_int_equal(fbrl_robot_set_relink(NULL, NULL, NULL), FBRL_EINVAL);
 }
 
+/* A motion from C (fbrl_robot_motion): the robot words' gate without the VM's throw: the
+ * status and the message a word would have thrown; the VM is left as it was. */
+static void motion_from_c_offline(void **state)
+{
+    fixture *f = *state;
+    fbrl_robot_move m;
+    char msg[160];
+    memset(&m, 0, sizeof m);
+    m.kind = FBRL_ROBOT_MOVE_JOG;
+    m.word = "JOG";
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, msg, sizeof msg), FBRL_EOFFLINE);
+    assert_string_equal(msg, "no controller connected: start fbrlmon with --sim or --port");
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, NULL, 0), FBRL_EOFFLINE);
+    m.kind = FBRL_ROBOT_MOVE_OTHER;
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, msg, sizeof msg), FBRL_EINVAL);
+    m.kind = FBRL_ROBOT_MOVE_MOTOR;
+    m.v[0] = 1, m.v[1] = 0.5; /* pulses are whole */
+    assert_int_equal(fbrl_robot_motion(&f->r, &m, msg, sizeof msg), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_motion(NULL, &m, msg, sizeof msg), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_motion(&f->r, NULL, msg, sizeof msg), FBRL_EINVAL);
+    assert_int_equal(ev(f, "1 2 + ."), FBRL_OK); /* nothing thrown is left pending */
+    assert_non_null(strstr(f->out, "3 "));
+    /* a guard's refusal from inside a word is thrown as the word's error */
+    assert_int_equal(fbrl_robot_fail(&f->r, FBRL_ROBOT_THROW_REFUSED, "X: would hit Y"), FBRL_ETHROW);
+    assert_int_equal(fbrl_robot_fail(NULL, FBRL_ROBOT_THROW_REFUSED, "X"), FBRL_EINVAL);
+}
+
+/* For a host that drives the link itself: the stop without a context says offline; a
+ * line's effect is what the robot words take it for (a motion, FINISH, HALT, the outputs
+ * OUTPUT switches on; an unknown command may move the arm, an assignment never does);
+ * a W5 line shows rest only when every velocity is zero and it came undamaged. */
+static void host_side_helpers(void **state)
+{
+    (void)state;
+    fbrl_robot_stop so;
+    unsigned e = 99;
+    uint32_t on = 99;
+    assert_int_equal(fbrl_robot_safe_stop_link(NULL, 0, NULL, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_safe_stop_link(NULL, 0x5u, "MOVE P1", &so), FBRL_EOFFLINE);
+    assert_int_equal(so.result, FBRL_EOFFLINE);
+    assert_int_equal(so.was_moving, 1);
+    assert_string_equal(so.motion, "MOVE P1");
+    assert_int_equal(so.stop.halted, 0);
+    assert_int_equal(fbrl_robot_safe_stop_link(NULL, 0, NULL, &so), FBRL_EOFFLINE);
+    assert_int_equal(so.was_moving, 0);
+
+    assert_int_equal(fbrl_robot_line_effect(NULL, &e, &on), FBRL_EINVAL);
+    assert_int_equal(fbrl_robot_line_effect("MOVE P1", NULL, &on), FBRL_EINVAL);
+    static const struct {
+        const char *line;
+        unsigned effect;
+        uint32_t on;
+    } cases[] = {
+        {"MOVE P1", FBRL_ROBOT_LINE_MOTION, 0},   {"  appro p1,2", FBRL_ROBOT_LINE_MOTION, 0},
+        {"RUN PROG", FBRL_ROBOT_LINE_MOTION, 0},  {"FROB 3", FBRL_ROBOT_LINE_MOTION, 0},
+        {"FINISH", FBRL_ROBOT_LINE_FINISH, 0},    {"HALT", FBRL_ROBOT_LINE_HALT, 0},
+        {"V1=3", 0, 0},                           {"W2", 0, 0},
+        {"OUTPUT 3", 0, 0x4u},                    {"OUTPUT 1,-2,16", 0, 0x8001u},
+        {"OUTPUT -5", 0, 0},                      {"OUTPUT 17,99999999999999999999", 0, 0},
+        {"OUTPUT +2", 0, 0x2u},                   {"STATUS", 0, 0},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        assert_int_equal(fbrl_robot_line_effect(cases[k].line, &e, &on), FBRL_OK);
+        if (e != cases[k].effect || on != cases[k].on)
+            print_error("'%s': effect %u outputs %#x\n", cases[k].line, e, (unsigned)on);
+        assert_int_equal(e, cases[k].effect);
+        assert_int_equal(on, cases[k].on);
+    }
+    assert_int_equal(fbrl_robot_line_effect("OUTPUT 4", &e, NULL), FBRL_OK);
+
+    static const char rest[] = "+0000000000 +0000000000 +0000000000 +0000000000 +0000000000";
+    static const char moving[] = "+0000000000 +0000000012 +0000000000 +0000000000 +0000000000";
+    assert_true(fbrl_robot_still_line(rest, sizeof rest - 1, 0));
+    assert_false(fbrl_robot_still_line(rest, sizeof rest - 1, 1)); /* damaged: no proof */
+    assert_false(fbrl_robot_still_line(moving, sizeof moving - 1, 0));
+    assert_false(fbrl_robot_still_line("COMMANDED VELOCITY:", 19, 0)); /* the title */
+    assert_false(fbrl_robot_still_line(NULL, 0, 0));
+}
+
 static void print_loc_needs_the_port(void **state)
 {
     fixture *f = *state;
@@ -595,7 +674,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(every_word_has_help, setup, teardown),
         cmocka_unit_test_setup_teardown(offline_words_throw_a_clear_error, setup, teardown),
         cmocka_unit_test_setup_teardown(print_loc_needs_the_port, setup, teardown),
+        cmocka_unit_test_setup_teardown(motion_from_c_offline, setup, teardown),
         cmocka_unit_test_setup_teardown(safe_stop_offline, setup, teardown),
+        cmocka_unit_test_setup_teardown(host_side_helpers, setup, teardown),
         cmocka_unit_test_setup_teardown(arguments_are_checked_before_anything_is_sent, setup, teardown),
         cmocka_unit_test_setup_teardown(getreal_getint_getstring, setup, teardown),
         cmocka_unit_test_setup_teardown(parameters_come_from_the_stacks_or_the_line, setup, teardown),

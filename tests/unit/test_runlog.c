@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* test_runlog.c - the run log's records, their escaping, cutting, and a failing sink. */
+/* test_runlog.c - the run log's records, their escaping, cutting, polls folded, the
+ * samples in the summary, and a failing sink. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -10,7 +11,7 @@
 #include "fbrl/runlog.h"
 
 typedef struct sink {
-    char buf[16384];
+    char buf[65536];
     size_t len;
     unsigned writes;
     int fail_after; /* writes that succeed before every later one fails; -1 never */
@@ -103,16 +104,30 @@ static void a_run_writes_every_record(void **state)
                         "\\\"A1\\\"\\u0009missing\\n\",\"advice\":null}");
     assert_int_equal(fbrl_runlog_step_end(&l, "Buffer", 2, NULL), FBRL_OK);
     k.now += 250000;
-    assert_int_equal(fbrl_runlog_end(&l, "completed"), FBRL_OK);
-    assert_false(fbrl_runlog_is_open(&l));
+    assert_int_equal(fbrl_runlog_note(&l, "pause", "ann", "before Reagent"), FBRL_OK);
     assert_string_equal(nth_line(&k, 9, line, sizeof line),
-                        "{\"t\":1750,\"type\":\"summary\",\"outcome\":\"completed\",\"elapsed_ms\":1750,"
-                        "\"steps\":1,\"commands\":3,\"refused\":1,\"may_have_run\":1,\"devices\":1,"
-                        "\"waits\":1,\"errors\":1}");
+                        "{\"t\":1750,\"type\":\"note\",\"event\":\"pause\",\"operator\":\"ann\","
+                        "\"text\":\"before Reagent\"}");
+    assert_int_equal(fbrl_runlog_sample(&l, 2, "failed", "no tube"), FBRL_OK);
     assert_string_equal(nth_line(&k, 10, line, sizeof line),
-                        "{\"t\":1750,\"type\":\"text\",\"text\":\"SAMPLE-PREP: completed after 1.7 s\"}");
-    assert_int_equal(k.writes, 13);
-    assert_int_equal(fbrl_runlog_note(&l, "pause", NULL), FBRL_ESTATE);
+                        "{\"t\":1750,\"type\":\"sample\",\"sample\":2,\"outcome\":\"failed\","
+                        "\"reason\":\"no tube\"}");
+    fbrl_runlog_outcome s[2] = {{1, "succeeded", ""}, {2, "failed", "no tube"}};
+    assert_int_equal(fbrl_runlog_end(&l, "partial", s, 2), FBRL_OK);
+    assert_false(fbrl_runlog_is_open(&l));
+    assert_string_equal(nth_line(&k, 11, line, sizeof line),
+                        "{\"t\":1750,\"type\":\"summary\",\"outcome\":\"partial\",\"elapsed_ms\":1750,"
+                        "\"steps\":1,\"commands\":3,\"refused\":1,\"may_have_run\":1,\"devices\":1,"
+                        "\"waits\":1,\"errors\":1,\"samples\":[{\"sample\":1,\"outcome\":\"succeeded\","
+                        "\"reason\":\"\"},{\"sample\":2,\"outcome\":\"failed\",\"reason\":\"no tube\"}]}");
+    assert_string_equal(nth_line(&k, 12, line, sizeof line),
+                        "{\"t\":1750,\"type\":\"text\",\"text\":\"SAMPLE-PREP: partial after 1.7 s\"}");
+    assert_string_equal(nth_line(&k, 13, line, sizeof line),
+                        "{\"t\":1750,\"type\":\"text\",\"text\":\"2 samples: 1 succeeded, 1 failed, 0 skipped\"}");
+    assert_string_equal(nth_line(&k, 14, line, sizeof line),
+                        "{\"t\":1750,\"type\":\"text\",\"text\":\"sample 2 failed: no tube\"}");
+    assert_int_equal(k.writes, 17);
+    assert_int_equal(fbrl_runlog_note(&l, "pause", NULL, NULL), FBRL_ESTATE);
 }
 
 /* A command the link typed again (docs/link.md 3.9): its second run says so, the first not. */
@@ -144,7 +159,7 @@ static void long_texts_are_cut(void **state)
     (void)state;
     static sink k;
     fbrl_runlog l;
-    char big[3000], line[2048];
+    static char big[FBRL_RUNLOG_LINE_MAX], line[FBRL_RUNLOG_LINE_MAX + 2];
     fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
     memset(&k, 0, sizeof k);
     memset(&l, 0, sizeof l);
@@ -152,7 +167,7 @@ static void long_texts_are_cut(void **state)
     memset(big, '"', sizeof big - 1);
     big[sizeof big - 1] = '\0';
     assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_OK);
-    assert_int_equal(fbrl_runlog_note(&l, "abort", big), FBRL_OK);
+    assert_int_equal(fbrl_runlog_note(&l, "abort", NULL, big), FBRL_OK);
     nth_line(&k, 1, line, sizeof line);
     assert_true(strlen(line) <= FBRL_RUNLOG_LINE_MAX);
     size_t n = strlen(line);
@@ -177,10 +192,76 @@ static void a_failing_sink_is_reported(void **state)
     assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_ESTATE);
     assert_int_equal(fbrl_runlog_step_start(&l, "a", -1), FBRL_OK);
     assert_int_equal(fbrl_runlog_step_end(&l, "a", -1, NULL), FBRL_EIO);
-    assert_int_equal(fbrl_runlog_end(&l, "completed"), FBRL_EIO);
+    assert_int_equal(fbrl_runlog_end(&l, "completed", NULL, 0), FBRL_EIO);
     assert_false(fbrl_runlog_is_open(&l));
     h.method = NULL;
     assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_EINVAL);
+}
+
+/* Polls the robot words repeat while they wait are one record each run of them, written
+ * when another record comes, with their count: the commands are counted one by one. */
+static void polls_are_folded(void **state)
+{
+    (void)state;
+    static sink k;
+    fbrl_runlog l;
+    char line[512];
+    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    memset(&k, 0, sizeof k);
+    memset(&l, 0, sizeof l);
+    k.fail_after = -1;
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, sink_clock, &k, &h), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command(&l, "MOVE A", 6, FBRL_OK, -1), FBRL_OK);
+    for (int i = 0; i < 5; i++) {
+        k.now += 50000;
+        assert_int_equal(fbrl_runlog_command(&l, "W5", 2, FBRL_OK, -1), FBRL_OK);
+    }
+    assert_int_equal(k.writes, 2); /* the header, MOVE: the polls wait for what comes next */
+    assert_int_equal(fbrl_runlog_command(&l, "TYPEI SIG(3)", 12, FBRL_OK, -1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command(&l, "TYPEI SIG(3)", 12, FBRL_OK, -1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command(&l, "W5", 2, FBRL_ECONTROLLER, 12), FBRL_OK); /* refused: a record */
+    assert_int_equal(fbrl_runlog_wait(&l, "WAIT-INPUT X on: not seen", 100, 101), FBRL_OK);
+    assert_string_equal(nth_line(&k, 2, line, sizeof line),
+                        "{\"t\":50,\"type\":\"command\",\"line\":\"W5\",\"status\":\"ran\",\"count\":5,"
+                        "\"last_t\":250}");
+    assert_string_equal(nth_line(&k, 3, line, sizeof line),
+                        "{\"t\":250,\"type\":\"command\",\"line\":\"TYPEI SIG(3)\",\"status\":\"ran\","
+                        "\"count\":2,\"last_t\":250}");
+    assert_string_equal(nth_line(&k, 4, line, sizeof line),
+                        "{\"t\":250,\"type\":\"command\",\"line\":\"W5\",\"status\":\"refused\",\"code\":12}");
+    assert_int_equal(fbrl_runlog_command(&l, "W5", 2, FBRL_OK, -1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_end(&l, "completed", NULL, 0), FBRL_OK);
+    assert_string_equal(nth_line(&k, 6, line, sizeof line),
+                        "{\"t\":250,\"type\":\"command\",\"line\":\"W5\",\"status\":\"ran\"}");
+    assert_non_null(strstr(k.buf, "\"commands\":10,"));
+}
+
+/* A summary of more samples than its line holds lists those that fit, whole, and says how
+ * many it left out; the line stays one valid record. */
+static void a_summary_of_many_samples_stays_whole(void **state)
+{
+    (void)state;
+    static sink k;
+    static char reason[FBRL_RUNLOG_LINE_MAX / 8];
+    static char line[FBRL_RUNLOG_LINE_MAX + 2];
+    fbrl_runlog l;
+    fbrl_runlog_outcome s[40];
+    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    memset(&k, 0, sizeof k);
+    memset(&l, 0, sizeof l);
+    k.fail_after = -1;
+    memset(reason, 'r', sizeof reason - 1);
+    for (int i = 0; i < 40; i++)
+        s[i].sample = i + 1, s[i].outcome = "failed", s[i].reason = reason;
+    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, NULL, NULL, &h), FBRL_OK);
+    assert_int_equal(fbrl_runlog_end(&l, "failed", s, 40), FBRL_OK);
+    nth_line(&k, 1, line, sizeof line);
+    size_t n = strlen(line);
+    assert_true(n <= FBRL_RUNLOG_LINE_MAX);
+    assert_non_null(strstr(line, "\"samples_left_out\":"));
+    assert_string_equal(line + n - 1, "}");
+    assert_non_null(strstr(line, "rr\"}],\"samples_left_out\""));
+    assert_non_null(strstr(k.buf, "\"text\":\"... and 30 more (the summary record lists every sample)\""));
 }
 
 int main(void)
@@ -190,6 +271,8 @@ int main(void)
         cmocka_unit_test(a_repeated_command_says_which_run),
         cmocka_unit_test(long_texts_are_cut),
         cmocka_unit_test(a_failing_sink_is_reported),
+        cmocka_unit_test(polls_are_folded),
+        cmocka_unit_test(a_summary_of_many_samples_stays_whole),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

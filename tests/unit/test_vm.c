@@ -52,7 +52,12 @@ typedef struct fixture {
     fbrl_vm *vm;
 } fixture;
 
-static fixture *new_vm(size_t mem_size)
+static fixture *new_vm_clock(size_t mem_size, uint64_t (*now_us)(void *), void (*sleep_ms)(void *, uint32_t));
+
+static fixture *new_vm(size_t mem_size) { return new_vm_clock(mem_size, NULL, NULL); }
+
+/* now_us and sleep_ms: the host's clock (NULL: the real one) */
+static fixture *new_vm_clock(size_t mem_size, uint64_t (*now_us)(void *), void (*sleep_ms)(void *, uint32_t))
 {
     fixture *f = calloc(1, sizeof *f);
     assert_non_null(f);
@@ -68,6 +73,8 @@ static fixture *new_vm(size_t mem_size)
     cfg.host.key_ready = h_key_ready;
     vmh_use_files(&cfg.host);
     vmh_use_clock(&cfg.host);
+    if (now_us)
+        cfg.host.now_us = now_us, cfg.host.sleep_ms = sleep_ms;
     cfg.host.files = mon_files(); /* fbrlmon's file system for the standard FILE words */
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
     return f;
@@ -1168,9 +1175,136 @@ static void tasks_from_a_host_loop(void **state)
     free_vm(f);
 }
 
+/* A clock that moves only when the engine sleeps (and 1 us for each look at it, so a wait
+ * that never sleeps still ends): how often the engine sleeps and looks while tasks wait. */
+typedef struct vclock {
+    uint64_t now;
+    unsigned long looks, sleeps;
+} vclock;
+static vclock g_vc;
+static uint64_t vc_now_us(void *user)
+{
+    (void)user;
+    g_vc.looks++;
+    return ++g_vc.now;
+}
+static void vc_sleep_ms(void *user, uint32_t ms)
+{
+    (void)user;
+    g_vc.sleeps++;
+    g_vc.now += (uint64_t)ms * 1000u;
+}
+
+/* Waiting costs nothing: six tasks waiting 60 s on their clocks (AT, MS) while the main
+ * task AWAITs them make the engine sleep about once a second (its longest sleep) and look
+ * at the clock about as often, not poll (AWAIT looked every 2 ms: 30,000 sleeps); a task
+ * that ends wakes its AWAIT at once; CLAIM waits for RELEASE the same way. */
+static void waiting_costs_nothing(void **state)
+{
+    (void)state;
+    memset(&g_vc, 0, sizeof g_vc);
+    fixture *f = new_vm_clock(1 << 20, vc_now_us, vc_sleep_ms);
+    assert_int_equal(ev(f, "TASK T0 TASK T1 TASK T2 TASK T3 TASK T4 TASK T5 "
+                           "CREATE TS T0 , T1 , T2 , T3 , T4 , T5 , "
+                           ": NAP ( -- ) 60000 AT ;  : NAP-MS ( -- ) 60000 MS ; "
+                           ": GO ( xt -- ) 6 0 DO DUP I CELLS TS + @ START LOOP DROP "
+                           "  6 0 DO I CELLS TS + @ AWAIT LOOP ;"),
+                     FBRL_OK);
+    g_vc.looks = g_vc.sleeps = 0;
+    uint64_t t0 = g_vc.now;
+    assert_int_equal(ev(f, "' NAP GO"), FBRL_OK);
+    assert_true(g_vc.now - t0 >= 60000000u && g_vc.now - t0 < 60000000u + 2000u); /* ends in time */
+    assert_true(g_vc.sleeps >= 60 && g_vc.sleeps <= 70);
+    assert_true(g_vc.looks < 2000);
+    g_vc.looks = g_vc.sleeps = 0;
+    assert_int_equal(ev(f, "' NAP-MS GO"), FBRL_OK);
+    assert_true(g_vc.sleeps >= 60 && g_vc.sleeps <= 70);
+    assert_true(g_vc.looks < 2000);
+    /* AWAIT of a task that ends at 5 s and a CLAIM held for 5 s: each wakes when it happens */
+    assert_int_equal(ev(f, "VARIABLE WOKE  : HOLD ( -- ) CLAIM-ARM 5000 AT RELEASE-ARM 55000 AT ; "
+                           ": TAKE ( -- ) 100 AT CLAIM-ARM CLOCK WOKE ! RELEASE-ARM ; "),
+                     FBRL_OK);
+    g_vc.sleeps = 0;
+    assert_int_equal(ev(f, "' HOLD T0 START ' TAKE T1 START T1 AWAIT WOKE @"), FBRL_OK);
+    fbrl_cell woke = pop1(f);
+    assert_true(woke >= 5000 && woke < 5002);
+    assert_true(g_vc.sleeps <= 8);
+    assert_int_equal(ev(f, "T0 AWAIT"), FBRL_OK);
+    free_vm(f);
+}
+
+/* TASK of a name that already is a task that is not running (a file loaded again, EDIT)
+ * takes that task's slot again: 100 loads of three tasks fit in 16; a running task keeps
+ * its slot and the new name gets another. */
+static void task_again_reuses_its_slot(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    for (int i = 0; i < 100; i++)
+        assert_int_equal(ev(f, "TASK TR TASK TS TASK TT : NOP ; ' NOP TS START TS AWAIT"), FBRL_OK);
+    assert_int_equal(ev(f, "TR TS TT"), FBRL_OK);
+    fbrl_cell tt = pop1(f), ts = pop1(f), tr = pop1(f);
+    assert_true(tr >= 1 && ts == tr + 1 && tt == ts + 1);
+    assert_int_equal(ev(f, ": LONG ( -- ) 200 MS ;  ' LONG TR START  TASK TR  TR TASK-STATE"), FBRL_OK);
+    assert_int_equal(pop1(f), 1); /* the new TR: made, not started */
+    assert_int_equal(ev(f, "TR"), FBRL_OK);
+    assert_true(pop1(f) != tr);
+    assert_int_equal(ev(f, "STOP-TASKS"), FBRL_OK);
+    free_vm(f);
+}
+
+/* The word hook (a debugger's single steps): every word a definition runs, built-ins,
+ * numbers and superinstructions by their source words, and the interpreter's words, with
+ * where each is and how deep; a non-zero return throws there; cleared, nothing more. */
+typedef struct seen {
+    char words[512];
+    size_t depth[32];
+    int n, stop_at;
+} seen;
+static int record_word(void *ctx, fbrl_vm *vm, const fbrl_vm_stop *st)
+{
+    seen *w = ctx;
+    (void)vm;
+    strncat(w->words, st->word, sizeof w->words - strlen(w->words) - 2);
+    strncat(w->words, "|", sizeof w->words - strlen(w->words) - 1);
+    if (w->n < 32)
+        w->depth[w->n] = st->depth;
+    w->n++;
+    if (!strcmp(st->word, "DROP"))
+        assert_string_equal(st->caller, "STEPPED");
+    return w->n == w->stop_at ? -1 : 0;
+}
+
+static void word_hook_sees_every_word(void **state)
+{
+    (void)state;
+    fixture *f = new_vm(1 << 20);
+    seen w;
+    memset(&w, 0, sizeof w);
+    assert_int_equal(ev(f, "VARIABLE V : STEPPED ( -- ) 1 2 + DROP V @ DROP ;"), FBRL_OK);
+    assert_int_equal(fbrl_vm_word_hook(f->vm, record_word, &w), FBRL_OK);
+    assert_int_equal(ev(f, "STEPPED"), FBRL_OK);
+    assert_string_equal(w.words, "STEPPED|1|2 +|DROP|V @|DROP|;|"); /* V @: one superinstruction */
+    assert_true(w.depth[1] == w.depth[0] + 1); /* inside the definition: one deeper */
+    memset(&w, 0, sizeof w);
+    w.stop_at = 4; /* a hook's throw stops the word there: DROP never runs */
+    assert_int_equal(ev(f, "STEPPED"), FBRL_ETHROW);
+    assert_string_equal(w.words, "STEPPED|1|2 +|DROP|");
+    assert_int_equal(fbrl_vm_depth(f->vm), 0);
+    assert_int_equal(fbrl_vm_word_hook(f->vm, NULL, NULL), FBRL_OK);
+    memset(&w, 0, sizeof w);
+    assert_int_equal(ev(f, "STEPPED"), FBRL_OK);
+    assert_int_equal(w.n, 0);
+    assert_int_equal(fbrl_vm_word_hook(NULL, record_word, &w), FBRL_EINVAL);
+    free_vm(f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(waiting_costs_nothing),
+        cmocka_unit_test(word_hook_sees_every_word),
+        cmocka_unit_test(task_again_reuses_its_slot),
         cmocka_unit_test(forth_core),
         cmocka_unit_test(forth_coreext),
         cmocka_unit_test(forth_exception),

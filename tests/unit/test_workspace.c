@@ -310,6 +310,53 @@ static void save_keeps_other_data(void **state)
     free_vm(a);
 }
 
+/* What a save would change in a file, object by object, before it overwrites anything. */
+typedef struct deltas {
+    char text[1024];
+} deltas;
+
+static void note_delta(void *ctx, const fbrl_workspace_delta *d)
+{
+    deltas *ds = ctx;
+    size_t n = strlen(ds->text);
+    static const char *const how[] = {"", "added", "changed", "dropped"};
+    snprintf(ds->text + n, sizeof ds->text - n, "%s %s %s %g>%g;", how[d->change], d->name[0] ? d->name : "-",
+             d->kind, d->was ? d->was[0] : -1.0, d->now ? d->now[0] : -1.0);
+}
+
+static void what_a_save_would_change(void **state)
+{
+    fixture *a = new_vm(1 << 20), *b = new_vm(1 << 20);
+    deltas ds;
+    unsigned count = 99;
+    unsigned char before[WS_BUF], after[WS_BUF];
+    (void)state;
+    populate(a);
+    eval(a, "CREATE-LOC GONE 1E0 2E0 3E0 0E0 -90E0 0E0 GONE DEFINE-LOC");
+    remove(path("diff.ws"));
+    assert_int_equal(fbrl_workspace_diff(&a->ws, path("diff.ws"), note_delta, &ds, &count), FBRL_ENOENT);
+    assert_int_equal(fbrl_workspace_save(&a->ws, path("diff.ws"), NULL), FBRL_OK);
+    memset(&ds, 0, sizeof ds);
+    assert_int_equal(fbrl_workspace_diff(&a->ws, path("diff.ws"), note_delta, &ds, &count), FBRL_OK);
+    assert_int_equal(count, 0);
+    assert_string_equal(ds.text, "");
+    /* another session: P taught elsewhere, a new place, GONE never made, MAP-OFF */
+    populate(b);
+    eval(b, "14.5E0 P SETX  CREATE-LOC NEW 5E0 5E0 5E0 0E0 -90E0 0E0 NEW DEFINE-LOC MAP-OFF");
+    size_t n = read_all(path("diff.ws"), before, sizeof before);
+    assert_int_equal(fbrl_workspace_diff(&b->ws, path("diff.ws"), note_delta, &ds, &count), FBRL_OK);
+    assert_string_equal(ds.text, "added NEW a location -1>5;changed P a location 14>14.5;" /* newest first */
+                                 "changed - the settings 1>0;dropped GONE a location 1>-1;");
+    assert_int_equal(count, 4);
+    /* it changed nothing */
+    assert_int_equal(read_all(path("diff.ws"), after, sizeof after), n);
+    assert_memory_equal(before, after, n);
+    assert_int_equal(fbrl_workspace_diff(&b->ws, path("no-such.ws"), NULL, NULL, NULL), FBRL_ENOENT);
+    remove(path("diff.ws"));
+    free_vm(a);
+    free_vm(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -318,6 +365,7 @@ int main(void)
         cmocka_unit_test(name_conflict_changes_nothing),
         cmocka_unit_test(full_dictionary_takes_back),
         cmocka_unit_test(save_keeps_other_data),
+        cmocka_unit_test(what_a_save_would_change),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,58 @@
+# SPDX-License-Identifier: MIT
+"""A method's predicted step times from fbrlmon's dry run (docs/workcell.md: the plan against
+the built-in emulator, every wait skipped on a simulated clock). The station gives them to the
+run (fbrl.Run.predict), so the remaining time of a RunMethod comes from the dry run before
+the first step ends. FBRL_MON names fbrlmon (the launcher sets it), else fbrlmon on PATH."""
+import os
+import re
+import shutil
+import subprocess
+
+# A dry run skips every wait: a second or two even for an hour-long method. One that does not
+# end in this time waits for something no one gives it (fbrlmon's run of a method whose
+# ON-FAILURE rule asks waits for an answer): the run then goes without the prediction.
+DRY_RUN_S = 10
+STEP_RE = re.compile(r"^  step (\S+)\s+(?:(\d+) x ([0-9.]+) s = |not run)")
+
+
+def fbrlmon():
+    prog = os.environ.get("FBRL_MON") or shutil.which("fbrlmon")
+    if not prog or not os.access(prog, os.X_OK):
+        raise OSError("fbrlmon was not found for the dry run (install it, or set FBRL_MON)")
+    return prog
+
+
+def argv(opts, prelude, method_file, method, values, picture):
+    """fbrlmon's command line for a dry run of method with values [(name, value)]: the
+    station's own files and -e texts in their order, then the method's file and the run."""
+    args = [fbrlmon(), "--dry-run", "--svg", picture]
+    if opts.sim_inputs:
+        args += ["--sim-inputs", os.path.abspath(opts.sim_inputs)]
+    if opts.sim_model:
+        args += ["--sim-model", opts.sim_model]
+    args.append(prelude)
+    for kind, what in opts.actions:
+        args += ["-e", what] if kind == "eval" else [os.path.abspath(what)]
+    run = " ".join("%d PARAM! %s" % (v, n) for n, v in values)
+    return args + [os.path.abspath(method_file), "-e", "%s %s RUN-METHOD" % (run, method)]
+
+
+def predict(opts, prelude, method_file, method, values, workdir):
+    """The time one run of each step takes, ms, in step order (0: the dry run did not run it);
+    OSError or ValueError saying why when there is none."""
+    picture = os.path.join(workdir, "dry-run.svg")
+    try:
+        p = subprocess.run(argv(opts, prelude, method_file, method, values, picture), cwd=workdir,
+                           stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=DRY_RUN_S)
+    except subprocess.TimeoutExpired:
+        raise ValueError("the dry run did not end within %d s (it may wait for an answer to a question)"
+                         % DRY_RUN_S)
+    steps = []
+    for line in p.stdout.splitlines():
+        m = STEP_RE.match(line)
+        if m:  # a step that ran in no measurable time is 1 ms: 0 would tell the run "unknown"
+            steps.append(max(float(m.group(3)) * 1000.0, 1.0) if m.group(2) else 0.0)
+    if not steps:
+        tail = (p.stderr or p.stdout).strip().splitlines()[-3:]
+        raise ValueError("the dry run predicted no steps (fbrlmon exit %d): %s" % (p.returncode, " / ".join(tail)))
+    return steps
