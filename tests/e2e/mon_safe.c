@@ -237,12 +237,23 @@ static const char cell[] = "\\ the test cell: two outputs, two places\n"
                            "CREATE-LOC A  12E0 3E0 8E0 0E0 -90E0 0E0 A DEFINE-LOC\n"
                            "CREATE-LOC B  12E0 -3E0 8E0 0E0 -90E0 0E0 B DEFINE-LOC\n";
 
+/* fbrlmon --port PORT PLAN in the test's folder. */
+static int start_plan(session *s, const char *port, const char *plan)
+{
+    char *argv[5];
+    argv[0] = (char *)g_mon;
+    argv[1] = "--port";
+    argv[2] = (char *)port;
+    argv[3] = (char *)plan;
+    argv[4] = NULL;
+    return start_mon_argv(s, TIMEOUT_MS, g_dir, argv);
+}
+
 /* 1. Ctrl-C, five ways. */
 static void ctrl_c_tests(void)
 {
     static session s;
     char plan1[1200], inc[1300];
-    char *argv[6];
     size_t from;
     int st;
 
@@ -278,13 +289,8 @@ static void ctrl_c_tests(void)
         g_failed = 1;
         return;
     }
-    argv[0] = (char *)g_mon;
-    argv[1] = "--port";
-    argv[2] = g_link;
-    argv[3] = "plan1.fbrl";
-    argv[4] = NULL;
     from = log_mark();
-    if (start_mon_argv(&s, TIMEOUT_MS, g_dir, argv) != 0)
+    if (start_plan(&s, g_link, "plan1.fbrl") != 0)
         return;
     /* 1a: B MOV waits for A's motion (plan1.fbrl:6) */
     ctrl_c_after(&s, from, "MOVE FBRLT1");
@@ -374,7 +380,6 @@ static void reconnect_tests(pid_t *sim)
 {
     static session s;
     static const double step_y[3] = {2.0, 0.0, -2.0}; /* C1 C2 C3: x 13, z 8 */
-    char *argv[6];
     size_t from, i, restarted, speed = (size_t)-1;
     int k;
     long t_kill;
@@ -388,13 +393,8 @@ static void reconnect_tests(pid_t *sim)
                              "C2 MOV\n"
                              "C3 MOV\n"
                              "FINISH .( plan5 done) CR\n");
-    argv[0] = (char *)g_mon;
-    argv[1] = "--port";
-    argv[2] = g_link;
-    argv[3] = "plan5.fbrl";
-    argv[4] = NULL;
     from = log_mark();
-    if (start_mon_argv(&s, TIMEOUT_MS, g_dir, argv) != 0)
+    if (start_plan(&s, g_link, "plan5.fbrl") != 0)
         return;
     /* C2 MOV (line 7) waits for C1's motion: the controller disappears */
     wait_log(&s, from, "MOVE FBRLT");
@@ -479,7 +479,6 @@ static void plain_status_test(void)
 {
     static session s;
     char link2[1100], log2[sizeof g_log], fifo[1100], ctlout[1100], saved_log[sizeof g_log], buf[256] = "";
-    char *argv[6];
     size_t from;
     pid_t pid;
     int k, fd;
@@ -521,13 +520,8 @@ static void plain_status_test(void)
 
     /* another session switched output 9 on */
     (void)other_session_output_9(link2);
-    argv[0] = (char *)g_mon;
-    argv[1] = "--port";
-    argv[2] = link2;
-    argv[3] = "plan1.fbrl";
-    argv[4] = NULL;
     from = log_mark();
-    if (!g_failed && start_mon_argv(&s, TIMEOUT_MS, g_dir, argv) == 0) {
+    if (!g_failed && start_plan(&s, link2, "plan1.fbrl") == 0) {
         ctrl_c_after(&s, from, "MOVE FBRLT1");
         expect(&s, "stopped (plan1.fbrl:6 in MOV): arm halted while moving (MOVE FBRLT1)", "the stop report");
         expect(&s,
