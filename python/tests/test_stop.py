@@ -78,9 +78,10 @@ def test_halt_stops_a_move_short(realtime_sim, slow_link):
 
 
 def interrupt_after(seconds, sent):
-    def fire():
-        sent.append(time.monotonic())
+    def fire():  # the signal went between the two readings: the later one bounds what may follow it
+        before = time.monotonic()
         os.kill(os.getpid(), signal.SIGINT)
+        sent.append((before, time.monotonic()))
     timer = threading.Timer(seconds, fire)
     timer.start()
     return timer
@@ -92,11 +93,14 @@ def check_stopped_by_the_signal(sim, stop, sent, offset):
     off; the arm stands far short of the target."""
     lo, hi = offset
     log = stamped(sim)
-    earliest, latest = sent - hi, sent - lo  # the signal on fbrlsim's clock
+    earliest, latest = sent[0] - hi, sent[1] - lo  # the signal on fbrlsim's clock
     halt = [t for t, st, text in log if text == "HALT"]
     assert len(halt) == 1 and halt[0] > earliest
+    # Python runs its handler between bytecodes: a W5 read the main thread had begun to call as
+    # the signal came may still start; it ends within its round trip and HALT follows. Nothing
+    # else may start (a motion, an output, a second read).
     started_after = [text for t, st, text in log if latest < t < halt[0]]
-    assert started_after == [], "lines started between the signal and HALT: %s" % started_after
+    assert started_after in ([], ["W5"]), "lines started between the signal and HALT: %s" % started_after
     w5 = [t for t, st, text in log if text == "W5"]
     period = statistics.median(b - a for a, b in zip(w5, w5[1:])) if len(w5) > 2 else float("nan")
     print("signal to HALT: at most %.3f s (clock sync +- %.3f s); W5 readings every %.3f s while waiting"

@@ -19,7 +19,7 @@ from client import Station  # noqa: E402
 SITES = os.path.join(ROOT, "examples", "station", "asps_sites.fbrl")
 SIM_TIME_SCALE = "20"  # motions 20 times faster than the arm's: a move takes tens of ms
 # Places the tests need beyond the cell's: one inside the heating block's body (the guard
-# refuses it), one out of the arm's reach (the controller refuses it: 029).
+# refuses it), one out of the arm's reach (the guard cannot check it, so refuses it too).
 TEST_PLACES = ("CREATE-LOC IN-BLOCK 10E0 -2E0 0.5E0 0E0 -90E0 0E0 IN-BLOCK DEFINE-LOC LOC-SITE IN-BLOCK "
                "CREATE-LOC FAR 50E0 0E0 5E0 0E0 -90E0 0E0 FAR DEFINE-LOC LOC-SITE FAR")
 
@@ -44,13 +44,16 @@ class Sim:
     def __init__(self, directory, *args):
         os.makedirs(directory, exist_ok=True)
         self.log_path = os.path.join(directory, "sim.log")
+        self.control_path = os.path.join(directory, "control")  # the panel: POWER 0, IN n 1 ...
+        os.mkfifo(self.control_path)
         self.proc = subprocess.Popen([fbrlsim(), "--status-extra", "--log", self.log_path, "--time-scale",
-                                      SIM_TIME_SCALE] + list(args), stdin=subprocess.DEVNULL,
+                                      SIM_TIME_SCALE, "--control", self.control_path] + list(args), stdin=subprocess.DEVNULL,
                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.port = self.proc.stdout.readline().strip()
         if not self.port.startswith("/dev/"):
-            self.stop()
+            self.proc.kill()
             pytest.fail("fbrlsim did not start: %r" % self.port)
+        self.panel = open(self.control_path, "w")  # fbrlsim reads it as long as it runs
 
     def log(self):
         try:
@@ -58,6 +61,11 @@ class Sim:
                 return [line.rstrip("\n") for line in f]
         except FileNotFoundError:
             return []
+
+    def control(self, line):
+        """A control line as the front panel or the cell would give it (fbrlsim --control)."""
+        self.panel.write(line + "\n")
+        self.panel.flush()
 
     def pause(self):
         self.proc.send_signal(signal.SIGSTOP)
@@ -76,6 +84,7 @@ class Sim:
                 self.proc.wait()
         self.proc.stdout.close()
         self.proc.stderr.close()
+        self.panel.close()
 
 
 def wait_for(predicate, seconds=20, what="the condition"):

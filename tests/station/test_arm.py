@@ -137,13 +137,24 @@ def test_a_motion_into_the_cell_is_refused_by_the_guard(arm):
     assert [l for l in new_lines(sim, before) if l.startswith(("POINT", "MOVE"))] == []
 
 
-def test_the_controller_s_refusal_carries_its_code(arm):
+def test_a_place_beyond_reach_is_refused_before_a_byte_is_sent(arm):
     sim, client = arm.sim, arm.client
     home(client)
+    before = len(sim.log())
     result, _ = client.run(ARM, "MoveToPlace", **place("FAR"))
+    assert isinstance(result, Failure) and result.identifier == "CollisionRefused", result
+    assert "beyond the arm's reach" in result.message and "nothing was sent" in result.message
+    assert [l for l in new_lines(sim, before) if l.startswith(("POINT", "MOVE"))] == []
+
+
+def test_the_controller_s_refusal_carries_its_code(own):
+    sim, client = own.sim, own.client
+    home(client)
+    sim.control("POWER 0")  # the arm's power switched off at the panel: the controller refuses (040)
+    result, _ = client.run(ARM, "MoveToPlace", **place("SEPARATOR"))
     assert isinstance(result, Failure) and result.identifier == "ControllerRefused", result
-    assert result.message.startswith("029 TRANSFORM ILLEGAL")
-    assert first(client.subscribe(ARM, "ControllerStatus")).ControllerStatus.LastError.value == 29
+    assert result.message.startswith("040 ARM POWER HAS BEEN SWITCHED OFF"), result.message
+    assert first(client.subscribe(ARM, "ControllerStatus")).ControllerStatus.LastError.value == 40
 
 
 def test_a_motion_before_home_is_not_homed(fresh):

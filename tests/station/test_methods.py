@@ -35,10 +35,7 @@ class Lab:
         shutil.copy(os.path.join(ROOT, "examples", "methods", "sample_prep.fbrl"), lib)
         for f in os.listdir(os.path.join(HERE, "methods")):
             shutil.copy(os.path.join(HERE, "methods", f), lib)
-        self.control = os.path.join(directory, "control")
-        os.mkfifo(self.control)
-        self.sim = Sim(os.path.join(directory, "sim"), "--control", self.control)
-        self.fifo = open(self.control, "w")  # fbrlsim reads it as long as it runs
+        self.sim = Sim(os.path.join(directory, "sim"))
         try:
             self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
                                    "--no-discovery", "--methods", lib, "-e", "200 CONSTANT TIME-SCALE", SITES)
@@ -48,13 +45,11 @@ class Lab:
         self.client = self.station.client()
 
     def set_input(self, n, on):
-        self.fifo.write("IN %d %d\n" % (n, 1 if on else 0))
-        self.fifo.flush()
+        self.sim.control("IN %d %d" % (n, 1 if on else 0))
 
     def stop(self):
         self.client.close()
         self.station.stop()
-        self.fifo.close()
         self.sim.stop()
 
 
@@ -173,10 +168,22 @@ def test_samples_that_fail_make_the_outcome(lab):
     assert [(s.Outcome.value, bool(s.Reason.value)) for s in result.Samples] == [("failed", True)]
 
 
-def test_a_run_the_controller_refuses_carries_its_code(lab):
+def test_a_run_beyond_reach_is_refused_before_a_byte_is_sent(lab):
+    before = len(lab.sim.log())
     result, inter, _ = follow(lab, start(lab, "FAR-AWAY"))
+    assert isinstance(result, Failure) and result.identifier == "CollisionRefused", result
+    assert "beyond the arm's reach" in result.message and ("StepFailed", "Reach", 0) in events(inter)
+    assert not [l for l in lab.sim.log()[before:] if l.startswith(("POINT SPOT", "MOVE SPOT"))]
+
+
+def test_a_run_the_controller_refuses_carries_its_code(lab):
+    lab.sim.control("POWER 0")  # the arm's power off at the panel: HOME is refused (040)
+    try:
+        result, inter, _ = follow(lab, start(lab, "FAR-AWAY"))
+    finally:
+        lab.sim.control("POWER 1")
     assert isinstance(result, Failure) and result.identifier == "ControllerRefused", result
-    assert "029" in result.message and ("StepFailed", "Reach", 0) in events(inter)
+    assert "040" in result.message and ("StepFailed", "Reach", 0) in events(inter)
 
 
 def test_a_run_stopped_by_the_guard_is_collision_refused(lab):
