@@ -15,13 +15,15 @@ REQUIRED="build-essential cmake ninja-build pkg-config libcmocka-dev libedit-dev
  python3-cffi python3-pytest debhelper dpkg-dev fakeroot lintian abigail-tools scdoc
  librsvg2-bin bash-completion
  python3-grpcio python3-protobuf protobuf-compiler protobuf-compiler-grpc python3-zeroconf python3-cryptography
- python3-lxml $NODE_PACKAGES $*"
+ python3-lxml python3-aiohttp libjs-three chromium python3-websocket python3-pil liburdfdom-tools $NODE_PACKAGES $*"
 # what each is for: ncurses/tmux the operator console and its tests; the ARM toolchain,
 # picolibc and qemu-system-arm the Cortex-M firmware; cffi/pytest the Python bindings;
 # debhelper..scdoc the Debian packages, ABI check and man pages; rsvg the work-cell pictures;
 # libsodium the audit trail, users and signatures (SHA-256, Argon2id, Ed25519).
 # grpcio..cryptography fbrl-station (SiLA 2: gRPC, the protobuf modules made at build time,
-# mDNS, its TLS certificate), lxml its tests (the standard's XML schema).
+# mDNS, its TLS certificate), lxml its tests (the standard's XML schema); aiohttp and
+# libjs-three its page (--http), chromium, websocket and pil the page's browser test;
+# liburdfdom-tools checks fbrl-urdf's output (check_urdf).
 # Optional: the build works without them (fewer features or tests).
 OPTIONAL="libserialport-dev clang libclang-rt-14-dev"
 

@@ -23,11 +23,12 @@ from .stop import Stop
 from .engine import Engine
 from .run import Run
 from .users import Users
+from .arm import Arm
 
 __all__ = [
     "Error", "ControllerError", "Location", "Calibration", "DataFile", "CHR", "INTEGER", "LONG",
     "REAL", "LOCATION", "user_type", "Port", "Link", "Position", "Status", "Engine", "version",
-    "status_name", "status_text", "FATES", "PortInfo", "list_ports", "Stop", "Users",
+    "status_name", "status_text", "FATES", "PortInfo", "list_ports", "Stop", "Users", "Arm",
 ]
 
 __version__ = ffi.string(lib.fbrl_version()).decode()

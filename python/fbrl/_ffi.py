@@ -248,6 +248,12 @@ typedef struct fbrl_cell_stats_head {
 fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
 const fbrl_cell_stats_head *fbrl_cell_stats_get(const fbrl_cell_words *cw);
 uint64_t fbrl_clock_now_us(void);
+/* the arm models and their kinematics (fbrl/arm.h); a model is only pointed at */
+typedef struct fbrl_arm fbrl_arm;
+const fbrl_arm *fbrl_arm_find(const char *name);
+size_t fbrl_arm_names(char *buf, size_t cap, char sep);
+fbrl_status fbrl_arm_fk(const fbrl_arm *m, const double *q, double tool, double pose[6]);
+fbrl_status fbrl_arm_chain(const fbrl_arm *m, const double *q, double tool, double p[4][3]);
 """
 
 # fbrl_abi_type codes (fbrl/abi.h; stable, append only)

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
 """fbrl-station's command line, in fbrlmon's style (docs/sila.md, fbrl-station(1))."""
+import ipaddress
 import os
 import sys
 
@@ -30,7 +31,8 @@ options:
   --data DIR       the station's UUID, name, TLS key and certificate, taught places
                    (default $XDG_DATA_HOME/fbrl-station/PORT, ~/.local/share/...)
   --methods DIR    the method library (default: methods)
-  --http HOST:PORT|off  the browser page: not in this version, only off (the default)
+  --http HOST:PORT|off  the page in a browser (default 127.0.0.1:8080; port 0: any free port,
+                   printed at start); loopback only: this version has no TLS or login for it
   --no-discovery   do not announce the station over mDNS (_sila._tcp)
   -h, --help       show this help and exit
   -V, --version    show the version and exit
@@ -42,6 +44,7 @@ exit status: 0 stopped by a signal, 1 an error aborted a file or -e text, 2 bad 
 """
 
 DEFAULT_SILA = ("127.0.0.1", 50052)
+DEFAULT_HTTP = ("127.0.0.1", 8080)
 # long options: name -> (takes a value, attribute)
 OPTIONS = {
     "port": True, "baud": True, "data-bits": True, "parity": True, "stop-bits": True, "flow": True,
@@ -67,10 +70,19 @@ class Options:
         self.insecure = False
         self.data = None
         self.methods = "methods"
-        self.http = None
+        self.http = DEFAULT_HTTP
         self.discovery = True
         self.actions = []  # ("eval", text) and ("file", path), in command-line order
         self.help = self.version = False
+
+
+def is_loopback(host):
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
 
 
 def host_port(opt, value):
@@ -160,8 +172,10 @@ def _apply(o, name, value):
         o.sila = host_port(name, value)
     elif name == "http":
         o.http = host_port(name, value)
-        if o.http is not None:
-            raise UsageError("--http: the browser page is not in this version of fbrl-station; only --http off")
+        if o.http is not None and not is_loopback(o.http[0]):
+            raise UsageError("--http %s: beyond loopback the page needs TLS and a login, which this version "
+                             "does not have; serve it on 127.0.0.1 or ::1 (and reach it through an SSH tunnel)"
+                             % value)
     elif name == "no-discovery":
         o.discovery = False
     elif name in ("sim", "insecure", "help", "version"):

@@ -3,6 +3,7 @@
 RunMethod), CancelController, PauseController and ErrorRecoveryService, on runs.py."""
 import concurrent.futures
 import decimal
+import time
 from xml.sax.saxutils import escape
 
 from . import sila
@@ -66,10 +67,21 @@ class MethodLibrary(Feature):
                 values = st.runs.check_values(name, given)
             except ValueError as e:
                 raise sila.validation(self.f.parameter_fqi("RunMethod", "Parameters"), str(e))
+        return st.executions.confirmation(self.launch_run(name, values, who(context)))
+
+    def launch_run(self, name, values, by):
+        """A RunMethod execution of method name with checked values [(name, value)], started by
+        by (a SiLA client, a page); the execution."""
+        st = self.st
         e = st.executions.new(self.f.command_fqi("RunMethod"))
-        fut = st.runs.launch(e, name, values, who(context))
+        fut = st.runs.launch(e, name, values, by)
+        started = time.time()
 
         def done(f):
+            finish(f)
+            st.history.record(e, started)
+
+        def finish(f):
             try:
                 s = f.result()
             except concurrent.futures.CancelledError:
@@ -85,7 +97,7 @@ class MethodLibrary(Feature):
             e.finish(self._result(s))
 
         fut.add_done_callback(done)
-        return st.executions.confirmation(e)
+        return e
 
     def _result(self, s):
         R_ = self.m.RunMethod_Responses

@@ -13,6 +13,11 @@ import subprocess
 # ON-FAILURE rule asks waits for an answer): the run then goes without the prediction.
 DRY_RUN_S = 10
 STEP_RE = re.compile(r"^  step (\S+)\s+(?:(\d+) x ([0-9.]+) s = |not run)")
+DURATION_RE = re.compile(r"^simulated duration ([0-9.]+) s")
+CLOSEST_RE = re.compile(r"^smallest clearance (-?[0-9.]+) in to (\S+) at X (\S+) Y (\S+) Z (\S+) \((.*)\)$")
+ERROR_RE = re.compile(r"^\s*[0-9.]+ s  error: (.*)$")
+OUTCOME_RE = re.compile(r"^predicted run of \S+: (\S+)")
+SAMPLE_RE = re.compile(r"^  sample (\d+): (.*)$")
 
 
 def fbrlmon():
@@ -37,9 +42,9 @@ def argv(opts, prelude, method_file, method, values, picture):
     return args + [os.path.abspath(method_file), "-e", "%s %s RUN-METHOD" % (run, method)]
 
 
-def predict(opts, prelude, method_file, method, values, workdir):
-    """The time one run of each step takes, ms, in step order (0: the dry run did not run it);
-    OSError or ValueError saying why when there is none."""
+def run(opts, prelude, method_file, method, values, workdir):
+    """fbrlmon's dry run of the method in workdir: (its report, its exit status, the picture's
+    path); ValueError when it does not end in time."""
     picture = os.path.join(workdir, "dry-run.svg")
     try:
         p = subprocess.run(argv(opts, prelude, method_file, method, values, picture), cwd=workdir,
@@ -47,12 +52,51 @@ def predict(opts, prelude, method_file, method, values, workdir):
     except subprocess.TimeoutExpired:
         raise ValueError("the dry run did not end within %d s (it may wait for an answer to a question)"
                          % DRY_RUN_S)
+    return p.stdout, p.returncode, picture, p.stderr
+
+
+def predict(opts, prelude, method_file, method, values, workdir):
+    """The time one run of each step takes, ms, in step order (0: the dry run did not run it);
+    OSError or ValueError saying why when there is none."""
+    out, status, _, err = run(opts, prelude, method_file, method, values, workdir)
     steps = []
-    for line in p.stdout.splitlines():
+    for line in out.splitlines():
         m = STEP_RE.match(line)
         if m:  # a step that ran in no measurable time is 1 ms: 0 would tell the run "unknown"
             steps.append(max(float(m.group(3)) * 1000.0, 1.0) if m.group(2) else 0.0)
     if not steps:
-        tail = (p.stderr or p.stdout).strip().splitlines()[-3:]
-        raise ValueError("the dry run predicted no steps (fbrlmon exit %d): %s" % (p.returncode, " / ".join(tail)))
+        tail = (err or out).strip().splitlines()[-3:]
+        raise ValueError("the dry run predicted no steps (fbrlmon exit %d): %s" % (status, " / ".join(tail)))
     return steps
+
+
+def plan(opts, prelude, method_file, method, values, workdir):
+    """The dry run as the page shows it (docs/workcell.md, "The dry run"): the predicted
+    duration, outcome and per-sample outcomes, the motions the guard refused (each names its
+    obstacle), the controller's errors, the smallest clearance and where, the 2-D picture."""
+    out, status, picture, err = run(opts, prelude, method_file, method, values, workdir)
+    r = {"status": status, "duration_s": None, "outcome": None, "samples": [], "refused": [], "errors": [],
+         "closest": None, "picture": None, "report": out + err}
+    for line in out.splitlines():
+        m = DURATION_RE.match(line)
+        if m:
+            r["duration_s"] = float(m.group(1))
+        m = CLOSEST_RE.match(line)
+        if m:
+            r["closest"] = {"clearance": float(m.group(1)), "obstacle": m.group(2),
+                            "at": [float(m.group(i)) for i in (3, 4, 5)], "word": m.group(6)}
+        if line.startswith("refused: "):
+            r["refused"].append(line[len("refused: "):])
+        m = ERROR_RE.match(line)
+        if m:
+            r["errors"].append(m.group(1))
+        m = OUTCOME_RE.match(line)
+        if m:
+            r["outcome"] = m.group(1)
+        m = SAMPLE_RE.match(line)
+        if m:
+            r["samples"].append({"sample": int(m.group(1)), "outcome": m.group(2)})
+    if os.path.isfile(picture):
+        with open(picture, encoding="utf-8") as f:
+            r["picture"] = f.read()
+    return r

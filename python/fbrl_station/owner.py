@@ -8,6 +8,7 @@ import concurrent.futures
 import logging
 import queue
 import threading
+import time
 
 import fbrl
 
@@ -50,6 +51,7 @@ class Owner:
         self.jobs = queue.Queue()
         self.arm_state = Watched("Disconnected")
         self.position = Watched(None)
+        self.position_at = None  # time.time() of the last reading (the page tells its age)
         self.status = Watched(None)
         self.run = None  # the method run that owns the arm (methods.py), None: none
         self.status_fresh = False  # the published STATUS was read after the last command
@@ -126,7 +128,9 @@ class Owner:
         self.status_fresh = self.status_fresh and not position  # a command ran since the last STATUS
         try:
             if position:
-                self.position.set(c.where())
+                where = c.where()
+                self.position_at = time.time()
+                self.position.set(where)
             if status:
                 self.status.set(c.status())
                 self.status_fresh = True
@@ -141,7 +145,7 @@ class Owner:
             st = dict(self.status.value or {})
             st.update(connected=False, connection=c.describe())
             self.status.set(st)
-        elif self.run is None and self.arm_state.value in ("Disconnected", "Busy"):
+        elif self.run is None and self.arm_state.value != "Idle":  # a motion's or a run's state is over
             self.arm_state.set("Idle")
 
     def motion(self, fn, *args):

@@ -100,6 +100,7 @@ class RunState:
         self.failure_kind = None  # the last corrective action's failure kind
         self.guard_before = 0
         self.samples = 0
+        self.who = ""  # who started it (a SiLA client, a page)
 
     def describe(self):
         s = self.run.snapshot() if self.run else None
@@ -149,6 +150,7 @@ class Runs:
     def launch(self, e, method, values, who):
         """Queue the run of execution e; returns the owner's Future."""
         rs = RunState(e, method, values)
+        rs.who = who
         e.cancel = lambda w: self.cancel(rs, w)
         e.pause = lambda w: self._request(rs, "pause", w)
         e.resume = lambda w: self._request(rs, "resume", w)

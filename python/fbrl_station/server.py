@@ -19,6 +19,7 @@ from .commands import CancelController, ErrorRecoveryService, MethodLibrary, Pau
 from .controller import Controller, RobotFailure, report
 from .core import DESCRIPTION, LockController, SiLAService, SimulationController
 from .datadir import DataDir
+from .history import History
 from .owner import Owner
 from .runs import Runs
 
@@ -51,11 +52,13 @@ class Station:
         self.owner = Owner(self.controller)
         self.cell = Cell(self.data)
         self.runs = Runs(self)
+        self.history = History(self.data)
         self.servicers = [cls(self) for cls in FEATURE_CLASSES]
         self.server = None
         self.port = None
         self.cert_pem = None
         self.announcer = None
+        self.page = None
         self._name_lock = threading.Lock()
 
     # ---------------------------------------------------------------- identity
@@ -85,6 +88,13 @@ class Station:
         self.owner.call(self._setup)
         if self.opts.sila is not None:
             self._serve()
+        if self.opts.http is not None:
+            try:  # aiohttp is loaded only when the page is served
+                from .web import Page
+            except ImportError as e:
+                raise StartError("--http: %s (Debian: python3-aiohttp), or --http off" % e)
+            self.page = Page(self, *self.opts.http)
+            self.page.start()
 
     def _setup(self, c):
         """On the owner thread: the controller, the site words, the FILEs and -e texts in
@@ -133,6 +143,8 @@ class Station:
         halted, the outputs off, ON-ABORT), drop what waits, let the controller go."""
         if self.announcer is not None:
             self.announcer.close()
+        if self.page is not None:
+            self.page.stop()
         if self.server is not None:
             self.server.stop(STOP_GRACE_S).wait()
         for e in self.executions.all():
@@ -171,6 +183,9 @@ def run(opts):
         log.info("SiLA 2 on %s:%d (%s)%s", opts.sila[0], station.port,
                  "plain gRPC" if opts.insecure else "TLS, certificate " + station.data.file(tls.CERT_FILE),
                  ", announced as _sila._tcp" if opts.discovery else "")
+    if station.page is not None:
+        host = opts.http[0]
+        log.info("the page on http://%s:%d/", "[%s]" % host if ":" in host else host, station.page.port)
     sys.stderr.flush()
     while not stopping.wait(1.0):  # a timed wait, so the signal handler runs promptly
         pass

@@ -26,6 +26,11 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET fbrlsim)
       ${FBRL_PYTHON} ${PROJECT_SOURCE_DIR}/python/examples/sample_prep.py @PORT@)
     set_tests_properties(python_bindings python_sample_prep PROPERTIES LABELS python TIMEOUT 300
       ENVIRONMENT "${_py_env}")
+    # fbrl-urdf's URDF against check_urdf (Debian: liburdfdom-tools) and the library's FK
+    add_test(NAME urdf COMMAND ${FBRL_PYTHON} -m pytest -p no:cacheprovider -q
+      --basetemp=${PROJECT_BINARY_DIR}/urdf-tests ${PROJECT_SOURCE_DIR}/tests/urdf)
+    set_tests_properties(urdf PROPERTIES LABELS python TIMEOUT 300
+      ENVIRONMENT "${_py_env};FBRL_URDF=$<TARGET_FILE:fbrl-urdf>")
   else()
     message(STATUS "python: no Python 3 with cffi and pytest (python3-cffi, python3-pytest): tests not added")
   endif()

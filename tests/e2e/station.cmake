@@ -17,6 +17,7 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET station)
     "FBRL_SIM=$<TARGET_FILE:fbrlsim>" "FBRL_STATION_GEN=${FBRL_STATION_BUILD}/gen"
     "FBRL_STATION=${PROJECT_BINARY_DIR}/apps/fbrl-station" "FBRL_STATION_PROTO=${FBRL_STATION_BUILD}/proto")
   set(_pytest ${FBRL_STATION_PYTHON} -m pytest -p no:cacheprovider -q)
+  file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/station-tests)  # pytest makes each --basetemp, not its parent
   add_test(NAME station_fdl COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/fdl ${_st}/test_fdl.py)
   add_test(NAME station COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/main
     ${_st}/test_arm.py ${_st}/test_core.py)
@@ -26,6 +27,18 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET station)
     ${_st}/test_many.py)
   set_tests_properties(station_fdl station station_methods station_many PROPERTIES LABELS station TIMEOUT 600
     ENVIRONMENT "${_st_env}")
+
+  # the page (--http) in Debian's chromium, headless with software WebGL (label browser too)
+  find_program(FBRL_CHROMIUM chromium)
+  execute_process(COMMAND ${FBRL_STATION_PYTHON} -c "import aiohttp, websocket, PIL" RESULT_VARIABLE _r OUTPUT_QUIET ERROR_QUIET)
+  if(FBRL_CHROMIUM AND _r EQUAL 0 AND EXISTS /usr/share/javascript/three/build/three.min.js)
+    add_test(NAME station_page COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/page
+      ${_st}/test_page.py)
+    set_tests_properties(station_page PROPERTIES LABELS "station;browser" TIMEOUT 600
+      ENVIRONMENT "${_st_env};FBRL_CHROMIUM=${FBRL_CHROMIUM};FBRL_PAGE_SHOTS=${PROJECT_BINARY_DIR}/station-tests/page-shots")
+  else()
+    message(STATUS "station: chromium, libjs-three or python3-aiohttp/-websocket/-pil missing: the page's browser test not added")
+  endif()
 
   find_program(FBRL_NODE node)
   find_program(FBRL_NPM npm)

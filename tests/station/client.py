@@ -135,6 +135,19 @@ class Client:
             return f, infos
 
 
+def end(proc, seconds):
+    """SIGTERM to a process a test started, SIGKILL if it has not ended within seconds; its
+    exit status."""
+    if proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+    return proc.returncode
+
+
 class Station:
     """An fbrl-station process (the build's launcher) on a free port; .port, .cert, .lines
     (what it printed on stderr), .client()."""
@@ -142,6 +155,8 @@ class Station:
     def __init__(self, launcher, data, *args, insecure=False, env=None):
         self.data = str(data)
         argv = [launcher, "--sila", "127.0.0.1:0", "--data", self.data] + list(args)
+        if "--http" not in args:  # the page's default port is one for all: only its own tests serve it
+            argv += ["--http", "off"]
         if insecure:
             argv.append("--insecure")
         self.proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
@@ -174,11 +189,4 @@ class Station:
 
     def stop(self):
         """SIGTERM, as a service manager stops it; its exit status."""
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-        return self.proc.returncode
+        return end(self.proc, 30)

@@ -2,6 +2,7 @@
 """Fixtures for fbrl-station's tests: a real fbrlsim (its command log is the truth of what the
 controller ran) and a station on it, started by the build's launcher as a user starts it."""
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -14,7 +15,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "python"))
 
-from client import Station  # noqa: E402
+from client import Station, end  # noqa: E402
 
 SITES = os.path.join(ROOT, "examples", "station", "asps_sites.fbrl")
 SIM_TIME_SCALE = "20"  # motions 20 times faster than the arm's: a move takes tens of ms
@@ -76,15 +77,24 @@ class Sim:
     def stop(self):
         if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGCONT)
-            self.proc.terminate()
-            try:
-                self.proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        end(self.proc, 10)
         self.proc.stdout.close()
         self.proc.stderr.close()
         self.panel.close()
+
+
+def method_library(directory, sample_prep=True):
+    """directory/lib/methods: the tests' methods (tests/station/methods) and the sample-prep
+    method, beside the ASPS cell files they include; its path."""
+    lib = os.path.join(directory, "lib", "methods")
+    os.makedirs(lib)
+    for f in ("asps_cell.fbrl", "asps_cell_objects.fbrl"):
+        shutil.copy(os.path.join(ROOT, "examples", f), os.path.join(directory, "lib"))
+    if sample_prep:
+        shutil.copy(os.path.join(ROOT, "examples", "methods", "sample_prep.fbrl"), lib)
+    for f in os.listdir(os.path.join(HERE, "methods")):
+        shutil.copy(os.path.join(HERE, "methods", f), lib)
+    return lib
 
 
 def wait_for(predicate, seconds=20, what="the condition"):
@@ -106,16 +116,42 @@ class Arm:
     def __init__(self, directory):
         self.sim = Sim(os.path.join(directory, "sim"))
         try:
-            self.station = start_station(os.path.join(directory, "data"), self.sim)
+            self.station = self.start(os.path.join(directory, "data"))
         except BaseException:
             self.sim.stop()
             raise
         self.client = self.station.client()
 
+    def start(self, data):
+        return start_station(data, self.sim)
+
     def stop(self):
         self.client.close()
         self.station.stop()
         self.sim.stop()
+
+
+class MethodLab(Arm):
+    """An Arm whose station has a method library (method_library) and station_args."""
+
+    def __init__(self, directory, *station_args, sample_prep=True):
+        self.lib = method_library(directory, sample_prep)
+        self.station_args = station_args
+        super().__init__(directory)
+
+    def start(self, data):
+        return Station(launcher(), data, "--port", self.sim.port, "--no-discovery", "--methods", self.lib,
+                       *self.station_args, "-e", "200 CONSTANT TIME-SCALE", SITES)
+
+
+def assert_aborted_safely(log):
+    """fbrlsim's log of a run aborted while the pump ran for its first item: the arm halted,
+    then the outputs off and ON-ABORT's safe place, and no second item."""
+    on = log.index("OUTPUT 1")
+    assert "HALT" in log[on:], log[on:]
+    halt = log.index("HALT", on)
+    assert "OUTPUT -1" in log[halt:] and "READY" in log[halt:]  # outputs off, then ON-ABORT's safe place
+    assert log.count("OUTPUT 1") == 1  # it never got to the next item
 
 
 @pytest.fixture(scope="module")

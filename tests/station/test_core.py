@@ -246,8 +246,9 @@ def test_command_line_errors(tmp_path):
     assert code == 0 and "--sila HOST:PORT|off" in out and "--http" in out
     code, out = run("--version")
     assert code == 0 and re.fullmatch(r"fbrl-station \(libfbrl\) \d+\.\d+\.\d+\n", out)
-    assert run("--http", "127.0.0.1:8080")[0] == 2
-    assert run("--sila", "off")[0] == 2  # and --http off: nothing to serve
+    code, out = run("--http", "0.0.0.0:8080")  # beyond loopback the page needs TLS and a login
+    assert code == 2 and "loopback" in out
+    assert run("--sila", "off", "--http", "off")[0] == 2  # nothing to serve
     assert run("--bogus")[0] == 2
     assert run("--sila", "nowhere")[0] == 2
     code, out = run("--port", str(tmp_path / "no-tty"), "--data", str(tmp_path / "d"), "--no-discovery")

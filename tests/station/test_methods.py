@@ -2,7 +2,6 @@
 """MethodLibrary, PauseController, CancelController and ErrorRecoveryService: method runs on
 the library's run, against fbrlsim (its log is the truth of what the controller did)."""
 import os
-import shutil
 import threading
 import time
 
@@ -10,8 +9,7 @@ import pytest
 from lxml import etree
 
 from client import Failure
-from conftest import ROOT, SITES, Sim, launcher, wait_for
-from client import Station
+from conftest import ROOT, MethodLab, assert_aborted_safely, wait_for
 from fbrl_station import pb
 from fbrl_station.sila import I, R, S
 
@@ -23,34 +21,12 @@ P = mm.RunMethod_Parameters.Parameters_Struct
 DONE = pb.fw.ExecutionInfo.CommandStatus.Value("finishedSuccessfully")
 
 
-class Lab:
+class Lab(MethodLab):
     """A method library (sample prep and the tests' methods), an fbrlsim whose inputs the test
     sets (--control), a station on it."""
 
-    def __init__(self, directory):
-        lib = os.path.join(directory, "lib", "methods")
-        os.makedirs(lib)
-        for f in ("asps_cell.fbrl", "asps_cell_objects.fbrl"):
-            shutil.copy(os.path.join(ROOT, "examples", f), os.path.join(directory, "lib"))
-        shutil.copy(os.path.join(ROOT, "examples", "methods", "sample_prep.fbrl"), lib)
-        for f in os.listdir(os.path.join(HERE, "methods")):
-            shutil.copy(os.path.join(HERE, "methods", f), lib)
-        self.sim = Sim(os.path.join(directory, "sim"))
-        try:
-            self.station = Station(launcher(), os.path.join(directory, "data"), "--port", self.sim.port,
-                                   "--no-discovery", "--methods", lib, "-e", "200 CONSTANT TIME-SCALE", SITES)
-        except BaseException:
-            self.sim.stop()
-            raise
-        self.client = self.station.client()
-
     def set_input(self, n, on):
         self.sim.control("IN %d %d" % (n, 1 if on else 0))
-
-    def stop(self):
-        self.client.close()
-        self.station.stop()
-        self.sim.stop()
 
 
 @pytest.fixture(scope="module")
@@ -232,12 +208,7 @@ def test_cancel_is_the_console_s_abort(lab):
     result, inter, infos = follow(lab, uuid)
     assert isinstance(result, Failure) and result.identifier == "MethodCancelled", result
     assert "sample 1" in result.message
-    log = lab.sim.log()[before:]
-    on = log.index("OUTPUT 1")
-    assert "HALT" in log[on:], log[on:]
-    halt = log.index("HALT", on)
-    assert "OUTPUT -1" in log[halt:] and "READY" in log[halt:]  # outputs off, then ON-ABORT's safe place
-    assert log.count("OUTPUT 1") == 1  # it never got to the next item
+    assert_aborted_safely(lab.sim.log()[before:])
 
 
 def test_cancel_and_pause_know_what_they_can_act_on(lab):

@@ -64,7 +64,7 @@ async function startSim(dir, args = []) {
 }
 
 async function startStation(dir, args) {
-  const st = new Process([process.env.FBRL_STATION, '--sila', '127.0.0.1:0', '--data', dir, '--no-discovery']
+  const st = new Process([process.env.FBRL_STATION, '--sila', '127.0.0.1:0', '--data', dir, '--no-discovery', '--http', 'off']
     .concat(args));
   const m = await readLine(st.proc.stderr, /SiLA 2 on [^ ]+:(\d+) /, START_MS);
   st.port = Number(m[1]);

@@ -1,0 +1,370 @@
+# SPDX-License-Identifier: MIT
+"""fbrl-station's page (--http) in a real browser: Debian's chromium, headless with software
+WebGL, driven over the DevTools protocol (cdp.py). The truth is outside the page: fbrlsim's
+command log, the cell as .CELL lists it, the pose the station reads from fbrlsim and its forward
+kinematics from the library, projected here with the camera's own matrices, against the
+screenshot's pixels. Run with -s to see the figures (time to an interactive page, the delay from
+a reading to the drawn pose)."""
+import io
+import json
+import re
+import os
+import statistics
+import time
+
+import pytest
+
+from conftest import ROOT, MethodLab, assert_aborted_safely, wait_for
+
+import fbrl
+from fbrl_station import pb
+from fbrl_station.sila import I, S
+
+PIL = pytest.importorskip("PIL.Image", reason="python3-pil reads the screenshots")
+cdp = pytest.importorskip("cdp", reason="python3-websocket drives chromium")
+SHOTS = os.environ.get("FBRL_PAGE_SHOTS")  # a folder for the screenshots (docs/page.md's come from here)
+COLOURS = {"box": (0xb8, 0xb8, 0xb8), "cylinder": (0xc8, 0xa0, 0x70), "tool": (0xff, 0x00, 0xff),
+           "table": (0xe2, 0xdc, 0xcb), "background": (0xf4, 0xf6, 0xf8)}  # page.js's COLOURS
+
+
+class Lab(MethodLab):
+    """The method library of the station's tests, fbrlsim with its log, a station serving the
+    page on a free loopback port, a browser on it."""
+
+    def __init__(self, directory):
+        super().__init__(directory, "--http", "127.0.0.1:0", sample_prep=False)
+        try:
+            wait_for(lambda: any("the page on http://" in l for l in self.station.lines), what="the page's address")
+            line = next(l for l in self.station.lines if "the page on http://" in l)
+            self.url = line[line.index("http://"):].strip()
+            self.browser = cdp.Browser()
+        except BaseException:
+            super().stop()
+            raise
+
+    def stop(self):
+        self.browser.close()
+        super().stop()
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory):
+    lab = Lab(str(tmp_path_factory.mktemp("page")))
+    yield lab
+    lab.stop()
+
+
+def shot(lab, name):
+    png = lab.browser.screenshot()
+    if SHOTS:
+        os.makedirs(SHOTS, exist_ok=True)
+        with open(os.path.join(SHOTS, name), "wb") as f:
+            f.write(png)
+    return PIL.open(io.BytesIO(png)).convert("RGB")
+
+
+def project(cam, p):
+    """Page pixel of the cell's point p, from the camera's matrices (column-major, as three.js
+    keeps them): clip = P V p, then the canvas's viewport."""
+    P, V = cam["projection"], cam["view"]
+
+    def mul(m, v):
+        return [sum(m[c * 4 + r] * v[c] for c in range(4)) for r in range(4)]
+
+    clip = mul(P, mul(V, [p[0], p[1], p[2], 1.0]))
+    x, y = clip[0] / clip[3], clip[1] / clip[3]
+    return cam["left"] + (x + 1) / 2 * cam["width"], cam["top"] + (1 - y) / 2 * cam["height"]
+
+
+def near(c, want, tol=14):
+    return all(abs(a - b) <= tol for a, b in zip(c, want))
+
+
+def the_cell():
+    """The obstacles as the station's cell files describe them (.CELL of the same files)."""
+    with fbrl.Engine() as e:
+        e.eval("INCLUDE %s" % os.path.join(ROOT, "examples", "asps_cell_objects.fbrl"))
+        out = e.eval(".CELL")
+    return out
+
+
+def ready(lab):
+    """The page, opened unless it is open already (a test may run alone: pytest -k)."""
+    if not lab.browser.eval("!!(window.fbrlPage && window.fbrlPage.ready)"):
+        open_page(lab)
+    return lab.browser
+
+
+def open_page(lab):
+    b = lab.browser
+    t0 = time.monotonic()
+    b.goto(lab.url)
+    b.wait_for("window.fbrlPage && window.fbrlPage.ready === true", seconds=60, what="an interactive page")
+    return time.monotonic() - t0
+
+
+# ------------------------------------------------------------------ the view
+def test_the_page_loads_and_shows_the_cell_where_the_model_puts_it(lab):
+    took = open_page(lab)
+    b = lab.browser
+    assert b.eval("fbrlPage.errors.length") == 0, b.eval("fbrlPage.errors")
+    print("\ntime to an interactive page: %.2f s (page's own clock from navigation: %.0f ms)"
+          % (took, b.eval("fbrlPage.readyAt")))
+    print("  (ms from navigation: script %(script).0f, scene and methods fetched %(fetched).0f, view built %(view).0f, "
+          "WebSocket open %(open).0f)" % b.eval("fbrlPage.marks"))
+    scene = b.eval("fbrlPage.scene")
+    listed = the_cell()
+    for o in scene["obstacles"]:  # every obstacle of the cell files, with its numbers
+        assert o["name"] in listed
+    assert {o["name"] for o in scene["obstacles"]} >= {"HEATING-BLOCK-BODY", "SEPARATION-UNIT", "OPERATOR-SIDE"}
+    assert any(p["site"] == "HEATING-BLOCK" and p["count"] == 24 for p in scene["places"])
+    shot(lab, "page.png")
+    b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('top'); true")
+    time.sleep(0.5)
+    img = shot(lab, "page-top.png")
+    cam = b.eval("fbrlPage.camera()")
+    drawn = 0
+    for o in scene["obstacles"]:
+        if o["kind"] not in ("box", "cylinder"):
+            continue
+        # points of its top face (inset from the edges) show its colour, or the arm or a place
+        # marker above it, never the table: the heating block under the arm at READY shows its
+        # colour at 6 to 12 of 25; one drawn elsewhere would show the table
+        steps = (0.2, 0.35, 0.5, 0.65, 0.8)
+        pts = [(o["lo"][0] + (o["hi"][0] - o["lo"][0]) * fx, o["lo"][1] + (o["hi"][1] - o["lo"][1]) * fy, o["hi"][2])
+               for fx in steps for fy in steps]
+        if o["kind"] == "cylinder":
+            pts = [(o["c"][0] + (fx - 0.5) * o["r"], o["c"][1] + (fy - 0.5) * o["r"], o["hi"][2]) for fx in steps
+                   for fy in steps]
+        seen = [img.getpixel(tuple(int(round(v)) for v in project(cam, p))) for p in pts]
+        hits = sum(near(c, COLOURS[o["kind"]]) for c in seen)
+        ground = [c for c in seen if near(c, COLOURS["table"], 20) or near(c, COLOURS["background"], 8)]
+        assert hits >= 5 and not ground, "%s: %d of 25 points show its colour, %d the table" % (
+            o["name"], hits, len(ground))
+        drawn += 1
+    assert drawn >= 5
+    # and the table between them is the table: the picture is not all obstacle
+    x, y = project(cam, (4.0, -4.0, 0.0))
+    assert near(img.getpixel((int(x), int(y))), COLOURS["table"], 20)
+    b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('3d'); true")
+
+
+def magenta_centre(img, cx, cy, r=60):
+    xs, ys = [], []
+    for x in range(max(0, int(cx) - r), min(img.width, int(cx) + r)):
+        for y in range(max(0, int(cy) - r), min(img.height, int(cy) + r)):
+            if near(img.getpixel((x, y)), COLOURS["tool"], 40):
+                xs.append(x)
+                ys.append(y)
+    assert xs, "no tool point drawn near (%d, %d)" % (cx, cy)
+    return sum(xs) / len(xs), sum(ys) / len(ys)
+
+
+def test_a_run_from_the_page_goes_to_its_end_as_fbrlsim_logs_it(lab):
+    b = ready(lab)
+    b.eval("document.getElementById('take').click(); true")
+    b.wait_for("document.getElementById('control').textContent === 'you control the runs'", what="control")
+    b.eval("var s = document.getElementById('method'); s.value = 'QUICK'; s.onchange(); true")
+    # out of range: the page refuses it, nothing reaches the station
+    before = len(lab.sim.log())
+    b.eval("document.querySelector('#params input[name=\"#ITEMS\"]').value = '9'; "
+           "document.getElementById('run').click(); true")
+    time.sleep(0.5)
+    assert b.eval("document.getElementById('messages').textContent").count("#ITEMS must be a whole number in 1..6")
+    assert b.eval("fbrlPage.run === undefined")
+    # and the station refuses it too when a page sends it all the same
+    b.eval("window.fbrlPage.errors = []; true")
+    b.eval("document.querySelector('#params input[name=\"#ITEMS\"]').value = '2'; "
+           "document.querySelector('#params input[name=\"HOLD-DS\"]').value = '1'; "
+           "document.getElementById('run').click(); true")
+    end = b.wait_for("fbrlPage.run && fbrlPage.run.end", seconds=120, what="the run's end")
+    assert end["outcome"] == "completed", end
+    assert [(s["sample"], s["outcome"]) for s in end["samples"]] == [(1, "succeeded"), (2, "succeeded")]
+    events = [(e["event"], e["step_name"], e["sample"]) for e in b.eval("fbrlPage.run.events")]
+    assert events == [("StepStarted", "Home", 0), ("StepEnded", "Home", 0), ("StepStarted", "Item", 1),
+                      ("StepEnded", "Item", 1), ("StepStarted", "Item", 2), ("StepEnded", "Item", 2)]
+    log = lab.sim.log()[before:]
+    assert "HOME" in log and log.count("OUTPUT 1") == 2 and log.count("OUTPUT -1") == 2
+    on = [i for i, l in enumerate(log) if l == "OUTPUT 1"]
+    assert all(any(l.startswith("MOVE") for l in log[a:b]) for a, b in zip([0] + on, on + [len(log)])), log
+    rows = b.eval("[...document.querySelectorAll('#steps tr')].map(r => r.className)")
+    assert rows == ["done", "done"]
+    b.wait_for("document.getElementById('arm-state').textContent === 'Idle'", what="the arm idle after the run")
+    b.wait_for("document.getElementById('reading').className === ''", what="a fresh reading, not an estimate")
+    shot(lab, "page-run.png")
+
+
+def test_the_drawn_tool_point_is_the_fk_of_the_pose_read_from_fbrlsim(lab):
+    """Moves by a SiLA client: the page draws the pose the station
+    read from fbrlsim; the library's forward kinematics of its joints, projected here, is where
+    the page's tool point is in the screenshot."""
+    b, client = ready(lab), lab.client
+    arm = fbrl.Arm("a255")
+    am = pb.messages("ArmController")
+    result, _ = client.run("ArmController", "Home")
+    assert not hasattr(result, "identifier"), result
+    for place, index in (("HEATING-BLOCK", 5), ("SEPARATOR", 0)):
+        result, _ = client.run("ArmController", "MoveToPlace", Place=am.DataType_PlaceName(PlaceName=S(place)),
+                               Index=I(index))
+        assert not hasattr(result, "identifier"), result
+        stream = client.subscribe("ArmController", "Position")
+        read = next(iter(stream)).Position
+        stream.cancel()
+        joints = [j.Degrees.value for j in read.Joints]
+        loc = read.Location.Location
+        world = [loc.X.Inches.value, loc.Y.Inches.value, loc.Z.Inches.value]
+        wait_for(lambda: b.eval("fbrlPage.lastPose && fbrlPage.lastPose.joints") == joints,
+                 what="the page to draw the pose read")
+        time.sleep(0.3)  # a frame or two
+        fk = arm.fk(joints)
+        assert all(abs(a - w) < 0.01 for a, w in zip(fk[:3], world)), (fk, world)  # fbrlsim's own answer agrees
+        cam = b.eval("fbrlPage.camera()")
+        x, y = project(cam, fk[:3])
+        img = shot(lab, "page-tool-%s.png" % place.lower())
+        mx, my = magenta_centre(img, x, y)
+        print("\n%s: tool point drawn at (%.1f, %.1f), FK projected (%.1f, %.1f)" % (place, mx, my, x, y))
+        assert abs(mx - x) <= 3 and abs(my - y) <= 3, ((mx, my), (x, y))
+        assert b.eval("document.getElementById('p-x').textContent") == "%.3f in" % world[0]
+    delays = b.eval("fbrlPage.delays")
+    print("delay from a controller reading to the drawn pose: median %.0f ms, max %.0f ms over %d readings"
+          % (statistics.median(delays), max(delays), len(delays)))
+
+
+def test_abort_from_the_page_halts_the_arm(lab):
+    b = ready(lab)
+    if b.eval("document.getElementById('control').textContent") != "you control the runs":
+        b.eval("document.getElementById('take').click(); true")
+    b.eval("var s = document.getElementById('method'); s.value = 'QUICK'; s.onchange(); "
+           "document.querySelector('#params input[name=\"#ITEMS\"]').value = '3'; "
+           "document.querySelector('#params input[name=\"HOLD-DS\"]').value = '50'; "
+           "window.asked = 0; window.confirm = () => { window.asked++; return true; }; true")
+    before = len(lab.sim.log())
+    b.eval("document.getElementById('run').click(); true")
+    wait_for(lambda: "OUTPUT 1" in lab.sim.log()[before:], what="the pump to run")
+    b.wait_for("document.getElementById('reading').className === 'estimated'", what="the pose marked estimated")
+    b.eval("document.getElementById('abort').click(); true")
+    end = b.wait_for("fbrlPage.run && fbrlPage.run.end", seconds=60, what="the run's end")
+    assert b.eval("window.asked") == 1
+    assert end["outcome"] == "error" and "MethodCancelled" in end["summary"] and "page 1" in end["summary"], end
+    assert_aborted_safely(lab.sim.log()[before:])
+
+
+def test_one_page_controls_the_runs_the_other_is_told_who(lab):
+    b = ready(lab)
+    if b.eval("document.getElementById('control').textContent") != "you control the runs":
+        b.eval("document.getElementById('take').click(); true")
+        b.wait_for("document.getElementById('control').textContent === 'you control the runs'")
+    other = cdp.Browser()
+    try:
+        other.goto(lab.url)
+        other.wait_for("window.fbrlPage && window.fbrlPage.ready === true", seconds=60, what="the second page")
+        assert other.eval("document.getElementById('control').textContent") == "page 1 (127.0.0.1) controls the runs"
+        assert other.eval("document.getElementById('run').disabled") is True
+        other.eval("document.getElementById('take').disabled = false; document.getElementById('take').click(); true")
+        other.wait_for("fbrlPage.errors.length > 0", what="the refusal")
+        assert "page 1 (127.0.0.1) controls the runs" in other.eval("fbrlPage.errors[0]")
+        b.eval("document.getElementById('release').click(); true")
+        other.wait_for("document.getElementById('control').textContent === 'no one controls the runs'")
+    finally:
+        other.close()
+
+
+def test_a_dry_run_from_the_page_shows_the_plan_and_moves_nothing(lab):
+    b = ready(lab)
+    before = len(lab.sim.log())
+    b.eval("var s = document.getElementById('method'); s.value = 'QUICK'; s.onchange(); "
+           "document.querySelector('#params input[name=\"#ITEMS\"]').value = '3'; "
+           "document.querySelector('#params input[name=\"HOLD-DS\"]').value = '10'; "
+           "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+    plan = b.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+    assert plan["method"] == "QUICK" and plan["outcome"] == "completed", plan["report"]
+    assert [(s["sample"], s["outcome"]) for s in plan["samples"]] == [(1, "succeeded"), (2, "succeeded"),
+                                                                      (3, "succeeded")]
+    assert plan["duration_s"] > 3 * 1.0  # three holds of a second (the method's own waits)
+    assert plan["picture"].startswith("<?xml") and not plan["refused"]
+    # a method the guard refuses: the refusal names the obstacle, the closest approach is marked
+    b.eval("var s = document.getElementById('method'); s.value = 'BUMP'; s.onchange(); "
+           "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+    plan = b.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+    assert plan["refused"] and "HEATING-BLOCK-BODY" in plan["refused"][0], plan["report"]
+    assert "refused: " in b.eval("document.getElementById('plan').textContent")
+    # nothing reached the controller but the page's once-a-second readings of the arm
+    assert [l for l in lab.sim.log()[before:] if l not in ("W2", "STATUS")] == []
+    shot(lab, "page-dry-run.png")
+    # the point of contact the guard names is marked red in the view
+    hit = re.search(r"at X (\S+) Y (\S+) Z (\S+) in", plan["refused"][0])
+    b.eval("document.getElementById('show-labels').click(); true")
+    time.sleep(0.3)
+    x, y = project(b.eval("fbrlPage.camera()"), [float(v) for v in hit.groups()])
+    img = shot(lab, "page-dry-run-nolabels.png")
+    b.eval("document.getElementById('show-labels').click(); true")
+    assert near(img.getpixel((int(round(x)), int(round(y)))), (0xff, 0, 0), 30)
+
+
+def test_other_web_sites_cannot_reach_the_station_through_the_browser(lab):
+    """A web site the operator has open could open a WebSocket to 127.0.0.1 (browsers allow it)
+    or point its own name at 127.0.0.1 (DNS rebinding): both are refused; the page's own are not."""
+    import urllib.error
+    import urllib.request
+
+    import websocket
+    ws_url = lab.url.replace("http://", "ws://") + "ws"
+    host = lab.url[len("http://"):].rstrip("/")
+    with pytest.raises(websocket.WebSocketBadStatusException) as e:
+        websocket.create_connection(ws_url, origin="http://evil.example", timeout=10)
+    assert e.value.status_code == 403
+    with pytest.raises(websocket.WebSocketBadStatusException):
+        websocket.create_connection(ws_url, suppress_origin=True, timeout=10)  # no Origin: not a page of ours
+    with pytest.raises(urllib.error.HTTPError) as e:
+        urllib.request.urlopen(urllib.request.Request(lab.url + "api/scene", headers={"Host": "evil.example"}),
+                               timeout=10)
+    assert e.value.code == 403
+    ws = websocket.create_connection(ws_url, origin="http://" + host, timeout=10)
+    try:
+        assert json.loads(ws.recv())["t"] == "hello"
+    finally:
+        ws.close()
+
+
+def test_the_history_lists_past_runs_and_opens_their_log(lab):
+    """The runs of this module's earlier tests (run alone, one of its own): newest first, with
+    outcome and who started it; each opens its log. The record is the station's file."""
+    import urllib.request
+    b = ready(lab)
+    if not b.eval("fbrlPage.history && fbrlPage.history.length > 0"):
+        test_a_run_from_the_page_goes_to_its_end_as_fbrlsim_logs_it(lab)
+    b.wait_for("fbrlPage.history && fbrlPage.history.some(r => r.outcome === 'completed')", what="the history")
+    runs = b.eval("fbrlPage.history")
+    assert [r["start"] for r in runs] == sorted((r["start"] for r in runs), reverse=True)
+    done = next(r for r in runs if r["outcome"] == "completed")
+    assert done["method"] == "QUICK" and done["by"].startswith("page ") and done["values"] == [["#ITEMS", 2],
+                                                                                               ["HOLD-DS", 1]]
+    assert b.eval("document.querySelectorAll('#history li').length") == len(runs)
+    text = urllib.request.urlopen(lab.url + "history/" + done["uuid"], timeout=10).read().decode()
+    assert "outcome: completed" in text and "StepEnded          Item, sample 2" in text, text
+    assert "sample 2: succeeded" in text
+    with open(os.path.join(lab.station.data, "runs.jsonl")) as f:
+        assert sum(1 for _ in f) == len(runs)
+
+
+def test_a_page_that_cannot_be_served_stops_the_station_cleanly(tmp_path):
+    """The page's port is taken: the station says so, exits 3 and leaves no emulator behind."""
+    import socket
+    import subprocess
+
+    from conftest import fbrlsim, launcher
+    wrapper = tmp_path / "fbrlsim"
+    pid_file = tmp_path / "sim.pid"
+    wrapper.write_text("#!/bin/sh\necho $$ > '%s'\nexec '%s' \"$@\"\n" % (pid_file, fbrlsim()))
+    wrapper.chmod(0o755)
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        p = subprocess.run([launcher(), "--sim", "--data", str(tmp_path / "data"), "--no-discovery", "--sila",
+                            "127.0.0.1:0", "--http", "127.0.0.1:%d" % port], capture_output=True, text=True,
+                           timeout=120, env=dict(os.environ, FBRL_SIM=str(wrapper)))
+    assert p.returncode == 3 and "cannot serve the page on 127.0.0.1:%d" % port in p.stderr, p.stderr
+    pid = int(pid_file.read_text())
+    wait_for(lambda: not os.path.exists("/proc/%d" % pid) or open("/proc/%d/stat" % pid).read().split()[2] == "Z",
+             seconds=10, what="the emulator to end")
