@@ -487,6 +487,8 @@ int main(int argc, char **argv)
             opt.conn.kind = MON_CONN_OFFLINE;
             mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
         }
+        if (g_conn.note[0])
+            fprintf(stderr, "fbrlmon: %s\n", g_conn.note);
     }
     if (mon_open(&m, opt.dict_bytes, g_conn.open ? &g_conn.link : NULL) != 0) {
         mon_conn_close(&g_conn);
@@ -494,6 +496,7 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
     m.conn = g_conn.open ? &g_conn : NULL;
+    m.runlog = &g_runlog.log;
     /* the guard computes the arm the link checks positions of (and the emulator is) */
     fbrl_cell_set_arm(&m.cell->model, g_conn.arm ? g_conn.arm : fbrl_arm_model(0), 0.0);
     if (mon_relink_install(&m) != FBRL_OK) {

@@ -62,6 +62,7 @@ typedef struct mon {
     fbrl_run run;         /* RUN-METHOD: the method run the console and the run log observe */
     int counting;         /* evaluating a file, -e text or piped input (errors count) */
     unsigned long runs_incomplete; /* of those: method runs whose outcome was not completed */
+    struct fbrl_runlog *runlog; /* the run log RECONNECT notes in while a run is logged */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

@@ -329,9 +329,12 @@ void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result
         r->pending_st[r->npending++] = result;
     }
     if (fbrl_runlog_is_open(&r->log)) {
+        unsigned runs = 0, maybe = 0;
         if (result == FBRL_ECONTROLLER && r->m->link != NULL)
             fbrl_link_error(r->m->link, &code, &text);
-        fbrl_runlog_command(&r->log, line, len, result, code);
+        if (r->m->link != NULL)
+            fbrl_link_get_runs(r->m->link, &runs, &maybe); /* a line the link typed again */
+        fbrl_runlog_command_run(&r->log, line, len, result, code, runs + maybe);
     }
     if (r->exec_hook)
         r->exec_hook(r->exec_hook_ctx, line, len, result);

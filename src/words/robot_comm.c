@@ -349,7 +349,8 @@ static void print_to_port(void *ctx, const char *s, size_t n)
     raw_end(r, s, n);
     if (!n || s[n - 1] != '\n')
         return;
-    if (resync_keep(r, answer, sizeof answer, &kept) != FBRL_OK) {
+    fbrl_status st = resync_keep(r, answer, sizeof answer, &kept);
+    if (st != FBRL_OK && st != FBRL_EUNITS) { /* in millimetres: in step, the words refuse lengths */
         rb_puts(r,
                 "PRINT-LOC: printed on the controller's line; the controller did not answer in step again\n");
         return;

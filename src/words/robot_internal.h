@@ -58,8 +58,8 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
  * in the link is finished first. */
 fbrl_status rb_online(fbrl_robot *r);
 /* Lengths go out in inches: refused (nothing sent) while the link knows the controller
- * works in millimetres (a STATUS read, METRIC run: fbrl_link_units). The link does not
- * ask by itself: a STATUS costs about a second at 9600 baud (docs/robot.md). */
+ * works in millimetres (the connect's STATUS, a later one, METRIC run: fbrl_link_units;
+ * docs/robot.md). */
 fbrl_status rb_units(fbrl_robot *r, const rb_word *w);
 /* Throw -28 "user interrupt" if Ctrl-C (fbrl_vm_interrupt) was pressed (for words that
  * wait or loop); FBRL_OK otherwise. */

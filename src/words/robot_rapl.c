@@ -66,8 +66,9 @@ static void parse_block(void *ctx, const char *line, size_t len, int flawed)
 
 /* W0 W2 W4 ROBOT-STATUS SERIAL: the controller's text on the console, once (rb_show).
  * A position block is followed by its WORLD numbers with their names, in the user's
- * units (cm with METRIC-ON); the yaw is marked as the arm's own: a 5-axis arm cannot
- * choose it, it is the waist's direction (DESIGN 6). */
+ * units (cm with METRIC-ON), from the controller's (millimetres when the link knows it
+ * works in them, docs/link.md 1); the yaw is marked as the arm's own: a 5-axis arm
+ * cannot choose it, it is the waist's direction (DESIGN 6). */
 static fbrl_status w_show(fbrl_vm *vm, void *ctx, const void *word)
 {
     RB_WORD(vm, ctx, word);
@@ -81,6 +82,8 @@ static fbrl_status w_show(fbrl_vm *vm, void *ctx, const void *word)
         return st;
     int metric = rb_metric(r);
     double k = metric ? FBRL_CM_PER_IN : 1.0;
+    if (fbrl_link_units(r->link) == FBRL_LINK_UNITS_MM)
+        k /= 10.0 * FBRL_CM_PER_IN; /* the block's lengths are millimetres */
     char out[256], f[6][24]; /* "%+.4f" "%+.3f" through fbrl_num_fixed: the firmware's printf has no %f */
     for (int i = 0; i < 6; i++)
         fbrl_num_fixed(f[i], sizeof f[i], i < 3 ? p.world[i] * k : p.world[i], 0, i < 3 ? 4 : 3,

@@ -249,8 +249,8 @@ static void safe_stop_offline(void **state)
     throws(f, "7 OUTPORT", OFFLINE_CODE);
     assert_int_equal(fbrl_robot_safe_stop(&f->r, &so), FBRL_EOFFLINE);
     assert_int_equal(so.result, FBRL_EOFFLINE);
-    assert_int_equal(so.halted, 0);
-    assert_int_equal(so.switched_off, 0);
+    assert_int_equal(so.stop.halted, 0);
+    assert_int_equal(so.stop.switched_off, 0);
     assert_int_equal(fbrl_robot_lost(&f->r), 0);
     assert_int_equal(fbrl_robot_set_relink(NULL, NULL, NULL), FBRL_EINVAL);
 }
@@ -297,7 +297,7 @@ static void host_side_helpers(void **state)
     assert_int_equal(so.result, FBRL_EOFFLINE);
     assert_int_equal(so.was_moving, 1);
     assert_string_equal(so.motion, "MOVE P1");
-    assert_int_equal(so.halted, 0);
+    assert_int_equal(so.stop.halted, 0);
     assert_int_equal(fbrl_robot_safe_stop_link(NULL, 0, NULL, &so), FBRL_EOFFLINE);
     assert_int_equal(so.was_moving, 0);
 
