@@ -50,6 +50,10 @@ typedef struct mon {
     unsigned long errors;  /* errors in files, -e text and piped input */
     struct mon_conn *conn; /* the connection RECONNECT opens again (NULL: none) */
     int typed;             /* evaluating a line typed at the prompt */
+    /* each line a person types at the prompt, before it runs: fbrlmon records it in the
+     * audit trail (the console records its own Forth line the same way) */
+    void (*typed_hook)(void *ctx, const char *line, size_t len);
+    void *typed_ctx;
     char resume_file[256]; /* RESUME: the file and line of the last error in a file */
     unsigned long resume_line;
     char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
