@@ -363,6 +363,42 @@ bad:
 
 static mon_conn g_conn;     /* fixed address while open, as the uart backend needs */
 static mon_runlog g_runlog; /* the link reports every executed line to it */
+
+/* A line typed at the prompt changes what it likes (TEACH, a place, a parameter): with a run
+ * log (an audit trail) kept, it is a record, by the operator's name, as the console's Forth
+ * line is (docs/compliance.md). */
+/* The typed lines' records end with the session's seal, as the console's do. */
+static void seal_typed(mon_runlog *L)
+{
+    mon_audit *A = &L->audit;
+    if (A->path[0] == '\0' || A->user[0] == '\0')
+        return; /* nothing was recorded */
+    mon_audit_set_user(A, "fbrlmon", 0, FBRL_ROLE_OPERATOR); /* the program closes the session */
+    if (mon_audit_open(A) == 0)
+        mon_audit_close(A, 1);
+}
+
+#define TYPED_RECORD_MAX 1000 /* bytes of a typed line kept in its record */
+
+static void record_typed(void *ctx, const char *line, size_t len)
+{
+    mon_runlog *L = ctx;
+    mon_audit *A = &L->audit;
+    char text[TYPED_RECORD_MAX + 1], detail[96];
+    if (A->path[0] == '\0')
+        snprintf(A->path, sizeof A->path, "%s", L->path);
+    if (A->path[0] == '\0')
+        return; /* no audit trail kept */
+    if (!A->user[0] || !A->signed_in)
+        mon_audit_set_user(A, L->operator_id[0] ? L->operator_id : "-", 0, FBRL_ROLE_OPERATOR);
+    snprintf(text, sizeof text, "%.*s", (int)(len < TYPED_RECORD_MAX ? len : TYPED_RECORD_MAX), line);
+    if (len > TYPED_RECORD_MAX)
+        snprintf(detail, sizeof detail, "typed at the prompt (its first %d of %zu bytes)", TYPED_RECORD_MAX, len);
+    else
+        snprintf(detail, sizeof detail, "typed at the prompt");
+    if (mon_audit_action(A, "forth", text, detail) != 0)
+        fprintf(stderr, "error: %s\n", A->err);
+}
 static lab g_lab;          /* --lab: its users and chain */
 
 /* --printer: PRINT-LOC's lines appended to a file or device, each put out at once
@@ -487,6 +523,8 @@ int main(int argc, char **argv)
             opt.conn.kind = MON_CONN_OFFLINE;
             mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
         }
+        if (g_conn.note[0])
+            fprintf(stderr, "fbrlmon: %s\n", g_conn.note);
     }
     if (mon_open(&m, opt.dict_bytes, g_conn.open ? &g_conn.link : NULL) != 0) {
         mon_conn_close(&g_conn);
@@ -494,6 +532,7 @@ int main(int argc, char **argv)
         return MON_EXIT_CONNECT;
     }
     m.conn = g_conn.open ? &g_conn : NULL;
+    m.runlog = &g_runlog.log;
     /* the guard computes the arm the link checks positions of (and the emulator is) */
     fbrl_cell_set_arm(&m.cell->model, g_conn.arm ? g_conn.arm : fbrl_arm_model(0), 0.0);
     if (mon_relink_install(&m) != FBRL_OK) {
@@ -529,6 +568,8 @@ int main(int argc, char **argv)
             g_runlog.audit.lab = &g_lab;
             mon_runlog_set_path(&g_runlog, g_lab.chain_path);
         }
+        m.typed_hook = record_typed;
+        m.typed_ctx = &g_runlog;
     }
 
     if (opt.printer != NULL) {
@@ -592,6 +633,7 @@ int main(int argc, char **argv)
             if (m.host.out_is_tty)
                 fbrl_robot_set_console(&m.robot, mon_host_progress, &m.host, 1);
             mon_interactive(&m);
+            seal_typed(&g_runlog);
         } else {
             unsigned long ln = 0;
             const char *line;

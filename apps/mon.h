@@ -5,7 +5,7 @@
 #define FBRLMON_MON_H
 
 #include <stddef.h>
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
 #include "fbrl/method.h"
@@ -50,6 +50,10 @@ typedef struct mon {
     unsigned long errors;  /* errors in files, -e text and piped input */
     struct mon_conn *conn; /* the connection RECONNECT opens again (NULL: none) */
     int typed;             /* evaluating a line typed at the prompt */
+    /* each line a person types at the prompt, before it runs: fbrlmon records it in the
+     * audit trail (the console records its own Forth line the same way) */
+    void (*typed_hook)(void *ctx, const char *line, size_t len);
+    void *typed_ctx;
     char resume_file[256]; /* RESUME: the file and line of the last error in a file */
     unsigned long resume_line;
     char *typed_src; /* lines typed at the prompt that defined words (mon_debug.c) */
@@ -62,6 +66,7 @@ typedef struct mon {
     fbrl_run run;         /* RUN-METHOD: the method run the console and the run log observe */
     int counting;         /* evaluating a file, -e text or piped input (errors count) */
     unsigned long runs_incomplete; /* of those: method runs whose outcome was not completed */
+    struct fbrl_runlog *runlog; /* the run log RECONNECT notes in while a run is logged */
 } mon;
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,

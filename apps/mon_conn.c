@@ -97,6 +97,21 @@ static void sim_stop(void *ctx)
 }
 #endif
 
+/* The connect read the controller's units and refused millimetres (FBRL_EUNITS): the
+ * link stays connected, so that the user can switch it; the robot words refuse their
+ * commands until then (rb_units). */
+static fbrl_status units_note(mon_conn *c, fbrl_status st)
+{
+    c->note[0] = '\0';
+    if (st != FBRL_EUNITS)
+        return st;
+    snprintf(c->note, sizeof c->note,
+             "the controller on %s works in millimetres (STATUS: METRIC UNITS.) and fbrlmon's robot "
+             "words send inches: they are refused until you switch it to inches (RAPL NOMETRIC)",
+             c->port.name);
+    return FBRL_OK;
+}
+
 fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, size_t errlen)
 {
     fbrl_status st;
@@ -150,7 +165,9 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         lc.naxes = o->axes ? o->axes : c->arm->naxes;
         lc.on_exec = o->on_exec; /* the run log (mon_runlog.c), or the dry run's report */
         lc.exec_ctx = o->exec_ctx;
-        c->lcfg = lc; /* mon_conn_reopen uses it again */
+        fbrl_link_modes_init(&c->modes);
+        lc.modes = &c->modes; /* sent again after a reconnect (mon_relink.c) */
+        c->lcfg = lc;         /* mon_conn_reopen uses it again */
         st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &lc);
     }
     if (st == FBRL_OK)
@@ -167,6 +184,7 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
         if (st != FBRL_OK)
             c->lcfg.aci = 0;
     }
+    st = units_note(c, st);
     if (st != FBRL_OK) {
         snprintf(err, errlen, "no controller answers on %s: %s%s", c->port.name, fbrl_status_str(st),
                  c->kind == MON_CONN_PORT ? " (neither in terminal mode nor to the switch from ACI mode)" : "");
@@ -285,7 +303,7 @@ fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen)
     }
     st = fbrl_link_init(&c->link, fbrl_port_uart(&c->port), &c->lcfg);
     if (st == FBRL_OK)
-        st = fbrl_link_connect(&c->link); /* NOHELP, as at start */
+        st = units_note(c, fbrl_link_connect(&c->link)); /* NOHELP and the units, as at start */
     if (st != FBRL_OK)
         snprintf(err, errlen, "no controller answers on %s: %s", c->port.name, fbrl_status_str(st));
     return st;

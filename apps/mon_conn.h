@@ -53,9 +53,15 @@ typedef struct mon_conn {
     const char *url; /* what was opened, and how (for mon_conn_reopen) */
     fbrl_port_options opts;
     fbrl_link_config lcfg;
+    fbrl_link_modes modes; /* the session's modes (lcfg.modes): kept across reconnects */
+    /* what the user must know about the controller just connected ("" nothing): it works
+     * in millimetres (the connect refused its units, docs/link.md 1) */
+    char note[FBRL_PORT_NAME_MAX + 200];
 } mon_conn;
 
-/* Connect as asked; on failure err says why (one line, no newline). */
+/* Connect as asked; on failure err says why (one line, no newline). A controller that
+ * works in millimetres is connected all the same, with c->note saying so and how to switch
+ * it (the robot words refuse their commands meanwhile). */
 fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, size_t errlen);
 /* One-line description, e.g. "emulator on /dev/pts/4 (9600 8N1, XON/XOFF; pty, low
  * latency: not supported)". */
@@ -63,7 +69,7 @@ void mon_conn_describe(const mon_conn *c, char *buf, size_t cap);
 void mon_conn_close(mon_conn *c);
 /* After the controller went away: open the port again by the same name and options (the
  * built-in emulator is not restarted) and run the connect handshake; on failure err says
- * why. */
+ * why; c->note as for mon_conn_open. */
 fbrl_status mon_conn_reopen(mon_conn *c, char *err, size_t errlen);
 /* What to do about an open failure, as text to append to the message ("" if nothing
  * useful): for FBRL_EPERM, the dialout group. */

@@ -14,6 +14,7 @@
 
 #include "fbrl/status.h"
 #include "fbrl/vm_throw.h"
+#include "fbrl/vmx.h"
 #include "mon.h"
 #include "mon_debug.h"
 
@@ -159,8 +160,9 @@ int mon_debug_show_lines(FILE *out, const char *path, unsigned long first, int m
     return shown > 0 ? 0 : -1;
 }
 
-static fbrl_status w_locate(fbrl_vm *vm, void *arg)
+static fbrl_status w_locate(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     char name[64], msg[160];
     const char *file, *stack = "", *help = "";
@@ -239,16 +241,18 @@ static int run_editor(const char *ed, const char *file, unsigned long line, char
 /* (EDIT) ( a -- a u ): EDIT's first half. Opens the editor at the word's file and line;
  * when it exits, keeps the session's work (locations, matrices, calibrations, devices) in
  * a workspace file and leaves the file's name at a for INCLUDED. */
-static fbrl_status w_edit(fbrl_vm *vm, void *arg)
+static fbrl_status w_edit(fbrl_vm *vm, void *arg, const void *word)
 {
     mon *m = arg;
     char name[64], msg[MON_EDIT_MSG];
     const char *file;
     unsigned long line;
-    fbrl_cell a;
-    if (fbrl_vm_pop(vm, &a) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
-    fbrl_status st = word_name(vm, "EDIT", name, sizeof name);
+    fbrl_vmx_val v[1];
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_cell a = v[0].i;
+    st = word_name(vm, "EDIT", name, sizeof name);
     if (st != FBRL_OK)
         return st;
     if (fbrl_vm_locate(vm, name, &file, &line) != FBRL_OK) {
@@ -290,8 +294,9 @@ static fbrl_status w_edit(fbrl_vm *vm, void *arg)
 
 /* (EDIT-DONE) ( -- ): EDIT's second half, after the file loaded (or failed to): the
  * work kept by (EDIT) goes back into the words of the same names. */
-static fbrl_status w_edit_done(fbrl_vm *vm, void *arg)
+static fbrl_status w_edit_done(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     char why[160], msg[MON_EDIT_MSG];
     if (!m->edit_ws[0])
@@ -308,8 +313,9 @@ static fbrl_status w_edit_done(fbrl_vm *vm, void *arg)
 
 /* ---- SAVE-DEFINITIONS ---- */
 
-static fbrl_status w_save_definitions(fbrl_vm *vm, void *arg)
+static fbrl_status w_save_definitions(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     char path[MON_EDIT_PATH_MAX], msg[MON_EDIT_MSG];
     const char *p;
@@ -351,18 +357,18 @@ fbrl_status mon_debug_install(mon *m)
         ": EDIT ( \"name\" -- ) \\ edit the file that defines name at its line, then load it "
         "again keeping the session's locations and other work\n"
         "  (EDIT-FILE) (EDIT) ['] INCLUDED CATCH DUP IF NIP NIP THEN (EDIT-DONE) THROW ;\n";
-    fbrl_status st = fbrl_vm_define(m->vm, "LOCATE", w_locate, m, "( \"name\" -- )",
-                                    "show where name was defined and its source lines");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(
-            m->vm, "(EDIT)", w_edit, m, "( a \"name\" -- a u )",
-            "EDIT's first half: run the editor, keep the session's work, the file's name at a");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "(EDIT-DONE)", w_edit_done, m, "( -- )",
-                            "EDIT's second half: put the session's work back after the file loaded");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "SAVE-DEFINITIONS", w_save_definitions, m, "( \"file\" -- )",
-                            "write the definitions typed at the prompt to a new file");
+    static const fbrl_vmx_reg words[] = {
+        {"LOCATE", w_locate, "", 0, 0, 0,
+         FBRL_DOC("( \"name\" -- )", "show where name was defined and its source lines")},
+        {"(EDIT)", w_edit, "A", 0, 0, 0,
+         FBRL_DOC("( a \"name\" -- a u )",
+                  "EDIT's first half: run the editor, keep the session's work, the file's name at a")},
+        {"(EDIT-DONE)", w_edit_done, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "EDIT's second half: put the session's work back after the file loaded")},
+        {"SAVE-DEFINITIONS", w_save_definitions, "", 0, 0, 0,
+         FBRL_DOC("( \"file\" -- )", "write the definitions typed at the prompt to a new file")},
+    };
+    fbrl_status st = fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], m);
     if (st == FBRL_OK)
         st = fbrl_vm_eval(m->vm, def, sizeof def - 1);
     return st;

@@ -124,9 +124,9 @@ static void host_time_date(void *user, int out[6])
  * pulses, errors listed. */
 static void on_exec(void *ctx, const char *line, size_t len, fbrl_status result)
 {
-    char word[16], text[200];
-    size_t k = 0;
+    char text[200];
     fbrl_rapl_cmd cmd;
+    const char *args;
     double t = since_start();
     (void)ctx;
     if (!g_clk.on)
@@ -134,16 +134,11 @@ static void on_exec(void *ctx, const char *line, size_t len, fbrl_status result)
     if (result == FBRL_EMAYBE)
         return;
     g_rep.commands++;
-    while (k < len && k + 1 < sizeof word && line[k] != ' ' && line[k] != ',') {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = '\0';
-    if (fbrl_rapl_cmd_find(word, &cmd) == FBRL_OK) {
+    if (fbrl_rapl_line_cmd(line, &cmd, &args) == FBRL_OK) { /* the link's lines end in a NUL */
         if (fbrl_rapl_cmd_info(cmd)->flags & FBRL_RAPL_F_MOTION)
             g_rep.moves++;
         if (cmd == FBRL_RAPL_OUTPUT && result == FBRL_OK) {
-            const char *p = line + k;
+            const char *p = args;
             while (p < line + len) {
                 char *end;
                 long n = strtol(p, &end, 10);

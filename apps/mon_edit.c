@@ -29,6 +29,8 @@ static void eval_line(mon *m, const char *line, size_t len)
         mon_safe_stop(m, NULL, 0);
         return;
     }
+    if (m->typed_hook != NULL && len > 0)
+        m->typed_hook(m->typed_ctx, line, len);
     mon_safe_begin(m);
     m->typed = 1;
     if (mon_eval(m, line, len, NULL, 0, 0) == 0 && m->host.interrupted) {

@@ -2,8 +2,10 @@
 /* mon_relink.c - a controller that went away and came back (fbrlsim restarted, a USB
  * adapter unplugged and plugged in again on the same path), and going on with the plan.
  *
- *   RECONNECT   open the port again, the connect handshake (NOHELP), and say what
- *               state the controller reports (STATUS: homed? moving? outputs on?)
+ *   RECONNECT   open the port again, the connect handshake (NOHELP, the units), send the
+ *               session's modes again (speed, units, tool ...: a restarted controller
+ *               lost them; docs/link.md 1), and say what state the controller reports
+ *               (STATUS: homed? moving? outputs on?)
  *   RESUME      run the plan file that failed last again, from the line that failed
  *
  * The session (the dictionary, locations, calibrations) is kept: only the port and the
@@ -16,8 +18,47 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fbrl/runlog.h"
 #include "fbrl/vm_throw.h"
+#include "fbrl/vmx.h"
 #include "mon_conn.h"
+
+/* Send the session's modes again, before anything else can move the arm, and say which
+ * (on the console, and in the run log while a run is logged). A restarted controller has
+ * its defaults: the rest of a plan would run at another speed, with another tool. */
+static void resend_modes(mon *m)
+{
+    char text[4 * FBRL_LINK_LINE_MAX + 200];
+    size_t sent = 0, len = 0, i;
+    const fbrl_link_modes *md = &m->conn->modes;
+    const char *line;
+    fbrl_status st = fbrl_link_modes_resend(m->link, &sent);
+    if (fbrl_link_modes_line(md, 0) == NULL)
+        return; /* the session set none */
+    text[0] = '\0';
+    for (i = 0; i < sent && (line = fbrl_link_modes_line(md, i)) != NULL && len + 3 < sizeof text; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "%s%s", i ? "; " : "", line);
+    if (len >= sizeof text)
+        len = sizeof text - 1;
+    if (st != FBRL_OK && len + 3 < sizeof text) {
+        int code = -1;
+        const char *etext = "";
+        if (st == FBRL_ECONTROLLER)
+            fbrl_link_error(m->link, &code, &etext);
+        len += (size_t)snprintf(text + len, sizeof text - len,
+                                "%snot sent: %s (%s%s%s) and the modes after it: send them before moving",
+                                sent ? "; " : "", fbrl_link_modes_line(md, sent),
+                                st == FBRL_EUNITS ? "typed in other units than the controller's now"
+                                                  : fbrl_status_str(st),
+                                code >= 0 ? ": " : "", code >= 0 ? etext : "");
+    }
+    mon_host_newline(&m->host);
+    fprintf(m->host.out, "the session's modes sent again: %s\n", text);
+    fflush(m->host.out);
+    m->host.column = 0;
+    if (m->runlog != NULL && fbrl_runlog_is_open(m->runlog))
+        fbrl_runlog_note(m->runlog, "modes-resent", NULL, text);
+}
 
 /* What the controller says about itself now, in one line to the console. */
 static void tell_state(mon *m)
@@ -65,7 +106,14 @@ fbrl_status mon_relink(mon *m, char *err, size_t errlen)
     if (st != FBRL_OK)
         return st;
     fbrl_robot_set_link(&m->robot, &m->conn->link); /* not lost; motion state unknown */
+    resend_modes(m);
+    if (fbrl_link_units(m->link) == FBRL_LINK_UNITS_INCH)
+        m->conn->note[0] = '\0'; /* the session's NOMETRIC switched it back */
     tell_state(m);
+    if (m->conn->note[0]) {
+        fprintf(m->host.out, "%s\n", m->conn->note);
+        fflush(m->host.out);
+    }
     return FBRL_OK;
 }
 
@@ -89,8 +137,9 @@ static fbrl_status auto_relink(void *ctx, fbrl_robot *r)
     return st;
 }
 
-static fbrl_status w_reconnect(fbrl_vm *vm, void *arg)
+static fbrl_status w_reconnect(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     char err[300], msg[340];
     fbrl_status st = mon_relink(m, err, sizeof err);
@@ -102,14 +151,16 @@ static fbrl_status w_reconnect(fbrl_vm *vm, void *arg)
 
 /* (RESUME) ( a -- a u ): the failed plan file's name into the buffer at a; its next
  * open skips to the failed line. */
-static fbrl_status w_resume(fbrl_vm *vm, void *arg)
+static fbrl_status w_resume(fbrl_vm *vm, void *arg, const void *word)
 {
     mon *m = arg;
-    fbrl_cell a;
+    fbrl_vmx_val v[1];
     size_t n = strlen(m->resume_file);
     char *p;
-    if (fbrl_vm_pop(vm, &a) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_cell a = v[0].i;
     if (n == 0 || m->resume_line == 0)
         return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, "RESUME: no plan file has failed in this session");
     p = fbrl_vm_addr(vm, a, sizeof m->resume_file);
@@ -133,13 +184,14 @@ fbrl_status mon_relink_install(mon *m)
         "CREATE (RESUME-FILE) 256 ALLOT\n"
         ": RESUME ( -- ) \\ run the plan file that failed last again, from the line that failed\n"
         "  (RESUME-FILE) (RESUME) INCLUDED ;\n";
-    fbrl_status st =
-        fbrl_vm_define(m->vm, "RECONNECT", w_reconnect, m, "( -- )",
-                       "open the controller's port again, NOHELP, and report its state (STATUS)");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(
-            m->vm, "(RESUME)", w_resume, m, "( a -- a u )",
-            "RESUME's helper: the failed file's name at a; its next open starts at the failed line");
+    static const fbrl_vmx_reg words[] = {
+        {"RECONNECT", w_reconnect, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "open the controller's port again, NOHELP, and report its state (STATUS)")},
+        {"(RESUME)", w_resume, "A", 0, 0, 0,
+         FBRL_DOC("( a -- a u )",
+                  "RESUME's helper: the failed file's name at a; its next open starts at the failed line")},
+    };
+    fbrl_status st = fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], m);
     if (st == FBRL_OK)
         st = fbrl_vm_eval(m->vm, def, sizeof def - 1);
     if (st == FBRL_OK)

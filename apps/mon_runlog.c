@@ -329,9 +329,12 @@ void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result
         r->pending_st[r->npending++] = result;
     }
     if (fbrl_runlog_is_open(&r->log)) {
+        unsigned runs = 0, maybe = 0;
         if (result == FBRL_ECONTROLLER && r->m->link != NULL)
             fbrl_link_error(r->m->link, &code, &text);
-        fbrl_runlog_command(&r->log, line, len, result, code);
+        if (r->m->link != NULL)
+            fbrl_link_get_runs(r->m->link, &runs, &maybe); /* a line the link typed again */
+        fbrl_runlog_command_run(&r->log, line, len, result, code, runs + maybe);
     }
     if (r->exec_hook)
         r->exec_hook(r->exec_hook_ctx, line, len, result);
@@ -456,11 +459,13 @@ int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *c
     snprintf(r->operator_id, sizeof r->operator_id, "%s", who ? who : "");
     snprintf(r->controller, sizeof r->controller, "%s", controller ? controller : "");
     fbrl_robot_set_events(&m->robot, on_event, r);
+    static const fbrl_vmx_reg words[] = {
+        {"RUN-LOG", w_run_log, "", 0, 0, 0,
+         FBRL_DOC("( \"file\" -- )", "every following RUN-METHOD appends its run log (JSON lines) to file")},
+        {"NO-RUN-LOG", w_no_run_log, "", 0, 0, 0, FBRL_DOC("( -- )", "stop writing run logs")},
+    };
     if (fbrl_run_observe(&m->run, observe, r) != FBRL_OK ||
-        fbrl_vmx_define(m->vm, "RUN-LOG", w_run_log, r, NULL, 0, "( \"file\" -- )",
-                        "every following RUN-METHOD appends its run log (JSON lines) to file") != FBRL_OK ||
-        fbrl_vmx_define(m->vm, "NO-RUN-LOG", w_no_run_log, r, NULL, 0, "( -- )", "stop writing run logs") !=
-            FBRL_OK)
+        fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], r) != FBRL_OK)
         return -1;
     return 0;
 }

@@ -76,17 +76,48 @@ void mon_safe_begin(mon *m)
     g_mode = MODE_EVAL;
 }
 
+/* " 1-4 6 9-16", or " none". */
 static void put_outputs(const char *label, uint32_t bits)
 {
     int n, any = 0;
     fputs(label, stderr);
-    for (n = 1; n <= FBRL_ROBOT_IO_MAX; n++)
-        if (bits & (1u << (n - 1))) {
-            fprintf(stderr, " %d", n);
-            any = 1;
-        }
+    for (n = 1; n <= FBRL_ROBOT_IO_MAX; n++) {
+        int last = n;
+        if (!(bits & (1u << (n - 1))))
+            continue;
+        while (last < FBRL_ROBOT_IO_MAX && (bits & (1u << last)))
+            last++;
+        fprintf(stderr, last > n ? " %d-%d" : " %d", n, last);
+        n = last;
+        any = 1;
+    }
     if (!any)
         fputs(" none", stderr);
+}
+
+/* What is known of the outputs after the stop, and for those that are not known, why. */
+static void tell_outputs(const fbrl_link_stop *so)
+{
+    uint32_t others = so->unknown & ~so->off_failed;
+    fputs("stopped:", stderr);
+    put_outputs(" outputs switched off:", so->switched_off);
+    if (so->have_outputs)
+        put_outputs("; outputs still on:", so->left_on);
+    if (so->off_failed) {
+        put_outputs("; switching off failed for", so->off_failed);
+        fputs(so->have_outputs ? " (may still be on)" : " (may still be on: not known)", stderr);
+    }
+    if (others) {
+        put_outputs("; not known:", others);
+        if (so->have_status)
+            fputs(" (this controller's STATUS does not show its outputs, and this session did not"
+                  " switch them on: check them at the controller)",
+                  stderr);
+        else
+            fprintf(stderr, " (STATUS could not be read after HALT: %s; check them at the controller)",
+                    fbrl_status_str(so->status_result));
+    }
+    fputc('\n', stderr);
 }
 
 /* The report: where, what the arm was doing and where it stands, the outputs. */
@@ -116,12 +147,12 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
               stderr);
         return;
     }
-    if (so.halted)
+    if (so.stop.halted)
         fprintf(stderr, "arm halted%s%s%s", so.was_moving ? " while moving (" : " (no motion was running",
                 so.was_moving ? so.motion : "", ")");
     else
         fprintf(stderr, "HALT failed (%s)", fbrl_status_str(so.result));
-    if (so.have_where) {
+    if (so.stop.have_where) {
         /* fbrl_num: the same digits in every locale (fbrlmon runs in the user's) */
         static const char *const label[6] = {"X", "Y", "Z", NULL, "pitch", "roll"};
         char num[40];
@@ -129,18 +160,12 @@ static void report(mon *m, const char *where, unsigned long line, const char *wo
         fputs("; it stands at", stderr);
         for (k = 0; k < 6; k++)
             if (label[k] != NULL) {
-                fbrl_num_fixed(num, sizeof num, so.where[k], 0, 4, 0, NULL);
+                fbrl_num_fixed(num, sizeof num, so.stop.where[k], 0, 4, 0, NULL);
                 fprintf(stderr, " %s %s", label[k], num);
             }
     }
     fputc('\n', stderr);
-    fputs("stopped:", stderr);
-    put_outputs(" outputs switched off:", so.switched_off);
-    if (so.have_status)
-        put_outputs("; outputs still on:", so.left_on);
-    else
-        fputs("; STATUS could not be read: the outputs' state is unknown", stderr);
-    fputc('\n', stderr);
+    tell_outputs(&so.stop);
 }
 
 static void tail(mon *m)

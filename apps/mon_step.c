@@ -263,8 +263,9 @@ static fbrl_status parse_where(fbrl_vm *vm, const char *who, mon_break *b)
 }
 
 /* BREAK ( "name" | "file:line" -- ) */
-static fbrl_status w_break(fbrl_vm *vm, void *arg)
+static fbrl_status w_break(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     mon_step *d = &m->step;
     mon_break b;
@@ -279,8 +280,9 @@ static fbrl_status w_break(fbrl_vm *vm, void *arg)
 }
 
 /* UNBREAK ( "name" | "file:line" | "ALL" -- ) */
-static fbrl_status w_unbreak(fbrl_vm *vm, void *arg)
+static fbrl_status w_unbreak(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     mon_step *d = &m->step;
     const char *p;
@@ -306,8 +308,9 @@ static fbrl_status w_unbreak(fbrl_vm *vm, void *arg)
 }
 
 /* BREAKS ( -- ) */
-static fbrl_status w_breaks(fbrl_vm *vm, void *arg)
+static fbrl_status w_breaks(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     (void)vm;
     mon_host_newline(&m->host);
@@ -326,8 +329,9 @@ static fbrl_status w_breaks(fbrl_vm *vm, void *arg)
 }
 
 /* TRACE-WORDS ( -- ) */
-static fbrl_status w_trace_words(fbrl_vm *vm, void *arg)
+static fbrl_status w_trace_words(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     (void)vm;
     m->trace.words = 1;
@@ -336,8 +340,9 @@ static fbrl_status w_trace_words(fbrl_vm *vm, void *arg)
 }
 
 /* TRACE-OFF ( -- ): words and commands; a trace file is closed */
-static fbrl_status w_trace_off(fbrl_vm *vm, void *arg)
+static fbrl_status w_trace_off(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     (void)vm;
     m->trace.words = 0;
@@ -348,19 +353,17 @@ static fbrl_status w_trace_off(fbrl_vm *vm, void *arg)
 
 fbrl_status mon_step_install(mon *m)
 {
-    fbrl_status st =
-        fbrl_vm_define(m->vm, "BREAK", w_break, m, "( \"name\" | \"file:line\" -- )",
-                       "stop before name runs, or at the calls made on that line (the debugger)");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "UNBREAK", w_unbreak, m, "( \"name\" | \"file:line\" | \"ALL\" -- )",
-                            "remove a breakpoint (ALL: every one)");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "BREAKS", w_breaks, m, "( -- )", "list the breakpoints");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "TRACE-WORDS", w_trace_words, m, "( -- )",
-                            "trace each word entered, with the line of the call and the data stack");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "TRACE-OFF", w_trace_off, m, "( -- )",
-                            "stop tracing words and commands (and close TRACE-TO's file)");
-    return st;
+    static const fbrl_vmx_reg words[] = {
+        {"BREAK", w_break, "", 0, 0, 0,
+         FBRL_DOC("( \"name\" | \"file:line\" -- )",
+                  "stop before name runs, or at the calls made on that line (the debugger)")},
+        {"UNBREAK", w_unbreak, "", 0, 0, 0,
+         FBRL_DOC("( \"name\" | \"file:line\" | \"ALL\" -- )", "remove a breakpoint (ALL: every one)")},
+        {"BREAKS", w_breaks, "", 0, 0, 0, FBRL_DOC("( -- )", "list the breakpoints")},
+        {"TRACE-WORDS", w_trace_words, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "trace each word entered, with the line of the call and the data stack")},
+        {"TRACE-OFF", w_trace_off, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "stop tracing words and commands (and close TRACE-TO's file)")},
+    };
+    return fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], m);
 }

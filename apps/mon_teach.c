@@ -16,6 +16,7 @@
 #include "mon_teach.h"
 #include "fbrl/num.h"
 #include "fbrl/vm_throw.h"
+#include "fbrl/vmx.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -425,20 +426,22 @@ static int pendant(teach *t)
 
 /* (TEACH) ( loc -- loc flag ): the pendant; flag true when Enter took the position
  * (TEACH then stores it with ARM-HERE). */
-static fbrl_status w_teach(fbrl_vm *vm, void *arg)
+static fbrl_status w_teach(fbrl_vm *vm, void *arg, const void *word)
 {
     static const char offline[] = "no controller connected: start fbrlmon with --sim or --port";
     mon *m = arg;
     teach t;
-    fbrl_cell addr;
+    fbrl_vmx_val v[1];
     fbrl_loc *loc;
     struct termios saved, raw;
     int r, metric = 0;
 
-    if (fbrl_vm_pop(vm, &addr) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
-    if (fbrl_vm_push(vm, addr) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_OVERFLOW, NULL);
+    fbrl_status st = fbrl_vmx_check(vm, word, v); /* ( loc -- loc flag ): loc stays */
+    if (st != FBRL_OK)
+        return st;
+    fbrl_cell addr = v[0].i;
+    if ((st = fbrl_vmx_push(vm, addr)) != FBRL_OK)
+        return st;
     if (fbrl_glossary_loc(vm, addr, &loc) != FBRL_OK)
         return fbrl_vm_throw(vm, FBRL_THROW_BAD_ADDRESS, "TEACH: not a location (use a CREATE-LOC name)");
     if (m->link == NULL)
@@ -497,8 +500,11 @@ fbrl_status mon_teach_install(mon *m)
         "o c gripper, 1-4 + - step, ? keys; Enter stores the arm's position in loc (as ARM-HERE), Esc "
         "cancels\n"
         "  DEPTH 0= IF ' >BODY THEN (TEACH) IF ARM-HERE ELSE DROP THEN ;\n";
-    fbrl_status st = fbrl_vm_define(m->vm, "(TEACH)", w_teach, m, "( loc -- loc flag )",
-                                    "TEACH's pendant; flag true when Enter took the position");
+    static const fbrl_vmx_reg words[] = {
+        {"(TEACH)", w_teach, "A", 0, 0, 0,
+         FBRL_DOC("( loc -- loc flag )", "TEACH's pendant; flag true when Enter took the position")},
+    };
+    fbrl_status st = fbrl_vmx_define_table(m->vm, words, 1, m);
     if (st == FBRL_OK)
         st = fbrl_vm_eval(m->vm, def, sizeof def - 1);
     return st;

@@ -9,6 +9,7 @@
 
 #include "fbrl/status.h"
 #include "fbrl/vm_throw.h"
+#include "fbrl/vmx.h"
 #include "mon.h"
 #include "mon_trace.h"
 
@@ -54,8 +55,9 @@ static void hook(mon *m)
 }
 
 /* TRACE-ON ( -- ) */
-static fbrl_status w_trace_on(fbrl_vm *vm, void *arg)
+static fbrl_status w_trace_on(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     if (!m->link)
         return fbrl_vm_throw(vm, FBRL_THROW_ABORTQ, "TRACE-ON: no controller (offline): nothing to trace");
@@ -65,8 +67,9 @@ static fbrl_status w_trace_on(fbrl_vm *vm, void *arg)
 }
 
 /* TRACE-TO ( "file" -- ): the trace goes to the end of file */
-static fbrl_status w_trace_to(fbrl_vm *vm, void *arg)
+static fbrl_status w_trace_to(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     mon *m = arg;
     const char *p;
     size_t n;
@@ -101,11 +104,11 @@ void mon_trace_close(struct mon *m)
 
 fbrl_status mon_trace_install(struct mon *m)
 {
-    fbrl_status st =
-        fbrl_vm_define(m->vm, "TRACE-ON", w_trace_on, m, "( -- )",
-                       "trace each command the controller runs, with the plan line that sent it");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(m->vm, "TRACE-TO", w_trace_to, m, "( \"file\" -- )",
-                            "send the trace to the end of file instead of the terminal");
-    return st;
+    static const fbrl_vmx_reg words[] = {
+        {"TRACE-ON", w_trace_on, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "trace each command the controller runs, with the plan line that sent it")},
+        {"TRACE-TO", w_trace_to, "", 0, 0, 0,
+         FBRL_DOC("( \"file\" -- )", "send the trace to the end of file instead of the terminal")},
+    };
+    return fbrl_vmx_define_table(m->vm, words, sizeof words / sizeof words[0], m);
 }

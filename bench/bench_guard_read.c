@@ -8,7 +8,7 @@
 #include <stdlib.h>
 
 #include "../tests/e2e/rapl_harness.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"

@@ -50,6 +50,7 @@ static int start_rig(rig *r, const char *sim)
     static const char *const args[] = {"--baud", "9600", NULL};
     fbrl_link_config cfg;
     fbrl_link_config_init(&cfg);
+    cfg.check_units = 0; /* the command rate is measured, not the connect */
     if (rig_start(r, sim, args, BAUD, FBRL_FLOW_NONE, &cfg) != 0)
         return -1;
     if (fbrl_link_connect(&r->link) != FBRL_OK) {

@@ -3,7 +3,7 @@
 #include "fbrl/abi.h"
 
 #include "fbrl/fbrl.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/workspace.h"
 
 /* C99 has no alignof: a type's alignment is its offset after one char in a struct (one

@@ -1,5 +1,7 @@
 /* SPDX-License-Identifier: MIT */
-/* link.c - echo-verified RAPL session over an fbrl_uart (no OS header).
+/* link.c - the command machine of the echo-verified RAPL session over an fbrl_uart (no
+ * OS header): typing a command with echo checks, judging what the CR did, reading the
+ * reply, and the command's fate (docs/link.md 3).
  *
  * The controller (docs/rapl-commands.md 1) echoes every printable byte upper-cased,
  * erases with BS SP BS (one "triple" per erased character), ignores other control
@@ -10,13 +12,18 @@
  *  - after the CR, proof of execution is the controller's CR LF, its prompt, or three
  *    or more bytes (a line that did not end shows at most two stray bytes); without
  *    proof, a probe decides, and a CR is never sent twice;
- *  - whenever the line's content is unknown it sends a probe "? CAN ? CAN mmm" whose
- *    echo "? (triples) ? BS SP BS mmm" proves the line now holds exactly "mmm". The
- *    markers change from probe to probe, so the echo of an older probe still on its
- *    way is never taken for the answer to the latest one.
+ *  - whenever the line's content is unknown it sends a probe (link_probe.c) whose echo
+ *    proves the line now holds exactly its three markers.
  * None of the bytes the link sends can turn into CR or LF by a single bit flip except
- * '-' (see docs/link.md): letters go out in lower case for that reason. */
-#include "fbrl/link.h"
+ * '-' (see docs/link.md): letters go out in lower case for that reason.
+ *
+ * The link's other files, each one idea: the reply's lines and framing are the reply
+ * reader's (rapl_reply.c); link_probe.c the probe; link_settle.c settling a damaged reply
+ * by STATUS; link_calls.c the blocking calls and the connect; link_aci.c the ACI switch;
+ * link_many.c many links from one thread; link_outcome.c what a command ended with;
+ * link_modes.c the session's modes; link_stop.c the safe stop; link_config.c the
+ * settings. */
+#include "link_internal.h"
 
 #include <math.h>
 
@@ -24,57 +31,14 @@
 #define BS  0x08
 #define XON 0x11
 
-enum { PH_IDLE, PH_ERASE, PH_TYPE, PH_REPLY, PH_VERIFY, PH_CLEAN };
-enum { ST_MAIN, ST_ERRQ };
 enum { ERR_NONE, ERR_VALID, ERR_GARBLED };
-/* The verify probe's echo "? (k1 triples) ? BS SP BS m m m", parsed byte by byte. */
-enum { PE_START, PE_T1, PE_T2, PE_MARK, PE_DONE, PE_BAD = -1 };
-/* known_err: the controller's LAST ERROR is not known */
-#define ERR_UNKNOWN (-2)
-/* What the controller was last seen doing (fbrl_link_outcome.seen). */
-enum {
-    SEEN_NONE,
-    SEEN_SILENT,
-    SEEN_AMBIGUOUS,
-    SEEN_STARTED,
-    SEEN_BUSY,
-    SEEN_UNREADABLE,
-    SEEN_UNSETTLED,
-    SEEN_SAME_ERROR
-};
-/* probe_out: what was sent after the CR and not yet answered */
-enum { PR_NONE, PR_IDLE, PR_VERIFY };
 
-void fbrl_link_config_init(fbrl_link_config *c)
-{
-    if (!c)
-        return;
-    c->form = FBRL_RAPL_KEYWORD;
-    c->lower_case = 1;
-    c->echo_timeout_ms = 100;
-    c->reply_timeout_ms = 5000;
-    c->wait_timeout_ms = 120000;
-    c->max_attempts = 12;
-    c->query_reads = 2;
-    c->naxes = 5;
-    c->arm = 0;
-    c->now_us = 0;
-    c->clock_ctx = 0;
-    c->on_exec = 0;
-    c->exec_ctx = 0;
-    c->on_line = 0;
-    c->line_ctx = 0;
-    c->aci = 0;
-}
-
-static uint64_t now_us(const fbrl_link *l)
+uint64_t fbrli_link_now_us(const fbrl_link *l)
 {
     if (l->cfg.now_us)
         return l->cfg.now_us(l->cfg.clock_ctx);
     return l->u->ops->now_us(l->u->ctx);
 }
-
-static uint64_t ms(uint32_t v) { return (uint64_t)v * 1000u; }
 
 fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg)
 {
@@ -103,7 +67,7 @@ fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *c
     l->ctrl_len = -1;
     l->phase = PH_IDLE;
     l->err_code = -1;
-    l->known_err = ERR_UNKNOWN;
+    l->known_err = FBRLI_ERR_UNKNOWN;
     return FBRL_OK;
 }
 
@@ -111,11 +75,11 @@ int fbrl_link_busy(const fbrl_link *l) { return l && l->busy; }
 
 /* ---- sending ---- */
 
-static fbrl_status send(fbrl_link *l, const uint8_t *p, size_t n)
+fbrl_status fbrli_link_send(fbrl_link *l, const uint8_t *p, size_t n)
 {
     size_t done = 0;
     fbrl_status st = fbrl_uart_write(l->u, p, n, &done, l->cfg.echo_timeout_ms);
-    l->t_last = now_us(l);
+    l->t_last = fbrli_link_now_us(l);
     return st;
 }
 
@@ -125,20 +89,20 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 /* Out of attempts: the echo never matched, or nothing at all came back. */
 static fbrl_status gave_up(const fbrl_link *l) { return l->heard ? FBRL_EECHO : FBRL_ETIMEOUT; }
 
-static int line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **eq);
-
 /* Whether a line is command want (by its keyword or its /NNN token). */
 static int line_is(const char *line, fbrl_rapl_cmd want)
 {
     fbrl_rapl_cmd c;
-    const char *eq = 0;
-    return line_cmd(line, &c, &eq) == 1 && c == want;
+    return fbrl_rapl_line_cmd(line, &c, 0) == FBRL_OK && c == want;
 }
 
-/* METRIC and NOMETRIC switch the controller's units: the link follows what ran (a line
- * that may have run leaves them unknown). */
+/* A line of the caller's ran with this result: a mode it set is noted (cfg.modes) in the
+ * units its lengths were typed in; METRIC and NOMETRIC switch the controller's units, and
+ * the link follows what ran (a line that may have run leaves them unknown). */
 static void follow_units(fbrl_link *l, fbrl_status result)
 {
+    if (result == FBRL_OK && l->cfg.modes)
+        fbrli_link_modes_note(l->cfg.modes, l->line, l->units);
     int metric = line_is(l->line, FBRL_RAPL_METRIC);
     if (!metric && !line_is(l->line, FBRL_RAPL_NOMETRIC))
         return;
@@ -148,16 +112,21 @@ static void follow_units(fbrl_link *l, fbrl_status result)
         l->units = FBRL_LINK_UNITS_UNKNOWN;
 }
 
-/* A STATUS ran whole: its last line says the units. Read as a value (verified by a second
- * reading) a STATUS without that line means inches, the controller's default; shown as it
- * came (a damaged line is not parsed), only the line itself counts. */
-static void learn_units(fbrl_link *l)
+int fbrli_link_learn_units(fbrl_link *l, const fbrl_rapl_status_info *si, int whole)
 {
-    if (l->st.have & FBRL_RAPL_ST_UNITS)
-        l->units = l->st.metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
-    else if (l->kind == FBRL_LINK_REPLY_STATUS)
+    if (si->have & FBRL_RAPL_ST_UNITS)
+        l->units = si->metric ? FBRL_LINK_UNITS_MM : FBRL_LINK_UNITS_INCH;
+    else if (whole)
         l->units = FBRL_LINK_UNITS_INCH;
+    else
+        return 0;
+    return 1;
 }
+
+/* A STATUS ran: its last line says the units. Read as a value (verified by a second
+ * reading) it came whole; shown as it came (a damaged line is not parsed), only the line
+ * itself counts. */
+static void learn_units(fbrl_link *l) { (void)fbrli_link_learn_units(l, &l->st, l->kind == FBRL_LINK_REPLY_STATUS); }
 
 /* The run log (cfg.on_exec) of one run of the current line. While STATUS settles a
  * command's damaged reply, its runs are only counted: the command itself ran before
@@ -166,12 +135,7 @@ static void journal(fbrl_link *l, fbrl_status result)
 {
     l->cr_pending = 0;
     if (l->stage == ST_ERRQ) {
-        if (result == FBRL_OK)
-            l->settle_ok++;
-        else if (result == FBRL_EMAYBE)
-            l->settle_maybe++;
-        else
-            l->settle_bad++;
+        fbrli_settle_ran(&l->settle, result);
         return;
     }
     follow_units(l, result);
@@ -181,27 +145,25 @@ static void journal(fbrl_link *l, fbrl_status result)
 
 static void report_n(fbrl_link *l, unsigned n, fbrl_status result)
 {
+    l->own_report = 1; /* not the command's runs (fbrl_link_get_runs) */
     for (unsigned k = 0; k < n && l->cfg.on_exec; k++)
         l->cfg.on_exec(l->cfg.exec_ctx, "STATUS", 6, result);
+    l->own_report = 0;
 }
 
 /* The settling STATUS reads are over: the command is reported first, then the reads,
  * in the order the controller ran them; the link is back at the command. */
 static void settle_end(fbrl_link *l, fbrl_status result)
 {
-    for (size_t k = 0; k <= l->main_len; k++)
-        l->line[k] = l->main_line[k];
-    l->len = l->main_len;
-    l->kind = l->main_kind;
-    l->attempts = l->main_attempts;
+    fbrli_settle_end(&l->settle, l->line, &l->len, &l->kind, &l->attempts);
     l->stage = ST_MAIN;
     l->cr_pending = 0;
     follow_units(l, result);
     if (l->cfg.on_exec)
         l->cfg.on_exec(l->cfg.exec_ctx, l->line, l->len, result);
-    report_n(l, l->settle_bad, FBRL_EPROTOCOL);
-    report_n(l, l->settle_maybe, FBRL_EMAYBE);
-    report_n(l, l->settle_ok, FBRL_OK);
+    report_n(l, l->settle.bad, FBRL_EPROTOCOL);
+    report_n(l, l->settle.maybe, FBRL_EMAYBE);
+    report_n(l, l->settle.ok, FBRL_OK);
 }
 
 /* The command has ended. A failure after a CR that may have taken effect is never
@@ -217,17 +179,19 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
             /* the command ran; its damaged reply could not be settled */
             if (l->cr_pending)
                 journal(l, FBRL_EMAYBE);
-            res = l->settle_shaped ? FBRL_ECONTROLLER : FBRL_EMAYBE;
+            res = l->settle.shaped ? FBRL_ECONTROLLER : FBRL_EMAYBE;
             l->err_code = -1;
             l->err_text[0] = '\0';
             l->seen = SEEN_UNSETTLED;
-            l->known_err = ERR_UNKNOWN;
+            l->known_err = FBRLI_ERR_UNKNOWN;
             settle_end(l, res);
         } else if (l->ran || l->maybe || l->cr_pending) {
-            if (l->cr_pending)
+            if (l->cr_pending) {
+                l->maybe_runs++;
                 journal(l, FBRL_EMAYBE);
+            }
             res = FBRL_EMAYBE;
-            l->known_err = ERR_UNKNOWN;
+            l->known_err = FBRLI_ERR_UNKNOWN;
         }
     }
     if (res == FBRL_EMAYBE)
@@ -242,53 +206,18 @@ static fbrl_status finish(fbrl_link *l, fbrl_status st)
     return res;
 }
 
-/* Marker characters: any two differ in at least two bits, so one flipped bit cannot turn
- * one into another. A probe ends with three of them, the probe's number in base 6, so
- * the echo of any of the 215 probes before it is never taken for its answer. */
-static const char markers[] = "!$@^|'";
-#define NMARK 6u
-
-/* "? CAN ? CAN m m m": erases whatever the line holds and leaves exactly the three
- * marker characters on it. Answered once the controller reads input again, so it also
- * shows the controller is idle at its prompt. */
+/* A probe (link_probe.c; docs/link.md 3.3): it erases whatever the line holds and leaves
+ * exactly its three markers on it. Answered once the controller reads input again, so it
+ * also shows the controller is idle at its prompt. With flow control off it begins with
+ * XON, which releases a controller that a flipped '3' (0x33 -> XOFF) had paused. */
 static fbrl_status send_probe(fbrl_link *l)
 {
-    uint8_t probe[] = {XON, '?', CAN, '?', CAN, 0, 0, 0};
-    unsigned v = l->marker_idx++ % (NMARK * NMARK * NMARK);
-    for (int k = 2; k >= 0; k--) {
-        l->marker[k] = markers[v % NMARK];
-        probe[5 + k] = (uint8_t)l->marker[k];
-        v /= NMARK;
-    }
+    uint8_t probe[FBRLI_PROBE_MAX];
+    size_t n = fbrli_probe_make(&l->probe, probe, l->xon_ok);
     l->stats.probes++;
     l->probes_here++;
-    l->t_probe = now_us(l);
-    for (int k = 0; k < 7; k++)
-        l->tail[k] = 0;
-    return l->xon_ok ? send(l, probe, sizeof probe) : send(l, probe + 1, sizeof probe - 1);
-}
-
-static void push_tail(fbrl_link *l, uint8_t b)
-{
-    for (int k = 0; k < 6; k++)
-        l->tail[k] = l->tail[k + 1];
-    l->tail[6] = b;
-}
-
-/* The latest probe's closing characters have just arrived (they are the last bytes it
- * sent, so its echo is over), whatever came before them. */
-static int marker_seen(const fbrl_link *l)
-{
-    return l->tail[4] == (uint8_t)l->marker[0] && l->tail[5] == (uint8_t)l->marker[1] &&
-           l->tail[6] == (uint8_t)l->marker[2];
-}
-
-/* The latest probe's echo has just ended, undamaged. */
-static int probe_answered(const fbrl_link *l)
-{
-    return l->tail[0] == '?' && l->tail[1] == BS && l->tail[2] == ' ' && l->tail[3] == BS &&
-           l->tail[4] == (uint8_t)l->marker[0] && l->tail[5] == (uint8_t)l->marker[1] &&
-           l->tail[6] == (uint8_t)l->marker[2];
+    l->t_probe = fbrli_link_now_us(l);
+    return fbrli_link_send(l, probe, n);
 }
 
 static fbrl_status begin_erase(fbrl_link *l)
@@ -334,7 +263,7 @@ static fbrl_status begin_type(fbrl_link *l)
     l->expect = (size_t)l->lead + 3 * triples + l->len;
     l->phase = PH_TYPE;
     l->ctrl_len = -1; /* unknown until the echo is complete */
-    return send(l, out, n);
+    return fbrli_link_send(l, out, n);
 }
 
 static void begin_reply(fbrl_link *l)
@@ -342,11 +271,6 @@ static void begin_reply(fbrl_link *l)
     fbrl_rapl_reader_init(&l->rd);
     l->lead = 0;
     l->phase = PH_REPLY;
-    l->after_cr = 0;
-    l->eol_seen = 0;
-    l->gtgt = 0;
-    l->last_byte = 0;
-    l->first_byte = -1;
     l->prompt_seen = 0;
     l->probe_out = PR_NONE;
     l->probe_seen = 0;
@@ -358,16 +282,10 @@ static void begin_reply(fbrl_link *l)
     l->stop_sent = 0;
     fbrl_rapl_pos_init(&l->pos);
     fbrl_rapl_status_init(&l->st);
-    l->t_deadline = now_us(l) + ms(l->timeout_ms);
+    l->t_deadline = fbrli_link_now_us(l) + fbrli_ms(l->timeout_ms);
     /* the CR goes out now: until proof either way, this line may run */
     l->cr_pending = 1;
     l->first_probe = 0;
-    l->pe_state = PE_START;
-    l->rp_first = 1;
-    l->rp_bad = 0;
-    l->rp_eols = 0;
-    l->rp_lines = 0;
-    l->prompt_direct = 0;
     l->seen = SEEN_SILENT;
 }
 
@@ -383,9 +301,6 @@ static int error_shaped(const char *s, size_t n)
 static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
 {
     int code;
-    l->rp_lines++;
-    if (flawed)
-        l->rp_bad = 1;
     char text[sizeof l->err_text];
     fbrl_status est = fbrl_rapl_parse_error(s, n, &code, text, sizeof text);
     if (est == FBRL_OK && !flawed) {
@@ -447,12 +362,15 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
     }
 }
 
+/* A byte of the command's reply (before any probe's echo): the reader cuts the lines and
+ * keeps the framing. */
 static void feed_reply(fbrl_link *l, uint8_t b)
 {
+    if (l->seen == SEEN_SILENT)
+        l->seen = SEEN_STARTED;
     fbrl_rapl_event ev = fbrl_rapl_reader_feed(&l->rd, b);
     if (ev == FBRL_RAPL_EV_PROMPT) {
         l->prompt_seen = 1;
-        l->prompt_direct = 1;
     } else if (ev == FBRL_RAPL_EV_LINE) {
         size_t n;
         int flawed;
@@ -544,7 +462,7 @@ static int confirmed(fbrl_link *l)
         l->stats.self_checked++;
         return 1;
     }
-    if (l->have_prev && l->after_cr == l->prev_len) {
+    if (l->have_prev && l->rd.bytes == l->prev_len) {
         switch (l->kind) {
         case FBRL_LINK_REPLY_POS: same = same_pos(&l->pos, &l->prev_pos); break;
         case FBRL_LINK_REPLY_STATUS: same = same_status(&l->st, &l->prev_st, l->stage == ST_ERRQ); break;
@@ -558,7 +476,7 @@ static int confirmed(fbrl_link *l)
         l->prev_st = l->st;
         l->prev_i = l->ival;
         l->prev_r = l->rval;
-        l->prev_len = l->after_cr;
+        l->prev_len = l->rd.bytes;
         l->have_prev = 1;
         return l->cfg.query_reads <= 1;
     }
@@ -571,11 +489,11 @@ static int confirmed(fbrl_link *l)
  * else shows "CR LF >>", or "CR LF NNN-TEXT. CR LF >>" when refused: nothing else. */
 static int reply_complete(const fbrl_link *l)
 {
-    if (!l->prompt_direct || !l->rp_first || l->rp_bad || l->out_bad)
+    const fbrl_rapl_reader *r = &l->rd;
+    if (!fbrl_rapl_reader_whole(r) || l->out_bad)
         return 0;
     if (l->kind == FBRL_LINK_REPLY_NONE)
-        return l->rp_eols == 1u + l->rp_lines && l->rp_lines <= 1 &&
-               (l->rp_lines == 0 || l->err_state == ERR_VALID);
+        return r->eols == 1u + r->lines && r->lines <= 1 && (r->lines == 0 || l->err_state == ERR_VALID);
     return 1;
 }
 
@@ -599,13 +517,7 @@ static fbrl_status run_status_query(fbrl_link *l)
 /* A command's reply was damaged: read STATUS to settle it (docs/link.md 3.5). */
 static fbrl_status begin_settle(fbrl_link *l)
 {
-    for (size_t k = 0; k <= l->len; k++)
-        l->main_line[k] = l->line[k];
-    l->main_len = l->len;
-    l->main_kind = l->kind;
-    l->main_attempts = l->attempts;
-    l->settle_shaped = l->err_state == ERR_GARBLED;
-    l->settle_ok = l->settle_bad = l->settle_maybe = 0;
+    fbrli_settle_begin(&l->settle, l->line, l->len, l->kind, l->attempts, l->err_state == ERR_GARBLED);
     l->stats.settled++;
     l->stats.error_queries++;
     return run_status_query(l);
@@ -621,10 +533,8 @@ static void set_error(fbrl_link *l, int code)
     l->err_text[k] = '\0';
 }
 
-/* STATUS's LAST ERROR settles a damaged reply: a code other than the one the link last
- * proved is this command's refusal; NONE means no command ever failed, so it
- * succeeded; the same code as before cannot tell success from the same refusal again,
- * and the command is reported "may have run" rather than guessed. */
+/* STATUS's LAST ERROR settles a damaged reply (fbrli_settle_verdict); a command safe to
+ * repeat that it cannot settle is run again. */
 static fbrl_status settle_read(fbrl_link *l)
 {
     if (!(l->st.have & FBRL_RAPL_ST_ERROR)) {
@@ -635,23 +545,18 @@ static fbrl_status settle_read(fbrl_link *l)
         return retype(l);
     }
     journal(l, FBRL_OK);
-    int last = l->st.last_error, before = l->known_err;
-    fbrl_status res;
-    if (l->settle_shaped)
-        res = last >= 0 ? FBRL_ECONTROLLER : FBRL_EMAYBE;
-    else if (last < 0)
-        res = FBRL_OK;
-    else if (before != ERR_UNKNOWN && last != before)
-        res = FBRL_ECONTROLLER;
-    else
-        res = FBRL_EMAYBE;
+    int last = l->st.last_error;
+    fbrl_status res = fbrli_settle_verdict(&l->settle, last, l->known_err);
     if (res == FBRL_ECONTROLLER)
         set_error(l, last);
     if (res == FBRL_EMAYBE)
         l->seen = SEEN_SAME_ERROR;
-    settle_end(l, res);
+    int again = res == FBRL_EMAYBE && l->safe && !l->settle.shaped && l->attempts < l->cfg.max_attempts;
+    /* it ran (it is settled because its reply came damaged): run again, that run is one
+     * whose reply was damaged, as a query's (3.9) */
+    settle_end(l, again ? FBRL_EPROTOCOL : res);
     l->known_err = last;
-    if (res == FBRL_EMAYBE && l->safe && !l->settle_shaped && l->attempts < l->cfg.max_attempts) {
+    if (again) {
         /* safe to repeat: run it again, and its clean reply tells (3.5) */
         l->stats.requeries++;
         return retype(l);
@@ -679,6 +584,7 @@ static fbrl_status executed(fbrl_link *l)
     if (l->stage == ST_ERRQ)
         return settle_read(l);
     l->ran = 1;
+    l->runs++;
     int complete = reply_complete(l);
     if (l->err_state == ERR_VALID) {
         /* its text matches its code: no damage can make one */
@@ -724,6 +630,16 @@ static fbrl_status executed(fbrl_link *l)
     return retype(l);
 }
 
+/* The controller's CR LF proves the line ended (the reader has the line ends). While a
+ * verify probe is out on an 8N1 line, an LF alone may be the probe's BS (0x08) with one
+ * bit flipped whose '?' before it was lost: it proves nothing then (the probe's own echo
+ * decides, 3.2). The verify probe is sent only while no line end had come. */
+static int eol_seen(const fbrl_link *l)
+{
+    unsigned lf_ok = l->parity || l->phase != PH_VERIFY ? FBRL_RAPL_END_LF : 0u;
+    return (l->rd.ends & (FBRL_RAPL_END_CR | FBRL_RAPL_END_CRLF | lf_ok)) != 0;
+}
+
 /* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR
  * LF, its prompt, or three bytes or more. A line that did not end can show at most two
  * stray bytes: a damaged CR echoed as a character, and the first byte of the probe
@@ -733,45 +649,16 @@ static fbrl_status executed(fbrl_link *l)
  * proof. That matters: "CR LF >>" can lose CR, LF and one '>'. */
 static int cr_took_effect(const fbrl_link *l)
 {
-    return l->prompt_seen || l->eol_seen || l->gtgt || l->after_cr >= (l->parity ? 1u : 3u);
+    const fbrl_rapl_reader *r = &l->rd;
+    return l->prompt_seen || eol_seen(l) || r->gtgt || r->bytes >= (l->parity ? 1u : 3u);
 }
 
-/* The verify probe's echo, byte by byte (PE_*): "?", k1 triples, "?", one triple, the
- * three markers. Anything else makes it useless as evidence (PE_BAD). */
-static void pe_feed(fbrl_link *l, uint8_t b)
+/* The first probe after the CR, parsed whole, erased the text (and a damaged CR echoed
+ * as a character) besides its own '?': the line was still there when it arrived. */
+static int text_was_there(const fbrl_link *l)
 {
-    static const char triple[] = "\b \b";
-    switch (l->pe_state) {
-    case PE_START:
-        l->pe_state = b == '?' ? PE_T1 : PE_BAD;
-        l->pe_k1 = l->pe_sub = 0;
-        break;
-    case PE_T1:
-        if (l->pe_sub == 0 && b == '?') {
-            l->pe_state = PE_T2;
-        } else if (b != (uint8_t)triple[l->pe_sub]) {
-            l->pe_state = PE_BAD;
-        } else if (++l->pe_sub == 3) {
-            l->pe_sub = 0;
-            l->pe_k1++;
-        }
-        break;
-    case PE_T2:
-        if (b != (uint8_t)triple[l->pe_sub])
-            l->pe_state = PE_BAD;
-        else if (++l->pe_sub == 3)
-            l->pe_state = PE_MARK, l->pe_sub = 0;
-        break;
-    case PE_MARK:
-        if (b != (uint8_t)l->marker[l->pe_sub])
-            l->pe_state = PE_BAD;
-        else if (++l->pe_sub == 3)
-            l->pe_state = PE_DONE;
-        break;
-    default:
-        l->pe_state = PE_BAD; /* bytes after the answer */
-        break;
-    }
+    long k = l->first_probe ? fbrli_probe_erased(&l->probe) : -1;
+    return k >= 0 && ((size_t)k == l->len + 1 || (size_t)k == l->len + 2);
 }
 
 /* Did the CR take effect? 1 ran, 0 did not, -1 cannot be proven (docs/link.md 3.2).
@@ -784,13 +671,9 @@ static int verify_decides(const fbrl_link *l)
 {
     if (cr_took_effect(l))
         return 1;
-    if (l->first_probe && l->pe_state == PE_DONE) {
-        if (l->pe_k1 == 1)
-            return 1;
-        if (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)
-            return 0;
-    }
-    return -1;
+    if (l->first_probe && fbrli_probe_erased(&l->probe) == 1)
+        return 1;
+    return text_was_there(l) ? 0 : -1;
 }
 
 /* A probe after the CR has been answered (ctrl_len 3) or its echo came damaged (-1):
@@ -813,6 +696,7 @@ static fbrl_status verify_done(fbrl_link *l, int ctrl_len)
     }
     l->seen = SEEN_AMBIGUOUS;
     if (l->safe) {
+        l->maybe_runs += l->stage == ST_MAIN; /* (a settling STATUS's is not the command's) */
         journal(l, FBRL_EMAYBE);
         l->maybe = 1;
         return retype(l);
@@ -820,28 +704,6 @@ static fbrl_status verify_done(fbrl_link *l, int ctrl_len)
     l->stats.cr_unconfirmed--;
     l->stats.not_retyped++;
     return finish(l, FBRL_EPROTOCOL);
-}
-
-/* A byte of the command's reply (before any probe echo). */
-static void count_reply_byte(fbrl_link *l, uint8_t b)
-{
-    /* framing (reply_complete()): the reply starts with CR LF, every CR is followed by
-     * LF and every LF follows a CR */
-    if (l->after_cr < 2 && b != (l->after_cr == 0 ? '\r' : '\n'))
-        l->rp_first = 0;
-    if ((l->last_byte == '\r') != (b == '\n') && l->after_cr > 0)
-        l->rp_bad = 1;
-    if (b == '\n')
-        l->rp_eols++;
-    if (l->seen == SEEN_SILENT)
-        l->seen = SEEN_STARTED;
-    if (l->after_cr++ == 0)
-        l->first_byte = b;
-    if (b == '\r' || b == '\n')
-        l->eol_seen = 1;
-    if (b == '>' && l->last_byte == '>')
-        l->gtgt = 1;
-    l->last_byte = b;
 }
 
 /* Enough stream lines came: stop the readout. Any byte ends a stream and is consumed.
@@ -857,7 +719,7 @@ static fbrl_status stop_stream(fbrl_link *l)
     l->stop_sent++;
     if (l->stop_sent == 1 && l->probes_here == 0) {
         static const uint8_t cr = '\r';
-        return send(l, &cr, 1);
+        return fbrli_link_send(l, &cr, 1);
     }
     l->probe_out = PR_IDLE;
     l->probe_seen = 0;
@@ -878,7 +740,7 @@ static fbrl_status begin_clean(fbrl_link *l)
     l->match = 0;
     l->expect = 3u * MARKER_LEN;
     l->ctrl_len = -1;
-    fbrl_status st = send(l, &can, 1);
+    fbrl_status st = fbrli_link_send(l, &can, 1);
     if (st != FBRL_OK)
         return st;
     l->stats.cleans++;
@@ -901,7 +763,7 @@ static fbrl_status clean_done(fbrl_link *l, int ctrl_len)
 static void saw_foreign(fbrl_link *l, uint8_t b)
 {
     if (b == '\r' || b == '\n' || (b == '>' && l->last_byte == '>'))
-        l->known_err = ERR_UNKNOWN;
+        l->known_err = FBRLI_ERR_UNKNOWN;
     l->last_byte = b;
 }
 
@@ -909,12 +771,13 @@ static void saw_foreign(fbrl_link *l, uint8_t b)
  * does not make a silent controller one whose echo went wrong (gave_up()). */
 static int is_owed_gt(const fbrl_link *l, uint8_t b)
 {
-    return b == '>' && ((l->phase == PH_ERASE && l->owed) || (l->phase == PH_TYPE && l->lead && l->match == 0));
+    return b == '>' &&
+           ((l->phase == PH_ERASE && l->owed) || (l->phase == PH_TYPE && l->lead && l->match == 0));
 }
 
 static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 {
-    l->t_last = now_us(l);
+    l->t_last = fbrli_link_now_us(l);
     if (!is_owed_gt(l, b))
         l->heard = 1;
     switch (l->phase) {
@@ -926,12 +789,12 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
                 return FBRL_OK;
         }
         saw_foreign(l, b);
-        push_tail(l, b);
-        if (probe_answered(l)) {
+        fbrli_probe_echo(&l->probe, b, 0);
+        if (fbrli_probe_answered(&l->probe)) {
             l->ctrl_len = 3;
             return begin_type(l);
         }
-        if (marker_seen(l)) {
+        if (fbrli_probe_ended(&l->probe)) {
             /* the probe's echo ended damaged: no need to wait for silence */
             if (l->attempts >= l->cfg.max_attempts)
                 return finish(l, gave_up(l));
@@ -950,20 +813,17 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         if (++l->match == l->expect) {
             static const uint8_t cr = '\r';
             begin_reply(l);
-            return send(l, &cr, 1);
+            return fbrli_link_send(l, &cr, 1);
         }
         return FBRL_OK;
     case PH_REPLY:
         if (l->probe_out == PR_IDLE && (b == '?' || l->probe_seen)) {
             /* the idle probe's echo: the controller reads input again, so it is idle */
             l->probe_seen = 1;
-            push_tail(l, b);
-            if (l->first_probe)
-                pe_feed(l, b);
-            if (probe_answered(l)) {
+            fbrli_probe_echo(&l->probe, b, l->first_probe);
+            if (fbrli_probe_answered(&l->probe)) {
                 l->ctrl_len = 3;
-                if (l->first_probe && l->pe_state == PE_DONE && !l->prompt_seen &&
-                    (l->pe_k1 == l->len + 1 || l->pe_k1 == l->len + 2)) {
+                if (!l->prompt_seen && text_was_there(l)) {
                     /* the "proof" was a damaged CR echoed back as CR or LF by a second flip
                      * (3.6): the text is still on the line, the CR took no effect */
                     l->stats.cr_unconfirmed++;
@@ -979,7 +839,6 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             }
             return FBRL_OK;
         }
-        count_reply_byte(l, b);
         feed_reply(l, b);
         if (l->kind == FBRL_LINK_REPLY_STREAM && !l->prompt_seen &&
             l->stream_got >= l->stream_lines + 3u * (unsigned)l->stop_sent)
@@ -998,15 +857,12 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
     case PH_VERIFY:
         if (!l->probe_seen && b != '?' && b != BS) {
             /* still the command's reply (or its absence): bytes before the probe's echo */
-            count_reply_byte(l, b);
             feed_reply(l, b);
             return FBRL_OK;
         }
         l->probe_seen = 1;
-        push_tail(l, b);
-        if (l->first_probe)
-            pe_feed(l, b);
-        if (probe_answered(l))
+        fbrli_probe_echo(&l->probe, b, l->first_probe);
+        if (fbrli_probe_answered(&l->probe))
             return verify_done(l, 3);
         return FBRL_OK;
     default: return FBRL_OK; /* idle: stray bytes */
@@ -1021,7 +877,7 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
 static int prompt_begun(const fbrl_link *l)
 {
     return l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
-           l->rp_first && l->eol_seen && !l->rd.done && l->rd.len == 1 && l->rd.line[0] == '>' &&
+           l->rd.began && eol_seen(l) && !l->rd.done && l->rd.len == 1 && l->rd.line[0] == '>' &&
            !l->rd.flawed;
 }
 
@@ -1031,7 +887,6 @@ static int prompt_begun(const fbrl_link *l)
  * between one command's prompt and the next one's echo. */
 static fbrl_status early_prompt(fbrl_link *l)
 {
-    count_reply_byte(l, '>');
     feed_reply(l, '>');
     l->owed = 1;
     l->ctrl_len = 0;
@@ -1055,7 +910,7 @@ static int parity_error(fbrl_link *l)
  * motion answers none, so the interval doubles (4, 8, 16 ... echo timeouts, at most 2 s). */
 static uint64_t probe_interval(const fbrl_link *l)
 {
-    uint64_t iv = ms(4 * l->cfg.echo_timeout_ms);
+    uint64_t iv = fbrli_ms(4 * l->cfg.echo_timeout_ms);
     for (unsigned k = 1; k < l->probes_here && iv < 2000000u; k++)
         iv *= 2;
     return iv < 2000000u ? iv : 2000000u;
@@ -1084,7 +939,6 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
             if (t - l->t_probe >= probe_interval(l) || l->probe_out == PR_NONE) {
                 /* the first one also checks the proof (on_byte) */
                 l->first_probe = l->probes_here == 0 && l->kind != FBRL_LINK_REPLY_STREAM;
-                l->pe_state = PE_START;
                 l->probe_out = PR_IDLE;
                 l->probe_seen = 0;
                 return send_probe(l);
@@ -1098,7 +952,6 @@ static fbrl_status on_silence(fbrl_link *l, uint64_t t)
         l->probe_seen = 0;
         l->probes_here = 0;
         l->first_probe = 1;
-        l->pe_state = PE_START;
         return send_probe(l);
     case PH_CLEAN: return clean_done(l, -1);
     case PH_VERIFY:
@@ -1125,10 +978,10 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
         *done = 1;
         return l->result;
     }
-    uint64_t start = now_us(l), budget = ms(timeout_ms);
+    uint64_t start = fbrli_link_now_us(l), budget = fbrli_ms(timeout_ms);
     for (;;) {
-        uint64_t t = now_us(l);
-        uint64_t quiet_end = l->t_last + ms(l->cfg.echo_timeout_ms);
+        uint64_t t = fbrli_link_now_us(l);
+        uint64_t quiet_end = l->t_last + fbrli_ms(l->cfg.echo_timeout_ms);
         if ((l->phase == PH_REPLY || l->phase == PH_VERIFY) && t >= l->t_deadline) {
             l->ctrl_len = -1;
             if (l->seen == SEEN_STARTED && l->probes_here > 0)
@@ -1177,10 +1030,8 @@ fbrl_status fbrl_link_poll(fbrl_link *l, uint32_t timeout_ms, int *done)
                 got = 0;
             } else if (l->phase == PH_REPLY || l->phase == PH_VERIFY) {
                 l->out_bad = 1; /* a query is asked again; an error line is checked anyway */
-                if (l->phase == PH_REPLY && l->probe_out == PR_NONE) {
-                    l->after_cr++; /* a byte came after the CR, before any probe */
-                    l->rp_bad = 1;
-                }
+                if (l->phase == PH_REPLY && l->probe_out == PR_NONE)
+                    fbrl_rapl_reader_lost(&l->rd); /* a byte came after the CR, before any probe */
             }
         }
         size_t k = 0;
@@ -1236,7 +1087,8 @@ static fbrl_status check_line(const char *line, size_t *len)
     return st;
 }
 
-static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms, int safe)
+fbrl_status fbrli_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind, uint32_t timeout_ms,
+                             int safe)
 {
     size_t n;
     if (!l || !l->u)
@@ -1265,6 +1117,7 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     l->result = FBRL_OK;
     l->safe = safe;
     l->ran = l->maybe = l->cr_pending = 0;
+    l->runs = l->maybe_runs = 0;
     l->seen = SEEN_NONE;
     l->cause = FBRL_OK;
     l->busy = 1;
@@ -1276,85 +1129,14 @@ static fbrl_status start(fbrl_link *l, const char *line, fbrl_link_reply kind, u
     return l->ctrl_len >= 0 ? begin_type(l) : begin_erase(l);
 }
 
-static int is_name_char(char c)
-{
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-}
-
-/* The command a line starts with: 1 = *cmd found (keyword or /NNN token), 2 = a
- * variable assignment (*eq = the '='), 0 = not known here. */
-static int line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **eq)
-{
-    char word[12];
-    size_t k = 0;
-    while (*line == ' ')
-        line++;
-    while (line[k] && line[k] != ' ' && line[k] != ',' && line[k] != '=' && k + 1 < sizeof word) {
-        word[k] = line[k];
-        k++;
-    }
-    word[k] = '\0';
-    const char *rest = line + k;
-    while (*rest == ' ')
-        rest++;
-    if (*rest == '=') {
-        *eq = rest;
-        return 2;
-    }
-    if (word[0] == '/') {
-        int tok = 0;
-        for (size_t d = 1; d < k; d++)
-            tok = (word[d] >= '0' && word[d] <= '9') ? tok * 10 + (word[d] - '0') : -1000;
-        for (int c = 0; c < FBRL_RAPL_NCMDS && tok > 0; c++)
-            if (fbrl_rapl_cmd_info((fbrl_rapl_cmd)c)->token == tok) {
-                *cmd = (fbrl_rapl_cmd)c;
-                return 1;
-            }
-        return 0;
-    }
-    return fbrl_rapl_cmd_find(word, cmd) == FBRL_OK;
-}
-
-int fbrl_link_line_safe(const char *line)
-{
-    fbrl_rapl_cmd c;
-    const char *eq = 0;
-    if (!line)
-        return 0;
-    int known = line_cmd(line, &c, &eq);
-    if (known == 1)
-        return (fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_SAFE) != 0;
-    if (known != 2)
-        return 0;
-    /* NAME=value: safe unless the value names NAME (V1=V1+1 counts) */
-    const char *name = line;
-    while (*name == ' ')
-        name++;
-    size_t n = 0;
-    while (is_name_char(name[n]))
-        n++;
-    if (n == 0)
-        return 0;
-    for (const char *p = eq + 1; *p; p++) {
-        if (is_name_char(*p) && (p == eq + 1 || !is_name_char(p[-1]))) {
-            size_t k = 0;
-            while (k < n && is_name_char(p[k]) && upper(p[k]) == upper(name[k]))
-                k++;
-            if (k == n && !is_name_char(p[k]))
-                return 0;
-        }
-    }
-    return 1;
-}
+int fbrl_link_line_safe(const char *line) { return fbrl_rapl_line_safe(line); }
 
 /* The deadline for the prompt: long for what the table says may wait, and for lines
  * the link cannot classify. */
 static uint32_t timeout_for_line(const fbrl_link *l, const char *line)
 {
     fbrl_rapl_cmd c;
-    const char *eq;
-    int known = line_cmd(line, &c, &eq);
-    if (known == 2 || (known == 1 && !(fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_WAITS)))
+    if (fbrl_rapl_line_cmd(line, &c, 0) == FBRL_OK && !(fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_WAITS))
         return l->cfg.reply_timeout_ms;
     return l->cfg.wait_timeout_ms;
 }
@@ -1363,251 +1145,7 @@ fbrl_status fbrl_link_start(fbrl_link *l, const char *line, fbrl_link_reply kind
 {
     if (!l || !line || (int)kind < 0 || kind > FBRL_LINK_REPLY_STREAM)
         return FBRL_EINVAL;
-    return start(l, line, kind, timeout_for_line(l, line), fbrl_link_line_safe(line));
-}
-
-static fbrl_status run(fbrl_link *l)
-{
-    for (;;) {
-        int done = 0;
-        fbrl_status st = fbrl_link_poll(l, 1000, &done);
-        if (done)
-            return st;
-    }
-}
-
-/* ---- the ACI switch (connect only; research notes 2.5, S2's ACI_to_Term) ---- */
-
-#define ACI_SLAVE   0x21 /* slave 1 + 0x20 */
-#define ACI_TO_TERM 0x48
-#define ACI_PKT_LEN 13 /* SOH dst src op cmd, 6 data, ETX, checksum */
-
-/* Reads exactly n bytes within timeout_ms; how many came. */
-static size_t aci_read(fbrl_link *l, uint8_t *buf, size_t n, uint32_t timeout_ms)
-{
-    uint64_t end = now_us(l) + (uint64_t)timeout_ms * 1000u;
-    size_t got = 0;
-    while (got < n) {
-        uint64_t t = now_us(l);
-        size_t k = 0;
-        if (t >= end)
-            break;
-        if (fbrl_uart_read(l->u, buf + got, n - got, &k, (uint32_t)((end - t + 999) / 1000)) != FBRL_OK && !k)
-            break;
-        got += k;
-    }
-    return got;
-}
-
-static int aci_step(fbrl_link *l, const uint8_t *out, size_t n, const uint8_t *want, size_t wn)
-{
-    uint8_t got[8];
-    if (send(l, out, n) != FBRL_OK)
-        return 0;
-    if (aci_read(l, got, wn, l->cfg.reply_timeout_ms) != wn)
-        return 0;
-    for (size_t i = 0; i < wn; i++)
-        if (got[i] != want[i])
-            return 0;
-    return 1;
-}
-
-/* Switches a controller in ACI mode to terminal mode. One in terminal mode echoes the
- * selection 'R' '!' (not its ENQ) instead of acknowledging it: the two are erased. */
-static fbrl_status aci_to_terminal(fbrl_link *l)
-{
-    static const uint8_t sel[] = {'R', ACI_SLAVE, 0x05};
-    static const uint8_t pkt_ack[] = {0x06, 0x02, 0x03, 0x00}, ack[] = {0x06}, eot[] = {0x04};
-    static const uint8_t erase[] = {0x08, 0x08};
-    uint8_t pkt[ACI_PKT_LEN] = {0x01, ACI_SLAVE, ACI_SLAVE, 0x00, ACI_TO_TERM, 0, 0, 0, 0, 0, 0, 0x03, 0};
-    uint8_t junk[16], b, last;
-    unsigned sum = 0;
-    int seen = 0, heard = 0, acked = 0; /* seen: 1 after 'R', 2 after 'R' '!' */
-    size_t k;
-    while (fbrl_uart_read(l->u, junk, sizeof junk, &k, 0) == FBRL_OK && k)
-        ; /* what came before (a greeting, old output) is not the answer */
-    if (send(l, sel, sizeof sel) != FBRL_OK)
-        return FBRL_EIO;
-    uint64_t end = now_us(l) + (uint64_t)l->cfg.reply_timeout_ms * 1000u;
-    for (;;) {
-        uint64_t t = now_us(l);
-        /* after "R!" the ACK comes at once or never (a terminal-mode echo) */
-        uint32_t wait = seen == 2 ? l->cfg.echo_timeout_ms : t < end ? (uint32_t)((end - t + 999) / 1000) : 0;
-        if (!wait || aci_read(l, &b, 1, wait) != 1)
-            break;
-        heard = 1;
-        if (seen == 2 && b == 0x06) {
-            acked = 1;
-            break;
-        }
-        seen = b == 'R' ? 1 : seen == 1 && b == ACI_SLAVE ? 2 : 0;
-    }
-    if (!acked) {
-        if (!heard)
-            return FBRL_ETIMEOUT; /* nothing answers */
-        /* terminal mode: "R!" was typed; erase it and let its echo pass */
-        if (send(l, erase, sizeof erase) != FBRL_OK)
-            return FBRL_EIO;
-        while (fbrl_uart_read(l->u, junk, sizeof junk, &k, l->cfg.echo_timeout_ms) == FBRL_OK && k)
-            ;
-        return FBRL_OK;
-    }
-    for (size_t i = 1; i < ACI_PKT_LEN - 2; i++) /* the bytes between SOH and ETX, mod 256 */
-        sum += pkt[i];
-    pkt[ACI_PKT_LEN - 1] = (uint8_t)(sum & 0xFFu);
-    if (!aci_step(l, pkt, sizeof pkt, pkt_ack, sizeof pkt_ack) ||
-        !aci_step(l, ack, sizeof ack, eot, sizeof eot))
-        return FBRL_EPROTOCOL;
-    if (send(l, eot, sizeof eot) != FBRL_OK || aci_read(l, &last, 1, l->cfg.reply_timeout_ms) != 1)
-        return FBRL_EPROTOCOL; /* the controller's last byte of the switch, discarded */
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_connect(fbrl_link *l)
-{
-    if (!l || !l->u)
-        return FBRL_EINVAL;
-    l->ctrl_len = -1;
-    l->units = FBRL_LINK_UNITS_UNKNOWN;
-    if (l->cfg.aci) {
-        fbrl_status sw = aci_to_terminal(l);
-        if (sw != FBRL_OK)
-            return sw;
-    }
-    fbrl_status st = start(l, "NOHELP", FBRL_LINK_REPLY_NONE, l->cfg.reply_timeout_ms, 1);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_start_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                                int straight)
-{
-    char text[FBRL_RAPL_LINE_MAX];
-    size_t n;
-    if (!l)
-        return FBRL_EINVAL;
-    fbrl_status st = fbrl_rapl_encode(text, sizeof text, &n, l->cfg.form, cmd, args, nargs, straight);
-    if (st != FBRL_OK)
-        return st;
-    if (n > FBRL_LINK_LINE_MAX)
-        return FBRL_ERANGE;
-    const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info(cmd);
-    if (ci->reply == FBRL_LINK_REPLY_STREAM)
-        return FBRL_EINVAL; /* fbrl_link_stream() */
-    return start(l, text, ci->reply,
-                 (ci->flags & FBRL_RAPL_F_WAITS) ? l->cfg.wait_timeout_ms : l->cfg.reply_timeout_ms,
-                 (ci->flags & FBRL_RAPL_F_SAFE) != 0);
-}
-
-fbrl_status fbrl_link_cmd(fbrl_link *l, fbrl_rapl_cmd cmd, const fbrl_rapl_arg *args, size_t nargs,
-                          int straight)
-{
-    fbrl_status st = fbrl_link_start_cmd(l, cmd, args, nargs, straight);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_start_raw(fbrl_link *l, const char *line)
-{
-    fbrl_rapl_cmd c;
-    const char *eq;
-    fbrl_link_reply kind = FBRL_LINK_REPLY_LINES;
-    if (!l || !line)
-        return FBRL_EINVAL;
-    int known = line_cmd(line, &c, &eq);
-    if (known == 2)
-        kind = FBRL_LINK_REPLY_NONE;
-    else if (known == 1)
-        kind = fbrl_rapl_cmd_info(c)->reply;
-    if (kind == FBRL_LINK_REPLY_STREAM)
-        return FBRL_EINVAL; /* fbrl_link_stream() stops a stream */
-    return fbrl_link_start(l, line, kind);
-}
-
-fbrl_status fbrl_link_raw(fbrl_link *l, const char *line)
-{
-    fbrl_status st = fbrl_link_start_raw(l, line);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_finish(fbrl_link *l) { return fbrl_link_cmd(l, FBRL_RAPL_FINISH, 0, 0, 0); }
-
-fbrl_status fbrl_link_where(fbrl_link *l, fbrl_rapl_cmd cmd, fbrl_rapl_pos *out)
-{
-    if (cmd != FBRL_RAPL_W0 && cmd != FBRL_RAPL_W2 && cmd != FBRL_RAPL_W4)
-        return FBRL_EINVAL;
-    fbrl_status st = fbrl_link_cmd(l, cmd, 0, 0, 0);
-    if (st == FBRL_OK && out)
-        *out = l->pos;
-    return st;
-}
-
-fbrl_status fbrl_link_status(fbrl_link *l, fbrl_rapl_status_info *out)
-{
-    fbrl_status st = fbrl_link_cmd(l, FBRL_RAPL_STATUS, 0, 0, 0);
-    if (st == FBRL_OK && out)
-        *out = l->st;
-    return st;
-}
-
-int fbrl_link_units(const fbrl_link *l) { return l ? l->units : FBRL_LINK_UNITS_UNKNOWN; }
-
-static fbrl_status type_value(fbrl_link *l, const char *kw, const char *expr, fbrl_link_reply kind)
-{
-    char text[FBRL_LINK_LINE_MAX + 1];
-    size_t n = 0;
-    if (!l || !expr)
-        return FBRL_EINVAL;
-    while (*kw)
-        text[n++] = *kw++;
-    text[n++] = ' ';
-    for (; *expr; expr++) {
-        if (n >= FBRL_LINK_LINE_MAX || *expr == ',')
-            return FBRL_EINVAL;
-        text[n++] = *expr;
-    }
-    text[n] = '\0';
-    fbrl_status st = start(l, text, kind, l->cfg.reply_timeout_ms, 1); /* read-only */
-    return st == FBRL_OK ? run(l) : st;
-}
-
-fbrl_status fbrl_link_typei(fbrl_link *l, const char *expr, long *value)
-{
-    if (!value)
-        return FBRL_EINVAL;
-    fbrl_status st = type_value(l, "TYPEI", expr, FBRL_LINK_REPLY_INT);
-    if (st == FBRL_OK)
-        *value = l->ival;
-    return st;
-}
-
-fbrl_status fbrl_link_typev(fbrl_link *l, const char *expr, double *value)
-{
-    if (!value)
-        return FBRL_EINVAL;
-    fbrl_status st = type_value(l, "TYPEV", expr, FBRL_LINK_REPLY_REAL);
-    if (st == FBRL_OK)
-        *value = l->rval;
-    return st;
-}
-
-fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on)
-{
-    char expr[8] = "SIG(";
-    long v;
-    if (!on || n < 1 || n > 16)
-        return n < 1 || n > 16 ? FBRL_ERANGE : FBRL_EINVAL;
-    size_t k = 4;
-    if (n >= 10)
-        expr[k++] = (char)('0' + n / 10);
-    expr[k++] = (char)('0' + n % 10);
-    expr[k++] = ')';
-    expr[k] = '\0';
-    fbrl_status st = fbrl_link_typei(l, expr, &v);
-    if (st == FBRL_OK) {
-        if (v != 0 && v != 1)
-            return FBRL_EPROTOCOL;
-        *on = (int)v;
-    }
-    return st;
+    return fbrli_link_start(l, line, kind, timeout_for_line(l, line), fbrl_link_line_safe(line));
 }
 
 fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
@@ -1623,196 +1161,7 @@ fbrl_status fbrl_link_start_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lin
     if (st != FBRL_OK)
         return st;
     l->stream_lines = lines;
-    return start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u, 1);
-}
-
-fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines)
-{
-    fbrl_status st = fbrl_link_start_stream(l, cmd, lines);
-    return st == FBRL_OK ? run(l) : st;
-}
-
-/* ---- many links from one thread (fbrl_link_poll_many) ---- */
-
-/* When fbrl_link_poll() acts on l with no byte arriving: the silence and deadline checks
- * at its top. */
-static uint64_t due_at(const fbrl_link *l)
-{
-    uint64_t t = l->t_last + ms(l->cfg.echo_timeout_ms);
-    if ((l->phase == PH_REPLY || l->phase == PH_VERIFY) && l->t_deadline < t)
-        t = l->t_deadline;
-    return t;
-}
-
-/* Byte times that must pass, counted from t_last, before all l waits for can be in on
- * a line that carries one character per byte time:
- *  - typing, nothing back yet (t_last = the send): the first character must reach the
- *    controller before its echo starts, then the whole echo crosses: expect + 1 (expect
- *    when it starts with an owed '>', already on its way);
- *  - after the CR, nothing back yet: the CR, then the shortest reply the link can finish
- *    on ("CR LF >", 3.10);
- *  - part of either in: the rest, less one (the next byte may be on its way already).
- * 0 otherwise: any byte may be the one l waits for. */
-#define MIN_REPLY_BYTES 3u
-static size_t awaited(const fbrl_link *l)
-{
-    if (l->phase == PH_TYPE && l->expect > l->match)
-        return l->match == 0 ? l->expect + 1 - (size_t)l->lead : l->expect - l->match - 1;
-    if (l->phase == PH_REPLY && l->probe_out == PR_NONE && l->kind != FBRL_LINK_REPLY_STREAM &&
-        l->after_cr < MIN_REPLY_BYTES)
-        return l->after_cr == 0 ? 1 + MIN_REPLY_BYTES : MIN_REPLY_BYTES - l->after_cr - 1;
-    return 0;
-}
-
-/* Microseconds one character takes on l's line (start, data, parity and stop bits). */
-static uint64_t byte_us(const fbrl_link *l)
-{
-    fbrl_uart_config c;
-    if (fbrl_uart_get_config(l->u, &c) != FBRL_OK || c.baud == 0)
-        return 0;
-    unsigned bits = 1u + c.data_bits + (c.parity != FBRL_PARITY_NONE) + c.stop_bits;
-    return (uint64_t)bits * 1000000u / c.baud;
-}
-
-/* Nothing l waits for can be complete before this: the line carries one character per
- * byte time. Until then l's port is not watched (no wake-up per byte). Half a byte time
- * more: characters arrive a little after their line time (the sender is scheduled too),
- * and a look just before the last one only costs a second wake-up for it. */
-static uint64_t not_before(const fbrl_link *l)
-{
-    size_t r = awaited(l);
-    uint64_t bt = byte_us(l);
-    return r > 0 ? l->t_last + (uint64_t)r * bt + bt / 2 : 0;
-}
-
-fbrl_status fbrl_link_poll_many(fbrl_link *const *links, size_t n, uint32_t timeout_ms, size_t *index)
-{
-    if (!links || !index)
-        return FBRL_EINVAL;
-    *index = n;
-    if (n > FBRL_LINK_POLL_MANY_MAX)
-        return FBRL_EINVAL;
-    const fbrl_link *first = 0;
-    for (size_t k = 0; k < n && !first; k++)
-        if (links[k] && links[k]->busy)
-            first = links[k];
-    if (!first)
-        return FBRL_EEMPTY;
-    fbrl_uart *ports[FBRL_LINK_POLL_MANY_MAX];
-    unsigned char flags[FBRL_LINK_POLL_MANY_MAX];
-    size_t which[FBRL_LINK_POLL_MANY_MAX], order[FBRL_LINK_POLL_MANY_MAX];
-    uint64_t end = now_us(first) + ms(timeout_ms);
-    int waited = 0;
-    for (;;) {
-        /* Serve every link that has bytes or a timer due, the one idle longest first (its
-         * last activity, t_last, is the oldest): no link waits behind the same others
-         * twice, whatever its place in the array. */
-        uint64_t t = now_us(first);
-        size_t nw = 0;
-        for (size_t k = 0; k < n; k++) {
-            const fbrl_link *l = links[k];
-            if (!l || !l->busy || (fbrl_uart_rx_available(l->u) == 0 && due_at(l) > t))
-                continue;
-            size_t j = nw++;
-            for (; j > 0 && links[order[j - 1]]->t_last > l->t_last; j--)
-                order[j] = order[j - 1];
-            order[j] = k;
-        }
-        for (size_t j = 0; j < nw; j++) {
-            int done = 0;
-            fbrl_status st = fbrl_link_poll(links[order[j]], 0, &done);
-            if (done) {
-                *index = order[j];
-                return st;
-            }
-        }
-        if (waited && t >= end)
-            return FBRL_ETIMEOUT;
-        /* Wait on all ports at once until the first one can have what its link awaits,
-         * or the first timer; ports whose replies cannot be complete yet only move
-         * output. After serving some links, only collect what arrived meanwhile. */
-        uint64_t wake = end;
-        size_t np = 0;
-        for (size_t k = 0; k < n; k++) {
-            const fbrl_link *l = links[k];
-            if (!l || !l->busy)
-                continue;
-            uint64_t due = due_at(l), nb = not_before(l);
-            if (due < wake)
-                wake = due;
-            if (nb > t && nb < wake)
-                wake = nb;
-            ports[np] = l->u;
-            flags[np] = nb <= t ? FBRL_UART_WAIT_RX : 0;
-            which[np++] = k;
-        }
-        uint64_t left = nw > 0 || wake <= t ? 0 : wake - t;
-        fbrl_status st =
-            fbrl_uart_wait_any(ports, np, left > UINT32_MAX ? UINT32_MAX : (uint32_t)left, flags);
-        waited = 1;
-        if (st != FBRL_OK) {
-            /* the ports cannot be waited on together: let each link meet the error */
-            for (size_t j = 0; j < np; j++) {
-                int done = 0;
-                fbrl_status s2 = fbrl_link_poll(links[which[j]], 0, &done);
-                if (done) {
-                    *index = which[j];
-                    return s2;
-                }
-            }
-        }
-    }
-}
-
-fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    int have = l->result == FBRL_ECONTROLLER;
-    if (code)
-        *code = have ? l->err_code : -1;
-    if (text)
-        *text = !have ? "" : l->err_code >= 0 ? l->err_text : "code unknown";
-    return FBRL_OK;
-}
-
-fbrl_link_fate fbrl_link_fate_of(fbrl_status result)
-{
-    switch (result) {
-    case FBRL_OK: return FBRL_LINK_RAN;
-    case FBRL_ECONTROLLER: return FBRL_LINK_REFUSED;
-    case FBRL_EMAYBE: return FBRL_LINK_MAY_HAVE_RUN;
-    default: return FBRL_LINK_NOT_RUN;
-    }
-}
-
-/* Short: fbrlmon puts it in a one-line message. */
-static const char *seen_text(int seen)
-{
-    switch (seen) {
-    case SEEN_SILENT: return "nothing came back after its CR";
-    case SEEN_AMBIGUOUS: return "its CR may not have arrived (reply and probe damaged)";
-    case SEEN_STARTED: return "it started; its reply stopped before the prompt";
-    case SEEN_BUSY: return "it started and was still busy";
-    case SEEN_UNREADABLE: return "it ran; no reply could be believed (damaged, or never twice the same)";
-    case SEEN_UNSETTLED: return "it ran; reply damaged, STATUS unreadable";
-    case SEEN_SAME_ERROR: return "it ran; reply damaged, STATUS shows the earlier error";
-    default: return "it was not sent";
-    }
-}
-
-fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out)
-{
-    if (!l || !out)
-        return FBRL_EINVAL;
-    if (l->busy)
-        return FBRL_ESTATE;
-    out->fate = l->stats.commands ? fbrl_link_fate_of(l->result) : FBRL_LINK_FATE_NONE;
-    out->status = l->result;
-    out->cause = l->cause;
-    out->code = l->result == FBRL_ECONTROLLER ? l->err_code : -1;
-    out->seen = seen_text(l->seen);
-    return FBRL_OK;
+    return fbrli_link_start(l, text, FBRL_LINK_REPLY_STREAM, l->cfg.reply_timeout_ms + lines * 1000u, 1);
 }
 
 fbrl_status fbrl_link_clear_line(fbrl_link *l)
@@ -1832,105 +1181,7 @@ fbrl_status fbrl_link_clear_line(fbrl_link *l)
         if (got != 1 || b != '>')
             l->ctrl_len = -1;
     }
-    fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : send(l, &can, 1);
+    fbrl_status st = l->ctrl_len == 0 ? FBRL_OK : fbrli_link_send(l, &can, 1);
     l->ctrl_len = -1;
     return st;
-}
-
-fbrl_status fbrl_link_set_line_handler(fbrl_link *l, fbrl_link_line_fn fn, void *ctx,
-                                       fbrl_link_line_fn *old_fn, void **old_ctx)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    if (old_fn)
-        *old_fn = l->cfg.on_line;
-    if (old_ctx)
-        *old_ctx = l->cfg.line_ctx;
-    l->cfg.on_line = fn;
-    l->cfg.line_ctx = ctx;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_set_gate(fbrl_link *l, fbrl_link_gate_fn fn, void *ctx)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    l->gate = fn;
-    l->gate_ctx = ctx;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_unguarded(fbrl_link *l)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    l->unguarded = 1;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void *ctx,
-                                       fbrl_link_exec_fn *old_fn, void **old_ctx)
-{
-    if (!l)
-        return FBRL_EINVAL;
-    if (old_fn)
-        *old_fn = l->cfg.on_exec;
-    if (old_ctx)
-        *old_ctx = l->cfg.exec_ctx;
-    l->cfg.on_exec = fn;
-    l->cfg.exec_ctx = ctx;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_form(const fbrl_link *l, fbrl_rapl_form *form)
-{
-    if (!l || !form)
-        return FBRL_EINVAL;
-    *form = l->cfg.form;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_naxes(const fbrl_link *l, unsigned *naxes)
-{
-    if (!l || !naxes)
-        return FBRL_EINVAL;
-    *naxes = l->cfg.naxes;
-    return FBRL_OK;
-}
-
-const fbrl_rapl_pos *fbrl_link_last_pos(const fbrl_link *l) { return l ? &l->pos : 0; }
-const fbrl_rapl_status_info *fbrl_link_last_status(const fbrl_link *l) { return l ? &l->st : 0; }
-
-/* The last command has finished, succeeded and gave a reply of this kind. */
-static int reply_is(const fbrl_link *l, fbrl_link_reply kind)
-{
-    return !l->busy && l->result == FBRL_OK && l->kind == kind;
-}
-
-fbrl_status fbrl_link_last_int(const fbrl_link *l, long *v)
-{
-    if (!l || !v)
-        return FBRL_EINVAL;
-    if (!reply_is(l, FBRL_LINK_REPLY_INT))
-        return FBRL_ESTATE;
-    *v = l->ival;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_last_real(const fbrl_link *l, double *v)
-{
-    if (!l || !v)
-        return FBRL_EINVAL;
-    if (!reply_is(l, FBRL_LINK_REPLY_REAL))
-        return FBRL_ESTATE;
-    *v = l->rval;
-    return FBRL_OK;
-}
-
-fbrl_status fbrl_link_get_stats(const fbrl_link *l, fbrl_link_stats *out)
-{
-    if (!l || !out)
-        return FBRL_EINVAL;
-    *out = l->stats;
-    return FBRL_OK;
 }

@@ -719,8 +719,7 @@ static fbrl_status w_run_method(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_run *r = ctx;
     fbrl_vmx_val v[1];
-    (void)word;
-    fbrl_status st = fbrl_vmx_args(vm, "RUN-METHOD", "A", NULL, FBRL_VMX_LINE, v);
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
     if (st != FBRL_OK)
         return st;
     for (size_t i = 0; i < r->methods->count; i++)
@@ -729,9 +728,11 @@ static fbrl_status w_run_method(fbrl_vm *vm, void *ctx, const void *word)
     return fbrl_vmx_throwf(vm, FBRL_THROW_TYPE_MISMATCH, "RUN-METHOD: not a method");
 }
 
-static fbrl_status sample_arg(fbrl_run *r, const char *word, const char *spec, fbrl_vmx_val *v)
+/* The sample word's parameters (its row's spec: the sample first), in a running method. */
+static fbrl_status sample_arg(fbrl_run *r, const void *row, fbrl_vmx_val *v)
 {
-    fbrl_status st = fbrl_vmx_args(r->vm, word, spec, NULL, FBRL_VMX_STACKS, v);
+    const char *word = ((const fbrl_vmx_reg *)row)->name;
+    fbrl_status st = fbrl_vmx_check(r->vm, row, v);
     if (st != FBRL_OK)
         return st;
     if (!r->active)
@@ -746,15 +747,15 @@ static fbrl_status sample_arg(fbrl_run *r, const char *word, const char *spec, f
 static fbrl_status w_sample_mark(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_run *r = ctx;
-    const char *name = word ? "SAMPLE-SKIPPED" : "SAMPLE-FAILED";
+    int skipped = ((const fbrl_vmx_reg *)word)->arg != 0;
     char reason[FBRL_RUN_REASON_MAX + 1];
     fbrl_vmx_val v[2];
     (void)vm;
-    fbrl_status st = sample_arg(r, name, "IS", v);
+    fbrl_status st = sample_arg(r, word, v);
     if (st != FBRL_OK)
         return st;
     snprintf(reason, sizeof reason, "%.*s", (int)(v[1].n < sizeof reason ? v[1].n : sizeof reason - 1), v[1].s);
-    return fbrl_run_mark(r, (long)v[0].i, word ? FBRL_SAMPLE_SKIPPED : FBRL_SAMPLE_FAILED, reason);
+    return fbrl_run_mark(r, (long)v[0].i, skipped ? FBRL_SAMPLE_SKIPPED : FBRL_SAMPLE_FAILED, reason);
 }
 
 /* SAMPLE-OK? ( n -- flag ) */
@@ -762,29 +763,22 @@ static fbrl_status w_sample_ok(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_run *r = ctx;
     fbrl_vmx_val v[1];
-    (void)word;
-    fbrl_status st = sample_arg(r, "SAMPLE-OK?", "I", v);
+    fbrl_status st = sample_arg(r, word, v);
     if (st != FBRL_OK)
         return st;
     uint8_t o = r->work.s.outcomes[v[0].i].outcome;
     return fbrl_vmx_push(vm, o == FBRL_SAMPLE_PENDING || o == FBRL_SAMPLE_SUCCEEDED ? -1 : 0);
 }
 
-typedef struct run_word {
-    const char *name;
-    fbrl_vmx_fn fn;
-    const void *arg;
-    FBRL_DOC_FIELDS
-} run_word;
-
-static const run_word words[] = {
-    {"RUN-METHOD", w_run_method, NULL,
+/* The rows (vmx.h): arg 1 is SAMPLE-SKIPPED. */
+static const fbrl_vmx_reg words[] = {
+    {"RUN-METHOD", w_run_method, "A", FBRL_VMX_PARSE, 0, 0,
      FBRL_DOC("( method -- )", "run the method's steps in order: outcomes per sample and per run (console, run log)")},
-    {"SAMPLE-FAILED", w_sample_mark, NULL,
+    {"SAMPLE-FAILED", w_sample_mark, "IS", 0, 0, 0,
      FBRL_DOC("( n c-addr u -- )", "in a running method: sample n (0..) failed, for the reason given")},
-    {"SAMPLE-SKIPPED", w_sample_mark, "",
+    {"SAMPLE-SKIPPED", w_sample_mark, "IS", 0, 0, 1,
      FBRL_DOC("( n c-addr u -- )", "in a running method: sample n (0..) is not done, for the reason given")},
-    {"SAMPLE-OK?", w_sample_ok, NULL,
+    {"SAMPLE-OK?", w_sample_ok, "I", 0, 0, 0,
      FBRL_DOC("( n -- flag )", "in a running method: true unless sample n (0..) failed or was skipped")},
 };
 
@@ -800,13 +794,9 @@ fbrl_status fbrl_run_install(fbrl_run *r, fbrl_vm *vm, fbrl_method_set *methods,
     r->robot = robot;
     r->work.s.step = -1;
     r->work.s.sample = -1;
-    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st = fbrl_vmx_define(vm, words[i].name, words[i].fn, r, words[i].arg, 0,
-                                         FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]));
-        if (st != FBRL_OK)
-            return st;
-    }
-    fbrl_status st = fbrl_vmx_find(vm, "RUN-METHOD", 10, &r->run_xt);
+    fbrl_status st = fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], r);
+    if (st == FBRL_OK)
+        st = fbrl_vmx_find(vm, "RUN-METHOD", 10, &r->run_xt);
     if (st != FBRL_OK)
         return st;
     if (rc != NULL) {

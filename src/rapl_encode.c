@@ -13,11 +13,14 @@
 
 /* The one command table, indexed by fbrl_rapl_cmd: every fact about a command lives
  * here (keyword, /NNN token, arguments, motion, waiting, safe to repeat, reply). Tokens
- * are the RAPL-II manual's /NNN numbers (DESIGN 5); 0 = none known. Not safe to repeat
- * (no SAF): relative motions (APPRO DEPART JOG JOINT MI MOTOR), program runs, SHIFT(A)
- * (adds to a location) and the deletions (a second one reports "undefined"). */
+ * are the RAPL-II manual's /NNN numbers (DESIGN 5); 0 = none known. Safe to repeat (SAF)
+ * is decided by what a second run does: not safe are relative motions (APPRO DEPART JOG
+ * JOINT MI MOTOR), program runs, SHIFT(A) (adds to a location), the deletions (a second
+ * one reports "undefined"), the commands that store where the arm is (HERE ACTUAL, XCAL
+ * XZERO for the extra axis: a second run while it moves stores another place) and WAIT (a
+ * second one waits again, for an input that may have come and gone). */
 static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
-    [FBRL_RAPL_ACTUAL] = {"ACTUAL", 152, "L", 0, SAF, NONE},
+    [FBRL_RAPL_ACTUAL] = {"ACTUAL", 152, "L", 0, 0, NONE},
     [FBRL_RAPL_ALIGN] = {"ALIGN", 1, "", 0, MOT | SAF, NONE},
     [FBRL_RAPL_APPRO] = {"APPRO", 2, "LR", 0, MOT | STR, NONE},
     [FBRL_RAPL_ARM] = {"ARM", 142, "W", "ON|OFF", SAF, NONE},
@@ -29,7 +32,7 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_GAIN] = {"GAIN", 150, "I[R", 0, SAF, LINES},
     [FBRL_RAPL_GRIP] = {"GRIP", 39, "R[I", 0, SAF, NONE},
     [FBRL_RAPL_HALT] = {"HALT", 154, "", 0, SAF, NONE},
-    [FBRL_RAPL_HERE] = {"HERE", 24, "L", 0, SAF, NONE},
+    [FBRL_RAPL_HERE] = {"HERE", 24, "L", 0, 0, NONE},
     [FBRL_RAPL_HOME] = {"HOME", 20, "", 0, MOT | SAF, NONE},
     [FBRL_RAPL_JOG] = {"JOG", 5, "RRR", 0, MOT, NONE},
     [FBRL_RAPL_JOINT] = {"JOINT", 6, "IR", 0, MOT, NONE},
@@ -66,13 +69,13 @@ static const fbrl_rapl_cmdinfo table[FBRL_RAPL_NCMDS] = {
     [FBRL_RAPL_W3] = {"W3", 33, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
     [FBRL_RAPL_W4] = {"W4", 35, "", 0, SAF, POS},
     [FBRL_RAPL_W5] = {"W5", 37, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_WAIT] = {"WAIT", 94, "I*", 0, WTS | SAF, NONE},
+    [FBRL_RAPL_WAIT] = {"WAIT", 94, "I*", 0, WTS, NONE},
     [FBRL_RAPL_WE1] = {"WE1", 28, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
     [FBRL_RAPL_WE3] = {"WE3", 32, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
     [FBRL_RAPL_WE5] = {"WE5", 36, "", 0, STM | SAF, FBRL_RAPL_REPLY_STREAM},
-    [FBRL_RAPL_XCAL] = {"XCAL", 157, "I", 0, SAF, NONE},
+    [FBRL_RAPL_XCAL] = {"XCAL", 157, "I", 0, 0, NONE},
     [FBRL_RAPL_XHOME] = {"XHOME", 158, "I", 0, SAF, NONE},
-    [FBRL_RAPL_XZERO] = {"XZERO", 159, "I", 0, SAF, NONE},
+    [FBRL_RAPL_XZERO] = {"XZERO", 159, "I", 0, 0, NONE},
     /* a constant value; a raw line whose value reads its own target (V1=V1+1) is not safe */
     [FBRL_RAPL_ASSIGN] = {"", 0, "V=R", 0, SAF, NONE}, /* RAPL-II /070; fbrlsim: no token */
     [FBRL_RAPL_DLOCN] = {"DLOCN", 48, "L", 0, 0, NONE},
@@ -104,24 +107,97 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 static int is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 
-fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd)
+/* The command whose keyword is the n characters at s (case-insensitive, the whole span). */
+static fbrl_status find_span(const char *s, size_t n, fbrl_rapl_cmd *cmd)
 {
-    if (!keyword || !cmd)
-        return FBRL_EINVAL;
     for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
-        const char *k = table[c].keyword, *s = keyword;
+        const char *k = table[c].keyword;
+        size_t i = 0;
         if (!*k)
             continue;
-        while (*k && upper(*s) == *k) {
-            k++;
-            s++;
-        }
-        if (!*k && !*s) {
+        while (i < n && k[i] && upper(s[i]) == k[i])
+            i++;
+        if (i == n && !k[i]) {
             *cmd = (fbrl_rapl_cmd)c;
             return FBRL_OK;
         }
     }
     return FBRL_ENOENT;
+}
+
+fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd)
+{
+    size_t n = 0;
+    if (!keyword || !cmd)
+        return FBRL_EINVAL;
+    while (keyword[n])
+        n++;
+    return find_span(keyword, n, cmd);
+}
+
+fbrl_status fbrl_rapl_line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **args)
+{
+    size_t n = 0;
+    if (!line || !cmd)
+        return FBRL_EINVAL;
+    while (*line == ' ')
+        line++;
+    while (line[n] && line[n] != ' ' && line[n] != ',' && line[n] != '=')
+        n++;
+    const char *rest = line + n;
+    while (*rest == ' ')
+        rest++;
+    if (args)
+        *args = rest;
+    if (*rest == '=' && n > 0) { /* checked before the keywords: GRIP=2 sets a variable */
+        *cmd = FBRL_RAPL_ASSIGN;
+        return FBRL_OK;
+    }
+    if (line[0] != '/')
+        return find_span(line, n, cmd);
+    unsigned tok = 0;
+    for (size_t d = 1; d < n; d++) {
+        if (!is_digit(line[d]) || tok > 999u)
+            return FBRL_ENOENT;
+        tok = tok * 10u + (unsigned)(line[d] - '0');
+    }
+    for (int c = 0; c < FBRL_RAPL_NCMDS && n > 1; c++)
+        if (table[c].token && table[c].token == tok) {
+            *cmd = (fbrl_rapl_cmd)c;
+            return FBRL_OK;
+        }
+    return FBRL_ENOENT;
+}
+
+static int is_name_char(char c) { return is_alpha(c) || is_digit(c) || c == '_'; }
+
+int fbrl_rapl_line_safe(const char *line)
+{
+    fbrl_rapl_cmd c;
+    const char *eq = 0;
+    if (fbrl_rapl_line_cmd(line, &c, &eq) != FBRL_OK)
+        return 0;
+    if (c != FBRL_RAPL_ASSIGN)
+        return (fbrl_rapl_cmd_info(c)->flags & FBRL_RAPL_F_SAFE) != 0;
+    /* NAME=value: safe unless the value names NAME (V1=V1+1 counts) */
+    const char *name = line;
+    while (*name == ' ')
+        name++;
+    size_t n = 0;
+    while (is_name_char(name[n]))
+        n++;
+    if (n == 0)
+        return 0;
+    for (const char *p = eq + 1; *p; p++) {
+        if (is_name_char(*p) && (p == eq + 1 || !is_name_char(p[-1]))) {
+            size_t k = 0;
+            while (k < n && is_name_char(p[k]) && upper(p[k]) == upper(name[k]))
+                k++;
+            if (k == n && !is_name_char(p[k]))
+                return 0;
+        }
+    }
+    return 1;
 }
 
 fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok)
@@ -137,7 +213,7 @@ fbrl_status fbrl_rapl_name_check(const char *name, int hash_ok)
         return FBRL_ENAME;
     size_t n = 0;
     for (; name[n]; n++)
-        if (n >= NAME_MAX_CHARS || !(is_alpha(name[n]) || is_digit(name[n]) || name[n] == '_'))
+        if (n >= NAME_MAX_CHARS || !is_name_char(name[n]))
             return FBRL_ENAME;
     return FBRL_OK;
 }

@@ -10,11 +10,40 @@ void fbrl_rapl_reader_init(fbrl_rapl_reader *r)
 {
     if (!r)
         return;
-    r->len = 0;
-    r->line[0] = '\0';
-    r->cr = 0;
-    r->flawed = 0;
-    r->done = 0;
+    *r = (fbrl_rapl_reader){0};
+    r->began = 1;
+}
+
+/* The framing of one byte (everything since init): the first two CR LF, every CR followed
+ * by LF and every LF after a CR, the line ends, ">>" anywhere. */
+static void frame(fbrl_rapl_reader *r, uint8_t b)
+{
+    if (r->bytes < 2 && b != (r->bytes == 0 ? '\r' : '\n'))
+        r->began = 0;
+    if ((r->last == '\r') != (b == '\n') && r->bytes > 0)
+        r->broken = 1;
+    if (b == '\r')
+        r->ends |= FBRL_RAPL_END_CR;
+    else if (b == '\n')
+        r->ends |= r->last == '\r' ? FBRL_RAPL_END_CRLF : FBRL_RAPL_END_LF;
+    r->eols += b == '\n';
+    if (b == '>' && r->last == '>')
+        r->gtgt = 1;
+    r->last = b;
+    r->bytes++;
+}
+
+void fbrl_rapl_reader_lost(fbrl_rapl_reader *r)
+{
+    if (!r)
+        return;
+    r->bytes++;
+    r->broken = 1;
+}
+
+int fbrl_rapl_reader_whole(const fbrl_rapl_reader *r)
+{
+    return r && r->prompt && r->began && !r->broken && !r->damaged;
 }
 
 static fbrl_rapl_event end_line(fbrl_rapl_reader *r)
@@ -24,6 +53,8 @@ static fbrl_rapl_event end_line(fbrl_rapl_reader *r)
         return FBRL_RAPL_EV_NONE;
     }
     r->done = 1;
+    r->lines++;
+    r->damaged |= r->flawed;
     return FBRL_RAPL_EV_LINE;
 }
 
@@ -31,6 +62,7 @@ fbrl_rapl_event fbrl_rapl_reader_feed(fbrl_rapl_reader *r, uint8_t byte)
 {
     if (!r)
         return FBRL_RAPL_EV_NONE;
+    frame(r, byte);
     if (r->done) {
         r->len = 0;
         r->line[0] = '\0';
@@ -57,6 +89,7 @@ fbrl_rapl_event fbrl_rapl_reader_feed(fbrl_rapl_reader *r, uint8_t byte)
     r->line[r->len] = '\0';
     if (r->len == 2 && r->line[0] == '>' && r->line[1] == '>' && !r->flawed) {
         r->done = 1; /* the prompt is not a line: whatever follows starts a new one */
+        r->prompt = 1;
         return FBRL_RAPL_EV_PROMPT;
     }
     return FBRL_RAPL_EV_NONE;
@@ -165,7 +198,7 @@ const char *fbrl_rapl_error_text(int code)
 #define ERR_TRANSFORM     29 /* TRANSFORM ILLEGAL */
 #define ERR_JOINT1_RANGE  42 /* JOINT #1 OUT OF RANGE ... #5: 42 .. 46 */
 #define ERR_JOINT5_RANGE  46
-#define ERR_JOINT6_RANGE  48 /* the A465's sixth joint */
+#define ERR_JOINT6_RANGE  48  /* the A465's sixth joint */
 #define ERR_STRAIGHT_LINE 68  /* STRAIGHT LINE ERROR: the straight path leaves the reach */
 #define ERR_COLLISION     190 /* COLLISION: an emulator with a work cell stopped the motion */
 

@@ -231,6 +231,12 @@ static int is_poll(const char *line, size_t len)
 
 fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code)
 {
+    return fbrl_runlog_command_run(l, line, len, result, code, 1);
+}
+
+fbrl_status fbrl_runlog_command_run(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code,
+                                    unsigned run)
+{
     fbrl_status st = opened(l);
     const char *how = "ran";
     if (st != FBRL_OK || line == NULL)
@@ -265,6 +271,8 @@ fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fb
     field_str(l, "status", how);
     if (result == FBRL_ECONTROLLER && code >= 0)
         field_long(l, "code", code);
+    if (run > 1)
+        field_long(l, "run", (long)run);
     return finish(l);
 }
 

@@ -43,7 +43,8 @@
     X(FBRL_EDISKFULL, "no space left on the disk (or the file may grow no more)") \
     X(FBRL_ELOOP, "a loop of symbolic links")                             \
     X(FBRL_EREADONLY, "read-only file or file system")                   \
-    X(FBRL_EGUARD, "refused by the motion guard (nothing was sent)")
+    X(FBRL_EGUARD, "refused by the motion guard (nothing was sent)")       \
+    X(FBRL_EUNITS, "the controller works in millimetres (METRIC); switch it to inches: NOMETRIC")
 
 /* Two tables indexed by -st (a place given twice is a warning), so that a program that asks
  * only for texts (the firmware) links no names. */

@@ -1,10 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* uart_8250.c - PC 8250/16550 backend: registers, interrupt handler, 8259.
- *
- * Concurrency: the handler (interrupt side) and the ops (main line) share the UART
- * registers and the IER shadow. The main line touches them only inside the board's
- * irq_save/irq_restore, so on one CPU the two never interleave. */
+/* uart_8250.c - PC 8250/16550 backend: registers, interrupt causes, 8259. The ring and
+ * interrupt logic is uart_irq.c's, shared with the PL011 (quirk: the transmitter reports
+ * only "empty", then takes the whole FIFO). */
 #include "fbrl/uart_8250.h"
+#include "uart_irq.h"
 
 #define REG(b, r) ((uint16_t)((b)->base + (r)))
 #define RX_BURST  64u /* most bytes taken from RBR per handler pass */
@@ -124,34 +123,6 @@ static fbrl_status op_configure(void *ctx, const fbrl_uart_config *cfg)
     return FBRL_OK;
 }
 
-/* Free bytes in the core's receive ring. The core has no call for this (only the
- * count), so ask its ring directly; fbrl_ring_space() is exact for the producer,
- * which this handler is. */
-static size_t rx_room(const fbrl_uart_8250 *b) { return fbrl_ring_space(&b->uart->rx); }
-
-/* Fill the empty transmitter with up to depth bytes from the core; keep THRE
- * interrupts on exactly while there is something in flight. Returns bytes written. */
-static unsigned tx_fill(fbrl_uart_8250 *b)
-{
-    unsigned n = 0;
-    while (n < b->depth) {
-        int c = fbrl_uart_isr_tx(b->uart);
-        if (c < 0)
-            break;
-        wr(b, FBRL_8250_THR, (uint8_t)c);
-        n++;
-    }
-    if (n > b->stats.max_burst)
-        b->stats.max_burst = n;
-    if (n > 0) {
-        b->events++;
-        set_ier(b, (uint8_t)(b->ier | FBRL_8250_IER_THRI));
-    } else {
-        set_ier(b, (uint8_t)(b->ier & ~FBRL_8250_IER_THRI));
-    }
-    return n;
-}
-
 /* Report LSR error bits to the core. Reading LSR cleared them in the chip. */
 static void line_status(fbrl_uart_8250 *b, uint8_t lsr)
 {
@@ -166,25 +137,46 @@ static void line_status(fbrl_uart_8250 *b, uint8_t lsr)
         fbrl_uart_isr_line_status(b->uart, flags);
 }
 
-/* Move received bytes into the core while LSR says data is ready and the ring has
- * room; without room, mask receive interrupts and leave the bytes in the UART. */
-static void rx_drain(fbrl_uart_8250 *b)
+/* The chip's steps for uart_irq.c. */
+static int chip_rx_ready(void *dev)
 {
-    unsigned n;
-    /* Bounded: a 16550 holds 16 bytes, but a fast source can refill it meanwhile. */
-    for (n = 0; n < RX_BURST; n++) {
-        uint8_t lsr = rd(b, FBRL_8250_LSR);
-        line_status(b, lsr);
-        if (!(lsr & FBRL_8250_LSR_DR))
-            return;
-        if (rx_room(b) < b->headroom) {
-            set_ier(b, (uint8_t)(b->ier & ~FBRL_8250_IER_RDI));
-            b->stats.throttles++;
-            return;
-        }
-        fbrl_uart_isr_rx(b->uart, rd(b, FBRL_8250_RBR));
-        b->events++;
-    }
+    fbrl_uart_8250 *b = dev;
+    uint8_t lsr = rd(b, FBRL_8250_LSR);
+    line_status(b, lsr);
+    return (lsr & FBRL_8250_LSR_DR) != 0;
+}
+
+static unsigned chip_rx_read(void *dev) { return rd(dev, FBRL_8250_RBR); }
+
+static int chip_tx_ready(void *dev) { return (rd(dev, FBRL_8250_LSR) & FBRL_8250_LSR_THRE) != 0; }
+
+static void chip_tx_write(void *dev, uint8_t c) { wr(dev, FBRL_8250_THR, c); }
+
+static void chip_irq_on(void *dev, unsigned irqs, int on)
+{
+    fbrl_uart_8250 *b = dev;
+    uint8_t bits = (uint8_t)(((irqs & FBRL__UART_IRQ_RX) ? FBRL_8250_IER_RDI : 0) |
+                             ((irqs & FBRL__UART_IRQ_TX) ? FBRL_8250_IER_THRI : 0));
+    set_ier(b, (uint8_t)(on ? b->ier | bits : b->ier & ~bits));
+}
+
+static unsigned chip_irq_enabled(const void *dev)
+{
+    const fbrl_uart_8250 *b = dev;
+    return ((b->ier & FBRL_8250_IER_RDI) ? FBRL__UART_IRQ_RX : 0u) |
+           ((b->ier & FBRL_8250_IER_THRI) ? FBRL__UART_IRQ_TX : 0u);
+}
+
+static const fbrl__uart_chip chip_8250 = {FBRL__UART_TX_EMPTY_ONLY, chip_rx_ready,   chip_rx_read,    chip_tx_ready,
+                                          chip_tx_write,            chip_irq_on,     chip_irq_enabled};
+
+static fbrl__uart_port port(fbrl_uart_8250 *b)
+{
+    fbrl__uart_port p = {&chip_8250,          b,           b->uart,           b->headroom,
+                         b->depth,            RX_BURST,    &b->events,        &b->seen,
+                         &b->stats.throttles, &b->stats.max_burst, b->io.irq_save, b->io.irq_restore,
+                         b->io.idle,          b->io.now_us, b->io.io_ctx};
+    return p;
 }
 
 void fbrl_uart_8250_isr(fbrl_uart_8250 *b)
@@ -213,12 +205,18 @@ void fbrl_uart_8250_isr(fbrl_uart_8250 *b)
             switch (iir & FBRL_8250_IIR_ID) {
             case FBRL_8250_IIR_RLS: line_status(b, rd(b, FBRL_8250_LSR)); break;
             case FBRL_8250_IIR_RDA:
-            case FBRL_8250_IIR_CTI:
+            case FBRL_8250_IIR_CTI: {
                 /* A received XON, or an XOFF the core must send, reaches the
                  * transmitter through the core's tx_kick. */
-                rx_drain(b);
+                fbrl__uart_port p = port(b);
+                fbrl__uart_irq_rx_drain(&p);
                 break;
-            case FBRL_8250_IIR_THRE: (void)tx_fill(b); break;
+            }
+            case FBRL_8250_IIR_THRE: {
+                fbrl__uart_port p = port(b);
+                fbrl__uart_irq_tx_fill(&p);
+                break;
+            }
             default: /* modem status: reading MSR clears it */ (void)rd(b, FBRL_8250_MSR); break;
             }
         }
@@ -226,54 +224,23 @@ void fbrl_uart_8250_isr(fbrl_uart_8250 *b)
     b->io.outb(b->io.io_ctx, FBRL_8259_CMD, FBRL_8259_EOI);
 }
 
-/* Called by the main line, and by the core from inside the handler (XOFF to send, or
- * output released by the peer's XON): irq_save nests, so both are safe. */
 static void op_tx_kick(void *ctx)
 {
     fbrl_uart_8250 *b = ctx;
-    uint32_t saved;
-    if (!b || !b->uart)
-        return;
-    saved = b->io.irq_save(b->io.io_ctx);
-    /* With THRE interrupts on, the handler refills when the FIFO empties. Otherwise
-     * prime THR here rather than rely on a THRE interrupt when IER.THRI rises (not
-     * every chip raises one). */
-    if (!(b->ier & FBRL_8250_IER_THRI) && (rd(b, FBRL_8250_LSR) & FBRL_8250_LSR_THRE))
-        (void)tx_fill(b);
-    b->io.irq_restore(b->io.io_ctx, saved);
-}
-
-/* Resume reading RBR once the main line made room (hysteresis: twice the headroom).
- * Interrupts are held off, so this side may act as the ring's producer; draining here
- * also covers chips that raise no interrupt for bytes already waiting below the
- * trigger level when RDI comes back on. */
-static void rx_unthrottle(fbrl_uart_8250 *b)
-{
-    if (!(b->ier & FBRL_8250_IER_RDI) && rx_room(b) >= 2u * b->headroom) {
-        set_ier(b, (uint8_t)(b->ier | FBRL_8250_IER_RDI));
-        rx_drain(b);
+    if (b && b->uart) {
+        fbrl__uart_port p = port(b);
+        fbrl__uart_irq_tx_kick(&p);
     }
 }
 
 static fbrl_status op_service(void *ctx, uint32_t timeout_us)
 {
     fbrl_uart_8250 *b = ctx;
-    uint64_t deadline;
-    uint32_t saved;
+    fbrl__uart_port p;
     if (!b)
         return FBRL_EINVAL;
-    if (!b->uart)
-        return FBRL_ESTATE;
-    deadline = b->io.now_us(b->io.io_ctx) + timeout_us;
-    saved = b->io.irq_save(b->io.io_ctx);
-    rx_unthrottle(b);
-    /* Sleep only while the handler has done nothing since the core last looked; the
-     * check and the sleep happen with interrupts held off, so no wake-up is lost. */
-    while (b->events == b->seen && b->io.now_us(b->io.io_ctx) < deadline)
-        b->io.idle(b->io.io_ctx);
-    b->seen = b->events;
-    b->io.irq_restore(b->io.io_ctx, saved);
-    return FBRL_OK;
+    p = port(b);
+    return fbrl__uart_irq_service(&p, timeout_us);
 }
 
 static uint64_t op_now_us(void *ctx)
@@ -308,12 +275,7 @@ fbrl_status fbrl_uart_8250_attach(fbrl_uart_8250 *b, struct fbrl_uart *u)
         return FBRL_EINVAL;
     saved = b->io.irq_save(b->io.io_ctx);
     b->uart = u;
-    /* A ring smaller than 4 x the headroom scales it down, so reception never stalls. */
-    b->headroom = (uint16_t)(fbrl_ring_capacity(&u->rx) / 4u);
-    if (b->headroom > FBRL_UART_8250_RX_HEADROOM)
-        b->headroom = FBRL_UART_8250_RX_HEADROOM;
-    if (b->headroom == 0)
-        b->headroom = 1;
+    b->headroom = fbrl__uart_irq_headroom(u, FBRL_UART_8250_RX_HEADROOM);
     set_ier(b, FBRL_8250_IER_RDI | FBRL_8250_IER_RLSI);
     b->io.outb(b->io.io_ctx, FBRL_8259_DATA,
                (uint8_t)(b->io.inb(b->io.io_ctx, FBRL_8259_DATA) & ~(1u << b->irq)));

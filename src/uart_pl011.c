@@ -1,10 +1,9 @@
 /* SPDX-License-Identifier: MIT */
-/* uart_pl011.c - ARM PL011 backend: line programming, interrupt handler, headroom rule.
- *
- * Concurrency: the handler (interrupt side) and the ops (main line) share the UART's
- * registers and the IMSC shadow. The main line touches them only inside the board's
- * irq_save/irq_restore, so on one CPU the two never interleave (as in uart_8250.c). */
+/* uart_pl011.c - ARM PL011 backend: line programming, interrupt causes. The ring and
+ * interrupt logic is uart_irq.c's, shared with the 8250 (the PL011 is asked before each
+ * byte it is given, gives each byte's errors with it, and raises TX as a level). */
 #include "fbrl/uart_pl011.h"
+#include "uart_irq.h"
 
 #define IBRD_MAX            0xFFFFu
 #define DIV64_FRACTION_BITS 6u /* FBRD is in 1/64 */
@@ -100,63 +99,57 @@ static fbrl_status op_configure(void *ctx, const fbrl_uart_config *cfg)
     return FBRL_OK;
 }
 
-/* Free bytes in the core's receive ring: exact for the producer, which the handler is. */
-static size_t rx_room(const fbrl_uart_pl011 *b) { return fbrl_ring_space(&b->uart->rx); }
+/* The chip's steps for uart_irq.c. */
+static int chip_rx_ready(void *dev) { return !(rd(dev, FBRL_PL011_FR) & FBRL_PL011_FR_RXFE); }
 
-/* Fill the transmit FIFO from the core; keep the TX interrupt on exactly while bytes are
- * in flight. When the core has nothing (empty, or held by the peer's XOFF) it goes off:
- * TX is a level that stays raised while the FIFO is low, so it must be masked. */
-static void tx_fill(fbrl_uart_pl011 *b)
+static unsigned chip_rx_read(void *dev)
 {
-    uint32_t n = 0;
-    while (!(rd(b, FBRL_PL011_FR) & FBRL_PL011_FR_TXFF) && n < FBRL_UART_PL011_FIFO) {
-        int c = fbrl_uart_isr_tx(b->uart);
-        if (c < 0)
-            break;
-        wr(b, FBRL_PL011_DR, (uint32_t)c);
-        n++;
-    }
-    if (n > b->stats.max_burst)
-        b->stats.max_burst = n;
-    if (n > 0) {
-        b->events++;
-        set_imsc(b, b->imsc | FBRL_PL011_INT_TX);
-    } else {
-        wr(b, FBRL_PL011_ICR, FBRL_PL011_INT_TX);
-        set_imsc(b, b->imsc & ~FBRL_PL011_INT_TX);
-    }
+    uint32_t dr = rd(dev, FBRL_PL011_DR);
+    unsigned flags = 0;
+    if (dr & FBRL_PL011_DR_OE)
+        flags |= FBRL_UART_LS_OVERRUN;
+    if (dr & FBRL_PL011_DR_PE)
+        flags |= FBRL_UART_LS_PARITY;
+    if (dr & (FBRL_PL011_DR_FE | FBRL_PL011_DR_BE))
+        flags |= FBRL_UART_LS_FRAMING;
+    return (unsigned)(dr & 0xFFu) | flags << 8;
 }
 
-/* Move received bytes into the core while the FIFO has some and the ring has room;
- * without room, mask the receive interrupts and leave the bytes in the FIFO (the sender
- * then sees the core's XOFF, or, under QEMU, the host is held back). */
-static void rx_drain(fbrl_uart_pl011 *b)
+static int chip_tx_ready(void *dev) { return !(rd(dev, FBRL_PL011_FR) & FBRL_PL011_FR_TXFF); }
+
+static void chip_tx_write(void *dev, uint8_t c) { wr(dev, FBRL_PL011_DR, c); }
+
+static void chip_irq_on(void *dev, unsigned irqs, int on)
 {
-    uint32_t n;
-    for (n = 0; n < FBRL_UART_PL011_RX_BURST; n++) {
-        uint32_t dr;
-        unsigned flags = 0;
-        if (rd(b, FBRL_PL011_FR) & FBRL_PL011_FR_RXFE)
-            return;
-        if (rx_room(b) < b->headroom) {
-            set_imsc(b, b->imsc & ~(FBRL_PL011_INT_RX | FBRL_PL011_INT_RT));
-            b->stats.throttles++;
-            return;
-        }
-        dr = rd(b, FBRL_PL011_DR);
-        if (dr & FBRL_PL011_DR_OE)
-            flags |= FBRL_UART_LS_OVERRUN;
-        if (dr & FBRL_PL011_DR_PE)
-            flags |= FBRL_UART_LS_PARITY;
-        if (dr & (FBRL_PL011_DR_FE | FBRL_PL011_DR_BE))
-            flags |= FBRL_UART_LS_FRAMING;
-        if (flags)
-            fbrl_uart_isr_line_status(b->uart, flags);
-        /* As on the 8250: a byte with a parity or framing error is still delivered,
-         * counted; the core's own rules decide (the link drops a damaged line). */
-        fbrl_uart_isr_rx(b->uart, (uint8_t)(dr & 0xFFu));
-        b->events++;
-    }
+    fbrl_uart_pl011 *b = dev;
+    uint32_t bits = ((irqs & FBRL__UART_IRQ_RX) ? FBRL_PL011_INT_RX | FBRL_PL011_INT_RT : 0u) |
+                    ((irqs & FBRL__UART_IRQ_TX) ? FBRL_PL011_INT_TX : 0u);
+    if (!on && (irqs & FBRL__UART_IRQ_TX))
+        wr(b, FBRL_PL011_ICR, FBRL_PL011_INT_TX); /* TX is a level: it stays raised while the FIFO is low */
+    set_imsc(b, on ? b->imsc | bits : b->imsc & ~bits);
+}
+
+static unsigned chip_irq_enabled(const void *dev)
+{
+    const fbrl_uart_pl011 *b = dev;
+    return ((b->imsc & FBRL_PL011_INT_RX) ? FBRL__UART_IRQ_RX : 0u) |
+           ((b->imsc & FBRL_PL011_INT_TX) ? FBRL__UART_IRQ_TX : 0u);
+}
+
+static const fbrl__uart_chip chip_pl011 = {0, chip_rx_ready, chip_rx_read, chip_tx_ready,
+                                           chip_tx_write, chip_irq_on, chip_irq_enabled};
+
+static fbrl__uart_port port(fbrl_uart_pl011 *b)
+{
+    fbrl__uart_port p = {&chip_pl011,         b,
+                         b->uart,             b->headroom,
+                         FBRL_UART_PL011_FIFO, FBRL_UART_PL011_RX_BURST,
+                         &b->events,          &b->seen,
+                         &b->stats.throttles, &b->stats.max_burst,
+                         b->io.irq_save,      b->io.irq_restore,
+                         b->io.idle,          b->io.now_us,
+                         b->io.io_ctx};
+    return p;
 }
 
 void fbrl_uart_pl011_isr(fbrl_uart_pl011 *b)
@@ -175,60 +168,33 @@ void fbrl_uart_pl011_isr(fbrl_uart_pl011 *b)
     /* Errors are also flagged per byte in DR (read by rx_drain); clear the summary. */
     if (mis & FBRL_PL011_INT_ERR)
         wr(b, FBRL_PL011_ICR, mis & FBRL_PL011_INT_ERR);
+    fbrl__uart_port p = port(b);
     if (mis & (FBRL_PL011_INT_RX | FBRL_PL011_INT_RT)) {
         /* RX and RT clear as the FIFO empties; clear RT explicitly (it is a timeout). */
         wr(b, FBRL_PL011_ICR, FBRL_PL011_INT_RT);
-        rx_drain(b);
+        fbrl__uart_irq_rx_drain(&p);
     }
     if (mis & FBRL_PL011_INT_TX)
-        tx_fill(b);
+        fbrl__uart_irq_tx_fill(&p);
 }
 
-/* Called by the main line, and by the core from inside the handler (an XOFF to send,
- * or output released by the peer's XON): irq_save nests, so both are safe. */
 static void op_tx_kick(void *ctx)
 {
     fbrl_uart_pl011 *b = ctx;
-    uint32_t saved;
-    if (!b || !b->uart)
-        return;
-    saved = b->io.irq_save(b->io.io_ctx);
-    /* With TX on, the handler refills as the FIFO drains. Otherwise prime the FIFO here:
-     * the PL011 raises TX only when the level is crossed, never for an idle FIFO. */
-    if (!(b->imsc & FBRL_PL011_INT_TX))
-        tx_fill(b);
-    b->io.irq_restore(b->io.io_ctx, saved);
-}
-
-/* Resume receiving once the main line made room (hysteresis: twice the headroom), and
- * take what waits in the FIFO at once: it raises no new interrupt for bytes already there. */
-static void rx_unthrottle(fbrl_uart_pl011 *b)
-{
-    if (!(b->imsc & FBRL_PL011_INT_RX) && rx_room(b) >= 2u * b->headroom) {
-        set_imsc(b, b->imsc | FBRL_PL011_INT_RX | FBRL_PL011_INT_RT);
-        rx_drain(b);
+    if (b && b->uart) {
+        fbrl__uart_port p = port(b);
+        fbrl__uart_irq_tx_kick(&p);
     }
 }
 
 static fbrl_status op_service(void *ctx, uint32_t timeout_us)
 {
     fbrl_uart_pl011 *b = ctx;
-    uint64_t deadline;
-    uint32_t saved;
+    fbrl__uart_port p;
     if (!b)
         return FBRL_EINVAL;
-    if (!b->uart)
-        return FBRL_ESTATE;
-    deadline = b->io.now_us(b->io.io_ctx) + timeout_us;
-    saved = b->io.irq_save(b->io.io_ctx);
-    rx_unthrottle(b);
-    /* Sleep only while the handler has done nothing since the core last looked; the
-     * check and the sleep run with interrupts held off, so no wake-up is lost. */
-    while (b->events == b->seen && b->io.now_us(b->io.io_ctx) < deadline)
-        b->io.idle(b->io.io_ctx);
-    b->seen = b->events;
-    b->io.irq_restore(b->io.io_ctx, saved);
-    return FBRL_OK;
+    p = port(b);
+    return fbrl__uart_irq_service(&p, timeout_us);
 }
 
 static uint64_t op_now_us(void *ctx)
@@ -261,14 +227,10 @@ fbrl_status fbrl_uart_pl011_attach(fbrl_uart_pl011 *b, struct fbrl_uart *u)
         return FBRL_EINVAL;
     saved = b->io.irq_save(b->io.io_ctx);
     b->uart = u;
-    /* A ring smaller than 4 x the headroom scales it down, so reception never stalls. */
-    b->headroom = (uint16_t)(fbrl_ring_capacity(&u->rx) / 4u);
-    if (b->headroom > FBRL_UART_PL011_RX_HEADROOM)
-        b->headroom = FBRL_UART_PL011_RX_HEADROOM;
-    if (b->headroom == 0)
-        b->headroom = 1;
+    b->headroom = fbrl__uart_irq_headroom(u, FBRL_UART_PL011_RX_HEADROOM);
     set_imsc(b, FBRL_PL011_INT_RX | FBRL_PL011_INT_RT | FBRL_PL011_INT_ERR);
-    rx_drain(b); /* bytes that arrived before attach raise no interrupt of their own */
+    fbrl__uart_port p = port(b);
+    fbrl__uart_irq_rx_drain(&p); /* bytes that arrived before attach raise no interrupt of their own */
     b->io.irq_restore(b->io.io_ctx, saved);
     return FBRL_OK;
 }

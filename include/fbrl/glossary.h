@@ -62,8 +62,8 @@ typedef struct fbrl_glossary {
 } fbrl_glossary;
 
 /* Initialise g (metric off, mapping off, no calibration, no files, no port) and define all
- * the glossary words in vm. g must outlive vm (the words keep a pointer to it). Needs the
- * FBRL data words (LOCATION, ARRAY, ...) that every VM has. FBRL_EINVAL for NULL,
+ * the glossary words in vm, after the FBRL data words they stand on (LOCATION, ARRAY, ...:
+ * fbrl_vmx_data_words). g must outlive vm (the words keep a pointer to it). FBRL_EINVAL for NULL,
  * FBRL_ENOMEM if the dictionary is full. */
 FBRL_API fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 

@@ -63,6 +63,29 @@ typedef enum fbrl_link_fate {
     FBRL_LINK_MAY_HAVE_RUN = 4
 } fbrl_link_fate;
 
+/* The modes a session set (docs/link.md 1, "Modes"): settings the controller keeps until
+ * they change and loses when it restarts. The link notes every one that ran (FBRL_OK) into
+ * cfg.modes, so that after a reconnect fbrl_link_modes_resend() sends them again before
+ * the first motion: the units (METRIC, NOMETRIC), the tool (TOOL, with the POINT that last
+ * defined its location), the speed (SPEED), the pendant lamp (FLASH, NOFLASH) and the
+ * motors' gains (GAIN n,value). Not modes: LIMP (the arm's servos: a restarted controller
+ * must be homed, which needs them), LOCK (READY clears it), MANUAL and TEACH (the
+ * pendant's, an operator's), ARM, ENABLE, DISABLE (arm power: an operator's decision after
+ * a restart), CONFIG (the serial line itself) and the outputs (they switch devices).
+ * Caller-owned; every field is private. */
+#define FBRL_LINK_MODES_MAX 14
+typedef struct fbrl_link_modes {
+    char line[FBRL_LINK_MODES_MAX][FBRL_LINK_LINE_MAX + 1]; /* by slot, "" = not set */
+    char point[FBRL_LINK_LINE_MAX + 1];                     /* the last POINT that ran */
+    int point_units, tool_units;                            /* the units their lengths were typed in */
+} fbrl_link_modes;
+
+/* Empty: no mode set yet. */
+FBRL_API void fbrl_link_modes_init(fbrl_link_modes *m);
+/* Mode line i (0, 1, ...) in the order fbrl_link_modes_resend() sends them; NULL past the
+ * last. */
+FBRL_API const char *fbrl_link_modes_line(const fbrl_link_modes *m, size_t i);
+
 typedef struct fbrl_link_config {
     fbrl_rapl_form form;       /* keyword (default) or /NNN token form */
     int lower_case;            /* send letters in lower case (default 1; see docs/link.md) */
@@ -100,6 +123,14 @@ typedef struct fbrl_link_config {
      * controller already in terminal mode takes the switch's first bytes as typed
      * text; the link erases them again. */
     int aci;
+    /* fbrl_link_connect() reads the controller's units (STATUS) and refuses millimetres
+     * with FBRL_EUNITS (default 1; docs/link.md 1). 0 leaves them unknown until a STATUS
+     * runs (a program that sends no lengths, a benchmark). */
+    int check_units;
+    /* Where the link notes the modes that ran (NULL = nowhere, the default). The storage
+     * is the session's, not the connection's: a link initialised again after a reconnect
+     * with the same cfg keeps noting into it, and fbrl_link_modes_resend() sends it. */
+    fbrl_link_modes *modes;
 } fbrl_link_config;
 
 FBRL_API void fbrl_link_config_init(fbrl_link_config *c);
@@ -132,13 +163,39 @@ typedef struct fbrl_link_stats {
 /* The last command's outcome, for messages. */
 typedef struct fbrl_link_outcome {
     fbrl_link_fate fate;
-    fbrl_status status; /* the command's result */
-    fbrl_status cause;  /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
+    fbrl_status status;  /* the command's result */
+    fbrl_status cause;   /* why it did not end normally (FBRL_ETIMEOUT, FBRL_EDISCONNECTED,
                           * FBRL_EPROTOCOL ...); FBRL_OK when it did */
-    int code;           /* REFUSED: the controller's code, -1 unknown */
-    const char *seen;   /* what the controller was last seen doing, in plain words
+    int code;            /* REFUSED: the controller's code, -1 unknown */
+    const char *seen;    /* what the controller was last seen doing, in plain words
                           * ("it had started the line; its reply was cut off"); never NULL */
+    unsigned runs;       /* times the line ran on the controller, proven: 1, or more when the
+                          * link typed it again (a safe command whose reply came damaged and
+                          * whose STATUS could not tell; a query read until replies agree) */
+    unsigned maybe_runs; /* further times it may have run: a CR whose effect the link could
+                          * not prove either way (docs/link.md 3.9) */
 } fbrl_link_outcome;
+
+/* The link's probe (private, link_probe.c): its markers, the last bytes of its echo and
+ * the parse of that echo. */
+typedef struct fbrl_link_probe {
+    char marker[3];
+    unsigned next;
+    unsigned char tail[7];
+    int state;
+    unsigned erased, sub;
+} fbrl_link_probe;
+
+/* The settling of a damaged reply (private, link_settle.c): the command while STATUS is
+ * read for it, and those reads (ran, damaged, may have run). */
+typedef struct fbrl_link_settle {
+    char line[FBRL_LINK_LINE_MAX + 1];
+    size_t len;
+    fbrl_link_reply kind;
+    unsigned attempts;
+    int shaped;
+    unsigned ok, bad, maybe;
+} fbrl_link_settle;
 
 /* A session. Caller-owned; every field is private. */
 typedef struct fbrl_link {
@@ -147,8 +204,7 @@ typedef struct fbrl_link {
     int xon_ok;           /* flow NONE: probes may carry an XON byte */
     uint64_t parity_seen; /* the uart's parity error count, last looked at */
     int parity;           /* the line has parity: damaged bytes are dropped */
-    char marker[3];       /* the latest probe's closing characters */
-    unsigned marker_idx;
+    fbrl_link_probe probe;
     /* the command */
     char line[FBRL_LINK_LINE_MAX + 1]; /* canonical (upper-case) text */
     size_t len;
@@ -166,10 +222,8 @@ typedef struct fbrl_link {
     int heard; /* any byte from the controller this command */
     uint64_t t_last, t_deadline, t_probe;
     /* reply analysis */
-    fbrl_rapl_reader rd;
-    size_t after_cr;
-    int eol_seen, gtgt, last_byte, first_byte, prompt_seen, probe_out, probe_seen;
-    unsigned char tail[7];
+    fbrl_rapl_reader rd; /* the reply, with its framing */
+    int last_byte, prompt_seen, probe_out, probe_seen;
     int err_state, err_code, out_bad, nvalues;
     unsigned stream_got;
     int stop_sent;
@@ -188,27 +242,18 @@ typedef struct fbrl_link {
     fbrl_status result;
     int busy;
     fbrl_link_stats stats;
-    /* fates (docs/link.md 3.9) */
-    int safe;        /* the command may be typed again */
-    int ran;         /* a CR of it took effect (proven) */
-    int maybe;       /* an earlier CR of it may have taken effect */
-    int cr_pending;  /* this attempt's CR: neither reported nor disproven */
-    int first_probe; /* the verify probe is the first since the CR */
-    int pe_state;    /* the verify probe's echo, parsed */
-    unsigned pe_k1, pe_sub;
-    int rp_first, rp_bad, prompt_direct; /* the reply's framing: CR LF, lines, prompt */
-    unsigned rp_eols, rp_lines;
-    int known_err;                                /* the controller's LAST ERROR as last proven
-                                              * (-1 NONE), -2 unknown */
-    int settle_shaped;                            /* the reply being settled had an error shape */
-    unsigned settle_ok, settle_bad, settle_maybe; /* STATUS runs while settling */
-    int seen;                                     /* what the controller was last seen doing */
+    /* fates (docs/link.md 3.9): the command may be typed again (safe); a CR of it took
+     * effect (ran) or an earlier one may have (maybe); this attempt's CR is neither
+     * reported nor disproven (cr_pending); the verify probe is the first since the CR */
+    int safe, ran, maybe, cr_pending, first_probe;
+    /* the controller's LAST ERROR as last proven (-1 NONE, -2 unknown); what it was last
+     * seen doing; why the command did not end normally */
+    int known_err, seen;
     fbrl_status cause;
-    char main_line[FBRL_LINK_LINE_MAX + 1]; /* the command while STATUS settles it */
-    size_t main_len;
-    fbrl_link_reply main_kind;
-    unsigned main_attempts;
-    int units; /* FBRL_LINK_UNITS_*: what the controller's lengths are, as last learned */
+    fbrl_link_settle settle;
+    unsigned runs, maybe_runs; /* of the command (fbrl_link_outcome) */
+    int own_report;            /* reporting the link's own STATUS reads to cfg.on_exec */
+    int units;                 /* FBRL_LINK_UNITS_*: the controller's, as last learned */
     /* the gate every line passes before it is typed (fbrl_link_set_gate) */
     fbrl_status (*gate)(void *ctx, const char *line, size_t len, int unguarded);
     void *gate_ctx;
@@ -218,8 +263,7 @@ typedef struct fbrl_link {
 /* The controller's units of length (fbrl_link_units): learned from a STATUS that the
  * link read whole (its last line, "INCH UNITS." or "METRIC UNITS."; a STATUS without that
  * line means inches, the controller's default) and from METRIC or NOMETRIC when they ran.
- * Unknown after fbrl_link_init and fbrl_link_connect (a controller may have been switched
- * while nobody listened). */
+ * fbrl_link_connect reads them (cfg.check_units); unknown after fbrl_link_init. */
 #define FBRL_LINK_UNITS_UNKNOWN (-1)
 #define FBRL_LINK_UNITS_INCH    0
 #define FBRL_LINK_UNITS_MM      1
@@ -230,7 +274,12 @@ FBRL_API int fbrl_link_units(const fbrl_link *l);
 FBRL_API fbrl_status fbrl_link_init(fbrl_link *l, fbrl_uart *u, const fbrl_link_config *cfg);
 
 /* Start-up handshake: bring the controller's line to a known state (erasing whatever
- * was typed) and send NOHELP. Blocking (through the uart's timeouts). */
+ * was typed), send NOHELP and read the controller's units (STATUS, unless
+ * cfg.check_units is 0). Blocking (through the uart's timeouts). FBRL_EUNITS: the
+ * controller works in millimetres; the link is connected all the same (so a caller can
+ * send NOMETRIC), fbrl_link_units() says FBRL_LINK_UNITS_MM. The link never switches the
+ * controller itself: its units are the controller's state, which programs stored on it
+ * and its pendant rely on (docs/link.md 1). */
 FBRL_API fbrl_status fbrl_link_connect(fbrl_link *l);
 
 /* ---- one command, step by step (several links from one thread) ---- */
@@ -308,6 +357,56 @@ FBRL_API fbrl_status fbrl_link_input(fbrl_link *l, int n, int *on);
  * cfg.on_line, then stop the stream. */
 FBRL_API fbrl_status fbrl_link_stream(fbrl_link *l, fbrl_rapl_cmd cmd, unsigned lines);
 
+/* After a reconnect, before the first motion: send every mode in cfg.modes again, in the
+ * order of fbrl_link_modes_line(), each as it last ran (nothing without cfg.modes). Stops
+ * at the first that does not succeed and returns its result; *sent (may be NULL) = how many
+ * were sent before it, so fbrl_link_modes_line(modes, *sent) names the one that failed.
+ * FBRL_EUNITS (nothing sent for it) when the tool's location was typed in other units than
+ * the controller's now. Resending notes nothing new. */
+FBRL_API fbrl_status fbrl_link_modes_resend(fbrl_link *l, size_t *sent);
+
+/* ---- the safe stop ---- */
+
+/* The controller's digital inputs and outputs are numbered 1..FBRL_LINK_IO_MAX. */
+#define FBRL_LINK_IO_MAX 16
+
+/* What fbrl_link_safe_stop() found and did (bit n-1 = output n).
+ *  result        FBRL_OK: HALT ran; else why the stop is incomplete: FBRL_EBUSY (a command
+ *                the controller was running did not end within drain_ms, so HALT could not
+ *                be typed), FBRL_EDISCONNECTED, FBRL_ECONTROLLER (HALT refused), or the
+ *                status of a HALT that did not run
+ *  status_result the STATUS read after HALT (FBRL_ESTATE: none was sent); have_status:
+ *                it was read, and homed is its; have_outputs: it showed the outputs (a
+ *                RAPL-II STATUS has no OUTPUTS line; fbrlsim prints one with --status-extra)
+ *  switched_off  outputs this stop switched off (their OUTPUT -n ran)
+ *  off_failed    outputs it tried to switch off and could not (or may have)
+ *  left_on       outputs known to be on after it (STATUS showed them on and the caller had
+ *                not switched them on, or switching off did not run)
+ *  unknown       outputs whose state is not known after it: without an OUTPUTS line every
+ *                one it did not switch off; with one, those whose OUTPUT -n may have run
+ *  where         W2's WORLD x y z yaw pitch roll after HALT (have_where), in the
+ *                controller's units */
+typedef struct fbrl_link_stop {
+    fbrl_status result;
+    int halted;
+    fbrl_status status_result;
+    int have_status, homed, have_outputs;
+    uint32_t switched_off, off_failed, left_on, unknown;
+    int have_where;
+    double where[6];
+} fbrl_link_stop;
+
+/* Make the cell safe (after Ctrl-C, an abort, a caller's halt()): let a command the
+ * controller already has end (at most drain_ms: the controller reads nothing else until
+ * it answers), HALT the arm, read STATUS, switch off every output of outputs_on (bit n-1
+ * = output n: those the caller switched on) that STATUS shows on, or every one of them
+ * when STATUS does not show outputs, and read W2 for the report. Outputs the caller did
+ * not switch on are left as they are, and named in out->unknown when the controller does
+ * not show them. Blocking, bounded by the link's timeouts; the result is also out->result.
+ * docs/link.md 1, "The safe stop". */
+FBRL_API fbrl_status fbrl_link_safe_stop(fbrl_link *l, uint32_t outputs_on, uint32_t drain_ms,
+                                         fbrl_link_stop *out);
+
 /* Before writing raw bytes to the uart yourself (outside the link): erase whatever the
  * link may have left on the controller's line (a probe leaves three marker characters
  * there), so that a CR or LF you send runs only your own text. Sends one CAN unless the
@@ -372,6 +471,12 @@ FBRL_API fbrl_link_fate fbrl_link_fate_of(fbrl_status result);
 
 /* The last command's outcome (FBRL_ESTATE while one runs). */
 FBRL_API fbrl_status fbrl_link_outcome_get(const fbrl_link *l, fbrl_link_outcome *out);
+
+/* How many times the command's line has run so far (fbrl_link_outcome.runs, maybe_runs):
+ * after it ended, and inside cfg.on_exec for the line being reported (that run counted:
+ * runs + maybe_runs is its number, 2 for a line the link typed again), 0 and 0 there for
+ * the link's own STATUS reads. A run log uses it to mark a line that ran again. */
+FBRL_API fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs);
 
 /* Is this line safe to type twice (docs/link.md 3.9)? Table commands say it in the
  * encoder's table; an assignment is safe unless its value reads its own target

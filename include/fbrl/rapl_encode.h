@@ -129,8 +129,10 @@ typedef enum fbrl_rapl_reply {
 #define FBRL_RAPL_F_SAFE \
     0x10u /* safe to repeat: running it twice ends as running it
                                     * once (absolute moves and settings, read-only queries).
-                                    * Relative motions, counters, deletions and program runs
-                                    * are not: the link never types those twice (docs/link.md) */
+                                    * Relative motions, counters, deletions, program runs,
+                                    * HERE ACTUAL XCAL XZERO (they store where the arm is)
+                                    * and WAIT are not: the link never types those twice
+                                    * (docs/link.md 3.9) */
 
 /* One table entry. The signature has one character per argument:
  *   L location name ('#' prefix allowed)   V variable name   N program name
@@ -155,6 +157,19 @@ FBRL_API const fbrl_rapl_cmdinfo *fbrl_rapl_cmd_info(fbrl_rapl_cmd cmd);
 
 /* Look a keyword up (case-insensitive, whole word). FBRL_ENOENT when unknown. */
 FBRL_API fbrl_status fbrl_rapl_cmd_find(const char *keyword, fbrl_rapl_cmd *cmd);
+
+/* Which command a line starts with: its first word (up to a space, ',' or '=', leading
+ * spaces skipped) as a keyword or a /NNN token, or FBRL_RAPL_ASSIGN when a '=' follows it
+ * (NAME=value: checked first, so GRIP=2 sets a variable, as the controller reads it).
+ * *args (may be NULL) = where the rest begins, spaces skipped (an assignment's '=').
+ * FBRL_ENOENT when the line starts with no command of the table (text the library cannot
+ * name), FBRL_EINVAL for NULL. The one place every part of the library asks this. */
+FBRL_API fbrl_status fbrl_rapl_line_cmd(const char *line, fbrl_rapl_cmd *cmd, const char **args);
+
+/* Is this line safe to type twice (docs/link.md 3.9)? A table command says it in the table
+ * (FBRL_RAPL_F_SAFE); an assignment is safe unless its value reads its own target
+ * (V1=V1+1, a counter); anything the table cannot name is not. */
+FBRL_API int fbrl_rapl_line_safe(const char *line);
 
 typedef enum fbrl_rapl_argkind { FBRL_RAPL_ARG_INT, FBRL_RAPL_ARG_REAL, FBRL_RAPL_ARG_STR } fbrl_rapl_argkind;
 

@@ -3,7 +3,9 @@
  *
  * Two layers, both bounded and safe on any input (they never read past the given length):
  *  - fbrl_rapl_reader: fed received bytes one at a time, it cuts them into lines (CR, LF
- *    and CRLF end a line) and recognises the prompt ">>" at the start of a line.
+ *    and CRLF end a line), recognises the prompt ">>" at the start of a line, and keeps the
+ *    framing of everything fed since it was initialised (a reply, read from its CR on): did
+ *    it begin with CR LF, did every CR have its LF, was a byte lost or a line damaged.
  *  - line parsers: an error line "NNN-TEXT.", position blocks (W0 W2 W4), STATUS blocks,
  *    TYPEI/TYPEV values and the lines of the continuous readouts (W1 W3 W5 WE*).
  * Numbers are parsed without the C library (no locale), with the exact layouts the
@@ -30,15 +32,39 @@ typedef enum fbrl_rapl_event {
     FBRL_RAPL_EV_PROMPT    /* ">>" at the start of a line: the controller waits for input */
 } fbrl_rapl_event;
 
+/* Line ends seen (fbrl_rapl_reader.ends). */
+#define FBRL_RAPL_END_CR   0x1u /* a CR */
+#define FBRL_RAPL_END_CRLF 0x2u /* an LF right after a CR */
+#define FBRL_RAPL_END_LF   0x4u /* an LF without a CR before it */
+
 typedef struct fbrl_rapl_reader {
     char line[FBRL_RAPL_REPLY_LINE_MAX + 1]; /* NUL-terminated */
     size_t len;
     unsigned char cr;     /* last byte was CR (a following LF is part of the same end) */
     unsigned char flawed; /* the line held a control byte or was cut: do not trust it */
     unsigned char done;   /* the previous call completed a line: start a new one */
+    /* the framing of everything fed since init (read only) */
+    size_t bytes;          /* bytes fed, and bytes lost (fbrl_rapl_reader_lost) */
+    unsigned eols;         /* LFs */
+    unsigned lines;        /* lines completed (FBRL_RAPL_EV_LINE) */
+    unsigned char last;    /* the byte fed before */
+    unsigned char began;   /* the bytes began with CR LF (so far) */
+    unsigned char broken;  /* a CR without its LF, an LF without its CR, or a byte lost */
+    unsigned char damaged; /* a completed line was flawed */
+    unsigned char ends;    /* FBRL_RAPL_END_* seen */
+    unsigned char gtgt;    /* ">>" anywhere */
+    unsigned char prompt;  /* the prompt came (FBRL_RAPL_EV_PROMPT) */
 } fbrl_rapl_reader;
 
 FBRL_API void fbrl_rapl_reader_init(fbrl_rapl_reader *r);
+
+/* A byte was lost here (a parity error the UART dropped): it counts as a byte and
+ * breaks the framing. */
+FBRL_API void fbrl_rapl_reader_lost(fbrl_rapl_reader *r);
+
+/* Everything fed since init is a whole reply: it began with CR LF, every CR had its LF
+ * and every LF its CR, no byte was lost, no line was damaged, and the prompt ended it. */
+FBRL_API int fbrl_rapl_reader_whole(const fbrl_rapl_reader *r);
 
 /* Take one byte. Printable bytes (0x20-0x7E) are collected; other bytes except CR and
  * LF are dropped and mark the line flawed. */

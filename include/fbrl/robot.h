@@ -33,7 +33,7 @@ extern "C" {
 /* Named peripherals (OUTPUT-DEVICE, INPUT-DEVICE) a robot context can hold. */
 #define FBRL_ROBOT_MAX_DEVICES 32
 /* Controller digital inputs and outputs are numbered 1..FBRL_ROBOT_IO_MAX. */
-#define FBRL_ROBOT_IO_MAX 16
+#define FBRL_ROBOT_IO_MAX FBRL_LINK_IO_MAX
 /* Lines a continuous readout (W1 W3 W5 WE1 WE3 WE5) shows before it is stopped. */
 #define FBRL_ROBOT_STREAM_LINES 10
 
@@ -210,35 +210,30 @@ FBRL_API fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *l
  * the event callback as "UNGUARDED"). */
 FBRL_API fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
 
-/* What fbrl_robot_safe_stop() found and did. Positions are the arm's (W2 WORLD). */
+/* What fbrl_robot_safe_stop() found and did: result FBRL_OK, or why the stop is incomplete
+ * (FBRL_EOFFLINE, or the link's stop's, stop.result); whether a motion had been sent and
+ * not seen to end, and its line ("" none); the link's safe stop (halted, the outputs
+ * switched off, left on and not known, STATUS, where the arm stands). */
 typedef struct fbrl_robot_stop {
-    fbrl_status result;                  /* FBRL_OK, or why the stop is incomplete (FBRL_EOFFLINE,
-                              * FBRL_EDISCONNECTED, FBRL_EBUSY: a command the controller
-                              * was still running did not end, so HALT could not be typed) */
-    int was_moving;                      /* a motion had been sent and not seen to end */
-    char motion[FBRL_LINK_LINE_MAX + 1]; /* the last motion command sent ("" none) */
-    int halted;                          /* HALT ran on the controller */
-    uint32_t switched_off;               /* outputs this stop switched off (bit n-1 = output n) */
-    uint32_t left_on;                    /* outputs on after the stop (this stop left them: not switched
-                              * on by this context, or switching off failed) */
-    int have_status;                     /* homed and the output bits come from STATUS after HALT */
-    int homed;
-    int have_where;  /* where[] holds the arm's position after HALT */
-    double where[6]; /* x y z yaw pitch roll, inches and degrees */
+    fbrl_status result;
+    int was_moving;
+    char motion[FBRL_LINK_LINE_MAX + 1];
+    fbrl_link_stop stop;
 } fbrl_robot_stop;
 
-/* Make the cell safe after an abort (Ctrl-C): let a command the controller already has
- * end (at most FBRL_ROBOT_STOP_DRAIN_MS), HALT the arm, switch off every output this
- * context switched on that is still on, and read STATUS and W2 for the report. Never
- * throws; blocking, bounded by the link's timeouts. out must not be NULL. */
+/* Make the cell safe after an abort (Ctrl-C): fbrl_link_safe_stop() with the outputs this
+ * context switched on, after a command the controller already has ended (at most
+ * FBRL_ROBOT_STOP_DRAIN_MS). Never throws; blocking, bounded by the link's timeouts. out
+ * must not be NULL. */
 #define FBRL_ROBOT_STOP_DRAIN_MS 5000u
 FBRL_API fbrl_status fbrl_robot_safe_stop(fbrl_robot *r, fbrl_robot_stop *out);
 
 /* ---- for a host that sends the commands on a link itself (the Python bindings) ---- */
 
-/* The same stop without a robot context: outputs are the outputs the host switched on
- * (bit n-1 = output n), motion the last motion line it sent and has not seen end (NULL:
- * none). FBRL_EOFFLINE for a NULL link. */
+/* The same stop without a robot context, in the same report: fbrl_link_safe_stop() with
+ * the outputs the host switched on (bit n-1 = output n) and motion, the last motion line it
+ * sent and has not seen end (NULL: none), named in the report. FBRL_EOFFLINE for a NULL
+ * link. */
 FBRL_API fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const char *motion,
                                                fbrl_robot_stop *out);
 

@@ -108,6 +108,10 @@ FBRL_API fbrl_status fbrl_runlog_step_end(fbrl_runlog *l, const char *step, long
  * written when another record comes: "count" times, the last at "last_t". */
 FBRL_API fbrl_status fbrl_runlog_command(fbrl_runlog *l, const char *line, size_t len, fbrl_status result,
                                          int code);
+/* The same for the run-th run of one command (fbrl_link_get_runs: the link typed it again,
+ * docs/link.md 3.9): above 1 the record says so ("run": 2). */
+FBRL_API fbrl_status fbrl_runlog_command_run(fbrl_runlog *l, const char *line, size_t len, fbrl_status result,
+                                             int code, unsigned run);
 
 /* A device action ("device": name, "action": "on", "off", "pulse", "dispense" ...) and a
  * timed wait ("wait": what), each with planned and actual milliseconds (planned < 0: none). */

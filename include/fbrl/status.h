@@ -53,11 +53,13 @@ typedef enum fbrl_status {
                                 * the file may grow no more (a size limit) */
     FBRL_ELOOP = -37,         /* symbolic links that lead round in a loop (or too many) */
     FBRL_EREADONLY = -38,     /* a read-only file, or a file system mounted read-only */
-    FBRL_EGUARD = -39         /* a motion the work cell's guard refused, or one that did not
+    FBRL_EGUARD = -39,        /* a motion the work cell's guard refused, or one that did not
                                 * pass it (docs/workcell.md "The guard"): nothing was sent */
+    FBRL_EUNITS = -40         /* link: the controller works in millimetres (METRIC), the
+                                * host's lengths are inches (docs/link.md 1) */
 } fbrl_status;
 
-#define FBRL_STATUS_MIN FBRL_EGUARD
+#define FBRL_STATUS_MIN FBRL_EUNITS
 
 /* Short English text for a code; never NULL (unknown codes give "unknown status"). */
 FBRL_API const char *fbrl_status_str(fbrl_status st);

@@ -115,7 +115,7 @@ FBRL_API fbrl_status fbrl_uart_pl011_init(fbrl_uart_pl011 *b, const fbrl_uart_pl
 /* The backend for fbrl_uart_init(u, &fbrl_uart_pl011_ops, b, ...). configure programs
  * IBRD/FBRD (nearest 1/64: within 0.8 %; refused where IBRD leaves 1..65535), LCRH
  * (5-8 bits, N/E/O, 1-2 stop bits, FIFOs on), IFLS, CR. */
-extern const fbrl_uart_ops fbrl_uart_pl011_ops;
+extern FBRL_API const fbrl_uart_ops fbrl_uart_pl011_ops;
 
 /* After fbrl_uart_init: connect the handler to the core and unmask receive and error
  * interrupts in IMSC. The board enables the UART's line in its interrupt controller. */

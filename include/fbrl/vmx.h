@@ -59,6 +59,29 @@ FBRL_API fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn 
                                      const void *word, unsigned flags, const char *stack_effect,
                                      const char *help);
 
+/* ---- a word set's table (as Lua's luaL_Reg and luaL_setfuncs) ---- */
+
+/* One word of a word set. fn runs with ctx (fbrl_vmx_define_table's) and the row itself as
+ * its word; spec lists its parameters in fbrl_vmx_args' letters ("" for none) and
+ * fbrl_vmx_check() fetches them (a word set with letters of its own maps them onto those:
+ * the robot's L X A J); flags as fbrl_vmx_define's, with FBRL_VMX_PARSE; code and arg are
+ * the word set's own numbers, so that one function serves several rows (a controller
+ * command, a selector, a size). The help text is FBRL_DOC(stack effect, help). */
+typedef struct fbrl_vmx_reg {
+    const char *name;
+    fbrl_vmx_fn fn;
+    const char *spec;
+    uint8_t flags;
+    int16_t code;
+    intptr_t arg;
+    FBRL_DOC_FIELDS
+} fbrl_vmx_reg;
+#define FBRL_VMX_PARSE 8u /* row flag: its parameters may be typed after it (FBRL_VMX_LINE) */
+
+/* Define the n words of rows (which must outlive the VM), in order, each with ctx: FBRL_OK,
+ * or fbrl_vmx_define's failure for the first row that fails (the rows before it stay). */
+FBRL_API fbrl_status fbrl_vmx_define_table(fbrl_vm *vm, const fbrl_vmx_reg *rows, size_t n, void *ctx);
+
 /* The execution token of the newest visible word of that name: FBRL_OK, or FBRL_ENOENT. */
 FBRL_API fbrl_status fbrl_vmx_find(const fbrl_vm *vm, const char *name, size_t len, fbrl_cell *xt);
 /* The name of the word xt (in the VM's headers, valid while the word is; "" for :NONAME
@@ -151,6 +174,11 @@ typedef struct fbrl_vmx_val {
  * NULL, describes parameter k there ("a location name"). Throws on error. */
 FBRL_API fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const char *const *what,
                                    unsigned how, fbrl_vmx_val *v);
+
+/* The parameters of a table word (as Lua's luaL_check*): fbrl_vmx_args with the row's name
+ * and spec, from the stacks, or with FBRL_VMX_PARSE in its flags also from the input after
+ * it. word is the row the word was given (its fn's third argument). Throws on error. */
+FBRL_API fbrl_status fbrl_vmx_check(fbrl_vm *vm, const void *word, fbrl_vmx_val *v);
 
 /* One parameter of the given kind parsed from the input after the word (GETREAL). */
 FBRL_API fbrl_status fbrl_vmx_arg_parse(fbrl_vm *vm, const char *word, char kind, const char *what,
@@ -261,8 +289,9 @@ FBRL_API fbrl_status fbrl_vmx_set_current(fbrl_vm *vm, fbrl_cell wid, fbrl_cell 
 
 /* ---- the built-in word set ---- */
 
-/* The data words every VM has (queues, arrays, strings, type sizes: thesis I-1 .. I-3);
- * fbrl_vm_create() installs them. */
+/* The data words (queues, arrays, strings, type sizes: thesis I-1 .. I-3), a word set as any
+ * other: the engine installs none. fbrl_glossary_install() installs them first (the glossary
+ * stands on them); a host without the glossary that wants them calls this once. */
 FBRL_API fbrl_status fbrl_vmx_data_words(fbrl_vm *vm);
 
 #ifdef __cplusplus

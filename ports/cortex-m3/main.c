@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "board.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/link.h"
 #include "fbrl/robot.h"
@@ -229,14 +229,15 @@ static fbrl_status relink(void *ctx, fbrl_robot *r)
  * XOFF and hold the output until an XON that never comes). The link learns the line's
  * setting when it starts (without flow control its probes carry an XON), so it starts
  * again and greets the controller, as RECONNECT does. */
-static fbrl_status w_xonxoff(fbrl_vm *v, void *arg)
+static fbrl_status w_xonxoff(fbrl_vm *v, void *arg, const void *word)
 {
-    fbrl_cell flag;
+    fbrl_vmx_val val[1];
     fbrl_uart_config c;
     fbrl_status st;
     (void)arg;
-    if ((st = fbrl_vm_pop(v, &flag)) != FBRL_OK)
+    if ((st = fbrl_vmx_check(v, word, val)) != FBRL_OK)
         return st;
+    fbrl_cell flag = val[0].i;
     if ((st = fbrl_uart_get_config(&robot_line, &c)) != FBRL_OK)
         return st;
     c.flow = flag ? FBRL_FLOW_XONXOFF : FBRL_FLOW_NONE;
@@ -263,14 +264,15 @@ static void stats_line(const char *name, fbrl_uart *u)
     con_puts(msg);
 }
 
-static fbrl_status w_fw_stats(fbrl_vm *v, void *arg) /* (FW-STATS) ( unused -- ) */
+static fbrl_status w_fw_stats(fbrl_vm *v, void *arg, const void *word) /* (FW-STATS) ( unused -- ) */
 {
-    fbrl_cell unused;
+    fbrl_vmx_val val[1];
     char msg[96];
     fbrl_status st;
     (void)arg;
-    if ((st = fbrl_vm_pop(v, &unused)) != FBRL_OK)
+    if ((st = fbrl_vmx_check(v, word, val)) != FBRL_OK)
         return st;
+    fbrl_cell unused = val[0].i;
     snprintf(msg, sizeof msg, "stack: %lu of %lu bytes used; dictionary: %ld bytes free\n",
              (unsigned long)board_stack_used(), (unsigned long)board_stack_size(), (long)unused);
     con_puts(msg);
@@ -278,6 +280,12 @@ static fbrl_status w_fw_stats(fbrl_vm *v, void *arg) /* (FW-STATS) ( unused -- )
     stats_line("controller", &robot_line);
     return FBRL_OK;
 }
+
+static const fbrl_vmx_reg fw_words[] = {
+    {"XONXOFF", w_xonxoff, "I", 0, 0, 0,
+     FBRL_DOC("( flag -- )", "flow control on the controller's line: XON/XOFF (true, the default) or none")},
+    {"(FW-STATS)", w_fw_stats, "I", 0, 0, 0, FBRL_DOC("( u -- )", "FW-STATS with UNUSED given")},
+};
 
 /* ---- errors, as fbrlmon prints them: "error: MESSAGE [in WORD]" ---- */
 
@@ -362,10 +370,7 @@ int main(void)
     if (st == FBRL_OK) /* CELL-BOX ...: every motion is checked against the cell before it is sent */
         st = fbrl_cell_install(vm, &cell, &robot, &glossary);
     if (st == FBRL_OK)
-        st = fbrl_vm_define(vm, "XONXOFF", w_xonxoff, NULL, "( flag -- )",
-                            "flow control on the controller's line: XON/XOFF (true, the default) or none");
-    if (st == FBRL_OK)
-        st = fbrl_vm_define(vm, "(FW-STATS)", w_fw_stats, NULL, "( u -- )", "FW-STATS with UNUSED given");
+        st = fbrl_vmx_define_table(vm, fw_words, sizeof fw_words / sizeof fw_words[0], NULL);
     if (st == FBRL_OK) {
         static const char fw_stats[] = ": FW-STATS ( -- ) UNUSED (FW-STATS) ;";
         st = fbrl_vm_eval(vm, fw_stats, sizeof fw_stats - 1);

@@ -120,6 +120,7 @@ fbrl_status fbrl_link_set_exec_handler(fbrl_link *l, fbrl_link_exec_fn fn, void 
 fbrl_status fbrl_link_error(const fbrl_link *l, int *code, const char **text);
 int fbrl_link_units(const fbrl_link *l);
 int fbrl_link_fate_of(fbrl_status result);
+fbrl_status fbrl_link_get_runs(const fbrl_link *l, unsigned *runs, unsigned *maybe_runs);
 fbrl_status fbrl_rapl_cmd_find(const char *keyword, int *cmd);
 const char *fbrl_rapl_error_text(int code);
 
@@ -219,23 +220,26 @@ fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g);
 fbrl_status fbrl_glossary_set_file_storage(fbrl_glossary *g, void *mem, size_t size);
 fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl_glossary *g);
 fbrl_status fbrl_robot_set_link(fbrl_robot *r, fbrl_link *link);
+typedef struct fbrl_link_stop {
+    fbrl_status result;
+    int halted;
+    fbrl_status status_result;
+    int have_status, homed, have_outputs;
+    uint32_t switched_off, off_failed, left_on, unknown;
+    int have_where;
+    double where[6];
+} fbrl_link_stop;
 typedef struct fbrl_robot_stop {
     fbrl_status result;
     int was_moving;
     char motion[81];
-    int halted;
-    uint32_t switched_off;
-    uint32_t left_on;
-    int have_status;
-    int homed;
-    int have_where;
-    double where[6];
+    fbrl_link_stop stop;
 } fbrl_robot_stop;
 fbrl_status fbrl_robot_safe_stop_link(fbrl_link *link, uint32_t outputs, const char *motion, fbrl_robot_stop *out);
 fbrl_status fbrl_robot_line_effect(const char *line, unsigned *effect, uint32_t *outputs_on);
 int fbrl_robot_still_line(const char *line, size_t len, int flawed);
 int fbrl_robot_last_error(const fbrl_robot *r);
-/* the work cell's words and the guard on every robot motion (fbrl/cell.h); the guard's record
+/* the work cell's words and the guard on every robot motion (fbrl/cell_words.h); the guard's record
  * starts with these two counters */
 typedef struct fbrl_cell_stats_head {
     unsigned long moves;

@@ -155,7 +155,8 @@ class Status:
 
 class Link:
     """The echo-verified command link to a RAPL controller on an open Port. Every command
-    runs exactly once or raises fbrl.Error saying whether it ran (.fate).
+    runs, or raises fbrl.Error saying whether it ran (.fate); .runs says how many times the
+    last one ran (a command safe to repeat whose reply came damaged may run twice).
 
     Settings (fbrl_link_config, docs/link.md): echo_timeout_ms, reply_timeout_ms,
     wait_timeout_ms, max_attempts, query_reads, naxes, lower_case; None keeps the default.
@@ -259,6 +260,15 @@ class Link:
         raise Error(st, what, fate=fate)
 
     @property
+    def runs(self):
+        """How many times the last command ran on the controller: (proven, may have). More
+        than one when the link had to type it again (a damaged reply of a command safe to
+        repeat), or a query read until its replies agreed (docs/link.md 3.9)."""
+        runs, maybe = ffi.new("unsigned *"), ffi.new("unsigned *")
+        lib.fbrl_link_get_runs(self._link.ptr, runs, maybe)
+        return (runs[0], maybe[0])
+
+    @property
     def units(self):
         """The controller's units of length as the link last learned them (a STATUS, or METRIC
         sent): "inch", "mm", or None when not known yet (fbrl_link_units)."""
@@ -334,7 +344,8 @@ class Link:
             return self._check(self._run(what, go), what)
 
     def connect(self):
-        """The start-up handshake: a known, empty command line; NOHELP."""
+        """The start-up handshake: a known, empty command line; NOHELP; STATUS, whose units
+        must be inches (FBRL_EUNITS for a controller left in millimetres)."""
         with self._stopping():
             self._check(lib.fbrl_link_connect(self._link.ptr), "connect")
 

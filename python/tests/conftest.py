@@ -26,9 +26,10 @@ def _fbrlsim():
 class Sim:
     """An fbrlsim process: .port is its pty, .log() the command lines it executed."""
 
-    def __init__(self, tmp_path, *args, time_scale=TIME_SCALE):
+    def __init__(self, tmp_path, *args, time_scale=TIME_SCALE, status_extra=True):
         self.log_path = str(tmp_path / "sim.log")
-        self.proc = subprocess.Popen([_fbrlsim(), "--status-extra", "--log", self.log_path, "--time-scale", time_scale]
+        extra = ["--status-extra"] if status_extra else []  # without it STATUS is RAPL-II's: no OUTPUTS line
+        self.proc = subprocess.Popen([_fbrlsim()] + extra + ["--log", self.log_path, "--time-scale", time_scale]
                                      + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + SIM_START_SECONDS
         self.port = self.proc.stdout.readline().strip()

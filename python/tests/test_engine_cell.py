@@ -58,9 +58,10 @@ def test_interrupt_from_another_thread_stops_a_wait(link):
         assert e.value.throw_code == -28 and time.monotonic() - t0 < 5
 
 
-def test_the_link_learns_the_controller_s_units(link):
-    assert link.units is None  # nothing read yet
-    link.status()
+def test_the_link_learns_the_controller_s_units(sim, link):
+    assert sim.log()[:2] == ["NOHELP", "STATUS"]  # the connect read them (docs/link.md 1)
     assert link.units == "inch"
     link.raw("METRIC")
+    assert link.units == "mm"
+    link.status()
     assert link.units == "mm"

@@ -12,7 +12,7 @@ import time
 import pytest
 
 import fbrl
-from conftest import LOADED_HOST_ECHO_MS
+from conftest import LOADED_HOST_ECHO_MS, Sim
 
 TARGET = fbrl.Location(10.0, -12.0, 3.0, 0.0, -90.0, 0.0)
 SLOW = 2  # SPEED 2: READY to TARGET takes about 60 s on fbrlsim
@@ -171,3 +171,24 @@ def test_ctrl_c_while_the_controller_waits_says_halt_could_not_be_sent(sim, link
     assert stop.name == "FBRL_EBUSY" and not stop.halted and not stop.ok
     assert "HALT could not be sent" in str(e.value)
     assert "HALT" not in sim.log()
+
+
+def test_safe_stop_names_the_outputs_a_plain_status_does_not_show(tmp_path):
+    """A controller whose STATUS has no OUTPUTS line (every RAPL-II one; fbrlsim without
+    --status-extra): the stop switches off what this program switched on and names every
+    other output as not known, with why, instead of "STATUS could not be read"."""
+    sim = Sim(tmp_path, status_extra=False)
+    try:
+        with fbrl.Port(sim.port) as port:
+            link = fbrl.Link(port, echo_timeout_ms=LOADED_HOST_ECHO_MS)
+            link.connect()
+            link.output(OUTPUT, True)
+            stop = link.safe_stop()
+        after = sim.log()[sim.log().index("HALT"):]
+        assert after[:2] == ["HALT", "STATUS"] and "OUTPUT -%d" % OUTPUT in after
+        assert stop.ok and stop.halted and stop.switched_off == [OUTPUT] and stop.left_on is None
+        assert stop.unknown == [n for n in range(1, 17) if n != OUTPUT] and stop.homed is not None
+        assert "STATUS could not be read" not in str(stop)
+        assert "not known: 1-2 4-16 (this controller's STATUS does not show its outputs" in str(stop)
+    finally:
+        sim.stop()

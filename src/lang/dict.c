@@ -45,7 +45,7 @@ fbrl_hdr *fbrl__rom_hdr(uint32_t op)
     rom_next = (rom_next + 1) % FBRL_ROM_VIEWS;
     memset(h, 0, sizeof *h);
     h->kind = K_PRIM;
-    h->op = (uint16_t)op;
+    H_OP(h) = (uint16_t)op;
     h->flags = rom_prims[op].flags;
     h->len = rom_prims[op].len;
     h->name = ROM_NAME(op);
@@ -108,7 +108,20 @@ static uint32_t hash_name(const char *s, size_t n)
         h = (h ^ upc(s[i])) * 16777619u;
     return h ^ (h >> 15);
 }
-#define BUCKET(h) ((h) & (FBRL_HASH - 1))
+/* The index of the RAM headers' names: a hash whose buckets live in the headers themselves,
+ * bucket b's first header in the head field of the b-th RAM header. The number of buckets
+ * is the largest power of two not above the number of RAM headers, so chains stay one or
+ * two headers long on average however large the dictionary grows; when the headers reach
+ * twice the buckets, the index doubles (rebuilt in one pass over the headers, so each
+ * word costs O(1) on average). The index takes no memory of its own: the headers grow
+ * down in the VM's block, out of reach of Forth code, and carry it. */
+#define NRAM(vm) ((vm)->nwords - HDR_ROM)
+static fbrl_hlink *bucket(const fbrl_vm *vm, uint32_t hn)
+{
+    return &HDR(vm, HDR_ROM + (hn & (vm->nbuckets - 1)))->head;
+}
+/* The first header (index+1) of hn's chain, 0: none. */
+#define CHAIN(vm, hn) ((vm)->nbuckets ? *bucket((vm), (hn)) : 0u)
 /* A header's hash, and whether it can be that of hash hn (FBRL_SMALL_HEADERS keeps none:
  * the name comparison decides). */
 #ifdef FBRL_SMALL_HEADERS
@@ -156,7 +169,7 @@ int fbrl__find(const fbrl_vm *vm, const char *name, size_t len)
     if (len == 0 || len > FBRL_NAME_MAX || vm->norder == 0)
         return -1;
     int best = -1, brank = vm->norder;
-    uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
+    uint32_t hn = hash_name(name, len), i = CHAIN(vm, hn);
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
         if (HASH_MAY(h, hn) && h->len == len && !(h->flags & FH) && name_eq(h->name, name, len)) {
@@ -185,7 +198,7 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
 {
     if (len == 0 || len > FBRL_NAME_MAX)
         return -1;
-    uint32_t hn = hash_name(name, len), i = vm->hash[BUCKET(hn)];
+    uint32_t hn = hash_name(name, len), i = CHAIN(vm, hn);
     while (i) {
         const fbrl_hdr *h = HDR(vm, i - 1);
         if (HASH_MAY(h, hn) && h->wl == wl && h->len == len && !(h->flags & FH) &&
@@ -202,15 +215,22 @@ int fbrl__find_in(const fbrl_vm *vm, unsigned wl, const char *name, size_t len)
 
 int fbrl__name_eq(const char *a, const char *b, size_t n) { return name_eq(a, b, n); }
 
+/* The index for the headers there are now (new_header_at when they reach twice the buckets,
+ * and whenever words are forgotten). */
 static void rebuild_hash(fbrl_vm *vm)
 {
+    uint32_t n = NRAM(vm), nb = n ? 1 : 0;
+    while (nb && nb <= n / 2)
+        nb *= 2;
     vm->data_hi = (unsigned char *)HDR_LOW(vm);
-    memset(vm->hash, 0, sizeof vm->hash);
-    for (uint32_t i = HDR_ROM; i < vm->nwords; i++) {
+    vm->nbuckets = nb;
+    for (uint32_t b = 0; b < nb; b++)
+        HDR(vm, HDR_ROM + b)->head = 0;
+    for (uint32_t i = HDR_ROM; i < vm->nwords; i++) { /* oldest first: chains run newest first */
         fbrl_hdr *h = HDR(vm, i);
-        unsigned b = BUCKET(HASH_OF(h));
-        h->next = vm->hash[b];
-        vm->hash[b] = (fbrl_hlink)(i + 1);
+        fbrl_hlink *b = bucket(vm, HASH_OF(h));
+        h->next = *b;
+        *b = (fbrl_hlink)(i + 1);
     }
 }
 
@@ -224,7 +244,7 @@ uint32_t fbrl__hdr_index(const fbrl_vm *vm, const fbrl_hdr *h)
 {
 #ifdef FBRL_ROM_PRIMS
     if (h >= rom_views && h < rom_views + FBRL_ROM_VIEWS)
-        return h->op; /* a primitive's index is its op */
+        return H_OP(h); /* a primitive's index is its op */
 #endif
     return (uint32_t)(vm->hdr_top - 1 - h) + HDR_ROM;
 }
@@ -281,11 +301,15 @@ static int new_header_at(fbrl_vm *vm, const char *name, size_t len, int kind, un
     h->hash = hn;
 #endif
     fbrl__note_header(vm, h);
-    unsigned b = BUCKET(hn);
-    h->next = vm->hash[b];
-    vm->hash[b] = (fbrl_hlink)(vm->nwords + 1);
     vm->nwords++;
-    vm->data_hi = (unsigned char *)h;
+    if (NRAM(vm) >= 2 * vm->nbuckets) { /* the index doubles (and takes h in) */
+        rebuild_hash(vm);
+    } else {
+        fbrl_hlink *b = bucket(vm, hn);
+        h->next = *b;
+        *b = (fbrl_hlink)vm->nwords;
+        vm->data_hi = (unsigned char *)h;
+    }
     *out = h;
     return 0;
 }
@@ -336,10 +360,31 @@ int fbrl__emit(fbrl_vm *vm, fbrl_cell v)
  * HERE still ends it (peep_end == here). Everything else that moves HERE clears
  * peep_end, and so do the control-flow words and HERE itself, because a branch
  * target (a label at HERE) must never end up inside a fused instruction. */
-static void peep_set(fbrl_vm *vm, unsigned char *at)
+static void peep_set(fbrl_vm *vm, unsigned char *at, unsigned char *prev)
 {
+    vm->peep_prev = prev;
     vm->peep = at;
     vm->peep_end = vm->here;
+}
+/* The instruction that ends at HERE and may be fused with, or NULL (asked before emitting). */
+static unsigned char *peep_last(const fbrl_vm *vm) { return vm->peep_end == vm->here ? vm->peep : NULL; }
+
+/* A comparison and its branch after DUP (DUP 2 < IF) or 2DUP (2DUP < IF): the op that
+ * keeps what it compares, or 0. */
+static int fuse_keep(fbrl_cell before, int op)
+{
+    static const struct {
+        uint16_t before, op, fused;
+    } triples[] = {
+        {OP_DUP, OP_LITEQZBR, OP_DUPLITEQZBR},   {OP_DUP, OP_LITNEZBR, OP_DUPLITNEZBR},
+        {OP_DUP, OP_LITLTZBR, OP_DUPLITLTZBR},   {OP_DUP, OP_LITGTZBR, OP_DUPLITGTZBR},
+        {OP_TWODUP, OP_EQZBR, OP_TWODUPEQZBR},   {OP_TWODUP, OP_NEZBR, OP_TWODUPNEZBR},
+        {OP_TWODUP, OP_LTZBR, OP_TWODUPLTZBR},   {OP_TWODUP, OP_GTZBR, OP_TWODUPGTZBR},
+    };
+    for (size_t i = 0; i < sizeof triples / sizeof triples[0]; i++)
+        if (triples[i].before == before && triples[i].op == op)
+            return triples[i].fused;
+    return 0;
 }
 
 void fbrl__peep_reset(fbrl_vm *vm) { vm->peep_end = NULL; }
@@ -383,6 +428,14 @@ static int fuse(fbrl_cell prev, int op)
         {OP_GT, OP_ZBRANCH, OP_GTZBR},       {OP_ZEQ, OP_ZBRANCH, OP_ZEQZBR},
         {OP_LITEQ, OP_ZBRANCH, OP_LITEQZBR}, {OP_LITNE, OP_ZBRANCH, OP_LITNEZBR},
         {OP_LITLT, OP_ZBRANCH, OP_LITLTZBR}, {OP_LITGT, OP_ZBRANCH, OP_LITGTZBR},
+        {OP_I, OP_FETCH, OP_IFETCH},         {OP_I, OP_CFETCH, OP_ICFETCH},
+        {OP_I, OP_TWOFETCH, OP_ITWOFETCH},   {OP_I, OP_STORE, OP_ISTORE},
+        {OP_I, OP_CSTORE, OP_ICSTORE},       {OP_I, OP_TWOSTORE, OP_ITWOSTORE},
+        {OP_LIT, OP_PPLOOP, OP_LITPPLOOP},   {OP_DUP, OP_PPLOOP, OP_DUPPPLOOP},
+        {OP_OVER, OP_FETCH, OP_OVERFETCH},   {OP_PICK2, OP_FETCH, OP_PICK2FETCH},
+        {OP_STAR, OP_PLUS, OP_STARPLUS},
+        {OP_LITPLUS, OP_FETCH, OP_LITPLUSFETCH}, {OP_LITPLUS, OP_CFETCH, OP_LITPLUSCFETCH},
+        {OP_LITPLUS, OP_STORE, OP_LITPLUSSTORE}, {OP_LITPLUS, OP_CSTORE, OP_LITPLUSCSTORE},
     };
     for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
         if (pairs[i].prev == prev && pairs[i].op == op)
@@ -390,7 +443,8 @@ static int fuse(fbrl_cell prev, int op)
     return 0;
 }
 
-/* Compile one op (a primitive, or OP_ZBRANCH whose target the caller emits next). */
+/* Compile one op (a primitive, or OP_ZBRANCH or OP_PPLOOP, whose target the caller emits
+ * next). */
 int fbrl__compile_op(fbrl_vm *vm, int op)
 {
     if (vm->peep_end && vm->peep_end == vm->here) {
@@ -399,30 +453,59 @@ int fbrl__compile_op(fbrl_vm *vm, int op)
         fbrl_cell prev, v;
         int f;
         memcpy(&prev, p, sizeof prev);
-        if (prev == OP_LIT) {
+        if (prev == OP_LIT || prev == OP_DROPLIT) {
             memcpy(&v, p + CELL, sizeof v);
             if (fold_lit(op, &v)) {
                 memcpy(p + CELL, &v, sizeof v);
                 return 0;
             }
-            if (op == OP_PICK && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
+            if (op == OP_PICK && prev == OP_LIT && v >= 0 && v <= 2) { /* 0 PICK = DUP, 1 PICK = OVER */
                 prev = v == 0 ? OP_DUP : v == 1 ? OP_OVER : OP_PICK2;
                 memcpy(p, &prev, sizeof prev);
                 vm->here -= CELL;
                 vm->peep_end = vm->here;
                 return 0;
             }
+            if (prev == OP_DROPLIT && fuse(OP_LIT, op)) {
+                /* DROPLIT v | op  ->  DROP | LIT v | op: the literal's own pair (V @, 1 +)
+                 * saves as much, and a debugger steps over DROP and V @ as written */
+                int r = fbrl__emit(vm, v);
+                if (r)
+                    return r;
+                prev = OP_DROP;
+                memcpy(p, &prev, sizeof prev);
+                prev = OP_LIT;
+                memcpy(p + CELL, &prev, sizeof prev);
+                vm->peep_prev = p;
+                vm->peep = p += CELL;
+                vm->peep_end = vm->here;
+            }
         }
         if ((f = fuse(prev, op))) {
             prev = f;
             memcpy(p, &prev, sizeof prev);
+            unsigned char *q = vm->peep_prev;
+            fbrl_cell before = 0;
+            if (q)
+                memcpy(&before, q, sizeof before);
+            if ((f = fuse_keep(before, (int)prev))) {
+                /* DUP | LITxZBR lit  ->  DUPLITxZBR lit;  2DUP | xZBR  ->  2DUPxZBR (the
+                 * caller emits the target next): the fused op and its literal move down */
+                prev = f;
+                memcpy(q, &prev, sizeof prev);
+                memmove(q + CELL, p + CELL, (size_t)(vm->here - (p + CELL)));
+                vm->here -= CELL;
+                vm->peep = q;
+                vm->peep_prev = NULL;
+                vm->peep_end = vm->here;
+            }
             return 0;
         }
     }
-    unsigned char *at = vm->here;
+    unsigned char *at = vm->here, *prev = peep_last(vm);
     int r = fbrl__emit(vm, op);
     if (!r)
-        peep_set(vm, at);
+        peep_set(vm, at, prev);
     return r;
 }
 
@@ -435,9 +518,9 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
         return fbrl__throw_msg(vm, FBRL_THROW_UNDEFINED, "invalid execution token");
     switch (h->kind) {
     case K_PRIM:
-        if (h->op == OP_EXIT && vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
+        if (H_OP(h) == OP_EXIT && vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
             return r; /* EXIT from a definition with locals drops their frame first */
-        return fbrl__compile_op(vm, h->op);
+        return fbrl__compile_op(vm, H_OP(h));
     case K_COLON:
         if ((r = fbrl__emit(vm, OP_CALL)))
             return r;
@@ -456,11 +539,23 @@ int fbrl__compile_xt(fbrl_vm *vm, fbrl_cell xt)
 
 int fbrl__compile_lit(fbrl_vm *vm, fbrl_cell v)
 {
-    unsigned char *at = vm->here;
+    if (vm->peep_end && vm->peep_end == vm->here) { /* DROP 1  ->  DROPLIT 1 */
+        fbrl_cell prev;
+        memcpy(&prev, vm->peep, sizeof prev);
+        if (prev == OP_DROP) {
+            prev = OP_DROPLIT;
+            memcpy(vm->peep, &prev, sizeof prev);
+            int r = fbrl__emit(vm, v);
+            if (!r)
+                vm->peep_end = vm->here;
+            return r;
+        }
+    }
+    unsigned char *at = vm->here, *prev = peep_last(vm);
     int r = fbrl__emit(vm, OP_LIT);
     if (r || (r = fbrl__emit(vm, v)))
         return r;
-    peep_set(vm, at);
+    peep_set(vm, at, prev);
     return 0;
 }
 
@@ -608,6 +703,7 @@ int fbrl__colon(fbrl_vm *vm, int noname, fbrl_cell *xt)
         discard_definition(vm);
     vm->def_here = vm->here;
     vm->def_nwords = vm->nwords;
+    vm->nbr_orig = vm->nexit_orig = 0; /* words.c: no BRANCH of this definition yet */
     if (noname) {
         if (unused_bytes(vm) < 256 + (fbrl_cell)sizeof(fbrl_hdr))
             return FBRL_THROW_DICT_OVERFLOW;
@@ -640,6 +736,27 @@ fail:
     return r;
 }
 
+/* ; is about to compile its EXIT at HERE (words.c resolve() noted the forward BRANCHes
+ * that land there): a BRANCH that jumps there (ELSE ... THEN ;)
+ * becomes EXITBR, an EXIT that keeps the branch's target for SEE. */
+static void exit_branches(fbrl_vm *vm)
+{
+    if (vm->exit_here == vm->here) {
+        for (unsigned i = 0; i < vm->nexit_orig; i++) {
+            fbrl_cell at = vm->exit_orig[i] - CELL, op;
+            if (!fbrl__addr_ok(vm, at, CELL))
+                continue;
+            memcpy(&op, (void *)at, sizeof op);
+            if (op == OP_BRANCH) {
+                op = OP_EXITBR;
+                memcpy((void *)at, &op, sizeof op);
+            }
+        }
+    }
+    vm->nbr_orig = vm->nexit_orig = 0;
+    vm->exit_here = NULL;
+}
+
 int fbrl__semicolon(fbrl_vm *vm)
 {
     int r;
@@ -648,6 +765,7 @@ int fbrl__semicolon(fbrl_vm *vm)
     if (vm->nlocals && (r = fbrl__compile_xt(vm, vm->lexit_xt)))
         return r;
     vm->nlocals = vm->lpend = 0;
+    exit_branches(vm);
     if ((r = fbrl__emit(vm, OP_EXIT)))
         return r;
     fbrl_hdr *h = HDR(vm, vm->def_word);
@@ -758,7 +876,7 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
     int r = new_header(vm, name, len, old->kind, old->flags & (FI | FC | FS), &h);
     if (r)
         return r;
-    fbrl_hlink next = h->next;
+    fbrl_hlink next = h->next, head = h->head; /* its place in the index stays */
     uint8_t wl = h->wl;
 #ifdef FBRL_SMALL_HEADERS
     const char *own = h->name; /* new_header copied the name to HERE */
@@ -773,6 +891,7 @@ int fbrl__synonym(fbrl_vm *vm, const char *name, size_t len, const fbrl_hdr *old
 #endif
     h->len = (uint8_t)len;
     h->next = next;
+    h->head = head;
     h->wl = wl;
     h->flags = (uint8_t)(old->flags & (FI | FC | FS));
     return 0;
@@ -813,7 +932,7 @@ static int found_as_itself(const fbrl_vm *vm, uint32_t i)
     if (k >= 0 && (i < HDR_ROM ? (uint32_t)k != i : order_rank(vm, 0) < rw))
         return 0;
 #endif
-    for (uint32_t j = vm->hash[BUCKET(wh)]; j; j = HDR(vm, j - 1)->next) {
+    for (uint32_t j = CHAIN(vm, wh); j; j = HDR(vm, j - 1)->next) {
         const fbrl_hdr *h = HDR(vm, j - 1);
         if (j - 1 == i || !HASH_MAY(h, wh) || h->len != w->len || (h->flags & FH) ||
             !name_eq(h->name, w->name, w->len))
@@ -853,7 +972,7 @@ int fbrl__install_prims(fbrl_vm *vm)
             continue;
         if (new_header_at(vm, ops[op].name, strlen(ops[op].name), K_PRIM, ops[op].flags, 1, &h))
             return FBRL_THROW_DICT_OVERFLOW;
-        h->op = (uint16_t)op;
+        H_OP(h) = (uint16_t)op;
 #ifndef FBRL_NO_HELP
         h->stack = ops[op].stack;
         h->help = ops[op].help;

@@ -10,8 +10,9 @@
 #include "words.h"
 
 /* A superinstruction shows as the words it was compiled from; lit: a literal operand
- * follows the op, br: a branch target follows (after the literal). One table for SEE and
- * the word hook. */
+ * follows the op, written where the words have # (first when they have none); br: a branch
+ * target follows (after the literal), 1 shown as 0BRANCH, 2 a loop's (shown by nothing).
+ * One table for SEE and the word hook. */
 static const struct {
     int16_t op;
     uint8_t lit, br; /* a row is 8 bytes, not 12 */
@@ -25,6 +26,14 @@ static const struct {
     {OP_NEZBR, 0, 1, "<>"},          {OP_LTZBR, 0, 1, "<"},       {OP_GTZBR, 0, 1, ">"},
     {OP_ZEQZBR, 0, 1, "0="},         {OP_LITEQZBR, 1, 1, "="},    {OP_LITNEZBR, 1, 1, "<>"},
     {OP_LITLTZBR, 1, 1, "<"},        {OP_LITGTZBR, 1, 1, ">"},
+    {OP_DUPLITEQZBR, 1, 1, "DUP # ="}, {OP_DUPLITNEZBR, 1, 1, "DUP # <>"}, {OP_DUPLITLTZBR, 1, 1, "DUP # <"},
+    {OP_DUPLITGTZBR, 1, 1, "DUP # >"}, {OP_DROPLIT, 1, 0, "DROP #"},   {OP_IFETCH, 0, 0, "I @"},
+    {OP_ICFETCH, 0, 0, "I C@"},      {OP_ITWOFETCH, 0, 0, "I 2@"},  {OP_ISTORE, 0, 0, "I !"},
+    {OP_ICSTORE, 0, 0, "I C!"},      {OP_ITWOSTORE, 0, 0, "I 2!"},  {OP_LITPPLOOP, 1, 2, "+LOOP"},
+    {OP_DUPPPLOOP, 0, 2, "DUP +LOOP"}, {OP_OVERFETCH, 0, 0, "OVER @"}, {OP_PICK2FETCH, 0, 0, "2 PICK @"},
+    {OP_STARPLUS, 0, 0, "* +"},      {OP_TWODUPEQZBR, 0, 1, "2DUP ="}, {OP_TWODUPNEZBR, 0, 1, "2DUP <>"},
+    {OP_TWODUPLTZBR, 0, 1, "2DUP <"}, {OP_TWODUPGTZBR, 0, 1, "2DUP >"}, {OP_LITPLUSFETCH, 1, 0, "+ @"},
+    {OP_LITPLUSCFETCH, 1, 0, "+ C@"}, {OP_LITPLUSSTORE, 1, 0, "+ !"}, {OP_LITPLUSCSTORE, 1, 0, "+ C!"},
 };
 
 const char *fbrl__fused_words(int op, int *lit, int *br)
@@ -93,8 +102,15 @@ static void name_word(fbrl_vm *vm, fbrl_cell w, const fbrl_cell *ip, const fbrl_
         return;
     }
     if ((text = fbrl__fused_words((int)w, &lit, &br)) != NULL) {
-        size_t k = lit ? literal(vm, cell_at(vm, ip), out, cap) : 0;
-        snprintf(out + k, cap - k, "%s%s", lit ? " " : "", text);
+        const char *at = strchr(text, '#');
+        size_t k = 0;
+        if (at) { /* DUP # <: the words before the literal, the literal, the rest */
+            k = (size_t)(at - text) < cap ? (size_t)(at - text) : cap - 1;
+            memcpy(out, text, k);
+            text = at + 1;
+        }
+        k += lit ? literal(vm, cell_at(vm, ip), out + k, cap - k) : 0;
+        snprintf(out + k, cap - k, "%s%s", lit && !at ? " " : "", text);
         return;
     }
     switch (w) {
@@ -119,7 +135,8 @@ static void name_word(fbrl_vm *vm, fbrl_cell w, const fbrl_cell *ip, const fbrl_
     case OP_EXIT: /* the one ; compiled ends the definition */
         snprintf(out, cap, "%s", in && (fbrl_cell)ip == H_END(in) ? ";" : "EXIT");
         return;
-    case OP_BRANCH: snprintf(out, cap, "BRANCH"); return;
+    case OP_BRANCH:
+    case OP_EXITBR: snprintf(out, cap, "BRANCH"); return; /* EXITBR: a BRANCH that lands on ; */
     case OP_ZBRANCH: snprintf(out, cap, "0BRANCH"); return;
     case OP_PDO: snprintf(out, cap, "DO"); return;
     case OP_PQDO: snprintf(out, cap, "?DO"); return;

@@ -157,7 +157,8 @@ fbrl_status fbrl_vm_create(fbrl_vm **out, const fbrl_vm_config *cfg)
         return FBRL_ENOSPC;
     if (fbrl__task_words(vm))
         return FBRL_ENOSPC;
-    fbrl_status st = fbrl__fbrl_words(vm);
+    /* no word set: they are the host's to install (fbrl_glossary_install, fbrl_vmx_data_words ...) */
+    fbrl_status st = FBRL_OK;
 #ifndef FBRL_NO_FILE_WORDS /* a port without a file system (the firmware) leaves them out */
     if (st == FBRL_OK && vm->host.files)
         st = fbrl__file_words(vm) ? FBRL_ENOSPC : FBRL_OK;

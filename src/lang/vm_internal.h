@@ -37,9 +37,6 @@
 #define FBRL_SRC_MAX 10 /* nested input sources (files, texts, EVALUATE) */
 #endif
 #define FBRL_CF_MAX 64 /* control-flow stack entries */
-#ifndef FBRL_HASH
-#define FBRL_HASH 1024 /* dictionary hash buckets (power of two) */
-#endif
 #ifndef FBRL_PATH_MAX
 #define FBRL_PATH_MAX 256
 #endif
@@ -100,9 +97,9 @@ enum {
 #define FH 4u /* hidden (being defined, or :NONAME) */
 #define FS 8u /* state-smart immediate word (POSTPONE runs it compiling) */
 
-/* FBRL_SMALL_HEADERS: a header 16 bytes shorter, as its chain link is 16 bits (at most
- * FBRL_WORDS_MAX words), it keeps no hash (dict.c computes it from the name) and a code
- * word's fields overlay a C word's. */
+/* FBRL_SMALL_HEADERS: a header of 32 bytes (on a 32-bit target), as its chain links are
+ * 16 bits (at most FBRL_WORDS_MAX words), it keeps no hash (dict.c computes it from the
+ * name), points at its name and keeps no source position. */
 #ifdef FBRL_SMALL_HEADERS
 typedef uint16_t fbrl_hlink;
 #define FBRL_WORDS_MAX UINT16_MAX
@@ -112,22 +109,23 @@ typedef uint32_t fbrl_hlink;
 #endif
 typedef struct fbrl_hdr {
     fbrl_hlink next; /* next header in the hash chain, as index+1 (0 = end) */
-#ifdef FBRL_SMALL_HEADERS
-    uint16_t op; /* K_PRIM: opcode */
+#ifndef FBRL_SMALL_HEADERS
+    uint32_t hash; /* its name's hash (dict.c; compared before the name, so beside next) */
 #endif
+    fbrl_hlink head; /* the dictionary index (dict.c): the first header of the bucket whose
+                        number is this header's place among the RAM headers, index+1 */
     uint8_t kind, flags, len;
     uint8_t wl; /* its word list (wordlist.c): 0 = FORTH-WORDLIST */
 #ifdef FBRL_SMALL_HEADERS
     const char *name; /* len bytes, not NUL-terminated (dict.c new_header_at) */
 #else
     char name[FBRL_NAME_MAX + 1];
-    uint16_t op;   /* K_PRIM: opcode */
-    uint32_t hash; /* its name's hash (dict.c; compared before the name) */
 #endif
     fbrl_cell body; /* data field / colon body (a data-region address) */
-#ifdef FBRL_SMALL_HEADERS
-    /* a code word's fields and a C word's never meet in one word: they share the room
-     * (read through H_END ... H_XFN) */
+    /* the fields by kind never meet in one word, so they share the room (read through
+     * H_END ... H_OP): end (K_COLON: end of the code, for SEE; K_MARKER: the saved word
+     * count), does (K_CREATE with DOES>: its code; K_MARKER: the saved REQUIRE pool use);
+     * fn, arg, xfn (K_CFUNC; xfn, from vmx.h, is called instead of fn); op (K_PRIM) */
     union {
         struct {
             fbrl_cell end, does;
@@ -137,14 +135,8 @@ typedef struct fbrl_hdr {
             void *arg;
             fbrl_vmx_fn xfn;
         } c;
+        uint16_t op;
     } u;
-#else
-    fbrl_cell end;   /* K_COLON: end of the code (for SEE); K_MARKER: saved word count */
-    fbrl_cell does;  /* K_CREATE with DOES>: code address; K_MARKER: saved REQUIRE pool use */
-    fbrl_vm_prim fn; /* K_CFUNC */
-    void *arg;
-    fbrl_vmx_fn xfn; /* K_CFUNC defined through vmx.h: called instead of fn */
-#endif
 #ifndef FBRL_SMALL_HEADERS
     uint32_t file, line; /* where it was defined: req_pool offset + 1 (0: not a file), line */
 #endif
@@ -154,21 +146,12 @@ typedef struct fbrl_hdr {
 #endif
 } fbrl_hdr;
 
-/* The fields by kind: end (K_COLON, K_MARKER), does (K_CREATE, K_MARKER); fn, arg, xfn
- * (K_CFUNC). FBRL_SMALL_HEADERS overlays the two groups. */
-#ifdef FBRL_SMALL_HEADERS
 #define H_END(h)  ((h)->u.code.end)
 #define H_DOES(h) ((h)->u.code.does)
 #define H_FN(h)   ((h)->u.c.fn)
 #define H_ARG(h)  ((h)->u.c.arg)
 #define H_XFN(h)  ((h)->u.c.xfn)
-#else
-#define H_END(h)  ((h)->end)
-#define H_DOES(h) ((h)->does)
-#define H_FN(h)   ((h)->fn)
-#define H_ARG(h)  ((h)->arg)
-#define H_XFN(h)  ((h)->xfn)
-#endif
+#define H_OP(h)   ((h)->u.op)
 
 /* Where a word was defined; FBRL_SMALL_HEADERS keeps no place (the small targets read no
  * source files): file 0, line 0. */
@@ -287,7 +270,7 @@ struct fbrl_vm {
     fbrl_hdr *hdr_top;      /* header i is hdr_top[-1 - i] */
     unsigned char *data_hi; /* end of the addressable region = lowest header */
     uint32_t nwords;
-    fbrl_hlink hash[FBRL_HASH];
+    uint32_t nbuckets; /* the dictionary index's buckets (dict.c): 0, or a power of two */
     fbrl_cell *base, *state, *toin; /* system variables in the data region */
     char *wordbuf, *pad, *hold, *sbuf;
     char *hld; /* pictured output: next free position (moves down) */
@@ -321,6 +304,12 @@ struct fbrl_vm {
     fbrl_cell guard_addr;    /* address of the guard cells (HALT, CATCHEND, BAD...) */
     unsigned char *peep;     /* last instruction the compiler may fuse with (dict.c) */
     unsigned char *peep_end; /* HERE right after it; NULL: no fusion */
+    unsigned char *peep_prev; /* the instruction right before peep, NULL: none to fuse with */
+    /* words.c: the open definition's forward BRANCHes (ELSE, AHEAD, ENDOF; the last few),
+     * and those resolved to exit_here: ; makes them EXITBR when its EXIT lands there */
+    fbrl_cell br_orig[8], exit_orig[8];
+    unsigned nbr_orig, nexit_orig;
+    unsigned char *exit_here;
     int run_code;            /* run.c: the code of an error exit */
     const fbrl_cell *ip;     /* run.c: the instruction pointer while a C word or step hook runs */
     fbrl_vm_step_fn step_fn; /* fbrl_vm_step_hook (debug.c) */
@@ -496,8 +485,5 @@ int fbrl__task_words(fbrl_vm *vm);
 
 /* prelude.c */
 extern const char fbrl__prelude[];
-
-/* src/words/data.c: the data words every VM has */
-static inline fbrl_status fbrl__fbrl_words(fbrl_vm *vm) { return fbrl_vmx_data_words(vm); }
 
 #endif

@@ -34,6 +34,20 @@ fbrl_status fbrl_vmx_define(fbrl_vm *vm, const char *name, fbrl_vmx_fn fn, void 
     return FBRL_OK;
 }
 
+fbrl_status fbrl_vmx_define_table(fbrl_vm *vm, const fbrl_vmx_reg *rows, size_t n, void *ctx)
+{
+    if (!vm || (!rows && n))
+        return FBRL_EINVAL;
+    for (size_t i = 0; i < n; i++) {
+        fbrl_status st =
+            fbrl_vmx_define(vm, rows[i].name, rows[i].fn, ctx, &rows[i], rows[i].flags & ~FBRL_VMX_PARSE,
+                            FBRL_DOC_STACK(rows[i]), FBRL_DOC_HELP(rows[i]));
+        if (st != FBRL_OK)
+            return st;
+    }
+    return FBRL_OK;
+}
+
 fbrl_status fbrl_vmx_name(const fbrl_vm *vm, fbrl_cell xt, const char **name, size_t *len)
 {
     if (!vm || !name || !len)
@@ -413,6 +427,15 @@ fbrl_status fbrl_vmx_args(fbrl_vm *vm, const char *word, const char *spec, const
     }
     vm->sp = top;
     return FBRL_OK;
+}
+
+fbrl_status fbrl_vmx_check(fbrl_vm *vm, const void *word, fbrl_vmx_val *v)
+{
+    const fbrl_vmx_reg *w = word;
+    if (!w || !w->spec)
+        return FBRL_EINVAL;
+    return fbrl_vmx_args(vm, w->name, w->spec, NULL,
+                         (w->flags & FBRL_VMX_PARSE) ? FBRL_VMX_LINE : FBRL_VMX_STACKS, v);
 }
 
 fbrl_status fbrl_vmx_push(fbrl_vm *vm, fbrl_cell v)

@@ -5,7 +5,7 @@
 #define FBRL_WORDS_CELL_INTERNAL_H
 
 #include "internal_names.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 
 /* "12.3456" locale-free into buf ("?" if it does not fit); returns buf. */
 const char *cw_num(char *buf, size_t cap, double v);

@@ -9,7 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/matrix.h"
 #include "fbrl/num.h"
 #include "fbrl/vmx.h"

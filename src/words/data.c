@@ -21,10 +21,6 @@ static const fbrl_vmx_type array_type = {"array", (fbrl_cell)0x41525259 /* "ARRY
 static fbrl_cell align16(fbrl_cell a) { return (fbrl_cell)(((fbrl_ucell)a + 15) & ~(fbrl_ucell)15); }
 
 static fbrl_status fail(fbrl_vm *vm, int code, const char *msg) { return fbrl_vm_throw(vm, code, msg); }
-static fbrl_status need(fbrl_vm *vm, size_t n)
-{
-    return fbrl_vm_depth(vm) < n ? fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL) : FBRL_OK;
-}
 
 /* ---- I-1 queues ---- */
 static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
@@ -54,25 +50,29 @@ static fbrl_ring *queue_at(fbrl_vm *vm, fbrl_cell q, fbrl_status *st)
     return r;
 }
 
-/* Pops ( q -- ) and checks it is a queue. */
-static fbrl_ring *pop_queue(fbrl_vm *vm, fbrl_status *st)
+/* A word's parameters (its row's spec, vmx.h's fbrl_vmx_check), its ctx unused: every
+ * data word begins with this. */
+#define DATA_ARGS(v)                              \
+    fbrl_status st = fbrl_vmx_check(vm, word, v); \
+    (void)ctx;                                    \
+    if (st != FBRL_OK)                            \
+    return st
+
+/* Takes ( q -- ) (its row's spec "A") and checks it is a queue. */
+static fbrl_ring *pop_queue(fbrl_vm *vm, const void *word, fbrl_status *st)
 {
-    fbrl_cell q;
-    if ((*st = need(vm, 1)))
+    fbrl_vmx_val v[1];
+    if ((*st = fbrl_vmx_check(vm, word, v)) != FBRL_OK)
         return NULL;
-    fbrl_vm_pop(vm, &q);
-    return queue_at(vm, q, st);
+    return queue_at(vm, v[0].i, st);
 }
 
-static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
+static fbrl_status w_create_q(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell n;
+    fbrl_vmx_val v[1];
     void *p;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 1)))
-        return st;
-    fbrl_vm_pop(vm, &n);
+    DATA_ARGS(v);
+    fbrl_cell n = v[0].i;
     if (n < 2 || n > (1 << 24))
         return fail(vm, FBRL_THROW_BAD_NUMBER, "queue size must be 2..16777216 bytes");
     if ((st = fbrl_vmx_create(vm, NULL, 0, &queue_type, sizeof(fbrl_ring) + (size_t)n, NULL, NULL,
@@ -81,29 +81,24 @@ static fbrl_status w_create_q(fbrl_vm *vm, void *arg)
     return fbrl_ring_init((fbrl_ring *)p, (fbrl_ring *)p + 1, (size_t)n);
 }
 
-static fbrl_status w_enq(fbrl_vm *vm, void *arg)
+static fbrl_status w_enq(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell q, c;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 2)))
-        return st;
-    fbrl_vm_pop(vm, &q);
-    fbrl_vm_pop(vm, &c);
-    fbrl_ring *r = queue_at(vm, q, &st);
+    fbrl_vmx_val v[2];
+    DATA_ARGS(v);
+    fbrl_ring *r = queue_at(vm, v[1].i, &st);
     if (!r)
         return st;
-    if (fbrl_ring_put(r, (uint8_t)c) != FBRL_OK)
+    if (fbrl_ring_put(r, (uint8_t)v[0].i) != FBRL_OK)
         return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "queue full");
     return FBRL_OK;
 }
 
-static fbrl_status w_deq(fbrl_vm *vm, void *arg)
+static fbrl_status w_deq(fbrl_vm *vm, void *ctx, const void *word)
 {
     uint8_t b;
     fbrl_status st;
-    (void)arg;
-    fbrl_ring *r = pop_queue(vm, &st);
+    (void)ctx;
+    fbrl_ring *r = pop_queue(vm, word, &st);
     if (!r)
         return st;
     if (fbrl_ring_get(r, &b) != FBRL_OK)
@@ -111,21 +106,22 @@ static fbrl_status w_deq(fbrl_vm *vm, void *arg)
     return fbrl_vm_push(vm, b);
 }
 
-static fbrl_status w_q_test(fbrl_vm *vm, void *arg)
+static fbrl_status w_q_test(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_status st;
-    fbrl_ring *r = pop_queue(vm, &st);
+    (void)ctx;
+    fbrl_ring *r = pop_queue(vm, word, &st);
     if (!r)
         return st;
-    int yes = arg ? fbrl_ring_full(r) : fbrl_ring_empty(r);
+    int yes = ((const fbrl_vmx_reg *)word)->arg ? fbrl_ring_full(r) : fbrl_ring_empty(r);
     return fbrl_vm_push(vm, yes ? -1 : 0);
 }
 
-static fbrl_status w_q_count(fbrl_vm *vm, void *arg)
+static fbrl_status w_q_count(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_status st;
-    (void)arg;
-    fbrl_ring *r = pop_queue(vm, &st);
+    (void)ctx;
+    fbrl_ring *r = pop_queue(vm, word, &st);
     if (!r)
         return st;
     return fbrl_vm_push(vm, (fbrl_cell)fbrl_ring_count(r));
@@ -152,17 +148,16 @@ static fbrl_array *array_at(fbrl_vm *vm, fbrl_cell body, fbrl_status *st)
 
 static fbrl_status array_run(fbrl_vm *vm, const void *body, int two)
 {
-    fbrl_cell i, j = 0;
+    fbrl_vmx_val v[2];
     fbrl_status st;
     void *cell;
     fbrl_array *a = array_at(vm, (fbrl_cell)body, &st);
     if (!a)
         return st;
-    if ((st = need(vm, two ? 2 : 1)))
+    /* a word this set made runs without a row: its parameters by the same parser */
+    if ((st = fbrl_vmx_args(vm, NULL, two ? "II" : "I", NULL, FBRL_VMX_STACKS, v)) != FBRL_OK)
         return st;
-    if (two)
-        fbrl_vm_pop(vm, &j);
-    fbrl_vm_pop(vm, &i);
+    fbrl_cell i = v[0].i, j = two ? v[1].i : 0;
     if (i < 0 || j < 0)
         return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "array index out of range");
     st = two ? fbrl_array2_cell(a, (size_t)i, (size_t)j, &cell) : fbrl_array_cell(a, (size_t)i, &cell);
@@ -207,29 +202,18 @@ static fbrl_status make_array(fbrl_vm *vm, fbrl_cell rows, fbrl_cell cols, fbrl_
     return st == FBRL_OK ? st : fail(vm, FBRL_VM_THROW_OF_STATUS(st), NULL);
 }
 
-static fbrl_status w_array(fbrl_vm *vm, void *arg)
+static fbrl_status w_array(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell n, size;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 2)))
-        return st;
-    fbrl_vm_pop(vm, &size);
-    fbrl_vm_pop(vm, &n);
-    return make_array(vm, n, 1, size, 0);
+    fbrl_vmx_val v[2];
+    DATA_ARGS(v);
+    return make_array(vm, v[0].i, 1, v[1].i, 0);
 }
 
-static fbrl_status w_2array(fbrl_vm *vm, void *arg)
+static fbrl_status w_2array(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell rows, cols, size;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 3)))
-        return st;
-    fbrl_vm_pop(vm, &size);
-    fbrl_vm_pop(vm, &cols);
-    fbrl_vm_pop(vm, &rows);
-    return make_array(vm, rows, cols, size, 1);
+    fbrl_vmx_val v[3];
+    DATA_ARGS(v);
+    return make_array(vm, v[0].i, v[1].i, v[2].i, 1);
 }
 
 /* ---- I-3 strings: [size u16][length u16][characters], as thesis figure 5.5 ---- */
@@ -251,12 +235,15 @@ static unsigned char *string_at(fbrl_vm *vm, fbrl_cell s, unsigned *size, unsign
     return (unsigned char *)s + 4;
 }
 
-/* Pops ( str -- ) and checks it is a string: its characters, *s its address. */
-static unsigned char *pop_string(fbrl_vm *vm, fbrl_cell *s, unsigned *size, unsigned *len, fbrl_status *st)
+/* Takes ( str -- ) (its row's spec "A") and checks it is a string: its characters, *s its
+ * address. */
+static unsigned char *pop_string(fbrl_vm *vm, const void *word, fbrl_cell *s, unsigned *size, unsigned *len,
+                                 fbrl_status *st)
 {
-    if ((*st = need(vm, 1)))
+    fbrl_vmx_val v[1];
+    if ((*st = fbrl_vmx_check(vm, word, v)) != FBRL_OK)
         return NULL;
-    fbrl_vm_pop(vm, s);
+    *s = v[0].i;
     return string_at(vm, *s, size, len, st);
 }
 
@@ -266,36 +253,34 @@ static void set_len(fbrl_cell s, unsigned len)
     memcpy((unsigned char *)s + 2, &v, 2);
 }
 
-static fbrl_status w_string(fbrl_vm *vm, void *arg)
+static fbrl_status w_string(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell n;
+    fbrl_vmx_val v[1];
     void *p;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 1)))
-        return st;
-    fbrl_vm_pop(vm, &n);
+    DATA_ARGS(v);
+    fbrl_cell n = v[0].i;
     if (n < 1 || n > STR_MAX)
         return fail(vm, FBRL_THROW_BAD_NUMBER, "string length must be 1..65535");
     if ((st = fbrl_vmx_create(vm, NULL, 0, NULL, 4 + (size_t)n, NULL, NULL, FBRL_DOC_TEXT("( -- str )"),
                               FBRL_DOC_TEXT("string"), NULL, &p)))
         return st;
-    uint16_t v = (uint16_t)n;
-    memcpy(p, &v, 2);
+    uint16_t size = (uint16_t)n;
+    memcpy(p, &size, 2);
     return FBRL_OK;
 }
 
 /* STRING-CNT, STRING-SIZE, TYPE-STRING, NULL-STRING: ( str -- ... ) */
 enum { S_CNT, S_SIZE, S_TYPE, S_NULL, S_TEXT };
-static fbrl_status w_str1(fbrl_vm *vm, void *arg)
+static fbrl_status w_str1(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_cell s;
     unsigned size, len;
     fbrl_status st;
-    unsigned char *c = pop_string(vm, &s, &size, &len, &st);
+    (void)ctx;
+    unsigned char *c = pop_string(vm, word, &s, &size, &len, &st);
     if (!c)
         return st;
-    switch ((int)(intptr_t)arg) {
+    switch ((int)((const fbrl_vmx_reg *)word)->arg) {
     case S_CNT: return fbrl_vm_push(vm, len);
     case S_SIZE: return fbrl_vm_push(vm, size);
     case S_TYPE: fbrl_vmx_write(vm, (const char *)c, len); return FBRL_OK;
@@ -312,16 +297,12 @@ static fbrl_status overflow(fbrl_vm *vm)
     return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "string overflow");
 }
 
-static fbrl_status w_append_chr(fbrl_vm *vm, void *arg)
+static fbrl_status w_append_chr(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell s, ch;
+    fbrl_vmx_val v[2];
     unsigned size, len;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 2)))
-        return st;
-    fbrl_vm_pop(vm, &s);
-    fbrl_vm_pop(vm, &ch);
+    DATA_ARGS(v);
+    fbrl_cell ch = v[0].i, s = v[1].i;
     unsigned char *c = string_at(vm, s, &size, &len, &st);
     if (!c)
         return st;
@@ -333,22 +314,19 @@ static fbrl_status w_append_chr(fbrl_vm *vm, void *arg)
 }
 
 /* APPEND-STRING (append != 0) and COPY-STRING ( targ src -- ) */
-static fbrl_status w_append_copy(fbrl_vm *vm, void *arg)
+static fbrl_status w_append_copy(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell t, s;
+    fbrl_vmx_val v[2];
     unsigned tsize, tlen, ssize, slen;
-    fbrl_status st;
-    if ((st = need(vm, 2)))
-        return st;
-    fbrl_vm_pop(vm, &s);
-    fbrl_vm_pop(vm, &t);
+    DATA_ARGS(v);
+    fbrl_cell t = v[0].i, s = v[1].i;
     unsigned char *tc = string_at(vm, t, &tsize, &tlen, &st);
     if (!tc)
         return st;
     unsigned char *sc = string_at(vm, s, &ssize, &slen, &st);
     if (!sc)
         return st;
-    unsigned at = arg ? tlen : 0;
+    unsigned at = ((const fbrl_vmx_reg *)word)->arg ? tlen : 0;
     if (at + slen > tsize)
         return overflow(vm);
     memmove(tc + at, sc, slen);
@@ -357,18 +335,12 @@ static fbrl_status w_append_copy(fbrl_vm *vm, void *arg)
 }
 
 /* SUB-STRING ( targ src m n -- ): characters m..n of src (counted from 1) into targ */
-static fbrl_status w_sub_string(fbrl_vm *vm, void *arg)
+static fbrl_status w_sub_string(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell t, s, m, n;
+    fbrl_vmx_val v[4];
     unsigned tsize, tlen, ssize, slen;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 4)))
-        return st;
-    fbrl_vm_pop(vm, &n);
-    fbrl_vm_pop(vm, &m);
-    fbrl_vm_pop(vm, &s);
-    fbrl_vm_pop(vm, &t);
+    DATA_ARGS(v);
+    fbrl_cell t = v[0].i, s = v[1].i, m = v[2].i, n = v[3].i;
     unsigned char *tc = string_at(vm, t, &tsize, &tlen, &st);
     if (!tc)
         return st;
@@ -384,16 +356,12 @@ static fbrl_status w_sub_string(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
-static fbrl_status w_string_chr(fbrl_vm *vm, void *arg)
+static fbrl_status w_string_chr(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell s, pos;
+    fbrl_vmx_val v[2];
     unsigned size, len;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 2)))
-        return st;
-    fbrl_vm_pop(vm, &pos);
-    fbrl_vm_pop(vm, &s);
+    DATA_ARGS(v);
+    fbrl_cell s = v[0].i, pos = v[1].i;
     unsigned char *c = string_at(vm, s, &size, &len, &st);
     if (!c)
         return st;
@@ -403,27 +371,20 @@ static fbrl_status w_string_chr(fbrl_vm *vm, void *arg)
 }
 
 /* STRING-PUT ( str a u -- ): store text into the string */
-static fbrl_status w_string_put(fbrl_vm *vm, void *arg)
+static fbrl_status w_string_put(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell s, a, u;
+    fbrl_vmx_val v[2]; /* the text's address and length are checked by fbrl_vmx_check */
     unsigned size, len;
-    fbrl_status st;
-    (void)arg;
-    if ((st = need(vm, 3)))
-        return st;
-    fbrl_vm_pop(vm, &u);
-    fbrl_vm_pop(vm, &a);
-    fbrl_vm_pop(vm, &s);
+    DATA_ARGS(v);
+    fbrl_cell s = v[0].i;
     unsigned char *c = string_at(vm, s, &size, &len, &st);
     if (!c)
         return st;
-    if (u < 0 || (u && !fbrl_vm_addr(vm, a, (size_t)u)))
-        return fail(vm, FBRL_THROW_BAD_ADDRESS, NULL);
-    if (u > (fbrl_cell)size)
+    if (v[1].n > size)
         return overflow(vm);
-    if (u)
-        memmove(c, (void *)a, (size_t)u);
-    set_len(s, (unsigned)u);
+    if (v[1].n)
+        memmove(c, v[1].s, v[1].n);
+    set_len(s, (unsigned)v[1].n);
     return FBRL_OK;
 }
 
@@ -434,7 +395,6 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
     size_t n;
     fbrl_cell put;
     (void)ctx;
-    (void)word;
     int found = fbrl_vmx_parse_quoted(vm, &p, &n);
     if (found < 0)
         return fail(vm, FBRL_THROW_BAD_NUMBER, "STRING-LIT needs a \"quoted\" text");
@@ -451,7 +411,7 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_cell s;
     unsigned size, len;
     fbrl_status st;
-    unsigned char *c = pop_string(vm, &s, &size, &len, &st);
+    unsigned char *c = pop_string(vm, word, &s, &size, &len, &st);
     if (!c)
         return st;
     if (n > size)
@@ -464,14 +424,14 @@ static fbrl_status w_string_lit(fbrl_vm *vm, void *ctx, const void *word)
 /* GET-STRING ( str -- ): a line from the console. Characters beyond the string's size
  * are dropped, and the user is told how many were kept (a cut name or path must not
  * pass unseen). */
-static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
+static fbrl_status w_get_string(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_cell s;
     unsigned size, len, k = 0;
     unsigned long dropped = 0;
     fbrl_status st;
-    (void)arg;
-    unsigned char *c = pop_string(vm, &s, &size, &len, &st);
+    (void)ctx;
+    unsigned char *c = pop_string(vm, word, &s, &size, &len, &st);
     if (!c)
         return st;
     const fbrl_vm_host *host = fbrl_vmx_host(vm);
@@ -498,85 +458,73 @@ static fbrl_status w_get_string(fbrl_vm *vm, void *arg)
 }
 
 /* ---- data type sizes ---- */
-static fbrl_status w_const(fbrl_vm *vm, void *arg) { return fbrl_vm_push(vm, (fbrl_cell)(intptr_t)arg); }
+static fbrl_status w_const(fbrl_vm *vm, void *ctx, const void *word)
+{
+    (void)ctx;
+    return fbrl_vmx_push(vm, (fbrl_cell)((const fbrl_vmx_reg *)word)->arg);
+}
 
-/* A word: fn(vm, arg), or (fn NULL) xfn with flags. */
-typedef struct word {
-    const char *name;
-    fbrl_vm_prim fn;
-    intptr_t arg;
-    fbrl_vmx_fn xfn;
-    unsigned flags;
-    FBRL_DOC_FIELDS
-} word;
-static const word words[] = {
-    {"CREATE-Q", w_create_q, 0, NULL, 0,
+/* The rows: name, function, parameters (fbrl_vmx_check), flags, -, the function's selector. */
+static const fbrl_vmx_reg words[] = {
+    {"CREATE-Q", w_create_q, "I", 0, 0, 0,
      FBRL_DOC("( n \"name\" -- )",
               "make a character queue named name; it holds n characters, rounded down to a power of two")},
-    {"ENQ", w_enq, 0, NULL, 0,
+    {"ENQ", w_enq, "IA", 0, 0, 0,
      FBRL_DOC("( c q-addr -- )", "add a character to the queue (throws when full)")},
-    {"DEQ", w_deq, 0, NULL, 0,
+    {"DEQ", w_deq, "A", 0, 0, 0,
      FBRL_DOC("( q-addr -- c )", "take the oldest character from the queue (throws when empty)")},
-    {"EMPTY-Q?", w_q_test, 0, NULL, 0, FBRL_DOC("( q-addr -- flag )", "true if the queue is empty")},
-    {"FULL-Q?", w_q_test, 1, NULL, 0, FBRL_DOC("( q-addr -- flag )", "true if the queue is full")},
-    {"ENQ-L", w_enq, 0, NULL, 0,
+    {"EMPTY-Q?", w_q_test, "A", 0, 0, 0, FBRL_DOC("( q-addr -- flag )", "true if the queue is empty")},
+    {"FULL-Q?", w_q_test, "A", 0, 0, 1, FBRL_DOC("( q-addr -- flag )", "true if the queue is full")},
+    {"ENQ-L", w_enq, "IA", 0, 0, 0,
      FBRL_DOC("( c q-addr -- )", "ENQ (the thesis's low-level twin; same code here)")},
-    {"DEQ-L", w_deq, 0, NULL, 0,
+    {"DEQ-L", w_deq, "A", 0, 0, 0,
      FBRL_DOC("( q-addr -- c )", "DEQ (the thesis's low-level twin; same code here)")},
-    {"EMPTY-Q?-L", w_q_test, 0, NULL, 0,
+    {"EMPTY-Q?-L", w_q_test, "A", 0, 0, 0,
      FBRL_DOC("( q-addr -- flag )", "EMPTY-Q? (the thesis's low-level twin)")},
-    {"FULL-Q?-L", w_q_test, 1, NULL, 0,
+    {"FULL-Q?-L", w_q_test, "A", 0, 0, 1,
      FBRL_DOC("( q-addr -- flag )", "FULL-Q? (the thesis's low-level twin)")},
-    {"Q-COUNT", w_q_count, 0, NULL, 0, FBRL_DOC("( q-addr -- n )", "number of characters in the queue")},
-    {"ARRAY", w_array, 0, NULL, 0,
+    {"Q-COUNT", w_q_count, "A", 0, 0, 0, FBRL_DOC("( q-addr -- n )", "number of characters in the queue")},
+    {"ARRAY", w_array, "II", 0, 0, 0,
      FBRL_DOC("( n cell-size \"name\" -- ) ( run: index -- addr )",
               "make a one-dimensional array of n cells")},
-    {"2ARRAY", w_2array, 0, NULL, 0,
+    {"2ARRAY", w_2array, "III", 0, 0, 0,
      FBRL_DOC("( rows cols cell-size \"name\" -- ) ( run: row col -- addr )",
               "make a two-dimensional array")},
-    {"STRING", w_string, 0, NULL, 0,
+    {"STRING", w_string, "I", 0, 0, 0,
      FBRL_DOC("( length \"name\" -- ) ( run: -- str )", "make a string of up to length characters")},
-    {"STRING-CNT", w_str1, S_CNT, NULL, 0, FBRL_DOC("( str -- cnt )", "number of characters in the string")},
-    {"STRING-SIZE", w_str1, S_SIZE, NULL, 0,
+    {"STRING-CNT", w_str1, "A", 0, 0, S_CNT,
+     FBRL_DOC("( str -- cnt )", "number of characters in the string")},
+    {"STRING-SIZE", w_str1, "A", 0, 0, S_SIZE,
      FBRL_DOC("( str -- size )", "number of characters reserved for the string")},
-    {"TYPE-STRING", w_str1, S_TYPE, NULL, 0, FBRL_DOC("( str -- )", "print the string")},
-    {"NULL-STRING", w_str1, S_NULL, NULL, 0, FBRL_DOC("( str -- )", "make the string empty")},
-    {"STRING-TEXT", w_str1, S_TEXT, NULL, 0,
+    {"TYPE-STRING", w_str1, "A", 0, 0, S_TYPE, FBRL_DOC("( str -- )", "print the string")},
+    {"NULL-STRING", w_str1, "A", 0, 0, S_NULL, FBRL_DOC("( str -- )", "make the string empty")},
+    {"STRING-TEXT", w_str1, "A", 0, 0, S_TEXT,
      FBRL_DOC("( str -- a u )", "address and length of the string's characters")},
-    {"APPEND-CHR", w_append_chr, 0, NULL, 0, FBRL_DOC("( c str -- )", "append a character to the string")},
-    {"APPEND-STRING", w_append_copy, 1, NULL, 0,
+    {"APPEND-CHR", w_append_chr, "IA", 0, 0, 0, FBRL_DOC("( c str -- )", "append a character to the string")},
+    {"APPEND-STRING", w_append_copy, "AA", 0, 0, 1,
      FBRL_DOC("( targ src -- )", "append string src to string targ")},
-    {"COPY-STRING", w_append_copy, 0, NULL, 0,
+    {"COPY-STRING", w_append_copy, "AA", 0, 0, 0,
      FBRL_DOC("( targ src -- )", "copy string src into string targ")},
-    {"SUB-STRING", w_sub_string, 0, NULL, 0,
+    {"SUB-STRING", w_sub_string, "AAII", 0, 0, 0,
      FBRL_DOC("( targ src m n -- )", "copy characters m..n (from 1) of src into targ")},
-    {"STRING->CHR", w_string_chr, 0, NULL, 0,
+    {"STRING->CHR", w_string_chr, "AI", 0, 0, 0,
      FBRL_DOC("( str n -- c )", "the n-th character of the string (from 1)")},
-    {"STRING-PUT", w_string_put, 0, NULL, 0,
+    {"STRING-PUT", w_string_put, "AS", 0, 0, 0,
      FBRL_DOC("( str a u -- )", "store the text a u into the string")},
-    {"STRING-LIT", NULL, 0, w_string_lit, FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART,
+    {"STRING-LIT", w_string_lit, "A", FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART, 0, 0,
      FBRL_DOC("( str \"\"text\"\" -- )", "store the quoted text into the string")},
-    {"GET-STRING", w_get_string, 0, NULL, 0,
+    {"GET-STRING", w_get_string, "A", 0, 0, 0,
      FBRL_DOC("( str -- )", "read a line from the console into the string")},
-    {"CHR", w_const, 1, NULL, 0, FBRL_DOC("( -- 1 )", "size in bytes of a character (for ARRAY)")},
-    {"INTEGER", w_const, 2, NULL, 0, FBRL_DOC("( -- 2 )", "size in bytes of an integer (for ARRAY)")},
-    {"LONG-INTEGER", w_const, 4, NULL, 0,
+    {"CHR", w_const, "", 0, 0, 1, FBRL_DOC("( -- 1 )", "size in bytes of a character (for ARRAY)")},
+    {"INTEGER", w_const, "", 0, 0, 2, FBRL_DOC("( -- 2 )", "size in bytes of an integer (for ARRAY)")},
+    {"LONG-INTEGER", w_const, "", 0, 0, 4,
      FBRL_DOC("( -- 4 )", "size in bytes of a long integer (for ARRAY)")},
-    {"REAL", w_const, 8, NULL, 0, FBRL_DOC("( -- 8 )", "size in bytes of a real (a float, for ARRAY)")},
-    {"LOCATION", w_const, 48, NULL, 0,
+    {"REAL", w_const, "", 0, 0, 8, FBRL_DOC("( -- 8 )", "size in bytes of a real (a float, for ARRAY)")},
+    {"LOCATION", w_const, "", 0, 0, 48,
      FBRL_DOC("( -- 48 )", "size in bytes of a location template (6 floats, for ARRAY)")},
 };
 
 fbrl_status fbrl_vmx_data_words(fbrl_vm *vm)
 {
-    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st =
-            words[i].fn ? fbrl_vm_define(vm, words[i].name, words[i].fn, (void *)words[i].arg,
-                                         FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]))
-                        : fbrl_vmx_define(vm, words[i].name, words[i].xfn, NULL, &words[i], words[i].flags,
-                                          FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]));
-        if (st != FBRL_OK)
-            return st;
-    }
-    return FBRL_OK;
+    return fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], NULL);
 }

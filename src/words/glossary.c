@@ -18,8 +18,9 @@ fbrl_status fbrl_glossary_install(fbrl_vm *vm, fbrl_glossary *g)
     memset(g, 0, sizeof *g);
     g->vm = vm;
     fbrl_units_init(&g->units);
-    if ((st = gl_install_loc(vm, g)) != FBRL_OK || (st = gl_install_cal(vm, g)) != FBRL_OK ||
-        (st = gl_install_file(vm, g)) != FBRL_OK)
+    /* the glossary stands on the data words (thesis I-1 .. I-3: LOCATION, ARRAY ...) */
+    if ((st = fbrl_vmx_data_words(vm)) != FBRL_OK || (st = gl_install_loc(vm, g)) != FBRL_OK ||
+        (st = gl_install_cal(vm, g)) != FBRL_OK || (st = gl_install_file(vm, g)) != FBRL_OK)
         return st;
     g->magic = GL_INSTALLED;
     return FBRL_OK;

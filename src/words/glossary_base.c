@@ -1,21 +1,11 @@
 /* SPDX-License-Identifier: MIT */
-/* glossary_base.c - helpers every glossary word uses: defining a table, throwing with a
- * message, popping arguments, checked locations and structures in the VM's data space,
+/* glossary_base.c - helpers every glossary word uses: throwing with a message, taking the
+ * parameters, checked locations and structures in the VM's data space,
  * structures made with a magic cell, metric conversion of lengths. */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 #include "glossary_internal.h"
-
-fbrl_status gl_define(fbrl_vm *vm, fbrl_glossary *g, const gl_word *w, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        fbrl_status st = fbrl_vm_define(vm, w[i].name, w[i].fn, g, FBRL_DOC_STACK(w[i]), FBRL_DOC_HELP(w[i]));
-        if (st != FBRL_OK)
-            return st;
-    }
-    return FBRL_OK;
-}
 
 fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
 {
@@ -32,26 +22,17 @@ fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what)
     return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s: %s", what, fbrl_status_str(st));
 }
 
-fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v)
+fbrl_status gl_args(fbrl_vm *vm, const void *word, fbrl_cell *c, double *f)
 {
-    if (fbrl_vm_depth(vm) < n)
-        return fbrl_vm_throw(vm, GL_STACK_UNDERFLOW, NULL);
-    while (n--)
-        fbrl_vm_pop(vm, &v[n]);
-    return FBRL_OK;
-}
-
-/* The words pop their cells first, so the reals given as integers are the cells just
- * beneath them: vmx.h's one rule. */
-fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v)
-{
-    static const char reals[FBRL_VMX_MAXARGS + 1] = "RRRRRRRR";
-    fbrl_vmx_val val[FBRL_VMX_MAXARGS];
-    if (n > FBRL_VMX_MAXARGS)
-        return FBRL_EINVAL;
-    fbrl_status st = fbrl_vmx_args(vm, NULL, reals + FBRL_VMX_MAXARGS - n, NULL, FBRL_VMX_STACKS, val);
-    for (size_t k = 0; st == FBRL_OK && k < n; k++)
-        v[k] = val[k].f;
+    const char *spec = ((const gl_word *)word)->spec;
+    fbrl_vmx_val v[FBRL_VMX_MAXARGS];
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
+    for (size_t k = 0, nc = 0, nf = 0; st == FBRL_OK && spec[k]; k++) {
+        if (spec[k] == 'R')
+            f[nf++] = v[k].f;
+        else
+            c[nc++] = v[k].i;
+    }
     return st;
 }
 

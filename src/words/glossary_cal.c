@@ -32,8 +32,9 @@ static fbrl_status slot_index(fbrl_vm *vm, fbrl_cell i, const char *word)
 }
 
 /* ---- II-1 calibration abstraction ---- */
-static fbrl_status w_map_on(fbrl_vm *vm, void *arg)
+static fbrl_status w_map_on(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     fbrl_glossary *g = arg;
     fbrl_calib *c;
     fbrl_status st;
@@ -46,59 +47,62 @@ static fbrl_status w_map_on(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
-static fbrl_status w_map_off(fbrl_vm *vm, void *arg)
+static fbrl_status w_map_off(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     (void)vm;
     ((fbrl_glossary *)arg)->map_on = 0;
     return FBRL_OK;
 }
 
-static fbrl_status w_mapping_q(fbrl_vm *vm, void *arg)
+static fbrl_status w_mapping_q(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     return gl_push_flag(vm, ((fbrl_glossary *)arg)->map_on);
 }
 
-static fbrl_status w_with_cal(fbrl_vm *vm, void *arg)
+static fbrl_status w_with_cal(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_glossary *g = arg;
     fbrl_cell a;
     fbrl_calib *c;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_stru(vm, a, 0, "WITH-CAL", &c)))
+    if ((st = gl_args(vm, word, &a, NULL)) || (st = gl_stru(vm, a, 0, "WITH-CAL", &c)))
         return st;
     g->with_cal = a;
     return FBRL_OK;
 }
 
-static fbrl_status w_create_cal(fbrl_vm *vm, void *arg)
+static fbrl_status w_create_cal(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     void *p;
     (void)arg;
     return gl_make(vm, NULL, &gl_type_cal, sizeof(fbrl_calpts), GL_CAL_STACK, GL_CAL_HELP, &p);
 }
 
-static fbrl_status w_cal_addr(fbrl_vm *vm, void *arg)
+static fbrl_status w_cal_addr(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_cell a[2];
     fbrl_calpts *c;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_pop(vm, 2, a)) || (st = cal_at(vm, a[0], "CAL-ADDR", &c)) ||
+    if ((st = gl_args(vm, word, a, NULL)) || (st = cal_at(vm, a[0], "CAL-ADDR", &c)) ||
         (st = slot_index(vm, a[1], "CAL-ADDR")))
         return st;
     return fbrl_vm_push(vm, (fbrl_cell)&c->p[a[1] - 1]);
 }
 
 /* SET-CAL (cal index loc --) and GET-CAL (cal index loc --) */
-static fbrl_status set_get_cal(fbrl_vm *vm, int set)
+static fbrl_status set_get_cal(fbrl_vm *vm, const void *word_row, int set)
 {
     const char *word = set ? "SET-CAL" : "GET-CAL";
     fbrl_cell a[3];
     fbrl_calpts *c;
     fbrl_loc *loc;
     fbrl_status st;
-    if ((st = gl_pop(vm, 3, a)) || (st = cal_at(vm, a[0], word, &c)) || (st = slot_index(vm, a[1], word)) ||
-        (st = gl_loc(vm, a[2], set, word, &loc)))
+    if ((st = gl_args(vm, word_row, a, NULL)) || (st = cal_at(vm, a[0], word, &c)) ||
+        (st = slot_index(vm, a[1], word)) || (st = gl_loc(vm, a[2], set, word, &loc)))
         return st;
     /* through a copy: loc may overlap a slot in part */
     fbrl_loc tmp;
@@ -110,19 +114,20 @@ static fbrl_status set_get_cal(fbrl_vm *vm, int set)
     }
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
-static fbrl_status w_set_cal(fbrl_vm *vm, void *arg)
+static fbrl_status w_set_cal(fbrl_vm *vm, void *arg, const void *word)
 {
     (void)arg;
-    return set_get_cal(vm, 1);
+    return set_get_cal(vm, word, 1);
 }
-static fbrl_status w_get_cal(fbrl_vm *vm, void *arg)
+static fbrl_status w_get_cal(fbrl_vm *vm, void *arg, const void *word)
 {
     (void)arg;
-    return set_get_cal(vm, 0);
+    return set_get_cal(vm, word, 0);
 }
 
-static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg)
+static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     void *p;
     fbrl_status st;
     (void)arg;
@@ -131,11 +136,13 @@ static fbrl_status w_create_cal_stru(fbrl_vm *vm, void *arg)
     return fbrl_calib_identity(p);
 }
 
-static fbrl_status stru_entry(fbrl_vm *vm, const char *word, fbrl_calib **c, double **e)
+/* ( [F: r] cal-stru index -- ): the entry, and for CAL-STRU! its value *f */
+static fbrl_status stru_entry(fbrl_vm *vm, const void *w, fbrl_calib **c, double **e, double *f)
 {
+    const char *word = ((const gl_word *)w)->name;
     fbrl_cell a[2];
     fbrl_status st;
-    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 0, word, c)))
+    if ((st = gl_args(vm, w, a, f)) || (st = gl_stru(vm, a[0], 0, word, c)))
         return st;
     if (a[1] < 1 || a[1] > 12)
         return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: index must be 1..12", word);
@@ -144,24 +151,24 @@ static fbrl_status stru_entry(fbrl_vm *vm, const char *word, fbrl_calib **c, dou
     return FBRL_OK;
 }
 
-static fbrl_status w_cal_stru_fetch(fbrl_vm *vm, void *arg)
+static fbrl_status w_cal_stru_fetch(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_calib *c;
-    double *e;
+    double *e = NULL;
     fbrl_status st;
     (void)arg;
-    if ((st = stru_entry(vm, "CAL-STRU@", &c, &e)))
+    if ((st = stru_entry(vm, word, &c, &e, NULL)))
         return st;
     return fbrl_vm_fpush(vm, *e);
 }
 
-static fbrl_status w_cal_stru_store(fbrl_vm *vm, void *arg)
+static fbrl_status w_cal_stru_store(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_calib *c;
-    double *e, v;
+    double *e = NULL, v = 0.0;
     fbrl_status st;
     (void)arg;
-    if ((st = stru_entry(vm, "CAL-STRU!", &c, &e)) || (st = gl_fpop(vm, 1, &v)))
+    if ((st = stru_entry(vm, word, &c, &e, &v)))
         return st;
     if (!isfinite(v))
         return gl_throw_st(vm, FBRL_ENONFINITE, "CAL-STRU!");
@@ -169,19 +176,20 @@ static fbrl_status w_cal_stru_store(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
-static fbrl_status w_num_cal_cells(fbrl_vm *vm, void *arg)
+static fbrl_status w_num_cal_cells(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     (void)arg;
     return fbrl_vm_push(vm, 12);
 }
 
 /* ---- II-2 calibration transformation ---- */
-static fbrl_status w_ang_from_origin(fbrl_vm *vm, void *arg)
+static fbrl_status w_ang_from_origin(fbrl_vm *vm, void *arg, const void *word)
 {
     double v[4], ang;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_fpop(vm, 4, v)))
+    if ((st = gl_args(vm, word, NULL, v)))
         return st;
     st = fbrl_calib_ang_from_origin(v[0], v[1], v[2], v[3], &ang);
     if (st == FBRL_EDEGENERATE)
@@ -191,12 +199,12 @@ static fbrl_status w_ang_from_origin(fbrl_vm *vm, void *arg)
     return fbrl_vm_fpush(vm, ang);
 }
 
-static fbrl_status w_rotate(fbrl_vm *vm, void *arg)
+static fbrl_status w_rotate(fbrl_vm *vm, void *arg, const void *word)
 {
     double v[3], x, y;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_fpop(vm, 3, v)))
+    if ((st = gl_args(vm, word, NULL, v)))
         return st;
     if ((st = fbrl_calib_rotate(v[0], v[1], v[2], &x, &y)) != FBRL_OK)
         return gl_throw_st(vm, st, "ROTATE");
@@ -211,14 +219,14 @@ static fbrl_status degenerate(fbrl_vm *vm, const char *word, const char *which)
                     "%s: %s points coincident or collinear (degenerate calibration)", word, which);
 }
 
-static fbrl_status w_calibrate(fbrl_vm *vm, void *arg)
+static fbrl_status w_calibrate(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_cell a[3];
     fbrl_calpts *recal, *cal;
     fbrl_calib *c, frame;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_pop(vm, 3, a)) || (st = cal_at(vm, a[0], "CALIBRATE", &recal)) ||
+    if ((st = gl_args(vm, word, a, NULL)) || (st = cal_at(vm, a[0], "CALIBRATE", &recal)) ||
         (st = cal_at(vm, a[1], "CALIBRATE", &cal)) || (st = gl_stru(vm, a[2], 0, "CALIBRATE", &c)))
         return st;
     if (fbrl_calib_frame(cal, &frame) == FBRL_EDEGENERATE)
@@ -231,14 +239,14 @@ static fbrl_status w_calibrate(fbrl_vm *vm, void *arg)
 }
 
 /* (MAP) and UNMAP ( cal-stru loc -- ) */
-static fbrl_status map_word(fbrl_vm *vm, int out)
+static fbrl_status map_word(fbrl_vm *vm, const void *row, int out)
 {
     const char *word = out ? "(MAP)" : "UNMAP";
     fbrl_cell a[2];
     fbrl_calib *c;
     fbrl_loc *loc;
     fbrl_status st;
-    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], 1, word, &c)) ||
+    if ((st = gl_args(vm, row, a, NULL)) || (st = gl_stru(vm, a[0], 1, word, &c)) ||
         (st = gl_loc(vm, a[1], 1, word, &loc)))
         return st;
     double off = 0.0;
@@ -254,61 +262,61 @@ static fbrl_status map_word(fbrl_vm *vm, int out)
     }
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
-static fbrl_status w_map(fbrl_vm *vm, void *arg)
+static fbrl_status w_map(fbrl_vm *vm, void *arg, const void *word)
 {
     (void)arg;
-    return map_word(vm, 1);
+    return map_word(vm, word, 1);
 }
-static fbrl_status w_unmap(fbrl_vm *vm, void *arg)
+static fbrl_status w_unmap(fbrl_vm *vm, void *arg, const void *word)
 {
     (void)arg;
-    return map_word(vm, 0);
+    return map_word(vm, word, 0);
 }
 
 /* CALIBRATE-N ( n cal-locs recal-locs cal-stru -- worst ) ( F: -- rms ): least squares over
  * n point pairs held as n consecutive locations (an ARRAY of LOCATION cells: 0 PTS); prints
  * each pair's residual, the RMS and the worst point (indices from 0, as the ARRAY's). */
-static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
+static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_glossary *g = arg;
-    const char *word = "CALIBRATE-N";
+    const char *name = "CALIBRATE-N";
     fbrl_cell a[4];
     fbrl_calib *c;
     double res[FBRL_GLOSSARY_NPOINT_MAX], rms, v;
     size_t worst;
     char line[160], num[40], num2[40]; /* numbers through fbrl_num: locale-free */
     fbrl_status st;
-    if ((st = gl_pop(vm, 4, a)))
+    if ((st = gl_args(vm, word, a, NULL)))
         return st;
     if (a[0] < 3 || a[0] > FBRL_GLOSSARY_NPOINT_MAX)
-        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: n must be 3..%d", word,
+        return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: n must be 3..%d", name,
                         FBRL_GLOSSARY_NPOINT_MAX);
     size_t n = (size_t)a[0];
     fbrl_cell bytes = (fbrl_cell)(n * sizeof(fbrl_loc));
     for (int k = 1; k <= 2; k++) {
         if (!fbrl_vm_addr(vm, a[k], (size_t)(bytes)))
-            return gl_throw(vm, GL_BAD_ADDRESS, "%s: %d locations at that address leave data space", word,
+            return gl_throw(vm, GL_BAD_ADDRESS, "%s: %d locations at that address leave data space", name,
                             (int)n);
         if ((fbrl_ucell)a[k] % sizeof(double))
-            return gl_throw(vm, GL_ALIGNMENT, "%s: location address not aligned to 8 bytes", word);
+            return gl_throw(vm, GL_ALIGNMENT, "%s: location address not aligned to 8 bytes", name);
         for (size_t i = 0; i < n; i++)
             if (fbrl_loc_check((const fbrl_loc *)a[k] + i) != FBRL_OK)
-                return gl_throw(vm, GL_TYPE_MISMATCH, "%s: %s point %d is not a location", word,
+                return gl_throw(vm, GL_TYPE_MISMATCH, "%s: %s point %d is not a location", name,
                                 k == 1 ? "calibration" : "recalibration", (int)i);
     }
-    if ((st = gl_stru(vm, a[3], 0, word, &c)))
+    if ((st = gl_stru(vm, a[3], 0, name, &c)))
         return st;
     const fbrl_loc *cal = (const fbrl_loc *)a[1], *recal = (const fbrl_loc *)a[2];
     st = fbrl_calib_npoint(c, cal, recal, n, res, &rms, &worst);
     if (st == FBRL_EDEGENERATE) {
         fbrl_calib scratch;
-        return degenerate(vm, word,
+        return degenerate(vm, name,
                           fbrl_calib_npoint(&scratch, cal, cal, n, NULL, NULL, NULL) == FBRL_EDEGENERATE
                               ? "calibration"
                               : "recalibration");
     }
     if (st != FBRL_OK)
-        return gl_throw_st(vm, st, word);
+        return gl_throw_st(vm, st, name);
     const char *unit = g->units.metric ? "cm" : "in";
     for (size_t i = 0; i < n; i++) {
         if ((st = gl_out(vm, g, res[i], &v)))
@@ -330,40 +338,45 @@ static fbrl_status w_calibrate_n(fbrl_vm *vm, void *arg)
 }
 
 static const gl_word cal_words[] = {
-    {"MAP-ON", w_map_on,
+    {"MAP-ON", w_map_on, "", 0, 0, 0,
      FBRL_DOC("( -- )", "map outgoing locations through the WITH-CAL structure (and unmap taught ones)")},
-    {"MAP-OFF", w_map_off, FBRL_DOC("( -- )", "stop mapping locations (the default)")},
-    {"MAPPING?", w_mapping_q, FBRL_DOC("( -- flag )", "true if MAP-ON")},
-    {"WITH-CAL", w_with_cal, FBRL_DOC("( cal-stru -- )", "select the calibration structure mapping uses")},
-    {"CREATE-CAL", w_create_cal,
+    {"MAP-OFF", w_map_off, "", 0, 0, 0, FBRL_DOC("( -- )", "stop mapping locations (the default)")},
+    {"MAPPING?", w_mapping_q, "", 0, 0, 0, FBRL_DOC("( -- flag )", "true if MAP-ON")},
+    {"WITH-CAL", w_with_cal, "A", 0, 0, 0,
+     FBRL_DOC("( cal-stru -- )", "select the calibration structure mapping uses")},
+    {"CREATE-CAL", w_create_cal, "", 0, 0, 0,
      FBRL_DOC("( \"name\" -- ) ( run: -- cal )",
               "make a calibration: three location slots 1 2 3 (P1 origin, P2 on x, P3 in the plane)")},
-    {"CAL-ADDR", w_cal_addr, FBRL_DOC("( cal index -- loc )", "address of location slot index (1..3)")},
-    {"SET-CAL", w_set_cal, FBRL_DOC("( cal index loc -- )", "copy loc into slot index (1..3)")},
-    {"GET-CAL", w_get_cal, FBRL_DOC("( cal index loc -- )", "copy slot index (1..3) into loc")},
-    {"CREATE-CAL-STRU", w_create_cal_stru,
+    {"CAL-ADDR", w_cal_addr, "AI", 0, 0, 0,
+     FBRL_DOC("( cal index -- loc )", "address of location slot index (1..3)")},
+    {"SET-CAL", w_set_cal, "AIA", 0, 0, 0,
+     FBRL_DOC("( cal index loc -- )", "copy loc into slot index (1..3)")},
+    {"GET-CAL", w_get_cal, "AIA", 0, 0, 0,
+     FBRL_DOC("( cal index loc -- )", "copy slot index (1..3) into loc")},
+    {"CREATE-CAL-STRU", w_create_cal_stru, "", 0, 0, 0,
      FBRL_DOC("( \"name\" -- ) ( run: -- cal-stru )",
               "make a calibration structure (the block's rigid motion; identity until CALIBRATE)")},
-    {"CAL-STRU@", w_cal_stru_fetch,
+    {"CAL-STRU@", w_cal_stru_fetch, "AI", 0, 0, 0,
      FBRL_DOC("( cal-stru index -- ) ( F: -- v )",
               "entry 1..12 of the 3x4 motion [r | t], row by row (4 8 12 = shift, inches)")},
-    {"CAL-STRU!", w_cal_stru_store,
+    {"CAL-STRU!", w_cal_stru_store, "RAI", 0, 0, 0,
      FBRL_DOC(
          "( cal-stru index -- ) ( F: v -- )",
          "store entry 1..12 of the 3x4 motion [r | t], row by row (mapping refuses a non-rigid result)")},
-    {"NUM-CAL-CELLS", w_num_cal_cells, FBRL_DOC("( -- 12 )", "number of CAL-STRU@ entries")},
-    {"ANG-FROM-ORIGIN", w_ang_from_origin,
+    {"NUM-CAL-CELLS", w_num_cal_cells, "", 0, 0, 0, FBRL_DOC("( -- 12 )", "number of CAL-STRU@ entries")},
+    {"ANG-FROM-ORIGIN", w_ang_from_origin, "RRRR", 0, 0, 0,
      FBRL_DOC("( F: x1 y1 x2 y2 -- angle )",
               "angle in radians of the line (x1,y1)->(x2,y2) from the positive x axis (all quadrants)")},
-    {"ROTATE", w_rotate,
+    {"ROTATE", w_rotate, "RRR", 0, 0, 0,
      FBRL_DOC("( F: x y angle -- x' y' )", "turn the point about the origin by angle radians")},
-    {"CALIBRATE", w_calibrate,
+    {"CALIBRATE", w_calibrate, "AAA", 0, 0, 0,
      FBRL_DOC("( recal-cal cal-cal cal-stru -- )",
               "compute the motion from the block taught in cal-cal to the block taught in recal-cal")},
-    {"(MAP)", w_map, FBRL_DOC("( cal-stru loc -- )", "map loc from the original block to the moved block")},
-    {"UNMAP", w_unmap,
+    {"(MAP)", w_map, "AA", 0, 0, 0,
+     FBRL_DOC("( cal-stru loc -- )", "map loc from the original block to the moved block")},
+    {"UNMAP", w_unmap, "AA", 0, 0, 0,
      FBRL_DOC("( cal-stru loc -- )", "map loc from the moved block back to the original block")},
-    {"CALIBRATE-N", w_calibrate_n,
+    {"CALIBRATE-N", w_calibrate_n, "IAAA", 0, 0, 0,
      FBRL_DOC(
          "( n cal-locs recal-locs cal-stru -- worst ) ( F: -- rms )",
          "least-squares calibration over n >= 3 point pairs; prints each residual, the RMS and the worst")},
@@ -371,5 +384,5 @@ static const gl_word cal_words[] = {
 
 fbrl_status gl_install_cal(fbrl_vm *vm, fbrl_glossary *g)
 {
-    return gl_define(vm, g, cal_words, sizeof cal_words / sizeof cal_words[0]);
+    return fbrl_vmx_define_table(vm, cal_words, sizeof cal_words / sizeof cal_words[0], g);
 }

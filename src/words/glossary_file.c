@@ -81,8 +81,9 @@ static fbrl_status file_error(fbrl_vm *vm, fbrl_status st, const char *word, con
     return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(st), "%s %.64s: %s", word, path, fbrl_status_str(st));
 }
 
-static fbrl_status w_create_file(fbrl_vm *vm, void *arg)
+static fbrl_status w_create_file(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     char path[FBRL_FILE_PATH_MAX];
     fbrl_status st;
     (void)arg;
@@ -93,8 +94,9 @@ static fbrl_status w_create_file(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
-static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
+static fbrl_status w_open_file(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     fbrl_glossary *g = arg;
     char path[FBRL_FILE_PATH_MAX];
     const char *name;
@@ -149,28 +151,28 @@ static fbrl_status w_open_file(fbrl_vm *vm, void *arg)
 }
 
 /* RESET-FILE, APPEND-FILE ( hndl -- ) */
-static fbrl_status position(fbrl_vm *vm, fbrl_glossary *g, int end)
+static fbrl_status position(fbrl_vm *vm, fbrl_glossary *g, const void *row, int end)
 {
     const char *word = end ? "APPEND-FILE" : "RESET-FILE";
     fbrl_cell a;
     fbrl_glossary_file *s;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = file_at(vm, g, a, word, &s)))
+    if ((st = gl_args(vm, row, &a, NULL)) || (st = file_at(vm, g, a, word, &s)))
         return st;
     st = end ? fbrl_file_append(&s->file) : fbrl_file_reset(&s->file);
     return st == FBRL_OK ? st : gl_throw_st(vm, st, word);
 }
-static fbrl_status w_reset_file(fbrl_vm *vm, void *g) { return position(vm, g, 0); }
-static fbrl_status w_append_file(fbrl_vm *vm, void *g) { return position(vm, g, 1); }
+static fbrl_status w_reset_file(fbrl_vm *vm, void *g, const void *word) { return position(vm, g, word, 0); }
+static fbrl_status w_append_file(fbrl_vm *vm, void *g, const void *word) { return position(vm, g, word, 1); }
 
 /* CLOSE-FILE ( hndl -- code ): 0, or the fbrl_status of a failed commit (the file then
  * stays open with its changes: fix the cause and CLOSE-FILE again). */
-static fbrl_status w_close_file(fbrl_vm *vm, void *g)
+static fbrl_status w_close_file(fbrl_vm *vm, void *g, const void *word)
 {
     fbrl_cell a;
     fbrl_glossary_file *s;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = file_at(vm, g, a, "CLOSE-FILE", &s)))
+    if ((st = gl_args(vm, word, &a, NULL)) || (st = file_at(vm, g, a, "CLOSE-FILE", &s)))
         return st;
     st = fbrl_file_close(&s->file);
     if (st == FBRL_OK)
@@ -216,14 +218,14 @@ typedef union value {
 } value;
 
 /* WRITE-FILE and READ-FILE ( addr type hndl -- ) */
-static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, int write)
+static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, const void *row, int write)
 {
     const char *word = write ? "WRITE-FILE" : "READ-FILE";
     fbrl_cell a[3];
     fbrl_glossary_file *s;
     value v;
     fbrl_status st;
-    if ((st = gl_pop(vm, 3, a)) || (st = file_at(vm, g, a[2], word, &s)))
+    if ((st = gl_args(vm, row, a, NULL)) || (st = file_at(vm, g, a[2], word, &s)))
         return st;
     if (a[1] < 1 || a[1] > TYPE_MAX)
         return gl_throw(vm, GL_BAD_NUMBER, "%s: type must be a size of 1..%d bytes", word, TYPE_MAX);
@@ -248,11 +250,11 @@ static fbrl_status transfer(fbrl_vm *vm, fbrl_glossary *g, int write)
         memcpy((void *)a[0], &v, t.size);
     return FBRL_OK;
 }
-static fbrl_status w_write_file(fbrl_vm *vm, void *g) { return transfer(vm, g, 1); }
-static fbrl_status w_read_file(fbrl_vm *vm, void *g) { return transfer(vm, g, 0); }
+static fbrl_status w_write_file(fbrl_vm *vm, void *g, const void *word) { return transfer(vm, g, word, 1); }
+static fbrl_status w_read_file(fbrl_vm *vm, void *g, const void *word) { return transfer(vm, g, word, 0); }
 
 /* SAVE-CAL and LOAD-CAL ( cal-stru hndl -- ): a calibration structure as one user record. */
-static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, int save)
+static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, const void *row, int save)
 {
     const char *word = save ? "SAVE-CAL" : "LOAD-CAL";
     fbrl_cell a[2];
@@ -261,7 +263,7 @@ static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, int save)
     unsigned char buf[FBRL_CALIB_BYTES];
     fbrl_ftype t = fbrl_ftype_user(FBRL_GLOSSARY_CAL_TAG, FBRL_CALIB_BYTES);
     fbrl_status st;
-    if ((st = gl_pop(vm, 2, a)) || (st = gl_stru(vm, a[0], save, word, &c)) ||
+    if ((st = gl_args(vm, row, a, NULL)) || (st = gl_stru(vm, a[0], save, word, &c)) ||
         (st = file_at(vm, g, a[1], word, &s)))
         return st;
     if (save) {
@@ -279,34 +281,34 @@ static fbrl_status cal_record(fbrl_vm *vm, fbrl_glossary *g, int save)
         return gl_throw_st(vm, st, word);
     return FBRL_OK;
 }
-static fbrl_status w_save_cal(fbrl_vm *vm, void *g) { return cal_record(vm, g, 1); }
-static fbrl_status w_load_cal(fbrl_vm *vm, void *g) { return cal_record(vm, g, 0); }
+static fbrl_status w_save_cal(fbrl_vm *vm, void *g, const void *word) { return cal_record(vm, g, word, 1); }
+static fbrl_status w_load_cal(fbrl_vm *vm, void *g, const void *word) { return cal_record(vm, g, word, 0); }
 
 static const gl_word file_words[] = {
-    {"CREATE-FILE", w_create_file,
+    {"CREATE-FILE", w_create_file, "", 0, 0, 0,
      FBRL_DOC("( \"filename\" -- )",
               "make filename an empty data file (an existing file of that name is replaced)")},
-    {"OPEN-FILE", w_open_file,
+    {"OPEN-FILE", w_open_file, "", 0, 0, 0,
      FBRL_DOC("( \"hndl filename\" -- )",
               "open a data file under handle hndl (made if not defined); reads and verifies it whole")},
-    {"RESET-FILE", w_reset_file, FBRL_DOC("( hndl -- )", "position at the first record")},
-    {"APPEND-FILE", w_append_file, FBRL_DOC("( hndl -- )", "position after the last record")},
-    {"CLOSE-FILE", w_close_file,
+    {"RESET-FILE", w_reset_file, "A", 0, 0, 0, FBRL_DOC("( hndl -- )", "position at the first record")},
+    {"APPEND-FILE", w_append_file, "A", 0, 0, 0, FBRL_DOC("( hndl -- )", "position after the last record")},
+    {"CLOSE-FILE", w_close_file, "A", 0, 0, 0,
      FBRL_DOC("( hndl -- code )",
               "save the file atomically and close it; code 0, or the error (file then stays open)")},
-    {"WRITE-FILE", w_write_file,
+    {"WRITE-FILE", w_write_file, "AIA", 0, 0, 0,
      FBRL_DOC("( addr type hndl -- )", "write the variable at addr as one record of type (CHR INTEGER "
                                        "LONG-INTEGER REAL LOCATION or a size)")},
-    {"READ-FILE", w_read_file,
+    {"READ-FILE", w_read_file, "AIA", 0, 0, 0,
      FBRL_DOC("( addr type hndl -- )",
               "read the next record into addr; a record of another type is refused and stays unread")},
-    {"SAVE-CAL", w_save_cal,
+    {"SAVE-CAL", w_save_cal, "AA", 0, 0, 0,
      FBRL_DOC("( cal-stru hndl -- )", "write the calibration structure as one record")},
-    {"LOAD-CAL", w_load_cal,
+    {"LOAD-CAL", w_load_cal, "AA", 0, 0, 0,
      FBRL_DOC("( cal-stru hndl -- )", "read a calibration record (written by SAVE-CAL) into cal-stru")},
 };
 
 fbrl_status gl_install_file(fbrl_vm *vm, fbrl_glossary *g)
 {
-    return gl_define(vm, g, file_words, sizeof file_words / sizeof file_words[0]);
+    return fbrl_vmx_define_table(vm, file_words, sizeof file_words / sizeof file_words[0], g);
 }

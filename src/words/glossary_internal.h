@@ -49,14 +49,8 @@ fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body);
 #define GL_BAD_NUMBER       (FBRL_THROW_BAD_NUMBER)
 #define GL_FSTACK_UNDERFLOW (FBRL_THROW_FSTACK_UNDERFLOW)
 
-typedef struct gl_word {
-    const char *name;
-    fbrl_vm_prim fn;
-    FBRL_DOC_FIELDS
-} gl_word;
-
-/* Define the n words of a table with arg = g. */
-fbrl_status gl_define(fbrl_vm *vm, fbrl_glossary *g, const gl_word *w, size_t n);
+/* A glossary word's row: vmx.h's one row type; ctx is the glossary. */
+typedef fbrl_vmx_reg gl_word;
 
 /* Throw `code` with a formatted message (at most 127 characters are kept). */
 fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
@@ -67,10 +61,10 @@ fbrl_status gl_throw(fbrl_vm *vm, int code, const char *fmt, ...)
 /* Throw FBRL_THROW_STATUS(st) with "what: <status text>". */
 fbrl_status gl_throw_st(fbrl_vm *vm, fbrl_status st, const char *what);
 
-/* Pop n cells (v[0] was deepest) / n reals (integers accepted by vmx.h's rule); throw stack
- * underflow if fewer. */
-fbrl_status gl_pop(fbrl_vm *vm, size_t n, fbrl_cell *v);
-fbrl_status gl_fpop(fbrl_vm *vm, size_t n, double *v);
+/* The parameters of the word whose row is word, by its spec (fbrl_vmx_check: the stacks,
+ * integers accepted for reals by vmx.h's one rule): its cells into c[] and its reals into f[],
+ * each in spec order (the deepest first; either may be NULL when the spec has none). */
+fbrl_status gl_args(fbrl_vm *vm, const void *word, fbrl_cell *c, double *f);
 fbrl_status gl_push_flag(fbrl_vm *vm, int yes);
 
 /* The location at a (48 bytes in data space, 8-aligned); with finite, also refuse one

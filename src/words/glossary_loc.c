@@ -24,20 +24,22 @@ fbrl_status fbrl_glossary_loc_word(const fbrl_vm *vm, fbrl_cell xt, fbrl_cell *a
     return FBRL_OK;
 }
 
-static fbrl_status w_create_loc(fbrl_vm *vm, void *arg)
+static fbrl_status w_create_loc(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     (void)arg;
     return fbrl_vmx_create(vm, NULL, 0, NULL, sizeof(fbrl_loc), NULL, (void *)(uintptr_t)gl_loc_tag,
                            GL_LOC_STACK, GL_LOC_HELP, NULL, NULL);
 }
 
-static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
+static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl_loc_axis ax,
+                            const char *word)
 {
     fbrl_cell a;
     fbrl_loc *loc;
     double v;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc)))
+    if ((st = gl_args(vm, row, &a, NULL)) || (st = gl_loc(vm, a, 1, word, &loc)))
         return st;
     fbrl_loc_get(loc, ax, &v);
     if (ax <= FBRL_LOC_Z && (st = gl_out(vm, g, v, &v)))
@@ -45,13 +47,14 @@ static fbrl_status get_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, con
     return fbrl_vm_fpush(vm, v);
 }
 
-static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, const char *word)
+static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, const void *row, fbrl_loc_axis ax,
+                            const char *word)
 {
     fbrl_cell a;
     fbrl_loc *loc;
     double v;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 1, &v)) || (st = gl_loc(vm, a, 0, word, &loc)))
+    if ((st = gl_args(vm, row, &a, &v)) || (st = gl_loc(vm, a, 0, word, &loc)))
         return st;
     if (ax <= FBRL_LOC_Z && (st = gl_in(vm, g, v, &v)))
         return st;
@@ -60,9 +63,15 @@ static fbrl_status set_axis(fbrl_vm *vm, fbrl_glossary *g, fbrl_loc_axis ax, con
     return FBRL_OK;
 }
 
-#define AXIS(L, AX)                                                                             \
-    static fbrl_status w_get##L(fbrl_vm *vm, void *g) { return get_axis(vm, g, AX, "GET" #L); } \
-    static fbrl_status w_set##L(fbrl_vm *vm, void *g) { return set_axis(vm, g, AX, "SET" #L); }
+#define AXIS(L, AX)                                                     \
+    static fbrl_status w_get##L(fbrl_vm *vm, void *g, const void *word) \
+    {                                                                   \
+        return get_axis(vm, g, word, AX, "GET" #L);                     \
+    }                                                                   \
+    static fbrl_status w_set##L(fbrl_vm *vm, void *g, const void *word) \
+    {                                                                   \
+        return set_axis(vm, g, word, AX, "SET" #L);                     \
+    }
 AXIS(X, FBRL_LOC_X)
 AXIS(Y, FBRL_LOC_Y)
 AXIS(Z, FBRL_LOC_Z)
@@ -71,13 +80,13 @@ AXIS(A, FBRL_LOC_A)
 AXIS(T, FBRL_LOC_T)
 #undef AXIS
 
-static fbrl_status w_set_loc(fbrl_vm *vm, void *arg)
+static fbrl_status w_set_loc(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_cell a[2];
     fbrl_loc *dst, *src;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_pop(vm, 2, a)) || (st = gl_loc(vm, a[0], 0, "SET-LOC", &dst)) ||
+    if ((st = gl_args(vm, word, a, NULL)) || (st = gl_loc(vm, a[0], 0, "SET-LOC", &dst)) ||
         (st = gl_loc(vm, a[1], 1, "SET-LOC", &src)))
         return st;
     fbrl_loc tmp = *src; /* the two may overlap in part */
@@ -85,13 +94,13 @@ static fbrl_status w_set_loc(fbrl_vm *vm, void *arg)
     return FBRL_OK;
 }
 
-static fbrl_status w_define_loc(fbrl_vm *vm, void *g)
+static fbrl_status w_define_loc(fbrl_vm *vm, void *g, const void *word)
 {
     fbrl_cell a;
     fbrl_loc *loc;
     double v[6];
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 6, v)) || (st = gl_loc(vm, a, 0, "DEFINE-LOC", &loc)))
+    if ((st = gl_args(vm, word, &a, v)) || (st = gl_loc(vm, a, 0, "DEFINE-LOC", &loc)))
         return st;
     for (int i = 0; i < 3; i++)
         if ((st = gl_in(vm, g, v[i], &v[i])))
@@ -101,13 +110,13 @@ static fbrl_status w_define_loc(fbrl_vm *vm, void *g)
     return FBRL_OK;
 }
 
-static fbrl_status w_shifta(fbrl_vm *vm, void *arg)
+static fbrl_status w_shifta(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_cell a[2];
     fbrl_loc *loc, *by;
     fbrl_status st;
     (void)arg;
-    if ((st = gl_pop(vm, 2, a)) || (st = gl_loc(vm, a[0], 1, "SHIFTA", &loc)) ||
+    if ((st = gl_args(vm, word, a, NULL)) || (st = gl_loc(vm, a[0], 1, "SHIFTA", &loc)) ||
         (st = gl_loc(vm, a[1], 1, "SHIFTA", &by)))
         return st;
     if ((st = fbrl_loc_shift(loc, by)) != FBRL_OK)
@@ -117,12 +126,13 @@ static fbrl_status w_shifta(fbrl_vm *vm, void *arg)
 
 /* DISPLAY-LOC / PRINT-LOC text: the location as the arm will see it (mapped when MAP-ON),
  * in the user's units. */
-static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, char *buf, size_t size)
+static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const void *row, char *buf, size_t size)
 {
+    const char *word = ((const gl_word *)row)->name;
     fbrl_cell a;
     fbrl_loc *loc, shown;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_loc(vm, a, 1, word, &loc)))
+    if ((st = gl_args(vm, row, &a, NULL)) || (st = gl_loc(vm, a, 1, word, &loc)))
         return st;
     shown = *loc;
     if ((st = gl_map(g, &shown, 1, NULL, NULL)) != FBRL_OK) {
@@ -136,10 +146,10 @@ static fbrl_status loc_text(fbrl_vm *vm, fbrl_glossary *g, const char *word, cha
     return FBRL_OK;
 }
 
-static fbrl_status w_display_loc(fbrl_vm *vm, void *g)
+static fbrl_status w_display_loc(fbrl_vm *vm, void *g, const void *word)
 {
     char buf[FBRL_LOC_TEXT_SIZE * 2];
-    fbrl_status st = loc_text(vm, g, "DISPLAY-LOC", buf, sizeof buf - 1);
+    fbrl_status st = loc_text(vm, g, word, buf, sizeof buf - 1);
     if (st)
         return st;
     strcat(buf, "\n");
@@ -147,18 +157,18 @@ static fbrl_status w_display_loc(fbrl_vm *vm, void *g)
     return FBRL_OK;
 }
 
-static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
+static fbrl_status w_print_loc(fbrl_vm *vm, void *arg, const void *word)
 {
     fbrl_glossary *g = arg;
     char buf[FBRL_LOC_TEXT_SIZE * 2];
     fbrl_status st;
     if (!g->port_write) {
         fbrl_cell a;
-        if ((st = gl_pop(vm, 1, &a)))
+        if ((st = gl_args(vm, word, &a, NULL)))
             return st;
         return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EOFFLINE), "PRINT-LOC: no communication port");
     }
-    if ((st = loc_text(vm, g, "PRINT-LOC", buf, sizeof buf - 2)))
+    if ((st = loc_text(vm, g, word, buf, sizeof buf - 2)))
         return st;
     strcat(buf, "\r\n");
     g->port_write(g->port_ctx, buf, strlen(buf));
@@ -169,14 +179,15 @@ static fbrl_status w_print_loc(fbrl_vm *vm, void *arg)
 
 static fbrl_status index3(fbrl_vm *vm, const char *word, long *idx, fbrl_loc **loc)
 {
-    fbrl_cell a[4];
+    fbrl_vmx_val a[4]; /* a matrix word runs without a row: its parameters by the same parser */
     fbrl_status st;
-    if ((st = gl_pop(vm, 4, a)) || (st = gl_loc(vm, a[3], 0, word, loc)))
+    if ((st = fbrl_vmx_args(vm, word, "IIIA", NULL, FBRL_VMX_STACKS, a)) ||
+        (st = gl_loc(vm, a[3].i, 0, word, loc)))
         return st;
     for (int i = 0; i < 3; i++) {
-        if (a[i] < -1000000 || a[i] > 1000000)
+        if (a[i].i < -1000000 || a[i].i > 1000000)
             return gl_throw(vm, FBRL_VM_THROW_OF_STATUS(FBRL_ERANGE), "%s: matrix index out of range", word);
-        idx[i] = (long)a[i];
+        idx[i] = (long)a[i].i;
     }
     return FBRL_OK;
 }
@@ -217,12 +228,13 @@ fbrl_status gl_rad_run(fbrl_vm *vm, void *ctx, const void *body)
 
 /* base-loc ( F: a b c ) "name": the base and three numbers, the two lengths (d... or
  * ring-dist, z-off) in user units. */
-static fbrl_status mat_args(fbrl_vm *vm, fbrl_glossary *g, const char *word, int first_len, fbrl_loc **base,
+static fbrl_status mat_args(fbrl_vm *vm, fbrl_glossary *g, const void *row, int first_len, fbrl_loc **base,
                             double *v)
 {
+    const char *word = ((const gl_word *)row)->name;
     fbrl_cell a;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &a)) || (st = gl_fpop(vm, 3, v)) || (st = gl_loc(vm, a, 1, word, base)))
+    if ((st = gl_args(vm, row, &a, v)) || (st = gl_loc(vm, a, 1, word, base)))
         return st;
     for (int i = first_len; i < 3; i++)
         if ((st = gl_in(vm, g, v[i], &v[i])))
@@ -230,14 +242,14 @@ static fbrl_status mat_args(fbrl_vm *vm, fbrl_glossary *g, const char *word, int
     return FBRL_OK;
 }
 
-static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
+static fbrl_status w_rectmat(fbrl_vm *vm, void *g, const void *word)
 {
     fbrl_loc *base;
     double v[3];
     fbrl_rectmat m;
     void *p;
     fbrl_status st;
-    if ((st = mat_args(vm, g, "RECTMAT", 0, &base, v)))
+    if ((st = mat_args(vm, g, word, 0, &base, v)))
         return st;
     if ((st = fbrl_rectmat_init(&m, base, v[0], v[1], v[2])) != FBRL_OK)
         return gl_throw_st(vm, st, "RECTMAT");
@@ -247,14 +259,14 @@ static fbrl_status w_rectmat(fbrl_vm *vm, void *g)
     return FBRL_OK;
 }
 
-static fbrl_status w_radmat(fbrl_vm *vm, void *g)
+static fbrl_status w_radmat(fbrl_vm *vm, void *g, const void *word)
 {
     fbrl_loc *base;
     double v[3];
     fbrl_radmat m;
     void *p;
     fbrl_status st;
-    if ((st = mat_args(vm, g, "RADMAT", 1, &base, v)))
+    if ((st = mat_args(vm, g, word, 1, &base, v)))
         return st;
     st = fbrl_radmat_init(&m, base, v[0], v[1], v[2]);
     if (st == FBRL_ERANGE)
@@ -270,13 +282,13 @@ static fbrl_status w_radmat(fbrl_vm *vm, void *g)
 
 /* SHOW-AUTOMAT / SHOW-RADMAT ( xt -- ): a matrix name runs the matrix, so it is named by its
  * execution token (' MAT). */
-static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, int rad)
+static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, const void *row, int rad)
 {
     const char *word = rad ? "SHOW-RADMAT" : "SHOW-AUTOMAT";
     char buf[FBRL_MATRIX_TEXT_SIZE * 2];
     fbrl_cell xt;
     fbrl_status st;
-    if ((st = gl_pop(vm, 1, &xt)))
+    if ((st = gl_args(vm, row, &xt, NULL)))
         return st;
     fbrl_cell body;
     if (fbrl_vmx_created(vm, xt, rad ? gl_rad_run : gl_rect_run, &body) != FBRL_OK)
@@ -294,31 +306,34 @@ static fbrl_status w_show(fbrl_vm *vm, fbrl_glossary *g, int rad)
     fbrl_vmx_puts(vm, buf);
     return FBRL_OK;
 }
-static fbrl_status w_show_automat(fbrl_vm *vm, void *g) { return w_show(vm, g, 0); }
-static fbrl_status w_show_radmat(fbrl_vm *vm, void *g) { return w_show(vm, g, 1); }
+static fbrl_status w_show_automat(fbrl_vm *vm, void *g, const void *word) { return w_show(vm, g, word, 0); }
+static fbrl_status w_show_radmat(fbrl_vm *vm, void *g, const void *word) { return w_show(vm, g, word, 1); }
 
 /* ---- I-7 metric conversion ---- */
-static fbrl_status w_metric_on(fbrl_vm *vm, void *arg)
+static fbrl_status w_metric_on(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     (void)vm;
     return fbrl_units_metric_on(&((fbrl_glossary *)arg)->units);
 }
-static fbrl_status w_metric_off(fbrl_vm *vm, void *arg)
+static fbrl_status w_metric_off(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     (void)vm;
     return fbrl_units_metric_off(&((fbrl_glossary *)arg)->units);
 }
-static fbrl_status w_metric_q(fbrl_vm *vm, void *arg)
+static fbrl_status w_metric_q(fbrl_vm *vm, void *arg, const void *word)
 {
+    (void)word;
     return gl_push_flag(vm, ((fbrl_glossary *)arg)->units.metric);
 }
 
 enum { CONV_CM_IN, CONV_IN_CM, CONV_IN, CONV_OUT };
-static fbrl_status convert(fbrl_vm *vm, fbrl_glossary *g, int how, const char *word)
+static fbrl_status convert(fbrl_vm *vm, fbrl_glossary *g, const void *row, int how, const char *word)
 {
     double v;
     fbrl_status st;
-    if ((st = gl_fpop(vm, 1, &v)))
+    if ((st = gl_args(vm, row, NULL, &v)))
         return st;
     switch (how) {
     case CONV_CM_IN: st = fbrl_units_cm_to_in(v, &v); break;
@@ -330,62 +345,84 @@ static fbrl_status convert(fbrl_vm *vm, fbrl_glossary *g, int how, const char *w
         return gl_throw_st(vm, st, word);
     return fbrl_vm_fpush(vm, v);
 }
-static fbrl_status w_cm_in(fbrl_vm *vm, void *g) { return convert(vm, g, CONV_CM_IN, "CM->IN"); }
-static fbrl_status w_in_cm(fbrl_vm *vm, void *g) { return convert(vm, g, CONV_IN_CM, "IN->CM"); }
-static fbrl_status w_metric_in(fbrl_vm *vm, void *g) { return convert(vm, g, CONV_IN, "METRIC-IN"); }
-static fbrl_status w_metric_out(fbrl_vm *vm, void *g) { return convert(vm, g, CONV_OUT, "METRIC-OUT"); }
+static fbrl_status w_cm_in(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_CM_IN, "CM->IN");
+}
+static fbrl_status w_in_cm(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_IN_CM, "IN->CM");
+}
+static fbrl_status w_metric_in(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_IN, "METRIC-IN");
+}
+static fbrl_status w_metric_out(fbrl_vm *vm, void *g, const void *word)
+{
+    return convert(vm, g, word, CONV_OUT, "METRIC-OUT");
+}
 
 static const gl_word loc_words[] = {
-    {"CREATE-LOC", w_create_loc,
+    {"CREATE-LOC", w_create_loc, "", 0, 0, 0,
      FBRL_DOC("( \"name\" -- ) ( run: -- loc )",
               "make a location template (6 floats X Y Z O A T, 48 bytes, zeroed); name pushes its address")},
-    {"GETX", w_getX, FBRL_DOC("( loc -- ) ( F: -- x )", "x of the location (cm when METRIC-ON)")},
-    {"GETY", w_getY, FBRL_DOC("( loc -- ) ( F: -- y )", "y of the location (cm when METRIC-ON)")},
-    {"GETZ", w_getZ, FBRL_DOC("( loc -- ) ( F: -- z )", "z of the location (cm when METRIC-ON)")},
-    {"GETO", w_getO, FBRL_DOC("( loc -- ) ( F: -- o )", "yaw (O) of the location, degrees")},
-    {"GETA", w_getA, FBRL_DOC("( loc -- ) ( F: -- a )", "pitch (A) of the location, degrees")},
-    {"GETT", w_getT, FBRL_DOC("( loc -- ) ( F: -- t )", "roll (T) of the location, degrees")},
-    {"SETX", w_setX, FBRL_DOC("( loc -- ) ( F: x -- )", "set x of the location (cm when METRIC-ON)")},
-    {"SETY", w_setY, FBRL_DOC("( loc -- ) ( F: y -- )", "set y of the location (cm when METRIC-ON)")},
-    {"SETZ", w_setZ, FBRL_DOC("( loc -- ) ( F: z -- )", "set z of the location (cm when METRIC-ON)")},
-    {"SETO", w_setO, FBRL_DOC("( loc -- ) ( F: o -- )", "set yaw (O) of the location, degrees")},
-    {"SETA", w_setA, FBRL_DOC("( loc -- ) ( F: a -- )", "set pitch (A) of the location, degrees")},
-    {"SETT", w_setT, FBRL_DOC("( loc -- ) ( F: t -- )", "set roll (T) of the location, degrees")},
-    {"SET-LOC", w_set_loc, FBRL_DOC("( loc1 loc2 -- )", "copy location loc2 into loc1")},
-    {"DEFINE-LOC", w_define_loc,
+    {"GETX", w_getX, "A", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: -- x )", "x of the location (cm when METRIC-ON)")},
+    {"GETY", w_getY, "A", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: -- y )", "y of the location (cm when METRIC-ON)")},
+    {"GETZ", w_getZ, "A", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: -- z )", "z of the location (cm when METRIC-ON)")},
+    {"GETO", w_getO, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- o )", "yaw (O) of the location, degrees")},
+    {"GETA", w_getA, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- a )", "pitch (A) of the location, degrees")},
+    {"GETT", w_getT, "A", 0, 0, 0, FBRL_DOC("( loc -- ) ( F: -- t )", "roll (T) of the location, degrees")},
+    {"SETX", w_setX, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: x -- )", "set x of the location (cm when METRIC-ON)")},
+    {"SETY", w_setY, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: y -- )", "set y of the location (cm when METRIC-ON)")},
+    {"SETZ", w_setZ, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: z -- )", "set z of the location (cm when METRIC-ON)")},
+    {"SETO", w_setO, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: o -- )", "set yaw (O) of the location, degrees")},
+    {"SETA", w_setA, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: a -- )", "set pitch (A) of the location, degrees")},
+    {"SETT", w_setT, "RA", 0, 0, 0,
+     FBRL_DOC("( loc -- ) ( F: t -- )", "set roll (T) of the location, degrees")},
+    {"SET-LOC", w_set_loc, "AA", 0, 0, 0, FBRL_DOC("( loc1 loc2 -- )", "copy location loc2 into loc1")},
+    {"DEFINE-LOC", w_define_loc, "RRRRRRA", 0, 0, 0,
      FBRL_DOC("( loc -- ) ( F: x y z o a t -- )",
               "set all six components (x y z in cm when METRIC-ON; angles in degrees)")},
-    {"SHIFTA", w_shifta, FBRL_DOC("( loc1 loc2 -- )", "add every component of loc2 to loc1")},
-    {"DISPLAY-LOC", w_display_loc,
+    {"SHIFTA", w_shifta, "AA", 0, 0, 0, FBRL_DOC("( loc1 loc2 -- )", "add every component of loc2 to loc1")},
+    {"DISPLAY-LOC", w_display_loc, "A", 0, 0, 0,
      FBRL_DOC("( loc -- )", "print the location on the console (mapped when MAP-ON, cm when METRIC-ON)")},
-    {"PRINT-LOC", w_print_loc,
+    {"PRINT-LOC", w_print_loc, "A", 0, 0, 0,
      FBRL_DOC("( loc -- )", "send DISPLAY-LOC's text (and CR LF) to the communication port")},
-    {"RECTMAT", w_rectmat,
+    {"RECTMAT", w_rectmat, "RRRA", 0, 0, 0,
      FBRL_DOC("( base-loc \"name\" -- ) ( F: dx dy dz -- ) ( run: i j k loc -- )",
               "make a rectangular matrix: name stores base + (i*dx, j*dy, k*dz) into loc")},
-    {"AUTOMAT", w_rectmat,
+    {"AUTOMAT", w_rectmat, "RRRA", 0, 0, 0,
      FBRL_DOC("( base-loc \"name\" -- ) ( F: dx dy dz -- ) ( run: i j k loc -- )",
               "RECTMAT (the thesis's other name for it)")},
-    {"RADMAT", w_radmat,
+    {"RADMAT", w_radmat, "RRRA", 0, 0, 0,
      FBRL_DOC("( base-loc \"name\" -- ) ( F: inc-angle ring-dist z-off -- ) ( run: ring idx k loc -- )",
               "make a radial matrix about the arm's axis (inc-angle in radians)")},
-    {"SHOW-AUTOMAT", w_show_automat,
+    {"SHOW-AUTOMAT", w_show_automat, "I", 0, 0, 0,
      FBRL_DOC("( xt -- )", "print a RECTMAT's base and steps (' name SHOW-AUTOMAT)")},
-    {"SHOW-RADMAT", w_show_radmat,
+    {"SHOW-RADMAT", w_show_radmat, "I", 0, 0, 0,
      FBRL_DOC("( xt -- )", "print a RADMAT's base, steps, radius and angle (' name SHOW-RADMAT)")},
-    {"METRIC-ON", w_metric_on, FBRL_DOC("( -- )", "location lengths in centimetres at the user side")},
-    {"METRIC-OFF", w_metric_off,
+    {"METRIC-ON", w_metric_on, "", 0, 0, 0,
+     FBRL_DOC("( -- )", "location lengths in centimetres at the user side")},
+    {"METRIC-OFF", w_metric_off, "", 0, 0, 0,
      FBRL_DOC("( -- )", "location lengths in inches at the user side (the default)")},
-    {"METRIC?", w_metric_q, FBRL_DOC("( -- flag )", "true if METRIC-ON")},
-    {"CM->IN", w_cm_in, FBRL_DOC("( F: cm -- in )", "centimetres to inches")},
-    {"IN->CM", w_in_cm, FBRL_DOC("( F: in -- cm )", "inches to centimetres")},
-    {"METRIC-IN", w_metric_in,
+    {"METRIC?", w_metric_q, "", 0, 0, 0, FBRL_DOC("( -- flag )", "true if METRIC-ON")},
+    {"CM->IN", w_cm_in, "R", 0, 0, 0, FBRL_DOC("( F: cm -- in )", "centimetres to inches")},
+    {"IN->CM", w_in_cm, "R", 0, 0, 0, FBRL_DOC("( F: in -- cm )", "inches to centimetres")},
+    {"METRIC-IN", w_metric_in, "R", 0, 0, 0,
      FBRL_DOC("( F: user -- in )", "a length the user gave (cm if METRIC-ON) to inches")},
-    {"METRIC-OUT", w_metric_out,
+    {"METRIC-OUT", w_metric_out, "R", 0, 0, 0,
      FBRL_DOC("( F: in -- user )", "inches to the user's unit (cm if METRIC-ON)")},
 };
 
 fbrl_status gl_install_loc(fbrl_vm *vm, fbrl_glossary *g)
 {
-    return gl_define(vm, g, loc_words, sizeof loc_words / sizeof loc_words[0]);
+    return fbrl_vmx_define_table(vm, loc_words, sizeof loc_words / sizeof loc_words[0], g);
 }

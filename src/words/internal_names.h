@@ -11,8 +11,7 @@
 
 #define cw_num           fbrli_cw_num
 #define cw_place_blocks  fbrli_cw_place_blocks
-#define gl_define        fbrli_gl_define
-#define gl_fpop          fbrli_gl_fpop
+#define gl_args          fbrli_gl_args
 #define gl_in            fbrli_gl_in
 #define gl_install_cal   fbrli_gl_install_cal
 #define gl_install_file  fbrli_gl_install_file
@@ -22,7 +21,6 @@
 #define gl_make          fbrli_gl_make
 #define gl_map           fbrli_gl_map
 #define gl_out           fbrli_gl_out
-#define gl_pop           fbrli_gl_pop
 #define gl_push_flag     fbrli_gl_push_flag
 #define gl_rad_run       fbrli_gl_rad_run
 #define gl_rect_run      fbrli_gl_rect_run
@@ -77,6 +75,7 @@
 #define rb_param_nwords  fbrli_rb_param_nwords
 #define rb_param_words   fbrli_rb_param_words
 #define rb_params        fbrli_rb_params
+#define rb_fetch         fbrli_rb_fetch
 #define rb_parse_param   fbrli_rb_parse_param
 #define rb_port_writer   fbrli_rb_port_writer
 #define rb_puts          fbrli_rb_puts

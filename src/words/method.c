@@ -130,7 +130,8 @@ static fbrl_status w_param_run(fbrl_vm *vm, void *ctx, const void *word)
 static fbrl_status w_param(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_method_set *s = ctx;
-    const char *wname = word ? "SAMPLES-PARAM" : "PARAM";
+    const fbrl_vmx_reg *w = word;
+    const char *wname = w->name;
     fbrl_vmx_val v[3];
     char name[FBRL_METHOD_NAME_MAX + 1], unit[FBRL_METHOD_UNIT_MAX + 1];
     size_t len, ulen;
@@ -139,7 +140,7 @@ static fbrl_status w_param(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_status dst = declaring(s, wname, &m);
     if (dst != FBRL_OK)
         return dst;
-    fbrl_status st = fbrl_vmx_args(vm, wname, "III", NULL, FBRL_VMX_STACKS, v);
+    fbrl_status st = fbrl_vmx_check(vm, w, v);
     if (st == FBRL_OK)
         st = parse_name(vm, wname, "the parameter's name", name, sizeof name, &len);
     if (st == FBRL_OK)
@@ -151,7 +152,7 @@ static fbrl_status w_param(fbrl_vm *vm, void *ctx, const void *word)
     if (v[0].i > v[1].i || v[2].i < v[0].i || v[2].i > v[1].i)
         return fbrl_vmx_throwf(vm, FBRL_THROW_BAD_NUMBER, "%s: %s: default %ld outside %ld..%ld", wname, name,
                                (long)v[2].i, (long)v[0].i, (long)v[1].i);
-    if (word != NULL && m->samples >= 0)
+    if (w->arg && m->samples >= 0)
         return fail(vm, FBRL_THROW_BAD_NAME_ARG, "%s: %s: the method has a sample count already", wname,
                     name);
     fbrl_method_param *p = &m->params[m->nparams];
@@ -168,7 +169,7 @@ static fbrl_status w_param(fbrl_vm *vm, void *ctx, const void *word)
     if (st != FBRL_OK)
         return st;
     memcpy(payload, &v[2].i, sizeof v[2].i);
-    if (word != NULL)
+    if (w->arg)
         m->samples = (int)m->nparams;
     m->nparams++;
     return FBRL_OK;
@@ -178,7 +179,8 @@ static fbrl_status w_param(fbrl_vm *vm, void *ctx, const void *word)
 static fbrl_status w_step(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_method_set *s = ctx;
-    const char *wname = word ? "SAMPLE-STEP" : "STEP";
+    const fbrl_vmx_reg *w = word;
+    const char *wname = w->name;
     fbrl_vmx_val v[1];
     char name[FBRL_METHOD_NAME_MAX + 1];
     size_t len;
@@ -186,14 +188,14 @@ static fbrl_status w_step(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_status dst = declaring(s, wname, &m);
     if (dst != FBRL_OK)
         return dst;
-    fbrl_status st = fbrl_vmx_args(vm, wname, "I", NULL, FBRL_VMX_STACKS, v);
+    fbrl_status st = fbrl_vmx_check(vm, w, v);
     if (st == FBRL_OK)
         st = parse_name(vm, wname, "the step's name", name, sizeof name, &len);
     if (st != FBRL_OK)
         return st;
     if (m->nsteps == FBRL_METHOD_MAX_STEPS)
         return fail(vm, FBRL_VM_THROW_OF_STATUS(FBRL_EFULL), "%s: %s: too many steps", wname, name);
-    if (word != NULL && m->samples < 0)
+    if (w->arg && m->samples < 0)
         return fail(vm, FBRL_THROW_BAD_NAME_ARG, "%s: %s: the method has no SAMPLES-PARAM", wname, name);
     if (v[0].i == 0)
         return fail(vm, FBRL_THROW_BAD_NUMBER, "%s: %s: no word given (' WORD STEP name)", wname, name);
@@ -201,7 +203,7 @@ static fbrl_status w_step(fbrl_vm *vm, void *ctx, const void *word)
     memset(p, 0, sizeof *p);
     memcpy(p->name, name, len + 1);
     p->xt = v[0].i;
-    p->per_sample = word != NULL;
+    p->per_sample = w->arg != 0;
     st = rest_of_line(vm, p->text, sizeof p->text);
     if (st == FBRL_OK)
         m->nsteps++;
@@ -214,17 +216,16 @@ static fbrl_status w_on_abort(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_method_set *s = ctx;
     fbrl_vmx_val v[1];
     fbrl_method *m;
-    (void)word;
     fbrl_status dst = declaring(s, "ON-ABORT", &m);
     if (dst != FBRL_OK)
         return dst;
-    fbrl_status st = fbrl_vmx_args(vm, "ON-ABORT", "I", NULL, FBRL_VMX_STACKS, v);
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
     if (st == FBRL_OK)
         m->abort_xt = v[0].i;
     return st;
 }
 
-static fbrl_status method_arg(fbrl_method_set *s, const char *wname, fbrl_method **out);
+static fbrl_status method_arg(fbrl_method_set *s, const void *word, fbrl_method **out);
 
 /* USE-PARAMS ( method -- ): the parameters of another method, shared (the same words,
  * so the steps of that method see the values set here); for a method composed of its steps */
@@ -232,10 +233,9 @@ static fbrl_status w_use_params(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_method_set *s = ctx;
     fbrl_method *m, *from = NULL;
-    (void)word;
     fbrl_status st = declaring(s, "USE-PARAMS", &m);
     if (st == FBRL_OK)
-        st = method_arg(s, "USE-PARAMS", &from);
+        st = method_arg(s, word, &from);
     if (st != FBRL_OK)
         return st;
     if (from == m)
@@ -269,15 +269,17 @@ static fbrl_status w_end_method(fbrl_vm *vm, void *ctx, const void *word)
     return FBRL_OK;
 }
 
-static fbrl_status method_arg(fbrl_method_set *s, const char *wname, fbrl_method **out)
+/* The word's method parameter (its row's spec "A", given or typed after it). */
+static fbrl_status method_arg(fbrl_method_set *s, const void *word, fbrl_method **out)
 {
     fbrl_vmx_val v[1];
-    fbrl_status st = fbrl_vmx_args(s->vm, wname, "A", NULL, FBRL_VMX_LINE, v);
+    fbrl_status st = fbrl_vmx_check(s->vm, word, v);
     if (st != FBRL_OK)
         return st;
     *out = method_of(s, v[0].i);
     if (*out == NULL)
-        return fail(s->vm, FBRL_THROW_TYPE_MISMATCH, "%s: not a method%s", wname, "");
+        return fail(s->vm, FBRL_THROW_TYPE_MISMATCH, "%s: not a method%s", ((const fbrl_vmx_reg *)word)->name,
+                    "");
     return FBRL_OK;
 }
 
@@ -315,8 +317,7 @@ static fbrl_status w_dot_method(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_method_set *s = ctx;
     fbrl_method *m = NULL;
     char line[256];
-    (void)word;
-    fbrl_status st = method_arg(s, ".METHOD", &m);
+    fbrl_status st = method_arg(s, word, &m);
     if (st != FBRL_OK)
         return st;
     snprintf(line, sizeof line, "%s - %s\n", m->name, m->text);
@@ -344,8 +345,7 @@ static fbrl_status w_param_store(fbrl_vm *vm, void *ctx, const void *word)
     fbrl_vmx_val v[1];
     char name[FBRL_METHOD_NAME_MAX + 1];
     size_t len;
-    (void)word;
-    fbrl_status st = fbrl_vmx_args(vm, "PARAM!", "I", NULL, FBRL_VMX_STACKS, v);
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
     if (st == FBRL_OK)
         st = parse_name(vm, "PARAM!", "a parameter's name", name, sizeof name, &len);
     if (st != FBRL_OK)
@@ -367,35 +367,30 @@ static fbrl_status w_param_store(fbrl_vm *vm, void *ctx, const void *word)
     return fail(vm, FBRL_THROW_UNDEFINED, "PARAM!: %s: no such method parameter%s", name, "");
 }
 
-typedef struct method_word {
-    const char *name;
-    fbrl_vmx_fn fn;
-    const void *arg; /* non-NULL: the SAMPLE- variant */
-    FBRL_DOC_FIELDS
-} method_word;
-
-static const method_word words[] = {
-    {"METHOD", w_method, NULL,
+/* The rows (vmx.h): arg 1 is the SAMPLE- variant. */
+static const fbrl_vmx_reg words[] = {
+    {"METHOD", w_method, "", 0, 0, 0,
      FBRL_DOC("( \"name\" \"text\" -- )", "declare a method: its name, then a description")},
-    {"PARAM", w_param, NULL,
+    {"PARAM", w_param, "III", 0, 0, 0,
      FBRL_DOC("( min max default \"name\" \"unit\" \"text\" -- )",
               "declare a parameter of the method being declared (name pushes its value)")},
-    {"SAMPLES-PARAM", w_param, "",
+    {"SAMPLES-PARAM", w_param, "III", 0, 0, 1,
      FBRL_DOC("( min max default \"name\" \"unit\" \"text\" -- )",
               "declare the parameter that counts the samples (SAMPLE-STEP runs once per sample)")},
-    {"STEP", w_step, NULL,
+    {"STEP", w_step, "I", 0, 0, 0,
      FBRL_DOC("( xt \"name\" \"text\" -- )", "declare a named step: the word runs once per run")},
-    {"SAMPLE-STEP", w_step, "",
+    {"SAMPLE-STEP", w_step, "I", 0, 0, 1,
      FBRL_DOC("( xt \"name\" \"text\" -- )",
               "declare a named step run once per sample with ( index -- ), index 0..")},
-    {"ON-ABORT", w_on_abort, NULL,
+    {"ON-ABORT", w_on_abort, "I", 0, 0, 0,
      FBRL_DOC("( xt -- )", "the word that takes the arm to a safe place after an abort")},
-    {"USE-PARAMS", w_use_params, NULL,
+    {"USE-PARAMS", w_use_params, "A", FBRL_VMX_PARSE, 0, 0,
      FBRL_DOC("( method -- )", "share another method's parameters (a method composed of its steps)")},
-    {"END-METHOD", w_end_method, NULL, FBRL_DOC("( -- )", "end the method's declaration")},
-    {"METHODS", w_methods, NULL, FBRL_DOC("( -- )", "list the declared methods")},
-    {".METHOD", w_dot_method, NULL, FBRL_DOC("( method -- )", "show a method's parameters and steps")},
-    {"PARAM!", w_param_store, NULL,
+    {"END-METHOD", w_end_method, "", 0, 0, 0, FBRL_DOC("( -- )", "end the method's declaration")},
+    {"METHODS", w_methods, "", 0, 0, 0, FBRL_DOC("( -- )", "list the declared methods")},
+    {".METHOD", w_dot_method, "A", FBRL_VMX_PARSE, 0, 0,
+     FBRL_DOC("( method -- )", "show a method's parameters and steps")},
+    {"PARAM!", w_param_store, "I", 0, 0, 0,
      FBRL_DOC("( n \"name\" -- )", "set a method parameter, its range checked")},
 };
 
@@ -405,13 +400,7 @@ fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s)
         return FBRL_EINVAL;
     memset(s, 0, sizeof *s);
     s->vm = vm;
-    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st = fbrl_vmx_define(vm, words[i].name, words[i].fn, s, words[i].arg, 0,
-                                         FBRL_DOC_STACK(words[i]), FBRL_DOC_HELP(words[i]));
-        if (st != FBRL_OK)
-            return st;
-    }
-    return FBRL_OK;
+    return fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], s);
 }
 
 const fbrl_method *fbrl_method_at(const fbrl_method_set *s, size_t i)

@@ -156,10 +156,11 @@ static fbrl_status w_on_failure(fbrl_vm *vm, void *ctx, const void *word)
 static fbrl_status w_attempt_start(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_recover *rc = ctx;
-    fbrl_cell xt;
-    (void)word;
-    if (fbrl_vm_pop(vm, &xt) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    fbrl_vmx_val v[1];
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_cell xt = v[0].i;
     for (size_t i = 0; i < rc->nrules; i++)
         if (rc->rules[i].step == xt || rc->rules[i].step == 0)
             rc->rules[i].used = 0;
@@ -205,10 +206,11 @@ static fbrl_status stop_safely(fbrl_vm *vm, fbrl_recover *rc, fbrl_recover_kind 
 static fbrl_status w_recover(fbrl_vm *vm, void *ctx, const void *word)
 {
     fbrl_recover *rc = ctx;
-    fbrl_cell xt, code;
-    (void)word;
-    if (fbrl_vm_pop(vm, &xt) != FBRL_OK || fbrl_vm_pop(vm, &code) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    fbrl_vmx_val v[2];
+    fbrl_status cst = fbrl_vmx_check(vm, word, v);
+    if (cst != FBRL_OK)
+        return cst;
+    fbrl_cell code = v[0].i, xt = v[1].i;
     fbrl_recover_kind k = fbrl_recover_classify(rc, (int)code);
     fbrl_recover_rule *r = NULL;
     const char *nm;
@@ -299,11 +301,12 @@ static fbrl_status w_skipped(fbrl_vm *vm, void *ctx, const void *word)
 /* (FAILURE) ( kind -- ): throw the failure the plan saw */
 static fbrl_status w_failure_run(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_cell k;
+    fbrl_vmx_val v[1];
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
     (void)ctx;
-    (void)word;
-    if (fbrl_vm_pop(vm, &k) != FBRL_OK)
-        return fbrl_vm_throw(vm, FBRL_THROW_STACK_UNDERFLOW, NULL);
+    if (st != FBRL_OK)
+        return st;
+    fbrl_cell k = v[0].i;
     return fbrl_vmx_throwf(vm, FBRL_RECOVER_THROW(k), "%s: %s", fbrl_recover_kind_name((fbrl_recover_kind)k),
                            fbrl_recover_kind_text((fbrl_recover_kind)k));
 }
@@ -397,34 +400,30 @@ fbrl_status fbrl_recover_install(fbrl_vm *vm, fbrl_recover *rc, fbrl_robot *robo
         ": RUN-SAMPLE ( xt -- flag ) \\ run one sample's steps: false if a corrective action skipped it\n"
         "  (SAMPLE+) CATCH DUP %d = IF DROP (SKIPPED) FALSE ELSE THROW TRUE THEN ;\n";
     char forth[sizeof forth_fmt + 16];
-    static const struct {
-        const char *name;
-        fbrl_vmx_fn fn;
-        unsigned flags;
-        const char *stack, *help;
-    } words[] = {
-        {"ON-FAILURE", w_on_failure, 0, "( \"step\" \"kind\" \"action\" -- )",
-         "declare what a failure of a kind in a step does: RETRY n, RUN word n, SKIP, ASK, STOP"},
-        {"FAILURE", w_failure, FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART, "( \"kind\" -- )",
-         "raise a failure the plan saw: GRIP-EMPTY, PART-MISSING or DEVICE-TIMEOUT"},
-        {"RECOVERY-RULES", w_rules, 0, "( -- )", "list the corrective actions declared"},
-        {"(ATTEMPT-START)", w_attempt_start, 0, "( xt -- )", "ATTEMPT's helper: count the step's tries anew"},
-        {"(RECOVER)", w_recover, 0, "( code xt -- 0 | code )", "ATTEMPT's helper: apply the step's rule"},
-        {"(SAMPLE+)", w_sample_next, 0, "( -- )", "RUN-SAMPLE's helper: the next sample"},
-        {"(SKIPPED)", w_skipped, 0, "( -- )", "RUN-SAMPLE's helper: a sample given up"},
-        {"(FAILURE)", w_failure_run, 0, "( kind -- )", "FAILURE's run-time part: throw the failure"},
+    static const fbrl_vmx_reg words[] = {
+        {"ON-FAILURE", w_on_failure, "", 0, 0, 0,
+         FBRL_DOC("( \"step\" \"kind\" \"action\" -- )",
+                  "declare what a failure of a kind in a step does: RETRY n, RUN word n, SKIP, ASK, STOP")},
+        {"FAILURE", w_failure, "", FBRL_VMX_IMMEDIATE | FBRL_VMX_STATE_SMART, 0, 0,
+         FBRL_DOC("( \"kind\" -- )", "raise a failure the plan saw: GRIP-EMPTY, PART-MISSING or DEVICE-TIMEOUT")},
+        {"RECOVERY-RULES", w_rules, "", 0, 0, 0, FBRL_DOC("( -- )", "list the corrective actions declared")},
+        {"(ATTEMPT-START)", w_attempt_start, "I", 0, 0, 0,
+         FBRL_DOC("( xt -- )", "ATTEMPT's helper: count the step's tries anew")},
+        {"(RECOVER)", w_recover, "II", 0, 0, 0,
+         FBRL_DOC("( code xt -- 0 | code )", "ATTEMPT's helper: apply the step's rule")},
+        {"(SAMPLE+)", w_sample_next, "", 0, 0, 0, FBRL_DOC("( -- )", "RUN-SAMPLE's helper: the next sample")},
+        {"(SKIPPED)", w_skipped, "", 0, 0, 0, FBRL_DOC("( -- )", "RUN-SAMPLE's helper: a sample given up")},
+        {"(FAILURE)", w_failure_run, "I", 0, 0, 0,
+         FBRL_DOC("( kind -- )", "FAILURE's run-time part: throw the failure")},
     };
     if (!vm || !rc)
         return FBRL_EINVAL;
     memset(rc, 0, sizeof *rc);
     rc->vm = vm;
     rc->robot = robot;
-    for (size_t i = 0; i < sizeof words / sizeof words[0]; i++) {
-        fbrl_status st = fbrl_vmx_define(vm, words[i].name, words[i].fn, rc, &words[i], words[i].flags,
-                                         words[i].stack, words[i].help);
-        if (st != FBRL_OK)
-            return st;
-    }
+    fbrl_status st = fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], rc);
+    if (st != FBRL_OK)
+        return st;
     int n = snprintf(forth, sizeof forth, forth_fmt, FBRL_RECOVER_THROW_SKIP);
     return fbrl_vm_eval(vm, forth, (size_t)n);
 }

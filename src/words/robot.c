@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* robot.c - binding the FBRL robot words into a VM: each word set's table (robot_motion.c
  * robot_rapl.c robot_teach.c robot_param.c robot_line.c robot_comm.c robot_io.c) is
- * defined with its parameters fetched by robot_param.c before the word runs.
+ * defined by vmx.h's table call; each word fetches its parameters first (RB_WORD).
  *
  * Every word that talks to the controller goes through the robot's fbrl_link, so each
  * command line is echo-verified before its CR is sent. Locations come from the host
@@ -13,31 +13,6 @@
 #include <string.h>
 
 #include "robot_internal.h"
-
-/* Every robot word: its parameters fetched by the one rule, then its function. */
-static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
-{
-    fbrl_robot *r = ctx;
-    const rb_word *w = word;
-    rb_val v[RB_MAXP];
-    (void)vm;
-    memset(v, 0, sizeof v);
-    fbrl_status st = rb_params(r, w, v);
-    if (st != FBRL_OK)
-        return st;
-    return w->fn(r, w, v);
-}
-
-static fbrl_status rb_define(fbrl_robot *r, const rb_word *t, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        fbrl_status st = fbrl_vmx_define(r->vm, t[i].name, tramp, r, &t[i], t[i].flags, FBRL_DOC_STACK(t[i]),
-                                         FBRL_DOC_HELP(t[i]));
-        if (st != FBRL_OK)
-            return st;
-    }
-    return FBRL_OK;
-}
 
 /* The word tables, in this order: HELP and WORDS list the words as they were defined. */
 static const size_t one = 1;
@@ -105,7 +80,7 @@ fbrl_status fbrl_robot_install(fbrl_vm *vm, fbrl_robot *r, fbrl_link *link, fbrl
         /* ASC is F-PC's: a VM that has one keeps it */
         if (tables[k].t == &rb_comm_asc && fbrl_vmx_find(vm, "ASC", 3, &xt) == FBRL_OK)
             continue;
-        st = rb_define(r, tables[k].t, *tables[k].n);
+        st = fbrl_vmx_define_table(vm, tables[k].t, *tables[k].n, r);
     }
     if (st == FBRL_OK)
         st = fbrl_vm_eval(vm, rb_handlers, strlen(rb_handlers));

@@ -8,17 +8,19 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/num.h"
 #include "fbrl/vmx.h"
 #include "cell_internal.h"
 
-typedef struct cw_word {
-    const char *name;
-    fbrl_status (*fn)(fbrl_cell_words *cw, const struct cw_word *w);
-    int arg;
-    FBRL_DOC_FIELDS
-} cw_word;
+/* A CELL word's row (vmx.h's one row type; arg: the obstacle kind, the guard's switch). */
+typedef fbrl_vmx_reg cw_word;
+
+/* Every CELL word begins so: its state (ctx) and its row (word). */
+#define CW_WORD(vm, ctx, word)        \
+    fbrl_cell_words *cw = (ctx);      \
+    const cw_word *w = (word);        \
+    (void)(vm)
 
 /* "12.3456" locale-free (the picture's numbers too). */
 const char *cw_num(char *buf, size_t cap, double v)
@@ -29,12 +31,12 @@ const char *cw_num(char *buf, size_t cap, double v)
 }
 #define num cw_num
 
-static fbrl_status pop_reals(fbrl_cell_words *cw, const cw_word *w, const char *spec, double *out)
+/* The word's real parameters (its row's spec, fbrl_vmx_check), each finite. */
+static fbrl_status pop_reals(fbrl_cell_words *cw, const cw_word *w, double *out)
 {
     fbrl_vmx_val v[FBRL_VMX_MAXARGS];
-    size_t n = strlen(spec);
-    memset(v, 0, sizeof v);
-    fbrl_status st = fbrl_vmx_args(cw->vm, w->name, spec, NULL, FBRL_VMX_STACKS, v);
+    size_t n = strlen(w->spec);
+    fbrl_status st = fbrl_vmx_check(cw->vm, w, v);
     if (st != FBRL_OK)
         return st;
     for (size_t k = 0; k < n; k++) {
@@ -145,29 +147,31 @@ static fbrl_status add_obstacle(fbrl_cell_words *cw, const cw_word *w, fbrl_cell
 }
 
 /* CELL-BOX / CELL-KEEPOUT ( F: x0 y0 z0 x1 y1 z1 -- ) name */
-static fbrl_status w_box(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_box(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     double v[6];
     fbrl_cell_obj o;
     memset(&o, 0, sizeof o);
-    fbrl_status st = pop_reals(cw, w, "RRRRRR", v);
+    fbrl_status st = pop_reals(cw, w, v);
     if (st == FBRL_OK)
         st = parse_name(cw, w, o.name);
     if (st != FBRL_OK)
         return st;
-    o.kind = w->arg;
+    o.kind = (fbrl_cell_kind)w->arg;
     for (int k = 0; k < 3; k++)
         o.lo[k] = v[k], o.hi[k] = v[k + 3];
     return add_obstacle(cw, w, &o);
 }
 
 /* CELL-CYLINDER ( F: x y z radius height -- ) name: upright, its base centred at x y z */
-static fbrl_status w_cylinder(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_cylinder(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     double v[5];
     fbrl_cell_obj o;
     memset(&o, 0, sizeof o);
-    fbrl_status st = pop_reals(cw, w, "RRRRR", v);
+    fbrl_status st = pop_reals(cw, w, v);
     if (st == FBRL_OK)
         st = parse_name(cw, w, o.name);
     if (st != FBRL_OK)
@@ -180,18 +184,20 @@ static fbrl_status w_cylinder(fbrl_cell_words *cw, const cw_word *w)
 }
 
 /* CELL-TABLE ( F: z -- ) */
-static fbrl_status w_table(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_table(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     double z;
-    fbrl_status st = pop_reals(cw, w, "R", &z);
+    fbrl_status st = pop_reals(cw, w, &z);
     return st == FBRL_OK ? fbrl_cell_set_table(&cw->model, z) : st;
 }
 
 /* CELL-TOOL ( F: length radius -- ) */
-static fbrl_status w_tool(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_tool(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     double v[2];
-    fbrl_status st = pop_reals(cw, w, "RR", v);
+    fbrl_status st = pop_reals(cw, w, v);
     if (st != FBRL_OK)
         return st;
     if (fbrl_cell_set_tool(&cw->model, v[0], v[1]) != FBRL_OK)
@@ -201,8 +207,9 @@ static fbrl_status w_tool(fbrl_cell_words *cw, const cw_word *w)
 }
 
 /* CELL-BLOCK name: later obstacles ride on the CREATE-CAL-STRU name (its calibration). */
-static fbrl_status w_block(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_block(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     char name[FBRL_CELL_NAME_MAX + 1];
     int index;
     fbrl_status st = parse_name(cw, w, name);
@@ -217,21 +224,24 @@ static fbrl_status w_block(fbrl_cell_words *cw, const cw_word *w)
     return FBRL_OK;
 }
 
-static fbrl_status w_world(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_world(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     (void)w;
     cw->block = -1;
     return FBRL_OK;
 }
 
-static fbrl_status w_guard(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_guard(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     cw->guard = w->arg;
     return FBRL_OK;
 }
 
-static fbrl_status w_clear(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_clear(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     (void)w;
     fbrl_cell_clear(&cw->model);
     cw->block = -1;
@@ -247,15 +257,16 @@ static fbrl_status w_clear(fbrl_cell_words *cw, const cw_word *w)
 
 /* CELL-RACK ( rows cols -- ) ( PAR: matrix ): the picture draws every position of that
  * RECTMAT (i < rows, j < cols) or RADMAT (rings, radials), not only its base. */
-static fbrl_status w_rack(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_rack(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     fbrl_vmx_val v[2];
     char name[FBRL_CELL_NAME_MAX + 1];
     fbrl_cell xt;
     fbrl_glossary_kind kind;
     void *obj;
     size_t k;
-    fbrl_status st = fbrl_vmx_args(cw->vm, w->name, "II", NULL, FBRL_VMX_STACKS, v);
+    fbrl_status st = fbrl_vmx_check(cw->vm, w, v);
     if (st == FBRL_OK)
         st = parse_name(cw, w, name);
     if (st != FBRL_OK)
@@ -288,8 +299,9 @@ static fbrl_status w_rack(fbrl_cell_words *cw, const cw_word *w)
 static void say(fbrl_cell_words *cw, const char *s) { fbrl_vmx_puts(cw->vm, s); }
 
 /* .CELL: the cell, and what the guard saw */
-static fbrl_status w_show(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_show(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     char line[256], a[24], b[24], c[24], d[24], e[24], f[24];
     (void)w;
     snprintf(line, sizeof line, "cell: guard %s, table %s, tool length %s radius %s in, %zu obstacles\n",
@@ -320,11 +332,12 @@ static fbrl_status w_show(fbrl_cell_words *cw, const cw_word *w)
 }
 
 /* CELL-SVG ( c-addr u -- ) or ( PAR: file ): the picture, through the host's file */
-static fbrl_status w_svg(fbrl_cell_words *cw, const cw_word *w)
+static fbrl_status w_svg(fbrl_vm *vm, void *ctx, const void *word)
 {
+    CW_WORD(vm, ctx, word);
     fbrl_vmx_val v[1];
     char path[256];
-    fbrl_status st = fbrl_vmx_args(cw->vm, w->name, "S", NULL, FBRL_VMX_LINE, v);
+    fbrl_status st = fbrl_vmx_check(cw->vm, w, v);
     if (st != FBRL_OK)
         return st;
     if (!cw->save)
@@ -341,40 +354,33 @@ static fbrl_status w_svg(fbrl_cell_words *cw, const cw_word *w)
 }
 
 static const cw_word words[] = {
-    {"CELL-TABLE", w_table, 0, FBRL_DOC("( F: z -- )", "the work cell's table top is at height z (in)")},
-    {"CELL-TOOL", w_tool, 0,
+    {"CELL-TABLE", w_table, "R", 0, 0, 0, FBRL_DOC("( F: z -- )", "the work cell's table top is at height z (in)")},
+    {"CELL-TOOL", w_tool, "RR", 0, 0, 0,
      FBRL_DOC("( F: length radius -- )",
               "the tool envelope: reaches length (in) past the tool point, this thick")},
-    {"CELL-BOX", w_box, FBRL_CELL_BOX,
+    {"CELL-BOX", w_box, "RRRRRR", 0, 0, FBRL_CELL_BOX,
      FBRL_DOC("( F: x0 y0 z0 x1 y1 z1 -- ) ( PAR: name )", "a solid box obstacle between two corners (in)")},
-    {"CELL-KEEPOUT", w_box, FBRL_CELL_KEEPOUT,
+    {"CELL-KEEPOUT", w_box, "RRRRRR", 0, 0, FBRL_CELL_KEEPOUT,
      FBRL_DOC("( F: x0 y0 z0 x1 y1 z1 -- ) ( PAR: name )",
               "a keep-out zone: a box of space the tool must not enter")},
-    {"CELL-CYLINDER", w_cylinder, 0,
+    {"CELL-CYLINDER", w_cylinder, "RRRRR", 0, 0, 0,
      FBRL_DOC("( F: x y z radius height -- ) ( PAR: name )",
               "an upright cylinder obstacle standing at x y z")},
-    {"CELL-BLOCK", w_block, 0,
+    {"CELL-BLOCK", w_block, "", 0, 0, 0,
      FBRL_DOC("( PAR: cal-stru )", "later obstacles move with that CREATE-CAL-STRU's calibration")},
-    {"CELL-WORLD", w_world, 0, FBRL_DOC("( -- )", "later obstacles stand fixed in the cell")},
-    {"CELL-GUARD-ON", w_guard, 1, FBRL_DOC("( -- )", "check every motion against the cell (the default)")},
-    {"CELL-GUARD-OFF", w_guard, 0,
+    {"CELL-WORLD", w_world, "", 0, 0, 0, FBRL_DOC("( -- )", "later obstacles stand fixed in the cell")},
+    {"CELL-GUARD-ON", w_guard, "", 0, 0, 1, FBRL_DOC("( -- )", "check every motion against the cell (the default)")},
+    {"CELL-GUARD-OFF", w_guard, "", 0, 0, 0,
      FBRL_DOC("( -- )", "send motions unchecked (the guard is off until CELL-GUARD-ON)")},
-    {"CELL-CLEAR", w_clear, 0, FBRL_DOC("( -- )", "forget the cell's table, obstacles and blocks")},
-    {"CELL-RACK", w_rack, 0,
+    {"CELL-CLEAR", w_clear, "", 0, 0, 0, FBRL_DOC("( -- )", "forget the cell's table, obstacles and blocks")},
+    {"CELL-RACK", w_rack, "II", 0, 0, 0,
      FBRL_DOC(
          "( rows cols -- ) ( PAR: matrix )",
          "the picture draws every position of that RECTMAT or RADMAT (rows or rings x columns or radials)")},
-    {".CELL", w_show, 0, FBRL_DOC("( -- )", "list the cell and the closest approach so far")},
-    {"CELL-SVG", w_svg, 0,
+    {".CELL", w_show, "", 0, 0, 0, FBRL_DOC("( -- )", "list the cell and the closest approach so far")},
+    {"CELL-SVG", w_svg, "S", FBRL_VMX_PARSE, 0, 0,
      FBRL_DOC("( c-addr u -- ) or ( PAR: file )", "write an SVG picture of the cell and the tool's path")},
 };
-
-static fbrl_status tramp(fbrl_vm *vm, void *ctx, const void *word)
-{
-    (void)vm;
-    const cw_word *w = word;
-    return w->fn(ctx, w);
-}
 
 /* ---- the guard ---- */
 
@@ -637,12 +643,9 @@ fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, f
     cw->block = -1;
     cw->stats.clearance = INFINITY;
     cw->stats.near_obj = FBRL_CELL_NONE;
-    for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
-        fbrl_status st = fbrl_vmx_define(vm, words[k].name, tramp, cw, &words[k], 0, FBRL_DOC_STACK(words[k]),
-                                         FBRL_DOC_HELP(words[k]));
-        if (st != FBRL_OK)
-            return st;
-    }
+    fbrl_status st = fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], cw);
+    if (st != FBRL_OK)
+        return st;
     memset(&gd, 0, sizeof gd);
     gd.check = guard_check;
     gd.done = guard_done;

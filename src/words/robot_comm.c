@@ -79,8 +79,9 @@ static fbrl_status set_baud(fbrl_robot *r, const rb_word *w, fbrl_cell b)
     return FBRL_OK;
 }
 
-static fbrl_status w_setting(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_setting(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     switch (w->arg) {
     case 0: return set_word_length(r, w, v[0].i);
     case 1: return set_stop_bits(r, w, v[0].i);
@@ -90,7 +91,7 @@ static fbrl_status w_setting(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* COMMSET ( baud parity stopbits wordlen -- ): all four; nothing changes on an error */
-static fbrl_status w_commset(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status commset(fbrl_robot *r, const rb_word *w, rb_val *v)
 {
     fbrl_uart_config keep = r->comm;
     fbrl_status st = set_baud(r, w, v[0].i);
@@ -122,18 +123,26 @@ static fbrl_status apply(fbrl_robot *r, const rb_word *w)
 }
 
 /* SETUPUART ( comm-port -- ) */
-static fbrl_status w_setupuart(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_setupuart(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = check_port(r, w, v[0].i);
     return st == FBRL_OK ? apply(r, w) : st;
 }
 
-/* COMM-SETUP ( pt# bd prty stop-bit wrdlen -- ) */
-static fbrl_status w_comm_setup(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_commset(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
+    return commset(r, w, v);
+}
+
+/* COMM-SETUP ( pt# bd prty stop-bit wrdlen -- ) */
+static fbrl_status w_comm_setup(fbrl_vm *vm, void *ctx, const void *word)
+{
+    RB_WORD(vm, ctx, word);
     fbrl_status st = check_port(r, w, v[0].i);
     if (st == FBRL_OK)
-        st = w_commset(r, w, v + 1);
+        st = commset(r, w, v + 1);
     return st == FBRL_OK ? apply(r, w) : st;
 }
 
@@ -226,8 +235,9 @@ static fbrl_status send_raw(fbrl_robot *r, const rb_word *w, const void *p, size
 }
 
 /* EMIT-COM ( char -- ), DIRECT-WRITE-COM ( c -- ) */
-static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_emit_com(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     if (v[0].i < 0 || v[0].i > 255)
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, "EMIT-COM: a byte 0..255");
     uint8_t b = (uint8_t)v[0].i;
@@ -235,24 +245,27 @@ static fbrl_status w_emit_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* TYPE-COM ( chrs addr -- ) - the thesis's order: count first */
-static fbrl_status w_type_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_type_com(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     if (v[0].i < 0 || (v[0].i > 0 && !fbrl_vm_addr(r->vm, v[1].i, (size_t)v[0].i)))
         return rb_fail(r, FBRL_THROW_BAD_ADDRESS, NULL);
     return send_raw(r, w, (const void *)v[1].i, (size_t)v[0].i);
 }
 
 /* .-COM ( n -- ) */
-static fbrl_status w_dot_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_dot_com(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char buf[32];
     int n = snprintf(buf, sizeof buf, "%ld", (long)v[0].i);
     return send_raw(r, w, buf, (size_t)n);
 }
 
 /* F.-COM ( F: r -- ): as RAPL reads reals (four decimals) */
-static fbrl_status w_fdot_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_fdot_com(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char buf[32];
     size_t n;
     fbrl_status st = fbrl_rapl_format_real(buf, sizeof buf, &n, v[0].f);
@@ -262,8 +275,9 @@ static fbrl_status w_fdot_com(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* GET-COM ( -- char ): the next received byte, -1 if none came within a second */
-static fbrl_status w_get_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_get_com(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_uart *u;
     uint8_t b;
     size_t got = 0;
@@ -302,8 +316,9 @@ static fbrl_status resync_keep(fbrl_robot *r, char *keep, size_t cap, size_t *ke
 fbrl_status rb_resync(fbrl_robot *r) { return resync_keep(r, NULL, 0, NULL); }
 
 /* RESET-COMM ( port -- ): drop what was received and not read, and resynchronise. */
-static fbrl_status w_reset_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_reset_comm(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_uart *u;
     fbrl_status st = check_port(r, w, v[0].i);
     if (st == FBRL_OK)
@@ -334,7 +349,8 @@ static void print_to_port(void *ctx, const char *s, size_t n)
     raw_end(r, s, n);
     if (!n || s[n - 1] != '\n')
         return;
-    if (resync_keep(r, answer, sizeof answer, &kept) != FBRL_OK) {
+    fbrl_status st = resync_keep(r, answer, sizeof answer, &kept);
+    if (st != FBRL_OK && st != FBRL_EUNITS) { /* in millimetres: in step, the words refuse lengths */
         rb_puts(r,
                 "PRINT-LOC: printed on the controller's line; the controller did not answer in step again\n");
         return;
@@ -367,8 +383,9 @@ void rb_port_writer(fbrl_robot *r)
 }
 
 /* .COMM ( -- ): the port's settings as the uart has them now */
-static fbrl_status w_dot_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_dot_comm(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_uart *u;
     fbrl_uart_config c;
     char buf[96];
@@ -387,8 +404,9 @@ static fbrl_status w_dot_comm(fbrl_robot *r, const rb_word *w, rb_val *v)
 
 /* ASC ( "c" -- char ): F-PC's character literal, used by the thesis's examples
  * (ASC E SETPARITY); compiles a literal inside definitions. */
-static fbrl_status w_asc(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_asc(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     const char *s;
     size_t n;
     (void)w;

@@ -49,8 +49,9 @@ static void on_line(void *ctx, const char *line, size_t len, int flawed)
 
 /* IMPORT-LOC ( "name" -- ) or ( c-addr u -- ): the controller's location name (#name for a
  * precision point) into the host location of that name (without the #), made if needed. */
-static fbrl_status w_import_loc(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_import_loc(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[CTRL_NAME_MAX + 2], line[64], msg[160];
     listing l;
     fbrl_loc arm, user;

@@ -27,27 +27,28 @@ typedef fbrl_vmx_val rb_val;
 
 #define RB_MAXP FBRL_VMX_MAXARGS
 
-struct rb_word;
-typedef fbrl_status (*rb_fn)(fbrl_robot *r, const struct rb_word *w, rb_val *v);
-
-/* A table entry. spec lists the parameters in stack-effect order: vmx.h's letters (I R C S T)
- * and L location address, X location or controller location name, A device address.
- * flags: FBRL_VMX_IMMEDIATE ... flags and cmd are narrow and fill the gap before arg, so a
- * row is five words on a 32-bit target (the firmware has about 200 rows). */
-typedef struct rb_word {
-    const char *name;
-    rb_fn fn;
-    const char *spec;
-    uint8_t flags;
-    int16_t cmd;  /* fbrl_rapl_cmd for the generic command words, -1 otherwise */
-    intptr_t arg; /* word-specific */
-    FBRL_DOC_FIELDS
-} rb_word;
-/* Every flag and command number fits (C99 has no static assertion: a negative array size
- * fails to compile). */
-#define RB_WORD_FLAGS (FBRL_VMX_IMMEDIATE | FBRL_VMX_COMPILE_ONLY | FBRL_VMX_STATE_SMART)
-typedef char rb_word_flags_fit[RB_WORD_FLAGS <= UINT8_MAX ? 1 : -1];
+/* A robot word's row: vmx.h's one row type. spec lists the parameters in stack-effect
+ * order: vmx.h's letters (I R C S T) and L location address, X location or controller
+ * location name, A device address, J one real per joint of the arm; code is the
+ * fbrl_rapl_cmd of the generic command words (-1 otherwise), arg the word's own number.
+ * A row is five words on a 32-bit target (the firmware has about 200 rows). */
+typedef fbrl_vmx_reg rb_word;
+/* Every command number fits the row's code (C99 has no static assertion: a negative array
+ * size fails to compile). */
 typedef char rb_word_cmds_fit[FBRL_RAPL_NCMDS - 1 <= INT16_MAX ? 1 : -1];
+
+/* Every robot word begins so (as a Lua function with luaL_check*): its robot (ctx), its row
+ * (word) and its parameters v fetched by the one rule (rb_params); a failure is thrown and
+ * returned before the word does anything. */
+#define RB_WORD(vm, ctx, word)                   \
+    fbrl_robot *r = (ctx);                       \
+    const rb_word *w = (word);                   \
+    rb_val v[RB_MAXP];                           \
+    fbrl_status rb_word_st_ = rb_fetch(r, w, v); \
+    (void)(vm);                                  \
+    (void)v;                                     \
+    if (rb_word_st_ != FBRL_OK)                  \
+    return rb_word_st_
 
 /* Throw a Forth exception with a message (the message is copied). */
 fbrl_status rb_fail(fbrl_robot *r, int code, const char *msg);
@@ -57,8 +58,8 @@ fbrl_status rb_fail_st(fbrl_robot *r, const rb_word *w, fbrl_status st, const ch
  * in the link is finished first. */
 fbrl_status rb_online(fbrl_robot *r);
 /* Lengths go out in inches: refused (nothing sent) while the link knows the controller
- * works in millimetres (a STATUS read, METRIC run: fbrl_link_units). The link does not
- * ask by itself: a STATUS costs about a second at 9600 baud (docs/robot.md). */
+ * works in millimetres (the connect's STATUS, a later one, METRIC run: fbrl_link_units;
+ * docs/robot.md). */
 fbrl_status rb_units(fbrl_robot *r, const rb_word *w);
 /* Throw -28 "user interrupt" if Ctrl-C (fbrl_vm_interrupt) was pressed (for words that
  * wait or loop); FBRL_OK otherwise. */
@@ -118,6 +119,8 @@ fbrl_status rb_stream(fbrl_robot *r, const rb_word *w, fbrl_rapl_cmd cmd);
  * the word. */
 fbrl_status rb_parse_param(fbrl_robot *r, const rb_word *w, char kind, rb_val *v);
 fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v);
+/* rb_params into all RB_MAXP values, those past the word's parameters zero. */
+fbrl_status rb_fetch(fbrl_robot *r, const rb_word *w, rb_val *v);
 /* The arm's axes: the link's configuration (5 when offline). Parameter letter J in a
  * word's spec stands for one real per axis. */
 unsigned rb_naxes(const fbrl_robot *r);

@@ -124,8 +124,9 @@ size_t fbrl_robot_devices_free(const fbrl_robot *r)
 }
 
 /* OUTPUT-DEVICE / INPUT-DEVICE ( port "name" -- ) */
-static fbrl_status w_make_device(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_make_device(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char msg[96];
     if (v[0].i < 1 || v[0].i > FBRL_ROBOT_IO_MAX) {
         snprintf(msg, sizeof msg, "%s: port %ld outside 1..%d", w->name, (long)v[0].i, FBRL_ROBOT_IO_MAX);
@@ -180,8 +181,9 @@ static fbrl_status told(fbrl_robot *r, const rb_word *w, const fbrl_robot_device
 }
 
 /* ON / OFF ( dev -- ); for any other address, F-PC's ( a -- ) stores true / false */
-static fbrl_status w_on_off(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_on_off(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = device_at(r, v[0].i);
     if (!d) {
         fbrl_cell flag = w->arg ? -1 : 0;
@@ -254,8 +256,9 @@ static fbrl_status pulse(fbrl_robot *r, const rb_word *w, const fbrl_robot_devic
 }
 
 /* PULSE ( ms dev -- ) */
-static fbrl_status w_pulse(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_pulse(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = NULL;
     fbrl_status st = ms_arg(r, w, v[0].i);
     if (st == FBRL_OK)
@@ -269,8 +272,9 @@ static fbrl_status w_pulse(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* PULSE-WIDTH ( ms dev -- ): one DISPENSE pulse lasts ms, and so does the gap after it */
-static fbrl_status w_pulse_width(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_pulse_width(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = NULL;
     fbrl_status st = device(r, w, v[1].i, 1, &d);
     if (st != FBRL_OK)
@@ -285,8 +289,9 @@ static fbrl_status w_pulse_width(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* DISPENSE ( dev -- ) ( F: ml -- ): one pulse per ml */
-static fbrl_status w_dispense(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_dispense(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = NULL;
     fbrl_status st = device(r, w, v[0].i, 1, &d);
     if (st != FBRL_OK)
@@ -322,8 +327,9 @@ static fbrl_status read_input(fbrl_robot *r, const rb_word *w, const fbrl_robot_
 }
 
 /* INPUT? ( dev -- flag ) */
-static fbrl_status w_input_q(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_input_q(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = NULL;
     int on = 0;
     fbrl_status st = device(r, w, v[0].i, 0, &d);
@@ -337,8 +343,9 @@ static fbrl_status w_input_q(fbrl_robot *r, const rb_word *w, rb_val *v)
 
 /* WAIT-INPUT ( dev state ms -- flag ): true once the input has the state (a flag),
  * false when ms passed first. Polls every 20 ms; never waits much longer than ms. */
-static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_wait_input(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = NULL;
     uint64_t t0, now;
     int on = 0, want = v[1].i != 0;
@@ -392,8 +399,9 @@ static fbrl_status w_wait_input(fbrl_robot *r, const rb_word *w, rb_val *v)
 /* INPUT-EDGE ( dev state -- ): until the input turns to state (a flag) from the other
  * state (the ONSIG idea); memo[0]: the other state was seen. Polls every EDGE_POLL_MS,
  * letting other tasks run. */
-static fbrl_status w_input_edge(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_input_edge(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_device *d = NULL;
     int want = v[1].i != 0, on = 0;
     fbrl_status st = device(r, w, v[0].i, 0, &d);
@@ -417,8 +425,9 @@ static fbrl_status w_input_edge(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* START-TIMER ( -- ) */
-static fbrl_status w_start_timer(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_start_timer(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     (void)w;
     (void)v;
     fbrl_vmx_timer *t = fbrl_vmx_task_timer(r->vm); /* each task has its own */
@@ -444,8 +453,9 @@ static fbrl_status elapsed(fbrl_robot *r, const rb_word *w, uint64_t *ms)
 }
 
 /* ELAPSED ( -- ms ) */
-static fbrl_status w_elapsed(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_elapsed(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     uint64_t ms = 0;
     (void)v;
     fbrl_status st = elapsed(r, w, &ms);
@@ -456,8 +466,9 @@ static fbrl_status w_elapsed(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* WAIT-UNTIL ( ms -- ): until ms after START-TIMER (at once if that has passed) */
-static fbrl_status w_wait_until(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_wait_until(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     uint64_t ms = 0;
     fbrl_status st = ms_arg(r, w, v[0].i);
     if (st == FBRL_OK)
@@ -474,8 +485,9 @@ static fbrl_status w_wait_until(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* TIME-OF-DAY ( -- seconds ): seconds since local midnight */
-static fbrl_status w_time_of_day(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_time_of_day(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     int t[6];
     (void)w;
     (void)v;

@@ -29,8 +29,9 @@ static void sep(fbrl_robot *r)
         put(r, " ", 1);
 }
 
-static fbrl_status w_send_com(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_com(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char tok[8];
     const char *text = NULL;
     for (int c = 0; c < FBRL_RAPL_NCMDS; c++) {
@@ -59,8 +60,9 @@ static fbrl_status w_send_com(fbrl_robot *r, const rb_word *w, rb_val *v)
     return put(r, text, strlen(text));
 }
 
-static fbrl_status w_send_real(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_real(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char buf[32];
     size_t n;
     fbrl_status st = fbrl_rapl_format_real(buf, sizeof buf, &n, v[0].f);
@@ -70,8 +72,9 @@ static fbrl_status w_send_real(fbrl_robot *r, const rb_word *w, rb_val *v)
     return put(r, buf, n);
 }
 
-static fbrl_status w_send_int(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_int(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char buf[32];
     (void)w;
     int n = snprintf(buf, sizeof buf, "%ld", (long)v[0].i);
@@ -79,8 +82,9 @@ static fbrl_status w_send_int(fbrl_robot *r, const rb_word *w, rb_val *v)
     return put(r, buf, (size_t)n);
 }
 
-static fbrl_status w_send_text(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_text(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     for (size_t k = 0; k < v[0].n; k++)
         if (v[0].s[k] < 0x20 || v[0].s[k] > 0x7e || v[0].s[k] == '?')
             return rb_fail(r, FBRL_THROW_BAD_NUMBER, "SEND-TEXT: only printable characters (no '?')");
@@ -89,15 +93,17 @@ static fbrl_status w_send_text(fbrl_robot *r, const rb_word *w, rb_val *v)
     return put(r, v[0].s, v[0].n);
 }
 
-static fbrl_status w_send_const(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_const(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     (void)v;
     return put(r, (const char *)w->arg, strlen((const char *)w->arg));
 }
 
 /* SEND-LOC ( loc -- ): the six components, mapped like every outgoing location */
-static fbrl_status w_send_loc(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_loc(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_loc user, arm;
     fbrl_status st = rb_loc_read(r, w, v[0].i, &user);
     if (st == FBRL_OK)
@@ -118,8 +124,9 @@ static fbrl_status w_send_loc(fbrl_robot *r, const rb_word *w, rb_val *v)
     return FBRL_OK;
 }
 
-static fbrl_status w_send_cr(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_send_cr(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char line[FBRL_LINK_LINE_MAX + 1];
     int bad = r->line_bad;
     (void)v;

@@ -11,26 +11,28 @@
 /* ---- I-5 robot commands ---- */
 
 /* Commands without parameters (HOME, READY, HALT, FINISH ...). */
-static fbrl_status w_plain(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_plain(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_robot_move m;
     rb_out o;
     (void)v;
-    if (w->cmd != FBRL_RAPL_READY && w->cmd != FBRL_RAPL_HOME && w->cmd != FBRL_RAPL_ALIGN)
-        return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, NULL, 0, 0); /* HALT: the link's gate notes it */
+    if (w->code != FBRL_RAPL_READY && w->code != FBRL_RAPL_HOME && w->code != FBRL_RAPL_ALIGN)
+        return rb_cmd(r, w, (fbrl_rapl_cmd)w->code, NULL, 0, 0); /* HALT: the link's gate notes it */
     memset(&m, 0, sizeof m);
-    m.kind = w->cmd == FBRL_RAPL_READY  ? FBRL_ROBOT_MOVE_READY
-             : w->cmd == FBRL_RAPL_HOME ? FBRL_ROBOT_MOVE_HOME
-                                        : FBRL_ROBOT_MOVE_OTHER;
+    m.kind = w->code == FBRL_RAPL_READY  ? FBRL_ROBOT_MOVE_READY
+             : w->code == FBRL_RAPL_HOME ? FBRL_ROBOT_MOVE_HOME
+                                         : FBRL_ROBOT_MOVE_OTHER;
     memset(&o, 0, sizeof o);
-    o.cmd = (fbrl_rapl_cmd)w->cmd;
+    o.cmd = (fbrl_rapl_cmd)w->code;
     return rb_motion(r, w, &m, &o);
 }
 
 /* One axis / number. arg: 0 plain; 1 axis 1..n with 0 = all (no argument sent);
  * 2 axis 1..n; 3 extra axis 1..8; 4 SPEED 1..100; 5 FLASH interval >= 0 (n: the arm's axes). */
-static fbrl_status w_int1(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_int1(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = FBRL_OK;
     switch (w->arg) {
     case 1: st = rb_range(r, w, "axis", v[0].i, 0, (fbrl_cell)rb_naxes(r)); break;
@@ -43,25 +45,26 @@ static fbrl_status w_int1(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_rapl_arg a = fbrl_rapl_int((long)v[0].i);
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, &a, (w->arg == 1 && v[0].i == 0) ? 0 : 1, 0);
+    return rb_cmd(r, w, (fbrl_rapl_cmd)w->code, &a, (w->arg == 1 && v[0].i == 0) ? 0 : 1, 0);
 }
 
 /* JOINT ( joint degrees -- ), MOTOR ( axis# #pulses -- ): the gripper's motor follows the
  * arm's joints. */
-static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_joint(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_cell n = (fbrl_cell)rb_naxes(r);
-    fbrl_status st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "motor" : "joint", v[0].i, 1,
-                              w->cmd == FBRL_RAPL_MOTOR ? n + 1 : n);
+    fbrl_status st = rb_range(r, w, w->code == FBRL_RAPL_MOTOR ? "motor" : "joint", v[0].i, 1,
+                              w->code == FBRL_RAPL_MOTOR ? n + 1 : n);
     if (st == FBRL_OK)
-        st = rb_range(r, w, w->cmd == FBRL_RAPL_MOTOR ? "pulses" : "degrees", v[1].i, -2000000000L,
+        st = rb_range(r, w, w->code == FBRL_RAPL_MOTOR ? "pulses" : "degrees", v[1].i, -2000000000L,
                       2000000000L);
     if (st != FBRL_OK)
         return st;
     fbrl_robot_move m;
     rb_out o;
     memset(&m, 0, sizeof m);
-    if (w->cmd == FBRL_RAPL_MOTOR) {
+    if (w->code == FBRL_RAPL_MOTOR) {
         m.kind = FBRL_ROBOT_MOVE_MOTOR;
         m.v[0] = (double)v[0].i;
         m.v[1] = (double)v[1].i;
@@ -69,17 +72,18 @@ static fbrl_status w_joint(fbrl_robot *r, const rb_word *w, rb_val *v)
         m.kind = FBRL_ROBOT_MOVE_DJOINTS;
         m.v[v[0].i - 1] = (double)v[1].i;
     }
-    fbrl_rapl_arg a[2] = {fbrl_rapl_int((long)v[0].i), w->cmd == FBRL_RAPL_MOTOR
+    fbrl_rapl_arg a[2] = {fbrl_rapl_int((long)v[0].i), w->code == FBRL_RAPL_MOTOR
                                                            ? fbrl_rapl_int((long)v[1].i)
                                                            : fbrl_rapl_real((double)v[1].i)};
     memset(&o, 0, sizeof o);
-    o.cmd = (fbrl_rapl_cmd)w->cmd, o.a = a, o.n = 2;
+    o.cmd = (fbrl_rapl_cmd)w->code, o.a = a, o.n = 2;
     return rb_motion(r, w, &m, &o);
 }
 
 /* GAIN ( motor# -- | F: value ) */
-static fbrl_status w_gain(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_gain(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_range(r, w, "motor", v[0].i, 0, 8);
     if (st == FBRL_OK)
         st = rb_finite(r, w, &v[1], 1);
@@ -92,8 +96,9 @@ static fbrl_status w_gain(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* GRIP ( torque -- | F: distance ): GRIP distance,torque */
-static fbrl_status w_grip(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_grip(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_range(r, w, "torque (% of full)", v[0].i, 1, 100);
     if (st == FBRL_OK)
         st = rb_finite(r, w, &v[1], 1);
@@ -107,8 +112,9 @@ static fbrl_status w_grip(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* JOG ( F: dX dY dZ -- ), lengths in the user's units */
-static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_jog(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_finite(r, w, v, 3);
     if (st != FBRL_OK)
         return st;
@@ -126,8 +132,9 @@ static fbrl_status w_jog(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* MA / MI ( F: j1 .. jn -- ), one per axis of the arm; arg 1 = straight */
-static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_joints(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     size_t n = rb_naxes(r);
     fbrl_status st = n <= FBRL_RAPL_ARM_AXES_MAX ? rb_finite(r, w, v, n) : FBRL_EINVAL;
     if (st != FBRL_OK)
@@ -135,7 +142,7 @@ static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
     fbrl_robot_move m;
     rb_out o;
     memset(&m, 0, sizeof m);
-    m.kind = w->cmd == FBRL_RAPL_MA ? FBRL_ROBOT_MOVE_JOINTS : FBRL_ROBOT_MOVE_DJOINTS;
+    m.kind = w->code == FBRL_RAPL_MA ? FBRL_ROBOT_MOVE_JOINTS : FBRL_ROBOT_MOVE_DJOINTS;
     m.straight = (int)w->arg;
     for (size_t k = 0; k < n && k < 6; k++)
         m.v[k] = v[k].f * (180.0 / 3.14159265358979323846);
@@ -143,13 +150,14 @@ static fbrl_status w_joints(fbrl_robot *r, const rb_word *w, rb_val *v)
     for (size_t k = 0; k < n; k++)
         a[k] = fbrl_rapl_real(v[k].f);
     memset(&o, 0, sizeof o);
-    o.cmd = (fbrl_rapl_cmd)w->cmd, o.a = a, o.n = n, o.straight = (int)w->arg;
+    o.cmd = (fbrl_rapl_cmd)w->code, o.a = a, o.n = n, o.straight = (int)w->arg;
     return rb_motion(r, w, &m, &o);
 }
 
 /* DEPART / DEPART-STRT ( F: distance -- ) */
-static fbrl_status w_depart(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_depart(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_finite(r, w, v, 1);
     if (st != FBRL_OK)
         return st;
@@ -178,8 +186,9 @@ static fbrl_robot_move *pose_move(fbrl_robot_move *m, const fbrl_loc *arm, doubl
 }
 
 /* MOV / MOV-STRT ( loc -- ): POINT scratch, then MOVE scratch[,S] */
-static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_mov(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_loc user, arm;
     fbrl_robot_move m;
     fbrl_rapl_arg a[1];
@@ -198,8 +207,9 @@ static fbrl_status w_mov(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* APPROACH / APPROACH-STRT ( loc -- | F: distance -- ) */
-static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_approach(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_loc user, arm;
     fbrl_robot_move m;
     fbrl_rapl_arg a[2];
@@ -222,8 +232,9 @@ static fbrl_status w_approach(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* ARM-HERE ( loc -- ): wait for the motion to end, read W2, store it unmapped */
-static fbrl_status w_arm_here(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_arm_here(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_loc arm, user;
     fbrl_status st = rb_loc_write(r, w, v[0].i, NULL);
     if (st == FBRL_OK)
@@ -239,8 +250,9 @@ static fbrl_status w_arm_here(fbrl_robot *r, const rb_word *w, rb_val *v)
 
 /* ACTUAL ( loc -- ) or ( PAR: controller-name ): the actual position now, into a host
  * location (unmapped) or, for a name that is no FBRL word, into the controller's location. */
-static fbrl_status w_actual(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_actual(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     if (v[0].s) {
         char name[16];
         fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
@@ -263,8 +275,9 @@ static fbrl_status w_actual(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* TOOL ( loc -- ): the tool transform is relative to the flange: never mapped */
-static fbrl_status w_tool(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_tool(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_loc t;
     const char *name;
     fbrl_status st = rb_loc_read(r, w, v[0].i, &t);
@@ -277,8 +290,9 @@ static fbrl_status w_tool(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* ARM ( flag -- ) */
-static fbrl_status w_arm(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_arm(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_rapl_arg a = fbrl_rapl_str(v[0].i ? "ON" : "OFF");
     return rb_cmd(r, w, FBRL_RAPL_ARM, &a, 1, 0);
 }
@@ -286,8 +300,9 @@ static fbrl_status w_arm(fbrl_robot *r, const rb_word *w, rb_val *v)
 /* CONFIG ( dev baud parity #data #stop handshake echo -- ) */
 
 /* BASE-OFFSET ( F: dX dY dZ dO -- ): where the user's world frame sits on the arm */
-static fbrl_status w_base_offset(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_base_offset(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_finite(r, w, v, 4);
     if (st != FBRL_OK)
         return st;
@@ -299,8 +314,9 @@ static fbrl_status w_base_offset(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* SHIFT-RIGHT ( n -- n' b ) */
-static fbrl_status w_shift_right(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_shift_right(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     (void)w;
     fbrl_ucell u = (fbrl_ucell)v[0].i;
     fbrl_status st = fbrl_vm_push(r->vm, (fbrl_cell)(u >> 1));
@@ -310,8 +326,9 @@ static fbrl_status w_shift_right(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* OUTPORT ( output# -- ): output n on, -n off */
-static fbrl_status w_outport(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_outport(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_cell n = v[0].i < 0 ? -v[0].i : v[0].i;
     fbrl_status st = rb_range(r, w, "output", n, 1, FBRL_ROBOT_IO_MAX);
     if (st != FBRL_OK)
@@ -321,8 +338,9 @@ static fbrl_status w_outport(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* OUT2BYTE ( n -- ): bit k of n sets output k+1 (16 outputs, two OUTPUT lines of 8) */
-static fbrl_status w_out2byte(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_out2byte(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_range(r, w, "value", v[0].i, 0, 0xFFFF);
     for (int half = 0; st == FBRL_OK && half < 2; half++) {
         fbrl_rapl_arg a[8];
@@ -339,8 +357,9 @@ static fbrl_status w_out2byte(fbrl_robot *r, const rb_word *w, rb_val *v)
  * polls the input instead, as long as the link would allow the controller's WAIT */
 #define WAITPORT_POLL_MS 20u
 #define WAITPORT_MAX_MS  120000u
-static fbrl_status w_waitport(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_waitport(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_cell n = v[0].i < 0 ? -v[0].i : v[0].i;
     fbrl_status st = rb_range(r, w, "input", n, 1, FBRL_ROBOT_IO_MAX);
     if (st != FBRL_OK)
@@ -371,8 +390,9 @@ static fbrl_status w_waitport(fbrl_robot *r, const rb_word *w, rb_val *v)
  * is kept for the console. A block starts at its title line. */
 
 /* WGRIP ( string -- ): the gripper opening into a controller variable */
-static fbrl_status w_wgrip(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_wgrip(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[16], line[40];
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
     if (st == FBRL_OK && fbrl_rapl_name_check(name, 0) != FBRL_OK)

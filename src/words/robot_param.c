@@ -57,6 +57,12 @@ fbrl_status rb_params(fbrl_robot *r, const rb_word *w, rb_val *v)
     return fbrl_vmx_args(r->vm, w->name, spec, what, FBRL_VMX_LINE, v);
 }
 
+fbrl_status rb_fetch(fbrl_robot *r, const rb_word *w, rb_val *v)
+{
+    memset(v, 0, RB_MAXP * sizeof *v);
+    return rb_params(r, w, v);
+}
+
 /* Copy a name parameter into a C string (controller names are short). */
 fbrl_status rb_name_arg(fbrl_robot *r, const rb_word *w, const rb_val *v, char *buf, size_t cap)
 {
@@ -94,24 +100,27 @@ fbrl_status rb_finite(fbrl_robot *r, const rb_word *w, const rb_val *v, size_t n
 
 /* ---- I-6 words ---- */
 
-static fbrl_status w_getreal(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_getreal(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_parse_param(r, w, 'R', v);
     if (st != FBRL_OK)
         return st;
     return fbrl_vm_fpush(r->vm, v[0].f) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_FSTACK_OVERFLOW, NULL);
 }
 
-static fbrl_status w_getint(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_getint(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_parse_param(r, w, 'I', v);
     if (st != FBRL_OK)
         return st;
     return fbrl_vm_push(r->vm, v[0].i) == FBRL_OK ? FBRL_OK : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
 }
 
-static fbrl_status w_getstring(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_getstring(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     fbrl_status st = rb_parse_param(r, w, 'S', v);
     if (st != FBRL_OK)
         return st;

@@ -8,8 +8,9 @@
 #include "fbrl/num.h"
 #include "robot_internal.h"
 
-static fbrl_status w_config(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_config(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     static const long bauds[] = {300, 600, 1200, 2400, 4800, 9600, 19200, 38400};
     const char *par = NULL, *hs = NULL;
     size_t k;
@@ -65,12 +66,14 @@ static void parse_block(void *ctx, const char *line, size_t len, int flawed)
 
 /* W0 W2 W4 ROBOT-STATUS SERIAL: the controller's text on the console, once (rb_show).
  * A position block is followed by its WORLD numbers with their names, in the user's
- * units (cm with METRIC-ON); the yaw is marked as the arm's own: a 5-axis arm cannot
- * choose it, it is the waist's direction (DESIGN 6). */
-static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
+ * units (cm with METRIC-ON), from the controller's (millimetres when the link knows it
+ * works in them, docs/link.md 1); the yaw is marked as the arm's own: a 5-axis arm
+ * cannot choose it, it is the waist's direction (DESIGN 6). */
+static fbrl_status w_show(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     (void)v;
-    fbrl_rapl_cmd cmd = (fbrl_rapl_cmd)w->cmd;
+    fbrl_rapl_cmd cmd = (fbrl_rapl_cmd)w->code;
     int pos = cmd == FBRL_RAPL_W0 || cmd == FBRL_RAPL_W2 || cmd == FBRL_RAPL_W4;
     fbrl_rapl_pos p;
     fbrl_rapl_pos_init(&p);
@@ -79,6 +82,8 @@ static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
         return st;
     int metric = rb_metric(r);
     double k = metric ? FBRL_CM_PER_IN : 1.0;
+    if (fbrl_link_units(r->link) == FBRL_LINK_UNITS_MM)
+        k /= 10.0 * FBRL_CM_PER_IN; /* the block's lengths are millimetres */
     char out[256], f[6][24]; /* "%+.4f" "%+.3f" through fbrl_num_fixed: the firmware's printf has no %f */
     for (int i = 0; i < 6; i++)
         fbrl_num_fixed(f[i], sizeof f[i], i < 3 ? p.world[i] * k : p.world[i], 0, i < 3 ? 4 : 3,
@@ -90,15 +95,17 @@ static fbrl_status w_show(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* W1 W3 W5 WE1 WE3 WE5: FBRL_ROBOT_STREAM_LINES readings, then the stream is stopped */
-static fbrl_status w_stream(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_stream(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     (void)v;
-    return rb_stream(r, w, (fbrl_rapl_cmd)w->cmd);
+    return rb_stream(r, w, (fbrl_rapl_cmd)w->code);
 }
 
 /* TYPEINT / TYPEREAL ( string -- ): print a controller variable */
-static fbrl_status w_typevar(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_typevar(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[16], out[48];
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
     if (st == FBRL_OK)
@@ -118,7 +125,7 @@ static fbrl_status w_typevar(fbrl_robot *r, const rb_word *w, rb_val *v)
         long i;
         if ((st = rb_link_result(r, w, fbrl_link_typei(r->link, name, &i))) != FBRL_OK)
             return st;
-        if (w->cmd == 1)
+        if (w->code == 1)
             return fbrl_vm_push(r->vm, (fbrl_cell)i) == FBRL_OK ? FBRL_OK
                                                                 : rb_fail(r, FBRL_THROW_STACK_OVERFLOW, NULL);
         snprintf(out, sizeof out, "%ld ", i);
@@ -128,8 +135,9 @@ static fbrl_status w_typevar(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* RAPL ( PAR: text ) or ( c-addr u -- ): a line straight to the controller */
-static fbrl_status w_rapl(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_rapl(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char line[FBRL_LINK_LINE_MAX + 1];
     if (v[0].n == 0 || v[0].n > FBRL_LINK_LINE_MAX)
         return rb_fail(r, FBRL_THROW_BAD_NUMBER, "RAPL: the line must be 1..80 characters");
@@ -139,8 +147,9 @@ static fbrl_status w_rapl(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* SET-RAPL-REAL ( PAR: name value ), SET-RAPL-INT */
-static fbrl_status w_set_var(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_set_var(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[16];
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
     if (st == FBRL_OK && w->arg)
@@ -160,8 +169,9 @@ static fbrl_status w_set_var(fbrl_robot *r, const rb_word *w, rb_val *v)
 
 /* RAPL-ANALOG ( PAR: input# variable ): the controller reads A/D channel n into a
  * variable with `NAME=ADC(n)` (ADC is our decision; see docs/rapl-commands.md). */
-static fbrl_status w_analog(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_analog(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[16], line[40];
     fbrl_status st = rb_name_arg(r, w, &v[1], name, 10);
     if (st != FBRL_OK)
@@ -175,14 +185,15 @@ static fbrl_status w_analog(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* RAPL-HERE, RAPL-RUN ( PAR: name ) */
-static fbrl_status w_name1(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_name1(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[16];
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
     if (st != FBRL_OK)
         return st;
     fbrl_rapl_arg a = fbrl_rapl_str(name);
-    if (w->cmd == FBRL_RAPL_RUN) { /* a program may move the arm: the guard cannot follow it */
+    if (w->code == FBRL_RAPL_RUN) { /* a program may move the arm: the guard cannot follow it */
         fbrl_robot_move m;
         rb_out o;
         memset(&m, 0, sizeof m);
@@ -191,12 +202,13 @@ static fbrl_status w_name1(fbrl_robot *r, const rb_word *w, rb_val *v)
         o.cmd = FBRL_RAPL_RUN, o.a = &a, o.n = 1;
         return rb_motion(r, w, &m, &o);
     }
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, &a, 1, 0);
+    return rb_cmd(r, w, (fbrl_rapl_cmd)w->code, &a, 1, 0);
 }
 
 /* RAPL-SET, RAPL-SHIFTA ( PAR: loc1 loc2 ) */
-static fbrl_status w_name2(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_name2(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char a1[16], a2[16];
     fbrl_status st = rb_name_arg(r, w, &v[0], a1, 10);
     if (st == FBRL_OK)
@@ -204,12 +216,13 @@ static fbrl_status w_name2(fbrl_robot *r, const rb_word *w, rb_val *v)
     if (st != FBRL_OK)
         return st;
     fbrl_rapl_arg a[2] = {fbrl_rapl_str(a1), fbrl_rapl_str(a2)};
-    return rb_cmd(r, w, (fbrl_rapl_cmd)w->cmd, a, 2, 0);
+    return rb_cmd(r, w, (fbrl_rapl_cmd)w->code, a, 2, 0);
 }
 
 /* RAPL-POINT ( PAR: rapl-loc fbrl-loc ): define a controller location from a host one */
-static fbrl_status w_rapl_point(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_rapl_point(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     char name[16];
     fbrl_loc user, arm;
     fbrl_status st = rb_name_arg(r, w, &v[0], name, 10);
@@ -230,8 +243,9 @@ static fbrl_status w_rapl_point(fbrl_robot *r, const rb_word *w, rb_val *v)
 }
 
 /* RAPL-ERROR ( -- n ) */
-static fbrl_status w_rapl_error(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_rapl_error(fbrl_vm *vm, void *ctx, const void *word)
 {
+    RB_WORD(vm, ctx, word);
     (void)w;
     (void)v;
     return fbrl_vm_push(r->vm, r->last_error) == FBRL_OK ? FBRL_OK

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /* robot_rline.c - what a RAPL line typed by hand is (RAPL, SEND-CR, TYPE-COM, a line on
- * the link, Python's link): the command it starts with, what it does to the cell
- * (fbrl_robot_line_effect), whether it can move the arm, and the motion it makes, for the
- * guard. The one place the robot words read a raw line's command. */
+ * the link, Python's link): the command it starts with (fbrl_rapl_line_cmd's, the
+ * library's one reading), what it does to the cell (fbrl_robot_line_effect), whether it can
+ * move the arm, and the motion it makes, for the guard. */
 #include <string.h>
 
 #include "fbrl/rapl_reply.h"
@@ -12,36 +12,17 @@ static char upper(char c) { return (c >= 'a' && c <= 'z') ? (char)(c - 'a' + 'A'
 
 rb_line_kind rb_line_cmd(const char *line, size_t len, fbrl_rapl_cmd *cmd)
 {
-    char word[12];
-    size_t i = 0, k = 0;
+    char text[FBRL_LINK_LINE_MAX + 1]; /* the link's lines are no longer: a longer one is none */
+    size_t i = 0;
+    if (len >= sizeof text)
+        return RB_LINE_UNKNOWN;
+    memcpy(text, line, len);
+    text[len] = '\0';
+    if (fbrl_rapl_line_cmd(text, cmd, NULL) == FBRL_OK) /* the library's one reading of it */
+        return *cmd == FBRL_RAPL_ASSIGN ? RB_LINE_ASSIGN : RB_LINE_CMD;
     while (i < len && line[i] == ' ')
         i++;
-    while (i + k < len && line[i + k] != ' ' && line[i + k] != ',' && line[i + k] != '=') {
-        if (k + 1 >= sizeof word)
-            return RB_LINE_UNKNOWN;
-        word[k] = upper(line[i + k]);
-        k++;
-    }
-    word[k] = '\0';
-    size_t j = i + k;
-    while (j < len && line[j] == ' ')
-        j++;
-    if (k > 0 && j < len && line[j] == '=')
-        return RB_LINE_ASSIGN;
-    if (word[0] == '/') { /* the thesis's /NNN token form */
-        int tok = 0;
-        for (size_t d = 1; d < k; d++)
-            tok = (word[d] >= '0' && word[d] <= '9') ? tok * 10 + (word[d] - '0') : -1000;
-        for (int c = 0; c < FBRL_RAPL_NCMDS && tok > 0; c++)
-            if (fbrl_rapl_cmd_info((fbrl_rapl_cmd)c)->token == tok) {
-                *cmd = (fbrl_rapl_cmd)c;
-                return RB_LINE_CMD;
-            }
-        return RB_LINE_UNKNOWN;
-    }
-    if (k == 0)
-        return len == i ? RB_LINE_EMPTY : RB_LINE_UNKNOWN;
-    return fbrl_rapl_cmd_find(word, cmd) == FBRL_OK ? RB_LINE_CMD : RB_LINE_UNKNOWN;
+    return i == len ? RB_LINE_EMPTY : RB_LINE_UNKNOWN;
 }
 
 int rb_line_moves(rb_line_kind k, fbrl_rapl_cmd cmd)

@@ -137,7 +137,6 @@ static fbrl_status pendant(fbrl_robot *r, const rb_word *w, int slot, int *took)
 {
     fbrl_vm *vm = r->vm;
     char msg[128], *text = (char *)r->tib + TEACH_TEXT_AT;
-    fbrl_cell flag = 0, loc = 0;
     int code = 0;
     size_t n = (size_t)snprintf(text, FBRL_ROBOT_TIB - TEACH_TEXT_AT, "#%ld (TEACH)", (long)r->tib);
     fbrl_status st = fbrl_vmx_evaluate_catch(vm, text, n, &code, msg, sizeof msg);
@@ -150,9 +149,10 @@ static fbrl_status pendant(fbrl_robot *r, const rb_word *w, int slot, int *took)
         failed_line(r, slot, msg);
         return FBRL_OK;
     }
-    if (fbrl_vm_pop(vm, &flag) != FBRL_OK || fbrl_vm_pop(vm, &loc) != FBRL_OK)
-        return rb_fail(r, FBRL_THROW_STACK_UNDERFLOW, NULL);
-    *took = flag != 0;
+    fbrl_vmx_val res[2]; /* what (TEACH) left: ( loc flag ) */
+    if ((st = fbrl_vmx_args(vm, w->name, "AI", NULL, FBRL_VMX_STACKS, res)) != FBRL_OK)
+        return st;
+    *took = res[1].i != 0;
     return FBRL_OK;
 }
 
@@ -231,9 +231,9 @@ static fbrl_status teach3(fbrl_robot *r, const rb_word *w, fbrl_loc pts[3])
     return FBRL_OK;
 }
 
-static fbrl_status w_get_cal_points(fbrl_robot *r, const rb_word *w, rb_val *v)
+static fbrl_status w_get_cal_points(fbrl_vm *vm, void *ctx, const void *word)
 {
-    fbrl_vm *vm = r->vm;
+    RB_WORD(vm, ctx, word);
     fbrl_loc pts[3];
     fbrl_calpts *cal;
     char msg[128];

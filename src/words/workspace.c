@@ -853,19 +853,17 @@ static fbrl_status w_changed_q(fbrl_vm *vm, void *ctx, const void *word)
 fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossary *g, fbrl_robot *r,
                                    void *buf, size_t cap)
 {
-    static const struct {
-        const char *name;
-        fbrl_vmx_fn fn;
-        const char *stack, *help;
-    } words[] = {
-        {"SAVE-WORKSPACE", w_save, "( \"file\" -- )",
-         "save every named location, matrix, calibration and device (and WITH-CAL, MAP-ON, BASE-OFFSET) to "
-         "file"},
-        {"LOAD-WORKSPACE", w_load, "( \"file\" -- )",
-         "load a saved workspace: its objects made or overwritten by name; a bad file changes nothing"},
-        {"WORKSPACE", w_workspace, "( -- )", "list what SAVE-WORKSPACE would save, and whether it changed"},
-        {"WORKSPACE-CHANGED?", w_changed_q, "( -- flag )",
-         "true if the workspace changed since the last save or load"},
+    static const fbrl_vmx_reg words[] = {
+        {"SAVE-WORKSPACE", w_save, "", 0, 0, 0,
+         FBRL_DOC("( \"file\" -- )", "save every named location, matrix, calibration and device (and WITH-CAL, "
+                                     "MAP-ON, BASE-OFFSET) to file")},
+        {"LOAD-WORKSPACE", w_load, "", 0, 0, 0,
+         FBRL_DOC("( \"file\" -- )",
+                  "load a saved workspace: its objects made or overwritten by name; a bad file changes nothing")},
+        {"WORKSPACE", w_workspace, "", 0, 0, 0,
+         FBRL_DOC("( -- )", "list what SAVE-WORKSPACE would save, and whether it changed")},
+        {"WORKSPACE-CHANGED?", w_changed_q, "", 0, 0, 0,
+         FBRL_DOC("( -- flag )", "true if the workspace changed since the last save or load")},
     };
     if (!vm || !ws || !g || !buf || cap == 0)
         return FBRL_EINVAL;
@@ -875,12 +873,9 @@ fbrl_status fbrl_workspace_install(fbrl_vm *vm, fbrl_workspace *ws, fbrl_glossar
     ws->r = r;
     ws->buf = buf;
     ws->cap = cap;
-    for (size_t k = 0; k < sizeof words / sizeof words[0]; k++) {
-        fbrl_status st =
-            fbrl_vmx_define(vm, words[k].name, words[k].fn, ws, NULL, 0, words[k].stack, words[k].help);
-        if (st != FBRL_OK)
-            return st;
-    }
+    fbrl_status st = fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], ws);
+    if (st != FBRL_OK)
+        return st;
     ws->magic = WS_INSTALLED;
     ws->mark = fingerprint(ws, NULL);
     return FBRL_OK;

@@ -16,3 +16,10 @@ if(TARGET fbrlmon AND TARGET fbrlsim AND TARGET fbrl-audit AND TARGET fbrl-users
   set_tests_properties(console_audit PROPERTIES LABELS e2e TIMEOUT 240 SKIP_RETURN_CODE 77
     ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
 endif()
+if(TARGET fbrlmon AND TARGET fbrlsim AND TARGET fbrl-audit)
+  # what is typed at fbrlmon's prompt joins the chain, sealed when the session ends
+  add_test(NAME prompt_audit COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/prompt_audit.sh
+    $<TARGET_FILE:fbrlmon> $<TARGET_FILE:fbrlsim> $<TARGET_FILE:fbrl-audit> ${PROJECT_BINARY_DIR}/e2e-prompt-audit)
+  set_tests_properties(prompt_audit PROPERTIES LABELS e2e TIMEOUT 120 SKIP_RETURN_CODE 77
+    ENVIRONMENT "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_SOURCE_DIR}/e2e/mon_lsan.supp")
+endif()

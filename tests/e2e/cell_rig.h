@@ -7,7 +7,7 @@
 #define CELL_RIG_H
 
 #include "rapl_harness.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/vm.h"

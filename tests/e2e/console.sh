@@ -232,11 +232,11 @@ for h in heads:
 cmds = [r["line"] for r in recs if r["type"] == "command" for _ in range(r.get("count", 1))]
 assert any(r.get("count", 1) > 1 and r["line"] == "W5" for r in recs if r["type"] == "command"), "no W5 folded"
 assert all(r["status"] == "ran" for r in recs if r["type"] == "command")
-# everything the controller executed after the connection's NOHELP was part of a run,
-# but for TEACH (outside any run)
+# everything the controller executed after the connection's handshake (NOHELP, STATUS for
+# the units) was part of a run, but for TEACH (outside any run)
 t0, t1 = int(sys.argv[3]), int(sys.argv[4])
 assert "JOG 0.1,0,0" in sim[t0:t1], sim[t0:t1]
-assert sim[0] == "NOHELP" and cmds == sim[1:t0] + sim[t1:], (len(cmds), len(sim))
+assert sim[:2] == ["NOHELP", "STATUS"] and cmds == sim[2:t0] + sim[t1:], (len(cmds), len(sim))
 # the complete run: every step of every sample started and ended ok, in order
 last = recs[[i for i, r in enumerate(recs) if r["type"] == "header"][1]:[i for i, r in enumerate(recs) if r["type"] == "header"][2]]
 ends = [(r["step"], r.get("sample")) for r in last if r["type"] == "step_end" and r["status"] == "ok"]
@@ -286,7 +286,9 @@ st=$?
 [ $st = 4 ] || fail "fbrlmon plan.fbrl: exit status $st (want 4: the run's two samples were skipped)"
 grep -q "^plan.fbrl:15: error: RUN-LOG: /nonexistent/dir/x.jsonl: No such file or directory" plan.err ||
     fail "RUN-LOG's refusal: $(cat plan.err)"
-tail -n +$((before + 1)) sim.log | grep -v '^#' | grep -vx NOHELP >plan.sim
+tail -n +$((before + 1)) sim.log | grep -v '^#' >plan.all
+[ "$(head -n 2 plan.all | tr '\n' ' ')" = "NOHELP STATUS " ] || fail "no connect handshake: $(head -n 2 plan.all)"
+tail -n +3 plan.all >plan.sim
 python3 - <<'PY' || fail "RUN-LOG's log does not match"
 import json
 recs = [json.loads(l) for l in open("plan.jsonl")]

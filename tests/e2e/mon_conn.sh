@@ -58,6 +58,34 @@ PLAN
 expect "robot words over --port" 0 "12 3 8 " --port "$port" "$tmp/plan.fbrl"
 grep -q '^MOVE FBRLT1' sim.log || fail "MOVE did not reach the emulator (log: $(cat sim.log))"
 
+# RECONNECT inside a logged run: the session's modes are sent again (docs/link.md 1,
+# "Modes") and the run log says so in a note, beside the lines as commands
+rm -f modes.jsonl modes.jsonl.head # a run log is a chain with its head file (docs/compliance.md)
+cat >modes.fbrl <<'PLAN'
+RUN-LOG modes.jsonl
+: FAST ( -- ) 30 SPEED  40 SPEED ;
+METHOD MODES  a speed, then a reconnect
+' FAST STEP Fast  the speed
+' RECONNECT STEP Again  a reconnect
+END-METHOD
+MODES RUN-METHOD
+PLAN
+before=$(grep -vc '^#' sim.log)
+expect "RECONNECT in a logged run" 0 "*" --port "$port" "$tmp/modes.fbrl"
+grep -q "^the session's modes sent again: SPEED 40$" out.txt || fail "RECONNECT did not say it sent SPEED 40"
+[ "$(tail -n +$((before + 1)) sim.log | grep -v '^#' | tr '\n' ' ')" = "NOHELP STATUS STATUS SPEED 30 SPEED 40 NOHELP STATUS SPEED 40 STATUS STATUS " ] ||
+    fail "the controller's log: $(tail -n +$((before + 1)) sim.log | tr '\n' ' ')"
+python3 - <<'PY' || fail "the run log: $(cat modes.jsonl)"
+import json
+recs = [json.loads(l) for l in open("modes.jsonl")]
+notes = [r for r in recs if r["type"] == "note" and r["event"] == "modes-resent"]
+assert len(notes) == 1 and notes[0]["text"] == "SPEED 40", notes
+cmds = [r["line"] for r in recs if r["type"] == "command"]
+# the run's STATUS (the controller's version), the step, the reconnect: handshake, the
+# mode sent again, then the state it tells (STATUS read twice, as every value read)
+assert cmds == ["STATUS", "SPEED 30", "SPEED 40", "NOHELP", "STATUS", "SPEED 40", "STATUS", "STATUS"], cmds
+PY
+
 # A stable name as udev makes it (/dev/serial/by-id/...): a symlink to the emulator's pty.
 mkdir -p by-id
 byid=$tmp/by-id/usb-FTDI_FT232R_USB_UART_A12345-if00-port0

@@ -16,6 +16,10 @@
  *     robot word typed at the prompt after a loss reconnects by itself.
  *  3. A port the user may not open: "permission denied" and the dialout group (as the
  *     user nobody when the test runs as root, since root opens anything).
+ *  4. Ctrl-C against a controller whose STATUS does not show its outputs (fbrlsim without
+ *     --status-extra, as a RAPL-II controller): the valve the session switched on is
+ *     switched off, every other output is named as not known and why, and fbrlsim's own
+ *     output state (its control channel) and log agree.
  *
  *   mon_safe FBRLMON FBRLSIM TMPDIR      exit 0 on success; the transcript is printed on failure */
 #define _XOPEN_SOURCE 600 /* posix_openpt, grantpt, unlockpt, ptsname */
@@ -205,6 +209,26 @@ static void write_file(const char *name, const char *text)
     }
 }
 
+/* Another fbrlmon session on `link` switches output 9 on and ends: 0, or -1 (failed). */
+static int other_session_output_9(const char *link)
+{
+    pid_t pid = fork();
+    int ws;
+    if (pid == 0) {
+        int null = open("/dev/null", O_RDWR);
+        dup2(null, 0);
+        dup2(null, 1);
+        execl(g_mon, g_mon, "--port", link, "-e", "9 OUTPORT BYE", (char *)NULL);
+        _exit(127);
+    }
+    if (pid < 0 || waitpid(pid, &ws, 0) != pid || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) {
+        fprintf(stderr, "FAIL: the first session (9 OUTPORT) did not run\n");
+        g_failed = 1;
+        return -1;
+    }
+    return 0;
+}
+
 #define A_XYZ 12.0, 3.0, 8.0
 #define B_XYZ 12.0, -3.0, 8.0
 
@@ -213,12 +237,23 @@ static const char cell[] = "\\ the test cell: two outputs, two places\n"
                            "CREATE-LOC A  12E0 3E0 8E0 0E0 -90E0 0E0 A DEFINE-LOC\n"
                            "CREATE-LOC B  12E0 -3E0 8E0 0E0 -90E0 0E0 B DEFINE-LOC\n";
 
+/* fbrlmon --port PORT PLAN in the test's folder. */
+static int start_plan(session *s, const char *port, const char *plan)
+{
+    char *argv[5];
+    argv[0] = (char *)g_mon;
+    argv[1] = "--port";
+    argv[2] = (char *)port;
+    argv[3] = (char *)plan;
+    argv[4] = NULL;
+    return start_mon_argv(s, TIMEOUT_MS, g_dir, argv);
+}
+
 /* 1. Ctrl-C, five ways. */
 static void ctrl_c_tests(void)
 {
     static session s;
     char plan1[1200], inc[1300];
-    char *argv[6];
     size_t from;
     int st;
 
@@ -244,22 +279,8 @@ static void ctrl_c_tests(void)
                              ".( plan4 done) CR\n");
 
     /* another session switched output 9 on: the safe stop leaves it alone */
-    {
-        pid_t pid = fork();
-        int ws;
-        if (pid == 0) {
-            int null = open("/dev/null", O_RDWR);
-            dup2(null, 0);
-            dup2(null, 1);
-            execl(g_mon, g_mon, "--port", g_link, "-e", "9 OUTPORT BYE", (char *)NULL);
-            _exit(127);
-        }
-        if (pid < 0 || waitpid(pid, &ws, 0) != pid || !WIFEXITED(ws) || WEXITSTATUS(ws) != 0) {
-            fprintf(stderr, "FAIL: the first session (9 OUTPORT) did not run\n");
-            g_failed = 1;
-            return;
-        }
-    }
+    if (other_session_output_9(g_link) != 0)
+        return;
 
     /* a plan file on the command line (it runs in the directory of cell.fbrl) */
     snprintf(plan1, sizeof plan1, "%s/plan1.fbrl", g_dir);
@@ -268,13 +289,8 @@ static void ctrl_c_tests(void)
         g_failed = 1;
         return;
     }
-    argv[0] = (char *)g_mon;
-    argv[1] = "--port";
-    argv[2] = g_link;
-    argv[3] = "plan1.fbrl";
-    argv[4] = NULL;
     from = log_mark();
-    if (start_mon_argv(&s, TIMEOUT_MS, g_dir, argv) != 0)
+    if (start_plan(&s, g_link, "plan1.fbrl") != 0)
         return;
     /* 1a: B MOV waits for A's motion (plan1.fbrl:6) */
     ctrl_c_after(&s, from, "MOVE FBRLT1");
@@ -364,8 +380,7 @@ static void reconnect_tests(pid_t *sim)
 {
     static session s;
     static const double step_y[3] = {2.0, 0.0, -2.0}; /* C1 C2 C3: x 13, z 8 */
-    char *argv[6];
-    size_t from, i;
+    size_t from, i, restarted, speed = (size_t)-1;
     int k;
     long t_kill;
 
@@ -378,13 +393,8 @@ static void reconnect_tests(pid_t *sim)
                              "C2 MOV\n"
                              "C3 MOV\n"
                              "FINISH .( plan5 done) CR\n");
-    argv[0] = (char *)g_mon;
-    argv[1] = "--port";
-    argv[2] = g_link;
-    argv[3] = "plan5.fbrl";
-    argv[4] = NULL;
     from = log_mark();
-    if (start_mon_argv(&s, TIMEOUT_MS, g_dir, argv) != 0)
+    if (start_plan(&s, g_link, "plan5.fbrl") != 0)
         return;
     /* C2 MOV (line 7) waits for C1's motion: the controller disappears */
     wait_log(&s, from, "MOVE FBRLT");
@@ -399,8 +409,10 @@ static void reconnect_tests(pid_t *sim)
         failf(&s, "%s: the loss was reported only after %.0f ms", "kill", (double)(now_ms() - t_kill));
     expect(&s, "ok> ", "the session goes on");
 
-    *sim = start_sim();
+    restarted = log_mark();
+    *sim = start_sim(); /* a restarted controller: its speed is its default again */
     type(&s, "RECONNECT\r");
+    expect(&s, "the session's modes sent again: SPEED 20", "RECONNECT sends the plan's speed again");
     expect(&s, "reconnected to ", "RECONNECT");
     expect(&s, "controller NOT HOMED (HOME before moving), arm standing, outputs on:", "the state told");
     expect(&s, "ok> ", "prompt");
@@ -409,9 +421,15 @@ static void reconnect_tests(pid_t *sim)
     expect(&s, "plan5 done", "the plan goes on to its end");
     expect(&s, "ok> ", "prompt");
 
+    /* the restarted controller got the plan's speed before its first motion (HOME) */
+    read_log();
+    for (i = restarted; i < g_nlines && !is_motion(g_lines[i]); i++)
+        if (strcmp(g_lines[i], "SPEED 20") == 0)
+            speed = i;
+    if (speed == (size_t)-1 && !g_failed)
+        failf(&s, "%s: no SPEED 20 before the first motion after the restart", "RESUME", 0);
     /* every step exactly once (the first run's lines and the resumed run's): the
      * scratch point's POINT, read by its numbers (the encoder writes them short) */
-    read_log();
     for (k = 0; k < 3; k++) {
         int n = 0;
         for (i = from; i < g_nlines; i++) {
@@ -454,6 +472,94 @@ static void reconnect_tests(pid_t *sim)
     if (!g_failed)
         printf(
             "mon_safe: killed and restarted fbrlsim: reported, reconnected, resumed; each step ran once\n");
+}
+
+/* 4. Ctrl-C against a controller whose STATUS has no OUTPUTS line. */
+static void plain_status_test(void)
+{
+    static session s;
+    char link2[1100], log2[sizeof g_log], fifo[1100], ctlout[1100], saved_log[sizeof g_log], buf[256] = "";
+    size_t from;
+    pid_t pid;
+    int k, fd;
+    FILE *f;
+
+    snprintf(link2, sizeof link2, "%s/robot2", g_dir);
+    snprintf(log2, sizeof log2, "%.900s/sim2.log", g_dir);
+    snprintf(fifo, sizeof fifo, "%s/ctl2", g_dir);
+    snprintf(ctlout, sizeof ctlout, "%s/ctl2.out", g_dir);
+    remove(log2);
+    remove(ctlout);
+    remove(fifo);
+    if (mkfifo(fifo, 0600) != 0) {
+        perror("mon_safe: mkfifo");
+        g_failed = 1;
+        return;
+    }
+    {
+        int pfd[2];
+        char c;
+        if (pipe(pfd) != 0)
+            return;
+        pid = fork();
+        if (pid == 0) {
+            dup2(pfd[1], 1);
+            close(pfd[0]);
+            close(pfd[1]);
+            execl(g_simbin, g_simbin, "--link", link2, "--log", log2, "--control", fifo, "--control-out",
+                  ctlout, (char *)NULL);
+            _exit(127);
+        }
+        close(pfd[1]);
+        while (read(pfd[0], &c, 1) == 1 && c != '\n')
+            ;
+        close(pfd[0]);
+    }
+    memcpy(saved_log, g_log, sizeof saved_log); /* the log helpers read g_log */
+    memcpy(g_log, log2, sizeof g_log);
+
+    /* another session switched output 9 on */
+    (void)other_session_output_9(link2);
+    from = log_mark();
+    if (!g_failed && start_plan(&s, link2, "plan1.fbrl") == 0) {
+        ctrl_c_after(&s, from, "MOVE FBRLT1");
+        expect(&s, "stopped (plan1.fbrl:6 in MOV): arm halted while moving (MOVE FBRLT1)", "the stop report");
+        expect(&s,
+               "outputs switched off: 5; not known: 1-4 6-16 (this controller's STATUS does not show its "
+               "outputs, and this session did not switch them on: check them at the controller)",
+               "the valve switched off, the others named as not known and why");
+        expect(&s, "ok> ", "the session goes on at the prompt");
+        check_halt(&s, from, "Ctrl-C, no OUTPUTS line");
+        read_log();
+        for (k = 0; (size_t)k < g_nlines && strcmp(g_lines[k], "OUTPUT -5") != 0; k++)
+            ;
+        if ((size_t)k == g_nlines)
+            failf(&s, "%s: OUTPUT -5 is not in fbrlsim's log", "Ctrl-C, no OUTPUTS line", 0);
+        /* fbrlsim's own outputs: the valve off, output 9 as the other session left it */
+        fd = open(fifo, O_WRONLY);
+        if (fd < 0 || write(fd, "GET OUTPUTS\n", 12) != 12)
+            failf(&s, "%s: cannot write fbrlsim's control channel", "GET OUTPUTS", 0);
+        if (fd >= 0)
+            close(fd);
+        for (k = 0; k < 100 && strstr(buf, "OUTPUTS ") == NULL; k++) {
+            settle(&s, 50);
+            f = fopen(ctlout, "r");
+            if (f != NULL) {
+                size_t n = fread(buf, 1, sizeof buf - 1, f);
+                buf[n] = '\0';
+                fclose(f);
+            }
+        }
+        if (strstr(buf, "OUTPUTS 0000000010000000") == NULL)
+            failf(&s, "%s: fbrlsim's outputs after the stop: %s", buf, 0);
+        type(&s, "BYE\r");
+        finish(&s);
+        if (!g_failed)
+            printf("mon_safe: Ctrl-C without an OUTPUTS line: the valve off, the others named unknown\n");
+    }
+    memcpy(g_log, saved_log, sizeof saved_log);
+    kill(pid, SIGTERM);
+    waitpid(pid, NULL, 0);
 }
 
 /* 3. A port without permission. */
@@ -528,6 +634,8 @@ int main(int argc, char **argv)
     ctrl_c_tests();
     if (!g_failed)
         reconnect_tests(&sim);
+    if (!g_failed)
+        plain_status_test();
     if (!g_failed)
         permission_test();
     kill(sim, SIGTERM);

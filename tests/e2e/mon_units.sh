@@ -42,20 +42,34 @@ case $sent in
 *) fail "between METRIC and NOMETRIC something reached the controller: $sent" ;;
 esac
 
-# ---- a controller left in millimetres by an earlier session: ROBOT-STATUS shows it and
-# from then on a motion is refused with a message that says what to do
+# ---- a controller left in millimetres by an earlier session: refused at connect (the
+# link reads STATUS after NOHELP, docs/link.md 1), before any word is typed: fbrlmon says so
+# and how to switch it; JOG and ARM-HERE are refused and nothing of them is sent; W2 shows
+# the controller's block as it came and its WORLD line converted from millimetres
 "$mon" --port "$port" -e 'RAPL METRIC' </dev/null >/dev/null 2>&1
 grep -q '^UNITS METRIC' sim.state || fail "fbrlsim did not keep METRIC in its state file"
+connect_msg="works in millimetres (STATUS: METRIC UNITS.) and fbrlmon's robot words send inches: they are refused until you switch it to inches (RAPL NOMETRIC)"
 before=$(lines)
-"$mon" --port "$port" -e 'ROBOT-STATUS' -e 'CREATE-LOC T2 12E0 3E0 8E0 0E0 -90E0 0E0 T2 DEFINE-LOC T2 MOV' \
-    </dev/null >left.out 2>left.err
-[ $? = 1 ] || fail "MOV to a controller in millimetres did not fail"
-grep -q "METRIC UNITS." left.out || fail "ROBOT-STATUS did not show the units: $(cat left.out)"
-grep -q "MOV: the controller works in millimetres (STATUS: METRIC UNITS.) and the robot words send inches: not sent; switch it to inches (RAPL NOMETRIC) first" left.err ||
-    fail "message: $(cat left.err)"
+"$mon" --port "$port" -e 'JOG 0 0 -2' </dev/null >jog.out 2>jog.err
+[ $? = 1 ] || fail "JOG to a controller in millimetres did not fail"
+grep -q "$connect_msg" jog.err || fail "the connect did not refuse the units: $(cat jog.err)"
+grep -q "JOG: the controller works in millimetres" jog.err || fail "JOG's message: $(cat jog.err)"
+[ "$(tail -n +$((before + 1)) sim.log | grep -v '^#' | tr '\n' ' ')" = "NOHELP STATUS " ] ||
+    fail "the connect was not NOHELP and STATUS, or JOG was sent: $(tail -n +$((before + 1)) sim.log)"
+before=$(lines)
+"$mon" --port "$port" -e 'CREATE-LOC T3  T3 ARM-HERE' </dev/null >here.out 2>here.err
+[ $? = 1 ] || fail "ARM-HERE from a controller in millimetres did not fail"
+grep -q "ARM-HERE: the controller works in millimetres" here.err || fail "ARM-HERE's message: $(cat here.err)"
 sent=$(new_lines "$before")
-[ -z "$sent" ] || fail "a motion reached a controller in millimetres: $sent"
-"$mon" --port "$port" -e 'RAPL NOMETRIC' </dev/null >/dev/null 2>&1
+[ -z "$sent" ] || fail "ARM-HERE read a position in millimetres: $sent"
+"$mon" --port "$port" -e 'W2' </dev/null >w2.out 2>w2.err
+grep -q '^WORLD  *+304.8000 +076.2000 +203.2000' w2.out || fail "W2's block (T1 in mm): $(cat w2.out)"
+grep -q '^world: X +12.0000 Y +3.0000 Z +8.0000 in ' w2.out || fail "W2 labels millimetres as inches: $(cat w2.out)"
+"$mon" --port "$port" -e 'RAPL NOMETRIC' </dev/null >/dev/null 2>nomet.err
+grep -q "$connect_msg" nomet.err || fail "RAPL NOMETRIC's session was not told of the units"
+"$mon" --port "$port" -e 'JOG 0 0 -2' </dev/null >jog2.out 2>jog2.err || fail "JOG after NOMETRIC: $(cat jog2.err)"
+[ -s jog2.err ] && fail "a controller in inches was refused: $(cat jog2.err)"
+grep -qx 'JOG 0,0,-2' sim.log || fail "JOG did not run in inches after NOMETRIC"
 
 echo "mon_units: $fails failed"
 [ $fails -eq 0 ]

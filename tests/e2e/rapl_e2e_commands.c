@@ -133,10 +133,29 @@ static double typev(const char *expr)
     return v;
 }
 
+/* The connect reads the controller's units (docs/link.md 1): a controller left in METRIC
+ * (kept in fbrlsim's state file, as in a controller's memory) is refused with FBRL_EUNITS,
+ * the link stays usable so NOMETRIC can switch it, and the next connect succeeds. The
+ * connect's STATUS lines are not the caller's. */
+static void units_at_connect(void)
+{
+    CHECK(fbrl_link_units(L) == FBRL_LINK_UNITS_INCH);
+    CHECK(fbrl_link_raw(L, "METRIC") == FBRL_OK);
+    CHECK(fbrl_link_units(L) == FBRL_LINK_UNITS_MM);
+    lines[0] = '\0';
+    CHECK(fbrl_link_connect(L) == FBRL_EUNITS);
+    CHECK(fbrl_link_units(L) == FBRL_LINK_UNITS_MM);
+    CHECK(lines[0] == '\0');
+    CHECK(fbrl_link_raw(L, "NOMETRIC") == FBRL_OK);
+    CHECK(fbrl_link_connect(L) == FBRL_OK);
+    CHECK(fbrl_link_units(L) == FBRL_LINK_UNITS_INCH);
+}
+
 static void run_all(void)
 {
     const double ready[5] = {0, 90, -90, 0, 0};
-    CHECK(fbrl_link_connect(L) == FBRL_OK); /* NOHELP */
+    CHECK(fbrl_link_connect(L) == FBRL_OK); /* NOHELP, STATUS */
+    units_at_connect();
 
     /* motion before HOME: 041 */
     ERR(41, FBRL_RAPL_READY, NOARGS);

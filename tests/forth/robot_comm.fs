@@ -36,14 +36,17 @@ T{ -123 .-COM GET-COM GET-COM GET-COM GET-COM -> 45 49 50 51 }T
 T{ 2.5E0 F.-COM GET-COM GET-COM GET-COM -> 50 46 53 }T
 T{ ASC Z DIRECT-WRITE-COM GET-COM -> 90 }T
 T{ 17 ' EMIT-COM CATCH NIP -> -24 }T
-\ RESET-COMM erases what was typed (the controller never executes it) and resyncs
+\ RESET-COMM erases what was typed (the controller never executes it) and resyncs: the
+\ connect's handshake, NOHELP and STATUS (the controller's units)
 T{ 1 RESET-COMM -> }T  LOG: NOHELP
+                       LOG: STATUS
 T{ GET-COM -> -1 }T
 T{ LOG-COUNT" ABC-1232.5Z" -> 0 }T
 \ a whole command typed raw: the controller runs it; RESET-COMM drops its reply
 T{ S" SPEED 20" SWAP TYPE-COM 13 EMIT-COM -> }T
 T{ 1 RESET-COMM -> }T  LOG: SPEED 20
                        LOG: NOHELP
+                       LOG: STATUS
 T{ OUT-CLEAR ROBOT-STATUS OUT" SPEED (% OF FULL) :    +20" -> TRUE }T  LOG: STATUS
 T{ ASC E -> 69 }T
 : PAR-E ASC E ;
@@ -52,10 +55,12 @@ T{ PAR-E -> 69 }T
 T{ S" W1" SWAP TYPE-COM 13 EMIT-COM -> }T
 T{ 1 RESET-COMM -> }T  LOG: W1
                        LOG: NOHELP
+                       LOG: STATUS
 T{ 30 SPEED -> }T  LOG: SPEED 30
 \ PRINT-LOC writes to the communication port: the controller's line (it rejects the
 \ text as a command); the robot discards the answer and resynchronises the link
 CREATE-LOC PL  1E0 2E0 3E0 0E0 -90E0 0E0 PL DEFINE-LOC
 T{ PL PRINT-LOC -> }T  LOG: X*+1.0000*Y*+2.0000*Z*+3.0000*-90.000*
                        LOG: NOHELP
+                       LOG: STATUS
 T{ 40 SPEED -> }T  LOG: SPEED 40

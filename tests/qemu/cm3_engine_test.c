@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* cm3_engine_test.c - the language engine as the Cortex-M3 firmware builds it
- * (FBRL_SMALL_HEADERS, FBRL_NO_HELP, 256-byte lines, 4 nested sources, 128 hash buckets,
+ * (FBRL_SMALL_HEADERS, FBRL_NO_HELP, 256-byte lines, 4 nested sources,
  * 2 S" buffers: ports/cortex-m3/CMakeLists.txt), run on the host against the Forth
  * conformance suite in tests/forth and the cases those options change: names that live
  * in the dictionary, MARKER and FORGET taking them away, HELP without texts. The QEMU
@@ -15,6 +15,7 @@
 
 #include "fbrl/glossary.h"
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 #include "support/vm_host.h"
 
 #define FORTH_DIR FBRL_TEST_SRCDIR "/tests/forth/"
@@ -57,6 +58,7 @@ static fixture *new_vm(void)
     vmh_use_files(&cfg.host);
     vmh_use_clock(&cfg.host);
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vmx_data_words(f->vm), FBRL_OK); /* fbrl.fs tests them too */
     return f;
 }
 

@@ -6,7 +6,7 @@
 #include <cmocka.h>
 
 #include "fbrl/fbrl.h"
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/workspace.h"
 
 /* alignment probes, one struct per type (C99 has no alignof) */

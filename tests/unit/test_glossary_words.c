@@ -22,7 +22,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "fbrl/cell.h"
+#include "fbrl/cell_words.h"
 #include "fbrl/glossary.h"
 #include "fbrl/robot.h"
 #include "fbrl/method.h"

@@ -373,6 +373,22 @@ static void damaged_cr_never_runs_twice(void **state)
     assert_int_equal(st.cr_unconfirmed, sizeof into);
 }
 
+/* 8N1: the CR is lost, and the probe that asks what the line holds comes back with its
+ * '?' lost and its first BS (0x08) turned into LF (0x0A) by one flipped bit. That LF is not
+ * the controller's CR LF: the line never ran, and must run once, not be taken for run
+ * (and "settled" by STATUS as a success that never happened). */
+static void lf_from_a_damaged_probe_is_no_proof(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '\b', 0, REPLACE, '\n');
+    assert_int_equal(run(s, "HOME", FBRL_LINK_REPLY_NONE), FBRL_OK);
+    static const char *const want[] = {"HOME"};
+    assert_log(s, want, 1);
+}
+
 /* The echo of the last character never comes: no CR is sent for an unconfirmed line;
  * it is erased and typed again. */
 static void lost_last_echo_is_retyped(void **state)
@@ -986,6 +1002,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(clean_command_runs_once, setup, teardown),
         cmocka_unit_test_setup_teardown(the_gate_sees_every_line_first, setup, teardown),
         cmocka_unit_test_setup_teardown(damaged_cr_never_runs_twice, setup, teardown),
+        cmocka_unit_test_setup_teardown(lf_from_a_damaged_probe_is_no_proof, setup, teardown),
         cmocka_unit_test_setup_teardown(lost_last_echo_is_retyped, setup, teardown),
         cmocka_unit_test_setup_teardown(damaged_character_never_runs, setup, teardown),
         cmocka_unit_test_setup_teardown(damaged_prompt_is_not_a_failure, setup, teardown),

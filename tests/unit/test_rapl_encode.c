@@ -168,6 +168,63 @@ static void every_command_encodes_in_both_forms(void **state)
         assert_true(seen[c]);
 }
 
+/* fbrl_rapl_line_cmd: the first word of a line, by keyword or token; an assignment first. */
+static void lines_name_their_command(void **state)
+{
+    (void)state;
+    fbrl_rapl_cmd c = FBRL_RAPL_NCMDS;
+    const char *args = NULL;
+    assert_int_equal(fbrl_rapl_line_cmd("  output 3,-4", &c, &args), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_OUTPUT);
+    assert_string_equal(args, "3,-4");
+    assert_int_equal(fbrl_rapl_line_cmd("/089 3", &c, &args), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_OUTPUT);
+    assert_string_equal(args, "3");
+    assert_int_equal(fbrl_rapl_line_cmd("MOVE,P1", &c, &args), FBRL_OK); /* a ',' ends the word */
+    assert_int_equal(c, FBRL_RAPL_MOVE);
+    assert_int_equal(fbrl_rapl_line_cmd("GRIP = 2", &c, &args), FBRL_OK); /* a variable named GRIP */
+    assert_int_equal(c, FBRL_RAPL_ASSIGN);
+    assert_string_equal(args, "= 2");
+    assert_int_equal(fbrl_rapl_line_cmd("V1=V1+1", &c, &args), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_ASSIGN);
+    assert_int_equal(fbrl_rapl_line_cmd("STATUS", &c, NULL), FBRL_OK);
+    assert_int_equal(c, FBRL_RAPL_STATUS);
+    c = FBRL_RAPL_NCMDS;
+    assert_int_equal(fbrl_rapl_line_cmd("=5", &c, NULL), FBRL_ENOENT); /* no name: no assignment */
+    assert_int_equal(fbrl_rapl_line_cmd("STATUSX", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("/0089", &c, NULL), FBRL_OK); /* the controller reads a number */
+    assert_int_equal(fbrl_rapl_line_cmd("/12345678901", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("/", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("/08x", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd("", &c, NULL), FBRL_ENOENT);
+    assert_int_equal(fbrl_rapl_line_cmd(NULL, &c, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_rapl_line_cmd("HOME", NULL, NULL), FBRL_EINVAL);
+    /* safe to type twice: the table, or an assignment that does not read its target */
+    assert_true(fbrl_rapl_line_safe("MOVE P1"));
+    assert_false(fbrl_rapl_line_safe("JOG 0,0,1"));
+    assert_false(fbrl_rapl_line_safe("HERE H1"));
+    assert_true(fbrl_rapl_line_safe("V1 = 2.5"));
+    assert_false(fbrl_rapl_line_safe("V1=V1+1"));
+    assert_false(fbrl_rapl_line_safe("v1=2*V1"));
+    assert_true(fbrl_rapl_line_safe("V1=V10+1"));
+    assert_false(fbrl_rapl_line_safe("FROB 1"));
+    assert_false(fbrl_rapl_line_safe(NULL));
+    for (int k = 0; k < FBRL_RAPL_NCMDS; k++) { /* every keyword and token names its command */
+        const fbrl_rapl_cmdinfo *ci = fbrl_rapl_cmd_info((fbrl_rapl_cmd)k);
+        char text[16];
+        if (ci->keyword[0]) {
+            snprintf(text, sizeof text, "%s 1", ci->keyword);
+            assert_int_equal(fbrl_rapl_line_cmd(text, &c, NULL), FBRL_OK);
+            assert_int_equal(c, k);
+        }
+        if (ci->token) {
+            snprintf(text, sizeof text, "/%03u", (unsigned)ci->token);
+            assert_int_equal(fbrl_rapl_line_cmd(text, &c, NULL), FBRL_OK);
+            assert_int_equal(c, k);
+        }
+    }
+}
+
 static void table_is_complete_and_lookups_work(void **state)
 {
     (void)state;
@@ -221,10 +278,13 @@ static void table_facts_agree(void **state)
         waits += !!(ci->flags & FBRL_RAPL_F_WAITS);
         unsafe += !(ci->flags & FBRL_RAPL_F_SAFE);
     }
-    /* the commands the issue names as not safe to repeat */
+    /* the commands a second run changes (issues 9 and 28): relative ones, counters, deletions,
+     * program runs, those that store where the arm is, WAIT */
     static const fbrl_rapl_cmd never_twice[] = {
-        FBRL_RAPL_JOG, FBRL_RAPL_DEPART, FBRL_RAPL_APPRO, FBRL_RAPL_MI,    FBRL_RAPL_JOINT, FBRL_RAPL_MOTOR,
-        FBRL_RAPL_RUN, FBRL_RAPL_SHIFTA, FBRL_RAPL_SHIFT, FBRL_RAPL_DLOCN, FBRL_RAPL_DVAR};
+        FBRL_RAPL_JOG,    FBRL_RAPL_DEPART, FBRL_RAPL_APPRO, FBRL_RAPL_MI,
+        FBRL_RAPL_JOINT,  FBRL_RAPL_MOTOR,  FBRL_RAPL_RUN,   FBRL_RAPL_SHIFTA,
+        FBRL_RAPL_SHIFT,  FBRL_RAPL_DLOCN,  FBRL_RAPL_DVAR,  FBRL_RAPL_HERE,
+        FBRL_RAPL_ACTUAL, FBRL_RAPL_XCAL,   FBRL_RAPL_XZERO, FBRL_RAPL_WAIT};
     for (size_t k = 0; k < sizeof never_twice / sizeof never_twice[0]; k++)
         assert_false(fbrl_rapl_cmd_info(never_twice[k])->flags & FBRL_RAPL_F_SAFE);
     assert_int_equal(unsafe, (int)(sizeof never_twice / sizeof never_twice[0]));
@@ -495,6 +555,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_command_encodes_in_both_forms),
         cmocka_unit_test(table_is_complete_and_lookups_work),
+        cmocka_unit_test(lines_name_their_command),
         cmocka_unit_test(table_facts_agree),
         cmocka_unit_test(reals_are_short_and_have_no_exponent),
         cmocka_unit_test(short_reals_read_back_as_four_decimals),

@@ -33,6 +33,52 @@ static void feed(fbrl_rapl_reader *r, const char *bytes, size_t n, collected *c)
     }
 }
 
+/* The framing of a reply read from its CR on (fbrl_rapl_reader_whole and the fields). */
+static fbrl_rapl_reader framed(const char *bytes, size_t n)
+{
+    fbrl_rapl_reader r;
+    collected c;
+    memset(&c, 0, sizeof c);
+    fbrl_rapl_reader_init(&r);
+    feed(&r, bytes, n, &c);
+    return r;
+}
+
+static void reader_keeps_the_framing(void **state)
+{
+    (void)state;
+    fbrl_rapl_reader r = framed("\r\n>>", 4);
+    assert_true(fbrl_rapl_reader_whole(&r));
+    assert_int_equal(r.bytes, 4);
+    assert_int_equal(r.eols, 1);
+    assert_int_equal(r.lines, 0);
+    assert_int_equal(r.ends, FBRL_RAPL_END_CR | FBRL_RAPL_END_CRLF);
+    assert_true(r.gtgt);
+    r = framed("\r\n011-LOCATION UNDEFINED.\r\n>>", 29);
+    assert_true(fbrl_rapl_reader_whole(&r));
+    assert_int_equal(r.eols, 2);
+    assert_int_equal(r.lines, 1);
+    r = framed("\n>>", 3); /* the CR lost */
+    assert_false(r.began);
+    assert_false(fbrl_rapl_reader_whole(&r));
+    assert_int_equal(r.ends, FBRL_RAPL_END_LF);
+    r = framed("\r\nAB\r>>", 7); /* an LF lost */
+    assert_true(r.broken);
+    assert_false(fbrl_rapl_reader_whole(&r));
+    r = framed("\r\nA\x01B\r\n>>", 9); /* a damaged line */
+    assert_true(r.damaged);
+    assert_false(r.broken);
+    assert_false(fbrl_rapl_reader_whole(&r));
+    r = framed("\r\n>", 3); /* no prompt yet */
+    assert_false(r.prompt);
+    assert_false(fbrl_rapl_reader_whole(&r));
+    fbrl_rapl_reader_lost(&r); /* a parity error: a byte lost */
+    assert_int_equal(r.bytes, 4);
+    assert_true(r.broken);
+    fbrl_rapl_reader_lost(NULL);
+    assert_false(fbrl_rapl_reader_whole(NULL));
+}
+
 static void reader_cuts_lines_and_finds_prompts(void **state)
 {
     (void)state;
@@ -356,6 +402,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(reader_cuts_lines_and_finds_prompts),
+        cmocka_unit_test(reader_keeps_the_framing),
         cmocka_unit_test(reader_cuts_long_lines_safely),
         cmocka_unit_test(error_lines_are_checked_against_the_table),
         cmocka_unit_test(every_error_has_its_meaning),

@@ -51,6 +51,16 @@ static const char *nth_line(const sink *k, unsigned n, char *out, size_t cap)
     return out;
 }
 
+/* A run log of method "M" on a fresh sink that never fails, begun. */
+static void begin_m(sink *k, fbrl_runlog *l)
+{
+    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
+    memset(k, 0, sizeof *k);
+    memset(l, 0, sizeof *l);
+    k->fail_after = -1;
+    assert_int_equal(fbrl_runlog_begin(l, sink_write, k, sink_clock, k, &h), FBRL_OK);
+}
+
 static void a_run_writes_every_record(void **state)
 {
     (void)state;
@@ -130,6 +140,25 @@ static void a_run_writes_every_record(void **state)
     assert_int_equal(fbrl_runlog_note(&l, "pause", NULL, NULL), FBRL_ESTATE);
 }
 
+/* A command the link typed again (docs/link.md 3.9): its second run says so, the first not. */
+static void a_repeated_command_says_which_run(void **state)
+{
+    (void)state;
+    static sink k;
+    fbrl_runlog l;
+    char line[512];
+    begin_m(&k, &l);
+    assert_int_equal(fbrl_runlog_command_run(&l, "SPEED 5", 7, FBRL_EPROTOCOL, -1, 1), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command_run(&l, "SPEED 5", 7, FBRL_OK, -1, 2), FBRL_OK);
+    assert_int_equal(fbrl_runlog_command_run(&l, "SPEED 6", 7, FBRL_OK, -1, 0), FBRL_OK);
+    assert_string_equal(nth_line(&k, 1, line, sizeof line),
+                        "{\"t\":0,\"type\":\"command\",\"line\":\"SPEED 5\",\"status\":\"reply-damaged\"}");
+    assert_string_equal(nth_line(&k, 2, line, sizeof line),
+                        "{\"t\":0,\"type\":\"command\",\"line\":\"SPEED 5\",\"status\":\"ran\",\"run\":2}");
+    assert_string_equal(nth_line(&k, 3, line, sizeof line),
+                        "{\"t\":0,\"type\":\"command\",\"line\":\"SPEED 6\",\"status\":\"ran\"}");
+}
+
 /* A long text is cut inside the line limit and stays valid JSON (ends with ..."}). */
 static void long_texts_are_cut(void **state)
 {
@@ -183,11 +212,7 @@ static void polls_are_folded(void **state)
     static sink k;
     fbrl_runlog l;
     char line[512];
-    fbrl_runlog_header h = {"M", NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0};
-    memset(&k, 0, sizeof k);
-    memset(&l, 0, sizeof l);
-    k.fail_after = -1;
-    assert_int_equal(fbrl_runlog_begin(&l, sink_write, &k, sink_clock, &k, &h), FBRL_OK);
+    begin_m(&k, &l);
     assert_int_equal(fbrl_runlog_command(&l, "MOVE A", 6, FBRL_OK, -1), FBRL_OK);
     for (int i = 0; i < 5; i++) {
         k.now += 50000;
@@ -245,6 +270,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(a_run_writes_every_record),
+        cmocka_unit_test(a_repeated_command_says_which_run),
         cmocka_unit_test(long_texts_are_cut),
         cmocka_unit_test(a_failing_sink_is_reported),
         cmocka_unit_test(polls_are_folded),

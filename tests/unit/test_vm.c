@@ -15,6 +15,7 @@
 #include <cmocka.h>
 
 #include "fbrl/vm.h"
+#include "fbrl/vmx.h"
 #include "support/vm_host.h"
 #include "mon_files.h"
 
@@ -77,6 +78,7 @@ static fixture *new_vm_clock(size_t mem_size, uint64_t (*now_us)(void *), void (
         cfg.host.now_us = now_us, cfg.host.sleep_ms = sleep_ms;
     cfg.host.files = mon_files(); /* fbrlmon's file system for the standard FILE words */
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vmx_data_words(f->vm), FBRL_OK); /* fbrl.fs tests them too */
     return f;
 }
 
@@ -304,6 +306,74 @@ static fbrl_status c_parse(fbrl_vm *vm, void *arg)
     (void)arg;
     fbrl_vm_parse_name(vm, &name, &len);
     return fbrl_vm_push(vm, (fbrl_cell)len);
+}
+
+/* The dictionary's index grows with it (dict.c): 30,000 words, shadowed names, synonyms made
+ * just as the index doubles, a MARKER that shrinks it again: find gives the newest word of
+ * each name all along, and forgotten words are gone. */
+static int is_power_of_two(size_t n) { return n && !(n & (n - 1)); }
+
+static void dictionary_index_grows(void **state)
+{
+    (void)state;
+    enum { N = 30000 };
+    static fbrl_cell want[N], want_half[N];
+    fixture *f = new_vm(16 << 20);
+    char src[128];
+    size_t synonyms_at_doubling = 0;
+    for (int k = 0; k < N; k++) {
+        snprintf(src, sizeof src, ": W%d %d ;", k, k);
+        assert_int_equal(ev(f, src), FBRL_OK);
+        want[k] = k;
+        if (is_power_of_two(fbrl_vm_word_count(f->vm) + 1)) { /* the next header doubles the index */
+            snprintf(src, sizeof src, "SYNONYM S%d W%d", k, k);
+            assert_int_equal(ev(f, src), FBRL_OK);
+            synonyms_at_doubling++;
+            for (int i = 0; i <= k; i++) { /* before anything else grows it */
+                snprintf(src, sizeof src, "W%d", i);
+                assert_int_equal(eval_pop(f->vm, src), want[i]);
+            }
+        }
+        if (k % 7 == 3) { /* a newer word of an older name shadows it */
+            snprintf(src, sizeof src, ": W%d %d ;", k / 2, -k);
+            assert_int_equal(ev(f, src), FBRL_OK);
+            want[k / 2] = -k;
+        }
+        if (k == N / 2) {
+            assert_int_equal(ev(f, "MARKER HALF"), FBRL_OK);
+            memcpy(want_half, want, sizeof want);
+        }
+    }
+    assert_true(synonyms_at_doubling >= 4);
+    for (int k = 0; k < N; k++) {
+        snprintf(src, sizeof src, "W%d", k);
+        assert_int_equal(eval_pop(f->vm, src), want[k]);
+        snprintf(src, sizeof src, "S%d", k);
+        if (fbrl_vm_help(f->vm, src, NULL, NULL) == FBRL_OK)
+            assert_int_equal(eval_pop(f->vm, src), k); /* W(k) as it was when the synonym was made */
+    }
+    /* forget the second half: its words are gone, the first half's are found as they were */
+    size_t before = fbrl_vm_word_count(f->vm);
+    assert_int_equal(ev(f, "HALF"), FBRL_OK);
+    assert_true(fbrl_vm_word_count(f->vm) < before / 2 + 1000);
+    for (int k = 0; k < N; k++) {
+        snprintf(src, sizeof src, "W%d", k);
+        if (k > N / 2)
+            assert_int_equal(fbrl_vm_help(f->vm, src, NULL, NULL), FBRL_ENOENT);
+        else
+            assert_int_equal(eval_pop(f->vm, src), want_half[k]);
+    }
+    /* and it grows again */
+    for (int k = 0; k < N / 2; k++) {
+        snprintf(src, sizeof src, ": X%d %d ;", k, 3 * k);
+        assert_int_equal(ev(f, src), FBRL_OK);
+    }
+    for (int k = 0; k < N / 2; k++) {
+        snprintf(src, sizeof src, "X%d", k);
+        assert_int_equal(eval_pop(f->vm, src), 3 * k);
+    }
+    assert_int_equal(eval_pop(f->vm, "1 2 + DUP *"), 9); /* the built-in words too */
+    free_vm(f);
 }
 
 static void c_words(void **state)
@@ -708,6 +778,90 @@ static void fused_code_keeps_meaning(void **state)
     assert_int_equal(ev(f, ": G9 [ 1 C, ] 5 + 2 PICK ;"), FBRL_OK);
     /* SEE shows fused code as the words it came from */
     expect_output(f, ": G8 DUP 2 < IF 1 - THEN OVER + ; SEE G8", ": G8 DUP 2 < 0BRANCH(2) 1 - OVER + ;\n");
+    free_vm(f);
+}
+
+/* Run `input NAME` and keep what it left: the status, the THROW code, the stack (bottom
+ * first) and the 32 bytes at BUF. The stack is emptied after. */
+typedef struct run_result {
+    fbrl_status st;
+    int code, depth;
+    fbrl_cell cells[16];
+    unsigned char buf[32];
+} run_result;
+
+static run_result run_word(fixture *f, const char *input, const char *name)
+{
+    run_result r;
+    char src[256];
+    memset(&r, 0, sizeof r);
+    snprintf(src, sizeof src, "BUF 32 ERASE %s %s", input, name);
+    r.st = ev(f, src);
+    r.code = r.st == FBRL_OK ? 0 : fbrl_vm_last_error(f->vm)->throw_code;
+    r.depth = (int)fbrl_vm_depth(f->vm);
+    assert_true(r.depth <= 16);
+    for (int i = r.depth - 1; i >= 0; i--)
+        r.cells[i] = pop1(f);
+    fbrl_cell buf = eval_pop(f->vm, "BUF");
+    memcpy(r.buf, (const void *)buf, sizeof r.buf);
+    return r;
+}
+
+/* The superinstructions (a DUP or 2DUP before a compare and branch, DROP and a literal,
+ * I before a fetch or store, a literal or DUP before +LOOP, OVER/2 PICK before @, * +, a
+ * literal + before a fetch or store, an ELSE branch that lands on ;) against the same
+ * words kept apart by HERE (which ends every fusion): the same stack, memory and errors. */
+static void superinstructions_keep_meaning(void **state)
+{
+    (void)state;
+    static const char *const bodies[] = {
+        "DUP 5 = IF 1 ELSE 2 THEN",  "DUP 5 <> IF 1 ELSE 2 THEN", "DUP 5 < IF 1 ELSE 2 THEN",
+        "DUP 5 > IF 1 ELSE 2 THEN",  "2DUP = IF 1 ELSE 2 THEN",   "2DUP <> IF 1 ELSE 2 THEN",
+        "2DUP < IF 1 ELSE 2 THEN",   "2DUP > IF 1 ELSE 2 THEN",   "DROP 7",
+        "DROP BUF @",                "DROP 3 +",
+        "DUP 1+ SWAP DO I @ LOOP",   "DUP 1+ SWAP DO I C@ LOOP",  "DUP 1+ SWAP DO I 2@ LOOP",
+        "DUP 1+ SWAP DO 123 I ! LOOP", "DUP 1+ SWAP DO 45 I C! LOOP", "DUP 1+ SWAP DO 6 7 I 2! LOOP",
+        "10 0 DO I + 3 +LOOP",       "-10 0 DO I + -2 +LOOP",     "10 0 DO I + 2 DUP +LOOP",
+        "OVER @",                    "2 PICK @",                  "* +",
+        "8 + @",                     "3 + C@",                    "8 + !",
+        "3 + C!",                    "IF 1 ELSE 2 THEN",          "CASE 1 OF 10 ENDOF 2 OF 20 ENDOF 30 SWAP ENDCASE",
+    };
+    static const char *const inputs[] = {
+        "",          "0",         "5",           "9",         "BUF",     "3 4",   "4 4",
+        "5 3",       "10",        "-10",         "BUF 5 BUF", "0 BUF",   "1 2 3", "-1 BUF 0",
+        "BUF 1 BUF", "77 BUF",    "77 BUF 4000000000000 +", "2",
+    };
+    fixture *f = new_vm(1 << 20);
+    char src[512];
+    assert_int_equal(ev(f, "CREATE BUF 32 ALLOT"), FBRL_OK);
+    for (size_t b = 0; b < sizeof bodies / sizeof bodies[0]; b++) {
+        /* SU: the same words, each followed by HERE DROP at compile time */
+        char apart[400] = "", word[64];
+        const char *p = bodies[b];
+        int n;
+        while (sscanf(p, "%63s%n", word, &n) == 1) {
+            strcat(apart, word);
+            strcat(apart, " [ HERE DROP ] ");
+            p += n;
+        }
+        /* each fused form is really there: the fused code is shorter (but for ELSE
+         * landing on ; and ENDOF, whose branch becomes an exit of the same size) */
+        snprintf(src, sizeof src, "HERE : SF %s ; HERE SWAP -  HERE : SU %s ; HERE SWAP -", bodies[b], apart);
+        fbrl_cell plain_size = eval_pop(f->vm, src), fused_size = pop1(f);
+        if (strncmp(bodies[b], "IF ", 3) != 0 && strncmp(bodies[b], "CASE", 4) != 0 && fused_size >= plain_size)
+            fail_msg("\"%s\" was not fused (%ld bytes, apart %ld)", bodies[b], (long)fused_size, (long)plain_size);
+        for (size_t i = 0; i < sizeof inputs / sizeof inputs[0]; i++) {
+            run_result fused = run_word(f, inputs[i], "SF"), plain = run_word(f, inputs[i], "SU");
+            if (memcmp(&fused, &plain, sizeof fused) != 0)
+                fail_msg("\"%s\" on \"%s\": fused st %d code %d depth %d top %ld, apart st %d code %d depth %d top %ld",
+                         bodies[b], inputs[i], fused.st, fused.code, fused.depth,
+                         (long)(fused.depth ? fused.cells[fused.depth - 1] : 0), plain.st, plain.code, plain.depth,
+                         (long)(plain.depth ? plain.cells[plain.depth - 1] : 0));
+        }
+    }
+    /* SEE shows them as the words they came from */
+    expect_output(f, ": S1 DUP 3 < IF DROP 0 THEN ; SEE S1", ": S1 DUP 3 < 0BRANCH(2) DROP 0 ;\n");
+    expect_output(f, ": S2 10 0 DO I @ DUP +LOOP ; SEE S2", ": S2 10 0 DO I @ DUP +LOOP ;\n");
     free_vm(f);
 }
 
@@ -1325,6 +1479,7 @@ int main(void)
         cmocka_unit_test(size_for_is_enough),
         cmocka_unit_test(zeroed_memory_is_used_lazily),
         cmocka_unit_test(two_vms_are_independent),
+        cmocka_unit_test(dictionary_index_grows),
         cmocka_unit_test(c_words),
         cmocka_unit_test(api_stacks),
         cmocka_unit_test(errors_carry_word_file_line),
@@ -1333,6 +1488,7 @@ int main(void)
         cmocka_unit_test(multi_line_definitions_and_bye),
         cmocka_unit_test(every_word_has_help),
         cmocka_unit_test(fused_code_keeps_meaning),
+        cmocka_unit_test(superinstructions_keep_meaning),
         cmocka_unit_test(hostile_programs_fail_cleanly),
         cmocka_unit_test(corrupted_code_is_contained),
         cmocka_unit_test(tasks_in_the_engine),

@@ -94,6 +94,7 @@ static void failed_creation_leaves_no_word(void **state)
     assert_non_null(f->mem);
     cfg.mem = f->mem;
     assert_int_equal(fbrl_vm_create(&f->vm, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vmx_data_words(f->vm), FBRL_OK);
     (void)state;
     /* regressions: both failed with "dictionary overflow" and yet left the name defined */
     assert_int_equal(ev(f, "MARKER CLEAN UNUSED"), 0);
@@ -207,6 +208,75 @@ static void words_have_flags_and_two_contexts(void **state)
     assert_int_equal(pop(f), 'Q');
     assert_int_equal(fbrl_vmx_define(f->vm, "BAD", w_lit99, NULL, NULL, 64u, "", ""), FBRL_EINVAL);
     assert_int_equal(fbrl_vmx_define(f->vm, "TWO WORDS", w_lit99, NULL, NULL, 0, "", ""), FBRL_ENAME);
+}
+
+/* ---- a word set's table and its one argument idiom ---- */
+
+/* ( a b -- a-b+arg ) with arg the row's own number; ctx counts the calls */
+static fbrl_status w_sub(fbrl_vm *vm, void *ctx, const void *word)
+{
+    fbrl_vmx_val v[2];
+    fbrl_status st = fbrl_vmx_check(vm, word, v);
+    if (st != FBRL_OK)
+        return st;
+    ++*(int *)ctx;
+    return fbrl_vmx_push(vm, v[0].i - v[1].i + ((const fbrl_vmx_reg *)word)->arg);
+}
+
+static void a_word_set_is_a_table(void **state)
+{
+    fixture *f = *state;
+    static const fbrl_vmx_reg rows[] = {
+        {"T-SUB", w_sub, "II", 0, 0, 0, FBRL_DOC("( a b -- a-b )", "subtract")},
+        {"T-SUB10", w_sub, "II", FBRL_VMX_PARSE, 0, 10, FBRL_DOC("( a b -- a-b+10 )", "subtract, add 10")},
+        {"T-LIT", w_lit99, "", FBRL_VMX_IMMEDIATE, 0, 0, FBRL_DOC("( -- 99 )", "x")},
+    };
+    int calls = 0;
+    fbrl_cell xt;
+    assert_int_equal(fbrl_vmx_define_table(f->vm, rows, 3, &calls), FBRL_OK);
+    assert_int_equal(ev(f, "7 3 T-SUB  7 3 T-SUB10"), 0);
+    assert_int_equal(pop(f), 14);
+    assert_int_equal(pop(f), 4);
+    assert_int_equal(calls, 2);
+    /* the row's flags: typed after the word (PARSE), immediate */
+    assert_int_equal(ev(f, "T-SUB10 $20 2"), 0);
+    assert_int_equal(pop(f), 40);
+    assert_int_equal(ev(f, ": TL T-LIT ; TL"), 0);
+    assert_int_equal(pop(f), 99);
+    /* uniform errors: too few is -4 and takes nothing; a word without PARSE parses nothing */
+    assert_int_equal(ev(f, "5 T-SUB"), FBRL_THROW_STACK_UNDERFLOW);
+    assert_int_equal(ev(f, "T-SUB 7 3"), FBRL_THROW_STACK_UNDERFLOW);
+    assert_int_equal(calls, 3);
+    /* a bad row stops the table there; NULLs are refused */
+    static const fbrl_vmx_reg bad[] = {{"T-OK", w_lit99, "", 0, 0, 0, FBRL_DOC("", "")},
+                                       {"T BAD", w_lit99, "", 0, 0, 0, FBRL_DOC("", "")}};
+    assert_int_equal(fbrl_vmx_define_table(f->vm, bad, 2, NULL), FBRL_ENAME);
+    assert_int_equal(fbrl_vmx_find(f->vm, "T-OK", 4, &xt), FBRL_OK);
+    assert_int_equal(fbrl_vmx_define_table(NULL, rows, 1, NULL), FBRL_EINVAL);
+    assert_int_equal(fbrl_vmx_define_table(f->vm, NULL, 1, NULL), FBRL_EINVAL);
+}
+
+/* The engine installs no word set: a bare VM has none of the data words, the host adds them. */
+static void the_engine_installs_no_word_set(void **state)
+{
+    fbrl_vm_config cfg;
+    fbrl_vm *bare;
+    fbrl_cell xt;
+    (void)state;
+    memset(&cfg, 0, sizeof cfg);
+    cfg.mem = malloc(MEM_SIZE);
+    assert_non_null(cfg.mem);
+    cfg.mem_size = MEM_SIZE;
+    assert_int_equal(fbrl_vm_create(&bare, &cfg), FBRL_OK);
+    assert_int_equal(fbrl_vmx_find(bare, "CREATE-Q", 8, &xt), FBRL_ENOENT);
+    assert_int_equal(fbrl_vmx_find(bare, "LOCATION", 8, &xt), FBRL_ENOENT);
+    assert_int_equal(fbrl_vmx_data_words(bare), FBRL_OK);
+    assert_int_equal(fbrl_vmx_find(bare, "CREATE-Q", 8, &xt), FBRL_OK);
+    assert_int_equal(fbrl_vm_eval(bare, "8 CREATE-Q Q 65 Q ENQ Q DEQ", 27), FBRL_OK);
+    fbrl_cell c = 0;
+    assert_int_equal(fbrl_vm_pop(bare, &c), FBRL_OK);
+    assert_int_equal(c, 65);
+    free(cfg.mem);
 }
 
 /* ---- the one parser ---- */
@@ -443,6 +513,8 @@ int main(void)
         cmocka_unit_test(failed_creation_leaves_no_word),
         cmocka_unit_test_setup_teardown(typed_data_is_checked, setup, teardown),
         cmocka_unit_test_setup_teardown(words_have_flags_and_two_contexts, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_word_set_is_a_table, setup, teardown),
+        cmocka_unit_test(the_engine_installs_no_word_set),
         cmocka_unit_test_setup_teardown(parameters_parse_as_the_interpreter, setup, teardown),
         cmocka_unit_test_setup_teardown(integers_stand_for_reals, setup, teardown),
         cmocka_unit_test_setup_teardown(parse_execute_evaluate, setup, teardown),
