@@ -13,6 +13,8 @@ import time
 import urllib.parse
 
 import pytest
+from cryptography import x509
+from cryptography.hazmat.primitives import hashes, serialization
 
 from conftest import ROOT, MethodLab, launcher, wait_for
 
@@ -264,3 +266,47 @@ def test_signing_out_ends_the_session(page):
     status, where, _, _, _ = page.request("POST", "/logout", {}, cookie=cookie)
     assert (status, where) == (303, "/login")
     assert page.request("GET", "/api/scene", cookie=cookie)[0] == 401
+
+
+def spki_pin(cert_path):
+    """chromium's pin of a certificate's key: base64 of the SHA-256 of its SubjectPublicKeyInfo."""
+    import base64
+    with open(cert_path, "rb") as f:
+        key = x509.load_pem_x509_certificate(f.read()).public_key()
+    h = hashes.Hash(hashes.SHA256())
+    h.update(key.public_bytes(serialization.Encoding.DER, serialization.PublicFormat.SubjectPublicKeyInfo))
+    return base64.b64encode(h.finalize()).decode()
+
+
+def test_in_a_browser_the_sign_in_leads_to_the_page(page):
+    cdp = pytest.importorskip("cdp", reason="python3-websocket drives chromium")
+    if cdp.chromium() is None:
+        pytest.skip("no chromium (Debian: chromium)")
+    b = cdp.Browser(flags=["--ignore-certificate-errors-spki-list=" + spki_pin(page.cert)])  # the station's key only
+
+    def until(js, what, seconds=60):
+        """b.wait_for across a navigation (an evaluation the navigation cut off is asked again)."""
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            try:
+                if b.eval(js):
+                    return
+            except RuntimeError:
+                pass
+            time.sleep(0.1)
+        pytest.fail("timed out waiting for " + what)
+
+    try:
+        b.goto(page.origin() + "/")
+        until("location.pathname === '/login' && !!document.querySelector('input[name=password]')", "the sign-in")
+        b.eval("document.querySelector('input[name=name]').value = 'ann'; "
+               "document.querySelector('input[name=password]').value = %s; "
+               "setTimeout(() => document.querySelector('form').submit(), 0); true" % json.dumps(PASSWORDS["ann"]))
+        until("window.fbrlPage && window.fbrlPage.connected === true", "the page over WSS")
+        assert b.eval("location.protocol") == "https:"
+        until("document.getElementById('user').textContent === 'ann (operator)'", "the user named")
+        assert b.eval("document.cookie") == ""  # HttpOnly: the page's script cannot read the token
+        b.eval("setTimeout(() => document.querySelector('#signed-in button').click(), 0); true")
+        until("location.pathname === '/login'", "the sign-in after signing out")
+    finally:
+        b.close()
