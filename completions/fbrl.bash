@@ -75,7 +75,7 @@ _fbrl_complete()
             _filedir
             return
             ;;
-        --data | --methods)
+        --data | --methods | --lab)
             _filedir -d
             return
             ;;

@@ -15,7 +15,6 @@ from ._ffi import ffi, lib, alloc, ABI
 from ._errors import check
 
 ffi.cdef("""
-typedef struct fbrl_users fbrl_users;
 typedef struct fbrl_user {
     char name[32];
     int role;
@@ -30,6 +29,25 @@ typedef struct fbrl_user {
     unsigned long long kdf_ops;
     unsigned long kdf_mem;
 } fbrl_user;
+typedef struct fbrl_audit_key {
+    char name[32];
+    char role[16];
+    unsigned char pk[32];
+} fbrl_audit_key;
+typedef struct fbrl_users {
+    size_t n;
+    fbrl_user user[64];
+    unsigned max_tries;
+    long lock_s;
+    long idle_s;
+    int allow_drafts;
+    unsigned long long kdf_ops;
+    unsigned long kdf_mem;
+    size_t nold;
+    fbrl_audit_key old[128];
+    unsigned long bad_line;
+    char line[1024];
+} fbrl_users;
 void fbrl_users_init(fbrl_users *u);
 fbrl_status fbrl_users_load(fbrl_users *u, const char *path);
 fbrl_status fbrl_users_save(fbrl_users *u, const char *path);
@@ -54,10 +72,11 @@ for _name in ("fbrl_users", "fbrl_user"):
         if ffi.string(_n).decode() == _name:
             ABI.setdefault(_name, _code)
             break
-_have, _code = (ffi.sizeof("fbrl_user"), ffi.alignof("fbrl_user")), ABI["fbrl_user"]
-if _have != (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code)):
-    raise ImportError("fbrl: fbrl_user is %s bytes/alignment here but %s in the library: rebuild the bindings"
-                      % (_have, (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code))))
+for _name in ("fbrl_users", "fbrl_user"):  # read field by field (settings(), user()): the layouts must agree
+    _have, _code = (ffi.sizeof(_name), ffi.alignof(_name)), ABI[_name]
+    if _have != (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code)):
+        raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"
+                          % (_name, _have, (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code))))
 
 # fbrl_right (fbrl/users.h), by name
 RIGHTS = ("run", "run_draft", "teach", "compose", "forth", "release", "review_run", "users", "recover")
@@ -119,6 +138,11 @@ class Users:
     def set(self, key, value):
         """A lab setting: max_tries, lock_s, idle_s, allow_drafts, kdf_ops, kdf_mem."""
         check(lib.fbrl_users_set(self._u.ptr, key.encode(), int(value)), "users: set %s" % key)
+
+    def settings(self):
+        """The lab's settings: {max_tries, lock_s, idle_s, allow_drafts}."""
+        u = ffi.cast("fbrl_users *", self._u.ptr)
+        return {"max_tries": u.max_tries, "lock_s": u.lock_s, "idle_s": u.idle_s, "allow_drafts": bool(u.allow_drafts)}
 
     def user(self, name):
         """{name, role, disabled, failures, locked_until (UTC ms, 0: not locked), public_key (hex)}, or None."""

@@ -32,7 +32,9 @@ options:
                    (default $XDG_DATA_HOME/fbrl-station/PORT, ~/.local/share/...)
   --methods DIR    the method library (default: methods)
   --http HOST:PORT|off  the page in a browser (default 127.0.0.1:8080; port 0: any free port,
-                   printed at start); loopback only: this version has no TLS or login for it
+                   printed at start); beyond loopback only with --lab
+  --lab DIR        the lab's users sign in to the page, served over HTTPS/WSS with the
+                   station's certificate (default $FBRL_LAB; as fbrlmon --lab)
   --no-discovery   do not announce the station over mDNS (_sila._tcp)
   -h, --help       show this help and exit
   -V, --version    show the version and exit
@@ -50,7 +52,7 @@ OPTIONS = {
     "port": True, "baud": True, "data-bits": True, "parity": True, "stop-bits": True, "flow": True,
     "low-latency": True, "axes": True, "sim": False, "sim-state": True, "sim-model": True, "sim-inputs": True,
     "sim-log": True, "sim-time-scale": True, "sila": True, "insecure": False, "data": True, "methods": True,
-    "http": True, "no-discovery": False, "help": False, "version": False,
+    "http": True, "lab": True, "no-discovery": False, "help": False, "version": False,
 }
 LINE_OPTIONS = ("baud", "data-bits", "parity", "stop-bits", "flow", "low-latency")
 
@@ -71,6 +73,7 @@ class Options:
         self.data = None
         self.methods = "methods"
         self.http = DEFAULT_HTTP
+        self.lab = None  # the lab folder whose users sign in to the page (TLS then)
         self.discovery = True
         self.actions = []  # ("eval", text) and ("file", path), in command-line order
         self.help = self.version = False
@@ -172,16 +175,27 @@ def _apply(o, name, value):
         o.sila = host_port(name, value)
     elif name == "http":
         o.http = host_port(name, value)
-        if o.http is not None and not is_loopback(o.http[0]):
-            raise UsageError("--http %s: beyond loopback the page needs TLS and a login, which this version "
-                             "does not have; serve it on 127.0.0.1 or ::1 (and reach it through an SSH tunnel)"
-                             % value)
     elif name == "no-discovery":
         o.discovery = False
     elif name in ("sim", "insecure", "help", "version"):
         setattr(o, name, True)
     else:
         setattr(o, name.replace("-", "_"), value)
+
+
+def check_page(o):
+    """Beyond loopback the page needs the lab's users (a sign-in) and TLS: --lab, and not
+    --insecure (the station's certificate is its TLS; --insecure says there is none)."""
+    if o.http is None or is_loopback(o.http[0]):
+        return
+    where = "%s:%d" % o.http
+    if o.lab is None:
+        raise UsageError("--http %s: beyond loopback the page needs the lab's users to sign in: give --lab DIR "
+                         "(or FBRL_LAB), or serve it on 127.0.0.1 or ::1" % where)
+    if o.insecure:
+        raise UsageError("--http %s: beyond loopback the page is served over TLS with the station's certificate, "
+                         "and --insecure turns TLS off: leave --insecure out, or serve the page on 127.0.0.1 or ::1"
+                         % where)
 
 
 def default_data(sila):
@@ -204,6 +218,13 @@ def main(argv=None):
         import fbrl
         sys.stdout.write("fbrl-station (libfbrl) %s\n" % fbrl.version())
         return 0
+    if opts.lab is None and os.environ.get("FBRL_LAB"):
+        opts.lab = os.environ["FBRL_LAB"]
+    try:
+        check_page(opts)
+    except UsageError as e:
+        sys.stderr.write("fbrl-station: %s\n" % e)
+        return 2
     if opts.data is None:
         opts.data = default_data(opts.sila)
     from .server import run

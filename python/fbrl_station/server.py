@@ -59,6 +59,10 @@ class Station:
         self.cert_pem = None
         self.announcer = None
         self.page = None
+        self.sign_in = None  # the page's sign-in (--lab): the users file is checked before the controller
+        if opts.http is not None and opts.lab is not None:
+            from .login import SignIn
+            self.sign_in = SignIn(opts.lab)
         self._name_lock = threading.Lock()
 
     # ---------------------------------------------------------------- identity
@@ -93,7 +97,7 @@ class Station:
                 from .web import Page
             except ImportError as e:
                 raise StartError("--http: %s (Debian: python3-aiohttp), or --http off" % e)
-            self.page = Page(self, *self.opts.http)
+            self.page = Page(self, *self.opts.http, sign_in=self.sign_in)
             self.page.start()
 
     def _setup(self, c):
@@ -119,6 +123,12 @@ class Station:
         self.cell.restore(c, log.warning)
         self.owner.refresh(status=True)
 
+    def tls_identity(self):
+        """(key PEM, certificate PEM): one pair for the SiLA side and the page, covering both
+        their addresses (each a new pair otherwise, and a client's pin would break)."""
+        hosts = [a[0] for a in (self.opts.sila, self.opts.http) if a is not None]
+        return tls.identity(self.data, self.identity["uuid"], *hosts)
+
     def _serve(self):
         host, port = self.opts.sila
         self.server = grpc.server(concurrent.futures.ThreadPoolExecutor(max_workers=GRPC_WORKERS,
@@ -129,7 +139,7 @@ class Station:
         if self.opts.insecure:
             self.port = self.server.add_insecure_port(address)
         else:
-            key, self.cert_pem = tls.identity(self.data, self.identity["uuid"], host)
+            key, self.cert_pem = self.tls_identity()
             self.port = self.server.add_secure_port(address, grpc.ssl_server_credentials([(key, self.cert_pem)]))
         if not self.port:
             raise StartError("cannot listen on %s (in use, or not an address of this host)" % address)
@@ -185,7 +195,9 @@ def run(opts):
                  ", announced as _sila._tcp" if opts.discovery else "")
     if station.page is not None:
         host = opts.http[0]
-        log.info("the page on http://%s:%d/", "[%s]" % host if ":" in host else host, station.page.port)
+        log.info("the page on %s://%s:%d/%s", "https" if opts.lab else "http", "[%s]" % host if ":" in host else host,
+                 station.page.port, " (TLS, certificate %s; the users of %s sign in)" % (
+                     station.data.file(tls.CERT_FILE), opts.lab) if opts.lab else "")
     sys.stderr.flush()
     while not stopping.wait(1.0):  # a timed wait, so the signal handler runs promptly
         pass

@@ -3,7 +3,7 @@
 the data folder, carrying the server's UUID as SiLA 2 asks (extension 1.3.6.1.4.1.58583, the
 UUID's text), valid for the names and addresses clients reach it by. Clients pin it: they
 trust this certificate itself (docs/sila.md), taken from the data folder or from the
-discovery record.
+discovery record. The page (--http with --lab) serves HTTPS and WSS with the same pair.
 
 X.509 is outside libsodium; the key and certificate are made with Debian's
 python3-cryptography (OpenSSL), gRPC's own TLS carries the connection."""
@@ -21,18 +21,20 @@ KEY_FILE, CERT_FILE = "key.pem", "cert.pem"
 VALID_DAYS = 3650
 
 
-def names_for(host):
-    """The DNS names and IP addresses a certificate for a server bound to host covers."""
+def names_for(*hosts):
+    """The DNS names and IP addresses a certificate for servers bound to hosts covers (the
+    SiLA side's and the page's: one certificate for both)."""
     dns = {"localhost", socket.gethostname()}
     fqdn = socket.getfqdn()
     if fqdn:
         dns.add(fqdn)
     ips = {"127.0.0.1", "::1"}
-    try:
-        if not ipaddress.ip_address(host).is_unspecified:
-            ips.add(host)
-    except ValueError:
-        dns.add(host)
+    for host in hosts:
+        try:
+            if not ipaddress.ip_address(host).is_unspecified:
+                ips.add(host)
+        except ValueError:
+            dns.add(host)
     return sorted(dns), sorted(ips)
 
 
@@ -47,10 +49,10 @@ def _covers(cert, uuid, dns, ips):
     return ext == uuid.encode("ascii") and set(dns) <= have_dns and set(ips) <= have_ips
 
 
-def identity(data, uuid, host):
+def identity(data, uuid, *hosts):
     """(private key PEM, certificate PEM) for the station: the kept pair when it carries this
-    UUID and covers host, else a new pair (kept, owner-only)."""
-    dns, ips = names_for(host)
+    UUID and covers the hosts, else a new pair (kept, owner-only)."""
+    dns, ips = names_for(*hosts)
     try:
         with open(data.file(KEY_FILE), "rb") as f:
             key_pem = f.read()

@@ -3,11 +3,14 @@
 Debian's libjs-three, the scene (the cell, the places, the arm's chain) as JSON and a
 WebSocket carrying the arm's readings, the runs' progress and the page's requests. It runs in
 its own thread with its own asyncio loop; like the SiLA side it hands every job to the owner
-thread and reads only what the owner publishes."""
+thread and reads only what the owner publishes. With --lab the lab's users sign in
+(login.py) and it serves HTTPS and WSS with the station's certificate."""
 import asyncio
+import html
 import json
 import logging
 import os
+import ssl
 import tempfile
 import threading
 import time
@@ -16,7 +19,7 @@ from aiohttp import web, WSMsgType
 
 import fbrl
 
-from . import dryrun
+from . import dryrun, login, tls
 from .cell import SITES_FBRL
 from .controller import RobotFailure
 from .history import _progress as progress
@@ -30,6 +33,10 @@ THREE_FILES = ("build/three.min.js", "examples/js/controls/OrbitControls.js")
 WATCH_S = 0.05  # how often the watcher looks at what the owner published (the delay it adds)
 RUN_FQI_SUFFIX = "/MethodLibrary/v1/Command/RunMethod"
 START_S = 10
+IDLE_CHECK_S = 1.0  # how often idle sessions are looked for (the lateness of an idle sign-out)
+# what a page's WebSocket request needs: any signed-in user may view and plan (dryrun)
+RIGHTS = {"control": "run", "release": "run", "run": "run", "pause": "run", "resume": "run", "abort": "run",
+          "answer": "run"}
 
 
 def scene(c, cell, arm_name):
@@ -63,9 +70,11 @@ def scene(c, cell, arm_name):
 
 
 class Page:
-    def __init__(self, station, host, port):
+    def __init__(self, station, host, port, sign_in=None):
         self.st = station
         self.host, self.port = host, port
+        self.sign_in = sign_in  # login.SignIn with --lab (then TLS too), None: loopback without sign-in
+        self.sessions = {}  # ws -> its session's token (signed in)
         self.arm = fbrl.Arm(station.opts.sim_model or "a255")
         self.scene = None
         self.clients = {}  # ws -> its name
@@ -113,8 +122,12 @@ class Page:
 
     async def _main(self):
         self._quit = asyncio.Event()
-        app = web.Application(middlewares=[self._same_origin])
+        app = web.Application(middlewares=[self._same_origin, self._signed_in])
         app.router.add_get("/", self._index)
+        if self.sign_in is not None:
+            app.router.add_get("/login", self._login_page)
+            app.router.add_post("/login", self._login)
+            app.router.add_post("/logout", self._logout)
         app.router.add_get("/page/{name}", self._page_file)
         app.router.add_get("/three/{name:.+}", self._three)
         app.router.add_get("/api/scene", self._scene)
@@ -124,22 +137,42 @@ class Page:
         app.router.add_get("/ws", self._ws)
         runner = web.AppRunner(app, access_log=None)
         await runner.setup()
-        site = web.TCPSite(runner, self.host, self.port)
+        site = web.TCPSite(runner, self.host, self.port, ssl_context=self._tls())
         await site.start()
         self.port = site._server.sockets[0].getsockname()[1]
         self._ready.set()
+        idle = asyncio.ensure_future(self._sign_out_idle()) if self.sign_in is not None else None
         await self._quit.wait()
+        if idle is not None:
+            idle.cancel()
         for ws in list(self.clients):
             await ws.close()
         await runner.cleanup()
 
+    def _tls(self):
+        """With --lab: the station's own key and certificate (the SiLA side's, in --data)."""
+        if self.sign_in is None:
+            return None
+        self.st.tls_identity()  # made or kept, covering this address
+        ctx = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
+        ctx.minimum_version = ssl.TLSVersion.TLSv1_2
+        ctx.load_cert_chain(self.st.data.file(tls.CERT_FILE), self.st.data.file(tls.KEY_FILE))
+        return ctx
+
     # ---------------------------------------------------------------- who may ask
     def _hosts(self):
-        """The Host headers a request to this page carries: its loopback address by number or
-        as localhost. Another name is a DNS rebinding (a web site whose name now points here)."""
+        """The Host headers a request to this page carries: its address by number or, on
+        loopback, as localhost; with TLS the names its certificate covers. Another name is a
+        DNS rebinding (a web site whose name now points here)."""
         names = {"localhost", "[::1]" if ":" in self.host else "127.0.0.1",
                  "[%s]" % self.host if ":" in self.host else self.host}
+        if self.sign_in is not None:
+            dns, ips = tls.names_for(self.host)
+            names |= set(dns) | {"[%s]" % a if ":" in a else a for a in ips}
         return {"%s:%d" % (n, self.port) for n in names}
+
+    def _scheme(self):
+        return "https" if self.sign_in is not None else "http"
 
     @web.middleware
     async def _same_origin(self, request, handler):
@@ -148,9 +181,76 @@ class Page:
         if request.host not in self._hosts():
             raise web.HTTPForbidden(text="fbrl-station: not this station's address: %s\n" % request.host)
         origin = request.headers.get("Origin")
-        if request.path == "/ws" and origin != "http://" + request.host:
+        if request.path == "/ws" and origin != "%s://%s" % (self._scheme(), request.host):
             raise web.HTTPForbidden(text="fbrl-station: a WebSocket from another site (%s)\n" % origin)
+        if request.method == "POST" and origin is not None and origin != "%s://%s" % (self._scheme(), request.host):
+            raise web.HTTPForbidden(text="fbrl-station: a form from another site (%s)\n" % origin)
         return await handler(request)
+
+    # ---------------------------------------------------------------- signing in (--lab)
+    @web.middleware
+    async def _signed_in(self, request, handler):
+        """With --lab everything but the sign-in needs a session: the page itself goes to the
+        sign-in, the rest is refused (401)."""
+        if self.sign_in is None or request.path == "/login":
+            return await handler(request)
+        # the history is fetched when a run ends, not by the user: it does not keep a session alive
+        s = self.sign_in.session(request.cookies.get(login.COOKIE), touch=request.path != "/api/history")
+        if s is None:
+            if request.path == "/":
+                raise web.HTTPSeeOther("/login")
+            raise web.HTTPUnauthorized(text="fbrl-station: sign in first (/login)\n")
+        request["session"] = s
+        return await handler(request)
+
+    def _login_form(self, message="", status=200):
+        with open(os.path.join(PAGE_DIR, "login.html"), encoding="utf-8") as f:
+            text = f.read().replace("MESSAGE", html.escape(message))
+        return web.Response(text=text, content_type="text/html", status=status,
+                            headers={"Cache-Control": "no-store"})
+
+    async def _login_page(self, request):
+        return self._login_form()
+
+    async def _login(self, request):
+        form = await request.post()
+        name, password = form.get("name", ""), form.get("password", "")
+        try:  # Argon2id takes its time: not on the loop
+            user = await asyncio.get_running_loop().run_in_executor(None, self.sign_in.check, name, password)
+        except login.Refused as e:
+            log.warning("the page: sign-in of %r from %s refused: %s", name, request.remote, e)
+            return self._login_form(str(e), status=401)
+        except (fbrl.Error, login.LabError) as e:
+            log.error("the page: sign-in of %r: %s", name, e)
+            return self._login_form("the station cannot check it: %s" % e, status=500)
+        log.info("the page: %s signed in from %s", name, request.remote)
+        response = web.HTTPSeeOther("/")
+        response.set_cookie(login.COOKIE, self.sign_in.open(user), secure=True, httponly=True, samesite="Strict", path="/")
+        raise response
+
+    async def _logout(self, request):
+        token = request.cookies.get(login.COOKIE)
+        self.sign_in.sign_out(token)
+        await self._close_sessions({token}, "signed out")
+        response = web.HTTPSeeOther("/login")
+        response.del_cookie(login.COOKIE, path="/")
+        raise response
+
+    async def _sign_out_idle(self):
+        while True:
+            await asyncio.sleep(IDLE_CHECK_S)
+            gone = self.sign_in.expired()
+            if gone:
+                await self._close_sessions(set(gone), "signed out: idle for %d s" % self.sign_in.idle_s)
+
+    async def _close_sessions(self, tokens, why):
+        for ws, token in list(self.sessions.items()):
+            if token in tokens:
+                try:
+                    await ws.send_json({"t": "signedout", "message": why})
+                except (ConnectionError, RuntimeError):
+                    pass
+                await ws.close()
 
     # ---------------------------------------------------------------- files and JSON
     async def _index(self, request):
@@ -212,9 +312,14 @@ class Page:
         ws = web.WebSocketResponse(heartbeat=20)
         await ws.prepare(request)
         self._n += 1
-        name = "page %d (%s)" % (self._n, request.remote)
+        session = request.get("session")
+        name = ("%s (page %d, %s)" % (session.name, self._n, request.remote) if session is not None
+                else "page %d (%s)" % (self._n, request.remote))
         self.clients[ws] = name
-        await ws.send_json({"t": "hello", "you": name, "control": self._control_name()})
+        if session is not None:
+            self.sessions[ws] = request.cookies.get(login.COOKIE)
+        await ws.send_json({"t": "hello", "you": name, "control": self._control_name(),
+                            "user": {"name": session.name, "role": session.role} if session is not None else None})
         for m in list(self.last.values()) + list(self.run_log):
             await ws.send_json(m)
         try:
@@ -223,6 +328,14 @@ class Page:
                     continue
                 try:
                     req = json.loads(msg.data)
+                    if ws in self.sessions:
+                        s = self.sign_in.session(self.sessions[ws])  # the user's action keeps it alive
+                        if s is None:
+                            break  # signed out meanwhile (idle): the idle check closes it too
+                        if req["op"] in RIGHTS and not self.sign_in.may(s, RIGHTS[req["op"]]):
+                            await ws.send_json({"t": "error", "message": "%s (%s) may not %s: the %s role has no "
+                                                "right to run methods" % (s.name, s.role, req["op"], s.role)})
+                            continue
                     reply = await self._dry_run(req) if req["op"] == "dryrun" else self._request(ws, req)
                 except (ValueError, KeyError, TypeError, OSError) as e:
                     reply = {"t": "error", "message": str(e)}
@@ -230,6 +343,7 @@ class Page:
                     await ws.send_json(reply)
         finally:
             del self.clients[ws]
+            self.sessions.pop(ws, None)
             if self.controller is ws:
                 self.controller = None
                 await self._broadcast({"t": "control", "by": None})

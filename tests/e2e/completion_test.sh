@@ -48,6 +48,7 @@ expect "fbrlsim --ti" --time-scale
 if command -v fbrl-station >/dev/null 2>&1; then  # built when its Python modules are there
     expect "fbrl-station --no-d" --no-discovery
     expect "fbrl-station --sila " 127.0.0.1:50052 off
+    expect "fbrl-station --la" --lab
 fi
 expect "fbrlsim --parity " N E O
 expect "fbrlsim --model a4" a465

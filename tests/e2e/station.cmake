@@ -40,6 +40,17 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET station)
     message(STATUS "station: chromium, libjs-three or python3-aiohttp/-websocket/-pil missing: the page's browser test not added")
   endif()
 
+  # the page beyond loopback (--http on this machine's address, --lab): HTTPS/WSS and the lab's users
+  execute_process(COMMAND ${FBRL_STATION_PYTHON} -c "import aiohttp, websocket" RESULT_VARIABLE _r OUTPUT_QUIET ERROR_QUIET)
+  if(_r EQUAL 0 AND TARGET fbrl-users)
+    add_test(NAME station_login COMMAND ${_pytest} --basetemp=${PROJECT_BINARY_DIR}/station-tests/login
+      ${_st}/test_login.py)
+    set_tests_properties(station_login PROPERTIES LABELS station TIMEOUT 600
+      ENVIRONMENT "${_st_env};FBRL_USERS=$<TARGET_FILE:fbrl-users>")
+  else()
+    message(STATUS "station: python3-aiohttp/-websocket or fbrl-users missing: the page's sign-in test not added")
+  endif()
+
   find_program(FBRL_NODE node)
   find_program(FBRL_NPM npm)
   if(FBRL_NODE AND FBRL_NPM)

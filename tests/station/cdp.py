@@ -26,15 +26,16 @@ def chromium():
 
 
 class Browser:
-    """One headless chromium with one page (a tab); .call(method, **params) a DevTools command,
+    """One headless chromium with one page (a tab), flags its own beyond CHROMIUM_FLAGS;
+    .call(method, **params) a DevTools command,
     .eval(js) a value of the page, .screenshot() PNG bytes."""
 
-    def __init__(self, width=1280, height=800):
+    def __init__(self, width=1280, height=800, flags=()):
         prog = chromium()
         if prog is None:
             raise OSError("no chromium (Debian: chromium)")
         self.dir = tempfile.mkdtemp(prefix="fbrl-chromium-")
-        self.proc = subprocess.Popen([prog] + CHROMIUM_FLAGS + ["--user-data-dir=" + self.dir,
+        self.proc = subprocess.Popen([prog] + CHROMIUM_FLAGS + list(flags) + ["--user-data-dir=" + self.dir,
                                                                 "--window-size=%d,%d" % (width, height),
                                                                 "about:blank"],
                                      stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)

@@ -386,7 +386,10 @@ function onQuestions(qs) {
 
 function onMessage(m) {
   switch (m.t) {
-    case 'hello': me = m.you; controlBy = m.control; showControl(); break;
+    case 'hello':
+      me = m.you; controlBy = m.control; showControl();
+      if (m.user) { $('user').textContent = m.user.name + ' (' + m.user.role + ')'; $('signed-in').hidden = false; }
+      break;
     case 'control': controlBy = m.by; showControl(); note(m.by ? m.by + ' controls the runs' : 'no one controls the runs'); break;
     case 'pose': showPose(m); break;
     case 'state': armState = m.state; $('arm-state').textContent = m.state; showReading(); break;
@@ -406,6 +409,7 @@ function onMessage(m) {
       setTimeout(showHistory, 500); // the station records it as the run's result is set
       break;
     case 'started': break;
+    case 'signedout': location.href = '/login'; break; // --lab: idle or signed out
     case 'plan': showPlan(m); break;
     case 'error': note(m.message, true); page.errors.push(m.message); break;
     default: break;
