@@ -50,6 +50,8 @@ def scene(c, cell, arm_name):
             obstacles.append({"name": w[0], "kind": "keepout" if w[1] == "keep-out" else "box",
                               "lo": [float(x) for x in w[2:5]], "hi": [float(x) for x in w[6:9]],
                               "block": w[10] if len(w) > 10 else None})
+    for o in obstacles:  # a block's obstacles where its calibration puts them now, as the guard does
+        o["placed"] = placement(c, o["block"]) if o["block"] else None
     places = []
     for s in cell.sites:
         for i in range(s.count):
@@ -60,6 +62,19 @@ def scene(c, cell, arm_name):
             places.append({"site": s.name, "index": i, "count": s.count, "at": xyz[:3],
                            "taught": cell.is_taught(s.name)})
     return {"arm": arm_name, "table": table, "tool": tool, "obstacles": obstacles, "places": places}
+
+
+def placement(c, name):
+    """Where the guard puts a block's obstacles (src/words/robot_cell.c place_blocks): before
+    each motion it looks up the word of the block's name and, when that is a calibration
+    structure (CREATE-CAL-STRU), carries the block by it: p = r p_taught + t. The same 3x4
+    [r | t] read here with CAL-STRU@, row by row; None when the word is not a calibration
+    structure (the guard then leaves the block where it was taught)."""
+    try:
+        _, v = c.eval(" ".join("%s %d CAL-STRU@" % (name, i) for i in range(1, 13)), floats=True)
+    except RobotFailure:
+        return None
+    return {"r": [v[0:3], v[4:7], v[8:11]], "t": [v[3], v[7], v[11]]}
 
 
 class Page:
