@@ -194,8 +194,8 @@ class Page:
 
     async def _history(self, request):
         runs = await asyncio.get_running_loop().run_in_executor(None, self.st.history.runs)
-        return web.json_response([{k: r.get(k) for k in ("uuid", "start", "end", "method", "values", "by", "outcome",
-                                                          "summary")} for r in runs])
+        return web.json_response([{k: r.get(k) for k in ("uuid", "start", "end", "method", "version", "values", "by",
+                                                          "outcome", "summary")} for r in runs])
 
     async def _run_log(self, request):
         """One past run as text: what it was, each event, each sample's outcome."""
@@ -207,6 +207,7 @@ class Page:
         at = lambda t: time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(t))  # noqa: E731
         lines = ["%s %s, started by %s at %s, ended %s" % (r["method"], " ".join("%s=%s" % tuple(v) for v in r["values"]),
                                                             r["by"], at(r["start"]), at(r["end"])),
+                 "method version: %s" % (r.get("version") or "not known"),
                  "outcome: %s: %s" % (r["outcome"], r["summary"]), ""]
         for ev in r["events"]:
             lines.append("%-18s %s%s%s" % (ev["event"], ev["step_name"], ", sample %d" % ev["sample"] if ev["sample"]

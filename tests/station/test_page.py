@@ -453,7 +453,17 @@ def test_the_history_lists_past_runs_and_opens_their_log(lab):
     assert done["method"] == "QUICK" and done["by"].startswith("page ") and done["values"] == [["#ITEMS", 2],
                                                                                                ["HOLD-DS", 1]]
     assert b.eval("document.querySelectorAll('#history li').length") == len(runs)
+    # its method version: the files' hash as fbrl-audit names it for the library's file
+    import subprocess
+    from conftest import launcher
+    audit = os.environ.get("FBRL_AUDIT") or os.path.join(os.path.dirname(launcher()), "fbrl-audit")
+    out = subprocess.run([audit, "method", "status", os.path.join(lab.lib, "station_tests.fbrl"), "--lab",
+                          lab.station.data], capture_output=True, text=True, timeout=30)
+    version = re.match(r"\S+ version ([0-9a-f]{64}): ", out.stdout)
+    assert version and done["version"] == version.group(1), (done, out.stdout, out.stderr)
+    assert "version %s" % done["version"][:12] in b.eval("document.getElementById('history').textContent")
     text = urllib.request.urlopen(lab.url + "history/" + done["uuid"], timeout=10).read().decode()
+    assert "method version: %s" % done["version"] in text
     assert "outcome: completed" in text and "StepEnded          Item, sample 2" in text, text
     assert "sample 2: succeeded" in text
     with open(os.path.join(lab.station.data, "runs.jsonl")) as f:

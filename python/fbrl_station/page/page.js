@@ -489,7 +489,8 @@ async function showHistory() { // the station's past runs, newest first; each op
     a.target = '_blank';
     a.textContent = new Date(r.start * 1000).toLocaleString() + ' ' + r.method + ': ' + r.outcome;
     li.appendChild(a);
-    li.appendChild(document.createTextNode(' (' + r.by + ')'));
+    li.appendChild(document.createTextNode(' (' + r.by + ', version ' + (r.version ? r.version.slice(0, 12) : 'not known') + ')'));
+    if (r.version) li.title = 'method version ' + r.version;
     li.dataset.uuid = r.uuid;
     ol.appendChild(li);
   });
