@@ -160,17 +160,20 @@ def test_a_block_moved_by_its_calibration_is_drawn_where_the_guard_checks_it(tmp
     """The heating block's calibration (the CREATE-CAL-STRU the guard looks up by the block's
     name before every motion) turns it: its body is drawn turned, and nothing of it where it
     was taught. The truth is the matrix stored here and the cell file's box, not the page."""
-    from conftest import Sim, start_station
+    from conftest import SITES, Sim, Station, launcher, method_library
     sim = Sim(str(tmp_path / "sim"))
     station = browser = None
-    try:
-        station = start_station(str(tmp_path / "data"), sim, "--http", "127.0.0.1:0", "-e", TURN_BLOCK)
+    try:  # as MethodLab starts it (no place inside the block: the method files describe the cell again)
+        station = Station(launcher(), str(tmp_path / "data"), "--port", sim.port, "--no-discovery", "--methods",
+                          method_library(str(tmp_path), sample_prep=False), "--http", "127.0.0.1:0", SITES,
+                          "-e", TURN_BLOCK)
         wait_for(lambda: any("the page on http://" in l for l in station.lines), what="the page's address")
         line = next(l for l in station.lines if "the page on http://" in l)
         browser = cdp.Browser()
         browser.goto(line[line.index("http://"):].strip())
         browser.wait_for("window.fbrlPage && window.fbrlPage.ready === true", seconds=60, what="an interactive page")
-        body = next(o for o in browser.eval("fbrlPage.scene.obstacles") if o["name"] == "HEATING-BLOCK-BODY")
+        body = next((o for o in browser.eval("fbrlPage.scene.obstacles") if o["name"] == "HEATING-BLOCK-BODY"), None)
+        assert body is not None, "\n".join(station.lines)
         assert body["placed"] == {"r": [list(r[:3]) for r in TURNED], "t": [r[3] for r in TURNED]}, body
         browser.eval("document.getElementById('show-labels').click(); fbrlPage.setView('top'); true")
         time.sleep(0.5)
@@ -184,6 +187,14 @@ def test_a_block_moved_by_its_calibration_is_drawn_where_the_guard_checks_it(tmp
         there = sum(near(c, COLOURS["box"]) for c in at(moved))
         left = sum(near(c, COLOURS["box"]) for c in at(taught))
         assert there >= 20 and left == 0, "turned: %d of 25 points grey; as taught: %d" % (there, left)
+        # and the guard sees it there too: BUMP's move into the body as taught now passes (the
+        # station's own dry run, the same cell files and texts; refused with the block as taught)
+        browser.eval("var s = document.getElementById('method'); s.value = 'BUMP'; s.onchange(); "
+                     "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+        plan = browser.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+        assert plan["outcome"] == "completed" and not plan["refused"], plan["report"]
+        into = plan["segments"][-1]
+        assert into["sent"] and all(abs(a - b) < 1e-3 for a, b in zip(into["points"][-1], (10.0, -2.0, 0.5))), into
     finally:
         if browser is not None:
             browser.close()
