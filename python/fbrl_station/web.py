@@ -69,8 +69,11 @@ def placement(c, name):
     each motion it looks up the word of the block's name and, when that is a calibration
     structure (CREATE-CAL-STRU), carries the block by it: p = r p_taught + t. The same 3x4
     [r | t] read here with CAL-STRU@, row by row; None when the word is not a calibration
-    structure (the guard then leaves the block where it was taught)."""
+    structure (the guard then leaves the block where it was taught). HELP tells the word's kind
+    without running it (a block named after a word that moves the arm is not run here)."""
     try:
+        if "( -- cal-stru )" not in c.eval("HELP %s" % name):
+            return None
         _, v = c.eval(" ".join("%s %d CAL-STRU@" % (name, i) for i in range(1, 13)), floats=True)
     except RobotFailure:
         return None

@@ -118,6 +118,8 @@ def test_the_page_loads_and_shows_the_cell_where_the_model_puts_it(lab):
         assert o["name"] in listed
     assert {o["name"] for o in scene["obstacles"]} >= {"HEATING-BLOCK-BODY", "SEPARATION-UNIT", "OPERATOR-SIDE"}
     assert any(p["site"] == "HEATING-BLOCK" and p["count"] == 24 for p in scene["places"])
+    # the block's name is a site here, not a calibration structure: the guard and the page leave it as taught
+    assert next(o for o in scene["obstacles"] if o["name"] == "HEATING-BLOCK-BODY")["placed"] is None
     shot(lab, "page.png")
     b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('top'); true")
     time.sleep(0.5)
