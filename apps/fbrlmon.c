@@ -99,6 +99,8 @@ static void usage(FILE *f)
           "                   pulses and waits, and draw the cell (docs/workcell.md)\n"
           "  --svg FILE       the dry run's picture (default: the last FILE's name .svg)\n"
           "  --keep-files     the dry run writes the plan's files (default: a scratch dir)\n"
+          "  --dry-run-json FILE  the dry run's path, motion by motion, as JSON lines:\n"
+          "                   tool points, clearance, what a refused one would hit\n"
           "  --run-log FILE   every RUN-METHOD appends its run log (JSON lines) to FILE\n"
           "  --operator NAME  the operator named in run logs (default: $USER)\n"
           "  --lab DIR        the lab's users and audit trail: runs need a\n"
@@ -161,6 +163,7 @@ enum {
     OPT_DICT,
     OPT_DRY_RUN,
     OPT_KEEP_FILES,
+    OPT_DRY_RUN_JSON,
     OPT_SVG,
     OPT_CONSOLE,
     OPT_RUN_LOG,
@@ -187,6 +190,7 @@ static const struct option long_options[] = {{"port", required_argument, NULL, O
                                              {"sim", no_argument, NULL, OPT_SIM},
                                              {"dry-run", no_argument, NULL, OPT_DRY_RUN},
                                              {"keep-files", no_argument, NULL, OPT_KEEP_FILES},
+                                             {"dry-run-json", required_argument, NULL, OPT_DRY_RUN_JSON},
 #endif
                                              {"svg", required_argument, NULL, OPT_SVG},
                                              {"console", no_argument, NULL, OPT_CONSOLE},
@@ -237,6 +241,7 @@ static int set_valued(options *o, int c, const char *v)
     case OPT_PRINTER: o->printer = v; return 0;
     case OPT_LAB: o->lab = v; return 0;
     case OPT_SVG: o->svg = v; return 0;
+    case OPT_DRY_RUN_JSON: o->dry.json = v; return 0;
     case OPT_RUN_LOG:
     case OPT_OPERATOR:
     case OPT_METHODS:
@@ -505,6 +510,11 @@ int main(int argc, char **argv)
     }
     opt.conn.on_exec = mon_runlog_exec;
     opt.conn.exec_ctx = &g_runlog;
+    if (opt.dry.json && !opt.dry_run) {
+        fprintf(stderr, "fbrlmon: --dry-run-json is the dry run's path: it needs --dry-run\n");
+        free(opt.actions);
+        return MON_EXIT_USAGE;
+    }
     if (opt.dry_run && dry_prepare(&opt) != 0) {
         free(opt.actions);
         return MON_EXIT_CONNECT;

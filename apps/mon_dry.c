@@ -38,6 +38,9 @@ static double g_on_at[FBRL_ROBOT_IO_MAX + 1]; /* when each output went on (-1: o
 static unsigned long g_cmds_at_wait;          /* commands seen when the last wait was listed */
 static char g_scratch[PATH_MAX], g_cwd[PATH_MAX];
 static mon *g_mon;
+static FILE *g_json; /* --dry-run-json */
+
+#define JSON_PATH_STEPS 8 /* a joint move's tool path: its start and 8 more points (the picture's) */
 
 static double real_now(void)
 {
@@ -182,6 +185,10 @@ int mon_dry_setup(const mon_dry_options *o, mon_conn_options *conn)
     conn->exec_ctx = NULL;
     mon_host_use_clock(host_now_us, host_sleep_ms, host_time_date);
     g_scratch[0] = '\0';
+    if (o->json && (g_json = fopen(o->json, "w")) == NULL) { /* before the scratch directory: where the user is */
+        fprintf(stderr, "fbrlmon: --dry-run-json %s: %s\n", o->json, strerror(errno));
+        return -1;
+    }
     if (!o->keep_files) {
         const char *tmp = getenv("TMPDIR");
         if (getcwd(g_cwd, sizeof g_cwd) == NULL) {
@@ -246,8 +253,100 @@ static int on_run(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
     return 0;
 }
 
+/* ---- --dry-run-json: the path as the guard checked it, one motion a line ---- */
+
+static void json_str(FILE *f, const char *t)
+{
+    fputc('"', f);
+    for (; t && *t; t++) {
+        unsigned char ch = (unsigned char)*t;
+        if (ch == '"' || ch == '\\')
+            fprintf(f, "\\%c", ch);
+        else if (ch < 0x20)
+            fprintf(f, "\\u%04x", ch);
+        else
+            fputc(ch, f);
+    }
+    fputc('"', f);
+}
+
+static void json_num(FILE *f, double v)
+{
+    char buf[48];
+    fputs(isfinite(v) && fbrl_num_fixed(buf, sizeof buf, v, 0, 4, 0, NULL) == FBRL_OK ? buf : "null", f);
+}
+
+static void json_point(FILE *f, const fbrl_cell_model *c, const double *q)
+{
+    double pose[6];
+    fbrl_arm_fk(c->arm, q, c->tcp, pose);
+    fprintf(f, "[");
+    for (int i = 0; i < 3; i++) {
+        json_num(f, pose[i]);
+        fputs(i < 2 ? "," : "]", f);
+    }
+}
+
+/* A motion the guard checked: its tool points (the ends of a straight line; along a joint
+ * move, the points of the joints interpolated as the guard checks them), its clearance
+ * (the whole arm's, to near), and a refused one's contact and message. */
+static void on_check(void *ctx, const fbrl_cell_check *ck)
+{
+    const fbrl_cell_model *c = ctx;
+    const fbrl_cell_hit *h = ck->path ? ck->hit : NULL;
+    FILE *f = g_json;
+    int n = ck->naxes == 0 ? 0 : !ck->path ? 1 : ck->line ? 2 : JSON_PATH_STEPS + 1;
+    fprintf(f, "{\"t\":");
+    json_num(f, since_start());
+    fprintf(f, ",\"word\":");
+    json_str(f, ck->word);
+    fprintf(f, ",\"step\":");
+    if (g_step >= 0 && g_rep.run.nsteps > g_step)
+        json_str(f, g_rep.run.step_name[g_step]);
+    else
+        fputs("null", f);
+    fprintf(f, ",\"sample\":%ld,\"sent\":%s,\"line\":%s,\"points\":[", g_sample >= 0 ? g_sample + 1 : 0,
+            ck->sent ? "true" : "false", ck->line ? "true" : "false");
+    for (int k = 0; k < n; k++) {
+        double q[FBRL_CELL_AXES];
+        double s = n == 1 ? 0.0 : (double)k / (n - 1);
+        for (int i = 0; i < FBRL_CELL_AXES; i++)
+            q[i] = ck->q0[i] + (ck->q1[i] - ck->q0[i]) * s;
+        if (k)
+            fputc(',', f);
+        json_point(f, c, q);
+    }
+    fprintf(f, "],\"clearance\":");
+    if (h && isfinite(h->clearance)) {
+        json_num(f, h->clearance);
+        fprintf(f, ",\"near\":");
+        json_str(f, fbrl_cell_obj_name(c, h->near_obj));
+    } else {
+        fprintf(f, "null,\"near\":null");
+    }
+    fprintf(f, ",\"hit\":");
+    if (h && h->hit) {
+        json_str(f, fbrl_cell_obj_name(c, h->obj));
+        fprintf(f, ",\"at\":[");
+        for (int i = 0; i < 3; i++) {
+            json_num(f, h->at[i]);
+            fputs(i < 2 ? "," : "]", f);
+        }
+    } else {
+        fprintf(f, "null,\"at\":null");
+    }
+    fprintf(f, ",\"message\":");
+    if (ck->message)
+        json_str(f, ck->message);
+    else
+        fputs("null", f);
+    fputs("}\n", f);
+}
+
 void mon_dry_start(mon *m, mon_runlog *log)
 {
+    if (g_json && m->cell)
+        fbrl_cell_set_observer(m->cell, on_check, &m->cell->model);
     g_mon = m;
     log->event_hook = on_device;
     log->event_hook_ctx = NULL;
@@ -344,6 +443,15 @@ int mon_dry_finish(mon *m, mon_dry_report *r, FILE *out, const char *svg)
     }
     if (g_rep.have_run) /* what a real run of the method is predicted to do */
         report_run(out);
+    if (g_json) {
+        if (m->cell)
+            fbrl_cell_set_observer(m->cell, NULL, NULL);
+        if (fclose(g_json) != 0) {
+            fprintf(stderr, "fbrlmon: --dry-run-json: %s\n", strerror(errno));
+            st = -1;
+        }
+        g_json = NULL;
+    }
     if (g_scratch[0]) {
         if (chdir(g_cwd) != 0)
             fprintf(stderr, "fbrlmon: --dry-run: back to %s: %s\n", g_cwd, strerror(errno));

@@ -46,7 +46,8 @@ typedef struct mon_dry_report {
 } mon_dry_report;
 
 typedef struct mon_dry_options {
-    int keep_files; /* run in the current directory: the plan's files are written */
+    int keep_files;   /* run in the current directory: the plan's files are written */
+    const char *json; /* --dry-run-json: each motion the guard checked, a JSON line (NULL: none) */
 } mon_dry_options;
 
 /* Before the connection opens: the built-in emulator on the shared clock (conn's kind, clock

@@ -51,7 +51,8 @@ extern "C" {
     X(METHOD, fbrl_method)                     \
     X(USERS, fbrl_users)                       \
     X(USER, fbrl_user)                         \
-    X(CELL_WORDS, fbrl_cell_words)
+    X(CELL_WORDS, fbrl_cell_words)             \
+    X(METHOD_VERSION, fbrl_method_version)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,
 typedef enum fbrl_abi_type { FBRL_ABI_TYPES(FBRL_ABI_ENUM_) FBRL_ABI_TYPE_COUNT } fbrl_abi_type;

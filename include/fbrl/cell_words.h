@@ -78,6 +78,23 @@ typedef struct fbrl_cell_refusal {
     char word[FBRL_CELL_NAME_MAX + 1];
 } fbrl_cell_refusal;
 
+/* One motion the guard checked, for an observer (fbrl_cell_set_observer): a refused motion
+ * when the guard refused it, a passed one once the controller took it. */
+typedef struct fbrl_cell_check {
+    const char *word;    /* the FBRL word that sent or would have sent it */
+    int sent;            /* 1: passed and taken by the controller; 0: refused, nothing sent */
+    int line;            /* 1: a straight line (the tool point moves straight); 0: joint-interpolated */
+    int path;            /* 1: the path was computed: q1 and hit hold; 0: the guard could not follow it */
+    unsigned naxes;      /* joints in q0 and q1 (0: not even the start was read) */
+    double q0[FBRL_CELL_AXES]; /* where it starts (the joints the guard read) */
+    double q1[FBRL_CELL_AXES]; /* where it ends; refused on a hit: where the check stopped, at the contact */
+    const fbrl_cell_hit *hit;  /* path: what the check found (clearance, near_obj; hit, obj, at) */
+    const char *message;       /* refused: the refusal's message */
+} fbrl_cell_check;
+
+/* Called for every motion the guard checked (the check's own step: do not run FBRL in it). */
+typedef void (*fbrl_cell_observe_fn)(void *ctx, const fbrl_cell_check *c);
+
 /* The words' state: caller-owned, fields private but model, the cell the words describe
  * (fbrl_cell_set_arm(&cw->model, ...) chooses the arm the guard computes); keep it at a
  * fixed address. */
@@ -109,6 +126,9 @@ typedef struct fbrl_cell_words {
 #endif
     fbrl_cell_save_fn save;
     void *save_ctx;
+    int line;          /* the motion being sent is a straight line (done reports it) */
+    fbrl_cell_observe_fn observe;
+    void *observe_ctx;
 } fbrl_cell_words;
 
 /* Define the words in vm, guarding robot r's motions (fbrl_robot_set_guard); g (may be NULL)
@@ -117,6 +137,8 @@ typedef struct fbrl_cell_words {
 FBRL_API fbrl_status fbrl_cell_install(fbrl_vm *vm, fbrl_cell_words *cw, fbrl_robot *r, fbrl_glossary *g);
 /* Where CELL-SVG saves its picture (NULL: it throws "no file output"). */
 FBRL_API void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx);
+/* Who sees each motion the guard checked (NULL: no one): a dry run's path, segment by segment. */
+FBRL_API void fbrl_cell_set_observer(fbrl_cell_words *cw, fbrl_cell_observe_fn fn, void *ctx);
 /* The guard's record. */
 FBRL_API const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw);
 /* The SVG picture written through fn (src/words/cell_svg.c): top and side views at one scale

@@ -3,6 +3,7 @@
 the built-in emulator, every wait skipped on a simulated clock). The station gives them to the
 run (fbrl.Run.predict), so the remaining time of a RunMethod comes from the dry run before
 the first step ends. FBRL_MON names fbrlmon (the launcher sets it), else fbrlmon on PATH."""
+import json
 import os
 import re
 import shutil
@@ -27,10 +28,11 @@ def fbrlmon():
     return prog
 
 
-def argv(opts, prelude, method_file, method, values, picture):
+def argv(opts, prelude, method_file, method, values, picture, segments=None):
     """fbrlmon's command line for a dry run of method with values [(name, value)]: the
-    station's own files and -e texts in their order, then the method's file and the run."""
-    args = [fbrlmon(), "--dry-run", "--svg", picture]
+    station's own files and -e texts in their order, then the method's file and the run;
+    segments: where fbrlmon writes the path, motion by motion (--dry-run-json)."""
+    args = [fbrlmon(), "--dry-run", "--svg", picture] + (["--dry-run-json", segments] if segments else [])
     if opts.sim_inputs:
         args += ["--sim-inputs", os.path.abspath(opts.sim_inputs)]
     if opts.sim_model:
@@ -42,12 +44,12 @@ def argv(opts, prelude, method_file, method, values, picture):
     return args + [os.path.abspath(method_file), "-e", "%s %s RUN-METHOD" % (run, method)]
 
 
-def run(opts, prelude, method_file, method, values, workdir):
+def run(opts, prelude, method_file, method, values, workdir, segments=None):
     """fbrlmon's dry run of the method in workdir: (its report, its exit status, the picture's
     path); ValueError when it does not end in time."""
     picture = os.path.join(workdir, "dry-run.svg")
     try:
-        p = subprocess.run(argv(opts, prelude, method_file, method, values, picture), cwd=workdir,
+        p = subprocess.run(argv(opts, prelude, method_file, method, values, picture, segments), cwd=workdir,
                            stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=DRY_RUN_S)
     except subprocess.TimeoutExpired:
         raise ValueError("the dry run did not end within %d s (it may wait for an answer to a question)"
@@ -73,10 +75,13 @@ def predict(opts, prelude, method_file, method, values, workdir):
 def plan(opts, prelude, method_file, method, values, workdir):
     """The dry run as the page shows it (docs/workcell.md, "The dry run"): the predicted
     duration, outcome and per-sample outcomes, the motions the guard refused (each names its
-    obstacle), the controller's errors, the smallest clearance and where, the 2-D picture."""
-    out, status, picture, err = run(opts, prelude, method_file, method, values, workdir)
+    obstacle), the controller's errors, the smallest clearance and where, the 2-D picture, and
+    the path motion by motion as the guard checked it (fbrlmon --dry-run-json, docs/workcell.md):
+    each one's tool points, its clearance and the obstacle nearest, a refused one's contact."""
+    segments = os.path.join(workdir, "dry-run.jsonl")
+    out, status, picture, err = run(opts, prelude, method_file, method, values, workdir, segments)
     r = {"status": status, "duration_s": None, "outcome": None, "samples": [], "refused": [], "errors": [],
-         "closest": None, "picture": None, "report": out + err}
+         "closest": None, "picture": None, "report": out + err, "segments": []}
     for line in out.splitlines():
         m = DURATION_RE.match(line)
         if m:
@@ -96,6 +101,9 @@ def plan(opts, prelude, method_file, method, values, workdir):
         m = SAMPLE_RE.match(line)
         if m:
             r["samples"].append({"sample": int(m.group(1)), "outcome": m.group(2)})
+    if os.path.isfile(segments):  # each motion the guard checked: its tool points, clearance, refusal
+        with open(segments, encoding="utf-8") as f:
+            r["segments"] = [json.loads(line) for line in f if line.strip()]
     if os.path.isfile(picture):
         with open(picture, encoding="utf-8") as f:
             r["picture"] = f.read()

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """The station's history of method runs (docs/page.md): one JSON line per finished run in the
-data folder's runs.jsonl, whoever started it (a SiLA client, a page): when, the method and its
-values, who, the outcome and each sample's, and the run's events as its log."""
+data folder's runs.jsonl, whoever started it (a SiLA client, a page): when, the method, its
+version (its files' hash, fbrl.method_version) and its values, who, the outcome and each
+sample's, and the run's events as its log."""
 import json
 import logging
 import threading
@@ -27,7 +28,7 @@ class History:
         """Execution e of RunMethod has finished (any thread): append its record."""
         rs = e.run_state
         r = {"uuid": e.uuid, "start": started, "end": time.time(), "method": rs.method if rs else "",
-             "values": rs.values if rs else [], "by": rs.who if rs else "",
+             "values": rs.values if rs else [], "by": rs.who if rs else "", "version": rs.version if rs else None,
              "events": [_progress(x.Progress) for x in e.intermediates]}
         if e.result is not None:
             r.update(outcome=e.result.Outcome.value, summary=e.result.Summary.value,

@@ -40,6 +40,7 @@ class Library:
     def __init__(self, directory):
         self.directory = directory
         self.files = {}
+        self.versions = {}  # file -> its version as included (fbrl.method_version), None: unknown
         self._methods = []
         self._mutex = threading.Lock()
 
@@ -63,6 +64,11 @@ class Library:
                 continue
             finally:
                 c.engine.reset()
+            try:  # the files as the engine just read them: what every run of its methods runs
+                self.versions[path] = fbrl.method_version(path)[0]
+            except fbrl.Error as e:
+                warn("method library: %s: no version: %s" % (path, e))
+                self.versions[path] = None
             for n in names:
                 self.files[n.upper()] = path
         self.refresh(c)
@@ -101,6 +107,7 @@ class RunState:
         self.guard_before = 0
         self.samples = 0
         self.who = ""  # who started it (a SiLA client, a page)
+        self.version = None  # the method's version (its files' hash as the library loaded them)
 
     def describe(self):
         s = self.run.snapshot() if self.run else None
@@ -151,6 +158,8 @@ class Runs:
         """Queue the run of execution e; returns the owner's Future."""
         rs = RunState(e, method, values)
         rs.who = who
+        path = self.library.files.get(method.upper())
+        rs.version = self.library.versions.get(path) if path else None
         e.cancel = lambda w: self.cancel(rs, w)
         e.pause = lambda w: self._request(rs, "pause", w)
         e.resume = lambda w: self._request(rs, "resume", w)

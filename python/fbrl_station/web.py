@@ -57,6 +57,8 @@ def scene(c, cell, arm_name):
             obstacles.append({"name": w[0], "kind": "keepout" if w[1] == "keep-out" else "box",
                               "lo": [float(x) for x in w[2:5]], "hi": [float(x) for x in w[6:9]],
                               "block": w[10] if len(w) > 10 else None})
+    for o in obstacles:  # a block's obstacles where its calibration puts them now, as the guard does
+        o["placed"] = placement(c, o["block"]) if o["block"] else None
     places = []
     for s in cell.sites:
         for i in range(s.count):
@@ -67,6 +69,22 @@ def scene(c, cell, arm_name):
             places.append({"site": s.name, "index": i, "count": s.count, "at": xyz[:3],
                            "taught": cell.is_taught(s.name)})
     return {"arm": arm_name, "table": table, "tool": tool, "obstacles": obstacles, "places": places}
+
+
+def placement(c, name):
+    """Where the guard puts a block's obstacles (src/words/robot_cell.c place_blocks): before
+    each motion it looks up the word of the block's name and, when that is a calibration
+    structure (CREATE-CAL-STRU), carries the block by it: p = r p_taught + t. The same 3x4
+    [r | t] read here with CAL-STRU@, row by row; None when the word is not a calibration
+    structure (the guard then leaves the block where it was taught). HELP tells the word's kind
+    without running it (a block named after a word that moves the arm is not run here)."""
+    try:
+        if "( -- cal-stru )" not in c.eval("HELP %s" % name):
+            return None
+        _, v = c.eval(" ".join("%s %d CAL-STRU@" % (name, i) for i in range(1, 13)), floats=True)
+    except RobotFailure:
+        return None
+    return {"r": [v[0:3], v[4:7], v[8:11]], "t": [v[3], v[7], v[11]]}
 
 
 class Page:
@@ -279,8 +297,8 @@ class Page:
 
     async def _history(self, request):
         runs = await asyncio.get_running_loop().run_in_executor(None, self.st.history.runs)
-        return web.json_response([{k: r.get(k) for k in ("uuid", "start", "end", "method", "values", "by", "outcome",
-                                                          "summary")} for r in runs])
+        return web.json_response([{k: r.get(k) for k in ("uuid", "start", "end", "method", "version", "values", "by",
+                                                          "outcome", "summary")} for r in runs])
 
     async def _run_log(self, request):
         """One past run as text: what it was, each event, each sample's outcome."""
@@ -292,6 +310,7 @@ class Page:
         at = lambda t: time.strftime("%Y-%m-%d %H:%M:%S", time.localtime(t))  # noqa: E731
         lines = ["%s %s, started by %s at %s, ended %s" % (r["method"], " ".join("%s=%s" % tuple(v) for v in r["values"]),
                                                             r["by"], at(r["start"]), at(r["end"])),
+                 "method version: %s" % (r.get("version") or "not known"),
                  "outcome: %s: %s" % (r["outcome"], r["summary"]), ""]
         for ev in r["events"]:
             lines.append("%-18s %s%s%s" % (ev["event"], ev["step_name"], ", sample %d" % ev["sample"] if ev["sample"]

@@ -443,10 +443,21 @@ static void keep_refusal(fbrl_cell_words *cw, const fbrl_robot_move *m, const do
 #endif
 }
 
-static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what)
+/* A refusal; ck (NULL: the start was not read) is what the check knew, for the observer. */
+static fbrl_status refuse(fbrl_cell_words *cw, const fbrl_robot_move *m, const char *what, fbrl_cell_check *ck)
 {
     char msg[FBRL_CELL_MSG_MAX];
     snprintf(msg, sizeof msg, "%s: %s; nothing was sent", m->word, what);
+    if (cw->observe) {
+        fbrl_cell_check none;
+        if (!ck) {
+            memset(&none, 0, sizeof none);
+            ck = &none;
+        }
+        ck->word = m->word;
+        ck->message = msg;
+        cw->observe(cw->observe_ctx, ck);
+    }
     if (cw->stats.nrefusals < FBRL_CELL_LOG_MAX) { /* the report keeps its head */
         char *keep = cw->stats.refusals[cw->stats.nrefusals++];
         size_t n =
@@ -526,7 +537,7 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
     if (!active(cw) || m->kind == FBRL_ROBOT_MOVE_HOME)
         return FBRL_OK;
     if (m->kind == FBRL_ROBOT_MOVE_OTHER)
-        return refuse(cw, m, "the guard cannot follow this motion (CELL-GUARD-OFF sends it unchecked)");
+        return refuse(cw, m, "the guard cannot follow this motion (CELL-GUARD-OFF sends it unchecked)", NULL);
     double q[FBRL_RAPL_MAX_AXES] = {0};
     unsigned n = 0;
     if ((st = where(cw, r, m->word, q, &n)) != FBRL_OK)
@@ -540,6 +551,11 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
     }
     memcpy(cw->q, q, sizeof cw->q);
     cw_place_blocks(cw);
+    fbrl_cell_check ck;
+    memset(&ck, 0, sizeof ck);
+    ck.naxes = arm->naxes;
+    memcpy(ck.q0, cw->q, sizeof ck.q0);
+    memcpy(ck.q1, cw->q, sizeof ck.q1);
     memcpy(q0, cw->q, sizeof q0);
     memcpy(q1, q0, sizeof q1);
     fbrl_arm_fk(arm, q0, cw->model.tcp, p0);
@@ -570,13 +586,14 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
     }
     int to_pose = m->kind == FBRL_ROBOT_MOVE_POSE || m->kind == FBRL_ROBOT_MOVE_DEPART ||
                   m->kind == FBRL_ROBOT_MOVE_JOG;
+    ck.line = line;
     /* a target or a line the guard cannot compute cannot be checked: refused while a cell is
      * described (a controller in millimetres reads such a target as another, reachable one) */
     if (to_pose && !line && fbrl_arm_ik(arm, target, cw->model.tcp, q0, q1, NULL) != FBRL_OK) {
         snprintf(what, sizeof what, "the guard cannot check it: X %s Y %s Z %s in is beyond the arm's reach",
                  num(a, sizeof a, target[0]), num(b, sizeof b, target[1]), num(c, sizeof c, target[2]));
         keep_refusal(cw, m, q0, NULL, p0, target, 1.0, NULL);
-        return refuse(cw, m, what);
+        return refuse(cw, m, what, &ck);
     }
     if (!to_pose && line)
         fbrl_arm_fk(arm, q1, cw->model.tcp, target);
@@ -586,7 +603,8 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
         keep_refusal(cw, m, q0, line ? NULL : q1, p0, target, 1.0, NULL);
         return refuse(cw, m,
                       "the guard cannot check it: the straight line leaves the arm's reach (move in steps, "
-                      "or joint-interpolated)");
+                      "or joint-interpolated)",
+                      &ck);
     }
     if (h->hit) {
         snprintf(what, sizeof what, "would hit %s with the %s at X %s Y %s Z %s in (%d%% of the way)",
@@ -594,9 +612,13 @@ static fbrl_status guard_check(void *ctx, fbrl_robot *r, const fbrl_robot_move *
                  num(a, sizeof a, h->at[0]), num(b, sizeof b, h->at[1]), num(c, sizeof c, h->at[2]),
                  (int)(h->fraction * 100.0 + 0.5));
         keep_refusal(cw, m, q0, line ? NULL : q1, p0, target, h->fraction, h);
-        return refuse(cw, m, what);
+        ck.path = 1;
+        ck.hit = h;
+        memcpy(ck.q1, h->q_end, sizeof ck.q1);
+        return refuse(cw, m, what, &ck);
     }
     memcpy(cw->pending, h->q_end, sizeof cw->pending);
+    cw->line = line;
     cw->checked = 1;
     return FBRL_OK;
 }
@@ -619,6 +641,18 @@ static void guard_done(void *ctx, fbrl_robot *r, const fbrl_robot_move *m, fbrl_
         cw->stats.near_obj = cw->last.near_obj;
         memcpy(cw->stats.near, cw->last.near, sizeof cw->stats.near);
         snprintf(cw->stats.near_word, sizeof cw->stats.near_word, "%s", m->word);
+    }
+    if (cw->observe) {
+        fbrl_cell_check ck;
+        memset(&ck, 0, sizeof ck);
+        ck.word = m->word;
+        ck.sent = ck.path = 1;
+        ck.line = cw->line;
+        ck.naxes = cw->model.arm->naxes;
+        memcpy(ck.q0, cw->q, sizeof ck.q0);
+        memcpy(ck.q1, cw->pending, sizeof ck.q1);
+        ck.hit = &cw->last;
+        cw->observe(cw->observe_ctx, &ck);
     }
     /* the path for the picture: a few points along a joint move, its ends */
     for (int k = 1; k <= 8; k++) {
@@ -660,6 +694,14 @@ void fbrl_cell_set_save(fbrl_cell_words *cw, fbrl_cell_save_fn fn, void *ctx)
         return;
     cw->save = fn;
     cw->save_ctx = ctx;
+}
+
+void fbrl_cell_set_observer(fbrl_cell_words *cw, fbrl_cell_observe_fn fn, void *ctx)
+{
+    if (!cw)
+        return;
+    cw->observe = fn;
+    cw->observe_ctx = ctx;
 }
 
 const fbrl_cell_stats *fbrl_cell_stats_get(const fbrl_cell_words *cw) { return cw ? &cw->stats : NULL; }

@@ -14,7 +14,7 @@ now() { date +%s.%N; }
 # its own TMPDIR: another dry run (dry_run_vs_real runs at the same time) has its own scratch
 mkdir -p "$work/tmp"
 t0=$(now)
-TMPDIR=$work/tmp "$mon" --dry-run --svg "$work/plan.svg" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" \
+TMPDIR=$work/tmp "$mon" --dry-run --svg "$work/plan.svg" --dry-run-json "$work/dry.jsonl" -e '600 CONSTANT TIME-SCALE' --sim-inputs "$ex/tube_present.inputs" \
     "$ex/sample_prep.fbrl" >"$work/dry.out" 2>"$work/dry.err" || fail "the dry run failed: $(cat "$work/dry.err")"
 t1=$(now)
 wall=$(echo "$t1 $t0" | awk '{ printf "%.3f", $1 - $2 }')
@@ -33,6 +33,21 @@ n=$(grep -c ' wait 0.150 s$' "$work/dry.out")
 grep -q '^run time 5[0-9] s$' "$work/dry.out" || fail "the plan's own run time (TIME-OF-DAY) is not the simulated one"
 [ -z "$(ls "$work" | grep -v -e '^dry\.' -e '^plan\.svg$' -e '^tmp$')" ] || fail "the dry run left files: $(ls "$work")"
 [ -z "$(ls -A "$work/tmp")" ] || fail "the scratch directory was left: $(ls -A "$work/tmp")"
+
+# the path motion by motion (--dry-run-json): every line JSON, its smallest clearance the report's
+python3 - "$work/dry.jsonl" "$work/dry.out" <<'PY' || fail "--dry-run-json does not agree with the report"
+import json, re, sys
+segs = [json.loads(line) for line in open(sys.argv[1])]
+report = open(sys.argv[2]).read()
+m = re.search(r"^smallest clearance ([0-9.]+) in to (\S+) ", report, re.M)
+low = min((s for s in segs if s["sent"]), key=lambda s: s["clearance"])
+ok = segs and all(s["sent"] for s in segs) and abs(low["clearance"] - float(m.group(1))) < 5e-4 \
+    and low["near"] == m.group(2) and all(len(s["points"]) == (2 if s["line"] else 9) for s in segs)
+print("dry-run-json: %d motions, smallest clearance %.4f in to %s" % (len(segs), low["clearance"], low["near"]))
+sys.exit(0 if ok else 1)
+PY
+"$mon" --dry-run-json "$work/x.jsonl" -e '1 .' >"$work/json.out" 2>&1
+[ $? = 2 ] && grep -q 'needs --dry-run' "$work/json.out" || fail "--dry-run-json without --dry-run: $(cat "$work/json.out")"
 
 # the picture
 svg=$work/plan.svg

@@ -18,6 +18,9 @@ if(FBRL_SANITIZE STREQUAL "" AND TARGET fbrlsim)
   if(FBRL_PYTHON)
     set(_py_env "PYTHONPATH=${PROJECT_SOURCE_DIR}/python" "PYTHONDONTWRITEBYTECODE=1"
       "FBRL_LIBRARY=$<TARGET_FILE:fbrl>" "FBRL_SIM=$<TARGET_FILE:fbrlsim>")
+    if(TARGET fbrl-audit) # a method's version as fbrl-audit names it (test_release.py)
+      list(APPEND _py_env "FBRL_AUDIT=$<TARGET_FILE:fbrl-audit>")
+    endif()
     add_test(NAME python_bindings COMMAND ${FBRL_PYTHON} -m pytest -p no:cacheprovider -q
       --basetemp=${PROJECT_BINARY_DIR}/python-tests ${PROJECT_SOURCE_DIR}/python/tests)
     add_test(NAME python_sample_prep COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/e2e/plan_run.sh $<TARGET_FILE:fbrlsim>

@@ -118,6 +118,8 @@ def test_the_page_loads_and_shows_the_cell_where_the_model_puts_it(lab):
         assert o["name"] in listed
     assert {o["name"] for o in scene["obstacles"]} >= {"HEATING-BLOCK-BODY", "SEPARATION-UNIT", "OPERATOR-SIDE"}
     assert any(p["site"] == "HEATING-BLOCK" and p["count"] == 24 for p in scene["places"])
+    # the block's name is a site here, not a calibration structure: the guard and the page leave it as taught
+    assert next(o for o in scene["obstacles"] if o["name"] == "HEATING-BLOCK-BODY")["placed"] is None
     shot(lab, "page.png")
     b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('top'); true")
     time.sleep(0.5)
@@ -147,6 +149,60 @@ def test_the_page_loads_and_shows_the_cell_where_the_model_puts_it(lab):
     x, y = project(cam, (4.0, -4.0, 0.0))
     assert near(img.getpixel((int(x), int(y))), COLOURS["table"], 20)
     b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('3d'); true")
+
+
+# the heating block put back turned a quarter about z, its body's corner (9, -3) now at (3, 9):
+# p = r p_taught + t as CAL-STRU! stores it, row by row [r | t]
+TURNED = ((0.0, -1.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0))
+TURN_BLOCK = "CREATE-CAL-STRU HEATING-BLOCK " + " ".join(
+    "%rE0 HEATING-BLOCK %d CAL-STRU!" % (v, 4 * i + j + 1) for i, row in enumerate(TURNED) for j, v in enumerate(row))
+
+
+def test_a_block_moved_by_its_calibration_is_drawn_where_the_guard_checks_it(tmp_path):
+    """The heating block's calibration (the CREATE-CAL-STRU the guard looks up by the block's
+    name before every motion) turns it: its body is drawn turned, and nothing of it where it
+    was taught. The truth is the matrix stored here and the cell file's box, not the page."""
+    from conftest import SITES, Sim, Station, launcher, method_library
+    sim = Sim(str(tmp_path / "sim"))
+    station = browser = None
+    try:  # as MethodLab starts it (no place inside the block: the method files describe the cell again)
+        station = Station(launcher(), str(tmp_path / "data"), "--port", sim.port, "--no-discovery", "--methods",
+                          method_library(str(tmp_path), sample_prep=False), "--http", "127.0.0.1:0", SITES,
+                          "-e", TURN_BLOCK)
+        wait_for(lambda: any("the page on http://" in l for l in station.lines), what="the page's address")
+        line = next(l for l in station.lines if "the page on http://" in l)
+        browser = cdp.Browser()
+        browser.goto(line[line.index("http://"):].strip())
+        browser.wait_for("window.fbrlPage && window.fbrlPage.ready === true", seconds=60, what="an interactive page")
+        body = next((o for o in browser.eval("fbrlPage.scene.obstacles") if o["name"] == "HEATING-BLOCK-BODY"), None)
+        assert body is not None, "\n".join(station.lines)
+        assert body["placed"] == {"r": [list(r[:3]) for r in TURNED], "t": [r[3] for r in TURNED]}, body
+        browser.eval("document.getElementById('show-labels').click(); fbrlPage.setView('top'); true")
+        time.sleep(0.5)
+        img = PIL.open(io.BytesIO(browser.screenshot())).convert("RGB")
+        cam = browser.eval("fbrlPage.camera()")
+        lo, hi = (9.0, -3.0, 0.0), (14.0, 3.0, 1.75)  # asps_cell_objects.fbrl's box, as taught
+        steps = (0.2, 0.35, 0.5, 0.65, 0.8)
+        taught = [(lo[0] + (hi[0] - lo[0]) * fx, lo[1] + (hi[1] - lo[1]) * fy, hi[2]) for fx in steps for fy in steps]
+        moved = [tuple(sum(r[k] * p[k] for k in range(3)) + r[3] for r in TURNED) for p in taught]
+        at = lambda pts: [img.getpixel(tuple(int(round(v)) for v in project(cam, p))) for p in pts]  # noqa: E731
+        there = sum(near(c, COLOURS["box"]) for c in at(moved))
+        left = sum(near(c, COLOURS["box"]) for c in at(taught))
+        assert there >= 20 and left == 0, "turned: %d of 25 points grey; as taught: %d" % (there, left)
+        # and the guard sees it there too: BUMP's move into the body as taught now passes (the
+        # station's own dry run, the same cell files and texts; refused with the block as taught)
+        browser.eval("var s = document.getElementById('method'); s.value = 'BUMP'; s.onchange(); "
+                     "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+        plan = browser.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+        assert plan["outcome"] == "completed" and not plan["refused"], plan["report"]
+        into = plan["segments"][-1]
+        assert into["sent"] and all(abs(a - b) < 1e-3 for a, b in zip(into["points"][-1], (10.0, -2.0, 0.5))), into
+    finally:
+        if browser is not None:
+            browser.close()
+        if station is not None:
+            station.stop()
+        sim.stop()
 
 
 def magenta_centre(img, cx, cy, r=60):
@@ -301,6 +357,76 @@ def test_a_dry_run_from_the_page_shows_the_plan_and_moves_nothing(lab):
     assert near(img.getpixel((int(round(x)), int(round(y)))), (0xff, 0, 0), 30)
 
 
+def cell_solids():
+    """The solid obstacles and the table of the cell files, read here from .CELL: [(name,
+    distance function of a point)], and the tool envelope's radius."""
+    solids, tool_r = [], None
+    for line in the_cell().splitlines():
+        w = line.replace(",", "").split()
+        if line.startswith("cell:"):
+            z = float(w[w.index("table") + 1])
+            tool_r = float(w[w.index("radius") + 1])
+            solids.append(("the table", lambda p, z=z: p[2] - z))
+        elif len(w) >= 10 and w[1] == "cylinder":
+            x, y, r = float(w[3]), float(w[5]), float(w[9])
+            lo, hi = (float(v) for v in w[7].split(".."))
+
+            def cyl(p, x=x, y=y, r=r, lo=lo, hi=hi):
+                dr = max(((p[0] - x) ** 2 + (p[1] - y) ** 2) ** 0.5 - r, 0.0)
+                dz = max(lo - p[2], p[2] - hi, 0.0)
+                return (dr * dr + dz * dz) ** 0.5
+            solids.append((w[0], cyl))
+        elif len(w) >= 9 and w[1] == "box":
+            lo, hi = [float(v) for v in w[2:5]], [float(v) for v in w[6:9]]
+            solids.append((w[0], lambda p, lo=lo, hi=hi: sum(max(lo[i] - p[i], p[i] - hi[i], 0.0) ** 2
+                                                               for i in range(3)) ** 0.5))
+    return solids, tool_r
+
+
+def test_the_dry_run_path_is_drawn_coloured_by_its_clearance_a_refused_move_red(lab):
+    """SKIM goes down close over the heating block (clear), then into it (refused). The
+    clearance fbrlmon reports for the close move is the tool envelope's distance to the
+    nearest solid, worked out here from the cell file's boxes and the reported tool points;
+    the refused move ends at the block it names, and is drawn red there."""
+    b = ready(lab)
+    before = len(lab.sim.log())
+    b.eval("var s = document.getElementById('method'); s.value = 'SKIM'; s.onchange(); "
+           "window.fbrlPage.plan = null; document.getElementById('dry').click(); true")
+    plan = b.wait_for("fbrlPage.plan", seconds=60, what="the dry run")
+    segs = plan["segments"]
+    assert [(x["word"], x["step"], x["sent"]) for x in segs] == [("READY", "Over", True), ("MOV", "Over", True),
+                                                                ("READY", "Into", True), ("MOV", "Into", False)], plan
+    solids, tool_r = cell_solids()
+    over, into = segs[1], segs[3]
+    assert len(over["points"]) == 9 and len(into["points"]) == 9  # joint moves: 8 steps
+    # the move ends where the method sends it (the tool point of SPOT)
+    assert all(abs(a - b) < 1e-3 for a, b in zip(over["points"][-1], (11.5, 0.0, 2.15))), over
+    worked = min((f(p) - tool_r, name) for p in over["points"] for name, f in solids)
+    assert abs(over["clearance"] - worked[0]) < 0.01 and over["near"] == worked[1] == "HEATING-BLOCK-BODY", (
+        over, worked)
+    assert 0 < over["clearance"] < 0.5 and segs[0]["clearance"] >= 0.5  # orange, and the first green
+    # the refused one stops at the block it names: its last tool point within the envelope of it
+    assert into["hit"] == "HEATING-BLOCK-BODY" and "would hit HEATING-BLOCK-BODY" in into["message"], into
+    body = dict(solids)["HEATING-BLOCK-BODY"]
+    assert body(into["points"][-1]) <= tool_r + 0.1 + 1e-3, into["points"][-1]
+    assert [l for l in lab.sim.log()[before:] if l not in ("W2", "STATUS")] == []  # nothing moved
+    # in the view: the refused move's rod is red where it nears the block (a step short of the
+    # contact, away from the contact's ball), the close one orange, the first green
+    b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('top'); true")
+    time.sleep(0.5)
+    cam = b.eval("fbrlPage.camera()")
+    img = shot(lab, "page-dry-run-path.png")
+    b.eval("document.getElementById('show-labels').click(); fbrlPage.setView('3d'); true")
+    mid = lambda a, c: [(x + y) / 2 for x, y in zip(a, c)]  # noqa: E731
+    red = mid(into["points"][-3], into["points"][-2])
+    assert 0.6 < body(red) < 4.0 and ((red[0] - into["at"][0]) ** 2 + (red[1] - into["at"][1]) ** 2 + (
+        red[2] - into["at"][2]) ** 2) ** 0.5 > 1.0, red  # near the block, clear of the contact's ball
+    assert near(img.getpixel(tuple(int(round(v)) for v in project(cam, red))), (0xff, 0, 0), 30)
+    assert near(img.getpixel(tuple(int(round(v)) for v in project(cam, mid(*over["points"][-3:-1])))),
+                (0xff, 0x99, 0), 30)
+    assert "refused: MOV would hit HEATING-BLOCK-BODY" in b.eval("document.getElementById('labels').textContent")
+
+
 def test_other_web_sites_cannot_reach_the_station_through_the_browser(lab):
     """A web site the operator has open could open a WebSocket to 127.0.0.1 (browsers allow it)
     or point its own name at 127.0.0.1 (DNS rebinding): both are refused; the page's own are not."""
@@ -340,7 +466,17 @@ def test_the_history_lists_past_runs_and_opens_their_log(lab):
     assert done["method"] == "QUICK" and done["by"].startswith("page ") and done["values"] == [["#ITEMS", 2],
                                                                                                ["HOLD-DS", 1]]
     assert b.eval("document.querySelectorAll('#history li').length") == len(runs)
+    # its method version: the files' hash as fbrl-audit names it for the library's file
+    import subprocess
+    from conftest import launcher
+    audit = os.environ.get("FBRL_AUDIT") or os.path.join(os.path.dirname(launcher()), "fbrl-audit")
+    out = subprocess.run([audit, "method", "status", os.path.join(lab.lib, "station_tests.fbrl"), "--lab",
+                          lab.station.data], capture_output=True, text=True, timeout=30)
+    version = re.match(r"\S+ version ([0-9a-f]{64}): ", out.stdout)
+    assert version and done["version"] == version.group(1), (done, out.stdout, out.stderr)
+    assert "version %s" % done["version"][:12] in b.eval("document.getElementById('history').textContent")
     text = urllib.request.urlopen(lab.url + "history/" + done["uuid"], timeout=10).read().decode()
+    assert "method version: %s" % done["version"] in text
     assert "outcome: completed" in text and "StepEnded          Item, sample 2" in text, text
     assert "sample 2: succeeded" in text
     with open(os.path.join(lab.station.data, "runs.jsonl")) as f:

@@ -50,10 +50,18 @@ function obstacle(o) {
     mesh.position.set((o.lo[0] + o.hi[0]) / 2, (o.lo[1] + o.hi[1]) / 2, (o.lo[2] + o.hi[2]) / 2);
   }
   mesh.name = o.name;
+  let top = [(o.lo[0] + o.hi[0]) / 2, (o.lo[1] + o.hi[1]) / 2, o.hi[2]];
+  if (o.placed) { // carried by its block's calibration, p = r p_taught + t, as the guard carries it
+    const r = o.placed.r, t = o.placed.t;
+    const m = new THREE.Matrix4().set(r[0][0], r[0][1], r[0][2], t[0], r[1][0], r[1][1], r[1][2], t[1],
+                                      r[2][0], r[2][1], r[2][2], t[2], 0, 0, 0, 1);
+    mesh.updateMatrix();
+    m.multiply(mesh.matrix).decompose(mesh.position, mesh.quaternion, mesh.scale);
+    top = [0, 1, 2].map((i) => r[i][0] * top[0] + r[i][1] * top[1] + r[i][2] * top[2] + t[i]);
+  }
   scene3.add(mesh);
   scene3.add(edges(mesh, transparent ? 0xc00000 : 0x333333));
-  addLabel(o.name + (o.block ? ' (on ' + o.block + ')' : ''), [(o.lo[0] + o.hi[0]) / 2, (o.lo[1] + o.hi[1]) / 2, o.hi[2]],
-           o.kind);
+  addLabel(o.name + (o.block ? ' (on ' + o.block + ')' : ''), top, o.kind);
 }
 
 function buildScene(s) {
@@ -62,7 +70,10 @@ function buildScene(s) {
   const lo = [-6, -6, 0], hi = [6, 6, 20]; // the arm's base and some of its height, always in view
   const grow = (p) => { for (let i = 0; i < 3; i++) { lo[i] = Math.min(lo[i], p[i]); hi[i] = Math.max(hi[i], p[i]); } };
   // framed on what stands in the cell: a keep-out zone (the operator's side) may reach far past it
-  s.obstacles.filter((o) => o.kind !== 'keepout').forEach((o) => { grow(o.lo); grow(o.hi); });
+  s.obstacles.filter((o) => o.kind !== 'keepout').forEach((o) => [0, 1, 2, 3, 4, 5, 6, 7].forEach((k) => {
+    const p = [0, 1, 2].map((i) => ((k >> i) & 1 ? o.hi : o.lo)[i]); // each corner, where the block puts it
+    grow(o.placed ? o.placed.r.map((row, i) => row[0] * p[0] + row[1] * p[1] + row[2] * p[2] + o.placed.t[i]) : p);
+  }));
   s.places.forEach((p) => grow(p.at));
   centre = new THREE.Vector3((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2);
   span = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) + 8;
@@ -295,7 +306,45 @@ function params() {
   return out;
 }
 
-let planMarks = []; // the refused motions' points of contact (red), the closest approach (orange)
+// the dry run's path, each motion coloured by the clearance the guard measured for it (the whole
+// arm's, to the nearest obstacle): refused red, closer than CLOSE_IN orange, else green
+const PATH_COLOURS = { refused: 0xff0000, close: 0xff9900, clear: 0x10b010 };
+const CLOSE_IN = 0.5;
+const PATH_R = 0.12; // in: the path's drawn thickness
+
+function pathColour(seg) {
+  if (!seg.sent) return PATH_COLOURS.refused;
+  return seg.clearance !== null && seg.clearance < CLOSE_IN ? PATH_COLOURS.close : PATH_COLOURS.clear;
+}
+
+function drawSegment(seg, add) {
+  const mat = new THREE.MeshBasicMaterial({ color: pathColour(seg), depthTest: false });
+  for (let k = 1; k < seg.points.length; k++) { // a thin rod between each two points (WebGL lines are 1 px)
+    const a = v3(seg.points[k - 1]), b = v3(seg.points[k]), len = a.distanceTo(b);
+    if (len < 1e-6) continue;
+    const rod = new THREE.Mesh(new THREE.CylinderGeometry(PATH_R, PATH_R, len, 8), mat);
+    rod.position.copy(a.clone().add(b).multiplyScalar(0.5));
+    rod.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), b.clone().sub(a).normalize());
+    rod.renderOrder = seg.sent ? 5 : 6; // over the obstacles (a refused one goes into one), under the tool point
+    add(rod);
+  }
+}
+
+function legend(el) {
+  const d = document.createElement('div');
+  d.className = 'legend';
+  [['refused', 'refused (nothing sent)'], ['close', 'clearance < ' + CLOSE_IN + ' in'], ['clear', 'clear']].forEach(([k, text]) => {
+    const sw = document.createElement('span');
+    sw.className = 'swatch';
+    sw.style.background = '#' + PATH_COLOURS[k].toString(16).padStart(6, '0');
+    d.appendChild(sw);
+    d.appendChild(document.createTextNode(' ' + text + ' '));
+  });
+  el.appendChild(d);
+}
+
+let planMarks = []; // the path, the refused motions' points of contact (red), the closest approach (orange)
+let planLabels = [];
 function showPlan(r) {
   page.plan = r;
   const el = $('plan');
@@ -308,6 +357,23 @@ function showPlan(r) {
   r.errors.forEach((x) => line('error: ' + x, 'error'));
   planMarks.forEach((x) => scene3.remove(x));
   planMarks = [];
+  planLabels.forEach((l) => l.div.remove());
+  labels = labels.filter((l) => !planLabels.includes(l));
+  planLabels = [];
+  const segs = r.segments || [];
+  segs.forEach((seg) => drawSegment(seg, (m) => { scene3.add(m); planMarks.push(m); }));
+  segs.filter((seg) => !seg.sent && seg.points.length).forEach((seg) => {
+    const what = seg.hit ? 'refused: ' + seg.word + ' would hit ' + seg.hit : 'refused: ' + seg.word;
+    addLabel(what, seg.at || seg.points[seg.points.length - 1], 'refusal');
+    planLabels.push(labels[labels.length - 1]);
+  });
+  if (segs.length) {
+    legend(el);
+    const close = segs.filter((seg) => seg.sent && seg.clearance !== null && seg.clearance < CLOSE_IN);
+    line('path: ' + segs.length + ' motions checked, ' + segs.filter((seg) => !seg.sent).length + ' refused, ' +
+         close.length + ' closer than ' + CLOSE_IN + ' in' + (close.length ? ' (' + close.slice(0, 5).map((seg) =>
+           seg.word + ' ' + seg.clearance.toFixed(3) + ' in to ' + seg.near).join('; ') + (close.length > 5 ? '; ...' : '') + ')' : ''));
+  }
   const mark = (at, colour, r) => {
     const m = new THREE.Mesh(new THREE.SphereGeometry(r, 12, 8), new THREE.MeshBasicMaterial({ color: colour }));
     m.position.copy(v3(at));
@@ -427,7 +493,8 @@ async function showHistory() { // the station's past runs, newest first; each op
     a.target = '_blank';
     a.textContent = new Date(r.start * 1000).toLocaleString() + ' ' + r.method + ': ' + r.outcome;
     li.appendChild(a);
-    li.appendChild(document.createTextNode(' (' + r.by + ')'));
+    li.appendChild(document.createTextNode(' (' + r.by + ', version ' + (r.version ? r.version.slice(0, 12) : 'not known') + ')'));
+    if (r.version) li.title = 'method version ' + r.version;
     li.dataset.uuid = r.uuid;
     ol.appendChild(li);
   });
