@@ -304,6 +304,23 @@ for _name in DECLARED:
                           % (_name, _have, _want))
 
 
+def declared_later(*names):
+    """Structs a module declares after this one (its own cdef): each one's fbrl_abi_type code
+    found by its name in the library, and its layout required to be the library's."""
+    for name in names:
+        for code in range(256):
+            n = lib.fbrl_abi_name(code)
+            if n == ffi.NULL:
+                raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % name)
+            if ffi.string(n).decode() == name:
+                ABI.setdefault(name, code)
+                break
+        have, want = (ffi.sizeof(name), ffi.alignof(name)), (lib.fbrl_abi_size(ABI[name]), lib.fbrl_abi_align(ABI[name]))
+        if have != want:
+            raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"
+                              % (name, have, want))
+
+
 def alloc(type_name):
     """Zeroed storage for an opaque struct, aligned as the library needs, as a typed pointer.
     The returned pointer keeps its memory alive (ffi.gc-free: the owner keeps the pointer)."""

@@ -5,7 +5,7 @@ it is included by. Thin: fbrl_release_identify (fbrl/release.h) reads and hashes
 
     hex, method = fbrl.method_version("/lab/methods/sample_prep.fbrl")
 """
-from ._ffi import ffi, lib, alloc, ABI
+from ._ffi import ffi, lib, alloc, declared_later
 from ._errors import check
 
 ffi.cdef("""
@@ -31,17 +31,7 @@ typedef struct fbrl_method_version {
 fbrl_status fbrl_release_identify(fbrl_method_version *mv, const char *path);
 """, override=True)
 
-for _code in range(256):
-    _n = lib.fbrl_abi_name(_code)
-    if _n == ffi.NULL:
-        raise ImportError("fbrl: the library does not know fbrl_method_version: it is older than these bindings")
-    if ffi.string(_n).decode() == "fbrl_method_version":
-        ABI.setdefault("fbrl_method_version", _code)
-        break
-_have, _code = (ffi.sizeof("fbrl_method_version"), ffi.alignof("fbrl_method_version")), ABI["fbrl_method_version"]
-if _have != (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code)):
-    raise ImportError("fbrl: fbrl_method_version is %s bytes/alignment here but %s in the library: rebuild the "
-                      "bindings" % (_have, (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code))))
+declared_later("fbrl_method_version")
 
 
 def method_version(path):

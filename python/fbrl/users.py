@@ -11,7 +11,7 @@ library's (fbrl/users.h); failures raise fbrl.Error (FBRL_EAUTH, FBRL_ELOCKED, F
 import os
 import time
 
-from ._ffi import ffi, lib, alloc, ABI
+from ._ffi import ffi, lib, alloc, declared_later
 from ._errors import check
 
 ffi.cdef("""
@@ -64,19 +64,7 @@ const char *fbrl_users_role_name(int role);
 fbrl_status fbrl_users_role_parse(const char *text, int *role);
 """, override=True)
 
-for _name in ("fbrl_users", "fbrl_user"):
-    for _code in range(256):
-        _n = lib.fbrl_abi_name(_code)
-        if _n == ffi.NULL:
-            raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % _name)
-        if ffi.string(_n).decode() == _name:
-            ABI.setdefault(_name, _code)
-            break
-for _name in ("fbrl_users", "fbrl_user"):  # read field by field (settings(), user()): the layouts must agree
-    _have, _code = (ffi.sizeof(_name), ffi.alignof(_name)), ABI[_name]
-    if _have != (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code)):
-        raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"
-                          % (_name, _have, (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code))))
+declared_later("fbrl_users", "fbrl_user")  # read field by field (settings(), user()): the layouts must agree
 
 # fbrl_right (fbrl/users.h), by name
 RIGHTS = ("run", "run_draft", "teach", "compose", "forth", "release", "review_run", "users", "recover")
