@@ -855,8 +855,10 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
             return clean_done(l, -1);
         return ++l->match == l->expect ? clean_done(l, 0) : FBRL_OK;
     case PH_VERIFY:
-        if (!l->probe_seen && b != '?' && b != BS) {
-            /* still the command's reply (or its absence): bytes before the probe's echo */
+        if (!l->probe_seen && !fbrli_probe_may_echo(b)) {
+            /* still the command's reply (or its absence): bytes before the probe's echo.
+             * Only a byte the echo cannot hold: with '?' and BS lost, the echo starts
+             * with SP, which must not prove the CR (the reply of a CR starts CR LF) */
             feed_reply(l, b);
             return FBRL_OK;
         }

@@ -63,6 +63,9 @@ int fbrli_probe_answered(const fbrl_link_probe *p);
 /* Parsed whole: the characters its first CAN erased (1: its own '?', the line was empty;
  * more: what the line held before it, plus that '?'); -1 when the echo was not whole. */
 long fbrli_probe_erased(const fbrl_link_probe *p);
+/* b can be a byte of a probe's echo ('?', BS, SP or a marker), whatever of it was lost
+ * before: a byte that cannot is the reply of what came before the probe. */
+int fbrli_probe_may_echo(uint8_t b);
 
 /* ---- link_settle.c: settling a damaged reply by STATUS (docs/link.md 3.5) ---- */
 

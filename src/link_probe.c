@@ -97,3 +97,13 @@ int fbrli_probe_answered(const fbrl_link_probe *p)
 }
 
 long fbrli_probe_erased(const fbrl_link_probe *p) { return p->state == PE_DONE ? (long)p->erased : -1; }
+
+int fbrli_probe_may_echo(uint8_t b)
+{
+    if (b == '?' || b == BS || b == ' ')
+        return 1;
+    for (unsigned k = 0; k < NMARK; k++)
+        if (b == (uint8_t)markers[k])
+            return 1;
+    return 0;
+}

@@ -389,6 +389,22 @@ static void lf_from_a_damaged_probe_is_no_proof(void **state)
     assert_log(s, want, 1);
 }
 
+/* Even parity: the CR is lost, and the probe's echo loses its '?' and first BS, so it
+ * starts with SP. With parity one byte after the CR proves it, but only a byte the probe's
+ * echo cannot hold: that SP is no proof. A line not safe to repeat "may have run" and never
+ * ran (the link once took the SP for proof, settled by STATUS, and reported a run that the
+ * controller never saw). */
+static void space_of_a_damaged_probe_is_no_proof(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '\b', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    assert_int_equal(s->c.nlog, 0);
+}
+
 /* The echo of the last character never comes: no CR is sent for an unconfirmed line;
  * it is erased and typed again. */
 static void lost_last_echo_is_retyped(void **state)
@@ -1014,6 +1030,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(noise_after_prompt_is_erased, setup, teardown),
         cmocka_unit_test_setup_teardown(next_command_overlaps_the_prompt, setup, teardown),
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
+        cmocka_unit_test_setup_teardown(space_of_a_damaged_probe_is_no_proof, setup_even, teardown),
         cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
         cmocka_unit_test_setup_teardown(unsafe_line_is_never_retyped_without_proof, setup, teardown),
         cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
