@@ -630,14 +630,12 @@ static fbrl_status executed(fbrl_link *l)
     return retype(l);
 }
 
-/* The controller's CR LF proves the line ended (the reader has the line ends). While a
- * verify probe is out on an 8N1 line, an LF alone may be the probe's BS (0x08) with one
- * bit flipped whose '?' before it was lost: it proves nothing then (the probe's own echo
- * decides, 3.2). The verify probe is sent only while no line end had come. */
+/* The controller's CR LF proves the line ended (the reader has the line ends). Once a
+ * verify probe is out on an 8N1 line no byte reaches the reader (on_byte, PH_VERIFY): an
+ * LF then may be the probe's BS (0x08) with one bit flipped. */
 static int eol_seen(const fbrl_link *l)
 {
-    unsigned lf_ok = l->parity || l->phase != PH_VERIFY ? FBRL_RAPL_END_LF : 0u;
-    return (l->rd.ends & (FBRL_RAPL_END_CR | FBRL_RAPL_END_CRLF | lf_ok)) != 0;
+    return (l->rd.ends & (FBRL_RAPL_END_CR | FBRL_RAPL_END_CRLF | FBRL_RAPL_END_LF)) != 0;
 }
 
 /* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR
@@ -856,10 +854,13 @@ static fbrl_status on_byte(fbrl_link *l, uint8_t b)
         return ++l->match == l->expect ? clean_done(l, 0) : FBRL_OK;
     case PH_VERIFY:
         if (!l->probe_seen && !fbrli_probe_may_echo(b)) {
-            /* still the command's reply (or its absence): bytes before the probe's echo.
-             * Only a byte the echo cannot hold: with '?' and BS lost, the echo starts
-             * with SP, which must not prove the CR (the reply of a CR starts CR LF) */
-            feed_reply(l, b);
+            /* a byte before the probe's echo: the command's late reply, or the echo
+             * damaged. With parity no byte turns into another, so one the echo cannot
+             * hold ('?', BS, SP, a marker: with '?' and BS lost it starts with SP) is the
+             * reply's. On 8N1 the stray bytes of a damaged CR and of a probe's echo hit
+             * twice add up to three: there only the probe's echo decides (3.2) */
+            if (l->parity)
+                feed_reply(l, b);
             return FBRL_OK;
         }
         l->probe_seen = 1;

@@ -405,6 +405,21 @@ static void space_of_a_damaged_probe_is_no_proof(void **state)
     assert_int_equal(s->c.nlog, 0);
 }
 
+/* 8N1: the CR turns into 'M' (echoed: the line is now "V1=V1+1M"), and the probe's echo
+ * comes with its '?' and first BS damaged: three stray bytes, as many as a line that ran
+ * shows at least. Once the probe is out, only its echo decides on 8N1; damaged, it proves
+ * nothing, and a line not safe to repeat "may have run" and never ran. */
+static void three_stray_bytes_around_a_probe_are_no_proof(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, REPLACE, 'M');
+    ctl_rule(&s->c, OUT, '?', 0, REPLACE, ';');
+    ctl_rule(&s->c, OUT, '\b', 0, REPLACE, 0x00);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    assert_int_equal(s->c.nlog, 0);
+}
+
 /* The echo of the last character never comes: no CR is sent for an unconfirmed line;
  * it is erased and typed again. */
 static void lost_last_echo_is_retyped(void **state)
@@ -1031,6 +1046,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(next_command_overlaps_the_prompt, setup, teardown),
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
         cmocka_unit_test_setup_teardown(space_of_a_damaged_probe_is_no_proof, setup_even, teardown),
+        cmocka_unit_test_setup_teardown(three_stray_bytes_around_a_probe_are_no_proof, setup, teardown),
         cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
         cmocka_unit_test_setup_teardown(unsafe_line_is_never_retyped_without_proof, setup, teardown),
         cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
