@@ -38,6 +38,7 @@ class Engine:
         self._out = []
         self._files = {}
         self._errors = []  # exceptions raised inside a callback, for the caller
+        self.moving_error = None  # the last exception of the on_moving() watcher
         self._sig = None  # the Ctrl-C deferral of the evaluation in progress
         self._link_motions = link._motions if link else 0  # the link's motions this engine knows of
         cfg = ffi.new("fbrl_vm_config *")
@@ -258,6 +259,22 @@ class Engine:
         check(lib.fbrl_robot_set_link(self._robot.ptr, link.ptr if link else ffi.NULL), "set_link")
         self.link = link
         self._link_motions = link._motions if link else 0
+
+    def on_moving(self, fn):
+        """fn() while a robot word waits for the arm to stop, about once a second, with the
+        link free for a reading (link.where() reads the arm as it moves); it must not move
+        the arm. None: nobody. An exception in fn is kept in .moving_error and the wait goes
+        on: a live view that cannot read is not an error of the method."""
+        if fn is None:
+            lib.fbrl_robot_set_watch(self._robot.ptr, ffi.NULL, ffi.NULL)
+            self._moving_cb = None
+            return
+
+        def failed(kind, value, tb):
+            self.moving_error = value
+
+        self._moving_cb = ffi.callback("void(void *, fbrl_robot *)", lambda ctx, r: fn(), onerror=failed)
+        lib.fbrl_robot_set_watch(self._robot.ptr, self._moving_cb, ffi.NULL)
 
     def interrupt(self):
         """Ask a running eval()/include() to stop (THROW -28 at its next word; a wait for the

@@ -59,6 +59,7 @@ class Owner:
         self._wlock = threading.Lock()
         self._stop = False
         self.thread = threading.Thread(target=self._loop, name="fbrl-engine", daemon=True)
+        controller.engine.on_moving(self._moving)
 
     def start(self):
         self.thread.start()
@@ -137,6 +138,15 @@ class Owner:
         except fbrl.Error as e:
             log.warning("reading the arm: %s", e)
         self.publish_connection()
+
+    def _moving(self):
+        """A robot word waits for the arm to stop (a run's motion or a client's): read it, about
+        once a second, for whoever watches the position, so the page draws the arm as it moves.
+        A reading that fails is kept in engine.moving_error; the motion goes on."""
+        if self.watching("position") and self.controller.connected:
+            where = self.controller.where()
+            self.position_at = time.time()
+            self.position.set(where)
 
     def publish_connection(self):
         c = self.controller

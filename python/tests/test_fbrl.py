@@ -9,6 +9,7 @@ import pytest
 
 import fbrl
 from fbrl import _ffi
+from conftest import LOADED_HOST_ECHO_MS, Sim
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -221,3 +222,34 @@ def test_a_port_opens_by_its_by_id_name(sim, tmp_path):
     with fbrl.Port(str(by_id)) as port:
         fbrl.Link(port, echo_timeout_ms=500).home()
     assert "HOME" in sim.log()
+
+
+def test_engine_on_moving_reads_the_arm_while_it_moves(tmp_path):
+    """on_moving (fbrl_robot_set_watch): while a slow move waits for the arm, the watcher reads
+    it (W2 in fbrlsim's log) at places on the way; an exception in it is kept and the motion goes
+    on; None stops it."""
+    s = Sim(tmp_path, time_scale="20")
+    try:
+        with fbrl.Port(s.port) as port:
+            link = fbrl.Link(port, echo_timeout_ms=LOADED_HOST_ECHO_MS)
+            with fbrl.Engine(link=link) as fb:
+                fb.eval("HOME READY FINISH  CREATE-LOC SPOT 15.0 4.0 6.0 0.0 -90.0 0.0 SPOT DEFINE-LOC")
+                seen = []
+                fb.on_moving(lambda: seen.append(tuple(round(v, 3) for v in list(link.where().world)[:3])))
+                n = len(s.log())
+                fb.eval("1 SPEED SPOT MOV FINISH")
+                assert s.log()[n:].count("W2") == len(seen) >= 3, (s.log()[n:], seen)
+                assert len(set(seen)) == len(seen)  # each reading a different place on the way
+
+                def broken():
+                    raise RuntimeError("the view is gone")
+
+                fb.on_moving(broken)
+                fb.eval("3 SPEED READY FINISH")
+                assert isinstance(fb.moving_error, RuntimeError)
+                fb.on_moving(None)
+                n = len(s.log())
+                fb.eval("SPOT MOV FINISH 50 SPEED")
+                assert "W2" not in s.log()[n:] and any(l.startswith("MOVE ") for l in s.log()[n:])
+    finally:
+        s.stop()
