@@ -462,7 +462,7 @@ function onMessage(m) {
     case 'questions': onQuestions(m.questions); break;
     case 'run':
       stepRows(m);
-      $('run-title').textContent = m.method + ' ' + m.values.map((v) => v[0] + '=' + v[1]).join(' ') + ', started by ' + m.by;
+      $('run-title').textContent = [m.method].concat(m.values.map((v) => v[0] + '=' + v[1])).join(' ') + ', started by ' + m.by;
       $('outcome').textContent = '';
       page.run = { uuid: m.uuid, events: [], end: null };
       note(m.method + ' started by ' + m.by);
