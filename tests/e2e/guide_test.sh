@@ -58,7 +58,7 @@ for kind in $(ls "$tmp/units" | sed -n 's/\.kind$//p' | sort -n); do
     units=$((units + 1))
     case $(cat "$u.kind") in
     session) fbrlmon <"$u.body" >"$u.out" 2>"$u.err"; st=$? ;;
-    run) sh "$u.body" >"$u.out" 2>"$u.err"; st=$? ;;
+    run) sh "$u.body" </dev/null >"$u.out" 2>"$u.err"; st=$? ;; # not the terminal ctest may run at
     file) cp "$u.body" "$(cat "$u.name")"; continue ;;
     esac
     what="$(cat "$u.kind") $kind ($(head -n 1 "$u.body"))"
