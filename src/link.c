@@ -24,6 +24,7 @@
  * link_modes.c the session's modes; link_stop.c the safe stop; link_config.c the
  * settings. */
 #include "link_internal.h"
+#include "fbrl/crc32.h"
 
 #include <math.h>
 
@@ -338,11 +339,13 @@ static void reply_line(fbrl_link *l, const char *s, size_t n, int flawed)
     case FBRL_LINK_REPLY_INT:
         if (flawed || fbrl_rapl_parse_int(s, n, &l->ival) != FBRL_OK)
             l->out_bad = 1;
+        l->val_sum = fbrl_crc32(0, s, n);
         l->nvalues++;
         break;
     case FBRL_LINK_REPLY_REAL:
         if (flawed || fbrl_rapl_parse_real(s, n, &l->rval) != FBRL_OK)
             l->out_bad = 1;
+        l->val_sum = fbrl_crc32(0, s, n);
         l->nvalues++;
         break;
     case FBRL_LINK_REPLY_STREAM: {
@@ -453,8 +456,11 @@ static int pos_consistent(const fbrl_link *l)
 }
 
 /* Count agreeing reads: same values and the same number of reply bytes (a dropped
- * digit can leave a well-formed number; it cannot keep the length). A read that
- * disagrees becomes the new reference. True once query_reads reads agree. */
+ * digit can leave a well-formed number; it cannot keep the length), and for TYPEI and
+ * TYPEV the same value line, byte for byte: on 8N1 "-72.330000" (an '8' dropped) and
+ * "-072.33000" (the '8' flipped to '0', a '0' dropped) are the same number of the same
+ * length, and two such reads once agreed on a value the controller never held. A read
+ * that disagrees becomes the new reference. True once query_reads reads agree. */
 static int confirmed(fbrl_link *l)
 {
     int same = 0;
@@ -466,8 +472,8 @@ static int confirmed(fbrl_link *l)
         switch (l->kind) {
         case FBRL_LINK_REPLY_POS: same = same_pos(&l->pos, &l->prev_pos); break;
         case FBRL_LINK_REPLY_STATUS: same = same_status(&l->st, &l->prev_st, l->stage == ST_ERRQ); break;
-        case FBRL_LINK_REPLY_INT: same = l->ival == l->prev_i; break;
-        case FBRL_LINK_REPLY_REAL: same = l->rval == l->prev_r; break;
+        case FBRL_LINK_REPLY_INT: same = l->ival == l->prev_i && l->val_sum == l->prev_sum; break;
+        case FBRL_LINK_REPLY_REAL: same = l->rval == l->prev_r && l->val_sum == l->prev_sum; break;
         default: break;
         }
     }
@@ -476,6 +482,7 @@ static int confirmed(fbrl_link *l)
         l->prev_st = l->st;
         l->prev_i = l->ival;
         l->prev_r = l->rval;
+        l->prev_sum = l->val_sum;
         l->prev_len = l->rd.bytes;
         l->have_prev = 1;
         return l->cfg.query_reads <= 1;
@@ -632,10 +639,13 @@ static fbrl_status executed(fbrl_link *l)
 
 /* The controller's CR LF proves the line ended (the reader has the line ends). Once a
  * verify probe is out on an 8N1 line no byte reaches the reader (on_byte, PH_VERIFY): an
- * LF then may be the probe's BS (0x08) with one bit flipped. */
+ * LF then may be the probe's BS (0x08) with one bit flipped. On 8N1 a CR alone proves
+ * nothing either: a CR turned into 'M' on its way in is echoed as 'M', which one more flip
+ * makes a CR again (3.6); an LF cannot come of a CR that way (they differ in three bits). */
 static int eol_seen(const fbrl_link *l)
 {
-    return (l->rd.ends & (FBRL_RAPL_END_CR | FBRL_RAPL_END_CRLF | FBRL_RAPL_END_LF)) != 0;
+    unsigned cr_ok = l->parity ? FBRL_RAPL_END_CR : 0u;
+    return (l->rd.ends & (cr_ok | FBRL_RAPL_END_CRLF | FBRL_RAPL_END_LF)) != 0;
 }
 
 /* Proof that the CR ended the line (docs/link.md "after the CR"): the controller's CR

@@ -239,6 +239,7 @@ typedef struct fbrl_link {
     fbrl_rapl_status_info prev_st;
     long prev_i;
     double prev_r;
+    uint32_t val_sum, prev_sum; /* CRC-32 of the value line (TYPEI/TYPEV): this read's, the reference's */
     fbrl_status result;
     int busy;
     fbrl_link_stats stats;

@@ -111,12 +111,13 @@ static int cut_at_minus(const char *log, const char *line)
     return 0;
 }
 
-/* 8N1: the command that had nothing run (reported not run) just before journal entry x
- * whose line the log line is a cut of, or NULL. */
+/* 8N1: the command whose runs (none, or some before a retype) end just before journal
+ * entry x and whose line the log line is a cut of, or NULL: a typing the link gave up
+ * (its echo never matched), while a '-' of it, turned into CR, ran what came before. */
 static const char *cut_of_unrun(const char *log, size_t x)
 {
     for (size_t c = 0; c < ncmds; c++)
-        if (cmds[c].from == x && cmds[c].to == x && cut_at_minus(log, cmds[c].line))
+        if (cmds[c].to == x && cut_at_minus(log, cmds[c].line))
             return cmds[c].line;
     return NULL;
 }
@@ -330,13 +331,17 @@ int main(int argc, char **argv)
             jx++;
         for (; jx < nexec && !strcmp(exec_lines[jx], line); jx++)
             exec_maybe[jx] ? jm++ : jd++;
-        while (i + lc < nlog && !strcmp(logl[i + lc], line))
-            lc++;
         /* 8N1: a run the link counted may have run altered by an invisible double flip
-         * (3.6), right after the exact ones; only as many as the link's count needs */
+         * (3.6), anywhere among the exact ones; only as many as the link's count needs */
         size_t lf = 0;
-        while (parity == 'N' && lc + lf < jd && i + lc + lf < nlog && one_bit_apart(logl[i + lc + lf], line))
-            lf++;
+        while (i + lc + lf < nlog) {
+            if (!strcmp(logl[i + lc + lf], line))
+                lc++;
+            else if (parity == 'N' && lc + lf < jd && one_bit_apart(logl[i + lc + lf], line))
+                lf++;
+            else
+                break;
+        }
         if (jd + jm > 0 && jd <= lc + lf && lc + lf <= jd + jm) {
             /* each run the link proved is one of these log lines, the rest ran of those
              * that may have (in order) */
@@ -387,7 +392,7 @@ int main(int argc, char **argv)
         } else if (parity == 'N' && (cut_from = cut_of_unrun(line, x)) != NULL) {
             /* the same cut, of a command whose typing the link then gave up (its echo never
              * matched: it reported it not run, and this prefix of it ran: 3.4) */
-            fprintf(stderr, "log line %zu: '%s' ran, cut from '%s' (reported not run) by a '-' turned into CR\n",
+            fprintf(stderr, "log line %zu: '%s' ran, cut from '%s' (a typing given up) by a '-' turned into CR\n",
                     i + 1, line, cut_from);
             cuts++;
             if (x < nexec)

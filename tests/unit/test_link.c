@@ -420,6 +420,37 @@ static void three_stray_bytes_around_a_probe_are_no_proof(void **state)
     assert_int_equal(s->c.nlog, 0);
 }
 
+/* 8N1: the CR turns into 'M' on its way in, and the echo of that 'M' into a CR again on
+ * its way out (3.6): a CR alone comes back, as from a line that ran whose LF and prompt
+ * were lost. With the probe's '?' lost as well, nothing proves either way: a line not safe
+ * to repeat "may have run" and never ran (it was once reported run). */
+static void a_lone_cr_is_no_proof_on_8n1(void **state)
+{
+    session *s = *state;
+    s->c.nlog = 0;
+    ctl_rule(&s->c, IN, '\r', 0, REPLACE, 'M');
+    ctl_rule(&s->c, OUT, 'M', 0, REPLACE, '\r');
+    ctl_rule(&s->c, OUT, '?', 0, DROP, 0);
+    assert_int_equal(run(s, "V1=V1+1", FBRL_LINK_REPLY_NONE), FBRL_EMAYBE);
+    assert_int_equal(s->c.nlog, 0);
+}
+
+/* 8N1: two reads of TYPEV agree in value and length but not in text: "+72.330000" (the '8'
+ * dropped) and "+072.33000" (the '8' flipped to '0', the last '0' dropped). They are not
+ * taken for two agreeing reads of 72.33; the controller's +872.33 is. */
+static void reads_that_agree_only_in_value_and_length_do_not_agree(void **state)
+{
+    session *s = *state;
+    double v = 0;
+    s->c.typev = "+872.330000";
+    ctl_rule(&s->c, OUT, '8', 0, DROP, 0);
+    ctl_rule(&s->c, OUT, '8', 0, REPLACE, '0');
+    ctl_rule(&s->c, OUT, '0', 7, DROP, 0); /* read 1 has four 0s; this is read 2's fourth */
+    assert_int_equal(run(s, "TYPEV V2", FBRL_LINK_REPLY_REAL), FBRL_OK);
+    assert_int_equal(fbrl_link_last_real(&s->l, &v), FBRL_OK);
+    assert_true(v == 872.33);
+}
+
 /* The echo of the last character never comes: no CR is sent for an unconfirmed line;
  * it is erased and typed again. */
 static void lost_last_echo_is_retyped(void **state)
@@ -1047,6 +1078,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(parity_errors_are_damage, setup_even, teardown),
         cmocka_unit_test_setup_teardown(space_of_a_damaged_probe_is_no_proof, setup_even, teardown),
         cmocka_unit_test_setup_teardown(three_stray_bytes_around_a_probe_are_no_proof, setup, teardown),
+        cmocka_unit_test_setup_teardown(a_lone_cr_is_no_proof_on_8n1, setup, teardown),
+        cmocka_unit_test_setup_teardown(reads_that_agree_only_in_value_and_length_do_not_agree, setup, teardown),
         cmocka_unit_test_setup_teardown(clear_line_before_raw_output, setup, teardown),
         cmocka_unit_test_setup_teardown(unsafe_line_is_never_retyped_without_proof, setup, teardown),
         cmocka_unit_test_setup_teardown(lost_reply_is_settled_not_guessed, setup, teardown),
