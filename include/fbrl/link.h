@@ -240,6 +240,7 @@ typedef struct fbrl_link {
     long prev_i;
     double prev_r;
     uint32_t val_sum, prev_sum; /* CRC-32 of the value line (TYPEI/TYPEV): this read's, the reference's */
+    size_t val_len, val_longest; /* its length; the longest well-formed value line of this query */
     fbrl_status result;
     int busy;
     fbrl_link_stats stats;
