@@ -401,7 +401,9 @@ class Page:
         if self.st.lock.locked:
             return {"t": "error", "message": "a SiLA client has locked the station (LockController)"}
         if op == "run":
-            return self._run(req["method"], [(k, int(v)) for k, v in req.get("params", {}).items()], who)
+            s = self.sign_in.session(self.sessions[ws]) if ws in self.sessions else None
+            return self._run(req["method"], [(k, int(v)) for k, v in req.get("params", {}).items()], who,
+                             s.role if s is not None else None)
         e = self._current()
         if e is None:
             return {"t": "error", "message": "no method run goes"}
@@ -419,7 +421,7 @@ class Page:
             return None
         return {"t": "error", "message": "unknown request %r" % op}
 
-    def _run(self, method, given, who):
+    def _run(self, method, given, who, role=None):
         runs = self.st.runs
         if runs.library.find(method) is None:
             return {"t": "error", "message": "the method library has no method %s" % method}
@@ -430,7 +432,7 @@ class Page:
         except ValueError as e:
             return {"t": "error", "message": str(e)}
         ml = next(s for s in self.st.servicers if s.FEATURE == "MethodLibrary")
-        e = ml.launch_run(method, values, who)
+        e = ml.launch_run(method, values, who, role)
         return {"t": "started", "uuid": e.uuid, "method": method}
 
     async def _dry_run(self, req):

@@ -20,7 +20,8 @@ from conftest import ROOT, MethodLab, launcher, wait_for
 
 websocket = pytest.importorskip("websocket", reason="python3-websocket is the WebSocket client")
 
-PASSWORDS = {"admin": "admin-pass-1", "ann": "ann-pass-12", "bob": "bob-pass-123"}
+PASSWORDS = {"admin": "admin-pass-1", "ann": "ann-pass-12", "bob": "bob-pass-123", "dev": "dev-pass-1234",
+             "rev": "rev-pass-1234"}
 
 
 def own_address():
@@ -39,6 +40,13 @@ def fbrl_users(lab, *args, stdin=""):
     return r.stdout
 
 
+def fbrl_audit(lab, *args, stdin=""):
+    path = os.environ.get("FBRL_AUDIT") or os.path.join(ROOT, "build", "apps", "fbrl-audit")
+    r = subprocess.run([path, "--lab", lab] + list(args), input=stdin, capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, (args, r.stdout, r.stderr)
+    return r.stdout
+
+
 def listed(lab, name):
     """fbrl-users list's line of a user: [name, role, state, wrong passwords, ...]."""
     return next(l.split() for l in fbrl_users(lab, "list").splitlines() if l.split()[:1] == [name])
@@ -48,8 +56,8 @@ def make_lab(directory):
     lab = os.path.join(directory, "lab")
     os.makedirs(lab)
     fbrl_users(lab, "setup", "admin", stdin=PASSWORDS["admin"] + "\n")
-    for name in ("ann", "bob"):
-        fbrl_users(lab, "--as", "admin", "add", name, "operator", stdin="%s\n%s\n" % (PASSWORDS["admin"], PASSWORDS[name]))
+    for name, role in (("ann", "operator"), ("bob", "operator"), ("dev", "developer"), ("rev", "reviewer")):
+        fbrl_users(lab, "--as", "admin", "add", name, role, stdin="%s\n%s\n" % (PASSWORDS["admin"], PASSWORDS[name]))
     return lab
 
 
@@ -207,20 +215,55 @@ def test_a_signed_in_operator_gets_the_page_and_the_websocket(page):
     assert e.value.status_code == 401
 
 
-def test_an_operator_runs_a_method(page):
-    _, cookie, _ = page.sign_in("ann")
+def run_from_page(page, cookie, method, params):
+    """Take control and run method from a page signed in with cookie; its end message."""
     ws = page.ws(cookie)
     try:
         receive(ws, ("hello",))
         ws.send(json.dumps({"op": "control"}))
-        assert receive(ws, ("control", "error"))["by"].startswith("ann (")
-        before = len(page.sim.log())
-        ws.send(json.dumps({"op": "run", "method": "QUICK", "params": {"#ITEMS": 1, "HOLD-DS": 1}}))
+        assert receive(ws, ("control", "error"))["t"] == "control"
+        ws.send(json.dumps({"op": "run", "method": method, "params": params}))
         assert receive(ws, ("started", "error"))["t"] == "started"
-        end = receive(ws, ("end",), seconds=120)
-        assert end["outcome"] == "completed", end
+        return receive(ws, ("end",), seconds=120)
     finally:
         ws.close()
+
+
+MOTION = ("OUTPUT", "MOVE", "APPRO", "DEPART", "JOINT", "SPEED")
+
+
+def test_a_sila_client_in_the_lab_counts_as_an_operator(page):
+    """A SiLA client is no user of the lab: a Draft is refused it as an operator's run would be
+    (before the next test releases the tests' methods)."""
+    from client import Failure
+    from fbrl_station.sila import S
+    before = len(page.sim.log())
+    uuid = page.client.start("MethodLibrary", "RunMethod", Method=S("CROSS"), Parameters=[])
+    list(page.client.info("MethodLibrary", "RunMethod", uuid))
+    with pytest.raises(Failure) as e:
+        page.client.result("MethodLibrary", "RunMethod", uuid)
+    assert e.value.identifier == "MethodNotReleased", e.value.message
+    assert re.search(r", operator: CROSS \(station_tests.fbrl\): \w+: refused: version \w+ is Draft", e.value.message), e.value.message
+    assert not [l for l in page.sim.log()[before:] if l.startswith(MOTION)]
+
+
+def test_an_operator_runs_a_released_method_and_not_a_draft(page):
+    """As fbrlmon in a lab (tests/e2e/console_audit.sh): an operator runs only a Released version,
+    by the lab's audit trail; a developer may run the Draft only where the lab allows Drafts."""
+    quick = os.path.join(page.lib, "station_tests.fbrl")
+    _, cookie, _ = page.sign_in("ann")
+    before = len(page.sim.log())
+    end = run_from_page(page, cookie, "QUICK", {"#ITEMS": 1, "HOLD-DS": 1})
+    assert end["outcome"] == "error" and "MethodNotReleased" in end["summary"], end
+    assert re.search(r"ann \(.*\), operator: QUICK \(station_tests.fbrl\): QUICK: refused: version \w+ is Draft", end["summary"]), end
+    _, dcookie, _ = page.sign_in("dev")
+    end = run_from_page(page, dcookie, "QUICK", {"#ITEMS": 1, "HOLD-DS": 1})  # the lab allows no Drafts
+    assert re.search(r"dev \(.*\), developer: QUICK \(station_tests.fbrl\): QUICK: refused: .*Draft", end["summary"]), end
+    assert not [l for l in page.sim.log()[before:] if l.startswith(MOTION)]  # nothing moved
+    fbrl_audit(page.labdir, "method", "submit", quick, "--as", "dev", stdin=PASSWORDS["dev"] + "\n")
+    fbrl_audit(page.labdir, "method", "release", quick, "--as", "rev", stdin=PASSWORDS["rev"] + "\n")
+    end = run_from_page(page, cookie, "QUICK", {"#ITEMS": 1, "HOLD-DS": 1})
+    assert end["outcome"] == "completed", end
     assert "OUTPUT 1" in page.sim.log()[before:]  # the pump ran on the controller
     status, _, _, text, _ = page.request("GET", "/api/history", cookie=cookie.split(";")[0])
     assert status == 200 and json.loads(text)[0]["by"].startswith("ann ("), text  # the run's record names her
