@@ -66,7 +66,7 @@ void con_push_error(console *c, const char *where, const char *msg)
     memmove(c->errs[1], c->errs[0], sizeof c->errs[0] * (ERR_LINES - 1));
     memmove(c->advice[1], c->advice[0], sizeof c->advice[0] * (ERR_LINES - 1));
     con_textf(c->errs[0], sizeof c->errs[0], "%s%s%s", where ? where : "", where ? ": " : "", msg);
-    con_textf(c->advice[0], sizeof c->advice[0], "-> %s", mon_runlog_advice(msg));
+    con_textf(c->advice[0], sizeof c->advice[0], "-> %s", fbrl_runlog_advice(msg));
 }
 
 ssize_t con_out_write(void *ctx, const char *s, size_t n)

@@ -49,29 +49,6 @@ static int chain_write(void *ctx, const char *s, size_t n)
     return -1;
 }
 
-/* Plain words for the errors an operator meets; the message itself comes first. */
-const char *mon_runlog_advice(const char *msg)
-{
-    static const struct {
-        const char *seen, *advice;
-    } table[] = {
-        {"aborted by the operator", "arm at its safe place, outputs off: start again when ready"},
-        {"user interrupt", "arm at its safe place, outputs off: start again when ready"},
-        {"HAS NOT BEEN HOMED", "home the arm (HOME at the prompt, or the pendant), then start again"},
-        {"ARM POWER", "switch the arm's power on, then start again"},
-        {"TRANSFORM ILLEGAL", "a position is out of the arm's reach: have the method developer check it"},
-        {"OUT OF RANGE", "a joint would pass its limit: have the method developer check positions"},
-        {"disconnected", "check the cable and the controller's power, then reconnect (RECONNECT)"},
-        {"timed out", "the controller did not answer: check cable and controller, then retry"},
-        {"not separated", "check that the tube is in the gripper and the sensor is clean"},
-        {"undefined word", "the method file has an error: tell the method developer"},
-    };
-    for (size_t i = 0; msg && i < sizeof table / sizeof table[0]; i++)
-        if (strstr(msg, table[i].seen))
-            return table[i].advice;
-    return "read the message, fix the cause, and start the method again";
-}
-
 /* The calibration in force, in words: the WITH-CAL structure's name and MAP-ON/OFF. */
 typedef struct cal_find {
     mon *m;
@@ -205,33 +182,6 @@ static int log_begin(mon_runlog *r, const fbrl_method *meth)
     return 0;
 }
 
-/* "Buffer, sample 2" (samples numbered from 1, as people do), or the step alone. */
-static const char *where_of(const fbrl_run_event *ev, char *buf, size_t cap)
-{
-    const char *step = ev->step >= 0 ? ev->method->steps[ev->step].name : ev->method->name;
-    if (ev->sample >= 0)
-        snprintf(buf, cap, "%s, sample %ld", step, ev->sample + 1);
-    else
-        snprintf(buf, cap, "%s", step);
-    return buf;
-}
-
-/* The run is over: the summary with every sample's outcome, the file closed. */
-static void log_end(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
-{
-    static fbrl_run_snap s; /* large: one run log per process */
-    fbrl_runlog_outcome out[FBRL_RUN_MAX_SAMPLES];
-    size_t n = 0;
-    if (fbrl_run_snapshot(run, &s) == FBRL_OK)
-        for (long i = 0; i < s.samples && i < FBRL_RUN_MAX_SAMPLES; i++, n++) {
-            out[n].sample = i + 1;
-            out[n].outcome = fbrl_run_sample_name((fbrl_run_sample_outcome)s.outcomes[i].outcome);
-            out[n].reason = s.outcomes[i].reason;
-        }
-    fbrl_runlog_end(&r->log, fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), out, n);
-    mon_audit_run_end(&r->audit); /* sealed */
-}
-
 /* A run that did not complete, told on stderr (fbrlmon without the console): the outcome,
  * and every sample that did not succeed with why. */
 static void tell_outcome(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
@@ -258,10 +208,9 @@ static void tell_outcome(mon_runlog *r, fbrl_run *run, const fbrl_run_event *ev)
 
 static int observe(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
 {
-    static const char *const choices[] = {"", "retry", "skip the sample", "abort"};
+    static fbrl_run_snap snap; /* large: one run log per process */
     mon_runlog *r = ctx;
     fbrl_runlog *l = &r->log;
-    char where[96], text[320];
     if (ev->kind == FBRL_RUN_EV_END && ev->outcome != FBRL_RUN_COMPLETED && r->m->counting)
         r->m->runs_incomplete++; /* fbrlmon's exit status: a run from a file, -e or a pipe */
     if (ev->kind == FBRL_RUN_EV_END)
@@ -270,50 +219,9 @@ static int observe(void *ctx, fbrl_run *run, const fbrl_run_event *ev)
         return log_begin(r, ev->method);
     if (!fbrl_runlog_is_open(l))
         return 0;
-    switch (ev->kind) {
-    case FBRL_RUN_EV_STEP_BEGIN:
-        fbrl_runlog_step_start(l, ev->method->steps[ev->step].name, ev->sample >= 0 ? ev->sample + 1 : -1);
-        break;
-    case FBRL_RUN_EV_STEP_END:
-        if (ev->text)
-            fbrl_runlog_error(l, where_of(ev, where, sizeof where), ev->text, mon_runlog_advice(ev->text));
-        fbrl_runlog_step_end(l, ev->method->steps[ev->step].name, ev->sample >= 0 ? ev->sample + 1 : -1,
-                             ev->text);
-        break;
-    case FBRL_RUN_EV_SAMPLE:
-        fbrl_runlog_sample(l, ev->sample + 1, fbrl_run_sample_name((fbrl_run_sample_outcome)ev->outcome),
-                           ev->text);
-        break;
-    case FBRL_RUN_EV_RECOVERY: /* a corrective action taken (ON-FAILURE) */
-        if (ev->sample >= 0)
-            snprintf(where, sizeof where, "%s, sample %ld", ev->where, ev->sample + 1);
-        else
-            snprintf(where, sizeof where, "%s", ev->where);
-        snprintf(text, sizeof text, "%s: %s", ev->kind_name, ev->text);
-        fbrl_runlog_error(l, where, text, ev->action);
-        snprintf(text, sizeof text, "%s: %s (%s): %s", where, ev->kind_name, ev->text, ev->action);
-        fbrl_runlog_note(l, "recovery", NULL, text);
-        break;
-    case FBRL_RUN_EV_QUESTION: fbrl_runlog_note(l, "question", NULL, ev->text); break;
-    case FBRL_RUN_EV_ANSWER:
-        fbrl_runlog_note(l, "answer", ev->who, ev->choice >= 1 && ev->choice <= 3 ? choices[ev->choice] : "");
-        break;
-    case FBRL_RUN_EV_PAUSE:
-        snprintf(text, sizeof text, "before %s", where_of(ev, where, sizeof where));
-        fbrl_runlog_note(l, "pause", ev->who, text);
-        break;
-    case FBRL_RUN_EV_RESUME: fbrl_runlog_note(l, "resume", ev->who, NULL); break;
-    case FBRL_RUN_EV_ABORT: fbrl_runlog_note(l, "abort", ev->who, NULL); break;
-    case FBRL_RUN_EV_SAFE_STOP: fbrl_runlog_note(l, "safe-stop", NULL, ev->text); break;
-    case FBRL_RUN_EV_ON_ABORT:
-        if (ev->text)
-            fbrl_runlog_error(l, "ON-ABORT", ev->text, "check where the arm is before the next run");
-        else
-            fbrl_runlog_note(l, "on-abort", NULL, "the method's way to its safe place ran");
-        break;
-    case FBRL_RUN_EV_END: log_end(r, run, ev); break;
-    default: break;
-    }
+    fbrl_runlog_event(l, run, ev, &snap); /* the records, as every program writes them */
+    if (ev->kind == FBRL_RUN_EV_END)
+        mon_audit_run_end(&r->audit); /* sealed */
     return 0;
 }
 

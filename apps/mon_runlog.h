@@ -62,8 +62,6 @@ int mon_runlog_observe_again(mon_runlog *r);
 void mon_runlog_set_path(mon_runlog *r, const char *path);
 /* The link's on_exec (mon_conn_options.on_exec, ctx = the mon_runlog). */
 void mon_runlog_exec(void *ctx, const char *line, size_t len, fbrl_status result);
-/* What to do about an error message, in plain words (never NULL). */
-const char *mon_runlog_advice(const char *message);
 /* Microseconds of the monotonic clock. */
 uint64_t mon_runlog_now_us(void *ctx);
 

@@ -2,6 +2,7 @@
 /* runlog.c - the run log: JSON Lines records built in a fixed buffer, one sink write each;
  * a poll repeated while the controller is waited for is one record with its count. */
 #include "fbrl/runlog.h"
+#include "fbrl/run.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -445,4 +446,99 @@ fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome, const fbrl_runl
         st = text_line(l, buf);
     l->open = 0;
     return st != FBRL_OK ? st : l->failed;
+}
+
+/* ---- a run's records ---- */
+
+const char *fbrl_runlog_advice(const char *msg)
+{
+    static const struct {
+        const char *seen, *advice;
+    } table[] = {
+        {"aborted by the operator", "arm at its safe place, outputs off: start again when ready"},
+        {"user interrupt", "arm at its safe place, outputs off: start again when ready"},
+        {"HAS NOT BEEN HOMED", "home the arm (HOME at the prompt, or the pendant), then start again"},
+        {"ARM POWER", "switch the arm's power on, then start again"},
+        {"TRANSFORM ILLEGAL", "a position is out of the arm's reach: have the method developer check it"},
+        {"OUT OF RANGE", "a joint would pass its limit: have the method developer check positions"},
+        {"disconnected", "check the cable and the controller's power, then reconnect (RECONNECT)"},
+        {"timed out", "the controller did not answer: check cable and controller, then retry"},
+        {"not separated", "check that the tube is in the gripper and the sensor is clean"},
+        {"undefined word", "the method file has an error: tell the method developer"},
+    };
+    for (size_t i = 0; msg && i < sizeof table / sizeof table[0]; i++)
+        if (strstr(msg, table[i].seen))
+            return table[i].advice;
+    return "read the message, fix the cause, and start the method again";
+}
+
+/* "Buffer, sample 2" (samples numbered from 1, as people do), or the step alone. */
+static const char *where_of(const fbrl_run_event *ev, char *buf, size_t cap)
+{
+    const char *step = ev->step >= 0 ? ev->method->steps[ev->step].name : ev->method->name;
+    if (ev->sample >= 0)
+        snprintf(buf, cap, "%s, sample %ld", step, ev->sample + 1);
+    else
+        snprintf(buf, cap, "%s", step);
+    return buf;
+}
+
+/* The summary: every sample's outcome from the run's snapshot. */
+static fbrl_status log_end(fbrl_runlog *l, fbrl_run *run, const fbrl_run_event *ev, fbrl_run_snap *s)
+{
+    fbrl_runlog_outcome out[FBRL_RUN_MAX_SAMPLES];
+    size_t n = 0;
+    if (fbrl_run_snapshot(run, s) == FBRL_OK)
+        for (long i = 0; i < s->samples && i < FBRL_RUN_MAX_SAMPLES; i++, n++) {
+            out[n].sample = i + 1;
+            out[n].outcome = fbrl_run_sample_name((fbrl_run_sample_outcome)s->outcomes[i].outcome);
+            out[n].reason = s->outcomes[i].reason;
+        }
+    return fbrl_runlog_end(l, fbrl_run_outcome_name((fbrl_run_outcome)ev->outcome), out, n);
+}
+
+fbrl_status fbrl_runlog_event(fbrl_runlog *l, fbrl_run *run, const fbrl_run_event *ev, fbrl_run_snap *scratch)
+{
+    static const char *const choices[] = {"", "retry", "skip the sample", "abort"};
+    char where[96], text[320];
+    if (!l || !run || !ev || !scratch)
+        return FBRL_EINVAL;
+    if (!fbrl_runlog_is_open(l) || ev->method == NULL)
+        return FBRL_OK;
+    switch (ev->kind) {
+    case FBRL_RUN_EV_STEP_BEGIN:
+        return fbrl_runlog_step_start(l, ev->method->steps[ev->step].name, ev->sample >= 0 ? ev->sample + 1 : -1);
+    case FBRL_RUN_EV_STEP_END:
+        if (ev->text)
+            fbrl_runlog_error(l, where_of(ev, where, sizeof where), ev->text, fbrl_runlog_advice(ev->text));
+        return fbrl_runlog_step_end(l, ev->method->steps[ev->step].name, ev->sample >= 0 ? ev->sample + 1 : -1,
+                                    ev->text);
+    case FBRL_RUN_EV_SAMPLE:
+        return fbrl_runlog_sample(l, ev->sample + 1, fbrl_run_sample_name((fbrl_run_sample_outcome)ev->outcome),
+                                  ev->text);
+    case FBRL_RUN_EV_RECOVERY: /* a corrective action taken (ON-FAILURE) */
+        if (ev->sample >= 0)
+            snprintf(where, sizeof where, "%s, sample %ld", ev->where, ev->sample + 1);
+        else
+            snprintf(where, sizeof where, "%s", ev->where);
+        snprintf(text, sizeof text, "%s: %s", ev->kind_name, ev->text);
+        fbrl_runlog_error(l, where, text, ev->action);
+        snprintf(text, sizeof text, "%s: %s (%s): %s", where, ev->kind_name, ev->text, ev->action);
+        return fbrl_runlog_note(l, "recovery", NULL, text);
+    case FBRL_RUN_EV_QUESTION: return fbrl_runlog_note(l, "question", NULL, ev->text);
+    case FBRL_RUN_EV_ANSWER:
+        return fbrl_runlog_note(l, "answer", ev->who, ev->choice >= 1 && ev->choice <= 3 ? choices[ev->choice] : "");
+    case FBRL_RUN_EV_PAUSE:
+        snprintf(text, sizeof text, "before %s", where_of(ev, where, sizeof where));
+        return fbrl_runlog_note(l, "pause", ev->who, text);
+    case FBRL_RUN_EV_RESUME: return fbrl_runlog_note(l, "resume", ev->who, NULL);
+    case FBRL_RUN_EV_ABORT: return fbrl_runlog_note(l, "abort", ev->who, NULL);
+    case FBRL_RUN_EV_SAFE_STOP: return fbrl_runlog_note(l, "safe-stop", NULL, ev->text);
+    case FBRL_RUN_EV_ON_ABORT:
+        if (ev->text)
+            return fbrl_runlog_error(l, "ON-ABORT", ev->text, "check where the arm is before the next run");
+        return fbrl_runlog_note(l, "on-abort", NULL, "the method's way to its safe place ran");
+    case FBRL_RUN_EV_END: return log_end(l, run, ev, scratch);
+    default: return FBRL_OK;
+    }
 }

@@ -52,7 +52,13 @@ extern "C" {
     X(USERS, fbrl_users)                       \
     X(USER, fbrl_user)                         \
     X(CELL_WORDS, fbrl_cell_words)             \
-    X(METHOD_VERSION, fbrl_method_version)
+    X(METHOD_VERSION, fbrl_method_version)     \
+    X(RUNLOG, fbrl_runlog)                     \
+    X(RUNLOG_HEADER, fbrl_runlog_header)       \
+    X(RUNLOG_PARAM, fbrl_runlog_param)         \
+    X(AUDIT_KEY, fbrl_audit_key)               \
+    X(AUDIT_VERIFIER, fbrl_audit_verifier)     \
+    X(AUDIT_FILE, fbrl_audit_file)
 
 #define FBRL_ABI_ENUM_(code, type) FBRL_ABI_##code,
 typedef enum fbrl_abi_type { FBRL_ABI_TYPES(FBRL_ABI_ENUM_) FBRL_ABI_TYPE_COUNT } fbrl_abi_type;

@@ -138,6 +138,26 @@ FBRL_API fbrl_status fbrl_runlog_sample(fbrl_runlog *l, long sample, const char 
 FBRL_API fbrl_status fbrl_runlog_end(fbrl_runlog *l, const char *outcome, const fbrl_runlog_outcome *samples,
                                      size_t n);
 
+/* ---- a run's records (fbrl/run.h) ---- */
+
+struct fbrl_run;
+struct fbrl_run_event;
+struct fbrl_run_snap;
+
+/* The record(s) of one event of a method run (an fbrl_run_observer_fn passes it on), as
+ * every program that keeps run logs writes them: a step's start and end (a failed one
+ * with an "error" record in plain words), a sample's outcome, a corrective action, a
+ * question and its answer, pause, resume and abort with who asked, the safe stop and
+ * ON-ABORT; at the end the summary with every sample's outcome (fbrl_runlog_end; the
+ * run's snapshot is read into scratch). BEGIN writes nothing: the caller opens the log
+ * with its header (fbrl_runlog_begin), which only it knows. A log that is not open
+ * writes nothing (FBRL_OK). FBRL_EINVAL for NULLs; else as the record's write. */
+FBRL_API fbrl_status fbrl_runlog_event(fbrl_runlog *l, struct fbrl_run *run, const struct fbrl_run_event *ev,
+                                       struct fbrl_run_snap *scratch);
+/* Plain words for what to do about an error an operator meets (a run's failure text):
+ * never NULL. */
+FBRL_API const char *fbrl_runlog_advice(const char *msg);
+
 #ifdef __cplusplus
 }
 #endif

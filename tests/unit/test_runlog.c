@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "fbrl/runlog.h"
+#include "fbrl/run.h"
 
 typedef struct sink {
     char buf[65536];
@@ -266,6 +267,47 @@ static void a_summary_of_many_samples_stays_whole(void **state)
     assert_non_null(strstr(k.buf, "\"text\":\"... and 30 more (the summary record lists every sample)\""));
 }
 
+/* A run's events as every program records them (fbrl_runlog_event): the step with its
+ * sample numbered from 1, who paused, a failure with its plain advice; nothing in a log
+ * that is not open; NULLs refused. (The summary at END: tests/e2e, python test_audit.py.) */
+static void a_runs_events_become_its_records(void **state)
+{
+    static fbrl_method m;
+    static fbrl_run_snap snap;
+    fbrl_run *run = (fbrl_run *)(void *)&snap; /* not read but at END */
+    sink k;
+    fbrl_runlog l;
+    char line[1024];
+    (void)state;
+    memset(&m, 0, sizeof m);
+    strcpy(m.name, "M");
+    strcpy(m.steps[0].name, "Spin");
+    m.nsteps = 1;
+    fbrl_run_event ev = {FBRL_RUN_EV_STEP_BEGIN, &m, 0, 1, 0, 0, FBRL_OK, NULL, "", NULL, NULL, NULL};
+    begin_m(&k, &l);
+    assert_int_equal(fbrl_runlog_event(&l, run, &ev, &snap), FBRL_OK);
+    assert_non_null(strstr(nth_line(&k, 1, line, sizeof line), "\"type\":\"step_start\""));
+    assert_non_null(strstr(line, "\"step\":\"Spin\",\"sample\":2"));
+    ev.kind = FBRL_RUN_EV_PAUSE;
+    ev.who = "ann";
+    assert_int_equal(fbrl_runlog_event(&l, run, &ev, &snap), FBRL_OK);
+    assert_non_null(strstr(nth_line(&k, 2, line, sizeof line), "\"event\":\"pause\",\"operator\":\"ann\""));
+    assert_non_null(strstr(line, "before Spin, sample 2"));
+    ev.kind = FBRL_RUN_EV_STEP_END;
+    ev.text = "040-ARM POWER HAS BEEN SWITCHED OFF.";
+    assert_int_equal(fbrl_runlog_event(&l, run, &ev, &snap), FBRL_OK);
+    assert_non_null(strstr(nth_line(&k, 3, line, sizeof line), "switch the arm's power on"));
+    assert_non_null(strstr(nth_line(&k, 4, line, sizeof line), "\"type\":\"step_end\""));
+    unsigned writes = k.writes;
+    fbrl_runlog closed;
+    memset(&closed, 0, sizeof closed);
+    assert_int_equal(fbrl_runlog_event(&closed, run, &ev, &snap), FBRL_OK);
+    assert_int_equal(k.writes, writes);
+    assert_int_equal(fbrl_runlog_event(NULL, run, &ev, &snap), FBRL_EINVAL);
+    assert_int_equal(fbrl_runlog_event(&l, run, &ev, NULL), FBRL_EINVAL);
+    assert_string_equal(fbrl_runlog_advice(NULL), "read the message, fix the cause, and start the method again");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -275,6 +317,7 @@ int main(void)
         cmocka_unit_test(a_failing_sink_is_reported),
         cmocka_unit_test(polls_are_folded),
         cmocka_unit_test(a_summary_of_many_samples_stays_whole),
+        cmocka_unit_test(a_runs_events_become_its_records),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
