@@ -25,12 +25,13 @@ from .run import Run
 from .users import Users
 from .arm import Arm
 from .release import method_version, method_release
+from .audit import AuditTrail, RunLog
 
 __all__ = [
     "Error", "ControllerError", "Location", "Calibration", "DataFile", "CHR", "INTEGER", "LONG",
     "REAL", "LOCATION", "user_type", "Port", "Link", "Position", "Status", "Engine", "version",
     "status_name", "status_text", "FATES", "PortInfo", "list_ports", "Stop", "Users", "Arm", "method_version",
-    "method_release",
+    "method_release", "AuditTrail", "RunLog",
 ]
 
 __version__ = ffi.string(lib.fbrl_version()).decode()

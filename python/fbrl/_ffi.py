@@ -306,17 +306,28 @@ for _name in DECLARED:
                           % (_name, _have, _want))
 
 
+def abi_code(name):
+    """The library's fbrl_abi_type code of a struct, found by its name (never hard-coded)."""
+    for code in range(256):
+        n = lib.fbrl_abi_name(code)
+        if n == ffi.NULL:
+            break
+        if ffi.string(n).decode() == name:
+            return code
+    raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % name)
+
+
+def opaque_later(*names):
+    """Structs a module only passes around (alloc() them): each one's code by its name."""
+    for name in names:
+        ABI.setdefault(name, abi_code(name))
+
+
 def declared_later(*names):
     """Structs a module declares after this one (its own cdef): each one's fbrl_abi_type code
     found by its name in the library, and its layout required to be the library's."""
     for name in names:
-        for code in range(256):
-            n = lib.fbrl_abi_name(code)
-            if n == ffi.NULL:
-                raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % name)
-            if ffi.string(n).decode() == name:
-                ABI.setdefault(name, code)
-                break
+        ABI.setdefault(name, abi_code(name))
         have, want = (ffi.sizeof(name), ffi.alignof(name)), (lib.fbrl_abi_size(ABI[name]), lib.fbrl_abi_align(ABI[name]))
         if have != want:
             raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"

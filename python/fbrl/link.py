@@ -187,6 +187,7 @@ class Link:
                     raise ValueError("Link setting %s=%r: out of range" % (key, value)) from None
         self._link = alloc("fbrl_link")
         self._lines = []  # (bytes, flawed) of the command running
+        self._exec_observers = []  # on_exec's
         self._errors = []  # exceptions raised inside a callback, for the caller
         self._sig = None  # the Ctrl-C deferral of the call in progress
         # what this program did through the link, as the controller ran it (every line,
@@ -236,8 +237,28 @@ class Link:
     def _line(self, ctx, line, n, flawed):
         self._lines.append((ffi.unpack(line, n), bool(flawed)))
 
+    def on_exec(self, fn):
+        """fn(line, result, code, run) for every line the controller executed (or may have),
+        on the thread that sent it: the line (bytes), the link's result (an fbrl_status), the
+        controller's error code when it refused the line (else -1), and which run of the line
+        it was (2: the link typed it again; 0: unknown). Returns fn, for remove_exec(fn)."""
+        self._exec_observers = self._exec_observers + [fn]
+        return fn
+
+    def remove_exec(self, fn):
+        self._exec_observers = [f for f in self._exec_observers if f is not fn]
+
     def _exec(self, ctx, line, n, result):
         text = ffi.unpack(line, n)
+        observers = self._exec_observers
+        if observers:
+            code, msg = ffi.new("int *", -1), ffi.new("const char **")
+            runs, maybe = ffi.new("unsigned *"), ffi.new("unsigned *")
+            if status_name(result) == "FBRL_ECONTROLLER":
+                lib.fbrl_link_error(self._link.ptr, code, msg)
+            lib.fbrl_link_get_runs(self._link.ptr, runs, maybe)
+            for fn in observers:
+                fn(text, result, code[0], runs[0] + maybe[0])
         effect, on = ffi.new("unsigned *"), ffi.new("uint32_t *")
         lib.fbrl_robot_line_effect(text, effect, on)  # the robot words' own rules
         if result not in (FBRL_OK, status_code("FBRL_EMAYBE")):

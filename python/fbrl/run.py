@@ -15,7 +15,7 @@ the run's last snapshot; pause(), resume(), abort(), answer() and snapshot() may
 from any other thread meanwhile. Samples are numbered from 1, as in the run log. Thin: the
 run, its outcomes and its rules are the library's (docs/c-programs.md, "Method runs").
 """
-from ._ffi import ffi, lib, alloc, ABI
+from ._ffi import ffi, lib, alloc, declared_later, opaque_later
 from ._errors import Error, check
 from ._errors import status_code as _status
 
@@ -109,24 +109,8 @@ const char *fbrl_run_sample_name(int o);
 """, override=True)
 
 
-def _abi_code(name):
-    """The library's fbrl_abi_type code of a struct, found by its name (never hard-coded)."""
-    for code in range(256):
-        n = lib.fbrl_abi_name(code)
-        if n == ffi.NULL:
-            break
-        if ffi.string(n).decode() == name:
-            return code
-    raise ImportError("fbrl: the library does not know %s: it is older than these bindings" % name)
-
-
-for _name in ("fbrl_method_set", "fbrl_recover", "fbrl_run", "fbrl_run_snap", "fbrl_run_event", "fbrl_method"):
-    ABI.setdefault(_name, _abi_code(_name))
-for _name in ("fbrl_run_snap", "fbrl_run_event", "fbrl_method"):  # declared in full above
-    _have, _code = (ffi.sizeof(_name), ffi.alignof(_name)), ABI[_name]
-    if _have != (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code)):
-        raise ImportError("fbrl: %s is %s bytes/alignment here but %s in the library: rebuild the bindings"
-                          % (_name, _have, (lib.fbrl_abi_size(_code), lib.fbrl_abi_align(_code))))
+opaque_later("fbrl_method_set", "fbrl_recover", "fbrl_run")
+declared_later("fbrl_run_snap", "fbrl_run_event", "fbrl_method")
 
 # fbrl_run_event_kind, in its order (fbrl/run.h)
 EVENTS = ("begin", "step_begin", "step_end", "sample", "recovery", "question", "answer", "pause", "resume",
@@ -158,6 +142,7 @@ class Run:
         check(lib.fbrl_recover_install(vm, self._rc.ptr, robot), "Run corrective actions")
         check(lib.fbrl_run_install(self._run.ptr, vm, self._methods.ptr, self._rc.ptr, robot), "Run")
         self._observers = []
+        self._logs = []  # record()'s
         self._raised = None
         self._cb = ffi.callback("int(void *, fbrl_run *, const fbrl_run_event *)", self._event, onerror=self._onerror)
         check(lib.fbrl_run_observe(self._run.ptr, self._cb, ffi.NULL), "Run observer")
@@ -273,7 +258,18 @@ class Run:
         self._observers.append(fn)
         return fn
 
+    def record(self, log):
+        """Every event of the runs from now on in log (an fbrl.RunLog: the library's records
+        of it, fbrl_runlog_event), until unrecord(log). Returns log."""
+        self._logs = self._logs + [log]
+        return log
+
+    def unrecord(self, log):
+        self._logs = [x for x in self._logs if x is not log]
+
     def _event(self, ctx, r, ev):
+        for log in self._logs:
+            log.event(r, ev)
         kind = EVENTS[ev.kind]
         if kind == "wait" or not self._observers:
             return 0

@@ -69,12 +69,12 @@ class MethodLibrary(Feature):
                 raise sila.validation(self.f.parameter_fqi("RunMethod", "Parameters"), str(e))
         return st.executions.confirmation(self.launch_run(name, values, who(context)))
 
-    def launch_run(self, name, values, by, role=None):
+    def launch_run(self, name, values, by, role=None, user=None):
         """A RunMethod execution of method name with checked values [(name, value)], started by
-        by (a SiLA client, a page; role: the page's signed-in user's); the execution."""
+        by (a SiLA client, a page; role and user: the page's signed-in user's); the execution."""
         st = self.st
         e = st.executions.new(self.f.command_fqi("RunMethod"))
-        fut = st.runs.launch(e, name, values, by, role)
+        fut = st.runs.launch(e, name, values, by, role, user)
         started = time.time()
 
         def done(f):

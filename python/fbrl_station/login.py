@@ -5,12 +5,15 @@ of wrong passwords, the lockout) and the users file keeps the count, as for fbrl
 signed-in browser holds a random session token in a cookie (Secure, HttpOnly,
 SameSite=Strict); a session idle for the lab's idle_s is signed out. What a user may do is
 the role's rights (fbrl_users_may): controlling runs needs "run", viewing any signed-in user."""
+import logging
 import os
 import secrets
 import threading
 import time
 
 import fbrl
+
+log = logging.getLogger("fbrl-station")
 
 USERS_FILE = "users"  # the lab folder's users file (apps/lab.h LAB_USERS_FILE)
 COOKIE = "fbrl_session"
@@ -47,7 +50,8 @@ class SignIn:
     """The lab's users and the page's sessions. check() blocks (Argon2id): call it off the
     event loop. The rest is quick and called on the page's loop only (the sessions are its)."""
 
-    def __init__(self, lab):
+    def __init__(self, lab, trail=None):
+        self.trail = trail  # trail.LabTrail: each attempt and sign-out recorded in the lab's audit trail
         self.path = os.path.join(lab, USERS_FILE)
         if not os.path.exists(self.path):
             raise LabError("%s: no users file: make the first administrator with 'fbrl-users --lab %s setup NAME'"
@@ -58,8 +62,10 @@ class SignIn:
 
     def check(self, name, password):
         """The user ({name, role, ...}) if the library accepts the password; Refused. Blocks
-        (Argon2id): call it off the loop. The file is read afresh (fbrlmon may have counted
-        wrong passwords meanwhile) and saved after the attempt so the count outlives us."""
+        (Argon2id, the audit trail): call it off the loop. The file is read afresh (fbrlmon may
+        have counted wrong passwords meanwhile) and saved after the attempt so the count
+        outlives us; the attempt is recorded in the lab's audit trail, and a sign-in that
+        cannot be recorded is refused."""
         with self._file:
             users = _load(self.path)
             try:
@@ -71,6 +77,11 @@ class SignIn:
                 users.save()
             x = users.user(name)
             self.idle_now = users.settings()["idle_s"]
+            if self.trail is not None:
+                try:
+                    self.trail.login(name, _outcome(x, st), x)
+                except fbrl.Error as e:
+                    raise Refused("the lab's audit trail cannot record the sign-in: %s" % (e.detail or e))
         if st is not None:
             raise Refused(_why(name, x, st))
         return x
@@ -96,19 +107,41 @@ class SignIn:
         return s
 
     def expired(self):
-        """Drop the sessions idle too long; their tokens."""
+        """Drop the sessions idle too long; [(token, session)]."""
         now = time.monotonic()
-        gone = [t for t, s in self.sessions.items() if now - s.last >= self.idle_s]
-        for t in gone:
+        gone = [(t, s) for t, s in self.sessions.items() if now - s.last >= self.idle_s]
+        for t, _ in gone:
             del self.sessions[t]
         return gone
 
     def sign_out(self, token):
-        self.sessions.pop(token, None)
+        """End the session of token; it, or None."""
+        return self.sessions.pop(token, None)
+
+    def record_sign_out(self, name, why):
+        """In the lab's audit trail (blocks: call it off the loop). A sign-out happens even
+        when it cannot be recorded: that is logged."""
+        if self.trail is None:
+            return
+        try:
+            self.trail.logout(name, why)
+        except fbrl.Error as e:
+            log.error("the lab's audit trail cannot record the sign-out of %s: %s", name, e)
 
     @staticmethod
     def may(session, right):
         return fbrl.Users.may(session.role, right)
+
+
+def _outcome(x, st):
+    """The attempt's outcome as fbrlmon records it (apps/lab.c record_attempt)."""
+    if st is None:
+        return "accepted"
+    if x is None:
+        return "unknown user"
+    if x["disabled"]:
+        return "disabled"
+    return "locked" if st == "FBRL_ELOCKED" else "wrong password"
 
 
 def _why(name, x, st):

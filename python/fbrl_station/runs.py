@@ -12,7 +12,7 @@ import time
 
 import fbrl
 
-from . import dryrun, login, pb, sila
+from . import dryrun, login, pb, sila, trail
 from .cell import SITES_FBRL
 from .sila import I, S
 from .controller import RobotFailure, report
@@ -20,7 +20,6 @@ from .owner import Watched
 
 log = logging.getLogger("fbrl-station")
 
-LAB_CHAIN_FILE = "audit.jsonl"  # the lab folder's audit trail (apps/lab.h LAB_CHAIN_FILE)
 TICK_S = 0.5  # how often a running execution's progress and remaining time are refreshed
 METHOD_LINE = re.compile(r"^\s*METHOD\s+(\S+)", re.I | re.M)
 CONTROLLER_CODE = re.compile(r"controller error (\d{3})")
@@ -109,6 +108,8 @@ class RunState:
         self.samples = 0
         self.who = ""  # who started it (a SiLA client, a page)
         self.role = None  # with --lab: the role of the page's signed-in user (None: a SiLA client)
+        self.user = None  # with --lab: the page's signed-in user's name (None: a SiLA client)
+        self.path = None  # the method's file
         self.state = None  # with --lab: the version's state by the lab's audit trail ("Released" ...)
         self.version = None  # the method's version (its files' hash as the library loaded them)
 
@@ -157,13 +158,13 @@ class Runs:
             values[p["name"]] = v
         return [(p["name"], values[p["name"]]) for p in m["params"]]
 
-    def launch(self, e, method, values, who, role=None):
-        """Queue the run of execution e started by who (of role, a role's name, when a page's
-        signed-in user); returns the owner's Future."""
+    def launch(self, e, method, values, who, role=None, user=None):
+        """Queue the run of execution e started by who (a page's signed-in user of that role
+        and name, else None); returns the owner's Future."""
         rs = RunState(e, method, values)
         rs.who = who
-        rs.role = role
-        path = self.library.files.get(method.upper())
+        rs.role, rs.user = role, user
+        path = rs.path = self.library.files.get(method.upper())
         rs.version = self.library.versions.get(path) if path else None
         e.cancel = lambda w: self.cancel(rs, w)
         e.pause = lambda w: self._request(rs, "pause", w)
@@ -179,8 +180,9 @@ class Runs:
             raise RobotFailure("UnknownMethod", "the method library has no method %s" % rs.method)
         if rs.ending == "cancel":
             raise RobotFailure("MethodCancelled", "cancelled by %s before it started" % rs.cancelled_by)
+        recorder, allow = None, False
         if self.st.opts.lab is not None:
-            rs.state = self._released(m, rs)
+            rs.state, allow = self._released(m, rs)
         if not c.connected:
             owner.reconnect(c)
         rs.run = c.run
@@ -190,6 +192,12 @@ class Runs:
             self._predict(c, rs, m)
             if rs.ending == "cancel":  # while the dry run ran
                 raise RobotFailure("MethodCancelled", "cancelled by %s before it started" % rs.cancelled_by)
+            if self.st.trail is not None:  # from here to its end the run holds the lab's audit trail
+                try:
+                    recorder = self.st.trail.run(c, rs, m, allow)
+                except fbrl.Error as e:
+                    raise RobotFailure("AuditTrailUnavailable", "%s: the run cannot be recorded in the lab's audit "
+                                       "trail: %s" % (m["name"], e.detail or e))
             log.info("%s: run started by %s", m["name"], who)
             rs.guard_before = c.engine.guard[1]
             ticker = threading.Thread(target=self._tick, args=(rs,), name="fbrl-run-ticker", daemon=True)
@@ -202,6 +210,8 @@ class Runs:
                 ticker.join()
         finally:
             owner.run = self.current = None
+            if recorder is not None:
+                recorder.end()
             self._clear_question(rs)
             if c.connected:
                 owner.refresh()
@@ -213,23 +223,33 @@ class Runs:
         checks a run in the lab (fbrl.method_release): an operator runs only a Released
         version whose files are unchanged, a developer a Draft too where the lab allows it. A
         SiLA client has no user of the lab and counts as an operator. The file must also be the
-        one the station loaded (what the engine runs). The version's state, or
-        RobotFailure("MethodNotReleased", why)."""
+        one the station loaded (what the engine runs). (The version's state, whether the lab
+        allows Drafts), or RobotFailure("MethodNotReleased", why)."""
         lab = self.st.opts.lab
         path = self.library.files.get(m["name"].upper())
         role = rs.role or "operator"
         try:
             allow = fbrl.Users(os.path.join(lab, login.USERS_FILE)).settings()["allow_drafts"]
-            hex_now, state = fbrl.method_release(path, os.path.join(lab, LAB_CHAIN_FILE), role, allow)
+            hex_now, state = fbrl.method_release(path, os.path.join(lab, trail.CHAIN_FILE), role, allow)
         except fbrl.Error as e:
             log.warning("%s: not run for %s (%s): %s", m["name"], rs.who, role, e.detail or e)
+            self._refused(m, rs, e.detail or str(e))
             raise RobotFailure("MethodNotReleased", "%s, %s: %s (%s): %s" % (
                 rs.who, role, m["name"], os.path.basename(path), e.detail or e))
         if rs.version is not None and hex_now != rs.version:
-            raise RobotFailure("MethodNotReleased", "%s: %s changed since the station loaded it (version %.12s, "
-                               "now %.12s): restart the station to run what the file holds now"
-                               % (m["name"], path, rs.version, hex_now))
-        return state
+            why = "%s: %s changed since the station loaded it (version %.12s, now %.12s): restart the station to " \
+                  "run what the file holds now" % (m["name"], path, rs.version, hex_now)
+            self._refused(m, rs, why)
+            raise RobotFailure("MethodNotReleased", why)
+        return state, allow
+
+    def _refused(self, m, rs, why):
+        """A run refused by the release check, in the lab's audit trail as fbrlmon records one."""
+        try:
+            self.st.trail.record("method_refused", rs.user, method=m["name"], version=rs.version, reason=why,
+                                 by=rs.who)
+        except fbrl.Error as e:
+            log.error("%s: the refusal could not be recorded in the lab's audit trail: %s", m["name"], e)
 
     def _predict(self, c, rs, m):
         """The dry run's step times for the run (without them the run's own measurements count).

@@ -60,9 +60,13 @@ class Station:
         self.announcer = None
         self.page = None
         self.sign_in = None  # the page's sign-in (--lab): the users file is checked before the controller
+        self.trail = None  # the lab's audit trail (--lab): sign-ins and runs recorded
+        if opts.lab is not None:
+            from .trail import LabTrail
+            self.trail = LabTrail(opts.lab, "fbrl-station %s" % fbrl.version())
         if opts.http is not None and opts.lab is not None:
             from .login import SignIn
-            self.sign_in = SignIn(opts.lab)
+            self.sign_in = SignIn(opts.lab, self.trail)
         self._name_lock = threading.Lock()
 
     # ---------------------------------------------------------------- identity

@@ -248,7 +248,9 @@ class Page:
 
     async def _logout(self, request):
         token = request.cookies.get(login.COOKIE)
-        self.sign_in.sign_out(token)
+        s = self.sign_in.sign_out(token)
+        if s is not None:
+            await asyncio.get_running_loop().run_in_executor(None, self.sign_in.record_sign_out, s.name, "signed out")
         await self._close_sessions({token}, "signed out")
         response = web.HTTPSeeOther("/login")
         response.del_cookie(login.COOKIE, path="/")
@@ -259,7 +261,10 @@ class Page:
             await asyncio.sleep(IDLE_CHECK_S)
             gone = self.sign_in.expired()
             if gone:
-                await self._close_sessions(set(gone), "signed out: idle for %d s" % self.sign_in.idle_s)
+                why = "idle for %d s" % self.sign_in.idle_s
+                await self._close_sessions({t for t, _ in gone}, "signed out: " + why)
+                for _, s in gone:
+                    await asyncio.get_running_loop().run_in_executor(None, self.sign_in.record_sign_out, s.name, why)
 
     async def _close_sessions(self, tokens, why):
         for ws, token in list(self.sessions.items()):
@@ -403,7 +408,7 @@ class Page:
         if op == "run":
             s = self.sign_in.session(self.sessions[ws]) if ws in self.sessions else None
             return self._run(req["method"], [(k, int(v)) for k, v in req.get("params", {}).items()], who,
-                             s.role if s is not None else None)
+                             s.role if s is not None else None, s.name if s is not None else None)
         e = self._current()
         if e is None:
             return {"t": "error", "message": "no method run goes"}
@@ -421,7 +426,7 @@ class Page:
             return None
         return {"t": "error", "message": "unknown request %r" % op}
 
-    def _run(self, method, given, who, role=None):
+    def _run(self, method, given, who, role=None, user=None):
         runs = self.st.runs
         if runs.library.find(method) is None:
             return {"t": "error", "message": "the method library has no method %s" % method}
@@ -432,7 +437,7 @@ class Page:
         except ValueError as e:
             return {"t": "error", "message": str(e)}
         ml = next(s for s in self.st.servicers if s.FEATURE == "MethodLibrary")
-        e = ml.launch_run(method, values, who, role)
+        e = ml.launch_run(method, values, who, role, user)
         return {"t": "started", "uuid": e.uuid, "method": method}
 
     async def _dry_run(self, req):

@@ -262,11 +262,54 @@ def test_an_operator_runs_a_released_method_and_not_a_draft(page):
     assert not [l for l in page.sim.log()[before:] if l.startswith(MOTION)]  # nothing moved
     fbrl_audit(page.labdir, "method", "submit", quick, "--as", "dev", stdin=PASSWORDS["dev"] + "\n")
     fbrl_audit(page.labdir, "method", "release", quick, "--as", "rev", stdin=PASSWORDS["rev"] + "\n")
+    at = len(page.sim.log())
     end = run_from_page(page, cookie, "QUICK", {"#ITEMS": 1, "HOLD-DS": 1})
     assert end["outcome"] == "completed", end
-    assert "OUTPUT 1" in page.sim.log()[before:]  # the pump ran on the controller
+    ran = page.sim.log()[at:]
+    assert "OUTPUT 1" in ran  # the pump ran on the controller
     status, _, _, text, _ = page.request("GET", "/api/history", cookie=cookie.split(";")[0])
     assert status == 200 and json.loads(text)[0]["by"].startswith("ann ("), text  # the run's record names her
+    # the lab's audit trail, as fbrl-audit (C) reads it: the refusals, the run, every line fbrlsim ran
+    chain = os.path.join(page.labdir, "audit.jsonl")
+    out = fbrl_audit(page.labdir, "verify", chain)
+    assert "intact, sealed" in out, out
+    recs = [json.loads(line) for line in open(chain)]
+    refused = [(x["user"], x["method"]) for x in recs if x["type"] == "method_refused"]
+    assert ("ann", "QUICK") in refused and ("dev", "QUICK") in refused and ("-", "CROSS") in refused, refused
+    start = max(i for i, x in enumerate(recs) if x["type"] == "method_run")
+    run = recs[start:next(i for i in range(start, len(recs)) if recs[i]["type"] == "seal") + 1]
+    assert run[0]["method"] == "QUICK" and run[0]["state"] == "Released" and run[0]["user"] == "ann", run[0]
+    assert run[1]["type"] == "header" and run[1]["operator"].startswith("ann ("), run[1]
+    commands = []
+    for x in run:
+        if x["type"] == "command":
+            commands += [x["line"]] * x.get("count", 1)
+    # every line the run sent, in order; after its end the station reads the arm's place once more
+    assert commands == ran[:len(commands)] and set(ran[len(commands):]) <= {"W2"}, (commands, ran)
+    summary = next(x for x in run if x["type"] == "summary")
+    assert summary["outcome"] == "completed" and all(x["user"] == "ann" for x in run[:-1]), summary
+    logins = [(x["name"], x["outcome"]) for x in recs if x["type"] == "login"]
+    assert ("ann", "accepted") in logins and ("dev", "accepted") in logins and ("ann", "wrong password") in logins
+    report = fbrl_audit(page.labdir, "report", chain)
+    assert "QUICK" in report and "completed" in report
+
+
+def test_a_run_the_audit_trail_cannot_record_does_not_start(page):
+    """Another program holds the lab's audit trail (as fbrlmon does through a console session):
+    the station waits for it, then refuses the run; nothing moves, and the chain stays whole."""
+    import fbrl
+    chain = os.path.join(page.labdir, "audit.jsonl")
+    _, cookie, _ = page.sign_in("ann")
+    before = len(page.sim.log())
+    holder = fbrl.AuditTrail(chain).open()
+    try:
+        end = run_from_page(page, cookie, "QUICK", {"#ITEMS": 1, "HOLD-DS": 1})
+    finally:
+        holder.close(seal=False)
+    assert end["outcome"] == "error" and "AuditTrailUnavailable" in end["summary"], end
+    assert "another program is writing the audit trail" in end["summary"], end
+    assert not [l for l in page.sim.log()[before:] if l.startswith(MOTION)]
+    assert "intact" in fbrl_audit(page.labdir, "verify", chain)
 
 
 def test_a_role_without_the_right_to_run_is_refused(page):
