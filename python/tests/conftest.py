@@ -77,3 +77,12 @@ def realtime_sim(tmp_path):
     s = Sim(tmp_path, "--baud", "9600", "--log-format", "stamped", time_scale="1")
     yield s
     s.stop()
+
+
+def fbrl_audit_path():
+    """The build's fbrl-audit (FBRL_AUDIT), the C program the chain's truth is read with."""
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    path = os.environ.get("FBRL_AUDIT") or os.path.join(root, "build", "apps", "fbrl-audit")
+    if not os.access(path, os.X_OK):
+        pytest.skip("fbrl-audit not built (set FBRL_AUDIT)")
+    return path

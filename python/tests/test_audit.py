@@ -9,17 +9,10 @@ import subprocess
 import pytest
 
 import fbrl
-from conftest import Sim, LOADED_HOST_ECHO_MS
+from conftest import Sim, LOADED_HOST_ECHO_MS, fbrl_audit_path
 from test_run import SEPARATION, SRC, declare
 
-ROOT = SRC
-
-
-def fbrl_audit():
-    path = os.environ.get("FBRL_AUDIT") or os.path.join(ROOT, "build", "apps", "fbrl-audit")
-    if not os.access(path, os.X_OK):
-        pytest.skip("fbrl-audit not built (set FBRL_AUDIT)")
-    return path
+fbrl_audit = fbrl_audit_path
 
 
 def records(path):

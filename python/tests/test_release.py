@@ -10,15 +10,12 @@ import subprocess
 import pytest
 
 import fbrl
+from conftest import fbrl_audit_path
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def audit():
-    path = os.environ.get("FBRL_AUDIT") or os.path.join(ROOT, "build", "apps", "fbrl-audit")
-    if not os.access(path, os.X_OK):
-        pytest.skip("fbrl-audit not built (set FBRL_AUDIT)")
-    return path
+audit = fbrl_audit_path
 
 
 def test_the_version_is_the_one_fbrl_audit_names(tmp_path):
