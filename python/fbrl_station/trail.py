@@ -9,6 +9,9 @@ the lab's other programs write it in between; while one of them holds it, a reco
 fbrl.audit.BUSY_WAIT_S and is then refused: a sign-in or a run that cannot be recorded does not
 happen. During a run the run holds it, and other records (a sign-in) join it."""
 import os
+import shutil
+import subprocess
+import tempfile
 import threading
 import time
 
@@ -18,6 +21,14 @@ from fbrl.audit import BUSY_WAIT_S
 from . import login
 
 CHAIN_FILE = "audit.jsonl"  # the lab folder's audit trail (apps/lab.h LAB_CHAIN_FILE)
+
+
+def fbrl_audit():
+    """fbrl-audit: FBRL_AUDIT (the launcher sets it), else on PATH."""
+    prog = os.environ.get("FBRL_AUDIT") or shutil.which("fbrl-audit")
+    if not prog:
+        raise OSError("fbrl-audit was not found for the report (install it, or set FBRL_AUDIT)")
+    return prog
 
 
 def user_name(name):
@@ -60,6 +71,18 @@ class LabTrail:
                     failures=user["failures"] if user and outcome != "accepted" else None,
                     locked_until=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime(user["locked_until"] / 1000))
                     if locked else None)
+
+    def report(self):
+        """The lab's review report (fbrl-audit report: every run, action and signature, the
+        chain verified with the users' keys) as HTML, and whether the chain is intact. Blocks."""
+        with tempfile.TemporaryDirectory(prefix="fbrl-audit-report-") as d:
+            out = os.path.join(d, "report.html")
+            r = subprocess.run([fbrl_audit(), "report", self.path, "-o", out], capture_output=True, text=True,
+                               timeout=600, env=dict(os.environ, FBRL_LAB=self.lab))
+            if not os.path.exists(out):
+                raise OSError("fbrl-audit report: %s" % (r.stderr.strip() or "exit status %d" % r.returncode))
+            with open(out, encoding="utf-8") as f:
+                return f.read(), r.returncode == 0
 
     def logout(self, name, why):
         self.record("action", name, action="logout", what=name, detail=why)

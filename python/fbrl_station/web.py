@@ -11,6 +11,7 @@ import json
 import logging
 import os
 import ssl
+import subprocess
 import tempfile
 import threading
 import time
@@ -152,6 +153,8 @@ class Page:
         app.router.add_get("/api/methods", self._methods)
         app.router.add_get("/api/history", self._history)
         app.router.add_get("/history/{uuid}", self._run_log)
+        if self.st.trail is not None:
+            app.router.add_get("/audit", self._audit_report)
         app.router.add_get("/ws", self._ws)
         runner = web.AppRunner(app, access_log=None)
         await runner.setup()
@@ -324,6 +327,17 @@ class Page:
                          for x in r["samples"]]
         return web.Response(text="\n".join(lines) + "\n")
 
+    async def _audit_report(self, request):
+        """With --lab: the lab's review report (fbrl-audit report), the station's runs in it."""
+        try:
+            text, intact = await asyncio.get_running_loop().run_in_executor(None, self.st.trail.report)
+        except (OSError, subprocess.SubprocessError) as e:
+            log.error("the page: the audit report: %s", e)
+            raise web.HTTPInternalServerError(text="the lab's audit report cannot be made: %s\n" % e)
+        if not intact:
+            log.warning("the page: the lab's audit trail is not intact (the report says where)")
+        return web.Response(text=text, content_type="text/html")
+
     def _method_list(self):
         lib = self.st.runs.library
         return [{"name": m["name"], "text": m["text"], "file": os.path.basename(lib.files[m["name"].upper()]),
@@ -343,7 +357,8 @@ class Page:
         if session is not None:
             self.sessions[ws] = request.cookies.get(login.COOKIE)
         await ws.send_json({"t": "hello", "you": name, "control": self._control_name(),
-                            "user": {"name": session.name, "role": session.role} if session is not None else None})
+                            "user": {"name": session.name, "role": session.role} if session is not None else None,
+                            "lab": self.st.trail is not None})
         for m in list(self.last.values()) + list(self.run_log):
             await ws.send_json(m)
         try:

@@ -455,6 +455,7 @@ function onMessage(m) {
     case 'hello':
       me = m.you; controlBy = m.control; showControl();
       if (m.user) { $('user').textContent = m.user.name + ' (' + m.user.role + ')'; $('signed-in').hidden = false; }
+      $('audit').hidden = !m.lab;
       break;
     case 'control': controlBy = m.by; showControl(); note(m.by ? m.by + ' controls the runs' : 'no one controls the runs'); break;
     case 'pose': showPose(m); break;
