@@ -34,7 +34,8 @@ options:
   --http HOST:PORT|off  the page in a browser (default 127.0.0.1:8080; port 0: any free port,
                    printed at start); beyond loopback only with --lab
   --lab DIR        the lab's users sign in to the page, served over HTTPS/WSS with the
-                   station's certificate (default $FBRL_LAB; as fbrlmon --lab)
+                   station's certificate; runs are checked (Released methods) and recorded
+                   in the lab's audit trail (default $FBRL_LAB; as fbrlmon --lab)
   --no-discovery   do not announce the station over mDNS (_sila._tcp)
   -h, --help       show this help and exit
   -V, --version    show the version and exit
