@@ -67,6 +67,14 @@ long fbrli_probe_erased(const fbrl_link_probe *p);
  * before: a byte that cannot is the reply of what came before the probe. */
 int fbrli_probe_may_echo(uint8_t b);
 
+/* ---- link_query.c: believing a query's reply (docs/link.md 3.5) ---- */
+
+/* A TYPEI/TYPEV value line (parsed: it is a number): the read's damage, the line's sum and
+ * length, and the query's longest value line. */
+void fbrli_query_value(fbrl_link *l, const char *s, size_t n, int flawed, int parsed);
+/* The undamaged reply is believed: self-consistent, or the query_reads-th alike. */
+int fbrli_query_confirmed(fbrl_link *l);
+
 /* ---- link_settle.c: settling a damaged reply by STATUS (docs/link.md 3.5) ---- */
 
 /* The controller's LAST ERROR is not known (fbrl_link.known_err; -1 is NONE). */
