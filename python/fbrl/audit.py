@@ -81,7 +81,6 @@ uint64_t fbrl_audit_head(const fbrl_audit *a, unsigned char *hash);
 fbrl_status fbrl_users_keys(const fbrl_users *u, fbrl_audit_key *out, size_t cap, size_t *n);
 fbrl_status fbrl_runlog_begin(fbrl_runlog *l, fbrl_runlog_write_fn write, void *write_ctx,
                               fbrl_runlog_clock_fn now_us, void *clock_ctx, const fbrl_runlog_header *h);
-int fbrl_runlog_is_open(const fbrl_runlog *l);
 fbrl_status fbrl_runlog_command_run(fbrl_runlog *l, const char *line, size_t len, fbrl_status result, int code,
                                     unsigned run);
 fbrl_status fbrl_runlog_event(fbrl_runlog *l, fbrl_run *run, const fbrl_run_event *ev, fbrl_run_snap *scratch);
@@ -90,7 +89,8 @@ fbrl_status fbrl_runlog_event(fbrl_runlog *l, fbrl_run *run, const fbrl_run_even
 declared_later("fbrl_audit_file", "fbrl_runlog_param", "fbrl_runlog_header")
 opaque_later("fbrl_audit_verifier", "fbrl_runlog")
 
-KEYS_MAX = 64 + 128  # a users table's keys and those its resets replaced (apps/lab.h LAB_KEYS_MAX)
+_USERS = dict(ffi.typeof("fbrl_users").fields)
+KEYS_MAX = _USERS["user"].type.length + _USERS["old"].type.length  # the users' keys and those resets replaced
 BUSY_WAIT_S = 10.0  # how long a record waits while another program writes the chain
 
 
@@ -109,7 +109,6 @@ class AuditTrail:
         self._keys = ffi.new("fbrl_audit_key[]", KEYS_MAX)
         self._lock = threading.RLock()
         self._open = False
-        self.opened_at = 0  # the chain's records when this writer opened it
 
     def open(self, wait_s=BUSY_WAIT_S):
         with self._lock:
@@ -133,13 +132,7 @@ class AuditTrail:
                     Error(st).name)
                 raise Error(st, "audit trail %s" % self.path, detail=detail)
             self._open = True
-            self.opened_at = lib.fbrl_audit_head(ffi.addressof(self._f, "a"), ffi.NULL)
             return self
-
-    @property
-    def records(self):
-        """Records in the chain (while open)."""
-        return lib.fbrl_audit_head(ffi.addressof(self._f, "a"), ffi.NULL) if self._open else 0
 
     def _a(self):
         if not self._open:
@@ -244,10 +237,6 @@ class RunLog:
         st = lib.fbrl_runlog_begin(self._log.ptr, self._write, ffi.NULL, self._clock, ffi.NULL, h)
         if st < 0:
             raise Error(st, "run log of %s in %s" % (method, trail.path), detail=self.failed)
-
-    @property
-    def open(self):
-        return bool(lib.fbrl_runlog_is_open(self._log.ptr))
 
     def _sink(self, ctx, s, n):
         if self.trail.append(ffi.unpack(s, n)) == 0:

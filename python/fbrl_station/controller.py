@@ -2,11 +2,11 @@
 """The controller connection and the FBRL engine, as the library gives them (python/fbrl):
 the emulator or the serial port, the link, the engine whose robot words drive the arm, and
 what a failed robot command was in SiLA's terms. Only the owner thread (owner.py) calls it."""
-import os
-import shutil
 import subprocess
 
 import fbrl
+
+from . import programs
 
 SIM_START_S = 10
 SIM_STOP_S = 5
@@ -22,9 +22,7 @@ class SimProcess:
     program (the launcher sets it), else fbrlsim on PATH."""
 
     def __init__(self, opts):
-        prog = os.environ.get("FBRL_SIM") or shutil.which("fbrlsim")
-        if not prog or not os.access(prog, os.X_OK):
-            raise OSError("the emulator fbrlsim was not found (install it, or set FBRL_SIM)")
+        prog = programs.find("fbrlsim", "FBRL_SIM", "the emulator fbrlsim was not found")
         args = [prog, "--status-extra"]  # the robot words read outputs from fbrlsim's STATUS lines
         for opt, value in (("--state", opts.sim_state), ("--model", opts.sim_model),
                            ("--inputs", opts.sim_inputs), ("--log", opts.sim_log),

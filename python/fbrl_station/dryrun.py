@@ -6,8 +6,9 @@ the first step ends. FBRL_MON names fbrlmon (the launcher sets it), else fbrlmon
 import json
 import os
 import re
-import shutil
 import subprocess
+
+from . import programs
 
 # A dry run skips every wait: a second or two even for an hour-long method. One that does not
 # end in this time waits for something no one gives it (fbrlmon's run of a method whose
@@ -22,10 +23,7 @@ SAMPLE_RE = re.compile(r"^  sample (\d+): (.*)$")
 
 
 def fbrlmon():
-    prog = os.environ.get("FBRL_MON") or shutil.which("fbrlmon")
-    if not prog or not os.access(prog, os.X_OK):
-        raise OSError("fbrlmon was not found for the dry run (install it, or set FBRL_MON)")
-    return prog
+    return programs.find("fbrlmon", "FBRL_MON", "fbrlmon was not found for the dry run")
 
 
 def argv(opts, prelude, method_file, method, values, picture, segments=None):

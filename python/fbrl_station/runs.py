@@ -225,8 +225,7 @@ class Runs:
         SiLA client has no user of the lab and counts as an operator. The file must also be the
         one the station loaded (what the engine runs). (The version's state, whether the lab
         allows Drafts), or RobotFailure("MethodNotReleased", why)."""
-        lab = self.st.opts.lab
-        path = self.library.files.get(m["name"].upper())
+        lab, path = self.st.opts.lab, rs.path
         role = rs.role or "operator"
         try:
             allow = fbrl.Users(os.path.join(lab, login.USERS_FILE)).settings()["allow_drafts"]

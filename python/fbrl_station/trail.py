@@ -9,7 +9,6 @@ the lab's other programs write it in between; while one of them holds it, a reco
 fbrl.audit.BUSY_WAIT_S and is then refused: a sign-in or a run that cannot be recorded does not
 happen. During a run the run holds it, and other records (a sign-in) join it."""
 import os
-import shutil
 import subprocess
 import tempfile
 import threading
@@ -18,23 +17,9 @@ import time
 import fbrl
 from fbrl.audit import BUSY_WAIT_S
 
-from . import login
+from . import login, programs
 
 CHAIN_FILE = "audit.jsonl"  # the lab folder's audit trail (apps/lab.h LAB_CHAIN_FILE)
-
-
-def fbrl_audit():
-    """fbrl-audit: FBRL_AUDIT (the launcher sets it), else on PATH."""
-    prog = os.environ.get("FBRL_AUDIT") or shutil.which("fbrl-audit")
-    if not prog:
-        raise OSError("fbrl-audit was not found for the report (install it, or set FBRL_AUDIT)")
-    return prog
-
-
-def user_name(name):
-    """A lab user's name as the chain's "user" (a SiLA client is none: "-")."""
-    ok = name and len(name) < 32 and all(c.isascii() and (c.isalnum() or c in "._-") for c in name)
-    return name if ok else "-"
 
 
 class LabTrail:
@@ -51,14 +36,15 @@ class LabTrail:
         return fbrl.AuditTrail(self.path, users).open(BUSY_WAIT_S)
 
     def record(self, type, user, **fields):
-        """One record by user (a lab user's name); fbrl.Error when it cannot be written."""
+        """One record by user (a lab user's name; None or any other text: "-", as the library
+        takes it); fbrl.Error when it cannot be written."""
         with self._lock:
             if self._run is not None:
-                self._run.record(type, user_name(user), **fields)  # sealed with the run
+                self._run.record(type, user, **fields)  # sealed with the run
                 return
             trail = self._open()
             try:
-                trail.record(type, user_name(user), **fields)
+                trail.record(type, user, **fields)
             finally:
                 trail.close()
 
@@ -77,7 +63,7 @@ class LabTrail:
         chain verified with the users' keys) as HTML, and whether the chain is intact. Blocks."""
         with tempfile.TemporaryDirectory(prefix="fbrl-audit-report-") as d:
             out = os.path.join(d, "report.html")
-            r = subprocess.run([fbrl_audit(), "report", self.path, "-o", out], capture_output=True, text=True,
+            r = subprocess.run([programs.find("fbrl-audit", "FBRL_AUDIT", "fbrl-audit was not found for the report"), "report", self.path, "-o", out], capture_output=True, text=True,
                                timeout=600, env=dict(os.environ, FBRL_LAB=self.lab))
             if not os.path.exists(out):
                 raise OSError("fbrl-audit report: %s" % (r.stderr.strip() or "exit status %d" % r.returncode))
@@ -101,10 +87,9 @@ class RunRecorder:
         with lab._lock:
             trail = lab._open()
             try:
-                user = user_name(rs.user)
-                trail.record("method_run", user, method=m["name"], version=rs.version, state=rs.state,
+                trail.record("method_run", rs.user, method=m["name"], version=rs.version, state=rs.state,
                              drafts_allowed=int(bool(allow)), role=rs.role or "operator", by=rs.who)
-                trail.set_user(user)
+                trail.set_user(rs.user)
                 units = {p["name"]: p["unit"] for p in m["params"]}
                 self.log = fbrl.RunLog(trail, m["name"], source=rs.path, operator=rs.who,
                                        started=time.strftime("%Y-%m-%dT%H:%M:%S%z"), program=lab.program,
