@@ -62,6 +62,23 @@ int lab_save_users(lab *L)
     return st == FBRL_OK ? 0 : -1;
 }
 
+/* Another program (fbrlmon, the station) holds the chain for one record, or for a run: wait
+ * for it a while, as the station does (fbrl.audit.BUSY_WAIT_S), saying so once. The lock is
+ * taken before the chain is verified, so a refused attempt leaves the verifier untouched. */
+static fbrl_status open_waiting(fbrl_audit_file *f, const char *path, fbrl_audit_verifier *v)
+{
+    const struct timespec poll = {0, LAB_BUSY_POLL_MS * 1000000L};
+    fbrl_status st;
+    for (int waited_ms = 0; (st = fbrl_audit_file_open(f, path, v)) == FBRL_EBUSY && waited_ms < LAB_BUSY_WAIT_S * 1000;
+         waited_ms += LAB_BUSY_POLL_MS) {
+        if (waited_ms == 0)
+            fprintf(stderr, "%s: another program is writing the audit trail; waiting up to %d s\n", path,
+                    LAB_BUSY_WAIT_S);
+        nanosleep(&poll, NULL);
+    }
+    return st;
+}
+
 int lab_open_chain(lab *L)
 {
     fbrl_status st;
@@ -70,12 +87,15 @@ int lab_open_chain(lab *L)
     fbrl_users_keys(&L->users, L->keys, LAB_KEYS_MAX, &L->nkeys);
     /* no users yet (set-up): the chain's own user records */
     fbrl_audit_verify_init(&L->v, L->keys, L->nkeys, LAB_KEYS_MAX, NULL, 0);
-    st = fbrl_audit_file_open(&L->chain, L->chain_path, &L->v);
+    st = open_waiting(&L->chain, L->chain_path, &L->v);
     if (st == FBRL_ECHECKSUM)
         snprintf(L->err, sizeof L->err,
                  "%s: %s: the audit trail is broken; nothing is written to it until an administrator "
                  "recovers it (fbrl-audit recover)",
                  L->chain_path, L->chain.where);
+    else if (st == FBRL_EBUSY)
+        snprintf(L->err, sizeof L->err, "%s: another program is still writing the audit trail after %d s",
+                 L->chain_path, LAB_BUSY_WAIT_S);
     else if (st != FBRL_OK)
         snprintf(L->err, sizeof L->err, "%s: %s", L->chain_path, fbrl_status_str(st));
     L->chain_open = st == FBRL_OK;

@@ -16,6 +16,8 @@
 #define LAB_KEYS_MAX (FBRL_USERS_MAX + FBRL_USERS_OLD_KEYS)
 #define LAB_USERS_FILE "users"
 #define LAB_CHAIN_FILE "audit.jsonl"
+#define LAB_BUSY_WAIT_S 10   /* how long a program waits while another writes the chain */
+#define LAB_BUSY_POLL_MS 100
 
 typedef struct lab {
     char users_path[LAB_PATH_MAX];
@@ -35,8 +37,9 @@ typedef struct lab {
 int lab_init(lab *L, const char *dir, const char *users_path, const char *chain_path);
 /* Read the users file (refused when others may write it). -1 with L->err. */
 int lab_load_users(lab *L);
-/* Verify the chain with the users' public keys and open it for appending. -1 with
- * L->err: a broken chain names its first broken record and is not written. */
+/* Verify the chain with the users' public keys and open it for appending, waiting up to
+ * LAB_BUSY_WAIT_S while another program writes it. -1 with L->err: a broken chain names its
+ * first broken record and is not written. */
 int lab_open_chain(lab *L);
 /* Seal what this program wrote (a session), close the chain, wipe the users table. */
 void lab_close(lab *L);

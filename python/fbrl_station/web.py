@@ -265,9 +265,9 @@ class Page:
             gone = self.sign_in.expired()
             if gone:
                 why = "idle for %d s" % self.sign_in.idle_s
-                await self._close_sessions({t for t, _ in gone}, "signed out: " + why)
-                for _, s in gone:
+                for _, s in gone:  # recorded before the page is told, as /logout does
                     await asyncio.get_running_loop().run_in_executor(None, self.sign_in.record_sign_out, s.name, why)
+                await self._close_sessions({t for t, _ in gone}, "signed out: " + why)
 
     async def _close_sessions(self, tokens, why):
         for ws, token in list(self.sessions.items()):

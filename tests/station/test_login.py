@@ -9,6 +9,7 @@ import os
 import re
 import ssl
 import subprocess
+import threading
 import time
 import urllib.parse
 
@@ -339,12 +340,28 @@ def test_an_idle_session_is_signed_out(page):
             receive(ws, ("hello",))
             m = receive(ws, ("signedout",), seconds=20)
             assert m["message"] == "signed out: idle for 3 s"
+            # recorded before the page was told (and the chain free again for fbrl-users)
+            recs = [json.loads(line) for line in open(os.path.join(page.labdir, "audit.jsonl"))]
+            out = [x for x in recs if x["type"] == "action" and x.get("action") == "logout"]
+            assert out and (out[-1]["what"], out[-1]["detail"]) == ("ann", "idle for 3 s"), out[-3:]
         finally:
             ws.close()
         assert page.request("GET", "/api/scene", cookie=cookie.split(";")[0])[0] == 401
     finally:
         fbrl_users(page.labdir, "--as", "admin", "set", "idle_s", "600", stdin=PASSWORDS["admin"] + "\n")
         page.sign_in("ann")
+
+
+def test_fbrl_users_waits_while_another_program_writes_the_chain(page):
+    """The station holds the chain for each record (and a run for its length): fbrl-users,
+    typed meanwhile, waits for it and says so rather than failing at once."""
+    import fbrl
+    holder = fbrl.AuditTrail(os.path.join(page.labdir, "audit.jsonl")).open()
+    threading.Timer(1.5, holder.close, kwargs={"seal": False}).start()
+    path = os.environ.get("FBRL_USERS") or os.path.join(ROOT, "build", "apps", "fbrl-users")
+    r = subprocess.run([path, "--lab", page.labdir, "--as", "admin", "set", "idle_s", "600"],
+                       input=PASSWORDS["admin"] + "\n", capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0 and "another program is writing the audit trail; waiting up to 10 s" in r.stderr, r
 
 
 def test_signing_out_ends_the_session(page):
