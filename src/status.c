@@ -21,7 +21,7 @@
     X(FBRL_ETYPE, "wrong data type")                                      \
     X(FBRL_EEOF, "end of file")                                           \
     X(FBRL_ETIMEOUT, "timed out")                                         \
-    X(FBRL_EBUSY, "port is in use")                                       \
+    X(FBRL_EBUSY, "busy: held by another program or command")             \
     X(FBRL_ENOTTY, "not a terminal device")                               \
     X(FBRL_EUNSUPPORTED, "setting not supported")                         \
     X(FBRL_EDISCONNECTED, "peer disconnected")                            \

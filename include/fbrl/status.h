@@ -29,7 +29,7 @@ typedef enum fbrl_status {
     FBRL_ETYPE = -14,         /* record type differs from the one asked for */
     FBRL_EEOF = -15,          /* no more records */
     FBRL_ETIMEOUT = -16,      /* deadline passed */
-    FBRL_EBUSY = -17,         /* port already in use by another program */
+    FBRL_EBUSY = -17,         /* in use: a port or file another program holds, or still busy */
     FBRL_ENOTTY = -18,        /* path is not a terminal device */
     FBRL_EUNSUPPORTED = -19,  /* setting (baud, parity, ...) not supported */
     FBRL_EDISCONNECTED = -20, /* peer went away (pty closed, TCP reset) */
