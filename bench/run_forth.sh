@@ -7,7 +7,8 @@
 #   bench/run_forth.sh [BUILD_DIR]   (default: build; env RUNS=3, STARTS=20, GEN_DEFS=10000)
 #
 # Every benchmark prints a checksum; the runner compares the systems' answers so
-# a fast wrong result does not count. Benchmark times are wall times of the whole
+# a fast wrong result does not count. gforth's own siev, bubble, matrix and fib
+# (gf-*, from Debian's gforth package when installed) run beside bench/forth/. Benchmark times are wall times of the whole
 # process (start-up included; it is printed first, and is a few ms). The geometric
 # mean covers the compute-bound programs, not the compile benchmark. Run it on an
 # idle machine: other load shows up as noise.
@@ -24,6 +25,21 @@ tmp=$(mktemp -d "${TMPDIR:-/tmp}/fbrlbench.XXXXXX") || exit 2
 trap 'rm -rf "$tmp"' EXIT INT TERM
 "$here/forth/gen_source.sh" "${GEN_DEFS:-10000}" > "$tmp/compile.fs"
 : > "$tmp/empty.fs"
+
+# gforth's own benchmarks (siev, bubble, matrix, fib; GPL, shipped by Debian's gforth
+# package, so run from there, not copied): each loaded, its `main` run, then a check line
+# printed, so the systems' answers can be compared. gf-NAME.fs in $tmp; none without gforth.
+gfdir=$(ls -d /usr/share/gforth/*/ 2>/dev/null | sort | tail -n 1)
+gforth_own=
+gfbench() { # NAME CHECK
+    [ -n "$gfdir" ] && [ -f "$gfdir$1.fs" ] || return 0
+    printf 'include %s\nmain\n%s\n' "$gfdir$1.fs" "$2" > "$tmp/gf-$1.fs"
+    gforth_own="$gforth_own $tmp/gf-$1.fs"
+}
+gfbench siev 'primes . cr'
+gfbench bubble 'list @ . list elements 1- cells + @ . cr'
+gfbench matrix 'imr @ . imr mat-size 1- cells + @ . cr'
+gfbench fib '20 fib . cr'
 
 # run SYSTEM FILE: evaluate FILE in SYSTEM with no terminal input; stdout only.
 # (gforth gets an absolute path: it would otherwise prefer its own library
@@ -112,7 +128,7 @@ printf '  %s\n' answer
 slow=
 logsum=
 nlog=0
-for f in "$here"/forth/*.fs "$tmp/compile.fs"; do
+for f in "$here"/forth/*.fs $gforth_own "$tmp/compile.fs"; do
     name=$(basename "$f" .fs)
     line=$(printf '%-10s' "$name")
     ratios=
@@ -120,6 +136,12 @@ for f in "$here"/forth/*.fs "$tmp/compile.fs"; do
     agree=yes
     fbrl_ns=
     for s in $systems; do
+        case $name:$s in
+        gf-*:pforth) # pforth reports each include on stdout: no answer to compare, not asked for
+            line="$line $(printf ' %12s' -)"
+            ratios="$ratios $(printf ' %14s' -)"
+            continue ;;
+        esac
         ns=$(best "$s" "$f")
         o=$(run "$s" "$f" 2>/dev/null | tr -s ' \n' ' ' | sed 's/ *$//')
         if [ "$s" = fbrlmon ]; then answer=$o; fi
