@@ -2,9 +2,10 @@
 # SPDX-License-Identifier: MIT
 # run_forth.sh - FBRL's Forth engine (fbrlmon) beside gforth-fast, gforth and
 # pforth: start-up time and peak memory, then the standard-Forth benchmarks in
-# bench/forth/ with best-of-N times, ratios and their geometric mean.
+# bench/forth/ with best-of-N times, each ratio the median of N rounds (the systems
+# in turn), and the ratios' geometric mean.
 #
-#   bench/run_forth.sh [BUILD_DIR]   (default: build; env RUNS=3, STARTS=20, GEN_DEFS=10000)
+#   bench/run_forth.sh [BUILD_DIR]   (default: build; env RUNS=5, STARTS=20, GEN_DEFS=10000)
 #
 # Every benchmark prints a checksum; the runner compares the systems' answers so
 # a fast wrong result does not count. gforth's own siev, bubble, matrix and fib
@@ -16,7 +17,7 @@ set -u
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 build=${1:-$root/build}
-runs=${RUNS:-3}
+runs=${RUNS:-5}
 starts=${STARTS:-20}
 fbrlmon=$build/apps/fbrlmon
 [ -x "$fbrlmon" ] || { echo "run_forth.sh: $fbrlmon not built" >&2; exit 2; }
@@ -29,7 +30,8 @@ trap 'rm -rf "$tmp"' EXIT INT TERM
 # gforth's own benchmarks (siev, bubble, matrix, fib; GPL, shipped by Debian's gforth
 # package, so run from there, not copied): each loaded, its `main` run, then a check line
 # printed, so the systems' answers can be compared. gf-NAME.fs in $tmp; none without gforth.
-gfdir=$(ls -d /usr/share/gforth/*/ 2>/dev/null | sort | tail -n 1)
+gfdir=$(ls /usr/share/gforth/*/siev.fs 2>/dev/null | sort | tail -n 1)
+gfdir=${gfdir%siev.fs}
 gforth_own=
 gfbench() { # NAME CHECK
     [ -n "$gfdir" ] && [ -f "$gfdir$1.fs" ] || return 0
@@ -55,19 +57,12 @@ run() {
 
 now_ns() { date +%s%N; }
 
-# best SYSTEM FILE: best wall time of $runs runs in ns, or FAILED.
-best() {
-    b=
-    i=0
-    while [ "$i" -lt "$runs" ]; do
-        t0=$(now_ns)
-        run "$1" "$2" >/dev/null 2>"$tmp/err" || { echo FAILED; return; }
-        t1=$(now_ns)
-        dt=$((t1 - t0))
-        if [ -z "$b" ] || [ "$dt" -lt "$b" ]; then b=$dt; fi
-        i=$((i + 1))
-    done
-    echo "$b"
+# timed SYSTEM FILE: the wall time of one run in ns, or FAILED.
+timed() {
+    t0=$(now_ns)
+    run "$1" "$2" >/dev/null 2>"$tmp/err" || { echo FAILED; return; }
+    t1=$(now_ns)
+    echo $((t1 - t0))
 }
 
 # startup SYSTEM: ms per run of the empty program, best of 3 batches of $starts.
@@ -134,29 +129,42 @@ for f in "$here"/forth/*.fs $gforth_own "$tmp/compile.fs"; do
     ratios=
     answer=
     agree=yes
-    fbrl_ns=
+    fbrl_ok=
+    # the systems in turn, $runs rounds (A B C A B C ...): a drift of the machine's speed
+    # reaches every system alike, and each round gives fbrlmon's time against each other's
+    ran=
     for s in $systems; do
         case $name:$s in
-        gf-*:pforth) # pforth reports each include on stdout: no answer to compare, not asked for
-            line="$line $(printf ' %12s' -)"
-            ratios="$ratios $(printf ' %14s' -)"
-            continue ;;
+        gf-*:pforth) ;; # pforth reports each include on stdout: no answer to compare, not asked for
+        *) ran="$ran $s"; : > "$tmp/ns.$s" ;;
         esac
-        ns=$(best "$s" "$f")
+    done
+    i=0
+    while [ "$i" -lt "$runs" ]; do
+        for s in $ran; do timed "$s" "$f" >> "$tmp/ns.$s"; done
+        i=$((i + 1))
+    done
+    for s in $systems; do
+        case " $ran " in
+        *" $s "*) ;;
+        *) line="$line $(printf ' %12s' -)"; ratios="$ratios $(printf ' %14s' -)"; continue ;;
+        esac
         o=$(run "$s" "$f" 2>/dev/null | tr -s ' \n' ' ' | sed 's/ *$//')
         if [ "$s" = fbrlmon ]; then answer=$o; fi
         [ "$o" = "$answer" ] || agree="NO ($s: $o)"
-        if [ "$ns" = FAILED ]; then
+        if grep -q FAILED "$tmp/ns.$s"; then
             line="$line $(printf ' %12s' FAILED)"
-            [ "$s" = fbrlmon ] && fbrl_ns=
+            [ "$s" = fbrlmon ] && fbrl_ok=
             [ "$s" = fbrlmon ] || ratios="$ratios $(printf ' %14s' -)"
             continue
         fi
-        line="$line $(printf ' %12s' "$(awk -v n="$ns" 'BEGIN{printf "%.1f", n/1e6}')")"
+        line="$line $(printf ' %12s' "$(sort -n "$tmp/ns.$s" | awk 'NR == 1 {printf "%.1f", $1/1e6}')")"
         if [ "$s" = fbrlmon ]; then
-            fbrl_ns=$ns
-        elif [ -n "$fbrl_ns" ]; then
-            r=$(awk -v a="$fbrl_ns" -v b="$ns" 'BEGIN{printf "%.2f", a/b}')
+            fbrl_ok=yes
+        elif [ -n "$fbrl_ok" ]; then
+            # the median of the rounds' ratios
+            r=$(paste "$tmp/ns.fbrlmon" "$tmp/ns.$s" | awk '{print $1/$2}' | sort -g |
+                awk '{v[NR] = $1} END {printf "%.2f", NR % 2 ? v[(NR+1)/2] : (v[NR/2] + v[NR/2+1]) / 2}')
             ratios="$ratios $(printf ' %14s' "$r")"
             if [ "$name" != compile ] && [ "$agree" = yes ]; then
                 logsum="$logsum $s:$r"
@@ -182,7 +190,7 @@ for s in $others; do
     printf ' %14s' "$g"
 done
 printf '  %s\n' "(compute benchmarks; ratio < 1: fbrlmon is faster)"
-echo "(ms, best of $runs runs, wall time incl. start-up)"
+echo "(times: ms, best of $runs runs, wall time incl. start-up; ratios: the median of $runs rounds' ratios, the systems run in turn)"
 if [ -n "$slow" ]; then
     echo "fbrlmon is not faster than pforth on:$slow"
 fi
