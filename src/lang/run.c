@@ -798,6 +798,25 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             CHKC(a, CELL);
             PUSH(ld(a));
             NEXT;
+            /* ISTOF ( -- ) ( F: -- r ) R: ( loop-sys -- loop-sys ) I S>F (the data stack's
+             * room asked as I asks it, so an error is the same) */
+            CASE(ISTOF) RNEED(1);
+            ROOM(1);
+            FROOM(1);
+            FPUSH((double)rp[-1]);
+            NEXT;
+            /* FOVERFOVER ( F: r1 r2 -- r1 r2 r1 r2 ) FOVER FOVER */
+            CASE(FOVERFOVER) FNEED(2);
+            FROOM(2);
+            fp[0] = ftos; /* r2 stays in ftos */
+            fp[1] = fp[-1];
+            fp += 2;
+            NEXT;
+            /* FDUPFSTAR ( F: r -- r*r ) FDUP F* */
+            CASE(FDUPFSTAR) FNEED(1);
+            FROOM(1);
+            ftos = ftos * ftos;
+            NEXT;
             /* STARPLUS ( n1 n2 n3 -- n1+n2*n3 ) */
             CASE(STARPLUS) NEED(3);
             T = (fbrl_cell)(U(S3) + U(S) * U(T));

@@ -34,6 +34,7 @@ static const struct {
     {OP_STARPLUS, 0, 0, "* +"},      {OP_TWODUPEQZBR, 0, 1, "2DUP ="}, {OP_TWODUPNEZBR, 0, 1, "2DUP <>"},
     {OP_TWODUPLTZBR, 0, 1, "2DUP <"}, {OP_TWODUPGTZBR, 0, 1, "2DUP >"}, {OP_LITPLUSFETCH, 1, 0, "+ @"},
     {OP_LITPLUSCFETCH, 1, 0, "+ C@"}, {OP_LITPLUSSTORE, 1, 0, "+ !"}, {OP_LITPLUSCSTORE, 1, 0, "+ C!"},
+    {OP_ISTOF, 0, 0, "I S>F"},       {OP_FOVERFOVER, 0, 0, "FOVER FOVER"}, {OP_FDUPFSTAR, 0, 0, "FDUP F*"},
 };
 
 const char *fbrl__fused_words(int op, int *lit, int *br)

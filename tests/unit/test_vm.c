@@ -785,8 +785,9 @@ static void fused_code_keeps_meaning(void **state)
  * first) and the 32 bytes at BUF. The stack is emptied after. */
 typedef struct run_result {
     fbrl_status st;
-    int code, depth;
+    int code, depth, fdepth;
     fbrl_cell cells[16];
+    double floats[8];
     unsigned char buf[32];
 } run_result;
 
@@ -802,6 +803,10 @@ static run_result run_word(fixture *f, const char *input, const char *name)
     assert_true(r.depth <= 16);
     for (int i = r.depth - 1; i >= 0; i--)
         r.cells[i] = pop1(f);
+    r.fdepth = (int)fbrl_vm_fdepth(f->vm);
+    assert_true(r.fdepth <= 8);
+    for (int i = r.fdepth - 1; i >= 0; i--)
+        assert_int_equal(fbrl_vm_fpop(f->vm, &r.floats[i]), FBRL_OK);
     fbrl_cell buf = eval_pop(f->vm, "BUF");
     memcpy(r.buf, (const void *)buf, sizeof r.buf);
     return r;
@@ -809,8 +814,9 @@ static run_result run_word(fixture *f, const char *input, const char *name)
 
 /* The superinstructions (a DUP or 2DUP before a compare and branch, DROP and a literal,
  * I before a fetch or store, a literal or DUP before +LOOP, OVER/2 PICK before @, * +, a
- * literal + before a fetch or store, an ELSE branch that lands on ;) against the same
- * words kept apart by HERE (which ends every fusion): the same stack, memory and errors. */
+ * literal + before a fetch or store, an ELSE branch that lands on ;, I S>F, FOVER FOVER,
+ * FDUP F*) against the same words kept apart by HERE (which ends every fusion): the same
+ * stacks, memory and errors. */
 static void superinstructions_keep_meaning(void **state)
 {
     (void)state;
@@ -825,6 +831,7 @@ static void superinstructions_keep_meaning(void **state)
         "OVER @",                    "2 PICK @",                  "* +",
         "8 + @",                     "3 + C@",                    "8 + !",
         "3 + C!",                    "IF 1 ELSE 2 THEN",          "CASE 1 OF 10 ENDOF 2 OF 20 ENDOF 30 SWAP ENDCASE",
+        "DUP 1+ SWAP DO I S>F LOOP", "S>F 2E0 FOVER FOVER",       "S>F FDUP F*",
     };
     static const char *const inputs[] = {
         "",          "0",         "5",           "9",         "BUF",     "3 4",   "4 4",
@@ -862,6 +869,8 @@ static void superinstructions_keep_meaning(void **state)
     /* SEE shows them as the words they came from */
     expect_output(f, ": S1 DUP 3 < IF DROP 0 THEN ; SEE S1", ": S1 DUP 3 < 0BRANCH(2) DROP 0 ;\n");
     expect_output(f, ": S2 10 0 DO I @ DUP +LOOP ; SEE S2", ": S2 10 0 DO I @ DUP +LOOP ;\n");
+    expect_output(f, ": S3 3 0 DO I S>F FDUP F* FOVER FOVER LOOP ; SEE S3",
+                  ": S3 3 0 DO I S>F FDUP F* FOVER FOVER LOOP ;\n");
     free_vm(f);
 }
 
