@@ -4,11 +4,13 @@ release, teach) and RobotController (MovePlate between sites). Every motion is F
 robot words run by the owner thread, so the collision guard checks it."""
 import logging
 
+import fbrl
+
 from . import sila
 from .cell import KIND_LOC, forth_float
 from .controller import RobotFailure
 from .core import Feature
-from .sila import B, I, R, S, rpc, stream_rpc
+from .sila import B, I, R, S, rpc, stream_rpc, who
 
 RELEASE_FORCE = 30  # percent: the gripper opens with a light force (the ASPS cell's OPEN-HAND)
 WATCH_TICK_S = 1.0  # how often a subscription looks whether its client is still there
@@ -42,6 +44,22 @@ def watch_stream(context, watched, message):
 class Observable:
     """Running an observable command: an execution whose job the owner runs, its Info,
     Intermediate and Result calls."""
+
+    def audit(self, context, command, text):
+        """With --lab: the FBRL text a client's command runs, in the lab's audit trail before it
+        runs; a command that cannot be recorded does not run."""
+        trail = self.st.trail
+        if trail is not None:
+            try:
+                trail.sila(text, "%s.%s" % (self.FEATURE, command), who(context))
+            except fbrl.Error as e:
+                raise sila.undefined("%s not run: the lab's audit trail cannot record it: %s"
+                                     % (command, e.detail or e))
+
+    def eval(self, c, context, command, text):
+        """On the owner thread: run a client's FBRL text, recorded first (audit)."""
+        self.audit(context, command, text)
+        return c.eval(text)
 
     def launch(self, context, command, work):
         """work(controller) runs on the owner thread as a motion; returns the confirmation."""
@@ -86,7 +104,7 @@ class ArmController(Observable, Feature):
         self.check("Home", request)
 
         def work(c):
-            c.eval("HOME FINISH")
+            self.eval(c, context, "Home", "HOME FINISH")
             return self.m.Home_Responses()
 
         return self.launch(context, "Home", work)
@@ -105,7 +123,7 @@ class ArmController(Observable, Feature):
         place, index = request.Place.PlaceName.value, request.Index.value
 
         def work(c):
-            c.eval(self.st.cell.site_loc(place, index) + " MOV FINISH")
+            self.eval(c, context, "MoveToPlace", self.st.cell.site_loc(place, index) + " MOV FINISH")
             return self.m.MoveToPlace_Responses()
 
         return self.launch(context, "MoveToPlace", work)
@@ -118,25 +136,25 @@ class ArmController(Observable, Feature):
     def MoveToPlace_Result(self, request, context):
         return self.result("MoveToPlace", request)
 
-    def _now(self, context, text):
+    def _now(self, context, command, text):
         """An unobservable command: run it and wait."""
         self.protected(context)
         self.not_running()
         try:
-            self.st.owner.motion(lambda c: c.eval(text)).result()
+            self.st.owner.motion(lambda c: self.eval(c, context, command, text)).result()
         except RobotFailure as failure:
             raise self.error(failure)
 
     @rpc
     def Grip(self, request, context):
         self.check("Grip", request)
-        self._now(context, "%d %s GRIP" % (request.Force.value, forth_float(request.Width.Opening.value)))
+        self._now(context, "Grip", "%d %s GRIP" % (request.Force.value, forth_float(request.Width.Opening.value)))
         return self.m.Grip_Responses()
 
     @rpc
     def Release(self, request, context):
         self.check("Release", request)
-        self._now(context, "%d %s GRIP" % (RELEASE_FORCE, forth_float(request.Width.Opening.value)))
+        self._now(context, "Release", "%d %s GRIP" % (RELEASE_FORCE, forth_float(request.Width.Opening.value)))
         return self.m.Release_Responses()
 
     @rpc
@@ -152,6 +170,7 @@ class ArmController(Observable, Feature):
                 raise RobotFailure("StationBusy", "a method run owns the arm (%s)" % owner.run.describe())
             if not c.connected:
                 owner.reconnect(c)
+            self.audit(context, "TeachPlace", "%s ARM-HERE" % name)
             return cell.teach(c, name)
 
         try:
@@ -236,7 +255,7 @@ class RobotController(Observable, Feature):
         origin, target = (o.Device.value, o.SiteIndex.value), (t.Device.value, t.SiteIndex.value)
 
         def work(c):
-            c.eval(self.st.cell.transfer(origin, target, plate) + " FINISH")
+            self.eval(c, context, "MovePlate", self.st.cell.transfer(origin, target, plate) + " FINISH")
             return self.m.MovePlate_Responses()
 
         return self.launch(context, "MovePlate", work)

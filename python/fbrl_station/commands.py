@@ -11,7 +11,7 @@ from .arm import watch_stream
 from .controller import RobotFailure
 from .core import Feature
 from .runs import OPTIONS
-from .sila import B, I, R, S, rpc, stream_rpc
+from .sila import B, I, R, S, rpc, stream_rpc, who
 
 # Units a method's parameter may name, as SiLA unit constraints: (label, factor to SI, SI
 # unit, exponent). A unit not here is given as the range alone.
@@ -30,10 +30,6 @@ def constraints_xml(p):
                      "<Exponent>%d</Exponent></UnitComponent></Unit>" % (
                          escape(p["unit"]), format(decimal.Decimal(repr(float(unit[0]))), "f"), unit[1], unit[2]))
     return '<Constraints xmlns="http://www.sila-standard.org">%s</Constraints>' % "".join(parts)
-
-
-def who(context):
-    return "SiLA client %s" % context.peer()
 
 
 class MethodLibrary(Feature):

@@ -96,6 +96,11 @@ def decode_error(details):
     return e
 
 
+def who(context):
+    """A SiLA client, as runs and records name it."""
+    return "SiLA client %s" % context.peer()
+
+
 def rpc(fn):
     """A servicer method: a SilaError it raises goes to the client as such; anything else
     is an undefined execution error with its text (and in the station's log)."""

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: MIT
 """With --lab: the station's records in the lab's audit trail (docs/compliance.md), the one chain
 fbrlmon, fbrl-users and fbrl-audit keep. In fbrlmon's words: the page's sign-ins ("login") and
-sign-outs ("action" logout), and every method run: its "method_run" record (version, state,
+sign-outs ("action" logout), each SiLA client's motion and teach outside a run (the
+FBRL text it runs, "action" forth, as fbrlmon records a line typed at its prompt), and every
+method run: its "method_run" record (version, state,
 role), then the library's run log (fbrl.RunLog: the header, each step, every line the
 controller ran, pauses, resumes, aborts and answers with who asked, each sample, the summary),
 sealed at its end. Outside a run the chain is opened for each record and closed after it, so
@@ -69,6 +71,11 @@ class LabTrail:
                 raise OSError("fbrl-audit report: %s" % (r.stderr.strip() or "exit status %d" % r.returncode))
             with open(out, encoding="utf-8") as f:
                 return f.read(), r.returncode == 0
+
+    def sila(self, text, command, by):
+        """A SiLA client's motion or teach, as fbrlmon records a line typed at its prompt: the
+        FBRL text (action "forth"), which command of whom in detail. No lab user: "-"."""
+        self.record("action", None, action="forth", what=text, detail="SiLA %s by %s" % (command, by))
 
     def logout(self, name, why):
         self.record("action", name, action="logout", what=name, detail=why)

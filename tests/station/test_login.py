@@ -248,6 +248,44 @@ def test_a_sila_client_in_the_lab_counts_as_an_operator(page):
     assert not [l for l in page.sim.log()[before:] if l.startswith(MOTION)]
 
 
+def test_a_sila_clients_motions_are_in_the_lab_audit_trail(page):
+    """Outside a run, each SiLA motion and teach is recorded before it runs, as fbrlmon records a
+    line typed at its prompt (the FBRL text, "action" forth, by "-": a SiLA client is no lab
+    user); while the chain cannot be written, the command is refused and nothing moves."""
+    import fbrl
+    from client import Failure
+    from fbrl_station import pb
+    from fbrl_station.sila import I, R, S
+    am = pb.messages("ArmController")
+    chain = os.path.join(page.labdir, "audit.jsonl")
+    start = sum(1 for _ in open(chain))
+    before = len(page.sim.log())
+    result, _ = page.client.run("ArmController", "Home")
+    assert not isinstance(result, Failure), result
+    page.client.call("ArmController", "Grip", Width=am.DataType_Opening(Opening=R(0.5)), Force=I(40))
+    page.client.call("ArmController", "TeachPlace", Place=am.DataType_PlaceName(PlaceName=S("AUDITED")))
+    ran = page.sim.log()[before:]
+    assert any(l.startswith("HOME") for l in ran) and any(l.startswith("GRIP") for l in ran), ran
+    recs = [json.loads(line) for line in open(chain)][start:]
+    sila = [(x["what"], x["detail"].split(" by ")[0], x["user"]) for x in recs
+            if x["type"] == "action" and x["action"] == "forth"]
+    assert sila == [("HOME FINISH", "SiLA ArmController.Home", "-"), ("40 5.00000000000000000E-01 GRIP", "SiLA ArmController.Grip", "-"),
+                    ("AUDITED ARM-HERE", "SiLA ArmController.TeachPlace", "-")], sila
+    assert all(re.match(r"SiLA ArmController\.\w+ by SiLA client ipv[46]:", x["detail"]) for x in recs
+               if x["type"] == "action" and x["action"] == "forth"), recs
+    assert "intact" in fbrl_audit(page.labdir, "verify", chain)
+    # another program holds the chain past the station's wait: refused, nothing sent
+    holder = fbrl.AuditTrail(chain).open()
+    try:
+        before = len(page.sim.log())
+        with pytest.raises(Failure) as e:
+            page.client.call("ArmController", "Grip", Width=am.DataType_Opening(Opening=R(0.5)), Force=I(40))
+    finally:
+        holder.close(seal=False)
+    assert "Grip not run: the lab's audit trail cannot record it" in e.value.message, e.value.message
+    assert not [l for l in page.sim.log()[before:] if l.startswith(MOTION + ("GRIP",))]
+
+
 def test_an_operator_runs_a_released_method_and_not_a_draft(page):
     """As fbrlmon in a lab (tests/e2e/console_audit.sh): an operator runs only a Released version,
     by the lab's audit trail; a developer may run the Draft only where the lab allows Drafts."""
