@@ -1,10 +1,9 @@
 # SPDX-License-Identifier: MIT
 """With --lab: the station's records in the lab's audit trail (docs/compliance.md), the one chain
 fbrlmon, fbrl-users and fbrl-audit keep. In fbrlmon's words: the page's sign-ins ("login") and
-sign-outs ("action" logout), each SiLA client's motion and teach outside a run (the
-FBRL text it runs, "action" forth, as fbrlmon records a line typed at its prompt), and every
-method run: its "method_run" record (version, state,
-role), then the library's run log (fbrl.RunLog: the header, each step, every line the
+sign-outs ("action" logout), each SiLA client's motion and teach outside a run (the FBRL text
+it runs, "action" forth, as fbrlmon records a line typed at its prompt), and every method run:
+its "method_run" record (version, state, role), then the library's run log (fbrl.RunLog: the header, each step, every line the
 controller ran, pauses, resumes, aborts and answers with who asked, each sample, the summary),
 sealed at its end. Outside a run the chain is opened for each record and closed after it, so
 the lab's other programs write it in between; while one of them holds it, a record waits up to
