@@ -9,9 +9,10 @@
 #
 # Every benchmark prints a checksum; the runner compares the systems' answers so
 # a fast wrong result does not count. gforth's own siev, bubble, matrix and fib
-# (gf-*, from Debian's gforth package when installed) run beside bench/forth/. Benchmark times are wall times of the whole
-# process (start-up included; it is printed first, and is a few ms). The geometric
-# mean covers the compute-bound programs, not the compile benchmark. Run it on an
+# (gf-*, from Debian's gforth package when installed) run beside bench/forth/.
+# Benchmark times are wall times of the whole process (start-up included; it is
+# printed first, and is a few ms). The geometric mean covers the compute-bound
+# programs, not the compile benchmark. Run it on an
 # idle machine: other load shows up as noise.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)

@@ -148,13 +148,15 @@ class ArmController(Observable, Feature):
     @rpc
     def Grip(self, request, context):
         self.check("Grip", request)
-        self._now(context, "Grip", "%d %s GRIP" % (request.Force.value, forth_float(request.Width.Opening.value)))
+        self._now(context, "Grip",
+                  "%d %s GRIP" % (request.Force.value, forth_float(request.Width.Opening.value)))
         return self.m.Grip_Responses()
 
     @rpc
     def Release(self, request, context):
         self.check("Release", request)
-        self._now(context, "Release", "%d %s GRIP" % (RELEASE_FORCE, forth_float(request.Width.Opening.value)))
+        self._now(context, "Release",
+                  "%d %s GRIP" % (RELEASE_FORCE, forth_float(request.Width.Opening.value)))
         return self.m.Release_Responses()
 
     @rpc

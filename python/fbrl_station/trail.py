@@ -3,12 +3,13 @@
 fbrlmon, fbrl-users and fbrl-audit keep. In fbrlmon's words: the page's sign-ins ("login") and
 sign-outs ("action" logout), each SiLA client's motion and teach outside a run (the FBRL text
 it runs, "action" forth, as fbrlmon records a line typed at its prompt), and every method run:
-its "method_run" record (version, state, role), then the library's run log (fbrl.RunLog: the header, each step, every line the
-controller ran, pauses, resumes, aborts and answers with who asked, each sample, the summary),
-sealed at its end. Outside a run the chain is opened for each record and closed after it, so
-the lab's other programs write it in between; while one of them holds it, a record waits up to
-fbrl.audit.BUSY_WAIT_S and is then refused: a sign-in or a run that cannot be recorded does not
-happen. During a run the run holds it, and other records (a sign-in) join it."""
+its "method_run" record (version, state, role), then the library's run log (fbrl.RunLog: the
+header, each step, every line the controller ran, pauses, resumes, aborts and answers with who
+asked, each sample, the summary), sealed at its end. Outside a run the chain is opened for each
+record and closed after it, so the lab's other programs write it in between; while one of them
+holds it, a record waits up to fbrl.audit.BUSY_WAIT_S and is then refused: a sign-in or a run
+that cannot be recorded does not happen. During a run the run holds it, and other records (a
+sign-in) join it."""
 import os
 import subprocess
 import tempfile
