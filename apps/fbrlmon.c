@@ -534,6 +534,7 @@ int main(int argc, char **argv)
              * without a controller rather than refuse to run Forth at all. */
             fprintf(stderr, "fbrlmon: %s; running offline\n", err);
             opt.conn.kind = MON_CONN_OFFLINE;
+            memset(&g_conn, 0, sizeof g_conn);
             mon_conn_open(&g_conn, &opt.conn, err, sizeof err);
         }
         if (g_conn.note[0])

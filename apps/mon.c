@@ -40,7 +40,6 @@ int mon_open(mon *m, size_t dict_bytes, fbrl_link *link)
     size_t size;
     fbrl_status st;
 
-    memset(m, 0, sizeof *m);
     memset(&cfg, 0, sizeof cfg);
     mon_host_init(&m->host, stdout, STDIN_FILENO, &cfg.host);
     size = fbrl_vm_size_for(&cfg, dict_bytes);

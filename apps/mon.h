@@ -71,7 +71,8 @@ typedef struct mon {
 
 /* Create the VM (dict_bytes of dictionary) with output to stdout, keys from stdin,
  * and the thesis's glossary and robot words; link is the connected controller or
- * NULL (offline: the robot words say so when used). */
+ * NULL (offline: the robot words say so when used). *m must be all zero, as static
+ * storage is: clearing its 134 KB again would make every page of it resident. */
 int mon_open(mon *m, size_t dict_bytes, fbrl_link *link);
 /* The picture of the cell written to path whole (CELL-SVG, the dry run's picture). */
 fbrl_status mon_save_svg(void *ctx, const char *path, fbrl_cell_words *cw);

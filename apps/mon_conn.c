@@ -118,7 +118,6 @@ fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, siz
     fbrl_port_options po = o->line;
     const char *name = o->port;
 
-    memset(c, 0, sizeof *c);
     c->kind = o->kind;
     c->sim_state = o->sim_state;
     c->sim_inputs = o->sim_inputs;

@@ -61,7 +61,9 @@ typedef struct mon_conn {
 
 /* Connect as asked; on failure err says why (one line, no newline). A controller that
  * works in millimetres is connected all the same, with c->note saying so and how to switch
- * it (the robot words refuse their commands meanwhile). */
+ * it (the robot words refuse their commands meanwhile). *c must be all zero, as static
+ * storage is (clear it again before a second try): clearing its 18 KB here would make
+ * them resident. */
 fbrl_status mon_conn_open(mon_conn *c, const mon_conn_options *o, char *err, size_t errlen);
 /* One-line description, e.g. "emulator on /dev/pts/4 (9600 8N1, XON/XOFF; pty, low
  * latency: not supported)". */

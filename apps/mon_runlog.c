@@ -361,7 +361,6 @@ static fbrl_status w_no_run_log(fbrl_vm *vm, void *ctx, const void *word)
 int mon_runlog_install(mon_runlog *r, mon *m, const char *program, const char *controller)
 {
     const char *who = getenv("USER");
-    memset(r, 0, sizeof *r);
     r->m = m;
     r->program = program;
     snprintf(r->operator_id, sizeof r->operator_id, "%s", who ? who : "");

@@ -53,7 +53,8 @@ typedef struct mon_runlog {
 } mon_runlog;
 
 /* Observe m's method runs, take m's device events, define RUN-LOG and NO-RUN-LOG.
- * controller describes the connection (may be NULL). 0, or -1 if that failed. */
+ * controller describes the connection (may be NULL). *r must be all zero, as static
+ * storage is (clearing it again would make its 47 KB resident). 0, or -1 if that failed. */
 int mon_runlog_install(mon_runlog *r, struct mon *m, const char *program, const char *controller);
 /* Observe the runs again, after the observers added since (the console: its last reading of
  * the arm at a run's end belongs to that run's log). 0, or -1. */

@@ -398,8 +398,12 @@ fbrl_status fbrl_method_install(fbrl_vm *vm, fbrl_method_set *s)
 {
     if (vm == NULL || s == NULL)
         return FBRL_EINVAL;
-    memset(s, 0, sizeof *s);
+    /* Not the methods themselves: METHOD clears each as it is declared, and clearing all of
+     * them here would make a static set's 92 KB resident for nothing. */
     s->vm = vm;
+    s->count = 0;
+    s->current = NULL;
+    s->running = NULL;
     return fbrl_vmx_define_table(vm, words, sizeof words / sizeof words[0], s);
 }
 
