@@ -83,16 +83,26 @@ startup() {
     awk -v n="$b" 'BEGIN{printf "%.2f", n/1e6}'
 }
 
-# peak SYSTEM: maximum resident set size in MB of the empty program.
+# peak SYSTEM: maximum resident set size in MB of the empty program, the median of $peaks
+# runs and their range: where the kernel places a program (ASLR) moves which 64 KB windows
+# its code faults in, so one run can be 0.2 MB off its neighbour.
+peaks=9
 peak() {
     if [ -x /usr/bin/time ]; then
-        case $1 in
-        fbrlmon) /usr/bin/time -f '%M' -o "$tmp/rss" "$fbrlmon" --offline "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
-        fbrlmon-sim) /usr/bin/time -f '%M' -o "$tmp/rss" "$fbrlmon" "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
-        pforth) /usr/bin/time -f '%M' -o "$tmp/rss" pforth -q "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
-        *) /usr/bin/time -f '%M' -o "$tmp/rss" "$1" -e bye </dev/null >/dev/null 2>&1 ;;
-        esac
-        awk '{printf "%.1f", $1/1024}' "$tmp/rss"
+        : >"$tmp/rsses"
+        i=0
+        while [ "$i" -lt "$peaks" ]; do
+            case $1 in
+            fbrlmon) /usr/bin/time -f '%M' -o "$tmp/rss" "$fbrlmon" --offline "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
+            fbrlmon-sim) /usr/bin/time -f '%M' -o "$tmp/rss" "$fbrlmon" "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
+            pforth) /usr/bin/time -f '%M' -o "$tmp/rss" pforth -q "$tmp/empty.fs" </dev/null >/dev/null 2>&1 ;;
+            *) /usr/bin/time -f '%M' -o "$tmp/rss" "$1" -e bye </dev/null >/dev/null 2>&1 ;;
+            esac
+            tail -n 1 "$tmp/rss" >>"$tmp/rsses"
+            i=$((i + 1))
+        done
+        sort -n "$tmp/rsses" | awk '{ v[NR] = $1 } END {
+            printf "%.2f (%.2f-%.2f)", v[int((NR + 1) / 2)] / 1024, v[1] / 1024, v[NR] / 1024 }'
     else
         printf -
     fi
@@ -104,15 +114,15 @@ for s in gforth-fast gforth pforth; do
 done
 [ -n "$others" ] || echo "(no gforth-fast, gforth or pforth installed: ./scripts/deps.sh gforth pforth)"
 
-echo "start-up (empty program, best of 3 x $starts runs) and peak memory (max RSS):"
-printf '  %-22s %10s %10s\n' system "ms" "MB"
+echo "start-up (empty program, best of 3 x $starts runs) and peak memory (max RSS, median of $peaks):"
+printf '  %-22s %10s %18s\n' system "ms" "MB (min-max)"
 for s in fbrlmon fbrlmon-sim $others; do
     case $s in
     fbrlmon) label="fbrlmon --offline" ;;
     fbrlmon-sim) label="fbrlmon (emulator)" ;;
     *) label=$s ;;
     esac
-    printf '  %-22s %10s %10s\n' "$label" "$(startup "$s")" "$(peak "$s")"
+    printf '  %-22s %10s %18s\n' "$label" "$(startup "$s")" "$(peak "$s")"
 done
 echo
 
