@@ -437,7 +437,7 @@ static int fuse(fbrl_cell prev, int op)
         {OP_LITPLUS, OP_FETCH, OP_LITPLUSFETCH}, {OP_LITPLUS, OP_CFETCH, OP_LITPLUSCFETCH},
         {OP_LITPLUS, OP_STORE, OP_LITPLUSSTORE}, {OP_LITPLUS, OP_CSTORE, OP_LITPLUSCSTORE},
         {OP_I, OP_STOF, OP_ISTOF},           {OP_FOVER, OP_FOVER, OP_FOVERFOVER},
-        {OP_FDUP, OP_FSTAR, OP_FDUPFSTAR},
+        {OP_FDUP, OP_FSTAR, OP_FDUPFSTAR},   {OP_I, OP_J, OP_IJ},
     };
     for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
         if (pairs[i].prev == prev && pairs[i].op == op)

@@ -817,6 +817,15 @@ int fbrl__run(fbrl_vm *vm, fbrl_cell xt)
             FROOM(1);
             ftos = ftos * ftos;
             NEXT;
+            /* IJ ( -- n1 n2 ) R: ( loop-sys1 loop-sys2 -- loop-sys1 loop-sys2 ) I J: I's checks,
+             * its push, then J's, so that an error leaves what the two words leave */
+            CASE(IJ) RNEED(1);
+            ROOM(1);
+            PUSH(rp[-1]);
+            RNEED(4);
+            ROOM(1);
+            PUSH(rp[-4]);
+            NEXT;
             /* STARPLUS ( n1 n2 n3 -- n1+n2*n3 ) */
             CASE(STARPLUS) NEED(3);
             T = (fbrl_cell)(U(S3) + U(S) * U(T));

@@ -35,6 +35,7 @@ static const struct {
     {OP_TWODUPLTZBR, 0, 1, "2DUP <"}, {OP_TWODUPGTZBR, 0, 1, "2DUP >"}, {OP_LITPLUSFETCH, 1, 0, "+ @"},
     {OP_LITPLUSCFETCH, 1, 0, "+ C@"}, {OP_LITPLUSSTORE, 1, 0, "+ !"}, {OP_LITPLUSCSTORE, 1, 0, "+ C!"},
     {OP_ISTOF, 0, 0, "I S>F"},       {OP_FOVERFOVER, 0, 0, "FOVER FOVER"}, {OP_FDUPFSTAR, 0, 0, "FDUP F*"},
+    {OP_IJ, 0, 0, "I J"},
 };
 
 const char *fbrl__fused_words(int op, int *lit, int *br)

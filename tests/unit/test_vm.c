@@ -815,7 +815,7 @@ static run_result run_word(fixture *f, const char *input, const char *name)
 /* The superinstructions (a DUP or 2DUP before a compare and branch, DROP and a literal,
  * I before a fetch or store, a literal or DUP before +LOOP, OVER/2 PICK before @, * +, a
  * literal + before a fetch or store, an ELSE branch that lands on ;, I S>F, FOVER FOVER,
- * FDUP F*) against the same words kept apart by HERE (which ends every fusion): the same
+ * FDUP F*, I J) against the same words kept apart by HERE (which ends every fusion): the same
  * stacks, memory and errors. */
 static void superinstructions_keep_meaning(void **state)
 {
@@ -832,6 +832,7 @@ static void superinstructions_keep_meaning(void **state)
         "8 + @",                     "3 + C@",                    "8 + !",
         "3 + C!",                    "IF 1 ELSE 2 THEN",          "CASE 1 OF 10 ENDOF 2 OF 20 ENDOF 30 SWAP ENDCASE",
         "DUP 1+ SWAP DO I S>F LOOP", "S>F 2E0 FOVER FOVER",       "S>F FDUP F*",
+        "3 0 DO 2 0 DO I J LOOP LOOP",
     };
     static const char *const inputs[] = {
         "",          "0",         "5",           "9",         "BUF",     "3 4",   "4 4",
@@ -871,6 +872,7 @@ static void superinstructions_keep_meaning(void **state)
     expect_output(f, ": S2 10 0 DO I @ DUP +LOOP ; SEE S2", ": S2 10 0 DO I @ DUP +LOOP ;\n");
     expect_output(f, ": S3 3 0 DO I S>F FDUP F* FOVER FOVER LOOP ; SEE S3",
                   ": S3 3 0 DO I S>F FDUP F* FOVER FOVER LOOP ;\n");
+    expect_output(f, ": S4 2 0 DO 2 0 DO I J XOR LOOP LOOP ; SEE S4", ": S4 2 0 DO 2 0 DO I J XOR LOOP LOOP ;\n");
     free_vm(f);
 }
 
