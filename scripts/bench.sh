@@ -60,13 +60,15 @@ echo
 echo "| what | figure | share of the bound |"
 echo "|---|---|---|"
 grep '^| ' "$log" || true
-# run_forth.sh's start-up lines ("  NAME  MS  MB (MIN-MAX)") and its geometric means
+# run_forth.sh's start-up lines ("  NAME  MS  MB (MIN-MAX)", or "  NAME  MS  -" without
+# /usr/bin/time) and its geometric means
 printf '%s\n' "$forth" | awk '
     /^start-up/ { s = 1; next }
     s && /^  system/ { next }
-    s && /^  / { n = NF; name = $1; for (i = 2; i <= n - 3; i++) name = name " " $i
-                 printf "| start-up and peak memory, empty program: %s | %s ms | %s MB %s |\n",
-                        name, $(n-2), $(n-1), $n; next }
+    s && /^  / { n = NF; k = ($n ~ /^\(/) ? 2 : 1; mb = (k == 2) ? $(n-1) " MB " $n : $n
+                 name = $1; for (i = 2; i <= n - k - 1; i++) name = name " " $i
+                 printf "| start-up and peak memory, empty program: %s | %s ms | %s |\n",
+                        name, $(n-k), mb; next }
     s && !/^  / { s = 0 }
     /^benchmark/ { for (i = 1; i <= NF; i++) if ($i ~ /^\//) cols[++nc] = $i; next }
     /^geomean/ { for (i = 1; i <= nc; i++) printf "| Forth compute, geometric mean fbrlmon %s (bench/forth) | %s | below 1: fbrlmon faster |\n", cols[i], $(i + 1) }
